@@ -1,0 +1,57 @@
+"""The ``racetrace`` command line: one sub-command per module in ``racetrace.commands``.
+
+Exit codes: 0 success, 2 invalid input (the validation message, no traceback), 3 the solver found no
+solution (the message says why and what to try), 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from solver import CaseError, NoSolutionError, __version__
+
+# Sub-command modules, in the order they are listed by --help. Each defines
+# ``register(subparsers)``, which adds its parser and sets ``func`` to a callable(args) -> int.
+COMMAND_MODULES = ("cases", "quasistatic")
+
+EXIT_OK = 0
+EXIT_INVALID_INPUT = 2
+EXIT_NO_SOLUTION = 3
+EXIT_INTERRUPTED = 130
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="racetrace",
+        description="Simulate angular contact ball bearings and their contact trajectories.",
+    )
+    parser.add_argument("--version", action="version", version=f"racetrace {__version__}")
+    subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name in COMMAND_MODULES:
+        importlib.import_module(f"racetrace.commands.{name}").register(subparsers)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "func", None):
+        parser.print_help()
+        return EXIT_INVALID_INPUT
+    try:
+        return int(args.func(args) or 0)
+    except CaseError as error:
+        print(f"racetrace: invalid input:\n{error}", file=sys.stderr)
+        return EXIT_INVALID_INPUT
+    except NoSolutionError as error:
+        print(f"racetrace: no solution: {error}", file=sys.stderr)
+        return EXIT_NO_SOLUTION
+    except KeyboardInterrupt:
+        print("racetrace: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
