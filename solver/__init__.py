@@ -5,16 +5,39 @@ Public API (everything else is internal):
 - ``load_case(path_or_text) -> Case`` and ``Case.to_toml()``
 - ``catalogue()``: shipped bearings and example cases
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
-- ``CaseError`` (invalid input) and ``NoSolutionError`` (no solution for a valid case)
+- ``simulate(case, progress=None, cancel=None) -> xarray.Dataset`` (dynamic model)
+- ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
+  ``SimulationDiverged`` (the dynamic integration failed)
+
+Heavy modules (numba kernels, xarray) are imported on first use, so ``import solver`` stays cheap.
 """
 
+from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
+
+from .errors import CaseError, NoSolutionError, Problem, SimulationDiverged
 
 try:
     __version__ = version("racetrace")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0+unknown"
 
-from .errors import CaseError, NoSolutionError, Problem, SimulationDiverged  # noqa: E402
+# public name -> module that defines it
+_LAZY = {
+    "Case": "solver.case",
+    "load_case": "solver.case",
+    "catalogue": "solver.catalogue",
+    "BearingGeometry": "solver.geometry",
+    "solve_quasistatic": "solver.models.quasistatic",
+    "simulate": "solver.models.dynamic",
+    "save_dataset": "solver.results.io",
+    "load_dataset": "solver.results.io",
+}
 
-__all__ = ["CaseError", "NoSolutionError", "Problem", "SimulationDiverged", "__version__"]
+__all__ = ["CaseError", "NoSolutionError", "Problem", "SimulationDiverged", "__version__", *_LAZY]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        return getattr(import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'solver' has no attribute {name!r}")
