@@ -7,6 +7,10 @@ distributions (contact angles and loads as cosines of the azimuth); they are nev
 from __future__ import annotations
 
 import math
+import os
+
+if not os.environ.get("DISPLAY"):  # off-screen VTK on EGL (ui-notes.md); must precede VTK import
+    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
 import numpy as np
 import pytest

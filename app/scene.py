@@ -1,0 +1,309 @@
+"""The 3-D bearing scene (pyvista): rings, balls, cage, contact ellipses and trajectory traces.
+
+No trame here: :class:`BearingScene` draws into any ``pyvista.Plotter`` and is driven frame by frame
+from a :class:`app.frames.FrameSource`. Everything is built once; a frame only moves actors (4x4
+user matrices) and rewrites the points of the ellipse and trace meshes.
+
+Frames: the scene is in the inertial frame of case-format.md (x = bearing axis), lengths in m.
+Marks on a raceway (ellipses, traces) are built in that ring's own frame and share the ring's
+transform, so inner-raceway traces turn with the inner ring. Across-groove positions of marks can
+be exaggerated about the run's mean contact angle (``exaggeration``); ellipse sizes stay to scale.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pyvista as pv
+
+from .frames import FrameSource, rot_x
+from .raceway import INNER, OUTER, Groove, ellipse_outline, exaggerate, grooves
+
+LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
+CAMERA_PRESETS = ("isometric", "axial", "radial")
+ELLIPSE_POINTS = 24
+MAX_TRACE_SAMPLES = 1500  # per ball and race; longer traces are decimated for drawing
+_RING_COLOUR = "#b8bcc4"
+_MARK_LIFT = 0.004  # fraction of the groove radius that marks are lifted off the raceway
+
+
+@dataclass
+class SceneOptions:
+    """User-controlled drawing options."""
+
+    exaggeration: float = 1.0  # across-groove deviation factor for traces and ellipse centres
+    trace_ball: int | None = None  # None: all balls
+    layers: dict = field(default_factory=lambda: {name: True for name in LAYERS})
+    outer_opacity: float = 0.3
+
+
+def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n_arc: int = 40):
+    """Closed (x, radius) outline of a ring cross-section, m.
+
+    The groove arc runs between the two shoulders at groove latitude +-theta, with
+    cos(theta) = |rho_c - shoulder_radius| / r; when no usable shoulder is given the shoulder height
+    is 0.2 D (a typical spindle-bearing value, drawing only).
+    """
+    D, r = ball_diameter, groove.r
+    s = groove.sign  # +1 inner (material below the groove), -1 outer (material above)
+    depth = s * (shoulder_radius - (groove.rho_c - s * r)) if np.isfinite(shoulder_radius) else np.nan
+    if not (np.isfinite(depth) and 0.05 * D < depth < 0.9 * r):
+        depth = 0.2 * D
+    theta = math.acos(1.0 - depth / r)
+    alpha = np.linspace(-theta, theta, n_arc)
+    arc_x = groove.x_c - s * r * np.sin(alpha)
+    arc_rho = groove.rho_c - s * r * np.cos(alpha)
+    land = groove.rho_c - s * r * math.cos(theta)
+    back = groove.rho_c - s * r - s * 0.45 * D  # bore (inner) or outside surface (outer)
+    half_width = 0.5 * 1.9 * D
+    x_lo, x_hi = min(arc_x.min(), -half_width), max(arc_x.max(), half_width)
+    # the arc runs from x_hi side to x_lo side for the inner ring (s=+1) and the reverse for outer
+    if arc_x[0] < arc_x[-1]:
+        arc_x, arc_rho = arc_x[::-1], arc_rho[::-1]
+    xs = np.concatenate([[x_lo, x_hi, x_hi], arc_x, [x_lo, x_lo]])
+    rhos = np.concatenate([[back, back, land], arc_rho, [land, back]])
+    return xs, rhos
+
+
+def revolve(xs, rhos, n_phi: int = 96, phi_range=(0.0, 2 * math.pi)) -> pv.PolyData:
+    """Surface of revolution about +x of a closed (x, radius) outline."""
+    phi = np.linspace(*phi_range, n_phi)
+    X = np.repeat(np.asarray(xs)[:, None], n_phi, axis=1)
+    R = np.asarray(rhos)[:, None]
+    grid = pv.StructuredGrid(X, R * np.cos(phi)[None, :], R * np.sin(phi)[None, :])
+    try:
+        surf = grid.extract_surface(algorithm="dataset_surface")
+    except TypeError:  # pyvista < 0.47 has no ``algorithm`` keyword
+        surf = grid.extract_surface()
+    surf = surf.triangulate().clean()
+    return surf.compute_normals(auto_orient_normals=False, split_vertices=True)
+
+
+def marked_sphere(radius: float) -> pv.PolyData:
+    """Sphere with an octant checker pattern (cell data ``mark``), so its spin is visible."""
+    sphere = pv.Sphere(radius=radius, theta_resolution=24, phi_resolution=16)
+    c = sphere.cell_centers().points
+    sphere.cell_data["mark"] = (np.sign(c[:, 0]) * np.sign(c[:, 1]) * np.sign(c[:, 2]) > 0).astype(float)
+    return sphere
+
+
+def cage_mesh(pitch_radius: float, ball_diameter: float, ball_count: int) -> pv.PolyData:
+    """Two side hoops and one bar between each pair of pockets, at cage angle 0."""
+    D = ball_diameter
+    parts = []
+    for x in (-0.62 * D, 0.62 * D):
+        hoop = pv.ParametricTorus(ringradius=pitch_radius, crosssectionradius=0.07 * D,
+                                  u_res=96, v_res=8)
+        parts.append(hoop.rotate_y(90.0, inplace=False).translate((x, 0.0, 0.0), inplace=False))
+    for j in range(ball_count):
+        psi = 2 * math.pi * (j + 0.5) / ball_count
+        centre = (0.0, pitch_radius * math.cos(psi), pitch_radius * math.sin(psi))
+        parts.append(pv.Cylinder(center=centre, direction=(1, 0, 0), radius=0.07 * D,
+                                 height=1.24 * D, resolution=8))
+    return pv.merge(parts)
+
+
+def _fan_faces(count: int, n: int) -> np.ndarray:
+    """Triangle-fan faces for ``count`` ellipses of ``n`` outline points plus a centre point each."""
+    faces = []
+    for e in range(count):
+        base = e * (n + 1)
+        for k in range(n):
+            faces.append((3, base, base + 1 + k, base + 1 + (k + 1) % n))
+    return np.asarray(faces, dtype=np.int64).ravel()
+
+
+def _matrix(rotation: np.ndarray, translation=(0.0, 0.0, 0.0)) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, :3] = rotation
+    m[:3, 3] = translation
+    return m
+
+
+class BearingScene:
+    """Builds the bearing into ``plotter`` and moves it to a frame of a :class:`FrameSource`."""
+
+    def __init__(self, plotter: pv.Plotter, geometry, options: SceneOptions | None = None,
+                 dark_balls: bool = False):
+        self.plotter = plotter
+        self.geometry = geometry
+        self.options = options or SceneOptions()
+        self.grooves = grooves(geometry)
+        self.source: FrameSource | None = None
+        self.frame_index = 0
+        self._actors: dict[str, list] = {name: [] for name in LAYERS}
+        self._reference = [geometry.free_contact_angle] * 2
+        self._build(dark_balls)
+
+    # ---- construction ---------------------------------------------------------------------------
+    def _build(self, dark_balls: bool) -> None:
+        g, p = self.geometry, self.plotter
+        p.set_background("white")
+        inner_profile = ring_profile(self.grooves[INNER], g.ball_diameter, g.inner_shoulder_diameter / 2)
+        outer_profile = ring_profile(self.grooves[OUTER], g.ball_diameter, g.outer_shoulder_diameter / 2)
+        inner = revolve(*inner_profile)
+        # a dark sector on the inner ring makes its rotation visible
+        phi = np.arctan2(inner.cell_centers().points[:, 2], inner.cell_centers().points[:, 1])
+        inner.cell_data["mark"] = (np.abs(phi) < math.radians(8)).astype(float)
+        self._actors["inner_ring"].append(p.add_mesh(
+            inner, scalars="mark", cmap=[_RING_COLOUR, "#2f5597"], show_scalar_bar=False,
+            smooth_shading=True, specular=0.4, name="inner_ring"))
+        self._actors["outer_ring"].append(p.add_mesh(
+            revolve(*outer_profile), color=_RING_COLOUR, opacity=self.options.outer_opacity,
+            smooth_shading=True, specular=0.4, name="outer_ring"))
+        sphere = marked_sphere(0.5 * g.ball_diameter)
+        colours = ["#202020", "#6a6a6a"] if dark_balls else ["#d9d9d9", "#7a7a7a"]
+        for j in range(g.ball_count):
+            self._actors["balls"].append(p.add_mesh(
+                sphere, scalars="mark", cmap=colours, show_scalar_bar=False, smooth_shading=True,
+                specular=0.6, name=f"ball_{j}"))
+        self._actors["cage"].append(p.add_mesh(
+            cage_mesh(0.5 * g.pitch_diameter, g.ball_diameter, g.ball_count), color="#c8842a",
+            smooth_shading=True, name="cage"))
+        n_pts = g.ball_count * (ELLIPSE_POINTS + 1)
+        self._ellipses, self._traces = [], []
+        for race in (INNER, OUTER):
+            mesh = pv.PolyData(np.zeros((n_pts, 3)), faces=_fan_faces(g.ball_count, ELLIPSE_POINTS))
+            mesh.point_data["max_pressure_GPa"] = np.zeros(n_pts)
+            self._ellipses.append(mesh)
+            self._actors["ellipses"].append(p.add_mesh(
+                mesh, scalars="max_pressure_GPa", cmap="plasma", clim=(0.0, 1.0),
+                show_scalar_bar=race == INNER, scalar_bar_args={"title": "peak pressure, GPa"},
+                name=f"ellipses_{race}"))
+            trace = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
+            trace.point_data["ball"] = np.zeros(2)
+            self._traces.append(trace)
+            self._actors["traces"].append(p.add_mesh(
+                trace, scalars="ball", cmap="tab20", clim=(0, max(1, g.ball_count - 1)),
+                show_scalar_bar=False, line_width=2, name=f"traces_{race}"))
+        self.set_camera("isometric")
+
+    # ---- data -----------------------------------------------------------------------------------
+    def show_source(self, source: FrameSource, frame_index: int = 0) -> None:
+        """Use ``source`` for the following frames (sets the colour range and reference angles)."""
+        if source.ball_count != self.geometry.ball_count:
+            raise ValueError(f"the result has {source.ball_count} balls, the scene "
+                             f"{self.geometry.ball_count}")
+        self.source = source
+        self._reference = [source.reference_contact_angle(r) for r in (INNER, OUTER)]
+        pmax = np.nan_to_num(source.contact["max_pressure"])
+        top = max(float(pmax.max()) * 1e-9, 1e-3)
+        for actor in self._actors["ellipses"]:
+            actor.mapper.scalar_range = (0.0, top)
+        self.set_frame(frame_index)
+
+    def set_frame(self, frame_index: int) -> None:
+        """Move everything to frame ``frame_index`` of the current source (no render)."""
+        if self.source is None:
+            return
+        f = self.source.frame(frame_index)
+        self.frame_index = f.index
+        rings = [_matrix(rot_x(f.ring_angle[INNER])), _matrix(rot_x(f.ring_angle[OUTER]))]
+        self._actors["inner_ring"][0].user_matrix = rings[INNER]
+        self._actors["outer_ring"][0].user_matrix = rings[OUTER]
+        for j, actor in enumerate(self._actors["balls"]):
+            actor.user_matrix = _matrix(f.ball_rotation[j], f.ball_center[j])
+        self._actors["cage"][0].user_matrix = _matrix(rot_x(f.cage_angle))
+        for race in (INNER, OUTER):
+            self._update_ellipses(race, f)
+            self._update_traces(race, f.index + 1)
+            self._actors["ellipses"][race].user_matrix = rings[race]
+            self._actors["traces"][race].user_matrix = rings[race]
+
+    def _display_alpha(self, race: int, alpha):
+        return exaggerate(alpha, self._reference[race], self.options.exaggeration)
+
+    def _update_ellipses(self, race: int, f) -> None:
+        groove = self.grooves[race]
+        loaded = f.loaded[:, race]
+        alpha = np.where(loaded, f.contact_angle[:, race], self._reference[race])
+        alpha = self._display_alpha(race, alpha)
+        a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0)
+        b = np.where(loaded, np.nan_to_num(f.semi_minor[:, race]), 0.0)
+        phi = f.raceway_azimuth[:, race]
+        lift = _MARK_LIFT * groove.r
+        outline = ellipse_outline(groove, phi, alpha, a, b, n=ELLIPSE_POINTS, lift=lift)
+        centre = groove.point(phi, alpha, lift=lift)[:, None, :]
+        pts = np.concatenate([centre, outline], axis=1).reshape(-1, 3)
+        mesh = self._ellipses[race]
+        mesh.points = pts
+        p = np.where(loaded, np.nan_to_num(f.max_pressure[:, race]), 0.0) * 1e-9
+        mesh.point_data["max_pressure_GPa"] = np.repeat(p, ELLIPSE_POINTS + 1)
+
+    def _update_traces(self, race: int, stop: int) -> None:
+        phi, alpha, loaded = self.source.trace(race, stop)
+        step = max(1, math.ceil(phi.shape[1] / MAX_TRACE_SAMPLES))
+        phi, alpha, loaded = phi[:, ::step], alpha[:, ::step], loaded[:, ::step]
+        balls = range(phi.shape[0]) if self.options.trace_ball is None else [self.options.trace_ball]
+        groove = self.grooves[race]
+        lift = 2 * _MARK_LIFT * groove.r
+        points, lines, ids = [], [], []
+        offset = 0
+        for j in balls:
+            if not 0 <= j < phi.shape[0]:
+                continue
+            ok = loaded[j]
+            if ok.sum() < 2:
+                continue
+            pts = groove.point(phi[j], self._display_alpha(race, np.where(ok, alpha[j], 0.0)),
+                               lift=lift)
+            # split into runs of consecutive loaded samples
+            idx = np.flatnonzero(ok)
+            breaks = np.flatnonzero(np.diff(idx) > 1) + 1
+            for run in np.split(idx, breaks):
+                if len(run) < 2:
+                    continue
+                points.append(pts[run])
+                lines.append(np.concatenate([[len(run)], offset + np.arange(len(run))]))
+                ids.append(np.full(len(run), j, float))
+                offset += len(run)
+        mesh = self._traces[race]
+        if not points:
+            new = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
+            new.point_data["ball"] = np.zeros(2)
+            self._actors["traces"][race].visibility = False
+        else:
+            new = pv.PolyData(np.concatenate(points), lines=np.concatenate(lines))
+            new.point_data["ball"] = np.concatenate(ids)
+            self._actors["traces"][race].visibility = self.options.layers.get("traces", True)
+        mesh.copy_from(new)
+
+    # ---- options --------------------------------------------------------------------------------
+    def set_layer(self, name: str, visible: bool) -> None:
+        """Show or hide one of :data:`LAYERS`."""
+        if name not in LAYERS:
+            raise ValueError(f"unknown layer {name!r}; layers are {', '.join(LAYERS)}")
+        self.options.layers[name] = bool(visible)
+        for actor in self._actors[name]:
+            actor.visibility = bool(visible)
+
+    def set_exaggeration(self, factor: float) -> None:
+        """Across-groove exaggeration factor (>= 1) for traces and ellipse centres."""
+        self.options.exaggeration = max(1.0, float(factor))
+        self.set_frame(self.frame_index)
+
+    def set_trace_ball(self, ball: int | None) -> None:
+        """Draw the traces of one ball (index) or of all balls (None)."""
+        self.options.trace_ball = ball
+        self.set_frame(self.frame_index)
+
+    def set_camera(self, preset: str) -> None:
+        """Camera preset: ``isometric``, ``axial`` (along the bearing axis) or ``radial``."""
+        if preset not in CAMERA_PRESETS:
+            raise ValueError(f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}")
+        d = 1.6 * self.geometry.pitch_diameter
+        position, up = {
+            "isometric": ((-1.0 * d, 0.7 * d, 1.6 * d), (0.0, 0.0, 1.0)),
+            "axial": ((-2.2 * d, 0.0, 0.0), (0.0, 0.0, 1.0)),
+            "radial": ((0.0, 0.0, 2.2 * d), (0.0, 1.0, 0.0)),
+        }[preset]
+        self.plotter.camera_position = [position, (0.0, 0.0, 0.0), up]
+        self.plotter.reset_camera()
+        self.plotter.camera.zoom(1.5)
+
+    def trace_point_count(self, race: int) -> int:
+        """Number of points in the drawn trace of ``race`` (0 when none is drawn)."""
+        visible = self._actors["traces"][race].visibility
+        return self._traces[race].n_points if visible else 0

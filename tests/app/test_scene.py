@@ -1,0 +1,79 @@
+"""The 3-D scene: actors follow the frame source, traces lie on the raceways, frames differ."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pv = pytest.importorskip("pyvista")
+
+from app.frames import frame_source, rot_x  # noqa: E402
+from app.raceway import INNER, OUTER, grooves  # noqa: E402
+from app.scene import BearingScene  # noqa: E402
+
+
+@pytest.fixture
+def scene(qs_dataset, geometry):
+    pv.global_theme.multi_samples = 0
+    plotter = pv.Plotter(off_screen=True, window_size=(320, 240))
+    s = BearingScene(plotter, geometry)
+    s.show_source(frame_source(qs_dataset))
+    yield s
+    plotter.close()
+
+
+def test_actors_follow_the_frame(scene):
+    scene.set_frame(23)
+    f = scene.source.frame(23)
+    for j in (0, 5):
+        m = np.asarray(scene._actors["balls"][j].user_matrix)
+        np.testing.assert_allclose(m[:3, 3], f.ball_center[j])
+        np.testing.assert_allclose(m[:3, :3], f.ball_rotation[j])
+    ring = np.asarray(scene._actors["inner_ring"][0].user_matrix)
+    np.testing.assert_allclose(ring[:3, :3], rot_x(f.ring_angle[INNER]), atol=1e-12)
+
+
+def test_traces_lie_on_their_raceways(scene, geometry):
+    scene.set_frame(60)
+    for race in (INNER, OUTER):
+        groove = grooves(geometry)[race]
+        pts = scene._traces[race].points  # ring frame (the actor carries the ring rotation)
+        assert len(pts) > 10
+        radius = np.hypot(pts[:, 1], pts[:, 2])
+        dist = np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)
+        np.testing.assert_allclose(dist, groove.r, rtol=0.02)
+    # the inner trace grows with time; one chosen ball draws only its own trace
+    n60 = scene.trace_point_count(INNER)
+    scene.set_frame(120)
+    assert scene.trace_point_count(INNER) > n60
+    scene.set_trace_ball(3)
+    assert set(np.unique(scene._traces[INNER].point_data["ball"])) == {3.0}
+
+
+def test_exaggeration_moves_traces_across_the_groove(scene):
+    scene.set_frame(100)
+    x1 = scene._traces[INNER].points[:, 0].copy()
+    scene.set_exaggeration(10.0)
+    x10 = scene._traces[INNER].points[:, 0]
+    assert np.ptp(x10) > 5 * np.ptp(x1)
+
+
+def test_rendered_frames_change(scene):
+    p = scene.plotter
+    scene.set_frame(0)
+    p.render()
+    a = p.screenshot(return_img=True).astype(int)
+    scene.set_frame(9)
+    p.render()
+    b = p.screenshot(return_img=True).astype(int)
+    assert a.shape == (240, 320, 3)
+    assert np.abs(a - b).mean() > 0.5
+
+
+def test_bad_options_are_named(scene):
+    with pytest.raises(ValueError, match="layers are"):
+        scene.set_layer("bogus", True)
+    with pytest.raises(ValueError, match="isometric"):
+        scene.set_camera("top")
+    scene.set_layer("cage", False)
+    assert not scene._actors["cage"][0].visibility
