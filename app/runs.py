@@ -1,0 +1,129 @@
+"""The runs folder: every finished or cancelled run saved as NetCDF + case TOML, listed and reopened.
+
+Layout: ``<runs_dir>/<run_id>/`` holding ``result.nc`` (the result Dataset), ``case.toml`` (the case
+as run) and ``run.json`` (title, model, status, creation time). A run is first written into a hidden
+``.tmp-<run_id>`` folder and renamed into place, so a crash never leaves a half-written run listed.
+
+The folder is, in order: the ``runs_dir`` argument (``racetrace serve --runs-dir``), the environment
+variable ``RACETRACE_RUNS_DIR``, or ``<user data dir>/racetrace/runs`` (platformdirs).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import secrets
+import shutil
+from dataclasses import asdict, dataclass
+from datetime import datetime, timezone
+from pathlib import Path
+
+import xarray as xr
+
+ENV_VAR = "RACETRACE_RUNS_DIR"
+RESULT_FILE, CASE_FILE, META_FILE = "result.nc", "case.toml", "run.json"
+
+
+def default_runs_dir(environ: dict | None = None) -> Path:
+    """``$RACETRACE_RUNS_DIR`` or the user's data directory for racetrace, plus ``runs``."""
+    env = os.environ if environ is None else environ
+    if env.get(ENV_VAR):
+        return Path(env[ENV_VAR]).expanduser()
+    import platformdirs
+
+    return Path(platformdirs.user_data_dir("racetrace", appauthor=False)) / "runs"
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """One saved run. ``status`` is ``done`` or ``cancelled``; ``created`` is ISO 8601 (UTC)."""
+
+    run_id: str
+    title: str
+    model: str
+    status: str
+    created: str
+
+    @property
+    def label(self) -> str:
+        when = self.created.replace("T", " ")[:19]
+        return f"{when}  {self.title} ({self.model}, {self.status})"
+
+
+def _save_netcdf(ds: xr.Dataset, path: Path) -> None:
+    try:
+        from solver.results.io import save_dataset
+    except ImportError:  # the results package has not landed: plain xarray NetCDF
+        ds.to_netcdf(path)
+    else:
+        save_dataset(ds, path)
+
+
+def _load_netcdf(path: Path) -> xr.Dataset:
+    try:
+        from solver.results.io import load_dataset
+    except ImportError:
+        with xr.open_dataset(path) as ds:
+            return ds.load()
+    return load_dataset(path)
+
+
+class RunStore:
+    """Runs saved under one folder (created on first save)."""
+
+    def __init__(self, root: str | Path):
+        self.root = Path(root)
+
+    def save(self, ds: xr.Dataset, case_text: str, title: str, status: str | None = None) -> RunInfo:
+        """Save a run atomically and return its :class:`RunInfo`.
+
+        ``status`` defaults to ``done`` when the Dataset's ``complete`` attribute is 1 (or absent) and
+        ``cancelled`` otherwise.
+        """
+        if status is None:
+            status = "done" if int(ds.attrs.get("complete", 1)) == 1 else "cancelled"
+        now = datetime.now(timezone.utc)
+        slug = re.sub(r"[^A-Za-z0-9]+", "-", title).strip("-")[:40] or "run"
+        run_id = f"{now:%Y%m%d-%H%M%S}-{slug}-{secrets.token_hex(2)}"
+        info = RunInfo(run_id, title, str(ds.attrs.get("model", "unknown")), status,
+                       now.isoformat(timespec="seconds"))
+        self.root.mkdir(parents=True, exist_ok=True)
+        tmp = self.root / f".tmp-{run_id}"
+        tmp.mkdir()
+        try:
+            _save_netcdf(ds, tmp / RESULT_FILE)
+            (tmp / CASE_FILE).write_text(case_text, encoding="utf-8")
+            (tmp / META_FILE).write_text(json.dumps(asdict(info), indent=1), encoding="utf-8")
+            os.replace(tmp, self.root / run_id)
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)
+            raise
+        return info
+
+    def list(self) -> list[RunInfo]:
+        """Saved runs, newest first (folders without a readable ``run.json`` are skipped)."""
+        if not self.root.is_dir():
+            return []
+        runs = []
+        for folder in self.root.iterdir():
+            if folder.name.startswith(".") or not (folder / META_FILE).is_file():
+                continue
+            try:
+                meta = json.loads((folder / META_FILE).read_text(encoding="utf-8"))
+                runs.append(RunInfo(**{k: meta[k] for k in RunInfo.__dataclass_fields__}))
+            except (ValueError, KeyError, TypeError):
+                continue
+        return sorted(runs, key=lambda r: (r.created, r.run_id), reverse=True)
+
+    def load(self, run_id: str) -> tuple[xr.Dataset, str]:
+        """(result Dataset, case TOML text) of a saved run."""
+        folder = self.root / run_id
+        if not (folder / RESULT_FILE).is_file():
+            known = ", ".join(r.run_id for r in self.list()[:5]) or "none"
+            raise FileNotFoundError(f"no saved run {run_id!r} in {self.root} (latest: {known})")
+        return _load_netcdf(folder / RESULT_FILE), (folder / CASE_FILE).read_text(encoding="utf-8")
+
+    def path(self, run_id: str) -> Path:
+        """Folder of a saved run (for export)."""
+        return self.root / run_id

@@ -1,0 +1,48 @@
+"""Runs folder: save, list and reopen runs; location from argument, environment or user dir."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app.runs import ENV_VAR, RunStore, default_runs_dir
+
+
+def test_round_trip(tmp_path, qs_dataset, dynamic_dataset):
+    store = RunStore(tmp_path / "runs")
+    assert store.list() == []
+    a = store.save(qs_dataset, qs_dataset.attrs["case"], "spindle, preview")
+    partial = dynamic_dataset.assign_attrs(complete=0)
+    b = store.save(partial, "title = 'x'\n", "run two")
+    runs = store.list()
+    assert {r.run_id for r in runs} == {a.run_id, b.run_id}
+    assert {r.status for r in runs} == {"done", "cancelled"}
+    assert b.status == "cancelled" and b.model == "dynamic"
+    ds, case_text = store.load(a.run_id)
+    np.testing.assert_allclose(ds["contact_angle"].values, qs_dataset["contact_angle"].values)
+    assert case_text == qs_dataset.attrs["case"]
+    ds_b, _ = store.load(b.run_id)
+    np.testing.assert_allclose(ds_b["time"].values, dynamic_dataset["time"].values)
+    # a fresh store on the same folder (a server restart / page reload) sees the same runs
+    assert [r.run_id for r in RunStore(tmp_path / "runs").list()] == [r.run_id for r in runs]
+    # no temporary folders left behind
+    assert not [p for p in (tmp_path / "runs").iterdir() if p.name.startswith(".")]
+
+
+def test_failed_save_leaves_nothing(tmp_path, qs_dataset):
+    store = RunStore(tmp_path)
+    with pytest.raises(Exception):
+        store.save(qs_dataset.assign(bad=(("ball",), [object()] * qs_dataset.sizes["ball"])), "", "x")
+    assert store.list() == []
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_unknown_run_is_named(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no saved run 'nope'"):
+        RunStore(tmp_path).load("nope")
+
+
+def test_default_dir(tmp_path):
+    assert default_runs_dir({ENV_VAR: str(tmp_path)}) == tmp_path
+    d = default_runs_dir({})
+    assert d.name == "runs" and "racetrace" in str(d)
