@@ -57,23 +57,17 @@ def _groups(u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load):
 
 
 @njit(cache=True)
-def film_thickness_central(
-    u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load, kappa
-):
+def film_thickness_central(u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load, kappa):
     """Hamrock-Dowson central film thickness h_c [m] (see module docstring for units and limits)."""
     u, g, w = _groups(u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load)
     if u < 0.0 or not kappa > 0.0:
         return 0.0
-    return (
-        2.69 * r_x * u**0.67 * g**0.53 * w ** (-0.067) * (1.0 - 0.61 * math.exp(-0.73 * kappa))
-    )
+    return 2.69 * r_x * u**0.67 * g**0.53 * w ** (-0.067) * (1.0 - 0.61 * math.exp(-0.73 * kappa))
 
 
 @njit(cache=True)
-def film_thickness_minimum(
-    u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load, kappa
-):
-    """Hamrock-Dowson minimum film thickness h_min [m] (see module docstring for units and limits)."""
+def film_thickness_minimum(u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load, kappa):
+    """Hamrock-Dowson minimum film thickness h_min [m] (units and limits: module docstring)."""
     u, g, w = _groups(u_e, viscosity, pressure_viscosity, effective_modulus, r_x, load)
     if u < 0.0 or not kappa > 0.0:
         return 0.0

@@ -6,8 +6,8 @@ finding. It is vectorised over numpy arrays where that is natural and is the ref
 
 Notation (physics.md §2.3): ``curvature_sum`` is Σρ [1/m], ``curvature_difference`` is F(ρ) [-],
 ``effective_modulus`` is E' = 2/η [Pa] with η = (1-ν1²)/E1 + (1-ν2²)/E2, R = 1/Σρ [m]. The contact
-ellipse has semi-major axis ``a`` across the groove (transverse direction) and semi-minor axis ``b`` in
-the rolling direction; κ = a/b ≥ 1. Elliptic integrals use the *parameter* m = 1 - 1/κ²
+ellipse has semi-major axis ``a`` across the groove (transverse direction) and semi-minor axis
+``b`` in the rolling direction; κ = a/b ≥ 1. Elliptic integrals use the *parameter* m = 1 - 1/κ²
 (SciPy convention: K(m) = ∫(1 - m sin²t)^(-1/2) dt).
 """
 
@@ -29,6 +29,7 @@ __all__ = [
     "load_deflection_constant",
     "series_stiffness",
     "race_contact",
+    "shoulder_angle",
     "truncation_margin",
 ]
 
@@ -96,21 +97,23 @@ def _coefficients_from_log_kappa(t: np.ndarray):
 def ellipticity_residual(kappa, curvature_difference):
     """Residual of the ellipticity equation, evaluated directly with scipy's ellipk/ellipe.
 
-    Returns ``[(κ²+1)E(m) - 2K(m)] / [(κ²-1)E(m)] - F`` with m = 1 - 1/κ² (κ > 1). Independent of the
-    series used inside :func:`ellipticity_exact`; loses accuracy (cancellation) as κ → 1.
+    Returns ``[(κ²+1)E(m) - 2K(m)] / [(κ²-1)E(m)] - F`` with m = 1 - 1/κ² (κ > 1). Independent
+    of the series used inside :func:`ellipticity_exact`; loses accuracy (cancellation) as κ → 1.
     """
     kappa = np.asarray(kappa, dtype=float)
     m = 1.0 - 1.0 / kappa**2
     big_k, big_e = ellipk(m), ellipe(m)
-    return ((kappa**2 + 1.0) * big_e - 2.0 * big_k) / ((kappa**2 - 1.0) * big_e) - curvature_difference
+    return ((kappa**2 + 1.0) * big_e - 2.0 * big_k) / (
+        (kappa**2 - 1.0) * big_e
+    ) - curvature_difference
 
 
 def ellipticity_exact(curvature_difference):
     """Ellipticity κ = a/b and complete elliptic integrals for a curvature difference F(ρ).
 
     Solves F(ρ) = [(κ²+1)E(m) - 2K(m)] / [(κ²-1)E(m)], m = 1 - 1/κ², by bisection on t = ln κ
-    (vectorised; F is strictly increasing in κ, so the bracket [κ = 1, κ = e^40] always holds the root;
-    the bisection runs to machine precision). F = 0 returns the circle κ = 1, K = E = π/2.
+    (vectorised; F is strictly increasing in κ, so the bracket [κ = 1, κ = e^40] always holds the
+    root; the bisection runs to machine precision). F = 0 returns the circle κ = 1, K = E = π/2.
 
     Parameters
     ----------
@@ -167,17 +170,21 @@ def _check_ball_race(ball_diameter, conformity, gamma) -> None:
     if not np.all(np.asarray(ball_diameter) > 0.0):
         raise ValueError(f"ball_diameter = {ball_diameter!r}: must be > 0 (m)")
     if not np.all(np.asarray(conformity) > 0.5):
-        raise ValueError(f"conformity = {conformity!r}: groove radius / ball diameter must be > 0.5")
+        raise ValueError(
+            f"conformity = {conformity!r}: groove radius / ball diameter must be > 0.5"
+        )
     g = np.asarray(gamma)
     if not np.all((g >= 0.0) & (g < 1.0)):
-        raise ValueError(f"gamma = {gamma!r}: gamma = D cos(alpha) / d_m must satisfy 0 <= gamma < 1")
+        raise ValueError(
+            f"gamma = {gamma!r}: gamma = D cos(alpha) / d_m must satisfy 0 <= gamma < 1"
+        )
 
 
 def curvature_sum_and_difference(ball_diameter, conformity, gamma, race: str):
     """Curvature sum Σρ [1/m] and curvature difference F(ρ) [-] of a ball-raceway contact.
 
-    Closed forms of physics.md §2.3, with D = ``ball_diameter`` [m], f = ``conformity`` (groove radius
-    / D), γ = D cos α / d_m:
+    Closed forms of physics.md §2.3, with D = ``ball_diameter`` [m], f = ``conformity``
+    (groove radius / D), γ = D cos α / d_m:
 
     * inner: Σρ = (4 - 1/f + 2γ/(1-γ)) / D,   F = (1/f + 2γ/(1-γ)) / (D Σρ)
     * outer: Σρ = (4 - 1/f - 2γ/(1+γ)) / D,   F = (1/f - 2γ/(1+γ)) / (D Σρ)
@@ -317,19 +324,21 @@ def race_contact(geometry, contact_angle, load, race: str) -> HertzContact:
     materials.
     """
     conformity = _race_conformity(geometry, race)
-    gamma = geometry.ball_diameter * np.cos(np.asarray(contact_angle, dtype=float)) / (
-        geometry.pitch_diameter
+    gamma = (
+        geometry.ball_diameter
+        * np.cos(np.asarray(contact_angle, dtype=float))
+        / (geometry.pitch_diameter)
     )
     s, f = curvature_sum_and_difference(geometry.ball_diameter, conformity, gamma, race)
     return hertz_contact(load, s, f, geometry.effective_modulus)
 
 
 def shoulder_angle(geometry, race: str) -> float:
-    """Groove angle θ_sh [rad] of the ``race`` shoulder, measured from the groove bottom; NaN if absent.
+    """Groove angle θ_sh [rad] of the ``race`` shoulder from the groove bottom; NaN if absent.
 
     The groove (radius r, curvature centre at radius ρ^c in the ring frame) reaches radius
-    ρ^c - r cos θ (inner) or ρ^c + r cos θ (outer) at groove angle θ. The shoulder diameter d_sh gives
-    inner: cos θ_sh = (ρ_i^c - d_sh/2)/r_i; outer: cos θ_sh = (d_sh/2 - ρ_o^c)/r_o.
+    ρ^c - r cos θ (inner) or ρ^c + r cos θ (outer) at groove angle θ. The shoulder diameter
+    d_sh gives inner: cos θ_sh = (ρ_i^c - d_sh/2)/r_i; outer: cos θ_sh = (d_sh/2 - ρ_o^c)/r_o.
     Shoulders outside the groove's reach are clipped: a shoulder at or below the groove bottom gives
     θ_sh = 0, one beyond the curvature-centre height gives θ_sh = π/2 (flat side walls cannot be
     reached by the ball).
@@ -337,10 +346,14 @@ def shoulder_angle(geometry, race: str) -> float:
     _check_race(race)
     if race == "inner":
         d_sh = geometry.inner_shoulder_diameter
-        cos_sh = (geometry.inner_curvature_center_radius - 0.5 * d_sh) / geometry.inner_groove_radius
+        cos_sh = (
+            geometry.inner_curvature_center_radius - 0.5 * d_sh
+        ) / geometry.inner_groove_radius
     else:
         d_sh = geometry.outer_shoulder_diameter
-        cos_sh = (0.5 * d_sh - geometry.outer_curvature_center_radius) / geometry.outer_groove_radius
+        cos_sh = (
+            0.5 * d_sh - geometry.outer_curvature_center_radius
+        ) / geometry.outer_groove_radius
     if d_sh is None or math.isnan(d_sh):
         return math.nan
     return math.acos(min(1.0, max(0.0, cos_sh)))

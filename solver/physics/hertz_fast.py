@@ -25,8 +25,8 @@ Stated (and tested) bound: **≤ 1e-9 relative** for every output, 0 ≤ F ≤ F
 Out-of-range behaviour (no exception, no NaN inside numba): F < 0 is clamped to 0 (the circular
 contact); F > F_MAX (including F ≥ 1) is clamped to F_MAX, so κ, 𝒦, ℰ saturate at κ ≈ 180 — such
 contacts (R_y/R_x > 22 000) do not occur with real conformities (f ≥ 0.5001). A NaN F gives NaN
-outputs. ``load`` ≤ 0 gives a = b = δ = p_max = 0 (no tension). Non-positive Σρ or E' are the caller's
-responsibility (the exact module validates them).
+outputs. ``load`` ≤ 0 gives a = b = δ = p_max = 0 (no tension). Non-positive Σρ or E' are the
+caller's responsibility (the exact module validates them).
 """
 
 from __future__ import annotations
@@ -74,7 +74,7 @@ _INV_STEP = 1.0 / TABLE_STEP
 
 @njit(cache=True)
 def hertz_coefficients_fast(curvature_difference):
-    """(κ, 𝒦, ℰ) for a curvature difference F(ρ) [-]: ellipticity a/b and complete elliptic integrals.
+    """(κ, 𝒦, ℰ) for a curvature difference F(ρ) [-]: ellipticity a/b, complete elliptic integrals.
 
     Tabulated exact solution (see module docstring for accuracy and clamping of F outside
     [0, F_MAX]).
@@ -111,8 +111,11 @@ def hertz_coefficients_fast(curvature_difference):
 
 @njit(cache=True)
 def _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus):
-    return math.pi * kappa * effective_modulus * math.sqrt(
-        2.0 * big_e / (9.0 * curvature_sum * big_k * big_k * big_k)
+    return (
+        math.pi
+        * kappa
+        * effective_modulus
+        * math.sqrt(2.0 * big_e / (9.0 * curvature_sum * big_k * big_k * big_k))
     )
 
 
@@ -140,8 +143,8 @@ def _ellipse_from(load, kappa, big_k, big_e, curvature_sum, effective_modulus):
 
 @njit(cache=True)
 def contact_ellipse_fast(load, curvature_sum, curvature_difference, effective_modulus):
-    """(a, b, δ, p_max): semi-major [m] (transverse), semi-minor [m] (rolling), approach [m] and peak
-    pressure [Pa] for a normal load Q [N] (Q ≤ 0 → all zero), Σρ [1/m], F [-], E' [Pa]."""
+    """(a, b, δ, p_max): semi-major [m] (transverse), semi-minor [m] (rolling), approach [m] and
+    peak pressure [Pa] for a normal load Q [N] (Q ≤ 0 → all zero), Σρ [1/m], F [-], E' [Pa]."""
     kappa, big_k, big_e = hertz_coefficients_fast(curvature_difference)
     return _ellipse_from(load, kappa, big_k, big_e, curvature_sum, effective_modulus)
 
@@ -152,7 +155,13 @@ def hertz_contact_fast(load, curvature_sum, curvature_difference, effective_modu
     contact_stiffness_fast."""
     kappa, big_k, big_e = hertz_coefficients_fast(curvature_difference)
     a, b, delta, p_max = _ellipse_from(load, kappa, big_k, big_e, curvature_sum, effective_modulus)
-    return a, b, delta, p_max, _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus)
+    return (
+        a,
+        b,
+        delta,
+        p_max,
+        _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus),
+    )
 
 
 @njit(cache=True)

@@ -72,9 +72,9 @@ def test_zero_load_is_capped_at_floor():
 def test_callable_from_njit_and_wrapper_validates():
     @njit
     def both(u):
-        return film_thickness_central(u, 0.01, 2e-8, 2.28e11, 0.0045, 200.0, 8.0), film_thickness_minimum(
+        return film_thickness_central(
             u, 0.01, 2e-8, 2.28e11, 0.0045, 200.0, 8.0
-        )
+        ), film_thickness_minimum(u, 0.01, 2e-8, 2.28e11, 0.0045, 200.0, 8.0)
 
     assert both(10.0) == film_thickness(*_args())
     with pytest.raises(ValueError, match="viscosity"):
