@@ -1,0 +1,171 @@
+"""Run a solver in a separate ``spawn`` process, with a progress queue and a cancel event.
+
+The child process imports the job (``"module:function"``, called as ``job(case_text, progress,
+cancel) -> xarray.Dataset``), saves the Dataset to a NetCDF file given by the parent and reports
+through a queue. ``spawn`` keeps the server's VTK/EGL state out of the child, and a crash of the
+child (even a segfault) only ends that run: :meth:`SolverRunner.poll` reports it as an error.
+
+Messages from the child, as tuples:
+``("progress", fraction, simulated_time_s, text)``, ``("done", path, complete)``,
+``("error", text)``.
+"""
+
+from __future__ import annotations
+
+import importlib
+import multiprocessing as mp
+import queue as queue_module
+import sys
+import time
+from dataclasses import dataclass
+
+DYNAMIC_JOB = "app.runner:dynamic_job"
+QUASISTATIC_JOB = "app.runner:quasistatic_job"
+
+
+# ---- jobs (run in the child) ---------------------------------------------------------------------
+def dynamic_job(case_text: str, progress, cancel):
+    """The dynamic model on a case given as TOML text."""
+    import solver
+
+    return solver.simulate(solver.load_case(case_text), progress=progress, cancel=cancel)
+
+
+def quasistatic_job(case_text: str, progress, cancel):
+    """The quasi-static model on a case given as TOML text (no progress, not cancellable)."""
+    import solver
+
+    return solver.solve_quasistatic(solver.load_case(case_text))
+
+
+def _child_main(target: str, case_text: str, out_path: str, messages, cancel_event) -> None:
+    """Entry point of the child process: never raises, always ends with a done/error message."""
+    try:
+        from solver import CaseError, NoSolutionError, SimulationDiverged
+
+        user_errors = (CaseError, NoSolutionError, SimulationDiverged)
+    except ImportError:  # pragma: no cover - solver package broken
+        user_errors = ()
+    try:
+        module_name, func_name = target.split(":")
+        job = getattr(importlib.import_module(module_name), func_name)
+
+        def progress(fraction, simulated_time=float("nan"), text="", *_):
+            messages.put(("progress", float(fraction), float(simulated_time), str(text)))
+
+        ds = job(case_text, progress, cancel_event)
+        try:
+            from solver.results.io import save_dataset
+        except ImportError:
+            ds.to_netcdf(out_path)
+        else:
+            save_dataset(ds, out_path)
+        messages.put(("done", out_path, int(ds.attrs.get("complete", 1))))
+    except user_errors as error:
+        messages.put(("error", str(error)))
+    except Exception as error:  # an unexpected failure: say what it was, in one line
+        import traceback
+
+        traceback.print_exc(file=sys.stderr)  # the server log keeps the details
+        messages.put(("error", f"internal error in the solver ({type(error).__name__}: {error})"))
+
+
+# ---- parent side ---------------------------------------------------------------------------------
+@dataclass
+class RunEvent:
+    """What :meth:`SolverRunner.poll` reports. ``kind`` is progress | done | error."""
+
+    kind: str
+    fraction: float = 0.0
+    simulated_time: float = float("nan")
+    text: str = ""
+    path: str = ""
+    complete: int = 1
+    eta_s: float = float("nan")  # estimated seconds left (progress events)
+
+
+class SolverRunner:
+    """At most one background run at a time."""
+
+    def __init__(self):
+        self._ctx = mp.get_context("spawn")
+        self._process = None
+        self._messages = None
+        self._cancel = None
+        self._started = 0.0
+        self._finished = True
+
+    @property
+    def busy(self) -> bool:
+        return not self._finished
+
+    def start(self, case_text: str, out_path: str, target: str = DYNAMIC_JOB) -> None:
+        """Start ``target`` on ``case_text`` in a new spawn process; the result goes to ``out_path``."""
+        if self.busy:
+            raise RuntimeError("a run is already in progress; cancel it first")
+        self._messages = self._ctx.Queue()
+        self._cancel = self._ctx.Event()
+        self._process = self._ctx.Process(
+            target=_child_main, args=(target, case_text, str(out_path), self._messages, self._cancel),
+            daemon=True, name="racetrace-solver")
+        self._started = time.monotonic()
+        self._finished = False
+        self._process.start()
+
+    def cancel(self) -> None:
+        """Ask the run to stop at its next check; it then reports ``done`` with ``complete = 0``."""
+        if self._cancel is not None:
+            self._cancel.set()
+
+    def poll(self) -> list[RunEvent]:
+        """Events received since the last call (non-blocking). Ends with done/error when finished."""
+        events = []
+        if self._messages is None or self._finished:
+            return events
+        while True:
+            try:
+                msg = self._messages.get_nowait()
+            except queue_module.Empty:
+                break
+            events.append(self._event(msg))
+            if msg[0] in ("done", "error"):
+                self._finish()
+                return events
+        if self._process is not None and not self._process.is_alive():
+            # the child ended: collect a last message, or report its death
+            try:
+                msg = self._messages.get(timeout=0.5)
+                events.append(self._event(msg))
+            except queue_module.Empty:
+                code = self._process.exitcode
+                events.append(RunEvent("error", text=f"the solver process stopped unexpectedly "
+                                                     f"(exit code {code})"))
+            self._finish()
+        return events
+
+    def _event(self, msg) -> RunEvent:
+        if msg[0] == "progress":
+            _, fraction, sim_t, text = msg
+            elapsed = time.monotonic() - self._started
+            eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
+            return RunEvent("progress", fraction=fraction, simulated_time=sim_t, text=text, eta_s=eta)
+        if msg[0] == "done":
+            return RunEvent("done", fraction=1.0, path=msg[1], complete=int(msg[2]))
+        return RunEvent("error", text=str(msg[1]))
+
+    def _finish(self) -> None:
+        self._finished = True
+        if self._process is not None:
+            self._process.join(timeout=5)
+            if self._process.is_alive():
+                self._process.kill()
+            self._process = None
+
+    def shutdown(self) -> None:
+        """Stop any running child (used when the server exits)."""
+        if self._process is not None and self._process.is_alive():
+            self.cancel()
+            self._process.join(timeout=2)
+            if self._process.is_alive():
+                self._process.kill()
+        self._finish()
