@@ -1,0 +1,228 @@
+"""Initial state of the dynamic model: a quasi-static equilibrium of the model's own contact laws.
+
+physics.md §2.7: starting from rest or from kinematic speeds with zero deflection causes impact
+transients lasting tens of revolutions. The state built here is an equilibrium of the *same* Hertz
+contact kernel the dynamic model integrates, so a run starts without an elastic transient:
+
+1. every ball sits at its azimuth psi_j = 2 pi j / Z, orbiting at the cage speed omega_c;
+2. ball centres (axial, radial) and the inner-ring translation (and tilt, when a tilting moment is
+   given) solve the force balance of the normal contact forces, the centrifugal force
+   m r omega_c^2 and the applied loads (scipy least_squares on the numba right-hand side with
+   traction, damping, cage and gravity switched off);
+   (The tangential balance is not imposed: with the inner ring offset, the inner contact normal
+   leaves the inertial meridian plane by ~offset/pitch radius, a tangential force of order 1e-4 Q
+   that traction or the cage carry in the dynamic run.)
+3. omega_c and each ball's spin follow outer-raceway control (physics.md §2.5.3) evaluated with the
+   solved contact angles (two fixed-point passes);
+4. ball orientation: the ball-fixed frame of the quasi-static convention, z_b = cos(beta) e_x -
+   sin(beta) e_r, y_b = e_theta, x_b = sin(beta) e_x + cos(beta) e_r.
+
+The gyroscopic moment is not balanced here (it needs traction): the dynamic model establishes the
+small slips that carry it within the first fraction of a revolution. This initialiser is the model's
+own; the project's quasi-static solver (solver.models.quasistatic) is used for validation.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from solver.errors import NoSolutionError
+
+from . import layout as L
+from .kernels import rhs
+
+
+def matrix_to_quaternion(m: np.ndarray) -> np.ndarray:
+    """Unit quaternion [w, x, y, z] of a rotation matrix (Shepperd's method)."""
+    tr = m[0, 0] + m[1, 1] + m[2, 2]
+    if tr > 0.0:
+        s = math.sqrt(tr + 1.0) * 2.0
+        q = [0.25 * s, (m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s]
+    elif m[0, 0] > m[1, 1] and m[0, 0] > m[2, 2]:
+        s = math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2]) * 2.0
+        q = [(m[2, 1] - m[1, 2]) / s, 0.25 * s, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s]
+    elif m[1, 1] > m[2, 2]:
+        s = math.sqrt(1.0 + m[1, 1] - m[0, 0] - m[2, 2]) * 2.0
+        q = [(m[0, 2] - m[2, 0]) / s, (m[0, 1] + m[1, 0]) / s, 0.25 * s, (m[1, 2] + m[2, 1]) / s]
+    else:
+        s = math.sqrt(1.0 + m[2, 2] - m[0, 0] - m[1, 1]) * 2.0
+        q = [(m[1, 0] - m[0, 1]) / s, (m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, 0.25 * s]
+    q = np.array(q)
+    if q[0] < 0:
+        q = -q
+    return q / np.linalg.norm(q)
+
+
+def outer_control_kinematics(alpha_i: float, alpha_o: float, gamma_prime: float):
+    """(omega_c / omega, omega_R / omega, beta) for outer-raceway control (physics.md §2.5.3), with
+    omega the inner-ring speed relative to the outer ring."""
+    beta = math.atan2(math.sin(alpha_o), math.cos(alpha_o) + gamma_prime)
+    tb = math.tan(beta)
+    ratio_c = (1.0 - gamma_prime * math.cos(alpha_i)) / (1.0 + math.cos(alpha_i - alpha_o))
+    den = gamma_prime * math.cos(beta) * (
+        (math.cos(alpha_o) + tb * math.sin(alpha_o)) / (1.0 + gamma_prime * math.cos(alpha_o))
+        + (math.cos(alpha_i) + tb * math.sin(alpha_i)) / (1.0 - gamma_prime * math.cos(alpha_i))
+    )
+    return ratio_c, -1.0 / den, beta
+
+
+def ball_frame(psi: float, beta: float) -> np.ndarray:
+    """Rotation matrix (ball-fixed -> inertial) of the quasi-static ball frame at azimuth psi."""
+    ex = np.array([1.0, 0.0, 0.0])
+    er = np.array([0.0, math.cos(psi), math.sin(psi)])
+    et = np.array([0.0, -math.sin(psi), math.cos(psi)])
+    xb = math.sin(beta) * ex + math.cos(beta) * er
+    zb = math.cos(beta) * ex - math.sin(beta) * er
+    return np.column_stack((xb, et, zb))
+
+
+def _static_par(par: np.ndarray) -> np.ndarray:
+    p = par.copy()
+    p[L.P_TRACTION] = 0.0
+    p[L.P_ZETA] = 0.0
+    p[L.P_CAGE_ON] = 0.0
+    p[L.P_GRAVITY] = 0.0
+    p[L.P_RING_FREE] = 1.0
+    return p
+
+
+def _state_from_unknowns(u, z, base_state, tilt_dof, length_scale, pitch_radius):
+    """State from the static unknowns: per ball (axial, radial) offsets from the nominal position on
+    the pitch circle, then the ring translation and (tilt DOF only) tilt x pitch radius; all in
+    units of ``length_scale``."""
+    y = base_state.copy()
+    rb = L.ring_base(z)
+    for j in range(z):
+        psi = 2.0 * math.pi * j / z
+        b = L.ball_base(j)
+        rr = pitch_radius + u[2 * j + 1] * length_scale
+        y[b + L.B_POS] = u[2 * j] * length_scale
+        y[b + L.B_POS + 1] = rr * math.cos(psi)
+        y[b + L.B_POS + 2] = rr * math.sin(psi)
+    k = 2 * z
+    y[rb + L.R_POS : rb + L.R_POS + 3] = u[k : k + 3] * length_scale
+    if tilt_dof:
+        y[rb + L.R_TILT : rb + L.R_TILT + 2] = u[k + 3 : k + 5] * length_scale / pitch_radius
+    return y
+
+
+def _contact_angles(y, par, quad):
+    z = int(par[L.P_Z])
+    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
+    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
+    dydt = np.zeros_like(y)
+    rhs(y, _static_par(par), quad, dydt, rec_i, rec_o, np.zeros(z))
+    return rec_i, rec_o
+
+
+def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndarray:
+    """Initial state vector (layout ``L``) in quasi-static equilibrium for the parameters ``par``.
+
+    Raises NoSolutionError when the force balance cannot be solved (e.g. no load holds the balls).
+    """
+    z = int(par[L.P_Z])
+    d, dm = par[L.P_D], par[L.P_DM]
+    n = L.state_size(z)
+    rb = L.ring_base(z)
+    cb = L.cage_base(z)
+    gamma_prime = d / dm
+    alpha0 = math.atan2(
+        par[L.P_XCI] - par[L.P_XCO], par[L.P_RCI] - par[L.P_RCO]
+    )  # free contact angle from the curvature-centre circles
+    tilt_dof = int(par[L.P_TILT_MODE]) == 2
+    base = np.zeros(n)
+    for j in range(z):
+        psi = 2.0 * math.pi * j / z
+        b = L.ball_base(j)
+        base[b + 1] = 0.5 * dm * math.cos(psi)
+        base[b + 2] = 0.5 * dm * math.sin(psi)
+        base[b + L.B_QUAT] = 1.0
+    if not tilt_dof:
+        base[rb + L.R_TILT] = par[L.P_TILT_Y]
+        base[rb + L.R_TILT + 1] = par[L.P_TILT_Z]
+    pstat = _static_par(par)
+    mb = par[L.P_MB]
+    mr = par[L.P_MR]
+    wrel = par[L.P_WI] - par[L.P_WO]
+    load = max(abs(par[L.P_FX]), math.hypot(par[L.P_FY], par[L.P_FZ]), 1e-3)
+    fscale = load / z
+    ls = 1e-6  # unknowns in micrometres
+    ird = par[L.P_IRD]
+    # first guess: rigid axial shift sharing the axial load, balls on the pitch circle
+    u0 = np.zeros(2 * z + (5 if tilt_dof else 3))
+    u0[2 * z] = 1.0
+    omega_c = par[L.P_WO] + wrel * 0.5 * (1.0 - gamma_prime * math.cos(alpha0))
+    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
+    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
+    dydt = np.zeros(n)
+    pocket = np.zeros(z)
+
+    def residual(u, omega_c):
+        y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
+        rhs(y, pstat, quad, dydt, rec_i, rec_o, pocket)
+        res = np.empty_like(u)
+        for j in range(z):
+            b = L.ball_base(j)
+            psi = 2.0 * math.pi * j / z
+            # net force plus the centripetal requirement m omega_c^2 (0, y, z) must vanish
+            w2 = omega_c**2
+            fy = (dydt[b + L.B_VEL + 1] + w2 * y[b + 1]) * mb
+            fz = (dydt[b + L.B_VEL + 2] + w2 * y[b + 2]) * mb
+            ax = dydt[b + L.B_VEL] * mb
+            rad = fy * math.cos(psi) + fz * math.sin(psi)
+            res[2 * j] = ax / fscale + 1e-9 * u[2 * j]
+            res[2 * j + 1] = rad / fscale + 1e-9 * u[2 * j + 1]
+        k = 2 * z
+        res[k : k + 3] = dydt[rb + L.R_VEL : rb + L.R_VEL + 3] * mr / fscale
+        if tilt_dof:
+            res[k + 3 : k + 5] = dydt[rb + L.R_TILT_RATE : rb + L.R_TILT_RATE + 2] * ird / (fscale * 0.5 * dm)
+        return res
+
+    u = u0
+    for _ in range(passes):
+        sol = least_squares(residual, u, args=(omega_c,), x_scale="jac", xtol=1e-13, ftol=1e-13, gtol=1e-13,
+                            max_nfev=4000)
+        u = sol.x
+        y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
+        rec_i, rec_o = _contact_angles(y, par, quad)
+        loaded = (rec_i[:, L.K_LOAD] > 0) & (rec_o[:, L.K_LOAD] > 0)
+        if not loaded.any():
+            raise NoSolutionError(
+                "dynamic model initialisation: no ball is loaded at both races in the quasi-static "
+                "equilibrium; give an axial load (or a larger one) so that the balls are held"
+            )
+        ai = float(np.mean(rec_i[loaded, L.K_ANGLE]))
+        ao = float(np.mean(rec_o[loaded, L.K_ANGLE]))
+        ratio_c, _, _ = outer_control_kinematics(ai, ao, gamma_prime)
+        omega_c = par[L.P_WO] + wrel * ratio_c
+    sol = least_squares(residual, u, args=(omega_c,), x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14,
+                        max_nfev=4000)
+    u = sol.x
+    if np.max(np.abs(residual(u, omega_c))) > 1e-4:
+        raise NoSolutionError(
+            "dynamic model initialisation: the quasi-static force balance did not converge "
+            f"(largest residual {np.max(np.abs(residual(u, omega_c))):.2e} of the mean ball load); "
+            "check the loads and the speed"
+        )
+    y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
+    rec_i, rec_o = _contact_angles(y, par, quad)
+    for j in range(z):
+        b = L.ball_base(j)
+        psi = 2.0 * math.pi * j / z
+        ai = rec_i[j, L.K_ANGLE] if rec_i[j, L.K_LOAD] > 0 else alpha0
+        ao = rec_o[j, L.K_ANGLE] if rec_o[j, L.K_LOAD] > 0 else alpha0
+        _, ratio_r, beta = outer_control_kinematics(ai, ao, gamma_prime)
+        pos = y[b : b + 3]
+        y[b + L.B_VEL : b + L.B_VEL + 3] = np.cross([omega_c, 0.0, 0.0], pos)
+        rot = ball_frame(psi, beta)
+        y[b + L.B_QUAT : b + L.B_QUAT + 4] = matrix_to_quaternion(rot)
+        spin = ratio_r * wrel
+        # omega_b = omega_R z_b + omega_c e_x  (z_b = cos(beta) e_x - sin(beta) e_r)
+        y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = spin * rot[:, 2] + np.array([omega_c, 0.0, 0.0])
+    y[rb + L.R_VEL : rb + L.R_VEL + 3] = 0.0
+    y[cb + L.C_POS] = float(np.mean([y[L.ball_base(j)] for j in range(z)]))
+    y[cb + L.C_SPEED] = omega_c
+    return y

@@ -1,0 +1,697 @@
+"""Numba kernels of the dynamic model: contact laws and the right-hand side.
+
+Units SI, vectors in inertial components unless stated. Frames (physics.md §2.1 and §2.6.3):
+
+- inertial: x = bearing axis, gravity along -z, origin = outer-ring centre on the plane of the ball
+  centres in the just-touching state;
+- ring frame: attached to a ring, columns of ``ring_rot`` (3x3) are the ring axes in inertial
+  components, so ``inertial = ring_origin + ring_rot @ ring_frame``;
+- contact: ``n`` = unit vector from the ball centre towards the contact (outwards from the ball),
+  ``t1`` = rolling direction (ring-frame e_theta), ``t2 = n x t1`` across the groove.
+
+Every kernel reads the flat arrays described in :mod:`solver.models.dynamic.layout`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from solver.physics.hertz_fast import (
+    curvature_sum_and_difference_fast,
+    equivalent_radii_fast,
+    hertz_coefficients_fast,
+)
+
+from .layout import (
+    B_OMEGA,
+    B_POS,
+    B_QUAT,
+    B_VEL,
+    BALL_STRIDE,
+    C_ANGLE,
+    C_POS,
+    C_SPEED,
+    C_VEL,
+    K_AZIMUTH,
+    K_DEFLECTION,
+    K_ELASTIC,
+    K_ENTRAIN,
+    K_F_BALL,
+    K_F_RING,
+    K_LOAD,
+    K_M_BALL,
+    K_M_RING,
+    K_NORMAL,
+    K_PMAX,
+    K_POINT,
+    K_ROLL,
+    K_RX,
+    K_RY,
+    K_SEMI_MAJOR,
+    K_SEMI_MINOR,
+    K_SLIDE,
+    K_SPIN,
+    K_ANGLE,
+    P_CAGE_ON,
+    P_CAGE_R,
+    P_CG,
+    P_CP,
+    P_D,
+    P_DM,
+    P_EPRIME,
+    P_ETA,
+    P_FI,
+    P_FO,
+    P_FX,
+    P_FY,
+    P_FZ,
+    P_GRAVITY,
+    P_GUIDE,
+    P_HEATHCOTE,
+    P_IC,
+    P_IRD,
+    P_IRP,
+    P_JB,
+    P_KG,
+    P_KP,
+    P_LG,
+    P_MB,
+    P_MC,
+    P_MR,
+    P_MU_A,
+    P_MU_B,
+    P_MU_C,
+    P_MU_D,
+    P_MU_G,
+    P_MU_P,
+    P_MY,
+    P_MZ,
+    P_RCI,
+    P_RCO,
+    P_RG,
+    P_RI,
+    P_RING_FREE,
+    P_RO,
+    P_TILT_MODE,
+    P_TRACTION,
+    P_V_REG,
+    P_WI,
+    P_WO,
+    P_XCI,
+    P_XCO,
+    P_Z,
+    P_ZETA,
+    P_ZETA_P,
+    R_PHI_INNER,
+    R_PHI_OUTER,
+    R_POS,
+    R_TILT,
+    R_TILT_RATE,
+    R_VEL,
+    RING_SIZE,
+)
+
+# ---------------------------------------------------------------------------------------------
+# small vector helpers (tuples: no heap allocation inside the loops)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True, inline="always")
+def _cross(a0, a1, a2, b0, b1, b2):
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(cache=True)
+def rotation_from_vector(v0, v1, v2, out):
+    """Rotation matrix of the rotation vector (v0, v1, v2) [rad] (Rodrigues), written into ``out``."""
+    th = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    if th < 1e-300:
+        for i in range(3):
+            for k in range(3):
+                out[i, k] = 1.0 if i == k else 0.0
+        return
+    k0, k1, k2 = v0 / th, v1 / th, v2 / th
+    c = math.cos(th)
+    s = math.sin(th)
+    t = 1.0 - c
+    out[0, 0] = c + k0 * k0 * t
+    out[0, 1] = k0 * k1 * t - k2 * s
+    out[0, 2] = k0 * k2 * t + k1 * s
+    out[1, 0] = k1 * k0 * t + k2 * s
+    out[1, 1] = c + k1 * k1 * t
+    out[1, 2] = k1 * k2 * t - k0 * s
+    out[2, 0] = k2 * k0 * t - k1 * s
+    out[2, 1] = k2 * k1 * t + k0 * s
+    out[2, 2] = c + k2 * k2 * t
+
+
+@njit(cache=True)
+def quaternion_to_matrix(w, x, y, z, out):
+    """Rotation matrix (body -> inertial) of the quaternion [w, x, y, z] (normalised here)."""
+    n = math.sqrt(w * w + x * x + y * y + z * z)
+    w, x, y, z = w / n, x / n, y / n, z / n
+    out[0, 0] = 1.0 - 2.0 * (y * y + z * z)
+    out[0, 1] = 2.0 * (x * y - w * z)
+    out[0, 2] = 2.0 * (x * z + w * y)
+    out[1, 0] = 2.0 * (x * y + w * z)
+    out[1, 1] = 1.0 - 2.0 * (x * x + z * z)
+    out[1, 2] = 2.0 * (y * z - w * x)
+    out[2, 0] = 2.0 * (x * z - w * y)
+    out[2, 1] = 2.0 * (y * z + w * x)
+    out[2, 2] = 1.0 - 2.0 * (x * x + y * y)
+
+
+@njit(cache=True)
+def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_rot, outer_omega):
+    """Orientation, origin, velocity and angular velocity of both rings at state ``y``.
+
+    Inner ring: tilt vector ``g`` (small rotation about y, z) and spin angle ``phi``. Mode 0 (tilt fixed
+    in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring): R = R_x(phi) R(g).
+    Outer ring: R = R_x(phi_o) about the fixed axis.
+    """
+    z = int(par[P_Z])
+    rb = BALL_STRIDE * z
+    tilt = np.empty((3, 3))
+    rotation_from_vector(0.0, y[rb + R_TILT], y[rb + R_TILT + 1], tilt)
+    phi = y[rb + R_PHI_INNER]
+    spin = np.empty((3, 3))
+    rotation_from_vector(phi, 0.0, 0.0, spin)
+    mode = int(par[P_TILT_MODE])
+    wi = par[P_WI]
+    if mode == 1:
+        inner_rot[:, :] = spin @ tilt
+        inner_omega[0] = wi
+        inner_omega[1] = 0.0
+        inner_omega[2] = 0.0
+    else:
+        inner_rot[:, :] = tilt @ spin
+        for i in range(3):
+            inner_omega[i] = wi * tilt[i, 0]
+        if mode == 2:
+            inner_omega[1] += y[rb + R_TILT_RATE]
+            inner_omega[2] += y[rb + R_TILT_RATE + 1]
+    for i in range(3):
+        inner_origin[i] = y[rb + R_POS + i]
+        inner_vel[i] = y[rb + R_VEL + i]
+    rotation_from_vector(y[rb + R_PHI_OUTER], 0.0, 0.0, outer_rot)
+    outer_omega[0] = par[P_WO]
+    outer_omega[1] = 0.0
+    outer_omega[2] = 0.0
+
+
+# ---------------------------------------------------------------------------------------------
+# Hertz (Hamrock & Brewe 1983 closed forms, physics.md §2.3) and the traction curve
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
+    """(R_x, R_y, kappa, E(m), K) of a ball-groove contact; K in N/m^1.5 so that Q = K delta^1.5.
+
+    Exact Hertz solution through B's tabulated kernels (solver.physics.hertz_fast)."""
+    rx, ry = equivalent_radii_fast(ball_diameter, conformity, gamma, is_inner)
+    csum, cdiff = curvature_sum_and_difference_fast(ball_diameter, conformity, gamma, is_inner)
+    kappa, ell_k, ell_e = hertz_coefficients_fast(cdiff)
+    k = math.pi * kappa * eprime * math.sqrt(2.0 * ell_e / (9.0 * csum * ell_k**3))
+    return rx, ry, kappa, ell_e, k
+
+
+@njit(cache=True)
+def traction_mu(slip, a, b, c, d):
+    """ADORE-type curve mu(u) = (A + B u) exp(-C u) + D of the slip speed u >= 0 [m/s]."""
+    return (a + b * slip) * math.exp(-c * slip) + d
+
+
+# ---------------------------------------------------------------------------------------------
+# ball-race contact (physics.md §2.6.3-2.6.6)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec):
+    """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
+
+    ``quad`` (n, 3): normalised quadrature points (u, v, weight) on the unit contact ellipse, with
+    xi = b u along t1 and eta = a v along t2; weights sum to 1 and include the Hertz pressure
+    distribution, so sum(w f) is the load-weighted mean of f. Results go to ``rec`` (layout K_*).
+    """
+    dball = par[P_D]
+    rball = 0.5 * dball
+    if is_inner:
+        xc, rc, rg, conf, sgn = par[P_XCI], par[P_RCI], par[P_RI], par[P_FI], -1.0
+    else:
+        xc, rc, rg, conf, sgn = par[P_XCO], par[P_RCO], par[P_RO], par[P_FO], 1.0
+    pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
+    vbx, vby, vbz = y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2]
+    wbx, wby, wbz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
+    R = ring_rot
+    ox, oy, oz = ring_origin[0], ring_origin[1], ring_origin[2]
+    dx, dy, dz = pbx - ox, pby - oy, pbz - oz
+    # ball centre in ring-frame components
+    cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
+    cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
+    cz = R[0, 2] * dx + R[1, 2] * dy + R[2, 2] * dz
+    phi = math.atan2(cz, cy)
+    cph, sph = math.cos(phi), math.sin(phi)
+    # groove curvature centre at that azimuth, and the contact normal
+    gx, gy, gz = xc, rc * cph, rc * sph
+    ex, ey, ez = cx - gx, cy - gy, cz - gz
+    length = math.sqrt(ex * ex + ey * ey + ez * ez)
+    nx, ny, nz = ex / length, ey / length, ez / length
+    delta = length - (rg - rball)
+    n_rho = ny * cph + nz * sph
+    alpha = math.atan2(sgn * nx, sgn * n_rho)
+    reach = rg + 0.5 * max(delta, 0.0)
+    prx, pry, prz = gx + reach * nx, gy + reach * ny, gz + reach * nz
+    # to inertial
+    nix = R[0, 0] * nx + R[0, 1] * ny + R[0, 2] * nz
+    niy = R[1, 0] * nx + R[1, 1] * ny + R[1, 2] * nz
+    niz = R[2, 0] * nx + R[2, 1] * ny + R[2, 2] * nz
+    pix = ox + R[0, 0] * prx + R[0, 1] * pry + R[0, 2] * prz
+    piy = oy + R[1, 0] * prx + R[1, 1] * pry + R[1, 2] * prz
+    piz = oz + R[2, 0] * prx + R[2, 1] * pry + R[2, 2] * prz
+    gix = ox + R[0, 0] * gx + R[0, 1] * gy + R[0, 2] * gz
+    giy = oy + R[1, 0] * gx + R[1, 1] * gy + R[1, 2] * gz
+    giz = oz + R[2, 0] * gx + R[2, 1] * gy + R[2, 2] * gz
+    # rolling direction t1 = ring-frame e_theta, t2 = n x t1
+    t1x = -R[0, 1] * sph + R[0, 2] * cph
+    t1y = -R[1, 1] * sph + R[1, 2] * cph
+    t1z = -R[2, 1] * sph + R[2, 2] * cph
+    t2x, t2y, t2z = _cross(nix, niy, niz, t1x, t1y, t1z)
+    # velocities at the contact centre
+    wrx, wry, wrz = ring_omega[0], ring_omega[1], ring_omega[2]
+    rbx, rby, rbz = pix - pbx, piy - pby, piz - pbz
+    a0, a1, a2 = _cross(wbx, wby, wbz, rbx, rby, rbz)
+    vsbx, vsby, vsbz = vbx + a0, vby + a1, vbz + a2  # ball surface
+    a0, a1, a2 = _cross(wrx, wry, wrz, pix - ox, piy - oy, piz - oz)
+    vsrx, vsry, vsrz = ring_vel[0] + a0, ring_vel[1] + a1, ring_vel[2] + a2  # ring surface
+    dvx, dvy, dvz = vsbx - vsrx, vsby - vsry, vsbz - vsrz
+    dvn = dvx * nix + dvy * niy + dvz * niz
+    slide = math.sqrt(max((dvx * dvx + dvy * dvy + dvz * dvz) - dvn * dvn, 0.0))
+    omx, omy, omz = wbx - wrx, wby - wry, wbz - wrz
+    spin = sgn * (omx * nix + omy * niy + omz * niz)
+    # roll axis: cos(alpha) e_x - sin(alpha) e_r in ring frame
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    mrx, mry, mrz = ca, -sa * cph, -sa * sph
+    mix = R[0, 0] * mrx + R[0, 1] * mry + R[0, 2] * mrz
+    miy = R[1, 0] * mrx + R[1, 1] * mry + R[1, 2] * mrz
+    miz = R[2, 0] * mrx + R[2, 1] * mry + R[2, 2] * mrz
+    roll = omx * mix + omy * miy + omz * miz
+    # entrainment: surface speeds relative to the contact, which moves with the ball's orbit
+    rr2 = pby * pby + pbz * pbz
+    orbit = (pby * vbz - pbz * vby) / rr2 if rr2 > 0.0 else 0.0
+    a0, a1, a2 = _cross(orbit, 0.0, 0.0, rbx, rby, rbz)
+    vpx, vpy, vpz = vbx + a0, vby + a1, vbz + a2
+    sx = vsbx + vsrx - 2.0 * vpx
+    sy = vsby + vsry - 2.0 * vpy
+    sz = vsbz + vsrz - 2.0 * vpz
+    sn = sx * nix + sy * niy + sz * niz
+    entrain = 0.5 * math.sqrt(max(sx * sx + sy * sy + sz * sz - sn * sn, 0.0))
+    # Hertz with the current contact angle
+    gamma = dball * ca / par[P_DM]
+    eprime = par[P_EPRIME]
+    rx, ry, kappa, ell_e, kh = hertz_constants(dball, conf, gamma, is_inner, eprime)
+    for i in range(K_F_BALL, K_M_RING + 3):
+        rec[i] = 0.0
+    rec[K_DEFLECTION] = delta
+    rec[K_ANGLE] = alpha
+    rec[K_AZIMUTH] = math.atan2(prz, pry)
+    rec[K_POINT] = prx
+    rec[K_POINT + 1] = pry
+    rec[K_POINT + 2] = prz
+    rec[K_NORMAL] = nix
+    rec[K_NORMAL + 1] = niy
+    rec[K_NORMAL + 2] = niz
+    rec[K_SPIN] = spin
+    rec[K_ROLL] = roll
+    rec[K_SLIDE] = slide
+    rec[K_ENTRAIN] = entrain
+    rec[K_RX] = rx
+    rec[K_RY] = ry
+    rec[K_LOAD] = 0.0
+    rec[K_ELASTIC] = 0.0
+    rec[K_SEMI_MAJOR] = 0.0
+    rec[K_SEMI_MINOR] = 0.0
+    rec[K_PMAX] = 0.0
+    if delta <= 0.0:
+        return
+    q_el = kh * delta**1.5
+    # damping: c = 2 zeta sqrt(k_lin m), k_lin = 1.5 K sqrt(delta); rate of approach from the
+    # ball-centre velocity relative to the ring-fixed groove centre point
+    a0, a1, a2 = _cross(wrx, wry, wrz, gix - ox, giy - oy, giz - oz)
+    ddelta = (
+        (vbx - ring_vel[0] - a0) * nix + (vby - ring_vel[1] - a1) * niy + (vbz - ring_vel[2] - a2) * niz
+    )
+    zeta = par[P_ZETA]
+    q = q_el
+    if zeta > 0.0:
+        q += 2.0 * zeta * math.sqrt(1.5 * kh * math.sqrt(delta) * par[P_MB]) * ddelta
+        if q < 0.0:
+            q = 0.0
+    rec[K_LOAD] = q
+    rec[K_ELASTIC] = q_el
+    if q <= 0.0:
+        return
+    r_eq = 1.0 / (1.0 / rx + 1.0 / ry)
+    sa_ = (6.0 * kappa * kappa * ell_e * q * r_eq / (math.pi * eprime)) ** (1.0 / 3.0)
+    sb_ = (6.0 * ell_e * q * r_eq / (math.pi * kappa * eprime)) ** (1.0 / 3.0)
+    rec[K_SEMI_MAJOR] = sa_
+    rec[K_SEMI_MINOR] = sb_
+    rec[K_PMAX] = 1.5 * q / (math.pi * sa_ * sb_)
+    # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
+    fbx, fby, fbz = -q * nix, -q * niy, -q * niz
+    mbx = mby = mbz = 0.0
+    frx, fry, frz = -fbx, -fby, -fbz
+    mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
+    if par[P_TRACTION] > 0.0:
+        mua, mub, muc, mud = par[P_MU_A], par[P_MU_B], par[P_MU_C], par[P_MU_D]
+        vreg2 = par[P_V_REG] ** 2
+        curv = 0.0
+        if par[P_HEATHCOTE] > 0.0:
+            curv = 0.5 * (2.0 * rg + dball) / (2.0 * rg * dball)  # 1 / (2 R_d)
+        tfx = tfy = tfz = 0.0
+        tmx = tmy = tmz = 0.0
+        trx = try_ = trz = 0.0
+        for k in range(quad.shape[0]):
+            xi = sb_ * quad[k, 0]
+            eta = sa_ * quad[k, 1]
+            dn = -curv * eta * eta
+            offx = xi * t1x + eta * t2x + dn * nix
+            offy = xi * t1y + eta * t2y + dn * niy
+            offz = xi * t1z + eta * t2z + dn * niz
+            a0, a1, a2 = _cross(omx, omy, omz, offx, offy, offz)
+            ux, uy, uz = dvx + a0, dvy + a1, dvz + a2
+            un = ux * nix + uy * niy + uz * niz
+            ux -= un * nix
+            uy -= un * niy
+            uz -= un * niz
+            s = math.sqrt(ux * ux + uy * uy + uz * uz)
+            f = -traction_mu(s, mua, mub, muc, mud) * quad[k, 2] * q / math.sqrt(s * s + vreg2)
+            tx, ty, tz = f * ux, f * uy, f * uz
+            tfx += tx
+            tfy += ty
+            tfz += tz
+            a0, a1, a2 = _cross(rbx + offx, rby + offy, rbz + offz, tx, ty, tz)
+            tmx += a0
+            tmy += a1
+            tmz += a2
+            a0, a1, a2 = _cross(pix - ox + offx, piy - oy + offy, piz - oz + offz, tx, ty, tz)
+            trx += a0
+            try_ += a1
+            trz += a2
+        fbx += tfx
+        fby += tfy
+        fbz += tfz
+        mbx += tmx
+        mby += tmy
+        mbz += tmz
+        frx -= tfx
+        fry -= tfy
+        frz -= tfz
+        mrx_ -= trx
+        mry_ -= try_
+        mrz_ -= trz
+    rec[K_F_BALL] = fbx
+    rec[K_F_BALL + 1] = fby
+    rec[K_F_BALL + 2] = fbz
+    rec[K_M_BALL] = mbx
+    rec[K_M_BALL + 1] = mby
+    rec[K_M_BALL + 2] = mbz
+    rec[K_F_RING] = frx
+    rec[K_F_RING + 1] = fry
+    rec[K_F_RING + 2] = frz
+    rec[K_M_RING] = mrx_
+    rec[K_M_RING + 1] = mry_
+    rec[K_M_RING + 2] = mrz_
+
+
+# ---------------------------------------------------------------------------------------------
+# cage (physics.md §2.6.7)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def pocket_contact(y, jb, cb, j, par, out):
+    """Ball ``j`` against its cylindrical cage pocket (axis radial in the cage).
+
+    ``out`` (10): force on ball (3), moment on ball about its centre (3), force on cage (3), moment on
+    cage about its centre, x component (1). Returns the normal force [N] (>= 0).
+    Normal law: linear spring K_p on the penetration plus damping 2 zeta sqrt(K_p m_ball), clipped at
+    zero; friction mu_p F tanh(|v_slip| / v_reg) opposing the slip.
+    """
+    for i in range(10):
+        out[i] = 0.0
+    z = int(par[P_Z])
+    rball = 0.5 * par[P_D]
+    psi = y[cb + C_ANGLE] + 2.0 * math.pi * j / z
+    epy, epz = math.cos(psi), math.sin(psi)
+    rp = par[P_CAGE_R]
+    ccx, ccy, ccz = y[cb + C_POS], y[cb + C_POS + 1], y[cb + C_POS + 2]
+    pcx, pcy, pcz = ccx, ccy + rp * epy, ccz + rp * epz
+    dx, dy, dz = y[jb + B_POS] - pcx, y[jb + B_POS + 1] - pcy, y[jb + B_POS + 2] - pcz
+    dr = dy * epy + dz * epz
+    dy -= dr * epy
+    dz -= dr * epz
+    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
+    pen = dist - 0.5 * par[P_CP]
+    if pen <= 0.0 or dist <= 0.0:
+        return 0.0
+    ux, uy, uz = dx / dist, dy / dist, dz / dist
+    # contact point and the velocities of both surfaces there
+    rcx, rcy, rcz = rball * ux, rball * uy, rball * uz
+    xcx, xcy, xcz = y[jb + B_POS] + rcx, y[jb + B_POS + 1] + rcy, y[jb + B_POS + 2] + rcz
+    wb = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
+    a0, a1, a2 = _cross(wb[0], wb[1], wb[2], rcx, rcy, rcz)
+    vbx, vby, vbz = y[jb + B_VEL] + a0, y[jb + B_VEL + 1] + a1, y[jb + B_VEL + 2] + a2
+    wc = y[cb + C_SPEED]
+    a0, a1, a2 = _cross(wc, 0.0, 0.0, xcx - ccx, xcy - ccy, xcz - ccz)
+    vcx, vcy, vcz = y[cb + C_VEL] + a0, y[cb + C_VEL + 1] + a1, y[cb + C_VEL + 2] + a2
+    rvx, rvy, rvz = vbx - vcx, vby - vcy, vbz - vcz
+    rate = rvx * ux + rvy * uy + rvz * uz
+    kp = par[P_KP]
+    fn = kp * pen + 2.0 * par[P_ZETA_P] * math.sqrt(kp * par[P_MB]) * rate
+    if fn <= 0.0:
+        return 0.0
+    fx, fy, fz = -fn * ux, -fn * uy, -fn * uz
+    tx, ty, tz = rvx - rate * ux, rvy - rate * uy, rvz - rate * uz
+    st = math.sqrt(tx * tx + ty * ty + tz * tz)
+    if st > 1e-15 and par[P_MU_P] > 0.0:
+        ff = par[P_MU_P] * fn * math.tanh(st / par[P_V_REG]) / st
+        fx -= ff * tx
+        fy -= ff * ty
+        fz -= ff * tz
+    m0, m1, m2 = _cross(rcx, rcy, rcz, fx, fy, fz)
+    out[0], out[1], out[2] = fx, fy, fz
+    out[3], out[4], out[5] = m0, m1, m2
+    out[6], out[7], out[8] = -fx, -fy, -fz
+    # moment on the cage about its centre, x component: ((x_c - r_c) x (-f))_x
+    out[9] = -((xcy - ccy) * fz - (xcz - ccz) * fy)
+    return fn
+
+
+@njit(cache=True)
+def land_force(y, cb, ring_origin, par, out):
+    """Guiding-land force and moment on the cage (short journal bearing + metal contact).
+
+    ``out`` (4): force on the cage (3) and moment about x (1). Eccentricity e = cage centre minus land
+    centre in the radial plane; eps = |e| / c_g. Hydrodynamic (Ocvirk short bearing, physics.md
+    §2.6.7) with the sum speed of both surfaces, Petroff drag torque from the relative speed, and a
+    linear metal contact with Coulomb friction when |e| > c_g. Ball-guided cages get nothing here.
+    """
+    for i in range(4):
+        out[i] = 0.0
+    guide = int(par[P_GUIDE])
+    if guide == 2:
+        return
+    if guide == 0:
+        wl = par[P_WO]
+        ey, ez = y[cb + C_POS + 1], y[cb + C_POS + 2]
+    else:
+        wl = par[P_WI]
+        ey, ez = y[cb + C_POS + 1] - ring_origin[1], y[cb + C_POS + 2] - ring_origin[2]
+    wc = y[cb + C_SPEED]
+    cg, rg, lg, eta = par[P_CG], par[P_RG], par[P_LG], par[P_ETA]
+    e = math.sqrt(ey * ey + ez * ez)
+    eps = min(e / cg, 0.95)
+    wrel = wc - wl
+    denom = math.sqrt(1.0 - eps * eps)
+    out[3] = -2.0 * math.pi * eta * rg**3 * lg * wrel / (cg * denom)
+    if e > 0.0:
+        uy, uz = ey / e, ez / e
+        wsum = wc + wl
+        u = rg * abs(wsum)
+        frad = eta * u * lg**3 / cg**2 * eps * eps / (1.0 - eps * eps) ** 2
+        ftan = math.pi * eta * u * lg**3 / (4.0 * cg**2) * eps / (1.0 - eps * eps) ** 1.5
+        sg = 1.0 if wsum >= 0.0 else -1.0
+        # e_x x e_hat = (0, -uz, uy)
+        out[1] = -frad * uy - sg * ftan * uz
+        out[2] = -frad * uz + sg * ftan * uy
+        if e > cg:
+            fm = par[P_KG] * (e - cg)
+            out[1] -= fm * uy
+            out[2] -= fm * uz
+            out[3] -= par[P_MU_G] * fm * rg * math.tanh(wrel * rg / par[P_V_REG])
+
+
+# ---------------------------------------------------------------------------------------------
+# right-hand side
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
+    """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
+    (Z,) receive the contact records and pocket normal forces of this evaluation."""
+    z = int(par[P_Z])
+    rb = BALL_STRIDE * z
+    cb = rb + RING_SIZE
+    irot = np.empty((3, 3))
+    iorg = np.empty(3)
+    ivel = np.empty(3)
+    iome = np.empty(3)
+    orot = np.empty((3, 3))
+    oome = np.empty(3)
+    ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+    zero3 = np.zeros(3)
+    mb = par[P_MB]
+    jinv = 1.0 / par[P_JB]
+    g = par[P_GRAVITY]
+    cage_on = par[P_CAGE_ON] > 0.0
+    pk = np.empty(10)
+    frx = fry = frz = 0.0
+    mrx = mry = mrz = 0.0
+    fcx = fcy = fcz = 0.0
+    mcx = 0.0
+    for j in range(z):
+        jb = BALL_STRIDE * j
+        ri = rec_inner[j]
+        ro = rec_outer[j]
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri)
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro)
+        fx = ri[K_F_BALL] + ro[K_F_BALL]
+        fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
+        fz = ri[K_F_BALL + 2] + ro[K_F_BALL + 2] - mb * g
+        mx = ri[K_M_BALL] + ro[K_M_BALL]
+        my = ri[K_M_BALL + 1] + ro[K_M_BALL + 1]
+        mz = ri[K_M_BALL + 2] + ro[K_M_BALL + 2]
+        pocket[j] = 0.0
+        if cage_on:
+            pocket[j] = pocket_contact(y, jb, cb, j, par, pk)
+            fx += pk[0]
+            fy += pk[1]
+            fz += pk[2]
+            mx += pk[3]
+            my += pk[4]
+            mz += pk[5]
+            fcx += pk[6]
+            fcy += pk[7]
+            fcz += pk[8]
+            mcx += pk[9]
+        frx += ri[K_F_RING]
+        fry += ri[K_F_RING + 1]
+        frz += ri[K_F_RING + 2]
+        mrx += ri[K_M_RING]
+        mry += ri[K_M_RING + 1]
+        mrz += ri[K_M_RING + 2]
+        for i in range(3):
+            dydt[jb + B_POS + i] = y[jb + B_VEL + i]
+        dydt[jb + B_VEL] = fx / mb
+        dydt[jb + B_VEL + 1] = fy / mb
+        dydt[jb + B_VEL + 2] = fz / mb
+        qw, qx, qy, qz = y[jb + B_QUAT], y[jb + B_QUAT + 1], y[jb + B_QUAT + 2], y[jb + B_QUAT + 3]
+        wx, wy, wz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
+        # q' = 1/2 (0, w_inertial) (x) q
+        dydt[jb + B_QUAT] = -0.5 * (wx * qx + wy * qy + wz * qz)
+        c0, c1, c2 = _cross(wx, wy, wz, qx, qy, qz)
+        dydt[jb + B_QUAT + 1] = 0.5 * (qw * wx + c0)
+        dydt[jb + B_QUAT + 2] = 0.5 * (qw * wy + c1)
+        dydt[jb + B_QUAT + 3] = 0.5 * (qw * wz + c2)
+        dydt[jb + B_OMEGA] = mx * jinv
+        dydt[jb + B_OMEGA + 1] = my * jinv
+        dydt[jb + B_OMEGA + 2] = mz * jinv
+    # inner ring
+    for i in range(RING_SIZE):
+        dydt[rb + i] = 0.0
+    dydt[rb + R_PHI_INNER] = par[P_WI]
+    dydt[rb + R_PHI_OUTER] = par[P_WO]
+    ld = np.empty(4)
+    if cage_on:
+        land_force(y, cb, iorg, par, ld)
+        if int(par[P_GUIDE]) == 1:  # reaction on the inner ring
+            fry -= ld[1]
+            frz -= ld[2]
+    else:
+        for i in range(4):
+            ld[i] = 0.0
+    if par[P_RING_FREE] > 0.0:
+        mr = par[P_MR]
+        for i in range(3):
+            dydt[rb + R_POS + i] = y[rb + R_VEL + i]
+        dydt[rb + R_VEL] = (frx + par[P_FX]) / mr
+        dydt[rb + R_VEL + 1] = (fry + par[P_FY]) / mr
+        dydt[rb + R_VEL + 2] = (frz + par[P_FZ]) / mr
+    if int(par[P_TILT_MODE]) == 2:
+        ird, irp, wi = par[P_IRD], par[P_IRP], par[P_WI]
+        gy_rate, gz_rate = y[rb + R_TILT_RATE], y[rb + R_TILT_RATE + 1]
+        dydt[rb + R_TILT] = gy_rate
+        dydt[rb + R_TILT + 1] = gz_rate
+        dydt[rb + R_TILT_RATE] = (mry + par[P_MY] - irp * wi * gz_rate) / ird
+        dydt[rb + R_TILT_RATE + 1] = (mrz + par[P_MZ] + irp * wi * gy_rate) / ird
+    # cage
+    for i in range(8):
+        dydt[cb + i] = 0.0
+    if cage_on:
+        mc = par[P_MC]
+        for i in range(3):
+            dydt[cb + C_POS + i] = y[cb + C_VEL + i]
+        dydt[cb + C_VEL] = (fcx + ld[0]) / mc
+        dydt[cb + C_VEL + 1] = (fcy + ld[1]) / mc
+        dydt[cb + C_VEL + 2] = (fcz + ld[2]) / mc - g
+        dydt[cb + C_ANGLE] = y[cb + C_SPEED]
+        dydt[cb + C_SPEED] = (mcx + ld[3]) / par[P_IC]
+
+
+@njit(cache=True)
+def mechanical_energy(y, par, quad, rec_inner, rec_outer):
+    """Kinetic + potential energy [J] for the conservative model (traction, damping, cage off).
+
+    Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the constant applied
+    force, m g z for gravity along -z. The inner ring's imposed spin is not included (it does no work
+    on frictionless contacts).
+    """
+    z = int(par[P_Z])
+    rb = BALL_STRIDE * z
+    irot = np.empty((3, 3))
+    iorg = np.empty(3)
+    ivel = np.empty(3)
+    iome = np.empty(3)
+    orot = np.empty((3, 3))
+    oome = np.empty(3)
+    ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+    zero3 = np.zeros(3)
+    mb = par[P_MB]
+    e = 0.0
+    for j in range(z):
+        jb = BALL_STRIDE * j
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, rec_inner[j])
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, rec_outer[j])
+        for rec in (rec_inner[j], rec_outer[j]):
+            d = rec[K_DEFLECTION]
+            if d > 0.0:
+                e += 0.4 * rec[K_ELASTIC] * d
+        v2 = 0.0
+        w2 = 0.0
+        for i in range(3):
+            v2 += y[jb + B_VEL + i] ** 2
+            w2 += y[jb + B_OMEGA + i] ** 2
+        e += 0.5 * mb * v2 + 0.5 * par[P_JB] * w2 + mb * par[P_GRAVITY] * y[jb + B_POS + 2]
+    if par[P_RING_FREE] > 0.0:
+        v2 = 0.0
+        for i in range(3):
+            v2 += y[rb + R_VEL + i] ** 2
+        e += 0.5 * par[P_MR] * v2
+        e -= par[P_FX] * y[rb + R_POS] + par[P_FY] * y[rb + R_POS + 1] + par[P_FZ] * y[rb + R_POS + 2]
+    return e

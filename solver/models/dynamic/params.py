@@ -1,0 +1,118 @@
+"""Build the parameter vector (layout ``P_*``) and the ellipse quadrature of the dynamic model."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solver.physics.traction import (
+    NODE_LOAD,
+    NODE_ROLLING,
+    NODE_TRANSVERSE,
+    ellipse_quadrature,
+    traction_curve_parameters,
+)
+
+from . import layout as L
+from .inputs import DynamicInputs
+from .options import SimulationOptions
+
+STEEL_DENSITY = 7800.0
+
+
+def ring_mass_properties(inputs: DynamicInputs, options: SimulationOptions):
+    """(mass [kg], diametral inertia, polar inertia [kg m^2]) of the inner ring.
+
+    Estimate (no ring data in the case): a steel annulus of width 2 D from the bore d_m - 2 D to the
+    inner groove-bottom diameter; ``options.inner_ring_mass`` overrides the mass.
+    """
+    g = inputs.geometry
+    D, dm = g.ball_diameter, g.pitch_diameter
+    r_out = 0.5 * g.inner_groove_bottom_diameter
+    r_in = max(0.5 * dm - D, 0.25 * dm)
+    if r_in >= r_out:
+        r_in = 0.5 * r_out
+    width = 2.0 * D
+    mass = STEEL_DENSITY * math.pi * (r_out**2 - r_in**2) * width
+    if options.inner_ring_mass is not None:
+        mass = float(options.inner_ring_mass)
+    polar = 0.5 * mass * (r_out**2 + r_in**2)
+    diametral = 0.25 * mass * (r_out**2 + r_in**2) + mass * width**2 / 12.0
+    return mass, diametral, polar
+
+
+def build_quadrature(options: SimulationOptions) -> np.ndarray:
+    """(n, 3) array of (xi/b, eta/a, load fraction) on the unit contact ellipse (D1's rule)."""
+    n_roll, n_trans = options.quadrature
+    nodes = ellipse_quadrature(n_roll, n_trans)
+    return np.ascontiguousarray(nodes[:, [NODE_ROLLING, NODE_TRANSVERSE, NODE_LOAD]])
+
+
+def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarray:
+    """Parameter vector for the numba kernels (every slot documented in ``layout``)."""
+    g = inputs.geometry
+    p = np.zeros(L.N_PARAMS)
+    D, dm = g.ball_diameter, g.pitch_diameter
+    p[L.P_Z] = g.ball_count
+    p[L.P_D] = D
+    p[L.P_DM] = dm
+    p[L.P_MB] = g.ball_mass
+    p[L.P_JB] = g.ball_inertia
+    p[L.P_RI] = g.inner_groove_radius
+    p[L.P_RO] = g.outer_groove_radius
+    p[L.P_XCI] = g.inner_curvature_center_axial
+    p[L.P_RCI] = g.inner_curvature_center_radius
+    p[L.P_XCO] = g.outer_curvature_center_axial
+    p[L.P_RCO] = g.outer_curvature_center_radius
+    p[L.P_FI] = g.inner_conformity
+    p[L.P_FO] = g.outer_conformity
+    p[L.P_EPRIME] = g.effective_modulus
+    p[L.P_WI] = inputs.inner_speed
+    p[L.P_WO] = inputs.outer_speed
+    mass, diametral, polar = ring_mass_properties(inputs, options)
+    p[L.P_MR] = mass
+    p[L.P_IRD] = diametral
+    p[L.P_IRP] = polar
+    p[L.P_FX] = inputs.axial_load
+    p[L.P_FY] = inputs.radial_load * math.cos(inputs.radial_load_angle)
+    p[L.P_FZ] = inputs.radial_load * math.sin(inputs.radial_load_angle)
+    if inputs.tilting_moment is not None:
+        p[L.P_TILT_MODE] = 2
+        p[L.P_MY] = inputs.tilting_moment * math.cos(inputs.moment_axis)
+        p[L.P_MZ] = inputs.tilting_moment * math.sin(inputs.moment_axis)
+    else:
+        p[L.P_TILT_MODE] = 1 if inputs.misalignment_frame == "ring" else 0
+        p[L.P_TILT_Y] = inputs.misalignment * math.cos(inputs.misalignment_axis)
+        p[L.P_TILT_Z] = inputs.misalignment * math.sin(inputs.misalignment_axis)
+    p[L.P_RING_FREE] = 1.0 if options.ring_free else 0.0
+    p[L.P_GRAVITY] = options.gravity
+    p[L.P_ZETA] = options.damping_ratio
+    p[L.P_TRACTION] = 1.0 if options.traction else 0.0
+    curve = traction_curve_parameters(*inputs.traction_curve)
+    p[L.P_MU_A : L.P_MU_D + 1] = curve
+    p[L.P_CAGE_ON] = 1.0 if options.cage else 0.0
+    p[L.P_MC] = inputs.cage_mass
+    p[L.P_CAGE_R] = 0.5 * dm
+    p[L.P_IC] = inputs.cage_mass * (0.5 * dm) ** 2
+    p[L.P_CP] = inputs.pocket_clearance
+    p[L.P_KP] = options.pocket_stiffness
+    p[L.P_ZETA_P] = options.pocket_damping_ratio
+    p[L.P_MU_P] = inputs.pocket_friction
+    guide = {"outer_ring": 0, "inner_ring": 1, "ball": 2}[inputs.cage_guidance]
+    p[L.P_GUIDE] = guide
+    if guide == 0:
+        shoulder = g.outer_shoulder_diameter
+        land = 0.5 * shoulder if math.isfinite(shoulder) else 0.5 * dm + 0.35 * D
+    else:
+        shoulder = g.inner_shoulder_diameter
+        land = 0.5 * shoulder if math.isfinite(shoulder) else 0.5 * dm - 0.35 * D
+    p[L.P_RG] = land
+    p[L.P_CG] = 0.5 * inputs.guide_clearance
+    p[L.P_LG] = inputs.guide_land_width
+    p[L.P_ETA] = inputs.viscosity
+    p[L.P_KG] = options.land_stiffness
+    p[L.P_MU_G] = 0.1
+    p[L.P_V_REG] = options.friction_regularisation
+    p[L.P_HEATHCOTE] = 1.0 if options.heathcote else 0.0
+    return p

@@ -1,0 +1,211 @@
+"""Driver of the dynamic model: ``simulate(case, progress=None, cancel=None, options=None)``.
+
+The numba integrator advances in chunks of ``options.chunk_samples`` output samples; between chunks
+the driver reports progress and checks for cancellation. Outcomes:
+
+- finished: Dataset with attrs ``complete = 1``, ``stop_reason = "finished"``;
+- cancelled (``cancel()`` true or ``cancel.is_set()``): the samples computed so far, ``complete = 0``,
+  ``stop_reason = "cancelled"``;
+- diverged (NaN, step-size collapse, a ball leaving the raceways, step budget exhausted):
+  :class:`solver.errors.SimulationDiverged` is raised with the likely cause in its message and the
+  partial Dataset (``complete = 0``, ``stop_reason`` = the message) in its ``dataset`` attribute.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from datetime import datetime, timezone
+
+import numpy as np
+
+from solver.errors import CaseError, Problem, SimulationDiverged
+
+from . import layout as L
+from .initial import initial_state
+from .inputs import DEFAULT_OIL_NOTE, DynamicInputs, inputs_from_case
+from .integrator import (
+    STATUS_BALL_ESCAPED,
+    STATUS_NOT_FINITE,
+    STATUS_OK,
+    STATUS_STEP_COLLAPSE,
+    STATUS_TOO_MANY_STEPS,
+    advance,
+)
+from .options import SimulationOptions
+from .output import build_dataset
+from .params import build_params, build_quadrature
+
+_DIVERGENCE_CAUSES = {
+    STATUS_NOT_FINITE: (
+        "the state became non-finite (NaN/inf): a contact force blew up, usually a too-light cage or "
+        "an overload driving a ball through a race"
+    ),
+    STATUS_STEP_COLLAPSE: (
+        "the integration step collapsed below {h_min:.1e} s: the contact forces are too stiff or "
+        "discontinuous (cage pocket impacts or a ball running onto a shoulder); loosen the tolerance "
+        "or check the cage clearances"
+    ),
+    STATUS_BALL_ESCAPED: (
+        "a ball left the raceways (centre more than D/4 from the pitch circle or a deflection above "
+        "2 % of D): the load is too large for the bearing or nothing holds the balls"
+    ),
+    STATUS_TOO_MANY_STEPS: (
+        "the step budget of a chunk ({max_steps} steps) was exhausted: the model is too stiff for the "
+        "requested tolerance"
+    ),
+}
+
+
+def _is_cancelled(cancel) -> bool:
+    if cancel is None:
+        return False
+    is_set = getattr(cancel, "is_set", None)
+    if callable(is_set):
+        return bool(is_set())
+    return bool(cancel())
+
+
+def state_scales(par: np.ndarray, y0: np.ndarray) -> np.ndarray:
+    """Characteristic magnitudes of the state components for the error norm.
+
+    delta_ref = largest contact deflection at the start (>= 0.1 um); V = delta_ref * omega_n with the
+    ball's contact natural frequency omega_n = sqrt(2 k_lin / m), k_lin = 1.5 Q / delta. Positions
+    scale with delta_ref, velocities with V, angles with delta_ref over the lever arm.
+    """
+    z = int(par[L.P_Z])
+    n = y0.shape[0]
+    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
+    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
+    from .kernels import rhs
+
+    rhs(y0, par, np.zeros((1, 3)), np.zeros(n), rec_i, rec_o, np.zeros(z))
+    defl = np.concatenate((rec_i[:, L.K_DEFLECTION], rec_o[:, L.K_DEFLECTION]))
+    load = np.concatenate((rec_i[:, L.K_ELASTIC], rec_o[:, L.K_ELASTIC]))
+    k = int(np.argmax(defl))
+    delta_ref = max(float(defl[k]), 1e-7)
+    k_lin = 1.5 * load[k] / defl[k] if defl[k] > 0 else 1e7
+    omega_n = math.sqrt(2.0 * k_lin / par[L.P_MB])
+    v = delta_ref * omega_n
+    rball = 0.5 * par[L.P_D]
+    rpitch = 0.5 * par[L.P_DM]
+    s = np.empty(n)
+    for j in range(z):
+        b = L.ball_base(j)
+        s[b + L.B_POS : b + L.B_POS + 3] = delta_ref
+        s[b + L.B_VEL : b + L.B_VEL + 3] = v
+        s[b + L.B_QUAT : b + L.B_QUAT + 4] = delta_ref / rball
+        s[b + L.B_OMEGA : b + L.B_OMEGA + 3] = v / rball
+    rb = L.ring_base(z)
+    s[rb + L.R_POS : rb + L.R_POS + 3] = delta_ref
+    s[rb + L.R_VEL : rb + L.R_VEL + 3] = v
+    s[rb + L.R_TILT : rb + L.R_TILT + 2] = delta_ref / rpitch
+    s[rb + L.R_TILT_RATE : rb + L.R_TILT_RATE + 2] = v / rpitch
+    s[rb + L.R_PHI_INNER] = 1.0
+    s[rb + L.R_PHI_OUTER] = 1.0
+    cb = L.cage_base(z)
+    s[cb + L.C_POS : cb + L.C_POS + 3] = 10.0 * delta_ref
+    s[cb + L.C_VEL : cb + L.C_VEL + 3] = 10.0 * v
+    s[cb + L.C_ANGLE] = 10.0 * delta_ref / rpitch
+    s[cb + L.C_SPEED] = 10.0 * v / rpitch
+    return s
+
+
+class RunStatistics:
+    """Counters of one run (steps, rejected steps, right-hand-side evaluations, wall time)."""
+
+    def __init__(self):
+        self.counters = np.zeros(3, dtype=np.int64)
+        self.wall_time = 0.0
+        self.initial_step = 0.0
+
+    @property
+    def steps(self) -> int:
+        return int(self.counters[0])
+
+    @property
+    def rejected(self) -> int:
+        return int(self.counters[1])
+
+    @property
+    def rhs_evaluations(self) -> int:
+        return int(self.counters[2])
+
+
+def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
+    """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
+
+    ``case``: a :class:`solver.case.Case` (or :class:`DynamicInputs`). ``progress(fraction,
+    simulated_time, message)`` is called between chunks; ``cancel`` is a callable or an Event.
+    ``options``: :class:`SimulationOptions` (defaults: the full model).
+    """
+    options = (options or SimulationOptions()).validated()
+    inputs = case if isinstance(case, DynamicInputs) else inputs_from_case(case)
+    speed = abs(inputs.inner_speed - inputs.outer_speed)
+    if speed <= 0.0:
+        raise CaseError(
+            Problem(
+                "operating.inner_ring_speed_rpm",
+                "operating.inner_ring_speed_rpm: the dynamic model needs the rings to turn relative "
+                "to each other (inner and outer ring speeds are equal)",
+            )
+        )
+    revolutions = options.shaft_revolutions or inputs.shaft_revolutions
+    per_rev = options.samples_per_revolution or inputs.samples_per_revolution
+    par = build_params(inputs, options)
+    quad = build_quadrature(options)
+    y = initial_state(par, quad)
+    period = 2.0 * math.pi / speed
+    n_samples = int(round(revolutions * per_rev))
+    times = np.arange(n_samples + 1) * (period / per_rev)
+    states = np.empty((n_samples + 1, y.shape[0]))
+    states[0] = y
+    scale = state_scales(par, y)
+    z = int(par[L.P_Z])
+    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
+    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
+    pocket = np.zeros(z)
+    stats = RunStatistics()
+    # first step: a fraction of the shortest contact period
+    omega_n = scale[L.B_VEL] / scale[L.B_POS]
+    h = 0.05 / omega_n
+    stats.initial_step = h
+    h_min = 1e-6 * h
+    done = 1
+    t = 0.0
+    stop_reason = "finished"
+    diverged_message = None
+    start = _time.perf_counter()
+    while done <= n_samples:
+        if _is_cancelled(cancel):
+            stop_reason = "cancelled"
+            break
+        stop = min(done + options.chunk_samples, n_samples + 1)
+        status, t, h, n_done = advance(
+            y, t, h, times[done:stop], states[done:stop], par, quad, scale, options.tolerance, h_min,
+            options.max_steps_per_chunk, stats.counters, rec_i, rec_o, pocket,
+        )
+        done += n_done
+        if status != STATUS_OK:
+            cause = _DIVERGENCE_CAUSES[status].format(h_min=h_min, max_steps=options.max_steps_per_chunk)
+            diverged_message = f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): {cause}"
+            stop_reason = diverged_message
+            break
+        if progress is not None:
+            elapsed = _time.perf_counter() - start
+            progress((done - 1) / n_samples, float(times[done - 1]),
+                     f"{(done - 1) / per_rev:.2f} of {revolutions:g} revolutions, {elapsed:.1f} s")
+    stats.wall_time = _time.perf_counter() - start
+    complete = stop_reason == "finished"
+    ds = build_dataset(
+        inputs, options, par, quad, times[:done], states[:done], period, complete, stop_reason, stats
+    )
+    if diverged_message is not None:
+        err = SimulationDiverged(diverged_message)
+        err.dataset = ds
+        raise err
+    return ds
+
+
+def created_timestamp() -> str:
+    return datetime.now(timezone.utc).isoformat(timespec="seconds")

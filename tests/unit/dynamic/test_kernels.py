@@ -1,0 +1,268 @@
+"""Unit tests of the dynamic model's right-hand-side pieces against independent references."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from bearings import spindle_inputs
+from helpers import evaluate, setup, start
+from scipy import integrate
+
+from solver.models.dynamic import layout as L
+from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
+from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
+from solver.physics.hertz import race_contact
+
+
+def _quat_mul(a, b):
+    w1, x1, y1, z1 = a
+    w2, x2, y2, z2 = b
+    return np.array([
+        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+    ])
+
+
+def _axis_angle_quat(w, t):
+    th = np.linalg.norm(w) * t
+    k = w / np.linalg.norm(w)
+    return np.concatenate(([math.cos(th / 2)], math.sin(th / 2) * k))
+
+
+def test_quaternion_rate_matches_exact_rotation():
+    """q' from the RHS equals the derivative of q(t) = exp(w t) (x) q0 for constant inertial w."""
+    par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
+    rng = np.random.default_rng(1)
+    y = np.zeros(L.state_size(18))
+    for j in range(18):
+        b = L.ball_base(j)
+        y[b + 1] = 0.027 * math.cos(2 * math.pi * j / 18)
+        y[b + 2] = 0.027 * math.sin(2 * math.pi * j / 18)
+        q0 = rng.normal(size=4)
+        y[b + L.B_QUAT : b + L.B_QUAT + 4] = q0 / np.linalg.norm(q0)
+        y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = rng.normal(size=3) * 100.0
+    dydt, *_ = evaluate(y, par, quad)
+    h = 1e-6
+    for j in range(18):
+        b = L.ball_base(j)
+        q0 = y[b + L.B_QUAT : b + L.B_QUAT + 4]
+        w = y[b + L.B_OMEGA : b + L.B_OMEGA + 3]
+        fd = (_quat_mul(_axis_angle_quat(w, h), q0) - _quat_mul(_axis_angle_quat(w, -h), q0)) / (2 * h)
+        np.testing.assert_allclose(dydt[b + L.B_QUAT : b + L.B_QUAT + 4], fd, rtol=1e-6, atol=1e-6)
+
+
+def test_quaternion_matrix_round_trip_and_ball_frame():
+    rot = ball_frame(0.7, math.radians(12.0))
+    np.testing.assert_allclose(rot.T @ rot, np.eye(3), atol=1e-14)
+    assert np.linalg.det(rot) == pytest.approx(1.0)
+    q = matrix_to_quaternion(rot)
+    m = np.empty((3, 3))
+    quaternion_to_matrix(*q, m)
+    np.testing.assert_allclose(m, rot, atol=1e-14)
+
+
+def test_rotation_vector_is_rodrigues():
+    m = np.empty((3, 3))
+    rotation_from_vector(0.3, 0.0, 0.0, m)
+    c, s = math.cos(0.3), math.sin(0.3)
+    np.testing.assert_allclose(m, [[1, 0, 0], [0, c, -s], [0, s, c]], atol=1e-15)
+
+
+@pytest.mark.parametrize("mode", [0, 1])
+def test_ring_frames_tilt_modes(mode):
+    """Space-fixed tilt: the ring axis stays put as the ring turns; ring-fixed tilt: it precesses."""
+    par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
+    par[L.P_TILT_MODE] = mode
+    z = 18
+    rb = L.ring_base(z)
+    y = np.zeros(L.state_size(z))
+    y[rb + L.R_TILT + 1] = 0.01  # tilt about z
+    axes = []
+    for phi in (0.0, math.pi / 2):
+        y[rb + L.R_PHI_INNER] = phi
+        rot, org, vel, om = np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3)
+        orot, oom = np.empty((3, 3)), np.empty(3)
+        ring_frames(y, par, rot, org, vel, om, orot, oom)
+        np.testing.assert_allclose(rot.T @ rot, np.eye(3), atol=1e-14)
+        axes.append(rot[:, 0].copy())
+    # tilt about z by 0.01 rad turns e_x towards +y
+    np.testing.assert_allclose(axes[0], [math.cos(0.01), math.sin(0.01), 0.0], atol=1e-14)
+    if mode == 0:
+        np.testing.assert_allclose(axes[1], axes[0], atol=1e-14)
+    else:
+        np.testing.assert_allclose(axes[1], [math.cos(0.01), 0.0, math.sin(0.01)], atol=1e-14)
+
+
+def _nominal_state(z, dm):
+    y = np.zeros(L.state_size(z))
+    for j in range(z):
+        b = L.ball_base(j)
+        psi = 2 * math.pi * j / z
+        y[b + 1] = 0.5 * dm * math.cos(psi)
+        y[b + 2] = 0.5 * dm * math.sin(psi)
+        y[b + L.B_QUAT] = 1.0
+    return y
+
+
+def test_just_touching_state_has_zero_deflection_and_free_contact_angle():
+    inp = spindle_inputs()
+    par, quad, _ = setup(inp, traction=False, cage=False)
+    y = _nominal_state(18, inp.geometry.pitch_diameter)
+    _, ri, ro, _ = evaluate(y, par, quad)
+    np.testing.assert_allclose(ri[:, L.K_DEFLECTION], 0.0, atol=1e-15)
+    np.testing.assert_allclose(ro[:, L.K_DEFLECTION], 0.0, atol=1e-15)
+    np.testing.assert_allclose(ri[:, L.K_ANGLE], inp.geometry.free_contact_angle, atol=1e-12)
+    np.testing.assert_allclose(ro[:, L.K_ANGLE], inp.geometry.free_contact_angle, atol=1e-12)
+    assert ri[:, L.K_LOAD].max() < 1e-9 and ro[:, L.K_LOAD].max() < 1e-9  # rounding-level approach only
+
+
+def test_axial_shift_matches_rigid_ring_closed_form_and_exact_hertz():
+    """physics.md §2.4: a pure axial shift da gives A1 = A0 sin a0 + da, A2 = A0 cos a0, total
+    approach sqrt(A1^2 + A2^2) - A0 and contact angle atan2(A1, A2) at both races (ball on the line
+    of the curvature centres). Loads must be the exact Hertz loads for those approaches."""
+    inp = spindle_inputs()
+    g = inp.geometry
+    par, quad, _ = setup(inp, traction=False, cage=False, damping_ratio=0.0)
+    z = g.ball_count
+    y = _nominal_state(z, g.pitch_diameter)
+    da = 8e-6
+    rb = L.ring_base(z)
+    y[rb] = da
+    a0, A0 = g.free_contact_angle, g.curvature_center_distance
+    A1, A2 = A0 * math.sin(a0) + da, A0 * math.cos(a0)
+    total = math.hypot(A1, A2) - A0
+    alpha = math.atan2(A1, A2)
+    # ball centre on the line between the curvature centres, splitting the approach in half
+    co = np.array([g.outer_curvature_center_axial, g.outer_curvature_center_radius])
+    u = np.array([math.sin(alpha), math.cos(alpha)])
+    centre = co + ((g.outer_conformity - 0.5) * g.ball_diameter + 0.5 * total) * u
+    for j in range(z):
+        b = L.ball_base(j)
+        psi = 2 * math.pi * j / z
+        y[b] = centre[0]
+        y[b + 1] = centre[1] * math.cos(psi)
+        y[b + 2] = centre[1] * math.sin(psi)
+    _, ri, ro, _ = evaluate(y, par, quad)
+    np.testing.assert_allclose(ri[:, L.K_DEFLECTION] + ro[:, L.K_DEFLECTION], total, rtol=1e-9)
+    np.testing.assert_allclose(ri[:, L.K_ANGLE], alpha, atol=1e-10)
+    np.testing.assert_allclose(ro[:, L.K_ANGLE], alpha, atol=1e-10)
+    for rec, race in ((ri, "inner"), (ro, "outer")):
+        exact = race_contact(g, alpha, rec[0, L.K_LOAD], race)
+        assert rec[0, L.K_DEFLECTION] == pytest.approx(exact.approach, rel=1e-7)
+        assert rec[0, L.K_SEMI_MAJOR] == pytest.approx(exact.semi_major, rel=1e-7)
+        assert rec[0, L.K_PMAX] == pytest.approx(exact.max_pressure, rel=1e-7)
+
+
+def test_initial_state_is_in_equilibrium():
+    """At the quasi-static start the contact forces supply exactly the centripetal force and balance
+    the applied load on the ring (traction and damping off, so only the normal laws act)."""
+    inp = spindle_inputs(radial=300.0)
+    par, quad, y0 = start(inp, traction=False, damping_ratio=0.0, cage=False, gravity=0.0)
+    dydt, ri, ro, _ = evaluate(y0, par, quad)
+    z = 18
+    cb = L.cage_base(z)
+    wc = y0[cb + L.C_SPEED]
+    q_scale = ri[:, L.K_LOAD].max()
+    mb = par[L.P_MB]
+    for j in range(z):
+        b = L.ball_base(j)
+        pos = y0[b : b + 3]
+        net = (dydt[b + 3 : b + 6] + wc**2 * np.array([0.0, pos[1], pos[2]])) * mb
+        psi = math.atan2(pos[2], pos[1])
+        e_r = np.array([0.0, math.cos(psi), math.sin(psi)])
+        e_t = np.array([0.0, -math.sin(psi), math.cos(psi)])
+        assert abs(net[0]) < 1e-6 * q_scale and abs(net @ e_r) < 1e-6 * q_scale
+        # tangential: only the small out-of-meridian tilt of the offset inner ring's normal
+        assert abs(net @ e_t) < 2e-4 * q_scale
+    rb = L.ring_base(z)
+    np.testing.assert_allclose(dydt[rb + 3 : rb + 6] * par[L.P_MR], 0.0, atol=1e-5 * q_scale)
+    # outer-race control start: the spin at the outer contact vanishes
+    # (to 1e-4 of the roll rate: the cage speed is common, the per-ball angles differ slightly)
+    np.testing.assert_allclose(ro[:, L.K_SPIN], 0.0, atol=1e-4 * abs(ro[:, L.K_ROLL]).max())
+    assert abs(ri[:, L.K_SPIN]).max() > 1e-2 * abs(ri[:, L.K_ROLL]).max()  # inner contact spins
+
+
+def test_newton_third_law_ball_inner_ring():
+    """With traction on and arbitrary slips, the inner-ring contact forces and moments on the balls
+    are equal and opposite to those on the ring (moments about the ring centre)."""
+    inp = spindle_inputs(radial=300.0)
+    par, quad, y0 = start(inp)
+    rng = np.random.default_rng(3)
+    y = y0.copy()
+    for j in range(18):
+        b = L.ball_base(j)
+        y[b + L.B_VEL : b + L.B_VEL + 3] += rng.normal(size=3) * 0.5
+        y[b + L.B_OMEGA : b + L.B_OMEGA + 3] += rng.normal(size=3) * 50.0
+    _, ri, _, _ = evaluate(y, par, quad)
+    rb = L.ring_base(18)
+    ring_c = y[rb : rb + 3]
+    f_ball = ri[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
+    f_ring = ri[:, L.K_F_RING : L.K_F_RING + 3].sum(axis=0)
+    np.testing.assert_allclose(f_ball, -f_ring, atol=1e-9 * np.abs(ri[:, L.K_LOAD]).sum())
+    m_ball = np.zeros(3)
+    for j in range(18):
+        b = L.ball_base(j)
+        m_ball += np.cross(y[b : b + 3] - ring_c, ri[j, L.K_F_BALL : L.K_F_BALL + 3])
+        m_ball += ri[j, L.K_M_BALL : L.K_M_BALL + 3]
+    m_ring = ri[:, L.K_M_RING : L.K_M_RING + 3].sum(axis=0)
+    scale = np.abs(ri[:, L.K_LOAD]).sum() * 0.027
+    np.testing.assert_allclose(m_ball, -m_ring, atol=1e-9 * scale)
+    # the traction is not negligible in this test (otherwise it would test nothing)
+    tang = ri[:, L.K_F_BALL : L.K_F_BALL + 3] + ri[:, [L.K_LOAD]] * ri[:, L.K_NORMAL : L.K_NORMAL + 3]
+    assert np.abs(tang).max() > 0.01 * ri[:, L.K_LOAD].max()
+
+
+def _outer_contact_setup(mu, heathcote=False, quadrature=(4, 8)):
+    inp = spindle_inputs()
+    par, quad, y0 = start(inp, heathcote=heathcote, quadrature=quadrature, damping_ratio=0.0)
+    par[L.P_MU_A : L.P_MU_D + 1] = (0.0, 0.0, 0.0, mu)  # constant (Coulomb) coefficient
+    par[L.P_V_REG] = 1e-9
+    y = y0.copy()
+    b = L.ball_base(0)
+    y[b + L.B_VEL : b + L.B_VEL + 3] = 0.0
+    y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = 0.0
+    return par, quad, y, b
+
+
+def test_pure_sliding_gives_coulomb_force_opposite_to_slip():
+    mu = 0.07
+    par, quad, y, b = _outer_contact_setup(mu)
+    _, _, ro, _ = evaluate(y, par, quad)
+    n = ro[0, L.K_NORMAL : L.K_NORMAL + 3]
+    # rolling direction at ball 0 (azimuth 0): e_theta = +z
+    y[b + L.B_VEL + 2] = 3.0
+    _, _, ro, _ = evaluate(y, par, quad)
+    q = ro[0, L.K_LOAD]
+    f = ro[0, L.K_F_BALL : L.K_F_BALL + 3] + q * n
+    np.testing.assert_allclose(f, [0.0, 0.0, -mu * q], atol=1e-9 * q)
+    # lever arm: contact centre at (D/2 - delta/2) along n from the ball centre
+    arm = 0.5 * par[L.P_D] - 0.5 * ro[0, L.K_DEFLECTION]
+    np.testing.assert_allclose(ro[0, L.K_M_BALL : L.K_M_BALL + 3], np.cross(arm * n, f), atol=1e-9 * q * arm)
+
+
+def test_pure_spin_moment_matches_ellipse_integral():
+    """Spin about the contact normal with no centre slip: the moment about the normal equals
+    -mu * integral of p(xi, eta) * radius over the Hertz ellipse (independent scipy integral); a
+    single-point traction model would give zero."""
+    mu = 0.05
+    par, quad, y, b = _outer_contact_setup(mu, quadrature=(12, 24))
+    _, _, ro, _ = evaluate(y, par, quad)
+    n = ro[0, L.K_NORMAL : L.K_NORMAL + 3]
+    y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = 200.0 * n
+    _, _, ro, _ = evaluate(y, par, quad)
+    q, a, bb = ro[0, L.K_LOAD], ro[0, L.K_SEMI_MAJOR], ro[0, L.K_SEMI_MINOR]
+    pmax = 1.5 * q / (math.pi * a * bb)
+
+    def integrand(eta, xi):
+        return pmax * math.sqrt(max(0.0, 1 - (xi / bb) ** 2 - (eta / a) ** 2)) * math.hypot(xi, eta)
+
+    ref, _ = integrate.dblquad(integrand, -bb, bb, lambda x: -a * math.sqrt(1 - (x / bb) ** 2),
+                               lambda x: a * math.sqrt(1 - (x / bb) ** 2), epsrel=1e-8)
+    moment_n = float(np.dot(ro[0, L.K_M_BALL : L.K_M_BALL + 3], n))
+    assert moment_n == pytest.approx(-mu * ref, rel=5e-3)
+    f = ro[0, L.K_F_BALL : L.K_F_BALL + 3] + q * n
+    assert np.linalg.norm(f) < 1e-6 * q  # symmetric spin: no net tangential force
