@@ -1,0 +1,506 @@
+"""Ball–race traction and damped normal force kernels for the dynamic model (physics.md §2.6.4, §2.6.6).
+
+Everything is SI (m, s, N, rad). Vectors are 3-component float64 arrays in one common Cartesian frame of
+the caller's choice (the dynamic model uses the inertial frame); the kernels never change frames.
+
+Traction curve (ADORE-type, 4 parameters)
+    mu(u) = (A + B u) exp(-C u) + D,   u = slip speed >= 0 [m/s]
+    stored as a float64 array ``curve`` of length ``CURVE_SIZE``: ``curve[CURVE_A]`` ... ``curve[CURVE_D]``.
+    :func:`traction_curve_parameters` builds it from (mu_zero, mu_max, slip_at_max, mu_infinity);
+    :func:`constant_traction_parameters` gives a Coulomb law mu(u) = mu.
+
+Friction regularisation
+    The local shear is tau = -mu(u) p dv / sqrt(u^2 + u_reg^2) (u = |dv|). With mu(0) = 0 (the usual ADORE
+    curve) this is smooth and u_reg hardly matters; with mu(0) > 0 it makes the force continuous through
+    zero slip (slope mu(0) p / u_reg there). ``u_reg = 0`` is allowed (no regularisation; tau = 0 at u = 0).
+
+Contact description ``contact`` (float64, length ``CONTACT_SIZE``)
+    ``CT_POINT``   (3) contact centre P [m] (mid-plane of the deformed zone);
+    ``CT_NORMAL``  (3) unit normal n at P, pointing from the ball centre towards the race (the outward
+                   ball normal; physics.md §2.6.3 n-hat). The normal force on the ball is -Q n and is NOT
+                   included in the traction kernels' output;
+    ``CT_ROLLING`` (3) rolling direction t1 (direction of the minor axis b; re-orthogonalised to n here);
+                   the transverse direction is t2 = n x t1 (major axis a, across the groove);
+    ``CT_SEMI_MAJOR`` a [m] (along t2), ``CT_SEMI_MINOR`` b [m] (along t1), ``CT_LOAD`` Q [N] (>= 0),
+    ``CT_CURVATURE`` 1/R_d [1/m] (>= 0): curvature across the groove of the deformed contact surface,
+    R_d = 2 r D / (2 r + D) (see :func:`deformed_surface_curvature`); 0 for a flat contact.
+    The surface point at contact coordinates (xi, eta) is p = P + xi t1 + eta t2 + z(eta) n with
+    z(eta) = sqrt(R_d^2 - eta^2) - R_d (the surface bends towards the ball centre).
+
+Kinematics ``kinematics`` (float64, length ``KIN_SIZE``; inertial velocities, common-frame components)
+    ``KIN_BALL_CENTRE`` (3) c_b [m], ``KIN_BALL_VELOCITY`` (3) [m/s], ``KIN_BALL_OMEGA`` (3) [rad/s];
+    ``KIN_RING_POINT`` (3) any point c_r fixed to the ring (e.g. its centre) [m], ``KIN_RING_VELOCITY`` (3)
+    velocity of that point [m/s], ``KIN_RING_OMEGA`` (3) ring angular velocity [rad/s].
+    Surface velocities at p: ball v_b + w_b x (p - c_b), ring v_r + w_r x (p - c_r). The slip dv is ball
+    minus ring, resolved into its rolling (t1) and transverse (t2) components; its component along n is
+    the approach rate of the undeformed (overlapping) rigid bodies, which the elastic deformation takes
+    up, and is dropped. The transverse component is laid along the local tangent of the curved surface,
+    t2' = cos(phi) t2 - sin(phi) n (sin(phi) = eta / R_d), so dv = v1 t1 + v2 t2' lies in the local
+    tangent plane. (Projecting the full rigid-body difference on the tilted local plane instead would turn
+    part of the approach rate, ~ xi * omega_roll, into a spurious transverse slip antisymmetric in xi*eta,
+    of the order of the Heathcote slip itself at bearing speeds.)
+
+Output ``out`` (float64, length ``TRACTION_OUT_SIZE``, overwritten)
+    ``TR_FORCE``        (3) traction force on the ball [N] (the ring gets minus this);
+    ``TR_MOMENT_BALL``  (3) moment of the traction on the ball about the ball centre c_b [N m];
+    ``TR_MOMENT_POINT`` (3) moment of the traction about the contact centre P [N m]; the moment on the
+                        ring about a ring point c_r is -((P - c_r) x F + M_P);
+    ``TR_SLIP``         (3) slip velocity (ball minus ring) at P, tangential part [m/s];
+    ``TR_SLIP_SPEED``   |slip| at P [m/s];  ``TR_SPIN`` spin speed (w_b - w_r) . n [rad/s];
+    ``TR_ENTRAINMENT``  entrainment speed 0.5 |v_ball,t + v_ring,t| at P [m/s];
+    ``TR_POWER``        friction power dissipated in the contact, -sum(tau . dv) dA >= 0 [W].
+
+Quadrature on the contact ellipse (:func:`ellipse_quadrature`)
+    Strips across the major axis (transverse, Gauss–Jacobi weight 1 - y^2) times Gauss points along the
+    rolling direction (Gauss–Chebyshev 2nd kind, weight sqrt(1 - t^2)), with x = sqrt(1 - y^2) t. The
+    Hertz pressure p = p_max sqrt(1 - x^2 - y^2) = p_max sqrt(1 - y^2) sqrt(1 - t^2) is then exactly the
+    rule's weight, so the pressure integrates to Q to rounding error for any node count. Node table
+    columns: ``NODE_ROLLING`` x = xi/b, ``NODE_TRANSVERSE`` y = eta/a, ``NODE_AREA`` area weight on the unit
+    disc, ``NODE_LOAD`` load fraction (p dA / Q); sum of load fractions = 1.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from scipy import optimize, special
+
+from solver.errors import CaseError, Problem
+
+# ---- traction-curve parameter array ------------------------------------------------------------
+CURVE_A = 0  # mu_zero - mu_infinity
+CURVE_B = 1  # [s/m]
+CURVE_C = 2  # [s/m]
+CURVE_D = 3  # mu_infinity
+CURVE_SIZE = 4
+
+# ---- contact description -----------------------------------------------------------------------
+CT_POINT = 0
+CT_NORMAL = 3
+CT_ROLLING = 6
+CT_SEMI_MAJOR = 9
+CT_SEMI_MINOR = 10
+CT_LOAD = 11
+CT_CURVATURE = 12
+CONTACT_SIZE = 13
+
+# ---- body kinematics ---------------------------------------------------------------------------
+KIN_BALL_CENTRE = 0
+KIN_BALL_VELOCITY = 3
+KIN_BALL_OMEGA = 6
+KIN_RING_POINT = 9
+KIN_RING_VELOCITY = 12
+KIN_RING_OMEGA = 15
+KIN_SIZE = 18
+
+# ---- traction output ---------------------------------------------------------------------------
+TR_FORCE = 0
+TR_MOMENT_BALL = 3
+TR_MOMENT_POINT = 6
+TR_SLIP = 9
+TR_SLIP_SPEED = 12
+TR_SPIN = 13
+TR_ENTRAINMENT = 14
+TR_POWER = 15
+TRACTION_OUT_SIZE = 16
+
+# ---- quadrature node table columns ---------------------------------------------------------------
+NODE_ROLLING = 0
+NODE_TRANSVERSE = 1
+NODE_AREA = 2
+NODE_LOAD = 3
+NODE_COLUMNS = 4
+
+DEFAULT_N_ROLLING = 4
+DEFAULT_N_TRANSVERSE = 10
+
+#: Default friction regularisation speed [m/s] (physics.md §2.6.4 suggests ~1e-3 m/s).
+DEFAULT_SLIP_REGULARISATION = 1.0e-3
+
+
+# ================================================================================================
+# Traction curve
+# ================================================================================================
+def _check_number(
+    key: str, value, problems: list[Problem], minimum=None, strict=False
+) -> float | None:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        problems.append(Problem(key, f"{key} = {value!r}: must be a number"))
+        return None
+    if not math.isfinite(x):
+        problems.append(Problem(key, f"{key} = {value!r}: must be a finite number"))
+        return None
+    if minimum is not None:
+        if strict and not x > minimum:
+            problems.append(Problem(key, f"{key} = {x:g}: must be greater than {minimum:g}"))
+            return None
+        if not strict and not x >= minimum:
+            problems.append(Problem(key, f"{key} = {x:g}: must be at least {minimum:g}"))
+            return None
+    return x
+
+
+def traction_curve_parameters(
+    mu_zero: float,
+    mu_max: float,
+    slip_at_max: float,
+    mu_infinity: float,
+    key_prefix: str = "lubricant.traction",
+) -> np.ndarray:
+    """Parameters (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D from four curve properties.
+
+    ``mu_zero`` = mu(0), ``mu_max`` = the maximum, reached at slip speed ``slip_at_max`` [m/s],
+    ``mu_infinity`` = limit for large slip. A = mu_zero - mu_infinity, D = mu_infinity, C = B / (A + B u_m)
+    puts the stationary point at u_m, and B > 0 is the unique root of mu(u_m) = mu_max (physics.md §2.6.4).
+    Requires 0 <= mu_zero < mu_max, 0 <= mu_infinity < mu_max, slip_at_max > 0. Invalid input raises
+    :class:`CaseError` naming ``key_prefix.<name>``. Returns a float64 array of length ``CURVE_SIZE``.
+    """
+    problems: list[Problem] = []
+    k0, km, ku, ki = (
+        f"{key_prefix}.{n}" for n in ("mu_zero", "mu_max", "slip_at_max_m_s", "mu_infinity")
+    )
+    m0 = _check_number(k0, mu_zero, problems, minimum=0.0)
+    mm = _check_number(km, mu_max, problems, minimum=0.0, strict=True)
+    um = _check_number(ku, slip_at_max, problems, minimum=0.0, strict=True)
+    mi = _check_number(ki, mu_infinity, problems, minimum=0.0)
+    if mm is not None:
+        if mm >= 1.0:
+            problems.append(
+                Problem(km, f"{km} = {mm:g}: must be below 1 (a lubricated traction coefficient)")
+            )
+        if m0 is not None and not m0 < mm:
+            problems.append(
+                Problem(
+                    k0,
+                    f"{k0} = {m0:g}: must be smaller than {km} = {mm:g} (the curve rises to its maximum)",
+                )
+            )
+        if mi is not None and not mi < mm:
+            problems.append(
+                Problem(
+                    ki,
+                    f"{ki} = {mi:g}: must be smaller than {km} = {mm:g} (the curve falls after its maximum)",
+                )
+            )
+    if problems:
+        raise CaseError(problems)
+    a = m0 - mi
+    target = mm - mi  # > 0
+    # With s = A + B u_m > max(A, 0): mu(u_m) - D = s exp(A/s - 1), increasing in s on that range.
+    lo = max(a, 0.0)
+
+    def g(s: float) -> float:
+        return s * math.exp(a / s - 1.0) - target
+
+    hi = max(2.0 * lo, target) + 1e-12
+    while g(hi) <= 0.0:
+        hi *= 2.0
+    lo_eval = lo if lo > 0.0 else hi * 1e-12
+    if g(lo_eval) >= 0.0:  # only when target is vanishingly small; cannot happen after validation
+        raise CaseError(
+            Problem(km, f"{km} = {mm:g}: too close to the other coefficients to fit a curve")
+        )
+    s = optimize.brentq(g, lo_eval, hi, xtol=1e-15, rtol=1e-14, maxiter=200)
+    b = (s - a) / um
+    c = b / s
+    return np.array([a, b, c, mi], dtype=np.float64)
+
+
+def constant_traction_parameters(mu: float) -> np.ndarray:
+    """Curve array of a constant (Coulomb) coefficient mu(u) = mu, for boundary friction and tests."""
+    if not (math.isfinite(mu) and mu >= 0.0):
+        raise CaseError(Problem("mu", f"mu = {mu!r}: must be a finite number >= 0"))
+    return np.array([0.0, 0.0, 0.0, float(mu)], dtype=np.float64)
+
+
+@njit(cache=True)
+def traction_coefficient(slip_speed, curve):
+    """Traction coefficient mu(|u|) = (A + B|u|) exp(-C|u|) + D for slip speed u [m/s]; mu(0) = A + D."""
+    u = abs(slip_speed)
+    return (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
+
+
+@njit(cache=True)
+def regularised_traction_factor(slip_speed, curve, slip_regularisation):
+    """mu(u) / sqrt(u^2 + u_reg^2) [s/m]: multiply by -Q * slip vector to get the friction force."""
+    u = abs(slip_speed)
+    den = math.sqrt(u * u + slip_regularisation * slip_regularisation)
+    if den <= 0.0:
+        return 0.0
+    return traction_coefficient(u, curve) / den
+
+
+# ================================================================================================
+# Contact-ellipse quadrature
+# ================================================================================================
+def ellipse_quadrature(
+    n_rolling: int = DEFAULT_N_ROLLING, n_transverse: int = DEFAULT_N_TRANSVERSE
+) -> np.ndarray:
+    """Normalised nodes and weights on the unit disc for Hertz-pressure-weighted integrals.
+
+    ``n_rolling`` points along the rolling direction (minor axis b) on each of ``n_transverse`` strips
+    across the major axis a. Returns an array (n_rolling * n_transverse, ``NODE_COLUMNS``): x = xi/b,
+    y = eta/a, area weight (so that sum w f(x, y) ~ integral of f over the unit disc) and load fraction
+    (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz pressure). The pressure
+    itself is integrated exactly (sum of load fractions = 1 to rounding error).
+    """
+    for name, n in (("n_rolling", n_rolling), ("n_transverse", n_transverse)):
+        if int(n) != n or n < 1 or n > 200:
+            raise ValueError(f"{name} = {n!r}: must be an integer between 1 and 200")
+    t, wt = special.roots_chebyu(int(n_rolling))  # weight sqrt(1 - t^2)
+    y, wy = special.roots_jacobi(int(n_transverse), 1.0, 1.0)  # weight (1 - y^2)
+    nodes = np.empty((int(n_rolling) * int(n_transverse), NODE_COLUMNS))
+    k = 0
+    for j in range(len(y)):
+        sy = math.sqrt(1.0 - y[j] ** 2)
+        for i in range(len(t)):
+            st = math.sqrt(1.0 - t[i] ** 2)
+            nodes[k, NODE_ROLLING] = sy * t[i]
+            nodes[k, NODE_TRANSVERSE] = y[j]
+            nodes[k, NODE_AREA] = wy[j] * wt[i] / (sy * st)
+            nodes[k, NODE_LOAD] = 1.5 / math.pi * wy[j] * wt[i]
+            k += 1
+    return nodes
+
+
+def deformed_surface_curvature(groove_radius: float, ball_diameter: float) -> float:
+    """Curvature 1/R_d [1/m] of the deformed contact surface across the groove, R_d = 2 r D / (2 r + D)."""
+    return (2.0 * groove_radius + ball_diameter) / (2.0 * groove_radius * ball_diameter)
+
+
+# ================================================================================================
+# Traction kernels
+# ================================================================================================
+@njit(cache=True)
+def _contact_basis(contact):
+    """Unit normal n, rolling t1 (orthogonalised to n) and transverse t2 = n x t1."""
+    nx = contact[CT_NORMAL]
+    ny = contact[CT_NORMAL + 1]
+    nz = contact[CT_NORMAL + 2]
+    inv = 1.0 / math.sqrt(nx * nx + ny * ny + nz * nz)
+    nx *= inv
+    ny *= inv
+    nz *= inv
+    ax = contact[CT_ROLLING]
+    ay = contact[CT_ROLLING + 1]
+    az = contact[CT_ROLLING + 2]
+    d = ax * nx + ay * ny + az * nz
+    ax -= d * nx
+    ay -= d * ny
+    az -= d * nz
+    inv = 1.0 / math.sqrt(ax * ax + ay * ay + az * az)
+    ax *= inv
+    ay *= inv
+    az *= inv
+    bx = ny * az - nz * ay
+    by = nz * ax - nx * az
+    bz = nx * ay - ny * ax
+    return nx, ny, nz, ax, ay, az, bx, by, bz
+
+
+@njit(cache=True)
+def _centre_kinematics(contact, kin, nx, ny, nz):
+    """Slip (ball minus ring) at P, ball and ring surface velocities at P, relative angular velocity."""
+    px = contact[CT_POINT]
+    py = contact[CT_POINT + 1]
+    pz = contact[CT_POINT + 2]
+    # ball surface velocity at P
+    rbx = px - kin[KIN_BALL_CENTRE]
+    rby = py - kin[KIN_BALL_CENTRE + 1]
+    rbz = pz - kin[KIN_BALL_CENTRE + 2]
+    wbx = kin[KIN_BALL_OMEGA]
+    wby = kin[KIN_BALL_OMEGA + 1]
+    wbz = kin[KIN_BALL_OMEGA + 2]
+    vbx = kin[KIN_BALL_VELOCITY] + wby * rbz - wbz * rby
+    vby = kin[KIN_BALL_VELOCITY + 1] + wbz * rbx - wbx * rbz
+    vbz = kin[KIN_BALL_VELOCITY + 2] + wbx * rby - wby * rbx
+    # ring surface velocity at P
+    rrx = px - kin[KIN_RING_POINT]
+    rry = py - kin[KIN_RING_POINT + 1]
+    rrz = pz - kin[KIN_RING_POINT + 2]
+    wrx = kin[KIN_RING_OMEGA]
+    wry = kin[KIN_RING_OMEGA + 1]
+    wrz = kin[KIN_RING_OMEGA + 2]
+    vrx = kin[KIN_RING_VELOCITY] + wry * rrz - wrz * rry
+    vry = kin[KIN_RING_VELOCITY + 1] + wrz * rrx - wrx * rrz
+    vrz = kin[KIN_RING_VELOCITY + 2] + wrx * rry - wry * rrx
+    return (rbx, rby, rbz, vbx, vby, vbz, vrx, vry, vrz, wbx - wrx, wby - wry, wbz - wrz)
+
+
+@njit(cache=True)
+def _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz):
+    """Slip, slip speed, spin and entrainment at P (tangential parts) into ``out``."""
+    sx = vbx - vrx
+    sy = vby - vry
+    sz = vbz - vrz
+    d = sx * nx + sy * ny + sz * nz
+    sx -= d * nx
+    sy -= d * ny
+    sz -= d * nz
+    out[TR_SLIP] = sx
+    out[TR_SLIP + 1] = sy
+    out[TR_SLIP + 2] = sz
+    out[TR_SLIP_SPEED] = math.sqrt(sx * sx + sy * sy + sz * sz)
+    out[TR_SPIN] = ox * nx + oy * ny + oz * nz
+    ex = vbx + vrx
+    ey = vby + vry
+    ez = vbz + vrz
+    d = ex * nx + ey * ny + ez * nz
+    ex -= d * nx
+    ey -= d * ny
+    ez -= d * nz
+    out[TR_ENTRAINMENT] = 0.5 * math.sqrt(ex * ex + ey * ey + ez * ez)
+    return sx, sy, sz
+
+
+@njit(cache=True)
+def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out):
+    """Traction force and moments on the ball integrated over the Hertz contact ellipse.
+
+    ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and the
+    output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes`` comes from
+    :func:`ellipse_quadrature`; ``slip_regularisation`` u_reg [m/s] >= 0.
+
+    At each node the surface point p = P + xi t1 + eta t2 + z(eta) n lies on the deformed surface of
+    curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the ring
+    surface there (rigid-body velocities of both bodies, rolling and transverse components laid on the
+    local tangent plane, see the module docstring) gives the local shear tau = -mu(|dv|) p dv / sqrt(|dv|^2 + u_reg^2). Spin moment and the differential
+    (Heathcote) slip thus come out of one formula. Returns nothing; fills ``out``.
+    """
+    nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z = _contact_basis(contact)
+    (rbx, rby, rbz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz) = _centre_kinematics(
+        contact, kinematics, nx, ny, nz
+    )
+    _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz)
+    # full (untruncated) slip at P: the per-node tangent projection is done below
+    s0x = vbx - vrx
+    s0y = vby - vry
+    s0z = vbz - vrz
+    a = contact[CT_SEMI_MAJOR]
+    b = contact[CT_SEMI_MINOR]
+    q = contact[CT_LOAD]
+    kappa = contact[CT_CURVATURE]
+    # Omega x t1, Omega x t2, Omega x n  (slip grows as Omega x offset from P)
+    a1x = oy * t1z - oz * t1y
+    a1y = oz * t1x - ox * t1z
+    a1z = ox * t1y - oy * t1x
+    a2x = oy * t2z - oz * t2y
+    a2y = oz * t2x - ox * t2z
+    a2z = ox * t2y - oy * t2x
+    a3x = oy * nz - oz * ny
+    a3y = oz * nx - ox * nz
+    a3z = ox * ny - oy * nx
+    ur2 = slip_regularisation * slip_regularisation
+    fx = 0.0
+    fy = 0.0
+    fz = 0.0
+    mx = 0.0
+    my = 0.0
+    mz = 0.0
+    power = 0.0
+    for k in range(nodes.shape[0]):
+        xi = b * nodes[k, NODE_ROLLING]
+        eta = a * nodes[k, NODE_TRANSVERSE]
+        ke = kappa * eta
+        cphi = math.sqrt(max(1.0 - ke * ke, 0.0))
+        z = -kappa * eta * eta / (1.0 + cphi)
+        # rigid-body slip at the node, split into rolling (t1) and transverse (t2) components; the
+        # component along n is the approach rate of the undeformed bodies (taken up by the elastic
+        # deformation, not slip) and is dropped. The transverse component is laid along the local
+        # tangent of the curved surface, t2' = cos(phi) t2 - sin(phi) n with sin(phi) = kappa eta.
+        dvx = s0x + xi * a1x + eta * a2x + z * a3x
+        dvy = s0y + xi * a1y + eta * a2y + z * a3y
+        dvz = s0z + xi * a1z + eta * a2z + z * a3z
+        v1 = dvx * t1x + dvy * t1y + dvz * t1z
+        v2 = dvx * t2x + dvy * t2y + dvz * t2z
+        dvx = v1 * t1x + v2 * (cphi * t2x - ke * nx)
+        dvy = v1 * t1y + v2 * (cphi * t2y - ke * ny)
+        dvz = v1 * t1z + v2 * (cphi * t2z - ke * nz)
+        u2 = dvx * dvx + dvy * dvy + dvz * dvz
+        den = math.sqrt(u2 + ur2)
+        if den <= 0.0:
+            continue
+        u = math.sqrt(u2)
+        mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
+        g = -q * nodes[k, NODE_LOAD] * mu / den
+        tx = g * dvx
+        ty = g * dvy
+        tz = g * dvz
+        fx += tx
+        fy += ty
+        fz += tz
+        # offset of the node from P
+        sx = xi * t1x + eta * t2x + z * nx
+        sy = xi * t1y + eta * t2y + z * ny
+        sz = xi * t1z + eta * t2z + z * nz
+        mx += sy * tz - sz * ty
+        my += sz * tx - sx * tz
+        mz += sx * ty - sy * tx
+        power -= tx * dvx + ty * dvy + tz * dvz
+    out[TR_FORCE] = fx
+    out[TR_FORCE + 1] = fy
+    out[TR_FORCE + 2] = fz
+    out[TR_MOMENT_POINT] = mx
+    out[TR_MOMENT_POINT + 1] = my
+    out[TR_MOMENT_POINT + 2] = mz
+    out[TR_MOMENT_BALL] = rby * fz - rbz * fy + mx
+    out[TR_MOMENT_BALL + 1] = rbz * fx - rbx * fz + my
+    out[TR_MOMENT_BALL + 2] = rbx * fy - rby * fx + mz
+    out[TR_POWER] = power
+
+
+@njit(cache=True)
+def centre_traction(contact, kinematics, curve, slip_regularisation, out):
+    """Single-point traction: the centre slip only, F = -Q mu(u) dv / sqrt(u^2 + u_reg^2).
+
+    Same arrays as :func:`ellipse_traction` (``contact[CT_SEMI_MAJOR/MINOR/CURVATURE]`` unused). It has no
+    spin moment (``TR_MOMENT_POINT`` = 0); 10–50x cheaper, for comparison and tests.
+    """
+    nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z = _contact_basis(contact)
+    (rbx, rby, rbz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz) = _centre_kinematics(
+        contact, kinematics, nx, ny, nz
+    )
+    sx, sy, sz = _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz)
+    u = out[TR_SLIP_SPEED]
+    g = -contact[CT_LOAD] * regularised_traction_factor(u, curve, slip_regularisation)
+    fx = g * sx
+    fy = g * sy
+    fz = g * sz
+    out[TR_FORCE] = fx
+    out[TR_FORCE + 1] = fy
+    out[TR_FORCE + 2] = fz
+    out[TR_MOMENT_POINT] = 0.0
+    out[TR_MOMENT_POINT + 1] = 0.0
+    out[TR_MOMENT_POINT + 2] = 0.0
+    out[TR_MOMENT_BALL] = rby * fz - rbz * fy
+    out[TR_MOMENT_BALL + 1] = rbz * fx - rbx * fz
+    out[TR_MOMENT_BALL + 2] = rbx * fy - rby * fx
+    out[TR_POWER] = -(fx * sx + fy * sy + fz * sz)
+
+
+# ================================================================================================
+# Damped Hertz normal force
+# ================================================================================================
+@njit(cache=True)
+def damped_normal_force(approach, approach_rate, stiffness_K, damping_ratio, effective_mass):
+    """Hertz normal force with ADORE-style damping, Q = K d^1.5 + c d_dot, clipped at 0 [N].
+
+    ``approach`` d [m] (> 0 in contact), ``approach_rate`` d_dot [m/s] (> 0 closing), ``stiffness_K``
+    [N/m^1.5], ``damping_ratio`` zeta (critical-damping fraction, >= 0), ``effective_mass`` [kg].
+    c = 2 zeta sqrt(1.5 K d^0.5 m) uses the linearised stiffness 1.5 K d^0.5, so the damping force
+    vanishes smoothly as d -> 0 (no jump at contact onset). Q = 0 for d <= 0 and never negative (no
+    tension: a separating contact whose damping would pull is released).
+    """
+    if approach <= 0.0:
+        return 0.0
+    sq = math.sqrt(approach)
+    elastic = stiffness_K * approach * sq
+    c = 2.0 * damping_ratio * math.sqrt(1.5 * stiffness_K * sq * effective_mass)
+    q = elastic + c * approach_rate
+    if q < 0.0:
+        return 0.0
+    return q

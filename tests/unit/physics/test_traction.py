@@ -1,0 +1,607 @@
+"""Tests of solver.physics.traction: traction curve, ellipse quadrature, traction kernels, damped Hertz force.
+
+References are independent of the kernels: published curve values (physics.md §2.6.4), closed forms
+(uniform sliding, moments of the Hertz pressure), scipy dblquad / cubature of the local-shear integrand
+written directly from its definition in vector form, and scipy solve_ivp for the impact test.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import integrate
+
+from solver.errors import CaseError
+from solver.physics import traction as tr
+
+ADORE = dict(mu_zero=0.0, mu_max=0.050, slip_at_max=1.0, mu_infinity=0.036)
+
+
+# ------------------------------------------------------------------------------------------------
+# traction curve
+# ------------------------------------------------------------------------------------------------
+def test_adore_example_coefficients():
+    a, b, c, d = tr.traction_curve_parameters(**ADORE)
+    assert a == pytest.approx(-0.036, abs=1e-12)
+    assert b == pytest.approx(0.1018, abs=5e-5)
+    assert c == pytest.approx(1.547, abs=5e-4)
+    assert d == pytest.approx(0.036, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "u, mu",
+    [
+        (0.05, 0.0074),
+        (0.1, 0.014),
+        (0.2, 0.025),
+        (0.5, 0.043),
+        (1.0, 0.050),
+        (2.0, 0.044),
+        (5.0, 0.036),
+        (20.0, 0.036),
+    ],
+)
+def test_adore_example_curve_values(u, mu):
+    curve = tr.traction_curve_parameters(**ADORE)
+    # physics.md quotes two significant digits
+    assert tr.traction_coefficient(u, curve) == pytest.approx(mu, abs=5.1e-4)
+
+
+def test_adore_initial_slope():
+    curve = tr.traction_curve_parameters(**ADORE)
+    h = 1e-7
+    assert tr.traction_coefficient(h, curve) / h == pytest.approx(0.157, abs=1e-3)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    mu_zero=st.floats(0.0, 0.2),
+    excess=st.floats(1e-3, 0.1),
+    um=st.floats(0.01, 20.0),
+    drop=st.floats(0.0, 1.0),
+)
+def test_curve_properties(mu_zero, excess, um, drop):
+    mu_max = mu_zero + excess
+    mu_inf = drop * mu_max * 0.999
+    curve = tr.traction_curve_parameters(mu_zero, mu_max, um, mu_inf)
+    assert curve[tr.CURVE_B] > 0 and curve[tr.CURVE_C] > 0
+    assert tr.traction_coefficient(0.0, curve) == pytest.approx(mu_zero, abs=1e-12)
+    assert tr.traction_coefficient(um, curve) == pytest.approx(mu_max, rel=1e-9)
+    u = np.linspace(0.0, 40.0 * um, 4001)
+    mu = np.array([tr.traction_coefficient(x, curve) for x in u])
+    assert mu.max() <= mu_max * (1 + 1e-9)
+    assert u[np.argmax(mu)] == pytest.approx(um, abs=40.0 * um / 4000 * 1.01)
+    # derivative zero at the maximum (central difference)
+    h = um * 1e-5
+    slope = (tr.traction_coefficient(um + h, curve) - tr.traction_coefficient(um - h, curve)) / (
+        2 * h
+    )
+    assert abs(slope) < 1e-6 * mu_max / um
+    assert tr.traction_coefficient(1e3 * um, curve) == pytest.approx(mu_inf, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "kwargs, key",
+    [
+        (
+            dict(mu_zero=0.06, mu_max=0.05, slip_at_max=1.0, mu_infinity=0.0),
+            "lubricant.traction.mu_zero",
+        ),
+        (
+            dict(mu_zero=0.0, mu_max=0.05, slip_at_max=1.0, mu_infinity=0.05),
+            "lubricant.traction.mu_infinity",
+        ),
+        (
+            dict(mu_zero=0.0, mu_max=0.05, slip_at_max=0.0, mu_infinity=0.03),
+            "lubricant.traction.slip_at_max_m_s",
+        ),
+        (
+            dict(mu_zero=0.0, mu_max=float("nan"), slip_at_max=1.0, mu_infinity=0.03),
+            "lubricant.traction.mu_max",
+        ),
+        (
+            dict(mu_zero=-0.01, mu_max=0.05, slip_at_max=1.0, mu_infinity=0.03),
+            "lubricant.traction.mu_zero",
+        ),
+    ],
+)
+def test_curve_rejects_bad_input(kwargs, key):
+    with pytest.raises(CaseError) as err:
+        tr.traction_curve_parameters(**kwargs)
+    msgs = err.value.for_key(key)
+    assert msgs and key in msgs[0]
+
+
+def test_regularised_factor_continuous_through_zero():
+    curve = tr.constant_traction_parameters(0.1)  # mu(0) = 0.1 > 0: needs the regularisation
+    ureg = 1e-3
+    f = [tr.regularised_traction_factor(u, curve, ureg) * u for u in (0.0, 1e-9, 1e-6, 1e-3, 1.0)]
+    assert f[0] == 0.0
+    assert f[1] < 1e-6 * 0.1 * 1.01
+    assert f[3] == pytest.approx(0.1 / math.sqrt(2), rel=1e-12)
+    assert f[4] == pytest.approx(0.1, rel=1e-6)
+    assert tr.regularised_traction_factor(0.0, curve, 0.0) == 0.0
+
+
+# ------------------------------------------------------------------------------------------------
+# quadrature
+# ------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    "nr, nt", [(1, 1), (2, 3), (tr.DEFAULT_N_ROLLING, tr.DEFAULT_N_TRANSVERSE), (7, 16)]
+)
+def test_quadrature_integrates_hertz_pressure(nr, nt):
+    nodes = tr.ellipse_quadrature(nr, nt)
+    assert nodes.shape == (nr * nt, tr.NODE_COLUMNS)
+    a, b, q = 2.0e-3, 0.3e-3, 850.0
+    pmax = 1.5 * q / (math.pi * a * b)
+    x, y = nodes[:, tr.NODE_ROLLING], nodes[:, tr.NODE_TRANSVERSE]
+    assert np.all(x**2 + y**2 < 1.0)
+    p = pmax * np.sqrt(1.0 - x**2 - y**2)
+    assert np.sum(nodes[:, tr.NODE_AREA] * p) * a * b == pytest.approx(q, rel=1e-3)
+    assert np.sum(nodes[:, tr.NODE_LOAD]) == pytest.approx(1.0, rel=1e-12)
+    np.testing.assert_allclose(
+        nodes[:, tr.NODE_LOAD], nodes[:, tr.NODE_AREA] * p * a * b / q, rtol=1e-12
+    )
+
+
+def test_quadrature_pressure_moments():
+    # <x^2> = <y^2> = 1/5 and <x^2 y^2> = 1/35 for the Hertz pressure on the unit disc (closed forms)
+    nodes = tr.ellipse_quadrature(3, 3)
+    w, x, y = nodes[:, tr.NODE_LOAD], nodes[:, tr.NODE_ROLLING], nodes[:, tr.NODE_TRANSVERSE]
+    assert np.sum(w * x**2) == pytest.approx(0.2, rel=1e-12)
+    assert np.sum(w * y**2) == pytest.approx(0.2, rel=1e-12)
+    assert np.sum(w * x**2 * y**2) == pytest.approx(1.0 / 35.0, rel=1e-12)
+    assert abs(np.sum(w * x)) < 1e-15 and abs(np.sum(w * y)) < 1e-15
+
+
+def test_quadrature_rejects_bad_counts():
+    with pytest.raises(ValueError, match="n_rolling"):
+        tr.ellipse_quadrature(0, 4)
+    with pytest.raises(ValueError, match="n_transverse"):
+        tr.ellipse_quadrature(4, 2.5)
+
+
+# ------------------------------------------------------------------------------------------------
+# helpers: a tilted contact frame and body kinematics
+# ------------------------------------------------------------------------------------------------
+def _frame(seed=1):
+    rng = np.random.default_rng(seed)
+    m, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    n, t1 = m[:, 0], m[:, 1]
+    t2 = np.cross(n, t1)
+    return n, t1, t2
+
+
+def _contact(P, n, t1, a, b, q, kappa):
+    c = np.zeros(tr.CONTACT_SIZE)
+    c[tr.CT_POINT : tr.CT_POINT + 3] = P
+    c[tr.CT_NORMAL : tr.CT_NORMAL + 3] = n
+    c[tr.CT_ROLLING : tr.CT_ROLLING + 3] = t1
+    c[tr.CT_SEMI_MAJOR] = a
+    c[tr.CT_SEMI_MINOR] = b
+    c[tr.CT_LOAD] = q
+    c[tr.CT_CURVATURE] = kappa
+    return c
+
+
+def _kin(cb, vb, wb, cr, vr, wr):
+    k = np.zeros(tr.KIN_SIZE)
+    k[tr.KIN_BALL_CENTRE : tr.KIN_BALL_CENTRE + 3] = cb
+    k[tr.KIN_BALL_VELOCITY : tr.KIN_BALL_VELOCITY + 3] = vb
+    k[tr.KIN_BALL_OMEGA : tr.KIN_BALL_OMEGA + 3] = wb
+    k[tr.KIN_RING_POINT : tr.KIN_RING_POINT + 3] = cr
+    k[tr.KIN_RING_VELOCITY : tr.KIN_RING_VELOCITY + 3] = vr
+    k[tr.KIN_RING_OMEGA : tr.KIN_RING_OMEGA + 3] = wr
+    return k
+
+
+def _run(contact, kin, curve, ureg=1e-4, nodes=None):
+    out = np.full(tr.TRACTION_OUT_SIZE, np.nan)
+    tr.ellipse_traction(
+        contact, kin, curve, ureg, tr.ellipse_quadrature() if nodes is None else nodes, out
+    )
+    return out
+
+
+def _integrand(contact, kin, curve, ureg):
+    """Local shear and its moments at contact-plane points (xi, eta), written from the definitions.
+
+    The surface across the groove is the circle p(eta) = P + eta t2 + (sqrt(Rd^2 - eta^2) - Rd) n; the
+    slip is the rigid-body velocity difference with its n component (approach rate) removed and its t2
+    component laid along the surface tangent dp/deta."""
+    P = contact[0:3]
+    n = contact[3:6]
+    t1 = contact[6:9]
+    t2 = np.cross(n, t1)
+    a, b, q, kappa = contact[9], contact[10], contact[11], contact[12]
+    cb, vb, wb, cr, vr, wr = (kin[i : i + 3] for i in range(0, 18, 3))
+    pmax = 1.5 * q / (math.pi * a * b)
+    Rd = 1.0 / kappa if kappa > 0 else np.inf
+
+    def f(xi, eta):
+        if np.isfinite(Rd):
+            z = np.sqrt(Rd**2 - eta**2) - Rd
+            dz = -eta / np.sqrt(Rd**2 - eta**2)  # dz/deta
+        else:
+            z = dz = 0.0 * eta
+        p = P + np.outer(xi, t1) + np.outer(eta, t2) + np.outer(z, n)
+        tang = t2[None, :] + np.outer(dz, n)
+        tang /= np.linalg.norm(tang, axis=1)[:, None]
+        dv = (vb + np.cross(wb, p - cb)) - (vr + np.cross(wr, p - cr))
+        dv = np.outer(dv @ t1, t1) + (dv @ t2)[:, None] * tang
+        u = np.linalg.norm(dv, axis=1)
+        mu = (curve[0] + curve[1] * u) * np.exp(-curve[2] * u) + curve[3]
+        pres = pmax * np.sqrt(np.clip(1.0 - (xi / b) ** 2 - (eta / a) ** 2, 0.0, None))
+        tau = -(mu * pres / np.sqrt(u**2 + ureg**2))[:, None] * dv
+        return np.hstack(
+            [tau, np.cross(p - P, tau), np.cross(p - cb, tau), -np.sum(tau * dv, axis=1)[:, None]]
+        )
+
+    return f
+
+
+def _reference(contact, kin, curve, ureg, n_panels=40, order=6):
+    """Independent integral over the ellipse: polar coordinates xi = b sin(s) cos(th), eta = a sin(s) sin(th)
+    (the substitution rho = sin(s) removes the square-root edge of the pressure), composite Gauss–Legendre
+    panels in s and th. Returns (F, M about P, M about ball centre, power)."""
+    a, b = contact[9], contact[10]
+    g, w = np.polynomial.legendre.leggauss(order)
+
+    def composite(lo, hi, panels):
+        edges = np.linspace(lo, hi, panels + 1)
+        h = 0.5 * (edges[1:] - edges[:-1])
+        mid = 0.5 * (edges[1:] + edges[:-1])
+        return (mid[:, None] + h[:, None] * g[None, :]).ravel(), (h[:, None] * w[None, :]).ravel()
+
+    s, ws = composite(0.0, 0.5 * math.pi, n_panels)
+    th, wt = composite(0.0, 2.0 * math.pi, 2 * n_panels)
+    S, TH = np.meshgrid(s, th, indexing="ij")
+    W = np.outer(ws, wt) * a * b * np.sin(S) * np.cos(S)  # dA = a b rho drho dth, drho = cos(s) ds
+    xi = (b * np.sin(S) * np.cos(TH)).ravel()
+    eta = (a * np.sin(S) * np.sin(TH)).ravel()
+    v = W.ravel() @ _integrand(contact, kin, curve, ureg)(xi, eta)
+    return v[0:3], v[3:6], v[6:9], v[9]
+
+
+# typical 7008C inner contact numbers
+A_, B_, Q_, R_BALL = 0.55e-3, 0.09e-3, 95.0, 3.572e-3
+KAPPA = tr.deformed_surface_curvature(0.54 * 7.144e-3, 7.144e-3)
+
+
+def test_deformed_curvature_formula():
+    r, D = 3.8e-3, 7.144e-3
+    Rd = 1.0 / tr.deformed_surface_curvature(r, D)
+    # harmonic mean of the groove radius and the ball radius
+    assert Rd == pytest.approx(2.0 / (1.0 / r + 1.0 / (D / 2)), rel=1e-14)
+
+
+# ------------------------------------------------------------------------------------------------
+# ellipse traction
+# ------------------------------------------------------------------------------------------------
+def test_pure_rolling_without_spin_gives_no_force():
+    n, t1, t2 = _frame(3)
+    P = np.array([0.01, 0.02, -0.005])
+    cb = P - R_BALL * n
+    w1, w2 = 120.0, -900.0
+    wb = w1 * t1 + w2 * t2  # in the tangent plane: rolling, no spin
+    vr = R_BALL * (w2 * t1 - w1 * t2)  # flat ring translating with the ball surface
+    contact = _contact(P, n, t1, A_, B_, Q_, 0.0)
+    kin = _kin(cb, np.zeros(3), wb, np.array([0.0, 0.0, 0.0]), vr, np.zeros(3))
+    out = _run(contact, kin, tr.traction_curve_parameters(**ADORE))
+    scale = Q_ * 0.05
+    assert np.max(np.abs(out[tr.TR_FORCE : tr.TR_FORCE + 3])) < 1e-12 * scale
+    assert np.max(np.abs(out[tr.TR_MOMENT_BALL : tr.TR_MOMENT_BALL + 3])) < 1e-12 * scale * R_BALL
+    assert out[tr.TR_SLIP_SPEED] < 1e-12
+    assert abs(out[tr.TR_SPIN]) < 1e-12
+    assert out[tr.TR_ENTRAINMENT] == pytest.approx(np.linalg.norm(vr), rel=1e-12)
+
+
+@pytest.mark.parametrize("kappa", [0.0, KAPPA])
+@pytest.mark.parametrize("u", [0.05, 0.7, 3.0])
+def test_uniform_sliding_force_is_q_mu(kappa, u):
+    n, t1, t2 = _frame(5)
+    P = np.array([0.0, 0.025, 0.0])
+    cb = P - R_BALL * n
+    curve = tr.traction_curve_parameters(**ADORE)
+    ureg = 1e-4
+    contact = _contact(P, n, t1, A_, B_, Q_, kappa)
+    vb = u * t1  # translation only: the same slip at every point, tangent to the curved surface too
+    out = _run(
+        contact, _kin(cb, vb, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)), curve, ureg
+    )
+    expected = -Q_ * tr.traction_coefficient(u, curve) * u / math.hypot(u, ureg) * t1
+    np.testing.assert_allclose(out[tr.TR_FORCE : tr.TR_FORCE + 3], expected, rtol=1e-12, atol=1e-15)
+    assert out[tr.TR_POWER] == pytest.approx(-np.dot(expected, vb), rel=1e-12)
+    # single-point variant agrees for uniform slip
+    out1 = np.zeros(tr.TRACTION_OUT_SIZE)
+    tr.centre_traction(
+        contact, _kin(cb, vb, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)), curve, ureg, out1
+    )
+    np.testing.assert_allclose(
+        out1[tr.TR_FORCE : tr.TR_FORCE + 3], expected, rtol=1e-12, atol=1e-15
+    )
+
+
+def test_uniform_sliding_any_direction_flat():
+    n, t1, t2 = _frame(7)
+    P = np.array([0.0, 0.0, 0.03])
+    curve = tr.traction_curve_parameters(**ADORE)
+    direction = 0.6 * t1 - 0.8 * t2
+    u = 0.4
+    contact = _contact(P, n, t1, A_, B_, Q_, 0.0)
+    out = _run(
+        contact,
+        _kin(P - R_BALL * n, u * direction, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
+        curve,
+        0.0,
+    )
+    np.testing.assert_allclose(
+        out[tr.TR_FORCE : tr.TR_FORCE + 3],
+        -Q_ * tr.traction_coefficient(u, curve) * direction,
+        rtol=1e-12,
+    )
+
+
+def _spin_case(omega_s, nodes=None, curve=None):
+    n, t1, t2 = _frame(11)
+    P = np.array([0.004, -0.02, 0.01])
+    cb = P - R_BALL * n
+    contact = _contact(P, n, t1, A_, B_, Q_, 0.0)
+    kin = _kin(cb, np.zeros(3), omega_s * n, np.zeros(3), np.zeros(3), np.zeros(3))
+    curve = tr.constant_traction_parameters(0.05) if curve is None else curve
+    return n, _run(contact, kin, curve, 0.0, nodes)
+
+
+@pytest.mark.parametrize("omega_s", [300.0, -50.0])
+def test_pure_spin_moment_matches_dblquad(omega_s):
+    mu = 0.05
+    n, out = _spin_case(omega_s, tr.ellipse_quadrature(8, 16))
+    pmax = 1.5 * Q_ / (math.pi * A_ * B_)
+    # independent: M = -mu sign(w) n * integral of p |r| over the ellipse
+    val, _ = integrate.dblquad(
+        lambda eta, xi: (
+            pmax * math.sqrt(max(0.0, 1 - (xi / B_) ** 2 - (eta / A_) ** 2)) * math.hypot(xi, eta)
+        ),
+        -B_,
+        B_,
+        lambda xi: -A_ * math.sqrt(1 - (xi / B_) ** 2),
+        lambda xi: A_ * math.sqrt(1 - (xi / B_) ** 2),
+        epsrel=1e-10,
+    )
+    expected = -mu * math.copysign(1.0, omega_s) * val * n
+    mp = out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3]
+    np.testing.assert_allclose(mp, expected, rtol=2e-3, atol=1e-3 * abs(val) * mu)
+    # the spin moment opposes the spin
+    assert np.dot(mp, n) * omega_s < 0
+    # no net force (symmetric slip field), and the ball moment is the point moment plus (P - c_b) x F
+    assert np.linalg.norm(out[tr.TR_FORCE : tr.TR_FORCE + 3]) < 1e-9 * Q_ * mu
+    np.testing.assert_allclose(
+        out[tr.TR_MOMENT_BALL : tr.TR_MOMENT_BALL + 3], mp, rtol=1e-9, atol=1e-15
+    )
+    assert out[tr.TR_SPIN] == pytest.approx(omega_s, rel=1e-12)
+
+
+def test_spin_moment_converges_with_node_count():
+    n, ref = _spin_case(300.0, tr.ellipse_quadrature(24, 48))
+    errs = []
+    for nr, nt in [(2, 4), (4, 8), (8, 16)]:
+        _, out = _spin_case(300.0, tr.ellipse_quadrature(nr, nt))
+        errs.append(
+            abs(
+                out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] @ n
+                - ref[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] @ n
+            )
+        )
+    assert errs[2] < errs[1] < errs[0]
+
+
+def _general_case(seed=2, kappa=KAPPA):
+    """Ball on a rotating inner-ring-like body: rolling + sliding + spin + curved surface."""
+    n, t1, t2 = _frame(seed)
+    cr = np.array([0.0, 0.0, 0.0])
+    P = np.array([0.001, 0.0236, 0.0004])
+    cb = P - R_BALL * n
+    wr = np.array([2094.0, 0.0, 0.0])  # 20 000 rpm about x
+    vring_P = np.cross(wr, P - cr)
+    # ball angular velocity: roughly rolling on the ring plus spin and a small mismatch
+    vt = vring_P - np.dot(vring_P, n) * n
+    # w x (P - c_b) = w x (R n) = vt  =>  w = n x vt / R (component in the tangent plane)
+    w_roll = np.cross(n, vt) / R_BALL
+    wb = w_roll + 400.0 * n + 30.0 * t1
+    vb = 0.15 * t1 - 0.05 * t2 + np.cross(wr, cb - cr) * 0.0
+    contact = _contact(P, n, t1, A_, B_, Q_, kappa)
+    kin = _kin(cb, vb, wb, cr, np.zeros(3), wr)
+    return contact, kin
+
+
+@pytest.mark.parametrize("kappa", [0.0, KAPPA])
+def test_general_contact_matches_independent_integration(kappa):
+    contact, kin = _general_case(kappa=kappa)
+    curve = tr.traction_curve_parameters(**ADORE)
+    ureg = 1e-3
+    F, MP, MB, pw = _reference(contact, kin, curve, ureg)
+    out = _run(contact, kin, curve, ureg, tr.ellipse_quadrature(16, 32))
+    fs = np.linalg.norm(F)
+    ms = np.linalg.norm(MP)
+    np.testing.assert_allclose(out[tr.TR_FORCE : tr.TR_FORCE + 3], F, atol=1e-7 * fs)
+    np.testing.assert_allclose(out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3], MP, atol=1e-7 * ms)
+    np.testing.assert_allclose(
+        out[tr.TR_MOMENT_BALL : tr.TR_MOMENT_BALL + 3], MB, atol=1e-7 * np.linalg.norm(MB)
+    )
+    assert out[tr.TR_POWER] == pytest.approx(pw, rel=1e-7)
+    assert out[tr.TR_POWER] > 0
+    # default node count: within 1e-3 of the converged integral
+    out_d = _run(contact, kin, curve, ureg)
+    np.testing.assert_allclose(out_d[tr.TR_FORCE : tr.TR_FORCE + 3], F, atol=1e-3 * fs)
+    np.testing.assert_allclose(
+        out_d[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3], MP, atol=1e-3 * ms
+    )
+    # the single-point variant misses the spin and Heathcote contributions entirely
+    out1 = np.zeros(tr.TRACTION_OUT_SIZE)
+    tr.centre_traction(contact, kin, curve, ureg, out1)
+    assert np.linalg.norm(out1[tr.TR_FORCE : tr.TR_FORCE + 3] - F) > 0.05 * fs
+
+
+def test_heathcote_slip_from_curvature():
+    """Pure rolling at the centre on a curved (conformal) surface still gives traction (differential slip);
+    the same kinematics on a flat contact gives none."""
+    n, t1, t2 = _frame(4)
+    P = np.zeros(3)
+    cb = P - R_BALL * n
+    V = 20.0
+    # ball rolls along t1 about an axis through its centre: w x (P - c_b) = V t1
+    wb = (V / R_BALL) * t2
+    vr = V * t1
+    curve = tr.traction_curve_parameters(**ADORE)
+    kin = _kin(cb, np.zeros(3), wb, np.zeros(3), vr, np.zeros(3))
+    flat = _run(_contact(P, n, t1, A_, B_, Q_, 0.0), kin, curve)
+    curved_c = _contact(P, n, t1, A_, B_, Q_, KAPPA)
+    curved = _run(curved_c, kin, curve, nodes=tr.ellipse_quadrature(8, 24))
+    assert np.linalg.norm(flat[tr.TR_FORCE : tr.TR_FORCE + 3]) < 1e-12
+    F, MP, MB, pw = _reference(curved_c, kin, curve, 1e-4)
+    f_c = curved[tr.TR_FORCE : tr.TR_FORCE + 3]
+    # ball surface at |eta| > 0 is nearer to the rolling axis: it lags the ring, so the ring drives it
+    assert np.dot(f_c, t1) > 0.0
+    np.testing.assert_allclose(f_c, F, atol=5e-3 * np.linalg.norm(F))
+    assert curved[tr.TR_POWER] == pytest.approx(pw, rel=5e-3)
+
+
+def test_moment_identity_and_ring_reaction():
+    contact, kin = _general_case(seed=9)
+    curve = tr.traction_curve_parameters(**ADORE)
+    out = _run(contact, kin, curve, 1e-3)
+    P = contact[0:3]
+    cb = kin[0:3]
+    F = out[tr.TR_FORCE : tr.TR_FORCE + 3]
+    MP = out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3]
+    np.testing.assert_allclose(
+        out[tr.TR_MOMENT_BALL : tr.TR_MOMENT_BALL + 3],
+        np.cross(P - cb, F) + MP,
+        rtol=1e-10,
+        atol=1e-18,
+    )
+
+
+def test_spin_moment_absent_in_single_point_variant():
+    curve = tr.constant_traction_parameters(0.05)
+    n, out = _spin_case(300.0, curve=curve)
+    assert abs(out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] @ n) > 0
+    n2, t1, _ = _frame(11)
+    P = np.array([0.004, -0.02, 0.01])
+    contact = _contact(P, n2, t1, A_, B_, Q_, 0.0)
+    out1 = np.zeros(tr.TRACTION_OUT_SIZE)
+    tr.centre_traction(
+        contact,
+        _kin(P - R_BALL * n2, np.zeros(3), 300.0 * n2, np.zeros(3), np.zeros(3), np.zeros(3)),
+        curve,
+        1e-6,
+        out1,
+    )
+    assert np.all(out1[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] == 0.0)
+    # the centre does not slip under pure spin (rounding-level slip only, regularised)
+    assert np.linalg.norm(out1[tr.TR_FORCE : tr.TR_FORCE + 3]) < 1e-9
+
+
+def test_no_nan_for_zero_load_and_zero_slip():
+    n, t1, _ = _frame(1)
+    contact = _contact(np.zeros(3), n, t1, A_, B_, 0.0, KAPPA)
+    out = _run(
+        contact,
+        _kin(-R_BALL * n, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
+        tr.constant_traction_parameters(0.1),
+        0.0,
+    )
+    assert np.all(np.isfinite(out))
+    assert np.all(out[0:9] == 0.0)
+
+
+# ------------------------------------------------------------------------------------------------
+# damped normal force
+# ------------------------------------------------------------------------------------------------
+K_HERTZ = 8.0e9  # N/m^1.5, a typical ball-race constant
+M_BALL = 0.0015
+
+
+def test_normal_force_limits():
+    f = tr.damped_normal_force
+    assert f(-1e-6, 1.0, K_HERTZ, 0.1, M_BALL) == 0.0
+    assert f(0.0, 1.0, K_HERTZ, 0.1, M_BALL) == 0.0
+    d = 3e-6
+    assert f(d, 0.0, K_HERTZ, 0.3, M_BALL) == pytest.approx(K_HERTZ * d**1.5, rel=1e-14)
+    assert f(d, 0.2, K_HERTZ, 0.0, M_BALL) == pytest.approx(K_HERTZ * d**1.5, rel=1e-14)
+    c = 2 * 0.1 * math.sqrt(1.5 * K_HERTZ * math.sqrt(d) * M_BALL)
+    assert f(d, 0.05, K_HERTZ, 0.1, M_BALL) == pytest.approx(K_HERTZ * d**1.5 + c * 0.05, rel=1e-14)
+
+
+def test_normal_force_never_tension():
+    for rate in (-10.0, -1.0, -0.1):
+        for d in (1e-9, 1e-7, 1e-6):
+            assert tr.damped_normal_force(d, rate, K_HERTZ, 1.0, M_BALL) >= 0.0
+    assert tr.damped_normal_force(1e-7, -10.0, K_HERTZ, 1.0, M_BALL) == 0.0
+
+
+def test_normal_force_continuous_at_onset():
+    # with a large approach rate the force still goes to zero with the approach
+    vals = [
+        tr.damped_normal_force(d, 1.0, K_HERTZ, 0.2, M_BALL) for d in (1e-8, 1e-10, 1e-12, 1e-14)
+    ]
+    assert vals[0] > vals[1] > vals[2] > vals[3] > 0.0
+    # the damping term vanishes like d^(1/4) (c ~ d^(1/4)); six decades of d -> factor 10^-1.5
+    assert vals[-1] / vals[0] == pytest.approx(10**-1.5, rel=0.05)
+    assert tr.damped_normal_force(0.0, 1.0, K_HERTZ, 0.2, M_BALL) == 0.0
+
+
+def _impact(zeta, v0, K=K_HERTZ, m=M_BALL):
+    """1-DOF mass hitting a Hertz spring: returns (restitution, E0, E_end + dissipated)."""
+
+    def rhs(t, s):
+        d, v, _diss = s
+        q = tr.damped_normal_force(d, v, K, zeta, m)
+        return [v, -q / m, (q - K * max(d, 0.0) ** 1.5) * v if d > 0 else 0.0]
+
+    def leave(t, s):
+        return s[0]
+
+    leave.terminal = True
+    leave.direction = -1
+    # contact duration scale sqrt(m/k_lin): integrate well past it
+    t_end = 50.0 * (m**2 / (K**2 * v0)) ** 0.2
+    sol = integrate.solve_ivp(
+        rhs,
+        (0.0, t_end),
+        [1e-30, v0, 0.0],
+        events=leave,
+        rtol=1e-11,
+        atol=[1e-18, 1e-12, 1e-15],
+        method="DOP853",
+    )
+    assert sol.status == 1, "the mass did not leave the contact"
+    d, v, diss = sol.y[:, -1]
+    e0 = 0.5 * m * v0**2
+    e_end = 0.5 * m * v**2 + 0.4 * K * max(d, 0.0) ** 2.5
+    return -v / v0, e0, e_end + diss
+
+
+def test_impact_conserves_energy_without_damping():
+    e, e0, e1 = _impact(0.0, 0.5)
+    assert e == pytest.approx(1.0, abs=1e-6)
+    assert e1 == pytest.approx(e0, rel=1e-6)
+
+
+@pytest.mark.parametrize("zeta", [0.05, 0.2])
+def test_impact_dissipates_with_damping(zeta):
+    e_slow, e0, e1 = _impact(zeta, 0.05)
+    e_fast, _, _ = _impact(zeta, 1.0)
+    assert e_slow < 1.0 - 0.5 * zeta  # clearly below 1
+    assert e1 == pytest.approx(e0, rel=1e-6)  # kinetic + elastic + dissipated = initial
+    # this damping law is scale-free: the restitution does not depend on the impact speed
+    assert e_fast == pytest.approx(e_slow, rel=1e-5)
+
+
+def test_restitution_decreases_with_damping_ratio():
+    es = [_impact(z, 0.3)[0] for z in (0.0, 0.05, 0.1, 0.3)]
+    assert es[0] > es[1] > es[2] > es[3] > 0.0
