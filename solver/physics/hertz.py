@@ -30,6 +30,7 @@ __all__ = [
     "series_stiffness",
     "race_contact",
     "shoulder_angle",
+    "shoulder_diameter_limits",
     "truncation_margin",
 ]
 
@@ -333,15 +334,27 @@ def race_contact(geometry, contact_angle, load, race: str) -> HertzContact:
     return hertz_contact(load, s, f, geometry.effective_modulus)
 
 
+def shoulder_diameter_limits(geometry, race: str) -> tuple[float, float]:
+    """Range [m] of shoulder (land) diameters that lie on the ``race`` groove arc, (low, high).
+
+    The groove arc runs from the groove bottom (θ = 0) to the height of its curvature centre
+    (θ = 90°): inner [d_i, 2ρ_i^c], outer [2ρ_o^c, d_o]. A shoulder outside this range is not on the
+    groove (an inner land below the groove bottom, an outer land above it, or a land past the
+    groove's quarter circle) and :func:`shoulder_angle` rejects it.
+    """
+    _check_race(race)
+    if race == "inner":
+        return geometry.inner_groove_bottom_diameter, 2.0 * geometry.inner_curvature_center_radius
+    return 2.0 * geometry.outer_curvature_center_radius, geometry.outer_groove_bottom_diameter
+
+
 def shoulder_angle(geometry, race: str) -> float:
     """Groove angle θ_sh [rad] of the ``race`` shoulder from the groove bottom; NaN if absent.
 
     The groove (radius r, curvature centre at radius ρ^c in the ring frame) reaches radius
     ρ^c - r cos θ (inner) or ρ^c + r cos θ (outer) at groove angle θ. The shoulder diameter
     d_sh gives inner: cos θ_sh = (ρ_i^c - d_sh/2)/r_i; outer: cos θ_sh = (d_sh/2 - ρ_o^c)/r_o.
-    Shoulders outside the groove's reach are clipped: a shoulder at or below the groove bottom gives
-    θ_sh = 0, one beyond the curvature-centre height gives θ_sh = π/2 (flat side walls cannot be
-    reached by the ball).
+    Raises ValueError when d_sh lies outside :func:`shoulder_diameter_limits` (not on the groove).
     """
     _check_race(race)
     if race == "inner":
@@ -356,6 +369,16 @@ def shoulder_angle(geometry, race: str) -> float:
         ) / geometry.outer_groove_radius
     if d_sh is None or math.isnan(d_sh):
         return math.nan
+    low, high = shoulder_diameter_limits(geometry, race)
+    tol = 1e-12 * high
+    if not (low - tol <= d_sh <= high + tol):
+        ends = "groove bottom, curvature-centre circle"
+        if race == "outer":
+            ends = "curvature-centre circle, groove bottom"
+        raise ValueError(
+            f"{race}_shoulder_diameter = {d_sh * 1e3:.4g} mm: the {race} shoulder must lie on the "
+            f"groove arc, between {low * 1e3:.4g} mm and {high * 1e3:.4g} mm ({ends})"
+        )
     return math.acos(min(1.0, max(0.0, cos_sh)))
 
 
@@ -365,7 +388,10 @@ def truncation_margin(geometry, contact_angle, semi_major, race: str):
     The ellipse spans the groove angles α ± a/r (r = groove radius, a = ``semi_major`` [m],
     α = ``contact_angle`` [rad], measured from the groove bottom towards the loaded shoulder);
     margin = θ_sh - (α + a/r) in degrees (see :func:`shoulder_angle`). Negative means the ellipse is
-    truncated by the shoulder (Hertz no longer valid). NaN when the shoulder diameter is not given.
+    truncated by the shoulder (Hertz no longer valid). NaN when the shoulder diameter is not
+    given; ValueError when it is not on the groove (see :func:`shoulder_diameter_limits`). Only
+    the shoulder on the loaded side (the one the case gives) is checked: for α < 0 the contact has
+    crossed the groove bottom towards the other land, which this margin does not cover.
     """
     theta_sh = shoulder_angle(geometry, race)
     r = geometry.inner_groove_radius if race == "inner" else geometry.outer_groove_radius

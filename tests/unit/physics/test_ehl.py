@@ -83,3 +83,27 @@ def test_callable_from_njit_and_wrapper_validates():
         film_thickness(*_args(load=-1.0))
     with pytest.raises(ValueError, match="kappa"):
         film_thickness(*_args(kappa=0.5))
+
+
+def test_explicit_evaluation_and_ellipticity_factor():
+    """Dimensionless groups evaluated by hand for BASE, and the κ factors of the two fits."""
+    u = 0.01 * 10.0 / (2.28e11 * 0.0045)
+    g = 2.0e-8 * 2.28e11
+    w = 200.0 / (2.28e11 * 0.0045**2)
+    assert (u, g, w) == pytest.approx((9.74659e-11, 4560.0, 4.33182e-05), rel=1e-5)
+    h_c = 0.0045 * 2.69 * u**0.67 * g**0.53 * w**-0.067 * (1 - 0.61 * math.exp(-0.73 * 8.0))
+    h_min = 0.0045 * 3.63 * u**0.68 * g**0.49 * w**-0.073 * (1 - math.exp(-0.68 * 8.0))
+    assert film_thickness_central(*_args()) == pytest.approx(h_c, rel=1e-12)
+    assert film_thickness_minimum(*_args()) == pytest.approx(h_min, rel=1e-12)
+    # a typical spindle-bearing film is a few tenths of a micrometre, and h_min < h_c
+    assert 0.05e-6 < h_min < h_c < 1e-6
+    # κ enters only through (1 - 0.61 e^{-0.73κ}) and (1 - e^{-0.68κ})
+    for kappa in (1.0, 3.0, 20.0):
+        ratio_c = film_thickness_central(*_args(kappa=kappa)) / film_thickness_central(*_args())
+        ratio_m = film_thickness_minimum(*_args(kappa=kappa)) / film_thickness_minimum(*_args())
+        assert ratio_c == pytest.approx(
+            (1 - 0.61 * math.exp(-0.73 * kappa)) / (1 - 0.61 * math.exp(-0.73 * 8.0)), rel=1e-12
+        )
+        assert ratio_m == pytest.approx(
+            (1 - math.exp(-0.68 * kappa)) / (1 - math.exp(-0.68 * 8.0)), rel=1e-12
+        )

@@ -446,3 +446,39 @@ def test_truncation_nan_without_shoulder_and_vectorised():
 def test_module_exports():
     for name in hertz.__all__:
         assert hasattr(hertz, name)
+
+
+def test_shoulder_limits_and_off_groove_shoulders_rejected():
+    g = _geometry_218()
+    low_i, high_i = hertz.shoulder_diameter_limits(g, "inner")
+    low_o, high_o = hertz.shoulder_diameter_limits(g, "outer")
+    assert low_i == pytest.approx(g.inner_groove_bottom_diameter) and high_i > g.pitch_diameter
+    assert high_o == pytest.approx(g.outer_groove_bottom_diameter) and low_o < g.pitch_diameter
+    # groove bottom → θ_sh = 0; curvature-centre height → θ_sh = 90°
+    assert shoulder_angle(_geometry_218(inner_shoulder_diameter=low_i), "inner") < 1e-7
+    assert shoulder_angle(_geometry_218(outer_shoulder_diameter=high_o), "outer") < 1e-7
+    assert math.degrees(
+        shoulder_angle(_geometry_218(inner_shoulder_diameter=high_i), "inner")
+    ) == pytest.approx(90.0)
+    for race, d_sh in (("inner", low_i - 1e-4), ("inner", high_i + 1e-4), ("outer", high_o + 1e-4)):
+        bad = _geometry_218(**{f"{race}_shoulder_diameter": d_sh})
+        with pytest.raises(ValueError, match=f"{race}_shoulder_diameter = .* mm: .* between"):
+            truncation_margin(bad, math.radians(40.0), 1e-3, race)
+    # a 7008C-class spindle bearing with lands below the inner / above the outer groove bottom
+    spindle = BearingGeometry(
+        ball_count=18,
+        ball_diameter=7.144e-3,
+        pitch_diameter=54.0e-3,
+        inner_conformity=0.54,
+        outer_conformity=0.53,
+        free_contact_angle=math.radians(15.0),
+        ball_material=SI3N4,
+        ring_material=STEEL,
+        inner_shoulder_diameter=45.9e-3,
+        outer_shoulder_diameter=62.2e-3,
+    )
+    assert spindle.inner_groove_bottom_diameter > 45.9e-3
+    assert spindle.outer_groove_bottom_diameter < 62.2e-3
+    for race in ("inner", "outer"):
+        with pytest.raises(ValueError, match="shoulder"):
+            shoulder_angle(spindle, race)
