@@ -248,10 +248,12 @@ class HertzContact(NamedTuple):
 
 
 def _check_contact_inputs(curvature_sum, effective_modulus) -> None:
-    if not np.all(np.asarray(curvature_sum) > 0.0):
-        raise ValueError(f"curvature_sum = {curvature_sum!r}: must be > 0 (1/m)")
-    if not np.all(np.asarray(effective_modulus) > 0.0):
-        raise ValueError(f"effective_modulus = {effective_modulus!r}: must be > 0 (Pa)")
+    s = np.asarray(curvature_sum, dtype=float)
+    e = np.asarray(effective_modulus, dtype=float)
+    if not np.all((s > 0.0) & np.isfinite(s)):
+        raise ValueError(f"curvature_sum = {curvature_sum!r}: must be finite and > 0 (1/m)")
+    if not np.all((e > 0.0) & np.isfinite(e)):
+        raise ValueError(f"effective_modulus = {effective_modulus!r}: must be finite and > 0 (Pa)")
 
 
 def _stiffness(kappa, big_k, big_e, curvature_sum, effective_modulus):
@@ -289,11 +291,11 @@ def hertz_contact(load, curvature_sum, curvature_difference, effective_modulus) 
     a = (6κ²E Q R/(πE'))^(1/3), b = (6E Q R/(πκE'))^(1/3),
     δ = K(m) [9/(2E R) (Q/(πκE'))²]^(1/3), p_max = 3Q/(2πab), R = 1/Σρ.
     Zero load gives zero sizes, approach and pressure (κ, K, E and the stiffness stay defined).
-    Raises ValueError for a negative or NaN load, Σρ ≤ 0, E' ≤ 0 or F outside [0, 1).
+    Raises ValueError for a negative or non-finite load, Σρ ≤ 0, E' ≤ 0 or F outside [0, 1).
     """
     q = np.asarray(load, dtype=float)
-    if not np.all(q >= 0.0):
-        raise ValueError(f"load = {load!r}: the normal contact load must be >= 0 (N)")
+    if not np.all((q >= 0.0) & np.isfinite(q)):
+        raise ValueError(f"load = {load!r}: the normal contact load must be finite and >= 0 (N)")
     _check_contact_inputs(curvature_sum, effective_modulus)
     kappa, big_k, big_e = ellipticity_exact(curvature_difference)
     r = 1.0 / np.asarray(curvature_sum, dtype=float)

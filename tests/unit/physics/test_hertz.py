@@ -303,7 +303,7 @@ def test_zero_and_negative_load():
     assert c.stiffness > 0.0 and c.kappa > 1.0
     arr = hertz_contact(np.array([0.0, 10.0]), 150.0, 0.9, E_STEEL)
     assert np.all(np.isfinite(arr.max_pressure)) and arr.max_pressure[0] == 0.0
-    for bad in (-1.0, math.nan):
+    for bad in (-1.0, math.nan, math.inf):
         with pytest.raises(ValueError, match="load"):
             hertz_contact(bad, 150.0, 0.9, E_STEEL)
     with pytest.raises(ValueError, match="curvature_sum"):
