@@ -42,7 +42,7 @@ class SimulationOptions:
     gravity: float = 9.81
     cage: bool = True
     ring_free: bool = True
-    tolerance: float = 1e-3
+    tolerance: float = 1e-4
     shaft_revolutions: float | None = None
     samples_per_revolution: int | None = None
     chunk_samples: int = 60

@@ -74,7 +74,10 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
     ``angle`` [rad] and ``semi_major`` [m] have a last axis race = (inner, outer)."""
     out = np.empty(angle.shape)
     for k, race in enumerate(("inner", "outer")):
-        out[..., k] = truncation_margin(geometry, angle[..., k], semi_major[..., k], race)
+        try:
+            out[..., k] = truncation_margin(geometry, angle[..., k], semi_major[..., k], race)
+        except ValueError:  # shoulder not on the groove arc: no margin can be stated
+            out[..., k] = np.nan
     return out
 
 

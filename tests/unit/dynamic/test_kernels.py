@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 import pytest
-from bearings import spindle_inputs
-from helpers import evaluate, setup, start
+from dyn_bearings import spindle_inputs
+from dyn_helpers import evaluate, setup, start
 from scipy import integrate
 
 from solver.models.dynamic import layout as L

@@ -21,8 +21,8 @@ def spindle_geometry() -> BearingGeometry:
         free_contact_angle=math.radians(15.0),
         ball_material=BUILTIN_MATERIALS["silicon_nitride"],
         ring_material=BUILTIN_MATERIALS["bearing_steel"],
-        inner_shoulder_diameter=45.9e-3,
-        outer_shoulder_diameter=62.2e-3,
+        inner_shoulder_diameter=49.0e-3,
+        outer_shoulder_diameter=59.0e-3,
     )
 
 

@@ -32,3 +32,23 @@ def evaluate(y, par, quad):
 def start(inputs, **option_changes):
     par, quad, options = setup(inputs, **option_changes)
     return par, quad, initial_state(par, quad)
+
+
+def integrate_states(par, quad, y0, times, tolerance=1e-3):
+    """States at ``times`` (times[0] = 0 is y0) integrated with the model's integrator."""
+    from solver.models.dynamic.integrator import STATUS_OK, advance
+    from solver.models.dynamic.simulate import state_scales
+
+    z = int(par[L.P_Z])
+    scale = state_scales(par, y0)
+    y = y0.copy()
+    states = np.empty((len(times), y.shape[0]))
+    states[0] = y
+    counters = np.zeros(3, dtype=np.int64)
+    h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
+    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
+    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
+    status, t, h, n = advance(y, 0.0, h, np.asarray(times[1:], float), states[1:], par, quad, scale,
+                              tolerance, 1e-6 * h, 10_000_000, counters, rec_i, rec_o, np.zeros(z))
+    assert status == STATUS_OK, status
+    return states, counters

@@ -1,0 +1,96 @@
+"""Validation 2 (issue 3): with traction and damping off the dynamic model conserves mechanical
+energy, and its right-hand side satisfies the momentum balance."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "dynamic"))
+
+from dyn_bearings import spindle_inputs  # noqa: E402
+from dyn_helpers import evaluate, integrate_states, start  # noqa: E402
+
+from solver.models.dynamic import layout as L  # noqa: E402
+from solver.models.dynamic.kernels import land_force, mechanical_energy  # noqa: E402
+
+
+def _energies(states, par, quad):
+    z = int(par[L.P_Z])
+    ri = np.zeros((z, L.N_CONTACT_RECORD))
+    ro = np.zeros((z, L.N_CONTACT_RECORD))
+    energy, elastic = [], []
+    for s in states:
+        energy.append(mechanical_energy(s, par, quad, ri, ro))
+        elastic.append(0.4 * sum((r[:, L.K_ELASTIC] * np.maximum(r[:, L.K_DEFLECTION], 0)).sum() for r in (ri, ro)))
+    return np.array(energy), np.array(elastic)
+
+
+def test_energy_is_conserved_without_traction_and_damping():
+    """3 shaft revolutions at 20 000 rpm under 500 N axial + 300 N radial, gravity on, inner ring
+    free: balls run through the load zone, exchanging kinetic and elastic energy. Tolerance: the
+    total energy may change by at most 1e-4 of the mean elastic (Hertz) energy, the part of the
+    energy that the contact dynamics exchange (the balls' orbital kinetic energy is ~100x larger).
+    The stated integrator tolerance (1e-4 of the deflection scale per step) gives ~1e-6."""
+    par, quad, y0 = start(spindle_inputs(radial=300.0), traction=False, damping_ratio=0.0, cage=False)
+    period = 2 * math.pi / par[L.P_WI]
+    times = np.linspace(0.0, 3 * period, 181)
+    states, _ = integrate_states(par, quad, y0, times, tolerance=1e-4)
+    energy, elastic = _energies(states, par, quad)
+    drift = np.abs(energy - energy[0]).max()
+    assert drift < 1e-4 * elastic.mean()
+    # the elastic energy really varies (the test exercises the exchange)
+    ring = states[:, L.ring_base(18) : L.ring_base(18) + 3]
+    assert np.ptp(ring[:, 1]) > 1e-9 or np.ptp(elastic) > 1e-3 * elastic.mean()
+
+
+def test_damping_dissipates_energy():
+    """The same run with contact damping on must lose energy (sign check of the damping law)."""
+    par, quad, y0 = start(spindle_inputs(radial=300.0), traction=False, damping_ratio=0.2, cage=False)
+    # kick the balls radially so the contacts vibrate
+    for j in range(18):
+        b = L.ball_base(j)
+        y0[b + L.B_VEL] += 0.05
+    period = 2 * math.pi / par[L.P_WI]
+    times = np.linspace(0.0, 0.5 * period, 31)
+    states, _ = integrate_states(par, quad, y0, times, tolerance=1e-4)
+    energy, elastic = _energies(states, par, quad)
+    kick = 18 * 0.5 * par[L.P_MB] * 0.05**2
+    # zeta = 0.2 at the ~70 kHz contact mode removes most of the kick within 0.5 rev
+    assert energy[0] - energy[-1] > 0.25 * kick
+    assert np.all(np.diff(energy) <= 1e-4 * elastic.mean())  # the conservation tolerance above
+
+
+def test_linear_momentum_balance_of_the_rhs():
+    """Sum of m a over balls, inner ring and cage equals the external forces: applied load on the
+    ring, outer-ring contact forces on the balls, cage-land force and gravity (all internal
+    ball-ring and ball-cage forces cancel), with traction, damping and cage on."""
+    par, quad, y0 = start(spindle_inputs(radial=300.0))
+    rng = np.random.default_rng(7)
+    y = y0.copy()
+    z = 18
+    cb = L.cage_base(z)
+    y[cb + 1 : cb + 3] += 0.9 * par[L.P_CG] * np.array([0.6, 0.8])  # cage against its land
+    for j in range(z):
+        b = L.ball_base(j)
+        y[b + L.B_VEL : b + L.B_VEL + 3] += rng.normal(size=3) * 0.3
+        y[b + 1 : b + 3] += rng.normal(size=2) * 5e-5  # some balls touch their pockets
+    dydt, ri, ro, pocket = evaluate(y, par, quad)
+    assert pocket.max() > 0.0
+    rb = L.ring_base(z)
+    total = np.zeros(3)
+    for j in range(z):
+        b = L.ball_base(j)
+        total += par[L.P_MB] * dydt[b + L.B_VEL : b + L.B_VEL + 3]
+    total += par[L.P_MR] * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
+    total += par[L.P_MC] * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
+    land = np.zeros(4)
+    land_force(y, cb, y[rb : rb + 3], par, land)
+    external = ro[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
+    external += np.array([par[L.P_FX], par[L.P_FY], par[L.P_FZ]])
+    external += land[:3]
+    external[2] -= par[L.P_GRAVITY] * (z * par[L.P_MB] + par[L.P_MC])
+    np.testing.assert_allclose(total, external, atol=1e-9 * ri[:, L.K_LOAD].sum())
