@@ -1,0 +1,589 @@
+"""Numba kernels of the Jones–Harris quasi-static model (physics.md §2.5): one ball, and the ring solve.
+
+Geometry (physics.md §2.1, §2.5.1), per ball j at azimuth psi_j, in the ball's meridian plane with
+components (axial x, radial r):
+
+- the outer groove curvature centre is fixed at (x_o^c, rho_o^c);
+- the ball centre is X = (X1, X2) relative to it, so the outer deflection is |X| - (f_o - 1/2) D and
+  alpha_o = atan2(X1, X2);
+- the inner groove curvature centre is A = (A1, A2) relative to the outer one, with the inner ring's
+  small displacement q = (dx, dy, dz, theta_y, theta_z) (rotation vector (0, theta_y, theta_z)):
+
+      A1 = (x_i^c - x_o^c) + dx + rho_i^c (theta_y sin psi - theta_z cos psi)
+      A2 = (rho_i^c - rho_o^c) + dy cos psi + dz sin psi
+
+  (the linearised rigid motion theta x p of the ring point p = rho_i^c e_r, the tilt turning the ring
+  about its reference point: on the axis, in the plane of the inner groove curvature-centre circle,
+  where the applied loads act); the inner
+  deflection is |A - X| - (f_i - 1/2) D and alpha_i = atan2(A1 - X1, A2 - X2).
+
+Forces on the ball (physics.md §2.5.4, sign re-derived in solver.physics.kinematics.gyroscopic_moment):
+-Q_o u(alpha_o) + T_o from the outer ring, +Q_i u(alpha_i) + T_i from the inner ring, +F_c e_r, with
+T_o = (lambda_o M_g / D)(-cos alpha_o e_x + sin alpha_o e_r), T_i = (lambda_i M_g / D)(cos alpha_i e_x -
+sin alpha_i e_r); (lambda_o, lambda_i) = (2, 0) under outer control, (1, 1) under inner control. Their
+moment about the ball centre is M_g e_theta, the rate of change of the ball's angular momentum.
+
+The ball exerts -(Q_i u(alpha_i) + T_i) on the inner ring. Its moment about the ring centre (the point
+of the inner ring that sits at the origin in the just-touching state) uses the lever arms of the ring's
+own geometry (small-displacement statics), about the ring's reference point defined above: the normal
+force acts along a line through the inner groove curvature centre C = rho_i^c e_r (axial lever 0), the
+friction force at the contact point C + (r_i + delta_i/2)(-u(alpha_i)). Only the e_theta component is
+non-zero: m = -rho_i^c F_x - (r_i + delta_i/2) lambda_i M_g / D.
+
+Centrifugal force F_c = m r_orbit omega_c^2 with the ball's actual orbit radius r_orbit = rho_o^c + X2
+(the dynamic model sees the same force through r theta_dot^2).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from solver.physics.kinematics import attitude_angle, gyroscopic_moment, orbital_and_spin_speed
+
+from solver.physics.hertz_fast import contact_stiffness_fast, curvature_sum_and_difference_fast
+
+
+class BallModel(NamedTuple):
+    """Constants of the ball model, SI units (m, Pa, kg, kg m^2, rad/s). Built by ``ball_model``."""
+
+    ball_diameter: float
+    pitch_diameter: float
+    inner_conformity: float
+    outer_conformity: float
+    inner_center_offset: float  # (f_i - 1/2) D: ball centre to inner groove centre, unloaded
+    outer_center_offset: float  # (f_o - 1/2) D
+    inner_groove_radius: float  # r_i = f_i D
+    effective_modulus: float  # E'
+    ball_mass: float
+    ball_inertia: float
+    inner_center_axial: float  # x_i^c (ring frame)
+    inner_center_radius: float  # rho_i^c
+    outer_center_axial: float  # x_o^c
+    outer_center_radius: float  # rho_o^c
+    inner_ring_speed: float  # rad/s about +x
+    outer_ring_speed: float  # rad/s about +x
+    gamma_prime: float  # D / d_m
+
+
+def ball_model(geometry, inner_ring_speed: float, outer_ring_speed: float) -> BallModel:
+    """BallModel of a :class:`solver.geometry.BearingGeometry` at the given ring speeds [rad/s]."""
+    D = geometry.ball_diameter
+    return BallModel(
+        ball_diameter=D,
+        pitch_diameter=geometry.pitch_diameter,
+        inner_conformity=geometry.inner_conformity,
+        outer_conformity=geometry.outer_conformity,
+        inner_center_offset=(geometry.inner_conformity - 0.5) * D,
+        outer_center_offset=(geometry.outer_conformity - 0.5) * D,
+        inner_groove_radius=geometry.inner_groove_radius,
+        effective_modulus=geometry.effective_modulus,
+        ball_mass=geometry.ball_mass,
+        ball_inertia=geometry.ball_inertia,
+        inner_center_axial=geometry.inner_curvature_center_axial,
+        inner_center_radius=geometry.inner_curvature_center_radius,
+        outer_center_axial=geometry.outer_curvature_center_axial,
+        outer_center_radius=geometry.outer_curvature_center_radius,
+        inner_ring_speed=float(inner_ring_speed),
+        outer_ring_speed=float(outer_ring_speed),
+        gamma_prime=geometry.gamma_prime,
+    )
+
+
+@njit(cache=True)
+def contact_stiffness(model, contact_angle, is_inner):
+    """Hertz load-deflection constant K [N/m^1.5] of one contact at the current contact angle."""
+    gamma = model.ball_diameter * math.cos(contact_angle) / model.pitch_diameter
+    if is_inner:
+        conformity = model.inner_conformity
+    else:
+        conformity = model.outer_conformity
+    sum_rho, f_rho = curvature_sum_and_difference_fast(model.ball_diameter, conformity, gamma, is_inner)
+    return contact_stiffness_fast(sum_rho, f_rho, model.effective_modulus)
+
+
+@njit(cache=True)
+def ball_state(x1, x2, a1, a2, inner_control, model):
+    """Everything about one ball whose centre is (x1, x2) and inner groove centre (a1, a2), both relative
+    to the outer groove centre in the ball's meridian plane [m].
+
+    Returns a tuple:
+    (res_x, res_r,            net force on the ball [N] (zero in equilibrium), axial and radial
+     ring_fx, ring_fr,        force the ball exerts on the inner ring [N]
+     ring_moment,             its moment about the ring centre along e_theta [N m]
+     q_i, q_o, d_i, d_o,      contact loads [N] and deflections [m] (negative deflection = gap)
+     alpha_i, alpha_o,        contact angles [rad]
+     beta, omega_c, omega_r,  attitude [rad], orbital and spin speed [rad/s]
+     f_c, m_g)                centrifugal force [N], gyroscopic moment [N m]
+    """
+    D = model.ball_diameter
+    l_o = math.sqrt(x1 * x1 + x2 * x2)
+    d_o = l_o - model.outer_center_offset
+    alpha_o = math.atan2(x1, x2)
+    e1 = a1 - x1
+    e2 = a2 - x2
+    l_i = math.sqrt(e1 * e1 + e2 * e2)
+    d_i = l_i - model.inner_center_offset
+    alpha_i = math.atan2(e1, e2)
+
+    q_o = 0.0
+    if d_o > 0.0:
+        q_o = contact_stiffness(model, alpha_o, False) * d_o * math.sqrt(d_o)
+    q_i = 0.0
+    if d_i > 0.0:
+        q_i = contact_stiffness(model, alpha_i, True) * d_i * math.sqrt(d_i)
+
+    beta = attitude_angle(alpha_i, alpha_o, model.gamma_prime, inner_control)
+    omega_c, omega_r = orbital_and_spin_speed(
+        alpha_i, alpha_o, beta, model.gamma_prime, model.inner_ring_speed, model.outer_ring_speed
+    )
+    f_c = model.ball_mass * (model.outer_center_radius + x2) * omega_c * omega_c
+    m_g = gyroscopic_moment(model.ball_inertia, omega_r, omega_c, beta)
+    if inner_control:
+        lam_o = 1.0
+        lam_i = 1.0
+    else:
+        lam_o = 2.0
+        lam_i = 0.0
+
+    s_o = math.sin(alpha_o)
+    c_o = math.cos(alpha_o)
+    s_i = math.sin(alpha_i)
+    c_i = math.cos(alpha_i)
+    t_o = lam_o * m_g / D
+    t_i = lam_i * m_g / D
+    res_x = -q_o * s_o - t_o * c_o + q_i * s_i + t_i * c_i
+    res_r = -q_o * c_o + t_o * s_o + q_i * c_i - t_i * s_i + f_c
+
+    ring_fx = -(q_i * s_i + t_i * c_i)
+    ring_fr = -(q_i * c_i - t_i * s_i)
+    lever = model.inner_groove_radius + 0.5 * max(d_i, 0.0)
+    ring_moment = -model.inner_center_radius * ring_fx - lever * t_i
+    return (res_x, res_r, ring_fx, ring_fr, ring_moment, q_i, q_o, d_i, d_o, alpha_i, alpha_o,
+            beta, omega_c, omega_r, f_c, m_g)
+
+
+@njit(cache=True)
+def inner_center(q, psi, model):
+    """(A1, A2): inner groove curvature centre relative to the outer one for ring displacement
+    q = (dx, dy, dz, theta_y, theta_z) [m, rad] at azimuth psi [rad] (module docstring)."""
+    s = math.sin(psi)
+    c = math.cos(psi)
+    rc = model.inner_center_radius
+    a1 = (model.inner_center_axial - model.outer_center_axial) + q[0] + rc * (q[3] * s - q[4] * c)
+    a2 = (rc - model.outer_center_radius) + q[1] * c + q[2] * s
+    return a1, a2
+
+
+@njit(cache=True)
+def _residual_norm(x1, x2, a1, a2, inner_control, model):
+    st = ball_state(x1, x2, a1, a2, inner_control, model)
+    return st[0], st[1]
+
+
+@njit(cache=True)
+def _static_ball(a1, a2, model):
+    """Closed-form ball position without speed: on the line between the groove centres, the total
+    approach split so that Q_i = Q_o (same contact angle at both), or mid-gap when there is no contact."""
+    length = math.sqrt(a1 * a1 + a2 * a2)
+    if length <= 0.0:
+        return model.outer_center_offset, 0.0
+    n1 = a1 / length
+    n2 = a2 / length
+    total = length - model.inner_center_offset - model.outer_center_offset
+    if total <= 0.0:
+        d_o = 0.5 * total
+    else:
+        alpha = math.atan2(a1, a2)
+        k_i = contact_stiffness(model, alpha, True)
+        k_o = contact_stiffness(model, alpha, False)
+        d_o = total / (1.0 + (k_o / k_i) ** (2.0 / 3.0))
+    r = model.outer_center_offset + d_o
+    return n1 * r, n2 * r
+
+
+@njit(cache=True)
+def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
+    """Equilibrium position (x1, x2) [m] of one ball for the inner groove centre (a1, a2), starting from
+    (x1, x2). Returns (x1, x2, ok). Damped Newton with a finite-difference 2x2 Jacobian; without speed
+    the closed form of :func:`_static_ball` is used.
+    """
+    if model.inner_ring_speed == 0.0 and model.outer_ring_speed == 0.0:
+        x1, x2 = _static_ball(a1, a2, model)
+        return x1, x2, True
+    D = model.ball_diameter
+    tol = 1e-13 * force_scale
+    h = 1e-9 * D
+    # A ball clear of the outer race is first put onto it (centrifugal force holds it there).
+    l_o = math.sqrt(x1 * x1 + x2 * x2)
+    if l_o - model.outer_center_offset <= 0.0 or l_o == 0.0:
+        st = ball_state(x1, x2, a1, a2, inner_control, model)
+        if l_o == 0.0:
+            n1, n2 = 0.0, 1.0
+        else:
+            n1, n2 = x1 / l_o, x2 / l_o
+        k_o = contact_stiffness(model, math.atan2(n1, n2), False)
+        d_guess = (max(st[14], 1e-12 * force_scale) / k_o) ** (2.0 / 3.0)
+        x1 = n1 * (model.outer_center_offset + d_guess)
+        x2 = n2 * (model.outer_center_offset + d_guess)
+    r1, r2 = _residual_norm(x1, x2, a1, a2, inner_control, model)
+    norm = math.hypot(r1, r2)
+    for _ in range(100):
+        if norm <= tol:
+            return x1, x2, True
+        p1, p2 = _residual_norm(x1 + h, x2, a1, a2, inner_control, model)
+        s1, s2 = _residual_norm(x1, x2 + h, a1, a2, inner_control, model)
+        j11 = (p1 - r1) / h
+        j21 = (p2 - r2) / h
+        j12 = (s1 - r1) / h
+        j22 = (s2 - r2) / h
+        det = j11 * j22 - j12 * j21
+        scale = abs(j11 * j22) + abs(j12 * j21)
+        if scale == 0.0 or abs(det) <= 1e-14 * scale:
+            return x1, x2, False
+        dx1 = -(j22 * r1 - j12 * r2) / det
+        dx2 = -(-j21 * r1 + j11 * r2) / det
+        # keep a step within a fraction of the groove-centre offset (the deflections are far smaller)
+        step = math.hypot(dx1, dx2)
+        limit = 0.05 * model.outer_center_offset
+        if step > limit:
+            dx1 *= limit / step
+            dx2 *= limit / step
+            step = limit
+        t = 1.0
+        accepted = False
+        for _ls in range(40):
+            n1 = x1 + t * dx1
+            n2 = x2 + t * dx2
+            q1, q2 = _residual_norm(n1, n2, a1, a2, inner_control, model)
+            new_norm = math.hypot(q1, q2)
+            if new_norm < (1.0 - 1e-4 * t) * norm or new_norm <= tol:
+                accepted = True
+                break
+            t *= 0.5
+        if not accepted:
+            # no decrease possible: converged to round-off if the step is negligible
+            return x1, x2, step <= 1e-13 * D
+        x1, x2, r1, r2, norm = n1, n2, q1, q2, new_norm
+        if t * step <= 1e-15 * D:
+            return x1, x2, True
+    return x1, x2, norm <= 1e3 * tol
+
+
+@njit(cache=True)
+def _generalised(fx, fr, moment, psi, out):
+    """Map (axial force, radial force, e_theta moment) at azimuth psi onto (Fx, Fy, Fz, My, Mz)."""
+    s = math.sin(psi)
+    c = math.cos(psi)
+    out[0] = fx
+    out[1] = fr * c
+    out[2] = fr * s
+    out[3] = -moment * s
+    out[4] = moment * c
+
+
+@njit(cache=True)
+def ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, model, force_scale,
+                               want_jacobian, residual, jacobian):
+    """Solve every ball for the ring displacement q and sum their forces on the inner ring.
+
+    ``position`` (Z, 2) holds the ball positions (warm start in, solution out). Fills ``residual`` (5) =
+    applied + sum of the balls' generalised forces on the ring (Fx, Fy, Fz [N], My, Mz [N m]) and, if
+    ``want_jacobian``, ``jacobian`` (5, 5) = d residual / d q by the implicit-function theorem on each
+    ball's equilibrium. Returns False if a ball could not be solved.
+    """
+    z = azimuth.shape[0]
+    for k in range(5):
+        residual[k] = applied[k]
+        for m in range(5):
+            jacobian[k, m] = 0.0
+    gen = np.empty(5)
+    h = 1e-9 * model.ball_diameter
+    ok_all = True
+    for j in range(z):
+        psi = azimuth[j]
+        a1, a2 = inner_center(q, psi, model)
+        x1, x2, ok = solve_ball(a1, a2, position[j, 0], position[j, 1], inner_control[j], model,
+                                force_scale)
+        if not ok:
+            ok_all = False
+        position[j, 0] = x1
+        position[j, 1] = x2
+        st = ball_state(x1, x2, a1, a2, inner_control[j], model)
+        _generalised(st[2], st[3], st[4], psi, gen)
+        for k in range(5):
+            residual[k] += gen[k]
+        if not want_jacobian or st[7] <= 0.0:
+            continue  # a ball without inner contact exerts no force on the ring
+        # finite-difference partial derivatives w.r.t. (x1, x2, a1, a2)
+        d = np.empty((5, 4))  # rows: res_x, res_r, ring_fx, ring_fr, ring_moment
+        for col in range(4):
+            y1, y2, b1, b2 = x1, x2, a1, a2
+            if col == 0:
+                y1 += h
+            elif col == 1:
+                y2 += h
+            elif col == 2:
+                b1 += h
+            else:
+                b2 += h
+            sp = ball_state(y1, y2, b1, b2, inner_control[j], model)
+            for row in range(5):
+                d[row, col] = (sp[row] - st[row]) / h
+        det = d[0, 0] * d[1, 1] - d[0, 1] * d[1, 0]
+        scale = abs(d[0, 0] * d[1, 1]) + abs(d[0, 1] * d[1, 0])
+        if scale == 0.0 or abs(det) <= 1e-14 * scale:
+            continue
+        # dX/dA = -J_XX^-1 J_XA
+        dxda = np.empty((2, 2))
+        for col in range(2):
+            b1 = d[0, 2 + col]
+            b2 = d[1, 2 + col]
+            dxda[0, col] = -(d[1, 1] * b1 - d[0, 1] * b2) / det
+            dxda[1, col] = -(-d[1, 0] * b1 + d[0, 0] * b2) / det
+        # total derivative of (ring_fx, ring_fr, ring_moment) w.r.t. (a1, a2)
+        dfda = np.empty((3, 2))
+        for row in range(3):
+            for col in range(2):
+                dfda[row, col] = (d[2 + row, 2 + col] + d[2 + row, 0] * dxda[0, col]
+                                  + d[2 + row, 1] * dxda[1, col])
+        s = math.sin(psi)
+        c = math.cos(psi)
+        rc = model.inner_center_radius
+        dadq = np.zeros((2, 5))
+        dadq[0, 0] = 1.0
+        dadq[0, 3] = rc * s
+        dadq[0, 4] = -rc * c
+        dadq[1, 1] = c
+        dadq[1, 2] = s
+        for m in range(5):
+            dfx = dfda[0, 0] * dadq[0, m] + dfda[0, 1] * dadq[1, m]
+            dfr = dfda[1, 0] * dadq[0, m] + dfda[1, 1] * dadq[1, m]
+            dmo = dfda[2, 0] * dadq[0, m] + dfda[2, 1] * dadq[1, m]
+            _generalised(dfx, dfr, dmo, psi, gen)
+            for k in range(5):
+                jacobian[k, m] += gen[k]
+    return ok_all
+
+
+@njit(cache=True)
+def _merit(residual, free, scale):
+    total = 0.0
+    for k in range(5):
+        if free[k]:
+            v = residual[k] / scale[k]
+            total += v * v
+    return math.sqrt(total)
+
+
+@njit(cache=True)
+def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_scale,
+               length_scale, tolerance, max_iterations):
+    """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium for the free components of
+    q = (dx, dy, dz, theta_y, theta_z); the others stay as given. ``q`` and ``position`` are updated in
+    place. Residuals are scaled by ``force_scale`` [N] (moments by force_scale * d_m / 2), unknowns by
+    ``length_scale`` [m] (tilts by length_scale / (d_m / 2)).
+
+    Returns (converged, iterations, scaled residual norm).
+    """
+    half_pitch = 0.5 * model.pitch_diameter
+    rscale = np.empty(5)
+    qscale = np.empty(5)
+    for k in range(5):
+        if k < 3:
+            rscale[k] = force_scale
+            qscale[k] = length_scale
+        else:
+            rscale[k] = force_scale * half_pitch
+            qscale[k] = length_scale / half_pitch
+    idx = np.empty(5, dtype=np.int64)
+    n = 0
+    for k in range(5):
+        if free[k]:
+            idx[n] = k
+            n += 1
+    residual = np.empty(5)
+    jacobian = np.empty((5, 5))
+    trial_res = np.empty(5)
+    dummy = np.empty((5, 5))
+    trial_pos = position.copy()
+    trial_q = q.copy()
+    ok = ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, model, force_scale,
+                                    True, residual, jacobian)
+    merit = _merit(residual, free, rscale)
+    mu = 0.0
+    iterations = 0
+    while iterations < max_iterations:
+        if ok and merit <= tolerance:
+            return True, iterations, merit
+        iterations += 1
+        # scaled Jacobian and residual of the free components
+        jac = np.empty((n, n))
+        rhs = np.empty(n)
+        for a in range(n):
+            rhs[a] = -residual[idx[a]] / rscale[idx[a]]
+            for b in range(n):
+                jac[a, b] = jacobian[idx[a], idx[b]] * qscale[idx[b]] / rscale[idx[a]]
+        accepted = False
+        for attempt in range(12):
+            step = np.zeros(n)
+            solved = True
+            if mu == 0.0:
+                det_ok = True
+                try_lm = False
+                # plain Newton if the Jacobian is well conditioned
+                jt = jac.copy()
+                cond = np.linalg.cond(jt) if n > 0 else 1.0
+                if not np.isfinite(cond) or cond > 1e12:
+                    det_ok = False
+                if det_ok:
+                    step = np.linalg.solve(jt, rhs)
+                else:
+                    try_lm = True
+                if try_lm:
+                    mu = 1e-6
+            if mu > 0.0:
+                jtj = jac.T @ jac
+                diag_max = 0.0
+                for a in range(n):
+                    diag_max = max(diag_max, jtj[a, a])
+                if diag_max == 0.0:
+                    diag_max = 1.0
+                for a in range(n):
+                    jtj[a, a] += mu * (jtj[a, a] + 1e-3 * diag_max) + 1e-300
+                step = np.linalg.solve(jtj, jac.T @ rhs)
+            if not np.all(np.isfinite(step)):
+                solved = False
+            if not solved:
+                mu = 1e-3 if mu == 0.0 else mu * 10.0
+                continue
+            norm = math.sqrt(np.sum(step * step))
+            limit = 20.0
+            if norm > limit:
+                step *= limit / norm
+            # backtracking line search on the scaled residual norm
+            t = 1.0
+            for _ls in range(12):
+                for k in range(5):
+                    trial_q[k] = q[k]
+                for a in range(n):
+                    trial_q[idx[a]] = q[idx[a]] + t * step[a] * qscale[idx[a]]
+                trial_pos[:, :] = position
+                tok = ring_residual_and_jacobian(trial_q, applied, azimuth, trial_pos, inner_control,
+                                                 model, force_scale, False, trial_res, dummy)
+                tmerit = _merit(trial_res, free, rscale)
+                if tok and tmerit < (1.0 - 1e-4 * t) * merit:
+                    accepted = True
+                    break
+                t *= 0.5
+            if accepted:
+                break
+            mu = 1e-3 if mu == 0.0 else mu * 10.0
+        if not accepted:
+            return False, iterations, merit
+        for k in range(5):
+            q[k] = trial_q[k]
+        position[:, :] = trial_pos
+        mu = 0.0 if t == 1.0 else mu * 0.1
+        if mu < 1e-9:
+            mu = 0.0
+        ok = ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, model,
+                                        force_scale, True, residual, jacobian)
+        merit = _merit(residual, free, rscale)
+    return ok and merit <= tolerance, iterations, merit
+
+
+@njit(cache=True)
+def evaluate_balls(q, azimuth, position, inner_control, model, out):
+    """Fill ``out`` (Z, 16) with :func:`ball_state` of every ball at its current position."""
+    for j in range(azimuth.shape[0]):
+        a1, a2 = inner_center(q, azimuth[j], model)
+        st = ball_state(position[j, 0], position[j, 1], a1, a2, inner_control[j], model)
+        for k in range(16):
+            out[j, k] = st[k]
+
+
+@njit(cache=True)
+def _static_ring_forces(q, azimuth, model, direction_y, direction_z):
+    """(sum Fx, sum F along the radial direction, number of loaded balls) on the inner ring without speed
+    (closed-form ball positions)."""
+    fx = 0.0
+    fr = 0.0
+    loaded = 0
+    for j in range(azimuth.shape[0]):
+        psi = azimuth[j]
+        a1, a2 = inner_center(q, psi, model)
+        x1, x2 = _static_ball(a1, a2, model)
+        st = ball_state(x1, x2, a1, a2, False, model)
+        fx += st[2]
+        fr += st[3] * (math.cos(psi) * direction_y + math.sin(psi) * direction_z)
+        if st[5] > 0.0:
+            loaded += 1
+    return fx, fr, loaded
+
+
+@njit(cache=True)
+def _bisect_component(q, k, target, azimuth, model, direction_y, direction_z, lo, hi):
+    """Set q[k] (k = 0: axial shift, k = 1: radial shift along the direction) in [lo, hi] so that the
+    static ring force in that direction balances ``target``; the force decreases with q[k]."""
+
+    def excess(value):
+        if k == 0:
+            q[0] = value
+        else:
+            q[1] = value * direction_y
+            q[2] = value * direction_z
+        fx, fr, _ = _static_ring_forces(q, azimuth, model, direction_y, direction_z)
+        return target + (fx if k == 0 else fr)
+
+    # widen the bracket until the excess changes sign (at most a few times)
+    f_lo = excess(lo)
+    f_hi = excess(hi)
+    for _ in range(30):
+        if f_lo >= 0.0 and f_hi <= 0.0:
+            break
+        width = hi - lo
+        if f_lo < 0.0:
+            lo -= width
+            f_lo = excess(lo)
+        if f_hi > 0.0:
+            hi += width
+            f_hi = excess(hi)
+    if not (f_lo >= 0.0 and f_hi <= 0.0):
+        excess(0.5 * (lo + hi))
+        return False
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if excess(mid) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    excess(0.5 * (lo + hi))
+    return True
+
+
+@njit(cache=True)
+def static_start(q, applied, azimuth, model, length_scale, passes):
+    """Starting ring displacement without speed: alternately bisect the axial shift and the radial shift
+    (along the radial load) so that the axial and radial forces balance. ``q`` is updated in place
+    (its tilt components are kept)."""
+    fr_y = applied[1]
+    fr_z = applied[2]
+    fr = math.hypot(fr_y, fr_z)
+    if fr > 0.0:
+        dy = fr_y / fr
+        dz = fr_z / fr
+    else:
+        dy = 1.0
+        dz = 0.0
+    a0 = model.inner_center_offset + model.outer_center_offset
+    span = 2.0 * a0 + 100.0 * length_scale
+    shift = model.inner_center_axial - model.outer_center_axial  # A0 sin(alpha0)
+    for _ in range(passes):
+        if applied[0] != 0.0:
+            _bisect_component(q, 0, applied[0], azimuth, model, dy, dz, -shift - span, -shift + span)
+        if fr > 0.0:
+            _bisect_component(q, 1, fr, azimuth, model, dy, dz, -span, span)

@@ -1,0 +1,325 @@
+"""Solve driver of the quasi-static model: starting guess, continuation, race-control fixed point.
+
+The numerical work (ball equilibria, ring Newton/Levenberg–Marquardt) is in :mod:`.kernels`; this module
+chooses where to start, ramps load and then speed when a direct solve fails, iterates the per-ball race
+control decision to a fixed point, and packs a :class:`QuasiStaticSolution`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from solver.errors import NoSolutionError
+from solver.physics.hertz_fast import (
+    contact_ellipse_fast,
+    curvature_sum_and_difference_fast,
+    hertz_coefficients_fast,
+)
+from solver.physics.kinematics import race_control_is_inner
+
+from . import kernels
+from .solution import OperatingPoint, QuasiStaticSolution
+
+RING_TOLERANCE = 1e-11  # scaled residual norm at which the ring equilibrium is accepted
+MAX_RING_ITERATIONS = 60
+MAX_RACE_CONTROL_ITERATIONS = 12
+_STATE_FIELDS = 16  # columns of kernels.evaluate_balls
+
+
+@njit(cache=True)
+def _race_control(states, model):
+    """Jones criterion for every ball from its current state (Z, 16): True = inner control."""
+    z = states.shape[0]
+    out = np.zeros(z, dtype=np.bool_)
+    e_mod = model.effective_modulus
+    for j in range(z):
+        q_i = states[j, 5]
+        q_o = states[j, 6]
+        a_i = states[j, 9]
+        a_o = states[j, 10]
+        semi = np.zeros(2)
+        ell = np.zeros(2)
+        for k in range(2):
+            is_inner = k == 0
+            alpha = a_i if is_inner else a_o
+            load = q_i if is_inner else q_o
+            conformity = model.inner_conformity if is_inner else model.outer_conformity
+            gamma = model.ball_diameter * math.cos(alpha) / model.pitch_diameter
+            s, f = curvature_sum_and_difference_fast(model.ball_diameter, conformity, gamma, is_inner)
+            semi[k] = contact_ellipse_fast(load, s, f, e_mod)[0]
+            ell[k] = hertz_coefficients_fast(f)[2]
+        out[j] = race_control_is_inner(q_i, q_o, semi[0], semi[1], ell[0], ell[1], a_i, a_o)
+    return out
+
+
+class _Problem:
+    """Everything fixed for one bearing and load case; speeds vary during continuation."""
+
+    def __init__(self, geometry, operating: OperatingPoint):
+        self.geometry = geometry
+        self.operating = operating
+        z = geometry.ball_count
+        self.azimuth = 2.0 * np.pi * np.arange(z) / z
+        self.applied = operating.applied_loads()
+        self.free = np.array([True, True, True, operating.tilt_is_free, operating.tilt_is_free])
+        static = kernels.ball_model(geometry, 0.0, 0.0)
+        self.static_model = static
+        # force scale: the largest of the applied loads and the centrifugal force at full speed
+        omega_max = max(abs(operating.inner_ring_speed), abs(operating.outer_ring_speed))
+        half_pitch = 0.5 * geometry.pitch_diameter
+        centrifugal = geometry.ball_mass * half_pitch * omega_max**2
+        moment = abs(operating.tilting_moment or 0.0) / half_pitch
+        loads = max(abs(operating.axial_load), abs(operating.radial_load), moment)
+        self.force_scale = max(loads, centrifugal, 1e-6)
+        # length scale: deflection of one ball carrying a share of the load
+        alpha0 = geometry.free_contact_angle
+        k_i = kernels.contact_stiffness(static, alpha0, True)
+        k_o = kernels.contact_stiffness(static, alpha0, False)
+        self.ball_stiffness = (k_i ** (-2.0 / 3.0) + k_o ** (-2.0 / 3.0)) ** -1.5
+        share = max(loads, centrifugal) / max(1.0, 0.25 * z)
+        self.length_scale = max((share / self.ball_stiffness) ** (2.0 / 3.0), 1e-9)
+
+    def model(self, speed_fraction: float):
+        op = self.operating
+        return kernels.ball_model(
+            self.geometry, speed_fraction * op.inner_ring_speed, speed_fraction * op.outer_ring_speed
+        )
+
+    def start_q(self, load_fraction: float) -> np.ndarray:
+        q = np.zeros(5)
+        q[3:] = self.operating.imposed_tilt()
+        return q
+
+    def initial_positions(self, q, model) -> np.ndarray:
+        pos = np.empty((self.azimuth.size, 2))
+        for j, psi in enumerate(self.azimuth):
+            a1, a2 = kernels.inner_center(q, psi, model)
+            pos[j] = kernels._static_ball(a1, a2, model)
+        return pos
+
+
+def _static_start(problem: _Problem, load_fraction: float):
+    """Static starting point: the axial and radial ring shifts found by bisection so that the axial and
+    radial forces balance (tilt as imposed, or 0), and the closed-form ball positions."""
+    model = problem.static_model
+    q = np.zeros(5)
+    q[3:] = problem.operating.imposed_tilt()
+    kernels.static_start(q, problem.applied * load_fraction, problem.azimuth, model,
+                         problem.length_scale, 3)
+    return q, problem.initial_positions(q, model)
+
+
+class _State:
+    """Mutable iterate of the continuation: ring displacement, ball positions, race control."""
+
+    def __init__(self, q, position, inner_control):
+        self.q = q
+        self.position = position
+        self.inner_control = inner_control
+
+    def copy(self):
+        return _State(self.q.copy(), self.position.copy(), self.inner_control.copy())
+
+
+def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fraction: float):
+    model = problem.model(speed_fraction)
+    converged, iterations, merit = kernels.solve_ring(
+        state.q, problem.free, problem.applied * load_fraction, problem.azimuth, state.position,
+        state.inner_control, model, problem.force_scale, problem.length_scale, RING_TOLERANCE,
+        MAX_RING_ITERATIONS,
+    )
+    return bool(converged), int(iterations), float(merit)
+
+
+def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
+    """Ring solve iterated with the race-control decision until it no longer changes.
+
+    Returns (converged, iterations, merit, note)."""
+    model = problem.model(speed_fraction)
+    history = [state.inner_control.tobytes()]
+    total = 0
+    note = ""
+    for _ in range(MAX_RACE_CONTROL_ITERATIONS):
+        converged, iterations, merit = _ring_solve(problem, state, speed_fraction, load_fraction)
+        total += iterations
+        if not converged:
+            return False, total, merit, note
+        states = np.empty((problem.azimuth.size, _STATE_FIELDS))
+        kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.inner_control, model,
+                               states)
+        decision = _race_control(states, model)
+        if np.array_equal(decision, state.inner_control):
+            return True, total, merit, note
+        key = decision.tobytes()
+        if key in history:
+            # the decision cycles: keep the last consistent solution and say so
+            note = (
+                "race control cycles between two decisions for some balls; the last solution is "
+                "kept with the decision it was solved with"
+            )
+            return True, total, merit, note
+        history.append(key)
+        state.inner_control = decision
+    note = (
+        f"race control did not settle in {MAX_RACE_CONTROL_ITERATIONS} iterations; the last solution "
+        "is kept with the decision it was solved with"
+    )
+    return True, total, merit, note
+
+
+def _continuation(solve, start: float, target: float, min_step: float):
+    """Advance a parameter from ``start`` to ``target`` with adaptive steps. ``solve(value)`` returns
+    True on success (and keeps its state) or False (the caller restores the state). Returns the last
+    value reached."""
+    current = start
+    step = target - start
+    while current != target:
+        trial = target if abs(target - current) <= abs(step) else current + step
+        if solve(trial):
+            current = trial
+            step *= 2.0
+        else:
+            step *= 0.5
+            if abs(step) < min_step:
+                return current
+    return current
+
+
+def solve_operating_point(geometry, operating: OperatingPoint,
+                          initial: QuasiStaticSolution | None = None) -> QuasiStaticSolution:
+    """Quasi-static equilibrium of ``geometry`` at ``operating``; see :func:`solve_quasistatic_state`."""
+    problem = _Problem(geometry, operating)
+    z = geometry.ball_count
+    totals = {"iterations": 0}
+    best = {}
+
+    def attempt(state, speed, load):
+        trial = state.copy()
+        ok, its, merit, note = _solve_with_race_control(problem, trial, speed, load)
+        totals["iterations"] += its
+        if ok:
+            state.q, state.position, state.inner_control = trial.q, trial.position, trial.inner_control
+            best["merit"], best["note"] = merit, note
+        return ok
+
+    state = None
+    if initial is not None and initial.ball_position is not None and len(initial.ball_position) == z:
+        state = _State(
+            np.concatenate([initial.inner_ring_offset, initial.inner_ring_tilt]).astype(float),
+            np.array(initial.ball_position, dtype=float),
+            np.asarray(initial.race_control) == "inner",
+        )
+        state.q[3:] = np.where(problem.free[3:], state.q[3:], operating.imposed_tilt())
+        if not attempt(state, 1.0, 1.0):
+            state = None
+    if state is None:
+        # static solution first, with load continuation if the direct solve fails
+        q0, pos0 = _static_start(problem, 1.0)
+        state = _State(q0, pos0, np.zeros(z, dtype=np.bool_))
+        if not attempt(state, 0.0, 1.0):
+            q0, pos0 = _static_start(problem, 0.05)
+            state = _State(q0, pos0, np.zeros(z, dtype=np.bool_))
+            if not attempt(state, 0.0, 0.05):
+                raise NoSolutionError(_no_static_message(problem))
+            reached = _continuation(lambda s: attempt(state, 0.0, s), 0.05, 1.0, 1e-4)
+            if reached != 1.0:
+                raise NoSolutionError(_no_static_message(problem))
+        has_speed = operating.inner_ring_speed != 0.0 or operating.outer_ring_speed != 0.0
+        if has_speed and not attempt(state, 1.0, 1.0):
+            reached = _continuation(lambda s: attempt(state, s, 1.0), 0.0, 1.0, 1e-4)
+            if reached != 1.0:
+                raise NoSolutionError(_no_speed_message(problem, state, reached))
+    return _pack(problem, state, totals["iterations"], best.get("merit", math.nan),
+                 best.get("note", ""))
+
+
+def _rpm(omega: float) -> float:
+    return omega * 30.0 / math.pi
+
+
+def _no_static_message(problem: _Problem) -> str:
+    op = problem.operating
+    return (
+        f"no static equilibrium found for axial load {op.axial_load:g} N, radial load "
+        f"{op.radial_load:g} N"
+        + (f", tilting moment {op.tilting_moment:g} N m" if op.tilt_is_free else "")
+        + ": the balls cannot hold the inner ring in every loaded direction (for example a free tilt "
+        "or a radial load with too few balls in contact). Try adding axial preload, imposing the "
+        "tilt (misalignment_deg) instead of a moment, or reducing the load."
+    )
+
+
+def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
+    op = problem.operating
+    model = problem.model(reached)
+    states = np.empty((problem.azimuth.size, _STATE_FIELDS))
+    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.inner_control, model,
+                           states)
+    alpha_o = math.degrees(float(np.min(states[:, 10])))
+    speed = _rpm(reached * op.inner_ring_speed)
+    target = _rpm(op.inner_ring_speed)
+    return (
+        f"the quasi-static equilibrium was followed up to {speed:.0f} rpm (of {target:.0f} rpm) and "
+        f"lost beyond it; there the smallest outer contact angle was {alpha_o:.1f}°: the centrifugal "
+        f"force and gyroscopic moment of the balls exceed what the axial load of "
+        f"{op.axial_load:g} N can hold. Try more axial preload or a lower speed."
+    )
+
+
+def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note: str):
+    g = problem.geometry
+    op = problem.operating
+    model = problem.model(1.0)
+    z = g.ball_count
+    states = np.empty((z, _STATE_FIELDS))
+    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.inner_control, model,
+                           states)
+    psi = problem.azimuth
+    alpha = states[:, [9, 10]].copy()
+    load = states[:, [5, 6]].copy()
+    deflection = np.maximum(states[:, [7, 8]], 0.0)
+    load[deflection <= 0.0] = 0.0
+    beta = states[:, 11].copy()
+    omega_c = states[:, 12].copy()
+    omega_r = states[:, 13].copy()
+    # ball centre (inertial, meridian plane): outer groove centre + X
+    center = np.column_stack([g.outer_curvature_center_axial + state.position[:, 0],
+                              g.outer_curvature_center_radius + state.position[:, 1]])
+    # angular velocity: omega_c e_x + omega_R (cos beta e_x - sin beta e_r)
+    w_x = omega_c + omega_r * np.cos(beta)
+    w_r = -omega_r * np.sin(beta)
+    ang = np.column_stack([w_x, w_r * np.cos(psi), w_r * np.sin(psi)])
+    # moment on the inner ring: balls' moment sum (about y, z) must be balanced by the applied one
+    m_theta = states[:, 4]
+    ball_moment = np.array([np.sum(-m_theta * np.sin(psi)), np.sum(m_theta * np.cos(psi))])
+    applied_moment = op.applied_loads()[3:] if op.tilt_is_free else -ball_moment
+    return QuasiStaticSolution(
+        ball_azimuth=psi.copy(),
+        ball_center=center,
+        contact_angle=alpha,
+        contact_load=load,
+        contact_deflection=deflection,
+        orbital_speed=omega_c,
+        spin_speed=omega_r,
+        attitude_angle=beta,
+        ball_angular_velocity=ang,
+        race_control=np.where(state.inner_control, "inner", "outer"),
+        inner_ring_offset=state.q[:3].copy(),
+        inner_ring_tilt=state.q[3:].copy(),
+        cage_speed=float(np.mean(omega_c)),
+        centrifugal_force=states[:, 14].copy(),
+        gyroscopic_moment=states[:, 15].copy(),
+        applied_moment=np.asarray(applied_moment, dtype=float),
+        inner_ring_speed=op.inner_ring_speed,
+        outer_ring_speed=op.outer_ring_speed,
+        converged=True,
+        residual=merit,
+        iterations=iterations,
+        force_scale=problem.force_scale,
+        race_control_note=note,
+        ball_position=state.position.copy(),
+        operating=op,
+    )
