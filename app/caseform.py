@@ -1,0 +1,144 @@
+"""The case form: case-file fields as form inputs, and form values back to a validated case.
+
+The field list, the defaults and every validation rule come from the case module
+(``solver.case.FIELDS``, ``Case.with_values``), so the app validates exactly like case files do.
+This module only converts between form text and typed values, and routes each problem message to
+the form field whose case-file key it names. A field's form name is the last segment of its
+dotted key (unique), which is also the element id ``field-<name>`` in the page.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+
+from solver import CaseError
+
+
+INLINE_TABLE = "(inline table)"  # shown for a material given as an inline table (not editable here)
+
+
+@dataclass(frozen=True)
+class FormField:
+    """One input of the case form."""
+
+    key: str  # dotted case-file key, e.g. "operating.axial_load_N"
+    name: str  # last key segment, e.g. "axial_load_N"
+    kind: str  # "int" | "float" | "str" | "bool" | "choice" | "material"
+    label: str  # with the unit, e.g. "Axial load (N)"
+    unit: str
+    help: str
+    choices: tuple = ()
+    section: str = ""
+    required: bool = False
+
+
+def form_fields() -> list[FormField]:
+    """Form fields for every case-file key, in the case module's order (``solver.case.FIELDS``)."""
+    from solver.case.schema import FIELDS, REQUIRED
+    from solver.materials import BUILTIN_MATERIALS
+
+    fields = []
+    for spec in FIELDS:
+        kind = spec.type if spec.type in ("int", "float", "str", "bool", "choice", "material") else "str"
+        choices = tuple(spec.choices) if kind == "choice" else ()
+        if kind == "material":
+            choices = tuple(BUILTIN_MATERIALS)
+        label = f"{spec.label} ({spec.unit})" if spec.unit else spec.label
+        fields.append(FormField(key=spec.key, name=spec.name, kind=kind, label=label,
+                                unit=spec.unit, help=spec.help, choices=choices,
+                                section=spec.section, required=spec.default is REQUIRED))
+    return fields
+
+
+def case_form_values(case, fields: list[FormField]) -> dict[str, object]:
+    """Form values (by field name) of ``case`` as written in its file; absent keys give ``None``.
+
+    Values the case module estimates (cage defaults) are not written, so they show as empty
+    fields that keep following the bearing.
+    """
+    data = case.to_dict() if hasattr(case, "to_dict") else tomllib.loads(case.to_toml())
+    values = {}
+    for f in fields:
+        node = data
+        for part in f.key.split("."):
+            node = node.get(part) if isinstance(node, dict) else None
+        if isinstance(node, dict):
+            node = INLINE_TABLE if f.kind == "material" else None
+        values[f.name] = node
+    return values
+
+
+def parse_value(field: FormField, raw):
+    """Typed value of a form entry, ``None`` for an empty entry; ValueError with a message."""
+    if raw is None or (isinstance(raw, str) and raw.strip() == ""):
+        return None
+    if field.kind == "bool":
+        if isinstance(raw, bool):
+            return raw
+        text = str(raw).strip().lower()
+        if text in ("true", "yes", "1", "on"):
+            return True
+        if text in ("false", "no", "0", "off"):
+            return False
+        raise ValueError(f"{field.key} = {raw!r}: must be true or false")
+    if field.kind in ("str", "choice", "material"):
+        return str(raw).strip()
+    text = str(raw).strip()
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"{field.key} = {text!r}: must be a number") from None
+    if field.kind == "int":
+        if not math.isfinite(value) or value != int(value):
+            raise ValueError(f"{field.key} = {text!r}: must be a whole number")
+        return int(value)
+    return value
+
+
+@dataclass(frozen=True)
+class FormResult:
+    """Outcome of :func:`apply_form`: the case (None when invalid) and messages by field name."""
+
+    case: object
+    errors: dict  # field name -> message
+    general: tuple = ()  # messages that name no form field
+
+    @property
+    def valid(self) -> bool:
+        return self.case is not None and not self.errors and not self.general
+
+
+def apply_form(base_case, fields: list[FormField], values: dict) -> FormResult:
+    """Validate form ``values`` (by field name) as changes to ``base_case``."""
+    errors, changes = {}, {}
+    current = case_form_values(base_case, fields)
+    for f in fields:
+        if f.name not in values:
+            continue
+        try:
+            value = parse_value(f, values[f.name])
+        except ValueError as error:
+            errors[f.name] = str(error)
+            continue
+        if value == INLINE_TABLE or value == current.get(f.name):
+            continue
+        changes[f.key] = value
+    if errors:
+        return FormResult(None, errors)
+    if not changes:
+        return FormResult(base_case, {})
+    try:
+        case = base_case.with_values(changes)
+    except CaseError as error:
+        by_key = {f.key: f.name for f in fields}
+        general = []
+        for problem in error.problems:
+            name = by_key.get(problem.key)
+            if name is None:
+                general.append(problem.message)
+            else:
+                errors[name] = f"{errors[name]}; {problem.message}" if name in errors else problem.message
+        return FormResult(None, errors, tuple(general))
+    return FormResult(case, {})

@@ -1,0 +1,37 @@
+"""Entry point of the browser app: check off-screen rendering, build the app, serve the page."""
+
+from __future__ import annotations
+
+import sys
+
+from .offscreen import check_offscreen_rendering, configure_environment
+
+EXIT_NO_RENDERING = 2
+
+
+def serve(host: str = "127.0.0.1", port: int = 8080, open_browser: bool = False,
+          runs_dir: str | None = None, case_name: str | None = None) -> int:
+    """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here."""
+    configure_environment()
+    check = check_offscreen_rendering()
+    if not check.ok:
+        print(check.message, file=sys.stderr)
+        return EXIT_NO_RENDERING
+    import pyvista as pv
+    from trame.app import get_server
+
+    from .state import DEFAULT_CASE, RacetraceApp
+    from .ui import build_ui
+
+    pv.global_theme.multi_samples = 0
+    server = get_server("racetrace", client_type="vue3")
+    app = RacetraceApp(server, runs_dir=runs_dir)
+    app.start(case_name or DEFAULT_CASE)
+    build_ui(app)
+    print(f"racetrace: serving on http://{host}:{port}/  (runs folder: {app.store.root})", flush=True)
+    try:
+        server.start(host=host, port=port, open_browser=open_browser, show_connection_info=False,
+                     disable_logging=True)
+    finally:
+        app.shutdown()
+    return 0

@@ -1,0 +1,535 @@
+"""The app: one class holding the trame state and its handlers (testable without a browser).
+
+:class:`RacetraceApp` owns the case being edited, the result on show (a quasi-static preview or a
+saved run), the 3-D scene, the charts, the background runner and the runs folder. The page layout
+(:mod:`app.ui`) only binds widgets to the state keys and controller actions defined here.
+
+State keys the page binds to (all plain JSON values):
+``case_items``/``case_name`` (shipped cases), ``form`` (field descriptors), ``fv_<name>`` (field
+text), ``fe_<name>`` (field message, "" when valid), ``case_message``, ``run_disabled``, ``busy``,
+``status`` (ends in ``done``, ``cancelled`` or ``error: ...``), ``progress`` (0-100), ``eta``,
+``frame``/``frame_max``/``playing``/``speed``, ``result_label``, ``runs``/``run_id``, scene
+options (``show_<layer>``, ``exaggeration``, ``trace_ball``, ``camera``) and the chart figures
+``chart_<name>`` (plotly JSON).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import logging
+import secrets
+import time
+import urllib.parse
+from pathlib import Path
+
+import numpy as np
+
+from . import charts
+from .caseform import apply_form, case_form_values, form_fields
+from .frames import FrameSource, frame_source
+from .runner import DYNAMIC_JOB, QUASISTATIC_JOB, SolverRunner
+from .runs import RunStore, default_runs_dir, load_netcdf
+
+log = logging.getLogger("racetrace.app")
+
+DEFAULT_CASE = "spindle-combined-load"
+PLAY_FPS = 12.0  # animation ticks per second while playing
+CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
+POLL_S = 0.2  # runner polling period
+PREVIEW_DEBOUNCE_S = 0.15
+CHARTS = ("contact_angle", "raceway_map", "load_azimuth", "ellipse", "cage_speed", "comparison")
+
+
+def _fig_json(fig) -> dict:
+    return json.loads(fig.to_json())
+
+
+def dynamic_model_available() -> bool:
+    """Whether ``solver.simulate`` can be imported (the dynamic model has landed)."""
+    try:
+        import solver
+
+        solver.simulate  # noqa: B018 - lazy import
+    except (ImportError, AttributeError):
+        return False
+    return True
+
+
+class RacetraceApp:
+    """State and handlers of the racetrace page.
+
+    ``server``: a trame server (``trame.app.get_server``); ``runs_dir``: runs folder (default
+    :func:`app.runs.default_runs_dir`); ``render``: build the pyvista scene (False in pure state
+    tests); ``window_size``: 3-D view size in pixels.
+    """
+
+    def __init__(self, server, runs_dir: str | Path | None = None, render: bool = True,
+                 window_size=(900, 640)):
+        self.server = server
+        self.state, self.ctrl = server.state, server.controller
+        self.store = RunStore(runs_dir if runs_dir is not None else default_runs_dir())
+        self.runner = SolverRunner()
+        self.fields = form_fields()
+        self._field_by_name = {f.name: f for f in self.fields}
+        self.render_enabled = render
+        self.window_size = window_size
+        self.plotter = None
+        self.scene = None
+        self.view = None  # set by the UI: an object with render() that pushes a frame
+        self.base_case = None  # the case the form edits (from the case list, a file or a run)
+        self.case = None  # the valid edited case, or None while the form is invalid
+        self.dataset = None  # result on show
+        self.quasistatic = None  # latest quasi-static result (for comparison)
+        self.source: FrameSource | None = None
+        self._scene_key = None
+        self._preview_generation = 0
+        self._last_chart_update = 0.0
+        self._play_task = None
+        self._poll_task = None
+        self._run_info = {}
+        self._cancel_requested = False
+        self.clients = 0
+        self._init_state()
+        self._bind()
+
+    # ---- set-up ---------------------------------------------------------------------------------
+    def _init_state(self) -> None:
+        s = self.state
+        from solver import catalogue
+
+        entries = list(catalogue())
+        s.case_items = [{"title": f"{e.title} ({e.kind})", "value": e.name} for e in entries]
+        self._catalogue = {e.name: e for e in entries}
+        s.case_name = None
+        s.form = [
+            {"name": f.name, "key": f.key, "label": f.label, "kind": f.kind, "unit": f.unit,
+             "help": f.help, "choices": list(f.choices), "section": f.section}
+            for f in self.fields
+        ]
+        for f in self.fields:
+            s[f"fv_{f.name}"] = ""
+            s[f"fe_{f.name}"] = ""
+        s.case_message = ""
+        s.case_valid = False
+        s.case_toml_href = ""
+        s.busy = False
+        s.run_disabled = True
+        s.status = "starting"
+        s.progress = 0
+        s.eta = ""
+        s.frame = 0
+        s.frame_max = 0
+        s.frame_time = ""
+        s.playing = False
+        s.speed = 1
+        s.result_label = ""
+        s.runs = []
+        s.run_id = None
+        for layer in ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces"):
+            s[f"show_{layer}"] = True
+        s.exaggeration = 1.0
+        s.trace_ball = -1
+        s.ball_items = [{"title": "all balls", "value": -1}]
+        s.camera = "isometric"
+        s.chart_help = dict(charts.HELP)
+        for name in CHARTS:
+            s[f"chart_{name}"] = {"data": [], "layout": {}}
+        s.uploaded_case = None
+        self._refresh_runs()
+
+    def _bind(self) -> None:
+        s, c = self.state, self.ctrl
+        s.change("case_name")(self._on_case_name)
+        s.change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
+        s.change("frame")(self._on_frame)
+        s.change("playing")(self._on_playing)
+        s.change(*[f"show_{n}" for n in ("inner_ring", "outer_ring", "balls", "cage", "ellipses",
+                                          "traces")])(self._on_layers)
+        s.change("exaggeration", "trace_ball")(self._on_trace_options)
+        s.change("camera")(self._on_camera)
+        s.change("run_id")(self._on_run_id)
+        s.change("uploaded_case")(self._on_upload)
+        c.run = self.run
+        c.cancel = self.cancel
+        c.step = self.step
+        c.refresh_runs = self._refresh_runs
+        c.on_client_connected.add(self._client_connected)
+        c.on_client_exited.add(self._client_exited)
+
+    def start(self, case_name: str = DEFAULT_CASE, play: bool = True) -> None:
+        """Open ``case_name`` solved (quasi-static) before the first page is served."""
+        if case_name not in self._catalogue:
+            case_name = next(iter(self._catalogue))
+        self.state.case_name = case_name
+        self._on_case_name(case_name, synchronous=True)
+        self.state.playing = play
+
+    # ---- case and form --------------------------------------------------------------------------
+    def _on_case_name(self, case_name=None, synchronous=False, **_):
+        entry = self._catalogue.get(case_name)
+        if entry is None:
+            return
+        self.set_base_case(entry.load(), synchronous=synchronous)
+
+    def set_base_case(self, case, synchronous: bool = False) -> None:
+        """Put ``case`` in the form and preview it."""
+        self.base_case = case
+        values = case_form_values(case, self.fields)
+        with self.state:
+            for name, value in values.items():
+                self.state[f"fv_{name}"] = "" if value is None else str(value)
+                self.state[f"fe_{name}"] = ""
+        self.validate()
+        if synchronous:
+            self.preview_now()
+        else:
+            self.schedule_preview()
+
+    def _on_upload(self, uploaded_case=None, **_):
+        if not uploaded_case:
+            return
+        from solver import CaseError, load_case
+
+        item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
+        content = item.get("content", b"")
+        text = content.decode("utf-8", "replace") if isinstance(content, bytes) else str(content)
+        try:
+            case = load_case(text)
+        except CaseError as error:
+            self.state.case_message = f"{item.get('name', 'file')}: {error}"
+            return
+        self.set_base_case(case)
+
+    def form_values(self) -> dict:
+        return {f.name: self.state[f"fv_{f.name}"] for f in self.fields}
+
+    def validate(self):
+        """Check the form; set field messages, ``case_valid`` and ``run_disabled``. Returns result."""
+        if self.base_case is None:
+            return None
+        result = apply_form(self.base_case, self.fields, self.form_values())
+        with self.state:
+            for f in self.fields:
+                self.state[f"fe_{f.name}"] = result.errors.get(f.name, "")
+            self.state.case_message = "\n".join(result.general)
+            self.state.case_valid = result.valid
+            self.state.run_disabled = not result.valid or self.state.busy
+        self.case = result.case if result.valid else None
+        if self.case is not None:
+            text = self.case.to_toml()
+            self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(text)
+        return result
+
+    def _on_field(self, **_):
+        if self.validate() is not None and self.case is not None:
+            self.schedule_preview()
+
+    # ---- quasi-static preview -------------------------------------------------------------------
+    def schedule_preview(self) -> None:
+        """Recompute the quasi-static preview soon (debounced) without blocking the page."""
+        self._preview_generation += 1
+        generation = self._preview_generation
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            self.preview_now()
+            return
+        loop.create_task(self._preview_async(generation))
+
+    async def _preview_async(self, generation: int) -> None:
+        await asyncio.sleep(PREVIEW_DEBOUNCE_S)
+        if generation != self._preview_generation or self.case is None:
+            return
+        case = self.case
+        try:
+            ds = await asyncio.to_thread(self._solve_quasistatic, case)
+        except Exception as error:  # shown in words in the status line
+            with self.state:
+                self.state.status = f"error: {error}"
+            return
+        if generation == self._preview_generation:
+            with self.state:
+                self.show_result(ds, "quasi-static preview")
+                self.state.status = "preview done"
+
+    def preview_now(self) -> None:
+        """Solve the quasi-static model for the current case now and show it."""
+        if self.case is None:
+            return
+        try:
+            ds = self._solve_quasistatic(self.case)
+        except Exception as error:
+            self.state.status = f"error: {error}"
+            return
+        self.show_result(ds, "quasi-static preview")
+        self.state.status = "preview done"
+
+    @staticmethod
+    def _solve_quasistatic(case):
+        import solver
+
+        return solver.solve_quasistatic(case)
+
+    # ---- showing a result -----------------------------------------------------------------------
+    def show_result(self, ds, label: str) -> None:
+        """Show a result Dataset: frame source, scene, charts and the time controls."""
+        from solver import load_case
+        from solver.geometry import BearingGeometry
+
+        source = frame_source(ds)
+        self.dataset = ds
+        if "time" not in ds.dims:
+            self.quasistatic = ds
+        self.source = source
+        case = load_case(ds.attrs["case"]) if ds.attrs.get("case") else self.case
+        if self.render_enabled:
+            self._ensure_scene(BearingGeometry.from_case(case), case)
+            self.scene.show_source(source, 0)
+        s = self.state
+        s.frame_max = source.n_frames - 1
+        s.result_label = label
+        s.ball_items = [{"title": "all balls", "value": -1}] + [
+            {"title": f"ball {j}", "value": j} for j in range(source.ball_count)]
+        if s.frame > s.frame_max:
+            s.frame = 0
+        self._apply_frame(int(s.frame), charts_too=True)
+
+    def _ensure_scene(self, geometry, case) -> None:
+        key = (geometry.ball_count, geometry.ball_diameter, geometry.pitch_diameter,
+               geometry.inner_conformity, geometry.outer_conformity, geometry.free_contact_angle,
+               geometry.inner_shoulder_diameter, geometry.outer_shoulder_diameter,
+               geometry.ball_material.name)
+        if self.scene is not None and key == self._scene_key:
+            return
+        import pyvista as pv
+
+        from .scene import BearingScene, SceneOptions
+
+        if self.plotter is None:
+            pv.global_theme.multi_samples = 0
+            self.plotter = pv.Plotter(off_screen=True, window_size=self.window_size)
+        else:
+            self.plotter.clear_actors()
+        camera = self.plotter.camera_position if self.scene is not None else None
+        options = SceneOptions(
+            exaggeration=float(self.state.exaggeration),
+            trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
+        )
+        dark = geometry.ball_material.density < 5000.0  # ceramic balls drawn dark
+        self.scene = BearingScene(self.plotter, geometry, options, dark_balls=dark)
+        for layer in options.layers:
+            self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
+        if camera is not None:
+            self.plotter.camera_position = camera
+        self._scene_key = key
+        if self.view is not None and hasattr(self.view, "reset_camera") and camera is None:
+            self.view.reset_camera()
+
+    def _push_view(self) -> None:
+        if self.view is not None:
+            self.view.render()
+
+    def _apply_frame(self, index: int, charts_too: bool) -> None:
+        if self.source is None:
+            return
+        index = int(min(max(index, 0), self.source.n_frames - 1))
+        if self.scene is not None:
+            self.scene.set_frame(index)
+            self._push_view()
+        self.state.frame_time = f"t = {self.source.times[index] * 1e3:8.3f} ms"
+        if charts_too:
+            self.update_charts(index)
+
+    def update_charts(self, index: int | None = None) -> None:
+        """Recompute the chart figures for frame ``index`` (default: the current frame)."""
+        if self.source is None:
+            return
+        i = int(self.state.frame) if index is None else index
+        src, s = self.source, self.state
+        ball = int(s.trace_ball)
+        balls = (ball,) if ball >= 0 else (0,)
+        s.chart_contact_angle = _fig_json(charts.contact_angle_figure(src, balls, current=i))
+        s.chart_raceway_map = _fig_json(charts.raceway_map_figure(src, stop=i + 1))
+        s.chart_load_azimuth = _fig_json(charts.load_azimuth_figure(src, i))
+        s.chart_ellipse = _fig_json(charts.ellipse_figure(src, i))
+        s.chart_cage_speed = _fig_json(charts.cage_speed_figure(src, self.dataset, current=i))
+        if self.quasistatic is not None:
+            dyn = self.dataset if "time" in self.dataset.dims else None
+            s.chart_comparison = _fig_json(charts.comparison_figure(self.quasistatic, dyn))
+        self._last_chart_update = time.monotonic()
+
+    # ---- time -----------------------------------------------------------------------------------
+    def _on_frame(self, frame=0, **_):
+        follow = (not self.state.playing
+                  or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S)
+        self._apply_frame(int(frame), charts_too=follow)
+
+    def step(self, delta: int = 1) -> None:
+        """Move ``delta`` frames (wrapping at the ends)."""
+        if self.source is None:
+            return
+        self.state.frame = int((int(self.state.frame) + int(delta)) % self.source.n_frames)
+
+    def _on_playing(self, playing=False, **_):
+        if playing and (self._play_task is None or self._play_task.done()):
+            try:
+                loop = asyncio.get_running_loop()
+            except RuntimeError:
+                return  # started when the server loop runs (see _client_connected)
+            self._play_task = loop.create_task(self._play_loop())
+        if not playing:
+            self.update_charts()
+
+    async def _play_loop(self) -> None:
+        period = 1.0 / PLAY_FPS
+        while self.state.playing and self.clients > 0 and self.source is not None:
+            t0 = time.monotonic()
+            with self.state:
+                step = max(1, int(self.state.speed))
+                self.state.frame = (int(self.state.frame) + step) % self.source.n_frames
+            await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
+
+    def _client_connected(self, *_, **__):
+        self.clients += 1
+        self._on_playing(self.state.playing)
+
+    def _client_exited(self, *_, **__):
+        self.clients = max(0, self.clients - 1)
+
+    # ---- scene options --------------------------------------------------------------------------
+    def _on_layers(self, **_):
+        if self.scene is None:
+            return
+        for layer in self.scene.options.layers:
+            self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
+        self._push_view()
+
+    def _on_trace_options(self, exaggeration=1.0, trace_ball=-1, **_):
+        if self.scene is not None:
+            self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
+            self.scene.set_exaggeration(float(exaggeration))
+            self._push_view()
+        self.update_charts()
+
+    def _on_camera(self, camera="isometric", **_):
+        if self.scene is not None:
+            self.scene.set_camera(camera)
+            self._push_view()
+
+    # ---- runs -----------------------------------------------------------------------------------
+    def _refresh_runs(self) -> None:
+        self.state.runs = [{"title": r.label, "value": r.run_id} for r in self.store.list()]
+
+    def _on_run_id(self, run_id=None, **_):
+        if not run_id:
+            return
+        try:
+            ds, case_text = self.store.load(run_id)
+        except (OSError, ValueError) as error:
+            self.state.status = f"error: {error}"
+            return
+        from solver import load_case
+
+        self.base_case = load_case(case_text)
+        values = case_form_values(self.base_case, self.fields)
+        for name, value in values.items():
+            self.state[f"fv_{name}"] = "" if value is None else str(value)
+        self.validate()
+        label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
+        self.show_result(ds, label)
+
+    def run(self) -> None:
+        """Start the dynamic model (or the quasi-static one if the dynamic model is absent)."""
+        if self.runner.busy or self.validate() is None or self.case is None:
+            return
+        target = DYNAMIC_JOB if dynamic_model_available() else QUASISTATIC_JOB
+        self.store.root.mkdir(parents=True, exist_ok=True)
+        out = self.store.root / f".job-{secrets.token_hex(4)}.nc"
+        case_text = self.case.to_toml()
+        title = str(getattr(self.case, "title", "") or self.state.case_name or "run")
+        self._run_info = {"case_text": case_text, "title": title, "out": out, "target": target}
+        self._cancel_requested = False
+        self.runner.start(case_text, out, target=target)
+        with self.state:
+            self.state.busy = True
+            self.state.run_disabled = True
+            self.state.progress = 0
+            self.state.eta = ""
+            model = "dynamic" if target == DYNAMIC_JOB else "quasi-static (dynamic model not available)"
+            self.state.status = f"running {model}"
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            return  # tests drive poll_runner() themselves
+        self._poll_task = loop.create_task(self._poll_loop())
+
+    def cancel(self) -> None:
+        """Stop the run; the part computed so far is kept and saved."""
+        if not self.runner.busy:
+            return
+        self._cancel_requested = True
+        self.state.status = "cancelling"
+        self.runner.cancel()
+        if self._run_info.get("target") == QUASISTATIC_JOB:
+            self.runner.shutdown()  # not cancellable from inside: stop the process
+
+    async def _poll_loop(self) -> None:
+        while self.runner.busy or self.state.busy:
+            with self.state:
+                finished = self.poll_runner()
+            if finished:
+                return
+            await asyncio.sleep(POLL_S)
+
+    def poll_runner(self) -> bool:
+        """Apply runner events to the state; True once the run has finished."""
+        events = self.runner.poll()
+        if not events and not self.runner.busy and self.state.busy:
+            # shut down without a last event (cancelled quasi-static job)
+            self._end_run("cancelled" if self._cancel_requested else "error: the run stopped")
+            return True
+        for event in events:
+            if event.kind == "progress":
+                self.state.progress = round(100 * event.fraction, 1)
+                if np.isfinite(event.eta_s):
+                    self.state.eta = f"about {event.eta_s:.0f} s left"
+            elif event.kind == "done":
+                self._finish_run(event)
+                return True
+            elif event.kind == "error":
+                status = "cancelled" if self._cancel_requested else f"error: {event.text}"
+                self._end_run(status)
+                return True
+        return False
+
+    def _finish_run(self, event) -> None:
+        out = Path(event.path)
+        try:
+            ds = load_netcdf(out)
+            info = self.store.save(ds, self._run_info["case_text"], self._run_info["title"])
+        except Exception as error:
+            self._end_run(f"error: the result could not be saved ({error})")
+            return
+        finally:
+            out.unlink(missing_ok=True)
+        self._refresh_runs()
+        self.show_result(ds, info.label)
+        self._end_run("cancelled" if info.status == "cancelled" else "done")
+
+    def _end_run(self, status: str) -> None:
+        s = self.state
+        s.busy = False
+        s.run_disabled = not s.case_valid
+        s.eta = ""
+        if status == "done":
+            s.progress = 100
+        s.status = status
+        out = self._run_info.get("out")
+        if out is not None:
+            Path(out).unlink(missing_ok=True)
+
+    def shutdown(self) -> None:
+        """Stop the background run and the animation."""
+        self.state.playing = False
+        self.runner.shutdown()

@@ -1,0 +1,174 @@
+"""End-to-end tests of `racetrace serve` in headless Chromium (Playwright, Debian's chromium).
+
+The server runs in a subprocess on a free port with its own runs folder. Screenshots are saved in
+``test-artifacts/browser/`` (gitignored) for inspection.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+pytestmark = [
+    pytest.mark.browser,
+    pytest.mark.skipif(not Path(CHROMIUM).exists(),
+                       reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)"),
+]
+pytest.importorskip("solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed")
+pytest.importorskip("solver.models.quasistatic", reason="the quasi-static model has not landed")
+playwright_api = pytest.importorskip("playwright.sync_api")
+
+LAUNCH_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+               "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    runs = tmp_path_factory.mktemp("runs")
+    port = _free_port()
+    log = open(tmp_path_factory.mktemp("log") / "serve.log", "w+")
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
+        stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+    url = f"http://127.0.0.1:{port}/"
+    deadline = time.monotonic() + 120
+    while True:
+        try:
+            urllib.request.urlopen(url, timeout=2)
+            break
+        except OSError:
+            if proc.poll() is not None or time.monotonic() > deadline:
+                log.seek(0)
+                proc.kill()
+                pytest.fail(f"racetrace serve did not start:\n{log.read()[-3000:]}")
+            time.sleep(0.5)
+    yield {"url": url, "runs": runs, "proc": proc}
+    proc.terminate()
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+    log.close()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with playwright_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def page(browser, server):
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    context = browser.new_context(viewport={"width": 1500, "height": 1000})
+    pg = context.new_page()
+    t0 = time.monotonic()
+    pg.goto(server["url"])
+    pg.wait_for_selector("#view-3d img", timeout=60_000)
+    pg.first_frame_s = time.monotonic() - t0
+    yield pg
+    context.close()
+
+
+def _status(pg) -> str:
+    return pg.locator("#status").inner_text().strip()
+
+
+def _wait_status(pg, endings, timeout_s):
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        text = _status(pg)
+        if text.endswith(endings) or text.startswith("error:"):
+            return text
+        time.sleep(0.25)
+    raise AssertionError(f"status still {_status(pg)!r} after {timeout_s} s")
+
+
+def _set_field(pg, name: str, value: str) -> None:
+    box = pg.locator(f"#field-{name} input")
+    box.fill(value)
+    box.press("Tab")
+
+
+def test_page_loads_and_the_view_animates(page):
+    assert page.first_frame_s < 30
+    assert page.locator("#status").inner_text().strip().endswith("done")
+    for element in ("run-button", "cancel-button", "progress", "play-button", "time-slider",
+                    "case-select", "chart-contact-angle", "chart-raceway-map", "field-ball_count",
+                    "field-axial_load_N"):
+        assert page.locator(f"#{element}").count() == 1, element
+    # plotly drew traces into both charts
+    assert page.locator("#chart-contact-angle .scatterlayer .trace").count() >= 2
+    assert page.locator("#chart-raceway-map .trace").count() >= 2
+    view = page.locator("#view-3d")
+    shots = []
+    for k in range(3):
+        time.sleep(0.7)
+        shots.append(view.screenshot(path=str(ARTIFACTS / f"view-{k}.png")))
+    assert shots[0] != shots[1] and shots[1] != shots[2], "the 3-D view did not change while playing"
+    page.screenshot(path=str(ARTIFACTS / "page.png"))
+    # pausing stops the frames
+    page.locator("#play-button").click()
+    time.sleep(0.8)
+    a = view.screenshot()
+    time.sleep(0.8)
+    assert view.screenshot() == a
+
+
+def test_invalid_field_blocks_run_with_its_message(page):
+    run = page.locator("#run-button")
+    assert run.is_enabled()
+    _set_field(page, "inner_groove_radius_ratio", "0.49")
+    field = page.locator("#field-inner_groove_radius_ratio")
+    field.get_by_text("0.5", exact=False).first.wait_for(timeout=10_000)
+    assert "0.49" in field.inner_text()
+    assert run.is_disabled()
+    page.screenshot(path=str(ARTIFACTS / "invalid-field.png"))
+    _set_field(page, "inner_groove_radius_ratio", "0.54")
+    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
+
+
+def test_run_reaches_done_and_reload_keeps_the_run(page, server):
+    _set_field(page, "shaft_revolutions", "0.5")
+    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
+    page.locator("#run-button").click()
+    status = _wait_status(page, ("done",), 240)
+    page.screenshot(path=str(ARTIFACTS / "run-done.png"))
+    assert status == "done"
+    saved = [p for p in Path(server["runs"]).iterdir() if not p.name.startswith(".")]
+    assert len(saved) >= 1
+    page.reload()
+    page.wait_for_selector("#view-3d img", timeout=60_000)
+    page.locator("#runs-select").click()
+    items = page.locator(".v-overlay--active .v-list-item")
+    items.first.wait_for(timeout=10_000)
+    assert items.count() == len(saved)
+
+
+@pytest.mark.slow
+def test_cancel_stops_a_long_run(page):
+    _set_field(page, "shaft_revolutions", "200")
+    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
+    page.locator("#run-button").click()
+    page.wait_for_function("!document.querySelector('#cancel-button').disabled", timeout=30_000)
+    time.sleep(3)
+    page.locator("#cancel-button").click()
+    status = _wait_status(page, ("cancelled", "done"), 120)
+    assert status == "cancelled"

@@ -1,0 +1,151 @@
+"""App state and handlers without a browser: form validation, preview, time, runs."""
+
+from __future__ import annotations
+
+import time
+import uuid
+
+import pytest
+
+pytest.importorskip("solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed")
+pytest.importorskip("solver.models.quasistatic", reason="the quasi-static model has not landed")
+
+import solver  # noqa: E402
+from app import state as state_module  # noqa: E402
+from app.state import DEFAULT_CASE, RacetraceApp  # noqa: E402
+
+
+def _server():
+    from trame.app import get_server
+
+    server = get_server(f"racetrace-test-{uuid.uuid4().hex}", client_type="vue3")
+    server.state.ready()  # change callbacks fire on flush, as in a running server
+    return server
+
+
+class CountingView:
+    def __init__(self):
+        self.renders = 0
+
+    def render(self):
+        self.renders += 1
+
+
+@pytest.fixture
+def app(tmp_path):
+    a = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
+    a.start(DEFAULT_CASE, play=False)
+    yield a
+    a.shutdown()
+
+
+def _set(app, **values):
+    with app.state:
+        for k, v in values.items():
+            app.state[k] = v
+
+
+def test_opens_on_the_default_case_solved(app):
+    s = app.state
+    expected = {e.name: e for e in solver.catalogue()}[DEFAULT_CASE].load()
+    assert s.case_name == DEFAULT_CASE
+    assert s.fv_ball_count == str(expected.bearing.ball_count)
+    assert s.status == "preview done"
+    assert s.case_valid and not s.run_disabled
+    assert s.frame_max > 10
+    assert app.dataset.attrs["model"] == "quasistatic"
+    assert len(s.chart_contact_angle["data"]) >= 2
+    assert len(s.chart_raceway_map["data"]) == 2
+    assert len(s.chart_raceway_map["data"][0]["x"]) > 0
+    # every case-file key has a form field named after its last segment
+    assert {f["name"] for f in s.form} >= {"ball_count", "axial_load_N", "inner_groove_radius_ratio"}
+
+
+def test_invalid_field_shows_message_and_disables_run(app):
+    s = app.state
+    _set(app, fv_inner_groove_radius_ratio="0.49")
+    assert "0.49" in s.fe_inner_groove_radius_ratio
+    assert "0.5" in s.fe_inner_groove_radius_ratio
+    assert s.run_disabled and not s.case_valid
+    assert s.fe_ball_count == ""
+    _set(app, fv_axial_load_N="lots")
+    assert "must be a number" in s.fe_axial_load_N
+    _set(app, fv_inner_groove_radius_ratio="0.56", fv_axial_load_N="800")
+    assert s.fe_inner_groove_radius_ratio == "" and s.fe_axial_load_N == ""
+    assert s.case_valid and not s.run_disabled
+    assert app.case.operating.axial_load_N == 800.0
+    assert app.case.bearing.inner_groove_radius_ratio == 0.56
+
+
+def test_preview_follows_a_valid_edit(app):
+    before = float(app.dataset["contact_angle"].sel(race="inner").mean())
+    load = float(app.state.fv_axial_load_N or 0)
+    _set(app, fv_axial_load_N=str(3 * load + 500))
+    app.preview_now()  # the server does this after a short debounce
+    after = float(app.dataset["contact_angle"].sel(race="inner").mean())
+    assert after > before  # more thrust, larger contact angle
+
+
+def test_time_controls(app):
+    s = app.state
+    app.step(1)
+    assert s.frame == 1
+    app.step(-2)
+    assert s.frame == s.frame_max
+    _set(app, frame=5)
+    assert s.frame_time.strip().startswith("t =")
+    t5 = app.source.times[5] * 1e3
+    assert f"{t5:8.3f}" in s.frame_time
+
+
+def test_scene_follows_frames_and_options(tmp_path):
+    pytest.importorskip("pyvista")
+    a = RacetraceApp(_server(), runs_dir=tmp_path, render=True, window_size=(200, 150))
+    view = CountingView()
+    a.view = view
+    a.start(DEFAULT_CASE, play=False)
+    try:
+        _set(a, frame=7)
+        assert a.scene.frame_index == 7
+        assert view.renders >= 1
+        _set(a, show_cage=False)
+        assert not a.scene._actors["cage"][0].visibility
+        _set(a, exaggeration=8)
+        assert a.scene.options.exaggeration == 8
+    finally:
+        a.shutdown()
+
+
+def _wait_run(app, timeout=180.0):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if app.poll_runner():
+            return
+        time.sleep(0.1)
+    raise AssertionError(f"run did not finish in {timeout} s; status {app.state.status!r}")
+
+
+def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
+    monkeypatch.setattr(state_module, "dynamic_model_available", lambda: False)  # fast QS run
+    app.run()
+    assert app.state.busy and app.state.run_disabled
+    assert app.state.status.startswith("running")
+    _wait_run(app)
+    assert app.state.status == "done", app.state.status
+    assert not app.state.busy and not app.state.run_disabled
+    assert len(app.state.runs) == 1
+    # a new app on the same runs folder (server restart or reload) lists the same run
+    again = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
+    assert again.state.runs == app.state.runs
+    again.start(DEFAULT_CASE, play=False)
+    _set(again, run_id=app.state.runs[0]["value"])
+    assert again.state.result_label == app.state.runs[0]["title"]
+    assert again.dataset.attrs["case"] == app.dataset.attrs["case"]
+    again.shutdown()
+
+
+def test_run_refused_while_invalid(app):
+    _set(app, fv_ball_count="0")
+    assert app.state.run_disabled
+    app.run()
+    assert not app.runner.busy and not app.state.busy
