@@ -356,7 +356,8 @@ def shoulder_angle(geometry, race: str) -> float:
     The groove (radius r, curvature centre at radius ρ^c in the ring frame) reaches radius
     ρ^c - r cos θ (inner) or ρ^c + r cos θ (outer) at groove angle θ. The shoulder diameter
     d_sh gives inner: cos θ_sh = (ρ_i^c - d_sh/2)/r_i; outer: cos θ_sh = (d_sh/2 - ρ_o^c)/r_o.
-    Raises ValueError when d_sh lies outside :func:`shoulder_diameter_limits` (not on the groove).
+    A shoulder diameter outside :func:`shoulder_diameter_limits` is clamped to the groove (θ_sh = 0
+    below the groove bottom, π beyond the far side); callers warn the user about such data.
     """
     _check_race(race)
     if race == "inner":
@@ -371,17 +372,9 @@ def shoulder_angle(geometry, race: str) -> float:
         ) / geometry.outer_groove_radius
     if d_sh is None or math.isnan(d_sh):
         return math.nan
-    low, high = shoulder_diameter_limits(geometry, race)
-    tol = 1e-12 * high
-    if not (low - tol <= d_sh <= high + tol):
-        ends = "groove bottom, curvature-centre circle"
-        if race == "outer":
-            ends = "curvature-centre circle, groove bottom"
-        raise ValueError(
-            f"{race}_shoulder_diameter = {d_sh * 1e3:.4g} mm: the {race} shoulder must lie on the "
-            f"groove arc, between {low * 1e3:.4g} mm and {high * 1e3:.4g} mm ({ends})"
-        )
-    return math.acos(min(1.0, max(0.0, cos_sh)))
+    # A land that does not rise above the groove bottom (cos > 1) offers no shoulder: θ_sh = 0,
+    # so every contact reports a negative (truncated) margin. Case checks warn about it.
+    return math.acos(min(1.0, max(-1.0, cos_sh)))
 
 
 def truncation_margin(geometry, contact_angle, semi_major, race: str):
@@ -391,7 +384,8 @@ def truncation_margin(geometry, contact_angle, semi_major, race: str):
     α = ``contact_angle`` [rad], measured from the groove bottom towards the loaded shoulder);
     margin = θ_sh - (α + a/r) in degrees (see :func:`shoulder_angle`). Negative means the ellipse is
     truncated by the shoulder (Hertz no longer valid). NaN when the shoulder diameter is not
-    given; ValueError when it is not on the groove (see :func:`shoulder_diameter_limits`). Only
+    given; a shoulder that does not rise above the groove gives θ_sh = 0 (see
+    :func:`shoulder_angle`). Only
     the shoulder on the loaded side (the one the case gives) is checked: for α < 0 the contact has
     crossed the groove bottom towards the other land, which this margin does not cover.
     """
