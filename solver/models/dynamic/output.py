@@ -10,6 +10,7 @@ import xarray as xr
 
 import solver
 from solver.physics.hertz import truncation_margin
+from solver.results.variables import variable
 
 from . import layout as L
 from .inputs import DEFAULT_OIL_NOTE
@@ -30,43 +31,6 @@ from .observe import (
     O_SPIN_TO_ROLL,
     observe,
 )
-
-# name -> (units, long_name). Used when the project registry (solver.results.variables) lacks a name.
-_META = {
-    "contact_load": ("N", "normal contact load"),
-    "contact_angle": ("degree", "contact angle in the ring's meridian plane"),
-    "contact_deflection": ("m", "elastic approach of the contact"),
-    "ellipse_semi_major": ("m", "Hertz semi-axis across the groove"),
-    "ellipse_semi_minor": ("m", "Hertz semi-axis in the rolling direction"),
-    "max_pressure": ("Pa", "peak Hertz pressure"),
-    "raceway_azimuth": ("degree", "azimuth of the contact centre in the ring's own frame"),
-    "raceway_contact_point": ("m", "contact centre in the ring's own frame"),
-    "ball_latitude": ("degree", "latitude of the contact on the ball (ball-fixed frame)"),
-    "ball_longitude": ("degree", "longitude of the contact on the ball (ball-fixed frame)"),
-    "spin_to_roll": ("1", "spin-to-roll ratio"),
-    "sliding_speed": ("m/s", "sliding speed at the contact centre"),
-    "film_thickness": ("m", "central EHL film thickness (Hamrock-Dowson)"),
-    "truncation_margin": ("degree", "angular margin between ellipse edge and shoulder"),
-    "ball_azimuth": ("degree", "ball azimuth psi in the inertial frame"),
-    "orbital_speed": ("rad/s", "orbital speed of the ball centre"),
-    "ball_center": ("m", "ball centre, inertial frame"),
-    "ball_angular_velocity": ("rad/s", "ball angular velocity, inertial components"),
-    "attitude_angle": ("degree", "attitude angle beta of the ball spin axis"),
-    "ball_orientation": ("1", "unit quaternion ball-fixed to inertial"),
-    "cage_pocket_force": ("N", "normal force between ball and cage pocket"),
-    "inner_ring_offset": ("m", "inner ring centre relative to the just-touching position"),
-    "inner_ring_tilt": ("degree", "inner ring tilt"),
-    "cage_speed": ("rad/s", "cage angular speed"),
-    "cage_center": ("m", "cage centre, inertial frame"),
-    "trajectory_band_width": ("degree", "contact-angle range of the race's contact track"),
-    "trajectory_band_width_arc": ("m", "groove radius times the contact-angle range"),
-}
-
-
-def _attrs(name: str) -> dict:
-    units, long_name = _META[name]
-    return {"units": units, "long_name": long_name}
-
 
 def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> np.ndarray:
     """Margin [degree] between the ellipse edge and the loaded shoulder, per race (B's
@@ -154,10 +118,15 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     }
     variables = {}
     for name, (dims, values) in data.items():
-        attrs = _attrs(name)
+        spec = variable(name)  # the project registry (solver.results.variables): dims, units, names
+        target = spec.dims_for("dynamic")
+        if set(target) != set(dims):
+            raise RuntimeError(f"dynamic output {name}: dims {dims} do not match the registry {target}")
+        attrs = spec.attrs()
         if name.startswith("trajectory_band_width"):
             attrs["analysed_window"] = window_text
-        variables[name] = (dims, np.asarray(values, dtype=np.float64), attrs)
+        values = np.asarray(values, dtype=np.float64).transpose([dims.index(d) for d in target])
+        variables[name] = (target, np.ascontiguousarray(values), attrs)
     coords = {
         "time": ("time", np.asarray(times, dtype=np.float64), {"units": "s", "long_name": "time"}),
         "ball": np.arange(z),
