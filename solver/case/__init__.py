@@ -1,0 +1,16 @@
+"""Case files (TOML): schema, validation, the :class:`Case` dataclasses and writing back to TOML.
+
+Public: :func:`load_case`, :class:`Case`, :data:`FIELDS` (the schema table the app builds its form
+from), :data:`MATERIAL_FIELDS`, :class:`Field`. The format is documented in docs/case-format.md.
+"""
+
+from solver.errors import CaseError, Problem
+
+from .loading import load_case
+from .model import Bearing, Cage, Case, Lubricant, Operating, Simulation, Traction
+from .schema import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, Field
+
+__all__ = [
+    "FIELDS", "MATERIAL_FIELDS", "OPTIONAL", "REQUIRED", "Bearing", "Cage", "Case", "CaseError",
+    "Estimated", "Field", "Lubricant", "Operating", "Problem", "Simulation", "Traction", "load_case",
+]

@@ -1,0 +1,183 @@
+"""The validated case: frozen dataclasses, one per section, attributes named exactly as the case keys.
+
+The section classes (:class:`Bearing`, :class:`Cage`, :class:`Lubricant` with its :class:`Traction`,
+:class:`Operating`, :class:`Simulation`) are generated from :data:`solver.case.schema.FIELDS`, so a new
+key in the table is a new attribute here. Values are in the units of the key names (mm, deg, rpm, N,
+g); optional keys that are absent are ``None``. Build cases with :func:`solver.case.load_case`,
+:meth:`Case.from_dict` or :meth:`Case.with_values`: these validate; the constructors do not.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field, make_dataclass
+
+from solver.materials import BUILTIN_MATERIALS, Material
+
+from .schema import FIELDS, MATERIAL_FIELDS
+
+_PY_TYPES = {"float": "float", "int": "int", "str": "str", "choice": "str", "bool": "bool",
+             "material": "str | dict"}
+
+
+def _make_section(class_name: str, prefix: tuple[str, ...]):
+    """Frozen dataclass with one attribute per FIELDS key under ``prefix`` (sub-tables nested)."""
+    attributes: list[tuple[str, str]] = []
+    seen_subtables: set[str] = set()
+    lines = []
+    for f in FIELDS:
+        path = f.path
+        if path[: len(prefix)] != prefix or len(path) <= len(prefix):
+            continue
+        name = path[len(prefix)]
+        if len(path) == len(prefix) + 1:
+            optional = " | None" if f.default is not None and not f.required else ""
+            attributes.append((name, _PY_TYPES[f.type] + optional))
+            unit = f" [{f.unit}]" if f.unit else ""
+            lines.append(f"    {name}{unit}: {f.help}")
+        elif name not in seen_subtables:
+            seen_subtables.add(name)
+            attributes.append((name, name.capitalize()))
+            lines.append(f"    {name}: inline table ({name.capitalize()})")
+    doc = f"[{'.'.join(prefix)}] of a case file (units as in the key names).\n\n" + "\n".join(lines)
+    cls = make_dataclass(class_name, attributes, frozen=True, namespace={"__doc__": doc})
+    cls.__module__ = __name__  # so that pickle finds the class (app worker processes)
+    return cls
+
+
+Traction = _make_section("Traction", ("lubricant", "traction"))
+Bearing = _make_section("Bearing", ("bearing",))
+Cage = _make_section("Cage", ("cage",))
+Lubricant = _make_section("Lubricant", ("lubricant",))
+Operating = _make_section("Operating", ("operating",))
+Simulation = _make_section("Simulation", ("simulation",))
+
+#: section name -> class; sub-table (section, key) -> class
+SECTION_CLASSES = {"bearing": Bearing, "cage": Cage, "lubricant": Lubricant,
+                   "operating": Operating, "simulation": Simulation}
+SUBTABLE_CLASSES = {("lubricant", "traction"): Traction}
+
+
+def material_from_table(name: str, table: dict) -> Material:
+    """SI :class:`Material` from a validated material table (GPa, -, kg/m^3 as written)."""
+    return Material(name, float(table["youngs_modulus_GPa"]) * 1e9, float(table["poisson_ratio"]),
+                    float(table["density_kg_m3"]))
+
+
+@dataclass(frozen=True)
+class Case:
+    """One bearing and one operating condition, validated.
+
+    ``materials`` holds the user material tables as written (``{name: {youngs_modulus_GPa, ...}}``).
+    ``cage`` always holds values: those not given are estimated from the bearing (the rules are in
+    :data:`solver.case.schema.FIELDS` and docs/case-format.md); their dotted keys are listed in
+    ``estimated`` and they are written as comments by :meth:`to_toml`, so they follow the bearing
+    when it is edited. ``lubricant`` is None when the file has no ``[lubricant]`` section.
+    """
+
+    title: str
+    bearing: Bearing
+    materials: dict = field(default_factory=dict)
+    cage: Cage = None
+    lubricant: Lubricant | None = None
+    operating: Operating = None
+    simulation: Simulation = None
+    estimated: frozenset = frozenset()
+
+    # ---- materials -----------------------------------------------------------------------------
+    def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
+        """The :class:`Material` for a name (built-in or user) or an inline table."""
+        if isinstance(spec, dict):
+            return material_from_table(name, spec)
+        if spec in self.materials:
+            return material_from_table(spec, self.materials[spec])
+        return BUILTIN_MATERIALS[spec]
+
+    @property
+    def ball_material(self) -> Material:
+        """Resolved ball material (SI)."""
+        return self.resolve_material(self.bearing.ball_material, "bearing.ball_material")
+
+    @property
+    def ring_material(self) -> Material:
+        """Resolved ring material (SI)."""
+        return self.resolve_material(self.bearing.ring_material, "bearing.ring_material")
+
+    # ---- conversions ---------------------------------------------------------------------------
+    def geometry(self):
+        """:class:`solver.geometry.BearingGeometry` of this case (SI)."""
+        from solver.geometry import BearingGeometry
+
+        return BearingGeometry.from_case(self)
+
+    def to_dict(self) -> dict:
+        """Nested plain dict as it would be written in a case file (absent/estimated keys left out).
+
+        ``Case.from_dict(case.to_dict()) == case``.
+        """
+        out: dict = {"title": self.title}
+        for f in FIELDS:
+            if f.section == "":
+                continue
+            section_obj = getattr(self, f.section)
+            if section_obj is None:
+                continue
+            value = section_obj
+            for part in f.path[1:]:
+                value = getattr(value, part)
+            if value is None or f.key in self.estimated:
+                continue
+            target = out
+            for part in f.path[:-1]:
+                target = target.setdefault(part, {})
+            target[f.name] = copy.deepcopy(value)
+        if self.materials:
+            ordered = {}
+            for key, value in out.items():
+                ordered[key] = value
+                if key == "bearing":
+                    ordered["materials"] = copy.deepcopy(self.materials)
+            out = ordered
+        return out
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Case:
+        """Validated case from a nested dict (as :func:`tomllib.loads` returns). Raises CaseError."""
+        from .validate import validate
+
+        return validate(data)
+
+    def to_toml(self) -> str:
+        """Readable case-file text; loading it gives an equal case."""
+        from .writer import case_to_toml
+
+        return case_to_toml(self)
+
+    def with_values(self, values: dict) -> Case:
+        """Validated copy with some keys changed: ``{"operating.axial_load_N": 300.0, ...}``.
+
+        Keys are dotted case keys (``lubricant.traction.mu_max``, ``materials.my_steel.poisson_ratio``);
+        a value of None removes the key (e.g. to switch from a free contact angle to a clearance).
+        Estimated cage values are re-estimated from the new bearing unless given. Raises CaseError.
+        """
+        data = self.to_dict()
+        for key, value in values.items():
+            parts = str(key).split(".")
+            target = data
+            for part in parts[:-1]:
+                nxt = target.get(part)
+                if not isinstance(nxt, dict):
+                    if value is None:
+                        break
+                    nxt = {}
+                    target[part] = nxt
+                target = nxt
+            else:
+                if value is None:
+                    target.pop(parts[-1], None)
+                else:
+                    target[parts[-1]] = value
+        return Case.from_dict(data)
+
+
+MATERIAL_KEYS = tuple(f.key for f in MATERIAL_FIELDS)

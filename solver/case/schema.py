@@ -1,0 +1,309 @@
+"""The case-file schema: one table entry per key (docs/case-format.md is the prose version).
+
+Everything that knows about case keys reads this table: the validator (types, bounds, defaults,
+messages), the writer (order, units, comments), the section dataclasses (attribute names) and the
+browser app (form fields, element ids ``field-<last segment>``, help texts). Adding a key is one new
+:class:`Field` in :data:`FIELDS`.
+
+Units are those written in the key names (mm, deg, rpm, N, g, ...); conversion to SI happens in the
+consumers (e.g. :meth:`solver.geometry.BearingGeometry.from_case`).
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+
+class Default(enum.Enum):
+    """Default markers that are not plain values."""
+
+    REQUIRED = "required"  # the key must be given
+    OPTIONAL = "optional"  # may be absent; the attribute is then None
+
+
+REQUIRED = Default.REQUIRED
+OPTIONAL = Default.OPTIONAL
+
+
+@dataclass(frozen=True)
+class Estimated:
+    """A default computed from the validated ``[bearing]`` section.
+
+    ``description`` is the plain-language rule (shown in docs, the app and ``to_toml`` comments);
+    ``function(bearing) -> value`` receives the validated :class:`solver.case.model.Bearing`
+    (case units) and returns the value in the key's unit.
+    """
+
+    description: str
+    function: Callable
+
+
+@dataclass(frozen=True)
+class Field:
+    """One case key.
+
+    ``key`` is dotted (``operating.axial_load_N``; ``lubricant.traction.mu_zero`` for a key of an
+    inline table). ``type`` is one of float, int, str, choice, bool, material. ``default`` is a value,
+    :data:`REQUIRED`, :data:`OPTIONAL` or an :class:`Estimated`. Bounds: ``minimum``/``maximum`` with
+    ``*_inclusive`` flags (None = unbounded). ``reason`` explains the lower bound (or the rule) in
+    messages; ``reason_high`` the upper bound (defaults to ``reason``).
+    """
+
+    key: str
+    type: str
+    label: str
+    help: str
+    unit: str = ""
+    default: object = REQUIRED
+    minimum: float | None = None
+    minimum_inclusive: bool = True
+    maximum: float | None = None
+    maximum_inclusive: bool = True
+    choices: tuple[str, ...] = ()
+    reason: str = ""
+    reason_high: str = ""
+
+    @property
+    def path(self) -> tuple[str, ...]:
+        """The key split at dots: ('operating', 'axial_load_N')."""
+        return tuple(self.key.split("."))
+
+    @property
+    def section(self) -> str:
+        """Top-level section name ('' for top-level keys such as ``title``)."""
+        return self.path[0] if len(self.path) > 1 else ""
+
+    @property
+    def name(self) -> str:
+        """Last segment of the key (attribute name, and the app's element id suffix)."""
+        return self.path[-1]
+
+    @property
+    def required(self) -> bool:
+        return self.default is REQUIRED
+
+    @property
+    def estimated(self) -> bool:
+        return isinstance(self.default, Estimated)
+
+    def allowed_text(self) -> str:
+        """What is allowed, in words (for help and messages)."""
+        if self.type == "choice":
+            return "one of " + ", ".join(f'"{c}"' for c in self.choices)
+        if self.type == "material":
+            return "a material name or an inline table of material properties"
+        if self.type == "str":
+            return "a text string"
+        if self.type == "bool":
+            return "true or false"
+        kind = "an integer" if self.type == "int" else "a number"
+        parts = []
+        if self.minimum is not None:
+            parts.append(_bound_text(self.minimum, self.minimum_inclusive, low=True))
+        if self.maximum is not None:
+            parts.append(_bound_text(self.maximum, self.maximum_inclusive, low=False))
+        unit = f" in {self.unit}" if self.unit else ""
+        return kind + unit + (", " + " and ".join(parts) if parts else "")
+
+
+def _bound_text(value: float, inclusive: bool, low: bool) -> str:
+    v = format_number(value)
+    if low:
+        return f"at least {v}" if inclusive else f"greater than {v}"
+    return f"at most {v}" if inclusive else f"less than {v}"
+
+
+def format_number(value) -> str:
+    """Short, exact-enough text for a number in messages (0.5, 60, 1e-05, nan)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isfinite(value) and value == int(value) and abs(value) < 1e15:
+            return str(int(value))
+        return repr(value)
+    return repr(value)
+
+
+# ---- estimates for [cage] (case units: mm and g) ------------------------------------------------
+#: Density assumed for an estimated cage mass: a glass-fibre polyamide / phenolic cage, kg/m^3.
+CAGE_DENSITY_ESTIMATE = 1400.0
+
+
+def _cage_mass_g(bearing) -> float:
+    """Ring of width D and radial thickness 0.3 D on the pitch circle, density 1400 kg/m^3, in g."""
+    d = bearing.ball_diameter_mm * 1e-3
+    dm = bearing.pitch_diameter_mm * 1e-3
+    return CAGE_DENSITY_ESTIMATE * math.pi * dm * d * 0.3 * d * 1e3
+
+
+_PROVENANCES = ("estimated", "manufacturer", "literature", "measured")
+
+#: Every case key, in the order of case-format.md (sections, then keys).
+FIELDS: list[Field] = [
+    Field("title", "str", "Title", "A short title for this case.", default=""),
+    # ---- [bearing] ----------------------------------------------------------------------------
+    Field("bearing.designation", "str", "Designation",
+          "Free text naming the bearing (e.g. 7008C-class hybrid).", default=""),
+    Field("bearing.provenance", "choice", "Provenance",
+          "Where the geometry comes from.", default="estimated", choices=_PROVENANCES),
+    Field("bearing.ball_count", "int", "Number of balls", "Number of balls Z.",
+          minimum=3, maximum=200, reason="a ring needs at least three balls to be centred",
+          reason_high="far beyond any ball bearing"),
+    Field("bearing.ball_diameter_mm", "float", "Ball diameter", "Ball diameter D.", unit="mm",
+          minimum=0.0, minimum_inclusive=False, reason="a ball has a positive size"),
+    Field("bearing.pitch_diameter_mm", "float", "Pitch diameter",
+          "Diameter d_m of the circle through the ball centres.", unit="mm",
+          minimum=0.0, minimum_inclusive=False, reason="the pitch circle has a positive size"),
+    Field("bearing.inner_groove_radius_ratio", "float", "Inner groove radius ratio",
+          "Inner groove radius over ball diameter, f_i = r_i / D (typically 0.51-0.57).",
+          minimum=0.5, minimum_inclusive=False, maximum=1.0, maximum_inclusive=False,
+          reason="a groove tighter than the ball cannot hold it",
+          reason_high="a groove radius larger than the ball diameter is not a ball groove"),
+    Field("bearing.outer_groove_radius_ratio", "float", "Outer groove radius ratio",
+          "Outer groove radius over ball diameter, f_o = r_o / D (typically 0.51-0.57).",
+          minimum=0.5, minimum_inclusive=False, maximum=1.0, maximum_inclusive=False,
+          reason="a groove tighter than the ball cannot hold it",
+          reason_high="a groove radius larger than the ball diameter is not a ball groove"),
+    Field("bearing.free_contact_angle_deg", "float", "Free contact angle",
+          "Unloaded contact angle alpha_0 (give this or the diametral clearance).", unit="deg",
+          default=OPTIONAL, minimum=0.0, maximum=60.0, maximum_inclusive=False,
+          reason="a contact angle is measured from the radial plane and cannot be negative",
+          reason_high="beyond 60 degrees the ball rides over the shoulder; "
+                      "no ball bearing is built that way"),
+    Field("bearing.diametral_clearance_mm", "float", "Diametral clearance",
+          "Unmounted diametral clearance P_d (give this or the free contact angle).", unit="mm",
+          default=OPTIONAL, minimum=0.0,
+          reason="a negative clearance is a preload; give an axial load instead"),
+    Field("bearing.inner_shoulder_diameter_mm", "float", "Inner shoulder diameter",
+          "Optional inner-ring land diameter, for the contact-ellipse truncation check.",
+          unit="mm", default=OPTIONAL, minimum=0.0, minimum_inclusive=False,
+          reason="a diameter is positive"),
+    Field("bearing.outer_shoulder_diameter_mm", "float", "Outer shoulder diameter",
+          "Optional outer-ring land diameter, for the contact-ellipse truncation check.",
+          unit="mm", default=OPTIONAL, minimum=0.0, minimum_inclusive=False,
+          reason="a diameter is positive"),
+    Field("bearing.ball_material", "material", "Ball material",
+          "bearing_steel, silicon_nitride, a name defined under [materials], or an inline table."),
+    Field("bearing.ring_material", "material", "Ring material",
+          "bearing_steel, silicon_nitride, a name defined under [materials], or an inline table."),
+    # ---- [cage] (optional section) ------------------------------------------------------------
+    Field("cage.guidance", "choice", "Cage guidance", "Which surface pilots the cage.",
+          default="outer_ring", choices=("outer_ring", "inner_ring", "ball")),
+    Field("cage.pocket_diametral_clearance_mm", "float", "Pocket clearance",
+          "Diametral clearance between a ball and its cage pocket.", unit="mm",
+          default=Estimated("0.028 D", lambda b: 0.028 * b.ball_diameter_mm),
+          minimum=0.0, minimum_inclusive=False, reason="a ball must fit in its pocket"),
+    Field("cage.guide_diametral_clearance_mm", "float", "Guide clearance",
+          "Diametral clearance between the cage and its guiding land.", unit="mm",
+          default=Estimated("0.0055 d_m", lambda b: 0.0055 * b.pitch_diameter_mm),
+          minimum=0.0, minimum_inclusive=False, reason="the cage must fit on its land"),
+    Field("cage.mass_g", "float", "Cage mass", "Mass of the cage.", unit="g",
+          default=Estimated("polymer ring (1400 kg/m^3) of width D and radial thickness 0.3 D "
+                            "on the pitch circle: 1400 pi d_m 0.3 D^2", _cage_mass_g),
+          minimum=0.0, minimum_inclusive=False, reason="a cage has mass"),
+    Field("cage.pocket_friction", "float", "Pocket friction",
+          "Friction coefficient between a ball and its cage pocket.", default=0.08,
+          minimum=0.0, maximum=1.0, reason="a friction coefficient is not negative",
+          reason_high="a lubricated ball-pocket friction coefficient stays well below 1"),
+    Field("cage.guide_land_width_mm", "float", "Guide land width",
+          "Axial width of the cage-guiding land.", unit="mm",
+          default=Estimated("0.5 D", lambda b: 0.5 * b.ball_diameter_mm),
+          minimum=0.0, minimum_inclusive=False, reason="a land has a positive width"),
+    # ---- [lubricant] (optional section) -------------------------------------------------------
+    Field("lubricant.viscosity_Pas", "float", "Viscosity",
+          "Dynamic viscosity of the oil at operating temperature.", unit="Pa s", default=0.01,
+          minimum=0.0, minimum_inclusive=False, reason="a fluid has a positive viscosity"),
+    Field("lubricant.pressure_viscosity_per_GPa", "float", "Pressure-viscosity coefficient",
+          "Barus pressure-viscosity coefficient alpha.", unit="1/GPa", default=20.0,
+          minimum=0.0, minimum_inclusive=False,
+          reason="oil viscosity rises with pressure; the coefficient is positive"),
+    Field("lubricant.traction.mu_zero", "float", "Traction at zero slip",
+          "Traction coefficient at zero slip.", default=0.0, minimum=0.0, maximum=1.0,
+          reason="a traction coefficient is not negative"),
+    Field("lubricant.traction.mu_max", "float", "Peak traction",
+          "Peak traction coefficient.", default=0.05, minimum=0.0, minimum_inclusive=False,
+          maximum=1.0, reason="the traction curve needs a positive peak",
+          reason_high="lubricated traction stays well below 1"),
+    Field("lubricant.traction.slip_at_max_m_s", "float", "Slip at peak traction",
+          "Slip speed at which the traction peaks.", unit="m/s", default=1.0,
+          minimum=0.0, minimum_inclusive=False, reason="the peak lies at a positive slip speed"),
+    Field("lubricant.traction.mu_infinity", "float", "Traction at high slip",
+          "Traction coefficient approached at large slip.", default=0.036,
+          minimum=0.0, minimum_inclusive=False, maximum=1.0,
+          reason="traction at large slip is positive", reason_high="at most mu_max"),
+    # ---- [operating] --------------------------------------------------------------------------
+    Field("operating.inner_ring_speed_rpm", "float", "Inner ring speed",
+          "Inner ring (shaft) speed, positive about +x.", unit="rpm"),
+    Field("operating.outer_ring_speed_rpm", "float", "Outer ring speed",
+          "Outer ring speed, positive about +x.", unit="rpm", default=0.0),
+    Field("operating.axial_load_N", "float", "Axial load",
+          "Thrust on the inner ring along +x.", unit="N", default=0.0, minimum=0.0,
+          reason="a single angular contact bearing carries thrust only in +x; "
+                 "a negative load would lift the inner ring off the balls"),
+    Field("operating.radial_load_N", "float", "Radial load",
+          "Magnitude of the radial load on the inner ring.", unit="N", default=0.0, minimum=0.0,
+          reason="give the direction with radial_load_angle_deg, not a negative magnitude"),
+    Field("operating.radial_load_angle_deg", "float", "Radial load direction",
+          "Azimuth of the radial load, from +y towards +z.", unit="deg", default=0.0),
+    Field("operating.misalignment_deg", "float", "Misalignment",
+          "Imposed tilt of the inner ring (give this or a tilting moment).", unit="deg",
+          default=OPTIONAL, minimum=-5.0, maximum=5.0,
+          reason="the model assumes small tilts (a few tenths of a degree in practice)"),
+    Field("operating.misalignment_axis_deg", "float", "Misalignment axis",
+          "Azimuth of the tilt axis in the radial plane.", unit="deg", default=90.0),
+    Field("operating.misalignment_frame", "choice", "Misalignment frame",
+          "space: tilt fixed in space; ring: tilt turns with the inner ring.",
+          default="space", choices=("space", "ring")),
+    Field("operating.tilting_moment_Nm", "float", "Tilting moment",
+          "Applied moment on the inner ring; the tilt is then solved (0 = moment-free).",
+          unit="N m", default=OPTIONAL),
+    Field("operating.moment_axis_deg", "float", "Moment axis",
+          "Azimuth of the tilting-moment axis in the radial plane.", unit="deg", default=90.0),
+    # ---- [simulation] -------------------------------------------------------------------------
+    Field("simulation.shaft_revolutions", "float", "Shaft revolutions",
+          "Length of the dynamic simulation in shaft revolutions.", default=10.0,
+          minimum=0.0, minimum_inclusive=False, maximum=1000.0,
+          reason="a simulation must run for some time",
+          reason_high="longer runs take hours; split them"),
+    Field("simulation.samples_per_revolution", "int", "Samples per revolution",
+          "Output samples per shaft revolution.", default=180, minimum=8, maximum=3600,
+          reason="fewer samples cannot draw a trajectory",
+          reason_high="more samples only make the result file larger"),
+]
+
+#: Keys of a material table (under [materials.NAME], or inline for ball_material/ring_material).
+MATERIAL_FIELDS: list[Field] = [
+    Field("youngs_modulus_GPa", "float", "Young's modulus", "Young's modulus E.", unit="GPa",
+          minimum=0.0, minimum_inclusive=False, reason="a solid has a positive stiffness"),
+    Field("poisson_ratio", "float", "Poisson's ratio", "Poisson's ratio nu.", minimum=0.0,
+          maximum=0.5, maximum_inclusive=False,
+          reason="isotropic solids used in bearings have 0 <= nu < 0.5",
+          reason_high="0.5 is an incompressible material, not a bearing solid"),
+    Field("density_kg_m3", "float", "Density", "Mass density.", unit="kg/m3", minimum=0.0,
+          minimum_inclusive=False, reason="a solid has positive density"),
+]
+
+#: Section order (case-format.md). ``materials`` holds user tables, not FIELDS entries.
+SECTION_ORDER = ("bearing", "materials", "cage", "lubricant", "operating", "simulation")
+#: Sections that may be absent entirely (defaults or None).
+OPTIONAL_SECTIONS = ("materials", "cage", "lubricant", "simulation")
+
+
+def fields_by_key() -> dict[str, Field]:
+    """{dotted key: Field} for every entry of :data:`FIELDS`."""
+    return {f.key: f for f in FIELDS}
+
+
+def field(key: str) -> Field:
+    """The :class:`Field` for a dotted key (KeyError if unknown)."""
+    return fields_by_key()[key]
+
+
+def section_fields(section: str) -> list[Field]:
+    """Fields of one top-level section, in table order ('' for top-level keys)."""
+    return [f for f in FIELDS if f.section == section]
