@@ -36,12 +36,10 @@ def test_parse_value():
         parse_value(f_bool, "maybe")
 
 
-def test_apply_form_routes_problems_to_fields():
-    pytest.importorskip("solver.case.validate", reason="case validation (helper A) has not landed")
-    pytest.importorskip("solver.catalogue", reason="the case catalogue (helper A) has not landed")
-    from solver import catalogue
+def test_apply_form_routes_problems_to_fields(fixture_model):
+    from solver import load_case
 
-    case = next(e for e in catalogue() if e.kind == "case").load()
+    case = load_case(fixture_model.FIXTURE_CASE)
     fields = form_fields()
     ok = apply_form(case, fields, {"axial_load_N": "750"})
     assert ok.valid and ok.case.operating.axial_load_N == 750.0
@@ -53,3 +51,7 @@ def test_apply_form_routes_problems_to_fields():
     assert set(bad.errors) == {"inner_groove_radius_ratio"}
     unchanged = apply_form(case, fields, {})
     assert unchanged.case is case
+    # a rule that names two keys: its message shows at the field it is filed under
+    none = apply_form(case, fields, {"axial_load_N": "0", "radial_load_N": "0"})
+    assert not none.valid
+    assert any("nothing holds the balls" in m for m in [*none.errors.values(), *none.general])
