@@ -1,0 +1,136 @@
+"""``racetrace simulate CASE --output run.nc``: run the dynamic model and save the result (NetCDF).
+
+A progress bar with the simulated time and an ETA goes to stderr. Ctrl-C stops the run at the next
+chunk boundary: the partial result (attrs ``complete = 0``) is written atomically and the command
+exits with 130. A diverged run also writes what it had and exits with 4, printing the likely cause.
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import threading
+import time
+from pathlib import Path
+
+EXIT_DIVERGED = 4
+EXIT_INTERRUPTED = 130
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "simulate",
+        help="run the dynamic model (contact trajectories) and save a NetCDF result",
+        description=(
+            "Integrate the dynamic bearing model of CASE (a case file or a catalogue name) for "
+            "[simulation] shaft_revolutions and save every results-schema variable to NetCDF. "
+            "Exit codes: 0 done, 2 invalid input, 3 no quasi-static start, 4 diverged (partial result "
+            "saved), 130 interrupted (partial result saved)."
+        ),
+    )
+    parser.add_argument("case", help="case file (.toml) or catalogue case name")
+    parser.add_argument("--output", "-o", help="NetCDF file to write (default: <case name>.nc)")
+    parser.add_argument("--revolutions", type=float, help="override [simulation] shaft_revolutions")
+    parser.add_argument("--samples-per-revolution", type=int,
+                        help="override [simulation] samples_per_revolution")
+    parser.add_argument("--tolerance", type=float, help="integrator tolerance (default 1e-4)")
+    parser.add_argument("--no-traction", action="store_true", help="frictionless ball-race contacts")
+    parser.add_argument("--no-cage", action="store_true", help="leave the cage out of the model")
+    parser.add_argument("--quiet", "-q", action="store_true", help="no progress bar")
+    parser.set_defaults(func=run)
+
+
+def _load_case(name: str):
+    try:
+        from solver.catalogue import resolve_case
+    except ImportError:  # catalogue not available: a file path only
+        from solver import load_case
+
+        return load_case(Path(name))
+    return resolve_case(name)
+
+
+class ProgressBar:
+    """Text progress bar on a stream: fraction, simulated time, wall time and ETA."""
+
+    def __init__(self, stream=None, width: int = 30):
+        self.stream = stream if stream is not None else sys.stderr
+        self.width = width
+        self.start = time.perf_counter()
+
+    def __call__(self, fraction: float, simulated_time: float, message: str = "") -> None:
+        elapsed = time.perf_counter() - self.start
+        eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
+        filled = int(round(self.width * fraction))
+        bar = "#" * filled + "." * (self.width - filled)
+        self.stream.write(
+            f"\r[{bar}] {100 * fraction:5.1f}%  t = {simulated_time * 1e3:.3f} ms  "
+            f"elapsed {elapsed:.0f} s  ETA {eta:.0f} s "
+        )
+        self.stream.flush()
+
+    def close(self) -> None:
+        self.stream.write("\n")
+        self.stream.flush()
+
+
+def run(args) -> int:
+    from solver.errors import SimulationDiverged
+    from solver.models.dynamic import SimulationOptions, simulate
+    from solver.results.io import save_dataset
+
+    case = _load_case(args.case)
+    output = Path(args.output) if args.output else Path(Path(args.case).stem + ".nc")
+    changes = {}
+    if args.revolutions is not None:
+        changes["shaft_revolutions"] = args.revolutions
+    if args.samples_per_revolution is not None:
+        changes["samples_per_revolution"] = args.samples_per_revolution
+    if args.tolerance is not None:
+        changes["tolerance"] = args.tolerance
+    if args.no_traction:
+        changes["traction"] = False
+    if args.no_cage:
+        changes["cage"] = False
+    options = SimulationOptions(**changes)
+    stop = threading.Event()
+
+    def on_sigint(signum, frame):  # noqa: ARG001 - signal handler signature
+        if stop.is_set():  # second Ctrl-C: give up at once
+            raise KeyboardInterrupt
+        stop.set()
+        print("\nracetrace: interrupt received, stopping at the next chunk ...", file=sys.stderr)
+
+    previous = signal.signal(signal.SIGINT, on_sigint)
+    bar = None if args.quiet else ProgressBar()
+    try:
+        try:
+            ds = simulate(case, progress=bar, cancel=stop, options=options)
+            code = 0
+        except SimulationDiverged as error:
+            ds = getattr(error, "dataset", None)
+            if bar is not None:
+                bar.close()
+                bar = None
+            print(f"racetrace: {error}", file=sys.stderr)
+            if ds is None:
+                return EXIT_DIVERGED
+            code = EXIT_DIVERGED
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if bar is not None:
+            bar.close()
+    save_dataset(ds, output)
+    if ds.attrs.get("complete", 0) != 1 and code == 0:
+        print(
+            f"racetrace: interrupted; partial result ({ds.sizes['time']} samples up to "
+            f"t = {float(ds.time[-1]):.6g} s) written to {output}",
+            file=sys.stderr,
+        )
+        return EXIT_INTERRUPTED
+    if code == EXIT_DIVERGED:
+        print(f"racetrace: partial result written to {output}", file=sys.stderr)
+        return code
+    print(f"racetrace: wrote {output} ({ds.sizes['time']} samples, {ds.attrs['wall_time_s']:.1f} s)",
+          file=sys.stderr)
+    return 0

@@ -1,0 +1,74 @@
+"""``racetrace simulate``: output file, progress on stderr, Ctrl-C writes the partial result."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+
+import pytest
+from dyn_bearings import spindle_inputs
+
+from racetrace.commands import simulate as command
+from solver.results.io import load_dataset
+
+
+def _parse(argv):
+    parser = argparse.ArgumentParser()
+    sub = parser.add_subparsers()
+    command.register(sub)
+    return parser.parse_args(argv)
+
+
+@pytest.fixture
+def fake_case(monkeypatch):
+    monkeypatch.setattr(command, "_load_case", lambda name: spindle_inputs(radial=300.0))
+
+
+def test_simulate_writes_netcdf_and_reports_progress(fake_case, tmp_path, capsys):
+    out = tmp_path / "run.nc"
+    args = _parse(["simulate", "spindle", "--output", str(out), "--revolutions", "0.2",
+                   "--samples-per-revolution", "40"])
+    assert args.func(args) == 0
+    ds = load_dataset(out)
+    assert ds.attrs["complete"] == 1 and ds.sizes["time"] == 9
+    err = capsys.readouterr().err
+    assert "100.0%" in err and "ETA" in err and "t = " in err and "wrote" in err
+
+
+def test_ctrl_c_writes_partial_result_and_exits_130(fake_case, tmp_path, capsys, monkeypatch):
+    calls = []
+    original = command.ProgressBar.__call__
+
+    def interrupting(self, fraction, t, message=""):
+        calls.append(fraction)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)  # what Ctrl-C delivers
+        original(self, fraction, t, message)
+
+    monkeypatch.setattr(command.ProgressBar, "__call__", interrupting)
+    out = tmp_path / "partial.nc"
+    args = _parse(["simulate", "spindle", "-o", str(out), "--revolutions", "1",
+                   "--samples-per-revolution", "200"])  # 200 samples: 4 chunks of 60
+    assert args.func(args) == command.EXIT_INTERRUPTED
+    ds = load_dataset(out)
+    assert ds.attrs["complete"] == 0 and ds.attrs["stop_reason"] == "cancelled"
+    assert ds.sizes["time"] == 61  # t = 0 and the first chunk
+    assert "partial result" in capsys.readouterr().err
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_divergence_exits_4_with_partial_file(fake_case, tmp_path, capsys, monkeypatch):
+    from solver.models import dynamic
+
+    real = dynamic.SimulationOptions
+
+    def tiny_budget(**kw):
+        return real(max_steps_per_chunk=3, **kw)
+
+    monkeypatch.setattr(dynamic, "SimulationOptions", tiny_budget)
+    out = tmp_path / "bad.nc"
+    args = _parse(["simulate", "spindle", "-o", str(out), "--revolutions", "0.2", "-q"])
+    assert args.func(args) == command.EXIT_DIVERGED
+    assert load_dataset(out).attrs["complete"] == 0
+    assert "diverged" in capsys.readouterr().err
