@@ -1,0 +1,62 @@
+"""``racetrace check CASE``: validate a case file (or catalogue name) and print a short summary.
+
+Exit 0 when valid; 2 with every problem listed when not (the CLI maps CaseError to exit 2).
+"""
+
+from __future__ import annotations
+
+import math
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "check",
+        help="validate a case file and summarise it",
+        description="Validate a case file (or a catalogue name) and print a short summary.",
+    )
+    parser.add_argument("case", metavar="CASE", help="case file (.toml) or catalogue name")
+    parser.set_defaults(func=run)
+
+
+def _num(value: float, digits: int = 4) -> str:
+    return f"{value:.{digits}g}"
+
+
+def summary(case) -> str:
+    """Short human-readable summary of a valid case (units in the text)."""
+    b, op = case.bearing, case.operating
+    g = case.geometry()
+    alpha0 = math.degrees(g.free_contact_angle)
+    source = "given" if b.free_contact_angle_deg is not None else "from the diametral clearance"
+    lines = [
+        f"case:      {case.title or '(no title)'}",
+        f"bearing:   {b.designation or '(no designation)'} [provenance: {b.provenance}]",
+        f"           {b.ball_count} balls of {_num(b.ball_diameter_mm)} mm on a "
+        f"{_num(b.pitch_diameter_mm)} mm pitch circle; groove radius ratios "
+        f"f_i = {_num(b.inner_groove_radius_ratio)}, f_o = {_num(b.outer_groove_radius_ratio)}",
+        f"           free contact angle {alpha0:.3f} deg ({source}); diametral clearance "
+        f"{_num(g.diametral_clearance * 1e3)} mm; free end play {_num(g.free_end_play * 1e3)} mm",
+        f"           balls: {case.ball_material.name}, rings: {case.ring_material.name}",
+        f"operating: inner ring {_num(op.inner_ring_speed_rpm, 6)} rpm, outer ring "
+        f"{_num(op.outer_ring_speed_rpm, 6)} rpm",
+        f"           axial load {_num(op.axial_load_N, 6)} N, radial load "
+        f"{_num(op.radial_load_N, 6)} N at {_num(op.radial_load_angle_deg)} deg",
+    ]
+    if op.misalignment_deg is not None:
+        lines.append(f"           misalignment {_num(op.misalignment_deg)} deg about the axis at "
+                     f"{_num(op.misalignment_axis_deg)} deg, frame: {op.misalignment_frame}")
+    if op.tilting_moment_Nm is not None:
+        lines.append(f"           tilting moment {_num(op.tilting_moment_Nm)} N m about the axis at "
+                     f"{_num(op.moment_axis_deg)} deg (tilt solved)")
+    if case.estimated:
+        names = ", ".join(sorted(k.split(".", 1)[1] for k in case.estimated))
+        lines.append(f"estimated: {names} (from the bearing; see docs/case-format.md)")
+    lines.append("OK: the case is valid")
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    from solver.catalogue import resolve_case
+
+    print(summary(resolve_case(args.case)))
+    return 0
