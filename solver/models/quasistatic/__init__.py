@@ -116,7 +116,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
         except NoSolutionError as error:
             raise NoSolutionError(f"speed sweep stopped at {rpm:g} rpm: {error}") from None
         datasets.append(solution_to_dataset(previous, geometry, case, lubricant))
-    ds = xr.concat(datasets, dim="speed", data_vars="different", coords="minimal",
+    ds = xr.concat(datasets, dim="speed", data_vars="all", coords="minimal", compat="override",
                    combine_attrs="drop_conflicts")
     ds = ds.assign_coords(
         speed=("speed", speeds * _RPM, {"units": "rad/s", "long_name": "inner ring speed"}),

@@ -1,0 +1,212 @@
+"""QuasiStaticSolution + case → xarray.Dataset following results-schema.md.
+
+Hertz results (ellipse, peak pressure) come from :mod:`solver.physics.hertz_fast` (the same
+load-deflection law the model was solved with). Under the rolling assumptions of the quasi-static model
+the sliding speed at the contact centre is zero (pure rolling is imposed there); the variable is kept so
+that both models share the schema.
+"""
+
+from __future__ import annotations
+
+import math
+from datetime import datetime, timezone
+
+import numpy as np
+import xarray as xr
+
+from solver.physics.ehl import film_thickness_central
+from solver.physics.hertz import truncation_margin
+from solver.physics.hertz_fast import (
+    contact_ellipse_fast,
+    curvature_sum_and_difference_fast,
+    equivalent_radii_fast,
+    hertz_coefficients_fast,
+)
+from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
+
+from .variables import DIMENSION_VALUES, VARIABLES
+
+MODEL = "quasistatic"
+
+
+def _software() -> str:
+    from solver import __version__
+
+    return f"racetrace {__version__}"
+
+
+def _rotation_matrix(rotation_vector: np.ndarray) -> np.ndarray:
+    """Rodrigues rotation matrix of a rotation vector [rad]."""
+    angle = float(np.linalg.norm(rotation_vector))
+    if angle == 0.0:
+        return np.eye(3)
+    k = rotation_vector / angle
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
+
+
+def contact_quantities(geometry, solution):
+    """Per-contact arrays (Z, 2) [inner, outer]: a, b, p_max, R_x, kappa (zeros for open contacts)."""
+    z = solution.contact_load.shape[0]
+    out = {k: np.zeros((z, 2)) for k in ("a", "b", "p_max", "r_x", "kappa")}
+    e_mod = geometry.effective_modulus
+    D = geometry.ball_diameter
+    for j in range(z):
+        for k, (is_inner, conformity) in enumerate(
+            ((True, geometry.inner_conformity), (False, geometry.outer_conformity))
+        ):
+            gamma = D * math.cos(solution.contact_angle[j, k]) / geometry.pitch_diameter
+            s, f = curvature_sum_and_difference_fast(D, conformity, gamma, is_inner)
+            a, b, _, p = contact_ellipse_fast(solution.contact_load[j, k], s, f, e_mod)
+            out["a"][j, k], out["b"][j, k], out["p_max"][j, k] = a, b, p
+            out["r_x"][j, k] = equivalent_radii_fast(D, conformity, gamma, is_inner)[0]
+            out["kappa"][j, k] = hertz_coefficients_fast(f)[0]
+    return out
+
+
+def _case_text(case) -> str:
+    if case is None:
+        return ""
+    to_toml = getattr(case, "to_toml", None)
+    return to_toml() if callable(to_toml) else str(case)
+
+
+def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dataset:
+    """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
+
+    ``lubricant`` (``case.lubricant`` or None) adds ``film_thickness``; it needs ``viscosity_Pas`` and
+    ``pressure_viscosity_per_GPa``.
+    """
+    sol = solution
+    z = sol.contact_load.shape[0]
+    psi = sol.ball_azimuth
+    alpha = sol.contact_angle
+    beta = sol.attitude_angle
+    hertz = contact_quantities(geometry, sol)
+    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+
+    # ball centre, inertial
+    center = np.column_stack([sol.ball_center[:, 0], sol.ball_center[:, 1] * cos_psi,
+                              sol.ball_center[:, 1] * sin_psi])
+    # contact points (inertial): ball centre + (D/2 - delta/2) * (unit vector to the contact)
+    D = geometry.ball_diameter
+    e_contact = np.empty((z, 2, 2))  # (ball, race, [x, r]) unit vector from the ball centre
+    e_contact[:, 0, 0] = -np.sin(alpha[:, 0])
+    e_contact[:, 0, 1] = -np.cos(alpha[:, 0])
+    e_contact[:, 1, 0] = np.sin(alpha[:, 1])
+    e_contact[:, 1, 1] = np.cos(alpha[:, 1])
+    reach = 0.5 * D - 0.5 * sol.contact_deflection  # (Z, 2)
+    px = sol.ball_center[:, 0:1] + reach * e_contact[:, :, 0]
+    pr = sol.ball_center[:, 1:2] + reach * e_contact[:, :, 1]
+    point = np.stack([px, pr * cos_psi[:, None], pr * sin_psi[:, None]], axis=-1)  # (Z, 2, 3)
+    # inner ring frame: undo the ring's displacement (rotation about its reference point)
+    rotation = _rotation_matrix(np.array([0.0, *sol.inner_ring_tilt]))
+    pivot = np.array([geometry.inner_curvature_center_axial, 0.0, 0.0])
+    inner_inertial = point[:, 0, :]
+    point[:, 0, :] = (inner_inertial - sol.inner_ring_offset - pivot) @ rotation + pivot
+    raceway_azimuth = np.degrees(np.arctan2(point[:, :, 2], point[:, :, 1])) % 360.0
+    raceway_azimuth[raceway_azimuth >= 360.0] = 0.0
+
+    latitude = np.empty((z, 2))
+    longitude = np.empty((z, 2))
+    spin_roll = np.zeros((z, 2))
+    film = np.zeros((z, 2))
+    ring_speed = np.array([sol.inner_ring_speed, sol.outer_ring_speed])
+    for j in range(z):
+        for k in range(2):
+            lat, lon = contact_latitude_longitude(e_contact[j, k, 0], e_contact[j, k, 1], 0.0,
+                                                  beta[j])
+            latitude[j, k], longitude[j, k] = lat, lon
+            spin, roll = spin_and_roll(alpha[j, k], beta[j], sol.spin_speed[j],
+                                       ring_speed[k] - sol.orbital_speed[j])
+            spin_roll[j, k] = spin / roll if roll != 0.0 else 0.0
+            if lubricant is not None:
+                # entrainment speed: surface speed of the ring at the contact, relative to the cage
+                sign = -1.0 if k == 0 else 1.0
+                radius = 0.5 * geometry.pitch_diameter + sign * 0.5 * D * math.cos(alpha[j, k])
+                u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
+                film[j, k] = film_thickness_central(
+                    u_e, float(lubricant.viscosity_Pas),
+                    float(lubricant.pressure_viscosity_per_GPa) * 1e-9,
+                    geometry.effective_modulus, hertz["r_x"][j, k], sol.contact_load[j, k],
+                    hertz["kappa"][j, k],
+                )
+    margin = np.empty((z, 2))
+    for k, race in enumerate(("inner", "outer")):
+        margin[:, k] = truncation_margin(geometry, np.abs(alpha[:, k]), hertz["a"][:, k], race)
+
+    data = {
+        "contact_load": sol.contact_load,
+        "contact_angle": np.degrees(alpha),
+        "contact_deflection": sol.contact_deflection,
+        "ellipse_semi_major": hertz["a"],
+        "ellipse_semi_minor": hertz["b"],
+        "max_pressure": hertz["p_max"],
+        "raceway_azimuth": raceway_azimuth,
+        "raceway_contact_point": point,
+        "ball_latitude": np.degrees(latitude),
+        "ball_longitude": np.degrees(longitude),
+        "spin_to_roll": spin_roll,
+        "sliding_speed": np.zeros((z, 2)),
+        "truncation_margin": margin,
+        "ball_azimuth": np.degrees(psi),
+        "orbital_speed": sol.orbital_speed,
+        "ball_center": center,
+        "ball_angular_velocity": sol.ball_angular_velocity,
+        "attitude_angle": np.degrees(beta),
+        "ball_spin_speed": sol.spin_speed,
+        "centrifugal_force": sol.centrifugal_force,
+        "gyroscopic_moment": sol.gyroscopic_moment,
+        "race_control": np.asarray(sol.race_control, dtype=str).astype(object),
+        "inner_ring_offset": sol.inner_ring_offset,
+        "inner_ring_tilt": np.degrees(sol.inner_ring_tilt),
+        "inner_ring_moment": sol.applied_moment,
+        "cage_speed": np.float64(sol.cage_speed),
+    }
+    if lubricant is not None:
+        data["film_thickness"] = film
+    data_vars = {}
+    for name, values in data.items():
+        spec = VARIABLES[name]
+        attrs = spec.attrs()
+        if name == "race_control":
+            del attrs["units"]
+        if name == "sliding_speed":
+            attrs["description"] += (
+                "; zero in the quasi-static model, which imposes pure rolling at the contact centres"
+            )
+        data_vars[name] = (spec.dims_for(MODEL), values, attrs)
+    coords = {
+        "ball": ("ball", np.arange(z), {"long_name": "ball index (ball 0 starts at azimuth 0)"}),
+        "race": ("race", np.array(DIMENSION_VALUES["race"], dtype=object)),
+        "axis": ("axis", np.array(DIMENSION_VALUES["axis"], dtype=object)),
+        "tilt_axis": ("tilt_axis", np.array(DIMENSION_VALUES["tilt_axis"], dtype=object)),
+    }
+    attrs = {
+        "model": MODEL,
+        "case": _case_text(case),
+        "software": _software(),
+        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "complete": 1,
+        "solver_iterations": int(sol.iterations),
+        "solver_residual": float(sol.residual),
+        "solver_force_scale_N": float(sol.force_scale),
+        "race_control_note": sol.race_control_note or "race control settled (fixed point)",
+        "inner_ring_speed_rad_s": float(sol.inner_ring_speed),
+        "outer_ring_speed_rad_s": float(sol.outer_ring_speed),
+        "model_notes": (
+            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control per "
+            "ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / lambda_i = 0 "
+            "under outer control, 1 / 1 under inner control), centrifugal force at the ball's actual "
+            "orbit radius, cage speed = mean orbital speed. Inner ring moments are taken about its "
+            "centre on the axis in the plane of the inner groove curvature-centre circle."
+        ),
+    }
+    if sol.operating is not None and sol.operating.misalignment_frame == "ring" and not (
+        sol.operating.tilt_is_free
+    ):
+        attrs["misalignment_note"] = (
+            "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when the "
+            "ring-fixed tilt axis coincides with the given azimuth"
+        )
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)

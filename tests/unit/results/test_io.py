@@ -1,0 +1,58 @@
+"""NetCDF save/load: round trip (strings included) and atomic writes."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from solver.results.io import load_dataset, save_dataset
+
+
+def small_dataset():
+    return xr.Dataset(
+        {
+            "contact_load": (("ball", "race"), np.arange(6.0).reshape(3, 2), {"units": "N"}),
+            "race_control": (("ball",), np.array(["inner", "outer", "outer"], dtype=object)),
+            "cage_speed": ((), 12.5, {"units": "rad/s"}),
+        },
+        coords={"ball": np.arange(3), "race": np.array(["inner", "outer"], dtype=object)},
+        attrs={"model": "quasistatic", "complete": 1, "case": "title = 'x'\n"},
+    )
+
+
+def test_round_trip_keeps_values_strings_and_attributes(tmp_path):
+    ds = small_dataset()
+    path = save_dataset(ds, tmp_path / "r.nc")
+    back = load_dataset(path)
+    xr.testing.assert_identical(back, ds)
+    assert list(back.race_control.values) == ["inner", "outer", "outer"]
+
+
+def test_round_trip_of_a_model_dataset(tmp_path):
+    spec = importlib.util.spec_from_file_location("qs_cases", Path(__file__).with_name("cases.py"))
+    cases = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cases)
+    from solver.case import load_case
+    from solver.models.quasistatic import solve_quasistatic
+
+    ds = solve_quasistatic(load_case(cases.DEEP_GROOVE_RADIAL))
+    back = load_dataset(save_dataset(ds, tmp_path / "qs.nc"))
+    xr.testing.assert_identical(back, ds)
+
+
+def test_failed_write_leaves_no_temporary_file_and_keeps_the_old_one(tmp_path, monkeypatch):
+    target = tmp_path / "r.nc"
+    save_dataset(small_dataset(), target)
+    before = target.read_bytes()
+
+    def broken(self, *args, **kwargs):
+        Path(args[0]).write_bytes(b"partial")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    with pytest.raises(OSError, match="disk full"):
+        save_dataset(small_dataset(), target)
+    assert target.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
