@@ -363,14 +363,16 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
     return users
 
 
-def _check_operating_rules(v: dict, given: set, problems: list[Problem]) -> None:
+def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Problem]) -> None:
     mis_k, mom_k = "operating.misalignment_deg", "operating.tilting_moment_Nm"
     if mis_k in given and mom_k in given:
         _problem(problems, mom_k, f"{mis_k} = {show(v.get(mis_k, '?'))} and {mom_k} = "
                                   f"{show(v.get(mom_k, '?'))}: give at most one of the two (an "
                                   "imposed tilt, or a moment from which the tilt is solved)")
-    loads = ("operating.axial_load_N", "operating.radial_load_N")
-    if all(k in v for k in loads) and v[loads[0]] == 0.0 and v[loads[1]] == 0.0:
+    # absent loads default to 0; loads given but invalid are already reported
+    loads = [v[k] if k in v else (None if k in given else 0.0)
+             for k in ("operating.axial_load_N", "operating.radial_load_N")]
+    if loads == [0.0, 0.0] and "operating" in data:
         tilt = [k for k in (mis_k, mom_k) if v.get(k) not in (None, 0.0)]
         invalid = [k for k in (mis_k, mom_k) if k in given and k not in v]
         if not tilt and not invalid:
@@ -433,7 +435,7 @@ def validate(data) -> Case:
 
     users = _check_materials(data, values, problems)
     _check_bearing_rules(values, given, problems)
-    _check_operating_rules(values, given, problems)
+    _check_operating_rules(data, values, given, problems)
     _check_traction(values, problems)
     if problems:
         raise CaseError(problems)
