@@ -1,97 +1,106 @@
-"""Cage contact kernels for the dynamic model: ball–pocket contact and cage–land (guiding) force.
+"""Cage contact kernels of the dynamic model: ball–pocket contact and cage–land (guiding) force.
 
 physics.md §2.6.7. SI units throughout (m, s, N, rad, Pa s). All kernels are ``@njit(cache=True)``,
 take small named float64 arrays and write into a preallocated output array.
 
 Ball–pocket contact (:func:`pocket_contact`)
 --------------------------------------------
-Pocket frame: origin at the pocket centre (on the cage's pocket circle, in the cage mid-plane); axes
-(x, r, theta) = (bearing axis, pocket axis = cage radial direction, circumferential direction), the
-components of the azimuth frame of physics.md §2.1 at the pocket's angle. The pocket is a cylinder of
-diameter D + C_p about the r axis (infinitely long: the ball is not checked against the pocket ends).
+Pocket frame: origin at the pocket centre (on the cage's pocket circle, in the cage mid-plane);
+axes (x, r, theta) = (bearing axis, pocket axis = cage radial direction, circumferential
+direction), i.e. the azimuth frame of physics.md §2.1 at the pocket's angle (right-handed). The
+pocket is a cylinder of diameter D + C_p about the r axis (infinitely long: the pocket ends are not
+checked).
 
 ``kinematics`` (``POCKET_KIN_SIZE``), pocket-frame components:
-    ``PK_POSITION`` (3) ball centre minus pocket centre [m];
-    ``PK_VELOCITY`` (3) ball-centre velocity minus the velocity of the cage material point at the ball
-                    centre (v_b - v_c - w_c x (c_b - c_c)) [m/s] — the rate of ``PK_POSITION`` seen from
-                    the cage;
-    ``PK_OMEGA``    (3) ball angular velocity minus cage angular velocity [rad/s].
-``params`` (``POCKET_PARAM_SIZE``), build with :func:`pocket_parameters`:
-    ``PP_STIFFNESS`` K_p [N/m^n], ``PP_EXPONENT`` n (1.5: Hertz sphere in a metal cylinder; 1: polymer
-    cage, linear), ``PP_DAMPING_RATIO`` zeta, ``PP_MASS`` effective mass for the damping [kg] (the ball
-    mass, or the ball–cage reduced mass), ``PP_FRICTION`` mu_bc, ``PP_SLIP_REGULARISATION`` u_reg [m/s],
-    ``PP_CLEARANCE`` diametral clearance C_p [m], ``PP_BALL_RADIUS`` [m], ``PP_DAMPING_DEPTH`` depth over
-    which the damping is ramped in at contact onset [m] (needed for n = 1, where the critical damping
-    coefficient does not vanish at zero penetration; 0 = no ramp).
-Law: gap g = C_p/2 - rho, rho = sqrt(d_x^2 + d_theta^2) (distance of the ball centre from the pocket axis);
-for g < 0 the normal force is F_n = K_p (-g)^n + c (-g_dot), c = 2 zeta sqrt(n K_p (-g)^(n-1) m)
-(critical-damping ratio, as for the races; see :func:`damped_power_law_force`), never negative, acting
-on the ball along -e_rho (back towards the pocket axis). Friction at the contact point c_b + R_b e_rho:
-F_t = -mu_bc F_n s / sqrt(|s|^2 + u_reg^2), s = tangential sliding velocity of the ball surface over the
-pocket wall. Lubricant squeeze/hydrodynamic pocket forces are not modelled.
-
+    ``PK_POSITION`` (3): ball centre minus pocket centre [m].
+    ``PK_VELOCITY`` (3): ball-centre velocity minus the velocity of the cage material point at the
+        ball centre, v_b - v_c - w_c x (c_b - c_c) [m/s] (the rate of ``PK_POSITION`` seen from the
+        cage).
+    ``PK_OMEGA`` (3): ball angular velocity minus cage angular velocity [rad/s].
+``params`` (``POCKET_PARAM_SIZE``), built by :func:`pocket_parameters`:
+    ``PP_STIFFNESS`` K_p [N/m^n]; ``PP_EXPONENT`` n (1.5: Hertz sphere in a metal cylinder; 1:
+    polymer cage, linear); ``PP_DAMPING_RATIO`` zeta; ``PP_MASS`` effective mass for the damping
+    [kg] (the ball mass or the ball–cage reduced mass); ``PP_FRICTION`` mu_bc;
+    ``PP_SLIP_REGULARISATION`` u_reg [m/s]; ``PP_CLEARANCE`` diametral clearance C_p [m];
+    ``PP_BALL_RADIUS`` [m]; ``PP_DAMPING_DEPTH`` penetration over which the damping is ramped in at
+    contact onset [m] (needed for n = 1, whose critical damping coefficient does not vanish at zero
+    penetration; 0 = no ramp).
+Law: gap g = C_p/2 - rho, rho = sqrt(d_x^2 + d_theta^2) (distance of the ball centre from the
+pocket axis). For g < 0 the normal force is F_n = K_p (-g)^n + c (-g_dot) with
+c = 2 zeta sqrt(n K_p (-g)^(n-1) m) (critical-damping ratio as for the races,
+:func:`damped_power_law_force`), never negative, acting on the ball along -e_rho (back towards the
+pocket axis). Friction at the contact point c_b + R_b e_rho: F_t = -mu_bc F_n s / sqrt(|s|^2 +
+u_reg^2), s = sliding velocity of the ball surface over the pocket wall. Lubricant squeeze and
+hydrodynamic pocket forces are not modelled.
 ``out`` (``POCKET_OUT_SIZE``), pocket-frame components:
-    ``PO_FORCE`` (3) force on the ball [N]; ``PO_MOMENT_BALL`` (3) moment on the ball about its centre
-    [N m]; ``PO_POINT`` (3) contact point minus pocket centre [m] (the cage receives -``PO_FORCE`` there);
-    ``PO_NORMAL_FORCE`` F_n >= 0 [N]; ``PO_GAP`` g [m] (negative = penetration); ``PO_SLIP_SPEED`` |s|.
+    ``PO_FORCE`` (3) force on the ball [N]; ``PO_MOMENT_BALL`` (3) moment on the ball about its
+    centre [N m]; ``PO_POINT`` (3) contact point minus pocket centre [m] (the cage receives
+    -``PO_FORCE`` there); ``PO_NORMAL_FORCE`` F_n >= 0 [N]; ``PO_GAP`` g [m] (negative =
+    penetration); ``PO_SLIP_SPEED`` |s| [m/s].
 
-Pocket stiffness estimate (:func:`pocket_stiffness_estimate`): the Hertz constant of a sphere (radius
-R_b) inside a concave cylinder (radius R_b + C_p/2): curvature sum 2/R_b - 1/R_p, curvature difference
-(1/R_p)/(2/R_b - 1/R_p), exact elliptic-integral solution (solver.physics.hertz). For a metal cage this
-is K_p with n = 1.5. For a polymer cage (n = 1, physics.md §2.6.7 quotes K_p ~ 1e6–1e7 N/m [E]) the
-linear stiffness is the secant of the same Hertz law with the polymer's modulus at a reference load F_ref
-(default 10 N, the order of pocket loads in high-speed spindle bearings): K_lin = K_h^(2/3) F_ref^(1/3).
-For a 7.144 mm ball, C_p = 0.2 mm and a glass-filled polyamide (E = 8 GPa, nu = 0.4) this gives
-~1.1e7 N/m; for unfilled PA66 (E = 3 GPa) ~5e6 N/m, inside the quoted range.
+Pocket stiffness estimate (:func:`pocket_stiffness_estimate`): the Hertz constant of a sphere
+(radius R_b) inside a concave cylinder (radius R_p = R_b + C_p/2): curvature sum 2/R_b - 1/R_p,
+curvature difference (1/R_p)/(2/R_b - 1/R_p), exact elliptic-integral solution
+(solver.physics.hertz). For a metal cage this is K_p with n = 1.5. For a polymer cage (n = 1;
+physics.md §2.6.7 quotes K_p ~ 1e6–1e7 N/m [E]) the linear stiffness is the secant of the same
+Hertz law, with the polymer's modulus, at a reference load F_ref (default 10 N, the order of pocket
+loads in high-speed spindle bearings): K_lin = K_h^(2/3) F_ref^(1/3). For a 7.144 mm silicon
+nitride ball, C_p = 0.2 mm and glass-filled polyamide (E = 8 GPa, nu = 0.4) this gives 3.8e6 N/m;
+unfilled PA66 (E = 3 GPa) 2.0e6 N/m, inside the quoted range. (Steel ball in a brass pocket,
+n = 1.5: K_p = 1.9e10 N/m^1.5.)
 
 Cage–land guiding force (:func:`land_force`)
 --------------------------------------------
-The guiding land is a short journal bearing (Ocvirk; half-Sommerfeld, i.e. sub-ambient pressures
-discarded) of radius R, width L and radial clearance C, with viscosity eta, plus a metallic contact once
-the film closes. Radial-plane vectors are (y, z) components of the inertial frame; rotation about +x.
+The guiding land is a short journal bearing (Ocvirk; half-Sommerfeld: sub-ambient pressures
+discarded) of radius R, width L and radial clearance C with viscosity eta, plus a metallic contact
+once the film closes. Radial-plane vectors are (y, z) components of the inertial frame; speeds are
+about +x.
 
 ``kinematics`` (``LAND_KIN_SIZE``):
-    ``LK_OFFSET`` (2) cage centre minus guiding-ring centre, e [m]; ``LK_VELOCITY`` (2) its rate [m/s];
-    ``LK_CAGE_SPEED`` cage angular speed about +x [rad/s]; ``LK_RING_SPEED`` guiding ring speed [rad/s].
-``params`` (``LAND_PARAM_SIZE``), build with :func:`land_parameters`:
-    ``LP_RADIUS`` R [m], ``LP_WIDTH`` L [m], ``LP_CLEARANCE`` C (radial) [m], ``LP_VISCOSITY`` eta [Pa s],
-    ``LP_CONTACT_ECCENTRICITY`` eps_c (metal contact starts when eps > eps_c, i.e. film < (1-eps_c) C),
-    ``LP_MAX_ECCENTRICITY`` eps_max (eps_c < eps_max < 1: the hydrodynamic eccentricity is capped
-    smoothly, eps_h = eps_c + (eps_max - eps_c) tanh((eps - eps_c)/(eps_max - eps_c)) above eps_c),
-    ``LP_METAL_STIFFNESS`` K_m [N/m^n], ``LP_METAL_EXPONENT`` n, ``LP_METAL_DAMPING_RATIO`` zeta,
-    ``LP_MASS`` effective mass (the cage mass) [kg], ``LP_METAL_FRICTION`` mu, ``LP_SLIP_REGULARISATION``
-    [m/s], ``LP_CAGE_SIDE`` +1 if the cage runs inside the land (outer-ring guided), -1 if outside it
-    (inner-ring guided), ``LP_DAMPING_DEPTH`` damping ramp depth [m] (as for the pocket).
+    ``LK_OFFSET`` (2) cage centre minus guiding-ring centre, e [m]; ``LK_VELOCITY`` (2) its rate
+    [m/s]; ``LK_CAGE_SPEED`` cage angular speed [rad/s]; ``LK_RING_SPEED`` guiding ring speed
+    [rad/s].
+``params`` (``LAND_PARAM_SIZE``), built by :func:`land_parameters`:
+    ``LP_RADIUS`` R [m]; ``LP_WIDTH`` L [m]; ``LP_CLEARANCE`` radial clearance C [m];
+    ``LP_VISCOSITY`` eta [Pa s]; ``LP_CONTACT_ECCENTRICITY`` eps_c (metal contact for eps > eps_c,
+    i.e. film < (1 - eps_c) C); ``LP_MAX_ECCENTRICITY`` eps_max (eps_c < eps_max < 1; above eps_c
+    the hydrodynamic eccentricity is capped smoothly, eps_h = eps_c + (eps_max - eps_c)
+    tanh((eps - eps_c)/(eps_max - eps_c)), continuous with slope 1); ``LP_METAL_STIFFNESS`` K_m
+    [N/m^n]; ``LP_METAL_EXPONENT`` n; ``LP_METAL_DAMPING_RATIO`` zeta; ``LP_MASS`` effective mass
+    (the cage mass) [kg]; ``LP_METAL_FRICTION`` mu; ``LP_SLIP_REGULARISATION`` [m/s];
+    ``LP_CAGE_SIDE`` +1 if the cage runs inside the land (outer-ring guided), -1 if outside it
+    (inner-ring guided); ``LP_DAMPING_DEPTH`` damping ramp depth [m] (as for the pocket).
+``out`` (``LAND_OUT_SIZE``):
+    ``LO_FORCE`` (2) force on the cage [N]; ``LO_TORQUE`` torque on the cage about its centre, x
+    component [N m]; ``LO_RING_TORQUE`` torque on the guiding ring about its centre, -T - (e x F)_x
+    [N m] (the ring also receives -F); ``LO_HYDRO_FORCE`` (2) hydrodynamic part of the force [N];
+    ``LO_METAL_NORMAL`` metal normal force >= 0 [N]; ``LO_ECCENTRICITY`` eps = |e|/C; ``LO_FILM``
+    minimum geometric film C - |e| [m] (negative in metal contact).
 
-Hydrodynamic force (derivation, half-Sommerfeld short bearing). With psi measured from the line of
-centres e_par = e/|e| towards e_perp = x × e_par, film h = C (1 - eps cos psi), the short-bearing Reynolds
-equation integrated over the width gives the axial-integrated pressure P(psi) = -eta L^3 G / h^3 with
-G = A sin psi - B cos psi, A = (w_cage + w_ring)/2 e - v_perp, B = e_dot = v_par (the whirl term e phi_dot
-= v_perp is written without dividing by e, so the law stays regular at e = 0). Only P > 0 (G < 0) counts.
-The force on the cage, F = R eta L^3 / C^3 * integral over G<0 of G (cos psi e_par + sin psi e_perp)/w^3
-dpsi, w = 1 - eps cos psi, is evaluated in closed form with the Sommerfeld substitution
-cos psi = (eps + cos g)/(1 + eps cos g), which turns every integrand into a trigonometric polynomial in g.
-For a steady eccentric cage (v = 0) it reduces to the Ocvirk values of physics.md §2.6.7 with
+Hydrodynamic force. With psi measured from the line of centres e_par = e/|e| towards
+e_perp = x × e_par and the film h = C (1 - eps cos psi), the short-bearing Reynolds equation
+integrated over the width gives the pressure P(psi) = -eta L^3 G / h^3 (axially integrated), with
+G = A sin psi - B cos psi, A = (w_cage + w_ring)/2 e - v_perp, B = e_dot = v_par. (The whirl term
+e phi_dot = v_perp is written without dividing by e, so the law stays regular at e = 0.) Only P > 0
+(G < 0) counts. The force on the cage,
+    F = R eta L^3 / C^3 * integral over G < 0 of G (cos psi e_par + sin psi e_perp) / w^3 dpsi,
+w = 1 - eps cos psi, is evaluated in closed form with the Sommerfeld substitution
+cos psi = (eps + cos g)/(1 + eps cos g), which turns every integrand into a trigonometric polynomial
+in g. For a steady eccentric cage (v = 0) it reduces to the Ocvirk values of physics.md §2.6.7 with
 U = R (w_cage + w_ring):
     F_rad = -eta U L^3 / C^2 * eps^2 / (1 - eps^2)^2 (towards the centre),
-    F_tan = pi eta U L^3 / (4 C^2) * eps / (1 - eps^2)^1.5 (90 degrees ahead in the direction of rotation).
-Note U is the *sum* of the surface speeds (what drags oil into the wedge); physics.md's R |w_c - w_land|
-coincides with it for a stationary guiding ring (outer-ring guidance) only. The same formula holds
-whether the cage is inside or outside the land (the film sees only relative geometry).
-Viscous torque on the cage about its axis: Couette shear over the full film plus the pressure term,
-T = eta R^3 L (w_ring - w_cage)/C * 2 pi/sqrt(1 - eps_h^2) - e_h F_perp / 2 (both guidance sides).
-Metal contact: approach delta = |e| - eps_c C, normal force from :func:`damped_power_law_force` along
--e_par, friction -mu F_n s/sqrt(s^2 + u_reg^2) along e_perp at the contact point (side * R e_par from the
-cage centre), s = sliding speed of the cage surface over the land there.
-Default metal stiffness (:func:`land_contact_stiffness_estimate`): linear, k = pi E' L / 4, the order of
-magnitude of a conformal cylinder-in-bore line contact (approach ~ 4 P / (pi E' L) times a logarithmic
-factor of order one, Johnson, Contact Mechanics §5.6) [E].
-
-``out`` (``LAND_OUT_SIZE``): ``LO_FORCE`` (2) force on the cage [N]; ``LO_TORQUE`` torque on the cage
-about its centre, x component [N m]; ``LO_RING_TORQUE`` torque on the guiding ring about its centre
-(= -T - (e x F)_x; the ring also receives -F) [N m]; ``LO_HYDRO_FORCE`` (2) hydrodynamic part of the force
-[N]; ``LO_METAL_NORMAL`` metal normal force >= 0 [N]; ``LO_ECCENTRICITY`` eps = |e|/C; ``LO_FILM`` minimum
-geometric film C - |e| [m] (negative in metal contact).
+    F_tan = pi eta U L^3 / (4 C^2) * eps / (1 - eps^2)^1.5 (90° ahead in the sense of rotation).
+U is the *sum* of the surface speeds (what drags oil into the wedge); physics.md's R |w_c - w_land|
+coincides with it only for a stationary guiding ring (outer-ring guidance). The same formula holds
+whether the cage is inside or outside the land (the film sees only the relative geometry).
+Viscous torque on the cage about its axis, Couette shear over the full film plus the pressure term:
+T = eta R^3 L (w_ring - w_cage) / C * 2 pi / sqrt(1 - eps_h^2) - e_h F_perp / 2 (both sides).
+Metal contact: approach delta = |e| - eps_c C; normal force from :func:`damped_power_law_force`
+along -e_par; friction -mu F_n s / sqrt(s^2 + u_reg^2) along e_perp at the contact point
+(side * R e_par from the cage centre), s = sliding speed of the cage surface over the land there.
+Default metal stiffness (:func:`land_contact_stiffness_estimate`): linear, k = pi E' L / 4, the
+order of magnitude of a conformal cylinder-in-bore line contact (approach ~ 4 P / (pi E' L) times a
+logarithmic factor of order one; Johnson, Contact Mechanics §5.6) [E].
 """
 
 from __future__ import annotations
@@ -103,7 +112,7 @@ from numba import njit
 
 from solver.errors import CaseError, Problem
 
-# ---- pocket kinematics / parameters / output ------------------------------------------------------
+# ---- pocket kinematics / parameters / output -----------------------------------------------
 PK_POSITION = 0
 PK_VELOCITY = 3
 PK_OMEGA = 6
@@ -128,7 +137,7 @@ PO_GAP = 10
 PO_SLIP_SPEED = 11
 POCKET_OUT_SIZE = 12
 
-# ---- land kinematics / parameters / output ----------------------------------------------------------
+# ---- land kinematics / parameters / output -------------------------------------------------
 LK_OFFSET = 0
 LK_VELOCITY = 2
 LK_CAGE_SPEED = 4
@@ -179,10 +188,10 @@ def damped_power_law_force(
     """Normal force K d^n + c d_dot, c = 2 zeta sqrt(n K d^(n-1) m) s(d), clipped at 0 [N].
 
     ``approach`` d [m] (> 0 in contact), ``approach_rate`` [m/s] (> 0 closing), ``stiffness`` K
-    [N/m^n], ``exponent`` n >= 1, ``damping_ratio`` zeta, ``effective_mass`` m [kg]. s(d) is a smoothstep
-    ramp from 0 at d = 0 to 1 at d = ``damping_depth`` (1 everywhere if ``damping_depth`` <= 0), so the
-    force is continuous at contact onset also for n = 1. For n = 1.5 and no ramp this equals
-    solver.physics.traction.damped_normal_force. Q = 0 for d <= 0; never negative.
+    [N/m^n], ``exponent`` n >= 1, ``damping_ratio`` zeta, ``effective_mass`` m [kg]. s(d) is a
+    smoothstep ramp from 0 at d = 0 to 1 at d = ``damping_depth`` (1 everywhere if ``damping_depth``
+    <= 0), so the force is continuous at contact onset also for n = 1. For n = 1.5 and no ramp this
+    equals solver.physics.traction.damped_normal_force. Q = 0 for d <= 0; never negative.
     """
     if approach <= 0.0:
         return 0.0
@@ -203,7 +212,7 @@ def damped_power_law_force(
 # ================================================================================================
 @njit(cache=True)
 def pocket_contact(kinematics, params, out):
-    """Force and moment on a ball from its cylindrical cage pocket (module docstring for the arrays)."""
+    """Force and moment on a ball from its cylindrical cage pocket (arrays: module docstring)."""
     dx = kinematics[PK_POSITION]
     dr = kinematics[PK_POSITION + 1]
     dt = kinematics[PK_POSITION + 2]
@@ -274,7 +283,7 @@ def pocket_contact(kinematics, params, out):
 # ================================================================================================
 @njit(cache=True)
 def _sommerfeld_angle(psi, eps):
-    """Continuous Sommerfeld variable g(psi): tan(g/2) = sqrt((1+eps)/(1-eps)) tan(psi/2), g(0) = 0."""
+    """Continuous Sommerfeld angle g(psi), tan(g/2) = sqrt((1+eps)/(1-eps)) tan(psi/2), g(0) = 0."""
     k = math.sqrt((1.0 + eps) / (1.0 - eps))
     return psi + 2.0 * math.atan(
         (k - 1.0) * math.sin(psi) / ((1.0 + k) + (1.0 - k) * math.cos(psi))
@@ -302,9 +311,9 @@ def _film_integrals(psi1, psi2, eps):
 def short_bearing_force(eps, a_term, b_term, radius, width, clearance, viscosity):
     """Half-Sommerfeld short-bearing force components (F_par, F_perp) on the journal [N].
 
-    ``eps`` = e/C in [0, 1); ``a_term`` A = mean surface angular speed x e - v_perp [m/s], ``b_term``
-    B = e_dot [m/s] (module docstring). F_par is along the line of centres (negative = towards the
-    centre), F_perp at +90 degrees from it about +x.
+    ``eps`` = e/C in [0, 1); ``a_term`` A = mean surface angular speed x e - v_perp [m/s],
+    ``b_term`` B = e_dot [m/s] (module docstring). F_par is along the line of centres (negative =
+    towards the centre), F_perp at +90 degrees from it about +x.
     """
     gm = math.hypot(a_term, b_term)
     if gm <= 0.0:
@@ -318,7 +327,7 @@ def short_bearing_force(eps, a_term, b_term, radius, width, clearance, viscosity
 
 @njit(cache=True)
 def land_force(kinematics, params, out):
-    """Guiding-land force and torque on the cage (module docstring for the arrays and the physics)."""
+    """Guiding-land force and torque on the cage (arrays and physics: module docstring)."""
     ey = kinematics[LK_OFFSET]
     ez = kinematics[LK_OFFSET + 1]
     vy = kinematics[LK_VELOCITY]
@@ -385,7 +394,8 @@ def land_force(kinematics, params, out):
         params[LP_DAMPING_DEPTH],
     )
     if fn > 0.0:
-        # sliding of the cage surface over the land at the contact point side*R e_par from the cage centre
+        # sliding of the cage surface over the land at the contact point, side*R e_par from the
+        # cage centre
         s = v_perp + side * radius * (wc - wr) - wr * e
         ur = params[LP_SLIP_REGULARISATION]
         den = math.sqrt(s * s + ur * ur)
@@ -433,8 +443,9 @@ def pocket_stiffness_estimate(
     """Pocket contact stiffness K_p for the law F = K_p (-g)^n (module docstring for the reasoning).
 
     ``ball_diameter`` D and diametral ``pocket_clearance`` C_p in m; materials are
-    :class:`solver.materials.Material`. ``exponent`` 1.5 returns the Hertz constant [N/m^1.5] of a sphere
-    in a concave cylinder of radius (D + C_p)/2; ``exponent`` 1 returns its secant stiffness at
+    :class:`solver.materials.Material`. ``exponent`` 1.5 returns the Hertz constant [N/m^1.5] of a
+    sphere in a concave cylinder of radius (D + C_p)/2; ``exponent`` 1 returns its secant stiffness
+    at
     ``reference_load`` [N/m].
     """
     from solver.materials import effective_modulus
@@ -463,7 +474,7 @@ def pocket_stiffness_estimate(
 
 
 def land_contact_stiffness_estimate(land_width: float, effective_modulus: float) -> float:
-    """Linear metal-contact stiffness of the cage on its land, k = pi E' L / 4 [N/m] (order of magnitude)."""
+    """Linear metal-contact stiffness of the cage on its land, k = pi E' L / 4 [N/m] (estimate)."""
     problems: list[Problem] = []
     w = _positive(problems, "cage.guide_land_width", land_width)
     e = _positive(problems, "effective_modulus", effective_modulus)
@@ -538,8 +549,9 @@ def land_parameters(
 ) -> np.ndarray:
     """Land parameter array (``LAND_PARAM_SIZE``), validated; SI units (module docstring).
 
-    ``cage_inside_land`` is True for outer-ring guidance (the cage's outside diameter runs in the outer
-    ring's land bore) and False for inner-ring guidance. ``viscosity`` may be 0 (dry: metal contact only).
+    ``cage_inside_land`` is True for outer-ring guidance (the cage's outside diameter runs in the
+    outer ring's land bore) and False for inner-ring guidance. ``viscosity`` may be 0 (dry: metal
+    contact only).
     """
     problems: list[Problem] = []
     r = _positive(problems, "cage.guide_land_radius", radius)
@@ -564,7 +576,8 @@ def land_parameters(
         problems.append(
             Problem(
                 "cage.guide_contact_eccentricity",
-                f"cage.guide_contact_eccentricity = {ec:g} and cage.guide_max_eccentricity = {em:g}: "
+                f"cage.guide_contact_eccentricity = {ec:g} and "
+                f"cage.guide_max_eccentricity = {em:g}: "
                 "need 0 < contact < max < 1",
             )
         )

@@ -1,62 +1,66 @@
-"""Ball–race traction and damped normal force kernels for the dynamic model (physics.md §2.6.4, §2.6.6).
+"""Ball–race traction and damped normal force kernels of the dynamic model.
 
-Everything is SI (m, s, N, rad). Vectors are 3-component float64 arrays in one common Cartesian frame of
-the caller's choice (the dynamic model uses the inertial frame); the kernels never change frames.
+physics.md §2.6.4 and §2.6.6. Everything is SI (m, s, N, rad). Vectors are 3-component float64
+arrays in one common Cartesian frame of the caller's choice (the dynamic model uses the inertial
+frame); the kernels never change frames.
 
 Traction curve (ADORE-type, 4 parameters)
-    mu(u) = (A + B u) exp(-C u) + D,   u = slip speed >= 0 [m/s]
-    stored as a float64 array ``curve`` of length ``CURVE_SIZE``: ``curve[CURVE_A]`` ... ``curve[CURVE_D]``.
+    mu(u) = (A + B u) exp(-C u) + D, u = slip speed >= 0 [m/s], stored as a float64 array
+    ``curve`` of length ``CURVE_SIZE`` (``CURVE_A`` ... ``CURVE_D``).
     :func:`traction_curve_parameters` builds it from (mu_zero, mu_max, slip_at_max, mu_infinity);
     :func:`constant_traction_parameters` gives a Coulomb law mu(u) = mu.
 
 Friction regularisation
-    The local shear is tau = -mu(u) p dv / sqrt(u^2 + u_reg^2) (u = |dv|). With mu(0) = 0 (the usual ADORE
-    curve) this is smooth and u_reg hardly matters; with mu(0) > 0 it makes the force continuous through
-    zero slip (slope mu(0) p / u_reg there). ``u_reg = 0`` is allowed (no regularisation; tau = 0 at u = 0).
+    The local shear is tau = -mu(u) p dv / sqrt(u^2 + u_reg^2) (u = |dv|). With mu(0) = 0 (the
+    usual ADORE curve) this is smooth and u_reg hardly matters; with mu(0) > 0 it makes the force
+    continuous through zero slip (slope mu(0) p / u_reg there). ``u_reg = 0`` is allowed (no
+    regularisation; tau = 0 at u = 0).
 
 Contact description ``contact`` (float64, length ``CONTACT_SIZE``)
-    ``CT_POINT``   (3) contact centre P [m] (mid-plane of the deformed zone);
-    ``CT_NORMAL``  (3) unit normal n at P, pointing from the ball centre towards the race (the outward
-                   ball normal; physics.md §2.6.3 n-hat). The normal force on the ball is -Q n and is NOT
-                   included in the traction kernels' output;
-    ``CT_ROLLING`` (3) rolling direction t1 (direction of the minor axis b; re-orthogonalised to n here);
-                   the transverse direction is t2 = n x t1 (major axis a, across the groove);
-    ``CT_SEMI_MAJOR`` a [m] (along t2), ``CT_SEMI_MINOR`` b [m] (along t1), ``CT_LOAD`` Q [N] (>= 0),
-    ``CT_CURVATURE`` 1/R_d [1/m] (>= 0): curvature across the groove of the deformed contact surface,
-    R_d = 2 r D / (2 r + D) (see :func:`deformed_surface_curvature`); 0 for a flat contact.
+    ``CT_POINT`` (3): contact centre P [m] (mid-plane of the deformed zone).
+    ``CT_NORMAL`` (3): unit normal n at P, from the ball centre towards the race (the outward ball
+        normal, physics.md §2.6.3 n-hat). The normal force on the ball, -Q n, is NOT part of the
+        traction kernels' output.
+    ``CT_ROLLING`` (3): rolling direction t1 (along the minor axis b; re-orthogonalised to n here).
+        The transverse direction is t2 = n x t1 (major axis a, across the groove).
+    ``CT_SEMI_MAJOR``: a [m] (along t2). ``CT_SEMI_MINOR``: b [m] (along t1).
+    ``CT_LOAD``: Q [N] (>= 0; 0 gives no traction).
+    ``CT_CURVATURE``: 1/R_d [1/m] (>= 0), curvature across the groove of the deformed contact
+        surface, R_d = 2 r D / (2 r + D) (:func:`deformed_surface_curvature`); 0 = flat contact.
     The surface point at contact coordinates (xi, eta) is p = P + xi t1 + eta t2 + z(eta) n with
     z(eta) = sqrt(R_d^2 - eta^2) - R_d (the surface bends towards the ball centre).
 
-Kinematics ``kinematics`` (float64, length ``KIN_SIZE``; inertial velocities, common-frame components)
-    ``KIN_BALL_CENTRE`` (3) c_b [m], ``KIN_BALL_VELOCITY`` (3) [m/s], ``KIN_BALL_OMEGA`` (3) [rad/s];
-    ``KIN_RING_POINT`` (3) any point c_r fixed to the ring (e.g. its centre) [m], ``KIN_RING_VELOCITY`` (3)
-    velocity of that point [m/s], ``KIN_RING_OMEGA`` (3) ring angular velocity [rad/s].
-    Surface velocities at p: ball v_b + w_b x (p - c_b), ring v_r + w_r x (p - c_r). The slip dv is ball
-    minus ring, resolved into its rolling (t1) and transverse (t2) components; its component along n is
-    the approach rate of the undeformed (overlapping) rigid bodies, which the elastic deformation takes
-    up, and is dropped. The transverse component is laid along the local tangent of the curved surface,
-    t2' = cos(phi) t2 - sin(phi) n (sin(phi) = eta / R_d), so dv = v1 t1 + v2 t2' lies in the local
-    tangent plane. (Projecting the full rigid-body difference on the tilted local plane instead would turn
-    part of the approach rate, ~ xi * omega_roll, into a spurious transverse slip antisymmetric in xi*eta,
-    of the order of the Heathcote slip itself at bearing speeds.)
+Kinematics ``kinematics`` (float64, length ``KIN_SIZE``; inertial velocities)
+    ``KIN_BALL_CENTRE`` (3) c_b [m]; ``KIN_BALL_VELOCITY`` (3) [m/s]; ``KIN_BALL_OMEGA`` (3)
+    [rad/s];
+    ``KIN_RING_POINT`` (3) any point c_r fixed to the ring, e.g. its centre [m];
+    ``KIN_RING_VELOCITY`` (3) velocity of that point [m/s]; ``KIN_RING_OMEGA`` (3) [rad/s].
+    Surface velocities at p: ball v_b + w_b x (p - c_b), ring v_r + w_r x (p - c_r). The slip dv
+    (ball minus ring) is resolved into rolling (t1) and transverse (t2) components; its component
+    along n is the approach rate of the undeformed, overlapping rigid bodies, which the elastic
+    deformation takes up, and is dropped. The transverse component is laid along the local tangent
+    of the curved surface, t2' = cos(phi) t2 - sin(phi) n with sin(phi) = eta / R_d, so that
+    dv = v1 t1 + v2 t2' lies in the local tangent plane. (Projecting the full rigid-body difference
+    on the tilted local plane instead would turn part of the approach rate, ~ xi * omega_roll, into
+    a spurious transverse slip, antisymmetric in xi * eta and as large as the Heathcote slip.)
 
 Output ``out`` (float64, length ``TRACTION_OUT_SIZE``, overwritten)
-    ``TR_FORCE``        (3) traction force on the ball [N] (the ring gets minus this);
-    ``TR_MOMENT_BALL``  (3) moment of the traction on the ball about the ball centre c_b [N m];
-    ``TR_MOMENT_POINT`` (3) moment of the traction about the contact centre P [N m]; the moment on the
-                        ring about a ring point c_r is -((P - c_r) x F + M_P);
-    ``TR_SLIP``         (3) slip velocity (ball minus ring) at P, tangential part [m/s];
-    ``TR_SLIP_SPEED``   |slip| at P [m/s];  ``TR_SPIN`` spin speed (w_b - w_r) . n [rad/s];
-    ``TR_ENTRAINMENT``  entrainment speed 0.5 |v_ball,t + v_ring,t| at P [m/s];
-    ``TR_POWER``        friction power dissipated in the contact, -sum(tau . dv) dA >= 0 [W].
+    ``TR_FORCE`` (3): traction force on the ball [N] (the ring gets minus this).
+    ``TR_MOMENT_BALL`` (3): moment of the traction on the ball about the ball centre c_b [N m].
+    ``TR_MOMENT_POINT`` (3): moment of the traction about the contact centre P [N m]; the moment
+        on the ring about a ring point c_r is -((P - c_r) x F + M_P).
+    ``TR_SLIP`` (3): slip velocity (ball minus ring) at P, tangential part [m/s].
+    ``TR_SLIP_SPEED``: |slip| at P [m/s]. ``TR_SPIN``: spin speed (w_b - w_r) . n [rad/s].
+    ``TR_ENTRAINMENT``: entrainment speed 0.5 |v_ball,t + v_ring,t| at P [m/s].
+    ``TR_POWER``: friction power dissipated in the contact, -sum(tau . dv dA) >= 0 [W].
 
 Quadrature on the contact ellipse (:func:`ellipse_quadrature`)
-    Strips across the major axis (transverse, Gauss–Jacobi weight 1 - y^2) times Gauss points along the
-    rolling direction (Gauss–Chebyshev 2nd kind, weight sqrt(1 - t^2)), with x = sqrt(1 - y^2) t. The
-    Hertz pressure p = p_max sqrt(1 - x^2 - y^2) = p_max sqrt(1 - y^2) sqrt(1 - t^2) is then exactly the
-    rule's weight, so the pressure integrates to Q to rounding error for any node count. Node table
-    columns: ``NODE_ROLLING`` x = xi/b, ``NODE_TRANSVERSE`` y = eta/a, ``NODE_AREA`` area weight on the unit
-    disc, ``NODE_LOAD`` load fraction (p dA / Q); sum of load fractions = 1.
+    Strips across the major axis (Gauss–Jacobi, weight 1 - y^2) times Gauss points along the
+    rolling direction (Gauss–Chebyshev of the 2nd kind, weight sqrt(1 - t^2)), x = sqrt(1 - y^2) t.
+    The Hertz pressure p = p_max sqrt(1 - x^2 - y^2) = p_max sqrt(1 - y^2) sqrt(1 - t^2) is then
+    exactly the rule's weight, so the pressure integrates to Q to rounding error for any node
+    count. Node table columns: ``NODE_ROLLING`` x = xi/b, ``NODE_TRANSVERSE`` y = eta/a,
+    ``NODE_AREA`` area weight on the unit disc, ``NODE_LOAD`` load fraction p dA / Q (sum = 1).
 """
 
 from __future__ import annotations
@@ -154,10 +158,11 @@ def traction_curve_parameters(
     """Parameters (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D from four curve properties.
 
     ``mu_zero`` = mu(0), ``mu_max`` = the maximum, reached at slip speed ``slip_at_max`` [m/s],
-    ``mu_infinity`` = limit for large slip. A = mu_zero - mu_infinity, D = mu_infinity, C = B / (A + B u_m)
-    puts the stationary point at u_m, and B > 0 is the unique root of mu(u_m) = mu_max (physics.md §2.6.4).
-    Requires 0 <= mu_zero < mu_max, 0 <= mu_infinity < mu_max, slip_at_max > 0. Invalid input raises
-    :class:`CaseError` naming ``key_prefix.<name>``. Returns a float64 array of length ``CURVE_SIZE``.
+    ``mu_infinity`` = limit for large slip. A = mu_zero - mu_infinity, D = mu_infinity, C = B / (A +
+    B u_m) puts the stationary point at u_m, and B > 0 is the unique root of mu(u_m) = mu_max
+    (physics.md §2.6.4). Requires 0 <= mu_zero < mu_max, 0 <= mu_infinity < mu_max, slip_at_max > 0.
+    Invalid input raises :class:`CaseError` naming ``key_prefix.<name>``. Returns a float64 array of
+    length ``CURVE_SIZE``.
     """
     problems: list[Problem] = []
     k0, km, ku, ki = (
@@ -176,14 +181,16 @@ def traction_curve_parameters(
             problems.append(
                 Problem(
                     k0,
-                    f"{k0} = {m0:g}: must be smaller than {km} = {mm:g} (the curve rises to its maximum)",
+                    f"{k0} = {m0:g}: must be smaller than {km} = {mm:g} "
+                    "(the curve rises to its maximum)",
                 )
             )
         if mi is not None and not mi < mm:
             problems.append(
                 Problem(
                     ki,
-                    f"{ki} = {mi:g}: must be smaller than {km} = {mm:g} (the curve falls after its maximum)",
+                    f"{ki} = {mi:g}: must be smaller than {km} = {mm:g} "
+                    "(the curve falls after its maximum)",
                 )
             )
     if problems:
@@ -211,7 +218,7 @@ def traction_curve_parameters(
 
 
 def constant_traction_parameters(mu: float) -> np.ndarray:
-    """Curve array of a constant (Coulomb) coefficient mu(u) = mu, for boundary friction and tests."""
+    """Curve array of a constant (Coulomb) coefficient mu(u) = mu (boundary friction, tests)."""
     if not (math.isfinite(mu) and mu >= 0.0):
         raise CaseError(Problem("mu", f"mu = {mu!r}: must be a finite number >= 0"))
     return np.array([0.0, 0.0, 0.0, float(mu)], dtype=np.float64)
@@ -219,7 +226,7 @@ def constant_traction_parameters(mu: float) -> np.ndarray:
 
 @njit(cache=True)
 def traction_coefficient(slip_speed, curve):
-    """Traction coefficient mu(|u|) = (A + B|u|) exp(-C|u|) + D for slip speed u [m/s]; mu(0) = A + D."""
+    """Traction coefficient mu(|u|) = (A + B|u|) exp(-C|u|) + D at slip speed u [m/s]."""
     u = abs(slip_speed)
     return (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
 
@@ -242,11 +249,12 @@ def ellipse_quadrature(
 ) -> np.ndarray:
     """Normalised nodes and weights on the unit disc for Hertz-pressure-weighted integrals.
 
-    ``n_rolling`` points along the rolling direction (minor axis b) on each of ``n_transverse`` strips
-    across the major axis a. Returns an array (n_rolling * n_transverse, ``NODE_COLUMNS``): x = xi/b,
-    y = eta/a, area weight (so that sum w f(x, y) ~ integral of f over the unit disc) and load fraction
-    (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz pressure). The pressure
-    itself is integrated exactly (sum of load fractions = 1 to rounding error).
+    ``n_rolling`` points along the rolling direction (minor axis b) on each of ``n_transverse``
+    strips across the major axis a. Returns an array (n_rolling * n_transverse, ``NODE_COLUMNS``): x
+    = xi/b, y = eta/a, area weight (so that sum w f(x, y) ~ integral of f over the unit disc) and
+    load fraction (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz
+    pressure). The pressure itself is integrated exactly (sum of load fractions = 1 to rounding
+    error).
     """
     for name, n in (("n_rolling", n_rolling), ("n_transverse", n_transverse)):
         if int(n) != n or n < 1 or n > 200:
@@ -268,7 +276,10 @@ def ellipse_quadrature(
 
 
 def deformed_surface_curvature(groove_radius: float, ball_diameter: float) -> float:
-    """Curvature 1/R_d [1/m] of the deformed contact surface across the groove, R_d = 2 r D / (2 r + D)."""
+    """Curvature 1/R_d [1/m] of the deformed contact surface across the groove.
+
+    R_d = 2 r D / (2 r + D), the harmonic mean of the groove radius r and the ball radius D/2.
+    """
     return (2.0 * groove_radius + ball_diameter) / (2.0 * groove_radius * ball_diameter)
 
 
@@ -304,7 +315,7 @@ def _contact_basis(contact):
 
 @njit(cache=True)
 def _centre_kinematics(contact, kin, nx, ny, nz):
-    """Slip (ball minus ring) at P, ball and ring surface velocities at P, relative angular velocity."""
+    """Lever arm P - c_b, ball and ring surface velocities at P, relative angular velocity."""
     px = contact[CT_POINT]
     py = contact[CT_POINT + 1]
     pz = contact[CT_POINT + 2]
@@ -361,15 +372,16 @@ def _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy,
 def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out):
     """Traction force and moments on the ball integrated over the Hertz contact ellipse.
 
-    ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and the
-    output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes`` comes from
-    :func:`ellipse_quadrature`; ``slip_regularisation`` u_reg [m/s] >= 0.
+    ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and
+    the output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes``
+    comes from :func:`ellipse_quadrature`; ``slip_regularisation`` u_reg [m/s] >= 0.
 
     At each node the surface point p = P + xi t1 + eta t2 + z(eta) n lies on the deformed surface of
-    curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the ring
-    surface there (rigid-body velocities of both bodies, rolling and transverse components laid on the
-    local tangent plane, see the module docstring) gives the local shear tau = -mu(|dv|) p dv / sqrt(|dv|^2 + u_reg^2). Spin moment and the differential
-    (Heathcote) slip thus come out of one formula. Returns nothing; fills ``out``.
+    curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the
+    ring surface there (rigid-body velocities of both bodies, rolling and transverse components laid
+    on the local tangent plane, see the module docstring) gives the local shear tau = -mu(|dv|) p dv
+    / sqrt(|dv|^2 + u_reg^2). Spin moment and the differential (Heathcote) slip thus come out of one
+    formula. Returns nothing; fills ``out``.
     """
     nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z = _contact_basis(contact)
     (rbx, rby, rbz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz) = _centre_kinematics(
@@ -394,6 +406,11 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
     a3x = oy * nz - oz * ny
     a3y = oz * nx - ox * nz
     a3z = ox * ny - oy * nx
+    if q <= 0.0:  # unloaded contact: no traction (the centre kinematics above are still reported)
+        for i in range(9):
+            out[TR_FORCE + i] = 0.0
+        out[TR_POWER] = 0.0
+        return
     ur2 = slip_regularisation * slip_regularisation
     fx = 0.0
     fy = 0.0
@@ -457,8 +474,8 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
 def centre_traction(contact, kinematics, curve, slip_regularisation, out):
     """Single-point traction: the centre slip only, F = -Q mu(u) dv / sqrt(u^2 + u_reg^2).
 
-    Same arrays as :func:`ellipse_traction` (``contact[CT_SEMI_MAJOR/MINOR/CURVATURE]`` unused). It has no
-    spin moment (``TR_MOMENT_POINT`` = 0); 10–50x cheaper, for comparison and tests.
+    Same arrays as :func:`ellipse_traction` (``contact[CT_SEMI_MAJOR/MINOR/CURVATURE]`` unused). It
+    has no spin moment (``TR_MOMENT_POINT`` = 0); 10–50x cheaper, for comparison and tests.
     """
     nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z = _contact_basis(contact)
     (rbx, rby, rbz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz) = _centre_kinematics(
@@ -489,11 +506,11 @@ def centre_traction(contact, kinematics, curve, slip_regularisation, out):
 def damped_normal_force(approach, approach_rate, stiffness_K, damping_ratio, effective_mass):
     """Hertz normal force with ADORE-style damping, Q = K d^1.5 + c d_dot, clipped at 0 [N].
 
-    ``approach`` d [m] (> 0 in contact), ``approach_rate`` d_dot [m/s] (> 0 closing), ``stiffness_K``
-    [N/m^1.5], ``damping_ratio`` zeta (critical-damping fraction, >= 0), ``effective_mass`` [kg].
-    c = 2 zeta sqrt(1.5 K d^0.5 m) uses the linearised stiffness 1.5 K d^0.5, so the damping force
-    vanishes smoothly as d -> 0 (no jump at contact onset). Q = 0 for d <= 0 and never negative (no
-    tension: a separating contact whose damping would pull is released).
+    ``approach`` d [m] (> 0 in contact), ``approach_rate`` d_dot [m/s] (> 0 closing),
+    ``stiffness_K`` [N/m^1.5], ``damping_ratio`` zeta (critical-damping fraction, >= 0),
+    ``effective_mass`` [kg]. c = 2 zeta sqrt(1.5 K d^0.5 m) uses the linearised stiffness 1.5 K
+    d^0.5, so the damping force vanishes smoothly as d -> 0 (no jump at contact onset). Q = 0 for d
+    <= 0 and never negative (no tension: a separating contact whose damping would pull is released).
     """
     if approach <= 0.0:
         return 0.0

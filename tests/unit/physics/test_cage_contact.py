@@ -1,8 +1,9 @@
-"""Tests of solver.physics.cage_contact: ball–pocket contact and the cage–land (short-bearing) force.
+"""Tests of solver.physics.cage_contact: ball–pocket contact and the cage–land short-bearing force.
 
 References: closed forms (Ocvirk steady short bearing, short-bearing squeeze damping at the centre,
-Petroff torque, sphere-on-flat Hertz), direct numerical integration (scipy quad) of the short-bearing
-pressure P = -eta L^3 G / h^3 with the half-Sommerfeld condition, and limits/continuity.
+Petroff torque, sphere-on-flat Hertz), direct numerical integration (scipy quad) of the
+short-bearing pressure P = -eta L^3 G / h^3 with the half-Sommerfeld condition, and
+limits/continuity.
 """
 
 from __future__ import annotations
@@ -113,7 +114,7 @@ def test_pocket_friction_from_radial_sliding():
 @pytest.mark.parametrize("wx", [300.0, -1000.0])
 def test_pocket_friction_opposes_ball_spin(wx):
     # ball touching the theta-face and spinning about the bearing axis: x × theta = -r, so the ball
-    # surface slides along -r * sign(wx) and friction pushes it along +r * sign(wx); moment opposes wx
+    # surface slides along -r sign(wx), friction pushes it along +r sign(wx); moment opposes wx
     pen, mu = 2e-6, 0.08
     out = _prun(_pkin((0.0, 0.0, CP / 2 + pen), omega=(wx, 0.0, 0.0)), _pocket(mu=mu, ureg=1e-6))
     fn = 2e9 * pen**1.5
@@ -223,7 +224,7 @@ def test_land_steady_ocvirk_closed_form(eps, angle, wc, wr):
 
 
 def _numerical_short_bearing(offset, vel, wc, wr):
-    """Force on the cage from P = -eta L^3 G / h^3, G = (w_mean - phi_dot) dh/dpsi-type terms written in
+    """Force on the cage from P = -eta L^3 G / h^3, with G = w_mean dh/dtheta + dh/dt written in
     absolute angles theta and integrated with quad over the positive-pressure arcs."""
     ey, ez = offset
     vy, vz = vel
@@ -320,7 +321,7 @@ def test_land_torque_couette_matches_numerical_integral():
         epsrel=1e-12,
     )[0]
     f_perp = out[cc.LO_FORCE + 1]  # e along +y, so e_perp = +z
-    # pressure (Poiseuille) part of the shear on the cage: -(R/2) * integral of h dP/dtheta (numerical)
+    # pressure (Poiseuille) part of the shear on the cage: -(R/2) integral of h dP/dtheta
     th = np.linspace(0, 2 * math.pi, 200001)
     h = C_LAND * (1 - eps * np.cos(th))
     G = 0.5 * (wc + wr) * eps * C_LAND * np.sin(th)

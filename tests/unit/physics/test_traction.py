@@ -1,8 +1,9 @@
-"""Tests of solver.physics.traction: traction curve, ellipse quadrature, traction kernels, damped Hertz force.
+"""Tests of solver.physics.traction: curve, ellipse quadrature, traction kernels, damped normal force.
 
-References are independent of the kernels: published curve values (physics.md §2.6.4), closed forms
-(uniform sliding, moments of the Hertz pressure), scipy dblquad / cubature of the local-shear integrand
-written directly from its definition in vector form, and scipy solve_ivp for the impact test.
+References are independent of the kernels: published curve values (physics.md §2.6.4), closed
+forms (uniform sliding, moments of the Hertz pressure), scipy dblquad, an independent polar
+Gauss–Legendre integration of the local-shear integrand written directly from its definition in
+vector form (checked once against scipy cubature to 1e-9), and scipy solve_ivp for the impacts.
 """
 
 from __future__ import annotations
@@ -149,7 +150,7 @@ def test_quadrature_integrates_hertz_pressure(nr, nt):
 
 
 def test_quadrature_pressure_moments():
-    # <x^2> = <y^2> = 1/5 and <x^2 y^2> = 1/35 for the Hertz pressure on the unit disc (closed forms)
+    # <x^2> = <y^2> = 1/5 and <x^2 y^2> = 1/35 for the Hertz pressure on the unit disc
     nodes = tr.ellipse_quadrature(3, 3)
     w, x, y = nodes[:, tr.NODE_LOAD], nodes[:, tr.NODE_ROLLING], nodes[:, tr.NODE_TRANSVERSE]
     assert np.sum(w * x**2) == pytest.approx(0.2, rel=1e-12)
@@ -210,9 +211,9 @@ def _run(contact, kin, curve, ureg=1e-4, nodes=None):
 def _integrand(contact, kin, curve, ureg):
     """Local shear and its moments at contact-plane points (xi, eta), written from the definitions.
 
-    The surface across the groove is the circle p(eta) = P + eta t2 + (sqrt(Rd^2 - eta^2) - Rd) n; the
-    slip is the rigid-body velocity difference with its n component (approach rate) removed and its t2
-    component laid along the surface tangent dp/deta."""
+    The surface across the groove is the circle p(eta) = P + eta t2 + (sqrt(Rd^2 - eta^2) - Rd) n;
+    the slip is the rigid-body velocity difference with its n component (approach rate) removed and
+    its t2 component laid along the surface tangent dp/deta."""
     P = contact[0:3]
     n = contact[3:6]
     t1 = contact[6:9]
@@ -245,8 +246,9 @@ def _integrand(contact, kin, curve, ureg):
 
 
 def _reference(contact, kin, curve, ureg, n_panels=40, order=6):
-    """Independent integral over the ellipse: polar coordinates xi = b sin(s) cos(th), eta = a sin(s) sin(th)
-    (the substitution rho = sin(s) removes the square-root edge of the pressure), composite Gauss–Legendre
+    """Independent integral over the ellipse in polar coordinates, xi = b sin(s) cos(th),
+    eta = a sin(s) sin(th) (rho = sin(s) removes the square-root edge of the pressure), composite
+    Gauss–Legendre
     panels in s and th. Returns (F, M about P, M about ball centre, power)."""
     a, b = contact[9], contact[10]
     g, w = np.polynomial.legendre.leggauss(order)
@@ -377,7 +379,7 @@ def test_pure_spin_moment_matches_dblquad(omega_s):
     np.testing.assert_allclose(mp, expected, rtol=2e-3, atol=1e-3 * abs(val) * mu)
     # the spin moment opposes the spin
     assert np.dot(mp, n) * omega_s < 0
-    # no net force (symmetric slip field), and the ball moment is the point moment plus (P - c_b) x F
+    # no net force (symmetric slip field); the ball moment is the point moment plus (P - c_b) x F
     assert np.linalg.norm(out[tr.TR_FORCE : tr.TR_FORCE + 3]) < 1e-9 * Q_ * mu
     np.testing.assert_allclose(
         out[tr.TR_MOMENT_BALL : tr.TR_MOMENT_BALL + 3], mp, rtol=1e-9, atol=1e-15
@@ -447,7 +449,7 @@ def test_general_contact_matches_independent_integration(kappa):
 
 
 def test_heathcote_slip_from_curvature():
-    """Pure rolling at the centre on a curved (conformal) surface still gives traction (differential slip);
+    """Pure rolling at the centre on a curved (conformal) surface still gives traction (Heathcote);
     the same kinematics on a flat contact gives none."""
     n, t1, t2 = _frame(4)
     P = np.zeros(3)
@@ -464,7 +466,7 @@ def test_heathcote_slip_from_curvature():
     assert np.linalg.norm(flat[tr.TR_FORCE : tr.TR_FORCE + 3]) < 1e-12
     F, MP, MB, pw = _reference(curved_c, kin, curve, 1e-4)
     f_c = curved[tr.TR_FORCE : tr.TR_FORCE + 3]
-    # ball surface at |eta| > 0 is nearer to the rolling axis: it lags the ring, so the ring drives it
+    # ball surface at |eta| > 0 is nearer the rolling axis: it lags the ring, so the ring drives it
     assert np.dot(f_c, t1) > 0.0
     np.testing.assert_allclose(f_c, F, atol=5e-3 * np.linalg.norm(F))
     assert curved[tr.TR_POWER] == pytest.approx(pw, rel=5e-3)
