@@ -1,4 +1,4 @@
-"""Tests of solver.physics.traction: curve, ellipse quadrature, traction kernels, damped normal force.
+"""Tests of solver.physics.traction: curve, quadrature, traction kernels, damped normal force.
 
 References are independent of the kernels: published curve values (physics.md §2.6.4), closed
 forms (uniform sliding, moments of the Hertz pressure), scipy dblquad, an independent polar
