@@ -60,9 +60,12 @@ class CatalogueEntry:
             return text
         data = tomllib.loads(text)
         b = data["bearing"]
-        speed, load = modest_operating_point(b["ball_count"], b["ball_diameter_mm"],
-                                             b["pitch_diameter_mm"])
-        return text.rstrip("\n") + f"""
+        speed, load = modest_operating_point(
+            b["ball_count"], b["ball_diameter_mm"], b["pitch_diameter_mm"]
+        )
+        return (
+            text.rstrip("\n")
+            + f"""
 
 # [cage]                                 # optional; estimated from the bearing when absent
 # guidance = "outer_ring"                # outer_ring | inner_ring | ball
@@ -88,6 +91,7 @@ radial_load_angle_deg = 0.0
 shaft_revolutions = 10.0
 samples_per_revolution = 180
 """
+        )
 
     def load(self) -> Case:
         """The validated case (for a bearing: :meth:`case_text`)."""
@@ -119,9 +123,14 @@ class Catalogue:
                 return entry
         close = difflib.get_close_matches(name, self.names, n=3, cutoff=0.5)
         hint = f"did you mean {', '.join(close)}? " if close else ""
-        raise CaseError(Problem("catalogue", f"no catalogue entry named {name!r}: {hint}"
-                                             f"known names: {', '.join(self.names)} "
-                                             "(list them with `racetrace cases`)"))
+        raise CaseError(
+            Problem(
+                "catalogue",
+                f"no catalogue entry named {name!r}: {hint}"
+                f"known names: {', '.join(self.names)} "
+                "(list them with `racetrace cases`)",
+            )
+        )
 
     def __contains__(self, name: object) -> bool:
         return name in self.names
@@ -130,9 +139,13 @@ class Catalogue:
 def _entry(kind: str, resource) -> CatalogueEntry:
     data = tomllib.loads(resource.read_text(encoding="utf-8"))
     bearing = data.get("bearing", {})
-    return CatalogueEntry(name=resource.name.removesuffix(".toml"), kind=kind,
-                          title=str(data.get("title", "")),
-                          provenance=str(bearing.get("provenance", "estimated")), path=resource)
+    return CatalogueEntry(
+        name=resource.name.removesuffix(".toml"),
+        kind=kind,
+        title=str(data.get("title", "")),
+        provenance=str(bearing.get("provenance", "estimated")),
+        path=resource,
+    )
 
 
 def catalogue() -> Catalogue:
@@ -140,8 +153,10 @@ def catalogue() -> Catalogue:
     root = files("assets")
     entries = []
     for kind, folder in _KINDS:
-        resources = sorted((r for r in root.joinpath(folder).iterdir()
-                            if r.name.endswith(".toml")), key=lambda r: r.name)
+        resources = sorted(
+            (r for r in root.joinpath(folder).iterdir() if r.name.endswith(".toml")),
+            key=lambda r: r.name,
+        )
         entries += [_entry(kind, r) for r in resources]
     return Catalogue(tuple(entries))
 
@@ -167,5 +182,10 @@ def resolve_case(path_or_name) -> Case:
         raise CaseError(Problem("file", f"case file not found: {text}"))
     close = difflib.get_close_matches(text, cat.names, n=3, cutoff=0.5)
     hint = f"did you mean {', '.join(close)}? " if close else ""
-    raise CaseError(Problem("catalogue", f"{text!r} is neither a case file nor a catalogue name: "
-                                         f"{hint}catalogue names: {', '.join(cat.names)}"))
+    raise CaseError(
+        Problem(
+            "catalogue",
+            f"{text!r} is neither a case file nor a catalogue name: "
+            f"{hint}catalogue names: {', '.join(cat.names)}",
+        )
+    )

@@ -1,4 +1,5 @@
-"""``racetrace cases``: list the shipped bearings and cases; ``racetrace cases show NAME`` prints one
+"""``racetrace cases``: list the shipped bearings and cases; ``racetrace cases show NAME``
+prints one
 as a case file to start from (exit 2 with suggestions for an unknown name)."""
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ def format_table(entries) -> str:
     rows += [(e.name, e.kind, e.provenance, e.title) for e in entries]
     widths = [max(len(r[i]) for r in rows) for i in range(3)]
     return "\n".join(
-        f"{r[0]:<{widths[0]}}  {r[1]:<{widths[1]}}  {r[2]:<{widths[2]}}  {r[3]}".rstrip() for r in rows
+        f"{r[0]:<{widths[0]}}  {r[1]:<{widths[1]}}  {r[2]:<{widths[2]}}  {r[3]}".rstrip()
+        for r in rows
     )
 
 

@@ -43,11 +43,15 @@ def summary(case) -> str:
         f"{_num(op.radial_load_N, 6)} N at {_num(op.radial_load_angle_deg)} deg",
     ]
     if op.misalignment_deg is not None:
-        lines.append(f"           misalignment {_num(op.misalignment_deg)} deg about the axis at "
-                     f"{_num(op.misalignment_axis_deg)} deg, frame: {op.misalignment_frame}")
+        lines.append(
+            f"           misalignment {_num(op.misalignment_deg)} deg about the axis at "
+            f"{_num(op.misalignment_axis_deg)} deg, frame: {op.misalignment_frame}"
+        )
     if op.tilting_moment_Nm is not None:
-        lines.append(f"           tilting moment {_num(op.tilting_moment_Nm)} N m about the axis at "
-                     f"{_num(op.moment_axis_deg)} deg (tilt solved)")
+        lines.append(
+            f"           tilting moment {_num(op.tilting_moment_Nm)} N m about the axis at "
+            f"{_num(op.moment_axis_deg)} deg (tilt solved)"
+        )
     if case.estimated:
         names = ", ".join(sorted(k.split(".", 1)[1] for k in case.estimated))
         lines.append(f"estimated: {names} (from the bearing; see docs/case-format.md)")

@@ -11,6 +11,20 @@ from .model import Bearing, Cage, Case, Lubricant, Operating, Simulation, Tracti
 from .schema import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, Field
 
 __all__ = [
-    "FIELDS", "MATERIAL_FIELDS", "OPTIONAL", "REQUIRED", "Bearing", "Cage", "Case", "CaseError",
-    "Estimated", "Field", "Lubricant", "Operating", "Problem", "Simulation", "Traction", "load_case",
+    "FIELDS",
+    "MATERIAL_FIELDS",
+    "OPTIONAL",
+    "REQUIRED",
+    "Bearing",
+    "Cage",
+    "Case",
+    "CaseError",
+    "Estimated",
+    "Field",
+    "Lubricant",
+    "Operating",
+    "Problem",
+    "Simulation",
+    "Traction",
+    "load_case",
 ]

@@ -1,4 +1,5 @@
-"""Reading case files: path or TOML text → validated :class:`Case`, with messages, never tracebacks."""
+"""Reading case files: path or TOML text → validated :class:`Case`; errors are
+messages, never tracebacks."""
 
 from __future__ import annotations
 
@@ -29,8 +30,12 @@ def read_case_text(path: Path) -> str:
     try:
         return path.read_text(encoding="utf-8")
     except UnicodeDecodeError as error:
-        raise CaseError(Problem("file", f"{path} is not a text file (not UTF-8: {error.reason} at "
-                                        f"byte {error.start})")) from None
+        raise CaseError(
+            Problem(
+                "file",
+                f"{path} is not a text file (not UTF-8: {error.reason} at byte {error.start})",
+            )
+        ) from None
     except OSError as error:
         raise CaseError(Problem("file", f"cannot read {path}: {error.strerror}")) from None
 
@@ -40,8 +45,13 @@ def parse_toml(text: str, source: str = "case text") -> dict:
     if not text.strip() or all(
         not line.strip() or line.lstrip().startswith("#") for line in text.splitlines()
     ):
-        raise CaseError(Problem("file", f"{source} is empty: a case needs at least a [bearing] and "
-                                        "an [operating] section (see `racetrace cases show NAME`)"))
+        raise CaseError(
+            Problem(
+                "file",
+                f"{source} is empty: a case needs at least a [bearing] and "
+                "an [operating] section (see `racetrace cases show NAME`)",
+            )
+        )
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
@@ -54,10 +64,16 @@ def parse_toml(text: str, source: str = "case text") -> dict:
             shown = lines[line_no - 1] if 0 < line_no <= len(lines) else ""
             message = _LOCATION.sub("", message).strip()
             where = f" at line {line_no}, column {match.group(2)}" + (
-                f": {shown.strip()!r}" if shown.strip() else "")
-        raise CaseError(Problem("file", f"{source} is not valid TOML{where} ({message}); "
-                                        "write key = value lines under [section] headers, text in "
-                                        "double quotes")) from None
+                f": {shown.strip()!r}" if shown.strip() else ""
+            )
+        raise CaseError(
+            Problem(
+                "file",
+                f"{source} is not valid TOML{where} ({message}); "
+                "write key = value lines under [section] headers, text in "
+                "double quotes",
+            )
+        ) from None
 
 
 def load_case(path_or_text: str | Path) -> Case:
@@ -77,6 +93,9 @@ def load_case(path_or_text: str | Path) -> Case:
         else:
             text, source = path_or_text, "case text"
     else:
-        raise CaseError(Problem("file", f"load_case needs a path or TOML text, not "
-                                        f"{type(path_or_text).__name__}"))
+        raise CaseError(
+            Problem(
+                "file", f"load_case needs a path or TOML text, not {type(path_or_text).__name__}"
+            )
+        )
     return validate(parse_toml(text, source))

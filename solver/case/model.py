@@ -1,7 +1,9 @@
-"""The validated case: frozen dataclasses, one per section, attributes named exactly as the case keys.
+"""The validated case: frozen dataclasses, one per section, attributes named exactly as the
+case keys.
 
 The section classes (:class:`Bearing`, :class:`Cage`, :class:`Lubricant` with its :class:`Traction`,
-:class:`Operating`, :class:`Simulation`) are generated from :data:`solver.case.schema.FIELDS`, so a new
+:class:`Operating`, :class:`Simulation`) are generated from :data:`solver.case.schema.FIELDS`, so a
+new
 key in the table is a new attribute here. Values are in the units of the key names (mm, deg, rpm, N,
 g); optional keys that are absent are ``None``. Build cases with :func:`solver.case.load_case`,
 :meth:`Case.from_dict` or :meth:`Case.with_values`: these validate; the constructors do not.
@@ -16,8 +18,14 @@ from solver.materials import BUILTIN_MATERIALS, Material
 
 from .schema import FIELDS, MATERIAL_FIELDS
 
-_PY_TYPES = {"float": "float", "int": "int", "str": "str", "choice": "str", "bool": "bool",
-             "material": "str | dict"}
+_PY_TYPES = {
+    "float": "float",
+    "int": "int",
+    "str": "str",
+    "choice": "str",
+    "bool": "bool",
+    "material": "str | dict",
+}
 
 
 def _make_section(class_name: str, prefix: tuple[str, ...]):
@@ -53,15 +61,24 @@ Operating = _make_section("Operating", ("operating",))
 Simulation = _make_section("Simulation", ("simulation",))
 
 #: section name -> class; sub-table (section, key) -> class
-SECTION_CLASSES = {"bearing": Bearing, "cage": Cage, "lubricant": Lubricant,
-                   "operating": Operating, "simulation": Simulation}
+SECTION_CLASSES = {
+    "bearing": Bearing,
+    "cage": Cage,
+    "lubricant": Lubricant,
+    "operating": Operating,
+    "simulation": Simulation,
+}
 SUBTABLE_CLASSES = {("lubricant", "traction"): Traction}
 
 
 def material_from_table(name: str, table: dict) -> Material:
     """SI :class:`Material` from a validated material table (GPa, -, kg/m^3 as written)."""
-    return Material(name, float(table["youngs_modulus_GPa"]) * 1e9, float(table["poisson_ratio"]),
-                    float(table["density_kg_m3"]))
+    return Material(
+        name,
+        float(table["youngs_modulus_GPa"]) * 1e9,
+        float(table["poisson_ratio"]),
+        float(table["density_kg_m3"]),
+    )
 
 
 @dataclass(frozen=True)
@@ -142,7 +159,7 @@ class Case:
 
     @classmethod
     def from_dict(cls, data: dict) -> Case:
-        """Validated case from a nested dict (as :func:`tomllib.loads` returns). Raises CaseError."""
+        """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError."""
         from .validate import validate
 
         return validate(data)
@@ -156,7 +173,8 @@ class Case:
     def with_values(self, values: dict) -> Case:
         """Validated copy with some keys changed: ``{"operating.axial_load_N": 300.0, ...}``.
 
-        Keys are dotted case keys (``lubricant.traction.mu_max``, ``materials.my_steel.poisson_ratio``);
+        Keys are dotted case keys (``lubricant.traction.mu_max``,
+        ``materials.my_steel.poisson_ratio``);
         a value of None removes the key (e.g. to switch from a free contact angle to a clearance).
         Estimated cage values are re-estimated from the new bearing unless given. Raises CaseError.
         """

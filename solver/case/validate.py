@@ -67,7 +67,11 @@ def _known_names(prefix: tuple[str, ...]) -> list[str]:
             if len(f.path) == 1 and f.name not in names:
                 names.append(f.name)
             continue
-        if path[: len(prefix)] == prefix and len(path) > len(prefix) and path[len(prefix)] not in names:
+        if (
+            path[: len(prefix)] == prefix
+            and len(path) > len(prefix)
+            and path[len(prefix)] not in names
+        ):
             names.append(path[len(prefix)])
     return names
 
@@ -75,7 +79,10 @@ def _known_names(prefix: tuple[str, ...]) -> list[str]:
 def _unknown_key_message(key: str, value, suggestion: str | None, allowed: list[str]) -> str:
     head = f"unknown key {key} = {show(value)}"
     if suggestion:
-        return f"{head}: did you mean {suggestion}? (unknown keys are rejected so that a typo is not ignored)"
+        return (
+            f"{head}: did you mean {suggestion}? "
+            "(unknown keys are rejected so that a typo is not ignored)"
+        )
     return f"{head}: not a case key; valid keys here: {', '.join(allowed)}"
 
 
@@ -95,24 +102,42 @@ def _check_structure(data: dict, problems: list[Problem]) -> None:
             continue
         if key in sections:
             if not isinstance(value, dict):
-                _problem(problems, key, f"{key} = {show(value)}: must be a section ([{key}] followed "
-                                        "by its keys), not a single value")
+                _problem(
+                    problems,
+                    key,
+                    f"{key} = {show(value)}: must be a section ([{key}] followed "
+                    "by its keys), not a single value",
+                )
             continue
         if isinstance(value, dict):
             suggestion = _suggest(key, sections)
-            hint = (f"did you mean [{suggestion}]?" if suggestion else
-                    "valid sections: " + ", ".join(f"[{s}]" for s in sections))
-            _problem(problems, key, f"unknown section [{key}]: {hint} "
-                                    "(unknown sections are rejected so that a typo is not ignored)")
+            hint = (
+                f"did you mean [{suggestion}]?"
+                if suggestion
+                else "valid sections: " + ", ".join(f"[{s}]" for s in sections)
+            )
+            _problem(
+                problems,
+                key,
+                f"unknown section [{key}]: {hint} "
+                "(unknown sections are rejected so that a typo is not ignored)",
+            )
             continue
         home = _elsewhere(key)
         if home:
-            _problem(problems, key, f"unknown top-level key {key} = {show(value)}: it belongs in "
-                                    f"[{home.split('.')[0]}] (as {home}), after the section header")
+            _problem(
+                problems,
+                key,
+                f"unknown top-level key {key} = {show(value)}: it belongs in "
+                f"[{home.split('.')[0]}] (as {home}), after the section header",
+            )
             continue
         suggestion = _suggest(key, top_keys)
-        _problem(problems, key, _unknown_key_message(key, value, suggestion,
-                                                     top_keys + [f"[{s}]" for s in sections]))
+        _problem(
+            problems,
+            key,
+            _unknown_key_message(key, value, suggestion, top_keys + [f"[{s}]" for s in sections]),
+        )
 
     for section in sections:
         table = data.get(section)
@@ -127,18 +152,30 @@ def _check_structure(data: dict, problems: list[Problem]) -> None:
                     for sub, sub_value in value.items():
                         if sub not in sub_allowed:
                             s = _suggest(sub, sub_allowed)
-                            _problem(problems, f"{key}.{sub}", _unknown_key_message(
-                                f"{key}.{sub}", sub_value, s and f"{key}.{s}", sub_allowed))
+                            _problem(
+                                problems,
+                                f"{key}.{sub}",
+                                _unknown_key_message(
+                                    f"{key}.{sub}", sub_value, s and f"{key}.{s}", sub_allowed
+                                ),
+                            )
                 continue
             suggestion = _suggest(name, allowed)
             if suggestion:
-                _problem(problems, key, _unknown_key_message(key, value, f"{section}.{suggestion}",
-                                                             allowed))
+                _problem(
+                    problems,
+                    key,
+                    _unknown_key_message(key, value, f"{section}.{suggestion}", allowed),
+                )
                 continue
             home = _elsewhere(name)
             if home:
-                _problem(problems, key, f"unknown key {key} = {show(value)}: it belongs in "
-                                        f"[{home.split('.')[0]}] (as {home})")
+                _problem(
+                    problems,
+                    key,
+                    f"unknown key {key} = {show(value)}: it belongs in "
+                    f"[{home.split('.')[0]}] (as {home})",
+                )
                 continue
             _problem(problems, key, _unknown_key_message(key, value, None, allowed))
 
@@ -160,8 +197,11 @@ def _check_bounds(f: Field, key: str, value, problems: list[Problem]) -> bool:
         if low:
             word = "at least" if f.minimum_inclusive else "greater than"
             reason = f" ({f.reason})" if f.reason else ""
-            _problem(problems, key, f"{key} = {show(value)}: must be {word} "
-                                    f"{format_number(f.minimum)}{unit}{reason}")
+            _problem(
+                problems,
+                key,
+                f"{key} = {show(value)}: must be {word} {format_number(f.minimum)}{unit}{reason}",
+            )
             return False
     if f.maximum is not None:
         high = value > f.maximum if f.maximum_inclusive else value >= f.maximum
@@ -169,8 +209,11 @@ def _check_bounds(f: Field, key: str, value, problems: list[Problem]) -> bool:
             word = "at most" if f.maximum_inclusive else "less than"
             why = f.reason_high or f.reason
             reason = f" ({why})" if why else ""
-            _problem(problems, key, f"{key} = {show(value)}: must be {word} "
-                                    f"{format_number(f.maximum)}{unit}{reason}")
+            _problem(
+                problems,
+                key,
+                f"{key} = {show(value)}: must be {word} {format_number(f.maximum)}{unit}{reason}",
+            )
             return False
     return True
 
@@ -179,20 +222,37 @@ def check_value(f: Field, key: str, value, problems: list[Problem]):
     """Converted value, or _MISSING after recording a problem. Materials are checked later."""
     if f.type in ("float", "int"):
         if isinstance(value, bool) or not isinstance(value, int | float):
-            kind = "text" if isinstance(value, str) else "a table" if isinstance(value, dict) else \
-                "a list" if isinstance(value, list) else type(value).__name__
-            _problem(problems, key, f"{key} = {show(value)}: must be {f.allowed_text()} "
-                                    f"(got {kind}; write numbers without quotes)")
+            kind = (
+                "text"
+                if isinstance(value, str)
+                else "a table"
+                if isinstance(value, dict)
+                else "a list"
+                if isinstance(value, list)
+                else type(value).__name__
+            )
+            _problem(
+                problems,
+                key,
+                f"{key} = {show(value)}: must be {f.allowed_text()} "
+                f"(got {kind}; write numbers without quotes)",
+            )
             return _MISSING
         if isinstance(value, float) and not math.isfinite(value):
-            _problem(problems, key, f"{key} = {show(value)}: must be a finite number "
-                                    f"({f.allowed_text()})")
+            _problem(
+                problems,
+                key,
+                f"{key} = {show(value)}: must be a finite number ({f.allowed_text()})",
+            )
             return _MISSING
         if f.type == "int":
             if isinstance(value, float):
                 if value != int(value):
-                    _problem(problems, key, f"{key} = {show(value)}: must be a whole number "
-                                            f"({f.allowed_text()})")
+                    _problem(
+                        problems,
+                        key,
+                        f"{key} = {show(value)}: must be a whole number ({f.allowed_text()})",
+                    )
                     return _MISSING
                 value = int(value)
         else:
@@ -200,12 +260,15 @@ def check_value(f: Field, key: str, value, problems: list[Problem]):
         return value if _check_bounds(f, key, value, problems) else _MISSING
     if f.type in ("str", "choice"):
         if not isinstance(value, str):
-            _problem(problems, key, f"{key} = {show(value)}: must be {f.allowed_text()} "
-                                    "(text in double quotes)")
+            _problem(
+                problems,
+                key,
+                f"{key} = {show(value)}: must be {f.allowed_text()} (text in double quotes)",
+            )
             return _MISSING
         if f.type == "choice" and value not in f.choices:
             s = _suggest(value, f.choices)
-            hint = f"; did you mean \"{s}\"?" if s else ""
+            hint = f'; did you mean "{s}"?' if s else ""
             _problem(problems, key, f"{key} = {show(value)}: must be {f.allowed_text()}{hint}")
             return _MISSING
         return value
@@ -219,9 +282,13 @@ def check_value(f: Field, key: str, value, problems: list[Problem]):
             return value
         if isinstance(value, dict):
             return _check_material_table(key, value, problems)
-        _problem(problems, key, f"{key} = {show(value)}: must be a material name in quotes or an "
-                                "inline table { youngs_modulus_GPa = ..., poisson_ratio = ..., "
-                                "density_kg_m3 = ... }")
+        _problem(
+            problems,
+            key,
+            f"{key} = {show(value)}: must be a material name in quotes or an "
+            "inline table { youngs_modulus_GPa = ..., poisson_ratio = ..., "
+            "density_kg_m3 = ... }",
+        )
         return _MISSING
     raise AssertionError(f"unknown field type {f.type!r} for {f.key}")  # schema bug
 
@@ -232,15 +299,21 @@ def _check_material_table(prefix: str, table: dict, problems: list[Problem]):
     for name, value in table.items():
         if name not in names:
             s = _suggest(name, names)
-            _problem(problems, f"{prefix}.{name}",
-                     _unknown_key_message(f"{prefix}.{name}", value, s and f"{prefix}.{s}", names))
+            _problem(
+                problems,
+                f"{prefix}.{name}",
+                _unknown_key_message(f"{prefix}.{name}", value, s and f"{prefix}.{s}", names),
+            )
             ok = False
     out = {}
     for m in MATERIAL_FIELDS:
         key = f"{prefix}.{m.key}"
         if m.key not in table:
-            _problem(problems, key, f"{key} is missing: a material needs {m.label.lower()} "
-                                    f"({m.allowed_text()})")
+            _problem(
+                problems,
+                key,
+                f"{key} is missing: a material needs {m.label.lower()} ({m.allowed_text()})",
+            )
             ok = False
             continue
         value = check_value(m, key, table[m.key], problems)
@@ -264,33 +337,49 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
     angle_k, clear_k = "bearing.free_contact_angle_deg", "bearing.diametral_clearance_mm"
     has_angle, has_clear = angle_k in given, clear_k in given
     if has_angle and has_clear:
-        _problem(problems, angle_k, f"{angle_k} = {show(v.get(angle_k, '?'))} and {clear_k} = "
-                                    f"{show(v.get(clear_k, '?'))}: give exactly one of the two (the "
-                                    "clearance fixes the free contact angle); remove one")
+        _problem(
+            problems,
+            angle_k,
+            f"{angle_k} = {show(v.get(angle_k, '?'))} and {clear_k} = "
+            f"{show(v.get(clear_k, '?'))}: give exactly one of the two (the "
+            "clearance fixes the free contact angle); remove one",
+        )
     elif not has_angle and not has_clear:
-        _problem(problems, angle_k, f"{angle_k} / {clear_k} missing: give exactly one of them "
-                                    "(the free contact angle in degrees, or the diametral "
-                                    "clearance in mm; 0 mm for a zero-clearance deep-groove bearing)")
+        _problem(
+            problems,
+            angle_k,
+            f"{angle_k} / {clear_k} missing: give exactly one of them "
+            "(the free contact angle in degrees, or the diametral "
+            "clearance in mm; 0 mm for a zero-clearance deep-groove bearing)",
+        )
 
-    D, dm, Z = (v.get(k) for k in ("bearing.ball_diameter_mm", "bearing.pitch_diameter_mm",
-                                   "bearing.ball_count"))
+    D, dm, Z = (
+        v.get(k)
+        for k in ("bearing.ball_diameter_mm", "bearing.pitch_diameter_mm", "bearing.ball_count")
+    )
     fi, fo = v.get("bearing.inner_groove_radius_ratio"), v.get("bearing.outer_groove_radius_ratio")
     geometry_ok = D is not None and dm is not None
     if geometry_ok and dm <= D:
-        _problem(problems, "bearing.pitch_diameter_mm",
-                 f"bearing.pitch_diameter_mm = {show(dm)}: must be larger than the ball diameter "
-                 f"({show(D)} mm); the pitch circle runs through the ball centres, so the inner ring "
-                 "would have no material left")
+        _problem(
+            problems,
+            "bearing.pitch_diameter_mm",
+            f"bearing.pitch_diameter_mm = {show(dm)}: must be larger than the ball diameter "
+            f"({show(D)} mm); the pitch circle runs through the ball centres, so the inner ring "
+            "would have no material left",
+        )
         geometry_ok = False
     if geometry_ok and Z is not None:
         chord = dm * math.sin(math.pi / Z)
         if chord <= D:
             zmax = _max_balls(D, dm)
             fit = f"at most {zmax} fit" if zmax else "not even 3 fit"
-            _problem(problems, "bearing.ball_count",
-                     f"bearing.ball_count = {Z}: {Z} balls of diameter {show(D)} mm do not fit on a "
-                     f"{show(dm)} mm pitch circle (neighbouring centres would be {chord:.4g} mm "
-                     f"apart, less than the ball diameter; {fit})")
+            _problem(
+                problems,
+                "bearing.ball_count",
+                f"bearing.ball_count = {Z}: {Z} balls of diameter {show(D)} mm do not fit on a "
+                f"{show(dm)} mm pitch circle (neighbouring centres would be {chord:.4g} mm "
+                f"apart, less than the ball diameter; {fit})",
+            )
             geometry_ok = False
     if D is None or fi is None or fo is None:
         return
@@ -301,13 +390,19 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
     elif has_clear and not has_angle and clear_k in v:
         pd = v[clear_k]
         if pd >= a0_len:
-            angle = "beyond 90" if pd > 2 * a0_len else format(
-                math.degrees(math.acos(1.0 - pd / (2 * a0_len))), ".3g")
-            _problem(problems, clear_k,
-                     f"{clear_k} = {show(pd)}: must be less than {a0_len:.4g} mm for these grooves "
-                     f"(this clearance gives a free contact angle of {angle} degrees, and the free "
-                     "contact angle must be below 60 degrees; A_0 = (f_i + f_o - 1) D = "
-                     f"{a0_len:.4g} mm)")
+            angle = (
+                "beyond 90"
+                if pd > 2 * a0_len
+                else format(math.degrees(math.acos(1.0 - pd / (2 * a0_len))), ".3g")
+            )
+            _problem(
+                problems,
+                clear_k,
+                f"{clear_k} = {show(pd)}: must be less than {a0_len:.4g} mm for these grooves "
+                f"(this clearance gives a free contact angle of {angle} degrees, and the free "
+                "contact angle must be below 60 degrees; A_0 = (f_i + f_o - 1) D = "
+                f"{a0_len:.4g} mm)",
+            )
         else:
             alpha0 = math.acos(1.0 - pd / (2 * a0_len))
     if alpha0 is None or not geometry_ok:
@@ -317,14 +412,22 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
     di, do = g.inner_groove_bottom_diameter * 1e3, g.outer_groove_bottom_diameter * 1e3
     key = "bearing.inner_shoulder_diameter_mm"
     if key in v and not di < v[key] < dm:
-        _problem(problems, key, f"{key} = {show(v[key])}: must lie between the inner groove-bottom "
-                                f"diameter ({di:.4g} mm) and the pitch diameter ({show(dm)} mm); "
-                                "the inner land rises from the groove bottom towards the ball centres")
+        _problem(
+            problems,
+            key,
+            f"{key} = {show(v[key])}: must lie between the inner groove-bottom "
+            f"diameter ({di:.4g} mm) and the pitch diameter ({show(dm)} mm); "
+            "the inner land rises from the groove bottom towards the ball centres",
+        )
     key = "bearing.outer_shoulder_diameter_mm"
     if key in v and not dm < v[key] < do:
-        _problem(problems, key, f"{key} = {show(v[key])}: must lie between the pitch diameter "
-                                f"({show(dm)} mm) and the outer groove-bottom diameter ({do:.4g} mm); "
-                                "the outer land rises from the groove bottom towards the ball centres")
+        _problem(
+            problems,
+            key,
+            f"{key} = {show(v[key])}: must lie between the pitch diameter "
+            f"({show(dm)} mm) and the outer groove-bottom diameter ({do:.4g} mm); "
+            "the outer land rises from the groove bottom towards the ball centres",
+        )
 
 
 def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
@@ -335,17 +438,28 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
         for name, table in section.items():
             key = f"materials.{name}"
             if not _MATERIAL_NAME.match(name):
-                _problem(problems, key, f"[materials.{name}]: material names may contain only "
-                                        "letters, digits, _ and -")
+                _problem(
+                    problems,
+                    key,
+                    f"[materials.{name}]: material names may contain only letters, digits, _ and -",
+                )
                 continue
             if name in BUILTIN_MATERIALS:
-                _problem(problems, key, f"[materials.{name}]: {name} is a built-in material; "
-                                        "choose another name for your own")
+                _problem(
+                    problems,
+                    key,
+                    f"[materials.{name}]: {name} is a built-in material; "
+                    "choose another name for your own",
+                )
                 continue
             if not isinstance(table, dict):
-                _problem(problems, key, f"{key} = {show(table)}: must be a table "
-                                        f"([materials.{name}] with youngs_modulus_GPa, "
-                                        "poisson_ratio, density_kg_m3)")
+                _problem(
+                    problems,
+                    key,
+                    f"{key} = {show(table)}: must be a table "
+                    f"([materials.{name}] with youngs_modulus_GPa, "
+                    "poisson_ratio, density_kg_m3)",
+                )
                 continue
             checked = _check_material_table(key, table, problems)
             if checked is not _MISSING:
@@ -355,10 +469,14 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
         name = v.get(key)
         if isinstance(name, str) and name not in known:
             s = _suggest(name, known)
-            hint = f"did you mean \"{s}\"? " if s else ""
-            _problem(problems, key, f"{key} = {show(name)}: unknown material; {hint}known materials: "
-                                    f"{', '.join(known)} (define others under [materials.NAME] or "
-                                    "give an inline table)")
+            hint = f'did you mean "{s}"? ' if s else ""
+            _problem(
+                problems,
+                key,
+                f"{key} = {show(name)}: unknown material; {hint}known materials: "
+                f"{', '.join(known)} (define others under [materials.NAME] or "
+                "give an inline table)",
+            )
             v.pop(key)
     return users
 
@@ -366,32 +484,49 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
 def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Problem]) -> None:
     mis_k, mom_k = "operating.misalignment_deg", "operating.tilting_moment_Nm"
     if mis_k in given and mom_k in given:
-        _problem(problems, mom_k, f"{mis_k} = {show(v.get(mis_k, '?'))} and {mom_k} = "
-                                  f"{show(v.get(mom_k, '?'))}: give at most one of the two (an "
-                                  "imposed tilt, or a moment from which the tilt is solved)")
+        _problem(
+            problems,
+            mom_k,
+            f"{mis_k} = {show(v.get(mis_k, '?'))} and {mom_k} = "
+            f"{show(v.get(mom_k, '?'))}: give at most one of the two (an "
+            "imposed tilt, or a moment from which the tilt is solved)",
+        )
     # absent loads default to 0; loads given but invalid are already reported
-    loads = [v[k] if k in v else (None if k in given else 0.0)
-             for k in ("operating.axial_load_N", "operating.radial_load_N")]
+    loads = [
+        v[k] if k in v else (None if k in given else 0.0)
+        for k in ("operating.axial_load_N", "operating.radial_load_N")
+    ]
     if loads == [0.0, 0.0] and "operating" in data:
         tilt = [k for k in (mis_k, mom_k) if v.get(k) not in (None, 0.0)]
         invalid = [k for k in (mis_k, mom_k) if k in given and k not in v]
         if not tilt and not invalid:
-            _problem(problems, "operating.axial_load_N",
-                     "operating.axial_load_N = 0 and operating.radial_load_N = 0, no misalignment "
-                     "and no tilting moment: nothing holds the balls; give an axial load (e.g. a "
-                     "preload), a radial load, or both")
+            _problem(
+                problems,
+                "operating.axial_load_N",
+                "operating.axial_load_N = 0 and operating.radial_load_N = 0, no misalignment "
+                "and no tilting moment: nothing holds the balls; give an axial load (e.g. a "
+                "preload), a radial load, or both",
+            )
 
 
 def _check_traction(v: dict, problems: list[Problem]) -> None:
     p = "lubricant.traction."
     mu0, mumax, muinf = v.get(p + "mu_zero"), v.get(p + "mu_max"), v.get(p + "mu_infinity")
     if mu0 is not None and mumax is not None and mu0 > mumax:
-        _problem(problems, p + "mu_zero", f"{p}mu_zero = {show(mu0)}: must be at most mu_max = "
-                                          f"{show(mumax)} (the curve rises from mu_zero to its peak)")
+        _problem(
+            problems,
+            p + "mu_zero",
+            f"{p}mu_zero = {show(mu0)}: must be at most mu_max = "
+            f"{show(mumax)} (the curve rises from mu_zero to its peak)",
+        )
     if muinf is not None and mumax is not None and muinf > mumax:
-        _problem(problems, p + "mu_infinity", f"{p}mu_infinity = {show(muinf)}: must be at most "
-                                              f"mu_max = {show(mumax)} (the curve falls from its "
-                                              "peak towards mu_infinity)")
+        _problem(
+            problems,
+            p + "mu_infinity",
+            f"{p}mu_infinity = {show(muinf)}: must be at most "
+            f"mu_max = {show(mumax)} (the curve falls from its "
+            "peak towards mu_infinity)",
+        )
 
 
 # ---- driver ------------------------------------------------------------------------------------
@@ -409,8 +544,11 @@ def validate(data) -> Case:
         if section not in data:
             missing_sections.add(section)
             needed = [f.name for f in FIELDS if f.section == section and f.required]
-            _problem(problems, section, f"the [{section}] section is missing; it needs at least: "
-                                        + ", ".join(needed))
+            _problem(
+                problems,
+                section,
+                f"the [{section}] section is missing; it needs at least: " + ", ".join(needed),
+            )
     for f in FIELDS:
         if f.section == "lubricant" and "lubricant" not in data:
             continue
@@ -420,13 +558,20 @@ def validate(data) -> Case:
             if len(f.path) > 2 and parent is not _MISSING and not isinstance(parent, dict):
                 if f.name == _known_names(f.path[:-1])[0]:
                     key = ".".join(f.path[:-1])
-                    _problem(problems, key, f"{key} = {show(parent)}: must be an inline table "
-                                            "{ " + ", ".join(f"{n} = ..." for n in
-                                                             _known_names(f.path[:-1])) + " }")
+                    _problem(
+                        problems,
+                        key,
+                        f"{key} = {show(parent)}: must be an inline table "
+                        "{ " + ", ".join(f"{n} = ..." for n in _known_names(f.path[:-1])) + " }",
+                    )
                 continue
             if f.required and f.section not in missing_sections:
-                _problem(problems, f.key, f"{f.key} is missing (required: {f.help} "
-                                          f"{f.allowed_text()[0].upper()}{f.allowed_text()[1:]})")
+                _problem(
+                    problems,
+                    f.key,
+                    f"{f.key} is missing (required: {f.help} "
+                    f"{f.allowed_text()[0].upper()}{f.allowed_text()[1:]})",
+                )
             continue
         given.add(f.key)
         value = check_value(f, f.key, raw, problems)
@@ -468,7 +613,7 @@ def _build(data: dict, values: dict, users: dict) -> Case:
         return f.default
 
     sections = {}
-    for name, cls in SECTION_CLASSES.items():
+    for name in SECTION_CLASSES:
         if name == "lubricant" and "lubricant" not in data:
             sections[name] = None
             continue
@@ -487,9 +632,16 @@ def _build(data: dict, values: dict, users: dict) -> Case:
                 estimated.add(f.key)
         built[name] = cls(**kwargs)
     title = values.get("title", "")
-    return Case(title=title, bearing=built["bearing"], materials=users, cage=built["cage"],
-                lubricant=built["lubricant"], operating=built["operating"],
-                simulation=built["simulation"], estimated=frozenset(estimated))
+    return Case(
+        title=title,
+        bearing=built["bearing"],
+        materials=users,
+        cage=built["cage"],
+        lubricant=built["lubricant"],
+        operating=built["operating"],
+        simulation=built["simulation"],
+        estimated=frozenset(estimated),
+    )
 
 
 _PENDING = object()

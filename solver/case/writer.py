@@ -65,8 +65,11 @@ def case_to_toml(case) -> str:
             value = getattr(obj, f.name)
             if f.key in case.estimated:
                 rule = f.default.description if isinstance(f.default, Estimated) else ""
-                lines.append(_line(f"# {f.name} = {toml_value(value)}",
-                                   f"estimated from the bearing: {rule}"))
+                lines.append(
+                    _line(
+                        f"# {f.name} = {toml_value(value)}", f"estimated from the bearing: {rule}"
+                    )
+                )
             elif value is None:
                 lines.append(_line(f"# {f.name} =", f"optional: {f.help}"))
             else:

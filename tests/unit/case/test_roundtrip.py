@@ -1,4 +1,5 @@
-"""load -> to_toml -> load, and to_dict -> from_dict, give equal cases (also for random valid cases)."""
+"""load -> to_toml -> load, and to_dict -> from_dict, give equal cases (also for random
+valid cases)."""
 
 from __future__ import annotations
 
@@ -42,18 +43,24 @@ def test_estimates_follow_the_documented_rules(valid):
     ring_volume_m3 = math.pi * dm * 1e-3 * (D * 1e-3) * (0.3 * D * 1e-3)
     assert math.isclose(case.cage.mass_g, 1400.0 * ring_volume_m3 * 1e3)
     assert case.cage.pocket_friction == 0.08 and case.cage.guidance == "outer_ring"
-    assert case.estimated == {"cage.pocket_diametral_clearance_mm", "cage.mass_g",
-                              "cage.guide_diametral_clearance_mm", "cage.guide_land_width_mm"}
+    assert case.estimated == {
+        "cage.pocket_diametral_clearance_mm",
+        "cage.mass_g",
+        "cage.guide_diametral_clearance_mm",
+        "cage.guide_land_width_mm",
+    }
     assert case.lubricant is None
 
 
 # ---- random valid cases ------------------------------------------------------------------------
 finite = dict(allow_nan=False, allow_infinity=False)
-material_table = st.fixed_dictionaries({
-    "youngs_modulus_GPa": st.floats(1.0, 500.0, **finite),
-    "poisson_ratio": st.floats(0.0, 0.49, **finite),
-    "density_kg_m3": st.floats(100.0, 20000.0, **finite),
-})
+material_table = st.fixed_dictionaries(
+    {
+        "youngs_modulus_GPa": st.floats(1.0, 500.0, **finite),
+        "poisson_ratio": st.floats(0.0, 0.49, **finite),
+        "density_kg_m3": st.floats(100.0, 20000.0, **finite),
+    }
+)
 
 
 @st.composite
@@ -63,12 +70,18 @@ def valid_cases(draw):
     dm = d / math.sin(math.pi / z) * draw(st.floats(1.01, 3.0, **finite))
     fi = draw(st.floats(0.505, 0.6, **finite))
     fo = draw(st.floats(0.505, 0.6, **finite))
-    bearing = {"ball_count": z, "ball_diameter_mm": d, "pitch_diameter_mm": dm,
-               "inner_groove_radius_ratio": fi, "outer_groove_radius_ratio": fo}
+    bearing = {
+        "ball_count": z,
+        "ball_diameter_mm": d,
+        "pitch_diameter_mm": dm,
+        "inner_groove_radius_ratio": fi,
+        "outer_groove_radius_ratio": fo,
+    }
     if draw(st.booleans()):
         bearing["designation"] = draw(st.text(max_size=20))
-        bearing["provenance"] = draw(st.sampled_from(["estimated", "manufacturer", "literature",
-                                                      "measured"]))
+        bearing["provenance"] = draw(
+            st.sampled_from(["estimated", "manufacturer", "literature", "measured"])
+        )
     a0_len = (fi + fo - 1.0) * d
     if draw(st.booleans()):
         alpha = draw(st.floats(0.0, 59.0, **finite))
@@ -92,20 +105,28 @@ def valid_cases(draw):
         elif kind == "inline":
             bearing[key] = draw(material_table)
         else:
-            name = draw(st.from_regex(r"[a-z][a-z0-9_-]{0,10}", fullmatch=True).filter(
-                lambda n: n not in ("bearing_steel", "silicon_nitride")))
+            name = draw(
+                st.from_regex(r"[a-z][a-z0-9_-]{0,10}", fullmatch=True).filter(
+                    lambda n: n not in ("bearing_steel", "silicon_nitride")
+                )
+            )
             materials[name] = draw(material_table)
             bearing[key] = name
     if materials:
         data["materials"] = materials
-    cage = draw(st.fixed_dictionaries({}, optional={
-        "guidance": st.sampled_from(["outer_ring", "inner_ring", "ball"]),
-        "pocket_diametral_clearance_mm": st.floats(0.01, 1.0, **finite),
-        "guide_diametral_clearance_mm": st.floats(0.01, 1.0, **finite),
-        "mass_g": st.floats(0.1, 500.0, **finite),
-        "pocket_friction": st.floats(0.0, 1.0, **finite),
-        "guide_land_width_mm": st.floats(0.1, 20.0, **finite),
-    }))
+    cage = draw(
+        st.fixed_dictionaries(
+            {},
+            optional={
+                "guidance": st.sampled_from(["outer_ring", "inner_ring", "ball"]),
+                "pocket_diametral_clearance_mm": st.floats(0.01, 1.0, **finite),
+                "guide_diametral_clearance_mm": st.floats(0.01, 1.0, **finite),
+                "mass_g": st.floats(0.1, 500.0, **finite),
+                "pocket_friction": st.floats(0.0, 1.0, **finite),
+                "guide_land_width_mm": st.floats(0.1, 20.0, **finite),
+            },
+        )
+    )
     if cage or draw(st.booleans()):
         data["cage"] = cage
     if draw(st.booleans()):
@@ -113,20 +134,32 @@ def valid_cases(draw):
         data["lubricant"] = {
             "viscosity_Pas": draw(st.floats(1e-4, 1.0, **finite)),
             "pressure_viscosity_per_GPa": draw(st.floats(1.0, 40.0, **finite)),
-            "traction": {"mu_zero": draw(st.floats(0.0, 1.0)) * mu_max, "mu_max": mu_max,
-                         "slip_at_max_m_s": draw(st.floats(0.01, 10.0, **finite)),
-                         "mu_infinity": draw(st.floats(0.01, 1.0)) * mu_max},
+            "traction": {
+                "mu_zero": draw(st.floats(0.0, 1.0)) * mu_max,
+                "mu_max": mu_max,
+                "slip_at_max_m_s": draw(st.floats(0.01, 10.0, **finite)),
+                "mu_infinity": draw(st.floats(0.01, 1.0)) * mu_max,
+            },
         }
-    operating = {"inner_ring_speed_rpm": draw(st.floats(-1e5, 1e5, **finite)),
-                 "axial_load_N": draw(st.floats(1.0, 1e5, **finite))}
-    operating.update(draw(st.fixed_dictionaries({}, optional={
-        "outer_ring_speed_rpm": st.floats(-1e5, 1e5, **finite),
-        "radial_load_N": st.floats(0.0, 1e5, **finite),
-        "radial_load_angle_deg": st.floats(-360.0, 360.0, **finite),
-        "misalignment_axis_deg": st.floats(-360.0, 360.0, **finite),
-        "misalignment_frame": st.sampled_from(["space", "ring"]),
-        "moment_axis_deg": st.floats(-360.0, 360.0, **finite),
-    })))
+    operating = {
+        "inner_ring_speed_rpm": draw(st.floats(-1e5, 1e5, **finite)),
+        "axial_load_N": draw(st.floats(1.0, 1e5, **finite)),
+    }
+    operating.update(
+        draw(
+            st.fixed_dictionaries(
+                {},
+                optional={
+                    "outer_ring_speed_rpm": st.floats(-1e5, 1e5, **finite),
+                    "radial_load_N": st.floats(0.0, 1e5, **finite),
+                    "radial_load_angle_deg": st.floats(-360.0, 360.0, **finite),
+                    "misalignment_axis_deg": st.floats(-360.0, 360.0, **finite),
+                    "misalignment_frame": st.sampled_from(["space", "ring"]),
+                    "moment_axis_deg": st.floats(-360.0, 360.0, **finite),
+                },
+            )
+        )
+    )
     tilt = draw(st.sampled_from(["none", "misalignment", "moment"]))
     if tilt == "misalignment":
         operating["misalignment_deg"] = draw(st.floats(-5.0, 5.0, **finite))
@@ -134,10 +167,15 @@ def valid_cases(draw):
         operating["tilting_moment_Nm"] = draw(st.floats(-1e3, 1e3, **finite))
     data["operating"] = operating
     if draw(st.booleans()):
-        data["simulation"] = draw(st.fixed_dictionaries({}, optional={
-            "shaft_revolutions": st.floats(0.01, 1000.0, **finite),
-            "samples_per_revolution": st.integers(8, 3600),
-        }))
+        data["simulation"] = draw(
+            st.fixed_dictionaries(
+                {},
+                optional={
+                    "shaft_revolutions": st.floats(0.01, 1000.0, **finite),
+                    "samples_per_revolution": st.integers(8, 3600),
+                },
+            )
+        )
     return data
 
 

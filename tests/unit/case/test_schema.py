@@ -1,0 +1,147 @@
+"""FIELDS is the one schema table: check that the parser, the dataclasses, the writer and the docs
+agree with it entry by entry."""
+
+from __future__ import annotations
+
+import copy
+import math
+from pathlib import Path
+
+import pytest
+import tomli_w
+
+from solver.case import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, load_case
+from solver.case.schema import Field
+from solver.case.validate import _MISSING, check_value
+
+FULL = {
+    "cage": {
+        "guidance": "ball",
+        "pocket_diametral_clearance_mm": 0.2,
+        "guide_diametral_clearance_mm": 0.3,
+        "mass_g": 5.0,
+        "pocket_friction": 0.1,
+        "guide_land_width_mm": 3.0,
+    },
+    "lubricant": {
+        "viscosity_Pas": 0.02,
+        "pressure_viscosity_per_GPa": 18.0,
+        "traction": {"mu_zero": 0.01, "mu_max": 0.06, "slip_at_max_m_s": 2.0, "mu_infinity": 0.04},
+    },
+    "simulation": {"shaft_revolutions": 3.0, "samples_per_revolution": 90},
+}
+
+
+def _get(obj, path):
+    for part in path:
+        obj = getattr(obj, part)
+    return obj
+
+
+def test_last_segments_are_unique():
+    """The app uses field-<last segment> as element ids."""
+    names = [f.name for f in FIELDS]
+    assert len(names) == len(set(names))
+
+
+def test_every_field_is_an_attribute_with_the_written_value(valid):
+    data = copy.deepcopy(valid)
+    data.update(copy.deepcopy(FULL))
+    data["bearing"]["inner_shoulder_diameter_mm"] = 49.0
+    data["operating"]["misalignment_deg"] = 0.01
+    case = load_case(tomli_w.dumps(data))
+    for f in FIELDS:
+        expected = data
+        for part in f.path:
+            expected = expected.get(part, _MISSING) if isinstance(expected, dict) else _MISSING
+        value = _get(case, f.path)
+        if expected is not _MISSING:
+            assert value == expected, f.key
+        elif f.default is OPTIONAL:
+            assert value is None, f.key
+        else:
+            assert f.default is not REQUIRED
+            assert value == f.default, f.key
+
+
+@pytest.mark.parametrize("f", [f for f in FIELDS if f.required], ids=lambda f: f.key)
+def test_each_required_key_is_required(valid, problems, f):
+    data = copy.deepcopy(valid)
+    node = data
+    for part in f.path[:-1]:
+        node = node[part]
+    del node[f.name]
+    found = problems(data)
+    assert f.key in found and "is missing" in found[f.key][0]
+
+
+@pytest.mark.parametrize(
+    "f",
+    [f for f in FIELDS + MATERIAL_FIELDS if f.minimum is not None or f.maximum is not None],
+    ids=lambda f: f.key,
+)
+def test_bounds_follow_the_table(f):
+    step = 1 if f.type == "int" else 1e-9 * max(1.0, abs(f.minimum or 0), abs(f.maximum or 0))
+    for bound, inclusive, outside in (
+        (f.minimum, f.minimum_inclusive, -step),
+        (f.maximum, f.maximum_inclusive, step),
+    ):
+        if bound is None:
+            continue
+        bound = int(bound) if f.type == "int" else float(bound)
+        problems = []
+        assert check_value(f, f.key, bound + outside, problems) is _MISSING
+        assert problems and problems[0].key == f.key
+        problems = []
+        on_bound = check_value(f, f.key, bound, problems)
+        assert (on_bound is not _MISSING) == inclusive, f"{f.key} at {bound}"
+        assert (problems == []) == inclusive
+
+
+@pytest.mark.parametrize(
+    "f", [f for f in FIELDS if f.type in ("float", "int")], ids=lambda f: f.key
+)
+def test_numbers_reject_text_and_non_finite(f):
+    for bad in ("1.0", float("nan"), float("inf"), True, [1.0]):
+        problems = []
+        assert check_value(f, f.key, bad, problems) is _MISSING
+        assert problems[0].key == f.key and f.key in problems[0].message
+
+
+@pytest.mark.parametrize("f", [f for f in FIELDS if f.type == "choice"], ids=lambda f: f.key)
+def test_every_choice_is_accepted_and_others_rejected(valid, f):
+    case = load_case(tomli_w.dumps(valid))
+    for choice in f.choices:
+        assert _get(case.with_values({f.key: choice}), f.path) == choice
+    problems = []
+    assert check_value(f, f.key, "not-a-choice", problems) is _MISSING
+
+
+def test_plain_defaults_satisfy_their_own_rules():
+    for f in FIELDS:
+        if f.default in (REQUIRED, OPTIONAL) or isinstance(f.default, Estimated):
+            continue
+        problems = []
+        assert check_value(f, f.key, f.default, problems) == f.default, f.key
+
+
+def test_estimates_satisfy_their_own_rules(valid):
+    case = load_case(tomli_w.dumps(valid))
+    for f in FIELDS:
+        if isinstance(f.default, Estimated):
+            value = _get(case, f.path)
+            assert math.isfinite(value) and check_value(f, f.key, value, []) == value, f.key
+
+
+def test_field_metadata_is_complete():
+    for f in FIELDS:
+        assert f.type in ("float", "int", "str", "choice", "bool", "material"), f.key
+        assert f.label and f.help.endswith("."), f.key
+        assert (f.type == "choice") == bool(f.choices), f.key
+        assert isinstance(f, Field)
+
+
+def test_every_key_is_documented():
+    doc = (Path(__file__).parents[3] / "docs" / "case-format.md").read_text()
+    for f in FIELDS + MATERIAL_FIELDS:
+        assert f"`{f.key}`" in doc, f.key
