@@ -1,0 +1,121 @@
+"""Benchmark of the dynamic model on the two standard cases of issue 3.
+
+    python benchmarks/dynamic.py [--revolutions N] [--cases spindle heavy]
+
+- spindle: catalogue case ``spindle-combined-load`` (7008C-class hybrid, 18 balls, 20 000 rpm,
+  500 N axial + 300 N radial, cage on);
+- heavy: ``218-heavy-combined`` (218, 16 balls, 10 000 rpm, 17.8 kN + 8.9 kN, cage on).
+
+Prints wall time per shaft revolution (after a warm-up run that compiles the numba kernels), accepted
+and rejected steps, right-hand-side evaluations, peak memory (tracemalloc for Python/numpy
+allocations, ru_maxrss for the process), the memory projected for 100 revolutions of output, and a
+breakdown of where the time goes: the cost of one right-hand-side evaluation measured with parts of
+the physics switched off (numba code cannot be profiled by cProfile, so the parts are timed by
+difference), times the number of evaluations, plus the integrator overhead and the output stage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import resource
+import sys
+import time
+import tracemalloc
+from dataclasses import replace
+
+import numpy as np
+
+# run as a script, sys.path[0] is benchmarks/; put the repository first so that the ``assets``
+# package resolves to the repository's directory (the catalogue reads its files)
+sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1]))
+
+from solver.catalogue import resolve_case
+from solver.models.dynamic import SimulationOptions, inputs_from_case, simulate
+from solver.models.dynamic import layout as L
+from solver.models.dynamic.initial import initial_state
+from solver.models.dynamic.kernels import rhs
+from solver.models.dynamic.params import build_params, build_quadrature
+
+CASES = {"spindle": "spindle-combined-load", "heavy": "218-heavy-combined"}
+
+
+def rhs_cost(inputs, options, repeats=2000):
+    """Seconds per right-hand-side evaluation at the initial state."""
+    par = build_params(inputs, options)
+    quad = build_quadrature(options)
+    y = initial_state(par, quad)
+    z = int(par[L.P_Z])
+    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
+    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
+    pocket = np.zeros(z)
+    dydt = np.zeros_like(y)
+    rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
+    start = time.perf_counter()
+    for _ in range(repeats):
+        rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
+    return (time.perf_counter() - start) / repeats
+
+
+def run_case(label, revolutions):
+    case = resolve_case(CASES[label])
+    inputs = inputs_from_case(case)
+    inputs = replace(inputs, shaft_revolutions=revolutions)
+    options = SimulationOptions()
+    simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # compile / warm caches
+    tracemalloc.start()
+    start = time.perf_counter()
+    ds = simulate(inputs, options=options)
+    total = time.perf_counter() - start
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    integ = ds.attrs["wall_time_s"]
+    steps, rejected, evals = ds.attrs["steps"], ds.attrs["rejected_steps"], ds.attrs["rhs_evaluations"]
+    full = rhs_cost(inputs, options)
+    no_traction = rhs_cost(inputs, replace(options, traction=False))
+    no_cage = rhs_cost(inputs, replace(options, cage=False))
+    normal_only = rhs_cost(inputs, replace(options, traction=False, cage=False))
+    per_rev = integ / revolutions
+    n_state = L.state_size(inputs.geometry.ball_count)
+    samples_100 = 100 * inputs.samples_per_revolution
+    bytes_state = samples_100 * n_state * 8
+    bytes_ds = ds.nbytes / ds.sizes["time"] * samples_100
+    print(f"\n== {label}: {case.title}")
+    print(f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = {ds.attrs['complete']}")
+    print(f"   wall time: integration {integ:.2f} s = {per_rev:.3f} s per shaft revolution; "
+          f"whole simulate() incl. start and output {total:.2f} s")
+    print(f"   steps {steps} accepted, {rejected} rejected ({steps / revolutions:.0f} per revolution, "
+          f"mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f} us); "
+          f"RHS evaluations {evals}")
+    print(f"   memory: tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
+          f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; "
+          f"projected for 100 revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB")
+    rhs_total = evals * full
+    print("   where the time goes (RHS cost by difference x evaluations):")
+    print(f"     one RHS evaluation: {full * 1e6:.1f} us (normal contacts only {normal_only * 1e6:.1f} us)")
+    parts = {
+        "Hertz geometry + normal forces + ball/ring bookkeeping": evals * normal_only,
+        "ellipse-integrated traction": evals * (full - no_traction),
+        "cage pockets and land": evals * (full - no_cage),
+    }
+    for name, seconds in parts.items():
+        print(f"     {name:55s} {seconds:7.2f} s  ({100 * seconds / integ:5.1f} %)")
+    print(f"     {'integrator (stages, error norm, step control)':55s} {integ - rhs_total:7.2f} s  "
+          f"({100 * (integ - rhs_total) / integ:5.1f} %)")
+    print(f"     {'initial state + output Dataset':55s} {total - integ:7.2f} s")
+    return per_rev
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--revolutions", type=float, default=3.0)
+    parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    args = parser.parse_args(argv)
+    results = {label: run_case(label, args.revolutions) for label in args.cases}
+    if "spindle" in results:
+        verdict = "meets" if results["spindle"] <= 1.0 else "misses"
+        print(f"\nspindle: {results['spindle']:.3f} s per shaft revolution ({verdict} the 1 s target)")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())
