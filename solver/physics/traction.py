@@ -388,76 +388,64 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
         contact, kinematics, nx, ny, nz
     )
     _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz)
-    # full (untruncated) slip at P: the per-node tangent projection is done below
-    s0x = vbx - vrx
-    s0y = vby - vry
-    s0z = vbz - vrz
     a = contact[CT_SEMI_MAJOR]
     b = contact[CT_SEMI_MINOR]
     q = contact[CT_LOAD]
     kappa = contact[CT_CURVATURE]
-    # Omega x t1, Omega x t2, Omega x n  (slip grows as Omega x offset from P)
-    a1x = oy * t1z - oz * t1y
-    a1y = oz * t1x - ox * t1z
-    a1z = ox * t1y - oy * t1x
-    a2x = oy * t2z - oz * t2y
-    a2y = oz * t2x - ox * t2z
-    a2z = ox * t2y - oy * t2x
-    a3x = oy * nz - oz * ny
-    a3y = oz * nx - ox * nz
-    a3z = ox * ny - oy * nx
     if q <= 0.0:  # unloaded contact: no traction (the centre kinematics above are still reported)
         for i in range(9):
             out[TR_FORCE + i] = 0.0
         out[TR_POWER] = 0.0
         return
+    # Work in the contact basis (t1, t2, n). Slip at P and the relative angular velocity Omega:
+    s01 = (vbx - vrx) * t1x + (vby - vry) * t1y + (vbz - vrz) * t1z
+    s02 = (vbx - vrx) * t2x + (vby - vry) * t2y + (vbz - vrz) * t2z
+    o1 = ox * t1x + oy * t1y + oz * t1z
+    o2 = ox * t2x + oy * t2y + oz * t2z
+    on = ox * nx + oy * ny + oz * nz
     ur2 = slip_regularisation * slip_regularisation
-    fx = 0.0
-    fy = 0.0
-    fz = 0.0
-    mx = 0.0
-    my = 0.0
-    mz = 0.0
+    f1 = 0.0
+    f2 = 0.0
+    fn = 0.0
+    m1 = 0.0
+    m2 = 0.0
+    mn = 0.0
     power = 0.0
     for k in range(nodes.shape[0]):
         xi = b * nodes[k, NODE_ROLLING]
         eta = a * nodes[k, NODE_TRANSVERSE]
-        ke = kappa * eta
-        cphi = math.sqrt(max(1.0 - ke * ke, 0.0))
+        sphi = kappa * eta
+        cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
         z = -kappa * eta * eta / (1.0 + cphi)
-        # rigid-body slip at the node, split into rolling (t1) and transverse (t2) components; the
-        # component along n is the approach rate of the undeformed bodies (taken up by the elastic
-        # deformation, not slip) and is dropped. The transverse component is laid along the local
-        # tangent of the curved surface, t2' = cos(phi) t2 - sin(phi) n with sin(phi) = kappa eta.
-        dvx = s0x + xi * a1x + eta * a2x + z * a3x
-        dvy = s0y + xi * a1y + eta * a2y + z * a3y
-        dvz = s0z + xi * a1z + eta * a2z + z * a3z
-        v1 = dvx * t1x + dvy * t1y + dvz * t1z
-        v2 = dvx * t2x + dvy * t2y + dvz * t2z
-        dvx = v1 * t1x + v2 * (cphi * t2x - ke * nx)
-        dvy = v1 * t1y + v2 * (cphi * t2y - ke * ny)
-        dvz = v1 * t1z + v2 * (cphi * t2z - ke * nz)
-        u2 = dvx * dvx + dvy * dvy + dvz * dvz
+        # Rigid-body slip at the node p = P + (xi, eta, z): dv = s0 + Omega x (xi, eta, z). Its n
+        # component is the approach rate of the undeformed bodies (taken up by the elastic
+        # deformation, not slip) and is dropped; the rolling component v1 stays along t1 and the
+        # transverse one v2 is laid along the local tangent t2' = cos(phi) t2 - sin(phi) n.
+        v1 = s01 + o2 * z - on * eta
+        v2 = s02 + on * xi - o1 * z
+        u2 = v1 * v1 + v2 * v2
         den = math.sqrt(u2 + ur2)
         if den <= 0.0:
             continue
         u = math.sqrt(u2)
         mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
         g = -q * nodes[k, NODE_LOAD] * mu / den
-        tx = g * dvx
-        ty = g * dvy
-        tz = g * dvz
-        fx += tx
-        fy += ty
-        fz += tz
-        # offset of the node from P
-        sx = xi * t1x + eta * t2x + z * nx
-        sy = xi * t1y + eta * t2y + z * ny
-        sz = xi * t1z + eta * t2z + z * nz
-        mx += sy * tz - sz * ty
-        my += sz * tx - sx * tz
-        mz += sx * ty - sy * tx
-        power -= tx * dvx + ty * dvy + tz * dvz
+        tau1 = g * v1
+        tau2 = g * v2 * cphi
+        taun = -g * v2 * sphi
+        f1 += tau1
+        f2 += tau2
+        fn += taun
+        m1 += eta * taun - z * tau2
+        m2 += z * tau1 - xi * taun
+        mn += xi * tau2 - eta * tau1
+        power -= g * u2
+    fx = f1 * t1x + f2 * t2x + fn * nx
+    fy = f1 * t1y + f2 * t2y + fn * ny
+    fz = f1 * t1z + f2 * t2z + fn * nz
+    mx = m1 * t1x + m2 * t2x + mn * nx
+    my = m1 * t1y + m2 * t2y + mn * ny
+    mz = m1 * t1z + m2 * t2z + mn * nz
     out[TR_FORCE] = fx
     out[TR_FORCE + 1] = fy
     out[TR_FORCE + 2] = fz

@@ -607,3 +607,53 @@ def test_impact_dissipates_with_damping(zeta):
 def test_restitution_decreases_with_damping_ratio():
     es = [_impact(z, 0.3)[0] for z in (0.0, 0.05, 0.1, 0.3)]
     assert es[0] > es[1] > es[2] > es[3] > 0.0
+
+
+def test_force_continuous_through_zero_slip_no_chattering():
+    """Sweeping the sliding speed through zero: the force changes sign smoothly (no jump), also
+    with mu(0) > 0 where only the regularisation makes it continuous."""
+    n, t1, _ = _frame(8)
+    P = np.zeros(3)
+    ureg = 1e-3
+    for curve in (tr.traction_curve_parameters(**ADORE), tr.constant_traction_parameters(0.08)):
+        contact = _contact(P, n, t1, A_, B_, Q_, KAPPA)
+        us = np.linspace(-5e-3, 5e-3, 201)
+        f = np.array(
+            [
+                _run(
+                    contact,
+                    _kin(-R_BALL * n, u * t1, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
+                    curve,
+                    ureg,
+                )[tr.TR_FORCE : tr.TR_FORCE + 3]
+                @ t1
+                for u in us
+            ]
+        )
+        assert f[100] == 0.0
+        assert np.all(np.diff(f) < 0.0)  # friction opposes the slip, strictly monotone
+        # the largest step between neighbours is bounded by the slope at zero times the step
+        slope0 = Q_ * max(tr.traction_coefficient(0.0, curve) / ureg, 0.2)
+        assert np.max(np.abs(np.diff(f))) <= 1.01 * slope0 * (us[1] - us[0])
+
+
+def test_kernels_callable_from_numba():
+    from numba import njit
+
+    @njit
+    def wrapped(contact, kin, curve, nodes, out, out1):
+        tr.ellipse_traction(contact, kin, curve, 1e-3, nodes, out)
+        tr.centre_traction(contact, kin, curve, 1e-3, out1)
+        return tr.damped_normal_force(1e-6, 0.1, 1e10, 0.05, 1e-3) + tr.traction_coefficient(
+            0.5, curve
+        )
+
+    contact, kin = _general_case()
+    curve = tr.traction_curve_parameters(**ADORE)
+    out = np.zeros(tr.TRACTION_OUT_SIZE)
+    out1 = np.zeros(tr.TRACTION_OUT_SIZE)
+    v = wrapped(contact, kin, curve, tr.ellipse_quadrature(), out, out1)
+    assert v == pytest.approx(
+        1e10 * 1e-9 + 2 * 0.05 * math.sqrt(1.5e10 * 1e-3 * 1e-3) * 0.1 + 0.04287, rel=1e-3
+    )
+    np.testing.assert_array_equal(out, _run(contact, kin, curve, 1e-3))
