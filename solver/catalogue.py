@@ -135,6 +135,12 @@ class Catalogue:
     def __contains__(self, name: object) -> bool:
         return name in self.names
 
+    def __iter__(self):
+        return iter(self.entries)
+
+    def __len__(self) -> int:
+        return len(self.entries)
+
 
 def _entry(kind: str, resource) -> CatalogueEntry:
     data = tomllib.loads(resource.read_text(encoding="utf-8"))
@@ -148,9 +154,27 @@ def _entry(kind: str, resource) -> CatalogueEntry:
     )
 
 
+def _assets_root():
+    """Traversable root of the ``assets`` package data.
+
+    Falls back to the first real folder of ``assets.__path__`` when ``assets`` was imported as a
+    namespace package (an editable install made before ``assets/__init__.py`` existed), which
+    ``importlib.resources.files`` cannot read.
+    """
+    try:
+        return files("assets")
+    except NotADirectoryError:
+        import assets
+
+        for folder in assets.__path__:
+            if Path(folder).is_dir():
+                return Path(folder)
+        raise
+
+
 def catalogue() -> Catalogue:
     """The shipped catalogue (read from the ``assets`` package data)."""
-    root = files("assets")
+    root = _assets_root()
     entries = []
     for kind, folder in _KINDS:
         resources = sorted(

@@ -33,6 +33,7 @@ def test_catalogue_lists_the_required_entries():
     cat = catalogue()
     assert {e.name for e in cat.bearings} == EXPECTED["bearings"]
     assert {e.name for e in cat.cases} == EXPECTED["cases"]
+    assert list(cat) == list(cat.entries) and len(cat) == 11
     for entry in cat.entries:
         assert entry.title and entry.provenance in (
             "estimated",
