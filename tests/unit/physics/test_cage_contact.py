@@ -12,6 +12,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import integrate, optimize
 
 from solver.errors import CaseError
@@ -413,3 +415,51 @@ def test_land_stiffness_estimate():
     )
     with pytest.raises(CaseError):
         cc.land_contact_stiffness_estimate(0.0, e_prime)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    eps=st.floats(0.0, 0.94),
+    angle=st.floats(0.0, 2 * math.pi),
+    v=st.tuples(st.floats(-0.2, 0.2), st.floats(-0.2, 0.2)),
+    wc=st.floats(-3000.0, 3000.0),
+    wr=st.floats(-3000.0, 3000.0),
+)
+def test_land_film_dissipates_energy(eps, angle, v, wc, wr):
+    """The film is passive: the power the cage and ring put into it, -(F . v_rel + T_c w_c +
+    T_r w_r), is never negative (Couette part c (w_c - w_r)^2 >= 0 plus the squeeze/wedge part)."""
+    off = eps * C_LAND * np.array([math.cos(angle), math.sin(angle)])
+    out = _lrun(_lkin(off, v, wc, wr), _land())
+    assert np.all(np.isfinite(out))
+    power_in = -(
+        out[cc.LO_FORCE : cc.LO_FORCE + 2] @ np.array(v)
+        + out[cc.LO_TORQUE] * wc
+        + out[cc.LO_RING_TORQUE] * wr
+    )
+    scale = (
+        abs(out[cc.LO_FORCE : cc.LO_FORCE + 2] @ np.array(v))
+        + abs(out[cc.LO_TORQUE] * wc)
+        + abs(out[cc.LO_RING_TORQUE] * wr)
+    )
+    assert power_in >= -1e-12 * scale
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    pos=st.tuples(st.floats(-2e-4, 2e-4), st.floats(-1e-3, 1e-3), st.floats(-2e-4, 2e-4)),
+    vel=st.tuples(*(st.floats(-1.0, 1.0),) * 3),
+    omega=st.tuples(*(st.floats(-3000.0, 3000.0),) * 3),
+    zeta=st.floats(0.0, 0.5),
+)
+def test_pocket_finite_and_friction_dissipative(pos, vel, omega, zeta):
+    out = _prun(_pkin(pos, vel, omega), _pocket(zeta=zeta))
+    assert np.all(np.isfinite(out))
+    assert out[cc.PO_NORMAL_FORCE] >= 0.0
+    # friction power at the contact point: -(F_t . s) >= 0, with s the sliding velocity there
+    r = out[cc.PO_POINT : cc.PO_POINT + 3] - np.array(pos)
+    s = np.array(vel) + np.cross(np.array(omega), r)
+    f = out[cc.PO_FORCE : cc.PO_FORCE + 3]
+    e = r / np.linalg.norm(r)
+    f_t = f - (f @ e) * e
+    s_t = s - (s @ e) * e
+    assert -(f_t @ s_t) >= -1e-15

@@ -657,3 +657,28 @@ def test_kernels_callable_from_numba():
         1e10 * 1e-9 + 2 * 0.05 * math.sqrt(1.5e10 * 1e-3 * 1e-3) * 0.1 + 0.04287, rel=1e-3
     )
     np.testing.assert_array_equal(out, _run(contact, kin, curve, 1e-3))
+
+
+_vec = st.tuples(*(st.floats(-1.0, 1.0),) * 3).map(np.array)
+
+
+@settings(max_examples=60, deadline=None)
+@given(vb=_vec, wb=_vec, wr=_vec, seed=st.integers(0, 1000), curved=st.booleans())
+def test_traction_dissipates_and_balances_power(vb, wb, wr, seed, curved):
+    """Friction power is never negative; for a flat contact it equals minus the power of the force
+    and the moment (about P) on the relative motion, -(F . dv_P + M_P . (w_b - w_r)): the moments
+    are consistent with the forces (a virtual-power identity)."""
+    n, t1, _ = _frame(seed)
+    P = np.array([0.002, 0.02, -0.01])
+    cb = P - R_BALL * n
+    cr = np.zeros(3)
+    kin = _kin(cb, 2.0 * vb, 3000.0 * wb, cr, np.zeros(3), 3000.0 * wr)
+    contact = _contact(P, n, t1, A_, B_, Q_, KAPPA if curved else 0.0)
+    out = _run(contact, kin, tr.traction_curve_parameters(**ADORE), 1e-3)
+    assert np.all(np.isfinite(out))
+    assert out[tr.TR_POWER] >= 0.0
+    if not curved:
+        dv_p = (kin[3:6] + np.cross(kin[6:9], P - cb)) - np.cross(kin[15:18], P - cr)
+        omega = kin[6:9] - kin[15:18]
+        p_mech = -(out[0:3] @ dv_p + out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] @ omega)
+        assert p_mech == pytest.approx(out[tr.TR_POWER], rel=1e-9, abs=1e-12)
