@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, make_dataclass
 
 from solver.materials import BUILTIN_MATERIALS, Material
 
-from .schema import FIELDS, MATERIAL_FIELDS
+from .schema import FIELDS, MATERIAL_FIELDS, OPTIONAL
 
 _PY_TYPES = {
     "float": "float",
@@ -39,7 +39,7 @@ def _make_section(class_name: str, prefix: tuple[str, ...]):
             continue
         name = path[len(prefix)]
         if len(path) == len(prefix) + 1:
-            optional = " | None" if f.default is not None and not f.required else ""
+            optional = " | None" if f.default is OPTIONAL else ""
             attributes.append((name, _PY_TYPES[f.type] + optional))
             unit = f" [{f.unit}]" if f.unit else ""
             lines.append(f"    {name}{unit}: {f.help}")
