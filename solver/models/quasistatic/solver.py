@@ -107,8 +107,8 @@ def _static_start(problem: _Problem, load_fraction: float):
     model = problem.static_model
     q = np.zeros(5)
     q[3:] = problem.operating.imposed_tilt()
-    kernels.static_start(q, problem.applied * load_fraction, problem.azimuth, model,
-                         problem.length_scale, 3)
+    kernels.static_start(q, problem.applied * load_fraction, problem.operating.tilt_is_free,
+                         problem.azimuth, model, problem.length_scale, 3)
     return q, problem.initial_positions(q, model)
 
 

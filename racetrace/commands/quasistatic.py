@@ -1,0 +1,146 @@
+"""``racetrace quasistatic CASE [--output result.nc] [--json]``: the Jones–Harris quasi-static solution.
+
+Default output is a readable table with units; ``--json`` prints a machine-parseable summary instead;
+``--output`` writes the full results Dataset (NetCDF, results-schema.md). Exit codes: 0 success,
+2 invalid input, 3 no solution (the message says why and what to try) — mapped by racetrace.cli.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "quasistatic",
+        help="solve the quasi-static (Jones-Harris) model of a case",
+        description="Solve the quasi-static Jones-Harris model of a case (file or catalogue name) and "
+        "print the load distribution; optionally save the results Dataset as NetCDF.",
+    )
+    parser.add_argument("case", metavar="CASE", help="case file (.toml) or catalogue name")
+    parser.add_argument("--output", "-o", metavar="FILE.nc", help="write the results Dataset (NetCDF)")
+    parser.add_argument("--json", action="store_true", help="print a JSON summary instead of a table")
+    parser.set_defaults(func=run)
+
+
+def _pressure_unit(p_max: float) -> tuple[str, float]:
+    return ("GPa", 1e-9) if p_max >= 1e9 else ("MPa", 1e-6)
+
+
+def summary(ds) -> dict:
+    """JSON-serialisable summary of a quasi-static Dataset (SI units, angles in degree)."""
+    def floats(values):
+        return [float(v) for v in np.asarray(values).ravel()]
+
+    load = ds.contact_load.values
+    inner_speed = float(ds.attrs.get("inner_ring_speed_rad_s", 0.0))
+    return {
+        "model": "quasistatic",
+        "units": {"angle": "degree", "load": "N", "length": "m", "pressure": "Pa",
+                  "speed": "rad/s", "moment": "N m"},
+        "inner_ring_speed_rpm": inner_speed * 30.0 / math.pi,
+        "outer_ring_speed_rpm": float(ds.attrs.get("outer_ring_speed_rad_s", 0.0)) * 30.0 / math.pi,
+        "inner_ring_offset_m": floats(ds.inner_ring_offset.values),
+        "inner_ring_tilt_deg": floats(ds.inner_ring_tilt.values),
+        "inner_ring_moment_Nm": floats(ds.inner_ring_moment.values),
+        "cage_speed_rad_s": float(ds.cage_speed.values),
+        "cage_to_shaft_speed_ratio": (float(ds.cage_speed.values) / inner_speed
+                                      if inner_speed else None),
+        "max_contact_load_N": {"inner": float(load[:, 0].max()), "outer": float(load[:, 1].max())},
+        "max_pressure_Pa": {"inner": float(ds.max_pressure.values[:, 0].max()),
+                            "outer": float(ds.max_pressure.values[:, 1].max())},
+        "solver": {"iterations": int(ds.attrs.get("solver_iterations", 0)),
+                   "residual": float(ds.attrs.get("solver_residual", 0.0)),
+                   "race_control_note": ds.attrs.get("race_control_note", "")},
+        "balls": [
+            {
+                "azimuth_deg": float(ds.ball_azimuth.values[j]),
+                "contact_angle_deg": {"inner": float(ds.contact_angle.values[j, 0]),
+                                      "outer": float(ds.contact_angle.values[j, 1])},
+                "contact_load_N": {"inner": float(load[j, 0]), "outer": float(load[j, 1])},
+                "semi_major_m": {"inner": float(ds.ellipse_semi_major.values[j, 0]),
+                                 "outer": float(ds.ellipse_semi_major.values[j, 1])},
+                "semi_minor_m": {"inner": float(ds.ellipse_semi_minor.values[j, 0]),
+                                 "outer": float(ds.ellipse_semi_minor.values[j, 1])},
+                "max_pressure_Pa": {"inner": float(ds.max_pressure.values[j, 0]),
+                                    "outer": float(ds.max_pressure.values[j, 1])},
+                "race_control": str(ds.race_control.values[j]),
+            }
+            for j in range(ds.sizes["ball"])
+        ],
+    }
+
+
+def table(ds, case) -> str:
+    """Readable table: header (bearing, speed, loads, ring displacement, cage speed, peak pressure)
+    and one row per ball."""
+    op = case.operating
+    b = case.bearing
+    inner_speed = float(ds.attrs.get("inner_ring_speed_rad_s", 0.0))
+    p_max = float(ds.max_pressure.values.max())
+    unit, factor = _pressure_unit(p_max)
+    offset = ds.inner_ring_offset.values * 1e6
+    tilt = ds.inner_ring_tilt.values
+    moment = ds.inner_ring_moment.values
+    ratio = f" ({float(ds.cage_speed) / inner_speed:.4f} x shaft)" if inner_speed else ""
+    lines = [
+        f"case:    {case.title or '(no title)'}",
+        f"bearing: {b.designation or '(no designation)'}, {b.ball_count} balls of "
+        f"{b.ball_diameter_mm:g} mm, pitch diameter {b.pitch_diameter_mm:g} mm",
+        f"speed:   inner ring {op.inner_ring_speed_rpm:g} rpm, outer ring "
+        f"{(op.outer_ring_speed_rpm or 0.0):g} rpm",
+        f"loads:   axial {(op.axial_load_N or 0.0):g} N, radial {(op.radial_load_N or 0.0):g} N at "
+        f"{(op.radial_load_angle_deg or 0.0):g} deg",
+        f"inner ring offset: x {offset[0]:.3f} um, y {offset[1]:.3f} um, z {offset[2]:.3f} um; "
+        f"tilt y {tilt[0]:.4f} deg, z {tilt[1]:.4f} deg; moment y {moment[0]:.4g} N m, "
+        f"z {moment[1]:.4g} N m",
+        f"cage speed: {float(ds.cage_speed):.2f} rad/s{ratio}",
+        f"max pressure: inner {ds.max_pressure.values[:, 0].max() * factor:.3f} {unit}, "
+        f"outer {ds.max_pressure.values[:, 1].max() * factor:.3f} {unit}",
+    ]
+    note = ds.attrs.get("race_control_note", "")
+    if note and "settled" not in note:
+        lines.append(f"note: {note}")
+    lines.append("")
+    head = (f"{'ball':>4} {'psi':>7} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'a_i':>7} "
+            f"{'b_i':>7} {'a_o':>7} {'b_o':>7} {'p_i':>7} {'p_o':>7}  control")
+    units = (f"{'':>4} {'deg':>7} {'deg':>7} {'deg':>7} {'N':>9} {'N':>9} {'mm':>7} {'mm':>7} "
+             f"{'mm':>7} {'mm':>7} {unit:>7} {unit:>7}")
+    lines += [head, units]
+    for j in range(ds.sizes["ball"]):
+        a = ds.ellipse_semi_major.values[j] * 1e3
+        bb = ds.ellipse_semi_minor.values[j] * 1e3
+        p = ds.max_pressure.values[j] * factor
+        q = ds.contact_load.values[j]
+        angle = ds.contact_angle.values[j]
+        lines.append(
+            f"{j:>4d} {float(ds.ball_azimuth.values[j]):7.2f} {angle[0]:7.3f} {angle[1]:7.3f} "
+            f"{q[0]:9.2f} {q[1]:9.2f} {a[0]:7.4f} {bb[0]:7.4f} {a[1]:7.4f} {bb[1]:7.4f} "
+            f"{p[0]:7.3f} {p[1]:7.3f}  {ds.race_control.values[j]}"
+        )
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    from solver.catalogue import resolve_case
+    from solver.models.quasistatic import solve_quasistatic
+
+    case = resolve_case(args.case)
+    ds = solve_quasistatic(case)
+    if args.output:
+        from solver.results.io import save_dataset
+
+        save_dataset(ds, args.output)
+    if args.json:
+        out = summary(ds)
+        if args.output:
+            out["output"] = str(args.output)
+        print(json.dumps(out, indent=2))
+    else:
+        print(table(ds, case))
+        if args.output:
+            print(f"\nresults written to {args.output}")
+    return 0

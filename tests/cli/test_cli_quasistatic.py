@@ -1,0 +1,84 @@
+"""``racetrace quasistatic``: exit codes 0/2/3, table and JSON output, NetCDF output (subprocesses)."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+NO_SOLUTION_CASE = """
+title = "218 at an absurd speed with 1 N preload"
+[bearing]
+designation = "218"
+provenance = "literature"
+ball_count = 16
+ball_diameter_mm = 22.225
+pitch_diameter_mm = 125.26
+inner_groove_radius_ratio = 0.5232
+outer_groove_radius_ratio = 0.5232
+free_contact_angle_deg = 40.0
+ball_material = "bearing_steel"
+ring_material = "bearing_steel"
+[operating]
+inner_ring_speed_rpm = 200000.0
+axial_load_N = 1.0
+"""
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "racetrace", "quasistatic", *args],
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_table_for_a_catalogue_case():
+    result = run("spindle-combined-load")
+    assert result.returncode == 0, result.stderr
+    out = result.stdout
+    assert "Q_i" in out and "a_o" in out and "control" in out
+    assert "GPa" in out or "MPa" in out
+    assert "cage speed:" in out and "um" in out
+    rows = [line for line in out.splitlines() if line.strip().endswith(("outer", "inner"))
+            and line.strip()[0].isdigit()]
+    assert len(rows) == 18
+
+
+def test_json_summary_and_netcdf_output(tmp_path):
+    target = tmp_path / "result.nc"
+    result = run("218-heavy-combined", "--json", "--output", str(target))
+    assert result.returncode == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert len(summary["balls"]) == 16
+    assert summary["inner_ring_speed_rpm"] == pytest.approx(10000.0)
+    assert summary["max_contact_load_N"]["inner"] > 17800.0 / 16
+    assert 0.4 < summary["cage_to_shaft_speed_ratio"] < 0.5
+    assert summary["output"] == str(target)
+    from solver.results.io import load_dataset
+
+    ds = load_dataset(target)
+    assert ds.attrs["model"] == "quasistatic"
+    assert ds.sizes["ball"] == 16
+    assert max(b["contact_load_N"]["inner"] for b in summary["balls"]) == pytest.approx(
+        float(ds.contact_load.values[:, 0].max()))
+
+
+def test_invalid_case_exits_2_without_traceback(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(NO_SOLUTION_CASE.replace("ball_count = 16\n", ""))
+    result = run(str(bad))
+    assert result.returncode == 2
+    assert "ball_count" in result.stderr
+    assert "Traceback" not in result.stderr
+    result = run("no-such-case-anywhere")
+    assert result.returncode == 2
+    assert "Traceback" not in result.stderr
+
+
+def test_no_solution_exits_3_with_reason_and_remedy(tmp_path):
+    case = tmp_path / "fast.toml"
+    case.write_text(NO_SOLUTION_CASE)
+    result = run(str(case))
+    assert result.returncode == 3
+    assert "no solution" in result.stderr
+    assert "rpm" in result.stderr and "axial preload" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stdout == ""
