@@ -226,3 +226,51 @@ def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndar
     y[cb + L.C_POS] = float(np.mean([y[L.ball_base(j)] for j in range(z)]))
     y[cb + L.C_SPEED] = omega_c
     return y
+
+
+def quasistatic_solution(inputs):
+    """The project's Jones–Harris solution (solver.models.quasistatic) for ``inputs``."""
+    from solver.models.quasistatic import OperatingPoint, solve_operating_point
+
+    op = OperatingPoint(
+        inner_ring_speed=inputs.inner_speed,
+        outer_ring_speed=inputs.outer_speed,
+        axial_load=inputs.axial_load,
+        radial_load=inputs.radial_load,
+        radial_load_angle=inputs.radial_load_angle,
+        misalignment=inputs.misalignment,
+        misalignment_axis=inputs.misalignment_axis,
+        misalignment_frame=inputs.misalignment_frame,
+        tilting_moment=inputs.tilting_moment,
+        moment_axis=inputs.moment_axis,
+    )
+    return solve_operating_point(inputs.geometry, op)
+
+
+def initial_state_from_quasistatic(par: np.ndarray, qs) -> np.ndarray:
+    """Initial state (layout ``L``) from a :class:`QuasiStaticSolution`: ball centres (axial, radial at
+    each ball azimuth), orbital speeds, attitude and angular velocity (inertial) per ball, inner-ring
+    offset and tilt, cage centred at the mean ball plane turning at the mean orbital speed.
+
+    The quasi-static model carries the gyroscopic moment by race friction under its race-control
+    assumption; in the dynamic model the same moment needs traction slips that develop in the first
+    fraction of a revolution.
+    """
+    z = int(par[L.P_Z])
+    y = np.zeros(L.state_size(z))
+    rb = L.ring_base(z)
+    cb = L.cage_base(z)
+    for j in range(z):
+        b = L.ball_base(j)
+        psi = float(qs.ball_azimuth[j])
+        x, r = float(qs.ball_center[j, 0]), float(qs.ball_center[j, 1])
+        pos = np.array([x, r * math.cos(psi), r * math.sin(psi)])
+        y[b + L.B_POS : b + L.B_POS + 3] = pos
+        y[b + L.B_VEL : b + L.B_VEL + 3] = np.cross([float(qs.orbital_speed[j]), 0.0, 0.0], pos)
+        y[b + L.B_QUAT : b + L.B_QUAT + 4] = matrix_to_quaternion(ball_frame(psi, float(qs.attitude_angle[j])))
+        y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = np.asarray(qs.ball_angular_velocity[j], dtype=float)
+    y[rb + L.R_POS : rb + L.R_POS + 3] = np.asarray(qs.inner_ring_offset, dtype=float)
+    y[rb + L.R_TILT : rb + L.R_TILT + 2] = np.asarray(qs.inner_ring_tilt, dtype=float)
+    y[cb + L.C_POS] = float(np.mean(qs.ball_center[:, 0]))
+    y[cb + L.C_SPEED] = float(qs.cage_speed)
+    return y

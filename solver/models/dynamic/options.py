@@ -35,6 +35,9 @@ class SimulationOptions:
     - ``heathcote``: evaluate the slip on the curved deformed surface (differential slip).
     - ``inner_ring_mass`` [kg]: None = estimated from the ring cross-section (width 2 D).
     - ``max_steps_per_chunk``: safety bound on the integrator steps in one chunk.
+    - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;
+      falls back to "equilibrium" if it finds no solution) or "equilibrium" (the model's own
+      force balance without gyroscopic moment, see ``initial.initial_state``).
     """
 
     traction: bool = True
@@ -55,6 +58,7 @@ class SimulationOptions:
     heathcote: bool = True
     inner_ring_mass: float | None = None
     max_steps_per_chunk: int = 2_000_000
+    start: str = "quasistatic"
 
     def validated(self) -> SimulationOptions:
         """Return self after checking every value; raise CaseError naming the option otherwise."""
@@ -91,6 +95,9 @@ class SimulationOptions:
                     f"simulation option samples_per_revolution = {self.samples_per_revolution!r}: must be >= 4",
                 )
             )
+        if self.start not in ("quasistatic", "equilibrium"):
+            problems.append(Problem("start", f"simulation option start = {self.start!r}: must be "
+                                    "'quasistatic' or 'equilibrium'"))
         if problems:
             raise CaseError(problems)
         return self

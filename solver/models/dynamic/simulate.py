@@ -19,10 +19,10 @@ from datetime import datetime, timezone
 
 import numpy as np
 
-from solver.errors import CaseError, Problem, SimulationDiverged
+from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverged
 
 from . import layout as L
-from .initial import initial_state
+from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
 from .inputs import DEFAULT_OIL_NOTE, DynamicInputs, inputs_from_case
 from .integrator import (
     STATUS_BALL_ESCAPED,
@@ -132,6 +132,23 @@ class RunStatistics:
         return int(self.counters[2])
 
 
+def _start(inputs, options, par, quad):
+    """(initial state, description of the start for the Dataset attrs)."""
+    if options.start == "quasistatic":
+        try:
+            qs = quasistatic_solution(inputs)
+        except NoSolutionError as error:
+            return initial_state(par, quad), (
+                f"quasi-static solver found no solution ({error}); started from the model's own "
+                "force balance (no gyroscopic moment)"
+            )
+        return initial_state_from_quasistatic(par, qs), (
+            "quasi-static Jones-Harris solution (solver.models.quasistatic): ball positions, orbital "
+            "and spin speeds, attitude, ring offset and tilt, cage speed"
+        )
+    return initial_state(par, quad), "the model's own quasi-static force balance (no gyroscopic moment)"
+
+
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
     """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
 
@@ -154,7 +171,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     per_rev = options.samples_per_revolution or inputs.samples_per_revolution
     par = build_params(inputs, options)
     quad = build_quadrature(options)
-    y = initial_state(par, quad)
+    y, start_note = _start(inputs, options, par, quad)
     period = 2.0 * math.pi / speed
     n_samples = int(round(revolutions * per_rev))
     times = np.arange(n_samples + 1) * (period / per_rev)
@@ -200,6 +217,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     ds = build_dataset(
         inputs, options, par, quad, times[:done], states[:done], period, complete, stop_reason, stats
     )
+    ds.attrs["initial_state"] = start_note
     if diverged_message is not None:
         err = SimulationDiverged(diverged_message)
         err.dataset = ds

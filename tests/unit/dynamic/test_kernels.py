@@ -266,3 +266,33 @@ def test_pure_spin_moment_matches_ellipse_integral():
     assert moment_n == pytest.approx(-mu * ref, rel=5e-3)
     f = ro[0, L.K_F_BALL : L.K_F_BALL + 3] + q * n
     assert np.linalg.norm(f) < 1e-6 * q  # symmetric spin: no net tangential force
+
+
+@pytest.mark.parametrize("radial", [0.0, 300.0])
+def test_contact_forces_nearly_balance_at_the_quasistatic_state(radial):
+    """At the project's quasi-static solution (solver.models.quasistatic, an independent
+    implementation of the same geometry) the dynamic model's normal contact forces supply the
+    centripetal force of every ball and balance the applied load on the ring. What is left is the
+    quasi-static gyroscopic friction (M_g / D ~ 0.6 % of Q here), which the dynamic model carries by
+    traction slips."""
+    from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
+
+    inp = spindle_inputs(radial=radial)
+    par, quad, _ = setup(inp, traction=False, damping_ratio=0.0, cage=False, gravity=0.0)
+    qs = quasistatic_solution(inp)
+    y = initial_state_from_quasistatic(par, qs)
+    dydt, ri, ro, _ = evaluate(y, par, quad)
+    q_mean = float(np.mean(qs.contact_load))
+    mb = par[L.P_MB]
+    for j in range(18):
+        b = L.ball_base(j)
+        pos = y[b : b + 3]
+        wc = float(qs.orbital_speed[j])
+        net = (dydt[b + 3 : b + 6] + wc**2 * np.array([0.0, pos[1], pos[2]])) * mb
+        assert np.linalg.norm(net) < 0.02 * q_mean
+    np.testing.assert_allclose(ri[:, L.K_LOAD], qs.contact_load[:, 0], rtol=0.01, atol=1e-3 * q_mean)
+    np.testing.assert_allclose(ro[:, L.K_LOAD], qs.contact_load[:, 1], rtol=0.01, atol=1e-3 * q_mean)
+    np.testing.assert_allclose(ri[:, L.K_ANGLE], qs.contact_angle[:, 0], atol=1e-3)
+    np.testing.assert_allclose(ro[:, L.K_ANGLE], qs.contact_angle[:, 1], atol=1e-3)
+    rb = L.ring_base(18)
+    assert np.linalg.norm(dydt[rb + 3 : rb + 6] * par[L.P_MR]) < 0.01 * 500.0
