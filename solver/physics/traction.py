@@ -160,9 +160,13 @@ def traction_curve_parameters(
     ``mu_zero`` = mu(0), ``mu_max`` = the maximum, reached at slip speed ``slip_at_max`` [m/s],
     ``mu_infinity`` = limit for large slip. A = mu_zero - mu_infinity, D = mu_infinity, C = B / (A +
     B u_m) puts the stationary point at u_m, and B > 0 is the unique root of mu(u_m) = mu_max
-    (physics.md §2.6.4). Requires 0 <= mu_zero < mu_max, 0 <= mu_infinity < mu_max, slip_at_max > 0.
-    Invalid input raises :class:`CaseError` naming ``key_prefix.<name>``. Returns a float64 array of
-    length ``CURVE_SIZE``.
+    (physics.md §2.6.4). Requires 0 <= mu_zero <= mu_max <= 1, 0 <= mu_infinity <= mu_max and
+    slip_at_max > 0 (the rules of the case validation). When mu_max is not above both other values
+    (within 1e-9 relative) the curve has no interior peak; then the monotone limit
+    mu(u) = mu_infinity + (mu_zero - mu_infinity) exp(-u / slip_at_max) is returned (B = 0): it
+    falls from mu_max (mu_zero = mu_max) or rises to mu_max (mu_infinity = mu_max), reaching 1 - 1/e of
+    the change at slip_at_max. Invalid input raises :class:`CaseError` naming
+    ``key_prefix.<name>``. Returns a float64 array of length ``CURVE_SIZE``.
     """
     problems: list[Problem] = []
     k0, km, ku, ki = (
@@ -173,30 +177,32 @@ def traction_curve_parameters(
     um = _check_number(ku, slip_at_max, problems, minimum=0.0, strict=True)
     mi = _check_number(ki, mu_infinity, problems, minimum=0.0)
     if mm is not None:
-        if mm >= 1.0:
+        if mm > 1.0:
             problems.append(
-                Problem(km, f"{km} = {mm:g}: must be below 1 (a lubricated traction coefficient)")
+                Problem(km, f"{km} = {mm:g}: must be at most 1 (a lubricated traction coefficient)")
             )
-        if m0 is not None and not m0 < mm:
+        if m0 is not None and not m0 <= mm:
             problems.append(
                 Problem(
                     k0,
-                    f"{k0} = {m0:g}: must be smaller than {km} = {mm:g} "
-                    "(the curve rises to its maximum)",
+                    f"{k0} = {m0:g}: must be at most {km} = {mm:g} "
+                    "(the curve rises from mu_zero to its maximum)",
                 )
             )
-        if mi is not None and not mi < mm:
+        if mi is not None and not mi <= mm:
             problems.append(
                 Problem(
                     ki,
-                    f"{ki} = {mi:g}: must be smaller than {km} = {mm:g} "
-                    "(the curve falls after its maximum)",
+                    f"{ki} = {mi:g}: must be at most {km} = {mm:g} "
+                    "(the curve falls from its maximum towards mu_infinity)",
                 )
             )
     if problems:
         raise CaseError(problems)
     a = m0 - mi
-    target = mm - mi  # > 0
+    target = mm - mi
+    if mm - max(m0, mi) <= 1e-9 * mm:  # no interior peak: monotone limit of the family
+        return np.array([a, 0.0, 1.0 / um, mi], dtype=np.float64)
     # With s = A + B u_m > max(A, 0): mu(u_m) - D = s exp(A/s - 1), increasing in s on that range.
     lo = max(a, 0.0)
 
@@ -207,7 +213,7 @@ def traction_curve_parameters(
     while g(hi) <= 0.0:
         hi *= 2.0
     lo_eval = lo if lo > 0.0 else hi * 1e-12
-    if g(lo_eval) >= 0.0:  # only when target is vanishingly small; cannot happen after validation
+    if g(lo_eval) >= 0.0:  # cannot happen: the peak excess is > 1e-9 mu_max here
         raise CaseError(
             Problem(km, f"{km} = {mm:g}: too close to the other coefficients to fit a curve")
         )

@@ -93,8 +93,12 @@ def test_curve_properties(mu_zero, excess, um, drop):
             "lubricant.traction.mu_zero",
         ),
         (
-            dict(mu_zero=0.0, mu_max=0.05, slip_at_max=1.0, mu_infinity=0.05),
+            dict(mu_zero=0.0, mu_max=0.05, slip_at_max=1.0, mu_infinity=0.051),
             "lubricant.traction.mu_infinity",
+        ),
+        (
+            dict(mu_zero=0.0, mu_max=1.2, slip_at_max=1.0, mu_infinity=0.03),
+            "lubricant.traction.mu_max",
         ),
         (
             dict(mu_zero=0.0, mu_max=0.05, slip_at_max=0.0, mu_infinity=0.03),
@@ -716,3 +720,25 @@ def test_convergence_with_node_count_rolling_contact_with_spin():
     errs = np.array(errs)
     assert np.all(errs[2] < errs[1]) and np.all(errs[1] < errs[0])
     assert np.all(errs[1] < 5e-3)
+
+
+@pytest.mark.parametrize(
+    "mu_zero, mu_max, mu_inf",
+    [(0.05, 0.05, 0.02), (0.0, 0.05, 0.05), (0.04, 0.04, 0.04), (0.03, 0.05, 0.05 * (1 - 1e-12))],
+)
+def test_curve_without_interior_peak_is_monotone_and_bounded(mu_zero, mu_max, mu_inf):
+    """Equalities allowed by the case validation (mu_zero = mu_max or mu_infinity = mu_max) give
+    the monotone limit of the family, bounded by mu_max, from mu_zero to mu_infinity."""
+    um = 0.8
+    curve = tr.traction_curve_parameters(mu_zero, mu_max, um, mu_inf)
+    u = np.linspace(0.0, 50.0, 2001)
+    mu = np.array([tr.traction_coefficient(x, curve) for x in u])
+    assert mu[0] == pytest.approx(mu_zero, abs=1e-15)
+    assert mu[-1] == pytest.approx(mu_inf, abs=1e-12)
+    assert np.all(mu <= mu_max * (1 + 1e-12))
+    d = np.diff(mu)
+    assert np.all(d <= 1e-15) or np.all(d >= -1e-15)
+    # 1 - 1/e of the change at slip_at_max
+    if mu_zero != mu_inf:
+        frac = (tr.traction_coefficient(um, curve) - mu_zero) / (mu_inf - mu_zero)
+        assert frac == pytest.approx(1 - math.exp(-1), rel=1e-9)
