@@ -164,8 +164,8 @@ def traction_curve_parameters(
     slip_at_max > 0 (the rules of the case validation). When mu_max is not above both other values
     (within 1e-9 relative) the curve has no interior peak; then the monotone limit
     mu(u) = mu_infinity + (mu_zero - mu_infinity) exp(-u / slip_at_max) is returned (B = 0): it
-    falls from mu_max (mu_zero = mu_max) or rises to mu_max (mu_infinity = mu_max), reaching 1 - 1/e of
-    the change at slip_at_max. Invalid input raises :class:`CaseError` naming
+    falls from mu_max (mu_zero = mu_max) or rises to mu_max (mu_infinity = mu_max), reaching
+    1 - 1/e of the change at slip_at_max. Invalid input raises :class:`CaseError` naming
     ``key_prefix.<name>``. Returns a float64 array of length ``CURVE_SIZE``.
     """
     problems: list[Problem] = []
