@@ -96,7 +96,7 @@ class RacetraceApp:
     # ---- set-up ---------------------------------------------------------------------------------
     def _init_state(self) -> None:
         s = self.state
-        from solver import catalogue
+        from solver.catalogue import catalogue
 
         entries = list(catalogue())
         s.case_items = [{"title": f"{e.title} ({e.kind})", "value": e.name} for e in entries]

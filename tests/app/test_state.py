@@ -47,7 +47,9 @@ def _set(app, **values):
 
 def test_opens_on_the_default_case_solved(app):
     s = app.state
-    expected = {e.name: e for e in solver.catalogue()}[DEFAULT_CASE].load()
+    from solver.catalogue import catalogue
+
+    expected = catalogue().get(DEFAULT_CASE).load()
     assert s.case_name == DEFAULT_CASE
     assert s.fv_ball_count == str(expected.bearing.ball_count)
     assert s.status == "preview done"
