@@ -62,5 +62,8 @@ def summary(case) -> str:
 def run(args) -> int:
     from solver.catalogue import resolve_case
 
-    print(summary(resolve_case(args.case)))
+    case = resolve_case(args.case)
+    print(summary(case))
+    for warning in case.warnings():
+        print(f"warning: {warning.message}")
     return 0

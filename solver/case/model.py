@@ -14,6 +14,7 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field, make_dataclass
 
+from solver.errors import Problem
 from solver.materials import BUILTIN_MATERIALS, Material
 
 from .schema import FIELDS, MATERIAL_FIELDS, OPTIONAL
@@ -126,6 +127,46 @@ class Case:
         from solver.geometry import BearingGeometry
 
         return BearingGeometry.from_case(self)
+
+    def warnings(self) -> list[Problem]:
+        """Valid but doubtful data, each naming its key: the CLI and the app show these.
+
+        Today: shoulder (land) diameters that do not rise above their groove. Such a land offers no
+        shoulder, so the truncation check reports every contact of that race as truncated.
+        """
+        g = self.geometry()
+        found: list[Problem] = []
+        checks = (
+            (
+                "inner",
+                self.bearing.inner_shoulder_diameter_mm,
+                g.inner_groove_bottom_diameter,
+                "above",
+            ),
+            (
+                "outer",
+                self.bearing.outer_shoulder_diameter_mm,
+                g.outer_groove_bottom_diameter,
+                "below",
+            ),
+        )
+        for race, land_mm, bottom_m, side in checks:
+            if land_mm is None:
+                continue
+            bottom_mm = bottom_m * 1e3
+            off = land_mm <= bottom_mm if race == "inner" else land_mm >= bottom_mm
+            if off:
+                key = f"bearing.{race}_shoulder_diameter_mm"
+                found.append(
+                    Problem(
+                        key,
+                        f"{key} = {land_mm:g}: the {race} land should lie {side} the {race} "
+                        f"groove-bottom diameter ({bottom_mm:.4g} mm) to form a shoulder; "
+                        "as given, every contact on this race is reported as truncated "
+                        "(truncation_margin < 0)",
+                    )
+                )
+        return found
 
     def to_dict(self) -> dict:
         """Nested plain dict as it would be written in a case file (absent/estimated keys left out).

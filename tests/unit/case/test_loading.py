@@ -74,3 +74,32 @@ def test_contract_example_loads_once_its_shoulders_lie_on_the_grooves():
     assert case.lubricant.traction.mu_infinity == 0.036
     assert case.operating.misalignment_frame == "space"
     assert case.materials["my_steel"]["youngs_modulus_GPa"] == 208.0
+
+
+@pytest.mark.parametrize(
+    "key, value, words",
+    [
+        (
+            "inner_shoulder_diameter_mm",
+            45.9,
+            ["= 45.9", "above the inner groove-bottom diameter (46.84 mm)"],
+        ),
+        (
+            "outer_shoulder_diameter_mm",
+            62.2,
+            ["= 62.2", "below the outer groove-bottom diameter (61.16 mm)"],
+        ),
+    ],
+)
+def test_lands_off_their_groove_load_with_a_warning(key, value, words):
+    """The contract example's lands (45.9 / 62.2 mm) do not rise above the 7008C grooves: the case
+    still loads (external tools use that example) and the doubt is reported by Case.warnings()."""
+    doc = Path(__file__).parents[3] / "docs" / "case-format.md"
+    text = doc.read_text().split("```toml", 1)[1].split("```", 1)[0]
+    good = load_case(text)
+    assert good.warnings() == []
+    case = good.with_values({f"bearing.{key}": value})
+    (warning,) = case.warnings()
+    assert warning.key == f"bearing.{key}"
+    for word in words:
+        assert word in warning.message

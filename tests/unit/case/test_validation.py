@@ -102,26 +102,6 @@ CASES = [
         ["= 0.6", "less than 0.5001 mm", "60 degrees"],
     ),
     (
-        {"bearing.inner_shoulder_diameter_mm": 45.9},
-        "bearing.inner_shoulder_diameter_mm",
-        ["= 45.9", "inner groove-bottom diameter (46.84 mm)", "pitch diameter (54 mm)"],
-    ),
-    (
-        {"bearing.inner_shoulder_diameter_mm": 55.0},
-        "bearing.inner_shoulder_diameter_mm",
-        ["= 55", "between"],
-    ),
-    (
-        {"bearing.outer_shoulder_diameter_mm": 62.2},
-        "bearing.outer_shoulder_diameter_mm",
-        ["= 62.2", "outer groove-bottom diameter (61.16 mm)"],
-    ),
-    (
-        {"bearing.outer_shoulder_diameter_mm": 53.0},
-        "bearing.outer_shoulder_diameter_mm",
-        ["= 53", "between the pitch diameter"],
-    ),
-    (
         {"bearing.ball_material": "steel"},
         "bearing.ball_material",
         ['"steel"', "unknown material", "bearing_steel", "silicon_nitride", "[materials.NAME]"],
