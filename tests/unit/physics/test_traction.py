@@ -742,3 +742,21 @@ def test_curve_without_interior_peak_is_monotone_and_bounded(mu_zero, mu_max, mu
     if mu_zero != mu_inf:
         frac = (tr.traction_coefficient(um, curve) - mu_zero) / (mu_inf - mu_zero)
         assert frac == pytest.approx(1 - math.exp(-1), rel=1e-9)
+
+
+def test_spin_moment_circular_contact_closed_form():
+    """Full-slip spin of a circular Hertz contact with constant mu: M = (3 pi / 16) mu Q a
+    (Johnson, Contact Mechanics §8.3; the integral of p |r| over the Hertz disc)."""
+    n, t1, _ = _frame(21)
+    P = np.array([0.0, 0.01, 0.0])
+    a = 0.3e-3
+    mu = 0.07
+    contact = _contact(P, n, t1, a, a, Q_, 0.0)
+    kin = _kin(P - R_BALL * n, np.zeros(3), -800.0 * n, np.zeros(3), np.zeros(3), np.zeros(3))
+    out = _run(
+        contact, kin, tr.constant_traction_parameters(mu), 0.0, tr.ellipse_quadrature(12, 24)
+    )
+    m = out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] @ n
+    assert m == pytest.approx(3.0 * math.pi / 16.0 * mu * Q_ * a, rel=1e-3)
+    # the spin power is the moment times the spin speed
+    assert out[tr.TR_POWER] == pytest.approx(abs(m) * 800.0, rel=1e-12)
