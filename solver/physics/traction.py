@@ -502,9 +502,12 @@ def damped_normal_force(approach, approach_rate, stiffness_K, damping_ratio, eff
 
     ``approach`` d [m] (> 0 in contact), ``approach_rate`` d_dot [m/s] (> 0 closing),
     ``stiffness_K`` [N/m^1.5], ``damping_ratio`` zeta (critical-damping fraction, >= 0),
-    ``effective_mass`` [kg]. c = 2 zeta sqrt(1.5 K d^0.5 m) uses the linearised stiffness 1.5 K
-    d^0.5, so the damping force vanishes smoothly as d -> 0 (no jump at contact onset). Q = 0 for d
-    <= 0 and never negative (no tension: a separating contact whose damping would pull is released).
+    ``effective_mass`` m [kg] (the ball mass for a ball–race contact, physics.md §2.6.6; the
+    ADORE-port data use zeta = 0.05). c = 2 zeta sqrt(1.5 K d^0.5 m) uses the linearised stiffness
+    1.5 K d^0.5, so the damping force vanishes smoothly (like d^(1/4)) as d -> 0: no jump at contact
+    onset. Q = 0 for d <= 0 and never negative (no tension: a separating contact whose damping would
+    pull is released). The law is scale-free: the coefficient of restitution of an impact depends
+    on zeta only, not on the impact speed.
     """
     if approach <= 0.0:
         return 0.0
