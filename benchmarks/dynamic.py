@@ -39,7 +39,7 @@ from solver.models.dynamic.params import build_params, build_quadrature
 CASES = {"spindle": "spindle-combined-load", "heavy": "218-heavy-combined"}
 
 
-def rhs_cost(inputs, options, repeats=2000):
+def rhs_cost(inputs, options, repeats=300):
     """Seconds per right-hand-side evaluation at the initial state."""
     par = build_params(inputs, options)
     quad = build_quadrature(options)
@@ -50,10 +50,13 @@ def rhs_cost(inputs, options, repeats=2000):
     pocket = np.zeros(z)
     dydt = np.zeros_like(y)
     rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
-    start = time.perf_counter()
-    for _ in range(repeats):
-        rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
-    return (time.perf_counter() - start) / repeats
+    best = float("inf")
+    for _ in range(7):  # best of 7: the machine is shared, the minimum is the undisturbed cost
+        start = time.perf_counter()
+        for _ in range(repeats):
+            rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
+        best = min(best, (time.perf_counter() - start) / repeats)
+    return best
 
 
 def run_case(label, revolutions):

@@ -25,6 +25,29 @@ from solver.physics.hertz_fast import (
     hertz_coefficients_fast,
 )
 
+from solver.physics.traction import (
+    CONTACT_SIZE,
+    CT_CURVATURE,
+    CT_LOAD,
+    CT_NORMAL,
+    CT_POINT,
+    CT_ROLLING,
+    CT_SEMI_MAJOR,
+    CT_SEMI_MINOR,
+    KIN_BALL_CENTRE,
+    KIN_BALL_OMEGA,
+    KIN_BALL_VELOCITY,
+    KIN_RING_OMEGA,
+    KIN_RING_POINT,
+    KIN_RING_VELOCITY,
+    KIN_SIZE,
+    TR_FORCE,
+    TR_MOMENT_BALL,
+    TR_MOMENT_POINT,
+    TRACTION_OUT_SIZE,
+    ellipse_traction,
+)
+
 from .layout import (
     B_OMEGA,
     B_POS,
@@ -203,7 +226,7 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
 
 
 # ---------------------------------------------------------------------------------------------
-# Hertz (Hamrock & Brewe 1983 closed forms, physics.md §2.3) and the traction curve
+# Hertz (exact, tabulated: solver.physics.hertz_fast)
 # ---------------------------------------------------------------------------------------------
 
 
@@ -219,11 +242,8 @@ def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
     return rx, ry, kappa, ell_e, k
 
 
-@njit(cache=True)
-def traction_mu(slip, a, b, c, d):
-    """ADORE-type curve mu(u) = (A + B u) exp(-C u) + D of the slip speed u >= 0 [m/s]."""
-    return (a + b * slip) * math.exp(-c * slip) + d
-
+#: scratch space of one traction evaluation (contact, kinematics, output arrays of D1's kernel)
+TRACTION_WORK_SIZE = CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE
 
 # ---------------------------------------------------------------------------------------------
 # ball-race contact (physics.md §2.6.3-2.6.6)
@@ -231,12 +251,11 @@ def traction_mu(slip, a, b, c, d):
 
 
 @njit(cache=True)
-def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec):
+def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work):
     """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
 
-    ``quad`` (n, 3): normalised quadrature points (u, v, weight) on the unit contact ellipse, with
-    xi = b u along t1 and eta = a v along t2; weights sum to 1 and include the Hertz pressure
-    distribution, so sum(w f) is the load-weighted mean of f. Results go to ``rec`` (layout K_*).
+    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
+    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
     """
     dball = par[P_D]
     rball = 0.5 * dball
@@ -367,53 +386,58 @@ def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inn
     frx, fry, frz = -fbx, -fby, -fbz
     mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
     if par[P_TRACTION] > 0.0:
-        mua, mub, muc, mud = par[P_MU_A], par[P_MU_B], par[P_MU_C], par[P_MU_D]
-        vreg2 = par[P_V_REG] ** 2
-        curv = 0.0
-        if par[P_HEATHCOTE] > 0.0:
-            curv = 0.5 * (2.0 * rg + dball) / (2.0 * rg * dball)  # 1 / (2 R_d)
-        tfx = tfy = tfz = 0.0
-        tmx = tmy = tmz = 0.0
-        trx = try_ = trz = 0.0
-        for k in range(quad.shape[0]):
-            xi = sb_ * quad[k, 0]
-            eta = sa_ * quad[k, 1]
-            dn = -curv * eta * eta
-            offx = xi * t1x + eta * t2x + dn * nix
-            offy = xi * t1y + eta * t2y + dn * niy
-            offz = xi * t1z + eta * t2z + dn * niz
-            a0, a1, a2 = _cross(omx, omy, omz, offx, offy, offz)
-            ux, uy, uz = dvx + a0, dvy + a1, dvz + a2
-            un = ux * nix + uy * niy + uz * niz
-            ux -= un * nix
-            uy -= un * niy
-            uz -= un * niz
-            s = math.sqrt(ux * ux + uy * uy + uz * uz)
-            f = -traction_mu(s, mua, mub, muc, mud) * quad[k, 2] * q / math.sqrt(s * s + vreg2)
-            tx, ty, tz = f * ux, f * uy, f * uz
-            tfx += tx
-            tfy += ty
-            tfz += tz
-            a0, a1, a2 = _cross(rbx + offx, rby + offy, rbz + offz, tx, ty, tz)
-            tmx += a0
-            tmy += a1
-            tmz += a2
-            a0, a1, a2 = _cross(pix - ox + offx, piy - oy + offy, piz - oz + offz, tx, ty, tz)
-            trx += a0
-            try_ += a1
-            trz += a2
+        # D1's ellipse-integrated traction (solver.physics.traction.ellipse_traction): Hertz-weighted
+        # quadrature of the local slip of the two rigid bodies on the curved contact surface
+        ct = work[:CONTACT_SIZE]
+        kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
+        tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
+        ct[CT_POINT] = pix
+        ct[CT_POINT + 1] = piy
+        ct[CT_POINT + 2] = piz
+        ct[CT_NORMAL] = nix
+        ct[CT_NORMAL + 1] = niy
+        ct[CT_NORMAL + 2] = niz
+        ct[CT_ROLLING] = t1x
+        ct[CT_ROLLING + 1] = t1y
+        ct[CT_ROLLING + 2] = t1z
+        ct[CT_SEMI_MAJOR] = sa_
+        ct[CT_SEMI_MINOR] = sb_
+        ct[CT_LOAD] = q
+        ct[CT_CURVATURE] = (2.0 * rg + dball) / (2.0 * rg * dball) if par[P_HEATHCOTE] > 0.0 else 0.0
+        kin[KIN_BALL_CENTRE] = pbx
+        kin[KIN_BALL_CENTRE + 1] = pby
+        kin[KIN_BALL_CENTRE + 2] = pbz
+        kin[KIN_BALL_VELOCITY] = vbx
+        kin[KIN_BALL_VELOCITY + 1] = vby
+        kin[KIN_BALL_VELOCITY + 2] = vbz
+        kin[KIN_BALL_OMEGA] = wbx
+        kin[KIN_BALL_OMEGA + 1] = wby
+        kin[KIN_BALL_OMEGA + 2] = wbz
+        kin[KIN_RING_POINT] = ox
+        kin[KIN_RING_POINT + 1] = oy
+        kin[KIN_RING_POINT + 2] = oz
+        kin[KIN_RING_VELOCITY] = ring_vel[0]
+        kin[KIN_RING_VELOCITY + 1] = ring_vel[1]
+        kin[KIN_RING_VELOCITY + 2] = ring_vel[2]
+        kin[KIN_RING_OMEGA] = wrx
+        kin[KIN_RING_OMEGA + 1] = wry
+        kin[KIN_RING_OMEGA + 2] = wrz
+        ellipse_traction(ct, kin, par[P_MU_A : P_MU_D + 1], par[P_V_REG], quad, tout)
+        tfx, tfy, tfz = tout[TR_FORCE], tout[TR_FORCE + 1], tout[TR_FORCE + 2]
         fbx += tfx
         fby += tfy
         fbz += tfz
-        mbx += tmx
-        mby += tmy
-        mbz += tmz
+        mbx += tout[TR_MOMENT_BALL]
+        mby += tout[TR_MOMENT_BALL + 1]
+        mbz += tout[TR_MOMENT_BALL + 2]
         frx -= tfx
         fry -= tfy
         frz -= tfz
-        mrx_ -= trx
-        mry_ -= try_
-        mrz_ -= trz
+        # moment on the ring about its centre: -((P - c_r) x F + M_P)
+        a0, a1, a2 = _cross(pix - ox, piy - oy, piz - oz, tfx, tfy, tfz)
+        mrx_ -= a0 + tout[TR_MOMENT_POINT]
+        mry_ -= a1 + tout[TR_MOMENT_POINT + 1]
+        mrz_ -= a2 + tout[TR_MOMENT_POINT + 2]
     rec[K_F_BALL] = fbx
     rec[K_F_BALL + 1] = fby
     rec[K_F_BALL + 2] = fbz
@@ -561,6 +585,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     g = par[P_GRAVITY]
     cage_on = par[P_CAGE_ON] > 0.0
     pk = np.empty(10)
+    work = np.empty(TRACTION_WORK_SIZE)
     frx = fry = frz = 0.0
     mrx = mry = mrz = 0.0
     fcx = fcy = fcz = 0.0
@@ -569,8 +594,8 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         jb = BALL_STRIDE * j
         ri = rec_inner[j]
         ro = rec_outer[j]
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro)
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work)
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work)
         fx = ri[K_F_BALL] + ro[K_F_BALL]
         fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
         fz = ri[K_F_BALL + 2] + ro[K_F_BALL + 2] - mb * g
@@ -672,12 +697,13 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     oome = np.empty(3)
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
+    work = np.empty(TRACTION_WORK_SIZE)
     mb = par[P_MB]
     e = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, rec_inner[j])
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, rec_outer[j])
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, rec_inner[j], work)
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, rec_outer[j], work)
         for rec in (rec_inner[j], rec_outer[j]):
             d = rec[K_DEFLECTION]
             if d > 0.0:

@@ -6,13 +6,7 @@ import math
 
 import numpy as np
 
-from solver.physics.traction import (
-    NODE_LOAD,
-    NODE_ROLLING,
-    NODE_TRANSVERSE,
-    ellipse_quadrature,
-    traction_curve_parameters,
-)
+from solver.physics.traction import ellipse_quadrature, traction_curve_parameters
 
 from . import layout as L
 from .inputs import DynamicInputs
@@ -43,10 +37,9 @@ def ring_mass_properties(inputs: DynamicInputs, options: SimulationOptions):
 
 
 def build_quadrature(options: SimulationOptions) -> np.ndarray:
-    """(n, 3) array of (xi/b, eta/a, load fraction) on the unit contact ellipse (D1's rule)."""
+    """Node table of the ellipse traction rule (solver.physics.traction.ellipse_quadrature)."""
     n_roll, n_trans = options.quadrature
-    nodes = ellipse_quadrature(n_roll, n_trans)
-    return np.ascontiguousarray(nodes[:, [NODE_ROLLING, NODE_TRANSVERSE, NODE_LOAD]])
+    return np.ascontiguousarray(ellipse_quadrature(n_roll, n_trans))
 
 
 def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarray:

@@ -79,7 +79,7 @@ def state_scales(par: np.ndarray, y0: np.ndarray) -> np.ndarray:
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     from .kernels import rhs
 
-    rhs(y0, par, np.zeros((1, 3)), np.zeros(n), rec_i, rec_o, np.zeros(z))
+    rhs(y0, par, np.zeros((1, 4)), np.zeros(n), rec_i, rec_o, np.zeros(z))  # quadrature weight 0
     defl = np.concatenate((rec_i[:, L.K_DEFLECTION], rec_o[:, L.K_DEFLECTION]))
     load = np.concatenate((rec_i[:, L.K_ELASTIC], rec_o[:, L.K_ELASTIC]))
     k = int(np.argmax(defl))
