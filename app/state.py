@@ -245,13 +245,15 @@ class RacetraceApp:
         try:
             ds = await asyncio.to_thread(self._solve_quasistatic, case)
         except Exception as error:  # shown in words in the status line
-            with self.state:
-                self.state.status = f"error: {error}"
+            if not self.state.busy:
+                with self.state:
+                    self.state.status = f"error: {error}"
             return
         if generation == self._preview_generation:
             with self.state:
                 self.show_result(ds, "quasi-static preview")
-                self.state.status = "preview done"
+                if not self.state.busy:  # a run's status stays until it ends
+                    self.state.status = "preview done"
 
     def preview_now(self) -> None:
         """Solve the quasi-static model for the current case now and show it."""

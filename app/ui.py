@@ -169,5 +169,6 @@ def _run_panel(ctrl) -> None:
                 html.Div("{{ eta }}", classes="text-caption")
         v3.VProgressLinear(id="progress", model_value=("progress",), height=8, color="primary",
                            classes="my-1")
-        v3.VSelect(label="Saved runs", v_model=("run_id",), items=("runs",), density="compact",
-                   hide_details=True, id="runs-select", no_data_text="no saved runs yet")
+        with html.Div(id="runs-select"):
+            v3.VSelect(label="Saved runs", v_model=("run_id",), items=("runs",), density="compact",
+                       hide_details=True, no_data_text="no saved runs yet")

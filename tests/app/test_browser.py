@@ -116,7 +116,9 @@ def test_page_loads_and_the_view_animates(page):
         assert page.locator(f"#{element}").count() == 1, element
     # plotly drew traces into both charts
     assert page.locator("#chart-contact-angle .scatterlayer .trace").count() >= 2
-    assert page.locator("#chart-raceway-map .trace").count() >= 2
+    # the raceway map is drawn with WebGL (scattergl): count its legend entries instead
+    assert page.locator("#chart-raceway-map .legend .traces").count() == 2
+    assert page.locator("#chart-raceway-map canvas").count() >= 1
     view = page.locator("#view-3d")
     shots = []
     for k in range(3):
@@ -148,7 +150,11 @@ def test_invalid_field_blocks_run_with_its_message(page):
 def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     _set_field(page, "shaft_revolutions", "0.5")
     page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
+    page.wait_for_function("document.querySelector('#status').innerText.trim() == 'preview done'",
+                           timeout=20_000)  # the preview of the edited case
     page.locator("#run-button").click()
+    page.wait_for_function("document.querySelector('#status').innerText.startsWith('running')",
+                           timeout=10_000)
     status = _wait_status(page, ("done",), 240)
     page.screenshot(path=str(ARTIFACTS / "run-done.png"))
     assert status == "done"
@@ -156,7 +162,7 @@ def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     assert len(saved) >= 1
     page.reload()
     page.wait_for_selector("#view-3d img", timeout=60_000)
-    page.locator("#runs-select").click()
+    page.locator("#runs-select .v-field").click()
     items = page.locator(".v-overlay--active .v-list-item")
     items.first.wait_for(timeout=10_000)
     assert items.count() == len(saved)
