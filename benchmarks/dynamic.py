@@ -72,7 +72,11 @@ def run_case(label, revolutions):
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     integ = ds.attrs["wall_time_s"]
-    steps, rejected, evals = ds.attrs["steps"], ds.attrs["rejected_steps"], ds.attrs["rhs_evaluations"]
+    steps, rejected, evals = (
+        ds.attrs["steps"],
+        ds.attrs["rejected_steps"],
+        ds.attrs["rhs_evaluations"],
+    )
     full = rhs_cost(inputs, options)
     no_traction = rhs_cost(inputs, replace(options, traction=False))
     no_cage = rhs_cost(inputs, replace(options, cage=False))
@@ -83,18 +87,28 @@ def run_case(label, revolutions):
     bytes_state = samples_100 * n_state * 8
     bytes_ds = ds.nbytes / ds.sizes["time"] * samples_100
     print(f"\n== {label}: {case.title}")
-    print(f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = {ds.attrs['complete']}")
-    print(f"   wall time: integration {integ:.2f} s = {per_rev:.3f} s per shaft revolution; "
-          f"whole simulate() incl. start and output {total:.2f} s")
-    print(f"   steps {steps} accepted, {rejected} rejected ({steps / revolutions:.0f} per revolution, "
-          f"mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f} us); "
-          f"RHS evaluations {evals}")
-    print(f"   memory: tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
-          f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; "
-          f"projected for 100 revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB")
+    print(
+        f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = {ds.attrs['complete']}"
+    )
+    print(
+        f"   wall time: integration {integ:.2f} s = {per_rev:.3f} s per shaft revolution; "
+        f"whole simulate() incl. start and output {total:.2f} s"
+    )
+    print(
+        f"   steps {steps} accepted, {rejected} rejected ({steps / revolutions:.0f} per revolution, "
+        f"mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f} us); "
+        f"RHS evaluations {evals}"
+    )
+    print(
+        f"   memory: tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
+        f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; "
+        f"projected for 100 revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB"
+    )
     rhs_total = evals * full
     print("   where the time goes (RHS cost by difference x evaluations):")
-    print(f"     one RHS evaluation: {full * 1e6:.1f} us (normal contacts only {normal_only * 1e6:.1f} us)")
+    print(
+        f"     one RHS evaluation: {full * 1e6:.1f} us (normal contacts only {normal_only * 1e6:.1f} us)"
+    )
     parts = {
         "Hertz geometry + normal forces + ball/ring bookkeeping": evals * normal_only,
         "ellipse-integrated traction": evals * (full - no_traction),
@@ -102,8 +116,10 @@ def run_case(label, revolutions):
     }
     for name, seconds in parts.items():
         print(f"     {name:55s} {seconds:7.2f} s  ({100 * seconds / integ:5.1f} %)")
-    print(f"     {'integrator (stages, error norm, step control)':55s} {integ - rhs_total:7.2f} s  "
-          f"({100 * (integ - rhs_total) / integ:5.1f} %)")
+    print(
+        f"     {'integrator (stages, error norm, step control)':55s} {integ - rhs_total:7.2f} s  "
+        f"({100 * (integ - rhs_total) / integ:5.1f} %)"
+    )
     print(f"     {'initial state + output Dataset':55s} {total - integ:7.2f} s")
     return per_rev
 
@@ -116,7 +132,9 @@ def main(argv=None):
     results = {label: run_case(label, args.revolutions) for label in args.cases}
     if "spindle" in results:
         verdict = "meets" if results["spindle"] <= 1.0 else "misses"
-        print(f"\nspindle: {results['spindle']:.3f} s per shaft revolution ({verdict} the 1 s target)")
+        print(
+            f"\nspindle: {results['spindle']:.3f} s per shaft revolution ({verdict} the 1 s target)"
+        )
     return 0
 
 

@@ -31,10 +31,13 @@ def register(subparsers) -> None:
     parser.add_argument("case", help="case file (.toml) or catalogue case name")
     parser.add_argument("--output", "-o", help="NetCDF file to write (default: <case name>.nc)")
     parser.add_argument("--revolutions", type=float, help="override [simulation] shaft_revolutions")
-    parser.add_argument("--samples-per-revolution", type=int,
-                        help="override [simulation] samples_per_revolution")
+    parser.add_argument(
+        "--samples-per-revolution", type=int, help="override [simulation] samples_per_revolution"
+    )
     parser.add_argument("--tolerance", type=float, help="integrator tolerance (default 1e-4)")
-    parser.add_argument("--no-traction", action="store_true", help="frictionless ball-race contacts")
+    parser.add_argument(
+        "--no-traction", action="store_true", help="frictionless ball-race contacts"
+    )
     parser.add_argument("--no-cage", action="store_true", help="leave the cage out of the model")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress bar")
     parser.set_defaults(func=run)
@@ -131,6 +134,8 @@ def run(args) -> int:
     if code == EXIT_DIVERGED:
         print(f"racetrace: partial result written to {output}", file=sys.stderr)
         return code
-    print(f"racetrace: wrote {output} ({ds.sizes['time']} samples, {ds.attrs['wall_time_s']:.1f} s)",
-          file=sys.stderr)
+    print(
+        f"racetrace: wrote {output} ({ds.sizes['time']} samples, {ds.attrs['wall_time_s']:.1f} s)",
+        file=sys.stderr,
+    )
     return 0

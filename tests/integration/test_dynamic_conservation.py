@@ -15,7 +15,7 @@ from dyn_bearings import spindle_inputs  # noqa: E402
 from dyn_helpers import evaluate, integrate_states, start  # noqa: E402
 
 from solver.models.dynamic import layout as L  # noqa: E402
-from solver.models.dynamic.kernels import land_force, mechanical_energy  # noqa: E402
+from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy  # noqa: E402
 
 
 def _energies(states, par, quad):
@@ -25,7 +25,10 @@ def _energies(states, par, quad):
     energy, elastic = [], []
     for s in states:
         energy.append(mechanical_energy(s, par, quad, ri, ro))
-        elastic.append(0.4 * sum((r[:, L.K_ELASTIC] * np.maximum(r[:, L.K_DEFLECTION], 0)).sum() for r in (ri, ro)))
+        elastic.append(
+            0.4
+            * sum((r[:, L.K_ELASTIC] * np.maximum(r[:, L.K_DEFLECTION], 0)).sum() for r in (ri, ro))
+        )
     return np.array(energy), np.array(elastic)
 
 
@@ -35,7 +38,9 @@ def test_energy_is_conserved_without_traction_and_damping():
     total energy may change by at most 1e-4 of the mean elastic (Hertz) energy, the part of the
     energy that the contact dynamics exchange (the balls' orbital kinetic energy is ~100x larger).
     The stated integrator tolerance (1e-4 of the deflection scale per step) gives ~1e-6."""
-    par, quad, y0 = start(spindle_inputs(radial=300.0), traction=False, damping_ratio=0.0, cage=False)
+    par, quad, y0 = start(
+        spindle_inputs(radial=300.0), traction=False, damping_ratio=0.0, cage=False
+    )
     period = 2 * math.pi / par[L.P_WI]
     times = np.linspace(0.0, 3 * period, 181)
     states, _ = integrate_states(par, quad, y0, times, tolerance=1e-4)
@@ -49,7 +54,9 @@ def test_energy_is_conserved_without_traction_and_damping():
 
 def test_damping_dissipates_energy():
     """The same run with contact damping on must lose energy (sign check of the damping law)."""
-    par, quad, y0 = start(spindle_inputs(radial=300.0), traction=False, damping_ratio=0.2, cage=False)
+    par, quad, y0 = start(
+        spindle_inputs(radial=300.0), traction=False, damping_ratio=0.2, cage=False
+    )
     # kick the balls radially so the contacts vibrate
     for j in range(18):
         b = L.ball_base(j)
@@ -88,9 +95,10 @@ def test_linear_momentum_balance_of_the_rhs():
     total += par[L.P_MR] * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
     total += par[L.P_MC] * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
     land = np.zeros(4)
-    land_force(y, cb, y[rb : rb + 3], par, land)
+    cage_land(y, cb, y[rb : rb + 3], y[rb + 3 : rb + 6], par, np.zeros(TRACTION_WORK_SIZE), land)
     external = ro[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
     external += np.array([par[L.P_FX], par[L.P_FY], par[L.P_FZ]])
+    assert abs(land[1]) + abs(land[2]) > 0.0  # the land force is exercised
     external += land[:3]
     external[2] -= par[L.P_GRAVITY] * (z * par[L.P_MB] + par[L.P_MC])
     np.testing.assert_allclose(total, external, atol=1e-9 * ri[:, L.K_LOAD].sum())

@@ -25,7 +25,9 @@ SAMPLES = 60
 
 
 def _run(inputs, revolutions, **changes):
-    options = SimulationOptions(shaft_revolutions=revolutions, samples_per_revolution=SAMPLES, **changes)
+    options = SimulationOptions(
+        shaft_revolutions=revolutions, samples_per_revolution=SAMPLES, **changes
+    )
     return simulate(inputs, options=options)
 
 
@@ -60,16 +62,22 @@ def radial_run():
         (20000.0, 3.0, 0.60, 0.02, 0.005),
     ],
 )
-def test_pure_axial_steady_state_approaches_quasistatic(rpm, revs, angle_tol, load_rtol, cage_rtol, thrust_run):
+def test_pure_axial_steady_state_approaches_quasistatic(
+    rpm, revs, angle_tol, load_rtol, cage_rtol, thrust_run
+):
     inputs = spindle_inputs(rpm=rpm, axial=500.0)
-    qs = solve_operating_point(inputs.geometry, OperatingPoint(inner_ring_speed=inputs.inner_speed, axial_load=500.0))
+    qs = solve_operating_point(
+        inputs.geometry, OperatingPoint(inner_ring_speed=inputs.inner_speed, axial_load=500.0)
+    )
     ds = thrust_run if rpm == 20000.0 else _run(inputs, revs, gravity=0.0, start="equilibrium")
     last = _last_revolution(ds)
     angle = last.contact_angle.mean(("ball", "time")).values  # degree [inner, outer]
     load = last.contact_load.mean(("ball", "time")).values
     np.testing.assert_allclose(angle, np.degrees(qs.contact_angle.mean(axis=0)), atol=angle_tol)
     np.testing.assert_allclose(load, qs.contact_load.mean(axis=0), rtol=load_rtol)
-    assert float(last.cage_speed.mean()) == pytest.approx(float(np.mean(qs.orbital_speed)), rel=cage_rtol)
+    assert float(last.cage_speed.mean()) == pytest.approx(
+        float(np.mean(qs.orbital_speed)), rel=cage_rtol
+    )
     # steady: the last revolution barely moves (no impact transient left)
     assert float(last.contact_angle.std("time").max()) < 0.02
 
@@ -96,7 +104,9 @@ def test_radial_load_draws_a_line_on_the_outer_and_a_band_on_the_inner_raceway(r
 
 
 def test_ring_turning_misalignment_reverses_line_and_band():
-    ds = _run(spindle_inputs(axial=500.0, misalignment=math.radians(0.02), misalignment_frame="ring"), 5.0)
+    ds = _run(
+        spindle_inputs(axial=500.0, misalignment=math.radians(0.02), misalignment_frame="ring"), 5.0
+    )
     window = ds.isel(time=slice(2 * SAMPLES, None))
     assert _curve_residual(window, "inner") < 0.02  # measured 0.001
     assert _curve_residual(window, "outer") > 0.2  # measured 0.35
@@ -112,7 +122,9 @@ def test_band_width_grows_with_radial_load_and_matches_quasistatic_range():
         band = ds.trajectory_band_width.values
         qs = solve_operating_point(
             inputs.geometry,
-            OperatingPoint(inner_ring_speed=inputs.inner_speed, axial_load=500.0, radial_load=radial),
+            OperatingPoint(
+                inner_ring_speed=inputs.inner_speed, axial_load=500.0, radial_load=radial
+            ),
         )
         qs_range = np.degrees(np.ptp(qs.contact_angle, axis=0))
         # quasi-static range over the load zone bounds the steady band; dynamic effects (cage,
@@ -127,15 +139,23 @@ def test_band_width_grows_with_radial_load_and_matches_quasistatic_range():
 def test_band_width_grows_with_misalignment():
     widths = []
     for tilt in (0.01, 0.02, 0.04):
-        inputs = spindle_inputs(axial=500.0, misalignment=math.radians(tilt), misalignment_frame="space")
+        inputs = spindle_inputs(
+            axial=500.0, misalignment=math.radians(tilt), misalignment_frame="space"
+        )
         ds = _run(inputs, 5.0)
         qs = solve_operating_point(
             inputs.geometry,
-            OperatingPoint(inner_ring_speed=inputs.inner_speed, axial_load=500.0,
-                           misalignment=math.radians(tilt), misalignment_axis=math.radians(90.0)),
+            OperatingPoint(
+                inner_ring_speed=inputs.inner_speed,
+                axial_load=500.0,
+                misalignment=math.radians(tilt),
+                misalignment_axis=math.radians(90.0),
+            ),
         )
         band = ds.trajectory_band_width.values
-        np.testing.assert_allclose(band, np.degrees(np.ptp(qs.contact_angle, axis=0)), rtol=0.15, atol=0.05)
+        np.testing.assert_allclose(
+            band, np.degrees(np.ptp(qs.contact_angle, axis=0)), rtol=0.15, atol=0.05
+        )
         widths.append(band)
     assert np.all(np.diff(np.array(widths), axis=0) > 0)
 
@@ -149,11 +169,15 @@ def test_contact_tracks_on_the_ball_are_kingsbury_circles(thrust_run):
     alpha = last.contact_angle.mean("time")  # (ball, race) degree
     beta = last.attitude_angle.mean("time")  # (ball,) degree
     for j in range(0, 18, 5):
-        for race, predicted in (("outer", alpha.sel(race="outer") - beta),
-                                ("inner", -(alpha.sel(race="inner") - beta))):
+        for race, predicted in (
+            ("outer", alpha.sel(race="outer") - beta),
+            ("inner", -(alpha.sel(race="inner") - beta)),
+        ):
             lat = np.radians(last.ball_latitude.sel(ball=j, race=race).values)
             lon = np.radians(last.ball_longitude.sel(ball=j, race=race).values)
-            e = np.stack((np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)), axis=1)
+            e = np.stack(
+                (np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)), axis=1
+            )
             centred = e - e.mean(axis=0)
             _, sing, vt = np.linalg.svd(centred)
             normal = vt[-1]
@@ -191,7 +215,9 @@ def test_ball_pass_frequencies_match_formulas_with_simulated_cage_speed(radial_r
     wi = 20000.0 * math.pi / 30.0
     z = 18
     bpfo = _pass_frequency(t, window.ball_azimuth.transpose("time", "ball").values)
-    bpfi = _pass_frequency(t, window.raceway_azimuth.sel(race="inner").transpose("time", "ball").values)
+    bpfi = _pass_frequency(
+        t, window.raceway_azimuth.sel(race="inner").transpose("time", "ball").values
+    )
     assert bpfo == pytest.approx(z * wc / (2 * math.pi), rel=5e-3)
     assert bpfi == pytest.approx(z * (wi - wc) / (2 * math.pi), rel=5e-3)
     # and the simulated cage speed is close to the kinematic FTF with the mean contact angle

@@ -62,9 +62,13 @@ def outer_control_kinematics(alpha_i: float, alpha_o: float, gamma_prime: float)
     beta = math.atan2(math.sin(alpha_o), math.cos(alpha_o) + gamma_prime)
     tb = math.tan(beta)
     ratio_c = (1.0 - gamma_prime * math.cos(alpha_i)) / (1.0 + math.cos(alpha_i - alpha_o))
-    den = gamma_prime * math.cos(beta) * (
-        (math.cos(alpha_o) + tb * math.sin(alpha_o)) / (1.0 + gamma_prime * math.cos(alpha_o))
-        + (math.cos(alpha_i) + tb * math.sin(alpha_i)) / (1.0 - gamma_prime * math.cos(alpha_i))
+    den = (
+        gamma_prime
+        * math.cos(beta)
+        * (
+            (math.cos(alpha_o) + tb * math.sin(alpha_o)) / (1.0 + gamma_prime * math.cos(alpha_o))
+            + (math.cos(alpha_i) + tb * math.sin(alpha_i)) / (1.0 - gamma_prime * math.cos(alpha_i))
+        )
     )
     return ratio_c, -1.0 / den, beta
 
@@ -178,13 +182,23 @@ def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndar
         k = 2 * z
         res[k : k + 3] = dydt[rb + L.R_VEL : rb + L.R_VEL + 3] * mr / fscale
         if tilt_dof:
-            res[k + 3 : k + 5] = dydt[rb + L.R_TILT_RATE : rb + L.R_TILT_RATE + 2] * ird / (fscale * 0.5 * dm)
+            res[k + 3 : k + 5] = (
+                dydt[rb + L.R_TILT_RATE : rb + L.R_TILT_RATE + 2] * ird / (fscale * 0.5 * dm)
+            )
         return res
 
     u = u0
     for _ in range(passes):
-        sol = least_squares(residual, u, args=(omega_c,), x_scale="jac", xtol=1e-13, ftol=1e-13, gtol=1e-13,
-                            max_nfev=4000)
+        sol = least_squares(
+            residual,
+            u,
+            args=(omega_c,),
+            x_scale="jac",
+            xtol=1e-13,
+            ftol=1e-13,
+            gtol=1e-13,
+            max_nfev=4000,
+        )
         u = sol.x
         y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
         rec_i, rec_o = _contact_angles(y, par, quad)
@@ -198,8 +212,16 @@ def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndar
         ao = float(np.mean(rec_o[loaded, L.K_ANGLE]))
         ratio_c, _, _ = outer_control_kinematics(ai, ao, gamma_prime)
         omega_c = par[L.P_WO] + wrel * ratio_c
-    sol = least_squares(residual, u, args=(omega_c,), x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14,
-                        max_nfev=4000)
+    sol = least_squares(
+        residual,
+        u,
+        args=(omega_c,),
+        x_scale="jac",
+        xtol=1e-14,
+        ftol=1e-14,
+        gtol=1e-14,
+        max_nfev=4000,
+    )
     u = sol.x
     if np.max(np.abs(residual(u, omega_c))) > 1e-4:
         raise NoSolutionError(
@@ -267,7 +289,9 @@ def initial_state_from_quasistatic(par: np.ndarray, qs) -> np.ndarray:
         pos = np.array([x, r * math.cos(psi), r * math.sin(psi)])
         y[b + L.B_POS : b + L.B_POS + 3] = pos
         y[b + L.B_VEL : b + L.B_VEL + 3] = np.cross([float(qs.orbital_speed[j]), 0.0, 0.0], pos)
-        y[b + L.B_QUAT : b + L.B_QUAT + 4] = matrix_to_quaternion(ball_frame(psi, float(qs.attitude_angle[j])))
+        y[b + L.B_QUAT : b + L.B_QUAT + 4] = matrix_to_quaternion(
+            ball_frame(psi, float(qs.attitude_angle[j]))
+        )
         y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = np.asarray(qs.ball_angular_velocity[j], dtype=float)
     y[rb + L.R_POS : rb + L.R_POS + 3] = np.asarray(qs.inner_ring_offset, dtype=float)
     y[rb + L.R_TILT : rb + L.R_TILT + 2] = np.asarray(qs.inner_ring_tilt, dtype=float)

@@ -39,7 +39,13 @@ _A61, _A62, _A63, _A64, _A65 = (
     49.0 / 176.0,
     -5103.0 / 18656.0,
 )
-_A71, _A73, _A74, _A75, _A76 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
+_A71, _A73, _A74, _A75, _A76 = (
+    35.0 / 384.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+)
 _E1, _E3, _E4, _E5, _E6, _E7 = (
     71.0 / 57600.0,
     -71.0 / 16695.0,
@@ -77,8 +83,23 @@ def _ball_escaped(y, rec_inner, rec_outer, par):
 
 
 @njit(cache=True)
-def advance(y, t, h, t_out, out_states, par, quad, scale, tol, h_min, max_steps, counters,
-            rec_inner, rec_outer, pocket):
+def advance(
+    y,
+    t,
+    h,
+    t_out,
+    out_states,
+    par,
+    quad,
+    scale,
+    tol,
+    h_min,
+    max_steps,
+    counters,
+    rec_inner,
+    rec_outer,
+    pocket,
+):
     """Integrate from ``t`` through every time in ``t_out`` (increasing), storing the state at each in
     ``out_states[k]``. ``y`` is updated in place. ``counters`` (3,) accumulates
     [accepted steps, rejected steps, rhs evaluations].
@@ -139,7 +160,12 @@ def advance(y, t, h, t_out, out_states, par, quad, scale, tol, h_min, max_steps,
             err = 0.0
             for i in range(n):
                 e = hs * (
-                    _E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i]
+                    _E1 * k1[i]
+                    + _E3 * k3[i]
+                    + _E4 * k4[i]
+                    + _E5 * k5[i]
+                    + _E6 * k6[i]
+                    + _E7 * k7[i]
                 )
                 r = abs(e) / (tol * scale[i])
                 if r > err:

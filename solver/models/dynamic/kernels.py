@@ -19,12 +19,34 @@ import math
 import numpy as np
 from numba import njit
 
+from solver.physics.cage_contact import (
+    LAND_KIN_SIZE,
+    LAND_OUT_SIZE,
+    LAND_PARAM_SIZE,
+    LK_CAGE_SPEED,
+    LK_OFFSET,
+    LK_RING_SPEED,
+    LK_VELOCITY,
+    LO_FORCE,
+    LO_TORQUE,
+    PK_OMEGA,
+    PK_POSITION,
+    PK_VELOCITY,
+    PO_FORCE,
+    PO_MOMENT_BALL,
+    PO_NORMAL_FORCE,
+    PO_POINT,
+    POCKET_KIN_SIZE,
+    POCKET_OUT_SIZE,
+    POCKET_PARAM_SIZE,
+    land_force,
+    pocket_contact,
+)
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
     equivalent_radii_fast,
     hertz_coefficients_fast,
 )
-
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -58,6 +80,7 @@ from .layout import (
     C_POS,
     C_SPEED,
     C_VEL,
+    K_ANGLE,
     K_AZIMUTH,
     K_DEFLECTION,
     K_ELASTIC,
@@ -77,15 +100,11 @@ from .layout import (
     K_SEMI_MINOR,
     K_SLIDE,
     K_SPIN,
-    K_ANGLE,
     P_CAGE_ON,
     P_CAGE_R,
-    P_CG,
-    P_CP,
     P_D,
     P_DM,
     P_EPRIME,
-    P_ETA,
     P_FI,
     P_FO,
     P_FX,
@@ -98,23 +117,17 @@ from .layout import (
     P_IRD,
     P_IRP,
     P_JB,
-    P_KG,
-    P_KP,
-    P_LG,
+    P_LAND_BLOCK,
     P_MB,
     P_MC,
     P_MR,
     P_MU_A,
-    P_MU_B,
-    P_MU_C,
     P_MU_D,
-    P_MU_G,
-    P_MU_P,
     P_MY,
     P_MZ,
+    P_POCKET_BLOCK,
     P_RCI,
     P_RCO,
-    P_RG,
     P_RI,
     P_RING_FREE,
     P_RO,
@@ -127,7 +140,6 @@ from .layout import (
     P_XCO,
     P_Z,
     P_ZETA,
-    P_ZETA_P,
     R_PHI_INNER,
     R_PHI_OUTER,
     R_POS,
@@ -242,8 +254,12 @@ def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
     return rx, ry, kappa, ell_e, k
 
 
-#: scratch space of one traction evaluation (contact, kinematics, output arrays of D1's kernel)
-TRACTION_WORK_SIZE = CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE
+#: scratch space of one traction, pocket or land evaluation (D1's kernels' input/output arrays)
+TRACTION_WORK_SIZE = max(
+    CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE,
+    POCKET_KIN_SIZE + POCKET_OUT_SIZE,
+    LAND_KIN_SIZE + LAND_OUT_SIZE,
+)
 
 # ---------------------------------------------------------------------------------------------
 # ball-race contact (physics.md §2.6.3-2.6.6)
@@ -251,7 +267,9 @@ TRACTION_WORK_SIZE = CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE
 
 
 @njit(cache=True)
-def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work):
+def ball_race_contact(
+    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
+):
     """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
 
     ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
@@ -362,7 +380,9 @@ def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inn
     # ball-centre velocity relative to the ring-fixed groove centre point
     a0, a1, a2 = _cross(wrx, wry, wrz, gix - ox, giy - oy, giz - oz)
     ddelta = (
-        (vbx - ring_vel[0] - a0) * nix + (vby - ring_vel[1] - a1) * niy + (vbz - ring_vel[2] - a2) * niz
+        (vbx - ring_vel[0] - a0) * nix
+        + (vby - ring_vel[1] - a1) * niy
+        + (vbz - ring_vel[2] - a2) * niz
     )
     zeta = par[P_ZETA]
     q = q_el
@@ -403,7 +423,9 @@ def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inn
         ct[CT_SEMI_MAJOR] = sa_
         ct[CT_SEMI_MINOR] = sb_
         ct[CT_LOAD] = q
-        ct[CT_CURVATURE] = (2.0 * rg + dball) / (2.0 * rg * dball) if par[P_HEATHCOTE] > 0.0 else 0.0
+        ct[CT_CURVATURE] = (
+            (2.0 * rg + dball) / (2.0 * rg * dball) if par[P_HEATHCOTE] > 0.0 else 0.0
+        )
         kin[KIN_BALL_CENTRE] = pbx
         kin[KIN_BALL_CENTRE + 1] = pby
         kin[KIN_BALL_CENTRE + 2] = pbz
@@ -458,106 +480,94 @@ def ball_race_contact(y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inn
 
 
 @njit(cache=True)
-def pocket_contact(y, jb, cb, j, par, out):
-    """Ball ``j`` against its cylindrical cage pocket (axis radial in the cage).
+def cage_pocket(y, jb, cb, j, par, work, out):
+    """Ball ``j`` against its cage pocket through D1's kernel (solver.physics.cage_contact).
 
-    ``out`` (10): force on ball (3), moment on ball about its centre (3), force on cage (3), moment on
+    The pocket frame (x, r, theta) is the azimuth frame at the pocket angle theta_c + 2 pi j / Z.
+    ``work``: scratch of length ``POCKET_KIN_SIZE + POCKET_OUT_SIZE``. ``out`` (10, inertial): force
+    on the ball (3), moment on the ball about its centre (3), force on the cage (3), moment on the
     cage about its centre, x component (1). Returns the normal force [N] (>= 0).
-    Normal law: linear spring K_p on the penetration plus damping 2 zeta sqrt(K_p m_ball), clipped at
-    zero; friction mu_p F tanh(|v_slip| / v_reg) opposing the slip.
     """
     for i in range(10):
         out[i] = 0.0
     z = int(par[P_Z])
-    rball = 0.5 * par[P_D]
     psi = y[cb + C_ANGLE] + 2.0 * math.pi * j / z
-    epy, epz = math.cos(psi), math.sin(psi)
+    cp, sp = math.cos(psi), math.sin(psi)
     rp = par[P_CAGE_R]
     ccx, ccy, ccz = y[cb + C_POS], y[cb + C_POS + 1], y[cb + C_POS + 2]
-    pcx, pcy, pcz = ccx, ccy + rp * epy, ccz + rp * epz
-    dx, dy, dz = y[jb + B_POS] - pcx, y[jb + B_POS + 1] - pcy, y[jb + B_POS + 2] - pcz
-    dr = dy * epy + dz * epz
-    dy -= dr * epy
-    dz -= dr * epz
-    dist = math.sqrt(dx * dx + dy * dy + dz * dz)
-    pen = dist - 0.5 * par[P_CP]
-    if pen <= 0.0 or dist <= 0.0:
-        return 0.0
-    ux, uy, uz = dx / dist, dy / dist, dz / dist
-    # contact point and the velocities of both surfaces there
-    rcx, rcy, rcz = rball * ux, rball * uy, rball * uz
-    xcx, xcy, xcz = y[jb + B_POS] + rcx, y[jb + B_POS + 1] + rcy, y[jb + B_POS + 2] + rcz
-    wb = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
-    a0, a1, a2 = _cross(wb[0], wb[1], wb[2], rcx, rcy, rcz)
-    vbx, vby, vbz = y[jb + B_VEL] + a0, y[jb + B_VEL + 1] + a1, y[jb + B_VEL + 2] + a2
     wc = y[cb + C_SPEED]
-    a0, a1, a2 = _cross(wc, 0.0, 0.0, xcx - ccx, xcy - ccy, xcz - ccz)
-    vcx, vcy, vcz = y[cb + C_VEL] + a0, y[cb + C_VEL + 1] + a1, y[cb + C_VEL + 2] + a2
-    rvx, rvy, rvz = vbx - vcx, vby - vcy, vbz - vcz
-    rate = rvx * ux + rvy * uy + rvz * uz
-    kp = par[P_KP]
-    fn = kp * pen + 2.0 * par[P_ZETA_P] * math.sqrt(kp * par[P_MB]) * rate
+    pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
+    # ball centre relative to the pocket centre, and its rate seen from the cage
+    dx, dy, dz = pbx - ccx, pby - (ccy + rp * cp), pbz - (ccz + rp * sp)
+    a0, a1, a2 = _cross(wc, 0.0, 0.0, pbx - ccx, pby - ccy, pbz - ccz)
+    vx = y[jb + B_VEL] - y[cb + C_VEL] - a0
+    vy = y[jb + B_VEL + 1] - y[cb + C_VEL + 1] - a1
+    vz = y[jb + B_VEL + 2] - y[cb + C_VEL + 2] - a2
+    kin = work[:POCKET_KIN_SIZE]
+    res = work[POCKET_KIN_SIZE : POCKET_KIN_SIZE + POCKET_OUT_SIZE]
+    kin[PK_POSITION] = dx
+    kin[PK_POSITION + 1] = dy * cp + dz * sp
+    kin[PK_POSITION + 2] = -dy * sp + dz * cp
+    kin[PK_VELOCITY] = vx
+    kin[PK_VELOCITY + 1] = vy * cp + vz * sp
+    kin[PK_VELOCITY + 2] = -vy * sp + vz * cp
+    wx = y[jb + B_OMEGA] - wc
+    wy, wz = y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
+    kin[PK_OMEGA] = wx
+    kin[PK_OMEGA + 1] = wy * cp + wz * sp
+    kin[PK_OMEGA + 2] = -wy * sp + wz * cp
+    pocket_contact(kin, par[P_POCKET_BLOCK : P_POCKET_BLOCK + POCKET_PARAM_SIZE], res)
+    fn = res[PO_NORMAL_FORCE]
     if fn <= 0.0:
         return 0.0
-    fx, fy, fz = -fn * ux, -fn * uy, -fn * uz
-    tx, ty, tz = rvx - rate * ux, rvy - rate * uy, rvz - rate * uz
-    st = math.sqrt(tx * tx + ty * ty + tz * tz)
-    if st > 1e-15 and par[P_MU_P] > 0.0:
-        ff = par[P_MU_P] * fn * math.tanh(st / par[P_V_REG]) / st
-        fx -= ff * tx
-        fy -= ff * ty
-        fz -= ff * tz
-    m0, m1, m2 = _cross(rcx, rcy, rcz, fx, fy, fz)
+    # back to inertial components: e_x, e_r = (0, cp, sp), e_theta = (0, -sp, cp)
+    fx = res[PO_FORCE]
+    fy = res[PO_FORCE + 1] * cp - res[PO_FORCE + 2] * sp
+    fz = res[PO_FORCE + 1] * sp + res[PO_FORCE + 2] * cp
     out[0], out[1], out[2] = fx, fy, fz
-    out[3], out[4], out[5] = m0, m1, m2
+    out[3] = res[PO_MOMENT_BALL]
+    out[4] = res[PO_MOMENT_BALL + 1] * cp - res[PO_MOMENT_BALL + 2] * sp
+    out[5] = res[PO_MOMENT_BALL + 1] * sp + res[PO_MOMENT_BALL + 2] * cp
     out[6], out[7], out[8] = -fx, -fy, -fz
-    # moment on the cage about its centre, x component: ((x_c - r_c) x (-f))_x
-    out[9] = -((xcy - ccy) * fz - (xcz - ccz) * fy)
+    # contact point relative to the cage centre (pocket centre + PO_POINT), inertial
+    ly = rp * cp + res[PO_POINT + 1] * cp - res[PO_POINT + 2] * sp
+    lz = rp * sp + res[PO_POINT + 1] * sp + res[PO_POINT + 2] * cp
+    out[9] = -(ly * fz - lz * fy)
     return fn
 
 
 @njit(cache=True)
-def land_force(y, cb, ring_origin, par, out):
-    """Guiding-land force and moment on the cage (short journal bearing + metal contact).
+def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
+    """Guiding-land force on the cage through D1's kernel (solver.physics.cage_contact.land_force).
 
-    ``out`` (4): force on the cage (3) and moment about x (1). Eccentricity e = cage centre minus land
-    centre in the radial plane; eps = |e| / c_g. Hydrodynamic (Ocvirk short bearing, physics.md
-    §2.6.7) with the sum speed of both surfaces, Petroff drag torque from the relative speed, and a
-    linear metal contact with Coulomb friction when |e| > c_g. Ball-guided cages get nothing here.
+    ``out`` (4): force on the cage (3; x = 0) and moment about x (1). Ball-guided cages: zeros.
+    Outer-ring guidance: the land is on the outer ring (centre at the origin, speed omega_o);
+    inner-ring guidance: on the inner ring (its centre and velocity, speed omega_i).
     """
     for i in range(4):
         out[i] = 0.0
     guide = int(par[P_GUIDE])
     if guide == 2:
         return
+    kin = work[:LAND_KIN_SIZE]
+    res = work[LAND_KIN_SIZE : LAND_KIN_SIZE + LAND_OUT_SIZE]
     if guide == 0:
-        wl = par[P_WO]
-        ey, ez = y[cb + C_POS + 1], y[cb + C_POS + 2]
+        kin[LK_OFFSET] = y[cb + C_POS + 1]
+        kin[LK_OFFSET + 1] = y[cb + C_POS + 2]
+        kin[LK_VELOCITY] = y[cb + C_VEL + 1]
+        kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2]
+        kin[LK_RING_SPEED] = par[P_WO]
     else:
-        wl = par[P_WI]
-        ey, ez = y[cb + C_POS + 1] - ring_origin[1], y[cb + C_POS + 2] - ring_origin[2]
-    wc = y[cb + C_SPEED]
-    cg, rg, lg, eta = par[P_CG], par[P_RG], par[P_LG], par[P_ETA]
-    e = math.sqrt(ey * ey + ez * ez)
-    eps = min(e / cg, 0.95)
-    wrel = wc - wl
-    denom = math.sqrt(1.0 - eps * eps)
-    out[3] = -2.0 * math.pi * eta * rg**3 * lg * wrel / (cg * denom)
-    if e > 0.0:
-        uy, uz = ey / e, ez / e
-        wsum = wc + wl
-        u = rg * abs(wsum)
-        frad = eta * u * lg**3 / cg**2 * eps * eps / (1.0 - eps * eps) ** 2
-        ftan = math.pi * eta * u * lg**3 / (4.0 * cg**2) * eps / (1.0 - eps * eps) ** 1.5
-        sg = 1.0 if wsum >= 0.0 else -1.0
-        # e_x x e_hat = (0, -uz, uy)
-        out[1] = -frad * uy - sg * ftan * uz
-        out[2] = -frad * uz + sg * ftan * uy
-        if e > cg:
-            fm = par[P_KG] * (e - cg)
-            out[1] -= fm * uy
-            out[2] -= fm * uz
-            out[3] -= par[P_MU_G] * fm * rg * math.tanh(wrel * rg / par[P_V_REG])
+        kin[LK_OFFSET] = y[cb + C_POS + 1] - ring_origin[1]
+        kin[LK_OFFSET + 1] = y[cb + C_POS + 2] - ring_origin[2]
+        kin[LK_VELOCITY] = y[cb + C_VEL + 1] - ring_vel[1]
+        kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2] - ring_vel[2]
+        kin[LK_RING_SPEED] = par[P_WI]
+    kin[LK_CAGE_SPEED] = y[cb + C_SPEED]
+    land_force(kin, par[P_LAND_BLOCK : P_LAND_BLOCK + LAND_PARAM_SIZE], res)
+    out[1] = res[LO_FORCE]
+    out[2] = res[LO_FORCE + 1]
+    out[3] = res[LO_TORQUE]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -604,7 +614,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         mz = ri[K_M_BALL + 2] + ro[K_M_BALL + 2]
         pocket[j] = 0.0
         if cage_on:
-            pocket[j] = pocket_contact(y, jb, cb, j, par, pk)
+            pocket[j] = cage_pocket(y, jb, cb, j, par, work, pk)
             fx += pk[0]
             fy += pk[1]
             fz += pk[2]
@@ -644,7 +654,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     dydt[rb + R_PHI_OUTER] = par[P_WO]
     ld = np.empty(4)
     if cage_on:
-        land_force(y, cb, iorg, par, ld)
+        cage_land(y, cb, iorg, ivel, par, work, ld)
         if int(par[P_GUIDE]) == 1:  # reaction on the inner ring
             fry -= ld[1]
             frz -= ld[2]
@@ -719,5 +729,9 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
         for i in range(3):
             v2 += y[rb + R_VEL + i] ** 2
         e += 0.5 * par[P_MR] * v2
-        e -= par[P_FX] * y[rb + R_POS] + par[P_FY] * y[rb + R_POS + 1] + par[P_FZ] * y[rb + R_POS + 2]
+        e -= (
+            par[P_FX] * y[rb + R_POS]
+            + par[P_FY] * y[rb + R_POS + 1]
+            + par[P_FZ] * y[rb + R_POS + 2]
+        )
     return e

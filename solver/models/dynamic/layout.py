@@ -121,7 +121,9 @@ P_KG = 48  # cage-land metal contact stiffness [N/m]
 P_MU_G = 49  # cage-land metal contact friction coefficient
 P_V_REG = 50  # regularisation speed of Coulomb friction (tanh) [m/s]
 P_HEATHCOTE = 51  # 1: evaluate slip on the curved (deformed) ellipse surface
-N_PARAMS = 52
+P_POCKET_BLOCK = 52  # start of the pocket parameter array of solver.physics.cage_contact (9 slots)
+P_LAND_BLOCK = 61  # start of the land parameter array of solver.physics.cage_contact (14 slots)
+N_PARAMS = 75
 
 # ---- per-contact record written by the contact kernel -------------------------------------------
 K_F_BALL = 0  # force on the ball, inertial (3) [N]

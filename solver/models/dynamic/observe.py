@@ -50,8 +50,9 @@ def observe(states, par, quad, viscosity, pressure_viscosity, obs, pocket_out):
         for j in range(z):
             pocket_out[s, j] = pocket[j]
             b = L.BALL_STRIDE * j
-            quaternion_to_matrix(y[b + L.B_QUAT], y[b + L.B_QUAT + 1], y[b + L.B_QUAT + 2],
-                                 y[b + L.B_QUAT + 3], rot)
+            quaternion_to_matrix(
+                y[b + L.B_QUAT], y[b + L.B_QUAT + 1], y[b + L.B_QUAT + 2], y[b + L.B_QUAT + 3], rot
+            )
             for k in range(2):
                 r = rec[k, j]
                 o = obs[s, j, k]

@@ -29,8 +29,9 @@ class SimulationOptions:
     - ``analysis_skip_fraction``: fraction of the run skipped before the trajectory-band metrics.
     - ``quadrature``: (points along the rolling direction, strips across the groove) of the ellipse
       traction rule.
-    - ``pocket_stiffness`` [N/m], ``pocket_damping_ratio``: linear ball-pocket contact law.
-    - ``land_stiffness`` [N/m]: cage-land metal contact.
+    - ``pocket_stiffness`` [N/m], ``pocket_damping_ratio``: linear ball-pocket contact law (None:
+      solver.physics.cage_contact.pocket_stiffness_estimate for a glass-filled polyamide cage).
+    - ``land_stiffness`` [N/m]: cage-land metal contact (None: land_contact_stiffness_estimate).
     - ``friction_regularisation`` [m/s]: slip speed below which friction laws are smoothed.
     - ``heathcote``: evaluate the slip on the curved deformed surface (differential slip).
     - ``inner_ring_mass`` [kg]: None = estimated from the ring cross-section (width 2 D).
@@ -51,9 +52,9 @@ class SimulationOptions:
     chunk_samples: int = 60
     analysis_skip_fraction: float = 0.3
     quadrature: tuple[int, int] = (4, 8)
-    pocket_stiffness: float = 2.0e7
+    pocket_stiffness: float | None = None
     pocket_damping_ratio: float = 0.1
-    land_stiffness: float = 1.0e8
+    land_stiffness: float | None = None
     friction_regularisation: float = 1.0e-3
     heathcote: bool = True
     inner_ring_mass: float | None = None
@@ -69,11 +70,15 @@ class SimulationOptions:
             key = f"simulation option {f.name}"
             if isinstance(v, float) and not math.isfinite(v):
                 problems.append(Problem(f.name, f"{key} = {v!r}: must be a finite number"))
-            elif f.name in positive and not v > 0:
+            elif f.name in positive and v is not None and not v > 0:
                 problems.append(Problem(f.name, f"{key} = {v!r}: must be greater than 0"))
         for name in ("damping_ratio", "gravity", "pocket_damping_ratio"):
             if getattr(self, name) < 0:
-                problems.append(Problem(name, f"simulation option {name} = {getattr(self, name)!r}: must be >= 0"))
+                problems.append(
+                    Problem(
+                        name, f"simulation option {name} = {getattr(self, name)!r}: must be >= 0"
+                    )
+                )
         if not 0.0 <= self.analysis_skip_fraction < 1.0:
             problems.append(
                 Problem(
@@ -83,10 +88,18 @@ class SimulationOptions:
                 )
             )
         if self.chunk_samples < 1:
-            problems.append(Problem("chunk_samples", f"simulation option chunk_samples = {self.chunk_samples}: must be >= 1"))
+            problems.append(
+                Problem(
+                    "chunk_samples",
+                    f"simulation option chunk_samples = {self.chunk_samples}: must be >= 1",
+                )
+            )
         if self.shaft_revolutions is not None and not self.shaft_revolutions > 0:
             problems.append(
-                Problem("shaft_revolutions", f"simulation option shaft_revolutions = {self.shaft_revolutions!r}: must be > 0")
+                Problem(
+                    "shaft_revolutions",
+                    f"simulation option shaft_revolutions = {self.shaft_revolutions!r}: must be > 0",
+                )
             )
         if self.samples_per_revolution is not None and not self.samples_per_revolution >= 4:
             problems.append(
@@ -96,8 +109,13 @@ class SimulationOptions:
                 )
             )
         if self.start not in ("quasistatic", "equilibrium"):
-            problems.append(Problem("start", f"simulation option start = {self.start!r}: must be "
-                                    "'quasistatic' or 'equilibrium'"))
+            problems.append(
+                Problem(
+                    "start",
+                    f"simulation option start = {self.start!r}: must be "
+                    "'quasistatic' or 'equilibrium'",
+                )
+            )
         if problems:
             raise CaseError(problems)
         return self

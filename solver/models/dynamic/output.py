@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
@@ -32,6 +32,7 @@ from .observe import (
     observe,
 )
 
+
 def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> np.ndarray:
     """Margin [degree] between the ellipse edge and the loaded shoulder, per race (B's
     solver.physics.hertz.truncation_margin); NaN where the case gives no shoulder (results-schema.md).
@@ -52,7 +53,9 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     obs = np.zeros((s_count, z, 2, N_OBS))
     pocket = np.zeros((s_count, z))
     observe(states, par, quad, inputs.viscosity, inputs.pressure_viscosity, obs, pocket)
-    balls = np.stack([states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1)
+    balls = np.stack(
+        [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
+    )
     pos = balls[..., L.B_POS : L.B_POS + 3]
     vel = balls[..., L.B_VEL : L.B_VEL + 3]
     quat = balls[..., L.B_QUAT : L.B_QUAT + 4]
@@ -121,7 +124,9 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         spec = variable(name)  # the project registry (solver.results.variables): dims, units, names
         target = spec.dims_for("dynamic")
         if set(target) != set(dims):
-            raise RuntimeError(f"dynamic output {name}: dims {dims} do not match the registry {target}")
+            raise RuntimeError(
+                f"dynamic output {name}: dims {dims} do not match the registry {target}"
+            )
         attrs = spec.attrs()
         if name.startswith("trajectory_band_width"):
             attrs["analysed_window"] = window_text
@@ -139,12 +144,14 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "model": "dynamic",
         "case": inputs.case_text,
         "software": f"racetrace {solver.__version__}",
-        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "complete": int(bool(complete)),
         "stop_reason": stop_reason,
         "analysed_window": window_text,
         "gravity": f"{options.gravity:g} m/s^2 along -z of the inertial frame",
-        "traction_model": "ellipse-integrated ADORE-type curve" if options.traction else "off (frictionless)",
+        "traction_model": "ellipse-integrated ADORE-type curve"
+        if options.traction
+        else "off (frictionless)",
         "damping_ratio": float(options.damping_ratio),
         "cage_model": "4 DOF (translations + rotation about x)" if options.cage else "off",
         "lubricant": DEFAULT_OIL_NOTE if inputs.default_lubricant else "from the case [lubricant]",

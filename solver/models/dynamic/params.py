@@ -6,6 +6,15 @@ import math
 
 import numpy as np
 
+from solver.materials import Material, effective_modulus
+from solver.physics.cage_contact import (
+    LAND_PARAM_SIZE,
+    POCKET_PARAM_SIZE,
+    land_contact_stiffness_estimate,
+    land_parameters,
+    pocket_parameters,
+    pocket_stiffness_estimate,
+)
 from solver.physics.traction import ellipse_quadrature, traction_curve_parameters
 
 from . import layout as L
@@ -13,6 +22,8 @@ from .inputs import DynamicInputs
 from .options import SimulationOptions
 
 STEEL_DENSITY = 7800.0
+#: Assumed cage material (the case format has no cage material): glass-filled polyamide 66.
+CAGE_MATERIAL = Material("glass_filled_polyamide", 8.0e9, 0.4, 1400.0)
 
 
 def ring_mass_properties(inputs: DynamicInputs, options: SimulationOptions):
@@ -89,7 +100,6 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
     p[L.P_CAGE_R] = 0.5 * dm
     p[L.P_IC] = inputs.cage_mass * (0.5 * dm) ** 2
     p[L.P_CP] = inputs.pocket_clearance
-    p[L.P_KP] = options.pocket_stiffness
     p[L.P_ZETA_P] = options.pocket_damping_ratio
     p[L.P_MU_P] = inputs.pocket_friction
     guide = {"outer_ring": 0, "inner_ring": 1, "ball": 2}[inputs.cage_guidance]
@@ -104,8 +114,40 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
     p[L.P_CG] = 0.5 * inputs.guide_clearance
     p[L.P_LG] = inputs.guide_land_width
     p[L.P_ETA] = inputs.viscosity
-    p[L.P_KG] = options.land_stiffness
-    p[L.P_MU_G] = 0.1
     p[L.P_V_REG] = options.friction_regularisation
     p[L.P_HEATHCOTE] = 1.0 if options.heathcote else 0.0
+    # cage contact laws of solver.physics.cage_contact (D1); the case gives no cage material: a
+    # glass-filled polyamide cage (linear pocket law, secant of the Hertz law at 10 N) is assumed
+    pocket_k = options.pocket_stiffness
+    if pocket_k is None:
+        pocket_k = pocket_stiffness_estimate(
+            D, inputs.pocket_clearance, g.ball_material, CAGE_MATERIAL, exponent=1.0
+        )
+    p[L.P_KP] = pocket_k
+    p[L.P_POCKET_BLOCK : L.P_POCKET_BLOCK + POCKET_PARAM_SIZE] = pocket_parameters(
+        pocket_k,
+        1.0,
+        options.pocket_damping_ratio,
+        g.ball_mass,
+        inputs.pocket_friction,
+        inputs.pocket_clearance,
+        D,
+        slip_regularisation=options.friction_regularisation,
+    )
+    land_k = options.land_stiffness
+    if land_k is None:
+        land_k = land_contact_stiffness_estimate(
+            inputs.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
+        )
+    p[L.P_KG] = land_k
+    p[L.P_LAND_BLOCK : L.P_LAND_BLOCK + LAND_PARAM_SIZE] = land_parameters(
+        land,
+        inputs.guide_land_width,
+        0.5 * inputs.guide_clearance,
+        inputs.viscosity,
+        land_k,
+        inputs.cage_mass,
+        guide != 1,
+        slip_regularisation=options.friction_regularisation,
+    )
     return p

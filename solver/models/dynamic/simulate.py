@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import time as _time
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 
@@ -23,7 +23,7 @@ from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverge
 
 from . import layout as L
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
-from .inputs import DEFAULT_OIL_NOTE, DynamicInputs, inputs_from_case
+from .inputs import DynamicInputs, inputs_from_case
 from .integrator import (
     STATUS_BALL_ESCAPED,
     STATUS_NOT_FINITE,
@@ -146,7 +146,9 @@ def _start(inputs, options, par, quad):
             "quasi-static Jones-Harris solution (solver.models.quasistatic): ball positions, orbital "
             "and spin speeds, attitude, ring offset and tilt, cage speed"
         )
-    return initial_state(par, quad), "the model's own quasi-static force balance (no gyroscopic moment)"
+    return initial_state(
+        par, quad
+    ), "the model's own quasi-static force balance (no gyroscopic moment)"
 
 
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
@@ -199,23 +201,50 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
             break
         stop = min(done + options.chunk_samples, n_samples + 1)
         status, t, h, n_done = advance(
-            y, t, h, times[done:stop], states[done:stop], par, quad, scale, options.tolerance, h_min,
-            options.max_steps_per_chunk, stats.counters, rec_i, rec_o, pocket,
+            y,
+            t,
+            h,
+            times[done:stop],
+            states[done:stop],
+            par,
+            quad,
+            scale,
+            options.tolerance,
+            h_min,
+            options.max_steps_per_chunk,
+            stats.counters,
+            rec_i,
+            rec_o,
+            pocket,
         )
         done += n_done
         if status != STATUS_OK:
-            cause = _DIVERGENCE_CAUSES[status].format(h_min=h_min, max_steps=options.max_steps_per_chunk)
+            cause = _DIVERGENCE_CAUSES[status].format(
+                h_min=h_min, max_steps=options.max_steps_per_chunk
+            )
             diverged_message = f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): {cause}"
             stop_reason = diverged_message
             break
         if progress is not None:
             elapsed = _time.perf_counter() - start
-            progress((done - 1) / n_samples, float(times[done - 1]),
-                     f"{(done - 1) / per_rev:.2f} of {revolutions:g} revolutions, {elapsed:.1f} s")
+            progress(
+                (done - 1) / n_samples,
+                float(times[done - 1]),
+                f"{(done - 1) / per_rev:.2f} of {revolutions:g} revolutions, {elapsed:.1f} s",
+            )
     stats.wall_time = _time.perf_counter() - start
     complete = stop_reason == "finished"
     ds = build_dataset(
-        inputs, options, par, quad, times[:done], states[:done], period, complete, stop_reason, stats
+        inputs,
+        options,
+        par,
+        quad,
+        times[:done],
+        states[:done],
+        period,
+        complete,
+        stop_reason,
+        stats,
     )
     ds.attrs["initial_state"] = start_note
     if diverged_message is not None:
@@ -226,4 +255,4 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
 
 
 def created_timestamp() -> str:
-    return datetime.now(timezone.utc).isoformat(timespec="seconds")
+    return datetime.now(UTC).isoformat(timespec="seconds")

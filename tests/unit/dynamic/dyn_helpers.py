@@ -48,7 +48,22 @@ def integrate_states(par, quad, y0, times, tolerance=1e-3):
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    status, t, h, n = advance(y, 0.0, h, np.asarray(times[1:], float), states[1:], par, quad, scale,
-                              tolerance, 1e-6 * h, 10_000_000, counters, rec_i, rec_o, np.zeros(z))
+    status, t, h, n = advance(
+        y,
+        0.0,
+        h,
+        np.asarray(times[1:], float),
+        states[1:],
+        par,
+        quad,
+        scale,
+        tolerance,
+        1e-6 * h,
+        10_000_000,
+        counters,
+        rec_i,
+        rec_o,
+        np.zeros(z),
+    )
     assert status == STATUS_OK, status
     return states, counters

@@ -27,8 +27,18 @@ def fake_case(monkeypatch):
 
 def test_simulate_writes_netcdf_and_reports_progress(fake_case, tmp_path, capsys):
     out = tmp_path / "run.nc"
-    args = _parse(["simulate", "spindle", "--output", str(out), "--revolutions", "0.2",
-                   "--samples-per-revolution", "40"])
+    args = _parse(
+        [
+            "simulate",
+            "spindle",
+            "--output",
+            str(out),
+            "--revolutions",
+            "0.2",
+            "--samples-per-revolution",
+            "40",
+        ]
+    )
     assert args.func(args) == 0
     ds = load_dataset(out)
     assert ds.attrs["complete"] == 1 and ds.sizes["time"] == 9
@@ -48,8 +58,18 @@ def test_ctrl_c_writes_partial_result_and_exits_130(fake_case, tmp_path, capsys,
 
     monkeypatch.setattr(command.ProgressBar, "__call__", interrupting)
     out = tmp_path / "partial.nc"
-    args = _parse(["simulate", "spindle", "-o", str(out), "--revolutions", "1",
-                   "--samples-per-revolution", "200"])  # 200 samples: 4 chunks of 60
+    args = _parse(
+        [
+            "simulate",
+            "spindle",
+            "-o",
+            str(out),
+            "--revolutions",
+            "1",
+            "--samples-per-revolution",
+            "200",
+        ]
+    )  # 200 samples: 4 chunks of 60
     assert args.func(args) == command.EXIT_INTERRUPTED
     ds = load_dataset(out)
     assert ds.attrs["complete"] == 0 and ds.attrs["stop_reason"] == "cancelled"

@@ -19,12 +19,14 @@ from solver.physics.hertz import race_contact
 def _quat_mul(a, b):
     w1, x1, y1, z1 = a
     w2, x2, y2, z2 = b
-    return np.array([
-        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-    ])
+    return np.array(
+        [
+            w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+            w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+            w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
+        ]
+    )
 
 
 def _axis_angle_quat(w, t):
@@ -51,7 +53,9 @@ def test_quaternion_rate_matches_exact_rotation():
         b = L.ball_base(j)
         q0 = y[b + L.B_QUAT : b + L.B_QUAT + 4]
         w = y[b + L.B_OMEGA : b + L.B_OMEGA + 3]
-        fd = (_quat_mul(_axis_angle_quat(w, h), q0) - _quat_mul(_axis_angle_quat(w, -h), q0)) / (2 * h)
+        fd = (_quat_mul(_axis_angle_quat(w, h), q0) - _quat_mul(_axis_angle_quat(w, -h), q0)) / (
+            2 * h
+        )
         np.testing.assert_allclose(dydt[b + L.B_QUAT : b + L.B_QUAT + 4], fd, rtol=1e-6, atol=1e-6)
 
 
@@ -117,7 +121,9 @@ def test_just_touching_state_has_zero_deflection_and_free_contact_angle():
     np.testing.assert_allclose(ro[:, L.K_DEFLECTION], 0.0, atol=1e-15)
     np.testing.assert_allclose(ri[:, L.K_ANGLE], inp.geometry.free_contact_angle, atol=1e-12)
     np.testing.assert_allclose(ro[:, L.K_ANGLE], inp.geometry.free_contact_angle, atol=1e-12)
-    assert ri[:, L.K_LOAD].max() < 1e-9 and ro[:, L.K_LOAD].max() < 1e-9  # rounding-level approach only
+    assert (
+        ri[:, L.K_LOAD].max() < 1e-9 and ro[:, L.K_LOAD].max() < 1e-9
+    )  # rounding-level approach only
 
 
 def test_axial_shift_matches_rigid_ring_closed_form_and_exact_hertz():
@@ -212,7 +218,9 @@ def test_newton_third_law_ball_inner_ring():
     scale = np.abs(ri[:, L.K_LOAD]).sum() * 0.027
     np.testing.assert_allclose(m_ball, -m_ring, atol=1e-9 * scale)
     # the traction is not negligible in this test (otherwise it would test nothing)
-    tang = ri[:, L.K_F_BALL : L.K_F_BALL + 3] + ri[:, [L.K_LOAD]] * ri[:, L.K_NORMAL : L.K_NORMAL + 3]
+    tang = (
+        ri[:, L.K_F_BALL : L.K_F_BALL + 3] + ri[:, [L.K_LOAD]] * ri[:, L.K_NORMAL : L.K_NORMAL + 3]
+    )
     assert np.abs(tang).max() > 0.01 * ri[:, L.K_LOAD].max()
 
 
@@ -241,7 +249,9 @@ def test_pure_sliding_gives_coulomb_force_opposite_to_slip():
     np.testing.assert_allclose(f, [0.0, 0.0, -mu * q], atol=1e-9 * q)
     # lever arm: contact centre at (D/2 - delta/2) along n from the ball centre
     arm = 0.5 * par[L.P_D] - 0.5 * ro[0, L.K_DEFLECTION]
-    np.testing.assert_allclose(ro[0, L.K_M_BALL : L.K_M_BALL + 3], np.cross(arm * n, f), atol=1e-9 * q * arm)
+    np.testing.assert_allclose(
+        ro[0, L.K_M_BALL : L.K_M_BALL + 3], np.cross(arm * n, f), atol=1e-9 * q * arm
+    )
 
 
 def test_pure_spin_moment_matches_ellipse_integral():
@@ -260,8 +270,14 @@ def test_pure_spin_moment_matches_ellipse_integral():
     def integrand(eta, xi):
         return pmax * math.sqrt(max(0.0, 1 - (xi / bb) ** 2 - (eta / a) ** 2)) * math.hypot(xi, eta)
 
-    ref, _ = integrate.dblquad(integrand, -bb, bb, lambda x: -a * math.sqrt(1 - (x / bb) ** 2),
-                               lambda x: a * math.sqrt(1 - (x / bb) ** 2), epsrel=1e-8)
+    ref, _ = integrate.dblquad(
+        integrand,
+        -bb,
+        bb,
+        lambda x: -a * math.sqrt(1 - (x / bb) ** 2),
+        lambda x: a * math.sqrt(1 - (x / bb) ** 2),
+        epsrel=1e-8,
+    )
     moment_n = float(np.dot(ro[0, L.K_M_BALL : L.K_M_BALL + 3], n))
     assert moment_n == pytest.approx(-mu * ref, rel=5e-3)
     f = ro[0, L.K_F_BALL : L.K_F_BALL + 3] + q * n
@@ -290,8 +306,12 @@ def test_contact_forces_nearly_balance_at_the_quasistatic_state(radial):
         wc = float(qs.orbital_speed[j])
         net = (dydt[b + 3 : b + 6] + wc**2 * np.array([0.0, pos[1], pos[2]])) * mb
         assert np.linalg.norm(net) < 0.02 * q_mean
-    np.testing.assert_allclose(ri[:, L.K_LOAD], qs.contact_load[:, 0], rtol=0.01, atol=1e-3 * q_mean)
-    np.testing.assert_allclose(ro[:, L.K_LOAD], qs.contact_load[:, 1], rtol=0.01, atol=1e-3 * q_mean)
+    np.testing.assert_allclose(
+        ri[:, L.K_LOAD], qs.contact_load[:, 0], rtol=0.01, atol=1e-3 * q_mean
+    )
+    np.testing.assert_allclose(
+        ro[:, L.K_LOAD], qs.contact_load[:, 1], rtol=0.01, atol=1e-3 * q_mean
+    )
     np.testing.assert_allclose(ri[:, L.K_ANGLE], qs.contact_angle[:, 0], atol=1e-3)
     np.testing.assert_allclose(ro[:, L.K_ANGLE], qs.contact_angle[:, 1], atol=1e-3)
     rb = L.ring_base(18)

@@ -19,8 +19,11 @@ SHORT = dict(shaft_revolutions=0.3, samples_per_revolution=40)
 @pytest.fixture(scope="module")
 def short_run():
     calls = []
-    ds = simulate(spindle_inputs(radial=300.0), progress=lambda *a: calls.append(a),
-                  options=SimulationOptions(chunk_samples=4, **SHORT))
+    ds = simulate(
+        spindle_inputs(radial=300.0),
+        progress=lambda *a: calls.append(a),
+        options=SimulationOptions(chunk_samples=4, **SHORT),
+    )
     return ds, calls
 
 
@@ -47,7 +50,9 @@ def test_time_axis_and_physical_ranges(short_run):
     assert ds.sizes["time"] == 13  # t = 0 plus 0.3 rev x 40 samples
     assert ((ds.raceway_azimuth >= 0) & (ds.raceway_azimuth < 360)).all()
     assert (ds.contact_load >= 0).all()
-    q = np.linalg.norm(ds.ball_orientation.values, axis=ds.ball_orientation.dims.index("quaternion"))
+    q = np.linalg.norm(
+        ds.ball_orientation.values, axis=ds.ball_orientation.dims.index("quaternion")
+    )
     np.testing.assert_allclose(q, 1.0, atol=1e-12)
     # the outer raceway does not turn: its contact azimuth equals the ball azimuth (to the small
     # out-of-plane offset of the contact); the inner one is measured on the turning ring
@@ -75,8 +80,11 @@ def test_cancel_returns_partial_result():
         state["n"] += 1
         return state["n"] > 2  # cancel before the third chunk
 
-    ds = simulate(spindle_inputs(radial=300.0), cancel=cancel,
-                  options=SimulationOptions(chunk_samples=3, **SHORT))
+    ds = simulate(
+        spindle_inputs(radial=300.0),
+        cancel=cancel,
+        options=SimulationOptions(chunk_samples=3, **SHORT),
+    )
     assert ds.attrs["complete"] == 0 and ds.attrs["stop_reason"] == "cancelled"
     assert ds.sizes["time"] == 7
     assert np.isfinite(ds.contact_load.values).all()
