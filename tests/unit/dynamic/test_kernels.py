@@ -316,3 +316,37 @@ def test_contact_forces_nearly_balance_at_the_quasistatic_state(radial):
     np.testing.assert_allclose(ro[:, L.K_ANGLE], qs.contact_angle[:, 1], atol=1e-3)
     rb = L.ring_base(18)
     assert np.linalg.norm(dydt[rb + 3 : rb + 6] * par[L.P_MR]) < 0.01 * 500.0
+
+
+def test_pocket_force_frame_transform_and_cage_reaction():
+    """A ball pushed circumferentially into its pocket wall (ball 3, azimuth 60 deg) is pushed back
+    along -e_theta with the linear pocket law K_p * penetration; the cage receives the opposite
+    force and the moment R x F about its axis."""
+    from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_pocket
+
+    par, quad, y0 = start(spindle_inputs(), friction_regularisation=1e-3)
+    y = y0.copy()
+    z = 18
+    cb = L.cage_base(z)
+    y[cb : cb + 8] = 0.0  # cage centred, at rest, angle 0
+    j = 3
+    b = L.ball_base(j)
+    psi = 2 * math.pi * j / z
+    e_r = np.array([0.0, math.cos(psi), math.sin(psi)])
+    e_t = np.array([0.0, -math.sin(psi), math.cos(psi)])
+    pen = 2e-6
+    shift = 0.5 * par[L.P_CP] + pen
+    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + shift * e_t
+    y[b + 3 : b + 6] = 0.0
+    y[b + 10 : b + 13] = 0.0
+    out = np.zeros(10)
+    fn = cage_pocket(y, b, cb, j, par, np.zeros(TRACTION_WORK_SIZE), out)
+    assert fn == pytest.approx(par[L.P_KP] * pen, rel=1e-9)
+    np.testing.assert_allclose(out[0:3], -fn * e_t, atol=1e-12 * fn)
+    np.testing.assert_allclose(out[6:9], fn * e_t, atol=1e-12 * fn)
+    # the force acts at the contact point at radius ~ d_m/2 (plus the shift): moment about x
+    lever = 0.5 * par[L.P_DM] * e_r + (shift + 0.5 * par[L.P_D]) * e_t
+    assert out[9] == pytest.approx(np.cross(lever, fn * e_t)[0], rel=1e-9)
+    # inside the clearance: no force
+    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + 0.4 * par[L.P_CP] * e_t
+    assert cage_pocket(y, b, cb, j, par, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
