@@ -350,3 +350,21 @@ def test_pocket_force_frame_transform_and_cage_reaction():
     # inside the clearance: no force
     y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + 0.4 * par[L.P_CP] * e_t
     assert cage_pocket(y, b, cb, j, par, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
+
+
+def test_gravity_acts_along_minus_z_on_balls_and_cage():
+    """Free balls (just-touching positions, no deflection) and a centred cage at rest fall with
+    acceleration g along -z of the inertial frame; the inner ring (held by the shaft's applied
+    load only) gets no weight."""
+    inp = spindle_inputs(axial=0.0)
+    par, quad, _ = setup(inp, gravity=9.81)
+    par[L.P_FX] = 0.0
+    y = _nominal_state(18, inp.geometry.pitch_diameter)
+    dydt, *_ = evaluate(y, par, quad)
+    for j in range(18):
+        b = L.ball_base(j)
+        np.testing.assert_allclose(dydt[b + 3 : b + 6], [0.0, 0.0, -9.81], atol=1e-9)
+    cb = L.cage_base(18)
+    np.testing.assert_allclose(dydt[cb + 3 : cb + 6], [0.0, 0.0, -9.81], atol=1e-9)
+    rb = L.ring_base(18)
+    np.testing.assert_allclose(dydt[rb + 3 : rb + 6], 0.0, atol=1e-9)
