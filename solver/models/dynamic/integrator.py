@@ -168,8 +168,10 @@ def advance(
                     + _E7 * k7[i]
                 )
                 r = abs(e) / (tol * scale[i])
-                if r > err:
+                if r > err or r != r:  # keep a NaN: it must reach the finiteness check
                     err = r
+                    if r != r:
+                        break
             if not (err < 1e300):  # NaN/inf in the new state reaches err through k7
                 # NaN/inf somewhere: retry with a much smaller step, give up below h_min
                 h = 0.1 * hs
