@@ -11,6 +11,7 @@ import signal
 import sys
 import threading
 import time
+from dataclasses import replace
 from pathlib import Path
 
 EXIT_DIVERGED = 4
@@ -80,6 +81,7 @@ class ProgressBar:
 def run(args) -> int:
     from solver.errors import SimulationDiverged
     from solver.models.dynamic import SimulationOptions, simulate
+    from solver.models.dynamic.options import options_from_case
     from solver.results.io import save_dataset
 
     case = _load_case(args.case)
@@ -95,7 +97,8 @@ def run(args) -> int:
         changes["traction"] = False
     if args.no_cage:
         changes["cage"] = False
-    options = SimulationOptions(**changes)
+    # defaults, then the case's optional [simulation] keys, then the command-line overrides
+    options = replace(options_from_case(case, SimulationOptions()), **changes)
     stop = threading.Event()
 
     def on_sigint(signum, frame):  # noqa: ARG001 - signal handler signature

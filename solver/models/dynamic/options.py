@@ -119,3 +119,28 @@ class SimulationOptions:
         if problems:
             raise CaseError(problems)
         return self
+
+
+#: [simulation] case keys (optional; when the case schema has them) -> SimulationOptions fields.
+CASE_KEYS = {
+    "traction": "traction",
+    "contact_damping_ratio": "damping_ratio",
+    "gravity_m_s2": "gravity",
+    "tolerance": "tolerance",
+    "model_cage": "cage",
+}
+
+
+def options_from_case(case, base: SimulationOptions | None = None) -> SimulationOptions:
+    """``base`` (default options) updated with the optional [simulation] keys of ``case``
+    (``CASE_KEYS``); keys the case does not define keep their defaults."""
+    from dataclasses import replace
+
+    base = base or SimulationOptions()
+    sim = getattr(case, "simulation", None)
+    changes = {}
+    for key, name in CASE_KEYS.items():
+        value = getattr(sim, key, None) if sim is not None else None
+        if value is not None:
+            changes[name] = value
+    return replace(base, **changes)

@@ -32,7 +32,7 @@ from .integrator import (
     STATUS_TOO_MANY_STEPS,
     advance,
 )
-from .options import SimulationOptions
+from .options import SimulationOptions, options_from_case
 from .output import build_dataset
 from .params import build_params, build_quadrature
 
@@ -156,9 +156,12 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
 
     ``case``: a :class:`solver.case.Case` (or :class:`DynamicInputs`). ``progress(fraction,
     simulated_time, message)`` is called between chunks; ``cancel`` is a callable or an Event.
-    ``options``: :class:`SimulationOptions` (defaults: the full model).
+    ``options``: :class:`SimulationOptions`; None = the defaults (the full model) updated with the
+    case's optional [simulation] keys (``options.CASE_KEYS``).
     """
-    options = (options or SimulationOptions()).validated()
+    if options is None:
+        options = SimulationOptions() if isinstance(case, DynamicInputs) else options_from_case(case)
+    options = options.validated()
     inputs = case if isinstance(case, DynamicInputs) else inputs_from_case(case)
     speed = abs(inputs.inner_speed - inputs.outer_speed)
     if speed <= 0.0:

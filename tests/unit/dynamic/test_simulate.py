@@ -147,3 +147,15 @@ def test_first_sample_reproduces_the_quasistatic_dataset():
 
 def xr_align(a, b):
     return a.transpose(*b.dims).values, b.values
+
+
+def test_optional_simulation_keys_of_a_case_set_the_options():
+    from types import SimpleNamespace
+
+    from solver.models.dynamic.options import options_from_case
+
+    case = SimpleNamespace(simulation=SimpleNamespace(traction=False, gravity_m_s2=0.0, tolerance=None))
+    opts = options_from_case(case)
+    assert opts.traction is False and opts.gravity == 0.0
+    assert opts.tolerance == SimulationOptions().tolerance  # not given: default
+    assert options_from_case(SimpleNamespace()) == SimulationOptions()
