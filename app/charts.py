@@ -55,9 +55,13 @@ def _layout(fig: go.Figure, title: str, xtitle: str, ytitle: str) -> go.Figure:
         yaxis_title=ytitle,
         margin={"l": 55, "r": 10, "t": 35, "b": 40},
         legend={"orientation": "h", "y": -0.25},
-        template="plotly_white",
+        template="none",  # built-in templates cost ~60 ms per figure (deep copies)
+        plot_bgcolor="white",
+        paper_bgcolor="white",
         uirevision="keep",
     )
+    fig.update_xaxes(gridcolor="#e5e5e5", zeroline=False)
+    fig.update_yaxes(gridcolor="#e5e5e5", zeroline=False)
     return fig
 
 
@@ -65,19 +69,24 @@ def _time_marker(fig: go.Figure, x: float) -> None:
     fig.add_vline(x=x, line_width=1, line_dash="dot", line_color="#444")
 
 
-def contact_angle_figure(source: FrameSource, balls=(0,), current: int | None = None) -> go.Figure:
-    """Contact angle (degree) versus time (ms), inner and outer contacts of the chosen balls."""
+def contact_angle_figure(source: FrameSource, balls=(0,), current: int | None = None,
+                         max_points: int = 4000) -> go.Figure:
+    """Contact angle (degree) versus time (ms), inner and outer contacts of the chosen balls.
+
+    Long results are decimated to at most ``max_points`` samples per line.
+    """
     fig = go.Figure()
-    t_ms = source.times * 1e3
-    alpha = np.degrees(source.contact["contact_angle"])
-    load = np.nan_to_num(source.contact["contact_load"])
+    step = max(1, int(np.ceil(source.n_frames / max_points)))
+    t_ms = source.times[::step] * 1e3
+    alpha = np.degrees(source.contact["contact_angle"][::step])
+    load = np.nan_to_num(source.contact["contact_load"][::step])
     for race in (INNER, OUTER):
         for j in balls:
             y = np.where(load[:, j, race] > 0, alpha[:, j, race], np.nan)
             fig.add_trace(go.Scatter(x=t_ms, y=y, mode="lines", name=f"ball {j} {RACES[race]}",
                                      line={"color": RACE_COLOURS[race]}))
     if current is not None:
-        _time_marker(fig, float(t_ms[min(current, len(t_ms) - 1)]))
+        _time_marker(fig, float(source.times[min(current, source.n_frames - 1)] * 1e3))
     return _layout(fig, "Contact angle", "time, ms", "contact angle, degree")
 
 
@@ -140,7 +149,8 @@ def cage_speed_figure(source: FrameSource, ds: xr.Dataset, current: int | None =
     speed = np.asarray(ds["cage_speed"].values, float) / RPM
     if speed.ndim == 0:
         speed = np.full_like(t_ms, float(speed))
-    fig = go.Figure(go.Scatter(x=t_ms, y=speed, mode="lines", name="cage"))
+    step = max(1, int(np.ceil(len(t_ms) / 4000)))
+    fig = go.Figure(go.Scatter(x=t_ms[::step], y=speed[::step], mode="lines", name="cage"))
     if current is not None:
         _time_marker(fig, float(t_ms[min(current, len(t_ms) - 1)]))
     return _layout(fig, "Cage speed", "time, ms", "cage speed, rev/min")

@@ -35,6 +35,7 @@ RPM = TWO_PI / 60.0  # rad/s per rev/min
 
 QS_SAMPLES_PER_REVOLUTION = 72  # animation frames per shaft revolution for a quasi-static result
 QS_DEFAULT_REVOLUTIONS = 10.0  # used when the case has no [simulation] shaft_revolutions
+QS_MAX_REVOLUTIONS = 20.0  # the steady animation repeats; longer runs only add frames to handle
 
 _CONTACT_VARS = ("contact_angle", "contact_load", "ellipse_semi_major", "ellipse_semi_minor",
                  "max_pressure")
@@ -172,12 +173,14 @@ class FrameSource:
         """Steady rigid kinematics from a quasi-static result (see module docstring).
 
         ``revolutions`` (shaft revolutions to animate) defaults to the case's
-        ``simulation.shaft_revolutions`` or :data:`QS_DEFAULT_REVOLUTIONS`.
+        ``simulation.shaft_revolutions`` (at most :data:`QS_MAX_REVOLUTIONS`) or
+        :data:`QS_DEFAULT_REVOLUTIONS`.
         """
         _require(ds, ("ball_center", "ball_azimuth", "ball_angular_velocity", *_CONTACT_VARS))
         omega_i, omega_o = ring_speeds(ds)
         if revolutions is None:
             revolutions = _case_value(ds, ("simulation", "shaft_revolutions"), QS_DEFAULT_REVOLUTIONS)
+            revolutions = min(float(revolutions), QS_MAX_REVOLUTIONS)
         psi0 = np.radians(_arr(ds, "ball_azimuth", ("ball",)))
         if "cage_speed" in ds and np.isfinite(float(ds["cage_speed"])):
             w_cage = float(ds["cage_speed"])

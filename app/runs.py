@@ -51,7 +51,7 @@ class RunInfo:
         return f"{when}  {self.title} ({self.model}, {self.status})"
 
 
-def _save_netcdf(ds: xr.Dataset, path: Path) -> None:
+def save_netcdf(ds: xr.Dataset, path: Path) -> None:
     try:
         from solver.results.io import save_dataset
     except ImportError:  # the results package has not landed: plain xarray NetCDF
@@ -60,7 +60,7 @@ def _save_netcdf(ds: xr.Dataset, path: Path) -> None:
         save_dataset(ds, path)
 
 
-def _load_netcdf(path: Path) -> xr.Dataset:
+def load_netcdf(path: Path) -> xr.Dataset:
     try:
         from solver.results.io import load_dataset
     except ImportError:
@@ -92,7 +92,7 @@ class RunStore:
         tmp = self.root / f".tmp-{run_id}"
         tmp.mkdir()
         try:
-            _save_netcdf(ds, tmp / RESULT_FILE)
+            save_netcdf(ds, tmp / RESULT_FILE)
             (tmp / CASE_FILE).write_text(case_text, encoding="utf-8")
             (tmp / META_FILE).write_text(json.dumps(asdict(info), indent=1), encoding="utf-8")
             os.replace(tmp, self.root / run_id)
@@ -122,7 +122,7 @@ class RunStore:
         if not (folder / RESULT_FILE).is_file():
             known = ", ".join(r.run_id for r in self.list()[:5]) or "none"
             raise FileNotFoundError(f"no saved run {run_id!r} in {self.root} (latest: {known})")
-        return _load_netcdf(folder / RESULT_FILE), (folder / CASE_FILE).read_text(encoding="utf-8")
+        return load_netcdf(folder / RESULT_FILE), (folder / CASE_FILE).read_text(encoding="utf-8")
 
     def path(self, run_id: str) -> Path:
         """Folder of a saved run (for export)."""

@@ -89,6 +89,7 @@ class RacetraceApp:
         self._poll_task = None
         self._run_info = {}
         self._cancel_requested = False
+        self._filling = False
         self.clients = 0
         self._init_state()
         self._bind()
@@ -175,16 +176,24 @@ class RacetraceApp:
     def set_base_case(self, case, synchronous: bool = False) -> None:
         """Put ``case`` in the form and preview it."""
         self.base_case = case
-        values = case_form_values(case, self.fields)
-        with self.state:
-            for name, value in values.items():
-                self.state[f"fv_{name}"] = "" if value is None else str(value)
-                self.state[f"fe_{name}"] = ""
+        self._fill_form(case)
         self.validate()
         if synchronous:
             self.preview_now()
         else:
             self.schedule_preview()
+
+    def _fill_form(self, case) -> None:
+        """Put the values of ``case`` in the form without triggering a preview per field."""
+        values = case_form_values(case, self.fields)
+        self._filling = True
+        try:
+            with self.state:
+                for name, value in values.items():
+                    self.state[f"fv_{name}"] = "" if value is None else str(value)
+                    self.state[f"fe_{name}"] = ""
+        finally:
+            self._filling = False
 
     def _on_upload(self, uploaded_case=None, **_):
         if not uploaded_case:
@@ -222,6 +231,8 @@ class RacetraceApp:
         return result
 
     def _on_field(self, **_):
+        if self._filling:
+            return
         if self.validate() is not None and self.case is not None:
             self.schedule_preview()
 
@@ -434,9 +445,7 @@ class RacetraceApp:
         from solver import load_case
 
         self.base_case = load_case(case_text)
-        values = case_form_values(self.base_case, self.fields)
-        for name, value in values.items():
-            self.state[f"fv_{name}"] = "" if value is None else str(value)
+        self._fill_form(self.base_case)
         self.validate()
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         self.show_result(ds, label)

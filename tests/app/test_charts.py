@@ -63,3 +63,10 @@ def test_comparison_chart(qs_dataset, dynamic_dataset):
     assert len(fig.data[1].x) > 10
     assert len(charts.comparison_figure(qs_dataset, None).data) == 2
     assert set(charts.HELP) >= {"contact_angle", "raceway_map", "ellipse", "cage_speed"}
+
+
+def test_long_results_are_decimated(qs_dataset):
+    src = frame_source(qs_dataset, revolutions=20, samples_per_revolution=500)  # 10 001 frames
+    fig = charts.contact_angle_figure(src, balls=(0,), current=src.n_frames - 1, max_points=1000)
+    assert 900 <= len(fig.data[0].x) <= 1000
+    assert fig.layout.shapes[0].x0 == pytest.approx(src.times[-1] * 1e3)

@@ -128,3 +128,11 @@ def test_rotation_helpers_agree():
 def test_missing_variable_is_named(qs_dataset):
     with pytest.raises(ValueError, match="ball_angular_velocity"):
         FrameSource.from_quasistatic(qs_dataset.drop_vars("ball_angular_velocity"))
+
+
+def test_quasistatic_animation_length_is_capped(qs_dataset):
+    from app.frames import QS_MAX_REVOLUTIONS, QS_SAMPLES_PER_REVOLUTION
+
+    long_case = qs_dataset.attrs["case"].replace("shaft_revolutions = 2.0", "shaft_revolutions = 500.0")
+    src = frame_source(qs_dataset.assign_attrs(case=long_case))
+    assert src.n_frames == int(QS_MAX_REVOLUTIONS * QS_SAMPLES_PER_REVOLUTION) + 1
