@@ -84,7 +84,9 @@ def run_case(label, revolutions):
     simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # compile / warm caches
     tracemalloc.start()
     start = time.perf_counter()
+    cpu_start = time.process_time()
     ds = simulate(inputs, options=options)
+    cpu = time.process_time() - cpu_start
     total = time.perf_counter() - start
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
@@ -113,6 +115,10 @@ def run_case(label, revolutions):
         f"whole simulate() incl. start and output {total:.2f} s"
     )
     print(
+        f"   CPU time of simulate() {cpu:.2f} s ({cpu / revolutions:.3f} s per revolution incl. start "
+        "and output; wall > CPU means the shared machine was busy)"
+    )
+    print(
         f"   steps {steps} accepted, {rejected} rejected ({steps / revolutions:.0f} per revolution, "
         f"mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f} us); "
         f"RHS evaluations {evals}"
@@ -136,7 +142,7 @@ def run_case(label, revolutions):
     for name, seconds in parts.items():
         print(f"     {name:55s} {seconds:7.2f} s  ({100 * seconds / integ:5.1f} %)")
     print(
-        f"     {'integrator (stages, error norm, step control)':55s} {integ - rhs_total:7.2f} s  "
+        f"     {'rest: integrator, waiting for the shared CPU':55s} {integ - rhs_total:7.2f} s  "
         f"({100 * (integ - rhs_total) / integ:5.1f} %)"
     )
     print(f"     {'initial state + output Dataset':55s} {total - integ:7.2f} s")
