@@ -6,6 +6,7 @@ The server runs in a subprocess on a free port with its own runs folder. Screens
 
 from __future__ import annotations
 
+import json
 import os
 import socket
 import subprocess
@@ -168,8 +169,7 @@ def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     assert items.count() == len(saved)
 
 
-@pytest.mark.slow
-def test_cancel_stops_a_long_run(page):
+def test_cancel_stops_a_long_run_and_keeps_it(page, server):
     _set_field(page, "shaft_revolutions", "200")
     page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
     page.locator("#run-button").click()
@@ -178,3 +178,6 @@ def test_cancel_stops_a_long_run(page):
     page.locator("#cancel-button").click()
     status = _wait_status(page, ("cancelled", "done"), 120)
     assert status == "cancelled"
+    page.screenshot(path=str(ARTIFACTS / "cancelled.png"))
+    metas = [json.loads(p.read_text()) for p in Path(server["runs"]).glob("*/run.json")]
+    assert "cancelled" in [m["status"] for m in metas]
