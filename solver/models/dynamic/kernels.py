@@ -79,7 +79,10 @@ from .layout import (
     C_ANGLE,
     C_POS,
     C_SPEED,
+    C_TILT,
+    C_TILT_RATE,
     C_VEL,
+    CAGE_SIZE,
     K_ANGLE,
     K_AZIMUTH,
     K_DEFLECTION,
@@ -114,6 +117,7 @@ from .layout import (
     P_GUIDE,
     P_HEATHCOTE,
     P_IC,
+    P_ICD,
     P_IRD,
     P_IRP,
     P_JB,
@@ -480,59 +484,91 @@ def ball_race_contact(
 
 
 @njit(cache=True)
-def cage_pocket(y, jb, cb, j, par, work, out):
+def cage_frame(y, cb, rot, omega):
+    """Cage orientation ``rot`` = R(tilt) R_x(angle) (cage axes in inertial components) and angular
+    velocity ``omega`` = speed * (R(tilt) e_x) + tilt rates (small-tilt kinematics), inertial."""
+    tilt = np.empty((3, 3))
+    rotation_from_vector(0.0, y[cb + C_TILT], y[cb + C_TILT + 1], tilt)
+    spin = np.empty((3, 3))
+    rotation_from_vector(y[cb + C_ANGLE], 0.0, 0.0, spin)
+    rot[:, :] = tilt @ spin
+    wc = y[cb + C_SPEED]
+    omega[0] = wc * tilt[0, 0]
+    omega[1] = wc * tilt[1, 0] + y[cb + C_TILT_RATE]
+    omega[2] = wc * tilt[2, 0] + y[cb + C_TILT_RATE + 1]
+
+
+@njit(cache=True)
+def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     """Ball ``j`` against its cage pocket through D1's kernel (solver.physics.cage_contact).
 
-    The pocket frame (x, r, theta) is the azimuth frame at the pocket angle theta_c + 2 pi j / Z.
-    ``work``: scratch of length ``POCKET_KIN_SIZE + POCKET_OUT_SIZE``. ``out`` (10, inertial): force
-    on the ball (3), moment on the ball about its centre (3), force on the cage (3), moment on the
-    cage about its centre, x component (1). Returns the normal force [N] (>= 0).
+    Pocket frame (x, r, theta): the cage axes ``cage_rot`` turned by the pocket angle 2 pi j / Z
+    about the cage axis; pocket centre at the pocket radius along r. ``cage_omega``: cage angular
+    velocity (inertial). ``work``: scratch of length ``POCKET_KIN_SIZE + POCKET_OUT_SIZE``.
+    ``out`` (12, inertial): force on the ball (3), moment on the ball about its centre (3), force on
+    the cage (3), moment on the cage about its centre (3). Returns the normal force [N] (>= 0).
     """
-    for i in range(10):
+    for i in range(12):
         out[i] = 0.0
     z = int(par[P_Z])
-    psi = y[cb + C_ANGLE] + 2.0 * math.pi * j / z
+    psi = 2.0 * math.pi * j / z
     cp, sp = math.cos(psi), math.sin(psi)
+    R = cage_rot
+    # pocket axes in inertial components
+    exx, exy, exz = R[0, 0], R[1, 0], R[2, 0]
+    erx = R[0, 1] * cp + R[0, 2] * sp
+    ery = R[1, 1] * cp + R[1, 2] * sp
+    erz = R[2, 1] * cp + R[2, 2] * sp
+    etx = -R[0, 1] * sp + R[0, 2] * cp
+    ety = -R[1, 1] * sp + R[1, 2] * cp
+    etz = -R[2, 1] * sp + R[2, 2] * cp
     rp = par[P_CAGE_R]
     ccx, ccy, ccz = y[cb + C_POS], y[cb + C_POS + 1], y[cb + C_POS + 2]
-    wc = y[cb + C_SPEED]
+    wcx, wcy, wcz = cage_omega[0], cage_omega[1], cage_omega[2]
     pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
     # ball centre relative to the pocket centre, and its rate seen from the cage
-    dx, dy, dz = pbx - ccx, pby - (ccy + rp * cp), pbz - (ccz + rp * sp)
-    a0, a1, a2 = _cross(wc, 0.0, 0.0, pbx - ccx, pby - ccy, pbz - ccz)
+    dx = pbx - ccx - rp * erx
+    dy = pby - ccy - rp * ery
+    dz = pbz - ccz - rp * erz
+    a0, a1, a2 = _cross(wcx, wcy, wcz, pbx - ccx, pby - ccy, pbz - ccz)
     vx = y[jb + B_VEL] - y[cb + C_VEL] - a0
     vy = y[jb + B_VEL + 1] - y[cb + C_VEL + 1] - a1
     vz = y[jb + B_VEL + 2] - y[cb + C_VEL + 2] - a2
+    wx = y[jb + B_OMEGA] - wcx
+    wy = y[jb + B_OMEGA + 1] - wcy
+    wz = y[jb + B_OMEGA + 2] - wcz
     kin = work[:POCKET_KIN_SIZE]
     res = work[POCKET_KIN_SIZE : POCKET_KIN_SIZE + POCKET_OUT_SIZE]
-    kin[PK_POSITION] = dx
-    kin[PK_POSITION + 1] = dy * cp + dz * sp
-    kin[PK_POSITION + 2] = -dy * sp + dz * cp
-    kin[PK_VELOCITY] = vx
-    kin[PK_VELOCITY + 1] = vy * cp + vz * sp
-    kin[PK_VELOCITY + 2] = -vy * sp + vz * cp
-    wx = y[jb + B_OMEGA] - wc
-    wy, wz = y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
-    kin[PK_OMEGA] = wx
-    kin[PK_OMEGA + 1] = wy * cp + wz * sp
-    kin[PK_OMEGA + 2] = -wy * sp + wz * cp
+    kin[PK_POSITION] = dx * exx + dy * exy + dz * exz
+    kin[PK_POSITION + 1] = dx * erx + dy * ery + dz * erz
+    kin[PK_POSITION + 2] = dx * etx + dy * ety + dz * etz
+    kin[PK_VELOCITY] = vx * exx + vy * exy + vz * exz
+    kin[PK_VELOCITY + 1] = vx * erx + vy * ery + vz * erz
+    kin[PK_VELOCITY + 2] = vx * etx + vy * ety + vz * etz
+    kin[PK_OMEGA] = wx * exx + wy * exy + wz * exz
+    kin[PK_OMEGA + 1] = wx * erx + wy * ery + wz * erz
+    kin[PK_OMEGA + 2] = wx * etx + wy * ety + wz * etz
     pocket_contact(kin, par[P_POCKET_BLOCK : P_POCKET_BLOCK + POCKET_PARAM_SIZE], res)
     fn = res[PO_NORMAL_FORCE]
     if fn <= 0.0:
         return 0.0
-    # back to inertial components: e_x, e_r = (0, cp, sp), e_theta = (0, -sp, cp)
-    fx = res[PO_FORCE]
-    fy = res[PO_FORCE + 1] * cp - res[PO_FORCE + 2] * sp
-    fz = res[PO_FORCE + 1] * sp + res[PO_FORCE + 2] * cp
+    f0, f1, f2 = res[PO_FORCE], res[PO_FORCE + 1], res[PO_FORCE + 2]
+    fx = f0 * exx + f1 * erx + f2 * etx
+    fy = f0 * exy + f1 * ery + f2 * ety
+    fz = f0 * exz + f1 * erz + f2 * etz
+    m0, m1, m2 = res[PO_MOMENT_BALL], res[PO_MOMENT_BALL + 1], res[PO_MOMENT_BALL + 2]
     out[0], out[1], out[2] = fx, fy, fz
-    out[3] = res[PO_MOMENT_BALL]
-    out[4] = res[PO_MOMENT_BALL + 1] * cp - res[PO_MOMENT_BALL + 2] * sp
-    out[5] = res[PO_MOMENT_BALL + 1] * sp + res[PO_MOMENT_BALL + 2] * cp
+    out[3] = m0 * exx + m1 * erx + m2 * etx
+    out[4] = m0 * exy + m1 * ery + m2 * ety
+    out[5] = m0 * exz + m1 * erz + m2 * etz
     out[6], out[7], out[8] = -fx, -fy, -fz
     # contact point relative to the cage centre (pocket centre + PO_POINT), inertial
-    ly = rp * cp + res[PO_POINT + 1] * cp - res[PO_POINT + 2] * sp
-    lz = rp * sp + res[PO_POINT + 1] * sp + res[PO_POINT + 2] * cp
-    out[9] = -(ly * fz - lz * fy)
+    q0, q1, q2 = res[PO_POINT], res[PO_POINT + 1] + rp, res[PO_POINT + 2]
+    lx = q0 * exx + q1 * erx + q2 * etx
+    ly = q0 * exy + q1 * ery + q2 * ety
+    lz = q0 * exz + q1 * erz + q2 * etz
+    c0, c1, c2 = _cross(lx, ly, lz, -fx, -fy, -fz)
+    out[9], out[10], out[11] = c0, c1, c2
     return fn
 
 
@@ -594,12 +630,15 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     jinv = 1.0 / par[P_JB]
     g = par[P_GRAVITY]
     cage_on = par[P_CAGE_ON] > 0.0
-    pk = np.empty(10)
+    pk = np.empty(12)
     work = np.empty(TRACTION_WORK_SIZE)
+    crot = np.empty((3, 3))
+    come = np.empty(3)
+    cage_frame(y, cb, crot, come)
     frx = fry = frz = 0.0
     mrx = mry = mrz = 0.0
     fcx = fcy = fcz = 0.0
-    mcx = 0.0
+    mcx = mcy = mcz = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
         ri = rec_inner[j]
@@ -614,7 +653,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         mz = ri[K_M_BALL + 2] + ro[K_M_BALL + 2]
         pocket[j] = 0.0
         if cage_on:
-            pocket[j] = cage_pocket(y, jb, cb, j, par, work, pk)
+            pocket[j] = cage_pocket(y, jb, cb, j, par, crot, come, work, pk)
             fx += pk[0]
             fy += pk[1]
             fz += pk[2]
@@ -625,6 +664,8 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
             fcy += pk[7]
             fcz += pk[8]
             mcx += pk[9]
+            mcy += pk[10]
+            mcz += pk[11]
         frx += ri[K_F_RING]
         fry += ri[K_F_RING + 1]
         frz += ri[K_F_RING + 2]
@@ -676,7 +717,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         dydt[rb + R_TILT_RATE] = (mry + par[P_MY] - irp * wi * gz_rate) / ird
         dydt[rb + R_TILT_RATE + 1] = (mrz + par[P_MZ] + irp * wi * gy_rate) / ird
     # cage
-    for i in range(8):
+    for i in range(CAGE_SIZE):
         dydt[cb + i] = 0.0
     if cage_on:
         mc = par[P_MC]
@@ -685,8 +726,18 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         dydt[cb + C_VEL] = (fcx + ld[0]) / mc
         dydt[cb + C_VEL + 1] = (fcy + ld[1]) / mc
         dydt[cb + C_VEL + 2] = (fcz + ld[2]) / mc - g
+        # spin about the cage's own axis, and the two tilts (rigid ring: polar inertia I_p,
+        # diametral I_d; small tilts with the gyroscopic coupling as for the inner ring)
+        icp, icd = par[P_IC], par[P_ICD]
+        ax = crot[0, 0] * mcx + crot[1, 0] * mcy + crot[2, 0] * mcz
         dydt[cb + C_ANGLE] = y[cb + C_SPEED]
-        dydt[cb + C_SPEED] = (mcx + ld[3]) / par[P_IC]
+        dydt[cb + C_SPEED] = (ax + ld[3]) / icp
+        wc = y[cb + C_SPEED]
+        ty_rate, tz_rate = y[cb + C_TILT_RATE], y[cb + C_TILT_RATE + 1]
+        dydt[cb + C_TILT] = ty_rate
+        dydt[cb + C_TILT + 1] = tz_rate
+        dydt[cb + C_TILT_RATE] = (mcy - icp * wc * tz_rate) / icd
+        dydt[cb + C_TILT_RATE + 1] = (mcz + icp * wc * ty_rate) / icd
 
 
 @njit(cache=True)

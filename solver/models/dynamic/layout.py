@@ -14,9 +14,11 @@ origin = outer-ring centre on the plane of the ball centres in the just-touching
   position [m], ``R_VEL`` (3) [m/s], ``R_TILT`` (2) small-rotation tilt vector (about y, z) [rad],
   ``R_TILT_RATE`` (2) [rad/s], ``R_PHI_INNER`` spin angle of the inner ring [rad],
   ``R_PHI_OUTER`` spin angle of the outer ring [rad];
-- cage, 8 slots from ``cage_base(Z)``: ``C_POS`` (3) centre [m], ``C_VEL`` (3) [m/s],
-  ``C_ANGLE`` rotation about x [rad], ``C_SPEED`` angular speed about x [rad/s]. The cage is modelled
-  with 4 DOF (3 translations + rotation about the axis); its tilts are not modelled.
+- cage, 12 slots from ``cage_base(Z)``: ``C_POS`` (3) centre [m], ``C_VEL`` (3) [m/s],
+  ``C_ANGLE`` rotation about its own axis [rad], ``C_SPEED`` angular speed about it [rad/s],
+  ``C_TILT`` (2) small-rotation tilt vector about y, z [rad], ``C_TILT_RATE`` (2) [rad/s]: 6 DOF.
+  Cage orientation R = R(tilt) R_x(angle). The guiding land acts on the cage centre (no tilt
+  moment from the land).
 """
 
 from __future__ import annotations
@@ -40,11 +42,13 @@ R_PHI_INNER = 10
 R_PHI_OUTER = 11
 
 # ---- state: cage block (offsets from cage_base) -------------------------------------------------
-CAGE_SIZE = 8
+CAGE_SIZE = 12
 C_POS = 0
 C_VEL = 3
 C_ANGLE = 6
 C_SPEED = 7
+C_TILT = 8
+C_TILT_RATE = 10
 
 
 def ball_base(j: int) -> int:
@@ -123,7 +127,8 @@ P_V_REG = 50  # regularisation speed of Coulomb friction (tanh) [m/s]
 P_HEATHCOTE = 51  # 1: evaluate slip on the curved (deformed) ellipse surface
 P_POCKET_BLOCK = 52  # start of the pocket parameter array of solver.physics.cage_contact (9 slots)
 P_LAND_BLOCK = 61  # start of the land parameter array of solver.physics.cage_contact (14 slots)
-N_PARAMS = 75
+P_ICD = 75  # cage diametral inertia [kg m^2]
+N_PARAMS = 76
 
 # ---- per-contact record written by the contact kernel -------------------------------------------
 K_F_BALL = 0  # force on the ball, inertial (3) [N]

@@ -153,7 +153,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         if options.traction
         else "off (frictionless)",
         "damping_ratio": float(options.damping_ratio),
-        "cage_model": "4 DOF (translations + rotation about x)" if options.cage else "off",
+        "cage_model": "6 DOF (translations, rotation, tilts)" if options.cage else "off",
         "lubricant": DEFAULT_OIL_NOTE if inputs.default_lubricant else "from the case [lubricant]",
         "integrator": f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}",
         "steps": stats.steps,

@@ -98,7 +98,9 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
     p[L.P_CAGE_ON] = 1.0 if options.cage else 0.0
     p[L.P_MC] = inputs.cage_mass
     p[L.P_CAGE_R] = 0.5 * dm
+    # cage as a thin ring of radius d_m/2 and width D: polar m R^2, diametral m R^2 / 2 + m D^2 / 12
     p[L.P_IC] = inputs.cage_mass * (0.5 * dm) ** 2
+    p[L.P_ICD] = 0.5 * inputs.cage_mass * (0.5 * dm) ** 2 + inputs.cage_mass * D**2 / 12.0
     p[L.P_CP] = inputs.pocket_clearance
     p[L.P_ZETA_P] = options.pocket_damping_ratio
     p[L.P_MU_P] = inputs.pocket_friction

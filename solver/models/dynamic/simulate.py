@@ -108,6 +108,8 @@ def state_scales(par: np.ndarray, y0: np.ndarray) -> np.ndarray:
     s[cb + L.C_VEL : cb + L.C_VEL + 3] = 10.0 * v
     s[cb + L.C_ANGLE] = 10.0 * delta_ref / rpitch
     s[cb + L.C_SPEED] = 10.0 * v / rpitch
+    s[cb + L.C_TILT : cb + L.C_TILT + 2] = 10.0 * delta_ref / rpitch
+    s[cb + L.C_TILT_RATE : cb + L.C_TILT_RATE + 2] = 10.0 * v / rpitch
     return s
 
 

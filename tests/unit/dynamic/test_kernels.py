@@ -322,13 +322,13 @@ def test_pocket_force_frame_transform_and_cage_reaction():
     """A ball pushed circumferentially into its pocket wall (ball 3, azimuth 60 deg) is pushed back
     along -e_theta with the linear pocket law K_p * penetration; the cage receives the opposite
     force and the moment R x F about its axis."""
-    from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_pocket
+    from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_frame, cage_pocket
 
     par, quad, y0 = start(spindle_inputs(), friction_regularisation=1e-3)
     y = y0.copy()
     z = 18
     cb = L.cage_base(z)
-    y[cb : cb + 8] = 0.0  # cage centred, at rest, angle 0
+    y[cb : cb + L.CAGE_SIZE] = 0.0  # cage centred, at rest, angle 0
     j = 3
     b = L.ball_base(j)
     psi = 2 * math.pi * j / z
@@ -339,8 +339,10 @@ def test_pocket_force_frame_transform_and_cage_reaction():
     y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + shift * e_t
     y[b + 3 : b + 6] = 0.0
     y[b + 10 : b + 13] = 0.0
-    out = np.zeros(10)
-    fn = cage_pocket(y, b, cb, j, par, np.zeros(TRACTION_WORK_SIZE), out)
+    out = np.zeros(12)
+    rot, om = np.empty((3, 3)), np.empty(3)
+    cage_frame(y, cb, rot, om)
+    fn = cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out)
     assert fn == pytest.approx(par[L.P_KP] * pen, rel=1e-9)
     np.testing.assert_allclose(out[0:3], -fn * e_t, atol=1e-12 * fn)
     np.testing.assert_allclose(out[6:9], fn * e_t, atol=1e-12 * fn)
@@ -349,7 +351,7 @@ def test_pocket_force_frame_transform_and_cage_reaction():
     assert out[9] == pytest.approx(np.cross(lever, fn * e_t)[0], rel=1e-9)
     # inside the clearance: no force
     y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + 0.4 * par[L.P_CP] * e_t
-    assert cage_pocket(y, b, cb, j, par, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
+    assert cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
 
 
 def test_gravity_acts_along_minus_z_on_balls_and_cage():
@@ -368,3 +370,35 @@ def test_gravity_acts_along_minus_z_on_balls_and_cage():
     np.testing.assert_allclose(dydt[cb + 3 : cb + 6], [0.0, 0.0, -9.81], atol=1e-9)
     rb = L.ring_base(18)
     np.testing.assert_allclose(dydt[rb + 3 : rb + 6], 0.0, atol=1e-9)
+
+
+def test_tilted_cage_pocket_follows_the_cage():
+    """With the cage tilted (6-DOF cage), a ball at the tilted pocket centre feels nothing, and one
+    pushed along the tilted pocket's circumferential axis is pushed back along that axis; the cage
+    receives the moment of the reaction about its centre (which now has y/z components)."""
+    from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_frame, cage_pocket
+
+    par, quad, y0 = start(spindle_inputs())
+    y = y0.copy()
+    cb = L.cage_base(18)
+    y[cb : cb + L.CAGE_SIZE] = 0.0
+    y[cb + L.C_TILT + 1] = 0.01  # tilt about z
+    rot, om = np.empty((3, 3)), np.empty(3)
+    cage_frame(y, cb, rot, om)
+    j = 4
+    psi = 2 * math.pi * j / 18
+    e_r = rot @ np.array([0.0, math.cos(psi), math.sin(psi)])
+    e_t = rot @ np.array([0.0, -math.sin(psi), math.cos(psi)])
+    b = L.ball_base(j)
+    y[b + 3 : b + 6] = 0.0
+    y[b + 10 : b + 13] = 0.0
+    out = np.zeros(12)
+    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r
+    assert cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
+    pen = 3e-6
+    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + (0.5 * par[L.P_CP] + pen) * e_t
+    fn = cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out)
+    assert fn == pytest.approx(par[L.P_KP] * pen, rel=1e-9)
+    np.testing.assert_allclose(out[0:3], -fn * e_t, atol=1e-12 * fn)
+    lever = 0.5 * par[L.P_DM] * e_r + (0.5 * par[L.P_CP] + pen + 0.5 * par[L.P_D]) * e_t
+    np.testing.assert_allclose(out[9:12], np.cross(lever, fn * e_t), atol=1e-9 * fn * 0.03)
