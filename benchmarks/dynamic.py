@@ -51,9 +51,23 @@ def running_state(inputs, options, revolutions=0.1):
     t_end = revolutions * 2.0 * np.pi / abs(inputs.inner_speed - inputs.outer_speed)
     out = np.empty((1, y.shape[0]))
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
-    advance(y, 0.0, h, np.array([t_end]), out, par, quad, scale, options.tolerance, 1e-6 * h,
-            10_000_000, np.zeros(3, dtype=np.int64), np.zeros((z, L.N_CONTACT_RECORD)),
-            np.zeros((z, L.N_CONTACT_RECORD)), np.zeros(z))
+    advance(
+        y,
+        0.0,
+        h,
+        np.array([t_end]),
+        out,
+        par,
+        quad,
+        scale,
+        options.tolerance,
+        1e-6 * h,
+        10_000_000,
+        np.zeros(3, dtype=np.int64),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros(z),
+    )
     return y
 
 

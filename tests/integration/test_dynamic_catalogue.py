@@ -15,7 +15,10 @@ CASES = [entry.name for entry in catalogue().cases]
 @pytest.mark.slow
 @pytest.mark.parametrize("name", CASES)
 def test_catalogue_case_runs_two_revolutions(name):
-    ds = simulate(resolve_case(name), options=SimulationOptions(shaft_revolutions=2.0, samples_per_revolution=60))
+    ds = simulate(
+        resolve_case(name),
+        options=SimulationOptions(shaft_revolutions=2.0, samples_per_revolution=60),
+    )
     assert ds.attrs["complete"] == 1
     for var, spec in VARIABLES.items():
         if "dynamic" not in spec.models:
@@ -27,6 +30,11 @@ def test_catalogue_case_runs_two_revolutions(name):
     # the cage turns between the speeds of its two rings (epicyclic drive)
     case = resolve_case(name)
     rpm = np.pi / 30.0
-    speeds = sorted([case.operating.inner_ring_speed_rpm * rpm, (case.operating.outer_ring_speed_rpm or 0.0) * rpm])
+    speeds = sorted(
+        [
+            case.operating.inner_ring_speed_rpm * rpm,
+            (case.operating.outer_ring_speed_rpm or 0.0) * rpm,
+        ]
+    )
     cage = ds.cage_speed.isel(time=slice(ds.sizes["time"] // 2, None)).values
     assert np.all((cage > speeds[0]) & (cage < speeds[1]))

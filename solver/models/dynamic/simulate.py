@@ -162,7 +162,9 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     case's optional [simulation] keys (``options.CASE_KEYS``).
     """
     if options is None:
-        options = SimulationOptions() if isinstance(case, DynamicInputs) else options_from_case(case)
+        options = (
+            SimulationOptions() if isinstance(case, DynamicInputs) else options_from_case(case)
+        )
     options = options.validated()
     inputs = case if isinstance(case, DynamicInputs) else inputs_from_case(case)
     speed = abs(inputs.inner_speed - inputs.outer_speed)

@@ -53,9 +53,23 @@ def test_non_finite_state_stops_with_status():
     z = 18
     scale = state_scales(par, y0)
     out = np.empty((1, y.shape[0]))
-    status, t, h, n = advance(y, 0.0, 1e-7, np.array([1e-5]), out, par, quad, scale, 1e-4, 1e-12,
-                              1000, np.zeros(3, dtype=np.int64), np.zeros((z, L.N_CONTACT_RECORD)),
-                              np.zeros((z, L.N_CONTACT_RECORD)), np.zeros(z))
+    status, t, h, n = advance(
+        y,
+        0.0,
+        1e-7,
+        np.array([1e-5]),
+        out,
+        par,
+        quad,
+        scale,
+        1e-4,
+        1e-12,
+        1000,
+        np.zeros(3, dtype=np.int64),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros(z),
+    )
     assert status == STATUS_NOT_FINITE and n == 0
 
 
@@ -71,7 +85,21 @@ def test_escape_status_from_advance():
     z = 18
     scale = state_scales(par, y0)
     out = np.empty((1, y.shape[0]))
-    status, *_ = advance(y, 0.0, 1e-8, np.array([1e-3]), out, par, quad, scale, 1e-4, 1e-16,
-                         10_000_000, np.zeros(3, dtype=np.int64), np.zeros((z, L.N_CONTACT_RECORD)),
-                         np.zeros((z, L.N_CONTACT_RECORD)), np.zeros(z))
+    status, *_ = advance(
+        y,
+        0.0,
+        1e-8,
+        np.array([1e-3]),
+        out,
+        par,
+        quad,
+        scale,
+        1e-4,
+        1e-16,
+        10_000_000,
+        np.zeros(3, dtype=np.int64),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros(z),
+    )
     assert status == STATUS_BALL_ESCAPED

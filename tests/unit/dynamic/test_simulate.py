@@ -154,7 +154,9 @@ def test_optional_simulation_keys_of_a_case_set_the_options():
 
     from solver.models.dynamic.options import options_from_case
 
-    case = SimpleNamespace(simulation=SimpleNamespace(traction=False, gravity_m_s2=0.0, tolerance=None))
+    case = SimpleNamespace(
+        simulation=SimpleNamespace(traction=False, gravity_m_s2=0.0, tolerance=None)
+    )
     opts = options_from_case(case)
     assert opts.traction is False and opts.gravity == 0.0
     assert opts.tolerance == SimulationOptions().tolerance  # not given: default
