@@ -8,16 +8,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from solver.geometry import BearingGeometry
 
 #: Oil used when a case has no [lubricant] table: the ADORE example data set of physics.md §2.6.4
 #: (MIL-L-23699-class turbine oil) with a viscosity typical of a spindle at operating temperature.
-DEFAULT_OIL = {
-    "viscosity": 0.01,  # Pa s
-    "pressure_viscosity": 20.0e-9,  # 1/Pa
-    "traction": (0.0, 0.05, 1.0, 0.036),  # mu_zero, mu_max, slip_at_max [m/s], mu_infinity
-}
+DEFAULT_OIL = MappingProxyType(
+    {
+        "viscosity": 0.01,  # Pa s
+        "pressure_viscosity": 20.0e-9,  # 1/Pa
+        "traction": (0.0, 0.05, 1.0, 0.036),  # mu_zero, mu_max, slip_at_max [m/s], mu_infinity
+    }
+)
 DEFAULT_OIL_NOTE = (
     "no [lubricant] in the case: default oil used (viscosity 0.01 Pa s, pressure-viscosity 20 /GPa, "
     "traction mu_zero 0, mu_max 0.05 at 1 m/s, mu_infinity 0.036; ADORE example data, physics.md §2.6.4)"

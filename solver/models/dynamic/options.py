@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from types import MappingProxyType
 
 from solver.errors import CaseError, Problem
 
@@ -122,13 +123,15 @@ class SimulationOptions:
 
 
 #: [simulation] case keys (optional; when the case schema has them) -> SimulationOptions fields.
-CASE_KEYS = {
-    "traction": "traction",
-    "contact_damping_ratio": "damping_ratio",
-    "gravity_m_s2": "gravity",
-    "tolerance": "tolerance",
-    "model_cage": "cage",
-}
+CASE_KEYS = MappingProxyType(
+    {
+        "traction": "traction",
+        "contact_damping_ratio": "damping_ratio",
+        "gravity_m_s2": "gravity",
+        "tolerance": "tolerance",
+        "model_cage": "cage",
+    }
+)
 
 
 def options_from_case(case, base: SimulationOptions | None = None) -> SimulationOptions:

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import time as _time
 from datetime import UTC, datetime
+from types import MappingProxyType
 
 import numpy as np
 
@@ -36,25 +37,27 @@ from .options import SimulationOptions, options_from_case
 from .output import build_dataset
 from .params import build_params, build_quadrature
 
-_DIVERGENCE_CAUSES = {
-    STATUS_NOT_FINITE: (
-        "the state became non-finite (NaN/inf): a contact force blew up, usually a too-light cage or "
-        "an overload driving a ball through a race"
-    ),
-    STATUS_STEP_COLLAPSE: (
-        "the integration step collapsed below {h_min:.1e} s: the contact forces are too stiff or "
-        "discontinuous (cage pocket impacts or a ball running onto a shoulder); loosen the tolerance "
-        "or check the cage clearances"
-    ),
-    STATUS_BALL_ESCAPED: (
-        "a ball left the raceways (centre more than D/4 from the pitch circle or a deflection above "
-        "2 % of D): the load is too large for the bearing or nothing holds the balls"
-    ),
-    STATUS_TOO_MANY_STEPS: (
-        "the step budget of a chunk ({max_steps} steps) was exhausted: the model is too stiff for the "
-        "requested tolerance"
-    ),
-}
+_DIVERGENCE_CAUSES = MappingProxyType(
+    {
+        STATUS_NOT_FINITE: (
+            "the state became non-finite (NaN/inf): a contact force blew up, usually a too-light cage or "
+            "an overload driving a ball through a race"
+        ),
+        STATUS_STEP_COLLAPSE: (
+            "the integration step collapsed below {h_min:.1e} s: the contact forces are too stiff or "
+            "discontinuous (cage pocket impacts or a ball running onto a shoulder); loosen the tolerance "
+            "or check the cage clearances"
+        ),
+        STATUS_BALL_ESCAPED: (
+            "a ball left the raceways (centre more than D/4 from the pitch circle or a deflection above "
+            "2 % of D): the load is too large for the bearing or nothing holds the balls"
+        ),
+        STATUS_TOO_MANY_STEPS: (
+            "the step budget of a chunk ({max_steps} steps) was exhausted: the model is too stiff for the "
+            "requested tolerance"
+        ),
+    }
+)
 
 
 def _is_cancelled(cancel) -> bool:
