@@ -90,7 +90,8 @@ class RacetraceApp:
         self._run_info = {}
         self._cancel_requested = False
         self._filling = False
-        self.clients = 0
+        self._client_ids = set()
+        self.clients = 0  # connected browsers
         self._init_state()
         self._bind()
 
@@ -155,8 +156,9 @@ class RacetraceApp:
         c.cancel = self.cancel
         c.step = self.step
         c.refresh_runs = self._refresh_runs
-        c.on_client_connected.add(self._client_connected)
-        c.on_client_exited.add(self._client_exited)
+        # Count browser connections at the websocket level: the page's own "exited" signal is not
+        # sent when a browser is killed, and a play loop without viewers floods the log.
+        self.server.add_protocol_to_configure(self._configure_protocol)
 
     def start(self, case_name: str = DEFAULT_CASE, play: bool = True) -> None:
         """Open ``case_name`` solved (quasi-static) before the first page is served."""
@@ -246,6 +248,8 @@ class RacetraceApp:
         except RuntimeError:
             self.preview_now()
             return
+        if not self.state.busy:
+            self.state.status = "updating preview"
         loop.create_task(self._preview_async(generation))
 
     async def _preview_async(self, generation: int) -> None:
@@ -389,7 +393,7 @@ class RacetraceApp:
             try:
                 loop = asyncio.get_running_loop()
             except RuntimeError:
-                return  # started when the server loop runs (see _client_connected)
+                return  # started when a browser connects (see _configure_protocol)
             self._play_task = loop.create_task(self._play_loop())
         if not playing:
             self.update_charts()
@@ -403,12 +407,21 @@ class RacetraceApp:
                 self.state.frame = (int(self.state.frame) + step) % self.source.n_frames
             await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
 
-    def _client_connected(self, *_, **__):
-        self.clients += 1
-        self._on_playing(self.state.playing)
+    def _configure_protocol(self, protocol) -> None:
+        connect, close = protocol.onConnect, protocol.onClose
 
-    def _client_exited(self, *_, **__):
-        self.clients = max(0, self.clients - 1)
+        def on_connect(request, client_id):
+            connect(request, client_id)
+            self._client_ids.add(client_id)
+            self.clients = len(self._client_ids)
+            self._on_playing(self.state.playing)
+
+        def on_close(client_id):
+            close(client_id)
+            self._client_ids.discard(client_id)
+            self.clients = len(self._client_ids)
+
+        protocol.onConnect, protocol.onClose = on_connect, on_close
 
     # ---- scene options --------------------------------------------------------------------------
     def _on_layers(self, **_):

@@ -91,7 +91,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
             with v3.VContainer(fluid=True, classes="pa-2"):
                 with v3.VRow(dense=True):
                     with v3.VCol(cols=12, md=7):
-                        with html.Div(id="view-3d", style="height: 560px; position: relative;"):
+                        with html.Div(id="view-3d", style="height: 480px; position: relative;"):
                             view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
                             app.view = view
                         _time_controls()
