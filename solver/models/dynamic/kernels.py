@@ -67,6 +67,7 @@ from solver.physics.traction import (
     TR_MOMENT_BALL,
     TR_MOMENT_POINT,
     TRACTION_OUT_SIZE,
+    damped_normal_force,
     ellipse_traction,
 )
 
@@ -388,12 +389,9 @@ def ball_race_contact(
         + (vby - ring_vel[1] - a1) * niy
         + (vbz - ring_vel[2] - a2) * niz
     )
-    zeta = par[P_ZETA]
-    q = q_el
-    if zeta > 0.0:
-        q += 2.0 * zeta * math.sqrt(1.5 * kh * math.sqrt(delta) * par[P_MB]) * ddelta
-        if q < 0.0:
-            q = 0.0
+    # D1's damped Hertz law (solver.physics.traction.damped_normal_force): c = 2 zeta sqrt(1.5 K
+    # delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never pulling
+    q = damped_normal_force(delta, ddelta, kh, par[P_ZETA], par[P_MB])
     rec[K_LOAD] = q
     rec[K_ELASTIC] = q_el
     if q <= 0.0:
