@@ -72,7 +72,14 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     attitude = np.degrees(np.arctan2(-sgn * w_r, sgn * w_x))
     angle = obs[..., O_ANGLE]
     semi_major = obs[..., O_SEMI_MAJOR]
-    tilt = states[:, rb + L.R_TILT : rb + L.R_TILT + 2]
+    tilt = states[:, rb + L.R_TILT : rb + L.R_TILT + 2].copy()
+    if int(par[L.P_TILT_MODE]) == 1:
+        # tilt turning with the ring: R = R_x(phi) R(g) = R(R_x(phi) g) R_x(phi), so the tilt
+        # vector relative to the outer ring (inertial axes) is g turned by the ring angle phi
+        phi = states[:, rb + L.R_PHI_INNER]
+        gy, gz = tilt[:, 0].copy(), tilt[:, 1].copy()
+        tilt[:, 0] = gy * np.cos(phi) - gz * np.sin(phi)
+        tilt[:, 1] = gy * np.sin(phi) + gz * np.cos(phi)
     # analysed window for the band metrics
     first = int(math.floor(options.analysis_skip_fraction * (s_count - 1)))
     window = slice(first, s_count)
