@@ -129,11 +129,13 @@ def ball_state(x1, x2, a1, a2, inner_control, model):
     d_i = l_i - model.inner_center_offset
     alpha_i = math.atan2(e1, e2)
 
+    # A contact needs overlap on the raceway side of the groove-centre circle (cos(alpha) > 0): the
+    # other half of the torus is not ring material (only reached far from equilibrium).
     q_o = 0.0
-    if d_o > 0.0:
+    if d_o > 0.0 and x2 > 0.0:
         q_o = contact_stiffness(model, alpha_o, False) * d_o * math.sqrt(d_o)
     q_i = 0.0
-    if d_i > 0.0:
+    if d_i > 0.0 and e2 > 0.0:
         q_i = contact_stiffness(model, alpha_i, True) * d_i * math.sqrt(d_i)
 
     # Kinematics with the inner angle kept within 1 rad of the outer one: the geometric angle of a wide
@@ -165,7 +167,7 @@ def ball_state(x1, x2, a1, a2, inner_control, model):
 
     ring_fx = -(q_i * s_i + t_i * c_i)
     ring_fr = -(q_i * c_i - t_i * s_i)
-    lever = model.inner_groove_radius + 0.5 * max(d_i, 0.0)
+    lever = model.inner_groove_radius + (0.5 * d_i if q_i > 0.0 else 0.0)
     ring_moment = -model.inner_center_radius * ring_fx - lever * t_i
     return (res_x, res_r, ring_fx, ring_fr, ring_moment, q_i, q_o, d_i, d_o, alpha_i, alpha_o,
             beta, omega_c, omega_r, f_c, m_g)
@@ -187,6 +189,39 @@ def inner_center(q, psi, model):
 def _residual_norm(x1, x2, a1, a2, inner_control, model):
     st = ball_state(x1, x2, a1, a2, inner_control, model)
     return st[0], st[1]
+
+
+@njit(cache=True)
+def _fd_step(x1, x2, a1, a2, model):
+    """Finite-difference step [m] for one ball: 1e-9 D, but at most 1e-3 of the larger contact
+    deflection (tiny loads have tiny deflections), and no smaller than ~10 ulp of the positions."""
+    d_o = math.sqrt(x1 * x1 + x2 * x2) - model.outer_center_offset
+    e1 = a1 - x1
+    e2 = a2 - x2
+    d_i = math.sqrt(e1 * e1 + e2 * e2) - model.inner_center_offset
+    h = 1e-9 * model.ball_diameter
+    deflection = max(d_o, d_i)
+    if deflection > 0.0:
+        h = min(h, 1e-3 * deflection)
+    floor = 1e-15 * (model.outer_center_offset + model.inner_center_offset)
+    return max(h, floor)
+
+
+@njit(cache=True)
+def _ball_tolerance(x1, x2, a1, a2, inner_control, model, force_scale):
+    """Residual tolerance [N] of one ball: 1e-12 of its own largest force (contact loads, centrifugal
+    force, gyroscopic friction), but not below what round-off of the positions allows (contact
+    stiffness times a few ulp of the coordinates) nor 1e-16 of the bearing's force scale."""
+    st = ball_state(x1, x2, a1, a2, inner_control, model)
+    own = max(max(st[5], st[6]), max(abs(st[14]), 2.0 * abs(st[15]) / model.ball_diameter))
+    stiffness = 0.0
+    if st[7] > 0.0:
+        stiffness += 1.5 * st[5] / st[7]
+    if st[8] > 0.0:
+        stiffness += 1.5 * st[6] / st[8]
+    coordinates = abs(x1) + abs(x2) + abs(a1) + abs(a2)
+    round_off = 8.0 * 2.220446049250313e-16 * coordinates * stiffness
+    return max(max(1e-12 * own, 1e-16 * force_scale), round_off)
 
 
 @njit(cache=True)
@@ -234,35 +269,50 @@ def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
         d_guess = (max(st[14], 1e-12 * force_scale) / k_o) ** (2.0 / 3.0)
         x1 = n1 * (model.outer_center_offset + d_guess)
         x2 = n2 * (model.outer_center_offset + d_guess)
+    # Newton in polar coordinates about the outer groove centre (rho = |X|, phi = alpha_o): a ball
+    # held by the outer race alone slides along the groove (phi) at constant deflection, which a
+    # Cartesian step cannot follow.
+    rho = math.sqrt(x1 * x1 + x2 * x2)
+    phi = math.atan2(x1, x2)
     r1, r2 = _residual_norm(x1, x2, a1, a2, inner_control, model)
     norm = math.hypot(r1, r2)
-    for _ in range(100):
+    for _ in range(60):
+        tol = _ball_tolerance(x1, x2, a1, a2, inner_control, model, force_scale)
         if norm <= tol:
             return x1, x2, True
-        p1, p2 = _residual_norm(x1 + h, x2, a1, a2, inner_control, model)
-        s1, s2 = _residual_norm(x1, x2 + h, a1, a2, inner_control, model)
+        h = _fd_step(x1, x2, a1, a2, model)
+        hp = h / rho
+        p1, p2 = _residual_norm((rho + h) * math.sin(phi), (rho + h) * math.cos(phi), a1, a2,
+                                inner_control, model)
+        s1, s2 = _residual_norm(rho * math.sin(phi + hp), rho * math.cos(phi + hp), a1, a2,
+                                inner_control, model)
         j11 = (p1 - r1) / h
         j21 = (p2 - r2) / h
-        j12 = (s1 - r1) / h
-        j22 = (s2 - r2) / h
+        j12 = (s1 - r1) / hp
+        j22 = (s2 - r2) / hp
         det = j11 * j22 - j12 * j21
         scale = abs(j11 * j22) + abs(j12 * j21)
         if scale == 0.0 or abs(det) <= 1e-14 * scale:
             return x1, x2, False
-        dx1 = -(j22 * r1 - j12 * r2) / det
-        dx2 = -(-j21 * r1 + j11 * r2) / det
-        # keep a step within a fraction of the groove-centre offset (the deflections are far smaller)
-        step = math.hypot(dx1, dx2)
+        d_rho = -(j22 * r1 - j12 * r2) / det
+        d_phi = -(-j21 * r1 + j11 * r2) / det
+        # keep a step within a fraction of the groove-centre offset and 0.3 rad along the groove
+        factor = 1.0
         limit = 0.05 * model.outer_center_offset
-        if step > limit:
-            dx1 *= limit / step
-            dx2 *= limit / step
-            step = limit
+        if abs(d_rho) > limit:
+            factor = limit / abs(d_rho)
+        if abs(d_phi) * factor > 0.3:
+            factor = 0.3 / abs(d_phi)
+        d_rho *= factor
+        d_phi *= factor
+        step = math.hypot(d_rho, rho * d_phi)
         t = 1.0
         accepted = False
-        for _ls in range(40):
-            n1 = x1 + t * dx1
-            n2 = x2 + t * dx2
+        for _ls in range(30):
+            n_rho = rho + t * d_rho
+            n_phi = phi + t * d_phi
+            n1 = n_rho * math.sin(n_phi)
+            n2 = n_rho * math.cos(n_phi)
             q1, q2 = _residual_norm(n1, n2, a1, a2, inner_control, model)
             new_norm = math.hypot(q1, q2)
             if new_norm < (1.0 - 1e-4 * t) * norm or new_norm <= tol:
@@ -271,7 +321,8 @@ def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
             t *= 0.5
         if not accepted:
             # no decrease possible: converged to round-off if the step is negligible
-            return x1, x2, step <= 1e-13 * D
+            return x1, x2, step <= 1e-13 * D or norm <= 1e3 * tol
+        rho, phi = n_rho, n_phi
         x1, x2, r1, r2, norm = n1, n2, q1, q2, new_norm
         if t * step <= 1e-15 * D:
             return x1, x2, True
@@ -321,8 +372,9 @@ def ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, mod
         _generalised(st[2], st[3], st[4], psi, gen)
         for k in range(5):
             residual[k] += gen[k]
-        if not want_jacobian or st[7] <= 0.0:
+        if not want_jacobian or st[5] <= 0.0:
             continue  # a ball without inner contact exerts no force on the ring
+        h = _fd_step(x1, x2, a1, a2, model)
         # finite-difference partial derivatives w.r.t. (x1, x2, a1, a2)
         d = np.empty((5, 4))  # rows: res_x, res_r, ring_fx, ring_fr, ring_moment
         for col in range(4):
@@ -432,25 +484,53 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
             rhs[a] = -residual[idx[a]] / rscale[idx[a]]
             for b in range(n):
                 jac[a, b] = jacobian[idx[a], idx[b]] * qscale[idx[b]] / rscale[idx[a]]
+        # Directions the balls do not resist at all (e.g. a tangential shift with a single loaded
+        # ball) have zero columns: leave them out of this step.
+        col_norm = np.zeros(n)
+        row_norm = np.zeros(n)
+        for a in range(n):
+            for b in range(n):
+                col_norm[b] += jac[a, b] * jac[a, b]
+                row_norm[a] += jac[a, b] * jac[a, b]
+        big = max(np.max(col_norm), 1e-300) if n > 0 else 1.0
+        active = np.zeros(n, dtype=np.bool_)
+        for a in range(n):
+            active[a] = col_norm[a] > 1e-24 * big or row_norm[a] > 1e-24 * big
         accepted = False
         for attempt in range(12):
             step = np.zeros(n)
             solved = True
             if mu == 0.0:
-                det_ok = True
-                try_lm = False
-                # plain Newton if the Jacobian is well conditioned
-                jt = jac.copy()
-                cond = np.linalg.cond(jt) if n > 0 else 1.0
-                if not np.isfinite(cond) or cond > 1e12:
-                    det_ok = False
-                if det_ok:
-                    step = np.linalg.solve(jt, rhs)
+                # plain Newton on the active block if it is well conditioned
+                m_act = 0
+                for a in range(n):
+                    if active[a]:
+                        m_act += 1
+                sub = np.empty((m_act, m_act))
+                sub_rhs = np.empty(m_act)
+                ia = 0
+                for a in range(n):
+                    if not active[a]:
+                        continue
+                    sub_rhs[ia] = rhs[a]
+                    ib = 0
+                    for b in range(n):
+                        if active[b]:
+                            sub[ia, ib] = jac[a, b]
+                            ib += 1
+                    ia += 1
+                cond = np.linalg.cond(sub) if m_act > 0 else 1.0
+                if np.isfinite(cond) and cond <= 1e12:
+                    sub_step = np.linalg.solve(sub, sub_rhs) if m_act > 0 else np.zeros(0)
+                    ia = 0
+                    for a in range(n):
+                        if active[a]:
+                            step[a] = sub_step[ia]
+                            ia += 1
                 else:
-                    try_lm = True
-                if try_lm:
                     mu = 1e-6
             if mu > 0.0:
+                # Levenberg–Marquardt with Marquardt's diagonal scaling
                 jtj = jac.T @ jac
                 diag_max = 0.0
                 for a in range(n):
@@ -458,7 +538,7 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
                 if diag_max == 0.0:
                     diag_max = 1.0
                 for a in range(n):
-                    jtj[a, a] += mu * (jtj[a, a] + 1e-3 * diag_max) + 1e-300
+                    jtj[a, a] = jtj[a, a] * (1.0 + mu) + 1e-15 * diag_max
                 step = np.linalg.solve(jtj, jac.T @ rhs)
             if not np.all(np.isfinite(step)):
                 solved = False
@@ -557,7 +637,7 @@ def _set_component(q, k, value, direction):
 
 
 @njit(cache=True)
-def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi):
+def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resolution):
     """Set component k of q (see :func:`_static_excess`) in [lo, hi] (widened if needed) so that the
     static residual along ``direction`` vanishes; it decreases as the component grows. Left unchanged
     when no ball is loaded anywhere in the bracket (the residual carries no information there)."""
@@ -588,7 +668,7 @@ def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi):
         return False
     for _ in range(100):
         mid = 0.5 * (lo + hi)
-        if mid == lo or mid == hi:
+        if mid == lo or mid == hi or hi - lo <= resolution:
             break
         _set_component(q, k, mid, direction)
         f_mid, _n = _static_excess(q, k, applied, azimuth, model, direction)
@@ -622,9 +702,12 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
     shift = model.inner_center_axial - model.outer_center_axial  # A0 sin(alpha0)
     tilt_span = span / model.inner_center_radius
     dummy = np.zeros(2)
+    resolution = 1e-3 * length_scale  # a starting point; Newton takes it from there
     for _ in range(passes):
         if fr > 0.0:
-            _bisect_component(q, 1, applied, azimuth, model, radial, -span, span)
-        _bisect_component(q, 0, applied, azimuth, model, dummy, -shift - span, -shift + span)
+            _bisect_component(q, 1, applied, azimuth, model, radial, -span, span, resolution)
+        _bisect_component(q, 0, applied, azimuth, model, dummy, -shift - span, -shift + span,
+                          resolution)
         if free_tilt and mm > 0.0:
-            _bisect_component(q, 2, applied, azimuth, model, moment_dir, -tilt_span, tilt_span)
+            _bisect_component(q, 2, applied, azimuth, model, moment_dir, -tilt_span, tilt_span,
+                              resolution / model.inner_center_radius)

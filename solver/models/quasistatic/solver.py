@@ -67,20 +67,26 @@ class _Problem:
         self.free = np.array([True, True, True, operating.tilt_is_free, operating.tilt_is_free])
         static = kernels.ball_model(geometry, 0.0, 0.0)
         self.static_model = static
-        # force scale: the largest of the applied loads and the centrifugal force at full speed
+        # force scale: the largest of the applied loads and the centrifugal force at the speed
+        # solved for (see scales())
         omega_max = max(abs(operating.inner_ring_speed), abs(operating.outer_ring_speed))
         half_pitch = 0.5 * geometry.pitch_diameter
-        centrifugal = geometry.ball_mass * half_pitch * omega_max**2
+        self.centrifugal = geometry.ball_mass * half_pitch * omega_max**2
         moment = abs(operating.tilting_moment or 0.0) / half_pitch
-        loads = max(abs(operating.axial_load), abs(operating.radial_load), moment)
-        self.force_scale = max(loads, centrifugal, 1e-6)
-        # length scale: deflection of one ball carrying a share of the load
+        self.loads = max(abs(operating.axial_load), abs(operating.radial_load), moment, 1e-6)
         alpha0 = geometry.free_contact_angle
         k_i = kernels.contact_stiffness(static, alpha0, True)
         k_o = kernels.contact_stiffness(static, alpha0, False)
         self.ball_stiffness = (k_i ** (-2.0 / 3.0) + k_o ** (-2.0 / 3.0)) ** -1.5
-        share = max(loads, centrifugal) / max(1.0, 0.25 * z)
-        self.length_scale = max((share / self.ball_stiffness) ** (2.0 / 3.0), 1e-9)
+        self.force_scale, self.length_scale = self.scales(1.0)
+
+    def scales(self, speed_fraction: float):
+        """(force scale [N], length scale [m]) at a fraction of the full speed: the larger of the
+        applied loads and the centrifugal force, and the deflection of a ball carrying a share."""
+        force = max(self.loads, self.centrifugal * speed_fraction**2)
+        share = force / max(1.0, 0.25 * self.azimuth.size)
+        length = max((share / self.ball_stiffness) ** (2.0 / 3.0), 1e-12)
+        return force, length
 
     def model(self, speed_fraction: float):
         op = self.operating
@@ -108,7 +114,7 @@ def _static_start(problem: _Problem, load_fraction: float):
     q = np.zeros(5)
     q[3:] = problem.operating.imposed_tilt()
     kernels.static_start(q, problem.applied * load_fraction, problem.operating.tilt_is_free,
-                         problem.azimuth, model, problem.length_scale, 3)
+                         problem.azimuth, model, problem.scales(0.0)[1], 3)
     return q, problem.initial_positions(q, model)
 
 
@@ -126,9 +132,10 @@ class _State:
 
 def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fraction: float):
     model = problem.model(speed_fraction)
+    force_scale, length_scale = problem.scales(speed_fraction)
     converged, iterations, merit = kernels.solve_ring(
         state.q, problem.free, problem.applied * load_fraction, problem.azimuth, state.position,
-        state.inner_control, model, problem.force_scale, problem.length_scale, RING_TOLERANCE,
+        state.inner_control, model, force_scale, length_scale, RING_TOLERANCE,
         MAX_RING_ITERATIONS,
     )
     return bool(converged), int(iterations), float(merit)
@@ -280,8 +287,7 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     psi = problem.azimuth
     alpha = states[:, [9, 10]].copy()
     load = states[:, [5, 6]].copy()
-    deflection = np.maximum(states[:, [7, 8]], 0.0)
-    load[deflection <= 0.0] = 0.0
+    deflection = np.where(load > 0.0, np.maximum(states[:, [7, 8]], 0.0), 0.0)
     beta = states[:, 11].copy()
     omega_c = states[:, 12].copy()
     omega_r = states[:, 13].copy()
