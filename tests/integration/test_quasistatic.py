@@ -404,3 +404,40 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
     rate = np.cross(np.array([omega_c, 0.0, 0.0]), geometry.ball_inertia * w_b)
     np.testing.assert_allclose(moment, rate, rtol=1e-9, atol=1e-14)
     assert rate[2] > 0.0  # along +e_theta for either direction of rotation
+
+
+def test_race_control_cycle_is_reported(monkeypatch):
+    """If the Jones decision flips back and forth, the last solution is kept and the note says so."""
+    from solver.models.quasistatic import solver as driver
+
+    calls = {"n": 0}
+
+    def flipping(states, model):
+        calls["n"] += 1
+        return np.full(states.shape[0], calls["n"] % 2 == 1)
+
+    monkeypatch.setattr(driver, "_race_control", flipping)
+    geometry, op = spindle(), OperatingPoint(0.0, 0.0, 300.0, 100.0)
+    sol = solve_operating_point(geometry, op)
+    assert "cycles" in sol.race_control_note
+    check_equilibrium(geometry, op, sol)
+
+
+def test_race_control_inner_at_high_speed_is_consistent():
+    """Per-ball decisions are a fixed point of the Jones criterion (recomputed from the outputs with
+    the exact Hertz solution)."""
+    geometry = deep_groove(15e-6)
+    op = OperatingPoint(6000 * RPM, 0.0, 300.0, 2000.0)
+    sol = solve_operating_point(geometry, op)
+    assert sol.race_control_note == ""
+    for j in range(geometry.ball_count):
+        q_i, q_o = sol.contact_load[j]
+        if q_i == 0.0:
+            assert sol.race_control[j] == "outer"
+            continue
+        ci = race_contact(geometry, sol.contact_angle[j, 0], q_i, "inner")
+        co = race_contact(geometry, sol.contact_angle[j, 1], q_o, "outer")
+        lhs = q_i * ci.semi_major * ci.elliptic_e * math.cos(sol.contact_angle[j, 0]
+                                                               - sol.contact_angle[j, 1])
+        rhs = q_o * co.semi_major * co.elliptic_e
+        assert (sol.race_control[j] == "inner") == (lhs > rhs)
