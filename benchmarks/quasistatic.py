@@ -73,8 +73,10 @@ def main() -> None:
         g = case.geometry()
         base = operating_point_from_case(case)
         state_sweep(g, base, speeds)
-        t_sweep = median_time(lambda: state_sweep(g, base, speeds), sweep_repeats)
-        t_sweep_ds = median_time(lambda: quasistatic_speed_sweep(case, speeds), sweep_repeats)
+        t_sweep = median_time(lambda g=g, base=base: state_sweep(g, base, speeds), sweep_repeats)
+        t_sweep_ds = median_time(
+            lambda case=case: quasistatic_speed_sweep(case, speeds), sweep_repeats
+        )
         print(f"{name}: 31-point sweep 0-30 000 rpm (arrays):  {t_sweep:8.3f} s")
         print(f"{name}: 31-point sweep 0-30 000 rpm (Dataset): {t_sweep_ds:8.3f} s")
 

@@ -21,8 +21,12 @@ def register(subparsers) -> None:
         "print the load distribution; optionally save the results Dataset as NetCDF.",
     )
     parser.add_argument("case", metavar="CASE", help="case file (.toml) or catalogue name")
-    parser.add_argument("--output", "-o", metavar="FILE.nc", help="write the results Dataset (NetCDF)")
-    parser.add_argument("--json", action="store_true", help="print a JSON summary instead of a table")
+    parser.add_argument(
+        "--output", "-o", metavar="FILE.nc", help="write the results Dataset (NetCDF)"
+    )
+    parser.add_argument(
+        "--json", action="store_true", help="print a JSON summary instead of a table"
+    )
     parser.set_defaults(func=run)
 
 
@@ -32,6 +36,7 @@ def _pressure_unit(p_max: float) -> tuple[str, float]:
 
 def summary(ds) -> dict:
     """JSON-serialisable summary of a quasi-static Dataset (SI units, angles in degree)."""
+
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
 
@@ -39,34 +44,53 @@ def summary(ds) -> dict:
     inner_speed = float(ds.attrs.get("inner_ring_speed_rad_s", 0.0))
     return {
         "model": "quasistatic",
-        "units": {"angle": "degree", "load": "N", "length": "m", "pressure": "Pa",
-                  "speed": "rad/s", "moment": "N m"},
+        "units": {
+            "angle": "degree",
+            "load": "N",
+            "length": "m",
+            "pressure": "Pa",
+            "speed": "rad/s",
+            "moment": "N m",
+        },
         "inner_ring_speed_rpm": inner_speed * 30.0 / math.pi,
         "outer_ring_speed_rpm": float(ds.attrs.get("outer_ring_speed_rad_s", 0.0)) * 30.0 / math.pi,
         "inner_ring_offset_m": floats(ds.inner_ring_offset.values),
         "inner_ring_tilt_deg": floats(ds.inner_ring_tilt.values),
         "inner_ring_moment_Nm": floats(ds.inner_ring_moment.values),
         "cage_speed_rad_s": float(ds.cage_speed.values),
-        "cage_to_shaft_speed_ratio": (float(ds.cage_speed.values) / inner_speed
-                                      if inner_speed else None),
+        "cage_to_shaft_speed_ratio": (
+            float(ds.cage_speed.values) / inner_speed if inner_speed else None
+        ),
         "max_contact_load_N": {"inner": float(load[:, 0].max()), "outer": float(load[:, 1].max())},
-        "max_pressure_Pa": {"inner": float(ds.max_pressure.values[:, 0].max()),
-                            "outer": float(ds.max_pressure.values[:, 1].max())},
-        "solver": {"iterations": int(ds.attrs.get("solver_iterations", 0)),
-                   "residual": float(ds.attrs.get("solver_residual", 0.0)),
-                   "race_control_note": ds.attrs.get("race_control_note", "")},
+        "max_pressure_Pa": {
+            "inner": float(ds.max_pressure.values[:, 0].max()),
+            "outer": float(ds.max_pressure.values[:, 1].max()),
+        },
+        "solver": {
+            "iterations": int(ds.attrs.get("solver_iterations", 0)),
+            "residual": float(ds.attrs.get("solver_residual", 0.0)),
+            "race_control_note": ds.attrs.get("race_control_note", ""),
+        },
         "balls": [
             {
                 "azimuth_deg": float(ds.ball_azimuth.values[j]),
-                "contact_angle_deg": {"inner": float(ds.contact_angle.values[j, 0]),
-                                      "outer": float(ds.contact_angle.values[j, 1])},
+                "contact_angle_deg": {
+                    "inner": float(ds.contact_angle.values[j, 0]),
+                    "outer": float(ds.contact_angle.values[j, 1]),
+                },
                 "contact_load_N": {"inner": float(load[j, 0]), "outer": float(load[j, 1])},
-                "semi_major_m": {"inner": float(ds.ellipse_semi_major.values[j, 0]),
-                                 "outer": float(ds.ellipse_semi_major.values[j, 1])},
-                "semi_minor_m": {"inner": float(ds.ellipse_semi_minor.values[j, 0]),
-                                 "outer": float(ds.ellipse_semi_minor.values[j, 1])},
-                "max_pressure_Pa": {"inner": float(ds.max_pressure.values[j, 0]),
-                                    "outer": float(ds.max_pressure.values[j, 1])},
+                "semi_major_m": {
+                    "inner": float(ds.ellipse_semi_major.values[j, 0]),
+                    "outer": float(ds.ellipse_semi_major.values[j, 1]),
+                },
+                "semi_minor_m": {
+                    "inner": float(ds.ellipse_semi_minor.values[j, 0]),
+                    "outer": float(ds.ellipse_semi_minor.values[j, 1]),
+                },
+                "max_pressure_Pa": {
+                    "inner": float(ds.max_pressure.values[j, 0]),
+                    "outer": float(ds.max_pressure.values[j, 1]),
+                },
                 "race_control": str(ds.race_control.values[j]),
             }
             for j in range(ds.sizes["ball"])
@@ -105,10 +129,14 @@ def table(ds, case) -> str:
     if note and "settled" not in note:
         lines.append(f"note: {note}")
     lines.append("")
-    head = (f"{'ball':>4} {'psi':>7} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'a_i':>7} "
-            f"{'b_i':>7} {'a_o':>7} {'b_o':>7} {'p_i':>7} {'p_o':>7}  control")
-    units = (f"{'':>4} {'deg':>7} {'deg':>7} {'deg':>7} {'N':>9} {'N':>9} {'mm':>7} {'mm':>7} "
-             f"{'mm':>7} {'mm':>7} {unit:>7} {unit:>7}")
+    head = (
+        f"{'ball':>4} {'psi':>7} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'a_i':>7} "
+        f"{'b_i':>7} {'a_o':>7} {'b_o':>7} {'p_i':>7} {'p_o':>7}  control"
+    )
+    units = (
+        f"{'':>4} {'deg':>7} {'deg':>7} {'deg':>7} {'N':>9} {'N':>9} {'mm':>7} {'mm':>7} "
+        f"{'mm':>7} {'mm':>7} {unit:>7} {unit:>7}"
+    )
     lines += [head, units]
     for j in range(ds.sizes["ball"]):
         a = ds.ellipse_semi_major.values[j] * 1e3

@@ -35,7 +35,9 @@ def attitude_angle(inner_contact_angle, outer_contact_angle, gamma_prime, inner_
     tan(beta) = sin(alpha_i) / (cos(alpha_i) - gamma'). ``gamma_prime`` = D / d_m.
     """
     if inner_control:
-        return math.atan2(math.sin(inner_contact_angle), math.cos(inner_contact_angle) - gamma_prime)
+        return math.atan2(
+            math.sin(inner_contact_angle), math.cos(inner_contact_angle) - gamma_prime
+        )
     return math.atan2(math.sin(outer_contact_angle), math.cos(outer_contact_angle) + gamma_prime)
 
 
@@ -84,16 +86,26 @@ def gyroscopic_moment(ball_inertia, spin_speed, orbital_speed, beta):
 
 @njit(cache=True)
 def race_control_is_inner(
-    inner_load, outer_load, inner_semi_major, outer_semi_major, inner_elliptic_e, outer_elliptic_e,
-    inner_contact_angle, outer_contact_angle,
+    inner_load,
+    outer_load,
+    inner_semi_major,
+    outer_semi_major,
+    inner_elliptic_e,
+    outer_elliptic_e,
+    inner_contact_angle,
+    outer_contact_angle,
 ):
     """Jones criterion: inner-race control when Q_i a_i E_i cos(alpha_i - alpha_o) > Q_o a_o E_o.
 
     E_i, E_o are the complete elliptic integrals of the second kind of the two contact ellipses. A ball
     with no load at either contact is given outer control.
     """
-    lhs = (inner_load * inner_semi_major * inner_elliptic_e
-           * math.cos(inner_contact_angle - outer_contact_angle))
+    lhs = (
+        inner_load
+        * inner_semi_major
+        * inner_elliptic_e
+        * math.cos(inner_contact_angle - outer_contact_angle)
+    )
     rhs = outer_load * outer_semi_major * outer_elliptic_e
     return lhs > rhs
 

@@ -9,7 +9,7 @@ that both models share the schema.
 from __future__ import annotations
 
 import math
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
@@ -86,8 +86,9 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
 
     # ball centre, inertial
-    center = np.column_stack([sol.ball_center[:, 0], sol.ball_center[:, 1] * cos_psi,
-                              sol.ball_center[:, 1] * sin_psi])
+    center = np.column_stack(
+        [sol.ball_center[:, 0], sol.ball_center[:, 1] * cos_psi, sol.ball_center[:, 1] * sin_psi]
+    )
     # contact points (inertial): ball centre + (D/2 - delta/2) * (unit vector to the contact)
     D = geometry.ball_diameter
     e_contact = np.empty((z, 2, 2))  # (ball, race, [x, r]) unit vector from the ball centre
@@ -114,11 +115,13 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
     ring_speed = np.array([sol.inner_ring_speed, sol.outer_ring_speed])
     for j in range(z):
         for k in range(2):
-            lat, lon = contact_latitude_longitude(e_contact[j, k, 0], e_contact[j, k, 1], 0.0,
-                                                  beta[j])
+            lat, lon = contact_latitude_longitude(
+                e_contact[j, k, 0], e_contact[j, k, 1], 0.0, beta[j]
+            )
             latitude[j, k], longitude[j, k] = lat, lon
-            spin, roll = spin_and_roll(alpha[j, k], beta[j], sol.spin_speed[j],
-                                       ring_speed[k] - sol.orbital_speed[j])
+            spin, roll = spin_and_roll(
+                alpha[j, k], beta[j], sol.spin_speed[j], ring_speed[k] - sol.orbital_speed[j]
+            )
             spin_roll[j, k] = spin / roll if roll != 0.0 else 0.0
             if lubricant is not None:
                 # entrainment speed: surface speed of the ring at the contact, relative to the cage
@@ -126,9 +129,12 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
                 radius = 0.5 * geometry.pitch_diameter + sign * 0.5 * D * math.cos(alpha[j, k])
                 u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
                 film[j, k] = film_thickness_central(
-                    u_e, float(lubricant.viscosity_Pas),
+                    u_e,
+                    float(lubricant.viscosity_Pas),
                     float(lubricant.pressure_viscosity_per_GPa) * 1e-9,
-                    geometry.effective_modulus, hertz["r_x"][j, k], sol.contact_load[j, k],
+                    geometry.effective_modulus,
+                    hertz["r_x"][j, k],
+                    sol.contact_load[j, k],
                     hertz["kappa"][j, k],
                 )
     margin = np.empty((z, 2))
@@ -186,7 +192,7 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
         "model": MODEL,
         "case": _case_text(case),
         "software": _software(),
-        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "complete": 1,
         "solver_iterations": int(sol.iterations),
         "solver_residual": float(sol.residual),
@@ -202,8 +208,10 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
             "centre on the axis in the plane of the inner groove curvature-centre circle."
         ),
     }
-    if sol.operating is not None and sol.operating.misalignment_frame == "ring" and not (
-        sol.operating.tilt_is_free
+    if (
+        sol.operating is not None
+        and sol.operating.misalignment_frame == "ring"
+        and not (sol.operating.tilt_is_free)
     ):
         attrs["misalignment_note"] = (
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when the "

@@ -53,104 +53,205 @@ _DYN = ("dynamic",)
 
 VARIABLES: dict[str, Variable] = {
     # ---- per contact -------------------------------------------------------------------------
-    "contact_load": Variable(_C, "N", "contact normal load",
-                             "normal load Q of the ball-race contact (>= 0; 0 when the contact is open)"),
+    "contact_load": Variable(
+        _C,
+        "N",
+        "contact normal load",
+        "normal load Q of the ball-race contact (>= 0; 0 when the contact is open)",
+    ),
     "contact_angle": Variable(
-        _C, "degree", "contact angle",
+        _C,
+        "degree",
+        "contact angle",
         "angle of the contact line in the ring's meridian plane, from the radial plane; positive "
         "when the outer contact lies on the +x side of the ball centre and the inner contact on the -x "
         "side (thrust carried in +x); may be negative. For an open contact: the geometric angle of "
-        "the line between the ball centre and the groove curvature centre"),
-    "contact_deflection": Variable(_C, "m", "contact elastic approach",
-                                   "Hertz elastic approach delta (>= 0; 0 when the contact is open)"),
-    "ellipse_semi_major": Variable(_C, "m", "contact ellipse semi-major axis",
-                                   "Hertz semi-axis a across the groove (0 when open)"),
-    "ellipse_semi_minor": Variable(_C, "m", "contact ellipse semi-minor axis",
-                                   "Hertz semi-axis b in the rolling direction (0 when open)"),
-    "max_pressure": Variable(_C, "Pa", "peak contact pressure",
-                             "peak Hertz pressure 3Q/(2 pi a b) (0 when open)"),
+        "the line between the ball centre and the groove curvature centre",
+    ),
+    "contact_deflection": Variable(
+        _C,
+        "m",
+        "contact elastic approach",
+        "Hertz elastic approach delta (>= 0; 0 when the contact is open)",
+    ),
+    "ellipse_semi_major": Variable(
+        _C,
+        "m",
+        "contact ellipse semi-major axis",
+        "Hertz semi-axis a across the groove (0 when open)",
+    ),
+    "ellipse_semi_minor": Variable(
+        _C,
+        "m",
+        "contact ellipse semi-minor axis",
+        "Hertz semi-axis b in the rolling direction (0 when open)",
+    ),
+    "max_pressure": Variable(
+        _C, "Pa", "peak contact pressure", "peak Hertz pressure 3Q/(2 pi a b) (0 when open)"
+    ),
     "raceway_azimuth": Variable(
-        _C, "degree", "contact azimuth on the raceway",
+        _C,
+        "degree",
+        "contact azimuth on the raceway",
         "circumferential position of the contact centre in that ring's own (rotating) frame, "
-        "measured from +y towards +z, wrapped to [0, 360)"),
+        "measured from +y towards +z, wrapped to [0, 360)",
+    ),
     "raceway_contact_point": Variable(
-        (*_C, "axis"), "m", "contact centre on the raceway",
-        "contact centre (mid-plane of the deformed zone) in that ring's own frame (x, y, z)"),
+        (*_C, "axis"),
+        "m",
+        "contact centre on the raceway",
+        "contact centre (mid-plane of the deformed zone) in that ring's own frame (x, y, z)",
+    ),
     "ball_latitude": Variable(
-        _C, "degree", "contact latitude on the ball",
+        _C,
+        "degree",
+        "contact latitude on the ball",
         "latitude of the contact centre on the ball, in the ball-fixed frame (z_b = spin axis "
-        "direction cos(beta) e_x - sin(beta) e_r at t = 0; see solver.physics.kinematics)"),
+        "direction cos(beta) e_x - sin(beta) e_r at t = 0; see solver.physics.kinematics)",
+    ),
     "ball_longitude": Variable(
-        _C, "degree", "contact longitude on the ball",
+        _C,
+        "degree",
+        "contact longitude on the ball",
         "longitude of the contact centre on the ball in the ball-fixed frame, in (-180, 180]; "
-        "x_b = sin(beta) e_x + cos(beta) e_r, y_b = e_theta at t = 0"),
+        "x_b = sin(beta) e_x + cos(beta) e_r, y_b = e_theta at t = 0",
+    ),
     "spin_to_roll": Variable(
-        _C, "1", "spin-to-roll ratio",
+        _C,
+        "1",
+        "spin-to-roll ratio",
         "omega_spin / omega_roll of the ball relative to the ring (physics.md 2.5.7): projections "
         "of the relative angular velocity on the contact normal and on the rolling axis; 0 without "
-        "rolling"),
-    "sliding_speed": Variable(_C, "m/s", "sliding speed at the contact centre",
-                              "magnitude of the sliding velocity at the contact centre"),
-    "film_thickness": Variable(_C, "m", "central EHL film thickness",
-                               "Hamrock-Dowson isothermal central film thickness (only with a "
-                               "lubricant)"),
+        "rolling",
+    ),
+    "sliding_speed": Variable(
+        _C,
+        "m/s",
+        "sliding speed at the contact centre",
+        "magnitude of the sliding velocity at the contact centre",
+    ),
+    "film_thickness": Variable(
+        _C,
+        "m",
+        "central EHL film thickness",
+        "Hamrock-Dowson isothermal central film thickness (only with a lubricant)",
+    ),
     "truncation_margin": Variable(
-        _C, "degree", "contact ellipse truncation margin",
+        _C,
+        "degree",
+        "contact ellipse truncation margin",
         "shoulder angle minus the groove angle of the ellipse edge |alpha| + a/r; negative = the "
-        "ellipse is truncated by the shoulder; NaN when no shoulder diameter is given"),
+        "ellipse is truncated by the shoulder; NaN when no shoulder diameter is given",
+    ),
     # ---- per ball ----------------------------------------------------------------------------
-    "ball_azimuth": Variable(_B, "degree", "ball azimuth",
-                             "orbital position psi of the ball centre, inertial, from +y towards +z"),
-    "orbital_speed": Variable(_B, "rad/s", "ball orbital speed",
-                              "orbital (cage) speed omega_c of the ball centre about +x"),
+    "ball_azimuth": Variable(
+        _B,
+        "degree",
+        "ball azimuth",
+        "orbital position psi of the ball centre, inertial, from +y towards +z",
+    ),
+    "orbital_speed": Variable(
+        _B,
+        "rad/s",
+        "ball orbital speed",
+        "orbital (cage) speed omega_c of the ball centre about +x",
+    ),
     "ball_center": Variable((*_B, "axis"), "m", "ball centre", "ball centre position, inertial"),
-    "ball_angular_velocity": Variable((*_B, "axis"), "rad/s", "ball angular velocity",
-                                      "absolute angular velocity of the ball, inertial components"),
+    "ball_angular_velocity": Variable(
+        (*_B, "axis"),
+        "rad/s",
+        "ball angular velocity",
+        "absolute angular velocity of the ball, inertial components",
+    ),
     "attitude_angle": Variable(
-        _B, "degree", "ball attitude angle",
+        _B,
+        "degree",
+        "ball attitude angle",
         "angle beta of the ball's spin axis (relative to the cage) from the bearing axis, in the "
-        "meridian plane: spin axis direction cos(beta) e_x - sin(beta) e_r"),
+        "meridian plane: spin axis direction cos(beta) e_x - sin(beta) e_r",
+    ),
     "ball_spin_speed": Variable(
-        _B, "rad/s", "ball spin speed relative to the cage",
+        _B,
+        "rad/s",
+        "ball spin speed relative to the cage",
         "omega_R: the ball's angular velocity relative to the cage is omega_R (cos(beta) e_x - "
         "sin(beta) e_r); negative when the inner ring turns forward with the outer ring fixed",
-        _QS),
-    "centrifugal_force": Variable(_B, "N", "ball centrifugal force",
-                                  "m r omega_c^2 with the ball's actual orbit radius r", _QS),
+        _QS,
+    ),
+    "centrifugal_force": Variable(
+        _B,
+        "N",
+        "ball centrifugal force",
+        "m r omega_c^2 with the ball's actual orbit radius r",
+        _QS,
+    ),
     "gyroscopic_moment": Variable(
-        _B, "N m", "ball gyroscopic moment",
+        _B,
+        "N m",
+        "ball gyroscopic moment",
         "moment the contacts apply to the ball along e_theta, M_g = -J omega_c omega_R sin(beta) "
-        "(rate of change of the ball's angular momentum in the cage frame)", _QS),
-    "race_control": Variable(_B, "1", "controlling race",
-                             "'inner' or 'outer' (Jones criterion, decided per ball)", _QS),
-    "ball_orientation": Variable((*_B, "quaternion"), "1", "ball orientation",
-                                 "unit quaternion [w, x, y, z] of the ball-fixed frame, inertial",
-                                 _DYN),
-    "cage_pocket_force": Variable(_B, "N", "cage pocket force",
-                                  "magnitude of the ball-pocket contact force", _DYN),
+        "(rate of change of the ball's angular momentum in the cage frame)",
+        _QS,
+    ),
+    "race_control": Variable(
+        _B, "1", "controlling race", "'inner' or 'outer' (Jones criterion, decided per ball)", _QS
+    ),
+    "ball_orientation": Variable(
+        (*_B, "quaternion"),
+        "1",
+        "ball orientation",
+        "unit quaternion [w, x, y, z] of the ball-fixed frame, inertial",
+        _DYN,
+    ),
+    "cage_pocket_force": Variable(
+        _B, "N", "cage pocket force", "magnitude of the ball-pocket contact force", _DYN
+    ),
     # ---- rings and cage ------------------------------------------------------------------------
     "inner_ring_offset": Variable(
-        ("axis",), "m", "inner ring displacement",
-        "inner ring centre relative to the outer ring, from the just-touching position"),
+        ("axis",),
+        "m",
+        "inner ring displacement",
+        "inner ring centre relative to the outer ring, from the just-touching position",
+    ),
     "inner_ring_tilt": Variable(
-        ("tilt_axis",), "degree", "inner ring tilt",
-        "tilt of the inner ring relative to the outer ring: rotation vector components about y and z"),
+        ("tilt_axis",),
+        "degree",
+        "inner ring tilt",
+        "tilt of the inner ring relative to the outer ring: rotation vector components about y and z",
+    ),
     "inner_ring_moment": Variable(
-        ("tilt_axis",), "N m", "moment on the inner ring",
+        ("tilt_axis",),
+        "N m",
+        "moment on the inner ring",
         "moment applied to the inner ring about its centre: the given tilting moment when the tilt "
-        "is solved, otherwise the moment needed to hold the imposed tilt", _QS),
-    "cage_speed": Variable((), "rad/s", "cage speed",
-                           "cage angular speed about +x (quasi-static: mean of the balls' orbital "
-                           "speeds)"),
+        "is solved, otherwise the moment needed to hold the imposed tilt",
+        _QS,
+    ),
+    "cage_speed": Variable(
+        (),
+        "rad/s",
+        "cage speed",
+        "cage angular speed about +x (quasi-static: mean of the balls' orbital speeds)",
+    ),
     "cage_center": Variable(("axis",), "m", "cage centre", "cage centre, inertial", _DYN),
     # ---- summary metrics (dynamic) -------------------------------------------------------------
     "trajectory_band_width": Variable(
-        ("race",), "degree", "contact trajectory band width",
+        ("race",),
+        "degree",
+        "contact trajectory band width",
         "across-groove width of each race's contact track over the analysed window, as a "
-        "contact-angle range", _DYN, False),
+        "contact-angle range",
+        _DYN,
+        False,
+    ),
     "trajectory_band_width_arc": Variable(
-        ("race",), "m", "contact trajectory band width (arc)",
-        "groove radius times the contact-angle range of trajectory_band_width", _DYN, False),
+        ("race",),
+        "m",
+        "contact trajectory band width (arc)",
+        "groove radius times the contact-angle range of trajectory_band_width",
+        _DYN,
+        False,
+    ),
 }
 
 
@@ -159,4 +260,5 @@ def variable(name: str) -> Variable:
     try:
         return VARIABLES[name]
     except KeyError:
-        raise KeyError(f"unknown results variable {name!r}; known: {', '.join(sorted(VARIABLES))}")
+        known = ", ".join(sorted(VARIABLES))
+        raise KeyError(f"unknown results variable {name!r}; known: {known}") from None

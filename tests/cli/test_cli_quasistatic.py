@@ -26,8 +26,12 @@ axial_load_N = 1.0
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "racetrace", "quasistatic", *args],
-                          capture_output=True, text=True, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "racetrace", "quasistatic", *args],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
 
 
 def test_table_for_a_catalogue_case():
@@ -37,8 +41,11 @@ def test_table_for_a_catalogue_case():
     assert "Q_i" in out and "a_o" in out and "control" in out
     assert "GPa" in out or "MPa" in out
     assert "cage speed:" in out and "um" in out
-    rows = [line for line in out.splitlines() if line.strip().endswith(("outer", "inner"))
-            and line.strip()[0].isdigit()]
+    rows = [
+        line
+        for line in out.splitlines()
+        if line.strip().endswith(("outer", "inner")) and line.strip()[0].isdigit()
+    ]
     assert len(rows) == 18
 
 
@@ -58,7 +65,8 @@ def test_json_summary_and_netcdf_output(tmp_path):
     assert ds.attrs["model"] == "quasistatic"
     assert ds.sizes["ball"] == 16
     assert max(b["contact_load_N"]["inner"] for b in summary["balls"]) == pytest.approx(
-        float(ds.contact_load.values[:, 0].max()))
+        float(ds.contact_load.values[:, 0].max())
+    )
 
 
 def test_invalid_case_exits_2_without_traceback(tmp_path):

@@ -23,12 +23,15 @@ RPM = math.pi / 30.0
 
 
 def bearing_218(**kw):
-    return BearingGeometry(16, 22.225e-3, 125.26e-3, 0.5232, 0.5232, math.radians(40), STEEL, STEEL,
-                           **kw)
+    return BearingGeometry(
+        16, 22.225e-3, 125.26e-3, 0.5232, 0.5232, math.radians(40), STEEL, STEEL, **kw
+    )
 
 
 def spindle(ball_count=18):
-    return BearingGeometry(ball_count, 7.144e-3, 54.0e-3, 0.54, 0.53, math.radians(15), SI3N4, STEEL)
+    return BearingGeometry(
+        ball_count, 7.144e-3, 54.0e-3, 0.54, 0.53, math.radians(15), SI3N4, STEEL
+    )
 
 
 def deep_groove(clearance, ball_count=9):
@@ -57,10 +60,16 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
     # 1. geometry: deflections and angles from the ball centres and the ring displacement
     x_o, r_o = geometry.outer_curvature_center_axial, geometry.outer_curvature_center_radius
     theta_y, theta_z = sol.inner_ring_tilt
-    ci_x = (geometry.inner_curvature_center_axial + sol.inner_ring_offset[0]
-            + geometry.inner_curvature_center_radius * (theta_y * np.sin(psi) - theta_z * np.cos(psi)))
-    ci_r = (geometry.inner_curvature_center_radius + sol.inner_ring_offset[1] * np.cos(psi)
-            + sol.inner_ring_offset[2] * np.sin(psi))
+    ci_x = (
+        geometry.inner_curvature_center_axial
+        + sol.inner_ring_offset[0]
+        + geometry.inner_curvature_center_radius * (theta_y * np.sin(psi) - theta_z * np.cos(psi))
+    )
+    ci_r = (
+        geometry.inner_curvature_center_radius
+        + sol.inner_ring_offset[1] * np.cos(psi)
+        + sol.inner_ring_offset[2] * np.sin(psi)
+    )
     bx, br = sol.ball_center[:, 0], sol.ball_center[:, 1]
     d_o = np.hypot(bx - x_o, br - r_o) - (geometry.outer_conformity - 0.5) * D
     d_i = np.hypot(ci_x - bx, ci_r - br) - (geometry.inner_conformity - 0.5) * D
@@ -81,13 +90,24 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
             expected = stiffness(geometry, sol.contact_angle[j, k], race) * delta**1.5
             assert sol.contact_load[j, k] == pytest.approx(expected, rel=1e-8, abs=1e-12)
     # 3. ball force balance (physics.md §2.5.4)
-    fx = -q_o * np.sin(a_o) - lam_o * m_g / D * np.cos(a_o) + q_i * np.sin(a_i) + lam_i * m_g / D * np.cos(a_i)
-    fr = (-q_o * np.cos(a_o) + lam_o * m_g / D * np.sin(a_o) + q_i * np.cos(a_i)
-          - lam_i * m_g / D * np.sin(a_i) + f_c)
+    fx = (
+        -q_o * np.sin(a_o)
+        - lam_o * m_g / D * np.cos(a_o)
+        + q_i * np.sin(a_i)
+        + lam_i * m_g / D * np.cos(a_i)
+    )
+    fr = (
+        -q_o * np.cos(a_o)
+        + lam_o * m_g / D * np.sin(a_o)
+        + q_i * np.cos(a_i)
+        - lam_i * m_g / D * np.sin(a_i)
+        + f_c
+    )
     # relative to the ball's own largest force; a ball carrying less than 1e-4 of the bearing's force
     # scale (e.g. an unloaded ball held only by a minute centrifugal force) is held to 1e-12 of it
-    scale = np.maximum.reduce([q_i, q_o, np.abs(f_c), 2 * np.abs(m_g) / D,
-                               np.full(z, 1e-4 * sol.force_scale)])
+    scale = np.maximum.reduce(
+        [q_i, q_o, np.abs(f_c), 2 * np.abs(m_g) / D, np.full(z, 1e-4 * sol.force_scale)]
+    )
     assert np.max(np.hypot(fx, fr) / scale) < rel
     # ball moment balance: friction moment about the ball centre = M_g (lambda_o + lambda_i = 2)
     np.testing.assert_allclose(0.5 * (lam_o + lam_i) * m_g, m_g, rtol=0)
@@ -97,17 +117,21 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
     lever = geometry.inner_groove_radius + 0.5 * sol.contact_deflection[:, 0]
     m_theta = -geometry.inner_curvature_center_radius * ring_x - lever * lam_i * m_g / D
     applied = op.applied_loads()
-    total = np.array([
-        applied[0] + ring_x.sum(),
-        applied[1] + np.sum(ring_r * np.cos(psi)),
-        applied[2] + np.sum(ring_r * np.sin(psi)),
-    ])
+    total = np.array(
+        [
+            applied[0] + ring_x.sum(),
+            applied[1] + np.sum(ring_r * np.cos(psi)),
+            applied[2] + np.sum(ring_r * np.sin(psi)),
+        ]
+    )
     assert np.max(np.abs(total)) / sol.force_scale < rel
     moments = np.array([np.sum(-m_theta * np.sin(psi)), np.sum(m_theta * np.cos(psi))])
     arm = 0.5 * geometry.pitch_diameter
     np.testing.assert_allclose(sol.applied_moment + moments, 0.0, atol=rel * sol.force_scale * arm)
     if op.tilt_is_free:
-        np.testing.assert_allclose(sol.applied_moment, applied[3:], atol=rel * sol.force_scale * arm)
+        np.testing.assert_allclose(
+            sol.applied_moment, applied[3:], atol=rel * sol.force_scale * arm
+        )
     else:
         np.testing.assert_allclose(sol.inner_ring_tilt, op.imposed_tilt(), atol=1e-15)
     # 5. body forces from the kinematics outputs
@@ -117,8 +141,9 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
     w_rel_x = w[:, 0] - sol.orbital_speed
     w_rel_r = w[:, 1] * np.cos(psi) + w[:, 2] * np.sin(psi)
     # M_g e_theta = omega_c e_x x J omega_rel  -> theta component = -omega_c J w_rel_r
-    np.testing.assert_allclose(m_g, sol.orbital_speed * geometry.ball_inertia * w_rel_r,
-                               rtol=1e-10, atol=1e-15)
+    np.testing.assert_allclose(
+        m_g, sol.orbital_speed * geometry.ball_inertia * w_rel_r, rtol=1e-10, atol=1e-15
+    )
     del w_rel_x
 
 
@@ -126,19 +151,37 @@ CASES = [
     ("218 combined 10k", bearing_218(), OperatingPoint(10000 * RPM, 0.0, 17800.0, 8900.0)),
     ("218 thrust 10k", bearing_218(), OperatingPoint(10000 * RPM, 0.0, 17800.0)),
     ("spindle 30k light", spindle(), OperatingPoint(30000 * RPM, 0.0, 100.0)),
-    ("spindle combined 20k at 30 deg", spindle(),
-     OperatingPoint(20000 * RPM, 0.0, 300.0, 300.0, math.radians(30))),
-    ("spindle misaligned", spindle(),
-     OperatingPoint(20000 * RPM, 0.0, 300.0, misalignment=math.radians(0.1))),
-    ("spindle moment", spindle(),
-     OperatingPoint(15000 * RPM, 0.0, 300.0, 100.0, tilting_moment=1.5, moment_axis=0.3)),
-    ("spindle moment-free tilt", spindle(),
-     OperatingPoint(15000 * RPM, 0.0, 300.0, 200.0, tilting_moment=0.0)),
+    (
+        "spindle combined 20k at 30 deg",
+        spindle(),
+        OperatingPoint(20000 * RPM, 0.0, 300.0, 300.0, math.radians(30)),
+    ),
+    (
+        "spindle misaligned",
+        spindle(),
+        OperatingPoint(20000 * RPM, 0.0, 300.0, misalignment=math.radians(0.1)),
+    ),
+    (
+        "spindle moment",
+        spindle(),
+        OperatingPoint(15000 * RPM, 0.0, 300.0, 100.0, tilting_moment=1.5, moment_axis=0.3),
+    ),
+    (
+        "spindle moment-free tilt",
+        spindle(),
+        OperatingPoint(15000 * RPM, 0.0, 300.0, 200.0, tilting_moment=0.0),
+    ),
     ("outer ring turning", spindle(), OperatingPoint(0.0, 12000 * RPM, 400.0, 100.0)),
-    ("deep groove zero clearance radial", deep_groove(0.0),
-     OperatingPoint(8000 * RPM, 0.0, 0.0, 4000.0)),
-    ("deep groove clearance combined", deep_groove(20e-6),
-     OperatingPoint(8000 * RPM, 0.0, 600.0, 3000.0)),
+    (
+        "deep groove zero clearance radial",
+        deep_groove(0.0),
+        OperatingPoint(8000 * RPM, 0.0, 0.0, 4000.0),
+    ),
+    (
+        "deep groove clearance combined",
+        deep_groove(20e-6),
+        OperatingPoint(8000 * RPM, 0.0, 600.0, 3000.0),
+    ),
     ("218 reversed rotation", bearing_218(), OperatingPoint(-6000 * RPM, 0.0, 9000.0, 2000.0)),
 ]
 
@@ -159,8 +202,9 @@ def test_equilibrium_check_detects_an_unbalanced_solution():
 
 
 # ---- classic static limits ----------------------------------------------------------------------
-@pytest.mark.parametrize("geometry, axial", [(bearing_218(), 17800.0), (spindle(), 300.0),
-                                             (bearing_218(), 500.0)])
+@pytest.mark.parametrize(
+    "geometry, axial", [(bearing_218(), 17800.0), (spindle(), 300.0), (bearing_218(), 500.0)]
+)
 def test_pure_axial_load_at_rest_matches_the_classic_equation(geometry, axial):
     sol = solve_operating_point(geometry, OperatingPoint(0.0, 0.0, axial))
     z = geometry.ball_count
@@ -176,7 +220,9 @@ def test_pure_axial_load_at_rest_matches_the_classic_equation(geometry, axial):
         return (k_i ** (-2 / 3) + k_o ** (-2 / 3)) ** -1.5
 
     def implicit(a):
-        return axial / (z * k_n(a) * bd**1.5) - math.sin(a) * (math.cos(a0) / math.cos(a) - 1) ** 1.5
+        return (
+            axial / (z * k_n(a) * bd**1.5) - math.sin(a) * (math.cos(a0) / math.cos(a) - 1) ** 1.5
+        )
 
     expected = brentq(implicit, a0 + 1e-12, 1.5, xtol=1e-15)
     assert alpha[0, 0] == pytest.approx(expected, abs=1e-9)
@@ -197,8 +243,9 @@ def test_radial_load_at_rest_zero_clearance_discrete_distribution(ball_count):
     k_i, k_o = stiffness(geometry, 0.0, "inner"), stiffness(geometry, 0.0, "outer")
     k_n = (k_i ** (-2 / 3) + k_o ** (-2 / 3)) ** -1.5
     delta_r = (fr / (k_n * np.sum(cos**2.5))) ** (2 / 3)
-    np.testing.assert_allclose(sol.contact_load[:, 0], k_n * (delta_r * cos) ** 1.5, rtol=1e-8,
-                               atol=1e-9 * fr)
+    np.testing.assert_allclose(
+        sol.contact_load[:, 0], k_n * (delta_r * cos) ** 1.5, rtol=1e-8, atol=1e-9 * fr
+    )
     assert sol.inner_ring_offset[1] == pytest.approx(delta_r, rel=1e-8)
     assert np.all(sol.contact_load[np.cos(psi) < 0] == 0.0)
 
@@ -267,12 +314,17 @@ def test_radial_load_at_90_degrees_rotates_the_solution():
     s0 = solve_operating_point(geometry, op0)
     s90 = solve_operating_point(geometry, op90)
     shift = geometry.ball_count // 4
-    np.testing.assert_allclose(s90.contact_load, np.roll(s0.contact_load, shift, axis=0), rtol=1e-7,
-                               atol=1e-9 * 400)
-    np.testing.assert_allclose(s90.contact_angle, np.roll(s0.contact_angle, shift, axis=0), atol=1e-9)
-    np.testing.assert_allclose(s90.inner_ring_offset, [s0.inner_ring_offset[0],
-                                                       -s0.inner_ring_offset[2],
-                                                       s0.inner_ring_offset[1]], atol=1e-12)
+    np.testing.assert_allclose(
+        s90.contact_load, np.roll(s0.contact_load, shift, axis=0), rtol=1e-7, atol=1e-9 * 400
+    )
+    np.testing.assert_allclose(
+        s90.contact_angle, np.roll(s0.contact_angle, shift, axis=0), atol=1e-9
+    )
+    np.testing.assert_allclose(
+        s90.inner_ring_offset,
+        [s0.inner_ring_offset[0], -s0.inner_ring_offset[2], s0.inner_ring_offset[1]],
+        atol=1e-12,
+    )
 
 
 def test_pure_tilt_sign():
@@ -298,8 +350,15 @@ def test_unloaded_balls_give_zeros_no_nan_no_warning():
         open_inner = sol.contact_load[:, 0] == 0.0
         assert open_inner.sum() >= 3
         assert np.all(sol.contact_deflection[open_inner, 0] == 0.0)
-        for field in ("contact_angle", "contact_load", "contact_deflection", "orbital_speed",
-                      "attitude_angle", "ball_angular_velocity", "gyroscopic_moment"):
+        for field in (
+            "contact_angle",
+            "contact_load",
+            "contact_deflection",
+            "orbital_speed",
+            "attitude_angle",
+            "ball_angular_velocity",
+            "gyroscopic_moment",
+        ):
             assert np.all(np.isfinite(getattr(sol, field))), field
         if rpm:
             assert np.all(sol.contact_load[:, 1] > 0.0)  # centrifugal force holds them outside
@@ -378,8 +437,16 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
     a = x + (g_i + 9e-6) * np.array([math.sin(alpha_i), math.cos(alpha_i)])
     st = kernels.ball_state(x[0], x[1], a[0], a[1], inner_control, model)
     res = np.array(st[:2])
-    q_i, q_o, a_i, a_o, beta, omega_c, omega_r, f_c = st[5], st[6], st[9], st[10], st[11], st[12], \
-        st[13], st[14]
+    q_i, q_o, a_i, a_o, beta, omega_c, omega_r, f_c = (
+        st[5],
+        st[6],
+        st[9],
+        st[10],
+        st[11],
+        st[12],
+        st[13],
+        st[14],
+    )
     assert a_i == pytest.approx(alpha_i) and a_o == pytest.approx(alpha_o)
 
     def u(angle):  # (x, r) components
@@ -398,8 +465,9 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
     def to3(v):  # (x, r) -> (x, r, theta)
         return np.array([v[0], v[1], 0.0])
 
-    moment = (np.cross(to3(0.5 * D * u(a_o)), to3(coeffs[0] * t_o_dir))
-              + np.cross(to3(-0.5 * D * u(a_i)), to3(coeffs[1] * t_i_dir)))
+    moment = np.cross(to3(0.5 * D * u(a_o)), to3(coeffs[0] * t_o_dir)) + np.cross(
+        to3(-0.5 * D * u(a_i)), to3(coeffs[1] * t_i_dir)
+    )
     w_b = omega_r * np.array([math.cos(beta), -math.sin(beta), 0.0])
     rate = np.cross(np.array([omega_c, 0.0, 0.0]), geometry.ball_inertia * w_b)
     np.testing.assert_allclose(moment, rate, rtol=1e-9, atol=1e-14)
@@ -437,7 +505,11 @@ def test_race_control_inner_at_high_speed_is_consistent():
             continue
         ci = race_contact(geometry, sol.contact_angle[j, 0], q_i, "inner")
         co = race_contact(geometry, sol.contact_angle[j, 1], q_o, "outer")
-        lhs = q_i * ci.semi_major * ci.elliptic_e * math.cos(sol.contact_angle[j, 0]
-                                                               - sol.contact_angle[j, 1])
+        lhs = (
+            q_i
+            * ci.semi_major
+            * ci.elliptic_e
+            * math.cos(sol.contact_angle[j, 0] - sol.contact_angle[j, 1])
+        )
         rhs = q_o * co.semi_major * co.elliptic_e
         assert (sol.race_control[j] == "inner") == (lhs > rhs)

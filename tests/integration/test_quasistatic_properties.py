@@ -3,7 +3,6 @@
 import math
 
 import numpy as np
-import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -40,7 +39,8 @@ def cases(draw):
     scale = ball_count * ball_diameter**2
     operating = {
         "inner_ring_speed_rpm": draw(st.sampled_from([0.0, 1.0]))
-        * draw(st.floats(0.0, 1.5e6)) / pitch,  # up to d_m n = 1.5e6 mm rpm
+        * draw(st.floats(0.0, 1.5e6))
+        / pitch,  # up to d_m n = 1.5e6 mm rpm
         "axial_load_N": draw(st.floats(0.0, 1.0)) * scale,
         "radial_load_N": draw(st.floats(0.0, 1.0)) * scale,
         "radial_load_angle_deg": draw(st.floats(0.0, 360.0)),

@@ -75,7 +75,9 @@ def _geometry(case):
     return BearingGeometry.from_case(case)
 
 
-def solve_quasistatic_state(case, initial: QuasiStaticSolution | None = None) -> QuasiStaticSolution:
+def solve_quasistatic_state(
+    case, initial: QuasiStaticSolution | None = None
+) -> QuasiStaticSolution:
     """Quasi-static equilibrium of ``case`` as SI arrays. ``initial`` (a previous solution of the same
     bearing) is used as the starting point when given. Raises NoSolutionError (message: why, what to
     try) when no equilibrium is found."""
@@ -116,8 +118,14 @@ def quasistatic_speed_sweep(case, speeds_rpm):
         except NoSolutionError as error:
             raise NoSolutionError(f"speed sweep stopped at {rpm:g} rpm: {error}") from None
         datasets.append(solution_to_dataset(previous, geometry, case, lubricant))
-    ds = xr.concat(datasets, dim="speed", data_vars="all", coords="minimal", compat="override",
-                   combine_attrs="drop_conflicts")
+    ds = xr.concat(
+        datasets,
+        dim="speed",
+        data_vars="all",
+        coords="minimal",
+        compat="override",
+        combine_attrs="drop_conflicts",
+    )
     ds = ds.assign_coords(
         speed=("speed", speeds * _RPM, {"units": "rad/s", "long_name": "inner ring speed"}),
         speed_rpm=("speed", speeds, {"units": "rpm", "long_name": "inner ring speed"}),

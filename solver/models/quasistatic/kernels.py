@@ -42,9 +42,8 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from solver.physics.kinematics import attitude_angle, gyroscopic_moment, orbital_and_spin_speed
-
 from solver.physics.hertz_fast import contact_stiffness_fast, curvature_sum_and_difference_fast
+from solver.physics.kinematics import attitude_angle, gyroscopic_moment, orbital_and_spin_speed
 
 
 class BallModel(NamedTuple):
@@ -101,7 +100,9 @@ def contact_stiffness(model, contact_angle, is_inner):
         conformity = model.inner_conformity
     else:
         conformity = model.outer_conformity
-    sum_rho, f_rho = curvature_sum_and_difference_fast(model.ball_diameter, conformity, gamma, is_inner)
+    sum_rho, f_rho = curvature_sum_and_difference_fast(
+        model.ball_diameter, conformity, gamma, is_inner
+    )
     return contact_stiffness_fast(sum_rho, f_rho, model.effective_modulus)
 
 
@@ -145,7 +146,12 @@ def ball_state(x1, x2, a1, a2, inner_control, model):
     kin_alpha_i = min(max(alpha_i, alpha_o - 1.0), alpha_o + 1.0)
     beta = attitude_angle(kin_alpha_i, alpha_o, model.gamma_prime, inner_control)
     omega_c, omega_r = orbital_and_spin_speed(
-        kin_alpha_i, alpha_o, beta, model.gamma_prime, model.inner_ring_speed, model.outer_ring_speed
+        kin_alpha_i,
+        alpha_o,
+        beta,
+        model.gamma_prime,
+        model.inner_ring_speed,
+        model.outer_ring_speed,
     )
     f_c = model.ball_mass * (model.outer_center_radius + x2) * omega_c * omega_c
     m_g = gyroscopic_moment(model.ball_inertia, omega_r, omega_c, beta)
@@ -169,8 +175,24 @@ def ball_state(x1, x2, a1, a2, inner_control, model):
     ring_fr = -(q_i * c_i - t_i * s_i)
     lever = model.inner_groove_radius + (0.5 * d_i if q_i > 0.0 else 0.0)
     ring_moment = -model.inner_center_radius * ring_fx - lever * t_i
-    return (res_x, res_r, ring_fx, ring_fr, ring_moment, q_i, q_o, d_i, d_o, alpha_i, alpha_o,
-            beta, omega_c, omega_r, f_c, m_g)
+    return (
+        res_x,
+        res_r,
+        ring_fx,
+        ring_fr,
+        ring_moment,
+        q_i,
+        q_o,
+        d_i,
+        d_o,
+        alpha_i,
+        alpha_o,
+        beta,
+        omega_c,
+        omega_r,
+        f_c,
+        m_g,
+    )
 
 
 @njit(cache=True)
@@ -282,10 +304,12 @@ def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
             return x1, x2, True
         h = _fd_step(x1, x2, a1, a2, model)
         hp = h / rho
-        p1, p2 = _residual_norm((rho + h) * math.sin(phi), (rho + h) * math.cos(phi), a1, a2,
-                                inner_control, model)
-        s1, s2 = _residual_norm(rho * math.sin(phi + hp), rho * math.cos(phi + hp), a1, a2,
-                                inner_control, model)
+        p1, p2 = _residual_norm(
+            (rho + h) * math.sin(phi), (rho + h) * math.cos(phi), a1, a2, inner_control, model
+        )
+        s1, s2 = _residual_norm(
+            rho * math.sin(phi + hp), rho * math.cos(phi + hp), a1, a2, inner_control, model
+        )
         j11 = (p1 - r1) / h
         j21 = (p2 - r2) / h
         j12 = (s1 - r1) / hp
@@ -342,8 +366,18 @@ def _generalised(fx, fr, moment, psi, out):
 
 
 @njit(cache=True)
-def ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, model, force_scale,
-                               want_jacobian, residual, jacobian):
+def ring_residual_and_jacobian(
+    q,
+    applied,
+    azimuth,
+    position,
+    inner_control,
+    model,
+    force_scale,
+    want_jacobian,
+    residual,
+    jacobian,
+):
     """Solve every ball for the ring displacement q and sum their forces on the inner ring.
 
     ``position`` (Z, 2) holds the ball positions (warm start in, solution out). Fills ``residual`` (5) =
@@ -362,8 +396,9 @@ def ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, mod
     for j in range(z):
         psi = azimuth[j]
         a1, a2 = inner_center(q, psi, model)
-        x1, x2, ok = solve_ball(a1, a2, position[j, 0], position[j, 1], inner_control[j], model,
-                                force_scale)
+        x1, x2, ok = solve_ball(
+            a1, a2, position[j, 0], position[j, 1], inner_control[j], model, force_scale
+        )
         if not ok:
             ok_all = False
         position[j, 0] = x1
@@ -405,8 +440,11 @@ def ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, mod
         dfda = np.empty((3, 2))
         for row in range(3):
             for col in range(2):
-                dfda[row, col] = (d[2 + row, 2 + col] + d[2 + row, 0] * dxda[0, col]
-                                  + d[2 + row, 1] * dxda[1, col])
+                dfda[row, col] = (
+                    d[2 + row, 2 + col]
+                    + d[2 + row, 0] * dxda[0, col]
+                    + d[2 + row, 1] * dxda[1, col]
+                )
         s = math.sin(psi)
         c = math.cos(psi)
         rc = model.inner_center_radius
@@ -437,8 +475,19 @@ def _merit(residual, free, scale):
 
 
 @njit(cache=True)
-def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_scale,
-               length_scale, tolerance, max_iterations):
+def solve_ring(
+    q,
+    free,
+    applied,
+    azimuth,
+    position,
+    inner_control,
+    model,
+    force_scale,
+    length_scale,
+    tolerance,
+    max_iterations,
+):
     """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium for the free components of
     q = (dx, dy, dz, theta_y, theta_z); the others stay as given. ``q`` and ``position`` are updated in
     place. Residuals are scaled by ``force_scale`` [N] (moments by force_scale * d_m / 2), unknowns by
@@ -468,8 +517,9 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
     dummy = np.empty((5, 5))
     trial_pos = position.copy()
     trial_q = q.copy()
-    ok = ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, model, force_scale,
-                                    True, residual, jacobian)
+    ok = ring_residual_and_jacobian(
+        q, applied, azimuth, position, inner_control, model, force_scale, True, residual, jacobian
+    )
     merit = _merit(residual, free, rscale)
     mu = 0.0
     iterations = 0
@@ -497,7 +547,7 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
         for a in range(n):
             active[a] = col_norm[a] > 1e-24 * big or row_norm[a] > 1e-24 * big
         accepted = False
-        for attempt in range(12):
+        for _attempt in range(12):
             step = np.zeros(n)
             solved = True
             if mu == 0.0:
@@ -546,8 +596,9 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
                 mu = 1e-3 if mu == 0.0 else mu * 10.0
                 continue
             norm = math.sqrt(np.sum(step * step))
-            limit = max(20.0, 0.05 * (model.inner_center_offset + model.outer_center_offset)
-                        / length_scale)
+            limit = max(
+                20.0, 0.05 * (model.inner_center_offset + model.outer_center_offset) / length_scale
+            )
             if norm > limit:
                 step *= limit / norm
             # backtracking line search on the scaled residual norm
@@ -558,8 +609,18 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
                 for a in range(n):
                     trial_q[idx[a]] = q[idx[a]] + t * step[a] * qscale[idx[a]]
                 trial_pos[:, :] = position
-                tok = ring_residual_and_jacobian(trial_q, applied, azimuth, trial_pos, inner_control,
-                                                 model, force_scale, False, trial_res, dummy)
+                tok = ring_residual_and_jacobian(
+                    trial_q,
+                    applied,
+                    azimuth,
+                    trial_pos,
+                    inner_control,
+                    model,
+                    force_scale,
+                    False,
+                    trial_res,
+                    dummy,
+                )
                 tmerit = _merit(trial_res, free, rscale)
                 if tok and tmerit < (1.0 - 1e-4 * t) * merit:
                     accepted = True
@@ -578,8 +639,18 @@ def solve_ring(q, free, applied, azimuth, position, inner_control, model, force_
         mu = 0.0 if t == 1.0 else mu * 0.1
         if mu < 1e-9:
             mu = 0.0
-        ok = ring_residual_and_jacobian(q, applied, azimuth, position, inner_control, model,
-                                        force_scale, True, residual, jacobian)
+        ok = ring_residual_and_jacobian(
+            q,
+            applied,
+            azimuth,
+            position,
+            inner_control,
+            model,
+            force_scale,
+            True,
+            residual,
+            jacobian,
+        )
         merit = _merit(residual, free, rscale)
     return ok and merit <= tolerance, iterations, merit
 
@@ -706,8 +777,18 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
     for _ in range(passes):
         if fr > 0.0:
             _bisect_component(q, 1, applied, azimuth, model, radial, -span, span, resolution)
-        _bisect_component(q, 0, applied, azimuth, model, dummy, -shift - span, -shift + span,
-                          resolution)
+        _bisect_component(
+            q, 0, applied, azimuth, model, dummy, -shift - span, -shift + span, resolution
+        )
         if free_tilt and mm > 0.0:
-            _bisect_component(q, 2, applied, azimuth, model, moment_dir, -tilt_span, tilt_span,
-                              resolution / model.inner_center_radius)
+            _bisect_component(
+                q,
+                2,
+                applied,
+                azimuth,
+                model,
+                moment_dir,
+                -tilt_span,
+                tilt_span,
+                resolution / model.inner_center_radius,
+            )

@@ -89,5 +89,7 @@ class QuasiStaticSolution:
     iterations: int
     force_scale: float  # N
     race_control_note: str = ""
-    ball_position: np.ndarray = field(default=None, repr=False)  # (Z, 2) relative to the outer groove centre
+    ball_position: np.ndarray = field(
+        default=None, repr=False
+    )  # (Z, 2) relative to the outer groove centre
     operating: OperatingPoint | None = field(default=None, repr=False)

@@ -48,7 +48,9 @@ def _race_control(states, model):
             load = q_i if is_inner else q_o
             conformity = model.inner_conformity if is_inner else model.outer_conformity
             gamma = model.ball_diameter * math.cos(alpha) / model.pitch_diameter
-            s, f = curvature_sum_and_difference_fast(model.ball_diameter, conformity, gamma, is_inner)
+            s, f = curvature_sum_and_difference_fast(
+                model.ball_diameter, conformity, gamma, is_inner
+            )
             semi[k] = contact_ellipse_fast(load, s, f, e_mod)[0]
             ell[k] = hertz_coefficients_fast(f)[2]
         out[j] = race_control_is_inner(q_i, q_o, semi[0], semi[1], ell[0], ell[1], a_i, a_o)
@@ -91,7 +93,9 @@ class _Problem:
     def model(self, speed_fraction: float):
         op = self.operating
         return kernels.ball_model(
-            self.geometry, speed_fraction * op.inner_ring_speed, speed_fraction * op.outer_ring_speed
+            self.geometry,
+            speed_fraction * op.inner_ring_speed,
+            speed_fraction * op.outer_ring_speed,
         )
 
     def start_q(self, load_fraction: float) -> np.ndarray:
@@ -113,8 +117,15 @@ def _static_start(problem: _Problem, load_fraction: float):
     model = problem.static_model
     q = np.zeros(5)
     q[3:] = problem.operating.imposed_tilt()
-    kernels.static_start(q, problem.applied * load_fraction, problem.operating.tilt_is_free,
-                         problem.azimuth, model, problem.scales(0.0)[1], 3)
+    kernels.static_start(
+        q,
+        problem.applied * load_fraction,
+        problem.operating.tilt_is_free,
+        problem.azimuth,
+        model,
+        problem.scales(0.0)[1],
+        3,
+    )
     return q, problem.initial_positions(q, model)
 
 
@@ -134,8 +145,16 @@ def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fr
     model = problem.model(speed_fraction)
     force_scale, length_scale = problem.scales(speed_fraction)
     converged, iterations, merit = kernels.solve_ring(
-        state.q, problem.free, problem.applied * load_fraction, problem.azimuth, state.position,
-        state.inner_control, model, force_scale, length_scale, RING_TOLERANCE,
+        state.q,
+        problem.free,
+        problem.applied * load_fraction,
+        problem.azimuth,
+        state.position,
+        state.inner_control,
+        model,
+        force_scale,
+        length_scale,
+        RING_TOLERANCE,
         MAX_RING_ITERATIONS,
     )
     return bool(converged), int(iterations), float(merit)
@@ -155,8 +174,9 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
         if not converged:
             return False, total, merit, note
         states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-        kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.inner_control, model,
-                               states)
+        kernels.evaluate_balls(
+            state.q, problem.azimuth, state.position, state.inner_control, model, states
+        )
         decision = _race_control(states, model)
         if np.array_equal(decision, state.inner_control):
             return True, total, merit, note
@@ -195,8 +215,9 @@ def _continuation(solve, start: float, target: float, min_step: float):
     return current
 
 
-def solve_operating_point(geometry, operating: OperatingPoint,
-                          initial: QuasiStaticSolution | None = None) -> QuasiStaticSolution:
+def solve_operating_point(
+    geometry, operating: OperatingPoint, initial: QuasiStaticSolution | None = None
+) -> QuasiStaticSolution:
     """Quasi-static equilibrium of ``geometry`` at ``operating``; see :func:`solve_quasistatic_state`."""
     problem = _Problem(geometry, operating)
     z = geometry.ball_count
@@ -208,12 +229,20 @@ def solve_operating_point(geometry, operating: OperatingPoint,
         ok, its, merit, note = _solve_with_race_control(problem, trial, speed, load)
         totals["iterations"] += its
         if ok:
-            state.q, state.position, state.inner_control = trial.q, trial.position, trial.inner_control
+            state.q, state.position, state.inner_control = (
+                trial.q,
+                trial.position,
+                trial.inner_control,
+            )
             best["merit"], best["note"] = merit, note
         return ok
 
     state = None
-    if initial is not None and initial.ball_position is not None and len(initial.ball_position) == z:
+    if (
+        initial is not None
+        and initial.ball_position is not None
+        and len(initial.ball_position) == z
+    ):
         state = _State(
             np.concatenate([initial.inner_ring_offset, initial.inner_ring_tilt]).astype(float),
             np.array(initial.ball_position, dtype=float),
@@ -239,8 +268,9 @@ def solve_operating_point(geometry, operating: OperatingPoint,
             reached = _continuation(lambda s: attempt(state, s, 1.0), 0.0, 1.0, 1e-4)
             if reached != 1.0:
                 raise NoSolutionError(_no_speed_message(problem, state, reached))
-    return _pack(problem, state, totals["iterations"], best.get("merit", math.nan),
-                 best.get("note", ""))
+    return _pack(
+        problem, state, totals["iterations"], best.get("merit", math.nan), best.get("note", "")
+    )
 
 
 def _rpm(omega: float) -> float:
@@ -263,8 +293,9 @@ def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
     op = problem.operating
     model = problem.model(reached)
     states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.inner_control, model,
-                           states)
+    kernels.evaluate_balls(
+        state.q, problem.azimuth, state.position, state.inner_control, model, states
+    )
     alpha_o = math.degrees(float(np.min(states[:, 10])))
     speed = _rpm(reached * op.inner_ring_speed)
     target = _rpm(op.inner_ring_speed)
@@ -282,8 +313,9 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     model = problem.model(1.0)
     z = g.ball_count
     states = np.empty((z, _STATE_FIELDS))
-    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.inner_control, model,
-                           states)
+    kernels.evaluate_balls(
+        state.q, problem.azimuth, state.position, state.inner_control, model, states
+    )
     psi = problem.azimuth
     alpha = states[:, [9, 10]].copy()
     load = states[:, [5, 6]].copy()
@@ -292,8 +324,12 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     omega_c = states[:, 12].copy()
     omega_r = states[:, 13].copy()
     # ball centre (inertial, meridian plane): outer groove centre + X
-    center = np.column_stack([g.outer_curvature_center_axial + state.position[:, 0],
-                              g.outer_curvature_center_radius + state.position[:, 1]])
+    center = np.column_stack(
+        [
+            g.outer_curvature_center_axial + state.position[:, 0],
+            g.outer_curvature_center_radius + state.position[:, 1],
+        ]
+    )
     # angular velocity: omega_c e_x + omega_R (cos beta e_x - sin beta e_r)
     w_x = omega_c + omega_r * np.cos(beta)
     w_r = -omega_r * np.sin(beta)

@@ -40,8 +40,9 @@ def test_cage_speed_is_kinematic_for_equal_contact_angles(alpha, inner_control):
 @pytest.mark.parametrize("alpha_i, alpha_o", ANGLES)
 @pytest.mark.parametrize("omega_i, omega_o", [(1000.0, 0.0), (-700.0, 0.0), (300.0, -200.0)])
 @pytest.mark.parametrize("inner_control", [False, True])
-def test_rolling_without_slip_at_both_contact_centres(alpha_i, alpha_o, omega_i, omega_o,
-                                                      inner_control):
+def test_rolling_without_slip_at_both_contact_centres(
+    alpha_i, alpha_o, omega_i, omega_o, inner_control
+):
     """In the cage frame (ball centre fixed) the ball surface and the ring surface move together at
     both contact points, and there is no spin at the controlling contact."""
     D, dm = 0.01, 0.06
@@ -70,11 +71,13 @@ def test_orbital_speed_closed_forms(alpha_i, alpha_o):
     inner control (cos(a_i - a_o) - g' cos a_o)/(1 + cos(a_i - a_o))."""
     gp = 0.18
     _, omega_c, _ = state(alpha_i, alpha_o, gp, 1.0, 0.0, False)
-    assert omega_c == pytest.approx((1 - gp * math.cos(alpha_i)) / (1 + math.cos(alpha_i - alpha_o)),
-                                    rel=1e-12)
+    assert omega_c == pytest.approx(
+        (1 - gp * math.cos(alpha_i)) / (1 + math.cos(alpha_i - alpha_o)), rel=1e-12
+    )
     _, omega_c, _ = state(alpha_i, alpha_o, gp, 1.0, 0.0, True)
     expected = (math.cos(alpha_i - alpha_o) - gp * math.cos(alpha_o)) / (
-        1 + math.cos(alpha_i - alpha_o))
+        1 + math.cos(alpha_i - alpha_o)
+    )
     assert omega_c == pytest.approx(expected, rel=1e-12)
 
 

@@ -18,14 +18,29 @@ CASES = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(CASES)
 
 SCHEMA_QS = {
-    "contact_load": "N", "contact_angle": "degree", "contact_deflection": "m",
-    "ellipse_semi_major": "m", "ellipse_semi_minor": "m", "max_pressure": "Pa",
-    "raceway_azimuth": "degree", "raceway_contact_point": "m", "ball_latitude": "degree",
-    "ball_longitude": "degree", "spin_to_roll": "1", "sliding_speed": "m/s",
-    "truncation_margin": "degree", "ball_azimuth": "degree", "orbital_speed": "rad/s",
-    "ball_center": "m", "ball_angular_velocity": "rad/s", "attitude_angle": "degree",
-    "centrifugal_force": "N", "gyroscopic_moment": "N m", "inner_ring_offset": "m",
-    "inner_ring_tilt": "degree", "cage_speed": "rad/s",
+    "contact_load": "N",
+    "contact_angle": "degree",
+    "contact_deflection": "m",
+    "ellipse_semi_major": "m",
+    "ellipse_semi_minor": "m",
+    "max_pressure": "Pa",
+    "raceway_azimuth": "degree",
+    "raceway_contact_point": "m",
+    "ball_latitude": "degree",
+    "ball_longitude": "degree",
+    "spin_to_roll": "1",
+    "sliding_speed": "m/s",
+    "truncation_margin": "degree",
+    "ball_azimuth": "degree",
+    "orbital_speed": "rad/s",
+    "ball_center": "m",
+    "ball_angular_velocity": "rad/s",
+    "attitude_angle": "degree",
+    "centrifugal_force": "N",
+    "gyroscopic_moment": "N m",
+    "inner_ring_offset": "m",
+    "inner_ring_tilt": "degree",
+    "cage_speed": "rad/s",
 }
 
 
@@ -84,8 +99,19 @@ def test_contact_points_lie_on_the_grooves(spindle_ds, spindle_case):
     delta = ds.contact_deflection.values
     psi = np.radians(ds.ball_azimuth.values)
     for k, (xc, rc, r) in enumerate(
-        ((g.inner_curvature_center_axial, g.inner_curvature_center_radius, g.inner_groove_radius),
-         (g.outer_curvature_center_axial, g.outer_curvature_center_radius, g.outer_groove_radius))):
+        (
+            (
+                g.inner_curvature_center_axial,
+                g.inner_curvature_center_radius,
+                g.inner_groove_radius,
+            ),
+            (
+                g.outer_curvature_center_axial,
+                g.outer_curvature_center_radius,
+                g.outer_groove_radius,
+            ),
+        )
+    ):
         radial = np.hypot(p[:, k, 1], p[:, k, 2])
         dist = np.hypot(p[:, k, 0] - xc, radial - rc)
         np.testing.assert_allclose(dist, r + 0.5 * delta[:, k], rtol=0, atol=2e-9)
@@ -99,10 +125,12 @@ def test_contact_points_lie_on_the_grooves(spindle_ds, spindle_case):
 def test_kingsbury_latitudes_and_outer_control_spin(spindle_ds):
     ds = spindle_ds
     beta = ds.attitude_angle.values
-    np.testing.assert_allclose(ds.ball_latitude.values[:, 1], ds.contact_angle.values[:, 1] - beta,
-                               atol=1e-9)
-    np.testing.assert_allclose(ds.ball_latitude.values[:, 0], -(ds.contact_angle.values[:, 0] - beta),
-                               atol=1e-9)
+    np.testing.assert_allclose(
+        ds.ball_latitude.values[:, 1], ds.contact_angle.values[:, 1] - beta, atol=1e-9
+    )
+    np.testing.assert_allclose(
+        ds.ball_latitude.values[:, 0], -(ds.contact_angle.values[:, 0] - beta), atol=1e-9
+    )
     outer = ds.race_control.values == "outer"
     assert outer.any()
     np.testing.assert_allclose(ds.spin_to_roll.values[outer, 1], 0.0, atol=1e-12)
@@ -138,6 +166,7 @@ def test_speed_sweep_stacks_on_speed(spindle_case):
     np.testing.assert_allclose(ds.speed_rpm.values, speeds)
     np.testing.assert_allclose(ds.speed.values, np.array(speeds) * math.pi / 30)
     alone = solve_quasistatic(spindle_case)  # 20 000 rpm
-    np.testing.assert_allclose(ds.contact_load.sel(speed=ds.speed.values[2]).values,
-                               alone.contact_load.values, rtol=1e-7)
+    np.testing.assert_allclose(
+        ds.contact_load.sel(speed=ds.speed.values[2]).values, alone.contact_load.values, rtol=1e-7
+    )
     assert ds.ball_center.dims == ("speed", "ball", "axis")

@@ -21,9 +21,17 @@ def test_every_variable_has_units_names_and_known_dims():
 
 
 def test_angles_are_in_degree():
-    for name in ("contact_angle", "raceway_azimuth", "ball_latitude", "ball_longitude",
-                 "ball_azimuth", "attitude_angle", "inner_ring_tilt", "truncation_margin",
-                 "trajectory_band_width"):
+    for name in (
+        "contact_angle",
+        "raceway_azimuth",
+        "ball_latitude",
+        "ball_longitude",
+        "ball_azimuth",
+        "attitude_angle",
+        "inner_ring_tilt",
+        "truncation_margin",
+        "trajectory_band_width",
+    ):
         assert VARIABLES[name].units == "degree", name
 
 
@@ -40,8 +48,33 @@ def test_dynamic_dims_append_time_except_summary_metrics():
 def test_registry_covers_every_variable_named_in_the_schema():
     text = SCHEMA.read_text()
     names = set(re.findall(r"`([a-z_]+)`", text))
-    not_variables = {"ball", "race", "axis", "time", "tilt_axis", "quaternion", "model", "case",
-                     "software", "created", "complete", "inner", "outer", "x", "y", "z", "w",
-                     "degree", "m", "N", "Pa", "s", "units", "long_name", "quasistatic", "dynamic"}
+    not_variables = {
+        "ball",
+        "race",
+        "axis",
+        "time",
+        "tilt_axis",
+        "quaternion",
+        "model",
+        "case",
+        "software",
+        "created",
+        "complete",
+        "inner",
+        "outer",
+        "x",
+        "y",
+        "z",
+        "w",
+        "degree",
+        "m",
+        "N",
+        "Pa",
+        "s",
+        "units",
+        "long_name",
+        "quasistatic",
+        "dynamic",
+    }
     missing = sorted(n for n in names - not_variables if n not in VARIABLES)
     assert not missing, missing
