@@ -27,6 +27,8 @@ def serve(host: str = "127.0.0.1", port: int = 8080, open_browser: bool = False,
     server = get_server("racetrace", client_type="vue3")
     app = RacetraceApp(server, runs_dir=runs_dir)
     app.start(case_name or DEFAULT_CASE)
+    app.exports_dir.mkdir(parents=True, exist_ok=True)
+    server.enable_module({"serve": {app.EXPORT_URL: str(app.exports_dir)}})
     build_ui(app)
     print(f"racetrace: serving on http://{host}:{port}/  (runs folder: {app.store.root})", flush=True)
     try:

@@ -138,6 +138,9 @@ class RacetraceApp:
         for name in CHARTS:
             s[f"chart_{name}"] = {"data": [], "layout": {}}
         s.uploaded_case = None
+        s.export_href = ""
+        s.export_name = ""
+        s.export_message = ""
         self._refresh_runs()
 
     def _bind(self) -> None:
@@ -156,6 +159,7 @@ class RacetraceApp:
         c.cancel = self.cancel
         c.step = self.step
         c.refresh_runs = self._refresh_runs
+        c.export = self.export
         # Count browser connections at the websocket level: the page's own "exited" signal is not
         # sent when a browser is killed, and a play loop without viewers floods the log.
         self.server.add_protocol_to_configure(self._configure_protocol)
@@ -552,6 +556,48 @@ class RacetraceApp:
         out = self._run_info.get("out")
         if out is not None:
             Path(out).unlink(missing_ok=True)
+
+    # ---- export ---------------------------------------------------------------------------------
+    EXPORT_URL = "racetrace-exports"
+    MAX_ANIMATION_FRAMES = 120
+
+    @property
+    def exports_dir(self) -> Path:
+        """Where exported files are written (served under ``/racetrace-exports/``)."""
+        return self.store.root / ".exports"
+
+    def export(self, kind: str) -> Path | None:
+        """Write the shown result or view as ``kind`` (netcdf, csv, png, gif, mp4) for download."""
+        from . import export as ex
+
+        if self.dataset is None:
+            self.state.export_message = "nothing to export yet"
+            return None
+        stem = "".join(c if c.isalnum() else "-" for c in str(self.state.result_label))[:60].strip("-")
+        stem = stem or "racetrace"
+        ext = {"netcdf": "nc", "csv": "csv", "png": "png", "gif": "gif", "mp4": "mp4"}.get(kind)
+        if ext is None:
+            raise ValueError(f"unknown export {kind!r}; use netcdf, csv, png, gif or mp4")
+        path = self.exports_dir / f"{stem}.{ext}"
+        try:
+            if kind == "netcdf":
+                ex.export_netcdf(self.dataset, path)
+            elif kind == "csv":
+                ex.export_csv(self.dataset, path)
+            elif self.scene is None:
+                raise ValueError("the 3-D view is not available")
+            elif kind == "png":
+                ex.export_png(self.plotter, path)
+            else:
+                step = max(1, -(-self.source.n_frames // self.MAX_ANIMATION_FRAMES))
+                ex.export_animation(self.scene, path, step=step)
+        except (OSError, ValueError) as error:
+            self.state.export_message = f"export failed: {error}"
+            return None
+        self.state.export_name = path.name
+        self.state.export_href = f"{self.EXPORT_URL}/{urllib.parse.quote(path.name)}?t={time.time():.0f}"
+        self.state.export_message = ""
+        return path
 
     def shutdown(self) -> None:
         """Stop the background run and the animation."""

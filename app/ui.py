@@ -96,6 +96,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             app.view = view
                         _time_controls()
                         _scene_controls()
+                        _export_controls(ctrl)
                     with v3.VCol(cols=12, md=5):
                         _run_panel(ctrl)
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
@@ -154,6 +155,20 @@ def _scene_controls() -> None:
             with v3.VCol(cols="auto"):
                 v3.VCheckbox(label=label, v_model=(f"show_{layer}",), density="compact",
                              hide_details=True)
+
+
+def _export_controls(ctrl) -> None:
+    with v3.VRow(dense=True, align="center", id="export"):
+        with v3.VCol(cols="auto"):
+            html.Span("Export:", classes="text-body-2 mr-1")
+            for kind, label in (("netcdf", "NetCDF"), ("csv", "CSV"), ("png", "PNG"),
+                                ("gif", "GIF"), ("mp4", "MP4")):
+                v3.VBtn(label, click=(ctrl.export, f"['{kind}']"), size="small", variant="tonal",
+                        classes="mr-1", id=f"export-{kind}")
+        with v3.VCol():
+            html.A("download {{ export_name }}", href=("export_href",), download=("export_name",),
+                   v_show="export_href", id="export-link", target="_blank")
+            html.Span("{{ export_message }}", classes="text-error text-caption")
 
 
 def _run_panel(ctrl) -> None:

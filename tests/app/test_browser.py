@@ -186,3 +186,18 @@ def test_cancel_stops_a_long_run_and_keeps_it(page, server):
     page.screenshot(path=str(ARTIFACTS / "cancelled.png"))
     metas = [json.loads(p.read_text()) for p in Path(server["runs"]).glob("*/run.json")]
     assert "cancelled" in [m["status"] for m in metas]
+
+
+def test_export_png_and_csv_download(page, server):
+    for kind, magic in (("png", b"\x89PNG"), ("csv", b"ball")):
+        page.locator(f"#export-{kind}").click()
+        link = page.locator("#export-link")
+        page.wait_for_function(
+            f"document.querySelector('#export-link') && "
+            f"document.querySelector('#export-link').getAttribute('href').includes('.{kind}')",
+            timeout=60_000)
+        href = link.get_attribute("href")
+        response = page.request.get(server["url"] + href)
+        assert response.ok, href
+        body = response.body()
+        assert magic in body[:200], body[:80]

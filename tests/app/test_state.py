@@ -151,3 +151,14 @@ def test_run_refused_while_invalid(app):
     assert app.state.run_disabled
     app.run()
     assert not app.runner.busy and not app.state.busy
+
+
+def test_exports_from_the_app(app):
+    path = app.export("csv")
+    assert path.is_file() and path.parent == app.exports_dir
+    assert app.state.export_href.startswith("racetrace-exports/") and app.state.export_name == path.name
+    assert app.export("netcdf").suffix == ".nc"
+    assert app.export("png") is None  # render=False: no 3-D view
+    assert "not available" in app.state.export_message
+    with pytest.raises(ValueError, match="netcdf, csv"):
+        app.export("xls")

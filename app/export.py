@@ -1,0 +1,99 @@
+"""Exports of a result and of the 3-D view: NetCDF, CSV, PNG and an MP4 or GIF animation.
+
+Every file is written to a temporary name next to its target and renamed into place (atomic).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .runs import save_netcdf
+
+ANIMATION_FORMATS = ("gif", "mp4")
+
+
+def _atomic(path: Path, write) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return path
+
+
+def export_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
+    """The result as NetCDF (the results-schema.md contract)."""
+    return _atomic(Path(path), lambda tmp: save_netcdf(ds, tmp))
+
+
+def contact_table(ds: xr.Dataset):
+    """Per-contact variables as a flat table (pandas DataFrame): one row per (time,) ball, race.
+
+    Columns are named ``<variable> [<units>]``; angles stay in degrees as in the result.
+    """
+    names = [n for n, v in ds.data_vars.items()
+             if {"ball", "race"} <= set(v.dims) and set(v.dims) <= {"ball", "race", "time"}
+             and v.dtype.kind in "fiu"]
+    if not names:
+        raise ValueError("the result has no per-contact variables (ball, race) to export")
+    sub = ds[names]
+    frame = sub.to_dataframe().reset_index()
+    return frame.rename(columns={n: f"{n} [{ds[n].attrs.get('units', '1')}]" for n in names})
+
+
+def export_csv(ds: xr.Dataset, path: str | Path) -> Path:
+    """Per-contact variables as CSV (see :func:`contact_table`)."""
+    table = contact_table(ds)
+    return _atomic(Path(path), lambda tmp: table.to_csv(tmp, index=False))
+
+
+def export_png(plotter, path: str | Path) -> Path:
+    """The 3-D view as PNG (renders first: ``screenshot`` alone can return a stale image)."""
+    plotter.render()
+    plotter.render_window.Render()
+    return _atomic(Path(path), lambda tmp: plotter.screenshot(str(tmp)))
+
+
+def export_animation(scene, path: str | Path, start: int = 0, stop: int | None = None,
+                     step: int = 1, fps: float = 12.0) -> Path:
+    """Frames ``start:stop:step`` of the scene's current source as GIF or MP4 (by suffix).
+
+    The scene is left at its previous frame afterwards.
+    """
+    import imageio.v2 as imageio
+
+    path = Path(path)
+    fmt = path.suffix.lower().lstrip(".")
+    if fmt not in ANIMATION_FORMATS:
+        raise ValueError(f"animation file {path.name!r}: use a .gif or .mp4 name")
+    if scene.source is None:
+        raise ValueError("no result is shown, so there is nothing to animate")
+    stop = scene.source.n_frames if stop is None else min(stop, scene.source.n_frames)
+    indices = range(max(0, start), stop, max(1, int(step)))
+    if len(indices) < 2:
+        raise ValueError("an animation needs at least two frames")
+    previous = scene.frame_index
+    plotter = scene.plotter
+
+    def write(tmp: Path) -> None:
+        kwargs = {"fps": fps} if fmt == "mp4" else {"duration": 1.0 / fps, "loop": 0}
+        if fmt == "mp4":
+            kwargs["macro_block_size"] = 1
+        with imageio.get_writer(str(tmp), format="FFMPEG" if fmt == "mp4" else "GIF",
+                                **kwargs) as writer:
+            for i in indices:
+                scene.set_frame(i)
+                plotter.render_window.Render()
+                writer.append_data(np.asarray(plotter.screenshot(return_img=True)))
+
+    try:
+        return _atomic(path, write)
+    finally:
+        scene.set_frame(previous)

@@ -1,0 +1,56 @@
+"""Exports: NetCDF and CSV of a result, PNG of the view, GIF/MP4 of the animation."""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from app.export import contact_table, export_animation, export_csv, export_netcdf, export_png
+from app.frames import frame_source
+
+
+def test_netcdf_and_csv(tmp_path, dynamic_dataset):
+    nc = export_netcdf(dynamic_dataset, tmp_path / "run.nc")
+    with xr.open_dataset(nc) as back:
+        np.testing.assert_allclose(back["contact_angle"].values, dynamic_dataset["contact_angle"].values)
+    path = export_csv(dynamic_dataset, tmp_path / "run.csv")
+    rows = list(csv.DictReader(path.open()))
+    z, n = dynamic_dataset.sizes["ball"], dynamic_dataset.sizes["time"]
+    assert len(rows) == z * 2 * n
+    row = next(r for r in rows if r["ball"] == "3" and r["race"] == "outer"
+               and float(r["time"]) == float(dynamic_dataset.time[5]))
+    expected = float(dynamic_dataset["contact_angle"].sel(ball=3, race="outer").isel(time=5))
+    assert float(row["contact_angle [degree]"]) == pytest.approx(expected)
+    assert not list(tmp_path.glob(".*"))  # no temporary files left
+
+
+def test_table_of_a_quasistatic_result(qs_dataset):
+    table = contact_table(qs_dataset)
+    assert len(table) == qs_dataset.sizes["ball"] * 2
+    assert "contact_load [N]" in table.columns
+
+
+def test_png_and_animation(tmp_path, qs_dataset, geometry):
+    pv = pytest.importorskip("pyvista")
+    imageio = pytest.importorskip("imageio.v2")
+    from app.scene import BearingScene
+
+    plotter = pv.Plotter(off_screen=True, window_size=(160, 120))
+    scene = BearingScene(plotter, geometry)
+    scene.show_source(frame_source(qs_dataset))
+    scene.set_frame(4)
+    png = export_png(plotter, tmp_path / "view.png")
+    assert imageio.imread(png).shape[:2] == (120, 160)
+    gif = export_animation(scene, tmp_path / "anim.gif", start=0, stop=12, step=3)
+    frames = imageio.mimread(gif)
+    assert len(frames) == 4
+    assert np.abs(frames[0].astype(int) - frames[1].astype(int)).mean() > 0.1
+    assert scene.frame_index == 4  # restored
+    mp4 = export_animation(scene, tmp_path / "anim.mp4", stop=6)
+    assert mp4.stat().st_size > 1000
+    with pytest.raises(ValueError, match=".gif or .mp4"):
+        export_animation(scene, tmp_path / "anim.avi")
+    plotter.close()
