@@ -523,6 +523,59 @@ FIELDS: list[Field] = [
         reason="fewer samples cannot draw a trajectory",
         reason_high="more samples only make the result file larger",
     ),
+    # Dynamic-model switches (solver.models.dynamic.options.SimulationOptions); absent = full model.
+    Field(
+        "simulation.ball_race_traction",
+        "bool",
+        "Ball-race traction",
+        "EHL traction at the ball-race contacts (default true; false = frictionless contacts, "
+        "for checks such as energy conservation).",
+        default=OPTIONAL,
+    ),
+    Field(
+        "simulation.contact_damping_ratio",
+        "float",
+        "Contact damping ratio",
+        "Critical-damping ratio of the ball-race normal contacts (default 0.05; 0 = undamped).",
+        default=OPTIONAL,
+        minimum=0.0,
+        maximum=1.0,
+        reason="damping cannot feed energy into a contact",
+        reason_high="a contact damped beyond critical no longer behaves like a Hertz contact",
+    ),
+    Field(
+        "simulation.gravity_m_s2",
+        "float",
+        "Gravity",
+        "Gravitational acceleration, acting along -z of the bearing frame (default 9.81; 0 = off).",
+        unit="m/s^2",
+        default=OPTIONAL,
+        minimum=0.0,
+        maximum=1000.0,
+        reason="gravity is given as a magnitude along -z",
+        reason_high="beyond 100 g the bearing model's assumptions no longer hold",
+    ),
+    Field(
+        "simulation.tolerance",
+        "float",
+        "Integrator tolerance",
+        "Local error tolerance of the adaptive integrator, relative to each state's scale "
+        "(default 1e-4).",
+        default=OPTIONAL,
+        minimum=0.0,
+        minimum_inclusive=False,
+        maximum=1e-2,
+        reason="a tolerance must be positive",
+        reason_high="looser tolerances give wrong contact forces and energy drift",
+    ),
+    Field(
+        "simulation.model_cage",
+        "bool",
+        "Model the cage",
+        "Simulate the cage with its pocket and guiding-land contacts (default true; false = "
+        "balls are free to bunch).",
+        default=OPTIONAL,
+    ),
 ]
 
 #: Keys of a material table (under [materials.NAME], or inline for ball_material/ring_material).

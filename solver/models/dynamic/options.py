@@ -125,7 +125,7 @@ class SimulationOptions:
 #: [simulation] case keys (optional; when the case schema has them) -> SimulationOptions fields.
 CASE_KEYS = MappingProxyType(
     {
-        "traction": "traction",
+        "ball_race_traction": "traction",
         "contact_damping_ratio": "damping_ratio",
         "gravity_m_s2": "gravity",
         "tolerance": "tolerance",
