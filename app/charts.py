@@ -173,3 +173,31 @@ def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go
                                        marker={"size": 3, "color": RACE_COLOURS[race], "opacity": 0.4}))
     fig.update_xaxes(range=[0, 360])
     return _layout(fig, "Quasi-static versus dynamic", "ball azimuth, degree", "contact angle, degree")
+
+
+def side_by_side_raceway_maps(a: FrameSource, b: FrameSource, title_a: str, title_b: str,
+                              max_points: int = 10000) -> go.Figure:
+    """Two runs compared: their unrolled raceway maps next to each other, same contact-angle axis."""
+    from plotly.subplots import make_subplots
+
+    fig = make_subplots(rows=1, cols=2, shared_yaxes=True, horizontal_spacing=0.04,
+                        subplot_titles=(title_a[:60], title_b[:60]))
+    for col, source in ((1, a), (2, b)):
+        for race in (INNER, OUTER):
+            phi, alpha, loaded = source.trace(race)
+            step = max(1, int(np.ceil(loaded.sum() / max_points)))
+            fig.add_trace(go.Scattergl(
+                x=np.mod(np.degrees(phi[loaded]), 360.0)[::step], y=np.degrees(alpha[loaded])[::step],
+                mode="markers", marker={"size": 3, "color": RACE_COLOURS[race]},
+                name=f"{RACES[race]} raceway", showlegend=col == 1), row=1, col=col)
+        fig.update_xaxes(range=[0, 360], title_text="raceway azimuth, degree", row=1, col=col)
+    fig.update_yaxes(title_text="contact angle, degree", row=1, col=1)
+    _layout(fig, "", "", "")
+    fig.update_layout(xaxis_title="raceway azimuth, degree", yaxis_title="contact angle, degree")
+    return fig
+
+
+HELP["compare_runs"] = (
+    "Two runs side by side: the contact tracks on both raceways of the run on show (left) and of "
+    "the run chosen for comparison (right), e.g. without and with radial load."
+)

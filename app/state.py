@@ -38,7 +38,8 @@ PLAY_FPS = 12.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
 PREVIEW_DEBOUNCE_S = 0.15
-CHARTS = ("contact_angle", "raceway_map", "load_azimuth", "ellipse", "cage_speed", "comparison")
+CHARTS = ("contact_angle", "raceway_map", "load_azimuth", "ellipse", "cage_speed", "comparison",
+          "compare_runs")
 
 
 def _fig_json(fig) -> dict:
@@ -128,6 +129,7 @@ class RacetraceApp:
         s.result_label = ""
         s.runs = []
         s.run_id = None
+        s.compare_id = None
         for layer in ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces"):
             s[f"show_{layer}"] = True
         s.exaggeration = 1.0
@@ -154,6 +156,7 @@ class RacetraceApp:
         s.change("exaggeration", "trace_ball")(self._on_trace_options)
         s.change("camera")(self._on_camera)
         s.change("run_id")(self._on_run_id)
+        s.change("compare_id")(self._on_compare_id)
         s.change("uploaded_case")(self._on_upload)
         c.run = self.run
         c.cancel = self.cancel
@@ -315,6 +318,8 @@ class RacetraceApp:
         if s.frame > s.frame_max:
             s.frame = 0
         self._apply_frame(int(s.frame), charts_too=True)
+        if s.compare_id:
+            self.update_comparison()
 
     def _ensure_scene(self, geometry, case) -> None:
         key = (geometry.ball_count, geometry.ball_diameter, geometry.pitch_diameter,
@@ -466,6 +471,25 @@ class RacetraceApp:
         self.validate()
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         self.show_result(ds, label)
+
+    def _on_compare_id(self, compare_id=None, **_):
+        self.update_comparison()
+
+    def update_comparison(self) -> None:
+        """Side-by-side raceway maps of the result on show and the run chosen in ``compare_id``."""
+        run_id = self.state.compare_id
+        if not run_id or self.source is None:
+            self.state.chart_compare_runs = {"data": [], "layout": {}}
+            return
+        try:
+            ds, _ = self.store.load(run_id)
+            other = frame_source(ds)
+        except (OSError, ValueError) as error:
+            self.state.export_message = f"cannot compare: {error}"
+            return
+        label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
+        self.state.chart_compare_runs = _fig_json(charts.side_by_side_raceway_maps(
+            self.source, other, str(self.state.result_label), label))
 
     def run(self) -> None:
         """Start the dynamic model (or the quasi-static one if the dynamic model is absent)."""

@@ -111,6 +111,14 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                         help_key = key if key in HELP else "contact_angle"
                                         _chart(f"chart-{key.replace('_', '-')}", f"chart_{key}",
                                                help_key)
+                            with v3.VExpansionPanel(title="Compare two runs side by side"):
+                                with v3.VExpansionPanelText():
+                                    with html.Div(id="compare-select"):
+                                        v3.VSelect(label="Compare with saved run", v_model=("compare_id",),
+                                                   items=("runs",), density="compact", clearable=True,
+                                                   hide_details=True)
+                                    _chart("chart-compare-runs", "chart_compare_runs",
+                                           "compare_runs", height=300)
     return layout
 
 

@@ -70,3 +70,13 @@ def test_long_results_are_decimated(qs_dataset):
     fig = charts.contact_angle_figure(src, balls=(0,), current=src.n_frames - 1, max_points=1000)
     assert 900 <= len(fig.data[0].x) <= 1000
     assert fig.layout.shapes[0].x0 == pytest.approx(src.times[-1] * 1e3)
+
+
+def test_side_by_side_maps(qs_dataset, dynamic_dataset):
+    a, b = frame_source(qs_dataset), frame_source(dynamic_dataset)
+    fig = charts.side_by_side_raceway_maps(a, b, "quasi-static", "dynamic")
+    assert len(fig.data) == 4
+    assert [t.xaxis for t in fig.data] == ["x", "x", "x2", "x2"]
+    # the right panel shows run b: its outer-race contact angles
+    np.testing.assert_allclose(sorted(fig.data[3].y),
+                               sorted(np.degrees(b.trace(1)[1][b.trace(1)[2]])), rtol=1e-12)

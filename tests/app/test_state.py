@@ -143,6 +143,9 @@ def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
     _set(again, run_id=app.state.runs[0]["value"])
     assert again.state.result_label == app.state.runs[0]["title"]
     assert again.dataset.attrs["case"] == app.dataset.attrs["case"]
+    # compare the preview with the saved run side by side
+    _set(again, compare_id=app.state.runs[0]["value"])
+    assert len(again.state.chart_compare_runs["data"]) == 4
     again.shutdown()
 
 
