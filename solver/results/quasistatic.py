@@ -123,8 +123,8 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
                 alpha[j, k], beta[j], sol.spin_speed[j], ring_speed[k] - sol.orbital_speed[j]
             )
             spin_roll[j, k] = spin / roll if roll != 0.0 else 0.0
-            if lubricant is not None:
-                # entrainment speed: surface speed of the ring at the contact, relative to the cage
+            if lubricant is not None and sol.contact_load[j, k] > 0.0:
+                # (an open contact has no film: 0) entrainment speed: surface speed of the ring at the contact, relative to the cage
                 sign = -1.0 if k == 0 else 1.0
                 radius = 0.5 * geometry.pitch_diameter + sign * 0.5 * D * math.cos(alpha[j, k])
                 u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
@@ -177,6 +177,8 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
         attrs = spec.attrs()
         if name == "race_control":
             del attrs["units"]
+        if name == "film_thickness":
+            attrs["description"] += "; 0 at open contacts"
         if name == "sliding_speed":
             attrs["description"] += (
                 "; zero in the quasi-static model, which imposes pure rolling at the contact centres"

@@ -65,8 +65,8 @@ VARIABLES: dict[str, Variable] = {
         "contact angle",
         "angle of the contact line in the ring's meridian plane, from the radial plane; positive "
         "when the outer contact lies on the +x side of the ball centre and the inner contact on the -x "
-        "side (thrust carried in +x); may be negative. For an open contact: the geometric angle of "
-        "the line between the ball centre and the groove curvature centre",
+        "side (thrust carried in +x); may be negative. For an open contact: the angle of the line "
+        "between the two groove curvature centres (where the ball would touch if the gap closed)",
     ),
     "contact_deflection": Variable(
         _C,

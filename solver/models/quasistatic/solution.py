@@ -61,7 +61,8 @@ class QuasiStaticSolution:
     origin at the outer ring centre on the plane of the ball centres in the just-touching state;
     ``ball_center`` columns are (axial x, radial r) in the ball's meridian plane at ``ball_azimuth``.
     ``ball_angular_velocity`` is inertial (x, y, z). Deflections, loads are 0 at open contacts; the
-    contact angle is then the geometric one (direction between the ball centre and the groove centre).
+    contact angle is then the geometric one of the line between the two groove curvature centres
+    (where the ball would touch if the gap closed; a ball without any contact sits on that line).
     ``applied_moment`` (y, z) is the moment acting on the inner ring: the given one when the tilt is
     solved, otherwise the moment needed to hold the imposed tilt.
     """

@@ -320,6 +320,10 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     alpha = states[:, [9, 10]].copy()
     load = states[:, [5, 6]].copy()
     deflection = np.where(load > 0.0, np.maximum(states[:, [7, 8]], 0.0), 0.0)
+    # An open contact reports the angle of the line between the groove curvature centres: where the
+    # ball would touch if the gap closed (a ball with no contact at all sits on that line).
+    line = np.array([math.atan2(*kernels.inner_center(state.q, p, model)) for p in psi])
+    alpha = np.where(load > 0.0, alpha, line[:, None])
     beta = states[:, 11].copy()
     omega_c = states[:, 12].copy()
     omega_r = states[:, 13].copy()

@@ -138,6 +138,14 @@ def test_kingsbury_latitudes_and_outer_control_spin(spindle_ds):
     np.testing.assert_allclose(ds.sliding_speed.values, 0.0)
 
 
+def test_film_thickness_is_zero_at_open_contacts():
+    ds = solve_quasistatic(load_case(CASES.DEEP_GROOVE_RADIAL + CASES.LUBRICANT))
+    open_inner = ds.contact_load.values[:, 0] == 0.0
+    assert open_inner.any()
+    assert np.all(ds.film_thickness.values[open_inner, 0] == 0.0)
+    assert np.all(ds.film_thickness.values[~open_inner, 0] > 0.0)
+
+
 def test_film_thickness_only_with_a_lubricant():
     ds = solve_quasistatic(load_case(CASES.SPINDLE + CASES.LUBRICANT))
     h = ds.film_thickness.values
