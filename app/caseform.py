@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 from solver import CaseError
 
-
 INLINE_TABLE = "(inline table)"  # shown for a material given as an inline table (not editable here)
 
 
@@ -41,14 +40,28 @@ def form_fields() -> list[FormField]:
 
     fields = []
     for spec in FIELDS:
-        kind = spec.type if spec.type in ("int", "float", "str", "bool", "choice", "material") else "str"
+        kind = (
+            spec.type
+            if spec.type in ("int", "float", "str", "bool", "choice", "material")
+            else "str"
+        )
         choices = tuple(spec.choices) if kind == "choice" else ()
         if kind == "material":
             choices = tuple(BUILTIN_MATERIALS)
         label = f"{spec.label} ({spec.unit})" if spec.unit else spec.label
-        fields.append(FormField(key=spec.key, name=spec.name, kind=kind, label=label,
-                                unit=spec.unit, help=spec.help, choices=choices,
-                                section=spec.section, required=spec.default is REQUIRED))
+        fields.append(
+            FormField(
+                key=spec.key,
+                name=spec.name,
+                kind=kind,
+                label=label,
+                unit=spec.unit,
+                help=spec.help,
+                choices=choices,
+                section=spec.section,
+                required=spec.default is REQUIRED,
+            )
+        )
     return fields
 
 
@@ -139,6 +152,8 @@ def apply_form(base_case, fields: list[FormField], values: dict) -> FormResult:
             if name is None:
                 general.append(problem.message)
             else:
-                errors[name] = f"{errors[name]}; {problem.message}" if name in errors else problem.message
+                errors[name] = (
+                    f"{errors[name]}; {problem.message}" if name in errors else problem.message
+                )
         return FormResult(None, errors, tuple(general))
     return FormResult(case, {})

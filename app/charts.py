@@ -33,7 +33,8 @@ HELP = {
         "thin line means every ball follows the same path; a band means the path wanders."
     ),
     "ellipse": (
-        "Contact ellipse: the flattened patch where ball and raceway touch (Hertz theory). The long "
+        "Contact ellipse: the flattened patch where ball and raceway touch (Hertz theory). "
+        "The long "
         "semi-axis a lies across the groove, the short one b along the rolling direction; the peak "
         "pressure at its centre sets rolling-contact fatigue life."
     ),
@@ -43,7 +44,8 @@ HELP = {
     ),
     "comparison": (
         "Quasi-static versus dynamic: the quasi-static model assumes steady rolling; the dynamic "
-        "model integrates the motion in time. Their contact angles should agree in steady operation."
+        "model integrates the motion in time. Their contact angles should agree in steady "
+        "operation."
     ),
 }
 
@@ -69,8 +71,9 @@ def _time_marker(fig: go.Figure, x: float) -> None:
     fig.add_vline(x=x, line_width=1, line_dash="dot", line_color="#444")
 
 
-def contact_angle_figure(source: FrameSource, balls=(0,), current: int | None = None,
-                         max_points: int = 4000) -> go.Figure:
+def contact_angle_figure(
+    source: FrameSource, balls=(0,), current: int | None = None, max_points: int = 4000
+) -> go.Figure:
     """Contact angle (degree) versus time (ms), inner and outer contacts of the chosen balls.
 
     Long results are decimated to at most ``max_points`` samples per line.
@@ -83,8 +86,15 @@ def contact_angle_figure(source: FrameSource, balls=(0,), current: int | None = 
     for race in (INNER, OUTER):
         for j in balls:
             y = np.where(load[:, j, race] > 0, alpha[:, j, race], np.nan)
-            fig.add_trace(go.Scatter(x=t_ms, y=y, mode="lines", name=f"ball {j} {RACES[race]}",
-                                     line={"color": RACE_COLOURS[race]}))
+            fig.add_trace(
+                go.Scatter(
+                    x=t_ms,
+                    y=y,
+                    mode="lines",
+                    name=f"ball {j} {RACES[race]}",
+                    line={"color": RACE_COLOURS[race]},
+                )
+            )
     if current is not None:
         _time_marker(fig, float(source.times[min(current, source.n_frames - 1)] * 1e3))
     return _layout(fig, "Contact angle", "time, ms", "contact angle, degree")
@@ -97,16 +107,24 @@ def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
     order = np.argsort(psi)
     fig = go.Figure()
     for race in (INNER, OUTER):
-        fig.add_trace(go.Scatter(x=psi[order], y=np.nan_to_num(f.contact_load[order, race]),
-                                 mode="lines+markers", name=RACES[race],
-                                 line={"color": RACE_COLOURS[race]}))
+        fig.add_trace(
+            go.Scatter(
+                x=psi[order],
+                y=np.nan_to_num(f.contact_load[order, race]),
+                mode="lines+markers",
+                name=RACES[race],
+                line={"color": RACE_COLOURS[race]},
+            )
+        )
     fig.update_xaxes(range=[0, 360])
-    return _layout(fig, f"Contact load at t = {f.time * 1e3:.2f} ms", "ball azimuth, degree",
-                   "contact load, N")
+    return _layout(
+        fig, f"Contact load at t = {f.time * 1e3:.2f} ms", "ball azimuth, degree", "contact load, N"
+    )
 
 
-def raceway_map_figure(source: FrameSource, stop: int | None = None,
-                       max_points: int = 20000) -> go.Figure:
+def raceway_map_figure(
+    source: FrameSource, stop: int | None = None, max_points: int = 20000
+) -> go.Figure:
     """Unrolled raceway maps: raceway azimuth (ring frame) x contact angle, both races."""
     fig = go.Figure()
     for race in (INNER, OUTER):
@@ -114,11 +132,22 @@ def raceway_map_figure(source: FrameSource, stop: int | None = None,
         step = max(1, int(np.ceil(loaded.sum() / max_points)))
         x = np.mod(np.degrees(phi[loaded]), 360.0)[::step]
         y = np.degrees(alpha[loaded])[::step]
-        fig.add_trace(go.Scattergl(x=x, y=y, mode="markers", name=f"{RACES[race]} raceway",
-                                   marker={"size": 3, "color": RACE_COLOURS[race]}))
+        fig.add_trace(
+            go.Scattergl(
+                x=x,
+                y=y,
+                mode="markers",
+                name=f"{RACES[race]} raceway",
+                marker={"size": 3, "color": RACE_COLOURS[race]},
+            )
+        )
     fig.update_xaxes(range=[0, 360])
-    return _layout(fig, "Contact tracks on the unrolled raceways", "raceway azimuth (ring frame), degree",
-                   "contact angle, degree")
+    return _layout(
+        fig,
+        "Contact tracks on the unrolled raceways",
+        "raceway azimuth (ring frame), degree",
+        "contact angle, degree",
+    )
 
 
 def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
@@ -135,9 +164,14 @@ def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
         p = np.where(ok, f.max_pressure[order, race] * 1e-9, np.nan)
         c = RACE_COLOURS[race]
         fig.add_trace(go.Scatter(x=x, y=a, name=f"a {RACES[race]}", line={"color": c}))
-        fig.add_trace(go.Scatter(x=x, y=b, name=f"b {RACES[race]}", line={"color": c, "dash": "dot"}))
-        fig.add_trace(go.Scatter(x=x, y=p, name=f"p max {RACES[race]}", yaxis="y2",
-                                 line={"color": c, "dash": "dash"}))
+        fig.add_trace(
+            go.Scatter(x=x, y=b, name=f"b {RACES[race]}", line={"color": c, "dash": "dot"})
+        )
+        fig.add_trace(
+            go.Scatter(
+                x=x, y=p, name=f"p max {RACES[race]}", yaxis="y2", line={"color": c, "dash": "dash"}
+            )
+        )
     fig.update_layout(yaxis2={"title": "peak pressure, GPa", "overlaying": "y", "side": "right"})
     fig.update_xaxes(range=[0, 360])
     return _layout(fig, "Contact ellipses", "ball azimuth, degree", "semi-axis, mm")
@@ -163,33 +197,64 @@ def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go
     order = np.argsort(psi)
     for race in (INNER, OUTER):
         alpha = quasistatic["contact_angle"].isel(race=race).values
-        fig.add_trace(go.Scatter(x=psi[order], y=alpha[order], mode="lines+markers",
-                                 name=f"quasi-static {RACES[race]}", line={"color": RACE_COLOURS[race]}))
+        fig.add_trace(
+            go.Scatter(
+                x=psi[order],
+                y=alpha[order],
+                mode="lines+markers",
+                name=f"quasi-static {RACES[race]}",
+                line={"color": RACE_COLOURS[race]},
+            )
+        )
         if dynamic is not None and "time" in dynamic.dims:
             d_psi = np.mod(dynamic["ball_azimuth"].values, 360.0)
-            d_alpha = dynamic["contact_angle"].isel(race=race).transpose(*dynamic["ball_azimuth"].dims)
-            fig.add_trace(go.Scattergl(x=d_psi.ravel()[::7], y=d_alpha.values.ravel()[::7],
-                                       mode="markers", name=f"dynamic {RACES[race]}",
-                                       marker={"size": 3, "color": RACE_COLOURS[race], "opacity": 0.4}))
+            d_alpha = (
+                dynamic["contact_angle"].isel(race=race).transpose(*dynamic["ball_azimuth"].dims)
+            )
+            fig.add_trace(
+                go.Scattergl(
+                    x=d_psi.ravel()[::7],
+                    y=d_alpha.values.ravel()[::7],
+                    mode="markers",
+                    name=f"dynamic {RACES[race]}",
+                    marker={"size": 3, "color": RACE_COLOURS[race], "opacity": 0.4},
+                )
+            )
     fig.update_xaxes(range=[0, 360])
-    return _layout(fig, "Quasi-static versus dynamic", "ball azimuth, degree", "contact angle, degree")
+    return _layout(
+        fig, "Quasi-static versus dynamic", "ball azimuth, degree", "contact angle, degree"
+    )
 
 
-def side_by_side_raceway_maps(a: FrameSource, b: FrameSource, title_a: str, title_b: str,
-                              max_points: int = 10000) -> go.Figure:
-    """Two runs compared: their unrolled raceway maps next to each other, same contact-angle axis."""
+def side_by_side_raceway_maps(
+    a: FrameSource, b: FrameSource, title_a: str, title_b: str, max_points: int = 10000
+) -> go.Figure:
+    """Two runs compared: unrolled raceway maps next to each other, same contact-angle axis."""
     from plotly.subplots import make_subplots
 
-    fig = make_subplots(rows=1, cols=2, shared_yaxes=True, horizontal_spacing=0.04,
-                        subplot_titles=(title_a[:60], title_b[:60]))
+    fig = make_subplots(
+        rows=1,
+        cols=2,
+        shared_yaxes=True,
+        horizontal_spacing=0.04,
+        subplot_titles=(title_a[:60], title_b[:60]),
+    )
     for col, source in ((1, a), (2, b)):
         for race in (INNER, OUTER):
             phi, alpha, loaded = source.trace(race)
             step = max(1, int(np.ceil(loaded.sum() / max_points)))
-            fig.add_trace(go.Scattergl(
-                x=np.mod(np.degrees(phi[loaded]), 360.0)[::step], y=np.degrees(alpha[loaded])[::step],
-                mode="markers", marker={"size": 3, "color": RACE_COLOURS[race]},
-                name=f"{RACES[race]} raceway", showlegend=col == 1), row=1, col=col)
+            fig.add_trace(
+                go.Scattergl(
+                    x=np.mod(np.degrees(phi[loaded]), 360.0)[::step],
+                    y=np.degrees(alpha[loaded])[::step],
+                    mode="markers",
+                    marker={"size": 3, "color": RACE_COLOURS[race]},
+                    name=f"{RACES[race]} raceway",
+                    showlegend=col == 1,
+                ),
+                row=1,
+                col=col,
+            )
         fig.update_xaxes(range=[0, 360], title_text="raceway azimuth, degree", row=1, col=col)
     fig.update_yaxes(title_text="contact angle, degree", row=1, col=1)
     _layout(fig, "", "", "")

@@ -38,9 +38,13 @@ def contact_table(ds: xr.Dataset):
 
     Columns are named ``<variable> [<units>]``; angles stay in degrees as in the result.
     """
-    names = [n for n, v in ds.data_vars.items()
-             if {"ball", "race"} <= set(v.dims) and set(v.dims) <= {"ball", "race", "time"}
-             and v.dtype.kind in "fiu"]
+    names = [
+        n
+        for n, v in ds.data_vars.items()
+        if {"ball", "race"} <= set(v.dims)
+        and set(v.dims) <= {"ball", "race", "time"}
+        and v.dtype.kind in "fiu"
+    ]
     if not names:
         raise ValueError("the result has no per-contact variables (ball, race) to export")
     sub = ds[names]
@@ -61,8 +65,14 @@ def export_png(plotter, path: str | Path) -> Path:
     return _atomic(Path(path), lambda tmp: plotter.screenshot(str(tmp)))
 
 
-def export_animation(scene, path: str | Path, start: int = 0, stop: int | None = None,
-                     step: int = 1, fps: float = 12.0) -> Path:
+def export_animation(
+    scene,
+    path: str | Path,
+    start: int = 0,
+    stop: int | None = None,
+    step: int = 1,
+    fps: float = 12.0,
+) -> Path:
     """Frames ``start:stop:step`` of the scene's current source as GIF or MP4 (by suffix).
 
     The scene is left at its previous frame afterwards.
@@ -86,8 +96,9 @@ def export_animation(scene, path: str | Path, start: int = 0, stop: int | None =
         kwargs = {"fps": fps} if fmt == "mp4" else {"duration": 1.0 / fps, "loop": 0}
         if fmt == "mp4":
             kwargs["macro_block_size"] = 1
-        with imageio.get_writer(str(tmp), format="FFMPEG" if fmt == "mp4" else "GIF",
-                                **kwargs) as writer:
+        with imageio.get_writer(
+            str(tmp), format="FFMPEG" if fmt == "mp4" else "GIF", **kwargs
+        ) as writer:
             for i in indices:
                 scene.set_frame(i)
                 plotter.render_window.Render()

@@ -6,9 +6,10 @@ coordinates of the contact points (each ring's own frame) from which trajectory 
 
 Two ways to build one (:func:`frame_source` picks the right one):
 
-* :meth:`FrameSource.from_dynamic` — a dynamic result (``time`` dimension): frame ``i`` is time index
-  ``i``.
-* :meth:`FrameSource.from_quasistatic` — a quasi-static result (no ``time``): rigid steady kinematics.
+* :meth:`FrameSource.from_dynamic` — a dynamic result (``time`` dimension): frame ``i`` is
+  time index ``i``.
+* :meth:`FrameSource.from_quasistatic` — a quasi-static result (no ``time``): rigid steady
+  kinematics.
   The balls orbit at the quasi-static cage speed (the cage keeps their spacing; per-ball orbital
   speeds are shown in the charts), each ball's spin vector relative to its azimuth frame is the
   quasi-static one at its current azimuth, the inner ring turns at the shaft speed and the contact
@@ -37,8 +38,13 @@ QS_SAMPLES_PER_REVOLUTION = 72  # animation frames per shaft revolution for a qu
 QS_DEFAULT_REVOLUTIONS = 10.0  # used when the case has no [simulation] shaft_revolutions
 QS_MAX_REVOLUTIONS = 20.0  # the steady animation repeats; longer runs only add frames to handle
 
-_CONTACT_VARS = ("contact_angle", "contact_load", "ellipse_semi_major", "ellipse_semi_minor",
-                 "max_pressure")
+_CONTACT_VARS = (
+    "contact_angle",
+    "contact_load",
+    "ellipse_semi_major",
+    "ellipse_semi_minor",
+    "max_pressure",
+)
 
 
 @dataclass(frozen=True)
@@ -145,7 +151,8 @@ class FrameSource:
             rotation = quaternion_to_matrix(quat)
         else:
             raise ValueError(
-                "the dynamic result has no 'ball_orientation' variable (results-schema.md): the 3-D "
+                "the dynamic result has no 'ball_orientation' variable (results-schema.md): "
+                "the 3-D "
                 "view needs it to show the ball spin"
             )
         psi = np.unwrap(np.radians(_arr(ds, "ball_azimuth", ("time", "ball"))), axis=0)
@@ -158,8 +165,9 @@ class FrameSource:
         for name in _CONTACT_VARS:
             values = _arr(ds, name, ("time", "ball", "race"))
             contact[name] = np.radians(values) if name == "contact_angle" else values
-        raceway = np.unwrap(np.radians(_arr(ds, "raceway_azimuth", ("time", "ball", "race"))),
-                            axis=0)
+        raceway = np.unwrap(
+            np.radians(_arr(ds, "raceway_azimuth", ("time", "ball", "race"))), axis=0
+        )
         rings = np.stack([omega_i * (t - t[0]), omega_o * (t - t[0])], axis=1)
         return cls("dynamic", t, centre, rotation, psi, rings, cage, contact, raceway)
 
@@ -179,7 +187,9 @@ class FrameSource:
         _require(ds, ("ball_center", "ball_azimuth", "ball_angular_velocity", *_CONTACT_VARS))
         omega_i, omega_o = ring_speeds(ds)
         if revolutions is None:
-            revolutions = _case_value(ds, ("simulation", "shaft_revolutions"), QS_DEFAULT_REVOLUTIONS)
+            revolutions = _case_value(
+                ds, ("simulation", "shaft_revolutions"), QS_DEFAULT_REVOLUTIONS
+            )
             revolutions = min(float(revolutions), QS_MAX_REVOLUTIONS)
         psi0 = np.radians(_arr(ds, "ball_azimuth", ("ball",)))
         if "cage_speed" in ds and np.isfinite(float(ds["cage_speed"])):
@@ -203,8 +213,12 @@ class FrameSource:
         spin_t = periodic_interp(psi, psi0, spin_az)
         ball_centre = np.einsum("nzij,nzj->nzi", rot_x(psi), centre_t)
         rate = np.linalg.norm(spin_t, axis=-1)  # (N, Z) rad/s
-        angle = np.concatenate([np.zeros((1, psi.shape[1])),
-                                np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t)[:, None], axis=0)])
+        angle = np.concatenate(
+            [
+                np.zeros((1, psi.shape[1])),
+                np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t)[:, None], axis=0),
+            ]
+        )
         axis = spin_t / np.where(rate > 0, rate, 1.0)[..., None]
         axis[rate == 0] = (1.0, 0.0, 0.0)
         rotation = np.einsum("nzij,nzjk->nzik", rot_x(psi), axis_angle_matrix(axis, angle))
@@ -230,7 +244,7 @@ def frame_source(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
 
 # ---- helpers ------------------------------------------------------------------------------------
 def ring_speeds(ds: xr.Dataset) -> tuple[float, float]:
-    """(inner, outer) ring speeds in rad/s from the case stored in the result's ``case`` attribute."""
+    """(inner, outer) ring speeds in rad/s from the case in the result's ``case`` attribute."""
     inner = _case_value(ds, ("operating", "inner_ring_speed_rpm"), None)
     if inner is None:
         raise ValueError("the result has no case attribute with operating.inner_ring_speed_rpm")
@@ -306,7 +320,7 @@ def axis_angle_matrix(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
 
 
 def quaternion_to_matrix(q: np.ndarray) -> np.ndarray:
-    """Unit quaternions [w, x, y, z] (..., 4) -> rotation matrices (..., 3, 3) (normalised first)."""
+    """Quaternions [w, x, y, z] (..., 4) -> rotation matrices (..., 3, 3), normalised first."""
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
     w, x, y, z = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
     m = np.empty(q.shape[:-1] + (3, 3))

@@ -9,8 +9,13 @@ from .offscreen import check_offscreen_rendering, configure_environment
 EXIT_NO_RENDERING = 2
 
 
-def serve(host: str = "127.0.0.1", port: int = 8080, open_browser: bool = False,
-          runs_dir: str | None = None, case_name: str | None = None) -> int:
+def serve(
+    host: str = "127.0.0.1",
+    port: int = 8080,
+    open_browser: bool = False,
+    runs_dir: str | None = None,
+    case_name: str | None = None,
+) -> int:
     """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here."""
     configure_environment()
     check = check_offscreen_rendering()
@@ -30,10 +35,17 @@ def serve(host: str = "127.0.0.1", port: int = 8080, open_browser: bool = False,
     app.exports_dir.mkdir(parents=True, exist_ok=True)
     server.enable_module({"serve": {app.EXPORT_URL: str(app.exports_dir)}})
     build_ui(app)
-    print(f"racetrace: serving on http://{host}:{port}/  (runs folder: {app.store.root})", flush=True)
+    print(
+        f"racetrace: serving on http://{host}:{port}/  (runs folder: {app.store.root})", flush=True
+    )
     try:
-        server.start(host=host, port=port, open_browser=open_browser, show_connection_info=False,
-                     disable_logging=True)
+        server.start(
+            host=host,
+            port=port,
+            open_browser=open_browser,
+            show_connection_info=False,
+            disable_logging=True,
+        )
     finally:
         app.shutdown()
     return 0

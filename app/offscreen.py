@@ -2,8 +2,8 @@
 
 VTK picks its OpenGL back end at run time; without a display it uses EGL on Mesa's software driver,
 which needs the Debian packages ``libegl1`` and ``libgl1-mesa-dri``. When they are missing VTK dies
-with a segmentation fault rather than a Python error, so the check renders one small frame in a CHILD
-process and reports what to install when the child fails.
+with a segmentation fault rather than a Python error, so the check renders one small frame in a
+CHILD process and reports what to install when the child fails.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ class OffscreenCheck:
 
 
 def configure_environment(environ: dict | None = None) -> None:
-    """Select the EGL render window when there is no X display (skips X probing, which can segfault).
+    """Select the EGL render window when there is no X display (X probing can segfault).
 
     Also sets ``pv.global_theme.multi_samples = 0`` if pyvista is already imported (a frame in
     software rendering is about 3.5x cheaper without multisampling).
@@ -69,11 +69,15 @@ def check_offscreen_rendering(timeout: float = 120.0) -> OffscreenCheck:
             timeout=timeout,
         )
     except subprocess.TimeoutExpired:
-        return OffscreenCheck(False, _failure_message(f"the test render took longer than {timeout:.0f} s"))
+        return OffscreenCheck(
+            False, _failure_message(f"the test render took longer than {timeout:.0f} s")
+        )
     if proc.returncode == 0 and proc.stdout.strip().endswith("ok"):
         return OffscreenCheck(True, "off-screen rendering works")
     if proc.returncode < 0:
-        reason = f"the test render was killed by signal {-proc.returncode} (VTK could not open OpenGL)"
+        reason = (
+            f"the test render was killed by signal {-proc.returncode} (VTK could not open OpenGL)"
+        )
     else:
         last = (proc.stderr.strip().splitlines() or ["no output"])[-1]
         reason = f"the test render failed ({last})"

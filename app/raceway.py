@@ -4,7 +4,9 @@ Pure numpy, no rendering. A raceway point is given by its circumferential coordi
 azimuth in the ring frame, from +y towards +z) and its groove latitude ``alpha`` (rad, the contact
 angle). Races are indexed ``INNER = 0`` and ``OUTER = 1`` like the ``race`` dimension of a result.
 
-    P^r(phi, alpha) = (x_c -+ r sin(alpha), (rho_c -+ r cos(alpha)) cos(phi), (rho_c -+ r cos(alpha)) sin(phi))
+    P^r(phi, alpha) = (x_c -+ r sin(alpha),
+                       (rho_c -+ r cos(alpha)) cos(phi),
+                       (rho_c -+ r cos(alpha)) sin(phi))
 
 upper signs for the inner groove, lower signs for the outer one. Lengths in m.
 """
@@ -64,7 +66,7 @@ def grooves(geometry) -> tuple[Groove, Groove]:
 
 
 def exaggerate(alpha, reference: float, factor: float):
-    """Scale the across-groove deviation of ``alpha`` from ``reference`` by ``factor`` (rad in, out).
+    """Scale the across-groove deviation of ``alpha`` from ``reference`` by ``factor`` (rad).
 
     factor 1 returns ``alpha`` unchanged; real deviations are often a fraction of a degree, so the
     3-D view offers factors up to ~20.

@@ -100,14 +100,17 @@ class SolverRunner:
         return not self._finished
 
     def start(self, case_text: str, out_path: str, target: str = DYNAMIC_JOB) -> None:
-        """Start ``target`` on ``case_text`` in a new spawn process; the result goes to ``out_path``."""
+        """Start ``target`` on ``case_text`` in a spawn process; result saved to ``out_path``."""
         if self.busy:
             raise RuntimeError("a run is already in progress; cancel it first")
         self._messages = self._ctx.Queue()
         self._cancel = self._ctx.Event()
         self._process = self._ctx.Process(
-            target=_child_main, args=(target, case_text, str(out_path), self._messages, self._cancel),
-            daemon=True, name="racetrace-solver")
+            target=_child_main,
+            args=(target, case_text, str(out_path), self._messages, self._cancel),
+            daemon=True,
+            name="racetrace-solver",
+        )
         self._started = time.monotonic()
         self._finished = False
         self._process.start()
@@ -118,7 +121,7 @@ class SolverRunner:
             self._cancel.set()
 
     def poll(self) -> list[RunEvent]:
-        """Events received since the last call (non-blocking). Ends with done/error when finished."""
+        """Events since the last call (non-blocking); the last one is done/error when finished."""
         events = []
         if self._messages is None or self._finished:
             return events
@@ -138,8 +141,11 @@ class SolverRunner:
                 events.append(self._event(msg))
             except queue_module.Empty:
                 code = self._process.exitcode
-                events.append(RunEvent("error", text=f"the solver process stopped unexpectedly "
-                                                     f"(exit code {code})"))
+                events.append(
+                    RunEvent(
+                        "error", text=f"the solver process stopped unexpectedly (exit code {code})"
+                    )
+                )
             self._finish()
         return events
 
@@ -148,7 +154,9 @@ class SolverRunner:
             _, fraction, sim_t, text = msg
             elapsed = time.monotonic() - self._started
             eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
-            return RunEvent("progress", fraction=fraction, simulated_time=sim_t, text=text, eta_s=eta)
+            return RunEvent(
+                "progress", fraction=fraction, simulated_time=sim_t, text=text, eta_s=eta
+            )
         if msg[0] == "done":
             return RunEvent("done", fraction=1.0, path=msg[1], complete=int(msg[2]))
         return RunEvent("error", text=str(msg[1]))

@@ -1,4 +1,4 @@
-"""The runs folder: every finished or cancelled run saved as NetCDF + case TOML, listed and reopened.
+"""The runs folder: every finished or cancelled run saved (NetCDF + case TOML), listed, reopened.
 
 Layout: ``<runs_dir>/<run_id>/`` holding ``result.nc`` (the result Dataset), ``case.toml`` (the case
 as run) and ``run.json`` (title, model, status, creation time). A run is first written into a hidden
@@ -16,7 +16,7 @@ import re
 import secrets
 import shutil
 from dataclasses import asdict, dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 
 import xarray as xr
@@ -75,19 +75,26 @@ class RunStore:
     def __init__(self, root: str | Path):
         self.root = Path(root)
 
-    def save(self, ds: xr.Dataset, case_text: str, title: str, status: str | None = None) -> RunInfo:
+    def save(
+        self, ds: xr.Dataset, case_text: str, title: str, status: str | None = None
+    ) -> RunInfo:
         """Save a run atomically and return its :class:`RunInfo`.
 
-        ``status`` defaults to ``done`` when the Dataset's ``complete`` attribute is 1 (or absent) and
-        ``cancelled`` otherwise.
+        ``status`` defaults to ``done`` when the Dataset's ``complete`` attribute is 1 (or
+        absent) and ``cancelled`` otherwise.
         """
         if status is None:
             status = "done" if int(ds.attrs.get("complete", 1)) == 1 else "cancelled"
-        now = datetime.now(timezone.utc)
+        now = datetime.now(UTC)
         slug = re.sub(r"[^A-Za-z0-9]+", "-", title).strip("-")[:40] or "run"
         run_id = f"{now:%Y%m%d-%H%M%S}-{slug}-{secrets.token_hex(2)}"
-        info = RunInfo(run_id, title, str(ds.attrs.get("model", "unknown")), status,
-                       now.isoformat(timespec="seconds"))
+        info = RunInfo(
+            run_id,
+            title,
+            str(ds.attrs.get("model", "unknown")),
+            status,
+            now.isoformat(timespec="seconds"),
+        )
         self.root.mkdir(parents=True, exist_ok=True)
         tmp = self.root / f".tmp-{run_id}"
         tmp.mkdir()

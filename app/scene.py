@@ -50,7 +50,9 @@ def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n
     """
     D, r = ball_diameter, groove.r
     s = groove.sign  # +1 inner (material below the groove), -1 outer (material above)
-    depth = s * (shoulder_radius - (groove.rho_c - s * r)) if np.isfinite(shoulder_radius) else np.nan
+    depth = (
+        s * (shoulder_radius - (groove.rho_c - s * r)) if np.isfinite(shoulder_radius) else np.nan
+    )
     if not (np.isfinite(depth) and 0.05 * D < depth < 0.9 * r):
         depth = 0.2 * D
     theta = math.acos(1.0 - depth / r)
@@ -83,8 +85,9 @@ def revolve(xs, rhos, n_phi: int = 96, phi_range=(0.0, 2 * math.pi)) -> pv.PolyD
     if phi_range[1] - phi_range[0] < 2 * math.pi - 1e-9:  # a cut-away ring: close the cut faces
         caps = []
         for angle in phi_range:
-            pts = np.column_stack([xs, np.asarray(rhos) * math.cos(angle),
-                                   np.asarray(rhos) * math.sin(angle)])[:-1]  # drop closing point
+            pts = np.column_stack(
+                [xs, np.asarray(rhos) * math.cos(angle), np.asarray(rhos) * math.sin(angle)]
+            )[:-1]  # drop closing point
             face = np.concatenate([[len(pts)], np.arange(len(pts))])
             caps.append(pv.PolyData(pts, faces=face).triangulate())
         surf = pv.merge([surf, *caps]).clean()
@@ -95,7 +98,9 @@ def marked_sphere(radius: float) -> pv.PolyData:
     """Sphere with an octant checker pattern (cell data ``mark``), so its spin is visible."""
     sphere = pv.Sphere(radius=radius, theta_resolution=24, phi_resolution=16)
     c = sphere.cell_centers().points
-    sphere.cell_data["mark"] = (np.sign(c[:, 0]) * np.sign(c[:, 1]) * np.sign(c[:, 2]) > 0).astype(float)
+    sphere.cell_data["mark"] = (np.sign(c[:, 0]) * np.sign(c[:, 1]) * np.sign(c[:, 2]) > 0).astype(
+        float
+    )
     return sphere
 
 
@@ -104,19 +109,23 @@ def cage_mesh(pitch_radius: float, ball_diameter: float, ball_count: int) -> pv.
     D = ball_diameter
     parts = []
     for x in (-0.62 * D, 0.62 * D):
-        hoop = pv.ParametricTorus(ringradius=pitch_radius, crosssectionradius=0.07 * D,
-                                  u_res=96, v_res=8)
+        hoop = pv.ParametricTorus(
+            ringradius=pitch_radius, crosssectionradius=0.07 * D, u_res=96, v_res=8
+        )
         parts.append(hoop.rotate_y(90.0, inplace=False).translate((x, 0.0, 0.0), inplace=False))
     for j in range(ball_count):
         psi = 2 * math.pi * (j + 0.5) / ball_count
         centre = (0.0, pitch_radius * math.cos(psi), pitch_radius * math.sin(psi))
-        parts.append(pv.Cylinder(center=centre, direction=(1, 0, 0), radius=0.07 * D,
-                                 height=1.24 * D, resolution=8))
+        parts.append(
+            pv.Cylinder(
+                center=centre, direction=(1, 0, 0), radius=0.07 * D, height=1.24 * D, resolution=8
+            )
+        )
     return pv.merge(parts)
 
 
 def _fan_faces(count: int, n: int) -> np.ndarray:
-    """Triangle-fan faces for ``count`` ellipses of ``n`` outline points plus a centre point each."""
+    """Triangle-fan faces for ``count`` ellipses of ``n`` outline points plus a centre each."""
     faces = []
     for e in range(count):
         base = e * (n + 1)
@@ -135,8 +144,13 @@ def _matrix(rotation: np.ndarray, translation=(0.0, 0.0, 0.0)) -> np.ndarray:
 class BearingScene:
     """Builds the bearing into ``plotter`` and moves it to a frame of a :class:`FrameSource`."""
 
-    def __init__(self, plotter: pv.Plotter, geometry, options: SceneOptions | None = None,
-                 dark_balls: bool = False):
+    def __init__(
+        self,
+        plotter: pv.Plotter,
+        geometry,
+        options: SceneOptions | None = None,
+        dark_balls: bool = False,
+    ):
         self.plotter = plotter
         self.geometry = geometry
         self.options = options or SceneOptions()
@@ -151,54 +165,105 @@ class BearingScene:
     def _build(self, dark_balls: bool) -> None:
         g, p = self.geometry, self.plotter
         p.set_background("white")
-        inner_profile = ring_profile(self.grooves[INNER], g.ball_diameter, g.inner_shoulder_diameter / 2)
-        outer_profile = ring_profile(self.grooves[OUTER], g.ball_diameter, g.outer_shoulder_diameter / 2)
+        inner_profile = ring_profile(
+            self.grooves[INNER], g.ball_diameter, g.inner_shoulder_diameter / 2
+        )
+        outer_profile = ring_profile(
+            self.grooves[OUTER], g.ball_diameter, g.outer_shoulder_diameter / 2
+        )
         inner = revolve(*inner_profile)
         # a dark sector on the inner ring makes its rotation visible
         phi = np.arctan2(inner.cell_centers().points[:, 2], inner.cell_centers().points[:, 1])
         inner.cell_data["mark"] = (np.abs(phi) < math.radians(8)).astype(float)
-        self._actors["inner_ring"].append(p.add_mesh(
-            inner, scalars="mark", cmap=[_RING_COLOUR, "#2f5597"], show_scalar_bar=False,
-            smooth_shading=True, specular=0.4, name="inner_ring"))
-        self._actors["outer_ring"].append(p.add_mesh(
-            revolve(*outer_profile, n_phi=72,
-                    phi_range=(self.options.outer_cutaway[1],
-                               self.options.outer_cutaway[0] + 2 * math.pi)),
-            color=_RING_COLOUR,
-            smooth_shading=True, specular=0.4, name="outer_ring"))
+        self._actors["inner_ring"].append(
+            p.add_mesh(
+                inner,
+                scalars="mark",
+                cmap=[_RING_COLOUR, "#2f5597"],
+                show_scalar_bar=False,
+                smooth_shading=True,
+                specular=0.4,
+                name="inner_ring",
+            )
+        )
+        self._actors["outer_ring"].append(
+            p.add_mesh(
+                revolve(
+                    *outer_profile,
+                    n_phi=72,
+                    phi_range=(
+                        self.options.outer_cutaway[1],
+                        self.options.outer_cutaway[0] + 2 * math.pi,
+                    ),
+                ),
+                color=_RING_COLOUR,
+                smooth_shading=True,
+                specular=0.4,
+                name="outer_ring",
+            )
+        )
         sphere = marked_sphere(0.5 * g.ball_diameter)
         colours = ["#202020", "#6a6a6a"] if dark_balls else ["#d9d9d9", "#7a7a7a"]
         for j in range(g.ball_count):
-            self._actors["balls"].append(p.add_mesh(
-                sphere, scalars="mark", cmap=colours, show_scalar_bar=False, smooth_shading=True,
-                specular=0.6, name=f"ball_{j}"))
-        self._actors["cage"].append(p.add_mesh(
-            cage_mesh(0.5 * g.pitch_diameter, g.ball_diameter, g.ball_count), color="#c8842a",
-            smooth_shading=True, name="cage"))
+            self._actors["balls"].append(
+                p.add_mesh(
+                    sphere,
+                    scalars="mark",
+                    cmap=colours,
+                    show_scalar_bar=False,
+                    smooth_shading=True,
+                    specular=0.6,
+                    name=f"ball_{j}",
+                )
+            )
+        self._actors["cage"].append(
+            p.add_mesh(
+                cage_mesh(0.5 * g.pitch_diameter, g.ball_diameter, g.ball_count),
+                color="#c8842a",
+                smooth_shading=True,
+                name="cage",
+            )
+        )
         n_pts = g.ball_count * (ELLIPSE_POINTS + 1)
         self._ellipses, self._traces = [], []
         for race in (INNER, OUTER):
             mesh = pv.PolyData(np.zeros((n_pts, 3)), faces=_fan_faces(g.ball_count, ELLIPSE_POINTS))
             mesh.point_data["max_pressure_GPa"] = np.zeros(n_pts)
             self._ellipses.append(mesh)
-            self._actors["ellipses"].append(p.add_mesh(
-                mesh, scalars="max_pressure_GPa", cmap="plasma", clim=(0.0, 1.0),
-                show_scalar_bar=race == INNER, scalar_bar_args={"title": "peak pressure, GPa"},
-                name=f"ellipses_{race}"))
+            self._actors["ellipses"].append(
+                p.add_mesh(
+                    mesh,
+                    scalars="max_pressure_GPa",
+                    cmap="plasma",
+                    clim=(0.0, 1.0),
+                    show_scalar_bar=race == INNER,
+                    scalar_bar_args={"title": "peak pressure, GPa"},
+                    name=f"ellipses_{race}",
+                )
+            )
             trace = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
             trace.point_data["ball"] = np.zeros(2)
             self._traces.append(trace)
-            self._actors["traces"].append(p.add_mesh(
-                trace, scalars="ball", cmap="tab20", clim=(0, max(1, g.ball_count - 1)),
-                show_scalar_bar=False, line_width=2, name=f"traces_{race}"))
+            self._actors["traces"].append(
+                p.add_mesh(
+                    trace,
+                    scalars="ball",
+                    cmap="tab20",
+                    clim=(0, max(1, g.ball_count - 1)),
+                    show_scalar_bar=False,
+                    line_width=2,
+                    name=f"traces_{race}",
+                )
+            )
         self.set_camera("isometric")
 
     # ---- data -----------------------------------------------------------------------------------
     def show_source(self, source: FrameSource, frame_index: int = 0) -> None:
         """Use ``source`` for the following frames (sets the colour range and reference angles)."""
         if source.ball_count != self.geometry.ball_count:
-            raise ValueError(f"the result has {source.ball_count} balls, the scene "
-                             f"{self.geometry.ball_count}")
+            raise ValueError(
+                f"the result has {source.ball_count} balls, the scene {self.geometry.ball_count}"
+            )
         self.source = source
         self._reference = [source.reference_contact_angle(r) for r in (INNER, OUTER)]
         pmax = np.nan_to_num(source.contact["max_pressure"])
@@ -249,7 +314,9 @@ class BearingScene:
         phi, alpha, loaded = self.source.trace(race, stop)
         step = max(1, math.ceil(phi.shape[1] / MAX_TRACE_SAMPLES))
         phi, alpha, loaded = phi[:, ::step], alpha[:, ::step], loaded[:, ::step]
-        balls = range(phi.shape[0]) if self.options.trace_ball is None else [self.options.trace_ball]
+        balls = (
+            range(phi.shape[0]) if self.options.trace_ball is None else [self.options.trace_ball]
+        )
         groove = self.grooves[race]
         lift = 2 * _MARK_LIFT * groove.r
         points, lines, ids = [], [], []
@@ -260,8 +327,9 @@ class BearingScene:
             ok = loaded[j]
             if ok.sum() < 2:
                 continue
-            pts = groove.point(phi[j], self._display_alpha(race, np.where(ok, alpha[j], 0.0)),
-                               lift=lift)
+            pts = groove.point(
+                phi[j], self._display_alpha(race, np.where(ok, alpha[j], 0.0)), lift=lift
+            )
             # split into runs of consecutive loaded samples
             idx = np.flatnonzero(ok)
             breaks = np.flatnonzero(np.diff(idx) > 1) + 1
@@ -305,7 +373,9 @@ class BearingScene:
     def set_camera(self, preset: str) -> None:
         """Camera preset: ``isometric``, ``axial`` (along the bearing axis) or ``radial``."""
         if preset not in CAMERA_PRESETS:
-            raise ValueError(f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}")
+            raise ValueError(
+                f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}"
+            )
         d = 1.6 * self.geometry.pitch_diameter
         position, up = {
             "isometric": ((-1.0 * d, 0.7 * d, 1.6 * d), (0.0, 0.0, 1.0)),

@@ -38,8 +38,15 @@ PLAY_FPS = 12.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
 PREVIEW_DEBOUNCE_S = 0.15
-CHARTS = ("contact_angle", "raceway_map", "load_azimuth", "ellipse", "cage_speed", "comparison",
-          "compare_runs")
+CHARTS = (
+    "contact_angle",
+    "raceway_map",
+    "load_azimuth",
+    "ellipse",
+    "cage_speed",
+    "comparison",
+    "compare_runs",
+)
 
 
 def _fig_json(fig) -> dict:
@@ -65,8 +72,13 @@ class RacetraceApp:
     tests); ``window_size``: 3-D view size in pixels.
     """
 
-    def __init__(self, server, runs_dir: str | Path | None = None, render: bool = True,
-                 window_size=(900, 640)):
+    def __init__(
+        self,
+        server,
+        runs_dir: str | Path | None = None,
+        render: bool = True,
+        window_size=(900, 640),
+    ):
         self.server = server
         self.state, self.ctrl = server.state, server.controller
         self.store = RunStore(runs_dir if runs_dir is not None else default_runs_dir())
@@ -106,8 +118,16 @@ class RacetraceApp:
         self._catalogue = {e.name: e for e in entries}
         s.case_name = None
         s.form = [
-            {"name": f.name, "key": f.key, "label": f.label, "kind": f.kind, "unit": f.unit,
-             "help": f.help, "choices": list(f.choices), "section": f.section}
+            {
+                "name": f.name,
+                "key": f.key,
+                "label": f.label,
+                "kind": f.kind,
+                "unit": f.unit,
+                "help": f.help,
+                "choices": list(f.choices),
+                "section": f.section,
+            }
             for f in self.fields
         ]
         for f in self.fields:
@@ -151,8 +171,12 @@ class RacetraceApp:
         s.change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
         s.change("frame")(self._on_frame)
         s.change("playing")(self._on_playing)
-        s.change(*[f"show_{n}" for n in ("inner_ring", "outer_ring", "balls", "cage", "ellipses",
-                                          "traces")])(self._on_layers)
+        s.change(
+            *[
+                f"show_{n}"
+                for n in ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
+            ]
+        )(self._on_layers)
         s.change("exaggeration", "trace_ball")(self._on_trace_options)
         s.change("camera")(self._on_camera)
         s.change("run_id")(self._on_run_id)
@@ -223,7 +247,7 @@ class RacetraceApp:
         return {f.name: self.state[f"fv_{f.name}"] for f in self.fields}
 
     def validate(self):
-        """Check the form; set field messages, ``case_valid`` and ``run_disabled``. Returns result."""
+        """Check the form; set field messages, ``case_valid``, ``run_disabled``; return result."""
         if self.base_case is None:
             return None
         result = apply_form(self.base_case, self.fields, self.form_values())
@@ -236,7 +260,9 @@ class RacetraceApp:
         self.case = result.case if result.valid else None
         if self.case is not None:
             text = self.case.to_toml()
-            self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(text)
+            self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(
+                text
+            )
         return result
 
     def _on_field(self, **_):
@@ -314,7 +340,8 @@ class RacetraceApp:
         s.frame_max = source.n_frames - 1
         s.result_label = label
         s.ball_items = [{"title": "all balls", "value": -1}] + [
-            {"title": f"ball {j}", "value": j} for j in range(source.ball_count)]
+            {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
+        ]
         if s.frame > s.frame_max:
             s.frame = 0
         self._apply_frame(int(s.frame), charts_too=True)
@@ -322,10 +349,17 @@ class RacetraceApp:
             self.update_comparison()
 
     def _ensure_scene(self, geometry, case) -> None:
-        key = (geometry.ball_count, geometry.ball_diameter, geometry.pitch_diameter,
-               geometry.inner_conformity, geometry.outer_conformity, geometry.free_contact_angle,
-               geometry.inner_shoulder_diameter, geometry.outer_shoulder_diameter,
-               geometry.ball_material.name)
+        key = (
+            geometry.ball_count,
+            geometry.ball_diameter,
+            geometry.pitch_diameter,
+            geometry.inner_conformity,
+            geometry.outer_conformity,
+            geometry.free_contact_angle,
+            geometry.inner_shoulder_diameter,
+            geometry.outer_shoulder_diameter,
+            geometry.ball_material.name,
+        )
         if self.scene is not None and key == self._scene_key:
             return
         import pyvista as pv
@@ -387,8 +421,9 @@ class RacetraceApp:
 
     # ---- time -----------------------------------------------------------------------------------
     def _on_frame(self, frame=0, **_):
-        follow = (not self.state.playing
-                  or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S)
+        follow = (
+            not self.state.playing or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S
+        )
         self._apply_frame(int(frame), charts_too=follow)
 
     def step(self, delta: int = 1) -> None:
@@ -488,8 +523,11 @@ class RacetraceApp:
             self.state.export_message = f"cannot compare: {error}"
             return
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
-        self.state.chart_compare_runs = _fig_json(charts.side_by_side_raceway_maps(
-            self.source, other, str(self.state.result_label), label))
+        self.state.chart_compare_runs = _fig_json(
+            charts.side_by_side_raceway_maps(
+                self.source, other, str(self.state.result_label), label
+            )
+        )
 
     def run(self) -> None:
         """Start the dynamic model (or the quasi-static one if the dynamic model is absent)."""
@@ -508,7 +546,9 @@ class RacetraceApp:
             self.state.run_disabled = True
             self.state.progress = 0
             self.state.eta = ""
-            model = "dynamic" if target == DYNAMIC_JOB else "quasi-static (dynamic model not available)"
+            model = (
+                "dynamic" if target == DYNAMIC_JOB else "quasi-static (dynamic model not available)"
+            )
             self.state.status = f"running {model}"
         try:
             loop = asyncio.get_running_loop()
@@ -597,7 +637,9 @@ class RacetraceApp:
         if self.dataset is None:
             self.state.export_message = "nothing to export yet"
             return None
-        stem = "".join(c if c.isalnum() else "-" for c in str(self.state.result_label))[:60].strip("-")
+        stem = "".join(c if c.isalnum() else "-" for c in str(self.state.result_label))[:60].strip(
+            "-"
+        )
         stem = stem or "racetrace"
         ext = {"netcdf": "nc", "csv": "csv", "png": "png", "gif": "gif", "mp4": "mp4"}.get(kind)
         if ext is None:
@@ -619,7 +661,9 @@ class RacetraceApp:
             self.state.export_message = f"export failed: {error}"
             return None
         self.state.export_name = path.name
-        self.state.export_href = f"{self.EXPORT_URL}/{urllib.parse.quote(path.name)}?t={time.time():.0f}"
+        self.state.export_href = (
+            f"{self.EXPORT_URL}/{urllib.parse.quote(path.name)}?t={time.time():.0f}"
+        )
         self.state.export_message = ""
         return path
 

@@ -1,4 +1,4 @@
-"""Page layout (trame + Vuetify 3): binds widgets to the state keys of :class:`app.state.RacetraceApp`.
+"""Page layout (trame + Vuetify 3): widgets bound to the state of :class:`app.state.RacetraceApp`.
 
 Stable element ids used by tests: run-button, cancel-button, progress, status, view-3d, play-button,
 time-slider, case-select, chart-contact-angle, chart-raceway-map and field-<name> for every case
@@ -46,8 +46,11 @@ def _field(f) -> None:
 
 def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
     with html.Div(id=element_id, classes="mb-2"):
-        plotly.Figure(state_variable_name=key, display_mode_bar=False,
-                      style=f"height: {height}px; width: 100%;")
+        plotly.Figure(
+            state_variable_name=key,
+            display_mode_bar=False,
+            style=f"height: {height}px; width: 100%;",
+        )
         html.Div(HELP[help_key], classes="text-caption text-medium-emphasis px-2")
 
 
@@ -67,24 +70,43 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
             drawer.width = 380
             with html.Div(classes="pa-3"):
                 with html.Div(id="case-select"):
-                    v3.VSelect(label="Shipped case or catalogue bearing", v_model=("case_name",),
-                               items=("case_items",), density="compact", hide_details=True)
+                    v3.VSelect(
+                        label="Shipped case or catalogue bearing",
+                        v_model=("case_name",),
+                        items=("case_items",),
+                        density="compact",
+                        hide_details=True,
+                    )
                 with v3.VRow(classes="my-1", dense=True):
                     with v3.VCol():
-                        v3.VFileInput(label="Upload a case (.toml)", v_model=("uploaded_case",),
-                                      accept=".toml", density="compact", hide_details=True,
-                                      id="case-upload")
+                        v3.VFileInput(
+                            label="Upload a case (.toml)",
+                            v_model=("uploaded_case",),
+                            accept=".toml",
+                            density="compact",
+                            hide_details=True,
+                            id="case-upload",
+                        )
                     with v3.VCol(cols="auto"):
-                        v3.VBtn("TOML", href=("case_toml_href",), download="case.toml",
-                                prepend_icon="mdi-download", variant="tonal", size="small",
-                                id="case-download", disabled=("!case_valid",))
+                        v3.VBtn(
+                            "TOML",
+                            href=("case_toml_href",),
+                            download="case.toml",
+                            prepend_icon="mdi-download",
+                            variant="tonal",
+                            size="small",
+                            id="case-download",
+                            disabled=("!case_valid",),
+                        )
                 html.Div("{{ case_message }}", classes="text-error text-caption", id="case-message")
                 section = None
                 for f in app.fields:
                     if f.section != section:
                         section = f.section
-                        html.Div(_SECTION_TITLES.get(section, section.title()),
-                                 classes="text-subtitle-2 mt-3 mb-1")
+                        html.Div(
+                            _SECTION_TITLES.get(section, section.title()),
+                            classes="text-subtitle-2 mt-3 mb-1",
+                        )
                     _field(f)
 
         with layout.content:
@@ -102,80 +124,157 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
                         _chart("chart-raceway-map", "chart_raceway_map", "raceway_map")
                         with v3.VExpansionPanels(multiple=True, variant="accordion"):
-                            for title, key in (("Load versus azimuth", "load_azimuth"),
-                                               ("Contact ellipses", "ellipse"),
-                                               ("Cage speed", "cage_speed"),
-                                               ("Quasi-static versus dynamic", "comparison")):
+                            for title, key in (
+                                ("Load versus azimuth", "load_azimuth"),
+                                ("Contact ellipses", "ellipse"),
+                                ("Cage speed", "cage_speed"),
+                                ("Quasi-static versus dynamic", "comparison"),
+                            ):
                                 with v3.VExpansionPanel(title=title):
                                     with v3.VExpansionPanelText():
                                         help_key = key if key in HELP else "contact_angle"
-                                        _chart(f"chart-{key.replace('_', '-')}", f"chart_{key}",
-                                               help_key)
+                                        _chart(
+                                            f"chart-{key.replace('_', '-')}",
+                                            f"chart_{key}",
+                                            help_key,
+                                        )
                             with v3.VExpansionPanel(title="Compare two runs side by side"):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
-                                        v3.VSelect(label="Compare with saved run", v_model=("compare_id",),
-                                                   items=("runs",), density="compact", clearable=True,
-                                                   hide_details=True)
-                                    _chart("chart-compare-runs", "chart_compare_runs",
-                                           "compare_runs", height=300)
+                                        v3.VSelect(
+                                            label="Compare with saved run",
+                                            v_model=("compare_id",),
+                                            items=("runs",),
+                                            density="compact",
+                                            clearable=True,
+                                            hide_details=True,
+                                        )
+                                    _chart(
+                                        "chart-compare-runs",
+                                        "chart_compare_runs",
+                                        "compare_runs",
+                                        height=300,
+                                    )
     return layout
 
 
 def _time_controls() -> None:
     with v3.VRow(dense=True, align="center", classes="mt-1"):
         with v3.VCol(cols="auto"):
-            v3.VBtn(icon=("playing ? 'mdi-pause' : 'mdi-play'",), id="play-button",
-                    click="playing = !playing", size="small")
-            v3.VBtn(icon="mdi-step-backward", click="frame = frame > 0 ? frame - 1 : frame_max",
-                    size="small", variant="text", id="step-back")
-            v3.VBtn(icon="mdi-step-forward", click="frame = frame < frame_max ? frame + 1 : 0",
-                    size="small", variant="text", id="step-forward")
+            v3.VBtn(
+                icon=("playing ? 'mdi-pause' : 'mdi-play'",),
+                id="play-button",
+                click="playing = !playing",
+                size="small",
+            )
+            v3.VBtn(
+                icon="mdi-step-backward",
+                click="frame = frame > 0 ? frame - 1 : frame_max",
+                size="small",
+                variant="text",
+                id="step-back",
+            )
+            v3.VBtn(
+                icon="mdi-step-forward",
+                click="frame = frame < frame_max ? frame + 1 : 0",
+                size="small",
+                variant="text",
+                id="step-forward",
+            )
         with v3.VCol():
             with html.Div(id="time-slider"):
-                v3.VSlider(v_model=("frame",), min=0, max=("frame_max",), step=1,
-                           hide_details=True, density="compact")
+                v3.VSlider(
+                    v_model=("frame",),
+                    min=0,
+                    max=("frame_max",),
+                    step=1,
+                    hide_details=True,
+                    density="compact",
+                )
         with v3.VCol(cols="auto"):
             html.Span("{{ frame_time }}", classes="text-caption", style="font-family: monospace;")
         with v3.VCol(cols=2):
-            v3.VSelect(label="speed", v_model=("speed",), items=([1, 2, 5, 10, 20],),
-                       density="compact", hide_details=True, id="speed-select")
+            v3.VSelect(
+                label="speed",
+                v_model=("speed",),
+                items=([1, 2, 5, 10, 20],),
+                density="compact",
+                hide_details=True,
+                id="speed-select",
+            )
 
 
 def _scene_controls() -> None:
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols="auto"):
-            with v3.VBtnToggle(v_model=("camera",), mandatory=True, density="compact",
-                               variant="outlined"):
+            with v3.VBtnToggle(
+                v_model=("camera",), mandatory=True, density="compact", variant="outlined"
+            ):
                 for preset in ("isometric", "axial", "radial"):
                     v3.VBtn(preset, value=preset, size="small")
         with v3.VCol():
-            v3.VSlider(label="exaggeration", v_model=("exaggeration",), min=1, max=30, step=1,
-                       thumb_label=True, hide_details=True, density="compact",
-                       title="Exaggerate the across-groove deviation of traces and ellipse centres")
+            v3.VSlider(
+                label="exaggeration",
+                v_model=("exaggeration",),
+                min=1,
+                max=30,
+                step=1,
+                thumb_label=True,
+                hide_details=True,
+                density="compact",
+                title="Exaggerate the across-groove deviation of traces and ellipse centres",
+            )
         with v3.VCol(cols=3):
-            v3.VSelect(label="traces", v_model=("trace_ball",), items=("ball_items",),
-                       density="compact", hide_details=True)
+            v3.VSelect(
+                label="traces",
+                v_model=("trace_ball",),
+                items=("ball_items",),
+                density="compact",
+                hide_details=True,
+            )
     with v3.VRow(dense=True):
-        for layer, label in (("outer_ring", "outer ring"), ("inner_ring", "inner ring"),
-                             ("balls", "balls"), ("cage", "cage"), ("ellipses", "ellipses"),
-                             ("traces", "traces")):
+        for layer, label in (
+            ("outer_ring", "outer ring"),
+            ("inner_ring", "inner ring"),
+            ("balls", "balls"),
+            ("cage", "cage"),
+            ("ellipses", "ellipses"),
+            ("traces", "traces"),
+        ):
             with v3.VCol(cols="auto"):
-                v3.VCheckbox(label=label, v_model=(f"show_{layer}",), density="compact",
-                             hide_details=True)
+                v3.VCheckbox(
+                    label=label, v_model=(f"show_{layer}",), density="compact", hide_details=True
+                )
 
 
 def _export_controls(ctrl) -> None:
     with v3.VRow(dense=True, align="center", id="export"):
         with v3.VCol(cols="auto"):
             html.Span("Export:", classes="text-body-2 mr-1")
-            for kind, label in (("netcdf", "NetCDF"), ("csv", "CSV"), ("png", "PNG"),
-                                ("gif", "GIF"), ("mp4", "MP4")):
-                v3.VBtn(label, click=(ctrl.export, f"['{kind}']"), size="small", variant="tonal",
-                        classes="mr-1", id=f"export-{kind}")
+            for kind, label in (
+                ("netcdf", "NetCDF"),
+                ("csv", "CSV"),
+                ("png", "PNG"),
+                ("gif", "GIF"),
+                ("mp4", "MP4"),
+            ):
+                v3.VBtn(
+                    label,
+                    click=(ctrl.export, f"['{kind}']"),
+                    size="small",
+                    variant="tonal",
+                    classes="mr-1",
+                    id=f"export-{kind}",
+                )
         with v3.VCol():
-            html.A("download {{ export_name }}", href=("export_href",), download=("export_name",),
-                   v_show="export_href", id="export-link", target="_blank")
+            html.A(
+                "download {{ export_name }}",
+                href=("export_href",),
+                download=("export_name",),
+                v_show="export_href",
+                id="export-link",
+                target="_blank",
+            )
             html.Span("{{ export_message }}", classes="text-error text-caption")
 
 
@@ -183,15 +282,34 @@ def _run_panel(ctrl) -> None:
     with v3.VCard(variant="outlined", classes="mb-2 pa-2"):
         with v3.VRow(dense=True, align="center"):
             with v3.VCol(cols="auto"):
-                v3.VBtn("Run", id="run-button", color="primary", click=ctrl.run,
-                        disabled=("run_disabled",), prepend_icon="mdi-play-circle")
-                v3.VBtn("Cancel", id="cancel-button", click=ctrl.cancel, disabled=("!busy",),
-                        classes="ml-2", prepend_icon="mdi-stop-circle")
+                v3.VBtn(
+                    "Run",
+                    id="run-button",
+                    color="primary",
+                    click=ctrl.run,
+                    disabled=("run_disabled",),
+                    prepend_icon="mdi-play-circle",
+                )
+                v3.VBtn(
+                    "Cancel",
+                    id="cancel-button",
+                    click=ctrl.cancel,
+                    disabled=("!busy",),
+                    classes="ml-2",
+                    prepend_icon="mdi-stop-circle",
+                )
             with v3.VCol():
                 html.Div("{{ status }}", id="status", classes="text-body-2")
                 html.Div("{{ eta }}", classes="text-caption")
-        v3.VProgressLinear(id="progress", model_value=("progress",), height=8, color="primary",
-                           classes="my-1")
+        v3.VProgressLinear(
+            id="progress", model_value=("progress",), height=8, color="primary", classes="my-1"
+        )
         with html.Div(id="runs-select"):
-            v3.VSelect(label="Saved runs", v_model=("run_id",), items=("runs",), density="compact",
-                       hide_details=True, no_data_text="no saved runs yet")
+            v3.VSelect(
+                label="Saved runs",
+                v_model=("run_id",),
+                items=("runs",),
+                density="compact",
+                hide_details=True,
+                no_data_text="no saved runs yet",
+            )

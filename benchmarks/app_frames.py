@@ -27,8 +27,16 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
 
 
 def synthetic_run(runs_dir: Path, revolutions=100, samples=180):
@@ -44,25 +52,34 @@ def synthetic_run(runs_dir: Path, revolutions=100, samples=180):
     psi = 2 * math.pi * np.arange(z)[:, None] / z + 0.44 * omega * t[None, :]
     shape = (z, 2, n)
     alpha = 17 + np.cos(psi)[:, None, :] * np.ones(shape)
-    pm = (case.bearing.pitch_diameter_mm / 2e3)
+    pm = case.bearing.pitch_diameter_mm / 2e3
     centre = np.stack([np.zeros_like(psi), pm * np.cos(psi), pm * np.sin(psi)], axis=1)
     half = -500 * t[None, :] * np.ones((z, 1))
     quat = np.stack([np.cos(half), np.sin(half), 0 * half, 0 * half], axis=1)
     race = np.stack([np.mod(psi - omega * t, 2 * np.pi), np.mod(psi, 2 * np.pi)], axis=1)
     ones = np.ones(shape)
     ds = xr.Dataset(
-        {"contact_angle": (("ball", "race", "time"), alpha), "contact_load": (("ball", "race", "time"), 200 * ones),
-         "ellipse_semi_major": (("ball", "race", "time"), 5e-4 * ones),
-         "ellipse_semi_minor": (("ball", "race", "time"), 9e-5 * ones),
-         "max_pressure": (("ball", "race", "time"), 1.8e9 * ones),
-         "raceway_azimuth": (("ball", "race", "time"), np.degrees(race)),
-         "ball_azimuth": (("ball", "time"), np.degrees(np.mod(psi, 2 * np.pi))),
-         "ball_center": (("ball", "axis", "time"), centre),
-         "ball_orientation": (("ball", "quaternion", "time"), quat),
-         "cage_speed": (("time",), np.full(n, 0.44 * omega))},
-        coords={"time": t, "ball": np.arange(z), "race": ["inner", "outer"], "axis": ["x", "y", "z"],
-                "quaternion": ["w", "x", "y", "z"]},
-        attrs={"model": "dynamic", "case": case.to_toml(), "complete": 1, "software": "benchmark"})
+        {
+            "contact_angle": (("ball", "race", "time"), alpha),
+            "contact_load": (("ball", "race", "time"), 200 * ones),
+            "ellipse_semi_major": (("ball", "race", "time"), 5e-4 * ones),
+            "ellipse_semi_minor": (("ball", "race", "time"), 9e-5 * ones),
+            "max_pressure": (("ball", "race", "time"), 1.8e9 * ones),
+            "raceway_azimuth": (("ball", "race", "time"), np.degrees(race)),
+            "ball_azimuth": (("ball", "time"), np.degrees(np.mod(psi, 2 * np.pi))),
+            "ball_center": (("ball", "axis", "time"), centre),
+            "ball_orientation": (("ball", "quaternion", "time"), quat),
+            "cage_speed": (("time",), np.full(n, 0.44 * omega)),
+        },
+        coords={
+            "time": t,
+            "ball": np.arange(z),
+            "race": ["inner", "outer"],
+            "axis": ["x", "y", "z"],
+            "quaternion": ["w", "x", "y", "z"],
+        },
+        attrs={"model": "dynamic", "case": case.to_toml(), "complete": 1, "software": "benchmark"},
+    )
     return RunStore(runs_dir).save(ds, case.to_toml(), "synthetic 100-revolution run")
 
 
@@ -85,8 +102,11 @@ def main() -> int:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     t_start = time.monotonic()
-    proc = subprocess.Popen([sys.executable, "-m", "racetrace", "serve", "--port", str(port),
-                             "--runs-dir", str(runs)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     url = f"http://127.0.0.1:{port}/"
     while True:
         try:
@@ -103,7 +123,8 @@ def main() -> int:
             page.goto(url)
             page.wait_for_selector("#view-3d img[src]", timeout=60_000)
             print(f"first 3-D frame after navigation: {time.monotonic() - t0:.2f} s")
-            page.evaluate("""() => { window.__frames = 0; const img = document.querySelector('#view-3d img');
+            page.evaluate("""() => { window.__frames = 0;
+                const img = document.querySelector('#view-3d img');
                 new MutationObserver(() => window.__frames++).observe(img, {attributes: true,
                 attributeFilter: ['src']}); }""")
             time.sleep(8)
@@ -116,18 +137,30 @@ def main() -> int:
                 box.fill(load)
                 t1 = time.monotonic()
                 box.press("Tab")
-                page.wait_for_function("document.querySelector('#status').innerText.trim() == 'updating preview'"
-                                       " || document.querySelector('#status').innerText.trim() == 'preview done'")
-                page.wait_for_function("document.querySelector('#status').innerText.trim() == 'preview done'")
+                page.wait_for_function(
+                    "document.querySelector('#status').innerText.trim() == 'updating preview'"
+                    " || document.querySelector('#status').innerText.trim() == 'preview done'"
+                )
+                page.wait_for_function(
+                    "document.querySelector('#status').innerText.trim() == 'preview done'"
+                )
                 times.append(time.monotonic() - t1)
-            print("quasi-static preview refresh after an edit: " + ", ".join(f"{x:.2f}" for x in times) + " s")
+            print(
+                "quasi-static preview refresh after an edit: "
+                + ", ".join(f"{x:.2f}" for x in times)
+                + " s"
+            )
             before = rss_mb(proc.pid)
             page.locator("#runs-select .v-field").click()
             page.locator(".v-overlay--active .v-list-item").first.click()
-            page.wait_for_function(f"document.body.innerText.includes('{info.title}')", timeout=120_000)
+            page.wait_for_function(
+                f"document.body.innerText.includes('{info.title}')", timeout=120_000
+            )
             time.sleep(2)
-            print(f"server memory: {before:.0f} MB before, {rss_mb(proc.pid):.0f} MB with the 100-revolution run "
-                  f"loaded ({info.run_id})")
+            print(
+                f"server memory: {before:.0f} MB before, {rss_mb(proc.pid):.0f} MB with the "
+                f"100-revolution run loaded ({info.run_id})"
+            )
             browser.close()
     finally:
         proc.terminate()

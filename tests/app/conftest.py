@@ -1,7 +1,7 @@
 """Fixtures for the app tests.
 
 The datasets built here are TEST FIXTURES that follow results-schema.md with simple analytic
-distributions (contact angles and loads as cosines of the azimuth); they are never shipped as results.
+distributions (contact angles and loads as cosines of the azimuth); never shipped as results.
 """
 
 from __future__ import annotations
@@ -58,9 +58,14 @@ def load_of_psi(psi_rad):
 
 def fixture_geometry() -> BearingGeometry:
     return BearingGeometry(
-        ball_count=12, ball_diameter=7.144e-3, pitch_diameter=54e-3, inner_conformity=0.54,
-        outer_conformity=0.53, free_contact_angle=math.radians(15.0),
-        ball_material=BUILTIN_MATERIALS["silicon_nitride"], ring_material=BUILTIN_MATERIALS["bearing_steel"],
+        ball_count=12,
+        ball_diameter=7.144e-3,
+        pitch_diameter=54e-3,
+        inner_conformity=0.54,
+        outer_conformity=0.53,
+        free_contact_angle=math.radians(15.0),
+        ball_material=BUILTIN_MATERIALS["silicon_nitride"],
+        ring_material=BUILTIN_MATERIALS["bearing_steel"],
     )
 
 
@@ -78,7 +83,9 @@ def make_quasistatic_dataset(ball_count: int = 12) -> xr.Dataset:
     beta = math.radians(SPIN_TILT_DEG)
     # spin relative to the azimuth frame, plus the orbital rotation, expressed in the inertial frame
     spin_az = np.array([SPIN_RATE * math.cos(beta) + w_cage, -SPIN_RATE * math.sin(beta), 0.0])
-    omega_b = np.stack([[spin_az[0], spin_az[1] * math.cos(p), spin_az[1] * math.sin(p)] for p in psi])
+    omega_b = np.stack(
+        [[spin_az[0], spin_az[1] * math.cos(p), spin_az[1] * math.sin(p)] for p in psi]
+    )
     a = np.where(load > 0, 0.8e-3 * (load / 250.0) ** (1 / 3), 0.0)
     b = 0.12 * a
     pmax = np.where(load > 0, 1.5 * load / (np.pi * np.where(a > 0, a * b, 1.0)), 0.0)
@@ -89,7 +96,11 @@ def make_quasistatic_dataset(ball_count: int = 12) -> xr.Dataset:
             "ellipse_semi_major": (("ball", "race"), a, {"units": "m"}),
             "ellipse_semi_minor": (("ball", "race"), b, {"units": "m"}),
             "max_pressure": (("ball", "race"), pmax, {"units": "Pa"}),
-            "raceway_azimuth": (("ball", "race"), np.degrees(np.stack([psi, psi], 1)), {"units": "degree"}),
+            "raceway_azimuth": (
+                ("ball", "race"),
+                np.degrees(np.stack([psi, psi], 1)),
+                {"units": "degree"},
+            ),
             "ball_azimuth": (("ball",), np.degrees(psi), {"units": "degree"}),
             "orbital_speed": (("ball",), np.full(z, w_cage), {"units": "rad/s"}),
             "ball_center": (("ball", "axis"), centre, {"units": "m"}),
@@ -97,8 +108,13 @@ def make_quasistatic_dataset(ball_count: int = 12) -> xr.Dataset:
             "cage_speed": ((), w_cage, {"units": "rad/s"}),
         },
         coords={"ball": np.arange(z), "race": ["inner", "outer"], "axis": ["x", "y", "z"]},
-        attrs={"model": "quasistatic", "case": FIXTURE_CASE, "software": "test fixture",
-               "created": "2026-11-22T00:00:00Z", "complete": 1},
+        attrs={
+            "model": "quasistatic",
+            "case": FIXTURE_CASE,
+            "software": "test fixture",
+            "created": "2026-11-22T00:00:00Z",
+            "complete": 1,
+        },
     )
     return ds
 
@@ -126,15 +142,29 @@ def make_dynamic_dataset(ball_count: int = 12, n_time: int = 40) -> xr.Dataset:
             "ellipse_semi_minor": (("ball", "race", "time"), 0.1 * a, {"units": "m"}),
             "max_pressure": (("ball", "race", "time"), 1e9 * np.ones_like(load), {"units": "Pa"}),
             "raceway_azimuth": (("ball", "race", "time"), np.degrees(raceway), {"units": "degree"}),
-            "ball_azimuth": (("ball", "time"), np.degrees(np.mod(psi, 2 * np.pi)), {"units": "degree"}),
+            "ball_azimuth": (
+                ("ball", "time"),
+                np.degrees(np.mod(psi, 2 * np.pi)),
+                {"units": "degree"},
+            ),
             "ball_center": (("ball", "axis", "time"), centre, {"units": "m"}),
             "ball_orientation": (("ball", "quaternion", "time"), quat, {"units": "1"}),
             "cage_speed": (("time",), np.full(n_time, w_cage), {"units": "rad/s"}),
         },
-        coords={"ball": np.arange(z), "race": ["inner", "outer"], "axis": ["x", "y", "z"],
-                "quaternion": ["w", "x", "y", "z"], "time": t},
-        attrs={"model": "dynamic", "case": FIXTURE_CASE, "software": "test fixture",
-               "created": "2026-11-22T00:00:00Z", "complete": 1},
+        coords={
+            "ball": np.arange(z),
+            "race": ["inner", "outer"],
+            "axis": ["x", "y", "z"],
+            "quaternion": ["w", "x", "y", "z"],
+            "time": t,
+        },
+        attrs={
+            "model": "dynamic",
+            "case": FIXTURE_CASE,
+            "software": "test fixture",
+            "created": "2026-11-22T00:00:00Z",
+            "complete": 1,
+        },
     )
     return ds
 

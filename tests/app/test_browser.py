@@ -20,15 +20,27 @@ import pytest
 CHROMIUM = "/usr/bin/chromium"
 pytestmark = [
     pytest.mark.browser,
-    pytest.mark.skipif(not Path(CHROMIUM).exists(),
-                       reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)"),
+    pytest.mark.skipif(
+        not Path(CHROMIUM).exists(),
+        reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)",
+    ),
 ]
-pytest.importorskip("solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed")
+pytest.importorskip(
+    "solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed"
+)
 pytest.importorskip("solver.models.quasistatic", reason="the quasi-static model has not landed")
 playwright_api = pytest.importorskip("playwright.sync_api")
 
-LAUNCH_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-               "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+LAUNCH_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
 ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
 
 
@@ -45,7 +57,10 @@ def server(tmp_path_factory):
     log = open(tmp_path_factory.mktemp("log") / "serve.log", "w+")
     proc = subprocess.Popen(
         [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
-        stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ))
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        env=dict(os.environ),
+    )
     url = f"http://127.0.0.1:{port}/"
     deadline = time.monotonic() + 120
     while True:
@@ -111,9 +126,18 @@ def _set_field(pg, name: str, value: str) -> None:
 def test_page_loads_and_the_view_animates(page):
     assert page.first_frame_s < 30
     assert page.locator("#status").inner_text().strip().endswith("done")
-    for element in ("run-button", "cancel-button", "progress", "play-button", "time-slider",
-                    "case-select", "chart-contact-angle", "chart-raceway-map", "field-ball_count",
-                    "field-axial_load_N"):
+    for element in (
+        "run-button",
+        "cancel-button",
+        "progress",
+        "play-button",
+        "time-slider",
+        "case-select",
+        "chart-contact-angle",
+        "chart-raceway-map",
+        "field-ball_count",
+        "field-axial_load_N",
+    ):
         assert page.locator(f"#{element}").count() == 1, element
     # plotly drew traces into both charts
     assert page.locator("#chart-contact-angle .scatterlayer .trace").count() >= 2
@@ -125,7 +149,9 @@ def test_page_loads_and_the_view_animates(page):
     for k in range(3):
         time.sleep(0.7)
         shots.append(view.screenshot(path=str(ARTIFACTS / f"view-{k}.png")))
-    assert shots[0] != shots[1] and shots[1] != shots[2], "the 3-D view did not change while playing"
+    assert shots[0] != shots[1] and shots[1] != shots[2], (
+        "the 3-D view did not change while playing"
+    )
     page.screenshot(path=str(ARTIFACTS / "page.png"))
     # pausing stops the frames
     page.locator("#play-button").click()
@@ -156,11 +182,13 @@ def test_invalid_field_blocks_run_with_its_message(page):
 def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     _set_field(page, "shaft_revolutions", "0.5")
     page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
-    page.wait_for_function("document.querySelector('#status').innerText.trim() == 'preview done'",
-                           timeout=20_000)  # the preview of the edited case
+    page.wait_for_function(
+        "document.querySelector('#status').innerText.trim() == 'preview done'", timeout=20_000
+    )  # the preview of the edited case
     page.locator("#run-button").click()
-    page.wait_for_function("document.querySelector('#status').innerText.startsWith('running')",
-                           timeout=10_000)
+    page.wait_for_function(
+        "document.querySelector('#status').innerText.startsWith('running')", timeout=10_000
+    )
     status = _wait_status(page, ("done",), 240)
     page.screenshot(path=str(ARTIFACTS / "run-done.png"))
     assert status == "done"
@@ -195,7 +223,8 @@ def test_export_png_and_csv_download(page, server):
         page.wait_for_function(
             f"document.querySelector('#export-link') && "
             f"document.querySelector('#export-link').getAttribute('href').includes('.{kind}')",
-            timeout=60_000)
+            timeout=60_000,
+        )
         href = link.get_attribute("href")
         response = page.request.get(server["url"] + href)
         assert response.ok, href

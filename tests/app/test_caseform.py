@@ -22,7 +22,9 @@ def test_fields_follow_the_schema():
 
 def test_parse_value():
     f_int = FormField("bearing.ball_count", "ball_count", "int", "Number of balls", "", "")
-    f_float = FormField("operating.axial_load_N", "axial_load_N", "float", "Axial load (N)", "N", "")
+    f_float = FormField(
+        "operating.axial_load_N", "axial_load_N", "float", "Axial load (N)", "N", ""
+    )
     f_bool = FormField("x.flag", "flag", "bool", "Flag", "", "")
     assert parse_value(f_int, " 12 ") == 12
     assert parse_value(f_float, "1e3") == 1000.0

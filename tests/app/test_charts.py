@@ -39,7 +39,9 @@ def test_raceway_map_outer_line_inner_band(qs_dataset, fixture_model):
     x, y = np.asarray(outer.x, float), np.asarray(outer.y, float)
     assert len(x) > 100
     h = 2 * np.pi / qs_dataset.sizes["ball"]
-    np.testing.assert_allclose(y, fm.alpha_of_psi(np.radians(x), "outer"), atol=fm.ALPHA_AMPL["outer"] * h * h / 8 + 1e-9)
+    np.testing.assert_allclose(
+        y, fm.alpha_of_psi(np.radians(x), "outer"), atol=fm.ALPHA_AMPL["outer"] * h * h / 8 + 1e-9
+    )
     # inner ring turns: at a fixed raceway azimuth, several contact angles (a band)
     xi, yi = np.asarray(inner.x, float), np.asarray(inner.y, float)
     sector = (xi > 100) & (xi < 140)
@@ -51,7 +53,9 @@ def test_ellipse_and_cage_charts(qs_dataset, fixture_model):
     fig = charts.ellipse_figure(src, 0)
     assert len(fig.data) == 6
     a_inner = np.asarray(fig.data[0].y, float)
-    assert np.nanmax(a_inner) == pytest.approx(qs_dataset["ellipse_semi_major"].isel(race=0).values.max() * 1e3)
+    assert np.nanmax(a_inner) == pytest.approx(
+        qs_dataset["ellipse_semi_major"].isel(race=0).values.max() * 1e3
+    )
     cage = charts.cage_speed_figure(src, qs_dataset)
     np.testing.assert_allclose(cage.data[0].y, fixture_model.CAGE_RATIO * fixture_model.SHAFT_RPM)
 
@@ -78,5 +82,6 @@ def test_side_by_side_maps(qs_dataset, dynamic_dataset):
     assert len(fig.data) == 4
     assert [t.xaxis for t in fig.data] == ["x", "x", "x2", "x2"]
     # the right panel shows run b: its outer-race contact angles
-    np.testing.assert_allclose(sorted(fig.data[3].y),
-                               sorted(np.degrees(b.trace(1)[1][b.trace(1)[2]])), rtol=1e-12)
+    np.testing.assert_allclose(
+        sorted(fig.data[3].y), sorted(np.degrees(b.trace(1)[1][b.trace(1)[2]])), rtol=1e-12
+    )

@@ -15,13 +15,20 @@ from app.frames import frame_source
 def test_netcdf_and_csv(tmp_path, dynamic_dataset):
     nc = export_netcdf(dynamic_dataset, tmp_path / "run.nc")
     with xr.open_dataset(nc) as back:
-        np.testing.assert_allclose(back["contact_angle"].values, dynamic_dataset["contact_angle"].values)
+        np.testing.assert_allclose(
+            back["contact_angle"].values, dynamic_dataset["contact_angle"].values
+        )
     path = export_csv(dynamic_dataset, tmp_path / "run.csv")
     rows = list(csv.DictReader(path.open()))
     z, n = dynamic_dataset.sizes["ball"], dynamic_dataset.sizes["time"]
     assert len(rows) == z * 2 * n
-    row = next(r for r in rows if r["ball"] == "3" and r["race"] == "outer"
-               and float(r["time"]) == float(dynamic_dataset.time[5]))
+    row = next(
+        r
+        for r in rows
+        if r["ball"] == "3"
+        and r["race"] == "outer"
+        and float(r["time"]) == float(dynamic_dataset.time[5])
+    )
     expected = float(dynamic_dataset["contact_angle"].sel(ball=3, race="outer").isel(time=5))
     assert float(row["contact_angle [degree]"]) == pytest.approx(expected)
     assert not list(tmp_path.glob(".*"))  # no temporary files left

@@ -39,7 +39,9 @@ def test_quasistatic_ball_positions_follow_cage_speed(qs_dataset, fixture_model)
         np.testing.assert_allclose(f.ball_center, expected, atol=1e-9)
         np.testing.assert_allclose(f.ring_angle, [_omega(fm) * f.time, 0.0])
         assert f.cage_angle == pytest.approx(w_cage * f.time)
-    np.testing.assert_allclose(src.frame(0).ball_center, qs_dataset["ball_center"].values, atol=1e-12)
+    np.testing.assert_allclose(
+        src.frame(0).ball_center, qs_dataset["ball_center"].values, atol=1e-12
+    )
 
 
 def test_quasistatic_contact_is_fixed_in_the_load_zone(qs_dataset, fixture_model):
@@ -79,13 +81,17 @@ def test_quasistatic_ball_spin(qs_dataset, fixture_model):
     src = frame_source(qs_dataset, revolutions=0.01, samples_per_revolution=2000)
     f0, f1 = src.frame(0), src.frame(1)
     for r in (f0.ball_rotation, f1.ball_rotation):
-        np.testing.assert_allclose(np.einsum("zji,zjk->zik", r, r), np.broadcast_to(np.eye(3), r.shape),
-                                   atol=1e-12)
+        np.testing.assert_allclose(
+            np.einsum("zji,zjk->zik", r, r), np.broadcast_to(np.eye(3), r.shape), atol=1e-12
+        )
         np.testing.assert_allclose(np.linalg.det(r), 1.0)
     # rotation relative to the azimuth frame between the two frames: angle = |spin| dt, axis tilted
     dt = f1.time - f0.time
-    rel = np.einsum("ij,jk->ik", rot_x(-f1.ball_azimuth[3]) @ f1.ball_rotation[3],
-                    (rot_x(-f0.ball_azimuth[3]) @ f0.ball_rotation[3]).T)
+    rel = np.einsum(
+        "ij,jk->ik",
+        rot_x(-f1.ball_azimuth[3]) @ f1.ball_rotation[3],
+        (rot_x(-f0.ball_azimuth[3]) @ f0.ball_rotation[3]).T,
+    )
     angle = math.acos((np.trace(rel) - 1) / 2)
     assert angle == pytest.approx(abs(fm.SPIN_RATE) * dt, rel=1e-6)
     axis = np.array([rel[2, 1] - rel[1, 2], rel[0, 2] - rel[2, 0], rel[1, 0] - rel[0, 1]])
@@ -101,8 +107,9 @@ def test_dynamic_frames_by_time_index(dynamic_dataset):
     i = 17
     f = src.frame(i)
     np.testing.assert_allclose(f.ball_center, dynamic_dataset["ball_center"].isel(time=i).values)
-    np.testing.assert_allclose(np.degrees(f.contact_angle),
-                               dynamic_dataset["contact_angle"].isel(time=i).values)
+    np.testing.assert_allclose(
+        np.degrees(f.contact_angle), dynamic_dataset["contact_angle"].isel(time=i).values
+    )
     # quaternion spin about +x by SPIN_RATE * t
     t = float(dynamic_dataset.time[i])
     np.testing.assert_allclose(f.ball_rotation[0], rot_x(-1200.0 * t), atol=1e-12)
@@ -133,6 +140,8 @@ def test_missing_variable_is_named(qs_dataset):
 def test_quasistatic_animation_length_is_capped(qs_dataset):
     from app.frames import QS_MAX_REVOLUTIONS, QS_SAMPLES_PER_REVOLUTION
 
-    long_case = qs_dataset.attrs["case"].replace("shaft_revolutions = 2.0", "shaft_revolutions = 500.0")
+    long_case = qs_dataset.attrs["case"].replace(
+        "shaft_revolutions = 2.0", "shaft_revolutions = 500.0"
+    )
     src = frame_source(qs_dataset.assign_attrs(case=long_case))
     assert src.n_frames == int(QS_MAX_REVOLUTIONS * QS_SAMPLES_PER_REVOLUTION) + 1

@@ -1,4 +1,4 @@
-"""Start-up check of off-screen rendering: runs in a child, reports the install command on failure."""
+"""Start-up check of off-screen rendering: a child process; the install command on failure."""
 
 from __future__ import annotations
 
@@ -12,7 +12,9 @@ def test_offscreen_rendering_works_here():
 
 def test_crashing_child_gives_install_command(monkeypatch):
     # a child killed by a signal, as VTK is when libEGL / Mesa are missing
-    monkeypatch.setattr(offscreen, "_CHILD_SCRIPT", "import os, signal; os.kill(os.getpid(), signal.SIGSEGV)")
+    monkeypatch.setattr(
+        offscreen, "_CHILD_SCRIPT", "import os, signal; os.kill(os.getpid(), signal.SIGSEGV)"
+    )
     result = offscreen.check_offscreen_rendering()
     assert not result.ok
     assert "signal 11" in result.message

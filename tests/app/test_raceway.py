@@ -31,7 +31,9 @@ def test_points_lie_on_the_torus_and_turn_with_phi(geometry):
         radius = np.hypot(p[:, 1], p[:, 2])
         dist = np.hypot(p[:, 0] - groove.x_c, radius - groove.rho_c)
         np.testing.assert_allclose(dist, groove.r - 1e-5, rtol=1e-12)
-        np.testing.assert_allclose(np.arctan2(p[:, 2], p[:, 1]), np.angle(np.exp(1j * phi)), atol=1e-12)
+        np.testing.assert_allclose(
+            np.arctan2(p[:, 2], p[:, 1]), np.angle(np.exp(1j * phi)), atol=1e-12
+        )
 
 
 def test_ellipse_outline_to_scale(geometry):

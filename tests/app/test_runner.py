@@ -10,7 +10,7 @@ import xarray as xr
 
 from app.runner import SolverRunner
 
-JOBS = '''
+JOBS = """
 import os, signal, time
 import numpy as np
 import xarray as xr
@@ -18,7 +18,8 @@ from solver import CaseError
 
 def ok(case_text, progress, cancel):
     progress(0.5, 0.01, "half way")
-    return xr.Dataset({"n": ("x", np.arange(len(case_text)))}, attrs={"complete": 1, "model": "fake"})
+    attrs = {"complete": 1, "model": "fake"}
+    return xr.Dataset({"n": ("x", np.arange(len(case_text)))}, attrs=attrs)
 
 def slow(case_text, progress, cancel):
     k = 0
@@ -33,7 +34,7 @@ def bad(case_text, progress, cancel):
 
 def crash(case_text, progress, cancel):
     os.kill(os.getpid(), signal.SIGSEGV)
-'''
+"""
 
 
 @pytest.fixture

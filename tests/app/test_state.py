@@ -7,10 +7,11 @@ import uuid
 
 import pytest
 
-pytest.importorskip("solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed")
+pytest.importorskip(
+    "solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed"
+)
 pytest.importorskip("solver.models.quasistatic", reason="the quasi-static model has not landed")
 
-import solver  # noqa: E402
 from app import state as state_module  # noqa: E402
 from app.state import DEFAULT_CASE, RacetraceApp  # noqa: E402
 
@@ -60,7 +61,11 @@ def test_opens_on_the_default_case_solved(app):
     assert len(s.chart_raceway_map["data"]) == 2
     assert len(s.chart_raceway_map["data"][0]["x"]) > 0
     # every case-file key has a form field named after its last segment
-    assert {f["name"] for f in s.form} >= {"ball_count", "axial_load_N", "inner_groove_radius_ratio"}
+    assert {f["name"] for f in s.form} >= {
+        "ball_count",
+        "axial_load_N",
+        "inner_groove_radius_ratio",
+    }
 
 
 def test_invalid_field_shows_message_and_disables_run(app):
@@ -159,7 +164,10 @@ def test_run_refused_while_invalid(app):
 def test_exports_from_the_app(app):
     path = app.export("csv")
     assert path.is_file() and path.parent == app.exports_dir
-    assert app.state.export_href.startswith("racetrace-exports/") and app.state.export_name == path.name
+    assert (
+        app.state.export_href.startswith("racetrace-exports/")
+        and app.state.export_name == path.name
+    )
     assert app.export("netcdf").suffix == ".nc"
     assert app.export("png") is None  # render=False: no 3-D view
     assert "not available" in app.state.export_message
