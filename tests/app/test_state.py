@@ -173,3 +173,14 @@ def test_exports_from_the_app(app):
     assert "not available" in app.state.export_message
     with pytest.raises(ValueError, match="netcdf, csv"):
         app.export("xls")
+
+
+def test_uploaded_case_fills_the_form(app, fixture_model):
+    _set(app, uploaded_case={"name": "mine.toml", "content": fixture_model.FIXTURE_CASE.encode()})
+    assert app.state.fv_ball_count == "12"
+    assert app.state.fv_title == "app test fixture"
+    assert app.state.case_valid
+    bad = fixture_model.FIXTURE_CASE.replace("ball_count = 12", "ball_count = 1")
+    _set(app, uploaded_case=[{"name": "bad.toml", "content": bad.encode()}])
+    assert app.state.case_message.startswith("bad.toml: bearing.ball_count = 1")
+    assert app.state.fv_ball_count == "12"  # the form keeps the last valid case

@@ -1,0 +1,25 @@
+"""`racetrace serve`: registered, arguments, and exit code 2 when off-screen rendering fails."""
+
+from __future__ import annotations
+
+import app.main as app_main
+from app.offscreen import INSTALL_COMMAND, OffscreenCheck
+from racetrace import cli
+
+
+def test_serve_is_registered_with_its_options():
+    args = cli.build_parser().parse_args(
+        ["serve", "--port", "9001", "--host", "0.0.0.0", "--runs-dir", "/tmp/x", "--open"]
+    )
+    assert (args.port, args.host, args.runs_dir, args.open) == (9001, "0.0.0.0", "/tmp/x", True)
+    defaults = cli.build_parser().parse_args(["serve"])
+    assert (defaults.host, defaults.port, defaults.open) == ("127.0.0.1", 8080, False)
+
+
+def test_no_offscreen_rendering_exits_2_with_the_install_command(monkeypatch, capsys):
+    message = app_main.check_offscreen_rendering.__module__  # keep the real function importable
+    assert message == "app.offscreen"
+    failed = OffscreenCheck(False, f"racetrace serve: ... \n    {INSTALL_COMMAND}")
+    monkeypatch.setattr(app_main, "check_offscreen_rendering", lambda: failed)
+    assert cli.main(["serve", "--port", "9002"]) == 2
+    assert INSTALL_COMMAND in capsys.readouterr().err
