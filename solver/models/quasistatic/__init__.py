@@ -2,7 +2,8 @@
 
 Public API:
 
-- ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md, quasi-static variables)
+- ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md, quasi-static variables); every
+  ``case`` argument may also be a case-file path or a catalogue name
 - ``solve_quasistatic_state(case, initial=None) -> QuasiStaticSolution`` (SI arrays; the dynamic
   model starts from it)
 - ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked on a ``speed`` coordinate,
@@ -25,6 +26,7 @@ quaternion): z_b = cos(beta) e_x - sin(beta) e_r, y_b = e_theta, x_b = sin(beta)
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 
@@ -75,12 +77,22 @@ def _geometry(case):
     return BearingGeometry.from_case(case)
 
 
+def _as_case(case):
+    """A Case as given, or resolved from a case-file path / catalogue name (CaseError if invalid)."""
+    if isinstance(case, (str, os.PathLike)):
+        from solver.catalogue import resolve_case
+
+        return resolve_case(case)
+    return case
+
+
 def solve_quasistatic_state(
     case, initial: QuasiStaticSolution | None = None
 ) -> QuasiStaticSolution:
     """Quasi-static equilibrium of ``case`` as SI arrays. ``initial`` (a previous solution of the same
     bearing) is used as the starting point when given. Raises NoSolutionError (message: why, what to
     try) when no equilibrium is found."""
+    case = _as_case(case)
     return solve_operating_point(_geometry(case), operating_point_from_case(case), initial)
 
 
@@ -88,6 +100,7 @@ def solve_quasistatic(case):
     """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
     from solver.results.quasistatic import solution_to_dataset
 
+    case = _as_case(case)
     geometry = _geometry(case)
     solution = solve_operating_point(geometry, operating_point_from_case(case))
     return solution_to_dataset(solution, geometry, case, getattr(case, "lubricant", None))
@@ -103,6 +116,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
 
     from solver.results.quasistatic import solution_to_dataset
 
+    case = _as_case(case)
     geometry = _geometry(case)
     base = operating_point_from_case(case)
     lubricant = getattr(case, "lubricant", None)

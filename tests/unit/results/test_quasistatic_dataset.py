@@ -178,3 +178,11 @@ def test_speed_sweep_stacks_on_speed(spindle_case):
         ds.contact_load.sel(speed=ds.speed.values[2]).values, alone.contact_load.values, rtol=1e-7
     )
     assert ds.ball_center.dims == ("speed", "ball", "axis")
+
+
+def test_case_may_be_given_by_catalogue_name():
+    from solver.catalogue import resolve_case
+
+    by_name = solve_quasistatic("209-radial")
+    by_case = solve_quasistatic(resolve_case("209-radial"))
+    np.testing.assert_array_equal(by_name.contact_load.values, by_case.contact_load.values)
