@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import base64
 import time
 import uuid
 
+import numpy as np
 import pytest
 
 pytest.importorskip(
@@ -40,6 +42,13 @@ def app(tmp_path):
     a.shutdown()
 
 
+def _length(array) -> int:
+    """Length of an array in plotly JSON (a list or a base64 typed array)."""
+    if isinstance(array, dict):
+        return len(base64.b64decode(array["bdata"])) // np.dtype(array["dtype"]).itemsize
+    return len(array)
+
+
 def _set(app, **values):
     with app.state:
         for k, v in values.items():
@@ -59,7 +68,7 @@ def test_opens_on_the_default_case_solved(app):
     assert app.dataset.attrs["model"] == "quasistatic"
     assert len(s.chart_contact_angle["data"]) >= 2
     assert len(s.chart_raceway_map["data"]) == 2
-    assert len(s.chart_raceway_map["data"][0]["x"]) > 0
+    assert _length(s.chart_raceway_map["data"][0]["x"]) > 0
     # every case-file key has a form field named after its last segment
     assert {f["name"] for f in s.form} >= {
         "ball_count",
@@ -184,3 +193,25 @@ def test_uploaded_case_fills_the_form(app, fixture_model):
     _set(app, uploaded_case=[{"name": "bad.toml", "content": bad.encode()}])
     assert app.state.case_message.startswith("bad.toml: bearing.ball_count = 1")
     assert app.state.fv_ball_count == "12"  # the form keeps the last valid case
+
+
+def test_dynamic_run_reports_progress_and_shows_its_result(app):
+    if not state_module.dynamic_model_available():
+        pytest.skip("the dynamic model (solver.simulate) is not available")
+    _set(app, fv_shaft_revolutions="0.3")
+    assert app.state.case_valid
+    app.run()
+    progress = []
+    end = time.monotonic() + 300
+    while not app.poll_runner():
+        progress.append(app.state.progress)
+        assert time.monotonic() < end, app.state.status
+        time.sleep(0.05)
+    assert app.state.status == "done", app.state.status
+    assert app.state.progress == 100
+    assert "time" in app.dataset.dims and app.source.model == "dynamic"
+    omega = app.case.operating.inner_ring_speed_rpm * 2 * np.pi / 60
+    assert float(app.dataset.time[-1]) == pytest.approx(0.3 * 2 * np.pi / omega, rel=0.02)
+    x = app.state.chart_contact_angle["data"][0]["x"]  # plotly JSON: base64 typed array
+    assert _length(x) == app.source.n_frames
+    assert app.state.frame_max == app.dataset.sizes["time"] - 1
