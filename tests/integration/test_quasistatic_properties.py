@@ -3,6 +3,7 @@
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -57,9 +58,8 @@ def cases(draw):
     return {"title": "random case", "bearing": bearing, "operating": operating}
 
 
-@settings(max_examples=35, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(data=cases())
-def test_random_cases_solve_in_equilibrium_or_fail_clearly(data):
+def check_case(data):
+    """Solve a random case: equilibrium to 1e-8, or a clear CaseError / NoSolutionError."""
     try:
         case = Case.from_dict(data)
     except CaseError as error:
@@ -68,9 +68,21 @@ def test_random_cases_solve_in_equilibrium_or_fail_clearly(data):
     try:
         sol = solve_quasistatic_state(case)
     except NoSolutionError as error:
-        message = str(error)
-        assert "Try" in message
+        assert "Try" in str(error)
         return
-    geometry = case.geometry()
-    check_equilibrium(geometry, operating_point_from_case(case), sol)
+    check_equilibrium(case.geometry(), operating_point_from_case(case), sol)
     assert np.all(np.isfinite(sol.contact_load))
+
+
+@settings(max_examples=35, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=cases())
+def test_random_cases_solve_in_equilibrium_or_fail_clearly(data):
+    check_case(data)
+
+
+@pytest.mark.slow
+@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=cases())
+def test_many_random_cases_solve_in_equilibrium_or_fail_clearly(data):
+    """The same property on ten times more examples (slow validation run)."""
+    check_case(data)
