@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import json
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -157,11 +159,21 @@ def run(args) -> int:
     from solver.models.quasistatic import solve_quasistatic
 
     case = resolve_case(args.case)
+    if args.output:
+        target = Path(args.output)
+        if not target.parent.is_dir():
+            print(f"racetrace: invalid input:\n--output {args.output}: directory "
+                  f"'{target.parent}' does not exist", file=sys.stderr)
+            return 2
     ds = solve_quasistatic(case)
     if args.output:
         from solver.results.io import save_dataset
 
-        save_dataset(ds, args.output)
+        try:
+            save_dataset(ds, args.output)
+        except OSError as error:
+            print(f"racetrace: could not write {args.output}: {error}", file=sys.stderr)
+            return 2
     if args.json:
         out = summary(ds)
         if args.output:

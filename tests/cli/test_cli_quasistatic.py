@@ -90,3 +90,9 @@ def test_no_solution_exits_3_with_reason_and_remedy(tmp_path):
     assert "rpm" in result.stderr and "axial preload" in result.stderr
     assert "Traceback" not in result.stderr
     assert result.stdout == ""
+
+
+def test_output_into_a_missing_directory_exits_2(tmp_path):
+    result = run("209-radial", "--output", str(tmp_path / "missing" / "r.nc"))
+    assert result.returncode == 2
+    assert "does not exist" in result.stderr and "Traceback" not in result.stderr
