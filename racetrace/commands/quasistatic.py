@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -178,9 +179,14 @@ def run(args) -> int:
         out = summary(ds)
         if args.output:
             out["output"] = str(args.output)
-        print(json.dumps(out, indent=2))
+        text = json.dumps(out, indent=2)
     else:
-        print(table(ds, case))
+        text = table(ds, case)
         if args.output:
-            print(f"\nresults written to {args.output}")
+            text += f"\n\nresults written to {args.output}"
+    try:
+        print(text)
+        sys.stdout.flush()
+    except BrokenPipeError:  # output piped into e.g. `head`: not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     return 0
