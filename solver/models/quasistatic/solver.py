@@ -98,11 +98,6 @@ class _Problem:
             speed_fraction * op.outer_ring_speed,
         )
 
-    def start_q(self, load_fraction: float) -> np.ndarray:
-        q = np.zeros(5)
-        q[3:] = self.operating.imposed_tilt()
-        return q
-
     def initial_positions(self, q, model) -> np.ndarray:
         pos = np.empty((self.azimuth.size, 2))
         for j, psi in enumerate(self.azimuth):
