@@ -175,8 +175,6 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
     for name, values in data.items():
         spec = VARIABLES[name]
         attrs = spec.attrs()
-        if name == "race_control":
-            del attrs["units"]
         if name == "film_thickness":
             attrs["description"] += "; 0 at open contacts"
         if name == "sliding_speed":
@@ -185,10 +183,26 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
             )
         data_vars[name] = (spec.dims_for(MODEL), values, attrs)
     coords = {
-        "ball": ("ball", np.arange(z), {"long_name": "ball index (ball 0 starts at azimuth 0)"}),
-        "race": ("race", np.array(DIMENSION_VALUES["race"], dtype=object)),
-        "axis": ("axis", np.array(DIMENSION_VALUES["axis"], dtype=object)),
-        "tilt_axis": ("tilt_axis", np.array(DIMENSION_VALUES["tilt_axis"], dtype=object)),
+        "ball": (
+            "ball",
+            np.arange(z),
+            {"long_name": "ball index (ball 0 starts at azimuth 0)", "units": "1"},
+        ),
+        "race": (
+            "race",
+            np.array(DIMENSION_VALUES["race"], dtype=object),
+            {"long_name": "race", "units": "1"},
+        ),
+        "axis": (
+            "axis",
+            np.array(DIMENSION_VALUES["axis"], dtype=object),
+            {"long_name": "Cartesian axis of the frame named by the variable", "units": "1"},
+        ),
+        "tilt_axis": (
+            "tilt_axis",
+            np.array(DIMENSION_VALUES["tilt_axis"], dtype=object),
+            {"long_name": "axis of the tilt rotation vector", "units": "1"},
+        ),
     }
     attrs = {
         "model": MODEL,
