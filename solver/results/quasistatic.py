@@ -24,7 +24,7 @@ from solver.physics.hertz_fast import (
 )
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
 
-from .variables import DIMENSION_VALUES, VARIABLES
+from .variables import VARIABLES, coordinates
 
 MODEL = "quasistatic"
 
@@ -182,28 +182,7 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
                 "; zero in the quasi-static model, which imposes pure rolling at the contact centres"
             )
         data_vars[name] = (spec.dims_for(MODEL), values, attrs)
-    coords = {
-        "ball": (
-            "ball",
-            np.arange(z),
-            {"long_name": "ball index (ball 0 starts at azimuth 0)", "units": "1"},
-        ),
-        "race": (
-            "race",
-            np.array(DIMENSION_VALUES["race"], dtype=object),
-            {"long_name": "race", "units": "1"},
-        ),
-        "axis": (
-            "axis",
-            np.array(DIMENSION_VALUES["axis"], dtype=object),
-            {"long_name": "Cartesian axis of the frame named by the variable", "units": "1"},
-        ),
-        "tilt_axis": (
-            "tilt_axis",
-            np.array(DIMENSION_VALUES["tilt_axis"], dtype=object),
-            {"long_name": "axis of the tilt rotation vector", "units": "1"},
-        ),
-    }
+    coords = coordinates(z)
     attrs = {
         "model": MODEL,
         "case": _case_text(case),

@@ -262,3 +262,40 @@ def variable(name: str) -> Variable:
     except KeyError:
         known = ", ".join(sorted(VARIABLES))
         raise KeyError(f"unknown results variable {name!r}; known: {known}") from None
+
+
+_COORDINATE_NAMES = {
+    "race": "race",
+    "axis": "Cartesian axis of the frame named by the variable",
+    "tilt_axis": "axis of the tilt rotation vector",
+    "quaternion": "quaternion component",
+}
+
+
+def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dict:
+    """Coordinates of a results Dataset, each with ``units`` and ``long_name``.
+
+    ``times`` (s) adds the ``time`` coordinate of the dynamic model; ``quaternion`` adds the
+    [w, x, y, z] dimension of ``ball_orientation``.
+    """
+    import numpy as np
+
+    coords = {
+        "ball": (
+            "ball",
+            np.arange(ball_count),
+            {"long_name": "ball index (ball 0 starts at azimuth 0)", "units": "1"},
+        )
+    }
+    for dim, long_name in _COORDINATE_NAMES.items():
+        if dim == "quaternion" and not quaternion:
+            continue
+        values = np.array(DIMENSION_VALUES[dim], dtype=object)
+        coords[dim] = (dim, values, {"long_name": long_name, "units": "1"})
+    if times is not None:
+        coords["time"] = (
+            "time",
+            np.asarray(times, dtype=np.float64),
+            {"long_name": "time", "units": "s"},
+        )
+    return coords

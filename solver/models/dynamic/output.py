@@ -10,7 +10,7 @@ import xarray as xr
 
 import solver
 from solver.physics.hertz import truncation_margin
-from solver.results.variables import variable
+from solver.results.variables import coordinates, variable
 
 from . import layout as L
 from .inputs import DEFAULT_OIL_NOTE
@@ -139,14 +139,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
             attrs["analysed_window"] = window_text
         values = np.asarray(values, dtype=np.float64).transpose([dims.index(d) for d in target])
         variables[name] = (target, np.ascontiguousarray(values), attrs)
-    coords = {
-        "time": ("time", np.asarray(times, dtype=np.float64), {"units": "s", "long_name": "time"}),
-        "ball": np.arange(z),
-        "race": ["inner", "outer"],
-        "axis": ["x", "y", "z"],
-        "tilt_axis": ["y", "z"],
-        "quaternion": ["w", "x", "y", "z"],
-    }
+    coords = coordinates(z, times, quaternion=True)
     attrs = {
         "model": "dynamic",
         "case": inputs.case_text,

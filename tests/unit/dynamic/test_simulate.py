@@ -152,10 +152,11 @@ def xr_align(a, b):
 def test_optional_simulation_keys_of_a_case_set_the_options():
     from types import SimpleNamespace
 
+    from solver.catalogue import resolve_case
     from solver.models.dynamic.options import options_from_case
 
-    case = SimpleNamespace(
-        simulation=SimpleNamespace(traction=False, gravity_m_s2=0.0, tolerance=None)
+    case = resolve_case("spindle-combined-load").with_values(
+        {"simulation.ball_race_traction": False, "simulation.gravity_m_s2": 0.0}
     )
     opts = options_from_case(case)
     assert opts.traction is False and opts.gravity == 0.0
