@@ -37,7 +37,7 @@ DEFAULT_CASE = "spindle-combined-load"
 PLAY_FPS = 12.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
-PREVIEW_DEBOUNCE_S = 0.15
+PREVIEW_DEBOUNCE_S = 0.1
 CHARTS = (
     "contact_angle",
     "raceway_map",
@@ -147,6 +147,7 @@ class RacetraceApp:
         s.playing = False
         s.speed = 1
         s.result_label = ""
+        s.result_serial = 0  # incremented whenever a new result is shown (tests, benchmarks)
         s.runs = []
         s.run_id = None
         s.compare_id = None
@@ -339,6 +340,7 @@ class RacetraceApp:
         s = self.state
         s.frame_max = source.n_frames - 1
         s.result_label = label
+        s.result_serial = int(s.result_serial) + 1
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]

@@ -5,8 +5,8 @@
 Starts ``racetrace serve`` on a free port and drives headless Chromium (/usr/bin/chromium):
 - first 3-D frame: seconds from navigation start to the first image in #view-3d;
 - frames shown while playing: distinct images received by #view-3d per second over 8 s;
-- quasi-static preview refresh: seconds from a field edit (axial load) to the status
-  "preview done" with the new case (includes the 0.15 s debounce);
+- quasi-static preview refresh: seconds from a field edit (axial load) until the browser has the
+  new result (state ``result_serial`` advanced; includes the 0.1 s debounce);
 - server memory: resident set size of the server process after loading a run of 100 shaft
   revolutions at 180 samples per revolution (a synthetic dynamic result of that size, written to the
   runs folder before start; a real 100-revolution dynamic run takes far longer to compute).
@@ -133,16 +133,13 @@ def main() -> int:
             page.locator("#play-button").click()  # pause
             times = []
             for load in ("650", "800", "950"):
+                serial = page.evaluate("window.trame.state.get('result_serial')")
                 box = page.locator("#field-axial_load_N input")
                 box.fill(load)
                 t1 = time.monotonic()
                 box.press("Tab")
                 page.wait_for_function(
-                    "document.querySelector('#status').innerText.trim() == 'updating preview'"
-                    " || document.querySelector('#status').innerText.trim() == 'preview done'"
-                )
-                page.wait_for_function(
-                    "document.querySelector('#status').innerText.trim() == 'preview done'"
+                    f"window.trame.state.get('result_serial') > {serial}", polling=10
                 )
                 times.append(time.monotonic() - t1)
             print(
