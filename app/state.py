@@ -330,10 +330,16 @@ class RacetraceApp:
 
         source = frame_source(ds)
         self.dataset = ds
-        if "time" not in ds.dims:
-            self.quasistatic = ds
         self.source = source
         case = load_case(ds.attrs["case"]) if ds.attrs.get("case") else self.case
+        if "time" not in ds.dims:
+            self.quasistatic = ds
+        else:  # the quasi-static solution of the same case, for the comparison chart
+            try:
+                self.quasistatic = self._solve_quasistatic(case)
+            except Exception as error:  # the comparison is then left out, with the reason logged
+                log.warning("no quasi-static comparison for this run: %s", error)
+                self.quasistatic = None
         if self.render_enabled:
             self._ensure_scene(BearingGeometry.from_case(case), case)
             self.scene.show_source(source, 0)

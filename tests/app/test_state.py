@@ -214,4 +214,8 @@ def test_dynamic_run_reports_progress_and_shows_its_result(app):
     assert float(app.dataset.time[-1]) == pytest.approx(0.3 * 2 * np.pi / omega, rel=0.02)
     x = app.state.chart_contact_angle["data"][0]["x"]  # plotly JSON: base64 typed array
     assert _length(x) == app.source.n_frames
+    # quasi-static versus dynamic: both models of the same case
+    names = [t["name"] for t in app.state.chart_comparison["data"]]
+    assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
+    assert app.quasistatic.attrs["case"] == app.dataset.attrs["case"]
     assert app.state.frame_max == app.dataset.sizes["time"] - 1
