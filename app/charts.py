@@ -52,11 +52,11 @@ HELP = {
 
 def _layout(fig: go.Figure, title: str, xtitle: str, ytitle: str) -> go.Figure:
     fig.update_layout(
-        title={"text": title, "font": {"size": 14}},
+        title={"text": title, "font": {"size": 14}, "x": 0.02, "xanchor": "left"},
         xaxis_title=xtitle,
         yaxis_title=ytitle,
         margin={"l": 55, "r": 10, "t": 35, "b": 40},
-        legend={"orientation": "h", "y": -0.25},
+        legend={"orientation": "h", "x": 1.0, "xanchor": "right", "y": 1.0, "yanchor": "bottom"},
         template="none",  # built-in templates cost ~60 ms per figure (deep copies)
         plot_bgcolor="white",
         paper_bgcolor="white",

@@ -38,6 +38,7 @@ PLAY_FPS = 12.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
 PREVIEW_DEBOUNCE_S = 0.1
+_SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
 CHARTS = (
     "contact_angle",
     "raceway_map",
@@ -224,7 +225,8 @@ class RacetraceApp:
         try:
             with self.state:
                 for name, value in values.items():
-                    self.state[f"fv_{name}"] = "" if value is None else str(value)
+                    empty = None if self._field_by_name[name].kind in _SELECT_KINDS else ""
+                    self.state[f"fv_{name}"] = empty if value is None else str(value)
                     self.state[f"fe_{name}"] = ""
         finally:
             self._filling = False

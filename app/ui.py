@@ -8,7 +8,7 @@ input (its validation message is shown inside the same element).
 from __future__ import annotations
 
 from trame.ui.vuetify3 import SinglePageWithDrawerLayout
-from trame.widgets import html, plotly
+from trame.widgets import client, html, plotly
 from trame.widgets import vuetify3 as v3
 
 from .charts import HELP
@@ -23,25 +23,50 @@ _SECTION_TITLES = {
 }
 
 
+_SHOW_CHARTS_AFTER_FIRST_FRAME = """
+(function waitForFirstFrame(tries) {
+  var img = document.querySelector('#view-3d img[src]');
+  if ((window.trame && img) || tries > 100) {
+    setTimeout(function () { window.trame.state.set('charts_visible', true); }, 200);
+  } else {
+    setTimeout(function () { waitForFirstFrame(tries + 1); }, 100);
+  }
+})(0);
+"""
+
+
 def _field(f) -> None:
     """One case input wrapped in ``div#field-<name>`` with its message inside."""
     with html.Div(id=f"field-{f.name}", classes="mb-1"):
         common = dict(
             label=f.label,
             v_model=(f"fv_{f.name}",),
-            error_messages=(f"fe_{f.name} ? [fe_{f.name}] : []",),
             density="compact",
-            hide_details="auto",
             title=f.help,
         )
-        if f.kind == "choice":
-            v3.VSelect(items=list(f.choices), clearable=not f.required, **common)
-        elif f.kind == "material":
-            v3.VCombobox(items=list(f.choices), **common)
-        elif f.kind == "bool":
-            v3.VSelect(items=["true", "false"], **common)
+        if f.kind in ("choice", "bool", "material"):
+            # Vuetify's select fails on error-messages here: the message goes in a div below.
+            items = ["true", "false"] if f.kind == "bool" else list(f.choices)
+            widget = v3.VCombobox if f.kind == "material" else v3.VSelect
+            # a plain list would be read by trame as (state name, default): pass a JS literal
+            literal = "[" + ", ".join("'" + str(c).replace("'", "\\'") + "'" for c in items) + "]"
+            widget(
+                items=(literal,),
+                hide_details=True,
+                error=(f"!!fe_{f.name}",),
+                **{k: v for k, v in common.items() if k != "title"},
+            )
+            html.Div(
+                f"{{{{ fe_{f.name} }}}}",
+                v_if=f"fe_{f.name}",
+                classes="text-error text-caption px-3",
+            )
         else:
-            v3.VTextField(**common)
+            v3.VTextField(
+                error_messages=(f"fe_{f.name} ? [fe_{f.name}] : []",),
+                hide_details="auto",
+                **common,
+            )
 
 
 def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
@@ -50,6 +75,7 @@ def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
             state_variable_name=key,
             display_mode_bar=False,
             style=f"height: {height}px; width: 100%;",
+            v_if="charts_visible",
         )
         html.Div(HELP[help_key], classes="text-caption text-medium-emphasis px-2")
 
@@ -60,7 +86,12 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
 
     server = app.server
     ctrl = server.controller
+    # Charts are drawn once the first 3-D frame is on screen: drawing them first (plotly in
+    # software) delayed the first frame by ~1.7 s. ``charts_visible`` is per browser.
+    server.state.client_only("charts_visible")
+    server.state.charts_visible = False
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
+        client.Script(_SHOW_CHARTS_AFTER_FIRST_FRAME)
         layout.title.set_text("racetrace: ball-bearing contact trajectories")
         with layout.toolbar:
             v3.VSpacer()
