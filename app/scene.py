@@ -38,7 +38,7 @@ class SceneOptions:
     layers: dict = field(default_factory=lambda: {name: True for name in LAYERS})
     # Outer ring sector cut away (rad, centred on the isometric camera side) so the balls, cage and
     # raceways show; an opaque cut-away ring renders ~2x faster than a translucent one in software.
-    outer_cutaway: tuple = (math.radians(-5.0), math.radians(140.0))
+    outer_cutaway: tuple = (math.radians(10.0), math.radians(155.0))
 
 
 def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n_arc: int = 40):
@@ -251,7 +251,7 @@ class BearingScene:
                     cmap="tab20",
                     clim=(0, max(1, g.ball_count - 1)),
                     show_scalar_bar=False,
-                    line_width=2,
+                    line_width=3,
                     name=f"traces_{race}",
                 )
             )
@@ -293,9 +293,19 @@ class BearingScene:
     def _display_alpha(self, race: int, alpha):
         return exaggerate(alpha, self._reference[race], self.options.exaggeration)
 
+    def _in_cutaway(self, race: int, phi) -> np.ndarray:
+        """True where a mark on ``race`` at ring azimuth ``phi`` (rad) lies in the removed sector.
+
+        Outer-raceway marks there would float in front of the balls, so they are not drawn.
+        """
+        if race != OUTER:
+            return np.zeros(np.shape(phi), bool)
+        lo, hi = self.options.outer_cutaway
+        return np.mod(np.asarray(phi) - lo, 2 * math.pi) < (hi - lo)
+
     def _update_ellipses(self, race: int, f) -> None:
         groove = self.grooves[race]
-        loaded = f.loaded[:, race]
+        loaded = f.loaded[:, race] & ~self._in_cutaway(race, f.raceway_azimuth[:, race])
         alpha = np.where(loaded, f.contact_angle[:, race], self._reference[race])
         alpha = self._display_alpha(race, alpha)
         a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0)
@@ -314,6 +324,7 @@ class BearingScene:
         phi, alpha, loaded = self.source.trace(race, stop)
         step = max(1, math.ceil(phi.shape[1] / MAX_TRACE_SAMPLES))
         phi, alpha, loaded = phi[:, ::step], alpha[:, ::step], loaded[:, ::step]
+        loaded = loaded & ~self._in_cutaway(race, phi)
         balls = (
             range(phi.shape[0]) if self.options.trace_ball is None else [self.options.trace_ball]
         )
@@ -378,7 +389,7 @@ class BearingScene:
             )
         d = 1.6 * self.geometry.pitch_diameter
         position, up = {
-            "isometric": ((-1.0 * d, 0.7 * d, 1.6 * d), (0.0, 0.0, 1.0)),
+            "isometric": ((-0.8 * d, 0.2 * d, 1.6 * d), (0.0, 0.0, 1.0)),
             "axial": ((-2.2 * d, 0.0, 0.0), (0.0, 0.0, 1.0)),
             "radial": ((0.0, 0.0, 2.2 * d), (0.0, 1.0, 0.0)),
         }[preset]

@@ -77,3 +77,15 @@ def test_bad_options_are_named(scene):
         scene.set_camera("top")
     scene.set_layer("cage", False)
     assert not scene._actors["cage"][0].visibility
+
+
+def test_no_outer_marks_in_the_cut_away_sector(scene):
+    scene.set_frame(100)
+    lo, hi = scene.options.outer_cutaway
+    pts = scene._traces[OUTER].points
+    phi = np.arctan2(pts[:, 2], pts[:, 1])
+    assert len(pts) > 10
+    assert not np.any(np.mod(phi - lo, 2 * np.pi) < (hi - lo) - 1e-9)
+    # the inner ring has no cut: its trace goes all the way round
+    inner = scene._traces[INNER].points
+    assert np.ptp(np.mod(np.arctan2(inner[:, 2], inner[:, 1]) - lo, 2 * np.pi)) > 6.0
