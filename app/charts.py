@@ -144,7 +144,7 @@ def raceway_map_figure(
     fig.update_xaxes(range=[0, 360])
     return _layout(
         fig,
-        "Contact tracks on the unrolled raceways",
+        "Unrolled raceways",
         "raceway azimuth (ring frame), degree",
         "contact angle, degree",
     )
