@@ -6,7 +6,7 @@ import sys
 
 from .offscreen import check_offscreen_rendering, configure_environment
 
-EXIT_NO_RENDERING = 2
+EXIT_NO_RENDERING = 2  # also used for an unusable --host/--port (invalid input)
 
 
 def serve(
@@ -17,6 +17,10 @@ def serve(
     case_name: str | None = None,
 ) -> int:
     """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here."""
+    problem = _port_problem(host, port)
+    if problem:
+        print(f"racetrace serve: {problem}", file=sys.stderr)
+        return EXIT_NO_RENDERING
     configure_environment()
     check = check_offscreen_rendering()
     if not check.ok:
@@ -46,6 +50,35 @@ def serve(
             show_connection_info=False,
             disable_logging=True,
         )
+    except OSError as error:  # e.g. the port was taken while we started
+        print(
+            f"racetrace serve: cannot serve on {host}:{port}: {error.strerror or error}",
+            file=sys.stderr,
+        )
+        return EXIT_NO_RENDERING
     finally:
         app.shutdown()
     return 0
+
+
+def _port_problem(host: str, port: int) -> str:
+    """A message when ``host:port`` cannot be bound (in use, bad address), else ""."""
+    import socket
+
+    if not 0 < port < 65536:
+        return f"--port {port}: must be between 1 and 65535"
+    try:
+        infos = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+    except socket.gaierror as error:
+        return f"--host {host!r}: unknown address ({error.strerror})"
+    family, _, _, _, address = infos[0]
+    with socket.socket(family, socket.SOCK_STREAM) as sock:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            sock.bind(address)
+        except OSError as error:
+            return (
+                f"cannot listen on {host}:{port} ({error.strerror}); "
+                "choose another port with --port"
+            )
+    return ""

@@ -23,3 +23,17 @@ def test_no_offscreen_rendering_exits_2_with_the_install_command(monkeypatch, ca
     monkeypatch.setattr(app_main, "check_offscreen_rendering", lambda: failed)
     assert cli.main(["serve", "--port", "9002"]) == 2
     assert INSTALL_COMMAND in capsys.readouterr().err
+
+
+def test_port_in_use_is_named_without_traceback(capsys):
+    import socket
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        assert cli.main(["serve", "--port", str(port)]) == 2
+    err = capsys.readouterr().err
+    assert f"127.0.0.1:{port}" in err and "--port" in err and "Traceback" not in err
+    assert cli.main(["serve", "--port", "70000"]) == 2
+    assert "between 1 and 65535" in capsys.readouterr().err
