@@ -25,11 +25,7 @@ pytestmark = [
         reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)",
     ),
 ]
-pytest.importorskip(
-    "solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed"
-)
-pytest.importorskip("solver.models.quasistatic", reason="the quasi-static model has not landed")
-playwright_api = pytest.importorskip("playwright.sync_api")
+import playwright.sync_api as playwright_api  # noqa: E402
 
 LAUNCH_ARGS = [
     "--headless",

@@ -41,8 +41,9 @@ def test_table_of_a_quasistatic_result(qs_dataset):
 
 
 def test_png_and_animation(tmp_path, qs_dataset, geometry):
-    pv = pytest.importorskip("pyvista")
-    imageio = pytest.importorskip("imageio.v2")
+    import imageio.v2 as imageio
+    import pyvista as pv
+
     from app.scene import BearingScene
 
     plotter = pv.Plotter(off_screen=True, window_size=(160, 120))

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-pv = pytest.importorskip("pyvista")
+import pyvista as pv  # noqa: E402
 
 from app.frames import frame_source, rot_x  # noqa: E402
 from app.raceway import INNER, OUTER, grooves  # noqa: E402

@@ -9,11 +9,6 @@ import uuid
 import numpy as np
 import pytest
 
-pytest.importorskip(
-    "solver.catalogue", reason="the case catalogue (solver.catalogue) has not landed"
-)
-pytest.importorskip("solver.models.quasistatic", reason="the quasi-static model has not landed")
-
 from app import state as state_module  # noqa: E402
 from app.state import DEFAULT_CASE, RacetraceApp  # noqa: E402
 
@@ -115,7 +110,6 @@ def test_time_controls(app):
 
 
 def test_scene_follows_frames_and_options(tmp_path):
-    pytest.importorskip("pyvista")
     a = RacetraceApp(_server(), runs_dir=tmp_path, render=True, window_size=(200, 150))
     view = CountingView()
     a.view = view
