@@ -37,12 +37,12 @@ _SHOW_CHARTS_AFTER_FIRST_FRAME = """
 
 def _field(f) -> None:
     """One case input wrapped in ``div#field-<name>`` with its message inside."""
-    with html.Div(id=f"field-{f.name}", classes="mb-1"):
+    tooltip = f.help.replace('"', "'")  # the help text is shown as a tooltip
+    with html.Div(id=f"field-{f.name}", classes="mb-1", title=tooltip):
         common = dict(
             label=f.label,
             v_model=(f"fv_{f.name}",),
             density="compact",
-            title=f.help,
         )
         if f.kind in ("choice", "bool", "material"):
             # Vuetify's select fails on error-messages here: the message goes in a div below.
@@ -50,12 +50,7 @@ def _field(f) -> None:
             widget = v3.VCombobox if f.kind == "material" else v3.VSelect
             # a plain list would be read by trame as (state name, default): pass a JS literal
             literal = "[" + ", ".join("'" + str(c).replace("'", "\\'") + "'" for c in items) + "]"
-            widget(
-                items=(literal,),
-                hide_details=True,
-                error=(f"!!fe_{f.name}",),
-                **{k: v for k, v in common.items() if k != "title"},
-            )
+            widget(items=(literal,), hide_details=True, error=(f"!!fe_{f.name}",), **common)
             html.Div(
                 f"{{{{ fe_{f.name} }}}}",
                 v_if=f"fe_{f.name}",
