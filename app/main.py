@@ -39,6 +39,7 @@ def serve(
     app.exports_dir.mkdir(parents=True, exist_ok=True)
     server.enable_module({"serve": {app.EXPORT_URL: str(app.exports_dir)}})
     build_ui(app)
+    server.controller.on_server_ready.add(_quiet_closed_connections)
     print(
         f"racetrace: serving on http://{host}:{port}/  (runs folder: {app.store.root})", flush=True
     )
@@ -59,6 +60,24 @@ def serve(
     finally:
         app.shutdown()
     return 0
+
+
+def _quiet_closed_connections(**_) -> None:
+    """Drop the 'Cannot write to closing transport' task errors of a browser that just left.
+
+    Frames already queued for a closing websocket fail harmlessly; asyncio would log each failed
+    send with a traceback. Every other loop error keeps the default handling.
+    """
+    import asyncio
+
+    loop = asyncio.get_event_loop()
+
+    def handler(loop, context):
+        if isinstance(context.get("exception"), ConnectionResetError):
+            return
+        loop.default_exception_handler(context)
+
+    loop.set_exception_handler(handler)
 
 
 def _port_problem(host: str, port: int) -> str:
