@@ -58,7 +58,7 @@ def server(tmp_path_factory):
         env=dict(os.environ),
     )
     url = f"http://127.0.0.1:{port}/"
-    deadline = time.monotonic() + 120
+    deadline = time.monotonic() + 300  # a cold numba cache compiles the QS kernels first
     while True:
         try:
             urllib.request.urlopen(url, timeout=2)
