@@ -26,7 +26,6 @@ except PackageNotFoundError:  # running from a source tree that is not installed
 _LAZY = {
     "Case": "solver.case",
     "load_case": "solver.case",
-    "catalogue": "solver.catalogue",
     "BearingGeometry": "solver.geometry",
     "solve_quasistatic": "solver.models.quasistatic",
     "simulate": "solver.models.dynamic",
@@ -34,7 +33,19 @@ _LAZY = {
     "load_dataset": "solver.results.io",
 }
 
-__all__ = ["CaseError", "NoSolutionError", "Problem", "SimulationDiverged", "__version__", *_LAZY]
+# ``catalogue`` is both a submodule and the function it defines: import it eagerly (it is light), so
+# that ``solver.catalogue`` stays the function even after ``import solver.catalogue``.
+from .catalogue import catalogue  # noqa: E402
+
+__all__ = [
+    "CaseError",
+    "NoSolutionError",
+    "Problem",
+    "SimulationDiverged",
+    "__version__",
+    "catalogue",
+    *_LAZY,
+]
 
 
 def __getattr__(name: str):

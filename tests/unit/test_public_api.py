@@ -1,0 +1,18 @@
+"""The public solver API names resolve to what solver/__init__ promises."""
+
+import importlib
+
+
+def test_catalogue_stays_the_function_after_its_submodule_is_imported():
+    importlib.import_module("solver.catalogue")
+    import solver
+
+    assert callable(solver.catalogue)
+    assert "spindle-combined-load" in [entry.name for entry in solver.catalogue()]
+
+
+def test_lazy_names_resolve():
+    import solver
+
+    for name in ("load_case", "Case", "solve_quasistatic", "simulate", "save_dataset", "load_dataset"):
+        assert getattr(solver, name) is not None, name
