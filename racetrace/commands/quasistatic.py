@@ -122,8 +122,13 @@ def table(ds, case) -> str:
         f"loads:   axial {(op.axial_load_N or 0.0):g} N, radial {(op.radial_load_N or 0.0):g} N at "
         f"{(op.radial_load_angle_deg or 0.0):g} deg",
         f"inner ring offset: x {offset[0]:.3f} um, y {offset[1]:.3f} um, z {offset[2]:.3f} um; "
-        f"tilt y {tilt[0]:.4f} deg, z {tilt[1]:.4f} deg; moment y {moment[0]:.4g} N m, "
-        f"z {moment[1]:.4g} N m",
+        f"tilt y {tilt[0]:.4f} deg, z {tilt[1]:.4f} deg",
+        f"moment on the inner ring: y {_clean(moment[0]):.4g} N m, z {_clean(moment[1]):.4g} N m"
+        + (
+            " (applied)"
+            if op.tilting_moment_Nm is not None
+            else " (what the shaft must apply to hold the imposed alignment)"
+        ),
         f"cage speed: {float(ds.cage_speed):.2f} rad/s{ratio}",
         f"max pressure: inner {ds.max_pressure.values[:, 0].max() * factor:.3f} {unit}, "
         f"outer {ds.max_pressure.values[:, 1].max() * factor:.3f} {unit}",
@@ -133,7 +138,7 @@ def table(ds, case) -> str:
         lines.append(f"note: {note}")
     lines.append("")
     head = (
-        f"{'ball':>4} {'psi':>7} {'a_i':>7} {'a_o':>7} {'Q_i':>9} {'Q_o':>9} {'a_i':>7} "
+        f"{'ball':>4} {'psi':>7} {'alpha_i':>7} {'alpha_o':>7} {'Q_i':>9} {'Q_o':>9} {'a_i':>7} "
         f"{'b_i':>7} {'a_o':>7} {'b_o':>7} {'p_i':>7} {'p_o':>7}  control"
     )
     units = (
@@ -152,7 +157,14 @@ def table(ds, case) -> str:
             f"{q[0]:9.2f} {q[1]:9.2f} {a[0]:7.4f} {bb[0]:7.4f} {a[1]:7.4f} {bb[1]:7.4f} "
             f"{p[0]:7.3f} {p[1]:7.3f}  {ds.race_control.values[j]}"
         )
+    lines.append("alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the")
+    lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
     return "\n".join(lines)
+
+
+def _clean(value: float) -> float:
+    """Round-off below 1e-9 of the printed magnitude shown as 0 (never '-0' or '-1.7e-15')."""
+    return 0.0 if abs(value) < 1e-9 else float(value)
 
 
 def run(args) -> int:
@@ -160,6 +172,8 @@ def run(args) -> int:
     from solver.models.quasistatic import solve_quasistatic
 
     case = resolve_case(args.case)
+    for warning in case.warnings():
+        print(f"warning: {warning.message}", file=sys.stderr)
     if args.output:
         target = Path(args.output)
         if not target.parent.is_dir():
