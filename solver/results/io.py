@@ -24,6 +24,7 @@ def save_dataset(ds: xr.Dataset, path) -> Path:
     os.close(fd)
     try:
         ds.to_netcdf(tmp, engine=ENGINE)
+        os.chmod(tmp, 0o666 & ~_current_umask())  # mkstemp made it private (0600)
         os.replace(tmp, path)
     except BaseException:
         try:
@@ -38,3 +39,10 @@ def load_dataset(path) -> xr.Dataset:
     """Read a results Dataset fully into memory (the file is closed on return)."""
     with xr.open_dataset(path, engine=ENGINE) as ds:
         return ds.load()
+
+
+def _current_umask() -> int:
+    """The process umask (read by setting and restoring it)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask

@@ -56,3 +56,16 @@ def test_failed_write_leaves_no_temporary_file_and_keeps_the_old_one(tmp_path, m
         save_dataset(small_dataset(), target)
     assert target.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+
+
+def test_saved_file_has_the_usual_permissions(tmp_path):
+    """The atomic write goes through a private temporary file; the result must not stay private."""
+    import os
+    import stat
+
+    mask = os.umask(0o022)
+    try:
+        path = save_dataset(small_dataset(), tmp_path / "shared.nc")
+    finally:
+        os.umask(mask)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o644
