@@ -202,6 +202,8 @@ def resolve_case(path_or_name) -> Case:
     cat = catalogue()
     if text in cat:
         return cat.get(text).load()
+    if path.is_dir():
+        raise CaseError(Problem("file", f"{text} is a folder, not a case file: give a .toml file"))
     if path.suffix == ".toml" or "/" in text or "\\" in text:
         raise CaseError(Problem("file", f"case file not found: {text}"))
     close = difflib.get_close_matches(text, cat.names, n=3, cutoff=0.5)

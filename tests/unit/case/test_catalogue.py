@@ -125,3 +125,9 @@ def test_resolve_case_accepts_names_paths_and_cases(tmp_path):
         resolve_case(str(tmp_path / "missing.toml"))
     with pytest.raises(CaseError, match="neither a case file nor a catalogue name"):
         resolve_case("209-radail")
+
+
+def test_resolve_case_names_a_folder_as_such(tmp_path):
+    with pytest.raises(CaseError) as info:
+        resolve_case(str(tmp_path))
+    assert "is a folder, not a case file" in str(info.value)
