@@ -8,9 +8,10 @@ input (its validation message is shown inside the same element).
 from __future__ import annotations
 
 from trame.ui.vuetify3 import SinglePageWithDrawerLayout
-from trame.widgets import client, html, plotly
+from trame.widgets import client, html
 from trame.widgets import vuetify3 as v3
 
+from . import lazy_charts
 from .charts import HELP
 
 _SECTION_TITLES = {
@@ -21,18 +22,6 @@ _SECTION_TITLES = {
     "simulation": "Run length",
     "": "Case",
 }
-
-
-_SHOW_CHARTS_AFTER_FIRST_FRAME = """
-(function waitForFirstFrame(tries) {
-  var img = document.querySelector('#view-3d img[src]');
-  if ((window.trame && img) || tries > 100) {
-    setTimeout(function () { window.trame.state.set('charts_visible', true); }, 200);
-  } else {
-    setTimeout(function () { waitForFirstFrame(tries + 1); }, 100);
-  }
-})(0);
-"""
 
 
 def _field(f) -> None:
@@ -66,11 +55,8 @@ def _field(f) -> None:
 
 def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
     with html.Div(id=element_id, classes="mb-2"):
-        plotly.Figure(
-            state_variable_name=key,
-            display_mode_bar=False,
-            style=f"height: {height}px; width: 100%;",
-            v_if="charts_visible",
+        lazy_charts.ChartFigure(
+            key, display_mode_bar=False, style=f"height: {height}px; width: 100%;"
         )
         html.Div(HELP[help_key], classes="text-caption text-medium-emphasis px-2")
 
@@ -81,12 +67,10 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
 
     server = app.server
     ctrl = server.controller
-    # Charts are drawn once the first 3-D frame is on screen: drawing them first (plotly in
-    # software) delayed the first frame by ~1.7 s. ``charts_visible`` is per browser.
-    server.state.client_only("charts_visible")
-    server.state.charts_visible = False
+    # The chart library is loaded once the first 3-D frame is on screen (see app.lazy_charts).
+    lazy_charts.enable(server)
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
-        client.Script(_SHOW_CHARTS_AFTER_FIRST_FRAME)
+        client.Script(lazy_charts.LOAD_AFTER_FIRST_FRAME)
         layout.title.set_text("racetrace: ball-bearing contact trajectories")
         with layout.toolbar:
             v3.VSpacer()
