@@ -12,7 +12,7 @@ import numpy as np
 import plotly.graph_objects as go
 import xarray as xr
 
-from .frames import RPM, FrameSource
+from .frames import RPM, TWO_PI, FrameSource
 from .raceway import INNER, OUTER, RACES
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
@@ -266,3 +266,213 @@ HELP["compare_runs"] = (
     "Two runs side by side: the contact tracks on both raceways of the run on show (left) and of "
     "the run chosen for comparison (right), e.g. without and with radial load."
 )
+
+
+# ---- comparing two runs (A = the run on show, B = the saved run chosen for comparison) ----------
+RUN_STYLES = {
+    "A": {"dash": "solid", "symbol": "circle", "size": 5},
+    "B": {"dash": "dash", "symbol": "x", "size": 6},
+}
+
+HELP["compare_angle"] = (
+    "Contact angle versus ball azimuth, both runs overlaid (A solid, B dashed). Under pure axial "
+    "load every ball has the same contact angles, so each race is a flat line; a radial load "
+    "spreads them: balls in the load zone press deeper into the groove than the others."
+)
+HELP["compare_load"] = (
+    "Contact load versus ball azimuth, both runs overlaid (A solid, B dashed). Pure axial load "
+    "shares the load equally (a flat line); with a radial load the loads concentrate in a load "
+    "zone around the load direction and the balls opposite it carry less, or nothing."
+)
+HELP["compare_summary"] = (
+    "Summary per run and race. Contact angle min/max and the band width (max - min, over loaded "
+    "contacts) tell how far the contact wanders across the groove; the largest contact load and "
+    "peak pressure tell how hard the most loaded ball is pressed (fatigue life); the cage speed "
+    "shows whether the ball set orbits as kinematics predicts."
+)
+
+
+def _loaded(alpha: np.ndarray, load: np.ndarray) -> np.ndarray:
+    """Whether a contact carries load (N, > 0) and has a finite contact angle (rad)."""
+    return np.isfinite(alpha) & (np.nan_to_num(load) > 0.0)
+
+
+def azimuth_samples(source: FrameSource) -> dict[str, np.ndarray]:
+    """Contact samples of a run against ball azimuth, flattened over balls (and time).
+
+    A quasi-static result gives its per-ball values (the source's first frame, where every ball
+    sits at its solved azimuth); a dynamic run gives every (time, ball) sample. SI/rad: key
+    ``ball_azimuth`` holds (n,) rad in [0, 2 pi); every contact quantity of
+    :attr:`FrameSource.contact` (``contact_angle`` rad, ``contact_load`` N, ``max_pressure`` Pa,
+    ...) an (n, 2) array with columns [inner, outer].
+    """
+    frames = slice(0, 1) if source.model == "quasistatic" else slice(None)
+    samples = {"ball_azimuth": np.mod(source.ball_azimuth[frames].reshape(-1), TWO_PI)}
+    for name, values in source.contact.items():
+        samples[name] = values[frames].reshape(-1, 2)
+    return samples
+
+
+def mean_cage_speed(source: FrameSource, ds: xr.Dataset) -> float:
+    """Mean cage speed (rev/min): the mean of the result's ``cage_speed`` samples (rad/s; one
+    value for a quasi-static result); without that variable, the cage angle advanced over the run
+    divided by its duration."""
+    if "cage_speed" in ds:
+        speed = np.asarray(ds["cage_speed"].values, float)
+        if np.isfinite(speed).any():
+            return float(np.nanmean(speed)) / RPM
+    duration = float(source.times[-1] - source.times[0])
+    if duration <= 0.0:
+        return float("nan")
+    return float(source.cage_angle[-1] - source.cage_angle[0]) / duration / RPM
+
+
+def run_summary(source: FrameSource, ds: xr.Dataset) -> dict:
+    """Summary numbers of one run for the run comparison, in display units.
+
+    Samples are those of :func:`azimuth_samples` (per-ball values of a quasi-static result, every
+    time sample of every ball of a dynamic run); a sample is *loaded* when its contact load is
+    > 0 N and its contact angle finite. Returns ``{"inner": {...}, "outer": {...},
+    "cage_speed_rpm": float}``, each race holding
+
+    * ``contact_angle_min_deg``, ``contact_angle_max_deg``: smallest and largest contact angle of
+      the loaded samples (degree);
+    * ``band_width_deg``: their difference, max - min (degree): the across-groove width of the
+      band the contact trajectories cover on the raceway (0 for identical balls in steady rolling
+      under pure axial load);
+    * ``contact_load_max_N``: largest contact load (N);
+    * ``max_pressure_max_GPa``: largest Hertz peak pressure of the loaded samples (GPa).
+
+    ``cage_speed_rpm`` is :func:`mean_cage_speed` (rev/min). A race without any loaded sample
+    gets NaN values.
+    """
+    samples = azimuth_samples(source)
+    summary = {}
+    for race in (INNER, OUTER):
+        alpha = samples["contact_angle"][:, race]
+        load = samples["contact_load"][:, race]
+        loaded = _loaded(alpha, load)
+        if loaded.any():
+            alpha_deg = np.degrees(alpha[loaded])
+            low, high = float(alpha_deg.min()), float(alpha_deg.max())
+            load_max = float(np.nanmax(load))
+            pressure_max = float(np.nanmax(samples["max_pressure"][loaded, race])) * 1e-9
+        else:
+            low = high = load_max = pressure_max = float("nan")
+        summary[RACES[race]] = {
+            "contact_angle_min_deg": low,
+            "contact_angle_max_deg": high,
+            "band_width_deg": high - low,
+            "contact_load_max_N": load_max,
+            "max_pressure_max_GPa": pressure_max,
+        }
+    summary["cage_speed_rpm"] = mean_cage_speed(source, ds)
+    return summary
+
+
+# Columns of the comparison table: (row key, header, number format); the first two are text.
+SUMMARY_COLUMNS = (
+    ("run", "run", None),
+    ("race", "race", None),
+    ("contact_angle_min_deg", "contact angle min, degree", ".2f"),
+    ("contact_angle_max_deg", "contact angle max, degree", ".2f"),
+    ("band_width_deg", "band width, degree", ".3f"),
+    ("contact_load_max_N", "contact load max, N", ".1f"),
+    ("max_pressure_max_GPa", "peak pressure max, GPa", ".3f"),
+    ("cage_speed_rpm", "mean cage speed, rev/min", ".0f"),
+)
+
+
+def summary_rows(runs: dict[str, dict]) -> list[dict]:
+    """Table rows (plain JSON, numbers as text) of summaries ``{run tag: run_summary(...)}``.
+
+    One row per run and race, keyed ``"<tag>-<race>"``; a NaN is shown as "-".
+    """
+    rows = []
+    for tag, summary in runs.items():
+        for race in RACES:
+            values = {**summary[race], "cage_speed_rpm": summary["cage_speed_rpm"]}
+            row = {"key": f"{tag}-{race}", "run": tag, "race": race}
+            for key, _, fmt in SUMMARY_COLUMNS[2:]:
+                value = values[key]
+                row[key] = "-" if not np.isfinite(value) else format(value, fmt)
+            rows.append(row)
+    return rows
+
+
+def _azimuth_trace(
+    source: FrameSource, tag: str, race: int, quantity: str, max_points: int
+) -> go.Scatter | go.Scattergl:
+    """One run's ``quantity`` (degree or N) on ``race`` versus ball azimuth (degree)."""
+    samples = azimuth_samples(source)
+    psi = np.degrees(samples["ball_azimuth"])
+    alpha = samples["contact_angle"][:, race]
+    load = samples["contact_load"][:, race]
+    if quantity == "contact_angle":
+        y = np.where(_loaded(alpha, load), np.degrees(alpha), np.nan)
+    else:
+        y = np.nan_to_num(load)
+    style = RUN_STYLES[tag]
+    colour = RACE_COLOURS[race]
+    name = f"{tag} {RACES[race]}"
+    if source.model == "quasistatic":  # one value per ball: a line through the balls
+        order = np.argsort(psi)
+        return go.Scatter(
+            x=psi[order],
+            y=y[order],
+            mode="lines+markers",
+            name=name,
+            line={"color": colour, "dash": style["dash"]},
+            marker={"symbol": style["symbol"], "size": style["size"], "color": colour},
+        )
+    keep = np.isfinite(y)
+    step = max(1, int(np.ceil(keep.sum() / max_points)))
+    return go.Scattergl(
+        x=psi[keep][::step],
+        y=y[keep][::step],
+        mode="markers",
+        name=name,
+        marker={"symbol": style["symbol"], "size": 4, "color": colour, "opacity": 0.5},
+    )
+
+
+def _compare_azimuth_figure(
+    a: FrameSource, b: FrameSource, quantity: str, title: str, ytitle: str, max_points: int
+) -> go.Figure:
+    fig = go.Figure()
+    for tag, source in (("A", a), ("B", b)):
+        for race in (INNER, OUTER):
+            fig.add_trace(_azimuth_trace(source, tag, race, quantity, max_points))
+    fig.update_xaxes(range=[0, 360])
+    return _layout(fig, title, "ball azimuth, degree", ytitle)
+
+
+def compare_angle_figure(a: FrameSource, b: FrameSource, max_points: int = 5000) -> go.Figure:
+    """Contact angle (degree) versus ball azimuth (degree) of runs A and B, both races.
+
+    Traces "A inner", "A outer", "B inner", "B outer"; a quasi-static run is a line through its
+    balls, a dynamic run a cloud of all its samples (at most ``max_points`` per trace).
+    """
+    return _compare_azimuth_figure(
+        a,
+        b,
+        "contact_angle",
+        "Contact angle versus ball azimuth (A solid, B dashed)",
+        "contact angle, degree",
+        max_points,
+    )
+
+
+def compare_load_figure(a: FrameSource, b: FrameSource, max_points: int = 5000) -> go.Figure:
+    """Contact load (N) versus ball azimuth (degree) of runs A and B, both races.
+
+    Same traces and conventions as :func:`compare_angle_figure`; unloaded contacts show 0 N.
+    """
+    return _compare_azimuth_figure(
+        a,
+        b,
+        "contact_load",
+        "Contact load versus ball azimuth (A solid, B dashed)",
+        "contact load, N",
+        max_points,
+    )

@@ -85,3 +85,91 @@ def test_side_by_side_maps(qs_dataset, dynamic_dataset):
     np.testing.assert_allclose(
         sorted(fig.data[3].y), sorted(np.degrees(b.trace(1)[1][b.trace(1)[2]])), rtol=1e-12
     )
+
+
+# ---- comparing two runs -------------------------------------------------------------------------
+def _loaded_values(ds, name, race):
+    """Values of ``name`` on ``race`` where the contact carries load, straight from the Dataset."""
+    values = ds[name].sel(race=race).values
+    load = ds["contact_load"].sel(race=race).values
+    return values[(load > 0) & np.isfinite(ds["contact_angle"].sel(race=race).values)]
+
+
+def test_run_summary_of_a_quasistatic_result(qs_dataset, fixture_model):
+    summary = charts.run_summary(frame_source(qs_dataset), qs_dataset)
+    for race in ("inner", "outer"):
+        alpha = _loaded_values(qs_dataset, "contact_angle", race)  # degree, per ball
+        assert len(alpha) == 9  # three balls opposite the load zone are unloaded
+        s = summary[race]
+        assert s["contact_angle_min_deg"] == pytest.approx(alpha.min())
+        assert s["contact_angle_max_deg"] == pytest.approx(alpha.max())
+        assert s["band_width_deg"] == pytest.approx(np.ptp(alpha))
+        assert s["contact_load_max_N"] == pytest.approx(
+            float(qs_dataset["contact_load"].sel(race=race).max())
+        )
+        assert s["max_pressure_max_GPa"] == pytest.approx(
+            float(qs_dataset["max_pressure"].sel(race=race).max()) * 1e-9
+        )
+    # the fixture's analytic numbers: alpha = mean + ampl cos(psi) reaches mean + ampl at psi = 0
+    assert summary["inner"]["contact_angle_max_deg"] == pytest.approx(23.0)
+    assert summary["inner"]["contact_load_max_N"] == pytest.approx(250.0)
+    assert summary["outer"]["contact_load_max_N"] == pytest.approx(255.0)
+    expected_rpm = fixture_model.CAGE_RATIO * fixture_model.SHAFT_RPM
+    assert summary["cage_speed_rpm"] == pytest.approx(expected_rpm)
+
+
+def test_run_summary_of_pure_axial_load_has_no_band(qs_dataset):
+    axial = qs_dataset.copy(deep=True)
+    axial["contact_angle"][:] = [[21.0, 18.0]] * axial.sizes["ball"]
+    axial["contact_load"][:] = [[140.0, 150.0]] * axial.sizes["ball"]
+    summary = charts.run_summary(frame_source(axial), axial)
+    assert summary["inner"]["band_width_deg"] == pytest.approx(0.0, abs=1e-12)
+    assert summary["outer"]["contact_angle_min_deg"] == pytest.approx(18.0)
+    assert summary["outer"]["contact_load_max_N"] == pytest.approx(150.0)
+
+
+def test_run_summary_of_a_dynamic_run_uses_every_sample(dynamic_dataset, fixture_model):
+    summary = charts.run_summary(frame_source(dynamic_dataset), dynamic_dataset)
+    for race in ("inner", "outer"):
+        alpha = _loaded_values(dynamic_dataset, "contact_angle", race)
+        assert alpha.size > dynamic_dataset.sizes["ball"] * 10
+        assert summary[race]["band_width_deg"] == pytest.approx(np.ptp(alpha))
+        assert summary[race]["contact_angle_min_deg"] == pytest.approx(alpha.min())
+        assert summary[race]["max_pressure_max_GPa"] == pytest.approx(1.0)
+    expected_rpm = fixture_model.CAGE_RATIO * fixture_model.SHAFT_RPM
+    assert summary["cage_speed_rpm"] == pytest.approx(expected_rpm)
+
+
+def test_summary_rows_are_text_per_run_and_race(qs_dataset):
+    summary = charts.run_summary(frame_source(qs_dataset), qs_dataset)
+    empty = {race: dict.fromkeys(summary["inner"], float("nan")) for race in ("inner", "outer")}
+    rows = charts.summary_rows({"A": summary, "B": {**empty, "cage_speed_rpm": float("nan")}})
+    assert [r["key"] for r in rows] == ["A-inner", "A-outer", "B-inner", "B-outer"]
+    assert rows[0]["contact_load_max_N"] == "250.0"
+    assert rows[0]["contact_angle_max_deg"] == "23.00"
+    assert rows[3]["band_width_deg"] == "-"
+    assert set(rows[0]) == {"key"} | {key for key, _, _ in charts.SUMMARY_COLUMNS}
+
+
+def test_compare_overlays_have_both_runs_and_races(qs_dataset, dynamic_dataset, fixture_model):
+    a, b = frame_source(qs_dataset), frame_source(dynamic_dataset)
+    names = ["A inner", "A outer", "B inner", "B outer"]
+    load = charts.compare_load_figure(a, b, max_points=200)
+    angle = charts.compare_angle_figure(a, b)
+    assert [t.name for t in load.data] == names
+    assert [t.name for t in angle.data] == names
+    # run A (quasi-static): one point per ball, sorted by azimuth, solid; run B dashed markers
+    x = np.asarray(load.data[0].x, float)
+    assert len(x) == qs_dataset.sizes["ball"] and np.all(np.diff(x) > 0)
+    np.testing.assert_allclose(load.data[0].y, fixture_model.load_of_psi(np.radians(x)))
+    assert load.data[0].line.dash == "solid" and load.data[2].marker.symbol == "x"
+    # run B (dynamic): a decimated cloud of all its samples
+    assert 100 <= len(load.data[2].x) <= 200
+    psi_b = np.radians(np.asarray(angle.data[3].x, float))
+    np.testing.assert_allclose(
+        angle.data[3].y, fixture_model.alpha_of_psi(psi_b, "outer"), rtol=1e-9
+    )
+    # unloaded contacts have no contact angle but a zero load
+    assert np.isnan(np.asarray(angle.data[0].y, float)).sum() == 3
+    assert (np.asarray(load.data[0].y, float) == 0).sum() == 3
+    assert {"compare_angle", "compare_load", "compare_summary"} <= set(charts.HELP)
