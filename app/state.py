@@ -47,6 +47,8 @@ CHARTS = (
     "cage_speed",
     "comparison",
     "compare_runs",
+    "compare_angle",
+    "compare_load",
 )
 
 
@@ -152,6 +154,9 @@ class RacetraceApp:
         s.runs = []
         s.run_id = None
         s.compare_id = None
+        s.compare_label = ""  # label of the run compared with (B)
+        s.compare_summary = []  # rows of charts.summary_rows (plain JSON)
+        s.compare_message = ""  # why the chosen run cannot be compared ("" when fine)
         for layer in ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces"):
             s[f"show_{layer}"] = True
         s.exaggeration = 1.0
@@ -521,23 +526,48 @@ class RacetraceApp:
         self.update_comparison()
 
     def update_comparison(self) -> None:
-        """Side-by-side raceway maps of the result on show and the run chosen in ``compare_id``."""
+        """Compare the result on show (A) with the saved run chosen in ``compare_id`` (B).
+
+        Sets ``chart_compare_runs`` (side-by-side raceway maps), ``chart_compare_angle`` and
+        ``chart_compare_load`` (overlays versus ball azimuth), ``compare_summary`` (table rows of
+        :func:`app.charts.run_summary`) and ``compare_label``; all are emptied when nothing is
+        chosen or the run cannot be loaded, and ``compare_message`` then says why in words.
+        """
         run_id = self.state.compare_id
         if not run_id or self.source is None:
-            self.state.chart_compare_runs = {"data": [], "layout": {}}
+            self._clear_comparison("")
             return
         try:
             ds, _ = self.store.load(run_id)
             other = frame_source(ds)
         except (OSError, ValueError) as error:
-            self.state.export_message = f"cannot compare: {error}"
+            self._clear_comparison(f"cannot compare with {run_id}: {error}")
             return
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
-        self.state.chart_compare_runs = _fig_json(
-            charts.side_by_side_raceway_maps(
-                self.source, other, str(self.state.result_label), label
+        summaries = {
+            "A": charts.run_summary(self.source, self.dataset),
+            "B": charts.run_summary(other, ds),
+        }
+        with self.state:
+            s = self.state
+            s.chart_compare_runs = _fig_json(
+                charts.side_by_side_raceway_maps(self.source, other, str(s.result_label), label)
             )
-        )
+            s.chart_compare_angle = _fig_json(charts.compare_angle_figure(self.source, other))
+            s.chart_compare_load = _fig_json(charts.compare_load_figure(self.source, other))
+            s.compare_summary = charts.summary_rows(summaries)
+            s.compare_label = label
+            s.compare_message = ""
+
+    def _clear_comparison(self, message: str) -> None:
+        """Empty the comparison charts and table; ``message`` says why ("" when not asked for)."""
+        with self.state:
+            s = self.state
+            for name in ("compare_runs", "compare_angle", "compare_load"):
+                s[f"chart_{name}"] = {"data": [], "layout": {}}
+            s.compare_summary = []
+            s.compare_label = ""
+            s.compare_message = message
 
     def run(self) -> None:
         """Start the dynamic model (or the quasi-static one if the dynamic model is absent)."""

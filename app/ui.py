@@ -1,8 +1,10 @@
 """Page layout (trame + Vuetify 3): widgets bound to the state of :class:`app.state.RacetraceApp`.
 
 Stable element ids used by tests: run-button, cancel-button, progress, status, view-3d, play-button,
-time-slider, case-select, chart-contact-angle, chart-raceway-map and field-<name> for every case
-input (its validation message is shown inside the same element).
+time-slider, case-select, chart-contact-angle, chart-raceway-map, field-<name> for every case
+input (its validation message is shown inside the same element) and, in the run comparison panel,
+compare-select, compare-message, chart-compare-runs, chart-compare-angle, chart-compare-load and
+compare-summary.
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ from trame.widgets import client, html
 from trame.widgets import vuetify3 as v3
 
 from . import lazy_charts
-from .charts import HELP
+from .charts import HELP, SUMMARY_COLUMNS
 
 _SECTION_TITLES = {
     "bearing": "Bearing",
@@ -159,13 +161,52 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             clearable=True,
                                             hide_details=True,
                                         )
-                                    _chart(
-                                        "chart-compare-runs",
-                                        "chart_compare_runs",
-                                        "compare_runs",
-                                        height=300,
-                                    )
+                                    _compare_panel()
     return layout
+
+
+def _compare_panel() -> None:
+    """Inside the comparison panel: run A (on show) versus run B (``compare_id``)."""
+    html.Div(
+        "A = {{ result_label }}; B = {{ compare_label }}",
+        v_if="compare_label",
+        classes="text-caption my-1",
+    )
+    html.Div(
+        "{{ compare_message }}",
+        v_if="compare_message",
+        id="compare-message",
+        classes="text-error text-caption my-1",
+    )
+    _chart("chart-compare-runs", "chart_compare_runs", "compare_runs", height=300)
+    _chart("chart-compare-angle", "chart_compare_angle", "compare_angle", height=280)
+    _chart("chart-compare-load", "chart_compare_load", "compare_load", height=280)
+    _summary_table()
+
+
+def _summary_table() -> None:
+    """``div#compare-summary``: the table of :func:`app.charts.run_summary`, one row per run and
+    race (state ``compare_summary``)."""
+    with html.Div(id="compare-summary", classes="mb-2"):
+        with v3.VTable(density="compact", classes="text-caption"):
+            with html.Thead():
+                with html.Tr():
+                    for _, header, _ in SUMMARY_COLUMNS:
+                        html.Th(header, classes="text-caption px-1")
+            with html.Tbody():
+                with html.Tr(v_for="row in compare_summary", key="row.key"):
+                    for key, _, fmt in SUMMARY_COLUMNS:
+                        html.Td(
+                            f"{{{{ row.{key} }}}}",
+                            classes="px-1" + (" text-right" if fmt else ""),
+                        )
+                with html.Tr(v_if="!compare_summary.length"):
+                    html.Td(
+                        "choose a saved run to compare with",
+                        colspan=len(SUMMARY_COLUMNS),
+                        classes="text-medium-emphasis px-1",
+                    )
+        html.Div(HELP["compare_summary"], classes="text-caption text-medium-emphasis px-2")
 
 
 def _time_controls() -> None:

@@ -213,3 +213,71 @@ def test_dynamic_run_reports_progress_and_shows_its_result(app):
     assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
     assert app.quasistatic.attrs["case"] == app.dataset.attrs["case"]
     assert app.state.frame_max == app.dataset.sizes["time"] - 1
+
+
+def _decode(array) -> np.ndarray:
+    """Values of an array in plotly JSON (a list or a base64 typed array) as floats."""
+    if isinstance(array, dict):
+        return np.frombuffer(base64.b64decode(array["bdata"]), dtype=array["dtype"]).astype(float)
+    return np.asarray(array, float)
+
+
+def _trace(figure: dict, name: str) -> dict:
+    return next(t for t in figure["data"] if t["name"] == name)
+
+
+def test_compare_with_a_saved_run_fills_charts_and_summary(app):
+    s = app.state
+    radial = s.fv_radial_load_N
+    assert float(radial) > 0  # the default case is a combined load
+    # save a pure-axial run of the same bearing, then go back to the combined load (run A)
+    _set(app, fv_radial_load_N="0")
+    app.preview_now()
+    axial = app.store.save(app.dataset, app.case.to_toml(), "pure axial")
+    _set(app, fv_radial_load_N=radial)
+    app.preview_now()
+    combined = app.store.save(app.dataset, app.case.to_toml(), "combined load")
+    app._refresh_runs()
+
+    _set(app, compare_id=axial.run_id)
+    assert s.compare_message == ""
+    assert s.compare_label == axial.label
+    assert len(s.chart_compare_runs["data"]) == 4
+    names = ["A inner", "A outer", "B inner", "B outer"]
+    for key in ("chart_compare_angle", "chart_compare_load"):
+        assert [t["name"] for t in s[key]["data"]] == names
+    balls = app.source.ball_count
+    # pure axial load: every ball carries the same load; the combined load has a load zone
+    axial_load = _decode(_trace(s.chart_compare_load, "B inner")["y"])
+    combined_load = _decode(_trace(s.chart_compare_load, "A inner")["y"])
+    assert len(axial_load) == len(combined_load) == balls
+    assert np.ptp(axial_load) < 1e-6 * axial_load.max()
+    assert np.ptp(combined_load) > 0.2 * combined_load.max()
+    # the table: A then B, inner then outer; the axial run's contact angles form no band
+    rows = {r["key"]: r for r in s.compare_summary}
+    assert list(rows) == ["A-inner", "A-outer", "B-inner", "B-outer"]
+    assert float(rows["B-inner"]["band_width_deg"]) == pytest.approx(0.0, abs=1e-3)
+    assert float(rows["A-inner"]["band_width_deg"]) > 0.1
+    assert float(rows["A-inner"]["contact_load_max_N"]) == pytest.approx(
+        combined_load.max(), abs=0.05
+    )
+    assert float(rows["B-outer"]["cage_speed_rpm"]) > 0
+
+    # the same combined run saved and compared with itself: identical numbers
+    _set(app, compare_id=combined.run_id)
+    rows = {r["key"]: r for r in s.compare_summary}
+    assert {k: v for k, v in rows["A-inner"].items() if k not in ("key", "run")} == {
+        k: v for k, v in rows["B-inner"].items() if k not in ("key", "run")
+    }
+
+    # a run that cannot be loaded says so in words and empties the comparison
+    _set(app, compare_id="no-such-run")
+    assert "no-such-run" in s.compare_message
+    assert s.chart_compare_load["data"] == [] and s.compare_summary == []
+
+    _set(app, compare_id=axial.run_id)
+    assert len(s.compare_summary) == 4 and s.compare_message == ""
+    _set(app, compare_id=None)
+    for key in ("chart_compare_runs", "chart_compare_angle", "chart_compare_load"):
+        assert s[key]["data"] == []
+    assert s.compare_summary == [] and s.compare_label == "" and s.compare_message == ""
