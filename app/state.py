@@ -107,6 +107,9 @@ class RacetraceApp:
         self._cancel_requested = False
         self._filling = False
         self._client_ids = set()
+        self._comparison_serial = -1  # result_serial of the quasi-static vs dynamic chart shown
+        self._compare_key = None  # (result_serial, compare_id) of the comparison shown
+        self._compare_run = None  # (run_id, Dataset, FrameSource) of the last run compared with
         self.clients = 0  # connected browsers
         self._init_state()
         self._bind()
@@ -154,6 +157,7 @@ class RacetraceApp:
         s.runs = []
         s.run_id = None
         s.compare_id = None
+        s.open_panels = []  # collapsible chart panels open on the page (their keys)
         s.compare_label = ""  # label of the run compared with (B)
         s.compare_summary = []  # rows of charts.summary_rows (plain JSON)
         s.compare_message = ""  # why the chosen run cannot be compared ("" when fine)
@@ -188,6 +192,7 @@ class RacetraceApp:
         s.change("camera")(self._on_camera)
         s.change("run_id")(self._on_run_id)
         s.change("compare_id")(self._on_compare_id)
+        s.change("open_panels")(self._on_open_panels)
         s.change("uploaded_case")(self._on_upload)
         c.run = self.run
         c.cancel = self.cancel
@@ -359,9 +364,7 @@ class RacetraceApp:
         ]
         if s.frame > s.frame_max:
             s.frame = 0
-        self._apply_frame(int(s.frame), charts_too=True)
-        if s.compare_id:
-            self.update_comparison()
+        self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
 
     def _ensure_scene(self, geometry, case) -> None:
         key = (
@@ -417,22 +420,39 @@ class RacetraceApp:
             self.update_charts(index)
 
     def update_charts(self, index: int | None = None) -> None:
-        """Recompute the chart figures for frame ``index`` (default: the current frame)."""
+        """Recompute the chart figures for frame ``index`` (default: the current frame).
+
+        The two charts always on the page are recomputed every time; those in the collapsible
+        panels only while their panel is open (``open_panels``), since each figure costs 10-30 ms
+        and the preview must stay quick. Opening a panel brings its chart up to date.
+        """
         if self.source is None:
             return
         i = int(self.state.frame) if index is None else index
         src, s = self.source, self.state
+        open_panels = set(s.open_panels or ())
         ball = int(s.trace_ball)
         balls = (ball,) if ball >= 0 else (0,)
         s.chart_contact_angle = _fig_json(charts.contact_angle_figure(src, balls, current=i))
         s.chart_raceway_map = _fig_json(charts.raceway_map_figure(src, stop=i + 1))
-        s.chart_load_azimuth = _fig_json(charts.load_azimuth_figure(src, i))
-        s.chart_ellipse = _fig_json(charts.ellipse_figure(src, i))
-        s.chart_cage_speed = _fig_json(charts.cage_speed_figure(src, self.dataset, current=i))
-        if self.quasistatic is not None:
-            dyn = self.dataset if "time" in self.dataset.dims else None
-            s.chart_comparison = _fig_json(charts.comparison_figure(self.quasistatic, dyn))
+        if "load_azimuth" in open_panels:
+            s.chart_load_azimuth = _fig_json(charts.load_azimuth_figure(src, i))
+        if "ellipse" in open_panels:
+            s.chart_ellipse = _fig_json(charts.ellipse_figure(src, i))
+        if "cage_speed" in open_panels:
+            s.chart_cage_speed = _fig_json(charts.cage_speed_figure(src, self.dataset, current=i))
+        serial = int(s.result_serial)
+        if "comparison" in open_panels and self._comparison_serial != serial:
+            if self.quasistatic is not None:  # does not follow time: once per result
+                dyn = self.dataset if "time" in self.dataset.dims else None
+                s.chart_comparison = _fig_json(charts.comparison_figure(self.quasistatic, dyn))
+            self._comparison_serial = serial
+        if "compare" in open_panels and self._compare_key != (serial, s.compare_id):
+            self.update_comparison()
         self._last_chart_update = time.monotonic()
+
+    def _on_open_panels(self, **_):
+        self.update_charts()
 
     # ---- time -----------------------------------------------------------------------------------
     def _on_frame(self, frame=0, **_):
@@ -538,11 +558,11 @@ class RacetraceApp:
             self._clear_comparison("")
             return
         try:
-            ds, _ = self.store.load(run_id)
-            other = frame_source(ds)
+            ds, other = self._load_compare_run(run_id)
         except (OSError, ValueError) as error:
             self._clear_comparison(f"cannot compare with {run_id}: {error}")
             return
+        self._compare_key = (int(self.state.result_serial), run_id)
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         summaries = {
             "A": charts.run_summary(self.source, self.dataset),
@@ -559,6 +579,13 @@ class RacetraceApp:
             s.compare_label = label
             s.compare_message = ""
 
+    def _load_compare_run(self, run_id: str):
+        """(Dataset, FrameSource) of saved run ``run_id``; the last one is kept for reuse."""
+        if self._compare_run is None or self._compare_run[0] != run_id:
+            ds, _ = self.store.load(run_id)
+            self._compare_run = (run_id, ds, frame_source(ds))
+        return self._compare_run[1], self._compare_run[2]
+
     def _clear_comparison(self, message: str) -> None:
         """Empty the comparison charts and table; ``message`` says why ("" when not asked for)."""
         with self.state:
@@ -568,6 +595,7 @@ class RacetraceApp:
             s.compare_summary = []
             s.compare_label = ""
             s.compare_message = message
+        self._compare_key = None
 
     def run(self) -> None:
         """Start the dynamic model (or the quasi-static one if the dynamic model is absent)."""

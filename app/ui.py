@@ -135,14 +135,16 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                         _run_panel(ctrl)
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
                         _chart("chart-raceway-map", "chart_raceway_map", "raceway_map")
-                        with v3.VExpansionPanels(multiple=True, variant="accordion"):
+                        with v3.VExpansionPanels(
+                            v_model=("open_panels",), multiple=True, variant="accordion"
+                        ):
                             for title, key in (
                                 ("Load versus azimuth", "load_azimuth"),
                                 ("Contact ellipses", "ellipse"),
                                 ("Cage speed", "cage_speed"),
                                 ("Quasi-static versus dynamic", "comparison"),
                             ):
-                                with v3.VExpansionPanel(title=title):
+                                with v3.VExpansionPanel(title=title, value=key):
                                     with v3.VExpansionPanelText():
                                         help_key = key if key in HELP else "contact_angle"
                                         _chart(
@@ -150,7 +152,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             f"chart_{key}",
                                             help_key,
                                         )
-                            with v3.VExpansionPanel(title="Compare two runs side by side"):
+                            with v3.VExpansionPanel(
+                                title="Compare two runs side by side", value="compare"
+                            ):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
                                         v3.VSelect(

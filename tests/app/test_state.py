@@ -192,7 +192,7 @@ def test_uploaded_case_fills_the_form(app, fixture_model):
 def test_dynamic_run_reports_progress_and_shows_its_result(app):
     if not state_module.dynamic_model_available():
         pytest.skip("the dynamic model (solver.simulate) is not available")
-    _set(app, fv_shaft_revolutions="0.3")
+    _set(app, fv_shaft_revolutions="0.3", open_panels=["comparison"])
     assert app.state.case_valid
     app.run()
     progress = []
@@ -213,6 +213,23 @@ def test_dynamic_run_reports_progress_and_shows_its_result(app):
     assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
     assert app.quasistatic.attrs["case"] == app.dataset.attrs["case"]
     assert app.state.frame_max == app.dataset.sizes["time"] - 1
+
+
+def test_panel_charts_are_computed_only_while_their_panel_is_open(app):
+    s = app.state
+    empty = {"data": [], "layout": {}}
+    # nothing open: only the two charts always on the page were drawn
+    assert s.chart_contact_angle["data"] and s.chart_raceway_map["data"]
+    for name in ("load_azimuth", "ellipse", "cage_speed", "comparison"):
+        assert s[f"chart_{name}"] == empty, name
+    _set(app, open_panels=["load_azimuth", "comparison"])
+    assert len(s.chart_load_azimuth["data"]) == 2  # inner and outer
+    assert s.chart_comparison["data"]
+    assert s.chart_ellipse == empty and s.chart_cage_speed == empty
+    # an open panel follows the time: a later frame changes the load chart's title
+    title = s.chart_load_azimuth["layout"]["title"]["text"]
+    _set(app, frame=5)
+    assert s.chart_load_azimuth["layout"]["title"]["text"] != title
 
 
 def _decode(array) -> np.ndarray:
