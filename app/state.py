@@ -34,7 +34,7 @@ from .runs import RunStore, default_runs_dir, load_netcdf
 log = logging.getLogger("racetrace.app")
 
 DEFAULT_CASE = "spindle-combined-load"
-PLAY_FPS = 12.0  # animation ticks per second while playing
+PLAY_FPS = 15.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
 PREVIEW_DEBOUNCE_S = 0.1
