@@ -237,7 +237,7 @@ def side_by_side_raceway_maps(
         cols=2,
         shared_yaxes=True,
         horizontal_spacing=0.04,
-        subplot_titles=(title_a[:60], title_b[:60]),
+        subplot_titles=(f"A: {title_a[:57]}", f"B: {title_b[:57]}"),
     )
     for col, source in ((1, a), (2, b)):
         for race in (INNER, OUTER):
@@ -258,7 +258,13 @@ def side_by_side_raceway_maps(
         fig.update_xaxes(range=[0, 360], title_text="raceway azimuth, degree", row=1, col=col)
     fig.update_yaxes(title_text="contact angle, degree", row=1, col=1)
     _layout(fig, "", "", "")
-    fig.update_layout(xaxis_title="raceway azimuth, degree", yaxis_title="contact angle, degree")
+    fig.update_layout(
+        xaxis_title="raceway azimuth, degree",
+        yaxis_title="contact angle, degree",
+        # the run names stand above the two maps: the legend goes below the axis titles
+        legend={"y": -0.3, "yanchor": "top", "x": 0.5, "xanchor": "center"},
+        margin={"t": 30, "b": 80},
+    )
     return fig
 
 
