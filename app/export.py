@@ -75,7 +75,27 @@ def export_animation(
 ) -> Path:
     """Frames ``start:stop:step`` of the scene's current source as GIF or MP4 (by suffix).
 
-    The scene is left at its previous frame afterwards.
+    The scene is left at its previous frame afterwards. See :func:`iter_export_animation`.
+    """
+    for _ in iter_export_animation(scene, path, start, stop, step, fps):
+        pass
+    return Path(path)
+
+
+def iter_export_animation(
+    scene,
+    path: str | Path,
+    start: int = 0,
+    stop: int | None = None,
+    step: int = 1,
+    fps: float = 12.0,
+):
+    """Write the animation frame by frame, yielding the fraction done (0-1] after each frame.
+
+    Lets the caller keep its event loop going between frames (rendering must stay in the thread
+    that owns the VTK window). ``fps`` is the playback rate stored in the file (GIF frame delay
+    ``1000 / fps`` ms). The file appears, complete, only at the end (written to a temporary name
+    and renamed); the scene is put back at its previous frame even if the export is abandoned.
     """
     import imageio.v2 as imageio
 
@@ -85,26 +105,28 @@ def export_animation(
         raise ValueError(f"animation file {path.name!r}: use a .gif or .mp4 name")
     if scene.source is None:
         raise ValueError("no result is shown, so there is nothing to animate")
+    if not fps > 0:
+        raise ValueError(f"fps = {fps}: must be positive")
     stop = scene.source.n_frames if stop is None else min(stop, scene.source.n_frames)
     indices = range(max(0, start), stop, max(1, int(step)))
     if len(indices) < 2:
         raise ValueError("an animation needs at least two frames")
     previous = scene.frame_index
     plotter = scene.plotter
-
-    def write(tmp: Path) -> None:
-        kwargs = {"fps": fps} if fmt == "mp4" else {"duration": 1.0 / fps, "loop": 0}
-        if fmt == "mp4":
-            kwargs["macro_block_size"] = 1
-        with imageio.get_writer(
-            str(tmp), format="FFMPEG" if fmt == "mp4" else "GIF", **kwargs
-        ) as writer:
-            for i in indices:
+    if fmt == "mp4":
+        options = {"format": "FFMPEG", "fps": fps, "macro_block_size": 1}
+    else:  # imageio's GIF writer (Pillow) takes the frame delay in milliseconds
+        options = {"format": "GIF", "duration": 1000.0 / fps, "loop": 0}
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
+    try:
+        with imageio.get_writer(str(tmp), **options) as writer:
+            for done, i in enumerate(indices, start=1):
                 scene.set_frame(i)
                 plotter.render_window.Render()
                 writer.append_data(np.asarray(plotter.screenshot(return_img=True)))
-
-    try:
-        return _atomic(path, write)
+                yield done / len(indices)
+        os.replace(tmp, path)
     finally:
+        tmp.unlink(missing_ok=True)
         scene.set_frame(previous)

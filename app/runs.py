@@ -134,3 +134,27 @@ class RunStore:
     def path(self, run_id: str) -> Path:
         """Folder of a saved run (for export)."""
         return self.root / run_id
+
+
+def describe_case(case) -> str:
+    """A one-line run title from the values actually run (the case's own title may be stale).
+
+    e.g. ``7008C-class hybrid: 20000 rpm, Fa 500 N, Fr 300 N at 0 deg, 10 rev``; loads in N,
+    speeds in rev/min, angles in degree as in the case file. Zero loads and tilts are left out.
+    """
+    op = case.operating
+    name = case.bearing.designation or case.title or "bearing"
+    parts = [f"{op.inner_ring_speed_rpm:g} rpm"]
+    if op.outer_ring_speed_rpm:
+        parts.append(f"outer ring {op.outer_ring_speed_rpm:g} rpm")
+    parts.append(f"Fa {op.axial_load_N:g} N")
+    if op.radial_load_N:
+        parts.append(f"Fr {op.radial_load_N:g} N at {op.radial_load_angle_deg or 0:g} deg")
+    if op.tilting_moment_Nm:
+        parts.append(f"M {op.tilting_moment_Nm:g} N m")
+    if op.misalignment_deg:
+        parts.append(f"tilt {op.misalignment_deg:g} deg ({op.misalignment_frame or 'space'})")
+    revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
+    if revolutions:
+        parts.append(f"{revolutions:g} rev")
+    return f"{name}: " + ", ".join(parts)

@@ -29,7 +29,7 @@ from . import charts
 from .caseform import apply_form, case_form_values, form_fields
 from .frames import FrameSource, frame_source
 from .runner import DYNAMIC_JOB, QUASISTATIC_JOB, SolverRunner
-from .runs import RunStore, default_runs_dir, load_netcdf
+from .runs import RunStore, default_runs_dir, describe_case, load_netcdf
 
 log = logging.getLogger("racetrace.app")
 
@@ -107,6 +107,10 @@ class RacetraceApp:
         self._cancel_requested = False
         self._filling = False
         self._client_ids = set()
+        self._shown_case_text = None  # case TOML of the result on show
+        self._shown_run_id = None  # id of the saved run on show (None for a preview)
+        self._animating_export = False  # an animation export is moving the scene's frames
+        self._export_task = None
         self._comparison_serial = -1  # result_serial of the quasi-static vs dynamic chart shown
         self._compare_key = None  # (result_serial, compare_id) of the comparison shown
         self._compare_run = None  # (run_id, Dataset, FrameSource) of the last run compared with
@@ -142,6 +146,7 @@ class RacetraceApp:
         s.case_message = ""
         s.case_valid = False
         s.case_toml_href = ""
+        s.case_file_name = "case.toml"
         s.busy = False
         s.run_disabled = True
         s.status = "starting"
@@ -174,6 +179,7 @@ class RacetraceApp:
         s.export_href = ""
         s.export_name = ""
         s.export_message = ""
+        s.exporting = False
         self._refresh_runs()
 
     def _bind(self) -> None:
@@ -197,8 +203,9 @@ class RacetraceApp:
         c.run = self.run
         c.cancel = self.cancel
         c.step = self.step
+        c.set_camera = self.set_camera
         c.refresh_runs = self._refresh_runs
-        c.export = self.export
+        c.export = self.request_export
         # Count browser connections at the websocket level: the page's own "exited" signal is not
         # sent when a browser is killed, and a play loop without viewers floods the log.
         self.server.add_protocol_to_configure(self._configure_protocol)
@@ -254,6 +261,7 @@ class RacetraceApp:
         except CaseError as error:
             self.state.case_message = f"{item.get('name', 'file')}: {error}"
             return
+        self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         self.set_base_case(case)
 
     def form_values(self) -> dict:
@@ -276,12 +284,16 @@ class RacetraceApp:
             self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(
                 text
             )
+            name = self.state.case_name or self.case.bearing.designation or "case"
+            self.state.case_file_name = "".join(c if c.isalnum() else "-" for c in name) + ".toml"
         return result
 
     def _on_field(self, **_):
         if self._filling:
             return
         if self.validate() is not None and self.case is not None:
+            if self.case.to_toml() == self._shown_case_text:
+                return  # the result on show is already this case (e.g. a reopened run)
             self.schedule_preview()
 
     # ---- quasi-static preview -------------------------------------------------------------------
@@ -312,6 +324,8 @@ class RacetraceApp:
             return
         if generation == self._preview_generation:
             with self.state:
+                self.state.run_id = None  # the runs list no longer names what is on show
+                self._shown_run_id = None
                 self.show_result(ds, "quasi-static preview")
                 if not self.state.busy:  # a run's status stays until it ends
                     self.state.status = "preview done"
@@ -325,6 +339,8 @@ class RacetraceApp:
         except Exception as error:
             self.state.status = f"error: {error}"
             return
+        self.state.run_id = None
+        self._shown_run_id = None
         self.show_result(ds, "quasi-static preview")
         self.state.status = "preview done"
 
@@ -344,6 +360,7 @@ class RacetraceApp:
         self.dataset = ds
         self.source = source
         case = load_case(ds.attrs["case"]) if ds.attrs.get("case") else self.case
+        self._shown_case_text = case.to_toml() if case is not None else None
         if "time" not in ds.dims:
             self.quasistatic = ds
         else:  # the quasi-static solution of the same case, for the comparison chart
@@ -359,6 +376,7 @@ class RacetraceApp:
         s.frame_max = source.n_frames - 1
         s.result_label = label
         s.result_serial = int(s.result_serial) + 1
+        s.export_href, s.export_name, s.export_message = "", "", ""
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
@@ -412,7 +430,7 @@ class RacetraceApp:
         if self.source is None:
             return
         index = int(min(max(index, 0), self.source.n_frames - 1))
-        if self.scene is not None:
+        if self.scene is not None and not self._animating_export:
             self.scene.set_frame(index)
             self._push_view()
         self.state.frame_time = f"t = {self.source.times[index] * 1e3:8.3f} ms"
@@ -517,6 +535,13 @@ class RacetraceApp:
             self._push_view()
         self.update_charts()
 
+    def set_camera(self, preset: str) -> None:
+        """Apply camera ``preset`` (isometric, axial, radial), even if it is the current one."""
+        if self.state.camera == preset:
+            self._on_camera(preset)  # no state change, so no callback: apply it here
+        else:
+            self.state.camera = preset
+
     def _on_camera(self, camera="isometric", **_):
         if self.scene is not None:
             self.scene.set_camera(camera)
@@ -527,7 +552,7 @@ class RacetraceApp:
         self.state.runs = [{"title": r.label, "value": r.run_id} for r in self.store.list()]
 
     def _on_run_id(self, run_id=None, **_):
-        if not run_id:
+        if not run_id or run_id == self._shown_run_id:
             return
         try:
             ds, case_text = self.store.load(run_id)
@@ -540,7 +565,12 @@ class RacetraceApp:
         self._fill_form(self.base_case)
         self.validate()
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
-        self.show_result(ds, label)
+        self._preview_generation += 1  # a preview still on its way must not replace the run
+        with self.state:
+            self.show_result(ds, label)
+            self._shown_run_id = run_id
+            if not self.state.busy:
+                self.state.status = "saved run on show"
 
     def _on_compare_id(self, compare_id=None, **_):
         self.update_comparison()
@@ -605,11 +635,13 @@ class RacetraceApp:
         self.store.root.mkdir(parents=True, exist_ok=True)
         out = self.store.root / f".job-{secrets.token_hex(4)}.nc"
         case_text = self.case.to_toml()
-        title = str(getattr(self.case, "title", "") or self.state.case_name or "run")
+        title = describe_case(self.case)
         self._run_info = {"case_text": case_text, "title": title, "out": out, "target": target}
         self._cancel_requested = False
         self.runner.start(case_text, out, target=target)
         with self.state:
+            # the animation would take processor time from the solver (2 cores here): pause it
+            self.state.playing = False
             self.state.busy = True
             self.state.run_disabled = True
             self.state.progress = 0
@@ -674,7 +706,10 @@ class RacetraceApp:
         finally:
             out.unlink(missing_ok=True)
         self._refresh_runs()
+        self._preview_generation += 1  # a preview still on its way must not replace the run
         self.show_result(ds, info.label)
+        self._shown_run_id = info.run_id
+        self.state.run_id = info.run_id  # the runs list shows the run on show
         self._end_run("cancelled" if info.status == "cancelled" else "done")
 
     def _end_run(self, status: str) -> None:
@@ -698,42 +733,127 @@ class RacetraceApp:
         """Where exported files are written (served under ``/racetrace-exports/``)."""
         return self.store.root / ".exports"
 
-    def export(self, kind: str) -> Path | None:
-        """Write the shown result or view as ``kind`` (netcdf, csv, png, gif, mp4) for download."""
-        from . import export as ex
+    EXPORT_EXTENSIONS = {"netcdf": "nc", "csv": "csv", "png": "png", "gif": "gif", "mp4": "mp4"}
 
-        if self.dataset is None:
-            self.state.export_message = "nothing to export yet"
-            return None
-        stem = "".join(c if c.isalnum() else "-" for c in str(self.state.result_label))[:60].strip(
-            "-"
-        )
-        stem = stem or "racetrace"
-        ext = {"netcdf": "nc", "csv": "csv", "png": "png", "gif": "gif", "mp4": "mp4"}.get(kind)
+    def _export_path(self, kind: str) -> Path:
+        """Target file of an export of ``kind``, named after the result on show."""
+        ext = self.EXPORT_EXTENSIONS.get(kind)
         if ext is None:
             raise ValueError(f"unknown export {kind!r}; use netcdf, csv, png, gif or mp4")
-        path = self.exports_dir / f"{stem}.{ext}"
-        try:
-            if kind == "netcdf":
-                ex.export_netcdf(self.dataset, path)
-            elif kind == "csv":
-                ex.export_csv(self.dataset, path)
-            elif self.scene is None:
-                raise ValueError("the 3-D view is not available")
-            elif kind == "png":
-                ex.export_png(self.plotter, path)
-            else:
-                step = max(1, -(-self.source.n_frames // self.MAX_ANIMATION_FRAMES))
-                ex.export_animation(self.scene, path, step=step)
-        except (OSError, ValueError) as error:
-            self.state.export_message = f"export failed: {error}"
-            return None
+        label = str(self.state.result_label)
+        stem = "".join(c if c.isalnum() else "-" for c in label)[:60].strip("-") or "racetrace"
+        return self.exports_dir / f"{stem}.{ext}"
+
+    def _export_problem(self, kind: str) -> str:
+        """Why ``kind`` cannot be exported now ("" if it can)."""
+        if self.dataset is None:
+            return "nothing to export yet"
+        if kind in ("png", "gif", "mp4") and self.scene is None:
+            return "export failed: the 3-D view is not available"
+        return ""
+
+    def _animation_step(self) -> int:
+        return max(1, -(-self.source.n_frames // self.MAX_ANIMATION_FRAMES))
+
+    def _offer_download(self, path: Path) -> None:
         self.state.export_name = path.name
         self.state.export_href = (
             f"{self.EXPORT_URL}/{urllib.parse.quote(path.name)}?t={time.time():.0f}"
         )
         self.state.export_message = ""
+
+    def export(self, kind: str) -> Path | None:
+        """Write the shown result or view as ``kind`` (netcdf, csv, png, gif, mp4) now.
+
+        Returns the file (offered for download in ``export_href``), or None with the reason in
+        ``export_message``. The page uses :meth:`request_export`, which keeps it responsive.
+        """
+        from . import export as ex
+
+        path = self._export_path(kind)
+        problem = self._export_problem(kind)
+        if problem:
+            self.state.export_message = problem
+            return None
+        try:
+            if kind == "netcdf":
+                ex.export_netcdf(self.dataset, path)
+            elif kind == "csv":
+                ex.export_csv(self.dataset, path)
+            elif kind == "png":
+                ex.export_png(self.plotter, path)
+            else:
+                ex.export_animation(self.scene, path, step=self._animation_step())
+        except (OSError, ValueError) as error:
+            self.state.export_message = f"export failed: {error}"
+            return None
+        self._offer_download(path)
         return path
+
+    def request_export(self, kind: str) -> None:
+        """Export from the page: in the background, with progress in ``export_message``.
+
+        NetCDF and CSV are written in a worker thread; an animation is rendered frame by frame
+        on the event loop (VTK renders in the thread that owns its window), pausing the animation
+        while it runs. Returns nothing (the page cannot receive a path).
+        """
+        if self.state.exporting:
+            return
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            self.export(kind)
+            return
+        self._export_task = loop.create_task(self._export_async(kind))
+
+    async def _export_async(self, kind: str) -> None:
+        from . import export as ex
+
+        path = self._export_path(kind)
+        problem = self._export_problem(kind)
+        if problem:
+            self.state.export_message = problem
+            self.state.flush()
+            return
+        with self.state:
+            self.state.exporting = True
+            self.state.export_href = ""
+            self.state.export_message = f"writing {path.name} ..."
+        await asyncio.sleep(0)
+        dataset, label = self.dataset, self.state.result_label
+        try:
+            if kind == "netcdf":
+                await asyncio.to_thread(ex.export_netcdf, dataset, path)
+            elif kind == "csv":
+                await asyncio.to_thread(ex.export_csv, dataset, path)
+            elif kind == "png":
+                ex.export_png(self.plotter, path)
+            else:
+                await self._export_animation(ex, path)
+        except (OSError, ValueError) as error:
+            with self.state:
+                self.state.export_message = f"export failed: {error}"
+            return
+        finally:
+            self._animating_export = False
+            with self.state:
+                self.state.exporting = False
+        with self.state:
+            if self.state.result_label == label:  # still the same result on show
+                self._offer_download(path)
+            else:
+                self.state.export_message = ""
+        self._push_view()
+
+    async def _export_animation(self, ex, path: Path) -> None:
+        with self.state:
+            self.state.playing = False
+        self._animating_export = True  # frame changes from the page wait until it is written
+        frames = ex.iter_export_animation(self.scene, path, step=self._animation_step())
+        for fraction in frames:
+            with self.state:
+                self.state.export_message = f"writing {path.name}: {100 * fraction:.0f} %"
+            await asyncio.sleep(0)
 
     def shutdown(self) -> None:
         """Stop the background run and the animation."""

@@ -74,6 +74,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         client.Script(lazy_charts.LOAD_AFTER_FIRST_FRAME)
         layout.title.set_text("racetrace: ball-bearing contact trajectories")
+        layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
             v3.VSpacer()
             html.Div("{{ result_label }}", classes="text-body-2 mr-4")
@@ -100,16 +101,20 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             id="case-upload",
                         )
                     with v3.VCol(cols="auto"):
-                        v3.VBtn(
-                            "TOML",
-                            href=("case_toml_href",),
-                            download="case.toml",
-                            prepend_icon="mdi-download",
-                            variant="tonal",
-                            size="small",
+                        # a plain link: Vuetify's button drops the download attribute
+                        with html.A(
+                            href=("case_valid ? case_toml_href : undefined",),
+                            download=("case_file_name",),
                             id="case-download",
-                            disabled=("!case_valid",),
-                        )
+                            title="Download the case as a TOML case file",
+                            classes=(
+                                "case_valid ? 'v-btn v-btn--size-small v-btn--variant-tonal pa-2'"
+                                " : 'v-btn v-btn--size-small v-btn--disabled pa-2'",
+                            ),
+                            style="text-decoration: none;",
+                        ):
+                            v3.VIcon("mdi-download", size="small")
+                            html.Span("TOML")
                 html.Div("{{ case_message }}", classes="text-error text-caption", id="case-message")
                 section = None
                 for f in app.fields:
@@ -129,7 +134,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
                             app.view = view
                         _time_controls()
-                        _scene_controls()
+                        _scene_controls(ctrl)
                         _export_controls(ctrl)
                     with v3.VCol(cols=12, md=5):
                         _run_panel(ctrl)
@@ -259,14 +264,19 @@ def _time_controls() -> None:
             )
 
 
-def _scene_controls() -> None:
+def _scene_controls(ctrl) -> None:
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols="auto"):
-            with v3.VBtnToggle(
-                v_model=("camera",), mandatory=True, density="compact", variant="outlined"
-            ):
-                for preset in ("isometric", "axial", "radial"):
-                    v3.VBtn(preset, value=preset, size="small")
+            # plain buttons, not a toggle: pressing the current preset again restores it
+            for preset in ("isometric", "axial", "radial"):
+                v3.VBtn(
+                    preset,
+                    click=(ctrl.set_camera, f"['{preset}']"),
+                    size="small",
+                    variant=(f"camera === '{preset}' ? 'flat' : 'outlined'",),
+                    classes="mr-1",
+                    id=f"camera-{preset}",
+                )
         with v3.VCol():
             v3.VSlider(
                 label="exaggeration",
@@ -318,6 +328,7 @@ def _export_controls(ctrl) -> None:
                     click=(ctrl.export, f"['{kind}']"),
                     size="small",
                     variant="tonal",
+                    disabled=("exporting",),
                     classes="mr-1",
                     id=f"export-{kind}",
                 )

@@ -57,6 +57,12 @@ def test_png_and_animation(tmp_path, qs_dataset, geometry):
     assert len(frames) == 4
     assert np.abs(frames[0].astype(int) - frames[1].astype(int)).mean() > 0.1
     assert scene.frame_index == 4  # restored
+    from PIL import Image
+
+    with Image.open(
+        gif
+    ) as image:  # played at 12 frames/s: 83 ms per frame (Pillow stores 10 ms units)
+        assert image.info["duration"] == pytest.approx(1000 / 12, abs=10)
     mp4 = export_animation(scene, tmp_path / "anim.mp4", stop=6)
     assert mp4.stat().st_size > 1000
     with pytest.raises(ValueError, match=".gif or .mp4"):

@@ -48,3 +48,19 @@ def test_default_dir(tmp_path):
     assert default_runs_dir({ENV_VAR: str(tmp_path)}) == tmp_path
     d = default_runs_dir({})
     assert d.name == "runs" and "racetrace" in str(d)
+
+
+def test_describe_case_names_the_values_run():
+    from app.runs import describe_case
+    from solver.catalogue import catalogue
+
+    case = catalogue().get("spindle-combined-load").load()
+    text = describe_case(case)
+    assert text.startswith(f"{case.bearing.designation}: ")
+    op = case.operating
+    assert f"{op.inner_ring_speed_rpm:g} rpm" in text
+    assert f"Fa {op.axial_load_N:g} N" in text and f"Fr {op.radial_load_N:g} N" in text
+    axial_only = describe_case(catalogue().get("spindle-axial-preload").load())
+    assert "Fr" not in axial_only and "tilt" not in axial_only
+    tilted = describe_case(catalogue().get("spindle-misalignment-ring").load())
+    assert "tilt 0.05 deg (ring)" in tilted

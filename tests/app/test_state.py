@@ -187,6 +187,56 @@ def test_uploaded_case_fills_the_form(app, fixture_model):
     _set(app, uploaded_case=[{"name": "bad.toml", "content": bad.encode()}])
     assert app.state.case_message.startswith("bad.toml: bearing.ball_count = 1")
     assert app.state.fv_ball_count == "12"  # the form keeps the last valid case
+    # the case list no longer names the shipped case, so picking it again reloads it
+    assert app.state.case_name is None
+    _set(app, case_name=DEFAULT_CASE)
+    assert app.state.fv_title != "app test fixture"
+
+
+def test_a_reopened_run_stays_on_show(app):
+    s = app.state
+    _set(app, fv_radial_load_N="0")
+    app.preview_now()
+    saved = app.store.save(app.dataset, app.case.to_toml(), "pure axial")
+    _set(app, fv_radial_load_N="300")  # a different case on show
+    app.preview_now()
+    app._refresh_runs()
+    _set(app, run_id=saved.run_id)
+    assert s.result_label == saved.label and s.fv_radial_load_N in ("0", "0.0")
+    # the form's change callbacks arrive after the run is on show: no preview may replace it
+    app._on_field()
+    assert s.result_label == saved.label
+    assert s.status == "saved run on show"
+    # an edit does replace it, and the runs list then names no run
+    _set(app, fv_radial_load_N="100")
+    assert s.result_label == "quasi-static preview" and s.run_id is None
+
+
+def test_run_title_says_what_was_run(app):
+    _set(app, fv_radial_load_N="0", fv_axial_load_N="650", fv_shaft_revolutions="0.2")
+    _set(app, playing=True)
+    app.run()
+    try:
+        title = app._run_info["title"]
+        assert "Fa 650 N" in title and "Fr" not in title and "0.2 rev" in title
+        assert app.state.playing is False  # the animation pauses while the solver runs
+    finally:
+        app.cancel()
+        app.runner.shutdown()
+
+
+def test_export_in_the_background(app):
+    import asyncio
+
+    async def export_csv():
+        app.request_export("csv")
+        assert app._export_task is not None
+        await app._export_task
+
+    asyncio.run(export_csv())
+    assert app.state.exporting is False
+    assert app.state.export_name.endswith(".csv")
+    assert (app.exports_dir / app.state.export_name).is_file()
 
 
 def test_dynamic_run_reports_progress_and_shows_its_result(app):
