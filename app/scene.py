@@ -26,6 +26,28 @@ CAMERA_PRESETS = ("isometric", "axial", "radial")
 ELLIPSE_POINTS = 24
 MAX_TRACE_SAMPLES = 1500  # per ball and race; longer traces are decimated for drawing
 _RING_COLOUR = "#b8bcc4"
+VIEW_ANGLE_DEG = 30.0  # vertical view angle of the camera presets (VTK's default)
+ISOMETRIC_TILT_DEG = 66.0  # isometric view direction from the bearing axis
+FRAME_MARGIN = 0.06  # camera presets leave this fraction of each half-size free around the bearing
+SCALAR_BAR_STRIP = 0.17  # fraction of the view width on the right kept for the colour bar
+BALL_OPACITY = (0.15, 0.6)  # (plain, marked) octants of a translucent ball
+# Contact ellipses are filled to scale and outlined with a stroke of this width (pixels), so that
+# one of 0.9 x 0.15 mm still shows when the whole bearing is in view (a stroke, not a size).
+ELLIPSE_OUTLINE_PX = 2.0
+TRACE_WIDTH_PX = 3.0
+SCALAR_BAR = {  # vertical, in the strip right of the bearing (see SCALAR_BAR_STRIP)
+    "title": "peak pressure,\nGPa",
+    "vertical": True,
+    "position_x": 0.86,
+    "position_y": 0.2,
+    "width": 0.12,
+    "height": 0.6,
+    "title_font_size": 13,
+    "label_font_size": 12,
+    "n_labels": 5,
+    "fmt": "%.2f",
+    "color": "#202020",
+}
 _MARK_LIFT = 0.004  # fraction of the groove radius that marks are lifted off the raceway
 
 
@@ -36,9 +58,16 @@ class SceneOptions:
     exaggeration: float = 1.0  # across-groove deviation factor for traces and ellipse centres
     trace_ball: int | None = None  # None: all balls
     layers: dict = field(default_factory=lambda: {name: True for name in LAYERS})
-    # Outer ring sector cut away (rad, centred on the isometric camera side) so the balls, cage and
-    # raceways show; an opaque cut-away ring renders ~2x faster than a translucent one in software.
-    outer_cutaway: tuple = (math.radians(10.0), math.radians(155.0))
+    # Outer ring sector cut away (rad, ring-frame azimuth from +y towards +z), centred on the side
+    # the isometric camera looks at, so the balls, cage and raceways show; an opaque cut-away ring
+    # renders ~2x faster than a translucent one in software.
+    outer_cutaway: tuple = (math.radians(-70.0), math.radians(70.0))
+    # Balls drawn see-through (their marking stays opaque enough to read the spin) so the contact
+    # ellipses and traces under them show.
+    translucent_balls: bool = True
+    # Side (rad, azimuth from +y towards +z) the isometric and radial cameras face: the radial-load
+    # direction of the shipped cases, where the load zone is.
+    view_azimuth: float = 0.0
 
 
 def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n_arc: int = 40):
@@ -134,11 +163,107 @@ def _fan_faces(count: int, n: int) -> np.ndarray:
     return np.asarray(faces, dtype=np.int64).ravel()
 
 
+def _outline_lines(count: int, n: int) -> np.ndarray:
+    """Closed polylines along the ``n`` outline points of ``count`` fans (:func:`_fan_faces`)."""
+    lines = []
+    for e in range(count):
+        base = e * (n + 1)
+        lines.append([n + 1, *(base + 1 + np.arange(n)), base + 1])
+    return np.asarray(lines, dtype=np.int64).ravel()
+
+
 def _matrix(rotation: np.ndarray, translation=(0.0, 0.0, 0.0)) -> np.ndarray:
     m = np.eye(4)
     m[:3, :3] = rotation
     m[:3, 3] = translation
     return m
+
+
+def outline_points(
+    inner_profile, outer_profile, cutaway=None, ball_top: float = 0.0, n_phi: int = 72
+) -> np.ndarray:
+    """Points (m, shape (n, 3)) that bound what is drawn, for framing the camera.
+
+    Circles at the smallest and largest x of each ring's (x, radius) profile, at its largest
+    radius. Inside the outer ring's cut-away sector ``cutaway`` (rad, (start, end) ring azimuth)
+    the outer ring is not drawn: there the circles have the radius ``ball_top`` (m) of the balls'
+    outermost points instead.
+    """
+    phi = np.linspace(0.0, 2 * math.pi, n_phi, endpoint=False)
+    cut = np.zeros(n_phi, bool)
+    if cutaway is not None:
+        cut = np.mod(phi - cutaway[0], 2 * math.pi) < cutaway[1] - cutaway[0]
+    circles = []
+    for race, (xs, rhos) in enumerate((inner_profile, outer_profile)):
+        radius = np.full(n_phi, float(np.max(rhos)))
+        if race == OUTER:
+            radius[cut] = ball_top
+        for x in (float(np.min(xs)), float(np.max(xs))):
+            circles.append(
+                np.column_stack([np.full(n_phi, x), radius * np.cos(phi), radius * np.sin(phi)])
+            )
+    return np.concatenate(circles)
+
+
+def camera_directions(preset: str, view_azimuth: float) -> tuple[np.ndarray, np.ndarray]:
+    """(unit vector from the bearing centre towards the camera, view-up vector) of a preset.
+
+    ``view_azimuth`` (rad, from +y towards +z) is the side the isometric and radial views face.
+    """
+    radial = np.array([0.0, math.cos(view_azimuth), math.sin(view_azimuth)])
+    across = np.array([0.0, -math.sin(view_azimuth), math.cos(view_azimuth)])
+    axis = np.array([1.0, 0.0, 0.0])
+    if preset == "axial":
+        return -axis, across
+    if preset == "radial":
+        return radial, across
+    tilt = math.radians(ISOMETRIC_TILT_DEG)
+    direction = math.cos(tilt) * axis + math.sin(tilt) * radial
+    up = axis - direction * math.cos(tilt)  # the bearing axis, made normal to the view direction
+    return direction, up / np.linalg.norm(up)
+
+
+def frame_points(
+    points: np.ndarray,
+    direction,
+    up,
+    view_angle_deg: float,
+    aspect: float,
+    margin: float | None = None,
+    right_reserved: float = 0.0,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Camera (position, focal point), m, of a perspective view that shows all ``points`` (m).
+
+    The camera sits on the ``direction`` side of the focal point with ``up`` vertical and a
+    vertical view angle ``view_angle_deg``; ``aspect`` is the viewport's width / height. The points
+    fill the view up to ``1 - margin`` of each half-size (``margin`` defaults to
+    :data:`FRAME_MARGIN`), away from a strip of ``right_reserved`` times the width on the right.
+    """
+    margin = FRAME_MARGIN if margin is None else margin
+    direction = np.asarray(direction, float) / np.linalg.norm(direction)
+    up = np.asarray(up, float) - np.dot(up, direction) * direction
+    up /= np.linalg.norm(up)
+    right = np.cross(up, direction)  # image right for a camera looking along -direction
+    half_v = math.tan(math.radians(view_angle_deg) / 2)  # half-height of the view, tan units
+    half_h = half_v * aspect
+    free_lo, free_hi = -half_h, half_h * (1.0 - 2.0 * right_reserved)  # kept for the points
+    centre_h = 0.5 * (free_lo + free_hi)
+    fit_h = 0.5 * (free_hi - free_lo) * (1.0 - margin)
+    fit_v = half_v * (1.0 - margin)
+    pts = np.asarray(points, float)
+    focal = pts.mean(axis=0)
+    for _ in range(5):  # centre the points on the view axis, then fit the distance
+        rel = pts - focal
+        across, vertical, toward = rel @ right, rel @ up, rel @ direction
+        distance = max(
+            np.max(np.abs(across) / fit_h + toward), np.max(np.abs(vertical) / fit_v + toward)
+        )
+        depth = distance - toward
+        mid_h = 0.5 * (np.max(across / depth) + np.min(across / depth))
+        mid_v = 0.5 * (np.max(vertical / depth) + np.min(vertical / depth))
+        focal = focal + distance * (mid_h * right + mid_v * up)
+    focal = focal - distance * centre_h * right  # the points to the middle of the free part
+    return focal + distance * direction, focal
 
 
 class BearingScene:
@@ -170,6 +295,12 @@ class BearingScene:
         )
         outer_profile = ring_profile(
             self.grooves[OUTER], g.ball_diameter, g.outer_shoulder_diameter / 2
+        )
+        self._outline_points = outline_points(
+            inner_profile,
+            outer_profile,
+            cutaway=self.options.outer_cutaway,
+            ball_top=0.5 * (g.pitch_diameter + g.ball_diameter),
         )
         inner = revolve(*inner_profile)
         # a dark sector on the inner ring makes its rotation visible
@@ -204,18 +335,26 @@ class BearingScene:
         )
         sphere = marked_sphere(0.5 * g.ball_diameter)
         colours = ["#202020", "#6a6a6a"] if dark_balls else ["#d9d9d9", "#7a7a7a"]
+        if self.options.translucent_balls:
+            # see-through balls: plain octants almost clear, marked octants dark enough to read
+            colours = ["#9a9a9a", "#1a1a1a"] if dark_balls else ["#d0d0d0", "#4a5560"]
         for j in range(g.ball_count):
-            self._actors["balls"].append(
-                p.add_mesh(
-                    sphere,
-                    scalars="mark",
-                    cmap=colours,
-                    show_scalar_bar=False,
-                    smooth_shading=True,
-                    specular=0.6,
-                    name=f"ball_{j}",
-                )
+            actor = p.add_mesh(
+                sphere,
+                scalars="mark",
+                cmap=colours,
+                n_colors=2,
+                show_scalar_bar=False,
+                smooth_shading=True,
+                specular=0.6,
+                name=f"ball_{j}",
             )
+            if self.options.translucent_balls:
+                lut = actor.mapper.lookup_table
+                rgba = np.array(lut.values)
+                rgba[:, 3] = np.round(255 * np.asarray(BALL_OPACITY))
+                lut.values = rgba
+            self._actors["balls"].append(actor)
         self._actors["cage"].append(
             p.add_mesh(
                 cage_mesh(0.5 * g.pitch_diameter, g.ball_diameter, g.ball_count),
@@ -227,7 +366,11 @@ class BearingScene:
         n_pts = g.ball_count * (ELLIPSE_POINTS + 1)
         self._ellipses, self._traces = [], []
         for race in (INNER, OUTER):
-            mesh = pv.PolyData(np.zeros((n_pts, 3)), faces=_fan_faces(g.ball_count, ELLIPSE_POINTS))
+            mesh = pv.PolyData(
+                np.zeros((n_pts, 3)),
+                faces=_fan_faces(g.ball_count, ELLIPSE_POINTS),
+                lines=_outline_lines(g.ball_count, ELLIPSE_POINTS),
+            )
             mesh.point_data["max_pressure_GPa"] = np.zeros(n_pts)
             self._ellipses.append(mesh)
             self._actors["ellipses"].append(
@@ -237,7 +380,8 @@ class BearingScene:
                     cmap="plasma",
                     clim=(0.0, 1.0),
                     show_scalar_bar=race == INNER,
-                    scalar_bar_args={"title": "peak pressure, GPa"},
+                    scalar_bar_args=SCALAR_BAR,
+                    line_width=ELLIPSE_OUTLINE_PX,
                     name=f"ellipses_{race}",
                 )
             )
@@ -251,10 +395,12 @@ class BearingScene:
                     cmap="tab20",
                     clim=(0, max(1, g.ball_count - 1)),
                     show_scalar_bar=False,
-                    line_width=3,
+                    line_width=TRACE_WIDTH_PX,
                     name=f"traces_{race}",
                 )
             )
+        bar = p.scalar_bar
+        bar.SetVerticalTitleSeparation(10)  # pixels between the title and the top label
         self.set_camera("isometric")
 
     # ---- data -----------------------------------------------------------------------------------
@@ -311,7 +457,7 @@ class BearingScene:
         a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0)
         b = np.where(loaded, np.nan_to_num(f.semi_minor[:, race]), 0.0)
         phi = f.raceway_azimuth[:, race]
-        lift = _MARK_LIFT * groove.r
+        lift = 2 * _MARK_LIFT * groove.r  # above the traces
         outline = ellipse_outline(groove, phi, alpha, a, b, n=ELLIPSE_POINTS, lift=lift)
         centre = groove.point(phi, alpha, lift=lift)[:, None, :]
         pts = np.concatenate([centre, outline], axis=1).reshape(-1, 3)
@@ -329,7 +475,7 @@ class BearingScene:
             range(phi.shape[0]) if self.options.trace_ball is None else [self.options.trace_ball]
         )
         groove = self.grooves[race]
-        lift = 2 * _MARK_LIFT * groove.r
+        lift = _MARK_LIFT * groove.r
         points, lines, ids = [], [], []
         offset = 0
         for j in balls:
@@ -382,20 +528,32 @@ class BearingScene:
         self.set_frame(self.frame_index)
 
     def set_camera(self, preset: str) -> None:
-        """Camera preset: ``isometric``, ``axial`` (along the bearing axis) or ``radial``."""
+        """Camera preset: ``isometric``, ``axial`` (along the bearing axis) or ``radial``.
+
+        Always re-applies the preset (also when it is the one already on show) and frames the
+        whole bearing with a margin of :data:`FRAME_MARGIN` at the render window's aspect, leaving
+        the strip of the colour bar on the right free. ``isometric`` looks at the load side
+        (:attr:`SceneOptions.view_azimuth`, where the outer ring is cut away) from the +x side,
+        where the inner-raceway contacts face, :data:`ISOMETRIC_TILT_DEG` off the axis; ``axial``
+        looks along +x; ``radial`` looks into the cut-away, the bearing axis across the view.
+        """
         if preset not in CAMERA_PRESETS:
             raise ValueError(
                 f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}"
             )
-        d = 1.6 * self.geometry.pitch_diameter
-        position, up = {
-            "isometric": ((-0.8 * d, 0.2 * d, 1.6 * d), (0.0, 0.0, 1.0)),
-            "axial": ((-2.2 * d, 0.0, 0.0), (0.0, 0.0, 1.0)),
-            "radial": ((0.0, 0.0, 2.2 * d), (0.0, 1.0, 0.0)),
-        }[preset]
-        self.plotter.camera_position = [position, (0.0, 0.0, 0.0), up]
-        self.plotter.reset_camera()
-        self.plotter.camera.zoom(1.5)
+        direction, up = camera_directions(preset, self.options.view_azimuth)
+        self.plotter.camera.view_angle = VIEW_ANGLE_DEG  # a mouse zoom narrows the view angle
+        width, height = self.plotter.window_size
+        position, focal = frame_points(
+            self._outline_points,
+            direction,
+            up,
+            view_angle_deg=self.plotter.camera.view_angle,
+            aspect=width / height,
+            right_reserved=SCALAR_BAR_STRIP,
+        )
+        self.plotter.camera_position = [tuple(position), tuple(focal), tuple(up)]
+        self.plotter.renderer.ResetCameraClippingRange()
 
     def trace_point_count(self, race: int) -> int:
         """Number of points in the drawn trace of ``race`` (0 when none is drawn)."""

@@ -88,3 +88,89 @@ def test_no_outer_marks_in_the_cut_away_sector(scene):
     # the inner ring has no cut: its trace goes all the way round
     inner = scene._traces[INNER].points
     assert np.ptp(np.mod(np.arctan2(inner[:, 2], inner[:, 1]) - lo, 2 * np.pi)) > 6.0
+
+
+# ---- camera presets, colour bar, see-through balls ----------------------------------------------
+def _display_xy(plotter, points):
+    """Display coordinates (pixels, origin bottom left) of world ``points`` (m)."""
+    renderer = plotter.renderer
+    out = []
+    for p in points:
+        renderer.SetWorldPoint(*p, 1.0)
+        renderer.WorldToDisplay()
+        out.append(renderer.GetDisplayPoint()[:2])
+    return np.array(out)
+
+
+def _bearing_points(geometry):
+    """Corners of the bearing drawn whole: circles at the outer ring's outside radius (a closed
+    form from the geometry: pitch radius + ball radius + 0.45 D of material, :func:`ring_profile`)
+    at both faces (x = +-0.95 D)."""
+    D = geometry.ball_diameter
+    radius = 0.5 * geometry.pitch_diameter + 0.5 * D
+    phi = np.linspace(0, 2 * np.pi, 90, endpoint=False)
+    return np.concatenate(
+        [
+            np.column_stack([np.full(90, x), radius * np.cos(phi), radius * np.sin(phi)])
+            for x in (-0.95 * D, 0.95 * D)
+        ]
+    )
+
+
+@pytest.mark.parametrize("preset", ["isometric", "axial", "radial"])
+def test_presets_frame_the_whole_bearing_left_of_the_colour_bar(geometry, preset):
+    pv.global_theme.multi_samples = 0
+    plotter = pv.Plotter(off_screen=True, window_size=(650, 480))
+    try:
+        scene = BearingScene(plotter, geometry)
+        scene.set_camera(preset)
+        plotter.render()
+        xy = _display_xy(plotter, _bearing_points(geometry))
+        bar_left = plotter.scalar_bar.GetPositionCoordinate().GetValue()[0] * 650
+        assert xy[:, 0].min() > 5 and xy[:, 1].min() > 5 and xy[:, 1].max() < 475
+        assert xy[:, 0].max() < bar_left  # the colour bar stands beside the bearing
+        # and the bearing fills the view: not a small picture in the middle
+        assert max(np.ptp(xy[:, 0]) / bar_left, np.ptp(xy[:, 1]) / 480) > 0.8
+    finally:
+        plotter.close()
+
+
+def test_set_camera_reapplies_the_current_preset(scene):
+    scene.set_camera("radial")
+    expected = np.array(scene.plotter.camera_position.position)
+    scene.plotter.camera.azimuth = 40.0
+    scene.plotter.camera.zoom(2.0)
+    scene.set_camera("radial")
+    np.testing.assert_allclose(scene.plotter.camera_position.position, expected)
+
+
+def test_colour_bar_is_vertical_and_its_title_clear_of_the_labels(scene):
+    bar = scene.plotter.scalar_bar
+    assert bar.GetOrientation() == 1  # vertical
+    assert bar.GetVerticalTitleSeparation() >= 5
+
+
+def test_balls_are_see_through_by_default_with_an_opaque_option(qs_dataset, geometry):
+    from app.scene import SceneOptions
+
+    pv.global_theme.multi_samples = 0
+    for translucent in (True, False):
+        plotter = pv.Plotter(off_screen=True, window_size=(160, 120))
+        scene = BearingScene(plotter, geometry, SceneOptions(translucent_balls=translucent))
+        alpha = np.array(scene._actors["balls"][0].mapper.lookup_table.values)[:, 3]
+        if translucent:  # plain octants nearly clear, marked ones darker and denser
+            assert alpha[0] < 80 and 80 < alpha[1] < 255
+        else:
+            assert np.all(alpha == 255)
+        plotter.close()
+
+
+def test_ellipses_are_outlined_to_scale(scene, geometry):
+    scene.set_frame(5)
+    mesh = scene._ellipses[INNER]
+    assert mesh.n_lines == geometry.ball_count  # one closed outline per ball
+    f = scene.source.frame(5)
+    j = int(np.argmax(f.semi_major[:, INNER]))
+    outline = mesh.points[j * 25 + 1 : (j + 1) * 25]  # the fan's centre comes first
+    across = np.ptp(outline[:, 0]) / np.cos(f.contact_angle[j, INNER])
+    assert across == pytest.approx(2 * f.semi_major[j, INNER], rel=0.05)
