@@ -69,6 +69,7 @@ def _quiet_closed_connections(**_) -> None:
     send with a traceback. Every other loop error keeps the default handling.
     """
     import asyncio
+    import logging
 
     loop = asyncio.get_event_loop()
 
@@ -78,6 +79,18 @@ def _quiet_closed_connections(**_) -> None:
         loop.default_exception_handler(context)
 
     loop.set_exception_handler(handler)
+    # aiohttp logs the same failed sends itself, as "Error handling request" with a traceback
+    logging.getLogger("aiohttp.server").addFilter(_not_a_closed_connection)
+
+
+def _not_a_closed_connection(record) -> bool:
+    """Logging filter: False for records about a write to a websocket that is already closing."""
+    error = record.exc_info[1] if record.exc_info else None
+    while error is not None:
+        if isinstance(error, ConnectionResetError):
+            return False
+        error = error.__context__
+    return True
 
 
 def _port_problem(host: str, port: int) -> str:

@@ -37,3 +37,33 @@ def test_port_in_use_is_named_without_traceback(capsys):
     assert f"127.0.0.1:{port}" in err and "--port" in err and "Traceback" not in err
     assert cli.main(["serve", "--port", "70000"]) == 2
     assert "between 1 and 65535" in capsys.readouterr().err
+
+
+def test_closed_connection_errors_are_kept_out_of_the_log():
+    import logging
+    import sys
+
+    from app.main import _not_a_closed_connection
+
+    def record_of(error):
+        try:
+            raise error
+        except BaseException:
+            return logging.LogRecord(
+                "aiohttp.server", 40, "", 0, "Error handling request", (), sys.exc_info()
+            )
+
+    def send_after_close():
+        try:
+            raise ConnectionResetError("Cannot write to closing transport")
+        except ConnectionResetError:
+            raise RuntimeError("while sending an error reply")  # noqa: B904 - chained as aiohttp
+
+    assert not _not_a_closed_connection(record_of(ConnectionResetError("closing transport")))
+    try:
+        send_after_close()
+    except RuntimeError as chained:
+        assert not _not_a_closed_connection(record_of(chained))
+    assert _not_a_closed_connection(record_of(ValueError("a real problem")))
+    plain = logging.LogRecord("aiohttp.server", 20, "", 0, "no exception", (), None)
+    assert _not_a_closed_connection(plain)
