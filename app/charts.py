@@ -50,20 +50,46 @@ HELP = {
 }
 
 
+# Legends go below the plot, under the x-axis title, so they never cover a curve; each row of
+# legend entries takes LEGEND_ROW_PX of the bottom margin. ENTRIES_PER_ROW is what fits in the
+# narrowest chart column (~450 px) with names like "quasi-static inner".
+LEGEND_ROW_PX = 20
+ENTRIES_PER_ROW = 3
+_BOTTOM_PX = 58  # x tick labels and title
+
+
+def _legend_rows(fig: go.Figure) -> int:
+    """Rows the legend needs below a narrow chart (0 without a legend)."""
+    shown = [t for t in fig.data if t.showlegend is not False]
+    if fig.layout.showlegend is False or len(shown) < 2 and fig.layout.showlegend is not True:
+        return 0
+    return -(-len(shown) // ENTRIES_PER_ROW)
+
+
 def _layout(fig: go.Figure, title: str, xtitle: str, ytitle: str) -> go.Figure:
+    rows = _legend_rows(fig)
     fig.update_layout(
         title={"text": title, "font": {"size": 14}, "x": 0.02, "xanchor": "left"},
         xaxis_title=xtitle,
         yaxis_title=ytitle,
-        margin={"l": 55, "r": 10, "t": 35, "b": 40},
-        legend={"orientation": "h", "x": 1.0, "xanchor": "right", "y": 1.0, "yanchor": "bottom"},
+        margin={"l": 55, "r": 10, "t": 35, "b": _BOTTOM_PX + LEGEND_ROW_PX * rows},
+        showlegend=rows > 0,
+        legend={
+            "orientation": "h",
+            "x": 0.0,
+            "xanchor": "left",
+            "yref": "container",
+            "y": 0.0,
+            "yanchor": "bottom",
+            "font": {"size": 11},
+        },
         template="none",  # built-in templates cost ~60 ms per figure (deep copies)
         plot_bgcolor="white",
         paper_bgcolor="white",
         uirevision="keep",
     )
-    fig.update_xaxes(gridcolor="#e5e5e5", zeroline=False)
-    fig.update_yaxes(gridcolor="#e5e5e5", zeroline=False)
+    fig.update_xaxes(gridcolor="#e5e5e5", zeroline=False, automargin=True)
+    fig.update_yaxes(gridcolor="#e5e5e5", zeroline=False, automargin=True)
     return fig
 
 
@@ -71,33 +97,90 @@ def _time_marker(fig: go.Figure, x: float) -> None:
     fig.add_vline(x=x, line_width=1, line_dash="dot", line_color="#444")
 
 
+def padded_range(values, min_span: float, pad: float = 0.08) -> list[float] | None:
+    """Axis range [low, high] around the finite ``values`` with room above and below.
+
+    The span is widened by ``pad`` of itself at each end and to at least ``min_span`` (same unit
+    as the values) around its middle, so that a curve never runs along the frame and a nearly
+    constant one does not get tick labels like 89.2885. None when no value is finite.
+    """
+    finite = np.asarray(values, float)
+    finite = finite[np.isfinite(finite)]
+    if finite.size == 0:
+        return None
+    low, high = float(finite.min()), float(finite.max())
+    span = max(high - low, min_span / (1.0 + 2.0 * pad))
+    middle = 0.5 * (low + high)
+    half = 0.5 * span * (1.0 + 2.0 * pad)
+    return [middle - half, middle + half]
+
+
+def _pad_y(fig: go.Figure, min_span: float, axis: str = "y", low_zero: bool = False) -> None:
+    """Set the range of y axis ``axis`` ("y" or "y2") from the data of the traces on it."""
+    values = [
+        np.asarray(t.y, float) for t in fig.data if (t.yaxis or "y") == axis and t.y is not None
+    ]
+    if not values:
+        return
+    yrange = padded_range(np.concatenate([v.ravel() for v in values]), min_span)
+    if yrange is None:
+        return
+    if low_zero:  # a non-negative quantity (loads, sizes): the axis starts at 0
+        yrange[0] = 0.0
+    fig.update_layout({"yaxis" if axis == "y" else "yaxis2": {"range": yrange}})
+
+
+ANGLE_MIN_SPAN_DEG = 1.0  # contact-angle axes span at least this much (degree)
+LOAD_MIN_SPAN_N = 1.0  # contact-load axes span at least this much (N)
+ALL_BALLS_MAX_POINTS = 40_000  # points in all of a contact-angle chart of every ball
+
+
 def contact_angle_figure(
     source: FrameSource, balls=(0,), current: int | None = None, max_points: int = 4000
 ) -> go.Figure:
     """Contact angle (degree) versus time (ms), inner and outer contacts of the chosen balls.
 
-    Long results are decimated to at most ``max_points`` samples per line.
+    ``balls``: ball indices, or None for every ball. Each (ball, race) is one line in the race's
+    colour; with every ball the legend has one entry per race ("inner, all balls"), grouped, and
+    the lines share :data:`ALL_BALLS_MAX_POINTS` points. Long results are decimated to at most
+    ``max_points`` samples per line.
     """
+    every_ball = balls is None
+    if every_ball:
+        balls = range(source.ball_count)
+        max_points = min(max_points, ALL_BALLS_MAX_POINTS // (2 * max(1, source.ball_count)))
+    balls = [int(j) for j in balls]
+    for j in balls:
+        if not 0 <= j < source.ball_count:
+            raise ValueError(
+                f"balls: ball {j} does not exist; balls are 0 to {source.ball_count - 1}"
+            )
     fig = go.Figure()
     step = max(1, int(np.ceil(source.n_frames / max_points)))
     t_ms = source.times[::step] * 1e3
     alpha = np.degrees(source.contact["contact_angle"][::step])
     load = np.nan_to_num(source.contact["contact_load"][::step])
     for race in (INNER, OUTER):
-        for j in balls:
+        for k, j in enumerate(balls):
             y = np.where(load[:, j, race] > 0, alpha[:, j, race], np.nan)
+            name = f"{RACES[race]}, all balls" if every_ball else f"ball {j} {RACES[race]}"
             fig.add_trace(
                 go.Scatter(
                     x=t_ms,
                     y=y,
                     mode="lines",
-                    name=f"ball {j} {RACES[race]}",
-                    line={"color": RACE_COLOURS[race]},
+                    name=name,
+                    legendgroup=RACES[race] if every_ball else None,
+                    showlegend=not every_ball or k == 0,
+                    line={"color": RACE_COLOURS[race], "width": 1 if every_ball else 2},
+                    hovertemplate=f"ball {j} {RACES[race]}: %{{y:.3f}} degree<extra></extra>",
                 )
             )
     if current is not None:
         _time_marker(fig, float(source.times[min(current, source.n_frames - 1)] * 1e3))
-    return _layout(fig, "Contact angle", "time, ms", "contact angle, degree")
+    fig = _layout(fig, "Contact angle", "time, ms", "contact angle, degree")
+    _pad_y(fig, ANGLE_MIN_SPAN_DEG)
+    return fig
 
 
 def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
@@ -117,9 +200,11 @@ def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
             )
         )
     fig.update_xaxes(range=[0, 360])
-    return _layout(
+    _layout(
         fig, f"Contact load at t = {f.time * 1e3:.2f} ms", "ball azimuth, degree", "contact load, N"
     )
+    _pad_y(fig, LOAD_MIN_SPAN_N, low_zero=True)
+    return fig
 
 
 def raceway_map_figure(
@@ -142,12 +227,11 @@ def raceway_map_figure(
             )
         )
     fig.update_xaxes(range=[0, 360])
-    return _layout(
-        fig,
-        "Unrolled raceways",
-        "raceway azimuth (ring frame), degree",
-        "contact angle, degree",
+    _layout(
+        fig, "Unrolled raceways", "raceway azimuth (ring frame), degree", "contact angle, degree"
     )
+    _pad_y(fig, ANGLE_MIN_SPAN_DEG)
+    return fig
 
 
 def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
@@ -172,9 +256,26 @@ def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
                 x=x, y=p, name=f"p max {RACES[race]}", yaxis="y2", line={"color": c, "dash": "dash"}
             )
         )
-    fig.update_layout(yaxis2={"title": "peak pressure, GPa", "overlaying": "y", "side": "right"})
     fig.update_xaxes(range=[0, 360])
-    return _layout(fig, "Contact ellipses", "ball azimuth, degree", "semi-axis, mm")
+    _layout(fig, "Contact ellipses", "ball azimuth, degree", "semi-axis, mm")
+    fig.update_layout(
+        # the right margin holds the pressure axis's tick labels and title
+        margin={"r": 65},
+        yaxis2={
+            "title": {"text": "peak pressure, GPa"},
+            "overlaying": "y",
+            "side": "right",
+            "showgrid": False,
+            "zeroline": False,
+            "automargin": True,
+            "tickformat": ".2f",
+            "tickmode": "auto",
+            "nticks": 5,
+        },
+    )
+    _pad_y(fig, 0.01, low_zero=True)
+    _pad_y(fig, 0.1, axis="y2", low_zero=True)
+    return fig
 
 
 def cage_speed_figure(source: FrameSource, ds: xr.Dataset, current: int | None = None) -> go.Figure:
@@ -187,7 +288,10 @@ def cage_speed_figure(source: FrameSource, ds: xr.Dataset, current: int | None =
     fig = go.Figure(go.Scatter(x=t_ms[::step], y=speed[::step], mode="lines", name="cage"))
     if current is not None:
         _time_marker(fig, float(t_ms[min(current, len(t_ms) - 1)]))
-    return _layout(fig, "Cage speed", "time, ms", "cage speed, rev/min")
+    _layout(fig, "Cage speed", "time, ms", "cage speed, rev/min")
+    finite = speed[np.isfinite(speed)]
+    _pad_y(fig, max(1.0, 0.01 * float(np.abs(finite).mean())) if finite.size else 1.0)
+    return fig
 
 
 def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go.Figure:
@@ -221,9 +325,9 @@ def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go
                 )
             )
     fig.update_xaxes(range=[0, 360])
-    return _layout(
-        fig, "Quasi-static versus dynamic", "ball azimuth, degree", "contact angle, degree"
-    )
+    _layout(fig, "Quasi-static versus dynamic", "ball azimuth, degree", "contact angle, degree")
+    _pad_y(fig, ANGLE_MIN_SPAN_DEG)
+    return fig
 
 
 def side_by_side_raceway_maps(
@@ -261,10 +365,11 @@ def side_by_side_raceway_maps(
     fig.update_layout(
         xaxis_title="raceway azimuth, degree",
         yaxis_title="contact angle, degree",
-        # the run names stand above the two maps: the legend goes below the axis titles
-        legend={"y": -0.3, "yanchor": "top", "x": 0.5, "xanchor": "center"},
-        margin={"t": 30, "b": 80},
+        margin={"t": 30},  # the run names stand above the two maps; the legend is below
     )
+    yrange = padded_range(np.concatenate([np.asarray(t.y, float) for t in fig.data]), 1.0)
+    if yrange is not None:
+        fig.update_yaxes(range=yrange)
     return fig
 
 
@@ -281,13 +386,15 @@ RUN_STYLES = {
 }
 
 HELP["compare_angle"] = (
-    "Contact angle versus ball azimuth, both runs overlaid (A solid, B dashed). Under pure axial "
+    "Contact angle versus ball azimuth, both runs overlaid (A: circles on a solid line, B: "
+    "crosses on a dashed line; a dynamic run is a cloud of its samples). Under pure axial "
     "load every ball has the same contact angles, so each race is a flat line; a radial load "
     "spreads them: balls in the load zone press deeper into the groove than the others."
 )
 HELP["compare_load"] = (
-    "Contact load versus ball azimuth, both runs overlaid (A solid, B dashed). Pure axial load "
-    "shares the load equally (a flat line); with a radial load the loads concentrate in a load "
+    "Contact load versus ball azimuth, both runs overlaid (A: circles on a solid line, B: crosses "
+    "on a dashed line; a dynamic run is a cloud of its samples). Pure axial load shares the load "
+    "equally (a flat line); with a radial load the loads concentrate in a load "
     "zone around the load direction and the balls opposite it carry less, or nothing."
 )
 HELP["compare_summary"] = (
@@ -450,7 +557,12 @@ def _compare_azimuth_figure(
         for race in (INNER, OUTER):
             fig.add_trace(_azimuth_trace(source, tag, race, quantity, max_points))
     fig.update_xaxes(range=[0, 360])
-    return _layout(fig, title, "ball azimuth, degree", ytitle)
+    _layout(fig, title, "ball azimuth, degree", ytitle)
+    if quantity == "contact_angle":
+        _pad_y(fig, ANGLE_MIN_SPAN_DEG)
+    else:
+        _pad_y(fig, LOAD_MIN_SPAN_N, low_zero=True)
+    return fig
 
 
 def compare_angle_figure(a: FrameSource, b: FrameSource, max_points: int = 5000) -> go.Figure:
@@ -463,7 +575,7 @@ def compare_angle_figure(a: FrameSource, b: FrameSource, max_points: int = 5000)
         a,
         b,
         "contact_angle",
-        "Contact angle versus ball azimuth (A solid, B dashed)",
+        "Contact angle versus ball azimuth (A circles, B crosses)",
         "contact angle, degree",
         max_points,
     )
@@ -478,7 +590,7 @@ def compare_load_figure(a: FrameSource, b: FrameSource, max_points: int = 5000) 
         a,
         b,
         "contact_load",
-        "Contact load versus ball azimuth (A solid, B dashed)",
+        "Contact load versus ball azimuth (A circles, B crosses)",
         "contact load, N",
         max_points,
     )

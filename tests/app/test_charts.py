@@ -173,3 +173,85 @@ def test_compare_overlays_have_both_runs_and_races(qs_dataset, dynamic_dataset, 
     assert np.isnan(np.asarray(angle.data[0].y, float)).sum() == 3
     assert (np.asarray(load.data[0].y, float) == 0).sum() == 3
     assert {"compare_angle", "compare_load", "compare_summary"} <= set(charts.HELP)
+
+
+# ---- layout in the narrow chart column ----------------------------------------------------------
+def _figures(qs_dataset, dynamic_dataset):
+    q, d = frame_source(qs_dataset), frame_source(dynamic_dataset)
+    return {
+        "contact_angle": charts.contact_angle_figure(q, (0, 2), current=3),
+        "load_azimuth": charts.load_azimuth_figure(q, 0),
+        "raceway_map": charts.raceway_map_figure(q),
+        "ellipse": charts.ellipse_figure(q, 0),
+        "comparison": charts.comparison_figure(qs_dataset, dynamic_dataset),
+        "compare_runs": charts.side_by_side_raceway_maps(q, d, "a", "b"),
+        "compare_angle": charts.compare_angle_figure(q, d),
+        "compare_load": charts.compare_load_figure(q, d),
+    }
+
+
+def test_legends_stand_below_the_plot_with_room_for_them(qs_dataset, dynamic_dataset):
+    for name, fig in _figures(qs_dataset, dynamic_dataset).items():
+        legend = fig.layout.legend
+        # at the foot of the figure (container y = 0), under the x-axis title: never on a curve
+        assert (legend.yref, legend.y, legend.yanchor) == ("container", 0.0, "bottom"), name
+        rows = -(-sum(t.showlegend is not False for t in fig.data) // charts.ENTRIES_PER_ROW)
+        assert fig.layout.margin.b >= charts._BOTTOM_PX + charts.LEGEND_ROW_PX * rows, name
+
+
+def test_y_ranges_leave_room_above_and_below_the_curves(qs_dataset, dynamic_dataset):
+    for name, fig in _figures(qs_dataset, dynamic_dataset).items():
+        low, high = fig.layout.yaxis.range
+        ys = np.concatenate([np.asarray(t.y, float) for t in fig.data if (t.yaxis or "y") == "y"])
+        ys = ys[np.isfinite(ys)]
+        room = 0.05 * (high - low)
+        assert ys.max() <= high - room, name
+        assert ys.min() >= low + room or (low == 0.0 and ys.min() >= 0.0), name
+
+
+def test_a_nearly_constant_angle_gets_a_readable_axis():
+    # 89.2885 degree +- 1e-4: plotly would zoom to ticks like 89.2885; at least 1 degree is shown
+    low, high = charts.padded_range([89.2884, 89.2885, 89.2886], min_span=1.0)
+    assert high - low == pytest.approx(1.0)
+    assert (low + high) / 2 == pytest.approx(89.2885)
+    assert charts.padded_range([np.nan], 1.0) is None
+
+
+def test_ellipse_chart_pressure_axis_has_room_for_its_labels(qs_dataset):
+    fig = charts.ellipse_figure(frame_source(qs_dataset), 0)
+    assert fig.layout.yaxis2.side == "right" and fig.layout.margin.r >= 50
+    assert fig.layout.yaxis2.range[1] > 1e-9 * float(qs_dataset["max_pressure"].max())
+
+
+def test_compare_help_describes_the_drawing():
+    for key in ("compare_angle", "compare_load"):
+        assert "B: crosses" in charts.HELP[key] and "B dashed" not in charts.HELP[key]
+    assert charts.RUN_STYLES["B"]["symbol"] == "x"
+
+
+def test_contact_angle_of_all_balls(dynamic_dataset):
+    src = frame_source(dynamic_dataset)
+    z = src.ball_count
+    fig = charts.contact_angle_figure(src, balls=None, current=5)
+    assert len(fig.data) == 2 * z  # one line per (ball, race)
+    assert [t.name for t in fig.data if t.showlegend is not False] == [
+        "inner, all balls",
+        "outer, all balls",
+    ]
+    assert {t.legendgroup for t in fig.data} == {"inner", "outer"}
+    assert {t.line.color for t in fig.data[:z]} == {charts.RACE_COLOURS[0]}
+    # the last outer line is the last ball's outer contact angle
+    alpha = np.degrees(src.contact["contact_angle"][:, z - 1, 1])
+    y = np.asarray(fig.data[-1].y, float)
+    ok = np.isfinite(y)
+    np.testing.assert_allclose(y[ok], alpha[: len(y)][ok])
+
+
+def test_all_balls_chart_stays_light(qs_dataset):
+    src = frame_source(qs_dataset, revolutions=20, samples_per_revolution=500)  # 10 001 frames
+    fig = charts.contact_angle_figure(src, balls=None)
+    total = sum(len(t.x) for t in fig.data)
+    assert total <= charts.ALL_BALLS_MAX_POINTS
+    assert total > 0.5 * charts.ALL_BALLS_MAX_POINTS  # decimated, not thrown away
+    with pytest.raises(ValueError, match="balls are 0 to 11"):
+        charts.contact_angle_figure(src, balls=(12,))
