@@ -10,6 +10,7 @@ dotted key (unique), which is also the element id ``field-<name>`` in the page.
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from dataclasses import dataclass
 
@@ -31,6 +32,37 @@ class FormField:
     choices: tuple = ()
     section: str = ""
     required: bool = False
+    default_text: str = ""  # value used when the field is left empty, with its unit ("" if none)
+
+
+_DEFAULT_IN_HELP = re.compile(r"\(default ([^;)]+)[;)]")
+
+
+def default_text(spec) -> str:
+    """What the solver uses when the field ``spec`` (a schema Field) is left empty, in words.
+
+    A plain default with its unit ("0.01 Pa s", "outer_ring"); an estimated default as its rule
+    ("estimated: 0.028 D", see :func:`estimated_default_texts` for the value of a given case);
+    "" for a required key or one with no default (an absent shoulder, the free contact angle).
+    Optional [simulation] switches state their default in their schema help ("(default 0.05; ...)"),
+    which is read here: the schema stays the one source.
+    """
+    from solver.case.schema import OPTIONAL, REQUIRED, Estimated, format_number
+
+    if spec.default is REQUIRED:
+        return ""
+    if isinstance(spec.default, Estimated):
+        return f"estimated: {spec.default.description}"
+    if spec.default is OPTIONAL:
+        match = _DEFAULT_IN_HELP.search(spec.help)
+        value = match.group(1).strip() if match else ""
+    elif isinstance(spec.default, str):
+        value = spec.default
+    else:
+        value = format_number(spec.default)
+    if not value:
+        return ""
+    return f"{value} {spec.unit}" if spec.unit and spec.type in ("float", "int") else value
 
 
 def form_fields() -> list[FormField]:
@@ -60,9 +92,27 @@ def form_fields() -> list[FormField]:
                 choices=choices,
                 section=spec.section,
                 required=spec.default is REQUIRED,
+                default_text=default_text(spec),
             )
         )
     return fields
+
+
+def estimated_default_texts(case, fields: list[FormField]) -> dict[str, str]:
+    """{field name: text} for the estimated fields of ``case``: the value the solver estimates
+    from its bearing, with its unit and rule, e.g. "0.2 mm (estimated: 0.028 D)"."""
+    from solver.case.schema import fields_by_key
+
+    specs = fields_by_key()
+    out = {}
+    for f in fields:
+        spec = specs.get(f.key)
+        if spec is None or not spec.estimated:
+            continue
+        value = float(spec.default.function(case.bearing))
+        unit = f" {spec.unit}" if spec.unit else ""
+        out[f.name] = f"{value:.3g}{unit} ({f.default_text})"
+    return out
 
 
 def case_form_values(case, fields: list[FormField]) -> dict[str, object]:
@@ -145,15 +195,28 @@ def apply_form(base_case, fields: list[FormField], values: dict) -> FormResult:
     try:
         case = base_case.with_values(changes)
     except CaseError as error:
-        by_key = {f.key: f.name for f in fields}
-        general = []
-        for problem in error.problems:
-            name = by_key.get(problem.key)
-            if name is None:
-                general.append(problem.message)
-            else:
-                errors[name] = (
-                    f"{errors[name]}; {problem.message}" if name in errors else problem.message
-                )
-        return FormResult(None, errors, tuple(general))
+        errors, general = route_problems(error.problems, fields)
+        return FormResult(None, errors, general)
     return FormResult(case, {})
+
+
+def route_problems(problems, fields: list[FormField]) -> tuple[dict, tuple]:
+    """({field name: message}, general messages) for a list of :class:`solver.errors.Problem`.
+
+    A problem reaches every field it concerns: its own key and its related keys (a rule between
+    two keys shows at both fields). Problems that name no form field are general.
+    """
+    by_key = {f.key: f.name for f in fields}
+    errors: dict[str, str] = {}
+    general: list[str] = []
+    for problem in problems:
+        keys = getattr(problem, "keys", (problem.key,))
+        names = [by_key[k] for k in keys if k in by_key]
+        if not names:
+            general.append(problem.message)
+        for name in names:
+            if name not in errors:
+                errors[name] = problem.message
+            elif problem.message not in errors[name]:
+                errors[name] = f"{errors[name]}; {problem.message}"
+    return errors, tuple(general)

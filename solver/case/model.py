@@ -132,7 +132,8 @@ class Case:
         """Valid but doubtful data, each naming its key: the CLI and the app show these.
 
         Today: shoulder (land) diameters that do not rise above their groove. Such a land offers no
-        shoulder, so the truncation check reports every contact of that race as truncated.
+        shoulder, so the truncation check reports every contact of that race as truncated. (A land
+        at or beyond the pitch diameter is not a warning but a validation error.)
         """
         g = self.geometry()
         found: list[Problem] = []

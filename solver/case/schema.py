@@ -375,6 +375,7 @@ FIELDS: list[Field] = [
         minimum=0.0,
         maximum=1.0,
         reason="a traction coefficient is not negative",
+        reason_high="lubricated traction stays well below 1",
     ),
     Field(
         "lubricant.traction.mu_max",
@@ -409,7 +410,7 @@ FIELDS: list[Field] = [
         minimum_inclusive=False,
         maximum=1.0,
         reason="traction at large slip is positive",
-        reason_high="at most mu_max",
+        reason_high="lubricated traction stays well below 1; it must also be at most mu_max",
     ),
     # ---- [operating] --------------------------------------------------------------------------
     Field(
@@ -465,7 +466,7 @@ FIELDS: list[Field] = [
         default=OPTIONAL,
         minimum=-5.0,
         maximum=5.0,
-        reason="the model assumes small tilts (a few tenths of a degree in practice)",
+        reason="the model assumes small tilts, a few tenths of a degree in practice",
     ),
     Field(
         "operating.misalignment_axis_deg",

@@ -52,8 +52,11 @@ def _suggest(name: str, candidates) -> str | None:
     return matches[0] if matches else None
 
 
-def _problem(problems: list[Problem], key: str, message: str) -> None:
-    problems.append(Problem(key, message))
+def _problem(
+    problems: list[Problem], key: str, message: str, related: tuple[str, ...] = ()
+) -> None:
+    """Record a problem filed under ``key``; ``related`` names the other keys the rule involves."""
+    problems.append(Problem(key, message, tuple(related)))
 
 
 # ---- pass 1: structure -------------------------------------------------------------------------
@@ -104,8 +107,8 @@ def _check_structure(data: dict, problems: list[Problem]) -> None:
                 _problem(
                     problems,
                     key,
-                    f"{key} = {show(value)}: must be a section ([{key}] followed "
-                    "by its keys), not a single value",
+                    f"{key} = {show(value)}: must be a section, not a single value: "
+                    f"a [{key}] header followed by its keys",
                 )
             continue
         if isinstance(value, dict):
@@ -190,7 +193,7 @@ def _lookup(data: dict, path: tuple[str, ...]):
 
 
 def _check_bounds(f: Field, key: str, value, problems: list[Problem]) -> bool:
-    unit = f" {f.unit}" if f.unit and f.unit not in ("deg",) else ""
+    unit = f" {f.unit}" if f.unit else ""
     if f.minimum is not None:
         low = value < f.minimum if f.minimum_inclusive else value <= f.minimum
         if low:
@@ -342,6 +345,7 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
             f"{angle_k} = {show(v.get(angle_k, '?'))} and {clear_k} = "
             f"{show(v.get(clear_k, '?'))}: give exactly one of the two (the "
             "clearance fixes the free contact angle); remove one",
+            related=(clear_k,),
         )
     elif not has_angle and not has_clear:
         _problem(
@@ -350,6 +354,7 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
             f"{angle_k} / {clear_k} missing: give exactly one of them "
             "(the free contact angle in degrees, or the diametral "
             "clearance in mm; 0 mm for a zero-clearance deep-groove bearing)",
+            related=(clear_k,),
         )
 
     D, dm, Z = (
@@ -365,6 +370,7 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
             f"bearing.pitch_diameter_mm = {show(dm)}: must be larger than the ball diameter "
             f"({show(D)} mm); the pitch circle runs through the ball centres, so the inner ring "
             "would have no material left",
+            related=("bearing.ball_diameter_mm",),
         )
         geometry_ok = False
     if geometry_ok and Z is not None:
@@ -378,6 +384,7 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
                 f"bearing.ball_count = {Z}: {Z} balls of diameter {show(D)} mm do not fit on a "
                 f"{show(dm)} mm pitch circle (neighbouring centres would be {chord:.4g} mm "
                 f"apart, less than the ball diameter; {fit})",
+                related=("bearing.ball_diameter_mm", "bearing.pitch_diameter_mm"),
             )
             geometry_ok = False
     if D is None or fi is None or fo is None:
@@ -397,17 +404,71 @@ def _check_bearing_rules(v: dict, given: set, problems: list[Problem]) -> None:
             _problem(
                 problems,
                 clear_k,
-                f"{clear_k} = {show(pd)}: must be less than {a0_len:.4g} mm for these grooves "
-                f"(this clearance gives a free contact angle of {angle} degrees, and the free "
-                "contact angle must be below 60 degrees; A_0 = (f_i + f_o - 1) D = "
-                f"{a0_len:.4g} mm)",
+                f"{clear_k} = {show(pd)}: must be less than {a0_len:.4g} mm for these grooves, "
+                "A_0 = (f_i + f_o - 1) D, the distance between the groove curvature centres; "
+                f"this clearance gives a free contact angle of {angle} degrees, and the free "
+                "contact angle must be below 60 degrees",
+                related=(
+                    "bearing.inner_groove_radius_ratio",
+                    "bearing.outer_groove_radius_ratio",
+                    "bearing.ball_diameter_mm",
+                ),
             )
         else:
             alpha0 = math.acos(1.0 - pd / (2 * a0_len))
     if alpha0 is None or not geometry_ok:
         return
-    # Lands that do not rise above their groove are accepted (the contract example has them);
-    # Case.warnings() reports them and the truncation margins show them as truncated.
+    _check_lands(v, D, dm, fi, fo, alpha0, problems)
+
+
+def _groove_bottom_diameters_mm(
+    D: float, dm: float, fi: float, fo: float, alpha0: float
+) -> tuple[float, float]:
+    """Inner and outer groove-bottom diameters [mm] of the unloaded bearing (alpha0 in rad).
+
+    d_i = d_m + 2 (f_i - 1/2) D cos(alpha0) - 2 f_i D and d_o = d_m - 2 (f_o - 1/2) D cos(alpha0)
+    + 2 f_o D: each groove's curvature centre lies (f - 1/2) D from the ball centre along the free
+    contact line, and the groove bottom one groove radius f D beyond it (docs/case-format.md).
+    """
+    inner = dm + 2.0 * (fi - 0.5) * D * math.cos(alpha0) - 2.0 * fi * D
+    outer = dm - 2.0 * (fo - 0.5) * D * math.cos(alpha0) + 2.0 * fo * D
+    return inner, outer
+
+
+def _check_lands(v: dict, D, dm, fi, fo, alpha0: float, problems: list[Problem]) -> None:
+    """Shoulder (land) diameters against the pitch circle: an error beyond it.
+
+    A land sits between its groove bottom and the pitch circle: inner groove bottom < inner land <
+    d_m < outer land < outer groove bottom (so the inner land is always below the outer one). A land
+    at or beyond the pitch diameter would cut through the circle of ball centres, which no ring can
+    do: that is an error. A land on the wrong side of its groove bottom is accepted (the contract
+    example has such lands): Case.warnings() reports it and the truncation margins show every
+    contact of that race as truncated.
+    """
+    inner_bottom, outer_bottom = _groove_bottom_diameters_mm(D, dm, fi, fo, alpha0)
+    pitch_k = "bearing.pitch_diameter_mm"
+    inner_k, outer_k = "bearing.inner_shoulder_diameter_mm", "bearing.outer_shoulder_diameter_mm"
+    inner, outer = v.get(inner_k), v.get(outer_k)
+    if inner is not None and inner >= dm:
+        _problem(
+            problems,
+            inner_k,
+            f"{inner_k} = {show(inner)}: must be less than the pitch diameter {show(dm)} mm, "
+            f"normally between the inner groove-bottom diameter {inner_bottom:.4g} mm and "
+            f"{show(dm)} mm; an inner land at or beyond the pitch circle would cut through the "
+            "balls",
+            related=(pitch_k,),
+        )
+    if outer is not None and outer <= dm:
+        _problem(
+            problems,
+            outer_k,
+            f"{outer_k} = {show(outer)}: must be greater than the pitch diameter {show(dm)} mm, "
+            f"normally between {show(dm)} mm and the outer groove-bottom diameter "
+            f"{outer_bottom:.4g} mm; an outer land at or inside the pitch circle would cut "
+            "through the balls",
+            related=(pitch_k,),
+        )
 
 
 def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
@@ -436,9 +497,8 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
                 _problem(
                     problems,
                     key,
-                    f"{key} = {show(table)}: must be a table "
-                    f"([materials.{name}] with youngs_modulus_GPa, "
-                    "poisson_ratio, density_kg_m3)",
+                    f"{key} = {show(table)}: must be a table: a [materials.{name}] header "
+                    "followed by youngs_modulus_GPa, poisson_ratio and density_kg_m3",
                 )
                 continue
             checked = _check_material_table(key, table, problems)
@@ -454,8 +514,8 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
                 problems,
                 key,
                 f"{key} = {show(name)}: unknown material; {hint}known materials: "
-                f"{', '.join(known)} (define others under [materials.NAME] or "
-                "give an inline table)",
+                f"{', '.join(known)}; define others under [materials.NAME] or "
+                "give an inline table",
             )
             v.pop(key)
     return users
@@ -470,6 +530,7 @@ def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Probl
             f"{mis_k} = {show(v.get(mis_k, '?'))} and {mom_k} = "
             f"{show(v.get(mom_k, '?'))}: give at most one of the two (an "
             "imposed tilt, or a moment from which the tilt is solved)",
+            related=(mis_k,),
         )
     # absent loads default to 0; loads given but invalid are already reported
     loads = [
@@ -486,6 +547,7 @@ def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Probl
                 "operating.axial_load_N = 0 and operating.radial_load_N = 0, no misalignment "
                 "and no tilting moment: nothing holds the balls; give an axial load (e.g. a "
                 "preload), a radial load, or both",
+                related=("operating.radial_load_N",),
             )
 
 
@@ -498,6 +560,7 @@ def _check_traction(v: dict, problems: list[Problem]) -> None:
             p + "mu_zero",
             f"{p}mu_zero = {show(mu0)}: must be at most mu_max = "
             f"{show(mumax)} (the curve rises from mu_zero to its peak)",
+            related=(p + "mu_max",),
         )
     if muinf is not None and mumax is not None and muinf > mumax:
         _problem(
@@ -506,6 +569,7 @@ def _check_traction(v: dict, problems: list[Problem]) -> None:
             f"{p}mu_infinity = {show(muinf)}: must be at most "
             f"mu_max = {show(mumax)} (the curve falls from its "
             "peak towards mu_infinity)",
+            related=(p + "mu_max",),
         )
 
 
@@ -549,8 +613,7 @@ def validate(data) -> Case:
                 _problem(
                     problems,
                     f.key,
-                    f"{f.key} is missing (required: {f.help} "
-                    f"{f.allowed_text()[0].upper()}{f.allowed_text()[1:]})",
+                    f"{f.key} is missing: it is required, {f.allowed_text()}. {f.help}",
                 )
             continue
         given.add(f.key)

@@ -57,3 +57,98 @@ def test_apply_form_routes_problems_to_fields(fixture_model):
     none = apply_form(case, fields, {"axial_load_N": "0", "radial_load_N": "0"})
     assert not none.valid
     assert any("nothing holds the balls" in m for m in [*none.errors.values(), *none.general])
+
+
+def test_rule_between_two_keys_reaches_both_fields(fixture_model):
+    """ball_diameter_mm = 60 on a 54 mm pitch circle: the message concerns both diameters."""
+    from solver import load_case
+
+    case = load_case(fixture_model.FIXTURE_CASE)
+    fields = form_fields()
+    bad = apply_form(case, fields, {"ball_diameter_mm": "60"})
+    assert not bad.valid
+    message = bad.errors["pitch_diameter_mm"]
+    assert "must be larger than the ball diameter" in message
+    assert bad.errors["ball_diameter_mm"] == message
+    land = apply_form(case, fields, {"inner_shoulder_diameter_mm": "80"})
+    assert "less than the pitch diameter 54 mm" in land.errors["inner_shoulder_diameter_mm"]
+    assert land.errors["pitch_diameter_mm"] == land.errors["inner_shoulder_diameter_mm"]
+    assert land.general == ()
+
+
+def test_route_problems_does_not_repeat_a_message():
+    from app.caseform import route_problems
+    from solver.errors import Problem
+
+    fields = form_fields()
+    a = Problem("bearing.ball_count", "too many", ("bearing.ball_diameter_mm",))
+    b = Problem("bearing.ball_diameter_mm", "too big")
+    errors, general = route_problems([a, b, Problem("nowhere.key", "lost")], fields)
+    assert errors == {"ball_count": "too many", "ball_diameter_mm": "too many; too big"}
+    assert general == ("lost",)
+
+
+def test_default_text_shows_the_value_used_when_empty():
+    by_name = {f.name: f for f in form_fields()}
+    # plain schema defaults with their units (docs/case-format.md, "Every key")
+    assert by_name["viscosity_Pas"].default_text == "0.01 Pa s"
+    assert by_name["pressure_viscosity_per_GPa"].default_text == "20 1/GPa"
+    assert by_name["mu_max"].default_text == "0.05"
+    assert by_name["slip_at_max_m_s"].default_text == "1 m/s"
+    assert by_name["axial_load_N"].default_text == "0 N"
+    assert by_name["misalignment_axis_deg"].default_text == "90 deg"
+    assert by_name["guidance"].default_text == "outer_ring"
+    assert by_name["samples_per_revolution"].default_text == "180"
+    # estimated from the bearing: the rule
+    assert by_name["pocket_diametral_clearance_mm"].default_text == "estimated: 0.028 D"
+    # no default: required keys and optional ones with nothing in their place
+    for name in ("ball_count", "ball_diameter_mm", "inner_shoulder_diameter_mm", "title"):
+        assert by_name[name].default_text == "", name
+
+
+def test_default_text_of_dynamic_switches_matches_the_model():
+    """The optional [simulation] switches: the text agrees with SimulationOptions, whose defaults
+    the dynamic model really uses (an independent source)."""
+    from dataclasses import fields as dataclass_fields
+
+    from solver.models.dynamic.options import CASE_KEYS, SimulationOptions
+
+    defaults = {f.name: f.default for f in dataclass_fields(SimulationOptions)}
+    by_name = {f.name: f for f in form_fields()}
+    for key, option in CASE_KEYS.items():
+        text = by_name[key].default_text
+        value = defaults[option]
+        if isinstance(value, bool):
+            assert text == ("true" if value else "false"), key
+        else:
+            assert float(text.split()[0]) == pytest.approx(value), key
+
+
+def test_default_text_of_lubricant_matches_the_default_oil():
+    """A case without [lubricant] runs on the dynamic model's default oil: the same values."""
+    from solver.models.dynamic.inputs import DEFAULT_OIL
+
+    by_name = {f.name: f for f in form_fields()}
+    assert float(by_name["viscosity_Pas"].default_text.split()[0]) == DEFAULT_OIL["viscosity"]
+    pv = float(by_name["pressure_viscosity_per_GPa"].default_text.split()[0]) * 1e-9
+    assert pv == pytest.approx(DEFAULT_OIL["pressure_viscosity"])
+    names = ("mu_zero", "mu_max", "slip_at_max_m_s", "mu_infinity")
+    texts = tuple(float(by_name[n].default_text.split()[0]) for n in names)
+    assert texts == DEFAULT_OIL["traction"]
+
+
+def test_estimated_default_texts_give_the_value_for_the_case(fixture_model):
+    from app.caseform import estimated_default_texts
+    from solver import load_case
+
+    case = load_case(fixture_model.FIXTURE_CASE)
+    texts = estimated_default_texts(case, form_fields())
+    # 0.028 D with D = 7.144 mm: 0.2000 mm; 0.5 D = 3.572 mm
+    assert texts["pocket_diametral_clearance_mm"] == "0.2 mm (estimated: 0.028 D)"
+    assert texts["guide_land_width_mm"].startswith("3.57 mm")
+    assert set(texts) == {
+        "pocket_diametral_clearance_mm",
+        "guide_diametral_clearance_mm",
+        "mass_g",
+        "guide_land_width_mm",
+    }

@@ -404,3 +404,206 @@ def test_integral_float_ball_count_is_accepted_as_int(valid):
 
 def test_not_a_table(problems):
     assert "" in problems([1, 2])
+
+
+# ---- shoulder (land) diameters -----------------------------------------------------------------
+# For the fixture bearing (D = 7.144 mm, d_m = 54 mm, f_i = 0.54, f_o = 0.53, alpha0 = 15 deg), by
+# hand: d_i = 54 + 2 (0.04) 7.144 cos 15 - 2 (0.54) 7.144 = 46.84 mm and
+# d_o = 54 - 2 (0.03) 7.144 cos 15 + 2 (0.53) 7.144 = 61.16 mm.
+@pytest.mark.parametrize(
+    ("key", "value", "words"),
+    [
+        (
+            "bearing.inner_shoulder_diameter_mm",
+            80.0,
+            ["= 80:", "less than the pitch diameter 54 mm", "46.84 mm and 54 mm"],
+        ),
+        (
+            "bearing.inner_shoulder_diameter_mm",
+            54.0,
+            ["= 54:", "less than the pitch diameter 54 mm"],
+        ),
+        (
+            "bearing.outer_shoulder_diameter_mm",
+            54.0,
+            ["= 54:", "greater than the pitch diameter 54 mm", "54 mm and the outer", "61.16 mm"],
+        ),
+        (
+            "bearing.outer_shoulder_diameter_mm",
+            40.0,
+            ["= 40:", "greater than the pitch diameter 54 mm"],
+        ),
+    ],
+)
+def test_land_beyond_the_pitch_circle_is_an_error(valid, problems, key, value, words):
+    found = problems(edit(valid, {key: value}))
+    (message,) = found[key]
+    for word in words:
+        assert word in message, message
+
+
+def test_lands_just_inside_the_pitch_circle_are_accepted(valid):
+    case = validate(
+        edit(
+            valid,
+            {
+                "bearing.inner_shoulder_diameter_mm": 53.99,
+                "bearing.outer_shoulder_diameter_mm": 54.01,
+            },
+        )
+    )
+    assert case.bearing.inner_shoulder_diameter_mm == 53.99
+
+
+def test_swapped_lands_are_rejected_both(valid, problems):
+    """inner land < d_m < outer land, so swapped lands break both bounds."""
+    found = problems(
+        edit(
+            valid,
+            {
+                "bearing.inner_shoulder_diameter_mm": 58.9,
+                "bearing.outer_shoulder_diameter_mm": 49.1,
+            },
+        )
+    )
+    assert {"bearing.inner_shoulder_diameter_mm", "bearing.outer_shoulder_diameter_mm"} <= set(
+        found
+    )
+
+
+def test_lands_off_their_groove_still_load(valid):
+    """The contract example's lands (below / beyond the groove bottoms) load with a warning."""
+    case = validate(
+        edit(
+            valid,
+            {
+                "bearing.inner_shoulder_diameter_mm": 45.9,
+                "bearing.outer_shoulder_diameter_mm": 62.2,
+            },
+        )
+    )
+    assert {w.key for w in case.warnings()} == {
+        "bearing.inner_shoulder_diameter_mm",
+        "bearing.outer_shoulder_diameter_mm",
+    }
+
+
+# ---- rules between keys name every key involved ------------------------------------------------
+@pytest.mark.parametrize(
+    ("changes", "key", "related"),
+    [
+        (
+            {"bearing.ball_diameter_mm": 60.0},
+            "bearing.pitch_diameter_mm",
+            {"bearing.ball_diameter_mm"},
+        ),
+        (
+            {"bearing.ball_count": 40},
+            "bearing.ball_count",
+            {"bearing.ball_diameter_mm", "bearing.pitch_diameter_mm"},
+        ),
+        (
+            {"bearing.diametral_clearance_mm": 0.02},
+            "bearing.free_contact_angle_deg",
+            {"bearing.diametral_clearance_mm"},
+        ),
+        (
+            {"bearing.free_contact_angle_deg": DELETE, "bearing.diametral_clearance_mm": 0.6},
+            "bearing.diametral_clearance_mm",
+            {"bearing.inner_groove_radius_ratio", "bearing.outer_groove_radius_ratio"},
+        ),
+        (
+            {"bearing.inner_shoulder_diameter_mm": 80.0},
+            "bearing.inner_shoulder_diameter_mm",
+            {"bearing.pitch_diameter_mm"},
+        ),
+        (
+            {"operating.misalignment_deg": 0.05, "operating.tilting_moment_Nm": 2.0},
+            "operating.tilting_moment_Nm",
+            {"operating.misalignment_deg"},
+        ),
+        (
+            {"operating.axial_load_N": 0.0, "operating.radial_load_N": 0.0},
+            "operating.axial_load_N",
+            {"operating.radial_load_N"},
+        ),
+        (
+            {"lubricant.traction": {"mu_zero": 0.06, "mu_max": 0.05}},
+            "lubricant.traction.mu_zero",
+            {"lubricant.traction.mu_max"},
+        ),
+    ],
+)
+def test_rule_between_keys_names_the_related_keys(valid, changes, key, related):
+    from solver.errors import CaseError
+
+    with pytest.raises(CaseError) as info:
+        validate(edit(valid, changes))
+    (problem,) = [p for p in info.value.problems if p.key == key]
+    assert related <= set(problem.related_keys)
+    for other in related:
+        assert problem.message in info.value.for_key(other)
+
+
+# ---- wording: every limit with its unit, no brackets inside brackets ---------------------------
+def _bracket_depth(text: str) -> int:
+    """Deepest nesting of (), [] and {} in ``text``."""
+    depth = deepest = 0
+    for char in text:
+        if char in "([{":
+            depth += 1
+            deepest = max(deepest, depth)
+        elif char in ")]}":
+            depth -= 1
+    return deepest
+
+
+def _all_messages(valid) -> list[str]:
+    """Messages for every bound of every key and for each rule between keys."""
+    from solver.case.schema import FIELDS
+
+    from .conftest import problems_of
+
+    edits = []
+    for f in FIELDS:
+        if f.minimum is not None:
+            edits.append({f.key: f.minimum - 1.0})
+        if f.maximum is not None:
+            edits.append({f.key: f.maximum + 1.0})
+        if f.required and f.section in ("bearing", "operating"):
+            edits.append({f.key: DELETE})
+    edits += [c[0] for c in CASES]
+    edits += [
+        {"bearing.inner_shoulder_diameter_mm": 80.0, "bearing.outer_shoulder_diameter_mm": 50.0},
+        {"bearing.ball_count": 40},
+        {"materials": {"x": 3}, "bearing.ball_material": "stel", "cage": 3},
+        {"bearing.ball_material": {"youngs_modulus_GPa": 200.0}},
+    ]
+    messages = []
+    for changes in edits:
+        for found in problems_of(edit(copy.deepcopy(valid), changes)).values():
+            messages += found
+    return messages
+
+
+def test_every_message_has_no_nested_brackets(valid):
+    messages = _all_messages(valid)
+    assert len(messages) > 60
+    nested = [m for m in messages if _bracket_depth(m.replace("{ ", "").replace(" }", "")) > 1]
+    assert nested == []
+
+
+def test_every_bound_states_its_unit(valid, problems):
+    from solver.case.schema import FIELDS
+
+    checked = 0
+    for f in FIELDS:
+        if not f.unit or f.type not in ("float", "int"):
+            continue
+        for bound, step in ((f.minimum, -1.0), (f.maximum, 1.0)):
+            if bound is None:
+                continue
+            (message,) = problems(edit(copy.deepcopy(valid), {f.key: bound + step}))[f.key]
+            assert f"{bound:g} {f.unit}" in message, message
+            checked += 1
+    assert checked >= 15
