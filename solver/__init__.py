@@ -6,6 +6,7 @@ Public API (everything else is internal):
 - ``catalogue()``: shipped bearings and example cases
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
 - ``simulate(case, progress=None, cancel=None) -> xarray.Dataset`` (dynamic model)
+- ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
   ``SimulationDiverged`` (the dynamic integration failed)
 
@@ -36,6 +37,7 @@ _LAZY = {
     "simulate": "solver.models.dynamic",
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
+    "result_warnings": "solver.results.checks",
 }
 
 # ``catalogue`` is both a submodule and the function it defines: import it eagerly (it is light), so

@@ -1,8 +1,12 @@
-"""``racetrace quasistatic CASE [--output result.nc] [--json]``: the Jones–Harris quasi-static solution.
+"""``racetrace quasistatic CASE [--output result.nc] [--json]``: the Jones–Harris quasi-static
+solution.
 
-Default output is a readable table with units; ``--json`` prints a machine-parseable summary instead;
-``--output`` writes the full results Dataset (NetCDF, results-schema.md). Exit codes: 0 success,
-2 invalid input, 3 no solution (the message says why and what to try) — mapped by racetrace.cli.
+Default output is a readable table with units; ``--json`` prints a machine-parseable summary
+instead; ``--output`` writes the full results Dataset (NetCDF, results-schema.md). Case warnings
+and result warnings (:func:`solver.results.checks.result_warnings`: the result leaves the model's
+validity) go to stderr as ``warning: ...`` lines and leave the exit code alone. Exit codes: 0
+success, 2 invalid input, 3 no solution (the message says why and what to try) — mapped by
+racetrace.cli.
 """
 
 from __future__ import annotations
@@ -20,8 +24,8 @@ def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "quasistatic",
         help="solve the quasi-static (Jones-Harris) model of a case",
-        description="Solve the quasi-static Jones-Harris model of a case (file or catalogue name) and "
-        "print the load distribution; optionally save the results Dataset as NetCDF.",
+        description="Solve the quasi-static Jones-Harris model of a case (file or catalogue name) "
+        "and print the load distribution; optionally save the results Dataset as NetCDF.",
     )
     parser.add_argument("case", metavar="CASE", help="case file (.toml) or catalogue name")
     parser.add_argument(
@@ -157,7 +161,9 @@ def table(ds, case) -> str:
             f"{q[0]:9.2f} {q[1]:9.2f} {a[0]:7.4f} {bb[0]:7.4f} {a[1]:7.4f} {bb[1]:7.4f} "
             f"{p[0]:7.3f} {p[1]:7.3f}  {ds.race_control.values[j]}"
         )
-    lines.append("alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the")
+    lines.append(
+        "alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the"
+    )
     lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
     return "\n".join(lines)
 
@@ -165,6 +171,14 @@ def table(ds, case) -> str:
 def _clean(value: float) -> float:
     """Round-off below 1e-9 of the printed magnitude shown as 0 (never '-0' or '-1.7e-15')."""
     return 0.0 if abs(value) < 1e-9 else float(value)
+
+
+def print_result_warnings(ds, stream=None) -> None:
+    """Print where the result leaves the model's validity, as ``warning: ...`` lines (stderr)."""
+    from solver.results.checks import result_warnings
+
+    for message in result_warnings(ds):
+        print(f"warning: {message}", file=stream or sys.stderr)
 
 
 def run(args) -> int:
@@ -177,10 +191,14 @@ def run(args) -> int:
     if args.output:
         target = Path(args.output)
         if not target.parent.is_dir():
-            print(f"racetrace: invalid input:\n--output {args.output}: directory "
-                  f"'{target.parent}' does not exist", file=sys.stderr)
+            print(
+                f"racetrace: invalid input:\n--output {args.output}: directory "
+                f"'{target.parent}' does not exist",
+                file=sys.stderr,
+            )
             return 2
     ds = solve_quasistatic(case)
+    print_result_warnings(ds)
     if args.output:
         from solver.results.io import save_dataset
 

@@ -3,6 +3,8 @@
 A progress bar with the simulated time and an ETA goes to stderr. Ctrl-C stops the run at the next
 chunk boundary: the partial result (attrs ``complete = 0``) is written atomically and the command
 exits with 130. A diverged run also writes what it had and exits with 4, printing the likely cause.
+Case warnings and result warnings (the result leaves the model's validity, or the run stopped early)
+are printed on stderr as ``warning: ...`` lines; they do not change the exit code.
 """
 
 from __future__ import annotations
@@ -25,8 +27,9 @@ def register(subparsers) -> None:
         description=(
             "Integrate the dynamic bearing model of CASE (a case file or a catalogue name) for "
             "[simulation] shaft_revolutions and save every results-schema variable to NetCDF. "
-            "Exit codes: 0 done, 2 invalid input, 3 no quasi-static start, 4 diverged (partial result "
-            "saved), 130 interrupted (partial result saved)."
+            "Case and result warnings go to stderr as 'warning: ...' lines. Exit codes: 0 done, "
+            "2 invalid input, 3 no quasi-static start, 4 diverged (partial result saved), "
+            "130 interrupted (partial result saved)."
         ),
     )
     parser.add_argument("case", help="case file (.toml) or catalogue case name")
@@ -78,13 +81,23 @@ class ProgressBar:
         self.stream.flush()
 
 
+def _print_case_warnings(case) -> None:
+    """Case.warnings() as ``warning: ...`` lines on stderr (inputs without warnings: nothing)."""
+    warnings = getattr(case, "warnings", None)
+    for warning in warnings() if callable(warnings) else ():
+        print(f"warning: {warning.message}", file=sys.stderr)
+
+
 def run(args) -> int:
     from solver.errors import SimulationDiverged
     from solver.models.dynamic import SimulationOptions, simulate
     from solver.models.dynamic.options import options_from_case
     from solver.results.io import save_dataset
 
+    from .quasistatic import print_result_warnings
+
     case = _load_case(args.case)
+    _print_case_warnings(case)
     output = Path(args.output) if args.output else Path(Path(args.case).stem + ".nc")
     changes = {}
     if args.revolutions is not None:
@@ -127,6 +140,7 @@ def run(args) -> int:
         if bar is not None:
             bar.close()
     save_dataset(ds, output)
+    print_result_warnings(ds)
     if ds.attrs.get("complete", 0) != 1 and code == 0:
         print(
             f"racetrace: interrupted; partial result ({ds.sizes['time']} samples up to "

@@ -1,4 +1,5 @@
-"""``racetrace quasistatic``: exit codes 0/2/3, table and JSON output, NetCDF output (subprocesses)."""
+"""``racetrace quasistatic``: exit codes 0/2/3, table and JSON output, NetCDF output, warnings on
+stderr (subprocesses)."""
 
 import json
 import subprocess
@@ -160,3 +161,44 @@ def test_contract_example_solves_and_warns_about_its_lands(tmp_path):
     header = next(line for line in out.stdout.splitlines() if line.startswith("ball"))
     assert header.split()[:4] == ["ball", "psi", "alpha_i", "alpha_o"]
     assert "-0 " not in out.stdout
+
+
+def test_result_outside_the_model_is_warned_on_stderr(tmp_path):
+    """209 deep groove at 1e9 N axial (an acceptance reviewer's case): still exit 0, but stderr says
+    the pressure is beyond the ISO 76 static limit and the contact too large for Hertz theory."""
+    from solver.catalogue import resolve_case
+
+    case = resolve_case("209-radial").with_values({"operating.axial_load_N": 1e9})
+    path = tmp_path / "absurd.toml"
+    path.write_text(case.to_toml())
+    out = run(str(path))
+    assert out.returncode == 0, out.stderr
+    lines = out.stderr.splitlines()
+    for race in ("inner", "outer"):
+        assert any(
+            line.startswith(f"warning: {race} race: peak contact pressure") and "4.2 GPa" in line
+            for line in lines
+        ), out.stderr
+        assert any(
+            line.startswith(f"warning: {race} race: contact too large for Hertz theory")
+            for line in lines
+        ), out.stderr
+    assert "Traceback" not in out.stderr
+    assert "ball" in out.stdout  # the table is still printed
+
+
+def test_catalogue_case_gives_no_warning():
+    out = run("218-heavy-combined")
+    assert out.returncode == 0, out.stderr
+    assert "warning:" not in out.stderr
+
+
+def test_contract_example_lands_give_truncation_warnings(tmp_path):
+    """Lands that do not rise above their grooves: the case warning and, from the result, every
+    loaded contact truncated on both races (case-format.md)."""
+    path = tmp_path / "example.toml"
+    path.write_text(CONTRACT_EXAMPLE)
+    out = run(str(path))
+    assert out.returncode == 0, out.stderr
+    for race in ("inner", "outer"):
+        assert f"warning: {race} race: the contact ellipse runs over the shoulder" in out.stderr

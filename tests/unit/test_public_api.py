@@ -14,5 +14,21 @@ def test_catalogue_stays_the_function_after_its_submodule_is_imported():
 def test_lazy_names_resolve():
     import solver
 
-    for name in ("load_case", "Case", "solve_quasistatic", "simulate", "save_dataset", "load_dataset"):
+    for name in (
+        "load_case",
+        "Case",
+        "solve_quasistatic",
+        "simulate",
+        "save_dataset",
+        "load_dataset",
+        "result_warnings",
+    ):
         assert getattr(solver, name) is not None, name
+    assert "result_warnings" in solver.__all__
+
+
+def test_result_warnings_is_the_checks_function():
+    import solver
+    from solver.results.checks import result_warnings
+
+    assert solver.result_warnings is result_warnings

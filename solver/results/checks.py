@@ -1,0 +1,227 @@
+"""Warnings about a result that lies outside the model's validity (quasi-static or dynamic).
+
+:func:`result_warnings` reads only the results Dataset (results-schema.md): the per-contact
+variables, the ``case`` attribute (for the ball diameter and groove radii) and, for a dynamic run,
+the ``time`` dimension and the ``complete`` attribute. Each message names the quantity, the race,
+where it happens (how many contacts and which balls, or which balls and what share of the run), the
+worst value with its unit, the limit, why it matters and what to try. An empty list means no check
+fired; it does not prove the result right.
+
+The checks, per race:
+
+- **shoulder truncation**: ``truncation_margin`` < 0 deg at a loaded contact. The ellipse runs over
+  the land's edge, so the pressure is no longer elliptic (Hertz theory no longer holds) and the edge
+  loads the ball. NaN margins (no shoulder given) are skipped.
+- **static pressure limit**: ``max_pressure`` > 4.2 GPa, the ISO 76 reference contact stress for
+  ball bearings (self-aligning ones excepted): the stress at which the permanent deformation of
+  ball and raceway together is about 1e-4 of the ball diameter, the basis of the static load
+  rating. It is a static limit; exceeding it dents (brinells) the raceways.
+- **contact too large for Hertz theory** (see :func:`_hertz_size_check`): the ellipse wraps past the
+  top of the groove (contact angle + semi-major / groove radius > 90 deg), or its semi-major axis
+  exceeds the ball radius D/2.
+
+and, for a dynamic result, **stopped early**: ``complete`` == 0.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+
+import numpy as np
+
+#: ISO 76 reference contact stress for ball bearings (except self-aligning), Pa: the static limit.
+STATIC_PRESSURE_LIMIT = 4.2e9
+#: Largest contact angle plus ellipse angular half-width across the groove, degree.
+GROOVE_WRAP_LIMIT = 90.0
+#: Largest ellipse semi-major axis as a fraction of the ball diameter D (the ball radius).
+SEMI_MAJOR_LIMIT_OF_D = 0.5
+
+
+def result_warnings(ds) -> list[str]:
+    """Messages (plain text, one per finding) about where ``ds`` leaves the model's validity.
+
+    ``ds`` is a quasi-static or dynamic results Dataset (results-schema.md); dims ``(ball, race)``
+    or ``(ball, race, time)``. Angles in the Dataset are in degree, lengths in m, pressures in Pa.
+    """
+    found: list[str] = []
+    if "time" in ds.dims and int(ds.attrs.get("complete", 1)) == 0:
+        found.append(_incomplete_message(ds))
+    grooves = _groove_radii(ds)
+    for race in [str(r) for r in ds["race"].values]:
+        for check in (_truncation_check, _pressure_check):
+            message = check(ds, race)
+            if message:
+                found.append(message)
+        if grooves is not None:
+            message = _hertz_size_check(ds, race, *grooves)
+            if message:
+                found.append(message)
+    return found
+
+
+# ---- reading the Dataset -----------------------------------------------------------------------
+def _race_values(ds, name: str, race: str) -> np.ndarray:
+    """Values of a per-contact variable on one race as an array (ball, time); time of length 1
+    for a quasi-static result."""
+    da = ds[name].sel(race=race)
+    if "time" in da.dims:
+        return np.asarray(da.transpose("ball", "time").values, dtype=float)
+    return np.asarray(da.values, dtype=float)[:, None]
+
+
+def _loaded(ds, race: str) -> np.ndarray:
+    """True at contacts that carry load (open contacts have no ellipse to check)."""
+    return _race_values(ds, "contact_load", race) > 0.0
+
+
+def _groove_radii(ds) -> tuple[float, dict[str, float]] | None:
+    """(ball diameter D [m], {race: groove radius f D [m]}) from the case text in the attributes;
+    None when the Dataset carries no readable case."""
+    try:
+        bearing = tomllib.loads(str(ds.attrs["case"]))["bearing"]
+        diameter = float(bearing["ball_diameter_mm"]) * 1e-3
+        radii = {
+            race: float(bearing[f"{race}_groove_radius_ratio"]) * diameter
+            for race in ("inner", "outer")
+        }
+    except (KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
+        return None
+    if not (math.isfinite(diameter) and diameter > 0.0):
+        return None
+    return diameter, radii
+
+
+# ---- describing where a check fires ------------------------------------------------------------
+def _ball_list(balls) -> str:
+    """Ball numbers as compact ranges: "0-3, 7, 9-10"."""
+    balls = sorted(int(b) for b in balls)
+    runs: list[list[int]] = []
+    for b in balls:
+        if runs and b == runs[-1][1] + 1:
+            runs[-1][1] = b
+        else:
+            runs.append([b, b])
+    return ", ".join(f"{lo}" if lo == hi else f"{lo}-{hi}" for lo, hi in runs)
+
+
+def _where(ds, flagged: np.ndarray) -> str:
+    """Where a (ball, time) mask is true, in words: contacts and balls, and the share of the run."""
+    n_balls, n_times = flagged.shape
+    balls = np.flatnonzero(flagged.any(axis=1))
+    ball_word = "ball" if len(balls) == 1 else "balls"
+    if "time" not in ds.dims:
+        return f"at {len(balls)} of {n_balls} contacts ({ball_word} {_ball_list(balls)})"
+    samples = flagged.any(axis=0)
+    times = np.asarray(ds["time"].values, dtype=float)
+    share = 100.0 * samples.sum() / n_times
+    first, last = times[samples][0], times[samples][-1]
+    return (
+        f"on {ball_word} {_ball_list(balls)} (of {n_balls}) during {share:.3g}% of the run "
+        f"({samples.sum()} of {n_times} time samples, between t = {first:.4g} s and {last:.4g} s)"
+    )
+
+
+# ---- the checks --------------------------------------------------------------------------------
+def _truncation_check(ds, race: str) -> str:
+    """Contact ellipse cut by the shoulder: truncation_margin < 0 deg at a loaded contact."""
+    if "truncation_margin" not in ds:
+        return ""
+    margin = _race_values(ds, "truncation_margin", race)
+    flagged = _loaded(ds, race) & (margin < 0.0)  # NaN (no shoulder) compares False
+    if not flagged.any():
+        return ""
+    worst = float(margin[flagged].min())
+    return (
+        f"{race} race: the contact ellipse runs over the shoulder {_where(ds, flagged)}; "
+        f"worst truncation_margin {worst:.3g} deg, limit 0 deg. Hertz theory no longer holds "
+        "there: the land's edge loads the ball (edge loading, a stress concentration the computed "
+        "pressures do not show). Try a lower axial load or check "
+        f"bearing.{race}_shoulder_diameter_mm."
+    )
+
+
+def _pressure_check(ds, race: str) -> str:
+    """Peak Hertz pressure above the ISO 76 static limit (4.2 GPa)."""
+    pressure = _race_values(ds, "max_pressure", race)
+    flagged = pressure > STATIC_PRESSURE_LIMIT
+    if not flagged.any():
+        return ""
+    worst = float(pressure[flagged].max())
+    return (
+        f"{race} race: peak contact pressure (max_pressure) {worst * 1e-9:.3g} GPa "
+        f"{_where(ds, flagged)}, above the static limit of {STATIC_PRESSURE_LIMIT * 1e-9:.3g} GPa "
+        "(ISO 76 reference contact stress for ball bearings: the ball and raceway deform "
+        "permanently by about 1e-4 of the ball diameter). The raceways would be dented; try a "
+        "lower load or a larger bearing."
+    )
+
+
+def _hertz_size_check(ds, race: str, ball_diameter: float, groove_radius: dict) -> str:
+    """Contact so large that Hertz theory cannot hold, even with no shoulder in the way.
+
+    Hertz theory replaces both surfaces near the contact by paraboloids on elastic half-spaces, so
+    the contact must be small against the radii of curvature. Two limits are used, both geometric
+    impossibilities rather than accuracy thresholds, so that a heavily loaded but real bearing is
+    left to the pressure check:
+
+    - contact angle alpha + semi-major a / groove radius (f D), in degrees, above 90: the ellipse
+      spans the groove angles alpha +- a/(f D); at 90 deg the groove profile is parallel to the
+      radial plane and beyond it the profile would turn back over the ball, which no ring has (the
+      ring could not be assembled). The contact would wrap past the top of the groove.
+    - a > D/2: the contact would be wider than the ball. In a conforming contact the gap between
+      ball and groove at distance x across the groove is x^2 (1/R - 1/r) / 2 (the paraboloid Hertz
+      keeps) plus x^4 (1/R^3 - 1/r^3) / 8; for r close to R = D/2 the second term reaches about
+      3/4 of the first at x = R, so at a = D/2 the geometry Hertz theory assumes is gone.
+
+    For scale, the shipped catalogue cases reach alpha + a/(f D) <= 71 deg and a <= 0.16 D; with
+    a fixed geometry a and p_max both grow as Q^(1/3), so a = D/2 lies at 2-3 times the 4.2 GPa
+    static limit for these bearings.
+    """
+    loaded = _loaded(ds, race)
+    semi_major = _race_values(ds, "ellipse_semi_major", race)
+    angle = np.abs(_race_values(ds, "contact_angle", race))
+    radius = groove_radius[race]
+    span = angle + np.degrees(semi_major / radius)
+    wraps = loaded & (span > GROOVE_WRAP_LIMIT)
+    size_limit = SEMI_MAJOR_LIMIT_OF_D * ball_diameter
+    too_wide = loaded & (semi_major > size_limit)
+    if not (wraps.any() or too_wide.any()):
+        return ""
+    reasons = []
+    if wraps.any():
+        reasons.append(
+            f"contact angle plus the ellipse's angular half-width across the groove "
+            f"(ellipse_semi_major / groove radius {radius * 1e3:.4g} mm) reaches "
+            f"{float(span[wraps].max()):.3g} deg, beyond the {GROOVE_WRAP_LIMIT:g} deg top of the "
+            "groove"
+        )
+    if too_wide.any():
+        reasons.append(
+            f"ellipse semi-major axis reaches {float(semi_major[too_wide].max()) * 1e3:.3g} mm, "
+            f"more than the ball radius D/2 = {size_limit * 1e3:.4g} mm"
+        )
+    return (
+        f"{race} race: contact too large for Hertz theory {_where(ds, wraps | too_wide)}: "
+        + "; ".join(reasons)
+        + ". The contact would wrap past the groove or be wider than the ball, so this result is "
+        "not physical; reduce the load (or choose a larger bearing)."
+    )
+
+
+def _incomplete_message(ds) -> str:
+    """A dynamic run that stopped before its planned end."""
+    times = np.asarray(ds["time"].values, dtype=float)
+    end = float(times[-1]) if times.size else 0.0
+    period = ds.attrs.get("shaft_period_s")
+    revolutions = f" ({end / float(period):.3g} shaft revolutions)" if period else ""
+    reason = str(ds.attrs.get("stop_reason", "") or "").strip()
+    why = f"; reason: {reason}" if reason and reason != "finished" else ""
+    return (
+        f"the dynamic run stopped early (complete = 0) at t = {end:.4g} s{revolutions}{why}. "
+        "The data up to the stop are kept, but the trajectory band widths and any time average "
+        "cover only that part; run it again to the end for the full result."
+    )
+
+
+__all__ = ["result_warnings", "STATIC_PRESSURE_LIMIT"]

@@ -1,0 +1,53 @@
+"""``racetrace simulate``: case warnings and result warnings on stderr, exit code unchanged."""
+
+import importlib.util
+import subprocess
+import sys
+from pathlib import Path
+
+_spec = importlib.util.spec_from_file_location(
+    "cli_quasistatic_tests", Path(__file__).with_name("test_cli_quasistatic.py")
+)
+_qs = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_qs)
+CONTRACT_EXAMPLE = _qs.CONTRACT_EXAMPLE
+
+
+def test_simulate_prints_case_and_result_warnings(tmp_path):
+    """The contract example's lands do not rise above their grooves: the case warning, then the
+    result's truncation warnings for both races, as ``warning: ...`` lines; the run exits 0."""
+    case = tmp_path / "example.toml"
+    case.write_text(CONTRACT_EXAMPLE)
+    output = tmp_path / "run.nc"
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "racetrace",
+            "simulate",
+            str(case),
+            "--output",
+            str(output),
+            "--revolutions",
+            "0.05",
+            "--samples-per-revolution",
+            "40",
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert out.returncode == 0, out.stderr
+    assert output.exists()
+    lines = out.stderr.splitlines()
+    assert any(
+        line.startswith("warning: bearing.inner_shoulder_diameter_mm = 45.9") for line in lines
+    )
+    for race in ("inner", "outer"):
+        assert any(
+            line.startswith(f"warning: {race} race: the contact ellipse runs over the shoulder")
+            and "time samples" in line
+            for line in lines
+        ), out.stderr
+    assert "Traceback" not in out.stderr
