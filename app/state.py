@@ -80,7 +80,7 @@ class RacetraceApp:
         server,
         runs_dir: str | Path | None = None,
         render: bool = True,
-        window_size=(900, 640),
+        window_size=(650, 480),
     ):
         self.server = server
         self.state, self.ctrl = server.state, server.controller
@@ -143,6 +143,9 @@ class RacetraceApp:
         for f in self.fields:
             s[f"fv_{f.name}"] = ""
             s[f"fe_{f.name}"] = ""
+        # what an empty field means: the default the solver uses (estimated ones per case)
+        s.placeholders = {f.name: f.default_text for f in self.fields}
+        s.result_warnings = []  # where the result on show leaves the model's validity
         s.case_message = ""
         s.case_valid = False
         s.case_toml_href = ""
@@ -229,6 +232,7 @@ class RacetraceApp:
         """Put ``case`` in the form and preview it."""
         self.base_case = case
         self._fill_form(case)
+        self._update_placeholders(case)
         self.validate()
         if synchronous:
             self.preview_now()
@@ -247,6 +251,16 @@ class RacetraceApp:
                     self.state[f"fe_{name}"] = ""
         finally:
             self._filling = False
+
+    def _update_placeholders(self, case) -> None:
+        from .caseform import estimated_default_texts
+
+        placeholders = {f.name: f.default_text for f in self.fields}
+        try:
+            placeholders.update(estimated_default_texts(case, self.fields))
+        except (ValueError, ArithmeticError) as error:  # a doubtful case keeps the rules
+            log.warning("no estimated defaults for this case: %s", error)
+        self.state.placeholders = placeholders
 
     def _on_upload(self, uploaded_case=None, **_):
         if not uploaded_case:
@@ -361,6 +375,7 @@ class RacetraceApp:
         self.source = source
         case = load_case(ds.attrs["case"]) if ds.attrs.get("case") else self.case
         self._shown_case_text = case.to_toml() if case is not None else None
+        self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:
             self.quasistatic = ds
         else:  # the quasi-static solution of the same case, for the comparison chart
@@ -383,6 +398,18 @@ class RacetraceApp:
         if s.frame > s.frame_max:
             s.frame = 0
         self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
+
+    @staticmethod
+    def _warnings_of(ds, case) -> list[str]:
+        """Case warnings and :func:`solver.result_warnings` of the result ``ds`` (plain text)."""
+        import solver
+
+        found = [str(w) for w in case.warnings()] if case is not None else []
+        try:
+            found += solver.result_warnings(ds)
+        except (KeyError, ValueError) as error:  # an older result without some variable
+            log.warning("result checks skipped: %s", error)
+        return found
 
     def _ensure_scene(self, geometry, case) -> None:
         key = (
@@ -419,8 +446,9 @@ class RacetraceApp:
         if camera is not None:
             self.plotter.camera_position = camera
         self._scene_key = key
-        if self.view is not None and hasattr(self.view, "reset_camera") and camera is None:
-            self.view.reset_camera()
+        if camera is None:  # a new scene: frame it with the chosen preset
+            self.scene.set_camera(str(self.state.camera))
+            self._push_view()
 
     def _push_view(self) -> None:
         if self.view is not None:
@@ -450,7 +478,7 @@ class RacetraceApp:
         src, s = self.source, self.state
         open_panels = set(s.open_panels or ())
         ball = int(s.trace_ball)
-        balls = (ball,) if ball >= 0 else (0,)
+        balls = (ball,) if ball >= 0 else None  # None: every ball
         s.chart_contact_angle = _fig_json(charts.contact_angle_figure(src, balls, current=i))
         s.chart_raceway_map = _fig_json(charts.raceway_map_figure(src, stop=i + 1))
         if "load_azimuth" in open_panels:
@@ -563,6 +591,7 @@ class RacetraceApp:
 
         self.base_case = load_case(case_text)
         self._fill_form(self.base_case)
+        self._update_placeholders(self.base_case)
         self.validate()
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         self._preview_generation += 1  # a preview still on its way must not replace the run

@@ -34,6 +34,8 @@ def _field(f) -> None:
             label=f.label,
             v_model=(f"fv_{f.name}",),
             density="compact",
+            placeholder=(f"placeholders.{f.name}",),  # the default used when left empty
+            persistent_placeholder=bool(f.default_text),
         )
         if f.kind in ("choice", "bool", "material"):
             # Vuetify's select fails on error-messages here: the message goes in a div below.
@@ -367,6 +369,16 @@ def _run_panel(ctrl) -> None:
             with v3.VCol():
                 html.Div("{{ status }}", id="status", classes="text-body-2")
                 html.Div("{{ eta }}", classes="text-caption")
+        with html.Div(id="result-warnings", v_if="result_warnings.length"):
+            v3.VAlert(
+                "{{ warning }}",
+                v_for="warning in result_warnings",
+                key="warning",
+                type="warning",
+                density="compact",
+                variant="tonal",
+                classes="my-1 text-caption",
+            )
         v3.VProgressLinear(
             id="progress", model_value=("progress",), height=8, color="primary", classes="my-1"
         )

@@ -348,3 +348,22 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     for key in ("chart_compare_runs", "chart_compare_angle", "chart_compare_load"):
         assert s[key]["data"] == []
     assert s.compare_summary == [] and s.compare_label == "" and s.compare_message == ""
+
+
+def test_a_result_outside_the_models_validity_is_flagged(app):
+    s = app.state
+    assert s.result_warnings == []  # the shipped default case is within the model's validity
+    _set(app, fv_axial_load_N="1e9")  # absurd: ~100 GPa, contacts wider than the groove allows
+    assert s.status == "preview done"
+    joined = " ".join(s.result_warnings)
+    assert "4.2 GPa" in joined and "inner race" in joined and "outer race" in joined
+    _set(app, fv_axial_load_N="500")
+    assert s.result_warnings == []
+
+
+def test_empty_fields_show_the_default_used(app):
+    p = app.state.placeholders
+    assert p["viscosity_Pas"].endswith("Pa s")
+    # an estimated default shows this bearing's value and its rule
+    assert p["pocket_diametral_clearance_mm"].startswith("0.2 mm (estimated")
+    assert p["ball_count"] == ""  # required: no default
