@@ -330,10 +330,10 @@ def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go
     return fig
 
 
-def side_by_side_raceway_maps(
-    a: FrameSource, b: FrameSource, title_a: str, title_b: str, max_points: int = 10000
-) -> go.Figure:
-    """Two runs compared: unrolled raceway maps next to each other, same contact-angle axis."""
+def side_by_side_raceway_maps(a: FrameSource, b: FrameSource, max_points: int = 10000) -> go.Figure:
+    """Two runs compared: unrolled raceway maps of run A (left) and run B (right), same
+    contact-angle axis. The runs' full names are too long for the narrow column: the page names
+    them above the chart."""
     from plotly.subplots import make_subplots
 
     fig = make_subplots(
@@ -341,7 +341,7 @@ def side_by_side_raceway_maps(
         cols=2,
         shared_yaxes=True,
         horizontal_spacing=0.04,
-        subplot_titles=(f"A: {title_a[:57]}", f"B: {title_b[:57]}"),
+        subplot_titles=("A (run on show)", "B (compared run)"),  # full names: caption above
     )
     for col, source in ((1, a), (2, b)):
         for race in (INNER, OUTER):

@@ -629,9 +629,7 @@ class RacetraceApp:
         }
         with self.state:
             s = self.state
-            s.chart_compare_runs = _fig_json(
-                charts.side_by_side_raceway_maps(self.source, other, str(s.result_label), label)
-            )
+            s.chart_compare_runs = _fig_json(charts.side_by_side_raceway_maps(self.source, other))
             s.chart_compare_angle = _fig_json(charts.compare_angle_figure(self.source, other))
             s.chart_compare_load = _fig_json(charts.compare_load_figure(self.source, other))
             s.compare_summary = charts.summary_rows(summaries)

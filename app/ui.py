@@ -189,9 +189,10 @@ def _compare_panel() -> None:
         id="compare-message",
         classes="text-error text-caption my-1",
     )
-    _chart("chart-compare-runs", "chart_compare_runs", "compare_runs", height=300)
-    _chart("chart-compare-angle", "chart_compare_angle", "compare_angle", height=280)
-    _chart("chart-compare-load", "chart_compare_load", "compare_load", height=280)
+    with html.Div(v_if="compare_label"):  # no empty axes before a run is chosen
+        _chart("chart-compare-runs", "chart_compare_runs", "compare_runs", height=300)
+        _chart("chart-compare-angle", "chart_compare_angle", "compare_angle", height=280)
+        _chart("chart-compare-load", "chart_compare_load", "compare_load", height=280)
     _summary_table()
 
 

@@ -78,9 +78,10 @@ def test_long_results_are_decimated(qs_dataset):
 
 def test_side_by_side_maps(qs_dataset, dynamic_dataset):
     a, b = frame_source(qs_dataset), frame_source(dynamic_dataset)
-    fig = charts.side_by_side_raceway_maps(a, b, "quasi-static", "dynamic")
+    fig = charts.side_by_side_raceway_maps(a, b)
     assert len(fig.data) == 4
     assert [t.xaxis for t in fig.data] == ["x", "x", "x2", "x2"]
+    assert [a.text for a in fig.layout.annotations] == ["A (run on show)", "B (compared run)"]
     # the right panel shows run b: its outer-race contact angles
     np.testing.assert_allclose(
         sorted(fig.data[3].y), sorted(np.degrees(b.trace(1)[1][b.trace(1)[2]])), rtol=1e-12
@@ -184,7 +185,7 @@ def _figures(qs_dataset, dynamic_dataset):
         "raceway_map": charts.raceway_map_figure(q),
         "ellipse": charts.ellipse_figure(q, 0),
         "comparison": charts.comparison_figure(qs_dataset, dynamic_dataset),
-        "compare_runs": charts.side_by_side_raceway_maps(q, d, "a", "b"),
+        "compare_runs": charts.side_by_side_raceway_maps(q, d),
         "compare_angle": charts.compare_angle_figure(q, d),
         "compare_load": charts.compare_load_figure(q, d),
     }
