@@ -18,6 +18,7 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+import math
 import secrets
 import time
 import urllib.parse
@@ -38,6 +39,7 @@ PLAY_FPS = 15.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
 PREVIEW_DEBOUNCE_S = 0.1
+CUTAWAY_HALF_WIDTH = math.radians(70.0)  # the outer ring is cut away +-70 deg about the load side
 _SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
 CHARTS = (
     "contact_angle",
@@ -411,6 +413,12 @@ class RacetraceApp:
             log.warning("result checks skipped: %s", error)
         return found
 
+    @staticmethod
+    def _load_side(case) -> float:
+        """Azimuth (rad, from +y towards +z) of the radial load: where the load zone is."""
+        angle = getattr(case.operating, "radial_load_angle_deg", None) if case else None
+        return math.radians(angle or 0.0)
+
     def _ensure_scene(self, geometry, case) -> None:
         key = (
             geometry.ball_count,
@@ -422,6 +430,7 @@ class RacetraceApp:
             geometry.inner_shoulder_diameter,
             geometry.outer_shoulder_diameter,
             geometry.ball_material.name,
+            self._load_side(case),
         )
         if self.scene is not None and key == self._scene_key:
             return
@@ -435,9 +444,13 @@ class RacetraceApp:
         else:
             self.plotter.clear_actors()
         camera = self.plotter.camera_position if self.scene is not None else None
+        load_side = self._load_side(case)
         options = SceneOptions(
             exaggeration=float(self.state.exaggeration),
             trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
+            # face the load zone and cut the outer ring away there
+            view_azimuth=load_side,
+            outer_cutaway=(load_side - CUTAWAY_HALF_WIDTH, load_side + CUTAWAY_HALF_WIDTH),
         )
         dark = geometry.ball_material.density < 5000.0  # ceramic balls drawn dark
         self.scene = BearingScene(self.plotter, geometry, options, dark_balls=dark)

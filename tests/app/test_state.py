@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import math
 import time
 import uuid
 
@@ -122,6 +123,13 @@ def test_scene_follows_frames_and_options(tmp_path):
         assert not a.scene._actors["cage"][0].visibility
         _set(a, exaggeration=8)
         assert a.scene.options.exaggeration == 8
+        # the view faces the load zone: a radial load towards +z (90 deg) turns it there
+        assert a.scene.options.view_azimuth == pytest.approx(0.0)
+        _set(a, fv_radial_load_angle_deg="90")
+        a.preview_now()
+        assert a.scene.options.view_azimuth == pytest.approx(math.pi / 2)
+        lo, hi = a.scene.options.outer_cutaway
+        assert (lo + hi) / 2 == pytest.approx(math.pi / 2)
     finally:
         a.shutdown()
 
