@@ -81,6 +81,18 @@ def _quiet_closed_connections(**_) -> None:
     loop.set_exception_handler(handler)
     # aiohttp logs the same failed sends itself, as "Error handling request" with a traceback
     logging.getLogger("aiohttp.server").addFilter(_not_a_closed_connection)
+    # and wslink logs a failed reply to a closed browser as three error lines without exc_info
+    logging.getLogger("wslink.protocol").addFilter(_not_a_closed_connection_text)
+
+
+def _not_a_closed_connection_text(record) -> bool:
+    """Logging filter for wslink: False for its lines about a reply to a closed websocket.
+
+    wslink writes "Exception raised", the exception's repr and the traceback as three records; the
+    header alone says nothing, so it is dropped too (a real error still shows its repr and trace).
+    """
+    text = record.getMessage()
+    return not ("closing transport" in text or text == "Exception raised")
 
 
 def _not_a_closed_connection(record) -> bool:

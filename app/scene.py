@@ -554,6 +554,11 @@ class BearingScene:
         )
         self.plotter.camera_position = [tuple(position), tuple(focal), tuple(up)]
         self.plotter.renderer.ResetCameraClippingRange()
+        self._framed_size = (width, height)
+
+    def framed_for_window(self) -> bool:
+        """Whether the last camera preset was framed for the render window's current size."""
+        return tuple(self.plotter.window_size) == getattr(self, "_framed_size", None)
 
     def trace_point_count(self, race: int) -> int:
         """Number of points in the drawn trace of ``race`` (0 when none is drawn)."""

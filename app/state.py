@@ -209,6 +209,7 @@ class RacetraceApp:
         c.cancel = self.cancel
         c.step = self.step
         c.set_camera = self.set_camera
+        c.reset_case = self.reset_case
         c.refresh_runs = self._refresh_runs
         c.export = self.request_export
         # Count browser connections at the websocket level: the page's own "exited" signal is not
@@ -270,6 +271,7 @@ class RacetraceApp:
         from solver import CaseError, load_case
 
         item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
+        self.state.uploaded_case = None  # empty the file box, so the same file can be sent again
         content = item.get("content", b"")
         text = content.decode("utf-8", "replace") if isinstance(content, bytes) else str(content)
         try:
@@ -279,6 +281,13 @@ class RacetraceApp:
             return
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         self.set_base_case(case)
+
+    def reset_case(self) -> None:
+        """Undo the edits: the form gets the values of the case last picked, uploaded or opened."""
+        entry = self._catalogue.get(self.state.case_name)
+        case = entry.load() if entry is not None else self.base_case
+        if case is not None:
+            self.set_base_case(case)
 
     def form_values(self) -> dict:
         return {f.name: self.state[f"fv_{f.name}"] for f in self.fields}
@@ -441,7 +450,9 @@ class RacetraceApp:
         if self.plotter is None:
             pv.global_theme.multi_samples = 0
             self.plotter = pv.Plotter(off_screen=True, window_size=self.window_size)
-        else:
+        else:  # a new bearing: drop the old scene, its colour bar too (else never redrawn)
+            for title in list(self.plotter.scalar_bars.keys()):
+                self.plotter.remove_scalar_bar(title)
             self.plotter.clear_actors()
         camera = self.plotter.camera_position if self.scene is not None else None
         load_side = self._load_side(case)
@@ -464,8 +475,12 @@ class RacetraceApp:
             self._push_view()
 
     def _push_view(self) -> None:
-        if self.view is not None:
-            self.view.render()
+        if self.view is None:
+            return
+        if self.scene is not None and not self.scene.framed_for_window():
+            # the page resized the view since the preset was applied: frame it again
+            self.scene.set_camera(str(self.state.camera))
+        self.view.render()
 
     def _apply_frame(self, index: int, charts_too: bool) -> None:
         if self.source is None:

@@ -75,7 +75,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
     lazy_charts.enable(server)
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         client.Script(lazy_charts.LOAD_AFTER_FIRST_FRAME)
-        layout.title.set_text("racetrace: ball-bearing contact trajectories")
+        layout.title.set_text("racetrace")
         layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
             v3.VSpacer()
@@ -84,14 +84,25 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
         with layout.drawer as drawer:
             drawer.width = 380
             with html.Div(classes="pa-3"):
-                with html.Div(id="case-select"):
-                    v3.VSelect(
-                        label="Shipped case or catalogue bearing",
-                        v_model=("case_name",),
-                        items=("case_items",),
-                        density="compact",
-                        hide_details=True,
-                    )
+                with v3.VRow(dense=True, align="center"):
+                    with v3.VCol():
+                        with html.Div(id="case-select"):
+                            v3.VSelect(
+                                label="Shipped case or catalogue bearing",
+                                v_model=("case_name",),
+                                items=("case_items",),
+                                density="compact",
+                                hide_details=True,
+                            )
+                    with v3.VCol(cols="auto"):
+                        v3.VBtn(
+                            icon="mdi-restore",
+                            click=ctrl.reset_case,
+                            size="small",
+                            variant="text",
+                            id="case-reset",
+                            title="Undo the edits: back to the values of the chosen case",
+                        )
                 with v3.VRow(classes="my-1", dense=True):
                     with v3.VCol():
                         v3.VFileInput(
@@ -131,7 +142,12 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
         with layout.content:
             with v3.VContainer(fluid=True, classes="pa-2"):
                 with v3.VRow(dense=True):
-                    with v3.VCol(cols=12, md=7):
+                    # the 3-D view stays in sight while the chart column scrolls
+                    with v3.VCol(
+                        cols=12,
+                        md=7,
+                        style="position: sticky; top: 64px; align-self: flex-start;",
+                    ):
                         with html.Div(id="view-3d", style="height: 480px; position: relative;"):
                             view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
                             app.view = view

@@ -67,3 +67,18 @@ def test_closed_connection_errors_are_kept_out_of_the_log():
     assert _not_a_closed_connection(record_of(ValueError("a real problem")))
     plain = logging.LogRecord("aiohttp.server", 20, "", 0, "no exception", (), None)
     assert _not_a_closed_connection(plain)
+
+
+def test_wslink_lines_about_a_closed_browser_are_dropped():
+    import logging
+
+    from app.main import _not_a_closed_connection_text
+
+    def record(text):
+        return logging.LogRecord("wslink.protocol", 40, "", 0, text, (), None)
+
+    assert not _not_a_closed_connection_text(record("Exception raised"))
+    assert not _not_a_closed_connection_text(
+        record("ClientConnectionResetError('Cannot write to closing transport')")
+    )
+    assert _not_a_closed_connection_text(record("KeyError('frame')"))

@@ -130,6 +130,18 @@ def test_scene_follows_frames_and_options(tmp_path):
         assert a.scene.options.view_azimuth == pytest.approx(math.pi / 2)
         lo, hi = a.scene.options.outer_cutaway
         assert (lo + hi) / 2 == pytest.approx(math.pi / 2)
+        # another bearing and back: the pressure colour bar is drawn each time
+        for case_name in ("209-deep-groove", DEFAULT_CASE):
+            _set(a, case_name=case_name)
+            props = a.plotter.renderer.GetViewProps()
+            props = [props.GetItemAsObject(i) for i in range(props.GetNumberOfItems())]
+            bars = [x for x in props if x.IsA("vtkScalarBarActor")]
+            assert len(bars) == 1 and bars[0].GetVisibility(), case_name
+        # a resized view is framed again before the next frame is sent
+        a.plotter.window_size = (150, 150)
+        assert not a.scene.framed_for_window()
+        _set(a, frame=3)
+        assert a.scene.framed_for_window()
     finally:
         a.shutdown()
 
@@ -197,8 +209,19 @@ def test_uploaded_case_fills_the_form(app, fixture_model):
     assert app.state.fv_ball_count == "12"  # the form keeps the last valid case
     # the case list no longer names the shipped case, so picking it again reloads it
     assert app.state.case_name is None
+    assert app.state.uploaded_case is None  # the file box is emptied: the same file can be resent
     _set(app, case_name=DEFAULT_CASE)
     assert app.state.fv_title != "app test fixture"
+
+
+def test_reset_undoes_the_edits(app):
+    s = app.state
+    original = s.fv_ball_diameter_mm
+    _set(app, fv_ball_diameter_mm="", fv_axial_load_N="650")
+    assert not s.case_valid
+    app.reset_case()
+    assert s.fv_ball_diameter_mm == original and s.fv_axial_load_N in ("500", "500.0")
+    assert s.case_valid
 
 
 def test_a_reopened_run_stays_on_show(app):
