@@ -49,14 +49,10 @@ def result_warnings(ds) -> list[str]:
         found.append(_incomplete_message(ds))
     grooves = _groove_radii(ds)
     for race in [str(r) for r in ds["race"].values]:
-        for check in (_truncation_check, _pressure_check):
-            message = check(ds, race)
-            if message:
-                found.append(message)
-        if grooves is not None:
-            message = _hertz_size_check(ds, race, *grooves)
-            if message:
-                found.append(message)
+        too_large = _hertz_size_check(ds, race, *grooves) if grooves is not None else ""
+        # a contact too large for Hertz theory makes its truncation margin meaningless: say one
+        truncated = "" if too_large else _truncation_check(ds, race)
+        found += [m for m in (too_large, truncated, _pressure_check(ds, race)) if m]
     return found
 
 
@@ -134,7 +130,8 @@ def _truncation_check(ds, race: str) -> str:
     worst = float(margin[flagged].min())
     return (
         f"{race} race: the contact ellipse runs over the shoulder {_where(ds, flagged)}; "
-        f"worst truncation_margin {worst:.3g} deg, limit 0 deg. Hertz theory no longer holds "
+        f"by up to {-worst:.3g} deg of groove arc (truncation_margin {worst:.3g} deg, "
+        "limit 0 deg). Hertz theory no longer holds "
         "there: the land's edge loads the ball (edge loading, a stress concentration the computed "
         "pressures do not show). Try a lower axial load or check "
         f"bearing.{race}_shoulder_diameter_mm."
@@ -149,7 +146,7 @@ def _pressure_check(ds, race: str) -> str:
         return ""
     worst = float(pressure[flagged].max())
     return (
-        f"{race} race: peak contact pressure (max_pressure) {worst * 1e-9:.3g} GPa "
+        f"{race} race: peak contact pressure {worst * 1e-9:.3g} GPa "
         f"{_where(ds, flagged)}, above the static limit of {STATIC_PRESSURE_LIMIT * 1e-9:.3g} GPa "
         "(ISO 76 reference contact stress for ball bearings: the ball and raceway deform "
         "permanently by about 1e-4 of the ball diameter). The raceways would be dented; try a "
@@ -190,11 +187,14 @@ def _hertz_size_check(ds, race: str, ball_diameter: float, groove_radius: dict) 
         return ""
     reasons = []
     if wraps.any():
+        worst_span = float(span[wraps].max())
+        reach = (  # past 180 deg the number has no geometric meaning left: do not show it
+            f"reaches {worst_span:.3g} deg" if worst_span <= 180.0 else "goes far"
+        )
         reasons.append(
             f"contact angle plus the ellipse's angular half-width across the groove "
-            f"(ellipse_semi_major / groove radius {radius * 1e3:.4g} mm) reaches "
-            f"{float(span[wraps].max()):.3g} deg, beyond the {GROOVE_WRAP_LIMIT:g} deg top of the "
-            "groove"
+            f"(semi-major axis / groove radius {radius * 1e3:.4g} mm) {reach} beyond the "
+            f"{GROOVE_WRAP_LIMIT:g} deg top of the groove"
         )
     if too_wide.any():
         reasons.append(

@@ -171,6 +171,18 @@ def test_absurd_axial_load_is_flagged_by_solve_quasistatic():
         mine = [m for m in found if m.startswith(f"{race} race:")]
         assert any("peak contact pressure" in m and "4.2 GPa" in m for m in mine), found
         assert any("too large for Hertz theory" in m for m in mine), found
+        # the shoulder message would quote a meaningless margin there: it is left out
+        assert not any("runs over the shoulder" in m for m in mine), found
+        # and a span past 180 deg is not quoted as a number
+        assert not any("reaches 5" in m or "reaches 6" in m for m in mine), found
+
+
+def test_a_contact_too_large_for_hertz_is_not_also_reported_as_truncated():
+    beyond = _semi_major_for_span(95.0, 80.0)
+    found = result_warnings(
+        dataset(angle=(80.0, 10, 10), semi_major=(beyond, 5e-4, 5e-4), margin=(-20.0, 3, 3))
+    )
+    assert len(found) == 1 and "too large for Hertz theory" in found[0]
 
 
 def _catalogue_names():
