@@ -140,15 +140,16 @@ def contact_angle_figure(
 ) -> go.Figure:
     """Contact angle (degree) versus time (ms), inner and outer contacts of the chosen balls.
 
-    ``balls``: ball indices, or None for every ball. Each (ball, race) is one line in the race's
-    colour; with every ball the legend has one entry per race ("inner, all balls"), grouped, and
-    the lines share :data:`ALL_BALLS_MAX_POINTS` points. Long results are decimated to at most
-    ``max_points`` samples per line.
+    ``balls``: ball indices, one line per (ball, race) in the race's colour; or None for every
+    ball, drawn as ONE trace per race ("inner, all balls") whose balls are separated by gaps
+    (NaN), sharing :data:`ALL_BALLS_MAX_POINTS` points: 36 separate traces made the chart slow
+    to build, send and draw while playing. Hovering names the ball. Long results are decimated
+    to at most ``max_points`` samples per line.
     """
     every_ball = balls is None
     if every_ball:
         balls = range(source.ball_count)
-        max_points = min(max_points, ALL_BALLS_MAX_POINTS // (2 * max(1, source.ball_count)))
+        max_points = min(max_points, ALL_BALLS_MAX_POINTS // (2 * max(1, source.ball_count)) - 1)
     balls = [int(j) for j in balls]
     for j in balls:
         if not 0 <= j < source.ball_count:
@@ -160,19 +161,35 @@ def contact_angle_figure(
     t_ms = source.times[::step] * 1e3
     alpha = np.degrees(source.contact["contact_angle"][::step])
     load = np.nan_to_num(source.contact["contact_load"][::step])
+    angle = np.where(load > 0, alpha, np.nan)  # (frame, ball, race); open contacts: gaps
     for race in (INNER, OUTER):
-        for k, j in enumerate(balls):
-            y = np.where(load[:, j, race] > 0, alpha[:, j, race], np.nan)
-            name = f"{RACES[race]}, all balls" if every_ball else f"ball {j} {RACES[race]}"
+        if every_ball:
+            gap = np.full((len(balls), 1), np.nan)
+            x = np.hstack([np.tile(t_ms, (len(balls), 1)), gap]).ravel()
+            y = np.hstack([angle[:, balls, race].T, gap]).ravel()
+            ball_of_point = np.repeat(balls, len(t_ms) + 1)
+            fig.add_trace(
+                go.Scatter(
+                    x=x,
+                    y=y,
+                    customdata=ball_of_point,
+                    mode="lines",
+                    name=f"{RACES[race]}, all balls",
+                    line={"color": RACE_COLOURS[race], "width": 1},
+                    hovertemplate=(
+                        f"ball %{{customdata}} {RACES[race]}: %{{y:.3f}} degree<extra></extra>"
+                    ),
+                )
+            )
+            continue
+        for j in balls:
             fig.add_trace(
                 go.Scatter(
                     x=t_ms,
-                    y=y,
+                    y=angle[:, j, race],
                     mode="lines",
-                    name=name,
-                    legendgroup=RACES[race] if every_ball else None,
-                    showlegend=not every_ball or k == 0,
-                    line={"color": RACE_COLOURS[race], "width": 1 if every_ball else 2},
+                    name=f"ball {j} {RACES[race]}",
+                    line={"color": RACE_COLOURS[race], "width": 2},
                     hovertemplate=f"ball {j} {RACES[race]}: %{{y:.3f}} degree<extra></extra>",
                 )
             )

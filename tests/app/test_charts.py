@@ -234,18 +234,18 @@ def test_contact_angle_of_all_balls(dynamic_dataset):
     src = frame_source(dynamic_dataset)
     z = src.ball_count
     fig = charts.contact_angle_figure(src, balls=None, current=5)
-    assert len(fig.data) == 2 * z  # one line per (ball, race)
-    assert [t.name for t in fig.data if t.showlegend is not False] == [
-        "inner, all balls",
-        "outer, all balls",
-    ]
-    assert {t.legendgroup for t in fig.data} == {"inner", "outer"}
-    assert {t.line.color for t in fig.data[:z]} == {charts.RACE_COLOURS[0]}
-    # the last outer line is the last ball's outer contact angle
-    alpha = np.degrees(src.contact["contact_angle"][:, z - 1, 1])
-    y = np.asarray(fig.data[-1].y, float)
-    ok = np.isfinite(y)
-    np.testing.assert_allclose(y[ok], alpha[: len(y)][ok])
+    # one trace per race holding every ball, the balls separated by a gap
+    assert [t.name for t in fig.data] == ["inner, all balls", "outer, all balls"]
+    assert fig.data[0].line.color == charts.RACE_COLOURS[0]
+    n = src.n_frames  # short fixture: not decimated
+    for race, trace in enumerate(fig.data):
+        y = np.asarray(trace.y, float).reshape(z, n + 1)
+        assert np.isnan(y[:, -1]).all()  # the gap after each ball
+        for j in range(z):
+            alpha = np.degrees(src.contact["contact_angle"][:, j, race])
+            ok = np.isfinite(y[j, :n])
+            np.testing.assert_allclose(y[j, :n][ok], alpha[ok])
+        assert list(np.asarray(trace.customdata).reshape(z, n + 1)[:, 0]) == list(range(z))
 
 
 def test_all_balls_chart_stays_light(qs_dataset):

@@ -288,7 +288,8 @@ def test_dynamic_run_reports_progress_and_shows_its_result(app):
     omega = app.case.operating.inner_ring_speed_rpm * 2 * np.pi / 60
     assert float(app.dataset.time[-1]) == pytest.approx(0.3 * 2 * np.pi / omega, rel=0.02)
     x = app.state.chart_contact_angle["data"][0]["x"]  # plotly JSON: base64 typed array
-    assert _length(x) == app.source.n_frames
+    # "all balls": every ball's samples on one line per race, a gap after each ball
+    assert _length(x) == app.source.ball_count * (app.source.n_frames + 1)
     # quasi-static versus dynamic: both models of the same case
     names = [t["name"] for t in app.state.chart_comparison["data"]]
     assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
