@@ -132,7 +132,10 @@ def _pad_y(fig: go.Figure, min_span: float, axis: str = "y", low_zero: bool = Fa
 
 ANGLE_MIN_SPAN_DEG = 1.0  # contact-angle axes span at least this much (degree)
 LOAD_MIN_SPAN_N = 1.0  # contact-load axes span at least this much (N)
-ALL_BALLS_MAX_POINTS = 40_000  # points in all of a contact-angle chart of every ball
+# points in all of a contact-angle chart of every ball: ~330 per line, more than the chart is
+# wide in pixels; drawn as SVG and rebuilt once a second while playing (40 000 added ~0.05 s per
+# refresh in a software-rendering browser). One ball alone gets the full `max_points`.
+ALL_BALLS_MAX_POINTS = 12_000
 
 
 def contact_angle_figure(
