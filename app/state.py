@@ -627,7 +627,7 @@ class RacetraceApp:
             self.show_result(ds, label)
             self._shown_run_id = run_id
             if not self.state.busy:
-                self.state.status = "saved run on show"
+                self.state.status = "saved run opened: done"  # at rest the status ends in done
 
     def _on_compare_id(self, compare_id=None, **_):
         self.update_comparison()

@@ -237,7 +237,7 @@ def test_a_reopened_run_stays_on_show(app):
     # the form's change callbacks arrive after the run is on show: no preview may replace it
     app._on_field()
     assert s.result_label == saved.label
-    assert s.status == "saved run on show"
+    assert s.status == "saved run opened: done"
     # an edit does replace it, and the runs list then names no run
     _set(app, fv_radial_load_N="100")
     assert s.result_label == "quasi-static preview" and s.run_id is None
