@@ -210,8 +210,7 @@ def route_problems(problems, fields: list[FormField]) -> tuple[dict, tuple]:
     errors: dict[str, str] = {}
     general: list[str] = []
     for problem in problems:
-        keys = getattr(problem, "keys", (problem.key,))
-        names = [by_key[k] for k in keys if k in by_key]
+        names = [by_key[k] for k in problem.keys if k in by_key]
         if not names:
             general.append(problem.message)
         for name in names:

@@ -6,6 +6,7 @@ Every file is written to a temporary name next to its target and renamed into pl
 from __future__ import annotations
 
 import os
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -16,15 +17,23 @@ from .runs import save_netcdf
 ANIMATION_FORMATS = ("gif", "mp4")
 
 
-def _atomic(path: Path, write) -> Path:
-    path = Path(path)
+@contextmanager
+def _atomic_target(path: Path):
+    """Yields a temporary name next to ``path``; renamed onto ``path`` only if the block ends
+    normally, removed otherwise."""
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
     try:
-        write(tmp)
+        yield tmp
         os.replace(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
+
+
+def _atomic(path: Path, write) -> Path:
+    path = Path(path)
+    with _atomic_target(path) as tmp:
+        write(tmp)
     return path
 
 
@@ -117,16 +126,12 @@ def iter_export_animation(
         options = {"format": "FFMPEG", "fps": fps, "macro_block_size": 1}
     else:  # imageio's GIF writer (Pillow) takes the frame delay in milliseconds
         options = {"format": "GIF", "duration": 1000.0 / fps, "loop": 0}
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.tmp{path.suffix}")
     try:
-        with imageio.get_writer(str(tmp), **options) as writer:
+        with _atomic_target(path) as tmp, imageio.get_writer(str(tmp), **options) as writer:
             for done, i in enumerate(indices, start=1):
                 scene.set_frame(i)
                 plotter.render_window.Render()
                 writer.append_data(np.asarray(plotter.screenshot(return_img=True)))
                 yield done / len(indices)
-        os.replace(tmp, path)
     finally:
-        tmp.unlink(missing_ok=True)
         scene.set_frame(previous)

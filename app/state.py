@@ -109,6 +109,7 @@ class RacetraceApp:
         self._cancel_requested = False
         self._filling = False
         self._client_ids = set()
+        self._case_text = None  # case TOML of the valid edited case
         self._shown_case_text = None  # case TOML of the result on show
         self._shown_run_id = None  # id of the saved run on show (None for a preview)
         self._animating_export = False  # an animation export is moving the scene's frames
@@ -233,14 +234,18 @@ class RacetraceApp:
 
     def set_base_case(self, case, synchronous: bool = False) -> None:
         """Put ``case`` in the form and preview it."""
-        self.base_case = case
-        self._fill_form(case)
-        self._update_placeholders(case)
-        self.validate()
+        self._take_case(case)
         if synchronous:
             self.preview_now()
         else:
             self.schedule_preview()
+
+    def _take_case(self, case) -> None:
+        """Make ``case`` the one the form edits: its values, placeholders and messages."""
+        self.base_case = case
+        self._fill_form(case)
+        self._update_placeholders(case)
+        self.validate()
 
     def _fill_form(self, case) -> None:
         """Put the values of ``case`` in the form without triggering a preview per field."""
@@ -304,8 +309,9 @@ class RacetraceApp:
             self.state.case_valid = result.valid
             self.state.run_disabled = not result.valid or self.state.busy
         self.case = result.case if result.valid else None
+        self._case_text = self.case.to_toml() if self.case is not None else None
         if self.case is not None:
-            text = self.case.to_toml()
+            text = self._case_text
             self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(
                 text
             )
@@ -317,7 +323,7 @@ class RacetraceApp:
         if self._filling:
             return
         if self.validate() is not None and self.case is not None:
-            if self.case.to_toml() == self._shown_case_text:
+            if self._case_text == self._shown_case_text:
                 return  # the result on show is already this case (e.g. a reopened run)
             self.schedule_preview()
 
@@ -349,9 +355,7 @@ class RacetraceApp:
             return
         if generation == self._preview_generation:
             with self.state:
-                self.state.run_id = None  # the runs list no longer names what is on show
-                self._shown_run_id = None
-                self.show_result(ds, "quasi-static preview")
+                self._show_preview(ds)
                 if not self.state.busy:  # a run's status stays until it ends
                     self.state.status = "preview done"
 
@@ -364,10 +368,21 @@ class RacetraceApp:
         except Exception as error:
             self.state.status = f"error: {error}"
             return
+        self._show_preview(ds)
+        self.state.status = "preview done"
+
+    def _show_preview(self, ds) -> None:
+        """Show a quasi-static preview; the runs list then names no run."""
         self.state.run_id = None
         self._shown_run_id = None
         self.show_result(ds, "quasi-static preview")
-        self.state.status = "preview done"
+
+    def _show_saved_run(self, ds, run_id: str, label: str) -> None:
+        """Show saved run ``run_id``, named in the runs list; a pending preview is dropped."""
+        self._preview_generation += 1  # a preview still on its way must not replace the run
+        self.show_result(ds, label)
+        self._shown_run_id = run_id
+        self.state.run_id = run_id
 
     @staticmethod
     def _solve_quasistatic(case):
@@ -429,6 +444,7 @@ class RacetraceApp:
         return math.radians(angle or 0.0)
 
     def _ensure_scene(self, geometry, case) -> None:
+        load_side = self._load_side(case)
         key = (
             geometry.ball_count,
             geometry.ball_diameter,
@@ -439,7 +455,7 @@ class RacetraceApp:
             geometry.inner_shoulder_diameter,
             geometry.outer_shoulder_diameter,
             geometry.ball_material.name,
-            self._load_side(case),
+            load_side,
         )
         if self.scene is not None and key == self._scene_key:
             return
@@ -455,7 +471,6 @@ class RacetraceApp:
                 self.plotter.remove_scalar_bar(title)
             self.plotter.clear_actors()
         camera = self.plotter.camera_position if self.scene is not None else None
-        load_side = self._load_side(case)
         options = SceneOptions(
             exaggeration=float(self.state.exaggeration),
             trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
@@ -617,15 +632,10 @@ class RacetraceApp:
             return
         from solver import load_case
 
-        self.base_case = load_case(case_text)
-        self._fill_form(self.base_case)
-        self._update_placeholders(self.base_case)
-        self.validate()
+        self._take_case(load_case(case_text))
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
-        self._preview_generation += 1  # a preview still on its way must not replace the run
         with self.state:
-            self.show_result(ds, label)
-            self._shown_run_id = run_id
+            self._show_saved_run(ds, run_id, label)
             if not self.state.busy:
                 self.state.status = "saved run opened: done"  # at rest the status ends in done
 
@@ -761,10 +771,7 @@ class RacetraceApp:
         finally:
             out.unlink(missing_ok=True)
         self._refresh_runs()
-        self._preview_generation += 1  # a preview still on its way must not replace the run
-        self.show_result(ds, info.label)
-        self._shown_run_id = info.run_id
-        self.state.run_id = info.run_id  # the runs list shows the run on show
+        self._show_saved_run(ds, info.run_id, info.label)
         self._end_run("cancelled" if info.status == "cancelled" else "done")
 
     def _end_run(self, status: str) -> None:
@@ -821,29 +828,10 @@ class RacetraceApp:
         """Write the shown result or view as ``kind`` (netcdf, csv, png, gif, mp4) now.
 
         Returns the file (offered for download in ``export_href``), or None with the reason in
-        ``export_message``. The page uses :meth:`request_export`, which keeps it responsive.
+        ``export_message``. For callers without a running event loop (scripts, tests); the page
+        uses :meth:`request_export`, which keeps it responsive.
         """
-        from . import export as ex
-
-        path = self._export_path(kind)
-        problem = self._export_problem(kind)
-        if problem:
-            self.state.export_message = problem
-            return None
-        try:
-            if kind == "netcdf":
-                ex.export_netcdf(self.dataset, path)
-            elif kind == "csv":
-                ex.export_csv(self.dataset, path)
-            elif kind == "png":
-                ex.export_png(self.plotter, path)
-            else:
-                ex.export_animation(self.scene, path, step=self._animation_step())
-        except (OSError, ValueError) as error:
-            self.state.export_message = f"export failed: {error}"
-            return None
-        self._offer_download(path)
-        return path
+        return asyncio.run(self._export_async(kind))
 
     def request_export(self, kind: str) -> None:
         """Export from the page: in the background, with progress in ``export_message``.
@@ -861,7 +849,8 @@ class RacetraceApp:
             return
         self._export_task = loop.create_task(self._export_async(kind))
 
-    async def _export_async(self, kind: str) -> None:
+    async def _export_async(self, kind: str) -> Path | None:
+        """The export itself (see :meth:`request_export`); returns the file or None."""
         from . import export as ex
 
         path = self._export_path(kind)
@@ -869,7 +858,7 @@ class RacetraceApp:
         if problem:
             self.state.export_message = problem
             self.state.flush()
-            return
+            return None
         with self.state:
             self.state.exporting = True
             self.state.export_href = ""
@@ -888,7 +877,7 @@ class RacetraceApp:
         except (OSError, ValueError) as error:
             with self.state:
                 self.state.export_message = f"export failed: {error}"
-            return
+            return None
         finally:
             self._animating_export = False
             with self.state:
@@ -899,6 +888,7 @@ class RacetraceApp:
             else:
                 self.state.export_message = ""
         self._push_view()
+        return path
 
     async def _export_animation(self, ex, path: Path) -> None:
         with self.state:
