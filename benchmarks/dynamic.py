@@ -6,8 +6,8 @@
   500 N axial + 300 N radial, cage on);
 - heavy: ``218-heavy-combined`` (218, 16 balls, 10 000 rpm, 17.8 kN + 8.9 kN, cage on).
 
-Prints wall time per shaft revolution (after a warm-up run that compiles the numba kernels), accepted
-and rejected steps, right-hand-side evaluations, peak memory (tracemalloc for Python/numpy
+Prints wall time per shaft revolution (after a warm-up run that compiles the numba kernels),
+accepted and rejected steps, right-hand-side evaluations, peak memory (tracemalloc for Python/numpy
 allocations, ru_maxrss for the process), the memory projected for 100 revolutions of output, and a
 breakdown of where the time goes: the cost of one right-hand-side evaluation measured with parts of
 the physics switched off (numba code cannot be profiled by cProfile, so the parts are timed by
@@ -122,31 +122,34 @@ def run_case(label, revolutions):
     bytes_ds = ds.nbytes / ds.sizes["time"] * samples_100
     print(f"\n== {label}: {case.title}")
     print(
-        f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = {ds.attrs['complete']}"
+        f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = "
+        f"{ds.attrs['complete']}"
     )
     print(
         f"   wall time: integration {integ:.2f} s = {per_rev:.3f} s per shaft revolution; "
         f"whole simulate() incl. start and output {total:.2f} s"
     )
     print(
-        f"   CPU time of simulate() {cpu:.2f} s ({cpu / revolutions:.3f} s per revolution incl. start "
-        "and output; wall > CPU means the shared machine was busy)"
+        f"   CPU time of simulate() {cpu:.2f} s ({cpu / revolutions:.3f} s per revolution incl. "
+        "start and output; wall > CPU means the shared machine was busy)"
     )
     print(
-        f"   steps {steps} accepted, {rejected} rejected ({steps / revolutions:.0f} per revolution, "
+        f"   steps {steps} accepted, {rejected} rejected "
+        f"({steps / revolutions:.0f} per revolution, "
         f"mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f} us); "
         f"RHS evaluations {evals}"
     )
     print(
         f"   memory: tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
-        f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; "
-        f"projected for 100 revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB"
+        f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; projected for 100 "
+        f"revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB"
     )
     rhs_total = evals * full
     print("   where the time goes (RHS cost by difference at a running state x evaluations; the")
     print("   machine is shared, so the parts are indicative):")
     print(
-        f"     one RHS evaluation: {full * 1e6:.1f} us (normal contacts only {normal_only * 1e6:.1f} us)"
+        f"     one RHS evaluation: {full * 1e6:.1f} us (normal contacts only "
+        f"{normal_only * 1e6:.1f} us)"
     )
     parts = {
         "Hertz geometry + normal forces + ball/ring bookkeeping": evals * normal_only,
@@ -173,8 +176,8 @@ def main(argv=None):
         wall, cpu = results["spindle"]
         verdict = "meets" if cpu <= 1.0 else "misses"
         print(
-            f"\nspindle: {cpu:.3f} s CPU per shaft revolution (wall {wall:.3f} s on the shared machine): "
-            f"{verdict} the 1 s target"
+            f"\nspindle: {cpu:.3f} s CPU per shaft revolution (wall {wall:.3f} s on the shared "
+            f"machine): {verdict} the 1 s target"
         )
     return 0
 

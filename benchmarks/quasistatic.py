@@ -5,7 +5,8 @@ Prints the median of repeats of
    scratch (static start, continuation if needed, race-control fixed point), as SI arrays and as a
    Dataset;
 2. a 31-point speed sweep 0-30 000 rpm with continuation (each speed starts from the previous one),
-   for the same 218 case and for the 7008C-class spindle case, as SI arrays and as a stacked Dataset.
+   for the same 218 case and for the 7008C-class spindle case, as SI arrays and as a stacked
+   Dataset.
 
 Targets (issue 2, 2-core machine): <= 20 ms per solve, <= 0.5 s per sweep.
 Run: python benchmarks/quasistatic.py [--repeats N]

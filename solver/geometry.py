@@ -1,9 +1,10 @@
 """Derived internal geometry of an angular contact ball bearing, in SI units.
 
 One place for every geometric quantity of physics.md §2.2. Frames (case-format.md): x is the bearing
-axis, pointing where the inner ring carries thrust; the outer contact lies on the +x side of the ball
-centre, the inner contact on the -x side. Positions here are those of the *just-touching* reference
-state: rings concentric, every ball touching both races at the free contact angle, no load.
+axis, pointing where the inner ring carries thrust; the outer contact lies on the +x side of the
+ball centre, the inner contact on the -x side. Positions here are those of the *just-touching*
+reference state: rings concentric, every ball touching both races at the free contact angle, no
+load.
 """
 
 from __future__ import annotations
@@ -100,7 +101,9 @@ class BearingGeometry:
     @property
     def inner_curvature_center_axial(self) -> float:
         """x_i^c: axial position of the inner groove curvature-centre circle, m."""
-        return (self.inner_conformity - 0.5) * self.ball_diameter * math.sin(self.free_contact_angle)
+        return (
+            (self.inner_conformity - 0.5) * self.ball_diameter * math.sin(self.free_contact_angle)
+        )
 
     @property
     def outer_curvature_center_radius(self) -> float:
@@ -111,7 +114,9 @@ class BearingGeometry:
     @property
     def outer_curvature_center_axial(self) -> float:
         """x_o^c: axial position of the outer groove curvature-centre circle, m."""
-        return -(self.outer_conformity - 0.5) * self.ball_diameter * math.sin(self.free_contact_angle)
+        return (
+            -(self.outer_conformity - 0.5) * self.ball_diameter * math.sin(self.free_contact_angle)
+        )
 
     @property
     def inner_groove_bottom_diameter(self) -> float:
@@ -150,7 +155,10 @@ class BearingGeometry:
 
 
 def free_contact_angle_from_clearance(
-    ball_diameter: float, inner_conformity: float, outer_conformity: float, diametral_clearance: float
+    ball_diameter: float,
+    inner_conformity: float,
+    outer_conformity: float,
+    diametral_clearance: float,
 ) -> float:
     """alpha_0 = arccos(1 - P_d / (2 A_0)), rad. Lengths in m; P_d must lie in [0, 2 A_0]."""
     a0 = (inner_conformity + outer_conformity - 1.0) * ball_diameter

@@ -13,7 +13,8 @@ from dataclasses import dataclass
 class Material:
     """An isotropic elastic material.
 
-    Attributes are SI: ``youngs_modulus`` in Pa, ``poisson_ratio`` dimensionless, ``density`` in kg/m^3.
+    Attributes are SI: ``youngs_modulus`` in Pa, ``poisson_ratio`` dimensionless, ``density`` in
+    kg/m^3.
     """
 
     name: str

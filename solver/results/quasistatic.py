@@ -1,9 +1,9 @@
 """QuasiStaticSolution + case → xarray.Dataset following results-schema.md.
 
 Hertz results (ellipse, peak pressure) come from :mod:`solver.physics.hertz_fast` (the same
-load-deflection law the model was solved with). Under the rolling assumptions of the quasi-static model
-the sliding speed at the contact centre is zero (pure rolling is imposed there); the variable is kept so
-that both models share the schema.
+load-deflection law the model was solved with). Under the rolling assumptions of the quasi-static
+model the sliding speed at the contact centre is zero (pure rolling is imposed there); the variable
+is kept so that both models share the schema.
 """
 
 from __future__ import annotations
@@ -46,7 +46,8 @@ def _rotation_matrix(rotation_vector: np.ndarray) -> np.ndarray:
 
 
 def contact_quantities(geometry, solution):
-    """Per-contact arrays (Z, 2) [inner, outer]: a, b, p_max, R_x, kappa (zeros for open contacts)."""
+    """Per-contact arrays (Z, 2) [inner, outer]: a, b, p_max, R_x, kappa (zeros for open
+    contacts)."""
     z = solution.contact_load.shape[0]
     out = {k: np.zeros((z, 2)) for k in ("a", "b", "p_max", "r_x", "kappa")}
     e_mod = geometry.effective_modulus
@@ -74,8 +75,8 @@ def _case_text(case) -> str:
 def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dataset:
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
-    ``lubricant`` (``case.lubricant`` or None) adds ``film_thickness``; it needs ``viscosity_Pas`` and
-    ``pressure_viscosity_per_GPa``.
+    ``lubricant`` (``case.lubricant`` or None) adds ``film_thickness``; it needs ``viscosity_Pas``
+    and ``pressure_viscosity_per_GPa``.
     """
     sol = solution
     z = sol.contact_load.shape[0]
@@ -124,7 +125,8 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
             )
             spin_roll[j, k] = spin / roll if roll != 0.0 else 0.0
             if lubricant is not None and sol.contact_load[j, k] > 0.0:
-                # (an open contact has no film: 0) entrainment speed: surface speed of the ring at the contact, relative to the cage
+                # (an open contact has no film: 0) entrainment speed: surface speed of the ring at
+                # the contact, relative to the cage
                 sign = -1.0 if k == 0 else 1.0
                 radius = 0.5 * geometry.pitch_diameter + sign * 0.5 * D * math.cos(alpha[j, k])
                 u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
@@ -179,7 +181,8 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
             attrs["description"] += "; 0 at open contacts"
         if name == "sliding_speed":
             attrs["description"] += (
-                "; zero in the quasi-static model, which imposes pure rolling at the contact centres"
+                "; zero in the quasi-static model, which imposes pure rolling at the contact "
+                "centres"
             )
         data_vars[name] = (spec.dims_for(MODEL), values, attrs)
     coords = coordinates(z)
@@ -196,11 +199,12 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
         "inner_ring_speed_rad_s": float(sol.inner_ring_speed),
         "outer_ring_speed_rad_s": float(sol.outer_ring_speed),
         "model_notes": (
-            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control per "
-            "ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / lambda_i = 0 "
-            "under outer control, 1 / 1 under inner control), centrifugal force at the ball's actual "
-            "orbit radius, cage speed = mean orbital speed. Inner ring moments are taken about its "
-            "centre on the axis in the plane of the inner groove curvature-centre circle."
+            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control "
+            "per ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / "
+            "lambda_i = 0 under outer control, 1 / 1 under inner control), centrifugal force at "
+            "the ball's actual orbit radius, cage speed = mean orbital speed. Inner ring moments "
+            "are taken about its centre on the axis in the plane of the inner groove "
+            "curvature-centre circle."
         ),
     }
     if (
@@ -209,7 +213,7 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
         and not (sol.operating.tilt_is_free)
     ):
         attrs["misalignment_note"] = (
-            "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when the "
-            "ring-fixed tilt axis coincides with the given azimuth"
+            "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "
+            "the ring-fixed tilt axis coincides with the given azimuth"
         )
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)

@@ -5,10 +5,11 @@ description. Units are UDUNITS spellings; angles are in degree in every Dataset,
 Dimensions are given for the quasi-static model; the dynamic model appends ``time`` (schema order:
 per-contact ``(ball, race, time)``, per-ball ``(ball, time)``, rings ``(time)``).
 
-Frames: "inertial" = x along the bearing axis (the direction in which the inner ring carries thrust),
-y, z radial, origin at the outer ring centre on the plane of the ball centres in the just-touching state
-(rings concentric, every ball touching both races at the free contact angle). A ring's own frame is
-attached to that ring and coincides with the inertial frame in the just-touching state at t = 0.
+Frames: "inertial" = x along the bearing axis (the direction in which the inner ring carries
+thrust), y, z radial, origin at the outer ring centre on the plane of the ball centres in the
+just-touching state (rings concentric, every ball touching both races at the free contact angle). A
+ring's own frame is attached to that ring and coincides with the inertial frame in the just-touching
+state at t = 0.
 """
 
 from __future__ import annotations
@@ -64,9 +65,10 @@ VARIABLES: dict[str, Variable] = {
         "degree",
         "contact angle",
         "angle of the contact line in the ring's meridian plane, from the radial plane; positive "
-        "when the outer contact lies on the +x side of the ball centre and the inner contact on the -x "
-        "side (thrust carried in +x); may be negative. For an open contact: the angle of the line "
-        "between the two groove curvature centres (where the ball would touch if the gap closed)",
+        "when the outer contact lies on the +x side of the ball centre and the inner contact on "
+        "the -x side (thrust carried in +x); may be negative. For an open contact: the angle of "
+        "the line between the two groove curvature centres (where the ball would touch if the gap "
+        "closed)",
     ),
     "contact_deflection": Variable(
         _C,
@@ -217,7 +219,8 @@ VARIABLES: dict[str, Variable] = {
         ("tilt_axis",),
         "degree",
         "inner ring tilt",
-        "tilt of the inner ring relative to the outer ring: rotation vector components about y and z",
+        "tilt of the inner ring relative to the outer ring: rotation vector components about y and "
+        "z",
     ),
     "inner_ring_moment": Variable(
         ("tilt_axis",),

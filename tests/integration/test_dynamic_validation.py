@@ -1,4 +1,5 @@
-"""Validation of the dynamic model (issue 3, tests 1 and 3-6) on the 7008C-class hybrid spindle bearing.
+"""Validation of the dynamic model (issue 3, tests 1 and 3-6) on the 7008C-class hybrid spindle
+bearing.
 
 Each test compares the dynamic run with an independent reference: the project's quasi-static
 Jones–Harris solver (solver.models.quasistatic, written separately), kinematic identities, or a
@@ -49,7 +50,7 @@ def radial_run():
     return _run(spindle_inputs(rpm=20000.0, axial=500.0, radial=300.0), 5.0)
 
 
-# ---- 1. pure axial steady state vs the quasi-static model ---------------------------------------
+# ---- 1. pure axial steady state vs the quasi-static model ----------------------------------------
 @pytest.mark.parametrize(
     "rpm, revs, angle_tol, load_rtol, cage_rtol",
     [
@@ -82,7 +83,7 @@ def test_pure_axial_steady_state_approaches_quasistatic(
     assert float(last.contact_angle.std("time").max()) < 0.02
 
 
-# ---- 3. line versus band --------------------------------------------------------------------------
+# ---- 3. line versus band -------------------------------------------------------------------------
 def _curve_residual(ds, race, harmonics=6):
     """RMS deviation of (azimuth, contact angle) samples of all balls from one smooth closed curve
     alpha(phi) (Fourier fit in the raceway azimuth), relative to the contact-angle range."""
@@ -112,7 +113,7 @@ def test_ring_turning_misalignment_reverses_line_and_band():
     assert _curve_residual(window, "outer") > 0.2  # measured 0.35
 
 
-# ---- 4. band width grows with load / tilt and matches the quasi-static range -----------------------
+# ---- 4. band width grows with load / tilt and matches the quasi-static range ---------------------
 @pytest.mark.slow
 def test_band_width_grows_with_radial_load_and_matches_quasistatic_range():
     widths = []
@@ -160,7 +161,7 @@ def test_band_width_grows_with_misalignment():
     assert np.all(np.diff(np.array(widths), axis=0) > 0)
 
 
-# ---- 5. Kingsbury latitudes under steady thrust ---------------------------------------------------
+# ---- 5. Kingsbury latitudes under steady thrust --------------------------------------------------
 def test_contact_tracks_on_the_ball_are_kingsbury_circles(thrust_run):
     """Seen from the ball, each contact track is a circle (regular precession) whose latitude about
     the ball's spin axis is alpha_o - beta (outer) and -(alpha_i - beta) (inner), physics.md §1.5.
@@ -193,7 +194,7 @@ def test_contact_tracks_on_the_ball_are_kingsbury_circles(thrust_run):
             assert fitted == pytest.approx(float(predicted.sel(ball=j)), abs=0.05)  # measured 0.001
 
 
-# ---- 6. ball-pass frequencies ------------------------------------------------------------------------
+# ---- 6. ball-pass frequencies --------------------------------------------------------------------
 def _pass_frequency(times, azimuth_deg):
     """Passes per second of all balls over azimuth 0 (crossing times interpolated)."""
     crossings = []
@@ -225,7 +226,7 @@ def test_ball_pass_frequencies_match_formulas_with_simulated_cage_speed(radial_r
     assert wc == pytest.approx(0.5 * wi * (1 - gamma), rel=0.01)
 
 
-# ---- inner-ring tilt as a degree of freedom -------------------------------------------------------
+# ---- inner-ring tilt as a degree of freedom ------------------------------------------------------
 def test_tilting_moment_gives_the_quasistatic_tilt():
     """With a tilting moment (tilt solved, case key operating.tilting_moment_Nm) the ring tilt is a
     DOF; its mean over the last revolution must match the quasi-static tilt (0.103 deg for 3 N m

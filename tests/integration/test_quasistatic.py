@@ -1,7 +1,7 @@
-"""Quasi-static Jones–Harris model: equilibrium, classic static limits, kinematics, trends, symmetry,
-robustness. References are independent of the solver: equilibrium is recomputed from the outputs,
-Hertz constants come from the exact module (solver.physics.hertz), static load distributions from
-closed forms / quadrature / a scalar root finder."""
+"""Quasi-static Jones–Harris model: equilibrium, classic static limits, kinematics, trends,
+symmetry, robustness. References are independent of the solver: equilibrium is recomputed from the
+outputs, Hertz constants come from the exact module (solver.physics.hertz), static load
+distributions from closed forms / quadrature / a scalar root finder."""
 
 import math
 import warnings
@@ -108,8 +108,9 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
         - lam_i * m_g / D * np.sin(a_i)
         + f_c
     )
-    # relative to the ball's own largest force; a ball carrying less than 1e-4 of the bearing's force
-    # scale (e.g. an unloaded ball held only by a minute centrifugal force) is held to 1e-12 of it
+    # relative to the ball's own largest force; a ball carrying less than 1e-4 of the bearing's
+    # force scale (e.g. an unloaded ball held only by a minute centrifugal force) is held to 1e-12
+    # of it
     scale = np.maximum.reduce(
         [q_i, q_o, np.abs(f_c), 2 * np.abs(m_g) / D, np.full(z, 1e-4 * sol.force_scale)]
     )
@@ -268,8 +269,8 @@ def test_radial_load_at_rest_large_ball_count_matches_stribeck_integral():
 
 
 def test_radial_load_with_clearance_at_rest():
-    """Deep groove with diametral clearance P_d: ring centred axially, delta_j = delta_r cos psi_j - P_d/2;
-    delta_r from the force balance solved independently."""
+    """Deep groove with diametral clearance P_d: ring centred axially,
+    delta_j = delta_r cos psi_j - P_d/2; delta_r from the force balance solved independently."""
     clearance = 20e-6
     geometry = deep_groove(clearance)
     fr = 3000.0
@@ -292,9 +293,9 @@ def test_radial_load_with_clearance_at_rest():
 
 # ---- trends with speed, symmetry ----------------------------------------------------------------
 def test_trends_with_speed():
-    """Centrifugal force pushes the balls out: the inner contact angle rises, the outer falls, and the
-    cage speed ratio rises above the kinematic (1 - gamma)/2 (outer-race control: omega_c/omega =
-    (1 - gamma' cos a_i)/(1 + cos(a_i - a_o)) grows as the angles split)."""
+    """Centrifugal force pushes the balls out: the inner contact angle rises, the outer falls, and
+    the cage speed ratio rises above the kinematic (1 - gamma)/2 (outer-race control:
+    omega_c/omega = (1 - gamma' cos a_i)/(1 + cos(a_i - a_o)) grows as the angles split)."""
     geometry = spindle()
     speeds = [0.0, 5000.0, 10000.0, 20000.0, 30000.0, 45000.0]
     previous = None
@@ -333,9 +334,9 @@ def test_radial_load_at_90_degrees_rotates_the_solution():
 
 
 def test_pure_tilt_sign():
-    """A tilt vector along +y moves the inner ring point at psi = 90° (the +z side) in +x (theta x p):
-    that ball becomes the most loaded, the one at 270° less; the moment needed to hold the tilt acts
-    along +y (the balls resist it)."""
+    """A tilt vector along +y moves the inner ring point at psi = 90° (the +z side) in +x
+    (theta x p): that ball becomes the most loaded, the one at 270° less; the moment needed to hold
+    the tilt acts along +y (the balls resist it)."""
     geometry = spindle(16)
     op = OperatingPoint(0.0, 0.0, 300.0, misalignment=math.radians(0.05), misalignment_axis=0.0)
     sol = solve_operating_point(geometry, op)
@@ -370,8 +371,8 @@ def test_unloaded_balls_give_zeros_no_nan_no_warning():
 
 
 def test_creeping_speed_is_in_equilibrium_without_nan():
-    """At a fraction of an rpm the body forces are minute; unloaded balls still sit on the outer race
-    and every ball balances."""
+    """At a fraction of an rpm the body forces are minute; unloaded balls still sit on the outer
+    race and every ball balances."""
     geometry = BearingGeometry(6, 3e-3, 11.459e-3, 0.5625, 0.5625, math.radians(31), STEEL, STEEL)
     op = OperatingPoint(0.0436 * RPM, 0.0, 54.0, 54.0)
     sol = solve_operating_point(geometry, op)
@@ -480,7 +481,8 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
 
 
 def test_race_control_cycle_is_reported(monkeypatch):
-    """If the Jones decision flips back and forth, the last solution is kept and the note says so."""
+    """If the Jones decision flips back and forth, the last solution is kept and the note says
+    so."""
     from solver.models.quasistatic import solver as driver
 
     calls = {"n": 0}

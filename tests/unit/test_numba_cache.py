@@ -1,4 +1,5 @@
-"""The numba cache folder follows every change of the solver sources (stale callers are never loaded)."""
+"""The numba cache folder follows every change of the solver sources (stale callers are never
+loaded)."""
 
 import os
 import subprocess

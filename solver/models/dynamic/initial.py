@@ -270,9 +270,10 @@ def quasistatic_solution(inputs):
 
 
 def initial_state_from_quasistatic(par: np.ndarray, qs) -> np.ndarray:
-    """Initial state (layout ``L``) from a :class:`QuasiStaticSolution`: ball centres (axial, radial at
-    each ball azimuth), orbital speeds, attitude and angular velocity (inertial) per ball, inner-ring
-    offset and tilt, cage centred at the mean ball plane turning at the mean orbital speed.
+    """Initial state (layout ``L``) from a :class:`QuasiStaticSolution`: ball centres (axial, radial
+    at each ball azimuth), orbital speeds, attitude and angular velocity (inertial) per ball,
+    inner-ring offset and tilt, cage centred at the mean ball plane turning at the mean orbital
+    speed.
 
     The quasi-static model carries the gyroscopic moment by race friction under its race-control
     assumption; in the dynamic model the same moment needs traction slips that develop in the first

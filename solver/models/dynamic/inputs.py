@@ -22,8 +22,9 @@ DEFAULT_OIL = MappingProxyType(
     }
 )
 DEFAULT_OIL_NOTE = (
-    "no [lubricant] in the case: default oil used (viscosity 0.01 Pa s, pressure-viscosity 20 /GPa, "
-    "traction mu_zero 0, mu_max 0.05 at 1 m/s, mu_infinity 0.036; ADORE example data, physics.md §2.6.4)"
+    "no [lubricant] in the case: default oil used (viscosity 0.01 Pa s, pressure-viscosity 20 "
+    "/GPa, traction mu_zero 0, mu_max 0.05 at 1 m/s, mu_infinity 0.036; ADORE example data, "
+    "physics.md §2.6.4)"
 )
 
 

@@ -1,10 +1,10 @@
 """Adaptive Dormand–Prince 5(4) integrator with PI step control, compiled with numba.
 
-The stepper calls the right-hand side directly (no Python callback per step) and stops exactly on the
-requested output times. Error norm: max over components of |err_i| / (tol * scale_i), where
-``scale_i`` is the characteristic magnitude of component i (see ``simulate.state_scales``): the error
-control is therefore absolute per physical quantity, which keeps it meaningful for positions that are
-large (the pitch radius) but whose relevant variations are tiny (contact deflections).
+The stepper calls the right-hand side directly (no Python callback per step) and stops exactly on
+the requested output times. Error norm: max over components of |err_i| / (tol * scale_i), where
+``scale_i`` is the characteristic magnitude of component i (see ``simulate.state_scales``): the
+error control is therefore absolute per physical quantity, which keeps it meaningful for positions
+that are large (the pitch radius) but whose relevant variations are tiny (contact deflections).
 
 After each accepted step the ball quaternions are renormalised (projection onto the unit sphere).
 """
@@ -100,8 +100,8 @@ def advance(
     rec_outer,
     pocket,
 ):
-    """Integrate from ``t`` through every time in ``t_out`` (increasing), storing the state at each in
-    ``out_states[k]``. ``y`` is updated in place. ``counters`` (3,) accumulates
+    """Integrate from ``t`` through every time in ``t_out`` (increasing), storing the state at each
+    in ``out_states[k]``. ``y`` is updated in place. ``counters`` (3,) accumulates
     [accepted steps, rejected steps, rhs evaluations].
 
     Returns (status, t, h, n_done): the status code, the time reached, the step size to continue

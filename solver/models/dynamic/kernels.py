@@ -166,7 +166,8 @@ def _cross(a0, a1, a2, b0, b1, b2):
 
 @njit(cache=True)
 def rotation_from_vector(v0, v1, v2, out):
-    """Rotation matrix of the rotation vector (v0, v1, v2) [rad] (Rodrigues), written into ``out``."""
+    """Rotation matrix of the rotation vector (v0, v1, v2) [rad] (Rodrigues), written into
+    ``out``."""
     th = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
     if th < 1e-300:
         for i in range(3):
@@ -208,9 +209,9 @@ def quaternion_to_matrix(w, x, y, z, out):
 def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_rot, outer_omega):
     """Orientation, origin, velocity and angular velocity of both rings at state ``y``.
 
-    Inner ring: tilt vector ``g`` (small rotation about y, z) and spin angle ``phi``. Mode 0 (tilt fixed
-    in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring): R = R_x(phi) R(g).
-    Outer ring: R = R_x(phi_o) about the fixed axis.
+    Inner ring: tilt vector ``g`` (small rotation about y, z) and spin angle ``phi``. Mode 0 (tilt
+    fixed in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring):
+    R = R_x(phi) R(g). Outer ring: R = R_x(phi_o) about the fixed axis.
     """
     z = int(par[P_Z])
     rb = BALL_STRIDE * z
@@ -408,8 +409,9 @@ def ball_race_contact(
     frx, fry, frz = -fbx, -fby, -fbz
     mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
     if par[P_TRACTION] > 0.0:
-        # D1's ellipse-integrated traction (solver.physics.traction.ellipse_traction): Hertz-weighted
-        # quadrature of the local slip of the two rigid bodies on the curved contact surface
+        # D1's ellipse-integrated traction (solver.physics.traction.ellipse_traction):
+        # Hertz-weighted quadrature of the local slip of the two rigid bodies on the curved contact
+        # surface
         ct = work[:CONTACT_SIZE]
         kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
         tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
@@ -743,8 +745,8 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     """Kinetic + potential energy [J] for the conservative model (traction, damping, cage off).
 
     Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the constant applied
-    force, m g z for gravity along -z. The inner ring's imposed spin is not included (it does no work
-    on frictionless contacts).
+    force, m g z for gravity along -z. The inner ring's imposed spin is not included (it does no
+    work on frictionless contacts).
     """
     z = int(par[P_Z])
     rb = BALL_STRIDE * z

@@ -23,9 +23,10 @@ class SimulationOptions:
     - ``cage``: model the cage (pockets and guiding land). False: balls are free to bunch.
     - ``ring_free``: inner-ring translations are degrees of freedom under the applied loads (False:
       the ring is held at its initial, quasi-static position).
-    - ``tolerance``: local error tolerance of the adaptive integrator, relative to the characteristic
-      scales of each state component (deflection, contact velocity, ...).
-    - ``shaft_revolutions`` / ``samples_per_revolution``: override the case's ``[simulation]`` values.
+    - ``tolerance``: local error tolerance of the adaptive integrator, relative to the
+      characteristic scales of each state component (deflection, contact velocity, ...).
+    - ``shaft_revolutions`` / ``samples_per_revolution``: override the case's ``[simulation]``
+      values.
     - ``chunk_samples``: output samples per integration chunk (progress/cancel granularity).
     - ``analysis_skip_fraction``: fraction of the run skipped before the trajectory-band metrics.
     - ``quadrature``: (points along the rolling direction, strips across the groove) of the ellipse
@@ -99,14 +100,16 @@ class SimulationOptions:
             problems.append(
                 Problem(
                     "shaft_revolutions",
-                    f"simulation option shaft_revolutions = {self.shaft_revolutions!r}: must be > 0",
+                    f"simulation option shaft_revolutions = {self.shaft_revolutions!r}: "
+                    "must be > 0",
                 )
             )
         if self.samples_per_revolution is not None and not self.samples_per_revolution >= 4:
             problems.append(
                 Problem(
                     "samples_per_revolution",
-                    f"simulation option samples_per_revolution = {self.samples_per_revolution!r}: must be >= 4",
+                    f"simulation option samples_per_revolution = {self.samples_per_revolution!r}: "
+                    "must be >= 4",
                 )
             )
         if self.start not in ("quasistatic", "equilibrium"):

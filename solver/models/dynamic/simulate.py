@@ -4,8 +4,8 @@ The numba integrator advances in chunks of ``options.chunk_samples`` output samp
 the driver reports progress and checks for cancellation. Outcomes:
 
 - finished: Dataset with attrs ``complete = 1``, ``stop_reason = "finished"``;
-- cancelled (``cancel()`` true or ``cancel.is_set()``): the samples computed so far, ``complete = 0``,
-  ``stop_reason = "cancelled"``;
+- cancelled (``cancel()`` true or ``cancel.is_set()``): the samples computed so far,
+  ``complete = 0``, ``stop_reason = "cancelled"``;
 - diverged (NaN, step-size collapse, a ball leaving the raceways, step budget exhausted):
   :class:`solver.errors.SimulationDiverged` is raised with the likely cause in its message and the
   partial Dataset (``complete = 0``, ``stop_reason`` = the message) in its ``dataset`` attribute.
@@ -40,21 +40,21 @@ from .params import build_params, build_quadrature
 _DIVERGENCE_CAUSES = MappingProxyType(
     {
         STATUS_NOT_FINITE: (
-            "the state became non-finite (NaN/inf): a contact force blew up, usually a too-light cage or "
-            "an overload driving a ball through a race"
+            "the state became non-finite (NaN/inf): a contact force blew up, usually a too-light "
+            "cage or an overload driving a ball through a race"
         ),
         STATUS_STEP_COLLAPSE: (
-            "the integration step collapsed below {h_min:.1e} s: the contact forces are too stiff or "
-            "discontinuous (cage pocket impacts or a ball running onto a shoulder); loosen the tolerance "
-            "or check the cage clearances"
+            "the integration step collapsed below {h_min:.1e} s: the contact forces are too stiff "
+            "or discontinuous (cage pocket impacts or a ball running onto a shoulder); loosen the "
+            "tolerance or check the cage clearances"
         ),
         STATUS_BALL_ESCAPED: (
-            "a ball left the raceways (centre more than D/4 from the pitch circle or a deflection above "
-            "2 % of D): the load is too large for the bearing or nothing holds the balls"
+            "a ball left the raceways (centre more than D/4 from the pitch circle or a deflection "
+            "above 2 % of D): the load is too large for the bearing or nothing holds the balls"
         ),
         STATUS_TOO_MANY_STEPS: (
-            "the step budget of a chunk ({max_steps} steps) was exhausted: the model is too stiff for the "
-            "requested tolerance"
+            "the step budget of a chunk ({max_steps} steps) was exhausted: the model is too stiff "
+            "for the requested tolerance"
         ),
     }
 )
@@ -72,9 +72,9 @@ def _is_cancelled(cancel) -> bool:
 def state_scales(par: np.ndarray, y0: np.ndarray) -> np.ndarray:
     """Characteristic magnitudes of the state components for the error norm.
 
-    delta_ref = largest contact deflection at the start (>= 0.1 um); V = delta_ref * omega_n with the
-    ball's contact natural frequency omega_n = sqrt(2 k_lin / m), k_lin = 1.5 Q / delta. Positions
-    scale with delta_ref, velocities with V, angles with delta_ref over the lever arm.
+    delta_ref = largest contact deflection at the start (>= 0.1 um); V = delta_ref * omega_n with
+    the ball's contact natural frequency omega_n = sqrt(2 k_lin / m), k_lin = 1.5 Q / delta.
+    Positions scale with delta_ref, velocities with V, angles with delta_ref over the lever arm.
     """
     z = int(par[L.P_Z])
     n = y0.shape[0]
@@ -148,8 +148,8 @@ def _start(inputs, options, par, quad):
                 "force balance (no gyroscopic moment)"
             )
         return initial_state_from_quasistatic(par, qs), (
-            "quasi-static Jones-Harris solution (solver.models.quasistatic): ball positions, orbital "
-            "and spin speeds, attitude, ring offset and tilt, cage speed"
+            "quasi-static Jones-Harris solution (solver.models.quasistatic): ball positions, "
+            "orbital and spin speeds, attitude, ring offset and tilt, cage speed"
         )
     return initial_state(
         par, quad
@@ -175,8 +175,8 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
         raise CaseError(
             Problem(
                 "operating.inner_ring_speed_rpm",
-                "operating.inner_ring_speed_rpm: the dynamic model needs the rings to turn relative "
-                "to each other (inner and outer ring speeds are equal)",
+                "operating.inner_ring_speed_rpm: the dynamic model needs the rings to turn "
+                "relative to each other (inner and outer ring speeds are equal)",
             )
         )
     revolutions = options.shaft_revolutions or inputs.shaft_revolutions
@@ -232,7 +232,10 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
             cause = _DIVERGENCE_CAUSES[status].format(
                 h_min=h_min, max_steps=options.max_steps_per_chunk
             )
-            diverged_message = f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): {cause}"
+            diverged_message = (
+                f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): "
+                f"{cause}"
+            )
             stop_reason = diverged_message
             break
         if progress is not None:

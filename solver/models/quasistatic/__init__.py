@@ -8,19 +8,21 @@ Public API:
   model starts from it)
 - ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked on a ``speed`` coordinate,
   each speed started from the previous solution (continuation)
-- ``operating_point_from_case(case) -> OperatingPoint`` and ``solve_operating_point(geometry,
-  operating, initial=None)`` for callers that build a :class:`solver.geometry.BearingGeometry` directly
+- ``operating_point_from_case(case) -> OperatingPoint`` and
+  ``solve_operating_point(geometry, operating, initial=None)`` for callers that build a
+  :class:`solver.geometry.BearingGeometry` directly
 
-Model summary (details in :mod:`.kernels` and :mod:`solver.physics.kinematics`): unknowns are the ball
-centre positions (2 per ball, solved ball by ball) and the inner ring's 5 DOF (dx, dy, dz, theta_y,
-theta_z); an imposed misalignment fixes the tilt (the moment is an output), a given tilting moment frees
-it. Ball loads Q = K(alpha) delta^1.5 with the tabulated exact Hertz constant at the current contact
-angle; centrifugal force at the actual orbit radius; gyroscopic moment taken by race friction; race
-control decided per ball by the Jones criterion and iterated to a fixed point. At zero speed the model is
-the classic static load distribution.
+Model summary (details in :mod:`.kernels` and :mod:`solver.physics.kinematics`): unknowns are the
+ball centre positions (2 per ball, solved ball by ball) and the inner ring's 5 DOF (dx, dy, dz,
+theta_y, theta_z); an imposed misalignment fixes the tilt (the moment is an output), a given tilting
+moment frees it. Ball loads Q = K(alpha) delta^1.5 with the tabulated exact Hertz constant at the
+current contact angle; centrifugal force at the actual orbit radius; gyroscopic moment taken by race
+friction; race control decided per ball by the Jones criterion and iterated to a fixed point. At
+zero speed the model is the classic static load distribution.
 
-Ball-fixed frame at t = 0 (ball latitude/longitude; the dynamic model uses the same one for its initial
-quaternion): z_b = cos(beta) e_x - sin(beta) e_r, y_b = e_theta, x_b = sin(beta) e_x + cos(beta) e_r.
+Ball-fixed frame at t = 0 (ball latitude/longitude; the dynamic model uses the same one for its
+initial quaternion): z_b = cos(beta) e_x - sin(beta) e_r, y_b = e_theta,
+x_b = sin(beta) e_x + cos(beta) e_r.
 """
 
 from __future__ import annotations
@@ -78,7 +80,8 @@ def _geometry(case):
 
 
 def _as_case(case):
-    """A Case as given, or resolved from a case-file path / catalogue name (CaseError if invalid)."""
+    """A Case as given, or resolved from a case-file path / catalogue name (CaseError if
+    invalid)."""
     if isinstance(case, (str, os.PathLike)):
         from solver.catalogue import resolve_case
 
@@ -89,9 +92,9 @@ def _as_case(case):
 def solve_quasistatic_state(
     case, initial: QuasiStaticSolution | None = None
 ) -> QuasiStaticSolution:
-    """Quasi-static equilibrium of ``case`` as SI arrays. ``initial`` (a previous solution of the same
-    bearing) is used as the starting point when given. Raises NoSolutionError (message: why, what to
-    try) when no equilibrium is found."""
+    """Quasi-static equilibrium of ``case`` as SI arrays. ``initial`` (a previous solution of the
+    same bearing) is used as the starting point when given. Raises NoSolutionError (message: why,
+    what to try) when no equilibrium is found."""
     case = _as_case(case)
     return solve_operating_point(_geometry(case), operating_point_from_case(case), initial)
 
@@ -108,8 +111,9 @@ def solve_quasistatic(case):
 
 def quasistatic_speed_sweep(case, speeds_rpm):
     """Solutions of ``case`` at each inner-ring speed in ``speeds_rpm`` (other conditions as in the
-    case), stacked on a ``speed`` coordinate [rad/s] (with ``speed_rpm`` alongside). Each speed starts
-    from the previous solution. Raises NoSolutionError naming the first speed without a solution."""
+    case), stacked on a ``speed`` coordinate [rad/s] (with ``speed_rpm`` alongside). Each speed
+    starts from the previous solution. Raises NoSolutionError naming the first speed without a
+    solution."""
     import dataclasses
 
     import xarray as xr

@@ -1,4 +1,5 @@
-"""Numba kernels of the Jones–Harris quasi-static model (physics.md §2.5): one ball, and the ring solve.
+"""Numba kernels of the Jones–Harris quasi-static model (physics.md §2.5): one ball, and the ring
+solve.
 
 Geometry (physics.md §2.1, §2.5.1), per ball j at azimuth psi_j, in the ball's meridian plane with
 components (axial x, radial r):
@@ -12,26 +13,28 @@ components (axial x, radial r):
       A1 = (x_i^c - x_o^c) + dx + rho_i^c (theta_y sin psi - theta_z cos psi)
       A2 = (rho_i^c - rho_o^c) + dy cos psi + dz sin psi
 
-  (the linearised rigid motion theta x p of the ring point p = rho_i^c e_r, the tilt turning the ring
-  about its reference point: on the axis, in the plane of the inner groove curvature-centre circle,
-  where the applied loads act); the inner
+  (the linearised rigid motion theta x p of the ring point p = rho_i^c e_r, the tilt turning the
+  ring about its reference point: on the axis, in the plane of the inner groove curvature-centre
+  circle, where the applied loads act); the inner
   deflection is |A - X| - (f_i - 1/2) D and alpha_i = atan2(A1 - X1, A2 - X2).
 
-Forces on the ball (physics.md §2.5.4, sign re-derived in solver.physics.kinematics.gyroscopic_moment):
--Q_o u(alpha_o) + T_o from the outer ring, +Q_i u(alpha_i) + T_i from the inner ring, +F_c e_r, with
-T_o = (lambda_o M_g / D)(-cos alpha_o e_x + sin alpha_o e_r), T_i = (lambda_i M_g / D)(cos alpha_i e_x -
-sin alpha_i e_r); (lambda_o, lambda_i) = (2, 0) under outer control, (1, 1) under inner control. Their
-moment about the ball centre is M_g e_theta, the rate of change of the ball's angular momentum.
+Forces on the ball (physics.md §2.5.4, sign re-derived in
+solver.physics.kinematics.gyroscopic_moment): -Q_o u(alpha_o) + T_o from the outer ring,
++Q_i u(alpha_i) + T_i from the inner ring, +F_c e_r, with
+T_o = (lambda_o M_g / D)(-cos alpha_o e_x + sin alpha_o e_r),
+T_i = (lambda_i M_g / D)(cos alpha_i e_x - sin alpha_i e_r); (lambda_o, lambda_i) = (2, 0) under
+outer control, (1, 1) under inner control. Their moment about the ball centre is M_g e_theta, the
+rate of change of the ball's angular momentum.
 
-The ball exerts -(Q_i u(alpha_i) + T_i) on the inner ring. Its moment about the ring centre (the point
-of the inner ring that sits at the origin in the just-touching state) uses the lever arms of the ring's
-own geometry (small-displacement statics), about the ring's reference point defined above: the normal
-force acts along a line through the inner groove curvature centre C = rho_i^c e_r (axial lever 0), the
-friction force at the contact point C + (r_i + delta_i/2)(-u(alpha_i)). Only the e_theta component is
-non-zero: m = -rho_i^c F_x - (r_i + delta_i/2) lambda_i M_g / D.
+The ball exerts -(Q_i u(alpha_i) + T_i) on the inner ring. Its moment about the ring centre (the
+point of the inner ring that sits at the origin in the just-touching state) uses the lever arms of
+the ring's own geometry (small-displacement statics), about the ring's reference point defined
+above: the normal force acts along a line through the inner groove curvature centre C = rho_i^c e_r
+(axial lever 0), the friction force at the contact point C + (r_i + delta_i/2)(-u(alpha_i)). Only
+the e_theta component is non-zero: m = -rho_i^c F_x - (r_i + delta_i/2) lambda_i M_g / D.
 
-Centrifugal force F_c = m r_orbit omega_c^2 with the ball's actual orbit radius r_orbit = rho_o^c + X2
-(the dynamic model sees the same force through r theta_dot^2).
+Centrifugal force F_c = m r_orbit omega_c^2 with the ball's actual orbit radius
+r_orbit = rho_o^c + X2 (the dynamic model sees the same force through r theta_dot^2).
 """
 
 from __future__ import annotations
@@ -108,8 +111,8 @@ def contact_stiffness(model, contact_angle, is_inner):
 
 @njit(cache=True)
 def ball_state(x1, x2, a1, a2, inner_control, model):
-    """Everything about one ball whose centre is (x1, x2) and inner groove centre (a1, a2), both relative
-    to the outer groove centre in the ball's meridian plane [m].
+    """Everything about one ball whose centre is (x1, x2) and inner groove centre (a1, a2), both
+    relative to the outer groove centre in the ball's meridian plane [m].
 
     Returns a tuple:
     (res_x, res_r,            net force on the ball [N] (zero in equilibrium), axial and radial
@@ -139,10 +142,10 @@ def ball_state(x1, x2, a1, a2, inner_control, model):
     if d_i > 0.0 and e2 > 0.0:
         q_i = contact_stiffness(model, alpha_i, True) * d_i * math.sqrt(d_i)
 
-    # Kinematics with the inner angle kept within 1 rad of the outer one: the geometric angle of a wide
-    # open inner contact (possible in trial iterates far from equilibrium) can point anywhere, while
-    # rolling kinematics need both contacts on opposite sides of the ball. Continuous, and inactive
-    # for any real contact.
+    # Kinematics with the inner angle kept within 1 rad of the outer one: the geometric angle of a
+    # wide open inner contact (possible in trial iterates far from equilibrium) can point anywhere,
+    # while rolling kinematics need both contacts on opposite sides of the ball. Continuous, and
+    # inactive for any real contact.
     kin_alpha_i = min(max(alpha_i, alpha_o - 1.0), alpha_o + 1.0)
     beta = attitude_angle(kin_alpha_i, alpha_o, model.gamma_prime, inner_control)
     omega_c, omega_r = orbital_and_spin_speed(
@@ -231,9 +234,10 @@ def _fd_step(x1, x2, a1, a2, model):
 
 @njit(cache=True)
 def _ball_tolerance(x1, x2, a1, a2, inner_control, model, force_scale):
-    """Residual tolerance [N] of one ball: 1e-12 of its own largest force (contact loads, centrifugal
-    force, gyroscopic friction), but not below what round-off of the positions allows (contact
-    stiffness times a few ulp of the coordinates) nor 1e-16 of the bearing's force scale."""
+    """Residual tolerance [N] of one ball: 1e-12 of its own largest force (contact loads,
+    centrifugal force, gyroscopic friction), but not below what round-off of the positions allows
+    (contact stiffness times a few ulp of the coordinates) nor 1e-16 of the bearing's force
+    scale."""
     st = ball_state(x1, x2, a1, a2, inner_control, model)
     own = max(max(st[5], st[6]), max(abs(st[14]), 2.0 * abs(st[15]) / model.ball_diameter))
     stiffness = 0.0
@@ -249,7 +253,8 @@ def _ball_tolerance(x1, x2, a1, a2, inner_control, model, force_scale):
 @njit(cache=True)
 def _static_ball(a1, a2, model):
     """Closed-form ball position without speed: on the line between the groove centres, the total
-    approach split so that Q_i = Q_o (same contact angle at both), or mid-gap when there is no contact."""
+    approach split so that Q_i = Q_o (same contact angle at both), or mid-gap when there is no
+    contact."""
     length = math.sqrt(a1 * a1 + a2 * a2)
     if length <= 0.0:
         return model.outer_center_offset, 0.0
@@ -269,9 +274,9 @@ def _static_ball(a1, a2, model):
 
 @njit(cache=True)
 def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
-    """Equilibrium position (x1, x2) [m] of one ball for the inner groove centre (a1, a2), starting from
-    (x1, x2). Returns (x1, x2, ok). Damped Newton with a finite-difference 2x2 Jacobian; without speed
-    the closed form of :func:`_static_ball` is used.
+    """Equilibrium position (x1, x2) [m] of one ball for the inner groove centre (a1, a2), starting
+    from (x1, x2). Returns (x1, x2, ok). Damped Newton with a finite-difference 2x2 Jacobian;
+    without speed the closed form of :func:`_static_ball` is used.
     """
     if model.inner_ring_speed == 0.0 and model.outer_ring_speed == 0.0:
         x1, x2 = _static_ball(a1, a2, model)
@@ -380,10 +385,10 @@ def ring_residual_and_jacobian(
 ):
     """Solve every ball for the ring displacement q and sum their forces on the inner ring.
 
-    ``position`` (Z, 2) holds the ball positions (warm start in, solution out). Fills ``residual`` (5) =
-    applied + sum of the balls' generalised forces on the ring (Fx, Fy, Fz [N], My, Mz [N m]) and, if
-    ``want_jacobian``, ``jacobian`` (5, 5) = d residual / d q by the implicit-function theorem on each
-    ball's equilibrium. Returns False if a ball could not be solved.
+    ``position`` (Z, 2) holds the ball positions (warm start in, solution out). Fills ``residual``
+    (5) = applied + sum of the balls' generalised forces on the ring (Fx, Fy, Fz [N], My, Mz [N m])
+    and, if ``want_jacobian``, ``jacobian`` (5, 5) = d residual / d q by the implicit-function
+    theorem on each ball's equilibrium. Returns False if a ball could not be solved.
     """
     z = azimuth.shape[0]
     for k in range(5):
@@ -489,9 +494,9 @@ def solve_ring(
     max_iterations,
 ):
     """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium for the free components of
-    q = (dx, dy, dz, theta_y, theta_z); the others stay as given. ``q`` and ``position`` are updated in
-    place. Residuals are scaled by ``force_scale`` [N] (moments by force_scale * d_m / 2), unknowns by
-    ``length_scale`` [m] (tilts by length_scale / (d_m / 2)).
+    q = (dx, dy, dz, theta_y, theta_z); the others stay as given. ``q`` and ``position`` are updated
+    in place. Residuals are scaled by ``force_scale`` [N] (moments by force_scale * d_m / 2),
+    unknowns by ``length_scale`` [m] (tilts by length_scale / (d_m / 2)).
 
     Returns (converged, iterations, scaled residual norm).
     """
@@ -668,7 +673,8 @@ def evaluate_balls(q, azimuth, position, inner_control, model, out):
 @njit(cache=True)
 def _static_excess(q, k, applied, azimuth, model, direction):
     """Static residual (applied + balls, closed-form ball positions) of component k along
-    ``direction``: k = 0 axial force, k = 1 radial force, k = 2 moment. Second value: loaded balls."""
+    ``direction``: k = 0 axial force, k = 1 radial force, k = 2 moment. Second value: loaded
+    balls."""
     total = 0.0
     loaded = 0
     gen = np.empty(5)
@@ -710,8 +716,9 @@ def _set_component(q, k, value, direction):
 @njit(cache=True)
 def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resolution):
     """Set component k of q (see :func:`_static_excess`) in [lo, hi] (widened if needed) so that the
-    static residual along ``direction`` vanishes; it decreases as the component grows. Left unchanged
-    when no ball is loaded anywhere in the bracket (the residual carries no information there)."""
+    static residual along ``direction`` vanishes; it decreases as the component grows. Left
+    unchanged when no ball is loaded anywhere in the bracket (the residual carries no information
+    there)."""
     if k == 0:
         start = q[0]
     elif k == 1:
@@ -756,8 +763,8 @@ def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resoluti
 @njit(cache=True)
 def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
     """Starting ring displacement without speed: bisect in turn the radial shift (along the radial
-    load), the axial shift and, when the tilt is free, the tilt along the applied moment, each so that
-    its static force (moment) balances. ``q`` is updated in place."""
+    load), the axial shift and, when the tilt is free, the tilt along the applied moment, each so
+    that its static force (moment) balances. ``q`` is updated in place."""
     radial = np.array([1.0, 0.0])
     fr = math.hypot(applied[1], applied[2])
     if fr > 0.0:

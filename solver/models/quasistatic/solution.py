@@ -11,9 +11,9 @@ import numpy as np
 class OperatingPoint:
     """Operating condition in SI units, loads on the inner ring (case-format.md signs).
 
-    ``misalignment`` is the imposed tilt angle [rad] about the axis at azimuth ``misalignment_axis``;
-    when ``tilting_moment`` [N m] is not None the tilt is solved instead and the moment acts about the
-    axis at azimuth ``moment_axis`` (0 = moment-free tilt).
+    ``misalignment`` is the imposed tilt angle [rad] about the axis at azimuth
+    ``misalignment_axis``; when ``tilting_moment`` [N m] is not None the tilt is solved instead and
+    the moment acts about the axis at azimuth ``moment_axis`` (0 = moment-free tilt).
     """
 
     inner_ring_speed: float = 0.0  # rad/s about +x
@@ -32,7 +32,8 @@ class OperatingPoint:
         return self.tilting_moment is not None
 
     def applied_loads(self) -> np.ndarray:
-        """(Fx, Fy, Fz, My, Mz) [N, N m] applied to the inner ring (moments zero for imposed tilt)."""
+        """(Fx, Fy, Fz, My, Mz) [N, N m] applied to the inner ring (moments zero for imposed
+        tilt)."""
         moment = self.tilting_moment if self.tilting_moment is not None else 0.0
         return np.array(
             [
@@ -45,7 +46,8 @@ class OperatingPoint:
         )
 
     def imposed_tilt(self) -> np.ndarray:
-        """(theta_y, theta_z) [rad] of the imposed misalignment: rotation vector along the tilt axis."""
+        """(theta_y, theta_z) [rad] of the imposed misalignment: rotation vector along the tilt
+        axis."""
         if self.tilt_is_free:
             return np.zeros(2)
         return self.misalignment * np.array(
@@ -59,12 +61,12 @@ class QuasiStaticSolution:
 
     Per ball (Z) and per contact (Z, 2) with columns [inner, outer]. Positions are inertial with the
     origin at the outer ring centre on the plane of the ball centres in the just-touching state;
-    ``ball_center`` columns are (axial x, radial r) in the ball's meridian plane at ``ball_azimuth``.
-    ``ball_angular_velocity`` is inertial (x, y, z). Deflections, loads are 0 at open contacts; the
-    contact angle is then the geometric one of the line between the two groove curvature centres
-    (where the ball would touch if the gap closed; a ball without any contact sits on that line).
-    ``applied_moment`` (y, z) is the moment acting on the inner ring: the given one when the tilt is
-    solved, otherwise the moment needed to hold the imposed tilt.
+    ``ball_center`` columns are (axial x, radial r) in the ball's meridian plane at
+    ``ball_azimuth``. ``ball_angular_velocity`` is inertial (x, y, z). Deflections, loads are 0 at
+    open contacts; the contact angle is then the geometric one of the line between the two groove
+    curvature centres (where the ball would touch if the gap closed; a ball without any contact sits
+    on that line). ``applied_moment`` (y, z) is the moment acting on the inner ring: the given one
+    when the tilt is solved, otherwise the moment needed to hold the imposed tilt.
     """
 
     ball_azimuth: np.ndarray

@@ -1,8 +1,8 @@
 """Solve driver of the quasi-static model: starting guess, continuation, race-control fixed point.
 
-The numerical work (ball equilibria, ring Newton/Levenberg–Marquardt) is in :mod:`.kernels`; this module
-chooses where to start, ramps load and then speed when a direct solve fails, iterates the per-ball race
-control decision to a fixed point, and packs a :class:`QuasiStaticSolution`.
+The numerical work (ball equilibria, ring Newton/Levenberg–Marquardt) is in :mod:`.kernels`; this
+module chooses where to start, ramps load and then speed when a direct solve fails, iterates the
+per-ball race control decision to a fixed point, and packs a :class:`QuasiStaticSolution`.
 """
 
 from __future__ import annotations
@@ -107,8 +107,8 @@ class _Problem:
 
 
 def _static_start(problem: _Problem, load_fraction: float):
-    """Static starting point: the axial and radial ring shifts found by bisection so that the axial and
-    radial forces balance (tilt as imposed, or 0), and the closed-form ball positions."""
+    """Static starting point: the axial and radial ring shifts found by bisection so that the axial
+    and radial forces balance (tilt as imposed, or 0), and the closed-form ball positions."""
     model = problem.static_model
     q = np.zeros(5)
     q[3:] = problem.operating.imposed_tilt()
@@ -186,16 +186,16 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
         history.append(key)
         state.inner_control = decision
     note = (
-        f"race control did not settle in {MAX_RACE_CONTROL_ITERATIONS} iterations; the last solution "
-        "is kept with the decision it was solved with"
+        f"race control did not settle in {MAX_RACE_CONTROL_ITERATIONS} iterations; the last "
+        "solution is kept with the decision it was solved with"
     )
     return True, total, merit, note
 
 
 def _continuation(solve, start: float, target: float, min_step: float):
-    """Advance a parameter from ``start`` to ``target`` with adaptive steps. ``solve(value)`` returns
-    True on success (and keeps its state) or False (the caller restores the state). Returns the last
-    value reached."""
+    """Advance a parameter from ``start`` to ``target`` with adaptive steps. ``solve(value)``
+    returns True on success (and keeps its state) or False (the caller restores the state). Returns
+    the last value reached."""
     current = start
     step = target - start
     while current != target:
@@ -213,7 +213,8 @@ def _continuation(solve, start: float, target: float, min_step: float):
 def solve_operating_point(
     geometry, operating: OperatingPoint, initial: QuasiStaticSolution | None = None
 ) -> QuasiStaticSolution:
-    """Quasi-static equilibrium of ``geometry`` at ``operating``; see :func:`solve_quasistatic_state`."""
+    """Quasi-static equilibrium of ``geometry`` at ``operating``; see
+    :func:`solve_quasistatic_state`."""
     problem = _Problem(geometry, operating)
     z = geometry.ball_count
     totals = {"iterations": 0}
@@ -278,9 +279,9 @@ def _no_static_message(problem: _Problem) -> str:
         f"no static equilibrium found for axial load {op.axial_load:g} N, radial load "
         f"{op.radial_load:g} N"
         + (f", tilting moment {op.tilting_moment:g} N m" if op.tilt_is_free else "")
-        + ": the balls cannot hold the inner ring in every loaded direction (for example a free tilt "
-        "or a radial load with too few balls in contact). Try adding axial preload, imposing the "
-        "tilt (misalignment_deg) instead of a moment, or reducing the load."
+        + ": the balls cannot hold the inner ring in every loaded direction (for example a free "
+        "tilt or a radial load with too few balls in contact). Try adding axial preload, imposing "
+        "the tilt (misalignment_deg) instead of a moment, or reducing the load."
     )
 
 
@@ -295,9 +296,9 @@ def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
     speed = _rpm(reached * op.inner_ring_speed)
     target = _rpm(op.inner_ring_speed)
     return (
-        f"the quasi-static equilibrium was followed up to {speed:.0f} rpm (of {target:.0f} rpm) and "
-        f"lost beyond it; there the smallest outer contact angle was {alpha_o:.1f}°: the centrifugal "
-        f"force and gyroscopic moment of the balls exceed what the axial load of "
+        f"the quasi-static equilibrium was followed up to {speed:.0f} rpm (of {target:.0f} rpm) "
+        f"and lost beyond it; there the smallest outer contact angle was {alpha_o:.1f}°: the "
+        f"centrifugal force and gyroscopic moment of the balls exceed what the axial load of "
         f"{op.axial_load:g} N can hold. Try more axial preload or a lower speed."
     )
 

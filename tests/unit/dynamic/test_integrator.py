@@ -20,7 +20,8 @@ from solver.models.dynamic.simulate import state_scales
 
 def test_local_error_control_converges():
     """Deflection-scale error after 0.2 shaft revolution: tolerance 1e-4 agrees with a 1e-8
-    reference to a small fraction of the deflection, and 1e-2 is visibly worse (the control works)."""
+    reference to a small fraction of the deflection, and 1e-2 is visibly worse (the control
+    works)."""
     par, quad, y0 = start(spindle_inputs(radial=300.0))
     period = 2 * math.pi / par[L.P_WI]
     times = np.array([0.0, 0.2 * period])

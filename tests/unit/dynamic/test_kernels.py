@@ -78,7 +78,8 @@ def test_rotation_vector_is_rodrigues():
 
 @pytest.mark.parametrize("mode", [0, 1])
 def test_ring_frames_tilt_modes(mode):
-    """Space-fixed tilt: the ring axis stays put as the ring turns; ring-fixed tilt: it precesses."""
+    """Space-fixed tilt: the ring axis stays put as the ring turns; ring-fixed tilt: it
+    precesses."""
     par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
     par[L.P_TILT_MODE] = mode
     z = 18

@@ -94,7 +94,8 @@ def test_spin_speed_sign_and_magnitude():
 
 @pytest.mark.parametrize("omega", [1500.0, -1500.0])
 def test_gyroscopic_moment_is_rate_of_angular_momentum(omega):
-    """M_g e_theta = omega_c e_x x (J omega_b) for either direction of rotation (physics.md §2.5.4)."""
+    """M_g e_theta = omega_c e_x x (J omega_b) for either direction of rotation (physics.md
+    §2.5.4)."""
     J = 2.0e-8
     beta, omega_c, omega_r = state(0.6, 0.45, 0.17, omega, 0.0, False)
     h = J * omega_r * (math.cos(beta) * E_X - math.sin(beta) * E_R)
