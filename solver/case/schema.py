@@ -628,8 +628,3 @@ def fields_by_key() -> dict[str, Field]:
 def field(key: str) -> Field:
     """The :class:`Field` for a dotted key (KeyError if unknown)."""
     return fields_by_key()[key]
-
-
-def section_fields(section: str) -> list[Field]:
-    """Fields of one top-level section, in table order ('' for top-level keys)."""
-    return [f for f in FIELDS if f.section == section]

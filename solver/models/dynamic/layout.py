@@ -23,8 +23,6 @@ origin = outer-ring centre on the plane of the ball centres in the just-touching
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 # ---- state: ball block --------------------------------------------------------------------------
 BALL_STRIDE = 13
 B_POS = 0
@@ -152,25 +150,3 @@ K_RX = 29  # equivalent radius in the rolling direction [m]
 K_RY = 30  # equivalent radius across the groove [m]
 K_ELASTIC = 31  # elastic part of Q, K delta^1.5 [N]
 N_CONTACT_RECORD = 32
-
-
-@dataclass(frozen=True)
-class StateLayout:
-    """Sizes and block offsets of the state vector for ``ball_count`` balls."""
-
-    ball_count: int
-
-    @property
-    def size(self) -> int:
-        return state_size(self.ball_count)
-
-    @property
-    def ring(self) -> int:
-        return ring_base(self.ball_count)
-
-    @property
-    def cage(self) -> int:
-        return cage_base(self.ball_count)
-
-    def ball(self, j: int) -> int:
-        return ball_base(j)

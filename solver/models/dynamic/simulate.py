@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import time as _time
-from datetime import UTC, datetime
 from types import MappingProxyType
 
 import numpy as np
@@ -265,7 +264,3 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
         err.dataset = ds
         raise err
     return ds
-
-
-def created_timestamp() -> str:
-    return datetime.now(UTC).isoformat(timespec="seconds")
