@@ -40,12 +40,9 @@ def quasistatic_job(case_text: str, progress, cancel):
 
 def _child_main(target: str, case_text: str, out_path: str, messages, cancel_event) -> None:
     """Entry point of the child process: never raises, always ends with a done/error message."""
-    try:
-        from solver import CaseError, NoSolutionError, SimulationDiverged
+    from solver import CaseError, NoSolutionError, SimulationDiverged
+    from solver.results.io import save_dataset
 
-        user_errors = (CaseError, NoSolutionError, SimulationDiverged)
-    except ImportError:  # pragma: no cover - solver package broken
-        user_errors = ()
     try:
         module_name, func_name = target.split(":")
         job = getattr(importlib.import_module(module_name), func_name)
@@ -54,14 +51,9 @@ def _child_main(target: str, case_text: str, out_path: str, messages, cancel_eve
             messages.put(("progress", float(fraction), float(simulated_time), str(text)))
 
         ds = job(case_text, progress, cancel_event)
-        try:
-            from solver.results.io import save_dataset
-        except ImportError:
-            ds.to_netcdf(out_path)
-        else:
-            save_dataset(ds, out_path)
+        save_dataset(ds, out_path)
         messages.put(("done", out_path, int(ds.attrs.get("complete", 1))))
-    except user_errors as error:
+    except (CaseError, NoSolutionError, SimulationDiverged) as error:
         messages.put(("error", str(error)))
     except Exception as error:  # an unexpected failure: say what it was, in one line
         import traceback

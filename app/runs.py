@@ -52,20 +52,14 @@ class RunInfo:
 
 
 def save_netcdf(ds: xr.Dataset, path: Path) -> None:
-    try:
-        from solver.results.io import save_dataset
-    except ImportError:  # the results package has not landed: plain xarray NetCDF
-        ds.to_netcdf(path)
-    else:
-        save_dataset(ds, path)
+    from solver.results.io import save_dataset
+
+    save_dataset(ds, path)
 
 
 def load_netcdf(path: Path) -> xr.Dataset:
-    try:
-        from solver.results.io import load_dataset
-    except ImportError:
-        with xr.open_dataset(path) as ds:
-            return ds.load()
+    from solver.results.io import load_dataset
+
     return load_dataset(path)
 
 

@@ -29,7 +29,7 @@ import numpy as np
 from . import charts
 from .caseform import apply_form, case_form_values, form_fields
 from .frames import FrameSource, frame_source
-from .runner import DYNAMIC_JOB, QUASISTATIC_JOB, SolverRunner
+from .runner import DYNAMIC_JOB, SolverRunner
 from .runs import RunStore, default_runs_dir, describe_case, load_netcdf
 
 log = logging.getLogger("racetrace.app")
@@ -56,17 +56,6 @@ CHARTS = (
 
 def _fig_json(fig) -> dict:
     return json.loads(fig.to_json())
-
-
-def dynamic_model_available() -> bool:
-    """Whether ``solver.simulate`` can be imported (the dynamic model has landed)."""
-    try:
-        import solver
-
-        solver.simulate  # noqa: B018 - lazy import
-    except (ImportError, AttributeError):
-        return False
-    return True
 
 
 class RacetraceApp:
@@ -693,17 +682,16 @@ class RacetraceApp:
         self._compare_key = None
 
     def run(self) -> None:
-        """Start the dynamic model (or the quasi-static one if the dynamic model is absent)."""
+        """Start the dynamic model on the current case in the background."""
         if self.runner.busy or self.validate() is None or self.case is None:
             return
-        target = DYNAMIC_JOB if dynamic_model_available() else QUASISTATIC_JOB
         self.store.root.mkdir(parents=True, exist_ok=True)
         out = self.store.root / f".job-{secrets.token_hex(4)}.nc"
         case_text = self.case.to_toml()
         title = describe_case(self.case)
-        self._run_info = {"case_text": case_text, "title": title, "out": out, "target": target}
+        self._run_info = {"case_text": case_text, "title": title, "out": out}
         self._cancel_requested = False
-        self.runner.start(case_text, out, target=target)
+        self.runner.start(case_text, out, target=DYNAMIC_JOB)
         with self.state:
             # the animation would take processor time from the solver (2 cores here): pause it
             self.state.playing = False
@@ -711,10 +699,7 @@ class RacetraceApp:
             self.state.run_disabled = True
             self.state.progress = 0
             self.state.eta = ""
-            model = (
-                "dynamic" if target == DYNAMIC_JOB else "quasi-static (dynamic model not available)"
-            )
-            self.state.status = f"running {model}"
+            self.state.status = "running dynamic"
         try:
             loop = asyncio.get_running_loop()
         except RuntimeError:
@@ -728,8 +713,6 @@ class RacetraceApp:
         self._cancel_requested = True
         self.state.status = "cancelling"
         self.runner.cancel()
-        if self._run_info.get("target") == QUASISTATIC_JOB:
-            self.runner.shutdown()  # not cancellable from inside: stop the process
 
     async def _poll_loop(self) -> None:
         while self.runner.busy or self.state.busy:
@@ -743,7 +726,7 @@ class RacetraceApp:
         """Apply runner events to the state; True once the run has finished."""
         events = self.runner.poll()
         if not events and not self.runner.busy and self.state.busy:
-            # shut down without a last event (cancelled quasi-static job)
+            # the runner was shut down before its last event (SolverRunner.shutdown)
             self._end_run("cancelled" if self._cancel_requested else "error: the run stopped")
             return True
         for event in events:

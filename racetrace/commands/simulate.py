@@ -48,12 +48,8 @@ def register(subparsers) -> None:
 
 
 def _load_case(name: str):
-    try:
-        from solver.catalogue import resolve_case
-    except ImportError:  # catalogue not available: a file path only
-        from solver import load_case
+    from solver.catalogue import resolve_case
 
-        return load_case(Path(name))
     return resolve_case(name)
 
 

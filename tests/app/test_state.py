@@ -10,8 +10,9 @@ import uuid
 import numpy as np
 import pytest
 
-from app import state as state_module  # noqa: E402
-from app.state import DEFAULT_CASE, RacetraceApp  # noqa: E402
+from app import state as state_module
+from app.runner import QUASISTATIC_JOB
+from app.state import DEFAULT_CASE, RacetraceApp
 
 
 def _server():
@@ -156,7 +157,8 @@ def _wait_run(app, timeout=180.0):
 
 
 def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
-    monkeypatch.setattr(state_module, "dynamic_model_available", lambda: False)  # fast QS run
+    # a fast run: the quasi-static job in place of the dynamic one
+    monkeypatch.setattr(state_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
     app.run()
     assert app.state.busy and app.state.run_disabled
     assert app.state.status.startswith("running")
@@ -271,8 +273,6 @@ def test_export_in_the_background(app):
 
 
 def test_dynamic_run_reports_progress_and_shows_its_result(app):
-    if not state_module.dynamic_model_available():
-        pytest.skip("the dynamic model (solver.simulate) is not available")
     _set(app, fv_shaft_revolutions="0.3", open_panels=["comparison"])
     assert app.state.case_valid
     app.run()
