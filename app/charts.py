@@ -418,8 +418,12 @@ HELP["compare_load"] = (
     "zone around the load direction and the balls opposite it carry less, or nothing."
 )
 HELP["compare_summary"] = (
-    "Summary per run and race. Contact angle min/max and the band width (max - min, over loaded "
-    "contacts) tell how far the contact wanders across the groove; the largest contact load and "
+    "Summary per run and race. Contact angle min/max tell where the contact sits in the groove; "
+    "the excursion (how far the mean track wanders across the groove going round the raceway) "
+    "and the band thickness (the spread at one raceway azimuth, across passes and balls: 0 for a "
+    "thin line; '-' for a quasi-static result, which has one pass) are measured in each race's "
+    "own ring frame, after the run has settled (see docs/results-schema.md); the largest contact "
+    "load and "
     "peak pressure tell how hard the most loaded ball is pressed (fatigue life); the cage speed "
     "shows whether the ball set orbits as kinematics predicts."
 )
@@ -470,15 +474,19 @@ def run_summary(source: FrameSource, ds: xr.Dataset) -> dict:
 
     * ``contact_angle_min_deg``, ``contact_angle_max_deg``: smallest and largest contact angle of
       the loaded samples (degree);
-    * ``band_width_deg``: their difference, max - min (degree): the across-groove width of the
-      band the contact trajectories cover on the raceway (0 for identical balls in steady rolling
-      under pure axial load);
+    * ``excursion_deg``, ``band_thickness_deg``: the trajectory excursion and band thickness of
+      the race in its own ring's frame (degree), as the solver defines them
+      (:mod:`solver.results.summary`, ``ds.racetrace.summary()``; NaN thickness for a
+      quasi-static result);
     * ``contact_load_max_N``: largest contact load (N);
     * ``max_pressure_max_GPa``: largest Hertz peak pressure of the loaded samples (GPa).
 
     ``cage_speed_rpm`` is :func:`mean_cage_speed` (rev/min). A race without any loaded sample
     gets NaN values.
     """
+    from solver.results.summary import headline
+
+    metrics = headline(ds.racetrace.summary())
     samples = azimuth_samples(source)
     summary = {}
     for race in (INNER, OUTER):
@@ -495,7 +503,8 @@ def run_summary(source: FrameSource, ds: xr.Dataset) -> dict:
         summary[RACES[race]] = {
             "contact_angle_min_deg": low,
             "contact_angle_max_deg": high,
-            "band_width_deg": high - low,
+            "excursion_deg": metrics[RACES[race]]["excursion_deg"],
+            "band_thickness_deg": metrics[RACES[race]]["band_thickness_deg"],
             "contact_load_max_N": load_max,
             "max_pressure_max_GPa": pressure_max,
         }
@@ -509,7 +518,8 @@ SUMMARY_COLUMNS = (
     ("race", "race", None),
     ("contact_angle_min_deg", "contact angle min, degree", ".2f"),
     ("contact_angle_max_deg", "contact angle max, degree", ".2f"),
-    ("band_width_deg", "band width, degree", ".3f"),
+    ("excursion_deg", "excursion (own ring frame), degree", ".3f"),
+    ("band_thickness_deg", "band thickness (own ring frame), degree", ".3f"),
     ("contact_load_max_N", "contact load max, N", ".1f"),
     ("max_pressure_max_GPa", "peak pressure max, GPa", ".3f"),
     ("cage_speed_rpm", "mean cage speed, rev/min", ".0f"),

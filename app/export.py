@@ -1,6 +1,8 @@
 """Exports of a result and of the 3-D view: NetCDF, CSV, PNG and an MP4 or GIF animation.
 
-Every file is written to a temporary name next to its target and renamed into place (atomic).
+NetCDF and CSV go through the solver's ``ds.racetrace`` accessor (the one export door); PNG and the
+animations need this app's renderer. Every file is written to a temporary name next to its target
+and renamed into place (atomic).
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .runs import save_netcdf
+import solver  # noqa: F401  (registers the ds.racetrace accessor)
 
 ANIMATION_FORMATS = ("gif", "mp4")
 
@@ -38,33 +40,18 @@ def _atomic(path: Path, write) -> Path:
 
 
 def export_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
-    """The result as NetCDF (the results-schema.md contract)."""
-    return _atomic(Path(path), lambda tmp: save_netcdf(ds, tmp))
-
-
-def contact_table(ds: xr.Dataset):
-    """Per-contact variables as a flat table (pandas DataFrame): one row per (time,) ball, race.
-
-    Columns are named ``<variable> [<units>]``; angles stay in degrees as in the result.
-    """
-    names = [
-        n
-        for n, v in ds.data_vars.items()
-        if {"ball", "race"} <= set(v.dims)
-        and set(v.dims) <= {"ball", "race", "time"}
-        and v.dtype.kind in "fiu"
-    ]
-    if not names:
-        raise ValueError("the result has no per-contact variables (ball, race) to export")
-    sub = ds[names]
-    frame = sub.to_dataframe().reset_index()
-    return frame.rename(columns={n: f"{n} [{ds[n].attrs.get('units', '1')}]" for n in names})
+    """The result as NetCDF (the results-schema.md contract), through ``ds.racetrace.save``."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return ds.racetrace.save(path)
 
 
 def export_csv(ds: xr.Dataset, path: str | Path) -> Path:
-    """Per-contact variables as CSV (see :func:`contact_table`)."""
-    table = contact_table(ds)
-    return _atomic(Path(path), lambda tmp: table.to_csv(tmp, index=False))
+    """The per-contact table as CSV, through ``ds.racetrace.to_csv`` (columns defined by
+    :func:`solver.results.io.contact_table`)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return ds.racetrace.to_csv(path)
 
 
 def export_png(plotter, path: str | Path) -> Path:

@@ -23,7 +23,6 @@ Units: s, m, rad (the dataset's degrees are converted here), N, Pa. Races are in
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,7 +34,7 @@ TWO_PI = 2.0 * math.pi
 RPM = TWO_PI / 60.0  # rad/s per rev/min
 
 QS_SAMPLES_PER_REVOLUTION = 72  # animation frames per shaft revolution for a quasi-static result
-QS_DEFAULT_REVOLUTIONS = 10.0  # used when the case has no [simulation] shaft_revolutions
+QS_DEFAULT_REVOLUTIONS = 10.0  # shaft revolutions animated when the caller names none
 QS_MAX_REVOLUTIONS = 20.0  # the steady animation repeats; longer runs only add frames to handle
 
 _CONTACT_VARS = (
@@ -180,17 +179,15 @@ class FrameSource:
     ) -> FrameSource:
         """Steady rigid kinematics from a quasi-static result (see module docstring).
 
-        ``revolutions`` (shaft revolutions to animate) defaults to the case's
-        ``simulation.shaft_revolutions`` (at most :data:`QS_MAX_REVOLUTIONS`) or
-        :data:`QS_DEFAULT_REVOLUTIONS`.
+        ``revolutions`` (shaft revolutions to animate, at most :data:`QS_MAX_REVOLUTIONS`)
+        defaults to :data:`QS_DEFAULT_REVOLUTIONS`. Ring speeds come from the result's
+        coordinates.
         """
         _require(ds, ("ball_center", "ball_azimuth", "ball_angular_velocity", *_CONTACT_VARS))
         omega_i, omega_o = ring_speeds(ds)
         if revolutions is None:
-            revolutions = _case_value(
-                ds, ("simulation", "shaft_revolutions"), QS_DEFAULT_REVOLUTIONS
-            )
-            revolutions = min(float(revolutions), QS_MAX_REVOLUTIONS)
+            revolutions = QS_DEFAULT_REVOLUTIONS
+        revolutions = min(float(revolutions), QS_MAX_REVOLUTIONS)
         psi0 = np.radians(_arr(ds, "ball_azimuth", ("ball",)))
         if "cage_speed" in ds and np.isfinite(float(ds["cage_speed"])):
             w_cage = float(ds["cage_speed"])
@@ -244,24 +241,10 @@ def frame_source(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
 
 # ---- helpers ------------------------------------------------------------------------------------
 def ring_speeds(ds: xr.Dataset) -> tuple[float, float]:
-    """(inner, outer) ring speeds in rad/s from the case in the result's ``case`` attribute."""
-    inner = _case_value(ds, ("operating", "inner_ring_speed_rpm"), None)
-    if inner is None:
-        raise ValueError("the result has no case attribute with operating.inner_ring_speed_rpm")
-    outer = _case_value(ds, ("operating", "outer_ring_speed_rpm"), 0.0)
-    return float(inner) * RPM, float(outer) * RPM
+    """(inner, outer) ring speeds in rad/s from the result's coordinates (ValueError without)."""
+    from solver.results.dataset import ring_speeds as result_ring_speeds
 
-
-def _case_value(ds: xr.Dataset, path: tuple[str, ...], default):
-    text = ds.attrs.get("case")
-    if not text:
-        return default
-    node = tomllib.loads(text)
-    for key in path:
-        if not isinstance(node, dict) or key not in node:
-            return default
-        node = node[key]
-    return node
+    return result_ring_speeds(ds)
 
 
 def _require(ds: xr.Dataset, names) -> None:

@@ -383,11 +383,13 @@ class RacetraceApp:
     def show_result(self, ds, label: str) -> None:
         """Show a result Dataset: frame source, scene, charts and the time controls."""
         from solver import load_case
-        from solver.geometry import BearingGeometry
+        from solver.results.dataset import geometry_from_result
 
-        source = frame_source(ds)
+        source = frame_source(ds, **self._animation_options(ds))
         self.dataset = ds
         self.source = source
+        # the run's own case (provenance): its case warnings, whether the form already shows it, and
+        # the quasi-static comparison solved for it; the views read the result's coordinates
         case = load_case(ds.attrs["case"]) if ds.attrs.get("case") else self.case
         self._shown_case_text = case.to_toml() if case is not None else None
         self.state.result_warnings = self._warnings_of(ds, case)
@@ -400,7 +402,7 @@ class RacetraceApp:
                 log.warning("no quasi-static comparison for this run: %s", error)
                 self.quasistatic = None
         if self.render_enabled:
-            self._ensure_scene(BearingGeometry.from_case(case), case)
+            self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
             self.scene.show_source(source, 0)
         s = self.state
         s.frame_max = source.n_frames - 1
@@ -427,13 +429,20 @@ class RacetraceApp:
         return found
 
     @staticmethod
-    def _load_side(case) -> float:
-        """Azimuth (rad, from +y towards +z) of the radial load: where the load zone is."""
-        angle = getattr(case.operating, "radial_load_angle_deg", None) if case else None
-        return math.radians(angle or 0.0)
+    def _load_side(ds) -> float:
+        """Azimuth (rad, from +y towards +z) of the radial load of the result ``ds`` (its
+        ``radial_load_angle`` coordinate, degree): where the load zone is."""
+        return math.radians(float(ds.coords["radial_load_angle"]))
 
-    def _ensure_scene(self, geometry, case) -> None:
-        load_side = self._load_side(case)
+    def _animation_options(self, ds) -> dict:
+        """Options of :func:`app.frames.frame_source`: a quasi-static result is animated for the
+        form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form)."""
+        if "time" in ds.dims or self.case is None:
+            return {}
+        revolutions = getattr(getattr(self.case, "simulation", None), "shaft_revolutions", None)
+        return {} if revolutions is None else {"revolutions": float(revolutions)}
+
+    def _ensure_scene(self, geometry, load_side: float) -> None:
         key = (
             geometry.ball_count,
             geometry.ball_diameter,

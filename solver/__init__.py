@@ -7,10 +7,13 @@ Public API (everything else is internal):
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
 - ``simulate(case, progress=None, cancel=None) -> xarray.Dataset`` (dynamic model)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
+- the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
+  ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
+  ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
 - ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
   ``SimulationDiverged`` (the dynamic integration failed)
 
-Heavy modules (numba kernels, xarray) are imported on first use, so ``import solver`` stays cheap.
+The numba kernels are imported on first use; registering the accessor imports xarray.
 """
 
 from importlib import import_module
@@ -38,11 +41,15 @@ _LAZY = {
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
     "result_warnings": "solver.results.checks",
+    "trajectory_summary": "solver.results.summary",
+    "contact_table": "solver.results.io",
+    "RacetraceAccessor": "solver.results.accessor",
 }
 
 # ``catalogue`` is both a submodule and the function it defines: import it eagerly (it is light), so
 # that ``solver.catalogue`` stays the function even after ``import solver.catalogue``.
 from .catalogue import catalogue  # noqa: E402
+from .results import accessor as _accessor  # noqa: E402, F401  (registers ds.racetrace)
 
 __all__ = [
     "CaseError",

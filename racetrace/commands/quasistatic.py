@@ -1,12 +1,13 @@
 """``racetrace quasistatic CASE [--output result.nc] [--json]``: the Jones–Harris quasi-static
 solution.
 
-Default output is a readable table with units; ``--json`` prints a machine-parseable summary
-instead; ``--output`` writes the full results Dataset (NetCDF, results-schema.md). Case warnings
-and result warnings (:func:`solver.results.checks.result_warnings`: the result leaves the model's
-validity) go to stderr as ``warning: ...`` lines and leave the exit code alone. Exit codes: 0
-success, 2 invalid input, 3 no solution (the message says why and what to try) — mapped by
-racetrace.cli.
+Default output is a readable table with units, followed by the trajectory metrics
+(:mod:`racetrace.metrics`); ``--json`` prints a machine-parseable summary instead (the metrics
+under ``trajectory``); ``--output`` writes the full results Dataset (NetCDF, results-schema.md).
+Case warnings and result warnings (:func:`solver.results.checks.result_warnings`: the result leaves
+the model's validity) go to stderr as ``warning: ...`` lines and leave the exit code alone. Exit
+codes: 0 success, 2 invalid input, 3 no solution (the message says why and what to try) — mapped
+by racetrace.cli.
 """
 
 from __future__ import annotations
@@ -47,8 +48,11 @@ def summary(ds) -> dict:
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
 
+    from racetrace.metrics import metrics_json
+    from solver.results.dataset import ring_speeds
+
     load = ds.contact_load.values
-    inner_speed = float(ds.attrs.get("inner_ring_speed_rad_s", 0.0))
+    inner_speed, outer_speed = ring_speeds(ds)
     return {
         "model": "quasistatic",
         "units": {
@@ -60,7 +64,7 @@ def summary(ds) -> dict:
             "moment": "N m",
         },
         "inner_ring_speed_rpm": inner_speed * 30.0 / math.pi,
-        "outer_ring_speed_rpm": float(ds.attrs.get("outer_ring_speed_rad_s", 0.0)) * 30.0 / math.pi,
+        "outer_ring_speed_rpm": outer_speed * 30.0 / math.pi,
         "inner_ring_offset_m": floats(ds.inner_ring_offset.values),
         "inner_ring_tilt_deg": floats(ds.inner_ring_tilt.values),
         "inner_ring_moment_Nm": floats(ds.inner_ring_moment.values),
@@ -78,6 +82,7 @@ def summary(ds) -> dict:
             "residual": float(ds.attrs.get("solver_residual", 0.0)),
             "race_control_note": ds.attrs.get("race_control_note", ""),
         },
+        "trajectory": metrics_json(ds),
         "balls": [
             {
                 "azimuth_deg": float(ds.ball_azimuth.values[j]),
@@ -108,9 +113,12 @@ def summary(ds) -> dict:
 def table(ds, case) -> str:
     """Readable table: header (bearing, speed, loads, ring displacement, cage speed, peak pressure)
     and one row per ball."""
+    from racetrace.metrics import metrics_text
+    from solver.results.dataset import ring_speeds
+
     op = case.operating
     b = case.bearing
-    inner_speed = float(ds.attrs.get("inner_ring_speed_rad_s", 0.0))
+    inner_speed = ring_speeds(ds)[0]
     p_max = float(ds.max_pressure.values.max())
     unit, factor = _pressure_unit(p_max)
     offset = ds.inner_ring_offset.values * 1e6
@@ -165,6 +173,7 @@ def table(ds, case) -> str:
         "alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the"
     )
     lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
+    lines += ["", metrics_text(ds)]
     return "\n".join(lines)
 
 

@@ -3,12 +3,15 @@
 A progress bar with the simulated time and an ETA goes to stderr. Ctrl-C stops the run at the next
 chunk boundary: the partial result (attrs ``complete = 0``) is written atomically and the command
 exits with 130. A diverged run also writes what it had and exits with 4, printing the likely cause.
-Case warnings and result warnings (the result leaves the model's validity, or the run stopped early)
-are printed on stderr as ``warning: ...`` lines; they do not change the exit code.
+Case warnings and result warnings (the result leaves the model's validity, the run stopped early or
+is too short to settle) are printed on stderr as ``warning: ...`` lines; they do not change the exit
+code. The trajectory metrics (excursion, band thickness, settling) go to stdout, as JSON with
+``--json``.
 """
 
 from __future__ import annotations
 
+import json
 import signal
 import sys
 import threading
@@ -44,6 +47,11 @@ def register(subparsers) -> None:
     )
     parser.add_argument("--no-cage", action="store_true", help="leave the cage out of the model")
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress bar")
+    parser.add_argument(
+        "--json",
+        action="store_true",
+        help="print the trajectory metrics and the settling window as JSON",
+    )
     parser.set_defaults(func=run)
 
 
@@ -137,6 +145,7 @@ def run(args) -> int:
             bar.close()
     save_dataset(ds, output)
     print_result_warnings(ds)
+    print_metrics(ds, args.json, output)
     if ds.attrs.get("complete", 0) != 1 and code == 0:
         print(
             f"racetrace: interrupted; partial result ({ds.sizes['time']} samples up to "
@@ -152,3 +161,13 @@ def run(args) -> int:
         file=sys.stderr,
     )
     return 0
+
+
+def print_metrics(ds, as_json: bool, output: Path) -> None:
+    """The trajectory metrics and the settling window on stdout (text or JSON)."""
+    from racetrace.metrics import metrics_json, metrics_text
+
+    if as_json:
+        print(json.dumps({"output": str(output), "trajectory": metrics_json(ds)}, indent=2))
+    else:
+        print(metrics_text(ds))

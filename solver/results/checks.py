@@ -1,8 +1,9 @@
 """Warnings about a result that lies outside the model's validity (quasi-static or dynamic).
 
 :func:`result_warnings` reads only the results Dataset (results-schema.md): the per-contact
-variables, the ``case`` attribute (for the ball diameter and groove radii) and, for a dynamic run,
-the ``time`` dimension and the ``complete`` attribute. Each message names the quantity, the race,
+variables, the ``ball_diameter`` and ``groove_radius`` coordinates and, for a dynamic run, the
+``time`` dimension, the ``complete`` attribute and the settling window
+(:mod:`solver.results.summary`). Each message names the quantity, the race,
 where it happens (how many contacts and which balls, or which balls and what share of the run), the
 worst value with its unit, the limit, why it matters and what to try. An empty list means no check
 fired; it does not prove the result right.
@@ -20,15 +21,18 @@ The checks, per race:
   top of the groove (contact angle + semi-major / groove radius > 90 deg), or its semi-major axis
   exceeds the ball radius D/2.
 
-and, for a dynamic result, **stopped early**: ``complete`` == 0.
+and, for a dynamic result, **stopped early**: ``complete`` == 0, and **run too short to settle**:
+``settled`` == 0 (the stored flag; computed by :func:`solver.results.summary.settling` for a result
+that does not store it but has the spin-to-roll ratios).
 """
 
 from __future__ import annotations
 
 import math
-import tomllib
 
 import numpy as np
+
+from . import summary
 
 #: ISO 76 reference contact stress for ball bearings (except self-aligning), Pa: the static limit.
 STATIC_PRESSURE_LIMIT = 4.2e9
@@ -47,6 +51,8 @@ def result_warnings(ds) -> list[str]:
     found: list[str] = []
     if "time" in ds.dims and int(ds.attrs.get("complete", 1)) == 0:
         found.append(_incomplete_message(ds))
+    if "time" in ds.dims:
+        found += _settling_check(ds)
     grooves = _groove_radii(ds)
     for race in [str(r) for r in ds["race"].values]:
         too_large = _hertz_size_check(ds, race, *grooves) if grooves is not None else ""
@@ -72,17 +78,12 @@ def _loaded(ds, race: str) -> np.ndarray:
 
 
 def _groove_radii(ds) -> tuple[float, dict[str, float]] | None:
-    """(ball diameter D [m], {race: groove radius f D [m]}) from the case text in the attributes;
-    None when the Dataset carries no readable case."""
-    try:
-        bearing = tomllib.loads(str(ds.attrs["case"]))["bearing"]
-        diameter = float(bearing["ball_diameter_mm"]) * 1e-3
-        radii = {
-            race: float(bearing[f"{race}_groove_radius_ratio"]) * diameter
-            for race in ("inner", "outer")
-        }
-    except (KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
+    """(ball diameter D [m], {race: groove radius [m]}) from the result's coordinates; None when
+    the result does not carry them."""
+    if "ball_diameter" not in ds.coords or "groove_radius" not in ds.coords:
         return None
+    diameter = float(ds.coords["ball_diameter"])
+    radii = {race: float(ds.coords["groove_radius"].sel(race=race)) for race in ("inner", "outer")}
     if not (math.isfinite(diameter) and diameter > 0.0):
         return None
     return diameter, radii
@@ -207,6 +208,28 @@ def _hertz_size_check(ds, race: str, ball_diameter: float, groove_radius: dict) 
         + ". The contact would wrap past the groove or be wider than the ball, so this result is "
         "not physical; reduce the load (or choose a larger bearing)."
     )
+
+
+def _settling_check(ds) -> list[str]:
+    """'run too short to settle' for a dynamic result whose analysed window does not start at a
+    settling time (see solver.results.summary)."""
+    if "settled" in ds:
+        if int(ds["settled"]) == 1:
+            return []
+    elif not (
+        {"spin_to_roll", "contact_angle", "contact_load"} <= set(ds.data_vars)
+        and {"inner_ring_speed", "outer_ring_speed"} <= set(ds.coords)
+    ):
+        return []  # neither stored nor computable: nothing to say
+    state = summary.settling(ds)
+    if state.settled:
+        return []
+    if "analysis_start_time" in ds:
+        start = float(ds["analysis_start_time"])
+    else:
+        first, _ = summary.analysis_start(ds)
+        start = float(ds["time"].values[first])
+    return [summary.unsettled_message(ds, state, start)]
 
 
 def _incomplete_message(ds) -> str:

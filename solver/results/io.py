@@ -1,14 +1,18 @@
-"""Save and load results Datasets as NetCDF (netCDF4 engine), atomically."""
+"""Save and load results Datasets as NetCDF (netCDF4 engine), and export the per-contact table as
+CSV; every file is written atomically."""
 
 from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 import xarray as xr
 
 ENGINE = "netcdf4"
+_PER_CONTACT_DIMS = {"ball", "race", "time"}
+_COMPONENT_DIMS = {"axis", "tilt_axis", "quaternion", "frame", "body"}  # not one value per contact
 
 
 def save_dataset(ds: xr.Dataset, path) -> Path:
@@ -18,12 +22,60 @@ def save_dataset(ds: xr.Dataset, path) -> Path:
     then. String variables (e.g. ``race_control``) are stored as NetCDF variable-length strings.
     Returns the path written.
     """
+    return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
+
+
+def load_dataset(path) -> xr.Dataset:
+    """Read a results Dataset fully into memory (the file is closed on return)."""
+    with xr.open_dataset(path, engine=ENGINE) as ds:
+        return ds.load()
+
+
+def contact_table(ds: xr.Dataset):
+    """The per-contact variables of a result as a flat table (pandas DataFrame).
+
+    One row per (time,) ball and race, with the index columns ``time`` (dynamic results), ``ball``
+    and ``race`` first; one column per numeric variable with dims (ball, race[, time]), named
+    ``<variable> [<units>]``, in the Dataset's units (angles in degree). ValueError when the result
+    has no per-contact variable (or holds several results: select one element first).
+    """
+    names = [
+        n
+        for n, v in ds.data_vars.items()
+        if {"ball", "race"} <= set(v.dims)
+        and not set(v.dims) & _COMPONENT_DIMS
+        and v.dtype.kind in "fiu"
+    ]
+    if not names:
+        raise ValueError("the result has no per-contact variables (ball, race) to export")
+    extra = [d for d in ds[names].dims if d not in _PER_CONTACT_DIMS]
+    if extra:
+        raise ValueError(
+            f"the result holds several results along {', '.join(extra)}: select one element "
+            "first (e.g. ds.isel(" + extra[0] + "=0))"
+        )
+    sub = ds[names].reset_coords(drop=True)
+    order = [d for d in ("time", "ball", "race") if d in sub.dims]
+    frame = sub.to_dataframe(dim_order=order).reset_index()
+    return frame.rename(columns={n: f"{n} [{ds[n].attrs.get('units', '1')}]" for n in names})
+
+
+def save_csv(ds: xr.Dataset, path) -> Path:
+    """Write :func:`contact_table` of ``ds`` to ``path`` as CSV, atomically. Returns the path."""
+    table = contact_table(ds)
+    return atomic_write(path, lambda tmp: table.to_csv(tmp, index=False))
+
+
+def atomic_write(path, write: Callable[[str], object]) -> Path:
+    """Call ``write(temporary_path)`` for a temporary file next to ``path``, then move it onto
+    ``path``. On any failure the temporary file is removed and ``path`` is left as it was. The
+    file gets the permissions the umask gives a new file. Returns ``Path(path)``."""
     path = Path(path)
     directory = path.parent if str(path.parent) else Path(".")
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
     os.close(fd)
     try:
-        ds.to_netcdf(tmp, engine=ENGINE)
+        write(tmp)
         os.chmod(tmp, 0o666 & ~_current_umask())  # mkstemp made it private (0600)
         os.replace(tmp, path)
     except BaseException:
@@ -33,12 +85,6 @@ def save_dataset(ds: xr.Dataset, path) -> Path:
             pass
         raise
     return path
-
-
-def load_dataset(path) -> xr.Dataset:
-    """Read a results Dataset fully into memory (the file is closed on return)."""
-    with xr.open_dataset(path, engine=ENGINE) as ds:
-        return ds.load()
 
 
 def _current_umask() -> int:

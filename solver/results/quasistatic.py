@@ -9,7 +9,6 @@ is kept so that both models share the schema.
 from __future__ import annotations
 
 import math
-from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
@@ -24,15 +23,10 @@ from solver.physics.hertz_fast import (
 )
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
 
-from .variables import VARIABLES, coordinates
+from .dataset import build_result, case_text
+from .variables import VARIABLES
 
 MODEL = "quasistatic"
-
-
-def _software() -> str:
-    from solver import __version__
-
-    return f"racetrace {__version__}"
 
 
 def _rotation_matrix(rotation_vector: np.ndarray) -> np.ndarray:
@@ -65,20 +59,20 @@ def contact_quantities(geometry, solution):
     return out
 
 
-def _case_text(case) -> str:
-    if case is None:
-        return ""
-    to_toml = getattr(case, "to_toml", None)
-    return to_toml() if callable(to_toml) else str(case)
-
-
-def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dataset:
+def solution_to_dataset(
+    solution, geometry, case=None, lubricant=None, operating=None
+) -> xr.Dataset:
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
     ``lubricant`` (``case.lubricant`` or None) adds ``film_thickness``; it needs ``viscosity_Pas``
-    and ``pressure_viscosity_per_GPa``.
+    and ``pressure_viscosity_per_GPa``. ``operating`` (SI operating point, see
+    :func:`solver.results.dataset.describing_coordinates`) defaults to the one the solution was
+    solved for; ``case`` (a Case or TOML text) is kept in ``attrs["case"]`` for provenance.
     """
     sol = solution
+    operating = operating if operating is not None else sol.operating
+    if operating is None:
+        raise ValueError("solution_to_dataset: the operating point of the solution is missing")
     z = sol.contact_load.shape[0]
     psi = sol.ball_azimuth
     alpha = sol.contact_angle
@@ -173,31 +167,19 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
     }
     if lubricant is not None:
         data["film_thickness"] = film
-    data_vars = {}
-    for name, values in data.items():
-        spec = VARIABLES[name]
-        attrs = spec.attrs()
-        if name == "film_thickness":
-            attrs["description"] += "; 0 at open contacts"
-        if name == "sliding_speed":
-            attrs["description"] += (
-                "; zero in the quasi-static model, which imposes pure rolling at the contact "
-                "centres"
-            )
-        data_vars[name] = (spec.dims_for(MODEL), values, attrs)
-    coords = coordinates(z)
+    descriptions = {
+        "sliding_speed": {
+            "description": "; zero in the quasi-static model, which imposes pure rolling at the "
+            "contact centres"
+        }
+    }
+    if lubricant is not None:
+        descriptions["film_thickness"] = {"description": "; 0 at open contacts"}
     attrs = {
-        "model": MODEL,
-        "case": _case_text(case),
-        "software": _software(),
-        "created": datetime.now(UTC).isoformat(timespec="seconds"),
-        "complete": 1,
         "solver_iterations": int(sol.iterations),
         "solver_residual": float(sol.residual),
         "solver_force_scale_N": float(sol.force_scale),
         "race_control_note": sol.race_control_note or "race control settled (fixed point)",
-        "inner_ring_speed_rad_s": float(sol.inner_ring_speed),
-        "outer_ring_speed_rad_s": float(sol.outer_ring_speed),
         "model_notes": (
             "Jones-Harris quasi-static model: pure rolling at both contact centres, race control "
             "per ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / "
@@ -207,13 +189,17 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
             "curvature-centre circle."
         ),
     }
-    if (
-        sol.operating is not None
-        and sol.operating.misalignment_frame == "ring"
-        and not (sol.operating.tilt_is_free)
-    ):
+    if operating.misalignment_frame == "ring" and operating.tilting_moment is None:
         attrs["misalignment_note"] = (
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "
             "the ring-fixed tilt axis coincides with the given azimuth"
         )
-    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+    return build_result(
+        MODEL,
+        {name: (VARIABLES[name].dims_for(MODEL), values) for name, values in data.items()},
+        geometry,
+        operating,
+        case=case_text(case),
+        attrs=attrs,
+        variable_attrs=descriptions,
+    )

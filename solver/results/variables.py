@@ -21,6 +21,8 @@ DIMENSION_VALUES = {
     "axis": ["x", "y", "z"],
     "tilt_axis": ["y", "z"],
     "quaternion": ["w", "x", "y", "z"],
+    "frame": ["inner_ring", "outer_ring"],
+    "body": ["ball", "ring"],
 }
 
 
@@ -237,13 +239,62 @@ VARIABLES: dict[str, Variable] = {
         "cage angular speed about +x (quasi-static: mean of the balls' orbital speeds)",
     ),
     "cage_center": Variable(("axis",), "m", "cage centre", "cage centre, inertial", _DYN),
-    # ---- summary metrics (dynamic) -------------------------------------------------------------
+    # ---- summary metrics (solver.results.summary; stored in dynamic results) ------------------
+    "trajectory_excursion": Variable(
+        ("race", "frame"),
+        "degree",
+        "contact trajectory excursion",
+        "peak-to-peak of the mean contact track around the raceway: the contact angle's median in "
+        "each of 36 azimuth bins of the ring frame named by ``frame``, max - min over the bins "
+        "(loaded contacts in the analysed window; bins with fewer than 5 samples ignored). A "
+        "quasi-static result: max - min over its loaded balls",
+        _DYN,
+        False,
+    ),
+    "trajectory_excursion_arc": Variable(
+        ("race", "frame"),
+        "m",
+        "contact trajectory excursion (arc)",
+        "groove radius times the contact-angle range of trajectory_excursion",
+        _DYN,
+        False,
+    ),
+    "trajectory_band_thickness": Variable(
+        ("race", "frame"),
+        "degree",
+        "contact trajectory band thickness",
+        "spread of the contact angle at one raceway azimuth of the ring frame named by ``frame``, "
+        "across passes and balls: 97.5th minus 2.5th percentile of the residuals from the mean "
+        "track (bin medians interpolated between bin centres); 0 for a thin line. NaN for a "
+        "quasi-static result (one snapshot: needs a dynamic run)",
+        _DYN,
+        False,
+    ),
+    "trajectory_band_thickness_arc": Variable(
+        ("race", "frame"),
+        "m",
+        "contact trajectory band thickness (arc)",
+        "groove radius times the contact-angle spread of trajectory_band_thickness",
+        _DYN,
+        False,
+    ),
+    "ellipse_semi_major_mean": Variable(
+        ("race",),
+        "m",
+        "mean contact ellipse semi-major axis",
+        "mean semi-axis a across the groove of the loaded contacts in the analysed window: the "
+        "scale against which to read the band thickness (arc)",
+        _DYN,
+        False,
+    ),
     "trajectory_band_width": Variable(
         ("race",),
         "degree",
         "contact trajectory band width",
         "across-groove width of each race's contact track over the analysed window, as a "
-        "contact-angle range",
+        "contact-angle range: max - min of the contact angle of the loaded contacts over all balls "
+        "and samples. It mixes excursion and thickness: read trajectory_excursion and "
+        "trajectory_band_thickness to tell a line from a band",
         _DYN,
         False,
     ),
@@ -255,15 +306,145 @@ VARIABLES: dict[str, Variable] = {
         _DYN,
         False,
     ),
+    "settling_time": Variable(
+        (),
+        "s",
+        "settling time",
+        "start of the first shaft revolution after which every per-revolution mean (over balls "
+        "and samples, loaded contacts) of the contact angle and of the spin-to-roll ratio of each "
+        "race stays within the settling tolerances of the last revolution's; NaN when the run "
+        "does not settle (see settled)",
+        _DYN,
+        False,
+    ),
+    "analysis_start_time": Variable(
+        (),
+        "s",
+        "start of the analysed window",
+        "time from which the summary metrics are taken (to the end of the run): settling_time "
+        "when the run settled, otherwise after the run's first analysis_skip_fraction",
+        _DYN,
+        False,
+    ),
+    "settled": Variable(
+        (),
+        "1",
+        "run settled",
+        "1 when settling was found with at least 2 shaft revolutions after it, else 0 (the "
+        "metrics then cover the last part of an unsettled run; result_warnings says so)",
+        _DYN,
+        False,
+    ),
+}
+
+
+#: Coordinates that say what a result is: the operating point and the geometry the views need
+#: (written by solver.results.dataset for both models). Scalars, or per race / per body. Angles in
+#: degree, the rest SI; strings have units "1".
+COORDINATES: dict[str, Variable] = {
+    # ---- operating point ---------------------------------------------------------------------
+    "inner_ring_speed": Variable(
+        (), "rad/s", "inner ring speed", "angular speed of the inner ring about +x"
+    ),
+    "outer_ring_speed": Variable(
+        (), "rad/s", "outer ring speed", "angular speed of the outer ring about +x"
+    ),
+    "axial_load": Variable(
+        (),
+        "N",
+        "axial load",
+        "axial load on the inner ring; positive along +x (presses the inner ring into the balls)",
+    ),
+    "radial_load": Variable((), "N", "radial load", "radial load on the inner ring (>= 0)"),
+    "radial_load_angle": Variable(
+        (),
+        "degree",
+        "radial load azimuth",
+        "azimuth of the radial load, inertial, from +y towards +z",
+    ),
+    "misalignment": Variable(
+        (),
+        "degree",
+        "imposed misalignment",
+        "imposed tilt of the inner ring relative to the outer ring (0 when the tilt is solved "
+        "under tilting_moment)",
+    ),
+    "misalignment_axis": Variable(
+        (),
+        "degree",
+        "misalignment axis azimuth",
+        "azimuth of the axis the imposed tilt turns about, from +y towards +z, in the frame named "
+        "by misalignment_frame (at t = 0 for 'ring')",
+    ),
+    "misalignment_frame": Variable(
+        (),
+        "1",
+        "misalignment frame",
+        "'space': the tilt axis is fixed in space; 'ring': it turns with the inner ring",
+    ),
+    "tilting_moment": Variable(
+        (),
+        "N m",
+        "tilting moment",
+        "moment applied to the inner ring when its tilt is solved; NaN when the tilt is imposed "
+        "(misalignment)",
+    ),
+    "moment_axis": Variable(
+        (),
+        "degree",
+        "tilting moment axis azimuth",
+        "azimuth of the tilting moment vector, inertial, from +y towards +z",
+    ),
+    # ---- geometry ----------------------------------------------------------------------------
+    "ball_count": Variable((), "1", "number of balls", "number of balls Z (integer)"),
+    "ball_diameter": Variable((), "m", "ball diameter", "ball diameter D"),
+    "pitch_diameter": Variable(
+        (),
+        "m",
+        "pitch diameter",
+        "diameter d_m of the ball-centre circle in the just-touching state",
+    ),
+    "free_contact_angle": Variable(
+        (),
+        "degree",
+        "free contact angle",
+        "contact angle alpha_0 of the unloaded bearing with the rings concentric",
+    ),
+    "groove_radius": Variable(
+        ("race",), "m", "groove radius", "raceway groove curvature radius r = f D"
+    ),
+    "shoulder_diameter": Variable(
+        ("race",),
+        "m",
+        "shoulder diameter",
+        "diameter of the land on the thrust-carrying side of the groove; NaN when not given",
+    ),
+    "groove_bottom_diameter": Variable(
+        ("race",),
+        "m",
+        "groove bottom diameter",
+        "diameter of the groove bottom in the ring's own frame",
+    ),
+    "material": Variable(
+        ("body",), "1", "material name", "name of the ball (body 'ball') and ring material"
+    ),
+    "youngs_modulus": Variable(("body",), "Pa", "Young's modulus", "Young's modulus E"),
+    "poisson_ratio": Variable(("body",), "1", "Poisson's ratio", "Poisson's ratio nu"),
+    "density": Variable(("body",), "kg m-3", "density", "mass density of the material"),
 }
 
 
 def variable(name: str) -> Variable:
-    """The registered definition of ``name``; KeyError naming the known variables otherwise."""
+    """The registered definition of ``name`` (a results variable or a describing coordinate);
+    KeyError naming the known names otherwise."""
     try:
         return VARIABLES[name]
     except KeyError:
-        known = ", ".join(sorted(VARIABLES))
+        pass
+    try:
+        return COORDINATES[name]
+    except KeyError:
+        known = ", ".join(sorted(VARIABLES) + sorted(COORDINATES))
         raise KeyError(f"unknown results variable {name!r}; known: {known}") from None
 
 
@@ -272,14 +453,25 @@ _COORDINATE_NAMES = {
     "axis": "Cartesian axis of the frame named by the variable",
     "tilt_axis": "axis of the tilt rotation vector",
     "quaternion": "quaternion component",
+    "frame": "ring frame in which a trajectory metric is measured",
+    "body": "body the material belongs to",
 }
 
 
+def dimension_coordinate(dim: str) -> tuple:
+    """``(dim, labels, attrs)`` of a labelled dimension of DIMENSION_VALUES."""
+    import numpy as np
+
+    values = np.array(DIMENSION_VALUES[dim], dtype=object)
+    return (dim, values, {"long_name": _COORDINATE_NAMES[dim], "units": "1"})
+
+
 def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dict:
-    """Coordinates of a results Dataset, each with ``units`` and ``long_name``.
+    """Dimension coordinates of a results Dataset, each with ``units`` and ``long_name``.
 
     ``times`` (s) adds the ``time`` coordinate of the dynamic model; ``quaternion`` adds the
-    [w, x, y, z] dimension of ``ball_orientation``.
+    [w, x, y, z] dimension of ``ball_orientation``. The ``frame`` dimension comes with the summary
+    metrics, ``body`` with the describing coordinates (solver.results.dataset).
     """
     import numpy as np
 
@@ -290,11 +482,10 @@ def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dic
             {"long_name": "ball index (ball 0 starts at azimuth 0)", "units": "1"},
         )
     }
-    for dim, long_name in _COORDINATE_NAMES.items():
+    for dim in ("race", "axis", "tilt_axis", "quaternion"):
         if dim == "quaternion" and not quaternion:
             continue
-        values = np.array(DIMENSION_VALUES[dim], dtype=object)
-        coords[dim] = (dim, values, {"long_name": long_name, "units": "1"})
+        coords[dim] = dimension_coordinate(dim)
     if times is not None:
         coords["time"] = (
             "time",

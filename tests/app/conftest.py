@@ -18,6 +18,8 @@ import xarray as xr
 
 from solver.geometry import BearingGeometry
 from solver.materials import BUILTIN_MATERIALS
+from solver.models.quasistatic import OperatingPoint
+from solver.results.dataset import describing_coordinates
 
 SHAFT_RPM = 6000.0
 FIXTURE_CASE = f"""
@@ -69,6 +71,14 @@ def fixture_geometry() -> BearingGeometry:
     )
 
 
+def fixture_coordinates() -> dict:
+    """The describing coordinates of the fixture case (operating point and geometry)."""
+    operating = OperatingPoint(
+        inner_ring_speed=SHAFT_RPM * 2 * np.pi / 60, axial_load=500.0, radial_load=300.0
+    )
+    return describing_coordinates(fixture_geometry(), operating)
+
+
 def make_quasistatic_dataset(ball_count: int = 12) -> xr.Dataset:
     z = ball_count
     psi = 2 * np.pi * np.arange(z) / z
@@ -107,7 +117,12 @@ def make_quasistatic_dataset(ball_count: int = 12) -> xr.Dataset:
             "ball_angular_velocity": (("ball", "axis"), omega_b, {"units": "rad/s"}),
             "cage_speed": ((), w_cage, {"units": "rad/s"}),
         },
-        coords={"ball": np.arange(z), "race": ["inner", "outer"], "axis": ["x", "y", "z"]},
+        coords={
+            "ball": np.arange(z),
+            "race": ["inner", "outer"],
+            "axis": ["x", "y", "z"],
+            **fixture_coordinates(),
+        },
         attrs={
             "model": "quasistatic",
             "case": FIXTURE_CASE,
@@ -157,6 +172,7 @@ def make_dynamic_dataset(ball_count: int = 12, n_time: int = 40) -> xr.Dataset:
             "axis": ["x", "y", "z"],
             "quaternion": ["w", "x", "y", "z"],
             "time": t,
+            **fixture_coordinates(),
         },
         attrs={
             "model": "dynamic",

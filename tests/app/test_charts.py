@@ -104,7 +104,9 @@ def test_run_summary_of_a_quasistatic_result(qs_dataset, fixture_model):
         s = summary[race]
         assert s["contact_angle_min_deg"] == pytest.approx(alpha.min())
         assert s["contact_angle_max_deg"] == pytest.approx(alpha.max())
-        assert s["band_width_deg"] == pytest.approx(np.ptp(alpha))
+        # one snapshot: the excursion spans the loaded balls; no thickness without passes
+        assert s["excursion_deg"] == pytest.approx(np.ptp(alpha))
+        assert np.isnan(s["band_thickness_deg"])
         assert s["contact_load_max_N"] == pytest.approx(
             float(qs_dataset["contact_load"].sel(race=race).max())
         )
@@ -124,7 +126,7 @@ def test_run_summary_of_pure_axial_load_has_no_band(qs_dataset):
     axial["contact_angle"][:] = [[21.0, 18.0]] * axial.sizes["ball"]
     axial["contact_load"][:] = [[140.0, 150.0]] * axial.sizes["ball"]
     summary = charts.run_summary(frame_source(axial), axial)
-    assert summary["inner"]["band_width_deg"] == pytest.approx(0.0, abs=1e-12)
+    assert summary["inner"]["excursion_deg"] == pytest.approx(0.0, abs=1e-12)
     assert summary["outer"]["contact_angle_min_deg"] == pytest.approx(18.0)
     assert summary["outer"]["contact_load_max_N"] == pytest.approx(150.0)
 
@@ -134,11 +136,25 @@ def test_run_summary_of_a_dynamic_run_uses_every_sample(dynamic_dataset, fixture
     for race in ("inner", "outer"):
         alpha = _loaded_values(dynamic_dataset, "contact_angle", race)
         assert alpha.size > dynamic_dataset.sizes["ball"] * 10
-        assert summary[race]["band_width_deg"] == pytest.approx(np.ptp(alpha))
         assert summary[race]["contact_angle_min_deg"] == pytest.approx(alpha.min())
         assert summary[race]["max_pressure_max_GPa"] == pytest.approx(1.0)
     expected_rpm = fixture_model.CAGE_RATIO * fixture_model.SHAFT_RPM
     assert summary["cage_speed_rpm"] == pytest.approx(expected_rpm)
+
+
+def test_run_summary_takes_the_trajectory_metrics_from_the_solver(dynamic_dataset):
+    """The table's excursion and thickness are the solver's own-frame values (one definition):
+    the fixture's contact angle is fixed in space, so the outer race (stationary ring) draws a
+    line and the inner race, seen on its turning ring, a band."""
+    summary = charts.run_summary(frame_source(dynamic_dataset), dynamic_dataset)
+    metrics = dynamic_dataset.racetrace.summary()
+    for race in ("inner", "outer"):
+        own = {"race": race, "frame": f"{race}_ring"}
+        assert summary[race]["excursion_deg"] == float(metrics.trajectory_excursion.sel(own))
+        assert summary[race]["band_thickness_deg"] == float(
+            metrics.trajectory_band_thickness.sel(own)
+        )
+    assert summary["outer"]["band_thickness_deg"] < 0.1 * summary["inner"]["band_thickness_deg"]
 
 
 def test_summary_rows_are_text_per_run_and_race(qs_dataset):
@@ -148,7 +164,8 @@ def test_summary_rows_are_text_per_run_and_race(qs_dataset):
     assert [r["key"] for r in rows] == ["A-inner", "A-outer", "B-inner", "B-outer"]
     assert rows[0]["contact_load_max_N"] == "250.0"
     assert rows[0]["contact_angle_max_deg"] == "23.00"
-    assert rows[3]["band_width_deg"] == "-"
+    assert rows[3]["excursion_deg"] == "-"
+    assert rows[0]["band_thickness_deg"] == "-"  # a quasi-static result has no thickness
     assert set(rows[0]) == {"key"} | {key for key, _, _ in charts.SUMMARY_COLUMNS}
 
 

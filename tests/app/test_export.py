@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from app.export import contact_table, export_animation, export_csv, export_netcdf, export_png
+from app.export import export_animation, export_csv, export_netcdf, export_png
 from app.frames import frame_source
+from solver.results.io import contact_table
 
 
 def test_netcdf_and_csv(tmp_path, dynamic_dataset):

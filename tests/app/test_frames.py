@@ -24,12 +24,12 @@ def _omega(fm):
 
 def test_quasistatic_ball_positions_follow_cage_speed(qs_dataset, fixture_model):
     fm = fixture_model
-    src = frame_source(qs_dataset)
+    src = frame_source(qs_dataset, revolutions=2.0)
     assert src.model == "quasistatic"
     z = qs_dataset.sizes["ball"]
     psi0 = 2 * np.pi * np.arange(z) / z
     w_cage = fm.CAGE_RATIO * _omega(fm)
-    # 2 revolutions (case [simulation]) at 72 frames per revolution
+    # 2 revolutions at 72 frames per revolution
     assert src.n_frames == 2 * 72 + 1
     assert src.times[-1] == pytest.approx(2 * 2 * math.pi / _omega(fm))
     for i in (0, 7, 50, src.n_frames - 1):
@@ -140,8 +140,22 @@ def test_missing_variable_is_named(qs_dataset):
 def test_quasistatic_animation_length_is_capped(qs_dataset):
     from app.frames import QS_MAX_REVOLUTIONS, QS_SAMPLES_PER_REVOLUTION
 
-    long_case = qs_dataset.attrs["case"].replace(
-        "shaft_revolutions = 2.0", "shaft_revolutions = 500.0"
-    )
-    src = frame_source(qs_dataset.assign_attrs(case=long_case))
+    src = frame_source(qs_dataset, revolutions=500.0)
     assert src.n_frames == int(QS_MAX_REVOLUTIONS * QS_SAMPLES_PER_REVOLUTION) + 1
+    src = frame_source(qs_dataset, revolutions=2.0)
+    assert src.n_frames == int(2 * QS_SAMPLES_PER_REVOLUTION) + 1
+
+
+def test_ring_speeds_come_from_the_coordinates_not_the_case_text(qs_dataset, fixture_model):
+    """A result whose provenance case text says another speed is animated at its own speed."""
+    from app.frames import ring_speeds
+
+    other = qs_dataset.assign_attrs(
+        case=qs_dataset.attrs["case"].replace(f"{fixture_model.SHAFT_RPM}", "1.0")
+    )
+    omega = fixture_model.SHAFT_RPM * 2 * math.pi / 60
+    assert ring_speeds(other) == pytest.approx((omega, 0.0))
+    src = frame_source(other, revolutions=1.0)
+    assert src.ring_angle[-1, 0] == pytest.approx(2 * math.pi)
+    with pytest.raises(ValueError, match="inner_ring_speed"):
+        ring_speeds(qs_dataset.drop_vars("inner_ring_speed"))

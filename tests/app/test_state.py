@@ -355,8 +355,8 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     # the table: A then B, inner then outer; the axial run's contact angles form no band
     rows = {r["key"]: r for r in s.compare_summary}
     assert list(rows) == ["A-inner", "A-outer", "B-inner", "B-outer"]
-    assert float(rows["B-inner"]["band_width_deg"]) == pytest.approx(0.0, abs=1e-3)
-    assert float(rows["A-inner"]["band_width_deg"]) > 0.1
+    assert float(rows["B-inner"]["excursion_deg"]) == pytest.approx(0.0, abs=1e-3)
+    assert float(rows["A-inner"]["excursion_deg"]) > 0.1
     assert float(rows["A-inner"]["contact_load_max_N"]) == pytest.approx(
         combined_load.max(), abs=0.05
     )

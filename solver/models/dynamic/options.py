@@ -10,6 +10,7 @@ from dataclasses import dataclass, fields
 from types import MappingProxyType
 
 from solver.errors import CaseError, Problem
+from solver.results.summary import UNSETTLED_SKIP_FRACTION
 
 
 @dataclass(frozen=True)
@@ -28,7 +29,9 @@ class SimulationOptions:
     - ``shaft_revolutions`` / ``samples_per_revolution``: override the case's ``[simulation]``
       values.
     - ``chunk_samples``: output samples per integration chunk (progress/cancel granularity).
-    - ``analysis_skip_fraction``: fraction of the run skipped before the trajectory-band metrics.
+    - ``analysis_skip_fraction``: fraction of the run skipped before the trajectory metrics when
+      the run does not settle (a settled run is analysed from its settling time on;
+      solver.results.summary).
     - ``quadrature``: (points along the rolling direction, strips across the groove) of the ellipse
       traction rule.
     - ``pocket_stiffness`` [N/m], ``pocket_damping_ratio``: linear ball-pocket contact law (None:
@@ -52,7 +55,7 @@ class SimulationOptions:
     shaft_revolutions: float | None = None
     samples_per_revolution: int | None = None
     chunk_samples: int = 60
-    analysis_skip_fraction: float = 0.3
+    analysis_skip_fraction: float = UNSETTLED_SKIP_FRACTION
     quadrature: tuple[int, int] = (4, 8)
     pocket_stiffness: float | None = None
     pocket_damping_ratio: float = 0.1

@@ -2,15 +2,12 @@
 
 from __future__ import annotations
 
-import math
-from datetime import UTC, datetime
-
 import numpy as np
-import xarray as xr
 
-import solver
+from solver.models.quasistatic.solution import OperatingPoint
 from solver.physics.hertz import truncation_margin
-from solver.results.variables import coordinates, variable
+from solver.results.dataset import build_result
+from solver.results.summary import trajectory_summary
 
 from . import layout as L
 from .inputs import DEFAULT_OIL_NOTE
@@ -47,8 +44,26 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
     return out
 
 
+def operating_point(inputs) -> OperatingPoint:
+    """The SI operating point of :class:`DynamicInputs` under the names the results builder reads
+    (solver.results.dataset.OPERATING_FIELDS)."""
+    return OperatingPoint(
+        inner_ring_speed=inputs.inner_speed,
+        outer_ring_speed=inputs.outer_speed,
+        axial_load=inputs.axial_load,
+        radial_load=inputs.radial_load,
+        radial_load_angle=inputs.radial_load_angle,
+        misalignment=inputs.misalignment,
+        misalignment_axis=inputs.misalignment_axis,
+        misalignment_frame=inputs.misalignment_frame,
+        tilting_moment=inputs.tilting_moment,
+        moment_axis=inputs.moment_axis,
+    )
+
+
 def build_dataset(inputs, options, par, quad, times, states, period, complete, stop_reason, stats):
-    """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,)."""
+    """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,), with the
+    trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it."""
     z = int(par[L.P_Z])
     s_count = states.shape[0]
     obs = np.zeros((s_count, z, 2, N_OBS))
@@ -81,21 +96,6 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         gy, gz = tilt[:, 0].copy(), tilt[:, 1].copy()
         tilt[:, 0] = gy * np.cos(phi) - gz * np.sin(phi)
         tilt[:, 1] = gy * np.sin(phi) + gz * np.cos(phi)
-    # analysed window for the band metrics
-    first = int(math.floor(options.analysis_skip_fraction * (s_count - 1)))
-    window = slice(first, s_count)
-    band = np.zeros(2)
-    for k in range(2):
-        a = angle[window, :, k]
-        loaded = obs[window, :, k, O_LOAD] > 0.0
-        if loaded.any():
-            band[k] = np.degrees(a[loaded].max() - a[loaded].min())
-    groove = np.array([par[L.P_RI], par[L.P_RO]])
-    window_text = (
-        f"t from {times[first]:.6g} s to {times[-1]:.6g} s (shaft revolutions "
-        f"{times[first] / period:.3f} to {times[-1] / period:.3f}; the first "
-        f"{options.analysis_skip_fraction:.0%} of the run is skipped); loaded contacts only"
-    )
     tc = ("time", "ball", "race")
     tb = ("time", "ball")
     data = {
@@ -124,31 +124,9 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "inner_ring_tilt": (("time", "tilt_axis"), np.degrees(tilt)),
         "cage_speed": (("time",), states[:, cb + L.C_SPEED]),
         "cage_center": (("time", "axis"), states[:, cb + L.C_POS : cb + L.C_POS + 3]),
-        "trajectory_band_width": (("race",), band),
-        "trajectory_band_width_arc": (("race",), groove * np.radians(band)),
     }
-    variables = {}
-    for name, (dims, values) in data.items():
-        spec = variable(name)  # the project registry (solver.results.variables): dims, units, names
-        target = spec.dims_for("dynamic")
-        if set(target) != set(dims):
-            raise RuntimeError(
-                f"dynamic output {name}: dims {dims} do not match the registry {target}"
-            )
-        attrs = spec.attrs()
-        if name.startswith("trajectory_band_width"):
-            attrs["analysed_window"] = window_text
-        values = np.asarray(values, dtype=np.float64).transpose([dims.index(d) for d in target])
-        variables[name] = (target, np.ascontiguousarray(values), attrs)
-    coords = coordinates(z, times, quaternion=True)
     attrs = {
-        "model": "dynamic",
-        "case": inputs.case_text,
-        "software": f"racetrace {solver.__version__}",
-        "created": datetime.now(UTC).isoformat(timespec="seconds"),
-        "complete": int(bool(complete)),
         "stop_reason": stop_reason,
-        "analysed_window": window_text,
         "gravity": f"{options.gravity:g} m/s^2 along -z of the inertial frame",
         "traction_model": "ellipse-integrated ADORE-type curve"
         if options.traction
@@ -163,4 +141,17 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "wall_time_s": float(stats.wall_time),
         "shaft_period_s": float(period),
     }
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    ds = build_result(
+        "dynamic",
+        data,
+        inputs.geometry,
+        operating_point(inputs),
+        case=inputs.case_text,
+        times=times,
+        complete=complete,
+        attrs=attrs,
+    )
+    metrics = trajectory_summary(ds, options.analysis_skip_fraction)
+    ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
+    ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
+    return ds

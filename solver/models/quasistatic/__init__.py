@@ -6,8 +6,8 @@ Public API:
   ``case`` argument may also be a case-file path or a catalogue name
 - ``solve_quasistatic_state(case, initial=None) -> QuasiStaticSolution`` (SI arrays; the dynamic
   model starts from it)
-- ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked on a ``speed`` coordinate,
-  each speed started from the previous solution (continuation)
+- ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked along the
+  ``inner_ring_speed`` dimension, each speed started from the previous solution (continuation)
 - ``operating_point_from_case(case) -> OperatingPoint`` and
   ``solve_operating_point(geometry, operating, initial=None)`` for callers that build a
   :class:`solver.geometry.BearingGeometry` directly
@@ -111,13 +111,21 @@ def solve_quasistatic(case):
 
 def quasistatic_speed_sweep(case, speeds_rpm):
     """Solutions of ``case`` at each inner-ring speed in ``speeds_rpm`` (other conditions as in the
-    case), stacked on a ``speed`` coordinate [rad/s] (with ``speed_rpm`` alongside). Each speed
-    starts from the previous solution. Raises NoSolutionError naming the first speed without a
-    solution."""
+    case), stacked along the ``inner_ring_speed`` dimension [rad/s]: every element carries its own
+    operating point in its coordinates. Each speed starts from the previous solution. Raises
+    NoSolutionError naming the first speed without a solution.
+
+    Attributes that differ between the elements (solver statistics, notes) are dropped;
+    ``attrs["case"]`` is the case text as given, with a first comment line saying that
+    ``operating.inner_ring_speed_rpm`` varies along the sweep (provenance only: the speed of an
+    element is its ``inner_ring_speed`` coordinate).
+    """
     import dataclasses
+    from datetime import UTC, datetime
 
     import xarray as xr
 
+    from solver.results.dataset import case_text
     from solver.results.quasistatic import solution_to_dataset
 
     case = _as_case(case)
@@ -127,6 +135,13 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     speeds = np.asarray(list(speeds_rpm), dtype=float)
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)):
         raise ValueError("speeds_rpm must be a non-empty sequence of finite speeds in rpm")
+    if np.unique(speeds).size != speeds.size:
+        raise ValueError("speeds_rpm must not repeat a speed")
+    text = (
+        "# speed sweep: operating.inner_ring_speed_rpm varies along the sweep "
+        f"({', '.join(f'{rpm:g}' for rpm in speeds)} rpm); each element's speed is its "
+        "inner_ring_speed coordinate\n" + case_text(case)
+    )
     datasets = []
     previous = None
     for rpm in speeds:
@@ -135,19 +150,15 @@ def quasistatic_speed_sweep(case, speeds_rpm):
             previous = solve_operating_point(geometry, op, previous)
         except NoSolutionError as error:
             raise NoSolutionError(f"speed sweep stopped at {rpm:g} rpm: {error}") from None
-        datasets.append(solution_to_dataset(previous, geometry, case, lubricant))
+        datasets.append(solution_to_dataset(previous, geometry, text, lubricant, op))
     ds = xr.concat(
         datasets,
-        dim="speed",
+        dim="inner_ring_speed",
         data_vars="all",
-        coords="minimal",
-        compat="override",
+        coords="different",
+        compat="equals",
+        join="outer",
         combine_attrs="drop_conflicts",
     )
-    ds = ds.assign_coords(
-        speed=("speed", speeds * _RPM, {"units": "rad/s", "long_name": "inner ring speed"}),
-        speed_rpm=("speed", speeds, {"units": "rpm", "long_name": "inner ring speed"}),
-    )
-    ds.attrs.update(datasets[-1].attrs)
-    ds.attrs["created"] = datasets[-1].attrs["created"]
+    ds.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
     return ds

@@ -92,3 +92,27 @@ def test_divergence_exits_4_with_partial_file(fake_case, tmp_path, capsys, monke
     assert args.func(args) == command.EXIT_DIVERGED
     assert load_dataset(out).attrs["complete"] == 0
     assert "diverged" in capsys.readouterr().err
+
+
+def test_simulate_prints_the_metrics_and_json_on_request(fake_case, tmp_path, capsys):
+    import json
+
+    out = tmp_path / "run.nc"
+    common = ["simulate", "spindle", "--output", str(out), "--revolutions", "1.0", "--quiet"]
+    args = _parse([*common, "--samples-per-revolution", "40"])
+    assert args.func(args) == 0
+    text = capsys.readouterr().out
+    assert "inner race: excursion" in text and "band thickness" in text
+    assert "settling: NOT settled" in text
+    args = _parse([*common, "--samples-per-revolution", "40", "--json"])
+    assert args.func(args) == 0
+    report = json.loads(capsys.readouterr().out)
+    stored = load_dataset(out)
+    assert report["output"] == str(out)
+    trajectory = report["trajectory"]
+    assert trajectory["settled"] is False and trajectory["settling_time_s"] is None
+    assert trajectory["inner"]["band_thickness_deg"] > 0.1  # a band on the turning ring
+    assert trajectory["inner"]["band_thickness_deg"] == pytest.approx(
+        float(stored.trajectory_band_thickness.sel(race="inner", frame="inner_ring"))
+    )
+    assert trajectory["analysis_start_time_s"] == pytest.approx(float(stored.analysis_start_time))

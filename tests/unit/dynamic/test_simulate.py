@@ -35,12 +35,34 @@ def test_dataset_has_every_dynamic_variable_with_registry_dims_and_no_nan(short_
         assert name in ds, name
         assert ds[name].dims == spec.dims_for("dynamic"), name
         assert ds[name].attrs["units"] == spec.units
+        if name == "settling_time":  # 0.3 revolutions cannot settle: NaN by the schema
+            assert np.isnan(ds[name].values), name
+            continue
         assert np.isfinite(ds[name].values).all(), name  # the test bearing gives both shoulders
     assert ds.attrs["model"] == "dynamic" and ds.attrs["complete"] == 1
     assert ds.attrs["stop_reason"] == "finished"
     assert "along -z" in ds.attrs["gravity"]
     assert "default oil" in ds.attrs["lubricant"]
     assert "skipped" in ds["trajectory_band_width"].attrs["analysed_window"]
+    assert int(ds.settled) == 0
+    assert any(w.startswith("run too short to settle") for w in ds.racetrace.warnings())
+
+
+def test_dataset_describes_its_operating_point_and_geometry(short_run):
+    """The coordinates hold the inputs (dyn_bearings.spindle_inputs: 20 000 rpm, 500 N axial,
+    300 N radial, shoulders 49 and 59 mm), not a case text (these inputs have none)."""
+    from solver.results.variables import COORDINATES
+
+    ds, _ = short_run
+    assert ds.attrs["case"] == ""
+    for name in COORDINATES:
+        assert name in ds.coords, name
+    assert float(ds.inner_ring_speed) == pytest.approx(20000 * math.pi / 30)
+    assert float(ds.radial_load) == 300.0 and float(ds.axial_load) == 500.0
+    assert np.isnan(float(ds.tilting_moment))
+    np.testing.assert_allclose(ds.shoulder_diameter.values, [49.0e-3, 59.0e-3])
+    assert int(ds.ball_count) == ds.sizes["ball"] == 18
+    assert list(ds.frame.values) == ["inner_ring", "outer_ring"]
 
 
 def test_time_axis_and_physical_ranges(short_run):

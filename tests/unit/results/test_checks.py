@@ -19,13 +19,11 @@ from solver.results.checks import result_warnings
 D_MM = 10.0  # ball diameter of the hand-built cases, mm
 F = 0.55  # groove radius ratio of both races: groove radius f D = 5.5 mm
 GROOVE_RADIUS = F * D_MM * 1e-3  # m
-CASE_TEXT = f"""
-[bearing]
-ball_count = 3
-ball_diameter_mm = {D_MM}
-inner_groove_radius_ratio = {F}
-outer_groove_radius_ratio = {F}
-"""
+#: The describing coordinates the size check reads (registered names, SI units).
+GEOMETRY = {
+    "ball_diameter": ((), D_MM * 1e-3),
+    "groove_radius": (("race",), [GROOVE_RADIUS, GROOVE_RADIUS]),
+}
 ISO_76_LIMIT = 4.2e9  # Pa
 
 
@@ -36,7 +34,7 @@ def dataset(
     pressure=(1.0e9, 1.0e9, 1.0e9),
     margin=(math.nan, math.nan, math.nan),
     race="inner",
-    case=CASE_TEXT,
+    geometry=True,
 ) -> xr.Dataset:
     """A quasi-static-shaped Dataset of 3 balls: the given values on ``race``, a benign contact
     (100 N, 10 deg, a = 0.5 mm, 1 GPa, no shoulder) on the other race."""
@@ -61,9 +59,8 @@ def dataset(
         array[:, k] = given
         data[name] = (("ball", "race"), array)
     attrs = {"model": "quasistatic", "complete": 1}
-    if case is not None:
-        attrs["case"] = case
-    return xr.Dataset(data, coords={"ball": [0, 1, 2], "race": ["inner", "outer"]}, attrs=attrs)
+    coords = {"ball": [0, 1, 2], "race": ["inner", "outer"], **(GEOMETRY if geometry else {})}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def dynamic(ds: xr.Dataset, per_time: list[xr.Dataset], complete: int = 1) -> xr.Dataset:
@@ -132,8 +129,10 @@ def test_semi_major_fires_beyond_half_the_ball_diameter_only():
     assert "5.05 mm" in message and "D/2 = 5 mm" in message
 
 
-def test_size_check_needs_the_case_text():
-    big = dataset(semi_major=(0.02, 5e-4, 5e-4), case=None)
+def test_size_check_reads_the_geometry_coordinates_not_the_case_text():
+    big = dataset(semi_major=(0.02, 5e-4, 5e-4), geometry=False)
+    # a case text in the attributes is provenance only: it is not read
+    big.attrs["case"] = "[bearing]\nball_diameter_mm = 10.0\ninner_groove_radius_ratio = 0.55\n"
     assert result_warnings(big) == []
     assert result_warnings(dataset(semi_major=(0.02, 5e-4, 5e-4))) != []
 

@@ -167,17 +167,43 @@ def test_unloaded_balls_in_the_dataset_are_zero_not_nan():
     assert np.all(np.isnan(ds.truncation_margin.values))  # no shoulders given: NaN by the schema
 
 
-def test_speed_sweep_stacks_on_speed(spindle_case):
+def test_speed_sweep_stacks_on_the_inner_ring_speed(spindle_case):
     speeds = [0.0, 10000.0, 20000.0, 30000.0]
     ds = quasistatic_speed_sweep(spindle_case, speeds)
-    assert ds.contact_load.dims == ("speed", "ball", "race")
-    np.testing.assert_allclose(ds.speed_rpm.values, speeds)
-    np.testing.assert_allclose(ds.speed.values, np.array(speeds) * math.pi / 30)
+    assert ds.contact_load.dims == ("inner_ring_speed", "ball", "race")
+    np.testing.assert_allclose(ds.inner_ring_speed.values, np.array(speeds) * math.pi / 30)
     alone = solve_quasistatic(spindle_case)  # 20 000 rpm
     np.testing.assert_allclose(
-        ds.contact_load.sel(speed=ds.speed.values[2]).values, alone.contact_load.values, rtol=1e-7
+        ds.contact_load.isel(inner_ring_speed=2).values, alone.contact_load.values, rtol=1e-7
     )
-    assert ds.ball_center.dims == ("speed", "ball", "axis")
+    assert ds.ball_center.dims == ("inner_ring_speed", "ball", "axis")
+    assert float(ds.axial_load) == float(alone.axial_load)  # the same in every element
+
+
+def test_speed_sweep_elements_each_report_their_own_speed():
+    """On the 20 000 rpm shipped case, a sweep over 5000 and 10 000 rpm: nothing in element 0
+    claims another speed than 5000 rpm."""
+    from solver.catalogue import resolve_case
+
+    case = resolve_case("spindle-combined-load")
+    assert case.operating.inner_ring_speed_rpm == 20000.0
+    ds = quasistatic_speed_sweep(case, [5000.0, 10000.0])
+    rpm = ds.inner_ring_speed.values * 30 / math.pi
+    np.testing.assert_allclose(rpm, [5000.0, 10000.0])
+    first = ds.isel(inner_ring_speed=0)
+    assert float(first.inner_ring_speed) * 30 / math.pi == pytest.approx(5000.0)
+    # no per-element attribute left that would give one element's solver statistics to all
+    assert "solver_iterations" not in ds.attrs and "solver_residual" not in ds.attrs
+    assert not any("speed" in key for key in ds.attrs)
+    # the provenance text says that the speed varies and lists the swept speeds
+    assert ds.attrs["case"].startswith("# speed sweep: operating.inner_ring_speed_rpm varies")
+    assert "5000, 10000 rpm" in ds.attrs["case"].splitlines()[0]
+    # the cage turns slower at 5000 rpm: each element holds its own solution
+    assert float(first.cage_speed) < float(ds.cage_speed.isel(inner_ring_speed=1))
+    alone = solve_quasistatic(case.with_values({"operating.inner_ring_speed_rpm": 5000.0}))
+    np.testing.assert_allclose(first.contact_load.values, alone.contact_load.values, rtol=1e-6)
+    with pytest.raises(ValueError, match="repeat"):
+        quasistatic_speed_sweep(case, [5000.0, 5000.0])
 
 
 def test_case_may_be_given_by_catalogue_name():

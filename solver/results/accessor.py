@@ -1,0 +1,60 @@
+"""The ``racetrace`` accessor on xarray Datasets: the one export door for scripts, the CLI and the
+app.
+
+``import solver`` registers it, so every results Dataset offers (results-schema.md)::
+
+    ds.racetrace.summary()    # trajectory metrics (solver.results.summary), with units
+    ds.racetrace.warnings()   # list[str]: where the result leaves the model's validity
+    ds.racetrace.save(path)   # NetCDF, written atomically
+    ds.racetrace.to_csv(path) # per-contact table: one row per (time,) ball and race
+
+PNG images and MP4 animations of the 3-D view need the app's renderer: the app exports them.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import xarray as xr
+
+from . import checks, io, summary
+
+ACCESSOR_NAME = "racetrace"
+
+
+class RacetraceAccessor:
+    """Methods of ``ds.racetrace`` (see the module docstring)."""
+
+    def __init__(self, ds: xr.Dataset):
+        self._ds = ds
+
+    def summary(self) -> xr.Dataset:
+        """The trajectory metrics: those stored in the result (a dynamic run), otherwise computed
+        from its data by :func:`solver.results.summary.trajectory_summary`. Each variable has
+        ``units``, ``long_name`` and ``description``."""
+        return summary.summary(self._ds)
+
+    def warnings(self) -> list[str]:
+        """:func:`solver.results.checks.result_warnings` of the result (plain-text messages)."""
+        return checks.result_warnings(self._ds)
+
+    def save(self, path) -> Path:
+        """Write the result as NetCDF to ``path`` atomically (the temporary file is removed if
+        writing fails); returns the path."""
+        return io.save_dataset(self._ds, path)
+
+    def to_csv(self, path) -> Path:
+        """Write the per-contact table (:func:`solver.results.io.contact_table`) as CSV to
+        ``path`` atomically; returns the path."""
+        return io.save_csv(self._ds, path)
+
+
+def register() -> None:
+    """Register the accessor as ``racetrace`` on xarray Datasets (once per process)."""
+    if ACCESSOR_NAME not in xr.Dataset.__dict__:
+        xr.register_dataset_accessor(ACCESSOR_NAME)(RacetraceAccessor)
+
+
+register()
+
+__all__ = ["ACCESSOR_NAME", "RacetraceAccessor", "register"]

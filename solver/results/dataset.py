@@ -1,0 +1,227 @@
+"""The one builder of results Datasets, used by both models (results-schema.md).
+
+:func:`build_result` takes a model's arrays, checks their dimensions against the registry
+(:mod:`solver.results.variables`), attaches units and names, and writes what the result *is* as
+coordinates: the operating point and the geometry (:func:`describing_coordinates`). Because these
+are coordinates, ``xr.concat(results, dim="case")`` keeps every element's own operating point and
+geometry. Views read them back with :func:`ring_speeds` and :func:`geometry_from_result`, never
+from the case text in ``attrs["case"]``, which is kept for provenance only.
+
+Units: the operating point and geometry arrive in SI with angles in rad (``operating`` and
+``geometry`` objects); the coordinates hold angles in degree like every angle in a results
+Dataset, everything else SI.
+"""
+
+from __future__ import annotations
+
+import math
+from datetime import UTC, datetime
+
+import numpy as np
+import xarray as xr
+
+from .variables import COORDINATES, coordinates, dimension_coordinate, variable
+
+MODELS = ("quasistatic", "dynamic")
+
+#: Operating-point fields read from ``operating`` (all SI, angles in rad), in coordinate order.
+OPERATING_FIELDS = (
+    "inner_ring_speed",
+    "outer_ring_speed",
+    "axial_load",
+    "radial_load",
+    "radial_load_angle",
+    "misalignment",
+    "misalignment_axis",
+    "misalignment_frame",
+    "tilting_moment",
+    "moment_axis",
+)
+_ANGLES = {"radial_load_angle", "misalignment", "misalignment_axis", "moment_axis"}
+
+
+def software() -> str:
+    """``"racetrace <version>"`` for the ``software`` attribute."""
+    from solver import __version__
+
+    return f"racetrace {__version__}"
+
+
+def case_text(case) -> str:
+    """The case as TOML text for the provenance attribute ``case`` ("" without a case)."""
+    if case is None:
+        return ""
+    to_toml = getattr(case, "to_toml", None)
+    return to_toml() if callable(to_toml) else str(case)
+
+
+def describing_coordinates(geometry, operating) -> dict:
+    """Coordinates that say what a result is: ``{name: (dims, values, attrs)}``.
+
+    ``geometry``: a :class:`solver.geometry.BearingGeometry` (SI). ``operating``: any object with
+    the attributes of :data:`OPERATING_FIELDS` in SI units and rad (``tilting_moment`` None when
+    the tilt is imposed; ``misalignment_frame`` "space" or "ring"). Every name is registered in
+    ``solver.results.variables.COORDINATES``.
+    """
+    values: dict[str, object] = {}
+    for name in OPERATING_FIELDS:
+        value = getattr(operating, name)
+        if name == "misalignment_frame":
+            values[name] = str(value)
+        elif name == "tilting_moment":
+            values[name] = math.nan if value is None else float(value)
+        elif name in _ANGLES:
+            values[name] = math.degrees(float(value))
+        else:
+            values[name] = float(value)
+    g = geometry
+    values.update(
+        ball_count=int(g.ball_count),
+        ball_diameter=float(g.ball_diameter),
+        pitch_diameter=float(g.pitch_diameter),
+        free_contact_angle=math.degrees(float(g.free_contact_angle)),
+        groove_radius=np.array([g.inner_groove_radius, g.outer_groove_radius], dtype=float),
+        shoulder_diameter=np.array(
+            [g.inner_shoulder_diameter, g.outer_shoulder_diameter], dtype=float
+        ),
+        groove_bottom_diameter=np.array(
+            [g.inner_groove_bottom_diameter, g.outer_groove_bottom_diameter], dtype=float
+        ),
+        material=np.array([g.ball_material.name, g.ring_material.name], dtype=object),
+        youngs_modulus=np.array(
+            [g.ball_material.youngs_modulus, g.ring_material.youngs_modulus], dtype=float
+        ),
+        poisson_ratio=np.array(
+            [g.ball_material.poisson_ratio, g.ring_material.poisson_ratio], dtype=float
+        ),
+        density=np.array([g.ball_material.density, g.ring_material.density], dtype=float),
+    )
+    coords = {}
+    for name, value in values.items():
+        spec = COORDINATES[name]
+        coords[name] = (spec.dims, value, spec.attrs())
+    coords["body"] = dimension_coordinate("body")
+    return coords
+
+
+def build_result(
+    model: str,
+    data: dict,
+    geometry,
+    operating,
+    *,
+    case="",
+    times=None,
+    complete: bool = True,
+    attrs: dict | None = None,
+    variable_attrs: dict | None = None,
+) -> xr.Dataset:
+    """A results Dataset of ``model`` ("quasistatic" or "dynamic").
+
+    ``data``: ``{name: (dims, values)}`` for registered variables; ``dims`` name the axes of
+    ``values`` in any order and must be the registry's dimensions for ``model`` (else
+    RuntimeError: a programming error). ``times`` (s) is the dynamic model's ``time`` coordinate.
+    ``case`` (a Case or its TOML text) goes to ``attrs["case"]`` for provenance only.
+    ``attrs`` adds model-specific attributes; ``variable_attrs`` ``{name: {key: value}}`` adds or
+    extends per-variable attributes (a ``description`` there is appended to the registry's).
+    """
+    if model not in MODELS:
+        raise ValueError(f"model {model!r}: must be one of {', '.join(MODELS)}")
+    extra = variable_attrs or {}
+    variables = {}
+    for name, (dims, values) in data.items():
+        spec = variable(name)
+        target = spec.dims_for(model)
+        if set(target) != set(dims) or len(target) != len(dims):
+            raise RuntimeError(f"{model} output {name}: dims {dims} do not match {target}")
+        values = np.asarray(values)
+        if values.dtype.kind == "f":
+            values = values.astype(np.float64)
+        values = values.transpose([tuple(dims).index(d) for d in target]).copy(order="C")
+        var_attrs = spec.attrs()
+        for key, value in extra.get(name, {}).items():
+            var_attrs[key] = var_attrs[key] + value if key == "description" else value
+        variables[name] = (target, values, var_attrs)
+    coords = coordinates(int(geometry.ball_count), times, quaternion="ball_orientation" in data)
+    coords.update(describing_coordinates(geometry, operating))
+    base = {
+        "model": model,
+        "case": case if isinstance(case, str) else case_text(case),
+        "software": software(),
+        "created": datetime.now(UTC).isoformat(timespec="seconds"),
+        "complete": int(bool(complete)),
+    }
+    return xr.Dataset(variables, coords=coords, attrs={**base, **(attrs or {})})
+
+
+# ---- reading what a result is --------------------------------------------------------------------
+def _scalar(ds: xr.Dataset, name: str):
+    _present(ds, name)
+    value = ds.coords[name]
+    if value.ndim:
+        raise ValueError(
+            f"the result holds several cases ('{name}' varies along {', '.join(value.dims)}); "
+            "select one element first"
+        )
+    return value.values.item()
+
+
+def ring_speeds(ds: xr.Dataset) -> tuple[float, float]:
+    """(inner, outer) ring speeds of a result, rad/s, from its coordinates."""
+    return float(_scalar(ds, "inner_ring_speed")), float(_scalar(ds, "outer_ring_speed"))
+
+
+def geometry_from_result(ds: xr.Dataset):
+    """The :class:`solver.geometry.BearingGeometry` a result was computed for, from its
+    coordinates (no case text is read). ValueError when the result lacks them."""
+    from solver.geometry import BearingGeometry
+    from solver.materials import Material
+
+    for name in ("groove_radius", "shoulder_diameter", "material"):
+        _present(ds, name)
+    diameter = float(_scalar(ds, "ball_diameter"))
+    radius = ds.coords["groove_radius"]
+    shoulder = ds.coords["shoulder_diameter"]
+    if radius.ndim != 1 or shoulder.ndim != 1:
+        raise ValueError("the result holds several cases: select one element first")
+
+    def material(body: str) -> Material:
+        return Material(
+            str(ds.coords["material"].sel(body=body).values.item()),
+            float(ds.coords["youngs_modulus"].sel(body=body)),
+            float(ds.coords["poisson_ratio"].sel(body=body)),
+            float(ds.coords["density"].sel(body=body)),
+        )
+
+    return BearingGeometry(
+        ball_count=int(_scalar(ds, "ball_count")),
+        ball_diameter=diameter,
+        pitch_diameter=float(_scalar(ds, "pitch_diameter")),
+        inner_conformity=float(radius.sel(race="inner")) / diameter,
+        outer_conformity=float(radius.sel(race="outer")) / diameter,
+        free_contact_angle=math.radians(float(_scalar(ds, "free_contact_angle"))),
+        ball_material=material("ball"),
+        ring_material=material("ring"),
+        inner_shoulder_diameter=float(shoulder.sel(race="inner")),
+        outer_shoulder_diameter=float(shoulder.sel(race="outer")),
+    )
+
+
+def _present(ds: xr.Dataset, name: str) -> None:
+    if name not in ds.coords:
+        raise ValueError(
+            f"the result has no '{name}' coordinate (results-schema.md); it was written by an "
+            "older racetrace: run the case again"
+        )
+
+
+__all__ = [
+    "MODELS",
+    "OPERATING_FIELDS",
+    "build_result",
+    "case_text",
+    "describing_coordinates",
+    "geometry_from_result",
+    "ring_speeds",
+    "software",
+]
