@@ -118,12 +118,22 @@ class RunStore:
         return sorted(runs, key=lambda r: (r.created, r.run_id), reverse=True)
 
     def load(self, run_id: str) -> tuple[xr.Dataset, str]:
-        """(result Dataset, case TOML text) of a saved run."""
+        """(result Dataset, case TOML text) of a saved run. ValueError (naming the run) when the
+        result does not describe itself: the views need its geometry and operating point
+        coordinates (results-schema.md), which results of older versions lack."""
+        from solver.results.dataset import geometry_from_result, ring_speeds
+
         folder = self.root / run_id
         if not (folder / RESULT_FILE).is_file():
             known = ", ".join(r.run_id for r in self.list()[:5]) or "none"
             raise FileNotFoundError(f"no saved run {run_id!r} in {self.root} (latest: {known})")
-        return load_netcdf(folder / RESULT_FILE), (folder / CASE_FILE).read_text(encoding="utf-8")
+        ds = load_netcdf(folder / RESULT_FILE)
+        try:
+            ring_speeds(ds)
+            geometry_from_result(ds)
+        except ValueError as error:
+            raise ValueError(f"saved run {run_id}: {error}") from None
+        return ds, (folder / CASE_FILE).read_text(encoding="utf-8")
 
     def path(self, run_id: str) -> Path:
         """Folder of a saved run (for export)."""

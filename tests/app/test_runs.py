@@ -29,6 +29,15 @@ def test_round_trip(tmp_path, qs_dataset, dynamic_dataset):
     assert not [p for p in (tmp_path / "runs").iterdir() if p.name.startswith(".")]
 
 
+def test_a_saved_result_without_its_coordinates_is_refused_by_name(tmp_path, qs_dataset):
+    """A result of an older version (no operating-point and geometry coordinates) cannot feed the
+    views: reopening it says which run and what is missing instead of failing in a view."""
+    store = RunStore(tmp_path)
+    old = store.save(qs_dataset.drop_vars(["inner_ring_speed", "outer_ring_speed"]), "", "old")
+    with pytest.raises(ValueError, match=f"saved run {old.run_id}: .*inner_ring_speed"):
+        store.load(old.run_id)
+
+
 def test_failed_save_leaves_nothing(tmp_path, qs_dataset):
     store = RunStore(tmp_path)
     with pytest.raises((TypeError, ValueError, RuntimeError)):
