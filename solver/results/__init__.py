@@ -1,2 +1,4 @@
-"""Results Datasets (results-schema.md): the variable registry, the quasi-static builder, NetCDF
-input/output and the validity checks (:func:`solver.results.checks.result_warnings`)."""
+"""Results Datasets (docs/results-schema.md): the registry (``variables``), the builder shared by
+both models (``dataset``), the quasi-static output (``quasistatic``), the trajectory metrics and
+settling window (``summary``), NetCDF and CSV files (``io``), the validity checks (``checks``) and
+the ``ds.racetrace`` accessor (``accessor``)."""

@@ -87,7 +87,8 @@ QUASISTATIC_THICKNESS_NOTE = (
     "a quasi-static result is one snapshot (one pass of each ball): the band thickness needs the "
     "passes of a dynamic run (racetrace simulate)"
 )
-_EXTRA_DIMS_IGNORED = ("ball", "race", "time", "axis", "tilt_axis", "quaternion", "body")
+#: Dimensions of one result; any other dimension stacks several results (xr.concat, a sweep).
+_RESULT_DIMS = ("ball", "race", "time", "axis", "tilt_axis", "quaternion", "body")
 
 
 # ---- the track metrics on plain arrays -----------------------------------------------------------
@@ -357,7 +358,7 @@ def trajectory_summary(ds: xr.Dataset, skip_fraction: float = UNSETTLED_SKIP_FRA
     a fraction of the run. A result stacked along further dimensions (``xr.concat`` of several
     results, a speed sweep) gives the metrics of every element along those dimensions.
     """
-    extra = [d for d in ds["contact_angle"].dims if d not in _EXTRA_DIMS_IGNORED]
+    extra = [d for d in ds["contact_angle"].dims if d not in _RESULT_DIMS]
     if extra:
         dim = extra[0]
         parts = [trajectory_summary(ds.isel({dim: i}), skip_fraction) for i in range(ds.sizes[dim])]

@@ -3,7 +3,9 @@
 Both models fill values into these definitions; nothing else defines a results variable's units or
 description. Units are UDUNITS spellings; angles are in degree in every Dataset, everything else SI.
 Dimensions are given for the quasi-static model; the dynamic model appends ``time`` (schema order:
-per-contact ``(ball, race, time)``, per-ball ``(ball, time)``, rings ``(time)``).
+per-contact ``(ball, race, time)``, per-ball ``(ball, time)``, rings ``(time)``). ``VARIABLES``
+holds the data variables (the summary metrics included), ``COORDINATES`` the coordinates that say
+what a result is (operating point, geometry, materials).
 
 Frames: "inertial" = x along the bearing axis (the direction in which the inner ring carries
 thrust), y, z radial, origin at the outer ring centre on the plane of the ball centres in the
