@@ -101,7 +101,7 @@ def _private(folder: Path) -> bool:
 
 
 def _temp_folder(name: str) -> Path | None:
-    """A private, writable folder under the temp dir for the cache folder ``name`` (None if none)."""
+    """The cache folder ``name`` in a private, writable folder under the temp dir (None if none)."""
     root = temp_root()
     try:
         root.mkdir(mode=0o700, exist_ok=True)

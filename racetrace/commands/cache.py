@@ -1,5 +1,5 @@
-"""``racetrace cache``: where numba's compiled kernels are kept, their size, and the folders of other
-versions; ``racetrace cache clean [--all]`` removes those folders (exit 1 if one cannot be removed).
+"""``racetrace cache``: where numba's compiled kernels are kept, their size, and the folders of
+other versions; ``racetrace cache clean [--all]`` removes those folders (exit 1 if one cannot be).
 
 Run it with the same ``NUMBA_CACHE_DIR`` as the solver runs, so that it looks in the same place.
 """
@@ -48,13 +48,14 @@ def describe(folders, active) -> str:
     others = [f for f in folders if not f.current]
     if active is None:
         lines = ["compiled kernels: no cache folder is in use (see the warning above)"]
-    elif current:
-        lines = [f"compiled kernels of this version: {active} ({format_size(current[0].size_bytes)})"]
     else:
-        lines = [f"compiled kernels of this version: {active} (empty)"]
+        size = format_size(current[0].size_bytes) if current else "empty"
+        lines = [f"compiled kernels of this version: {active} ({size})"]
     if others:
         total = format_size(sum(f.size_bytes for f in others))
-        lines.append(f"other versions ({len(others)}, {total}; `racetrace cache clean` removes them):")
+        lines.append(
+            f"other versions ({len(others)}, {total}; `racetrace cache clean` removes them):"
+        )
         lines += [f"  {f.path}  {format_size(f.size_bytes)}" for f in others]
     else:
         lines.append("other versions: none")

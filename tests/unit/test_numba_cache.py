@@ -258,4 +258,3 @@ def test_importing_the_solver_deletes_nothing(tmp_path):
     assert sorted(p.name for p in root.iterdir()) == sorted(
         [*(f.name for f in old), version_folder_name(SOLVER_DIR)]
     )
-
