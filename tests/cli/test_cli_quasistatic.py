@@ -164,7 +164,7 @@ def test_contract_example_solves_and_warns_about_its_lands(tmp_path):
 
 
 def test_result_outside_the_model_is_warned_on_stderr(tmp_path):
-    """209 deep groove at 1e9 N axial (an acceptance reviewer's case): still exit 0, but stderr says
+    """209 deep groove at 1e9 N axial (an absurd load on a real case): still exit 0, but stderr says
     the pressure is beyond the ISO 76 static limit and the contact too large for Hertz theory."""
     from solver.catalogue import resolve_case
 

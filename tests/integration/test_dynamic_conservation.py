@@ -1,5 +1,6 @@
-"""Validation 2 (issue 3): with traction and damping off the dynamic model conserves mechanical
-energy, and its right-hand side satisfies the momentum balance."""
+"""Validation (2) of the dynamic model (the others are in test_dynamic_validation.py): with
+traction and damping off it conserves mechanical energy, and its right-hand side satisfies the
+momentum balance."""
 
 from __future__ import annotations
 
