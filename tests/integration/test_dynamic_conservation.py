@@ -5,18 +5,13 @@ momentum balance."""
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "dynamic"))
-
-from dyn_bearings import spindle_inputs  # noqa: E402
-from dyn_helpers import evaluate, integrate_states, start  # noqa: E402
-
-from solver.models.dynamic import layout as L  # noqa: E402
-from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy  # noqa: E402
+from solver.models.dynamic import layout as L
+from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy
+from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
 
 def _energies(states, par, quad):

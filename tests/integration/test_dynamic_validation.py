@@ -13,18 +13,13 @@ ball).
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "dynamic"))
-
-from dyn_bearings import spindle_inputs  # noqa: E402
-
-from solver.models.dynamic import SimulationOptions, simulate  # noqa: E402
-from solver.models.quasistatic import OperatingPoint, solve_operating_point  # noqa: E402
+from solver.models.dynamic import SimulationOptions, simulate
+from solver.models.quasistatic import OperatingPoint, solve_operating_point
+from tests.helpers.dyn_bearings import spindle_inputs
 
 SAMPLES = 60
 
