@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 import pytest
-from dyn_bearings import spindle_inputs
 
 from solver.errors import SimulationDiverged
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.results.io import load_dataset, save_dataset
 from solver.results.variables import VARIABLES
+from tests.helpers.dyn_bearings import spindle_inputs
 
 SHORT = dict(shaft_revolutions=0.3, samples_per_revolution=40)
 
