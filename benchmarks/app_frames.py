@@ -1,4 +1,4 @@
-"""Measure the browser app against the targets of issue 4 (run by hand, not in CI).
+"""Measure the browser app's responsiveness and memory (run by hand, not in CI).
 
     python benchmarks/app_frames.py [--runs-dir DIR] [--run FILE.nc] [--loads N]
 

@@ -8,7 +8,7 @@ Prints the median of repeats of
    for the same 218 case and for the 7008C-class spindle case, as SI arrays and as a stacked
    Dataset.
 
-Targets (issue 2, 2-core machine): <= 20 ms per solve, <= 0.5 s per sweep.
+Targets (on a 2-core machine): <= 20 ms per solve, <= 0.5 s per sweep.
 Run: python benchmarks/quasistatic.py [--repeats N]
 """
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-import pyvista as pv  # noqa: E402
+import pyvista as pv
 
-from app.frames import frame_source, rot_x  # noqa: E402
-from app.raceway import INNER, OUTER, grooves  # noqa: E402
-from app.scene import BearingScene  # noqa: E402
+from app.frames import frame_source, rot_x
+from app.raceway import INNER, OUTER, grooves
+from app.scene import BearingScene
 
 
 @pytest.fixture

@@ -7,6 +7,8 @@ import sys
 
 import pytest
 
+from tests.helpers.cases import CONTRACT_EXAMPLE
+
 NO_SOLUTION_CASE = """
 title = "218 at an absurd speed with 1 N preload"
 [bearing]
@@ -99,57 +101,6 @@ def test_output_into_a_missing_directory_exits_2(tmp_path):
     assert "does not exist" in result.stderr and "Traceback" not in result.stderr
 
 
-# The example of the case-format contract (../shared/design/case-format.md), as written there: its
-# lands (45.9 / 62.2 mm) do not rise above the 7008C grooves, so it loads with warnings.
-CONTRACT_EXAMPLE = """
-title = "7008C-class hybrid spindle bearing, combined load"
-
-[bearing]
-designation = "7008C-class hybrid"
-provenance = "estimated"
-ball_count = 18
-ball_diameter_mm = 7.144
-pitch_diameter_mm = 54.0
-inner_groove_radius_ratio = 0.54
-outer_groove_radius_ratio = 0.53
-free_contact_angle_deg = 15.0
-inner_shoulder_diameter_mm = 45.9
-outer_shoulder_diameter_mm = 62.2
-ball_material = "silicon_nitride"
-ring_material = "bearing_steel"
-
-[materials.my_steel]
-youngs_modulus_GPa = 208.0
-poisson_ratio = 0.3
-density_kg_m3 = 7800.0
-
-[cage]
-guidance = "outer_ring"
-pocket_diametral_clearance_mm = 0.20
-guide_diametral_clearance_mm = 0.30
-mass_g = 6.0
-
-[lubricant]
-viscosity_Pas = 0.01
-pressure_viscosity_per_GPa = 20.0
-traction = { mu_zero = 0.0, mu_max = 0.05, slip_at_max_m_s = 1.0, mu_infinity = 0.036 }
-
-[operating]
-inner_ring_speed_rpm = 20000.0
-outer_ring_speed_rpm = 0.0
-axial_load_N = 500.0
-radial_load_N = 300.0
-radial_load_angle_deg = 0.0
-misalignment_deg = 0.0
-misalignment_axis_deg = 90.0
-misalignment_frame = "space"
-
-[simulation]
-shaft_revolutions = 10.0
-samples_per_revolution = 180
-"""
-
-
 def test_contract_example_solves_and_warns_about_its_lands(tmp_path):
     path = tmp_path / "example.toml"
     path.write_text(CONTRACT_EXAMPLE)
@@ -164,7 +115,7 @@ def test_contract_example_solves_and_warns_about_its_lands(tmp_path):
 
 
 def test_result_outside_the_model_is_warned_on_stderr(tmp_path):
-    """209 deep groove at 1e9 N axial (an acceptance reviewer's case): still exit 0, but stderr says
+    """209 deep groove at 1e9 N axial (an absurd load on a real case): still exit 0, but stderr says
     the pressure is beyond the ISO 76 static limit and the contact too large for Hertz theory."""
     from solver.catalogue import resolve_case
 

@@ -1,16 +1,9 @@
 """``racetrace simulate``: case warnings and result warnings on stderr, exit code unchanged."""
 
-import importlib.util
 import subprocess
 import sys
-from pathlib import Path
 
-_spec = importlib.util.spec_from_file_location(
-    "cli_quasistatic_tests", Path(__file__).with_name("test_cli_quasistatic.py")
-)
-_qs = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_qs)
-CONTRACT_EXAMPLE = _qs.CONTRACT_EXAMPLE
+from tests.helpers.cases import CONTRACT_EXAMPLE
 
 
 def test_simulate_prints_case_and_result_warnings(tmp_path):

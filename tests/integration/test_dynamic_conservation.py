@@ -1,21 +1,17 @@
-"""Validation 2 (issue 3): with traction and damping off the dynamic model conserves mechanical
-energy, and its right-hand side satisfies the momentum balance."""
+"""Validation (2) of the dynamic model (the others are in test_dynamic_validation.py): with
+traction and damping off it conserves mechanical energy, and its right-hand side satisfies the
+momentum balance."""
 
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "dynamic"))
-
-from dyn_bearings import spindle_inputs  # noqa: E402
-from dyn_helpers import evaluate, integrate_states, start  # noqa: E402
-
-from solver.models.dynamic import layout as L  # noqa: E402
-from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy  # noqa: E402
+from solver.models.dynamic import layout as L
+from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy
+from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
 
 def _energies(states, par, quad):

@@ -1,26 +1,25 @@
-"""Validation of the dynamic model (issue 3, tests 1 and 3-6) on the 7008C-class hybrid spindle
-bearing.
+"""Validation of the dynamic model on the 7008C-class hybrid spindle bearing: (1) the steady state
+under pure axial load against the quasi-static model, (3) contact trace as a line or a band, (4)
+band width against load, tilt and the quasi-static range, (5) Kingsbury latitudes under steady
+thrust, (6) ball-pass frequencies, and the inner-ring tilt as a degree of freedom. Check (2), energy
+conservation and momentum balance, is in test_dynamic_conservation.py.
 
 Each test compares the dynamic run with an independent reference: the project's quasi-static
-Jones–Harris solver (solver.models.quasistatic, written separately), kinematic identities, or a
-geometric property of the output (line versus band, circle fits on the ball).
+Jones–Harris solver (solver.models.quasistatic, a separate implementation of the equilibrium),
+kinematic identities, or a geometric property of the output (line versus band, circle fits on the
+ball).
 """
 
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "dynamic"))
-
-from dyn_bearings import spindle_inputs  # noqa: E402
-
-from solver.models.dynamic import SimulationOptions, simulate  # noqa: E402
-from solver.models.quasistatic import OperatingPoint, solve_operating_point  # noqa: E402
+from solver.models.dynamic import SimulationOptions, simulate
+from solver.models.quasistatic import OperatingPoint, solve_operating_point
+from tests.helpers.dyn_bearings import spindle_inputs
 
 SAMPLES = 60
 

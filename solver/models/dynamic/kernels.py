@@ -252,7 +252,7 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
 def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
     """(R_x, R_y, kappa, E(m), K) of a ball-groove contact; K in N/m^1.5 so that Q = K delta^1.5.
 
-    Exact Hertz solution through B's tabulated kernels (solver.physics.hertz_fast)."""
+    Exact Hertz solution through the tabulated kernels of solver.physics.hertz_fast."""
     rx, ry = equivalent_radii_fast(ball_diameter, conformity, gamma, is_inner)
     csum, cdiff = curvature_sum_and_difference_fast(ball_diameter, conformity, gamma, is_inner)
     kappa, ell_k, ell_e = hertz_coefficients_fast(cdiff)
@@ -260,7 +260,8 @@ def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
     return rx, ry, kappa, ell_e, k
 
 
-#: scratch space of one traction, pocket or land evaluation (D1's kernels' input/output arrays)
+#: scratch space of one traction, pocket or land evaluation: the input/output arrays of the
+#: kernels of solver.physics.traction and solver.physics.cage_contact
 TRACTION_WORK_SIZE = max(
     CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE,
     POCKET_KIN_SIZE + POCKET_OUT_SIZE,
@@ -390,8 +391,9 @@ def ball_race_contact(
         + (vby - ring_vel[1] - a1) * niy
         + (vbz - ring_vel[2] - a2) * niz
     )
-    # D1's damped Hertz law (solver.physics.traction.damped_normal_force): c = 2 zeta sqrt(1.5 K
-    # delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never pulling
+    # the damped Hertz law of solver.physics.traction.damped_normal_force:
+    # c = 2 zeta sqrt(1.5 K delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never
+    # pulling
     q = damped_normal_force(delta, ddelta, kh, par[P_ZETA], par[P_MB])
     rec[K_LOAD] = q
     rec[K_ELASTIC] = q_el
@@ -409,7 +411,7 @@ def ball_race_contact(
     frx, fry, frz = -fbx, -fby, -fbz
     mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
     if par[P_TRACTION] > 0.0:
-        # D1's ellipse-integrated traction (solver.physics.traction.ellipse_traction):
+        # the ellipse-integrated traction of solver.physics.traction.ellipse_traction:
         # Hertz-weighted quadrature of the local slip of the two rigid bodies on the curved contact
         # surface
         ct = work[:CONTACT_SIZE]
@@ -500,7 +502,7 @@ def cage_frame(y, cb, rot, omega):
 
 @njit(cache=True)
 def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
-    """Ball ``j`` against its cage pocket through D1's kernel (solver.physics.cage_contact).
+    """Ball ``j`` against its cage pocket through the kernel of solver.physics.cage_contact.
 
     Pocket frame (x, r, theta): the cage axes ``cage_rot`` turned by the pocket angle 2 pi j / Z
     about the cage axis; pocket centre at the pocket radius along r. ``cage_omega``: cage angular
@@ -574,7 +576,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
 
 @njit(cache=True)
 def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
-    """Guiding-land force on the cage through D1's kernel (solver.physics.cage_contact.land_force).
+    """Guiding-land force on the cage through solver.physics.cage_contact.land_force.
 
     ``out`` (4): force on the cage (3; x = 0) and moment about x (1). Ball-guided cages: zeros.
     Outer-ring guidance: the land is on the outer ring (centre at the origin, speed omega_o);

@@ -31,10 +31,10 @@ from .observe import (
 
 
 def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> np.ndarray:
-    """Margin [degree] between the ellipse edge and the loaded shoulder, per race (B's
-    solver.physics.hertz.truncation_margin); NaN where the case gives no shoulder
-    (results-schema.md). ``angle`` [rad] and ``semi_major`` [m] have a last axis race = (inner,
-    outer)."""
+    """Margin [degree] between the ellipse edge and the loaded shoulder, per race
+    (solver.physics.hertz.truncation_margin); NaN where the case gives no shoulder
+    (results-schema.md). ``angle`` [rad] and ``semi_major`` [m] have a last axis
+    race = (inner, outer)."""
     out = np.empty(angle.shape)
     for k, race in enumerate(("inner", "outer")):
         try:

@@ -118,7 +118,7 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
     p[L.P_ETA] = inputs.viscosity
     p[L.P_V_REG] = options.friction_regularisation
     p[L.P_HEATHCOTE] = 1.0 if options.heathcote else 0.0
-    # cage contact laws of solver.physics.cage_contact (D1); the case gives no cage material: a
+    # cage contact laws of solver.physics.cage_contact; the case gives no cage material: a
     # glass-filled polyamide cage (linear pocket law, secant of the Hertz law at 10 N) is assumed
     pocket_k = options.pocket_stiffness
     if pocket_k is None:

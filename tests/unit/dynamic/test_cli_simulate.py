@@ -7,10 +7,10 @@ import os
 import signal
 
 import pytest
-from dyn_bearings import spindle_inputs
 
 from racetrace.commands import simulate as command
 from solver.results.io import load_dataset
+from tests.helpers.dyn_bearings import spindle_inputs
 
 
 def _parse(argv):

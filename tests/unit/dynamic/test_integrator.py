@@ -5,8 +5,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from dyn_bearings import spindle_inputs
-from dyn_helpers import integrate_states, start
 
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.integrator import (
@@ -16,6 +14,8 @@ from solver.models.dynamic.integrator import (
     advance,
 )
 from solver.models.dynamic.simulate import state_scales
+from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.dyn_helpers import integrate_states, start
 
 
 def test_local_error_control_converges():

@@ -6,14 +6,14 @@ import math
 
 import numpy as np
 import pytest
-from dyn_bearings import spindle_inputs
-from dyn_helpers import evaluate, setup, start
 from scipy import integrate
 
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
 from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
 from solver.physics.hertz import race_contact
+from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.dyn_helpers import evaluate, setup, start
 
 
 def _quat_mul(a, b):

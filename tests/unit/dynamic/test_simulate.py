@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 import pytest
-from dyn_bearings import spindle_inputs
 
 from solver.errors import SimulationDiverged
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.results.io import load_dataset, save_dataset
 from solver.results.variables import VARIABLES
+from tests.helpers.dyn_bearings import spindle_inputs
 
 SHORT = dict(shaft_revolutions=0.3, samples_per_revolution=40)
 
@@ -49,8 +49,8 @@ def test_dataset_has_every_dynamic_variable_with_registry_dims_and_no_nan(short_
 
 
 def test_dataset_describes_its_operating_point_and_geometry(short_run):
-    """The coordinates hold the inputs (dyn_bearings.spindle_inputs: 20 000 rpm, 500 N axial,
-    300 N radial, shoulders 49 and 59 mm), not a case text (these inputs have none)."""
+    """The coordinates hold the inputs (tests.helpers.dyn_bearings.spindle_inputs: 20 000 rpm,
+    500 N axial, 300 N radial, shoulders 49 and 59 mm), not a case text (these have none)."""
     from solver.results.variables import COORDINATES
 
     ds, _ = short_run

@@ -160,7 +160,7 @@ def test_dynamic_run_stopped_early_says_so():
 
 # ---- real quasi-static results -----------------------------------------------------------------
 def test_absurd_axial_load_is_flagged_by_solve_quasistatic():
-    """The acceptance reviewer's case: the 209 deep-groove case at 1e9 N axial load."""
+    """An absurd load on a real case: the 209 deep-groove case at 1e9 N axial load."""
     from solver import solve_quasistatic
     from solver.catalogue import resolve_case
 

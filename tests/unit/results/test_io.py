@@ -1,6 +1,5 @@
 """NetCDF save/load: round trip (strings included) and atomic writes."""
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
@@ -8,6 +7,7 @@ import pytest
 import xarray as xr
 
 from solver.results.io import load_dataset, save_dataset
+from tests.helpers.cases import DEEP_GROOVE_RADIAL
 
 
 def small_dataset():
@@ -31,13 +31,10 @@ def test_round_trip_keeps_values_strings_and_attributes(tmp_path):
 
 
 def test_round_trip_of_a_model_dataset(tmp_path):
-    spec = importlib.util.spec_from_file_location("qs_cases", Path(__file__).with_name("cases.py"))
-    cases = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(cases)
     from solver.case import load_case
     from solver.models.quasistatic import solve_quasistatic
 
-    ds = solve_quasistatic(load_case(cases.DEEP_GROOVE_RADIAL))
+    ds = solve_quasistatic(load_case(DEEP_GROOVE_RADIAL))
     back = load_dataset(save_dataset(ds, tmp_path / "qs.nc"))
     xr.testing.assert_identical(back, ds)
 

@@ -1,10 +1,8 @@
 """The quasi-static Dataset: schema completeness, units, NaN-free values, and geometric consistency
 checked against independent references (exact Hertz, groove geometry, Kingsbury latitudes)."""
 
-import importlib.util
 import math
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,10 +10,7 @@ import pytest
 from solver.case import load_case
 from solver.models.quasistatic import quasistatic_speed_sweep, solve_quasistatic
 from solver.physics.hertz import race_contact
-
-_spec = importlib.util.spec_from_file_location("qs_cases", Path(__file__).with_name("cases.py"))
-CASES = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(CASES)
+from tests.helpers import cases
 
 SCHEMA_QS = {
     "contact_load": "N",
@@ -46,7 +41,7 @@ SCHEMA_QS = {
 
 @pytest.fixture(scope="module")
 def spindle_case():
-    return load_case(CASES.SPINDLE)
+    return load_case(cases.SPINDLE)
 
 
 @pytest.fixture(scope="module")
@@ -139,7 +134,7 @@ def test_kingsbury_latitudes_and_outer_control_spin(spindle_ds):
 
 
 def test_film_thickness_is_zero_at_open_contacts():
-    ds = solve_quasistatic(load_case(CASES.DEEP_GROOVE_RADIAL + CASES.LUBRICANT))
+    ds = solve_quasistatic(load_case(cases.DEEP_GROOVE_RADIAL + cases.LUBRICANT))
     open_inner = ds.contact_load.values[:, 0] == 0.0
     assert open_inner.any()
     assert np.all(ds.film_thickness.values[open_inner, 0] == 0.0)
@@ -147,7 +142,7 @@ def test_film_thickness_is_zero_at_open_contacts():
 
 
 def test_film_thickness_only_with_a_lubricant():
-    ds = solve_quasistatic(load_case(CASES.SPINDLE + CASES.LUBRICANT))
+    ds = solve_quasistatic(load_case(cases.SPINDLE + cases.LUBRICANT))
     h = ds.film_thickness.values
     assert ds.film_thickness.attrs["units"] == "m"
     assert np.all(np.isfinite(h)) and np.all(h > 1e-8) and np.all(h < 1e-5)
@@ -156,7 +151,7 @@ def test_film_thickness_only_with_a_lubricant():
 def test_unloaded_balls_in_the_dataset_are_zero_not_nan():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        ds = solve_quasistatic(load_case(CASES.DEEP_GROOVE_RADIAL))
+        ds = solve_quasistatic(load_case(cases.DEEP_GROOVE_RADIAL))
     open_inner = ds.contact_load.values[:, 0] == 0.0
     assert open_inner.sum() >= 3
     for name in ("ellipse_semi_major", "ellipse_semi_minor", "max_pressure", "contact_deflection"):

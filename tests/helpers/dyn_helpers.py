@@ -1,4 +1,4 @@
-"""Shared setup for dynamic-model unit tests: parameters, quadrature and the initial state."""
+"""Shared setup for the dynamic-model tests: parameters, quadrature and the initial state."""
 
 from __future__ import annotations
 
