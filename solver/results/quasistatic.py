@@ -75,8 +75,7 @@ def _case_text(case) -> str:
 def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dataset:
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
-    ``lubricant`` (``case.lubricant`` or None) adds ``film_thickness``; it needs ``viscosity_Pas``
-    and ``pressure_viscosity_per_GPa``.
+    ``lubricant`` (a :class:`solver.inputs.LubricantInputs`, SI, or None) adds ``film_thickness``.
     """
     sol = solution
     z = sol.contact_load.shape[0]
@@ -132,8 +131,8 @@ def solution_to_dataset(solution, geometry, case=None, lubricant=None) -> xr.Dat
                 u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
                 film[j, k] = film_thickness_central(
                     u_e,
-                    float(lubricant.viscosity_Pas),
-                    float(lubricant.pressure_viscosity_per_GPa) * 1e-9,
+                    lubricant.viscosity,
+                    lubricant.pressure_viscosity,
                     geometry.effective_modulus,
                     hertz["r_x"][j, k],
                     sol.contact_load[j, k],

@@ -13,7 +13,6 @@ from solver.physics.hertz import truncation_margin
 from solver.results.variables import coordinates, variable
 
 from . import layout as L
-from .inputs import DEFAULT_OIL_NOTE
 from .observe import (
     N_OBS,
     O_ANGLE,
@@ -53,7 +52,8 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     s_count = states.shape[0]
     obs = np.zeros((s_count, z, 2, N_OBS))
     pocket = np.zeros((s_count, z))
-    observe(states, par, quad, inputs.viscosity, inputs.pressure_viscosity, obs, pocket)
+    lub = inputs.lubricant
+    observe(states, par, quad, lub.viscosity, lub.pressure_viscosity, obs, pocket)
     balls = np.stack(
         [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
     )
@@ -155,7 +155,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         else "off (frictionless)",
         "damping_ratio": float(options.damping_ratio),
         "cage_model": "6 DOF (translations, rotation, tilts)" if options.cage else "off",
-        "lubricant": DEFAULT_OIL_NOTE if inputs.default_lubricant else "from the case [lubricant]",
+        "lubricant": inputs.lubricant.description,
         "integrator": f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}",
         "steps": stats.steps,
         "rejected_steps": stats.rejected,
