@@ -54,12 +54,14 @@ def read_case_bytes(path: Path) -> bytes:
     for a writer) and again on the open file. At most ``MAX_CASE_BYTES + 1`` bytes are read, so a
     file that reports a wrong size (such as those under /proc) cannot exhaust the memory.
     """
+    # a path with a line break is almost surely case text given in the place of a path
+    hint = " (load_case reads a file; parse_case reads TOML text)" if "\n" in str(path) else ""
     try:
         info = os.stat(path)
     except FileNotFoundError:
-        raise _file_problem(f"case file not found: {path}") from None
+        raise _file_problem(f"case file not found: {path}{hint}") from None
     except OSError as error:
-        raise _file_problem(f"cannot read {path}: {error.strerror}") from None
+        raise _file_problem(f"cannot read {path}: {error.strerror}{hint}") from None
     if stat.S_ISDIR(info.st_mode):
         raise _file_problem(f"{path} is a folder, not a case file: give a .toml file")
     if not stat.S_ISREG(info.st_mode):

@@ -80,7 +80,7 @@ def _section(prefix: tuple[str, ...], values: dict):
     """Section (or sub-table) object of ``prefix`` from its validated values."""
     cls = SUBTABLE_CLASSES[prefix] if len(prefix) > 1 else SECTION_CLASSES[prefix[0]]
     kwargs = {
-        name: _section(prefix + (name,), value) if isinstance(value, dict) else value
+        name: _section(prefix + (name,), value) if prefix + (name,) in SUBTABLE_CLASSES else value
         for name, value in values.items()
     }
     return cls(**kwargs)

@@ -249,8 +249,8 @@ FIELDS: list[Field] = [
         minimum=0.0,
         maximum=100.0,
         reason="a negative clearance is a preload; give an axial load instead",
-        reason_high="the clearance must also be less than A_0 = (f_i + f_o - 1) D, "
-        "which no ball bearing brings near 100 mm",
+        reason_high="the clearance must also stay below A_0, the distance between the groove "
+        "curvature centres, which is far below 100 mm in any ball bearing",
     ),
     Field(
         "bearing.inner_shoulder_diameter_mm",
@@ -450,8 +450,8 @@ FIELDS: list[Field] = [
         unit="rpm",
         maximum=500000.0,
         minimum=-500000.0,
-        reason="500 000 rpm either way is beyond any ball bearing (air-driven dental turbines "
-        "reach about 400 000 rpm) and keeps the solvers' time scales finite",
+        reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
+        "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
     ),
     Field(
         "operating.outer_ring_speed_rpm",
@@ -462,8 +462,8 @@ FIELDS: list[Field] = [
         default=0.0,
         maximum=500000.0,
         minimum=-500000.0,
-        reason="500 000 rpm either way is beyond any ball bearing (air-driven dental turbines "
-        "reach about 400 000 rpm) and keeps the solvers' time scales finite",
+        reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
+        "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
     ),
     Field(
         "operating.axial_load_N",

@@ -39,9 +39,9 @@ def test_parse_value():
 
 
 def test_apply_form_routes_problems_to_fields(fixture_model):
-    from solver import load_case
+    from solver import parse_case
 
-    case = load_case(fixture_model.FIXTURE_CASE)
+    case = parse_case(fixture_model.FIXTURE_CASE)
     fields = form_fields()
     ok = apply_form(case, fields, {"axial_load_N": "750"})
     assert ok.valid and ok.case.operating.axial_load_N == 750.0
@@ -61,9 +61,9 @@ def test_apply_form_routes_problems_to_fields(fixture_model):
 
 def test_rule_between_two_keys_reaches_both_fields(fixture_model):
     """ball_diameter_mm = 60 on a 54 mm pitch circle: the message concerns both diameters."""
-    from solver import load_case
+    from solver import parse_case
 
-    case = load_case(fixture_model.FIXTURE_CASE)
+    case = parse_case(fixture_model.FIXTURE_CASE)
     fields = form_fields()
     bad = apply_form(case, fields, {"ball_diameter_mm": "60"})
     assert not bad.valid
@@ -139,9 +139,9 @@ def test_default_text_of_lubricant_matches_the_default_oil():
 
 def test_estimated_default_texts_give_the_value_for_the_case(fixture_model):
     from app.caseform import estimated_default_texts
-    from solver import load_case
+    from solver import parse_case
 
-    case = load_case(fixture_model.FIXTURE_CASE)
+    case = parse_case(fixture_model.FIXTURE_CASE)
     texts = estimated_default_texts(case, form_fields())
     # 0.028 D with D = 7.144 mm: 0.2000 mm; 0.5 D = 3.572 mm
     assert texts["pocket_diametral_clearance_mm"] == "0.2 mm (estimated: 0.028 D)"
