@@ -106,35 +106,44 @@ def test_default_text_shows_the_value_used_when_empty():
         assert by_name[name].default_text == "", name
 
 
-def test_default_text_of_dynamic_switches_matches_the_model():
-    """The optional [simulation] switches: the text agrees with SimulationOptions, whose defaults
-    the dynamic model really uses (an independent source)."""
-    from dataclasses import fields as dataclass_fields
+def test_default_text_of_dynamic_switches_is_what_a_run_uses():
+    """The [simulation] switches left empty: the text agrees with the SI inputs the dynamic model
+    reads for a case without them (solver.inputs.to_inputs)."""
+    from solver.catalogue import resolve_case
+    from solver.inputs import to_inputs
 
-    from solver.models.dynamic.options import CASE_KEYS, SimulationOptions
-
-    defaults = {f.name: f.default for f in dataclass_fields(SimulationOptions)}
+    case = resolve_case("218-heavy-combined")  # no switches in the file
+    sim = to_inputs(case).simulation
     by_name = {f.name: f for f in form_fields()}
-    for key, option in CASE_KEYS.items():
-        text = by_name[key].default_text
-        value = defaults[option]
+    used = {
+        "ball_race_traction": sim.traction,
+        "contact_damping_ratio": sim.damping_ratio,
+        "gravity_m_s2": sim.gravity,
+        "tolerance": sim.tolerance,
+        "model_cage": sim.cage,
+    }
+    for name, value in used.items():
+        text = by_name[name].default_text
         if isinstance(value, bool):
-            assert text == ("true" if value else "false"), key
+            assert text == ("true" if value else "false"), name
         else:
-            assert float(text.split()[0]) == pytest.approx(value), key
+            assert float(text.split()[0]) == pytest.approx(value), name
 
 
-def test_default_text_of_lubricant_matches_the_default_oil():
-    """A case without [lubricant] runs on the dynamic model's default oil: the same values."""
-    from solver.models.dynamic.inputs import DEFAULT_OIL
+def test_default_text_of_lubricant_is_the_oil_a_run_uses():
+    """A case without [lubricant] runs on the schema's default oil: the same values."""
+    from solver.catalogue import resolve_case
+    from solver.inputs import to_inputs
 
+    oil = to_inputs(resolve_case("218-heavy-combined")).lubricant
+    assert oil.given is False
     by_name = {f.name: f for f in form_fields()}
-    assert float(by_name["viscosity_Pas"].default_text.split()[0]) == DEFAULT_OIL["viscosity"]
+    assert float(by_name["viscosity_Pas"].default_text.split()[0]) == oil.viscosity
     pv = float(by_name["pressure_viscosity_per_GPa"].default_text.split()[0]) * 1e-9
-    assert pv == pytest.approx(DEFAULT_OIL["pressure_viscosity"])
+    assert pv == pytest.approx(oil.pressure_viscosity)
     names = ("mu_zero", "mu_max", "slip_at_max_m_s", "mu_infinity")
     texts = tuple(float(by_name[n].default_text.split()[0]) for n in names)
-    assert texts == DEFAULT_OIL["traction"]
+    assert texts == oil.traction.values()
 
 
 def test_estimated_default_texts_give_the_value_for_the_case(fixture_model):

@@ -150,7 +150,8 @@ def test_deep_nesting_is_a_case_error():
 def test_huge_integers_are_case_errors(valid):
     text = tomli_w.dumps(valid)
     digits = "9" * 5000
-    message = _message(lambda: parse_case(text + f"\n[simulation]\nsamples_per_revolution = {digits}\n"))
+    huge = text + f"\n[simulation]\nsamples_per_revolution = {digits}\n"
+    message = _message(lambda: parse_case(huge))
     assert "cannot be read" in message
     # an integer that parses but does not fit a float: a message naming the key
     with pytest.raises(CaseError) as info:

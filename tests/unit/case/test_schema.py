@@ -12,8 +12,8 @@ import tomli_w
 
 from solver.case import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, parse_case
 from solver.case.schema import Field
-from solver.case.writer import toml_value
 from solver.case.validate import _MISSING, check_value
+from solver.case.writer import toml_value
 
 FULL = {
     "cage": {

@@ -611,7 +611,7 @@ def test_every_bound_states_its_unit(valid, problems):
 
 def test_traction_rule_holds_for_the_defaults_of_keys_not_given(valid, problems):
     """mu_max = 0.03 alone: the default mu_infinity (0.036) would exceed the peak."""
-    found = problems(edit(valid, {"lubricant.traction": {"mu_max": 0.03}}))
+    found = problems(edit(copy.deepcopy(valid), {"lubricant.traction": {"mu_max": 0.03}}))
     (message,) = found["lubricant.traction.mu_infinity"]
     assert "mu_infinity = 0.036 (the default)" in message and "mu_max = 0.03" in message
     ok = edit(valid, {"lubricant.traction": {"mu_max": 0.03, "mu_infinity": 0.02}})
@@ -621,11 +621,11 @@ def test_traction_rule_holds_for_the_defaults_of_keys_not_given(valid, problems)
 def test_equal_ring_speeds_are_valid_but_not_for_the_dynamic_model(valid):
     from solver.case import dynamic_problems
 
-    case = Case.from_dict(edit(valid, {"operating.outer_ring_speed_rpm": 20000.0}))
+    case = Case.from_dict(edit(copy.deepcopy(valid), {"operating.outer_ring_speed_rpm": 20000.0}))
     (problem,) = dynamic_problems(case)
     assert problem.key == "operating.inner_ring_speed_rpm"
     assert "operating.outer_ring_speed_rpm" in problem.keys
     assert "turn relative to each other" in problem.message and "20000" in problem.message
     assert dynamic_problems(Case.from_dict(valid)) == []
-    at_rest = Case.from_dict(edit(valid, {"operating.inner_ring_speed_rpm": 0.0}))
+    at_rest = Case.from_dict(edit(copy.deepcopy(valid), {"operating.inner_ring_speed_rpm": 0.0}))
     assert dynamic_problems(at_rest)
