@@ -719,15 +719,35 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
 
 
 # ---- rules of one model ------------------------------------------------------------------------
+#: Most output samples times balls a dynamic run may store: a run keeps about 1.5 kB per ball and
+#: sample in memory (state, observations and the result Dataset), so this is about 3 GB.
+MAX_DYNAMIC_BALL_SAMPLES = 2_000_000
+
+
 def dynamic_problems(case) -> list[Problem]:
     """Why the dynamic model cannot run the valid ``case`` (empty when it can).
 
     The dynamic model integrates the motion over shaft revolutions of the inner ring relative to
-    the outer ring, so the rings must turn relative to each other. The quasi-static model needs no
-    such rule: it solves a bearing at rest too.
+    the outer ring, so the rings must turn relative to each other; and it keeps every output sample
+    of every ball in memory, at most :data:`MAX_DYNAMIC_BALL_SAMPLES`. The quasi-static model needs
+    neither rule: it solves a bearing at rest too, and stores one sample.
     """
     op = case.operating
     found: list[Problem] = []
+    sim = case.simulation
+    samples = round(sim.shaft_revolutions * sim.samples_per_revolution)
+    if samples * case.bearing.ball_count > MAX_DYNAMIC_BALL_SAMPLES:
+        found.append(
+            Problem(
+                "simulation.shaft_revolutions",
+                f"simulation.shaft_revolutions = {format_number(sim.shaft_revolutions)} at "
+                f"simulation.samples_per_revolution = {sim.samples_per_revolution}: {samples} "
+                f"samples of {case.bearing.ball_count} balls exceed the "
+                f"{MAX_DYNAMIC_BALL_SAMPLES:,} ball-samples a run can keep in memory (about 3 GB); "
+                "give fewer revolutions or samples per revolution, or split the run",
+                ("simulation.samples_per_revolution", "bearing.ball_count"),
+            )
+        )
     if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
         speed = format_number(op.inner_ring_speed_rpm)
         found.append(

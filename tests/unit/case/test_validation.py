@@ -629,3 +629,18 @@ def test_equal_ring_speeds_are_valid_but_not_for_the_dynamic_model(valid):
     assert dynamic_problems(Case.from_dict(valid)) == []
     at_rest = Case.from_dict(edit(copy.deepcopy(valid), {"operating.inner_ring_speed_rpm": 0.0}))
     assert dynamic_problems(at_rest)
+
+
+def test_a_dynamic_run_too_large_for_memory_is_refused_with_the_numbers(valid):
+    from solver.case import dynamic_problems
+    from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES
+
+    # 18 balls: 1000 revolutions at 180 samples is 3.24 million ball-samples
+    big = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": 1000.0}})
+    (problem,) = dynamic_problems(Case.from_dict(big))
+    assert problem.key == "simulation.shaft_revolutions"
+    assert "180000 samples of 18 balls" in problem.message
+    assert "bearing.ball_count" in problem.keys
+    limit = MAX_DYNAMIC_BALL_SAMPLES // (18 * 180) * 1.0  # revolutions at the limit
+    ok = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": limit}})
+    assert dynamic_problems(Case.from_dict(ok)) == []
