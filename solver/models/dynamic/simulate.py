@@ -21,6 +21,7 @@ from types import MappingProxyType
 import numpy as np
 
 from solver.case import dynamic_problems
+from solver.catalogue import resolve_case
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
 
@@ -163,8 +164,6 @@ def _inputs(case) -> Inputs:
     if isinstance(case, Inputs):
         return case
     if isinstance(case, str | os.PathLike):
-        from solver.catalogue import resolve_case
-
         case = resolve_case(case)
     problems = dynamic_problems(case)
     if problems:

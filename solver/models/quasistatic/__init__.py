@@ -32,6 +32,7 @@ import os
 
 import numpy as np
 
+from solver.catalogue import resolve_case
 from solver.errors import NoSolutionError
 from solver.inputs import Inputs, OperatingPoint, rpm_to_rad_s, to_inputs
 
@@ -54,8 +55,6 @@ def _inputs(case) -> Inputs:
     if isinstance(case, Inputs):
         return case
     if isinstance(case, str | os.PathLike):
-        from solver.catalogue import resolve_case
-
         case = resolve_case(case)
     return to_inputs(case)
 
