@@ -19,13 +19,12 @@ Heavy modules (numba kernels, xarray) are imported on first use, so ``import sol
 
 from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
-from pathlib import Path
 
-from ._numba_cache import configure_numba_cache
+from ._numba_cache import SOLVER_DIR, configure_numba_cache
 from .errors import CaseError, NoSolutionError, Problem, SimulationDiverged
 
-# Before any numba import: compiled kernels are cached per version of the solver sources.
-configure_numba_cache(Path(__file__).parent)
+# Before any kernel is defined: compiled kernels are cached per version of the solver sources.
+configure_numba_cache(SOLVER_DIR)
 
 try:
     __version__ = version("racetrace")

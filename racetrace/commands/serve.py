@@ -1,6 +1,28 @@
-"""``racetrace serve``: the browser app (3-D view, charts, background runs)."""
+"""``racetrace serve``: the browser app (3-D view, charts, background runs).
+
+The app needs the ``app`` extra; without it the command says how to install it and exits 2.
+"""
 
 from __future__ import annotations
+
+import importlib.util
+import sys
+
+EXIT_NO_APP = 2
+APP_EXTRA_MESSAGE = "the browser app needs the app extra: pip install 'racetrace[app]'"
+# The top-level modules of the packages in the ``app`` extra of pyproject.toml.
+APP_MODULES = (
+    "trame",
+    "trame_vuetify",
+    "trame_pyvista",
+    "trame_rca",
+    "trame_plotly",
+    "pyvista",
+    "vtkmodules",
+    "plotly",
+    "imageio",
+    "imageio_ffmpeg",
+)
 
 
 def register(subparsers) -> None:
@@ -24,7 +46,32 @@ def register(subparsers) -> None:
     p.set_defaults(func=run)
 
 
+def missing_app_modules() -> list[str]:
+    """The modules of the ``app`` extra that cannot be found here (the extra is not installed)."""
+    missing = []
+    for name in APP_MODULES:
+        try:
+            found = importlib.util.find_spec(name) is not None
+        except (ImportError, ValueError):
+            found = False
+        if not found:
+            missing.append(name)
+    return missing
+
+
+def app_extra_problem() -> str | None:
+    """The message for a missing ``app`` extra, naming the missing modules; None if installed."""
+    missing = missing_app_modules()
+    if not missing:
+        return None
+    return f"racetrace serve: {APP_EXTRA_MESSAGE}\n(missing: {', '.join(missing)})"
+
+
 def run(args) -> int:
+    problem = app_extra_problem()
+    if problem:
+        print(problem, file=sys.stderr)
+        return EXIT_NO_APP
     from app.main import serve
 
     return serve(
