@@ -10,7 +10,6 @@ dotted key (unique), which is also the element id ``field-<name>`` in the page.
 from __future__ import annotations
 
 import math
-import re
 import tomllib
 from dataclasses import dataclass
 
@@ -35,28 +34,21 @@ class FormField:
     default_text: str = ""  # value used when the field is left empty, with its unit ("" if none)
 
 
-_DEFAULT_IN_HELP = re.compile(r"\(default ([^;)]+)[;)]")
-
-
 def default_text(spec) -> str:
     """What the solver uses when the field ``spec`` (a schema Field) is left empty, in words.
 
     A plain default with its unit ("0.01 Pa s", "outer_ring"); an estimated default as its rule
     ("estimated: 0.028 D", see :func:`estimated_default_texts` for the value of a given case);
     "" for a required key or one with no default (an absent shoulder, the free contact angle).
-    Optional [simulation] switches state their default in their schema help ("(default 0.05; ...)"),
-    which is read here: the schema stays the one source.
+    Every value is the schema's default (``spec.default``).
     """
     from solver.case.schema import OPTIONAL, REQUIRED, Estimated, format_number
 
-    if spec.default is REQUIRED:
+    if spec.default is REQUIRED or spec.default is OPTIONAL:
         return ""
     if isinstance(spec.default, Estimated):
         return f"estimated: {spec.default.description}"
-    if spec.default is OPTIONAL:
-        match = _DEFAULT_IN_HELP.search(spec.help)
-        value = match.group(1).strip() if match else ""
-    elif isinstance(spec.default, str):
+    if isinstance(spec.default, str):
         value = spec.default
     else:
         value = format_number(spec.default)
@@ -131,6 +123,13 @@ def case_form_values(case, fields: list[FormField]) -> dict[str, object]:
             node = INLINE_TABLE if f.kind == "material" else None
         values[f.name] = node
     return values
+
+
+def form_text(value) -> str:
+    """Text of a typed value in a form input ("true"/"false" as in case files for booleans)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
 
 
 def parse_value(field: FormField, raw):

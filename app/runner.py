@@ -28,14 +28,14 @@ def dynamic_job(case_text: str, progress, cancel):
     """The dynamic model on a case given as TOML text."""
     import solver
 
-    return solver.simulate(solver.load_case(case_text), progress=progress, cancel=cancel)
+    return solver.simulate(solver.parse_case(case_text), progress=progress, cancel=cancel)
 
 
 def quasistatic_job(case_text: str, progress, cancel):
     """The quasi-static model on a case given as TOML text (no progress, not cancellable)."""
     import solver
 
-    return solver.solve_quasistatic(solver.load_case(case_text))
+    return solver.solve_quasistatic(solver.parse_case(case_text))
 
 
 def _child_main(target: str, case_text: str, out_path: str, messages, cancel_event) -> None:

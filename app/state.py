@@ -6,7 +6,8 @@ saved run), the 3-D scene, the charts, the background runner and the runs folder
 
 State keys the page binds to (all plain JSON values):
 ``case_items``/``case_name`` (shipped cases), ``form`` (field descriptors), ``fv_<name>`` (field
-text), ``fe_<name>`` (field message, "" when valid), ``case_message``, ``run_disabled``, ``busy``,
+text), ``fe_<name>`` (field message, "" when valid), ``case_message``, ``run_disabled``,
+``run_reason`` (why the dynamic model cannot run a valid case, "" when it can), ``busy``,
 ``status`` (ends in ``done``, ``cancelled`` or ``error: ...``), ``progress`` (0-100), ``eta``,
 ``frame``/``frame_max``/``playing``/``speed``, ``result_label``, ``runs``/``run_id``, scene
 options (``show_<layer>``, ``exaggeration``, ``trace_ball``, ``camera``) and the chart figures
@@ -27,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from . import charts
-from .caseform import apply_form, case_form_values, form_fields
+from .caseform import apply_form, case_form_values, form_fields, form_text
 from .frames import FrameSource, frame_source
 from .runner import DYNAMIC_JOB, SolverRunner
 from .runs import RunStore, default_runs_dir, describe_case, load_netcdf
@@ -144,6 +145,7 @@ class RacetraceApp:
         s.case_file_name = "case.toml"
         s.busy = False
         s.run_disabled = True
+        s.run_reason = ""  # why the dynamic model cannot run the case in the form ("" if it can)
         s.status = "starting"
         s.progress = 0
         s.eta = ""
@@ -244,7 +246,7 @@ class RacetraceApp:
             with self.state:
                 for name, value in values.items():
                     empty = None if self._field_by_name[name].kind in _SELECT_KINDS else ""
-                    self.state[f"fv_{name}"] = empty if value is None else str(value)
+                    self.state[f"fv_{name}"] = empty if value is None else form_text(value)
                     self.state[f"fe_{name}"] = ""
         finally:
             self._filling = False
@@ -262,16 +264,19 @@ class RacetraceApp:
     def _on_upload(self, uploaded_case=None, **_):
         if not uploaded_case:
             return
-        from solver import CaseError, load_case
+        from solver import CaseError, parse_case
+        from solver.case.io import decode_case_bytes
 
         item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
         self.state.uploaded_case = None  # empty the file box, so the same file can be sent again
+        name = str(item.get("name", "file"))
         content = item.get("content", b"")
-        text = content.decode("utf-8", "replace") if isinstance(content, bytes) else str(content)
         try:
-            case = load_case(text)
+            # the upload is case text, never a path on the server
+            text = decode_case_bytes(content, name) if isinstance(content, bytes) else str(content)
+            case = parse_case(text, source=f"uploaded file {name}")
         except CaseError as error:
-            self.state.case_message = f"{item.get('name', 'file')}: {error}"
+            self.state.case_message = f"{name}: {error}"
             return
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         self.set_base_case(case)
@@ -296,7 +301,10 @@ class RacetraceApp:
                 self.state[f"fe_{f.name}"] = result.errors.get(f.name, "")
             self.state.case_message = "\n".join(result.general)
             self.state.case_valid = result.valid
-            self.state.run_disabled = not result.valid or self.state.busy
+            self.state.run_reason = self._run_reason(result.case) if result.valid else ""
+            self.state.run_disabled = (
+                not result.valid or bool(self.state.run_reason) or self.state.busy
+            )
         self.case = result.case if result.valid else None
         self._case_text = self.case.to_toml() if self.case is not None else None
         if self.case is not None:
@@ -307,6 +315,13 @@ class RacetraceApp:
             name = self.state.case_name or self.case.bearing.designation or "case"
             self.state.case_file_name = "".join(c if c.isalnum() else "-" for c in name) + ".toml"
         return result
+
+    @staticmethod
+    def _run_reason(case) -> str:
+        """Why the dynamic model cannot run the valid ``case`` ("" when it can)."""
+        from solver import dynamic_problems
+
+        return "\n".join(f"dynamic model: {p.message}" for p in dynamic_problems(case))
 
     def _on_field(self, **_):
         if self._filling:
@@ -382,7 +397,7 @@ class RacetraceApp:
     # ---- showing a result -----------------------------------------------------------------------
     def show_result(self, ds, label: str) -> None:
         """Show a result Dataset: frame source, scene, charts and the time controls."""
-        from solver import load_case
+        from solver import parse_case
         from solver.results.dataset import geometry_from_result
 
         source = frame_source(ds, **self._animation_options(ds))
@@ -390,7 +405,7 @@ class RacetraceApp:
         self.source = source
         # the run's own case (provenance): its case warnings, whether the form already shows it, and
         # the quasi-static comparison solved for it; the views read the result's coordinates
-        case = load_case(ds.attrs["case"]) if ds.attrs.get("case") else self.case
+        case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else self.case
         self._shown_case_text = case.to_toml() if case is not None else None
         self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:
@@ -628,9 +643,9 @@ class RacetraceApp:
         except (OSError, ValueError) as error:
             self.state.status = f"error: {error}"
             return
-        from solver import load_case
+        from solver import parse_case
 
-        self._take_case(load_case(case_text))
+        self._take_case(parse_case(case_text, "the saved run's case"))
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         with self.state:
             self._show_saved_run(ds, run_id, label)
@@ -693,6 +708,8 @@ class RacetraceApp:
     def run(self) -> None:
         """Start the dynamic model on the current case in the background."""
         if self.runner.busy or self.validate() is None or self.case is None:
+            return
+        if self.state.run_reason:  # the form says why
             return
         self.store.root.mkdir(parents=True, exist_ok=True)
         out = self.store.root / f".job-{secrets.token_hex(4)}.nc"
@@ -769,7 +786,7 @@ class RacetraceApp:
     def _end_run(self, status: str) -> None:
         s = self.state
         s.busy = False
-        s.run_disabled = not s.case_valid
+        s.run_disabled = not s.case_valid or bool(s.run_reason)
         s.eta = ""
         if status == "done":
             s.progress = 100

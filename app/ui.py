@@ -386,6 +386,13 @@ def _run_panel(ctrl) -> None:
             with v3.VCol():
                 html.Div("{{ status }}", id="status", classes="text-body-2")
                 html.Div("{{ eta }}", classes="text-caption")
+        html.Div(
+            "{{ run_reason }}",
+            id="run-reason",
+            v_show="run_reason",
+            classes="text-caption text-error",
+            style="white-space: pre-line",
+        )
         with html.Div(id="result-warnings", v_if="result_warnings.length"):
             v3.VAlert(
                 "{{ warning }}",

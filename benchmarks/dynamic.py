@@ -31,7 +31,8 @@ import numpy as np
 sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1]))
 
 from solver.catalogue import resolve_case
-from solver.models.dynamic import SimulationOptions, inputs_from_case, simulate
+from solver.inputs import to_inputs
+from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import initial_state
 from solver.models.dynamic.integrator import advance
@@ -49,7 +50,8 @@ def running_state(inputs, options, revolutions=0.1):
     y = initial_state(par, quad)
     z = int(par[L.P_Z])
     scale = state_scales(par, y)
-    t_end = revolutions * 2.0 * np.pi / abs(inputs.inner_speed - inputs.outer_speed)
+    op = inputs.operating
+    t_end = revolutions * 2.0 * np.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
     out = np.empty((1, y.shape[0]))
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
     advance(
@@ -61,7 +63,7 @@ def running_state(inputs, options, revolutions=0.1):
         par,
         quad,
         scale,
-        options.tolerance,
+        options.resolved(inputs.simulation).tolerance,
         1e-6 * h,
         10_000_000,
         np.zeros(3, dtype=np.int64),
@@ -93,9 +95,8 @@ def rhs_cost(inputs, options, y, repeats=300):
 
 def run_case(label, revolutions):
     case = resolve_case(CASES[label])
-    inputs = inputs_from_case(case)
-    inputs = replace(inputs, shaft_revolutions=revolutions)
-    options = SimulationOptions()
+    inputs = to_inputs(case)
+    options = SimulationOptions(shaft_revolutions=revolutions)
     simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # compile / warm caches
     tracemalloc.start()
     start = time.perf_counter()
@@ -118,7 +119,7 @@ def run_case(label, revolutions):
     normal_only = rhs_cost(inputs, replace(options, traction=False, cage=False), y_run)
     per_rev = integ / revolutions
     n_state = L.state_size(inputs.geometry.ball_count)
-    samples_100 = 100 * inputs.samples_per_revolution
+    samples_100 = 100 * inputs.simulation.samples_per_revolution
     bytes_state = samples_100 * n_state * 8
     bytes_ds = ds.nbytes / ds.sizes["time"] * samples_100
     print(f"\n== {label}: {case.title}")

@@ -22,14 +22,12 @@ import time
 import numpy as np
 
 from solver.catalogue import resolve_case
+from solver.inputs import rpm_to_rad_s, to_inputs
 from solver.models.quasistatic import (
-    operating_point_from_case,
     quasistatic_speed_sweep,
     solve_operating_point,
     solve_quasistatic,
 )
-
-RPM = np.pi / 30.0
 
 
 def median_time(func, repeats: int) -> float:
@@ -44,7 +42,7 @@ def median_time(func, repeats: int) -> float:
 def state_sweep(geometry, base, speeds_rpm):
     previous = None
     for rpm in speeds_rpm:
-        op = dataclasses.replace(base, inner_ring_speed=rpm * RPM)
+        op = dataclasses.replace(base, inner_ring_speed=rpm_to_rad_s(rpm))
         previous = solve_operating_point(geometry, op, previous)
     return previous
 
@@ -57,7 +55,7 @@ def main() -> None:
 
     case_218 = resolve_case("218-heavy-combined")
     geometry = case_218.geometry()
-    op = operating_point_from_case(case_218)
+    op = to_inputs(case_218).operating
     # warm-up (compilation / cache load)
     solve_operating_point(geometry, op)
     solve_quasistatic(case_218)
@@ -72,7 +70,7 @@ def main() -> None:
     for name in ("218-heavy-combined", "spindle-combined-load"):
         case = resolve_case(name)
         g = case.geometry()
-        base = operating_point_from_case(case)
+        base = to_inputs(case).operating
         state_sweep(g, base, speeds)
         t_sweep = median_time(lambda g=g, base=base: state_sweep(g, base, speeds), sweep_repeats)
         t_sweep_ds = median_time(

@@ -2,10 +2,14 @@
 
 Public API (everything else is internal):
 
-- ``load_case(path_or_text) -> Case`` and ``Case.to_toml()``
+- ``load_case(path) -> Case`` (a case file), ``parse_case(text, source=...) -> Case`` (TOML text)
+  and ``Case.to_toml()``
 - ``catalogue()``: shipped bearings and example cases
+- ``dynamic_problems(case) -> list[Problem]``: why the dynamic model cannot run a valid case
+- ``to_inputs(case) -> Inputs``: the SI inputs both models read
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
-- ``simulate(case, progress=None, cancel=None) -> xarray.Dataset`` (dynamic model)
+- ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
+  ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
@@ -34,6 +38,11 @@ except PackageNotFoundError:  # running from a source tree that is not installed
 _LAZY = {
     "Case": "solver.case",
     "load_case": "solver.case",
+    "parse_case": "solver.case",
+    "dynamic_problems": "solver.case",
+    "Inputs": "solver.inputs",
+    "to_inputs": "solver.inputs",
+    "SimulationOptions": "solver.models.dynamic",
     "BearingGeometry": "solver.geometry",
     "solve_quasistatic": "solver.models.quasistatic",
     "simulate": "solver.models.dynamic",

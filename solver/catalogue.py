@@ -1,21 +1,25 @@
 """The shipped catalogue: bearings (``assets/bearings``) and example cases (``assets/cases``).
 
 A bearing file is a case file's ``title`` and ``[bearing]`` section (plus optional ``[materials]``);
-:meth:`CatalogueEntry.case_text` turns it into a complete case to start from. A case file is a full
-case. Names are the file names without ``.toml``. :func:`resolve_case` is the one place where a CLI
-argument (a path or a catalogue name) becomes a :class:`solver.case.Case`.
+:meth:`CatalogueEntry.load` completes it with a modest operating point into a case to start from,
+and :meth:`CatalogueEntry.case_text` writes that case with the case writer (every other value is the
+schema's default or estimate). A case file is a full case. Names are the file names without
+``.toml``. :func:`resolve_case` is the one place where a CLI argument (a path or a catalogue name)
+becomes a :class:`solver.case.Case`.
 """
 
 from __future__ import annotations
 
 import difflib
 import math
+import os
 import tomllib
 from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
 
-from solver.case import Case, load_case
+from solver.case import Case, load_case, parse_case
+from solver.case.io import parse_toml
 from solver.errors import CaseError, Problem
 
 _KINDS = (("bearing", "bearings"), ("case", "cases"))
@@ -54,48 +58,31 @@ class CatalogueEntry:
         return self.path.read_text(encoding="utf-8")
 
     def case_text(self) -> str:
-        """A complete, valid case file: the case as shipped, or for a bearing one to start from."""
-        text = self.text()
+        """A complete, valid case file: the case as shipped, or for a bearing the case of
+        :meth:`load` as the case writer writes it."""
         if self.kind == "case":
-            return text
-        data = tomllib.loads(text)
+            return self.text()
+        case = self.load()
+        header = (
+            f"# A case to start from: the catalogue bearing {self.name} at a modest operating "
+            f"point (d_m n = 500 000 mm rpm, axial load 0.5 Z D^2 N/mm^2).\n"
+            "# Keys written as comments take the value shown (a default or an estimate).\n"
+        )
+        return header + case.to_toml()
+
+    def load(self) -> Case:
+        """The validated case; for a bearing, the bearing at a modest operating point
+        (:func:`modest_operating_point`) with every other value from the case schema."""
+        source = f"catalogue {self.kind} {self.name}"
+        if self.kind == "case":
+            return parse_case(self.text(), source)
+        data = parse_toml(self.text(), source)
         b = data["bearing"]
         speed, load = modest_operating_point(
             b["ball_count"], b["ball_diameter_mm"], b["pitch_diameter_mm"]
         )
-        return (
-            text.rstrip("\n")
-            + f"""
-
-# [cage]                                 # optional; estimated from the bearing when absent
-# guidance = "outer_ring"                # outer_ring | inner_ring | ball
-# pocket_diametral_clearance_mm = ...
-# guide_diametral_clearance_mm = ...
-# mass_g = ...
-
-# [lubricant]                            # optional; used by the dynamic model
-# viscosity_Pas = 0.01
-# pressure_viscosity_per_GPa = 20.0
-# traction = {{ mu_zero = 0.0, mu_max = 0.05, slip_at_max_m_s = 1.0, mu_infinity = 0.036 }}
-
-[operating]                              # a modest starting point: d_m n = 500 000 mm rpm
-inner_ring_speed_rpm = {speed!r}
-outer_ring_speed_rpm = 0.0
-axial_load_N = {load!r}
-radial_load_N = 0.0
-radial_load_angle_deg = 0.0
-# misalignment_deg = 0.0                 # give at most one of misalignment_deg, tilting_moment_Nm
-# tilting_moment_Nm = 0.0
-
-[simulation]                             # dynamic model only
-shaft_revolutions = 10.0
-samples_per_revolution = 180
-"""
-        )
-
-    def load(self) -> Case:
-        """The validated case (for a bearing: :meth:`case_text`)."""
-        return load_case(self.case_text())
+        data["operating"] = {"inner_ring_speed_rpm": speed, "axial_load_N": load}
+        return Case.from_dict(data)
 
 
 @dataclass(frozen=True)
@@ -193,7 +180,7 @@ def resolve_case(path_or_name) -> Case:
     """
     if isinstance(path_or_name, Case):
         return path_or_name
-    if isinstance(path_or_name, Path):
+    if isinstance(path_or_name, os.PathLike):
         return load_case(path_or_name)
     text = str(path_or_name)
     path = Path(text)
@@ -202,10 +189,8 @@ def resolve_case(path_or_name) -> Case:
     cat = catalogue()
     if text in cat:
         return cat.get(text).load()
-    if path.is_dir():
-        raise CaseError(Problem("file", f"{text} is a folder, not a case file: give a .toml file"))
-    if path.suffix == ".toml" or "/" in text or "\\" in text:
-        raise CaseError(Problem("file", f"case file not found: {text}"))
+    if os.path.lexists(path) or path.suffix == ".toml" or "/" in text or "\\" in text:
+        return load_case(path)  # a folder, a FIFO, a device, a missing file: load_case says which
     close = difflib.get_close_matches(text, cat.names, n=3, cutoff=0.5)
     hint = f"did you mean {', '.join(close)}? " if close else ""
     raise CaseError(

@@ -19,7 +19,7 @@ from .materials import Material, effective_modulus
 class BearingGeometry:
     """Bearing geometry and materials, SI units (m, rad, kg, Pa).
 
-    Build it with :meth:`from_case`, or directly for tests.
+    :func:`solver.inputs.bearing_geometry` builds it from a case; tests build it directly.
     """
 
     ball_count: int
@@ -32,34 +32,6 @@ class BearingGeometry:
     ring_material: Material
     inner_shoulder_diameter: float = math.nan  # m, NaN when not given
     outer_shoulder_diameter: float = math.nan  # m, NaN when not given
-
-    # ---- construction -------------------------------------------------------------------------
-    @classmethod
-    def from_case(cls, case) -> BearingGeometry:
-        """Geometry of ``case.bearing`` with its resolved materials (mm and degrees → SI)."""
-        b = case.bearing
-        D = b.ball_diameter_mm * 1e-3
-        f_i, f_o = b.inner_groove_radius_ratio, b.outer_groove_radius_ratio
-        if b.free_contact_angle_deg is not None:
-            alpha0 = math.radians(b.free_contact_angle_deg)
-        else:
-            alpha0 = free_contact_angle_from_clearance(D, f_i, f_o, b.diametral_clearance_mm * 1e-3)
-
-        def mm(value):
-            return math.nan if value is None else value * 1e-3
-
-        return cls(
-            ball_count=int(b.ball_count),
-            ball_diameter=D,
-            pitch_diameter=b.pitch_diameter_mm * 1e-3,
-            inner_conformity=f_i,
-            outer_conformity=f_o,
-            free_contact_angle=alpha0,
-            ball_material=case.ball_material,
-            ring_material=case.ring_material,
-            inner_shoulder_diameter=mm(b.inner_shoulder_diameter_mm),
-            outer_shoulder_diameter=mm(b.outer_shoulder_diameter_mm),
-        )
 
     # ---- groove geometry ----------------------------------------------------------------------
     @property

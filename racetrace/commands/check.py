@@ -1,6 +1,8 @@
 """``racetrace check CASE``: validate a case file (or catalogue name) and print a short summary.
 
-Exit 0 when valid; 2 with every problem listed when not (the CLI maps CaseError to exit 2).
+Exit 0 when valid; 2 with every problem listed when not (the CLI maps CaseError to exit 2). A valid
+case that one model cannot run (:func:`solver.case.dynamic_problems`) is still valid: each reason is
+printed as a ``dynamic model: ...`` line.
 """
 
 from __future__ import annotations
@@ -55,15 +57,20 @@ def summary(case) -> str:
     if case.estimated:
         names = ", ".join(sorted(k.split(".", 1)[1] for k in case.estimated))
         lines.append(f"estimated: {names} (from the bearing; see docs/case-format.md)")
+    if not case.lubricant_given:
+        lines.append("lubricant: no [lubricant] section; the dynamic model uses the default oil")
     lines.append("OK: the case is valid")
     return "\n".join(lines)
 
 
 def run(args) -> int:
+    from solver.case import dynamic_problems
     from solver.catalogue import resolve_case
 
     case = resolve_case(args.case)
     print(summary(case))
+    for problem in dynamic_problems(case):
+        print(f"dynamic model: {problem.message}")
     for warning in case.warnings():
         print(f"warning: {warning.message}")
     return 0

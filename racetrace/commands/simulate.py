@@ -16,7 +16,6 @@ import signal
 import sys
 import threading
 import time
-from dataclasses import replace
 from pathlib import Path
 
 EXIT_DIVERGED = 4
@@ -41,7 +40,7 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--samples-per-revolution", type=int, help="override [simulation] samples_per_revolution"
     )
-    parser.add_argument("--tolerance", type=float, help="integrator tolerance (default 1e-4)")
+    parser.add_argument("--tolerance", type=float, help="override [simulation] tolerance")
     parser.add_argument(
         "--no-traction", action="store_true", help="frictionless ball-race contacts"
     )
@@ -95,7 +94,6 @@ def _print_case_warnings(case) -> None:
 def run(args) -> int:
     from solver.errors import SimulationDiverged
     from solver.models.dynamic import SimulationOptions, simulate
-    from solver.models.dynamic.options import options_from_case
     from solver.results.io import save_dataset
 
     from .quasistatic import print_result_warnings
@@ -114,8 +112,8 @@ def run(args) -> int:
         changes["traction"] = False
     if args.no_cage:
         changes["cage"] = False
-    # defaults, then the case's optional [simulation] keys, then the command-line overrides
-    options = replace(options_from_case(case, SimulationOptions()), **changes)
+    # the case's [simulation] values, overridden by the command line
+    options = SimulationOptions(**changes)
     stop = threading.Event()
 
     def on_sigint(signum, frame):  # noqa: ARG001 - signal handler signature

@@ -3,10 +3,11 @@ case keys.
 
 The section classes (:class:`Bearing`, :class:`Cage`, :class:`Lubricant` with its :class:`Traction`,
 :class:`Operating`, :class:`Simulation`) are generated from :data:`solver.case.schema.FIELDS`, so a
-new
-key in the table is a new attribute here. Values are in the units of the key names (mm, deg, rpm, N,
-g); optional keys that are absent are ``None``. Build cases with :func:`solver.case.load_case`,
-:meth:`Case.from_dict` or :meth:`Case.with_values`: these validate; the constructors do not.
+new key in the table is a new attribute here. Values are in the units of the key names (mm, deg,
+rpm, N, g); every key not given holds its schema default or estimate, except optional keys
+without a default (``Default.OPTIONAL``), which are ``None``. Build cases with
+:func:`solver.case.load_case`, :func:`solver.case.parse_case`, :meth:`Case.from_dict` or
+:meth:`Case.with_values`: these validate (:mod:`.validate`); the constructors do not.
 """
 
 from __future__ import annotations
@@ -15,9 +16,12 @@ import copy
 from dataclasses import dataclass, field, make_dataclass
 
 from solver.errors import Problem
+from solver.inputs import bearing_geometry, material_from_table
 from solver.materials import BUILTIN_MATERIALS, Material
 
 from .schema import FIELDS, MATERIAL_FIELDS, OPTIONAL
+from .validate import CaseValues, validate
+from .writer import case_to_toml
 
 _PY_TYPES = {
     "float": "float",
@@ -72,13 +76,25 @@ SECTION_CLASSES = {
 SUBTABLE_CLASSES = {("lubricant", "traction"): Traction}
 
 
-def material_from_table(name: str, table: dict) -> Material:
-    """SI :class:`Material` from a validated material table (GPa, -, kg/m^3 as written)."""
-    return Material(
-        name,
-        float(table["youngs_modulus_GPa"]) * 1e9,
-        float(table["poisson_ratio"]),
-        float(table["density_kg_m3"]),
+def _section(prefix: tuple[str, ...], values: dict):
+    """Section (or sub-table) object of ``prefix`` from its validated values."""
+    cls = SUBTABLE_CLASSES[prefix] if len(prefix) > 1 else SECTION_CLASSES[prefix[0]]
+    kwargs = {
+        name: _section(prefix + (name,), value) if prefix + (name,) in SUBTABLE_CLASSES else value
+        for name, value in values.items()
+    }
+    return cls(**kwargs)
+
+
+def case_from_values(checked: CaseValues) -> Case:
+    """The :class:`Case` of validated values (:func:`solver.case.validate.validate`)."""
+    sections = {name: _section((name,), values) for name, values in checked.sections.items()}
+    return Case(
+        title=checked.title,
+        materials=checked.materials,
+        estimated=checked.estimated,
+        lubricant_given="lubricant" not in checked.absent_sections,
+        **sections,
     )
 
 
@@ -87,20 +103,24 @@ class Case:
     """One bearing and one operating condition, validated.
 
     ``materials`` holds the user material tables as written (``{name: {youngs_modulus_GPa, ...}}``).
-    ``cage`` always holds values: those not given are estimated from the bearing (the rules are in
-    :data:`solver.case.schema.FIELDS` and docs/case-format.md); their dotted keys are listed in
-    ``estimated`` and they are written as comments by :meth:`to_toml`, so they follow the bearing
-    when it is edited. ``lubricant`` is None when the file has no ``[lubricant]`` section.
+    Every section holds values: keys not given hold their schema default, and the cage values not
+    given are estimated from the bearing (the rules are in :data:`solver.case.schema.FIELDS` and
+    docs/case-format.md); the estimated dotted keys are listed in ``estimated`` and written as
+    comments by :meth:`to_toml`, so they follow the bearing when it is edited.
+    ``lubricant_given`` is False when the file has no ``[lubricant]`` section: ``lubricant`` then
+    holds the schema's default oil, :meth:`to_toml` writes it as comments and the dynamic result
+    says that the default oil was used.
     """
 
     title: str
     bearing: Bearing
     materials: dict = field(default_factory=dict)
     cage: Cage = None
-    lubricant: Lubricant | None = None
+    lubricant: Lubricant = None
     operating: Operating = None
     simulation: Simulation = None
     estimated: frozenset = frozenset()
+    lubricant_given: bool = True
 
     # ---- materials -----------------------------------------------------------------------------
     def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
@@ -124,9 +144,7 @@ class Case:
     # ---- conversions ---------------------------------------------------------------------------
     def geometry(self):
         """:class:`solver.geometry.BearingGeometry` of this case (SI)."""
-        from solver.geometry import BearingGeometry
-
-        return BearingGeometry.from_case(self)
+        return bearing_geometry(self)
 
     def warnings(self) -> list[Problem]:
         """Valid but doubtful data, each naming its key: the CLI and the app show these.
@@ -176,11 +194,9 @@ class Case:
         """
         out: dict = {"title": self.title}
         for f in FIELDS:
-            if f.section == "":
+            if f.section == "" or (f.section == "lubricant" and not self.lubricant_given):
                 continue
             section_obj = getattr(self, f.section)
-            if section_obj is None:
-                continue
             value = section_obj
             for part in f.path[1:]:
                 value = getattr(value, part)
@@ -202,14 +218,10 @@ class Case:
     @classmethod
     def from_dict(cls, data: dict) -> Case:
         """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError."""
-        from .validate import validate
-
-        return validate(data)
+        return case_from_values(validate(data))
 
     def to_toml(self) -> str:
         """Readable case-file text; loading it gives an equal case."""
-        from .writer import case_to_toml
-
         return case_to_toml(self)
 
     def with_values(self, values: dict) -> Case:

@@ -5,8 +5,9 @@ messages), the writer (order, units, comments), the section dataclasses (attribu
 browser app (form fields, element ids ``field-<last segment>``, help texts). Adding a key is one new
 :class:`Field` in :data:`FIELDS`.
 
-Units are those written in the key names (mm, deg, rpm, N, g, ...); conversion to SI happens in the
-consumers (e.g. :meth:`solver.geometry.BearingGeometry.from_case`).
+Units are those written in the key names (mm, deg, rpm, N, g, ...); they become SI in one place,
+:func:`solver.inputs.to_inputs`. Every numeric key has bounds: besides physics, they keep every
+value within what the solvers can compute without overflow.
 """
 
 from __future__ import annotations
@@ -122,6 +123,9 @@ def format_number(value) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
+        if value.bit_length() > 64:  # str() refuses integers of thousands of digits
+            digits = int(value.bit_length() * math.log10(2)) + 1
+            return f"{'-' if value < 0 else ''}(an integer of about {digits} digits)"
         return str(value)
     if isinstance(value, float):
         if math.isfinite(value) and value == int(value) and abs(value) < 1e15:
@@ -181,7 +185,9 @@ FIELDS: list[Field] = [
         unit="mm",
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=500.0,
         reason="a ball has a positive size",
+        reason_high="half a metre is beyond the balls of any ball bearing",
     ),
     Field(
         "bearing.pitch_diameter_mm",
@@ -191,7 +197,9 @@ FIELDS: list[Field] = [
         unit="mm",
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=20000.0,
         reason="the pitch circle has a positive size",
+        reason_high="20 m is beyond the largest slewing ball bearings",
     ),
     Field(
         "bearing.inner_groove_radius_ratio",
@@ -239,7 +247,10 @@ FIELDS: list[Field] = [
         unit="mm",
         default=OPTIONAL,
         minimum=0.0,
+        maximum=100.0,
         reason="a negative clearance is a preload; give an axial load instead",
+        reason_high="the clearance must also stay below A_0, the distance between the groove "
+        "curvature centres, which is far below 100 mm in any ball bearing",
     ),
     Field(
         "bearing.inner_shoulder_diameter_mm",
@@ -250,7 +261,9 @@ FIELDS: list[Field] = [
         default=OPTIONAL,
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=21000.0,
         reason="a diameter is positive",
+        reason_high="a land lies next to the pitch circle, which is at most 20 m across",
     ),
     Field(
         "bearing.outer_shoulder_diameter_mm",
@@ -261,7 +274,9 @@ FIELDS: list[Field] = [
         default=OPTIONAL,
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=21000.0,
         reason="a diameter is positive",
+        reason_high="a land lies next to the pitch circle, which is at most 20 m across",
     ),
     Field(
         "bearing.ball_material",
@@ -293,7 +308,9 @@ FIELDS: list[Field] = [
         default=Estimated("0.028 D", lambda b: 0.028 * b.ball_diameter_mm),
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=100.0,
         reason="a ball must fit in its pocket",
+        reason_high="a pocket 100 mm wider than its ball no longer guides it",
     ),
     Field(
         "cage.guide_diametral_clearance_mm",
@@ -304,7 +321,9 @@ FIELDS: list[Field] = [
         default=Estimated("0.0055 d_m", lambda b: 0.0055 * b.pitch_diameter_mm),
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=500.0,
         reason="the cage must fit on its land",
+        reason_high="a cage half a metre loose on its land is not guided by it",
     ),
     Field(
         "cage.mass_g",
@@ -319,7 +338,9 @@ FIELDS: list[Field] = [
         ),
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=1.0e6,
         reason="a cage has mass",
+        reason_high="a tonne is beyond the cage of any ball bearing",
     ),
     Field(
         "cage.pocket_friction",
@@ -341,7 +362,9 @@ FIELDS: list[Field] = [
         default=Estimated("0.5 D", lambda b: 0.5 * b.ball_diameter_mm),
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=1000.0,
         reason="a land has a positive width",
+        reason_high="a guiding land a metre wide is beyond any ball bearing",
     ),
     # ---- [lubricant] (optional section) -------------------------------------------------------
     Field(
@@ -353,7 +376,9 @@ FIELDS: list[Field] = [
         default=0.01,
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=100.0,
         reason="a fluid has a positive viscosity",
+        reason_high="lubricating oils at operating temperature stay far below 100 Pa s",
     ),
     Field(
         "lubricant.pressure_viscosity_per_GPa",
@@ -364,7 +389,9 @@ FIELDS: list[Field] = [
         default=20.0,
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=100.0,
         reason="oil viscosity rises with pressure; the coefficient is positive",
+        reason_high="lubricants lie between about 5 and 50 /GPa",
     ),
     Field(
         "lubricant.traction.mu_zero",
@@ -398,7 +425,9 @@ FIELDS: list[Field] = [
         default=1.0,
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=100.0,
         reason="the peak lies at a positive slip speed",
+        reason_high="traction peaks at slips of a few m/s at most",
     ),
     Field(
         "lubricant.traction.mu_infinity",
@@ -419,6 +448,10 @@ FIELDS: list[Field] = [
         "Inner ring speed",
         "Inner ring (shaft) speed, positive about +x.",
         unit="rpm",
+        maximum=500000.0,
+        minimum=-500000.0,
+        reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
+        "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
     ),
     Field(
         "operating.outer_ring_speed_rpm",
@@ -427,6 +460,10 @@ FIELDS: list[Field] = [
         "Outer ring speed, positive about +x.",
         unit="rpm",
         default=0.0,
+        maximum=500000.0,
+        minimum=-500000.0,
+        reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
+        "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
     ),
     Field(
         "operating.axial_load_N",
@@ -436,8 +473,10 @@ FIELDS: list[Field] = [
         unit="N",
         default=0.0,
         minimum=0.0,
+        maximum=1.0e9,
         reason="a single angular contact bearing carries thrust only in +x; "
         "a negative load would lift the inner ring off the balls",
+        reason_high="1 GN is beyond the capacity of any ball bearing",
     ),
     Field(
         "operating.radial_load_N",
@@ -447,7 +486,9 @@ FIELDS: list[Field] = [
         unit="N",
         default=0.0,
         minimum=0.0,
+        maximum=1.0e9,
         reason="give the direction with radial_load_angle_deg, not a negative magnitude",
+        reason_high="1 GN is beyond the capacity of any ball bearing",
     ),
     Field(
         "operating.radial_load_angle_deg",
@@ -456,6 +497,9 @@ FIELDS: list[Field] = [
         "Azimuth of the radial load, from +y towards +z.",
         unit="deg",
         default=0.0,
+        minimum=-360.0,
+        maximum=360.0,
+        reason="an azimuth is given within one turn either way",
     ),
     Field(
         "operating.misalignment_deg",
@@ -475,6 +519,9 @@ FIELDS: list[Field] = [
         "Azimuth of the tilt axis in the radial plane.",
         unit="deg",
         default=90.0,
+        minimum=-360.0,
+        maximum=360.0,
+        reason="an azimuth is given within one turn either way",
     ),
     Field(
         "operating.misalignment_frame",
@@ -491,6 +538,9 @@ FIELDS: list[Field] = [
         "Applied moment on the inner ring; the tilt is then solved (0 = moment-free).",
         unit="N m",
         default=OPTIONAL,
+        minimum=-1.0e9,
+        maximum=1.0e9,
+        reason="a moment of 1 GN m either way is beyond the capacity of any ball bearing",
     ),
     Field(
         "operating.moment_axis_deg",
@@ -499,6 +549,9 @@ FIELDS: list[Field] = [
         "Azimuth of the tilting-moment axis in the radial plane.",
         unit="deg",
         default=90.0,
+        minimum=-360.0,
+        maximum=360.0,
+        reason="an azimuth is given within one turn either way",
     ),
     # ---- [simulation] -------------------------------------------------------------------------
     Field(
@@ -524,21 +577,21 @@ FIELDS: list[Field] = [
         reason="fewer samples cannot draw a trajectory",
         reason_high="more samples only make the result file larger",
     ),
-    # Dynamic-model switches (solver.models.dynamic.options.SimulationOptions); absent = full model.
+    # Dynamic-model switches; the defaults are the full model.
     Field(
         "simulation.ball_race_traction",
         "bool",
         "Ball-race traction",
-        "EHL traction at the ball-race contacts (default true; false = frictionless contacts, "
+        "EHL traction at the ball-race contacts (false = frictionless contacts, "
         "for checks such as energy conservation).",
-        default=OPTIONAL,
+        default=True,
     ),
     Field(
         "simulation.contact_damping_ratio",
         "float",
         "Contact damping ratio",
-        "Critical-damping ratio of the ball-race normal contacts (default 0.05; 0 = undamped).",
-        default=OPTIONAL,
+        "Critical-damping ratio of the ball-race normal contacts (0 = undamped).",
+        default=0.05,
         minimum=0.0,
         maximum=1.0,
         reason="damping cannot feed energy into a contact",
@@ -548,9 +601,9 @@ FIELDS: list[Field] = [
         "simulation.gravity_m_s2",
         "float",
         "Gravity",
-        "Gravitational acceleration, acting along -z of the bearing frame (default 9.81; 0 = off).",
+        "Gravitational acceleration, acting along -z of the bearing frame (0 = off).",
         unit="m/s^2",
-        default=OPTIONAL,
+        default=9.81,
         minimum=0.0,
         maximum=1000.0,
         reason="gravity is given as a magnitude along -z",
@@ -560,9 +613,8 @@ FIELDS: list[Field] = [
         "simulation.tolerance",
         "float",
         "Integrator tolerance",
-        "Local error tolerance of the adaptive integrator, relative to each state's scale "
-        "(default 1e-4).",
-        default=OPTIONAL,
+        "Local error tolerance of the adaptive integrator, relative to each state's scale.",
+        default=1e-4,
         minimum=0.0,
         minimum_inclusive=False,
         maximum=1e-2,
@@ -573,9 +625,9 @@ FIELDS: list[Field] = [
         "simulation.model_cage",
         "bool",
         "Model the cage",
-        "Simulate the cage with its pocket and guiding-land contacts (default true; false = "
+        "Simulate the cage with its pocket and guiding-land contacts (false = "
         "balls are free to bunch).",
-        default=OPTIONAL,
+        default=True,
     ),
 ]
 
@@ -589,7 +641,9 @@ MATERIAL_FIELDS: list[Field] = [
         unit="GPa",
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=2000.0,
         reason="a solid has a positive stiffness",
+        reason_high="diamond, the stiffest solid, has about 1100 GPa",
     ),
     Field(
         "poisson_ratio",
@@ -610,7 +664,9 @@ MATERIAL_FIELDS: list[Field] = [
         unit="kg/m3",
         minimum=0.0,
         minimum_inclusive=False,
+        maximum=30000.0,
         reason="a solid has positive density",
+        reason_high="osmium, the densest element, has about 22 600 kg/m3",
     ),
 ]
 

@@ -1,11 +1,17 @@
-"""Validation of a parsed case (nested dict) into a :class:`solver.case.model.Case`.
+"""Validation of a parsed case (nested dict): every rule a case must satisfy, in one place.
 
-Every problem is collected (not just the first) and raised together as one
-:class:`solver.errors.CaseError`; each :class:`Problem` names the dotted key, the value and what is
-allowed. Checks run in three passes: structure (unknown sections and keys), each key on its own
-(type, finiteness, bounds, choices), then rules between keys (geometry that cannot be built, loads
-that hold nothing, traction curves that contradict themselves). A rule is only checked when the keys
-it reads passed the earlier passes, so one mistake gives one message.
+:func:`validate` checks a nested dict (as :func:`tomllib.loads` returns) and returns its values,
+every one filled in from the schema (:class:`CaseValues`); :meth:`solver.case.model.Case.from_dict`
+builds the :class:`~solver.case.model.Case` from them. Every problem is collected (not just the
+first) and raised together as one :class:`solver.errors.CaseError`; each :class:`Problem` names the
+dotted key, the value and what is allowed. Checks run in three passes: structure (unknown sections
+and keys), each key on its own (type, finiteness, bounds, choices), then rules between keys
+(geometry that cannot be built, loads that hold nothing, traction curves that contradict
+themselves). A rule is only checked when the keys it reads passed the earlier passes, so one mistake
+gives one message.
+
+Rules that only one model needs are here too: :func:`dynamic_problems` lists why the dynamic model
+cannot run a valid case (the quasi-static model can).
 """
 
 from __future__ import annotations
@@ -13,11 +19,12 @@ from __future__ import annotations
 import difflib
 import math
 import re
+from dataclasses import dataclass
+from types import SimpleNamespace
 
 from solver.errors import CaseError, Problem
 from solver.materials import BUILTIN_MATERIALS
 
-from .model import SECTION_CLASSES, SUBTABLE_CLASSES, Case
 from .schema import (
     FIELDS,
     MATERIAL_FIELDS,
@@ -32,19 +39,26 @@ from .schema import (
 
 _MATERIAL_NAME = re.compile(r"^[A-Za-z0-9_-]+$")
 _MISSING = object()
+#: Longest value text quoted in a message; longer values are cut (a message stays readable).
+_SHOWN_LENGTH = 80
 
 
 def show(value) -> str:
-    """A value as it would appear in a case file (strings quoted, numbers short)."""
+    """A value as it would appear in a case file (strings quoted, numbers short), cut to at most
+    about 80 characters."""
     if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, bool | int | float):
-        return format_number(value)
-    if isinstance(value, dict):
-        return "{ " + ", ".join(f"{k} = {show(v)}" for k, v in value.items()) + " }"
-    if isinstance(value, list):
-        return "[" + ", ".join(show(v) for v in value) + "]"
-    return str(value)
+        text = '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    elif isinstance(value, bool | int | float):
+        text = format_number(value)
+    elif isinstance(value, dict):
+        text = "{ " + ", ".join(f"{k} = {show(v)}" for k, v in value.items()) + " }"
+    elif isinstance(value, list):
+        text = "[" + ", ".join(show(v) for v in value) + "]"
+    else:
+        text = str(value)
+    if len(text) > _SHOWN_LENGTH:
+        text = text[: _SHOWN_LENGTH - 5] + " ..." + text[-1]
+    return text
 
 
 def _suggest(name: str, candidates) -> str | None:
@@ -257,8 +271,16 @@ def check_value(f: Field, key: str, value, problems: list[Problem]):
                     )
                     return _MISSING
                 value = int(value)
-        else:
-            value = float(value)
+        elif isinstance(value, int):
+            try:
+                value = float(value)
+            except OverflowError:  # an integer beyond the range of a float
+                _problem(
+                    problems,
+                    key,
+                    f"{key} = {show(value)}: far too large ({f.allowed_text()})",
+                )
+                return _MISSING
         return value if _check_bounds(f, key, value, problems) else _MISSING
     if f.type in ("str", "choice"):
         if not isinstance(value, str):
@@ -551,31 +573,65 @@ def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Probl
             )
 
 
-def _check_traction(v: dict, problems: list[Problem]) -> None:
+def _check_traction(v: dict, given: set, problems: list[Problem]) -> None:
+    """The traction curve rises from mu_zero to its peak mu_max and falls towards mu_infinity.
+
+    Keys that are not given take their schema default here, so the rule holds for the curve the
+    dynamic model uses; a key given with an invalid value was reported already and is skipped.
+    """
     p = "lubricant.traction."
-    mu0, mumax, muinf = v.get(p + "mu_zero"), v.get(p + "mu_max"), v.get(p + "mu_infinity")
-    if mu0 is not None and mumax is not None and mu0 > mumax:
+    curve = {}
+    for name in ("mu_zero", "mu_max", "mu_infinity"):
+        key = p + name
+        if key in v:
+            curve[name] = (v[key], "")
+        elif key not in given:
+            curve[name] = (_default(key), " (the default)")
+    if "mu_max" not in curve:
+        return
+    mumax, max_note = curve["mu_max"]
+    for name, direction in (
+        ("mu_zero", "rises from mu_zero to its peak"),
+        ("mu_infinity", "falls from its peak towards mu_infinity"),
+    ):
+        if name not in curve or curve[name][0] <= mumax:
+            continue
+        value, note = curve[name]
         _problem(
             problems,
-            p + "mu_zero",
-            f"{p}mu_zero = {show(mu0)}: must be at most mu_max = "
-            f"{show(mumax)} (the curve rises from mu_zero to its peak)",
+            p + name,
+            f"{p}{name} = {show(value)}{note}: must be at most mu_max = {show(mumax)}{max_note} "
+            f"(the curve {direction})",
             related=(p + "mu_max",),
         )
-    if muinf is not None and mumax is not None and muinf > mumax:
-        _problem(
-            problems,
-            p + "mu_infinity",
-            f"{p}mu_infinity = {show(muinf)}: must be at most "
-            f"mu_max = {show(mumax)} (the curve falls from its "
-            "peak towards mu_infinity)",
-            related=(p + "mu_max",),
-        )
+
+
+def _default(key: str):
+    """Schema default of a key with a plain default value."""
+    return next(f.default for f in FIELDS if f.key == key)
 
 
 # ---- driver ------------------------------------------------------------------------------------
-def validate(data) -> Case:
-    """Validated :class:`Case` from a nested dict; raises CaseError listing every problem."""
+@dataclass(frozen=True)
+class CaseValues:
+    """The values of a valid case, every one filled in from the schema (case units).
+
+    ``sections`` maps each section of :data:`SECTION_ORDER` except ``materials`` to its values
+    ``{name: value}`` (the inline ``traction`` table as a nested dict); absent optional keys are
+    None. ``materials`` holds the user material tables as written. ``estimated`` lists the dotted
+    keys whose values were estimated from the bearing; ``absent_sections`` the optional sections the
+    input did not have (their values are all defaults).
+    """
+
+    title: str
+    sections: dict
+    materials: dict
+    estimated: frozenset
+    absent_sections: frozenset
+
+
+def validate(data) -> CaseValues:
+    """Values of a valid case from a nested dict; raises CaseError listing every problem."""
     if not isinstance(data, dict):
         raise CaseError(Problem("", f"a case must be a table of keys, not {type(data).__name__}"))
     problems: list[Problem] = []
@@ -594,8 +650,6 @@ def validate(data) -> Case:
                 f"the [{section}] section is missing; it needs at least: " + ", ".join(needed),
             )
     for f in FIELDS:
-        if f.section == "lubricant" and "lubricant" not in data:
-            continue
         raw = _lookup(data, f.path)
         if raw is _MISSING:
             parent = _lookup(data, f.path[:-1]) if len(f.path) > 2 else data
@@ -624,69 +678,89 @@ def validate(data) -> Case:
     users = _check_materials(data, values, problems)
     _check_bearing_rules(values, given, problems)
     _check_operating_rules(data, values, given, problems)
-    _check_traction(values, problems)
+    _check_traction(values, given, problems)
     if problems:
         raise CaseError(problems)
-    return _build(data, values, users)
+    return _fill(data, values, users)
 
 
-def _section_values(prefix: tuple[str, ...], values: dict, fill) -> dict:
-    out = {}
+def _fill(data: dict, values: dict, users: dict) -> CaseValues:
+    """Every key's value: as given, else the schema default, else estimated from the bearing."""
+    bearing = SimpleNamespace(
+        **{f.name: values.get(f.key) for f in FIELDS if f.section == "bearing"}
+    )
+    sections: dict = {name: {} for name in SECTION_ORDER if name != "materials"}
+    estimated = set()
     for f in FIELDS:
-        if f.path[: len(prefix)] != prefix or len(f.path) <= len(prefix):
+        if not f.section:
             continue
-        name = f.path[len(prefix)]
-        if len(f.path) == len(prefix) + 1:
-            out[name] = values[f.key] if f.key in values else fill(f)
-        elif name not in out:
-            cls = SUBTABLE_CLASSES[prefix + (name,)]
-            out[name] = cls(**_section_values(prefix + (name,), values, fill))
-    return out
-
-
-def _build(data: dict, values: dict, users: dict) -> Case:
-    estimated: set = set()
-
-    def plain_default(f: Field):
-        if f.default is OPTIONAL:
-            return None
-        if isinstance(f.default, Estimated):
-            return _PENDING
-        assert f.default is not REQUIRED, f.key  # required keys are in values here
-        return f.default
-
-    sections = {}
-    for name in SECTION_CLASSES:
-        if name == "lubricant" and "lubricant" not in data:
-            sections[name] = None
-            continue
-        sections[name] = _section_values((name,), values, plain_default)
-    bearing = SECTION_CLASSES["bearing"](**sections["bearing"])
-    built = {"bearing": bearing}
-    for name, cls in SECTION_CLASSES.items():
-        if name == "bearing" or sections[name] is None:
-            built.setdefault(name, None)
-            continue
-        kwargs = sections[name]
-        for key, value in list(kwargs.items()):
-            if value is _PENDING:
-                f = next(x for x in FIELDS if x.key == f"{name}.{key}")
-                kwargs[key] = float(f.default.function(bearing))
-                estimated.add(f.key)
-        built[name] = cls(**kwargs)
-    title = values.get("title", "")
-    return Case(
-        title=title,
-        bearing=built["bearing"],
+        if f.key in values:
+            value = values[f.key]
+        elif f.default is OPTIONAL:
+            value = None
+        elif isinstance(f.default, Estimated):
+            value = float(f.default.function(bearing))
+            estimated.add(f.key)
+        else:
+            assert f.default is not REQUIRED, f.key  # required keys are in values here
+            value = f.default
+        target = sections[f.section]
+        for part in f.path[1:-1]:
+            target = target.setdefault(part, {})
+        target[f.name] = value
+    absent = frozenset(s for s in OPTIONAL_SECTIONS if s != "materials" and s not in data)
+    return CaseValues(
+        title=values.get("title", ""),
+        sections=sections,
         materials=users,
-        cage=built["cage"],
-        lubricant=built["lubricant"],
-        operating=built["operating"],
-        simulation=built["simulation"],
         estimated=frozenset(estimated),
+        absent_sections=absent,
     )
 
 
-_PENDING = object()
+# ---- rules of one model ------------------------------------------------------------------------
+#: Most output samples times balls a dynamic run may store: a run keeps about 1.5 kB per ball and
+#: sample in memory (state, observations and the result Dataset), so this is about 3 GB.
+MAX_DYNAMIC_BALL_SAMPLES = 2_000_000
 
-__all__ = ["validate", "check_value", "show", "OPTIONAL_SECTIONS"]
+
+def dynamic_problems(case) -> list[Problem]:
+    """Why the dynamic model cannot run the valid ``case`` (empty when it can).
+
+    The dynamic model integrates the motion over shaft revolutions of the inner ring relative to
+    the outer ring, so the rings must turn relative to each other; and it keeps every output sample
+    of every ball in memory, at most :data:`MAX_DYNAMIC_BALL_SAMPLES`. The quasi-static model needs
+    neither rule: it solves a bearing at rest too, and stores one sample.
+    """
+    op = case.operating
+    found: list[Problem] = []
+    sim = case.simulation
+    samples = round(sim.shaft_revolutions * sim.samples_per_revolution)
+    if samples * case.bearing.ball_count > MAX_DYNAMIC_BALL_SAMPLES:
+        found.append(
+            Problem(
+                "simulation.shaft_revolutions",
+                f"simulation.shaft_revolutions = {format_number(sim.shaft_revolutions)} at "
+                f"simulation.samples_per_revolution = {sim.samples_per_revolution}: {samples} "
+                f"samples of {case.bearing.ball_count} balls exceed the "
+                f"{MAX_DYNAMIC_BALL_SAMPLES:,} ball-samples a run can keep in memory (about 3 GB); "
+                "give fewer revolutions or samples per revolution, or split the run",
+                ("simulation.samples_per_revolution", "bearing.ball_count"),
+            )
+        )
+    if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
+        speed = format_number(op.inner_ring_speed_rpm)
+        found.append(
+            Problem(
+                "operating.inner_ring_speed_rpm",
+                f"operating.inner_ring_speed_rpm = operating.outer_ring_speed_rpm = {speed}: the "
+                "dynamic model needs the rings to turn relative to each other (it runs for a "
+                "number of shaft revolutions relative to the outer ring); give different ring "
+                "speeds (the quasi-static model solves this case as it is)",
+                ("operating.outer_ring_speed_rpm",),
+            )
+        )
+    return found
+
+
+__all__ = ["CaseValues", "check_value", "dynamic_problems", "show", "validate"]

@@ -38,8 +38,44 @@ def _unit_comment(f) -> str:
     return f.help
 
 
+def _section_lines(case, section: str, prefix: str = "") -> list[str]:
+    """The key lines of one section (estimated values and absent optional keys as comments);
+    ``prefix`` "# " writes every line as a comment."""
+    obj = getattr(case, section)
+    lines: list[str] = []
+    subtables: dict[str, list] = {}
+    for f in FIELDS:
+        if f.section != section:
+            continue
+        if len(f.path) > 2:
+            subtables.setdefault(f.path[1], []).append(f)
+            if len(subtables[f.path[1]]) == 1:
+                lines.append(f"@@{f.path[1]}")  # placeholder, filled below
+            continue
+        value = getattr(obj, f.name)
+        if f.key in case.estimated:
+            rule = f.default.description if isinstance(f.default, Estimated) else ""
+            lines.append(
+                _line(f"# {f.name} = {toml_value(value)}", f"estimated from the bearing: {rule}")
+            )
+        elif value is None:
+            lines.append(_line(f"# {f.name} =", f"optional: {f.help}"))
+        else:
+            lines.append(_line(f"{prefix}{f.name} = {toml_value(value)}", _unit_comment(f)))
+    for name, fields in subtables.items():
+        sub = getattr(obj, name)
+        table = {f.name: getattr(sub, f.name) for f in fields}
+        idx = lines.index(f"@@{name}")
+        lines[idx] = f"{prefix}{name} = {toml_value(table)}"
+    return lines
+
+
 def case_to_toml(case) -> str:
-    """Readable TOML text of a validated :class:`solver.case.model.Case`."""
+    """Readable TOML text of a validated :class:`solver.case.model.Case`.
+
+    A ``[lubricant]`` section the case does not give is written as comments holding the default
+    oil the models use, so that loading the text gives an equal case.
+    """
     lines = [f"title = {toml_value(case.title)}"]
     for section in SECTION_ORDER:
         if section == "materials":
@@ -48,37 +84,11 @@ def case_to_toml(case) -> str:
                 for m in MATERIAL_FIELDS:
                     lines.append(_line(f"{m.key} = {toml_value(table[m.key])}", m.help))
             continue
-        obj = getattr(case, section)
-        if obj is None:
-            lines += ["", f"# [{section}] not given (optional section)"]
+        if section == "lubricant" and not case.lubricant_given:
+            lines += ["", "# [lubricant] not given: the dynamic model uses the default oil below"]
+            lines += _section_lines(case, section, prefix="# ")
             continue
-        lines += ["", f"[{section}]"]
-        subtables: dict[str, list] = {}
-        for f in FIELDS:
-            if f.section != section:
-                continue
-            if len(f.path) > 2:
-                subtables.setdefault(f.path[1], []).append(f)
-                if len(subtables[f.path[1]]) == 1:
-                    lines.append(f"@@{f.path[1]}")  # placeholder, filled below
-                continue
-            value = getattr(obj, f.name)
-            if f.key in case.estimated:
-                rule = f.default.description if isinstance(f.default, Estimated) else ""
-                lines.append(
-                    _line(
-                        f"# {f.name} = {toml_value(value)}", f"estimated from the bearing: {rule}"
-                    )
-                )
-            elif value is None:
-                lines.append(_line(f"# {f.name} =", f"optional: {f.help}"))
-            else:
-                lines.append(_line(f"{f.name} = {toml_value(value)}", _unit_comment(f)))
-        for name, fields in subtables.items():
-            sub = getattr(obj, name)
-            table = {f.name: getattr(sub, f.name) for f in fields}
-            idx = lines.index(f"@@{name}")
-            lines[idx] = f"{name} = {toml_value(table)}"
+        lines += ["", f"[{section}]", *_section_lines(case, section)]
     return "\n".join(lines) + "\n"
 
 

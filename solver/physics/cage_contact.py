@@ -110,8 +110,6 @@ import math
 import numpy as np
 from numba import njit
 
-from solver.errors import CaseError, Problem
-
 # ---- pocket kinematics / parameters / output -----------------------------------------------
 PK_POSITION = 0
 PK_VELOCITY = 3
@@ -419,17 +417,25 @@ def land_force(kinematics, params, out):
 # ================================================================================================
 # Parameter builders and estimates (plain Python, validated)
 # ================================================================================================
-def _positive(problems, key, value, allow_zero=False):
+def _positive(problems: list[str], name: str, value, allow_zero=False):
+    """``value`` as a float, or None after recording why it is not a (non-negative) number."""
     try:
         x = float(value)
     except (TypeError, ValueError):
-        problems.append(Problem(key, f"{key} = {value!r}: must be a number"))
+        problems.append(f"{name} = {value!r}: must be a number")
         return None
     if not math.isfinite(x) or (x < 0.0 if allow_zero else x <= 0.0):
         what = "a finite number >= 0" if allow_zero else "a finite number > 0"
-        problems.append(Problem(key, f"{key} = {value!r}: must be {what}"))
+        problems.append(f"{name} = {value!r}: must be {what}")
         return None
     return x
+
+
+def _raise(function: str, problems: list[str]) -> None:
+    """ValueError listing every problem of the arguments of ``function`` (a programming error: the
+    case validation keeps case values within these limits)."""
+    if problems:
+        raise ValueError(f"{function}: " + "; ".join(problems))
 
 
 def pocket_stiffness_estimate(
@@ -451,16 +457,13 @@ def pocket_stiffness_estimate(
     from solver.materials import effective_modulus
     from solver.physics.hertz import load_deflection_constant
 
-    problems: list[Problem] = []
-    d = _positive(problems, "bearing.ball_diameter", ball_diameter)
-    cp = _positive(problems, "cage.pocket_diametral_clearance", pocket_clearance)
+    problems: list[str] = []
+    d = _positive(problems, "ball_diameter", ball_diameter)
+    cp = _positive(problems, "pocket_clearance", pocket_clearance)
     fr = _positive(problems, "reference_load", reference_load)
     if exponent not in (1, 1.0, 1.5):
-        problems.append(
-            Problem("exponent", f"exponent = {exponent!r}: must be 1 (polymer) or 1.5 (Hertz)")
-        )
-    if problems:
-        raise CaseError(problems)
+        problems.append(f"exponent = {exponent!r}: must be 1 (polymer) or 1.5 (Hertz)")
+    _raise("pocket_stiffness_estimate", problems)
     rb = 0.5 * d
     rp = rb + 0.5 * cp
     curvature_sum = 2.0 / rb - 1.0 / rp
@@ -475,11 +478,10 @@ def pocket_stiffness_estimate(
 
 def land_contact_stiffness_estimate(land_width: float, effective_modulus: float) -> float:
     """Linear metal-contact stiffness of the cage on its land, k = pi E' L / 4 [N/m] (estimate)."""
-    problems: list[Problem] = []
-    w = _positive(problems, "cage.guide_land_width", land_width)
+    problems: list[str] = []
+    w = _positive(problems, "land_width", land_width)
     e = _positive(problems, "effective_modulus", effective_modulus)
-    if problems:
-        raise CaseError(problems)
+    _raise("land_contact_stiffness_estimate", problems)
     return math.pi * e * w / 4.0
 
 
@@ -498,26 +500,21 @@ def pocket_parameters(
 
     ``damping_depth`` defaults to ``DEFAULT_DAMPING_DEPTH`` for n < 1.5 and 0 (no ramp) otherwise.
     """
-    problems: list[Problem] = []
-    k = _positive(problems, "cage.pocket_stiffness", stiffness)
-    n = _positive(problems, "cage.pocket_exponent", exponent)
+    problems: list[str] = []
+    k = _positive(problems, "stiffness", stiffness)
+    n = _positive(problems, "exponent", exponent)
     if n is not None and not 1.0 <= n <= 3.0:
-        problems.append(
-            Problem("cage.pocket_exponent", f"cage.pocket_exponent = {n:g}: must be in [1, 3]")
-        )
-    z = _positive(problems, "cage.pocket_damping_ratio", damping_ratio, allow_zero=True)
-    m = _positive(problems, "cage.pocket_effective_mass", effective_mass)
-    mu = _positive(problems, "cage.pocket_friction", friction, allow_zero=True)
-    cp = _positive(problems, "cage.pocket_diametral_clearance", clearance)
-    d = _positive(problems, "bearing.ball_diameter", ball_diameter)
-    ur = _positive(
-        problems, "cage.pocket_slip_regularisation", slip_regularisation, allow_zero=True
-    )
+        problems.append(f"exponent = {n:g}: must be in [1, 3]")
+    z = _positive(problems, "damping_ratio", damping_ratio, allow_zero=True)
+    m = _positive(problems, "effective_mass", effective_mass)
+    mu = _positive(problems, "friction", friction, allow_zero=True)
+    cp = _positive(problems, "clearance", clearance)
+    d = _positive(problems, "ball_diameter", ball_diameter)
+    ur = _positive(problems, "slip_regularisation", slip_regularisation, allow_zero=True)
     if damping_depth is None:
         damping_depth = DEFAULT_DAMPING_DEPTH if (n is not None and n < 1.5) else 0.0
-    dd = _positive(problems, "cage.pocket_damping_depth", damping_depth, allow_zero=True)
-    if problems:
-        raise CaseError(problems)
+    dd = _positive(problems, "damping_depth", damping_depth, allow_zero=True)
+    _raise("pocket_parameters", problems)
     p = np.zeros(POCKET_PARAM_SIZE)
     p[PP_STIFFNESS] = k
     p[PP_EXPONENT] = n
@@ -553,39 +550,30 @@ def land_parameters(
     outer ring's land bore) and False for inner-ring guidance. ``viscosity`` may be 0 (dry: metal
     contact only).
     """
-    problems: list[Problem] = []
-    r = _positive(problems, "cage.guide_land_radius", radius)
-    w = _positive(problems, "cage.guide_land_width", width)
-    c = _positive(problems, "cage.guide_radial_clearance", radial_clearance)
-    eta = _positive(problems, "lubricant.viscosity_Pas", viscosity, allow_zero=True)
-    k = _positive(problems, "cage.guide_metal_stiffness", metal_stiffness)
-    m = _positive(problems, "cage.mass", cage_mass)
-    n = _positive(problems, "cage.guide_metal_exponent", metal_exponent)
+    problems: list[str] = []
+    r = _positive(problems, "radius", radius)
+    w = _positive(problems, "width", width)
+    c = _positive(problems, "radial_clearance", radial_clearance)
+    eta = _positive(problems, "viscosity", viscosity, allow_zero=True)
+    k = _positive(problems, "metal_stiffness", metal_stiffness)
+    m = _positive(problems, "cage_mass", cage_mass)
+    n = _positive(problems, "metal_exponent", metal_exponent)
     if n is not None and not 1.0 <= n <= 3.0:
-        problems.append(
-            Problem(
-                "cage.guide_metal_exponent", f"cage.guide_metal_exponent = {n:g}: must be in [1, 3]"
-            )
-        )
-    z = _positive(problems, "cage.guide_damping_ratio", metal_damping_ratio, allow_zero=True)
-    mu = _positive(problems, "cage.guide_friction", metal_friction, allow_zero=True)
-    ur = _positive(problems, "cage.guide_slip_regularisation", slip_regularisation, allow_zero=True)
-    ec = _positive(problems, "cage.guide_contact_eccentricity", contact_eccentricity)
-    em = _positive(problems, "cage.guide_max_eccentricity", max_eccentricity)
+        problems.append(f"metal_exponent = {n:g}: must be in [1, 3]")
+    z = _positive(problems, "metal_damping_ratio", metal_damping_ratio, allow_zero=True)
+    mu = _positive(problems, "metal_friction", metal_friction, allow_zero=True)
+    ur = _positive(problems, "slip_regularisation", slip_regularisation, allow_zero=True)
+    ec = _positive(problems, "contact_eccentricity", contact_eccentricity)
+    em = _positive(problems, "max_eccentricity", max_eccentricity)
     if ec is not None and em is not None and not (0.0 < ec < em < 1.0):
         problems.append(
-            Problem(
-                "cage.guide_contact_eccentricity",
-                f"cage.guide_contact_eccentricity = {ec:g} and "
-                f"cage.guide_max_eccentricity = {em:g}: "
-                "need 0 < contact < max < 1",
-            )
+            f"contact_eccentricity = {ec:g} and max_eccentricity = {em:g}: "
+            "need 0 < contact < max < 1"
         )
     if damping_depth is None:
         damping_depth = DEFAULT_DAMPING_DEPTH if (n is not None and n < 1.5) else 0.0
-    dd = _positive(problems, "cage.guide_damping_depth", damping_depth, allow_zero=True)
-    if problems:
-        raise CaseError(problems)
+    dd = _positive(problems, "damping_depth", damping_depth, allow_zero=True)
+    _raise("land_parameters", problems)
     p = np.zeros(LAND_PARAM_SIZE)
     p[LP_RADIUS] = r
     p[LP_WIDTH] = w

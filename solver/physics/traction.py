@@ -71,8 +71,6 @@ import numpy as np
 from numba import njit
 from scipy import optimize, special
 
-from solver.errors import CaseError, Problem
-
 # ---- traction-curve parameter array ------------------------------------------------------------
 CURVE_A = 0  # mu_zero - mu_infinity
 CURVE_B = 1  # [s/m]
@@ -127,23 +125,22 @@ DEFAULT_SLIP_REGULARISATION = 1.0e-3
 # ================================================================================================
 # Traction curve
 # ================================================================================================
-def _check_number(
-    key: str, value, problems: list[Problem], minimum=None, strict=False
-) -> float | None:
+def _check_number(name: str, value, problems: list[str], minimum=None, strict=False):
+    """``value`` as a float, or None after recording why it is not an allowed number."""
     try:
         x = float(value)
     except (TypeError, ValueError):
-        problems.append(Problem(key, f"{key} = {value!r}: must be a number"))
+        problems.append(f"{name} = {value!r}: must be a number")
         return None
     if not math.isfinite(x):
-        problems.append(Problem(key, f"{key} = {value!r}: must be a finite number"))
+        problems.append(f"{name} = {value!r}: must be a finite number")
         return None
     if minimum is not None:
         if strict and not x > minimum:
-            problems.append(Problem(key, f"{key} = {x:g}: must be greater than {minimum:g}"))
+            problems.append(f"{name} = {x:g}: must be greater than {minimum:g}")
             return None
         if not strict and not x >= minimum:
-            problems.append(Problem(key, f"{key} = {x:g}: must be at least {minimum:g}"))
+            problems.append(f"{name} = {x:g}: must be at least {minimum:g}")
             return None
     return x
 
@@ -153,7 +150,6 @@ def traction_curve_parameters(
     mu_max: float,
     slip_at_max: float,
     mu_infinity: float,
-    key_prefix: str = "lubricant.traction",
 ) -> np.ndarray:
     """Parameters (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D from four curve properties.
 
@@ -161,44 +157,35 @@ def traction_curve_parameters(
     ``mu_infinity`` = limit for large slip. A = mu_zero - mu_infinity, D = mu_infinity, C = B / (A +
     B u_m) puts the stationary point at u_m, and B > 0 is the unique root of mu(u_m) = mu_max
     (physics.md §2.6.4). Requires 0 <= mu_zero <= mu_max <= 1, 0 <= mu_infinity <= mu_max and
-    slip_at_max > 0 (the rules of the case validation). When mu_max is not above both other values
-    (within 1e-9 relative) the curve has no interior peak; then the monotone limit
-    mu(u) = mu_infinity + (mu_zero - mu_infinity) exp(-u / slip_at_max) is returned (B = 0): it
-    falls from mu_max (mu_zero = mu_max) or rises to mu_max (mu_infinity = mu_max), reaching
-    1 - 1/e of the change at slip_at_max. Invalid input raises :class:`CaseError` naming
-    ``key_prefix.<name>``. Returns a float64 array of length ``CURVE_SIZE``.
+    slip_at_max > 0 (the case validation keeps case values within these rules). When mu_max is not
+    above both other values (within 1e-9 relative) the curve has no interior peak; then the
+    monotone limit mu(u) = mu_infinity + (mu_zero - mu_infinity) exp(-u / slip_at_max) is returned
+    (B = 0): it falls from mu_max (mu_zero = mu_max) or rises to mu_max (mu_infinity = mu_max),
+    reaching 1 - 1/e of the change at slip_at_max. Arguments outside these rules raise ValueError
+    naming them. Returns a float64 array of length ``CURVE_SIZE``.
     """
-    problems: list[Problem] = []
-    k0, km, ku, ki = (
-        f"{key_prefix}.{n}" for n in ("mu_zero", "mu_max", "slip_at_max_m_s", "mu_infinity")
-    )
-    m0 = _check_number(k0, mu_zero, problems, minimum=0.0)
-    mm = _check_number(km, mu_max, problems, minimum=0.0, strict=True)
-    um = _check_number(ku, slip_at_max, problems, minimum=0.0, strict=True)
-    mi = _check_number(ki, mu_infinity, problems, minimum=0.0)
+    problems: list[str] = []
+    m0 = _check_number("mu_zero", mu_zero, problems, minimum=0.0)
+    mm = _check_number("mu_max", mu_max, problems, minimum=0.0, strict=True)
+    um = _check_number("slip_at_max", slip_at_max, problems, minimum=0.0, strict=True)
+    mi = _check_number("mu_infinity", mu_infinity, problems, minimum=0.0)
     if mm is not None:
         if mm > 1.0:
             problems.append(
-                Problem(km, f"{km} = {mm:g}: must be at most 1 (a lubricated traction coefficient)")
+                f"mu_max = {mm:g}: must be at most 1 (a lubricated traction coefficient)"
             )
         if m0 is not None and not m0 <= mm:
             problems.append(
-                Problem(
-                    k0,
-                    f"{k0} = {m0:g}: must be at most {km} = {mm:g} "
-                    "(the curve rises from mu_zero to its maximum)",
-                )
+                f"mu_zero = {m0:g}: must be at most mu_max = {mm:g} "
+                "(the curve rises from mu_zero to its maximum)"
             )
         if mi is not None and not mi <= mm:
             problems.append(
-                Problem(
-                    ki,
-                    f"{ki} = {mi:g}: must be at most {km} = {mm:g} "
-                    "(the curve falls from its maximum towards mu_infinity)",
-                )
+                f"mu_infinity = {mi:g}: must be at most mu_max = {mm:g} "
+                "(the curve falls from its maximum towards mu_infinity)"
             )
     if problems:
-        raise CaseError(problems)
+        raise ValueError("traction_curve_parameters: " + "; ".join(problems))
     a = m0 - mi
     target = mm - mi
     if mm - max(m0, mi) <= 1e-9 * mm:  # no interior peak: monotone limit of the family
@@ -214,9 +201,7 @@ def traction_curve_parameters(
         hi *= 2.0
     lo_eval = lo if lo > 0.0 else hi * 1e-12
     if g(lo_eval) >= 0.0:  # cannot happen: the peak excess is > 1e-9 mu_max here
-        raise CaseError(
-            Problem(km, f"{km} = {mm:g}: too close to the other coefficients to fit a curve")
-        )
+        raise ValueError(f"mu_max = {mm:g}: too close to the other coefficients to fit a curve")
     s = optimize.brentq(g, lo_eval, hi, xtol=1e-15, rtol=1e-14, maxiter=200)
     b = (s - a) / um
     c = b / s
@@ -226,7 +211,7 @@ def traction_curve_parameters(
 def constant_traction_parameters(mu: float) -> np.ndarray:
     """Curve array of a constant (Coulomb) coefficient mu(u) = mu (boundary friction, tests)."""
     if not (math.isfinite(mu) and mu >= 0.0):
-        raise CaseError(Problem("mu", f"mu = {mu!r}: must be a finite number >= 0"))
+        raise ValueError(f"mu = {mu!r}: must be a finite number >= 0")
     return np.array([0.0, 0.0, 0.0, float(mu)], dtype=np.float64)
 
 

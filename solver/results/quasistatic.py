@@ -64,10 +64,10 @@ def solution_to_dataset(
 ) -> xr.Dataset:
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
-    ``lubricant`` (``case.lubricant`` or None) adds ``film_thickness``; it needs ``viscosity_Pas``
-    and ``pressure_viscosity_per_GPa``. ``operating`` (SI operating point, see
-    :func:`solver.results.dataset.describing_coordinates`) defaults to the one the solution was
-    solved for; ``case`` (a Case or TOML text) is kept in ``attrs["case"]`` for provenance.
+    ``lubricant`` (a :class:`solver.inputs.LubricantInputs`, SI, or None) adds ``film_thickness``.
+    ``operating`` (SI operating point, see :func:`solver.results.dataset.describing_coordinates`)
+    defaults to the one the solution was solved for; ``case`` (a Case or TOML text) is kept in
+    ``attrs["case"]`` for provenance.
     """
     sol = solution
     operating = operating if operating is not None else sol.operating
@@ -126,8 +126,8 @@ def solution_to_dataset(
                 u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
                 film[j, k] = film_thickness_central(
                     u_e,
-                    float(lubricant.viscosity_Pas),
-                    float(lubricant.pressure_viscosity_per_GPa) * 1e-9,
+                    lubricant.viscosity,
+                    lubricant.pressure_viscosity,
                     geometry.effective_modulus,
                     hertz["r_x"][j, k],
                     sol.contact_load[j, k],

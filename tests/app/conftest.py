@@ -18,8 +18,8 @@ import xarray as xr
 
 from solver.geometry import BearingGeometry
 from solver.materials import BUILTIN_MATERIALS
-from solver.models.quasistatic import OperatingPoint
 from solver.results.dataset import describing_coordinates
+from tests.helpers.dyn_bearings import operating_point
 
 SHAFT_RPM = 6000.0
 FIXTURE_CASE = f"""
@@ -73,7 +73,7 @@ def fixture_geometry() -> BearingGeometry:
 
 def fixture_coordinates() -> dict:
     """The describing coordinates of the fixture case (operating point and geometry)."""
-    operating = OperatingPoint(
+    operating = operating_point(
         inner_ring_speed=SHAFT_RPM * 2 * np.pi / 60, axial_load=500.0, radial_load=300.0
     )
     return describing_coordinates(fixture_geometry(), operating)

@@ -39,9 +39,9 @@ def test_parse_value():
 
 
 def test_apply_form_routes_problems_to_fields(fixture_model):
-    from solver import load_case
+    from solver import parse_case
 
-    case = load_case(fixture_model.FIXTURE_CASE)
+    case = parse_case(fixture_model.FIXTURE_CASE)
     fields = form_fields()
     ok = apply_form(case, fields, {"axial_load_N": "750"})
     assert ok.valid and ok.case.operating.axial_load_N == 750.0
@@ -61,9 +61,9 @@ def test_apply_form_routes_problems_to_fields(fixture_model):
 
 def test_rule_between_two_keys_reaches_both_fields(fixture_model):
     """ball_diameter_mm = 60 on a 54 mm pitch circle: the message concerns both diameters."""
-    from solver import load_case
+    from solver import parse_case
 
-    case = load_case(fixture_model.FIXTURE_CASE)
+    case = parse_case(fixture_model.FIXTURE_CASE)
     fields = form_fields()
     bad = apply_form(case, fields, {"ball_diameter_mm": "60"})
     assert not bad.valid
@@ -106,42 +106,51 @@ def test_default_text_shows_the_value_used_when_empty():
         assert by_name[name].default_text == "", name
 
 
-def test_default_text_of_dynamic_switches_matches_the_model():
-    """The optional [simulation] switches: the text agrees with SimulationOptions, whose defaults
-    the dynamic model really uses (an independent source)."""
-    from dataclasses import fields as dataclass_fields
+def test_default_text_of_dynamic_switches_is_what_a_run_uses():
+    """The [simulation] switches left empty: the text agrees with the SI inputs the dynamic model
+    reads for a case without them (solver.inputs.to_inputs)."""
+    from solver.catalogue import resolve_case
+    from solver.inputs import to_inputs
 
-    from solver.models.dynamic.options import CASE_KEYS, SimulationOptions
-
-    defaults = {f.name: f.default for f in dataclass_fields(SimulationOptions)}
+    case = resolve_case("218-heavy-combined")  # no switches in the file
+    sim = to_inputs(case).simulation
     by_name = {f.name: f for f in form_fields()}
-    for key, option in CASE_KEYS.items():
-        text = by_name[key].default_text
-        value = defaults[option]
+    used = {
+        "ball_race_traction": sim.traction,
+        "contact_damping_ratio": sim.damping_ratio,
+        "gravity_m_s2": sim.gravity,
+        "tolerance": sim.tolerance,
+        "model_cage": sim.cage,
+    }
+    for name, value in used.items():
+        text = by_name[name].default_text
         if isinstance(value, bool):
-            assert text == ("true" if value else "false"), key
+            assert text == ("true" if value else "false"), name
         else:
-            assert float(text.split()[0]) == pytest.approx(value), key
+            assert float(text.split()[0]) == pytest.approx(value), name
 
 
-def test_default_text_of_lubricant_matches_the_default_oil():
-    """A case without [lubricant] runs on the dynamic model's default oil: the same values."""
-    from solver.models.dynamic.inputs import DEFAULT_OIL
+def test_default_text_of_lubricant_is_the_oil_a_run_uses():
+    """A case without [lubricant] runs on the schema's default oil: the same values."""
+    from solver.catalogue import resolve_case
+    from solver.inputs import to_inputs
 
+    oil = to_inputs(resolve_case("218-heavy-combined")).lubricant
+    assert oil.given is False
     by_name = {f.name: f for f in form_fields()}
-    assert float(by_name["viscosity_Pas"].default_text.split()[0]) == DEFAULT_OIL["viscosity"]
+    assert float(by_name["viscosity_Pas"].default_text.split()[0]) == oil.viscosity
     pv = float(by_name["pressure_viscosity_per_GPa"].default_text.split()[0]) * 1e-9
-    assert pv == pytest.approx(DEFAULT_OIL["pressure_viscosity"])
+    assert pv == pytest.approx(oil.pressure_viscosity)
     names = ("mu_zero", "mu_max", "slip_at_max_m_s", "mu_infinity")
     texts = tuple(float(by_name[n].default_text.split()[0]) for n in names)
-    assert texts == DEFAULT_OIL["traction"]
+    assert texts == oil.traction.values()
 
 
 def test_estimated_default_texts_give_the_value_for_the_case(fixture_model):
     from app.caseform import estimated_default_texts
-    from solver import load_case
+    from solver import parse_case
 
-    case = load_case(fixture_model.FIXTURE_CASE)
+    case = parse_case(fixture_model.FIXTURE_CASE)
     texts = estimated_default_texts(case, form_fields())
     # 0.028 D with D = 7.144 mm: 0.2000 mm; 0.5 D = 3.572 mm
     assert texts["pocket_diametral_clearance_mm"] == "0.2 mm (estimated: 0.028 D)"

@@ -216,6 +216,49 @@ def test_uploaded_case_fills_the_form(app, fixture_model):
     assert app.state.fv_title != "app test fixture"
 
 
+@pytest.mark.parametrize("text", ["/proc/self/environ", "/dev/zero", "/dev/stdin"])
+def test_uploaded_one_line_text_is_case_text_never_a_path(app, text, monkeypatch):
+    """An upload holds case text: a one-line text naming a server file is invalid TOML, and no
+    file is read (the message shows neither the environment nor device data; it returns at
+    once)."""
+    import os
+
+    from solver.case import io as case_io
+
+    def no_file_reading(*args, **kwargs):
+        raise AssertionError("an uploaded text was read as a path")
+
+    monkeypatch.setattr(case_io, "read_case_bytes", no_file_reading)
+    monkeypatch.setenv("RACETRACE_UPLOAD_SECRET", "do-not-show-this-value")
+    before = app.state.fv_title
+    start = time.perf_counter()
+    _set(app, uploaded_case={"name": "evil.toml", "content": text.encode()})
+    assert time.perf_counter() - start < 5.0
+    message = app.state.case_message
+    assert message.startswith("evil.toml: uploaded file evil.toml is not valid TOML"), message
+    assert text in message
+    assert "do-not-show-this-value" not in message and os.environ["PATH"] not in message
+    assert app.state.fv_title == before  # the form keeps its case
+
+
+def test_uploaded_file_that_is_not_utf8_is_reported(app):
+    _set(app, uploaded_case={"name": "bin.toml", "content": b"\xff\xfe\x00garbage"})
+    assert "not a text file" in app.state.case_message
+
+
+def test_a_case_the_dynamic_model_cannot_run_disables_run_with_the_reason(app):
+    s = app.state
+    speed = s.fv_inner_ring_speed_rpm
+    _set(app, fv_outer_ring_speed_rpm=speed)
+    assert s.case_valid and s.run_disabled  # valid: the quasi-static preview still works
+    assert s.run_reason.startswith("dynamic model: ")
+    assert "turn relative to each other" in s.run_reason
+    app.run()
+    assert not app.runner.busy and not app.state.busy
+    _set(app, fv_outer_ring_speed_rpm="0")
+    assert s.case_valid and not s.run_disabled and s.run_reason == ""
+
+
 def test_reset_undoes_the_edits(app):
     s = app.state
     original = s.fv_ball_diameter_mm

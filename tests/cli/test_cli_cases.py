@@ -124,3 +124,31 @@ def test_check_missing_file(tmp_path):
     result = racetrace("check", str(tmp_path / "nope.toml"))
     assert result.returncode == 2
     assert "not found" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_check_says_why_the_dynamic_model_cannot_run_a_valid_case(tmp_path):
+    """Equal ring speeds: valid (the quasi-static model solves it), not for the dynamic model."""
+    text = GOOD.replace("axial_load_N = 500.0", "axial_load_N = 500.0\nouter_ring_speed_rpm = 2e4")
+    result = racetrace("check", write(tmp_path, text))
+    assert result.returncode == 0, result.stderr
+    assert "OK: the case is valid" in result.stdout
+    (line,) = [line for line in result.stdout.splitlines() if line.startswith("dynamic model: ")]
+    assert "turn relative to each other" in line
+    assert "dynamic model:" not in racetrace("check", write(tmp_path, GOOD, "good.toml")).stdout
+
+
+@pytest.mark.parametrize("path", ["/dev/zero", "/dev/null"])
+def test_check_refuses_devices_promptly(path):
+    result = racetrace("check", path)
+    assert result.returncode == 2
+    assert "not a case file" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_check_refuses_a_fifo(tmp_path):
+    import os
+
+    fifo = tmp_path / "pipe.toml"
+    os.mkfifo(fifo)
+    result = racetrace("check", str(fifo))
+    assert result.returncode == 2
+    assert "named pipe" in result.stderr and "Traceback" not in result.stderr

@@ -1,13 +1,21 @@
-"""Test bearings for the dynamic model, built directly as DynamicInputs (no case file needed)."""
+"""Test bearings for the dynamic model, built directly as SI Inputs (no case file needed)."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import replace
 
+from solver.case.schema import field
 from solver.geometry import BearingGeometry
+from solver.inputs import (
+    CageInputs,
+    Inputs,
+    LubricantInputs,
+    OperatingPoint,
+    SimulationInputs,
+    TractionCurve,
+)
 from solver.materials import BUILTIN_MATERIALS
-from solver.models.dynamic.inputs import DEFAULT_OIL, DynamicInputs
 
 
 def spindle_geometry() -> BearingGeometry:
@@ -26,12 +34,31 @@ def spindle_geometry() -> BearingGeometry:
     )
 
 
-def spindle_inputs(rpm=20000.0, axial=500.0, radial=0.0, **changes) -> DynamicInputs:
-    g = changes.pop("geometry", spindle_geometry())
-    base = DynamicInputs(
-        geometry=g,
-        inner_speed=rpm * math.pi / 30.0,
-        outer_speed=0.0,
+def default_oil() -> LubricantInputs:
+    """The case schema's default oil (a case without [lubricant]), SI."""
+
+    def default(key):
+        return field(key).default
+
+    return LubricantInputs(
+        viscosity=default("lubricant.viscosity_Pas"),
+        pressure_viscosity=default("lubricant.pressure_viscosity_per_GPa") * 1e-9,
+        traction=TractionCurve(
+            mu_zero=default("lubricant.traction.mu_zero"),
+            mu_max=default("lubricant.traction.mu_max"),
+            slip_at_max=default("lubricant.traction.slip_at_max_m_s"),
+            mu_infinity=default("lubricant.traction.mu_infinity"),
+        ),
+        given=False,
+    )
+
+
+def spindle_inputs(rpm=20000.0, axial=500.0, radial=0.0, **operating_changes) -> Inputs:
+    """The spindle bearing at ``rpm`` under ``axial`` and ``radial`` loads [N]; other
+    ``operating_changes`` replace fields of the :class:`OperatingPoint` (SI)."""
+    operating = OperatingPoint(
+        inner_ring_speed=rpm * math.pi / 30.0,
+        outer_ring_speed=0.0,
         axial_load=axial,
         radial_load=radial,
         radial_load_angle=0.0,
@@ -40,17 +67,54 @@ def spindle_inputs(rpm=20000.0, axial=500.0, radial=0.0, **changes) -> DynamicIn
         misalignment_frame="space",
         tilting_moment=None,
         moment_axis=math.radians(90.0),
-        cage_guidance="outer_ring",
-        pocket_clearance=0.20e-3,
-        guide_clearance=0.30e-3,
-        cage_mass=6.0e-3,
-        pocket_friction=0.08,
-        guide_land_width=3.0e-3,
-        viscosity=DEFAULT_OIL["viscosity"],
-        pressure_viscosity=DEFAULT_OIL["pressure_viscosity"],
-        traction_curve=DEFAULT_OIL["traction"],
-        default_lubricant=True,
-        shaft_revolutions=2.0,
-        samples_per_revolution=90,
     )
-    return replace(base, **changes)
+    return Inputs(
+        geometry=spindle_geometry(),
+        operating=replace(operating, **operating_changes),
+        cage=CageInputs(
+            guidance="outer_ring",
+            pocket_clearance=0.20e-3,
+            guide_clearance=0.30e-3,
+            mass=6.0e-3,
+            pocket_friction=0.08,
+            guide_land_width=3.0e-3,
+        ),
+        lubricant=default_oil(),
+        simulation=SimulationInputs(
+            shaft_revolutions=2.0,
+            samples_per_revolution=90,
+            traction=True,
+            damping_ratio=0.05,
+            gravity=9.81,
+            tolerance=1e-4,
+            cage=True,
+        ),
+    )
+
+
+def operating_point(
+    inner_ring_speed: float,
+    outer_ring_speed: float = 0.0,
+    axial_load: float = 0.0,
+    radial_load: float = 0.0,
+    radial_load_angle: float = 0.0,
+    misalignment: float = 0.0,
+    misalignment_axis: float = 0.5 * math.pi,
+    misalignment_frame: str = "space",
+    tilting_moment: float | None = None,
+    moment_axis: float = 0.5 * math.pi,
+) -> OperatingPoint:
+    """An SI :class:`OperatingPoint` with the fields not named set as a case leaves them (no tilt,
+    axes at 90 degrees); arguments in the field order."""
+    return OperatingPoint(
+        inner_ring_speed,
+        outer_ring_speed,
+        axial_load,
+        radial_load,
+        radial_load_angle,
+        misalignment,
+        misalignment_axis,
+        misalignment_frame,
+        tilting_moment,
+        moment_axis,
+    )

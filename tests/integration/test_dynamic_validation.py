@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from solver.models.dynamic import SimulationOptions, simulate
-from solver.models.quasistatic import OperatingPoint, solve_operating_point
+from solver.models.quasistatic import solve_operating_point
 from tests.helpers.dyn_bearings import spindle_inputs
 
 SAMPLES = 60
@@ -66,9 +66,7 @@ def test_pure_axial_steady_state_approaches_quasistatic(
     rpm, revs, angle_tol, load_rtol, cage_rtol, thrust_run
 ):
     inputs = spindle_inputs(rpm=rpm, axial=500.0)
-    qs = solve_operating_point(
-        inputs.geometry, OperatingPoint(inner_ring_speed=inputs.inner_speed, axial_load=500.0)
-    )
+    qs = solve_operating_point(inputs.geometry, inputs.operating)
     ds = thrust_run if rpm == 20000.0 else _run(inputs, revs, gravity=0.0, start="equilibrium")
     last = _last_revolution(ds)
     angle = last.contact_angle.mean(("ball", "time")).values  # degree [inner, outer]
@@ -120,12 +118,7 @@ def test_band_width_grows_with_radial_load_and_matches_quasistatic_range():
         inputs = spindle_inputs(axial=500.0, radial=radial)
         ds = _run(inputs, 5.0)
         band = ds.trajectory_band_width.values
-        qs = solve_operating_point(
-            inputs.geometry,
-            OperatingPoint(
-                inner_ring_speed=inputs.inner_speed, axial_load=500.0, radial_load=radial
-            ),
-        )
+        qs = solve_operating_point(inputs.geometry, inputs.operating)
         qs_range = np.degrees(np.ptp(qs.contact_angle, axis=0))
         # quasi-static range over the load zone bounds the steady band; dynamic effects (cage,
         # speed scatter) broaden it by a little (tolerance 15 % + 0.05 deg)
@@ -143,15 +136,7 @@ def test_band_width_grows_with_misalignment():
             axial=500.0, misalignment=math.radians(tilt), misalignment_frame="space"
         )
         ds = _run(inputs, 5.0)
-        qs = solve_operating_point(
-            inputs.geometry,
-            OperatingPoint(
-                inner_ring_speed=inputs.inner_speed,
-                axial_load=500.0,
-                misalignment=math.radians(tilt),
-                misalignment_axis=math.radians(90.0),
-            ),
-        )
+        qs = solve_operating_point(inputs.geometry, inputs.operating)
         band = ds.trajectory_band_width.values
         np.testing.assert_allclose(
             band, np.degrees(np.ptp(qs.contact_angle, axis=0)), rtol=0.15, atol=0.05

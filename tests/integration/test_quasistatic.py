@@ -14,8 +14,9 @@ from scipy.optimize import brentq
 from solver.errors import NoSolutionError
 from solver.geometry import BearingGeometry, free_contact_angle_from_clearance
 from solver.materials import BUILTIN_MATERIALS
-from solver.models.quasistatic import OperatingPoint, solve_operating_point
+from solver.models.quasistatic import solve_operating_point
 from solver.physics.hertz import race_contact
+from tests.helpers.dyn_bearings import operating_point
 
 STEEL = BUILTIN_MATERIALS["bearing_steel"]
 SI3N4 = BUILTIN_MATERIALS["silicon_nitride"]
@@ -154,41 +155,41 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
 
 
 CASES = [
-    ("218 combined 10k", bearing_218(), OperatingPoint(10000 * RPM, 0.0, 17800.0, 8900.0)),
-    ("218 thrust 10k", bearing_218(), OperatingPoint(10000 * RPM, 0.0, 17800.0)),
-    ("spindle 30k light", spindle(), OperatingPoint(30000 * RPM, 0.0, 100.0)),
+    ("218 combined 10k", bearing_218(), operating_point(10000 * RPM, 0.0, 17800.0, 8900.0)),
+    ("218 thrust 10k", bearing_218(), operating_point(10000 * RPM, 0.0, 17800.0)),
+    ("spindle 30k light", spindle(), operating_point(30000 * RPM, 0.0, 100.0)),
     (
         "spindle combined 20k at 30 deg",
         spindle(),
-        OperatingPoint(20000 * RPM, 0.0, 300.0, 300.0, math.radians(30)),
+        operating_point(20000 * RPM, 0.0, 300.0, 300.0, math.radians(30)),
     ),
     (
         "spindle misaligned",
         spindle(),
-        OperatingPoint(20000 * RPM, 0.0, 300.0, misalignment=math.radians(0.1)),
+        operating_point(20000 * RPM, 0.0, 300.0, misalignment=math.radians(0.1)),
     ),
     (
         "spindle moment",
         spindle(),
-        OperatingPoint(15000 * RPM, 0.0, 300.0, 100.0, tilting_moment=1.5, moment_axis=0.3),
+        operating_point(15000 * RPM, 0.0, 300.0, 100.0, tilting_moment=1.5, moment_axis=0.3),
     ),
     (
         "spindle moment-free tilt",
         spindle(),
-        OperatingPoint(15000 * RPM, 0.0, 300.0, 200.0, tilting_moment=0.0),
+        operating_point(15000 * RPM, 0.0, 300.0, 200.0, tilting_moment=0.0),
     ),
-    ("outer ring turning", spindle(), OperatingPoint(0.0, 12000 * RPM, 400.0, 100.0)),
+    ("outer ring turning", spindle(), operating_point(0.0, 12000 * RPM, 400.0, 100.0)),
     (
         "deep groove zero clearance radial",
         deep_groove(0.0),
-        OperatingPoint(8000 * RPM, 0.0, 0.0, 4000.0),
+        operating_point(8000 * RPM, 0.0, 0.0, 4000.0),
     ),
     (
         "deep groove clearance combined",
         deep_groove(20e-6),
-        OperatingPoint(8000 * RPM, 0.0, 600.0, 3000.0),
+        operating_point(8000 * RPM, 0.0, 600.0, 3000.0),
     ),
-    ("218 reversed rotation", bearing_218(), OperatingPoint(-6000 * RPM, 0.0, 9000.0, 2000.0)),
+    ("218 reversed rotation", bearing_218(), operating_point(-6000 * RPM, 0.0, 9000.0, 2000.0)),
 ]
 
 
@@ -200,7 +201,7 @@ def test_every_solution_is_in_equilibrium(name, geometry, op):
 
 
 def test_equilibrium_check_detects_an_unbalanced_solution():
-    geometry, op = bearing_218(), OperatingPoint(10000 * RPM, 0.0, 17800.0, 8900.0)
+    geometry, op = bearing_218(), operating_point(10000 * RPM, 0.0, 17800.0, 8900.0)
     sol = solve_operating_point(geometry, op)
     sol.contact_load[3, 0] *= 1.0 + 1e-6
     with pytest.raises(AssertionError):
@@ -212,7 +213,7 @@ def test_equilibrium_check_detects_an_unbalanced_solution():
     "geometry, axial", [(bearing_218(), 17800.0), (spindle(), 300.0), (bearing_218(), 500.0)]
 )
 def test_pure_axial_load_at_rest_matches_the_classic_equation(geometry, axial):
-    sol = solve_operating_point(geometry, OperatingPoint(0.0, 0.0, axial))
+    sol = solve_operating_point(geometry, operating_point(0.0, 0.0, axial))
     z = geometry.ball_count
     q = sol.contact_load
     np.testing.assert_allclose(q, q[0, 0], rtol=1e-9)
@@ -243,7 +244,7 @@ def test_radial_load_at_rest_zero_clearance_discrete_distribution(ball_count):
     F_r = sum Q_j cos psi_j (exact for the discrete ball set)."""
     geometry = deep_groove(0.0, ball_count)
     fr = 5000.0
-    sol = solve_operating_point(geometry, OperatingPoint(0.0, 0.0, 0.0, fr))
+    sol = solve_operating_point(geometry, operating_point(0.0, 0.0, 0.0, fr))
     psi = sol.ball_azimuth
     cos = np.clip(np.cos(psi), 0.0, None)
     k_i, k_o = stiffness(geometry, 0.0, "inner"), stiffness(geometry, 0.0, "outer")
@@ -262,7 +263,7 @@ def test_radial_load_at_rest_large_ball_count_matches_stribeck_integral():
     z = 60
     geometry = BearingGeometry(z, 5.0e-3, 120.0e-3, 0.52, 0.52, 0.0, STEEL, STEEL)
     fr = 20000.0
-    sol = solve_operating_point(geometry, OperatingPoint(0.0, 0.0, 0.0, fr))
+    sol = solve_operating_point(geometry, operating_point(0.0, 0.0, 0.0, fr))
     j_r = quad(lambda p: math.cos(p) ** 2.5, -math.pi / 2, math.pi / 2)[0] / (2 * math.pi)
     assert j_r == pytest.approx(0.2288, abs=1e-4)
     assert sol.contact_load.max() == pytest.approx(fr / (z * j_r), rel=2e-3)
@@ -274,7 +275,7 @@ def test_radial_load_with_clearance_at_rest():
     clearance = 20e-6
     geometry = deep_groove(clearance)
     fr = 3000.0
-    sol = solve_operating_point(geometry, OperatingPoint(0.0, 0.0, 0.0, fr))
+    sol = solve_operating_point(geometry, operating_point(0.0, 0.0, 0.0, fr))
     k_i, k_o = stiffness(geometry, 0.0, "inner"), stiffness(geometry, 0.0, "outer")
     k_n = (k_i ** (-2 / 3) + k_o ** (-2 / 3)) ** -1.5
     cos = np.cos(sol.ball_azimuth)
@@ -301,7 +302,7 @@ def test_trends_with_speed():
     previous = None
     a_i, a_o, ratio = [], [], []
     for rpm in speeds:
-        previous = solve_operating_point(geometry, OperatingPoint(rpm * RPM, 0.0, 300.0), previous)
+        previous = solve_operating_point(geometry, operating_point(rpm * RPM, 0.0, 300.0), previous)
         a_i.append(previous.contact_angle[0, 0])
         a_o.append(previous.contact_angle[0, 1])
         if rpm:
@@ -315,8 +316,8 @@ def test_trends_with_speed():
 
 def test_radial_load_at_90_degrees_rotates_the_solution():
     geometry = spindle(16)
-    op0 = OperatingPoint(20000 * RPM, 0.0, 300.0, 400.0, 0.0)
-    op90 = OperatingPoint(20000 * RPM, 0.0, 300.0, 400.0, math.pi / 2)
+    op0 = operating_point(20000 * RPM, 0.0, 300.0, 400.0, 0.0)
+    op90 = operating_point(20000 * RPM, 0.0, 300.0, 400.0, math.pi / 2)
     s0 = solve_operating_point(geometry, op0)
     s90 = solve_operating_point(geometry, op90)
     shift = geometry.ball_count // 4
@@ -338,7 +339,7 @@ def test_pure_tilt_sign():
     (theta x p): that ball becomes the most loaded, the one at 270° less; the moment needed to hold
     the tilt acts along +y (the balls resist it)."""
     geometry = spindle(16)
-    op = OperatingPoint(0.0, 0.0, 300.0, misalignment=math.radians(0.05), misalignment_axis=0.0)
+    op = operating_point(0.0, 0.0, 300.0, misalignment=math.radians(0.05), misalignment_axis=0.0)
     sol = solve_operating_point(geometry, op)
     q = sol.contact_load[:, 0]
     assert q[4] == q.max() and q[4] > q[12]  # ball 4 at 90°, ball 12 at 270°
@@ -352,7 +353,7 @@ def test_unloaded_balls_give_zeros_no_nan_no_warning():
     for rpm in (0.0, 6000.0):
         with warnings.catch_warnings():
             warnings.simplefilter("error")
-            sol = solve_operating_point(geometry, OperatingPoint(rpm * RPM, 0.0, 0.0, 2000.0))
+            sol = solve_operating_point(geometry, operating_point(rpm * RPM, 0.0, 0.0, 2000.0))
         open_inner = sol.contact_load[:, 0] == 0.0
         assert open_inner.sum() >= 3
         assert np.all(sol.contact_deflection[open_inner, 0] == 0.0)
@@ -374,7 +375,7 @@ def test_creeping_speed_is_in_equilibrium_without_nan():
     """At a fraction of an rpm the body forces are minute; unloaded balls still sit on the outer
     race and every ball balances."""
     geometry = BearingGeometry(6, 3e-3, 11.459e-3, 0.5625, 0.5625, math.radians(31), STEEL, STEEL)
-    op = OperatingPoint(0.0436 * RPM, 0.0, 54.0, 54.0)
+    op = operating_point(0.0436 * RPM, 0.0, 54.0, 54.0)
     sol = solve_operating_point(geometry, op)
     check_equilibrium(geometry, op, sol)
 
@@ -382,7 +383,7 @@ def test_creeping_speed_is_in_equilibrium_without_nan():
 @pytest.mark.parametrize("rpm", [60000.0, 100000.0, 150000.0])
 def test_spindle_light_preload_to_very_high_speed(rpm):
     geometry = spindle()
-    op = OperatingPoint(rpm * RPM, 0.0, 100.0)
+    op = operating_point(rpm * RPM, 0.0, 100.0)
     sol = solve_operating_point(geometry, op)
     check_equilibrium(geometry, op, sol)
     assert sol.contact_angle[0, 1] < math.radians(3.0)  # the outer contact angle has collapsed
@@ -390,7 +391,7 @@ def test_spindle_light_preload_to_very_high_speed(rpm):
 
 def test_heavy_combined_load_218():
     geometry = bearing_218()
-    op = OperatingPoint(10000 * RPM, 0.0, 17800.0, 8900.0)
+    op = operating_point(10000 * RPM, 0.0, 17800.0, 8900.0)
     sol = solve_operating_point(geometry, op)
     check_equilibrium(geometry, op, sol)
     assert sol.contact_load.max() > 17800.0 / 16
@@ -402,7 +403,7 @@ def test_no_static_solution_is_reported_with_a_reason(monkeypatch):
 
     monkeypatch.setattr(driver, "MAX_RING_ITERATIONS", 0)
     with pytest.raises(NoSolutionError, match="no static equilibrium.*Try"):
-        solve_operating_point(spindle(), OperatingPoint(1000 * RPM, 0.0, 300.0, 100.0))
+        solve_operating_point(spindle(), operating_point(1000 * RPM, 0.0, 300.0, 100.0))
 
 
 def test_lost_solution_at_speed_names_the_speed_and_the_remedy(monkeypatch):
@@ -419,7 +420,7 @@ def test_lost_solution_at_speed_names_the_speed_and_the_remedy(monkeypatch):
 
     monkeypatch.setattr(driver, "_solve_with_race_control", failing_beyond_half_speed)
     with pytest.raises(NoSolutionError) as info:
-        solve_operating_point(spindle(), OperatingPoint(40000 * RPM, 0.0, 100.0))
+        solve_operating_point(spindle(), operating_point(40000 * RPM, 0.0, 100.0))
     message = str(info.value)
     assert "20000 rpm (of 40000 rpm)" in message
     assert "outer contact angle" in message and "more axial preload" in message
@@ -492,7 +493,7 @@ def test_race_control_cycle_is_reported(monkeypatch):
         return np.full(states.shape[0], calls["n"] % 2 == 1)
 
     monkeypatch.setattr(driver, "_race_control", flipping)
-    geometry, op = spindle(), OperatingPoint(0.0, 0.0, 300.0, 100.0)
+    geometry, op = spindle(), operating_point(0.0, 0.0, 300.0, 100.0)
     sol = solve_operating_point(geometry, op)
     assert "cycles" in sol.race_control_note
     check_equilibrium(geometry, op, sol)
@@ -502,7 +503,7 @@ def test_race_control_inner_at_high_speed_is_consistent():
     """Per-ball decisions are a fixed point of the Jones criterion (recomputed from the outputs with
     the exact Hertz solution)."""
     geometry = deep_groove(15e-6)
-    op = OperatingPoint(6000 * RPM, 0.0, 300.0, 2000.0)
+    op = operating_point(6000 * RPM, 0.0, 300.0, 2000.0)
     sol = solve_operating_point(geometry, op)
     assert sol.race_control_note == ""
     for j in range(geometry.ball_count):

@@ -9,7 +9,8 @@ from hypothesis import strategies as st
 
 from solver.case import Case
 from solver.errors import CaseError, NoSolutionError
-from solver.models.quasistatic import operating_point_from_case, solve_quasistatic_state
+from solver.inputs import to_inputs
+from solver.models.quasistatic import solve_quasistatic_state
 
 from .test_quasistatic import check_equilibrium
 
@@ -70,7 +71,7 @@ def check_case(data):
     except NoSolutionError as error:
         assert "Try" in str(error)
         return
-    check_equilibrium(case.geometry(), operating_point_from_case(case), sol)
+    check_equilibrium(case.geometry(), to_inputs(case).operating, sol)
     assert np.all(np.isfinite(sol.contact_load))
 
 

@@ -1,13 +1,13 @@
 """Gupta-style dynamic model of an angular contact ball bearing (physics.md §2.6-2.8).
 
 Public API: :func:`simulate` (returns an ``xarray.Dataset``, results-schema.md) and
-:class:`SimulationOptions`. Internals: ``layout`` (state/parameter slots), ``kernels`` (numba
-contact laws and right-hand side), ``integrator`` (Dormand-Prince 5(4)), ``initial``
-(quasi-static start), ``observe``/``output`` (Dataset).
+:class:`SimulationOptions`. The model reads :class:`solver.inputs.Inputs` (SI), built once from the
+case. Internals: ``layout`` (state/parameter slots), ``kernels`` (numba contact laws and
+right-hand side), ``integrator`` (Dormand-Prince 5(4)), ``initial`` (quasi-static start),
+``observe``/``output`` (Dataset).
 """
 
-from .inputs import DynamicInputs, inputs_from_case
 from .options import SimulationOptions
 from .simulate import simulate
 
-__all__ = ["simulate", "SimulationOptions", "DynamicInputs", "inputs_from_case"]
+__all__ = ["simulate", "SimulationOptions"]

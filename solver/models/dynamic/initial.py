@@ -30,6 +30,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from solver.errors import NoSolutionError
+from solver.models.quasistatic.solver import solve_operating_point
 
 from . import layout as L
 from .kernels import rhs
@@ -251,22 +252,9 @@ def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndar
 
 
 def quasistatic_solution(inputs):
-    """The project's Jones–Harris solution (solver.models.quasistatic) for ``inputs``."""
-    from solver.models.quasistatic import OperatingPoint, solve_operating_point
-
-    op = OperatingPoint(
-        inner_ring_speed=inputs.inner_speed,
-        outer_ring_speed=inputs.outer_speed,
-        axial_load=inputs.axial_load,
-        radial_load=inputs.radial_load,
-        radial_load_angle=inputs.radial_load_angle,
-        misalignment=inputs.misalignment,
-        misalignment_axis=inputs.misalignment_axis,
-        misalignment_frame=inputs.misalignment_frame,
-        tilting_moment=inputs.tilting_moment,
-        moment_axis=inputs.moment_axis,
-    )
-    return solve_operating_point(inputs.geometry, op)
+    """The project's Jones–Harris solution (solver.models.quasistatic) for ``inputs``
+    (:class:`solver.inputs.Inputs`)."""
+    return solve_operating_point(inputs.geometry, inputs.operating)
 
 
 def initial_state_from_quasistatic(par: np.ndarray, qs) -> np.ndarray:

@@ -1,21 +1,38 @@
-"""Run options of the dynamic model that are not (yet) case-file keys.
+"""Run options of the dynamic model: overrides of the case's ``[simulation]`` values, and the
+numerical knobs that are not case keys.
 
-Tests switch parts of the physics off through these; the defaults are the full model.
+Tests and the command line switch parts of the physics off through these; every override left at
+None takes the case's value (:class:`solver.inputs.SimulationInputs`, filled from the case schema).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
-from types import MappingProxyType
+from dataclasses import dataclass, fields, replace
 
+from solver.case.schema import field as schema_field
+from solver.case.validate import check_value
 from solver.errors import CaseError, Problem
 from solver.results.summary import UNSETTLED_SKIP_FRACTION
+
+#: Options that override a ``[simulation]`` case key: option -> (SimulationInputs field, case key).
+CASE_OVERRIDES = {
+    "traction": ("traction", "simulation.ball_race_traction"),
+    "damping_ratio": ("damping_ratio", "simulation.contact_damping_ratio"),
+    "gravity": ("gravity", "simulation.gravity_m_s2"),
+    "cage": ("cage", "simulation.model_cage"),
+    "tolerance": ("tolerance", "simulation.tolerance"),
+    "shaft_revolutions": ("shaft_revolutions", "simulation.shaft_revolutions"),
+    "samples_per_revolution": ("samples_per_revolution", "simulation.samples_per_revolution"),
+}
 
 
 @dataclass(frozen=True)
 class SimulationOptions:
     """Options of :func:`solver.models.dynamic.simulate` (SI units).
+
+    The first seven override the case's ``[simulation]`` values (:data:`CASE_OVERRIDES`; None, the
+    default: the case's value; the bounds are those of the case keys, docs/case-format.md).
 
     - ``traction``: ellipse-integrated EHL traction at the ball-race contacts (False: frictionless).
     - ``damping_ratio``: critical-damping ratio zeta of the ball-race normal contacts (physics.md
@@ -46,12 +63,12 @@ class SimulationOptions:
       force balance without gyroscopic moment, see ``initial.initial_state``).
     """
 
-    traction: bool = True
-    damping_ratio: float = 0.05
-    gravity: float = 9.81
-    cage: bool = True
+    traction: bool | None = None
+    damping_ratio: float | None = None
+    gravity: float | None = None
+    cage: bool | None = None
     ring_free: bool = True
-    tolerance: float = 1e-4
+    tolerance: float | None = None
     shaft_revolutions: float | None = None
     samples_per_revolution: int | None = None
     chunk_samples: int = 60
@@ -66,24 +83,41 @@ class SimulationOptions:
     max_steps_per_chunk: int = 2_000_000
     start: str = "quasistatic"
 
+    def resolved(self, simulation) -> SimulationOptions:
+        """Copy with every case override filled: the option where given, else the value of
+        ``simulation`` (:class:`solver.inputs.SimulationInputs`)."""
+        changes = {
+            name: getattr(simulation, attribute)
+            for name, (attribute, _) in CASE_OVERRIDES.items()
+            if getattr(self, name) is None
+        }
+        return replace(self, **changes)
+
     def validated(self) -> SimulationOptions:
         """Return self after checking every value; raise CaseError naming the option otherwise."""
         problems = []
-        positive = ("tolerance", "pocket_stiffness", "land_stiffness", "friction_regularisation")
+        for name, (_, case_key) in CASE_OVERRIDES.items():
+            value = getattr(self, name)
+            if value is not None:  # the bounds of the case key it overrides
+                check_value(schema_field(case_key), f"simulation option {name}", value, problems)
+        positive = ("pocket_stiffness", "land_stiffness", "friction_regularisation")
         for f in fields(self):
             v = getattr(self, f.name)
             key = f"simulation option {f.name}"
+            if f.name in CASE_OVERRIDES:
+                continue
             if isinstance(v, float) and not math.isfinite(v):
                 problems.append(Problem(f.name, f"{key} = {v!r}: must be a finite number"))
             elif f.name in positive and v is not None and not v > 0:
                 problems.append(Problem(f.name, f"{key} = {v!r}: must be greater than 0"))
-        for name in ("damping_ratio", "gravity", "pocket_damping_ratio"):
-            if getattr(self, name) < 0:
-                problems.append(
-                    Problem(
-                        name, f"simulation option {name} = {getattr(self, name)!r}: must be >= 0"
-                    )
+        if self.pocket_damping_ratio < 0:
+            problems.append(
+                Problem(
+                    "pocket_damping_ratio",
+                    f"simulation option pocket_damping_ratio = {self.pocket_damping_ratio!r}: "
+                    "must be >= 0",
                 )
+            )
         if not 0.0 <= self.analysis_skip_fraction < 1.0:
             problems.append(
                 Problem(
@@ -99,22 +133,6 @@ class SimulationOptions:
                     f"simulation option chunk_samples = {self.chunk_samples}: must be >= 1",
                 )
             )
-        if self.shaft_revolutions is not None and not self.shaft_revolutions > 0:
-            problems.append(
-                Problem(
-                    "shaft_revolutions",
-                    f"simulation option shaft_revolutions = {self.shaft_revolutions!r}: "
-                    "must be > 0",
-                )
-            )
-        if self.samples_per_revolution is not None and not self.samples_per_revolution >= 4:
-            problems.append(
-                Problem(
-                    "samples_per_revolution",
-                    f"simulation option samples_per_revolution = {self.samples_per_revolution!r}: "
-                    "must be >= 4",
-                )
-            )
         if self.start not in ("quasistatic", "equilibrium"):
             problems.append(
                 Problem(
@@ -126,30 +144,3 @@ class SimulationOptions:
         if problems:
             raise CaseError(problems)
         return self
-
-
-#: [simulation] case keys (optional; when the case schema has them) -> SimulationOptions fields.
-CASE_KEYS = MappingProxyType(
-    {
-        "ball_race_traction": "traction",
-        "contact_damping_ratio": "damping_ratio",
-        "gravity_m_s2": "gravity",
-        "tolerance": "tolerance",
-        "model_cage": "cage",
-    }
-)
-
-
-def options_from_case(case, base: SimulationOptions | None = None) -> SimulationOptions:
-    """``base`` (default options) updated with the optional [simulation] keys of ``case``
-    (``CASE_KEYS``); keys the case does not define keep their defaults."""
-    from dataclasses import replace
-
-    base = base or SimulationOptions()
-    sim = getattr(case, "simulation", None)
-    changes = {}
-    for key, name in CASE_KEYS.items():
-        value = getattr(sim, key, None) if sim is not None else None
-        if value is not None:
-            changes[name] = value
-    return replace(base, **changes)

@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from solver.models.quasistatic.solution import OperatingPoint
 from solver.physics.hertz import truncation_margin
 from solver.results.dataset import build_result
 from solver.results.summary import trajectory_summary
 
 from . import layout as L
-from .inputs import DEFAULT_OIL_NOTE
 from .observe import (
     N_OBS,
     O_ANGLE,
@@ -44,23 +42,6 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
     return out
 
 
-def operating_point(inputs) -> OperatingPoint:
-    """The SI operating point of :class:`DynamicInputs` under the names the results builder reads
-    (solver.results.dataset.OPERATING_FIELDS)."""
-    return OperatingPoint(
-        inner_ring_speed=inputs.inner_speed,
-        outer_ring_speed=inputs.outer_speed,
-        axial_load=inputs.axial_load,
-        radial_load=inputs.radial_load,
-        radial_load_angle=inputs.radial_load_angle,
-        misalignment=inputs.misalignment,
-        misalignment_axis=inputs.misalignment_axis,
-        misalignment_frame=inputs.misalignment_frame,
-        tilting_moment=inputs.tilting_moment,
-        moment_axis=inputs.moment_axis,
-    )
-
-
 def build_dataset(inputs, options, par, quad, times, states, period, complete, stop_reason, stats):
     """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,), with the
     trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it."""
@@ -68,7 +49,8 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     s_count = states.shape[0]
     obs = np.zeros((s_count, z, 2, N_OBS))
     pocket = np.zeros((s_count, z))
-    observe(states, par, quad, inputs.viscosity, inputs.pressure_viscosity, obs, pocket)
+    lub = inputs.lubricant
+    observe(states, par, quad, lub.viscosity, lub.pressure_viscosity, obs, pocket)
     balls = np.stack(
         [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
     )
@@ -133,7 +115,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         else "off (frictionless)",
         "damping_ratio": float(options.damping_ratio),
         "cage_model": "6 DOF (translations, rotation, tilts)" if options.cage else "off",
-        "lubricant": DEFAULT_OIL_NOTE if inputs.default_lubricant else "from the case [lubricant]",
+        "lubricant": inputs.lubricant.description,
         "integrator": f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}",
         "steps": stats.steps,
         "rejected_steps": stats.rejected,
@@ -145,7 +127,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "dynamic",
         data,
         inputs.geometry,
-        operating_point(inputs),
+        inputs.operating,
         case=inputs.case_text,
         times=times,
         complete=complete,

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from solver.inputs import Inputs
 from solver.materials import Material, effective_modulus
 from solver.physics.cage_contact import (
     LAND_PARAM_SIZE,
@@ -18,7 +19,6 @@ from solver.physics.cage_contact import (
 from solver.physics.traction import ellipse_quadrature, traction_curve_parameters
 
 from . import layout as L
-from .inputs import DynamicInputs
 from .options import SimulationOptions
 
 STEEL_DENSITY = 7800.0
@@ -26,7 +26,7 @@ STEEL_DENSITY = 7800.0
 CAGE_MATERIAL = Material("glass_filled_polyamide", 8.0e9, 0.4, 1400.0)
 
 
-def ring_mass_properties(inputs: DynamicInputs, options: SimulationOptions):
+def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
     """(mass [kg], diametral inertia, polar inertia [kg m^2]) of the inner ring.
 
     Estimate (no ring data in the case): a steel annulus of width 2 D from the bore d_m - 2 D to the
@@ -53,9 +53,16 @@ def build_quadrature(options: SimulationOptions) -> np.ndarray:
     return np.ascontiguousarray(ellipse_quadrature(n_roll, n_trans))
 
 
-def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarray:
-    """Parameter vector for the numba kernels (every slot documented in ``layout``)."""
+def build_params(inputs: Inputs, options: SimulationOptions) -> np.ndarray:
+    """Parameter vector for the numba kernels (every slot documented in ``layout``).
+
+    The physics switches are those of ``options`` where given, else the case's
+    (``inputs.simulation``)."""
+    options = options.resolved(inputs.simulation)
     g = inputs.geometry
+    op = inputs.operating
+    cage = inputs.cage
+    lubricant = inputs.lubricant
     p = np.zeros(L.N_PARAMS)
     D, dm = g.ball_diameter, g.pitch_diameter
     p[L.P_Z] = g.ball_count
@@ -72,39 +79,39 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
     p[L.P_FI] = g.inner_conformity
     p[L.P_FO] = g.outer_conformity
     p[L.P_EPRIME] = g.effective_modulus
-    p[L.P_WI] = inputs.inner_speed
-    p[L.P_WO] = inputs.outer_speed
+    p[L.P_WI] = op.inner_ring_speed
+    p[L.P_WO] = op.outer_ring_speed
     mass, diametral, polar = ring_mass_properties(inputs, options)
     p[L.P_MR] = mass
     p[L.P_IRD] = diametral
     p[L.P_IRP] = polar
-    p[L.P_FX] = inputs.axial_load
-    p[L.P_FY] = inputs.radial_load * math.cos(inputs.radial_load_angle)
-    p[L.P_FZ] = inputs.radial_load * math.sin(inputs.radial_load_angle)
-    if inputs.tilting_moment is not None:
+    p[L.P_FX] = op.axial_load
+    p[L.P_FY] = op.radial_load * math.cos(op.radial_load_angle)
+    p[L.P_FZ] = op.radial_load * math.sin(op.radial_load_angle)
+    if op.tilting_moment is not None:
         p[L.P_TILT_MODE] = 2
-        p[L.P_MY] = inputs.tilting_moment * math.cos(inputs.moment_axis)
-        p[L.P_MZ] = inputs.tilting_moment * math.sin(inputs.moment_axis)
+        p[L.P_MY] = op.tilting_moment * math.cos(op.moment_axis)
+        p[L.P_MZ] = op.tilting_moment * math.sin(op.moment_axis)
     else:
-        p[L.P_TILT_MODE] = 1 if inputs.misalignment_frame == "ring" else 0
-        p[L.P_TILT_Y] = inputs.misalignment * math.cos(inputs.misalignment_axis)
-        p[L.P_TILT_Z] = inputs.misalignment * math.sin(inputs.misalignment_axis)
+        p[L.P_TILT_MODE] = 1 if op.misalignment_frame == "ring" else 0
+        p[L.P_TILT_Y] = op.misalignment * math.cos(op.misalignment_axis)
+        p[L.P_TILT_Z] = op.misalignment * math.sin(op.misalignment_axis)
     p[L.P_RING_FREE] = 1.0 if options.ring_free else 0.0
     p[L.P_GRAVITY] = options.gravity
     p[L.P_ZETA] = options.damping_ratio
     p[L.P_TRACTION] = 1.0 if options.traction else 0.0
-    curve = traction_curve_parameters(*inputs.traction_curve)
+    curve = traction_curve_parameters(*lubricant.traction.values())
     p[L.P_MU_A : L.P_MU_D + 1] = curve
     p[L.P_CAGE_ON] = 1.0 if options.cage else 0.0
-    p[L.P_MC] = inputs.cage_mass
+    p[L.P_MC] = cage.mass
     p[L.P_CAGE_R] = 0.5 * dm
     # cage as a thin ring of radius d_m/2 and width D: polar m R^2, diametral m R^2 / 2 + m D^2 / 12
-    p[L.P_IC] = inputs.cage_mass * (0.5 * dm) ** 2
-    p[L.P_ICD] = 0.5 * inputs.cage_mass * (0.5 * dm) ** 2 + inputs.cage_mass * D**2 / 12.0
-    p[L.P_CP] = inputs.pocket_clearance
+    p[L.P_IC] = cage.mass * (0.5 * dm) ** 2
+    p[L.P_ICD] = 0.5 * cage.mass * (0.5 * dm) ** 2 + cage.mass * D**2 / 12.0
+    p[L.P_CP] = cage.pocket_clearance
     p[L.P_ZETA_P] = options.pocket_damping_ratio
-    p[L.P_MU_P] = inputs.pocket_friction
-    guide = {"outer_ring": 0, "inner_ring": 1, "ball": 2}[inputs.cage_guidance]
+    p[L.P_MU_P] = cage.pocket_friction
+    guide = {"outer_ring": 0, "inner_ring": 1, "ball": 2}[cage.guidance]
     p[L.P_GUIDE] = guide
     if guide == 0:
         shoulder = g.outer_shoulder_diameter
@@ -113,9 +120,9 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
         shoulder = g.inner_shoulder_diameter
         land = 0.5 * shoulder if math.isfinite(shoulder) else 0.5 * dm - 0.35 * D
     p[L.P_RG] = land
-    p[L.P_CG] = 0.5 * inputs.guide_clearance
-    p[L.P_LG] = inputs.guide_land_width
-    p[L.P_ETA] = inputs.viscosity
+    p[L.P_CG] = 0.5 * cage.guide_clearance
+    p[L.P_LG] = cage.guide_land_width
+    p[L.P_ETA] = lubricant.viscosity
     p[L.P_V_REG] = options.friction_regularisation
     p[L.P_HEATHCOTE] = 1.0 if options.heathcote else 0.0
     # cage contact laws of solver.physics.cage_contact; the case gives no cage material: a
@@ -123,7 +130,7 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
     pocket_k = options.pocket_stiffness
     if pocket_k is None:
         pocket_k = pocket_stiffness_estimate(
-            D, inputs.pocket_clearance, g.ball_material, CAGE_MATERIAL, exponent=1.0
+            D, cage.pocket_clearance, g.ball_material, CAGE_MATERIAL, exponent=1.0
         )
     p[L.P_KP] = pocket_k
     p[L.P_POCKET_BLOCK : L.P_POCKET_BLOCK + POCKET_PARAM_SIZE] = pocket_parameters(
@@ -131,24 +138,24 @@ def build_params(inputs: DynamicInputs, options: SimulationOptions) -> np.ndarra
         1.0,
         options.pocket_damping_ratio,
         g.ball_mass,
-        inputs.pocket_friction,
-        inputs.pocket_clearance,
+        cage.pocket_friction,
+        cage.pocket_clearance,
         D,
         slip_regularisation=options.friction_regularisation,
     )
     land_k = options.land_stiffness
     if land_k is None:
         land_k = land_contact_stiffness_estimate(
-            inputs.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
+            cage.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
         )
     p[L.P_KG] = land_k
     p[L.P_LAND_BLOCK : L.P_LAND_BLOCK + LAND_PARAM_SIZE] = land_parameters(
         land,
-        inputs.guide_land_width,
-        0.5 * inputs.guide_clearance,
-        inputs.viscosity,
+        cage.guide_land_width,
+        0.5 * cage.guide_clearance,
+        lubricant.viscosity,
         land_k,
-        inputs.cage_mass,
+        cage.mass,
         guide != 1,
         slip_regularisation=options.friction_regularisation,
     )

@@ -14,16 +14,19 @@ the driver reports progress and checks for cancellation. Outcomes:
 from __future__ import annotations
 
 import math
+import os
 import time as _time
 from types import MappingProxyType
 
 import numpy as np
 
-from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverged
+from solver.case import dynamic_problems
+from solver.catalogue import resolve_case
+from solver.errors import CaseError, NoSolutionError, SimulationDiverged
+from solver.inputs import Inputs, to_inputs
 
 from . import layout as L
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
-from .inputs import DynamicInputs, inputs_from_case
 from .integrator import (
     STATUS_BALL_ESCAPED,
     STATUS_NOT_FINITE,
@@ -32,7 +35,7 @@ from .integrator import (
     STATUS_TOO_MANY_STEPS,
     advance,
 )
-from .options import SimulationOptions, options_from_case
+from .options import SimulationOptions
 from .output import build_dataset
 from .params import build_params, build_quadrature
 
@@ -155,31 +158,36 @@ def _start(inputs, options, par, quad):
     ), "the model's own quasi-static force balance (no gyroscopic moment)"
 
 
+def _inputs(case) -> Inputs:
+    """SI inputs of a Case, a case-file path or a catalogue name, after the dynamic model's own
+    rules (:func:`solver.case.dynamic_problems`, raised as CaseError); Inputs as given."""
+    if isinstance(case, Inputs):
+        return case
+    if isinstance(case, str | os.PathLike):
+        case = resolve_case(case)
+    problems = dynamic_problems(case)
+    if problems:
+        raise CaseError(problems)
+    return to_inputs(case)
+
+
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
     """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
 
-    ``case``: a :class:`solver.case.Case` (or :class:`DynamicInputs`). ``progress(fraction,
-    simulated_time, message)`` is called between chunks; ``cancel`` is a callable or an Event.
-    ``options``: :class:`SimulationOptions`; None = the defaults (the full model) updated with the
-    case's optional [simulation] keys (``options.CASE_KEYS``).
+    ``case``: a :class:`solver.case.Case`, a case-file path or a catalogue name (CaseError when the
+    dynamic model cannot run it, :func:`solver.case.dynamic_problems`), or
+    :class:`solver.inputs.Inputs`. ``progress(fraction, simulated_time, message)`` is called
+    between chunks; ``cancel`` is a callable or an Event. ``options``: :class:`SimulationOptions`;
+    None = the case's ``[simulation]`` values and the default numerical knobs.
     """
-    if options is None:
-        options = (
-            SimulationOptions() if isinstance(case, DynamicInputs) else options_from_case(case)
-        )
-    options = options.validated()
-    inputs = case if isinstance(case, DynamicInputs) else inputs_from_case(case)
-    speed = abs(inputs.inner_speed - inputs.outer_speed)
-    if speed <= 0.0:
-        raise CaseError(
-            Problem(
-                "operating.inner_ring_speed_rpm",
-                "operating.inner_ring_speed_rpm: the dynamic model needs the rings to turn "
-                "relative to each other (inner and outer ring speeds are equal)",
-            )
-        )
-    revolutions = options.shaft_revolutions or inputs.shaft_revolutions
-    per_rev = options.samples_per_revolution or inputs.samples_per_revolution
+    inputs = _inputs(case)
+    options = (options or SimulationOptions()).validated().resolved(inputs.simulation)
+    op = inputs.operating
+    speed = abs(op.inner_ring_speed - op.outer_ring_speed)
+    if not speed > 0.0:  # a Case with equal ring speeds was refused above
+        raise ValueError("simulate: the inputs need rings turning relative to each other")
+    revolutions = options.shaft_revolutions
+    per_rev = options.samples_per_revolution
     par = build_params(inputs, options)
     quad = build_quadrature(options)
     y, start_note = _start(inputs, options, par, quad)

@@ -3,14 +3,14 @@
 Public API:
 
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md, quasi-static variables); every
-  ``case`` argument may also be a case-file path or a catalogue name
+  ``case`` argument may be a :class:`solver.case.Case`, its :class:`solver.inputs.Inputs`, a
+  case-file path or a catalogue name
 - ``solve_quasistatic_state(case, initial=None) -> QuasiStaticSolution`` (SI arrays; the dynamic
   model starts from it)
 - ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked along the
   ``inner_ring_speed`` dimension, each speed started from the previous solution (continuation)
-- ``operating_point_from_case(case) -> OperatingPoint`` and
-  ``solve_operating_point(geometry, operating, initial=None)`` for callers that build a
-  :class:`solver.geometry.BearingGeometry` directly
+- ``solve_operating_point(geometry, operating, initial=None)`` for callers that build a
+  :class:`solver.geometry.BearingGeometry` and an :class:`solver.inputs.OperatingPoint` directly
 
 Model summary (details in :mod:`.kernels` and :mod:`solver.physics.kinematics`): unknowns are the
 ball centre positions (2 per ball, solved ball by ball) and the inner ring's 5 DOF (dx, dy, dz,
@@ -27,66 +27,42 @@ x_b = sin(beta) e_x + cos(beta) e_r.
 
 from __future__ import annotations
 
-import math
+import dataclasses
 import os
 
 import numpy as np
 
+from solver.catalogue import resolve_case
 from solver.errors import NoSolutionError
+from solver.inputs import Inputs, OperatingPoint, rpm_to_rad_s, to_inputs
 
-from .solution import OperatingPoint, QuasiStaticSolution
+from .solution import QuasiStaticSolution
 from .solver import solve_operating_point
 
 __all__ = [
     "OperatingPoint",
     "QuasiStaticSolution",
-    "operating_point_from_case",
     "quasistatic_speed_sweep",
     "solve_operating_point",
     "solve_quasistatic",
     "solve_quasistatic_state",
 ]
 
-_RPM = math.pi / 30.0
+
+def _inputs(case) -> Inputs:
+    """SI inputs of a Case, a case-file path or a catalogue name (CaseError if invalid); Inputs
+    as given."""
+    if isinstance(case, Inputs):
+        return case
+    if isinstance(case, str | os.PathLike):
+        case = resolve_case(case)
+    return to_inputs(case)
 
 
-def _get(section, name, default):
-    value = getattr(section, name, None)
-    return default if value is None else value
-
-
-def operating_point_from_case(case) -> OperatingPoint:
-    """SI operating point of ``case.operating`` (case-format.md keys; rpm, N, deg, N m → SI)."""
-    op = case.operating
-    moment = getattr(op, "tilting_moment_Nm", None)
-    return OperatingPoint(
-        inner_ring_speed=float(_get(op, "inner_ring_speed_rpm", 0.0)) * _RPM,
-        outer_ring_speed=float(_get(op, "outer_ring_speed_rpm", 0.0)) * _RPM,
-        axial_load=float(_get(op, "axial_load_N", 0.0)),
-        radial_load=float(_get(op, "radial_load_N", 0.0)),
-        radial_load_angle=math.radians(float(_get(op, "radial_load_angle_deg", 0.0))),
-        misalignment=math.radians(float(_get(op, "misalignment_deg", 0.0))),
-        misalignment_axis=math.radians(float(_get(op, "misalignment_axis_deg", 90.0))),
-        misalignment_frame=str(_get(op, "misalignment_frame", "space")),
-        tilting_moment=None if moment is None else float(moment),
-        moment_axis=math.radians(float(_get(op, "moment_axis_deg", 90.0))),
-    )
-
-
-def _geometry(case):
-    from solver.geometry import BearingGeometry
-
-    return BearingGeometry.from_case(case)
-
-
-def _as_case(case):
-    """A Case as given, or resolved from a case-file path / catalogue name (CaseError if
-    invalid)."""
-    if isinstance(case, (str, os.PathLike)):
-        from solver.catalogue import resolve_case
-
-        return resolve_case(case)
-    return case
+def _film_lubricant(inputs: Inputs):
+    """The lubricant for the film thickness: the case's own, None when the case gives none (the
+    quasi-static result then has no film thickness)."""
+    return inputs.lubricant if inputs.lubricant.given else None
 
 
 def solve_quasistatic_state(
@@ -95,18 +71,17 @@ def solve_quasistatic_state(
     """Quasi-static equilibrium of ``case`` as SI arrays. ``initial`` (a previous solution of the
     same bearing) is used as the starting point when given. Raises NoSolutionError (message: why,
     what to try) when no equilibrium is found."""
-    case = _as_case(case)
-    return solve_operating_point(_geometry(case), operating_point_from_case(case), initial)
+    inputs = _inputs(case)
+    return solve_operating_point(inputs.geometry, inputs.operating, initial)
 
 
 def solve_quasistatic(case):
     """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
     from solver.results.quasistatic import solution_to_dataset
 
-    case = _as_case(case)
-    geometry = _geometry(case)
-    solution = solve_operating_point(geometry, operating_point_from_case(case))
-    return solution_to_dataset(solution, geometry, case, getattr(case, "lubricant", None))
+    inputs = _inputs(case)
+    solution = solve_operating_point(inputs.geometry, inputs.operating)
+    return solution_to_dataset(solution, inputs.geometry, inputs.case_text, _film_lubricant(inputs))
 
 
 def quasistatic_speed_sweep(case, speeds_rpm):
@@ -120,18 +95,15 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     ``operating.inner_ring_speed_rpm`` varies along the sweep (provenance only: the speed of an
     element is its ``inner_ring_speed`` coordinate).
     """
-    import dataclasses
     from datetime import UTC, datetime
 
     import xarray as xr
 
-    from solver.results.dataset import case_text
     from solver.results.quasistatic import solution_to_dataset
 
-    case = _as_case(case)
-    geometry = _geometry(case)
-    base = operating_point_from_case(case)
-    lubricant = getattr(case, "lubricant", None)
+    inputs = _inputs(case)
+    geometry = inputs.geometry
+    lubricant = _film_lubricant(inputs)
     speeds = np.asarray(list(speeds_rpm), dtype=float)
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds)):
         raise ValueError("speeds_rpm must be a non-empty sequence of finite speeds in rpm")
@@ -140,12 +112,12 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     text = (
         "# speed sweep: operating.inner_ring_speed_rpm varies along the sweep "
         f"({', '.join(f'{rpm:g}' for rpm in speeds)} rpm); each element's speed is its "
-        "inner_ring_speed coordinate\n" + case_text(case)
+        "inner_ring_speed coordinate\n" + inputs.case_text
     )
     datasets = []
     previous = None
     for rpm in speeds:
-        op = dataclasses.replace(base, inner_ring_speed=float(rpm) * _RPM)
+        op = dataclasses.replace(inputs.operating, inner_ring_speed=rpm_to_rad_s(rpm))
         try:
             previous = solve_operating_point(geometry, op, previous)
         except NoSolutionError as error:

@@ -6,53 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-
-@dataclass(frozen=True)
-class OperatingPoint:
-    """Operating condition in SI units, loads on the inner ring (case-format.md signs).
-
-    ``misalignment`` is the imposed tilt angle [rad] about the axis at azimuth
-    ``misalignment_axis``; when ``tilting_moment`` [N m] is not None the tilt is solved instead and
-    the moment acts about the axis at azimuth ``moment_axis`` (0 = moment-free tilt).
-    """
-
-    inner_ring_speed: float = 0.0  # rad/s about +x
-    outer_ring_speed: float = 0.0  # rad/s about +x
-    axial_load: float = 0.0  # N, +x presses the inner ring into the balls
-    radial_load: float = 0.0  # N
-    radial_load_angle: float = 0.0  # rad, azimuth psi of the radial load
-    misalignment: float = 0.0  # rad
-    misalignment_axis: float = 0.5 * np.pi  # rad
-    misalignment_frame: str = "space"
-    tilting_moment: float | None = None  # N m; None = tilt imposed
-    moment_axis: float = 0.5 * np.pi  # rad
-
-    @property
-    def tilt_is_free(self) -> bool:
-        return self.tilting_moment is not None
-
-    def applied_loads(self) -> np.ndarray:
-        """(Fx, Fy, Fz, My, Mz) [N, N m] applied to the inner ring (moments zero for imposed
-        tilt)."""
-        moment = self.tilting_moment if self.tilting_moment is not None else 0.0
-        return np.array(
-            [
-                self.axial_load,
-                self.radial_load * np.cos(self.radial_load_angle),
-                self.radial_load * np.sin(self.radial_load_angle),
-                moment * np.cos(self.moment_axis),
-                moment * np.sin(self.moment_axis),
-            ]
-        )
-
-    def imposed_tilt(self) -> np.ndarray:
-        """(theta_y, theta_z) [rad] of the imposed misalignment: rotation vector along the tilt
-        axis."""
-        if self.tilt_is_free:
-            return np.zeros(2)
-        return self.misalignment * np.array(
-            [np.cos(self.misalignment_axis), np.sin(self.misalignment_axis)]
-        )
+from solver.inputs import OperatingPoint
 
 
 @dataclass

@@ -13,6 +13,7 @@ import numpy as np
 from numba import njit
 
 from solver.errors import NoSolutionError
+from solver.inputs import OperatingPoint, rad_s_to_rpm
 from solver.physics.hertz_fast import (
     contact_ellipse_fast,
     curvature_sum_and_difference_fast,
@@ -21,7 +22,7 @@ from solver.physics.hertz_fast import (
 from solver.physics.kinematics import race_control_is_inner
 
 from . import kernels
-from .solution import OperatingPoint, QuasiStaticSolution
+from .solution import QuasiStaticSolution
 
 RING_TOLERANCE = 1e-11  # scaled residual norm at which the ring equilibrium is accepted
 MAX_RING_ITERATIONS = 60
@@ -269,10 +270,6 @@ def solve_operating_point(
     )
 
 
-def _rpm(omega: float) -> float:
-    return omega * 30.0 / math.pi
-
-
 def _no_static_message(problem: _Problem) -> str:
     op = problem.operating
     return (
@@ -293,8 +290,8 @@ def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
         state.q, problem.azimuth, state.position, state.inner_control, model, states
     )
     alpha_o = math.degrees(float(np.min(states[:, 10])))
-    speed = _rpm(reached * op.inner_ring_speed)
-    target = _rpm(op.inner_ring_speed)
+    speed = rad_s_to_rpm(reached * op.inner_ring_speed)
+    target = rad_s_to_rpm(op.inner_ring_speed)
     return (
         f"the quasi-static equilibrium was followed up to {speed:.0f} rpm (of {target:.0f} rpm) "
         f"and lost beyond it; there the smallest outer contact angle was {alpha_o:.1f}°: the "

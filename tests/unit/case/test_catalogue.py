@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from solver.case import CaseError, load_case
+from solver.case import FIELDS, CaseError, parse_case
 from solver.catalogue import catalogue, modest_operating_point, resolve_case
 
 EXPECTED = {
@@ -47,7 +47,7 @@ def test_catalogue_lists_the_required_entries():
 def test_every_entry_loads_and_round_trips(name):
     entry = catalogue().get(name)
     case = entry.load()
-    assert load_case(case.to_toml()) == case
+    assert parse_case(case.to_toml()) == case
     assert case.bearing.provenance == entry.provenance
     if entry.kind == "bearing":  # the starting case keeps the shipped bearing
         assert case.title == entry.title
@@ -100,8 +100,20 @@ def test_7008C_shoulders_lie_on_the_grooves():
 def test_bearing_case_text_has_a_modest_operating_point():
     entry = catalogue().get("7008C-hybrid-spindle")
     text = entry.case_text()
-    assert "# [cage]" in text and "# [lubricant]" in text
-    case = load_case(text)
+    case = parse_case(text)
+    assert case == entry.load()
+    # written by the case writer: estimates and the absent [lubricant] as comments
+    assert text.endswith(case.to_toml())
+    assert "# pocket_diametral_clearance_mm = " in text and "# [lubricant] not given" in text
+    # every value but the bearing and the operating point is the schema's default or estimate
+    assert not case.lubricant_given
+    assert case.estimated == {f.key for f in FIELDS if f.estimated}
+    for f in FIELDS:
+        if f.section in ("cage", "lubricant", "simulation") and not f.estimated:
+            value = case
+            for part in f.path:
+                value = getattr(value, part)
+            assert value == f.default, f.key
     speed, load = modest_operating_point(18, 7.144, 54.0)
     assert case.operating.inner_ring_speed_rpm == speed
     assert abs(speed * 54.0 - 5e5) / 5e5 < 0.05  # d_m n close to 500 000 mm rpm

@@ -10,7 +10,7 @@ import tomli_w
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.case import Case, load_case
+from solver.case import FIELDS, Case, parse_case
 from solver.catalogue import catalogue
 
 
@@ -18,12 +18,12 @@ def test_catalogue_cases_round_trip():
     for entry in catalogue().entries:
         case = entry.load()
         text = case.to_toml()
-        assert load_case(text) == case, entry.name
+        assert parse_case(text) == case, entry.name
         assert Case.from_dict(case.to_dict()) == case, entry.name
 
 
 def test_to_toml_is_readable(valid):
-    case = load_case(tomli_w.dumps(valid))
+    case = parse_case(tomli_w.dumps(valid))
     text = case.to_toml()
     headers = [line for line in text.splitlines() if line.startswith("[")]
     assert headers == ["[bearing]", "[cage]", "[operating]", "[simulation]"]
@@ -35,7 +35,7 @@ def test_to_toml_is_readable(valid):
 
 def test_estimates_follow_the_documented_rules(valid):
     """Cage estimates of docs/case-format.md: 0.028 D, 0.0055 d_m, 0.5 D, polymer-ring mass."""
-    case = load_case(tomli_w.dumps(valid))
+    case = parse_case(tomli_w.dumps(valid))
     D, dm = 7.144, 54.0
     assert math.isclose(case.cage.pocket_diametral_clearance_mm, 0.028 * D)
     assert math.isclose(case.cage.guide_diametral_clearance_mm, 0.0055 * dm)
@@ -49,7 +49,14 @@ def test_estimates_follow_the_documented_rules(valid):
         "cage.guide_diametral_clearance_mm",
         "cage.guide_land_width_mm",
     }
-    assert case.lubricant is None
+    # no [lubricant]: the schema's default oil, and the case says it was not given
+    assert not case.lubricant_given
+    for f in FIELDS:
+        if f.section == "lubricant":
+            value = case
+            for part in f.path:
+                value = getattr(value, part)
+            assert value == f.default, f.key
 
 
 # ---- random valid cases ------------------------------------------------------------------------
@@ -183,11 +190,11 @@ def valid_cases(draw):
 @given(valid_cases())
 def test_random_valid_cases_round_trip(data):
     text = tomli_w.dumps(data)
-    case = load_case(text)
+    case = parse_case(text)
     assert case.bearing.ball_diameter_mm == data["bearing"]["ball_diameter_mm"]
     assert case.operating.axial_load_N == data["operating"]["axial_load_N"]
     written = case.to_toml()
     tomllib.loads(written)  # valid TOML
-    assert load_case(written) == case
+    assert parse_case(written) == case
     assert Case.from_dict(case.to_dict()) == case
-    assert load_case(tomli_w.dumps(case.to_dict())) == case
+    assert parse_case(tomli_w.dumps(case.to_dict())) == case

@@ -10,9 +10,10 @@ from pathlib import Path
 import pytest
 import tomli_w
 
-from solver.case import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, load_case
+from solver.case import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, parse_case
 from solver.case.schema import Field
 from solver.case.validate import _MISSING, check_value
+from solver.case.writer import toml_value
 
 FULL = {
     "cage": {
@@ -49,7 +50,7 @@ def test_every_field_is_an_attribute_with_the_written_value(valid):
     data.update(copy.deepcopy(FULL))
     data["bearing"]["inner_shoulder_diameter_mm"] = 49.0
     data["operating"]["misalignment_deg"] = 0.01
-    case = load_case(tomli_w.dumps(data))
+    case = parse_case(tomli_w.dumps(data))
     for f in FIELDS:
         expected = data
         for part in f.path:
@@ -110,7 +111,7 @@ def test_numbers_reject_text_and_non_finite(f):
 
 @pytest.mark.parametrize("f", [f for f in FIELDS if f.type == "choice"], ids=lambda f: f.key)
 def test_every_choice_is_accepted_and_others_rejected(valid, f):
-    case = load_case(tomli_w.dumps(valid))
+    case = parse_case(tomli_w.dumps(valid))
     for choice in f.choices:
         assert _get(case.with_values({f.key: choice}), f.path) == choice
     problems = []
@@ -126,7 +127,7 @@ def test_plain_defaults_satisfy_their_own_rules():
 
 
 def test_estimates_satisfy_their_own_rules(valid):
-    case = load_case(tomli_w.dumps(valid))
+    case = parse_case(tomli_w.dumps(valid))
     for f in FIELDS:
         if isinstance(f.default, Estimated):
             value = _get(case, f.path)
@@ -141,7 +142,50 @@ def test_field_metadata_is_complete():
         assert isinstance(f, Field)
 
 
-def test_every_key_is_documented():
+def _default_cell(f) -> str:
+    if f.default is REQUIRED:
+        return "**required**"
+    if f.default is OPTIONAL:
+        return "absent"
+    if isinstance(f.default, Estimated):
+        return f"estimated: {f.default.description}"
+    return f"`{toml_value(f.default)}`"
+
+
+def test_every_key_is_documented_as_in_the_schema():
+    """docs/case-format.md lists every key with the schema's unit, default, bounds and help."""
     doc = (Path(__file__).parents[3] / "docs" / "case-format.md").read_text()
+    for f in FIELDS:
+        unit = f.unit or "–"
+        row = f"| `{f.key}` | {unit} | {_default_cell(f)} | {f.allowed_text()} | {f.help} |"
+        assert row in doc.splitlines(), row
+    for f in MATERIAL_FIELDS:
+        row = f"| `{f.key}` | {f.unit or '–'} | {f.allowed_text()} | {f.help} |"
+        assert row in doc.splitlines(), row
+
+
+def test_every_number_has_bounds_with_reasons():
+    """An upper bound on every number keeps values within what the solvers compute without
+    overflow; each bound says why in its messages."""
     for f in FIELDS + MATERIAL_FIELDS:
-        assert f"`{f.key}`" in doc, f.key
+        if f.type not in ("float", "int"):
+            continue
+        assert f.minimum is not None and f.maximum is not None, f.key
+        assert f.reason and (f.reason_high or f.reason), f.key
+        assert math.isfinite(f.minimum) and math.isfinite(f.maximum), f.key
+
+
+def test_every_simulation_switch_has_its_default_in_the_schema(valid):
+    """The [simulation] switches have plain defaults (the full model), read into every case."""
+    case = parse_case(tomli_w.dumps(valid))
+    expected = {
+        "ball_race_traction": True,
+        "contact_damping_ratio": 0.05,
+        "gravity_m_s2": 9.81,
+        "tolerance": 1e-4,
+        "model_cage": True,
+    }
+    for name, value in expected.items():
+        f = next(f for f in FIELDS if f.key == f"simulation.{name}")
+        assert f.default == value and getattr(case.simulation, name) == value, name
+    assert all(f.default is not OPTIONAL for f in FIELDS if f.section == "simulation")

@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from solver.case.validate import validate
+from solver.case import Case
 
 DELETE = object()
 
@@ -356,13 +356,13 @@ def test_too_many_balls_names_how_many_fit(valid, problems):
     assert f"{z_max + 1} balls of diameter 7.144 mm do not fit" in message
     assert f"at most {z_max} fit" in message
     ok = edit(valid, {"bearing.ball_count": z_max})
-    assert validate(ok).bearing.ball_count == z_max
+    assert Case.from_dict(ok).bearing.ball_count == z_max
 
 
 def test_clearance_just_below_sixty_degrees_is_accepted(valid):
     """alpha_0 = 60 deg at P_d = A_0 = (f_i + f_o - 1) D; just below it the case is valid."""
     a0 = (0.54 + 0.53 - 1.0) * 7.144
-    case = validate(
+    case = Case.from_dict(
         edit(
             valid,
             {
@@ -393,12 +393,12 @@ def test_user_material_cannot_shadow_builtin(valid, problems):
 
 def test_misalignment_or_moment_alone_holds_the_balls(valid):
     base = edit(valid, {"operating.axial_load_N": 0.0, "operating.radial_load_N": 0.0})
-    assert validate(edit(copy.deepcopy(base), {"operating.misalignment_deg": 0.05}))
-    assert validate(edit(copy.deepcopy(base), {"operating.tilting_moment_Nm": 1.0}))
+    assert Case.from_dict(edit(copy.deepcopy(base), {"operating.misalignment_deg": 0.05}))
+    assert Case.from_dict(edit(copy.deepcopy(base), {"operating.tilting_moment_Nm": 1.0}))
 
 
 def test_integral_float_ball_count_is_accepted_as_int(valid):
-    case = validate(edit(valid, {"bearing.ball_count": 18.0}))
+    case = Case.from_dict(edit(valid, {"bearing.ball_count": 18.0}))
     assert case.bearing.ball_count == 18 and isinstance(case.bearing.ball_count, int)
 
 
@@ -443,7 +443,7 @@ def test_land_beyond_the_pitch_circle_is_an_error(valid, problems, key, value, w
 
 
 def test_lands_just_inside_the_pitch_circle_are_accepted(valid):
-    case = validate(
+    case = Case.from_dict(
         edit(
             valid,
             {
@@ -473,7 +473,7 @@ def test_swapped_lands_are_rejected_both(valid, problems):
 
 def test_lands_off_their_groove_still_load(valid):
     """The contract example's lands (below / beyond the groove bottoms) load with a warning."""
-    case = validate(
+    case = Case.from_dict(
         edit(
             valid,
             {
@@ -538,7 +538,7 @@ def test_rule_between_keys_names_the_related_keys(valid, changes, key, related):
     from solver.errors import CaseError
 
     with pytest.raises(CaseError) as info:
-        validate(edit(valid, changes))
+        Case.from_dict(edit(valid, changes))
     (problem,) = [p for p in info.value.problems if p.key == key]
     assert related <= set(problem.related_keys)
     for other in related:
@@ -594,7 +594,7 @@ def test_every_message_has_no_nested_brackets(valid):
 
 
 def test_every_bound_states_its_unit(valid, problems):
-    from solver.case.schema import FIELDS
+    from solver.case.schema import FIELDS, format_number
 
     checked = 0
     for f in FIELDS:
@@ -604,6 +604,43 @@ def test_every_bound_states_its_unit(valid, problems):
             if bound is None:
                 continue
             (message,) = problems(edit(copy.deepcopy(valid), {f.key: bound + step}))[f.key]
-            assert f"{bound:g} {f.unit}" in message, message
+            assert f"{format_number(bound)} {f.unit}" in message, message
             checked += 1
     assert checked >= 15
+
+
+def test_traction_rule_holds_for_the_defaults_of_keys_not_given(valid, problems):
+    """mu_max = 0.03 alone: the default mu_infinity (0.036) would exceed the peak."""
+    found = problems(edit(copy.deepcopy(valid), {"lubricant.traction": {"mu_max": 0.03}}))
+    (message,) = found["lubricant.traction.mu_infinity"]
+    assert "mu_infinity = 0.036 (the default)" in message and "mu_max = 0.03" in message
+    ok = edit(valid, {"lubricant.traction": {"mu_max": 0.03, "mu_infinity": 0.02}})
+    assert Case.from_dict(ok).lubricant.traction.mu_infinity == 0.02
+
+
+def test_equal_ring_speeds_are_valid_but_not_for_the_dynamic_model(valid):
+    from solver.case import dynamic_problems
+
+    case = Case.from_dict(edit(copy.deepcopy(valid), {"operating.outer_ring_speed_rpm": 20000.0}))
+    (problem,) = dynamic_problems(case)
+    assert problem.key == "operating.inner_ring_speed_rpm"
+    assert "operating.outer_ring_speed_rpm" in problem.keys
+    assert "turn relative to each other" in problem.message and "20000" in problem.message
+    assert dynamic_problems(Case.from_dict(valid)) == []
+    at_rest = Case.from_dict(edit(copy.deepcopy(valid), {"operating.inner_ring_speed_rpm": 0.0}))
+    assert dynamic_problems(at_rest)
+
+
+def test_a_dynamic_run_too_large_for_memory_is_refused_with_the_numbers(valid):
+    from solver.case import dynamic_problems
+    from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES
+
+    # 18 balls: 1000 revolutions at 180 samples is 3.24 million ball-samples
+    big = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": 1000.0}})
+    (problem,) = dynamic_problems(Case.from_dict(big))
+    assert problem.key == "simulation.shaft_revolutions"
+    assert "180000 samples of 18 balls" in problem.message
+    assert "bearing.ball_count" in problem.keys
+    limit = MAX_DYNAMIC_BALL_SAMPLES // (18 * 180) * 1.0  # revolutions at the limit
+    ok = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": limit}})
+    assert dynamic_problems(Case.from_dict(ok)) == []

@@ -7,12 +7,12 @@ import math
 import pytest
 import tomli_w
 
-from solver.case import CaseError, load_case
+from solver.case import CaseError, parse_case
 
 
 @pytest.fixture
 def case(valid):
-    return load_case(tomli_w.dumps(valid))
+    return parse_case(tomli_w.dumps(valid))
 
 
 def test_changes_only_the_given_keys(case):

@@ -1,4 +1,4 @@
-"""Reading a real case (solver.case / catalogue) into the dynamic model's SI inputs."""
+"""The SI inputs of a real case (solver.inputs.to_inputs), as the dynamic model reads them."""
 
 from __future__ import annotations
 
@@ -8,31 +8,45 @@ import numpy as np
 import pytest
 
 import solver
+from solver.case.schema import field
 from solver.catalogue import resolve_case
-from solver.models.dynamic import SimulationOptions, inputs_from_case
-from solver.models.dynamic.inputs import DEFAULT_OIL
+from solver.inputs import to_inputs
+from solver.models.dynamic import SimulationOptions
 
 
 def test_spindle_case_is_converted_to_si():
     case = resolve_case("spindle-combined-load")
-    inp = inputs_from_case(case)
-    assert inp.inner_speed == pytest.approx(20000.0 * math.pi / 30.0)
-    assert inp.axial_load == 500.0 and inp.radial_load == 300.0
+    inp = to_inputs(case)
+    op = inp.operating
+    assert op.inner_ring_speed == pytest.approx(20000.0 * 2.0 * math.pi / 60.0, rel=1e-15)
+    assert op.axial_load == 500.0 and op.radial_load == 300.0
+    assert op.misalignment_axis == pytest.approx(math.pi / 2, rel=1e-15)
     assert inp.geometry.ball_count == 18
-    assert inp.default_lubricant is False
-    assert inp.viscosity == pytest.approx(case.lubricant.viscosity_Pas)
-    assert inp.pressure_viscosity == pytest.approx(case.lubricant.pressure_viscosity_per_GPa * 1e-9)
-    assert inp.pocket_clearance == pytest.approx(case.cage.pocket_diametral_clearance_mm * 1e-3)
-    assert inp.cage_mass == pytest.approx(case.cage.mass_g * 1e-3)
-    assert inp.tilting_moment is None and inp.misalignment == 0.0
-    assert "[bearing]" in inp.case_text
+    assert inp.geometry.ball_diameter == pytest.approx(7.144e-3, rel=1e-15)
+    assert inp.lubricant.given is True
+    assert inp.lubricant.viscosity == case.lubricant.viscosity_Pas
+    assert inp.lubricant.pressure_viscosity == pytest.approx(
+        case.lubricant.pressure_viscosity_per_GPa / 1e9, rel=1e-15
+    )
+    assert inp.cage.pocket_clearance == pytest.approx(
+        case.cage.pocket_diametral_clearance_mm / 1000.0, rel=1e-15
+    )
+    assert inp.cage.mass == pytest.approx(case.cage.mass_g / 1000.0, rel=1e-15)
+    assert op.tilting_moment is None and op.misalignment == 0.0
+    assert solver.parse_case(inp.case_text) == case
 
 
-def test_case_without_lubricant_uses_the_documented_default_oil():
-    inp = inputs_from_case(resolve_case("218-heavy-combined"))
-    assert inp.default_lubricant is True
-    assert inp.viscosity == DEFAULT_OIL["viscosity"]
-    assert inp.traction_curve == DEFAULT_OIL["traction"]
+def test_case_without_lubricant_uses_the_schema_oil_and_says_so():
+    inp = to_inputs(resolve_case("218-heavy-combined"))
+    assert inp.lubricant.given is False
+    assert inp.lubricant.viscosity == field("lubricant.viscosity_Pas").default
+    curve = inp.lubricant.traction
+    assert (curve.mu_zero, curve.mu_max, curve.slip_at_max, curve.mu_infinity) == tuple(
+        field(f"lubricant.traction.{name}").default
+        for name in ("mu_zero", "mu_max", "slip_at_max_m_s", "mu_infinity")
+    )
+    assert "no [lubricant] in the case" in inp.lubricant.description
+    assert "viscosity 0.01 Pa s" in inp.lubricant.description
 
 
 def test_public_api_runs_a_catalogue_case():

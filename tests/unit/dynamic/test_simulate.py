@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from solver.errors import SimulationDiverged
+from solver.errors import CaseError, SimulationDiverged
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.results.io import load_dataset, save_dataset
 from solver.results.variables import VARIABLES
@@ -171,16 +171,39 @@ def xr_align(a, b):
     return a.transpose(*b.dims).values, b.values
 
 
-def test_optional_simulation_keys_of_a_case_set_the_options():
-    from types import SimpleNamespace
-
+def test_simulation_keys_of_a_case_set_the_switches_and_options_override_them():
     from solver.catalogue import resolve_case
-    from solver.models.dynamic.options import options_from_case
+    from solver.inputs import to_inputs
 
     case = resolve_case("spindle-combined-load").with_values(
         {"simulation.ball_race_traction": False, "simulation.gravity_m_s2": 0.0}
     )
-    opts = options_from_case(case)
-    assert opts.traction is False and opts.gravity == 0.0
-    assert opts.tolerance == SimulationOptions().tolerance  # not given: default
-    assert options_from_case(SimpleNamespace()) == SimulationOptions()
+    sim = to_inputs(case).simulation
+    assert sim.traction is False and sim.gravity == 0.0
+    resolved = SimulationOptions().resolved(sim)
+    assert resolved.traction is False and resolved.gravity == 0.0
+    assert resolved.tolerance == sim.tolerance == 1e-4  # not given: the schema default
+    overridden = SimulationOptions(traction=True, tolerance=1e-3).resolved(sim)
+    assert overridden.traction is True and overridden.tolerance == 1e-3
+    assert overridden.gravity == 0.0
+
+
+def test_options_are_checked_against_the_case_key_bounds():
+    with pytest.raises(CaseError) as info:
+        SimulationOptions(tolerance=0.1, damping_ratio=-1.0).validated()
+    text = str(info.value)
+    assert "simulation option tolerance = 0.1: must be at most 0.01" in text
+    assert "simulation option damping_ratio = -1: must be at least 0" in text
+
+
+def test_equal_ring_speeds_are_refused_by_the_validator_rule():
+    from solver.case import dynamic_problems
+    from solver.catalogue import resolve_case
+
+    case = resolve_case("spindle-combined-load").with_values(
+        {"operating.outer_ring_speed_rpm": 20000.0}
+    )
+    with pytest.raises(CaseError) as info:
+        simulate(case)
+    assert info.value.problems == dynamic_problems(case)
+    assert info.value.for_key("operating.outer_ring_speed_rpm")

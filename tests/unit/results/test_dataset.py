@@ -135,12 +135,12 @@ def test_a_result_without_coordinates_is_refused_with_a_reason(combined):
 
 def test_builder_refuses_dimensions_that_differ_from_the_registry():
     geometry = resolve_case("spindle-combined-load").geometry()
-    from solver.models.quasistatic import OperatingPoint
+    from tests.helpers.dyn_bearings import operating_point
 
     with pytest.raises(RuntimeError, match="contact_load"):
         build_result(
             "quasistatic",
             {"contact_load": (("ball",), np.zeros(18))},
             geometry,
-            OperatingPoint(inner_ring_speed=1.0),
+            operating_point(1.0),
         )

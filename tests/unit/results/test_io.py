@@ -31,10 +31,10 @@ def test_round_trip_keeps_values_strings_and_attributes(tmp_path):
 
 
 def test_round_trip_of_a_model_dataset(tmp_path):
-    from solver.case import load_case
+    from solver.case import parse_case
     from solver.models.quasistatic import solve_quasistatic
 
-    ds = solve_quasistatic(load_case(DEEP_GROOVE_RADIAL))
+    ds = solve_quasistatic(parse_case(DEEP_GROOVE_RADIAL))
     back = load_dataset(save_dataset(ds, tmp_path / "qs.nc"))
     xr.testing.assert_identical(back, ds)
 

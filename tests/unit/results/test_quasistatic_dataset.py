@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 import pytest
 
-from solver.case import load_case
+from solver.case import parse_case
 from solver.models.quasistatic import quasistatic_speed_sweep, solve_quasistatic
 from solver.physics.hertz import race_contact
 from tests.helpers import cases
@@ -41,7 +41,7 @@ SCHEMA_QS = {
 
 @pytest.fixture(scope="module")
 def spindle_case():
-    return load_case(cases.SPINDLE)
+    return parse_case(cases.SPINDLE)
 
 
 @pytest.fixture(scope="module")
@@ -64,7 +64,7 @@ def test_schema_variables_units_and_attributes(spindle_ds, spindle_case):
     assert "film_thickness" not in ds  # no lubricant in the case
     assert ds.attrs["model"] == "quasistatic" and ds.attrs["complete"] == 1
     assert ds.attrs["software"].startswith("racetrace ")
-    assert load_case(ds.attrs["case"]) == spindle_case
+    assert parse_case(ds.attrs["case"]) == spindle_case
     from datetime import datetime
 
     datetime.fromisoformat(ds.attrs["created"])
@@ -134,7 +134,7 @@ def test_kingsbury_latitudes_and_outer_control_spin(spindle_ds):
 
 
 def test_film_thickness_is_zero_at_open_contacts():
-    ds = solve_quasistatic(load_case(cases.DEEP_GROOVE_RADIAL + cases.LUBRICANT))
+    ds = solve_quasistatic(parse_case(cases.DEEP_GROOVE_RADIAL + cases.LUBRICANT))
     open_inner = ds.contact_load.values[:, 0] == 0.0
     assert open_inner.any()
     assert np.all(ds.film_thickness.values[open_inner, 0] == 0.0)
@@ -142,7 +142,7 @@ def test_film_thickness_is_zero_at_open_contacts():
 
 
 def test_film_thickness_only_with_a_lubricant():
-    ds = solve_quasistatic(load_case(cases.SPINDLE + cases.LUBRICANT))
+    ds = solve_quasistatic(parse_case(cases.SPINDLE + cases.LUBRICANT))
     h = ds.film_thickness.values
     assert ds.film_thickness.attrs["units"] == "m"
     assert np.all(np.isfinite(h)) and np.all(h > 1e-8) and np.all(h < 1e-5)
@@ -151,7 +151,7 @@ def test_film_thickness_only_with_a_lubricant():
 def test_unloaded_balls_in_the_dataset_are_zero_not_nan():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        ds = solve_quasistatic(load_case(cases.DEEP_GROOVE_RADIAL))
+        ds = solve_quasistatic(parse_case(cases.DEEP_GROOVE_RADIAL))
     open_inner = ds.contact_load.values[:, 0] == 0.0
     assert open_inner.sum() >= 3
     for name in ("ellipse_semi_major", "ellipse_semi_minor", "max_pressure", "contact_deflection"):

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from solver.catalogue import resolve_case
-from solver.models.quasistatic import OperatingPoint
 from solver.results import summary
 from solver.results.dataset import build_result
+from tests.helpers.dyn_bearings import operating_point
 
 OMEGA = 2 * math.pi * 100.0  # inner ring, rad/s: one shaft revolution = 10 ms
 PERIOD = 2 * math.pi / OMEGA
@@ -107,9 +107,7 @@ def dynamic_result(revolutions: float, spin_to_roll=None, angle_offset=None, mis
         "spin_to_roll": (dims, np.broadcast_to(ratio[:, None, None], both.shape)),
     }
     geometry = resolve_case("spindle-combined-load").geometry()
-    return build_result(
-        "dynamic", data, geometry, OperatingPoint(inner_ring_speed=OMEGA), times=times
-    )
+    return build_result("dynamic", data, geometry, operating_point(OMEGA), times=times)
 
 
 def test_a_track_fixed_in_space_is_a_line_on_the_outer_and_a_band_on_the_inner_ring():

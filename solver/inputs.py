@@ -1,0 +1,268 @@
+"""The models' inputs in SI units, built once from a validated case by :func:`to_inputs`.
+
+This module is the one place where the units of the case keys (mm, rpm, degree, g, GPa, 1/GPa)
+become SI (m, rad/s, rad, kg, Pa, 1/Pa); both models read :class:`Inputs` and never a case. Every
+value arrives filled in: defaults and estimates come from the case schema
+(:data:`solver.case.schema.FIELDS`), not from here.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .geometry import BearingGeometry, free_contact_angle_from_clearance
+from .materials import Material
+
+#: SI value of one case unit.
+MM = 1e-3  # m
+GRAM = 1e-3  # kg
+RPM = math.pi / 30.0  # rad/s
+GPA = 1e9  # Pa
+PER_GPA = 1e-9  # 1/Pa
+
+
+def rpm_to_rad_s(rpm: float) -> float:
+    """A speed in rpm as rad/s."""
+    return float(rpm) * RPM
+
+
+def rad_s_to_rpm(omega: float) -> float:
+    """A speed in rad/s as rpm (for messages and tables)."""
+    return omega * 30.0 / math.pi
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """Operating condition in SI units, loads on the inner ring (case-format.md signs).
+
+    ``misalignment`` is the imposed tilt angle [rad] about the axis at azimuth
+    ``misalignment_axis``; when ``tilting_moment`` [N m] is not None the tilt is solved instead and
+    the moment acts about the axis at azimuth ``moment_axis`` (0 = moment-free tilt).
+    """
+
+    inner_ring_speed: float  # rad/s about +x
+    outer_ring_speed: float  # rad/s about +x
+    axial_load: float  # N, +x presses the inner ring into the balls
+    radial_load: float  # N
+    radial_load_angle: float  # rad, azimuth psi of the radial load
+    misalignment: float  # rad
+    misalignment_axis: float  # rad
+    misalignment_frame: str  # "space" | "ring"
+    tilting_moment: float | None  # N m; None = tilt imposed
+    moment_axis: float  # rad
+
+    @property
+    def tilt_is_free(self) -> bool:
+        return self.tilting_moment is not None
+
+    def applied_loads(self) -> np.ndarray:
+        """(Fx, Fy, Fz, My, Mz) [N, N m] applied to the inner ring (moments zero for imposed
+        tilt)."""
+        moment = self.tilting_moment if self.tilting_moment is not None else 0.0
+        return np.array(
+            [
+                self.axial_load,
+                self.radial_load * np.cos(self.radial_load_angle),
+                self.radial_load * np.sin(self.radial_load_angle),
+                moment * np.cos(self.moment_axis),
+                moment * np.sin(self.moment_axis),
+            ]
+        )
+
+    def imposed_tilt(self) -> np.ndarray:
+        """(theta_y, theta_z) [rad] of the imposed misalignment: rotation vector along the tilt
+        axis."""
+        if self.tilt_is_free:
+            return np.zeros(2)
+        return self.misalignment * np.array(
+            [np.cos(self.misalignment_axis), np.sin(self.misalignment_axis)]
+        )
+
+
+@dataclass(frozen=True)
+class CageInputs:
+    """The cage, SI units. Clearances are diametral."""
+
+    guidance: str  # "outer_ring" | "inner_ring" | "ball"
+    pocket_clearance: float  # m
+    guide_clearance: float  # m
+    mass: float  # kg
+    pocket_friction: float
+    guide_land_width: float  # m
+
+
+@dataclass(frozen=True)
+class TractionCurve:
+    """Properties of the traction curve mu(slip speed) (solver.physics.traction)."""
+
+    mu_zero: float
+    mu_max: float
+    slip_at_max: float  # m/s
+    mu_infinity: float
+
+    def values(self) -> tuple[float, float, float, float]:
+        """(mu_zero, mu_max, slip_at_max, mu_infinity), the argument order of
+        :func:`solver.physics.traction.traction_curve_parameters`."""
+        return (self.mu_zero, self.mu_max, self.slip_at_max, self.mu_infinity)
+
+
+@dataclass(frozen=True)
+class LubricantInputs:
+    """The lubricant, SI units. ``given`` is False when the case has no ``[lubricant]`` section
+    and these are the schema's default oil."""
+
+    viscosity: float  # Pa s
+    pressure_viscosity: float  # 1/Pa
+    traction: TractionCurve
+    given: bool
+
+    @property
+    def description(self) -> str:
+        """Where the lubricant data come from, in words (results attribute ``lubricant``)."""
+        if self.given:
+            return "from the case [lubricant]"
+        t = self.traction
+        return (
+            "no [lubricant] in the case: the default oil of the case schema was used (viscosity "
+            f"{self.viscosity:g} Pa s, pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
+            f"/GPa, traction mu_zero {t.mu_zero:g}, mu_max {t.mu_max:g} at {t.slip_at_max:g} m/s, "
+            f"mu_infinity {t.mu_infinity:g}; docs/case-format.md)"
+        )
+
+
+@dataclass(frozen=True)
+class SimulationInputs:
+    """Length, sampling and physics switches of a dynamic run."""
+
+    shaft_revolutions: float
+    samples_per_revolution: int
+    traction: bool  # EHL traction at the ball-race contacts (False: frictionless)
+    damping_ratio: float  # critical-damping ratio of the ball-race normal contacts
+    gravity: float  # m/s^2, along -z
+    tolerance: float  # local error tolerance of the integrator (relative to the state scales)
+    cage: bool  # model the cage (False: balls free to bunch)
+
+
+@dataclass(frozen=True)
+class Inputs:
+    """Everything the models read from a case, SI units. ``case_text`` is for provenance only."""
+
+    geometry: BearingGeometry
+    operating: OperatingPoint
+    cage: CageInputs
+    lubricant: LubricantInputs
+    simulation: SimulationInputs
+    case_text: str = ""
+
+
+# ---- from a validated case ----------------------------------------------------------------------
+def material_from_table(name: str, table: dict) -> Material:
+    """SI :class:`Material` from a validated material table (GPa, -, kg/m^3 as written)."""
+    return Material(
+        name,
+        float(table["youngs_modulus_GPa"]) * GPA,
+        float(table["poisson_ratio"]),
+        float(table["density_kg_m3"]),
+    )
+
+
+def bearing_geometry(case) -> BearingGeometry:
+    """Geometry of ``case.bearing`` with the case's resolved materials (mm and degrees → SI)."""
+    b = case.bearing
+    D = b.ball_diameter_mm * MM
+    f_i, f_o = b.inner_groove_radius_ratio, b.outer_groove_radius_ratio
+    if b.free_contact_angle_deg is not None:
+        alpha0 = math.radians(b.free_contact_angle_deg)
+    else:
+        alpha0 = free_contact_angle_from_clearance(D, f_i, f_o, b.diametral_clearance_mm * MM)
+
+    def mm(value):
+        return math.nan if value is None else value * MM
+
+    return BearingGeometry(
+        ball_count=int(b.ball_count),
+        ball_diameter=D,
+        pitch_diameter=b.pitch_diameter_mm * MM,
+        inner_conformity=f_i,
+        outer_conformity=f_o,
+        free_contact_angle=alpha0,
+        ball_material=case.ball_material,
+        ring_material=case.ring_material,
+        inner_shoulder_diameter=mm(b.inner_shoulder_diameter_mm),
+        outer_shoulder_diameter=mm(b.outer_shoulder_diameter_mm),
+    )
+
+
+def operating_point(operating) -> OperatingPoint:
+    """SI operating point of a case's ``[operating]`` section (rpm, N, degree, N m)."""
+    op = operating
+    moment = op.tilting_moment_Nm
+    misalignment = op.misalignment_deg
+    return OperatingPoint(
+        inner_ring_speed=rpm_to_rad_s(op.inner_ring_speed_rpm),
+        outer_ring_speed=rpm_to_rad_s(op.outer_ring_speed_rpm),
+        axial_load=float(op.axial_load_N),
+        radial_load=float(op.radial_load_N),
+        radial_load_angle=math.radians(float(op.radial_load_angle_deg)),
+        misalignment=0.0 if misalignment is None else math.radians(float(misalignment)),
+        misalignment_axis=math.radians(float(op.misalignment_axis_deg)),
+        misalignment_frame=str(op.misalignment_frame),
+        tilting_moment=None if moment is None else float(moment),
+        moment_axis=math.radians(float(op.moment_axis_deg)),
+    )
+
+
+def cage_inputs(cage) -> CageInputs:
+    """SI cage of a case's ``[cage]`` section (mm and g)."""
+    return CageInputs(
+        guidance=str(cage.guidance),
+        pocket_clearance=float(cage.pocket_diametral_clearance_mm) * MM,
+        guide_clearance=float(cage.guide_diametral_clearance_mm) * MM,
+        mass=float(cage.mass_g) * GRAM,
+        pocket_friction=float(cage.pocket_friction),
+        guide_land_width=float(cage.guide_land_width_mm) * MM,
+    )
+
+
+def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
+    """SI lubricant of a case's ``[lubricant]`` section (Pa s, 1/GPa, m/s)."""
+    t = lubricant.traction
+    return LubricantInputs(
+        viscosity=float(lubricant.viscosity_Pas),
+        pressure_viscosity=float(lubricant.pressure_viscosity_per_GPa) * PER_GPA,
+        traction=TractionCurve(
+            mu_zero=float(t.mu_zero),
+            mu_max=float(t.mu_max),
+            slip_at_max=float(t.slip_at_max_m_s),
+            mu_infinity=float(t.mu_infinity),
+        ),
+        given=bool(given),
+    )
+
+
+def simulation_inputs(simulation) -> SimulationInputs:
+    """Run length and switches of a case's ``[simulation]`` section."""
+    return SimulationInputs(
+        shaft_revolutions=float(simulation.shaft_revolutions),
+        samples_per_revolution=int(simulation.samples_per_revolution),
+        traction=bool(simulation.ball_race_traction),
+        damping_ratio=float(simulation.contact_damping_ratio),
+        gravity=float(simulation.gravity_m_s2),
+        tolerance=float(simulation.tolerance),
+        cage=bool(simulation.model_cage),
+    )
+
+
+def to_inputs(case) -> Inputs:
+    """SI :class:`Inputs` of a validated :class:`solver.case.Case`."""
+    return Inputs(
+        geometry=bearing_geometry(case),
+        operating=operating_point(case.operating),
+        cage=cage_inputs(case.cage),
+        lubricant=lubricant_inputs(case.lubricant, case.lubricant_given),
+        simulation=simulation_inputs(case.simulation),
+        case_text=case.to_toml(),
+    )
