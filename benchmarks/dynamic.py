@@ -48,7 +48,7 @@ def running_state(inputs, options, revolutions=0.1):
     par = build_params(inputs, options)
     quad = build_quadrature(options)
     y = initial_state(par, quad)
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     scale = state_scales(par, y)
     op = inputs.operating
     t_end = revolutions * 2.0 * np.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
@@ -78,7 +78,7 @@ def rhs_cost(inputs, options, y, repeats=300):
     """Seconds per right-hand-side evaluation at state ``y`` (best of 7 batches)."""
     par = build_params(inputs, options)
     quad = build_quadrature(options)
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)

@@ -22,7 +22,6 @@ from numba import njit
 from solver.physics.cage_contact import (
     LAND_KIN_SIZE,
     LAND_OUT_SIZE,
-    LAND_PARAM_SIZE,
     LK_CAGE_SPEED,
     LK_OFFSET,
     LK_RING_SPEED,
@@ -38,7 +37,6 @@ from solver.physics.cage_contact import (
     PO_POINT,
     POCKET_KIN_SIZE,
     POCKET_OUT_SIZE,
-    POCKET_PARAM_SIZE,
     land_force,
     pocket_contact,
 )
@@ -84,6 +82,9 @@ from .layout import (
     C_TILT_RATE,
     C_VEL,
     CAGE_SIZE,
+    GUIDE_BALL,
+    GUIDE_INNER_RING,
+    GUIDE_OUTER_RING,
     K_ANGLE,
     K_AZIMUTH,
     K_DEFLECTION,
@@ -104,47 +105,6 @@ from .layout import (
     K_SEMI_MINOR,
     K_SLIDE,
     K_SPIN,
-    P_CAGE_ON,
-    P_CAGE_R,
-    P_D,
-    P_DM,
-    P_EPRIME,
-    P_FI,
-    P_FO,
-    P_FX,
-    P_FY,
-    P_FZ,
-    P_GRAVITY,
-    P_GUIDE,
-    P_HEATHCOTE,
-    P_IC,
-    P_ICD,
-    P_IRD,
-    P_IRP,
-    P_JB,
-    P_LAND_BLOCK,
-    P_MB,
-    P_MC,
-    P_MR,
-    P_MU_A,
-    P_MU_D,
-    P_MY,
-    P_MZ,
-    P_POCKET_BLOCK,
-    P_RCI,
-    P_RCO,
-    P_RI,
-    P_RING_FREE,
-    P_RO,
-    P_TILT_MODE,
-    P_TRACTION,
-    P_V_REG,
-    P_WI,
-    P_WO,
-    P_XCI,
-    P_XCO,
-    P_Z,
-    P_ZETA,
     R_PHI_INNER,
     R_PHI_OUTER,
     R_POS,
@@ -152,6 +112,8 @@ from .layout import (
     R_TILT_RATE,
     R_VEL,
     RING_SIZE,
+    TILT_FREE,
+    TILT_TURNING_WITH_RING,
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -213,16 +175,16 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
     fixed in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring):
     R = R_x(phi) R(g). Outer ring: R = R_x(phi_o) about the fixed axis.
     """
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     rb = BALL_STRIDE * z
     tilt = np.empty((3, 3))
     rotation_from_vector(0.0, y[rb + R_TILT], y[rb + R_TILT + 1], tilt)
     phi = y[rb + R_PHI_INNER]
     spin = np.empty((3, 3))
     rotation_from_vector(phi, 0.0, 0.0, spin)
-    mode = int(par[P_TILT_MODE])
-    wi = par[P_WI]
-    if mode == 1:
+    mode = par.tilt_mode
+    wi = par.inner_speed
+    if mode == TILT_TURNING_WITH_RING:
         inner_rot[:, :] = spin @ tilt
         inner_omega[0] = wi
         inner_omega[1] = 0.0
@@ -231,14 +193,14 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
         inner_rot[:, :] = tilt @ spin
         for i in range(3):
             inner_omega[i] = wi * tilt[i, 0]
-        if mode == 2:
+        if mode == TILT_FREE:
             inner_omega[1] += y[rb + R_TILT_RATE]
             inner_omega[2] += y[rb + R_TILT_RATE + 1]
     for i in range(3):
         inner_origin[i] = y[rb + R_POS + i]
         inner_vel[i] = y[rb + R_VEL + i]
     rotation_from_vector(y[rb + R_PHI_OUTER], 0.0, 0.0, outer_rot)
-    outer_omega[0] = par[P_WO]
+    outer_omega[0] = par.outer_speed
     outer_omega[1] = 0.0
     outer_omega[2] = 0.0
 
@@ -282,12 +244,24 @@ def ball_race_contact(
     ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
     array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
     """
-    dball = par[P_D]
+    dball = par.ball_diameter
     rball = 0.5 * dball
     if is_inner:
-        xc, rc, rg, conf, sgn = par[P_XCI], par[P_RCI], par[P_RI], par[P_FI], -1.0
+        xc, rc, rg, conf, sgn = (
+            par.inner_centre_axial,
+            par.inner_centre_radius,
+            par.inner_groove_radius,
+            par.inner_conformity,
+            -1.0,
+        )
     else:
-        xc, rc, rg, conf, sgn = par[P_XCO], par[P_RCO], par[P_RO], par[P_FO], 1.0
+        xc, rc, rg, conf, sgn = (
+            par.outer_centre_axial,
+            par.outer_centre_radius,
+            par.outer_groove_radius,
+            par.outer_conformity,
+            1.0,
+        )
     pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
     vbx, vby, vbz = y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2]
     wbx, wby, wbz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
@@ -355,8 +329,8 @@ def ball_race_contact(
     sn = sx * nix + sy * niy + sz * niz
     entrain = 0.5 * math.sqrt(max(sx * sx + sy * sy + sz * sz - sn * sn, 0.0))
     # Hertz with the current contact angle
-    gamma = dball * ca / par[P_DM]
-    eprime = par[P_EPRIME]
+    gamma = dball * ca / par.pitch_diameter
+    eprime = par.eprime
     rx, ry, kappa, ell_e, kh = hertz_constants(dball, conf, gamma, is_inner, eprime)
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
@@ -394,7 +368,7 @@ def ball_race_contact(
     # the damped Hertz law of solver.physics.traction.damped_normal_force:
     # c = 2 zeta sqrt(1.5 K delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never
     # pulling
-    q = damped_normal_force(delta, ddelta, kh, par[P_ZETA], par[P_MB])
+    q = damped_normal_force(delta, ddelta, kh, par.damping_ratio, par.ball_mass)
     rec[K_LOAD] = q
     rec[K_ELASTIC] = q_el
     if q <= 0.0:
@@ -410,7 +384,7 @@ def ball_race_contact(
     mbx = mby = mbz = 0.0
     frx, fry, frz = -fbx, -fby, -fbz
     mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
-    if par[P_TRACTION] > 0.0:
+    if par.traction:
         # the ellipse-integrated traction of solver.physics.traction.ellipse_traction:
         # Hertz-weighted quadrature of the local slip of the two rigid bodies on the curved contact
         # surface
@@ -429,9 +403,7 @@ def ball_race_contact(
         ct[CT_SEMI_MAJOR] = sa_
         ct[CT_SEMI_MINOR] = sb_
         ct[CT_LOAD] = q
-        ct[CT_CURVATURE] = (
-            (2.0 * rg + dball) / (2.0 * rg * dball) if par[P_HEATHCOTE] > 0.0 else 0.0
-        )
+        ct[CT_CURVATURE] = (2.0 * rg + dball) / (2.0 * rg * dball) if par.heathcote else 0.0
         kin[KIN_BALL_CENTRE] = pbx
         kin[KIN_BALL_CENTRE + 1] = pby
         kin[KIN_BALL_CENTRE + 2] = pbz
@@ -450,7 +422,7 @@ def ball_race_contact(
         kin[KIN_RING_OMEGA] = wrx
         kin[KIN_RING_OMEGA + 1] = wry
         kin[KIN_RING_OMEGA + 2] = wrz
-        ellipse_traction(ct, kin, par[P_MU_A : P_MU_D + 1], par[P_V_REG], quad, tout)
+        ellipse_traction(ct, kin, par.traction_curve, par.slip_regularisation, quad, tout)
         tfx, tfy, tfz = tout[TR_FORCE], tout[TR_FORCE + 1], tout[TR_FORCE + 2]
         fbx += tfx
         fby += tfy
@@ -512,7 +484,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     """
     for i in range(12):
         out[i] = 0.0
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     psi = 2.0 * math.pi * j / z
     cp, sp = math.cos(psi), math.sin(psi)
     R = cage_rot
@@ -524,7 +496,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     etx = -R[0, 1] * sp + R[0, 2] * cp
     ety = -R[1, 1] * sp + R[1, 2] * cp
     etz = -R[2, 1] * sp + R[2, 2] * cp
-    rp = par[P_CAGE_R]
+    rp = par.pocket_radius
     ccx, ccy, ccz = y[cb + C_POS], y[cb + C_POS + 1], y[cb + C_POS + 2]
     wcx, wcy, wcz = cage_omega[0], cage_omega[1], cage_omega[2]
     pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
@@ -550,7 +522,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     kin[PK_OMEGA] = wx * exx + wy * exy + wz * exz
     kin[PK_OMEGA + 1] = wx * erx + wy * ery + wz * erz
     kin[PK_OMEGA + 2] = wx * etx + wy * ety + wz * etz
-    pocket_contact(kin, par[P_POCKET_BLOCK : P_POCKET_BLOCK + POCKET_PARAM_SIZE], res)
+    pocket_contact(kin, par.pocket, res)
     fn = res[PO_NORMAL_FORCE]
     if fn <= 0.0:
         return 0.0
@@ -584,28 +556,58 @@ def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
     """
     for i in range(4):
         out[i] = 0.0
-    guide = int(par[P_GUIDE])
-    if guide == 2:
+    guide = par.guidance
+    if guide == GUIDE_BALL:
         return
     kin = work[:LAND_KIN_SIZE]
     res = work[LAND_KIN_SIZE : LAND_KIN_SIZE + LAND_OUT_SIZE]
-    if guide == 0:
+    if guide == GUIDE_OUTER_RING:
         kin[LK_OFFSET] = y[cb + C_POS + 1]
         kin[LK_OFFSET + 1] = y[cb + C_POS + 2]
         kin[LK_VELOCITY] = y[cb + C_VEL + 1]
         kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2]
-        kin[LK_RING_SPEED] = par[P_WO]
+        kin[LK_RING_SPEED] = par.outer_speed
     else:
         kin[LK_OFFSET] = y[cb + C_POS + 1] - ring_origin[1]
         kin[LK_OFFSET + 1] = y[cb + C_POS + 2] - ring_origin[2]
         kin[LK_VELOCITY] = y[cb + C_VEL + 1] - ring_vel[1]
         kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2] - ring_vel[2]
-        kin[LK_RING_SPEED] = par[P_WI]
+        kin[LK_RING_SPEED] = par.inner_speed
     kin[LK_CAGE_SPEED] = y[cb + C_SPEED]
-    land_force(kin, par[P_LAND_BLOCK : P_LAND_BLOCK + LAND_PARAM_SIZE], res)
+    land_force(kin, par.land, res)
     out[1] = res[LO_FORCE]
     out[2] = res[LO_FORCE + 1]
     out[3] = res[LO_TORQUE]
+
+
+# ---------------------------------------------------------------------------------------------
+# post-step hook of the integrator
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def post_step(y, par, rec_inner, rec_outer):
+    """Run after every accepted integrator step: renormalise the ball quaternions (projection onto
+    the unit sphere) and check that every ball is still between the raceways. Returns False when a
+    ball has left them: its centre is more than D/4 from the pitch circle, or a contact (records of
+    the last right-hand-side evaluation) is compressed by more than 2 % of D, far beyond any
+    realistic Hertz deflection."""
+    z = par.ball_count
+    d = par.ball_diameter
+    rp = 0.5 * par.pitch_diameter
+    ok = True
+    for j in range(z):
+        b = BALL_STRIDE * j + B_QUAT
+        n = math.sqrt(y[b] ** 2 + y[b + 1] ** 2 + y[b + 2] ** 2 + y[b + 3] ** 2)
+        for i in range(4):
+            y[b + i] /= n
+        b = BALL_STRIDE * j + B_POS
+        r = math.sqrt(y[b + 1] ** 2 + y[b + 2] ** 2)
+        if abs(r - rp) > 0.25 * d or abs(y[b]) > 0.25 * d:
+            ok = False
+        if rec_inner[j, K_DEFLECTION] > 0.02 * d or rec_outer[j, K_DEFLECTION] > 0.02 * d:
+            ok = False
+    return ok
 
 
 # ---------------------------------------------------------------------------------------------
@@ -617,7 +619,7 @@ def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
 def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
     (Z,) receive the contact records and pocket normal forces of this evaluation."""
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     rb = BALL_STRIDE * z
     cb = rb + RING_SIZE
     irot = np.empty((3, 3))
@@ -628,10 +630,10 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     oome = np.empty(3)
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
-    mb = par[P_MB]
-    jinv = 1.0 / par[P_JB]
-    g = par[P_GRAVITY]
-    cage_on = par[P_CAGE_ON] > 0.0
+    mb = par.ball_mass
+    jinv = 1.0 / par.ball_inertia
+    g = par.gravity
+    cage_on = par.cage
     pk = np.empty(12)
     work = np.empty(TRACTION_WORK_SIZE)
     crot = np.empty((3, 3))
@@ -693,36 +695,36 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     # inner ring
     for i in range(RING_SIZE):
         dydt[rb + i] = 0.0
-    dydt[rb + R_PHI_INNER] = par[P_WI]
-    dydt[rb + R_PHI_OUTER] = par[P_WO]
+    dydt[rb + R_PHI_INNER] = par.inner_speed
+    dydt[rb + R_PHI_OUTER] = par.outer_speed
     ld = np.empty(4)
     if cage_on:
         cage_land(y, cb, iorg, ivel, par, work, ld)
-        if int(par[P_GUIDE]) == 1:  # reaction on the inner ring
+        if par.guidance == GUIDE_INNER_RING:  # reaction on the inner ring
             fry -= ld[1]
             frz -= ld[2]
     else:
         for i in range(4):
             ld[i] = 0.0
-    if par[P_RING_FREE] > 0.0:
-        mr = par[P_MR]
+    if par.ring_free:
+        mr = par.ring_mass
         for i in range(3):
             dydt[rb + R_POS + i] = y[rb + R_VEL + i]
-        dydt[rb + R_VEL] = (frx + par[P_FX]) / mr
-        dydt[rb + R_VEL + 1] = (fry + par[P_FY]) / mr
-        dydt[rb + R_VEL + 2] = (frz + par[P_FZ]) / mr
-    if int(par[P_TILT_MODE]) == 2:
-        ird, irp, wi = par[P_IRD], par[P_IRP], par[P_WI]
+        dydt[rb + R_VEL] = (frx + par.force_x) / mr
+        dydt[rb + R_VEL + 1] = (fry + par.force_y) / mr
+        dydt[rb + R_VEL + 2] = (frz + par.force_z) / mr
+    if par.tilt_mode == TILT_FREE:
+        ird, irp, wi = par.ring_diametral_inertia, par.ring_polar_inertia, par.inner_speed
         gy_rate, gz_rate = y[rb + R_TILT_RATE], y[rb + R_TILT_RATE + 1]
         dydt[rb + R_TILT] = gy_rate
         dydt[rb + R_TILT + 1] = gz_rate
-        dydt[rb + R_TILT_RATE] = (mry + par[P_MY] - irp * wi * gz_rate) / ird
-        dydt[rb + R_TILT_RATE + 1] = (mrz + par[P_MZ] + irp * wi * gy_rate) / ird
+        dydt[rb + R_TILT_RATE] = (mry + par.moment_y - irp * wi * gz_rate) / ird
+        dydt[rb + R_TILT_RATE + 1] = (mrz + par.moment_z + irp * wi * gy_rate) / ird
     # cage
     for i in range(CAGE_SIZE):
         dydt[cb + i] = 0.0
     if cage_on:
-        mc = par[P_MC]
+        mc = par.cage_mass
         for i in range(3):
             dydt[cb + C_POS + i] = y[cb + C_VEL + i]
         dydt[cb + C_VEL] = (fcx + ld[0]) / mc
@@ -730,7 +732,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         dydt[cb + C_VEL + 2] = (fcz + ld[2]) / mc - g
         # spin about the cage's own axis, and the two tilts (rigid ring: polar inertia I_p,
         # diametral I_d; small tilts with the gyroscopic coupling as for the inner ring)
-        icp, icd = par[P_IC], par[P_ICD]
+        icp, icd = par.cage_polar_inertia, par.cage_diametral_inertia
         ax = crot[0, 0] * mcx + crot[1, 0] * mcy + crot[2, 0] * mcz
         dydt[cb + C_ANGLE] = y[cb + C_SPEED]
         dydt[cb + C_SPEED] = (ax + ld[3]) / icp
@@ -750,7 +752,7 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     force, m g z for gravity along -z. The inner ring's imposed spin is not included (it does no
     work on frictionless contacts).
     """
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     rb = BALL_STRIDE * z
     irot = np.empty((3, 3))
     iorg = np.empty(3)
@@ -761,7 +763,7 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
     work = np.empty(TRACTION_WORK_SIZE)
-    mb = par[P_MB]
+    mb = par.ball_mass
     e = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
@@ -776,15 +778,15 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
         for i in range(3):
             v2 += y[jb + B_VEL + i] ** 2
             w2 += y[jb + B_OMEGA + i] ** 2
-        e += 0.5 * mb * v2 + 0.5 * par[P_JB] * w2 + mb * par[P_GRAVITY] * y[jb + B_POS + 2]
-    if par[P_RING_FREE] > 0.0:
+        e += 0.5 * mb * v2 + 0.5 * par.ball_inertia * w2 + mb * par.gravity * y[jb + B_POS + 2]
+    if par.ring_free:
         v2 = 0.0
         for i in range(3):
             v2 += y[rb + R_VEL + i] ** 2
-        e += 0.5 * par[P_MR] * v2
+        e += 0.5 * par.ring_mass * v2
         e -= (
-            par[P_FX] * y[rb + R_POS]
-            + par[P_FY] * y[rb + R_POS + 1]
-            + par[P_FZ] * y[rb + R_POS + 2]
+            par.force_x * y[rb + R_POS]
+            + par.force_y * y[rb + R_POS + 1]
+            + par.force_z * y[rb + R_POS + 2]
         )
     return e

@@ -36,14 +36,14 @@ N_OBS = 15
 @njit(cache=True)
 def observe(states, par, quad, viscosity, pressure_viscosity, obs, pocket_out):
     """Fill ``obs`` (S, Z, 2, N_OBS) and ``pocket_out`` (S, Z) for the states (S, n)."""
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     n = states.shape[1]
     dydt = np.empty(n)
     rec = np.empty((2, z, L.N_CONTACT_RECORD))
     pocket = np.empty(z)
     rot = np.empty((3, 3))
-    eprime = par[L.P_EPRIME]
-    d = par[L.P_D]
+    eprime = par.eprime
+    d = par.ball_diameter
     for s in range(states.shape[0]):
         y = states[s]
         rhs(y, par, quad, dydt, rec[0], rec[1], pocket)
@@ -77,8 +77,8 @@ def observe(states, par, quad, viscosity, pressure_viscosity, obs, pocket_out):
                 roll = r[L.K_ROLL]
                 o[O_SPIN_TO_ROLL] = r[L.K_SPIN] / roll if abs(roll) > 1e-12 else 0.0
                 o[O_SLIDE] = r[L.K_SLIDE]
-                conf = par[L.P_FI] if k == 0 else par[L.P_FO]
-                gamma = d * math.cos(r[L.K_ANGLE]) / par[L.P_DM]
+                conf = par.inner_conformity if k == 0 else par.outer_conformity
+                gamma = d * math.cos(r[L.K_ANGLE]) / par.pitch_diameter
                 _, fdiff = curvature_sum_and_difference_fast(d, conf, gamma, k == 0)
                 kappa, _, _ = hertz_coefficients_fast(fdiff)
                 o[O_FILM] = film_thickness_central(

@@ -45,7 +45,7 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
 def build_dataset(inputs, options, par, quad, times, states, period, complete, stop_reason, stats):
     """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,), with the
     trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it."""
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     s_count = states.shape[0]
     obs = np.zeros((s_count, z, 2, N_OBS))
     pocket = np.zeros((s_count, z))
@@ -66,12 +66,12 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     # attitude angle from the ball's angular velocity relative to its orbiting frame
     w_x = omega[..., 0] - orbital
     w_r = omega[..., 1] * np.cos(psi) + omega[..., 2] * np.sin(psi)
-    sgn = -1.0 if (par[L.P_WI] - par[L.P_WO]) >= 0 else 1.0
+    sgn = -1.0 if (par.inner_speed - par.outer_speed) >= 0 else 1.0
     attitude = np.degrees(np.arctan2(-sgn * w_r, sgn * w_x))
     angle = obs[..., O_ANGLE]
     semi_major = obs[..., O_SEMI_MAJOR]
     tilt = states[:, rb + L.R_TILT : rb + L.R_TILT + 2].copy()
-    if int(par[L.P_TILT_MODE]) == 1:
+    if par.tilt_mode == L.TILT_TURNING_WITH_RING:
         # tilt turning with the ring: R = R_x(phi) R(g) = R(R_x(phi) g) R_x(phi), so the tilt
         # vector relative to the outer ring (inertial axes) is g turned by the ring angle phi
         phi = states[:, rb + L.R_PHI_INNER]
