@@ -42,8 +42,10 @@ from solver.physics.cage_contact import (
 )
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
+    ellipse_from_coefficients,
     equivalent_radii_fast,
     hertz_coefficients_fast,
+    stiffness_from_coefficients,
 )
 from solver.physics.traction import (
     CONTACT_SIZE,
@@ -206,21 +208,9 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
 
 
 # ---------------------------------------------------------------------------------------------
-# Hertz (exact, tabulated: solver.physics.hertz_fast)
+# ball-race contact (physics.md §2.6.3-2.6.6): geometry, Hertz, kinematics, traction helpers,
+# inlined into ball_race_contact
 # ---------------------------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
-    """(R_x, R_y, kappa, E(m), K) of a ball-groove contact; K in N/m^1.5 so that Q = K delta^1.5.
-
-    Exact Hertz solution through the tabulated kernels of solver.physics.hertz_fast."""
-    rx, ry = equivalent_radii_fast(ball_diameter, conformity, gamma, is_inner)
-    csum, cdiff = curvature_sum_and_difference_fast(ball_diameter, conformity, gamma, is_inner)
-    kappa, ell_k, ell_e = hertz_coefficients_fast(cdiff)
-    k = math.pi * kappa * eprime * math.sqrt(2.0 * ell_e / (9.0 * csum * ell_k**3))
-    return rx, ry, kappa, ell_e, k
-
 
 #: scratch space of one traction, pocket or land evaluation: the input/output arrays of the
 #: kernels of solver.physics.traction and solver.physics.cage_contact
@@ -230,44 +220,47 @@ TRACTION_WORK_SIZE = max(
     LAND_KIN_SIZE + LAND_OUT_SIZE,
 )
 
-# ---------------------------------------------------------------------------------------------
-# ball-race contact (physics.md §2.6.3-2.6.6)
-# ---------------------------------------------------------------------------------------------
 
-
-@njit(cache=True)
-def ball_race_contact(
-    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
-):
-    """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
-
-    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
-    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
-    """
-    dball = par.ball_diameter
-    rball = 0.5 * dball
+@njit(cache=True, inline="always")
+def _groove(par, is_inner):
+    """(curvature-centre axial position, circle radius, groove radius, conformity, hand sign)."""
     if is_inner:
-        xc, rc, rg, conf, sgn = (
+        return (
             par.inner_centre_axial,
             par.inner_centre_radius,
             par.inner_groove_radius,
             par.inner_conformity,
             -1.0,
         )
-    else:
-        xc, rc, rg, conf, sgn = (
-            par.outer_centre_axial,
-            par.outer_centre_radius,
-            par.outer_groove_radius,
-            par.outer_conformity,
-            1.0,
-        )
-    pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
-    vbx, vby, vbz = y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2]
-    wbx, wby, wbz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
-    R = ring_rot
-    ox, oy, oz = ring_origin[0], ring_origin[1], ring_origin[2]
-    dx, dy, dz = pbx - ox, pby - oy, pbz - oz
+    return (
+        par.outer_centre_axial,
+        par.outer_centre_radius,
+        par.outer_groove_radius,
+        par.outer_conformity,
+        1.0,
+    )
+
+
+@njit(cache=True, inline="always")
+def _to_inertial(R, x, y, z):
+    """Ring-frame components (x, y, z) to inertial components (rotation only)."""
+    return (
+        R[0, 0] * x + R[0, 1] * y + R[0, 2] * z,
+        R[1, 0] * x + R[1, 1] * y + R[1, 2] * z,
+        R[2, 0] * x + R[2, 1] * y + R[2, 2] * z,
+    )
+
+
+@njit(cache=True, inline="always")
+def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
+    """Contact geometry of a ball with centre ``pb`` (inertial) in a groove of the ring with
+    orientation ``R`` and origin ``o``.
+
+    Returns (delta [m], alpha [rad], ring-frame azimuth of the ball phi, ring-frame contact point
+    (3), inertial normal n (3), inertial contact point P (3), inertial groove centre (3), rolling
+    direction t1 (3)). The normal points from the groove centre through the ball centre to the
+    contact."""
+    dx, dy, dz = pb[0] - o[0], pb[1] - o[1], pb[2] - o[2]
     # ball centre in ring-frame components
     cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
     cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
@@ -284,65 +277,135 @@ def ball_race_contact(
     alpha = math.atan2(sgn * nx, sgn * n_rho)
     reach = rg + 0.5 * max(delta, 0.0)
     prx, pry, prz = gx + reach * nx, gy + reach * ny, gz + reach * nz
-    # to inertial
-    nix = R[0, 0] * nx + R[0, 1] * ny + R[0, 2] * nz
-    niy = R[1, 0] * nx + R[1, 1] * ny + R[1, 2] * nz
-    niz = R[2, 0] * nx + R[2, 1] * ny + R[2, 2] * nz
-    pix = ox + R[0, 0] * prx + R[0, 1] * pry + R[0, 2] * prz
-    piy = oy + R[1, 0] * prx + R[1, 1] * pry + R[1, 2] * prz
-    piz = oz + R[2, 0] * prx + R[2, 1] * pry + R[2, 2] * prz
-    gix = ox + R[0, 0] * gx + R[0, 1] * gy + R[0, 2] * gz
-    giy = oy + R[1, 0] * gx + R[1, 1] * gy + R[1, 2] * gz
-    giz = oz + R[2, 0] * gx + R[2, 1] * gy + R[2, 2] * gz
-    # rolling direction t1 = ring-frame e_theta, t2 = n x t1
-    t1x = -R[0, 1] * sph + R[0, 2] * cph
-    t1y = -R[1, 1] * sph + R[1, 2] * cph
-    t1z = -R[2, 1] * sph + R[2, 2] * cph
-    t2x, t2y, t2z = _cross(nix, niy, niz, t1x, t1y, t1z)
-    # velocities at the contact centre
-    wrx, wry, wrz = ring_omega[0], ring_omega[1], ring_omega[2]
-    rbx, rby, rbz = pix - pbx, piy - pby, piz - pbz
-    a0, a1, a2 = _cross(wbx, wby, wbz, rbx, rby, rbz)
-    vsbx, vsby, vsbz = vbx + a0, vby + a1, vbz + a2  # ball surface
-    a0, a1, a2 = _cross(wrx, wry, wrz, pix - ox, piy - oy, piz - oz)
-    vsrx, vsry, vsrz = ring_vel[0] + a0, ring_vel[1] + a1, ring_vel[2] + a2  # ring surface
+    ni = _to_inertial(R, nx, ny, nz)
+    pi_ = _to_inertial(R, prx, pry, prz)
+    gi = _to_inertial(R, gx, gy, gz)
+    # rolling direction t1 = ring-frame e_theta
+    t1 = _to_inertial(R, 0.0, -sph, cph)
+    return (
+        delta,
+        alpha,
+        phi,
+        (prx, pry, prz),
+        ni,
+        (o[0] + pi_[0], o[1] + pi_[1], o[2] + pi_[2]),
+        (o[0] + gi[0], o[1] + gi[1], o[2] + gi[2]),
+        t1,
+    )
+
+
+@njit(cache=True, inline="always")
+def _hertz(dball, conf, gamma, is_inner, eprime):
+    """(R_x, R_y, Sigma rho, kappa, K(m), E(m), K [N/m^1.5]) of a ball-groove contact from the
+    tabulated exact solution of solver.physics.hertz_fast (one table look-up)."""
+    rx, ry = equivalent_radii_fast(dball, conf, gamma, is_inner)
+    csum, cdiff = curvature_sum_and_difference_fast(dball, conf, gamma, is_inner)
+    kappa, big_k, big_e = hertz_coefficients_fast(cdiff)
+    k = stiffness_from_coefficients(kappa, big_k, big_e, csum, eprime)
+    return rx, ry, csum, kappa, big_k, big_e, k
+
+
+@njit(cache=True, inline="always")
+def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
+    """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial).
+
+    Returns (sliding speed at P [m/s], spin [rad/s], rolling [rad/s], entrainment speed [m/s]).
+    Spin: component of ball-minus-ring angular velocity along the contact normal (sign by race
+    hand); rolling: along the roll axis cos(alpha) e_x - sin(alpha) e_r (ring frame); entrainment:
+    half the sum of the surface speeds relative to the contact, which orbits with the ball."""
+    rbx, rby, rbz = p[0] - pb[0], p[1] - pb[1], p[2] - pb[2]
+    a0, a1, a2 = _cross(wb[0], wb[1], wb[2], rbx, rby, rbz)
+    vsbx, vsby, vsbz = vb[0] + a0, vb[1] + a1, vb[2] + a2  # ball surface
+    a0, a1, a2 = _cross(wr[0], wr[1], wr[2], p[0] - o[0], p[1] - o[1], p[2] - o[2])
+    vsrx, vsry, vsrz = vr[0] + a0, vr[1] + a1, vr[2] + a2  # ring surface
     dvx, dvy, dvz = vsbx - vsrx, vsby - vsry, vsbz - vsrz
-    dvn = dvx * nix + dvy * niy + dvz * niz
+    dvn = dvx * n[0] + dvy * n[1] + dvz * n[2]
     slide = math.sqrt(max((dvx * dvx + dvy * dvy + dvz * dvz) - dvn * dvn, 0.0))
-    omx, omy, omz = wbx - wrx, wby - wry, wbz - wrz
-    spin = sgn * (omx * nix + omy * niy + omz * niz)
-    # roll axis: cos(alpha) e_x - sin(alpha) e_r in ring frame
+    omx, omy, omz = wb[0] - wr[0], wb[1] - wr[1], wb[2] - wr[2]
+    spin = sgn * (omx * n[0] + omy * n[1] + omz * n[2])
     ca, sa = math.cos(alpha), math.sin(alpha)
-    mrx, mry, mrz = ca, -sa * cph, -sa * sph
-    mix = R[0, 0] * mrx + R[0, 1] * mry + R[0, 2] * mrz
-    miy = R[1, 0] * mrx + R[1, 1] * mry + R[1, 2] * mrz
-    miz = R[2, 0] * mrx + R[2, 1] * mry + R[2, 2] * mrz
+    cph, sph = math.cos(phi), math.sin(phi)
+    mix, miy, miz = _to_inertial(R, ca, -sa * cph, -sa * sph)
     roll = omx * mix + omy * miy + omz * miz
-    # entrainment: surface speeds relative to the contact, which moves with the ball's orbit
-    rr2 = pby * pby + pbz * pbz
-    orbit = (pby * vbz - pbz * vby) / rr2 if rr2 > 0.0 else 0.0
+    rr2 = pb[1] * pb[1] + pb[2] * pb[2]
+    orbit = (pb[1] * vb[2] - pb[2] * vb[1]) / rr2 if rr2 > 0.0 else 0.0
     a0, a1, a2 = _cross(orbit, 0.0, 0.0, rbx, rby, rbz)
-    vpx, vpy, vpz = vbx + a0, vby + a1, vbz + a2
+    vpx, vpy, vpz = vb[0] + a0, vb[1] + a1, vb[2] + a2
     sx = vsbx + vsrx - 2.0 * vpx
     sy = vsby + vsry - 2.0 * vpy
     sz = vsbz + vsrz - 2.0 * vpz
-    sn = sx * nix + sy * niy + sz * niz
+    sn = sx * n[0] + sy * n[1] + sz * n[2]
     entrain = 0.5 * math.sqrt(max(sx * sx + sy * sy + sz * sz - sn * sn, 0.0))
-    # Hertz with the current contact angle
-    gamma = dball * ca / par.pitch_diameter
+    return slide, spin, roll, entrain
+
+
+@njit(cache=True, inline="always")
+def _approach_rate(vb, o, vr, wr, g, n):
+    """Rate of approach [m/s] (> 0 closing): ball-centre velocity relative to the ring-fixed groove
+    centre point ``g``, along the normal."""
+    a0, a1, a2 = _cross(wr[0], wr[1], wr[2], g[0] - o[0], g[1] - o[1], g[2] - o[2])
+    return (vb[0] - vr[0] - a0) * n[0] + (vb[1] - vr[1] - a1) * n[1] + (vb[2] - vr[2] - a2) * n[2]
+
+
+@njit(cache=True, inline="always")
+def _traction(par, quad, work, p, n, t1, a, b, q, curvature, pb, vb, wb, o, vr, wr):
+    """Ellipse-integrated traction (solver.physics.traction.ellipse_traction) on the ball: returns
+    the output array (force on the ball, moments about the ball centre and about P, ...)."""
+    ct = work[:CONTACT_SIZE]
+    kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
+    tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
+    for i in range(3):
+        ct[CT_POINT + i] = p[i]
+        ct[CT_NORMAL + i] = n[i]
+        ct[CT_ROLLING + i] = t1[i]
+        kin[KIN_BALL_CENTRE + i] = pb[i]
+        kin[KIN_BALL_VELOCITY + i] = vb[i]
+        kin[KIN_BALL_OMEGA + i] = wb[i]
+        kin[KIN_RING_POINT + i] = o[i]
+        kin[KIN_RING_VELOCITY + i] = vr[i]
+        kin[KIN_RING_OMEGA + i] = wr[i]
+    ct[CT_SEMI_MAJOR] = a
+    ct[CT_SEMI_MINOR] = b
+    ct[CT_LOAD] = q
+    ct[CT_CURVATURE] = curvature
+    ellipse_traction(ct, kin, par.traction_curve, par.slip_regularisation, quad, tout)
+    return tout
+
+
+@njit(cache=True)
+def ball_race_contact(
+    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
+):
+    """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
+
+    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
+    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
+    """
+    dball = par.ball_diameter
+    xc, rc, rg, conf, sgn = _groove(par, is_inner)
+    pb = (y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2])
+    vb = (y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2])
+    wb = (y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2])
+    o = (ring_origin[0], ring_origin[1], ring_origin[2])
+    vr = (ring_vel[0], ring_vel[1], ring_vel[2])
+    wr = (ring_omega[0], ring_omega[1], ring_omega[2])
+    delta, alpha, phi, pr, n, p, g, t1 = _contact_geometry(
+        pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
+    )
+    slide, spin, roll, entrain = _contact_kinematics(
+        pb, vb, wb, o, vr, wr, p, n, alpha, phi, ring_rot, sgn
+    )
+    gamma = dball * math.cos(alpha) / par.pitch_diameter
     eprime = par.eprime
-    rx, ry, kappa, ell_e, kh = hertz_constants(dball, conf, gamma, is_inner, eprime)
+    rx, ry, csum, kappa, big_k, big_e, kh = _hertz(dball, conf, gamma, is_inner, eprime)
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
     rec[K_ANGLE] = alpha
-    rec[K_AZIMUTH] = math.atan2(prz, pry)
-    rec[K_POINT] = prx
-    rec[K_POINT + 1] = pry
-    rec[K_POINT + 2] = prz
-    rec[K_NORMAL] = nix
-    rec[K_NORMAL + 1] = niy
-    rec[K_NORMAL + 2] = niz
+    rec[K_AZIMUTH] = math.atan2(pr[2], pr[1])
+    for i in range(3):
+        rec[K_POINT + i] = pr[i]
+        rec[K_NORMAL + i] = n[i]
     rec[K_SPIN] = spin
     rec[K_ROLL] = roll
     rec[K_SLIDE] = slide
@@ -356,73 +419,27 @@ def ball_race_contact(
     rec[K_PMAX] = 0.0
     if delta <= 0.0:
         return
-    q_el = kh * delta**1.5
-    # damping: c = 2 zeta sqrt(k_lin m), k_lin = 1.5 K sqrt(delta); rate of approach from the
-    # ball-centre velocity relative to the ring-fixed groove centre point
-    a0, a1, a2 = _cross(wrx, wry, wrz, gix - ox, giy - oy, giz - oz)
-    ddelta = (
-        (vbx - ring_vel[0] - a0) * nix
-        + (vby - ring_vel[1] - a1) * niy
-        + (vbz - ring_vel[2] - a2) * niz
-    )
-    # the damped Hertz law of solver.physics.traction.damped_normal_force:
-    # c = 2 zeta sqrt(1.5 K delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never
-    # pulling
+    # damped Hertz law of solver.physics.traction.damped_normal_force: c = 2 zeta sqrt(1.5 K
+    # delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never pulling
+    ddelta = _approach_rate(vb, o, vr, wr, g, n)
     q = damped_normal_force(delta, ddelta, kh, par.damping_ratio, par.ball_mass)
     rec[K_LOAD] = q
-    rec[K_ELASTIC] = q_el
+    rec[K_ELASTIC] = kh * delta**1.5
     if q <= 0.0:
         return
-    r_eq = 1.0 / (1.0 / rx + 1.0 / ry)
-    sa_ = (6.0 * kappa * kappa * ell_e * q * r_eq / (math.pi * eprime)) ** (1.0 / 3.0)
-    sb_ = (6.0 * ell_e * q * r_eq / (math.pi * kappa * eprime)) ** (1.0 / 3.0)
+    sa_, sb_, _, pmax = ellipse_from_coefficients(q, kappa, big_k, big_e, csum, eprime)
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
-    rec[K_PMAX] = 1.5 * q / (math.pi * sa_ * sb_)
+    rec[K_PMAX] = pmax
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
-    fbx, fby, fbz = -q * nix, -q * niy, -q * niz
+    fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
     mbx = mby = mbz = 0.0
     frx, fry, frz = -fbx, -fby, -fbz
-    mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
+    lx, ly, lz = p[0] - o[0], p[1] - o[1], p[2] - o[2]
+    mrx_, mry_, mrz_ = _cross(lx, ly, lz, frx, fry, frz)
     if par.traction:
-        # the ellipse-integrated traction of solver.physics.traction.ellipse_traction:
-        # Hertz-weighted quadrature of the local slip of the two rigid bodies on the curved contact
-        # surface
-        ct = work[:CONTACT_SIZE]
-        kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
-        tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
-        ct[CT_POINT] = pix
-        ct[CT_POINT + 1] = piy
-        ct[CT_POINT + 2] = piz
-        ct[CT_NORMAL] = nix
-        ct[CT_NORMAL + 1] = niy
-        ct[CT_NORMAL + 2] = niz
-        ct[CT_ROLLING] = t1x
-        ct[CT_ROLLING + 1] = t1y
-        ct[CT_ROLLING + 2] = t1z
-        ct[CT_SEMI_MAJOR] = sa_
-        ct[CT_SEMI_MINOR] = sb_
-        ct[CT_LOAD] = q
-        ct[CT_CURVATURE] = (2.0 * rg + dball) / (2.0 * rg * dball) if par.heathcote else 0.0
-        kin[KIN_BALL_CENTRE] = pbx
-        kin[KIN_BALL_CENTRE + 1] = pby
-        kin[KIN_BALL_CENTRE + 2] = pbz
-        kin[KIN_BALL_VELOCITY] = vbx
-        kin[KIN_BALL_VELOCITY + 1] = vby
-        kin[KIN_BALL_VELOCITY + 2] = vbz
-        kin[KIN_BALL_OMEGA] = wbx
-        kin[KIN_BALL_OMEGA + 1] = wby
-        kin[KIN_BALL_OMEGA + 2] = wbz
-        kin[KIN_RING_POINT] = ox
-        kin[KIN_RING_POINT + 1] = oy
-        kin[KIN_RING_POINT + 2] = oz
-        kin[KIN_RING_VELOCITY] = ring_vel[0]
-        kin[KIN_RING_VELOCITY + 1] = ring_vel[1]
-        kin[KIN_RING_VELOCITY + 2] = ring_vel[2]
-        kin[KIN_RING_OMEGA] = wrx
-        kin[KIN_RING_OMEGA + 1] = wry
-        kin[KIN_RING_OMEGA + 2] = wrz
-        ellipse_traction(ct, kin, par.traction_curve, par.slip_regularisation, quad, tout)
+        curvature = (2.0 * rg + dball) / (2.0 * rg * dball) if par.heathcote else 0.0
+        tout = _traction(par, quad, work, p, n, t1, sa_, sb_, q, curvature, pb, vb, wb, o, vr, wr)
         tfx, tfy, tfz = tout[TR_FORCE], tout[TR_FORCE + 1], tout[TR_FORCE + 2]
         fbx += tfx
         fby += tfy
@@ -434,7 +451,7 @@ def ball_race_contact(
         fry -= tfy
         frz -= tfz
         # moment on the ring about its centre: -((P - c_r) x F + M_P)
-        a0, a1, a2 = _cross(pix - ox, piy - oy, piz - oz, tfx, tfy, tfz)
+        a0, a1, a2 = _cross(lx, ly, lz, tfx, tfy, tfz)
         mrx_ -= a0 + tout[TR_MOMENT_POINT]
         mry_ -= a1 + tout[TR_MOMENT_POINT + 1]
         mrz_ -= a2 + tout[TR_MOMENT_POINT + 2]

@@ -102,4 +102,9 @@ K_ENTRAIN = 28  # entrainment (mean rolling) speed [m/s]
 K_RX = 29  # equivalent radius in the rolling direction [m]
 K_RY = 30  # equivalent radius across the groove [m]
 K_ELASTIC = 31  # elastic part of Q, K delta^1.5 [N]
-N_CONTACT_RECORD = 32
+# filled by the observation step (observe.py) for the output samples only
+K_LATITUDE = 32  # latitude of the contact on the ball [rad]
+K_LONGITUDE = 33  # longitude of the contact on the ball [rad]
+K_SPIN_TO_ROLL = 34  # K_SPIN / K_ROLL (0 when not rolling)
+K_FILM = 35  # central EHL film thickness [m]
+N_CONTACT_RECORD = 36
