@@ -9,7 +9,12 @@ import math
 import numpy as np
 
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy
+from solver.models.dynamic.kernels import (
+    TRACTION_WORK_SIZE,
+    ball_drag,
+    cage_land,
+    mechanical_energy,
+)
 from tests.helpers.dyn_bearings import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
@@ -69,7 +74,8 @@ def test_damping_dissipates_energy():
 
 def test_linear_momentum_balance_of_the_rhs():
     """Sum of m a over balls, inner ring and cage equals the external forces: applied load on the
-    ring, outer-ring contact forces on the balls, cage-land force and gravity (all internal
+    ring, outer-ring contact forces on the balls, cage-land force, drag of the oil-air mixture on
+    the balls and gravity (all internal
     ball-ring and ball-cage forces cancel), with traction, damping and cage on."""
     par, quad, y0 = start(spindle_inputs(radial=300.0))
     rng = np.random.default_rng(7)
@@ -90,11 +96,14 @@ def test_linear_momentum_balance_of_the_rhs():
         total += par.ball_mass * dydt[b + L.B_VEL : b + L.B_VEL + 3]
     total += par.ring_mass * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
     total += par.cage_mass * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
-    land = np.zeros(4)
+    land = np.zeros(5)
     cage_land(y, cb, y[rb : rb + 3], y[rb + 3 : rb + 6], par, np.zeros(TRACTION_WORK_SIZE), land)
     external = ro[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
     external += np.array([par.force_x, par.force_y, par.force_z])
     assert abs(land[1]) + abs(land[2]) > 0.0  # the land force is exercised
     external += land[:3]
-    external[2] -= par.gravity * (z * par.ball_mass + par.cage_mass)
+    drag = np.array([ball_drag(y, L.ball_base(j), par)[0] for j in range(z)])
+    assert np.abs(drag).sum() > 0.0  # the oil-air drag is exercised
+    external += drag.sum(axis=0)
+    external[2] -= par.gravity * (z * par.ball_mass + par.cage_mass + par.ring_mass)
     np.testing.assert_allclose(total, external, atol=1e-9 * ri[:, L.K_LOAD].sum())

@@ -27,6 +27,7 @@ from solver.physics.cage_contact import (
     LK_RING_SPEED,
     LK_VELOCITY,
     LO_FORCE,
+    LO_RING_TORQUE,
     LO_TORQUE,
     PK_OMEGA,
     PK_POSITION,
@@ -40,12 +41,19 @@ from solver.physics.cage_contact import (
     land_force,
     pocket_contact,
 )
+from solver.physics.ehl import film_thickness_central
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
     ellipse_from_coefficients,
     equivalent_radii_fast,
     hertz_coefficients_fast,
     stiffness_from_coefficients,
+)
+from solver.physics.rheology import (
+    RH_CONDUCTIVITY,
+    RH_TEMPERATURE_VISCOSITY,
+    ehl_rolling_force,
+    inlet_thermal_factor,
 )
 from solver.physics.traction import (
     CONTACT_SIZE,
@@ -66,9 +74,11 @@ from solver.physics.traction import (
     TR_FORCE,
     TR_MOMENT_BALL,
     TR_MOMENT_POINT,
+    TR_POWER_SLIDING,
+    TR_POWER_SPIN,
     TRACTION_OUT_SIZE,
     damped_normal_force,
-    ellipse_traction,
+    ellipse_traction_law,
 )
 
 from .layout import (
@@ -94,12 +104,16 @@ from .layout import (
     K_ENTRAIN,
     K_F_BALL,
     K_F_RING,
+    K_FILM,
     K_LOAD,
     K_M_BALL,
     K_M_RING,
     K_NORMAL,
     K_PMAX,
     K_POINT,
+    K_POWER_ROLLING,
+    K_POWER_SLIDING,
+    K_POWER_SPIN,
     K_ROLL,
     K_RX,
     K_RY,
@@ -309,7 +323,8 @@ def _hertz(dball, conf, gamma, is_inner, eprime):
 def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
     """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial).
 
-    Returns (sliding speed at P [m/s], spin [rad/s], rolling [rad/s], entrainment speed [m/s]).
+    Returns (sliding speed at P [m/s], spin [rad/s], rolling [rad/s], entrainment speed [m/s],
+    roll axis (3, inertial)).
     Spin: component of ball-minus-ring angular velocity along the contact normal (sign by race
     hand); rolling: along the roll axis cos(alpha) e_x - sin(alpha) e_r (ring frame); entrainment:
     half the sum of the surface speeds relative to the contact, which orbits with the ball."""
@@ -336,7 +351,7 @@ def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
     sz = vsbz + vsrz - 2.0 * vpz
     sn = sx * n[0] + sy * n[1] + sz * n[2]
     entrain = 0.5 * math.sqrt(max(sx * sx + sy * sy + sz * sz - sn * sn, 0.0))
-    return slide, spin, roll, entrain
+    return slide, spin, roll, entrain, (mix, miy, miz)
 
 
 @njit(cache=True, inline="always")
@@ -348,9 +363,10 @@ def _approach_rate(vb, o, vr, wr, g, n):
 
 
 @njit(cache=True, inline="always")
-def _traction(par, quad, work, p, n, t1, a, b, q, curvature, pb, vb, wb, o, vr, wr):
-    """Ellipse-integrated traction (solver.physics.traction.ellipse_traction) on the ball: returns
-    the output array (force on the ball, moments about the ball centre and about P, ...)."""
+def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, vb, wb, o, vr, wr):
+    """Ellipse-integrated traction (solver.physics.traction.ellipse_traction_law, local law
+    ``par.traction_law``) on the ball: returns the output array (force on the ball, moments about
+    the ball centre and about P, powers)."""
     ct = work[:CONTACT_SIZE]
     kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
     tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
@@ -368,8 +384,49 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, pb, vb, wb, o, vr, 
     ct[CT_SEMI_MINOR] = b
     ct[CT_LOAD] = q
     ct[CT_CURVATURE] = curvature
-    ellipse_traction(ct, kin, par.traction_curve, par.slip_regularisation, quad, tout)
+    ellipse_traction_law(
+        ct,
+        kin,
+        par.traction_law,
+        par.traction_curve,
+        par.rheology,
+        film,
+        transit,
+        par.slip_regularisation,
+        quad,
+        tout,
+    )
     return tout
+
+
+@njit(cache=True, inline="always")
+def _film(par, entrain, slide, rx, q, kappa, pmax):
+    """Central film thickness [m]: Hamrock-Dowson at the inlet viscosity, times the inlet shear
+    heating factor (solver.physics.rheology.inlet_thermal_factor). Also returns that factor."""
+    h = film_thickness_central(
+        entrain, par.viscosity, par.pressure_viscosity, par.eprime, rx, q, kappa
+    )
+    phi = inlet_thermal_factor(
+        entrain,
+        slide / entrain if entrain > 0.0 else 0.0,
+        par.viscosity,
+        par.rheology[RH_TEMPERATURE_VISCOSITY],
+        par.rheology[RH_CONDUCTIVITY],
+        pmax,
+        par.eprime,
+    )
+    return h * phi, phi
+
+
+@njit(cache=True, inline="always")
+def _rolling_resistance(par, entrain, rx, q, kappa, b, phi):
+    """Rolling resistance force [N]: hydrodynamic (EHL) inlet force, reduced by the inlet thermal
+    factor like the film, plus elastic hysteresis F_h = 3/16 alpha_h Q b / R_x (physics.md
+    §2.6.5)."""
+    f = phi * ehl_rolling_force(
+        entrain, par.viscosity, par.pressure_viscosity, par.eprime, rx, q, kappa
+    )
+    return f + 0.1875 * par.hysteresis * q * b / rx
 
 
 @njit(cache=True)
@@ -392,7 +449,7 @@ def ball_race_contact(
     delta, alpha, phi, pr, n, p, g, t1 = _contact_geometry(
         pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
     )
-    slide, spin, roll, entrain = _contact_kinematics(
+    slide, spin, roll, entrain, axis = _contact_kinematics(
         pb, vb, wb, o, vr, wr, p, n, alpha, phi, ring_rot, sgn
     )
     gamma = dball * math.cos(alpha) / par.pitch_diameter
@@ -414,6 +471,10 @@ def ball_race_contact(
     rec[K_RY] = ry
     rec[K_LOAD] = 0.0
     rec[K_ELASTIC] = 0.0
+    rec[K_FILM] = 0.0
+    rec[K_POWER_ROLLING] = 0.0
+    rec[K_POWER_SLIDING] = 0.0
+    rec[K_POWER_SPIN] = 0.0
     rec[K_SEMI_MAJOR] = 0.0
     rec[K_SEMI_MINOR] = 0.0
     rec[K_PMAX] = 0.0
@@ -431,6 +492,8 @@ def ball_race_contact(
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
     rec[K_PMAX] = pmax
+    film, phi = _film(par, entrain, slide, rx, q, kappa, pmax)
+    rec[K_FILM] = film
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
     fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
     mbx = mby = mbz = 0.0
@@ -439,7 +502,12 @@ def ball_race_contact(
     mrx_, mry_, mrz_ = _cross(lx, ly, lz, frx, fry, frz)
     if par.traction:
         curvature = (2.0 * rg + dball) / (2.0 * rg * dball) if par.heathcote else 0.0
-        tout = _traction(par, quad, work, p, n, t1, sa_, sb_, q, curvature, pb, vb, wb, o, vr, wr)
+        transit = sb_ / entrain if entrain > 0.0 else 0.0
+        tout = _traction(
+            par, quad, work, p, n, t1, sa_, sb_, q, curvature, film, transit, pb, vb, wb, o, vr, wr
+        )
+        rec[K_POWER_SLIDING] = tout[TR_POWER_SLIDING]
+        rec[K_POWER_SPIN] = tout[TR_POWER_SPIN]
         tfx, tfy, tfz = tout[TR_FORCE], tout[TR_FORCE + 1], tout[TR_FORCE + 2]
         fbx += tfx
         fby += tfy
@@ -455,6 +523,17 @@ def ball_race_contact(
         mrx_ -= a0 + tout[TR_MOMENT_POINT]
         mry_ -= a1 + tout[TR_MOMENT_POINT + 1]
         mrz_ -= a2 + tout[TR_MOMENT_POINT + 2]
+        # rolling resistance: a moment pair M = F_R D/2 about the roll axis, against the relative
+        # rolling of ball and ring (the pressure centre shifted into the inlet)
+        fr = _rolling_resistance(par, entrain, rx, q, kappa, sb_, phi)
+        mr = -fr * 0.5 * dball * (1.0 if roll >= 0.0 else -1.0)
+        mbx += mr * axis[0]
+        mby += mr * axis[1]
+        mbz += mr * axis[2]
+        mrx_ -= mr * axis[0]
+        mry_ -= mr * axis[1]
+        mrz_ -= mr * axis[2]
+        rec[K_POWER_ROLLING] = fr * 0.5 * dball * abs(roll)
     rec[K_F_BALL] = fbx
     rec[K_F_BALL + 1] = fby
     rec[K_F_BALL + 2] = fbz
@@ -567,11 +646,13 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
 def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
     """Guiding-land force on the cage through solver.physics.cage_contact.land_force.
 
-    ``out`` (4): force on the cage (3; x = 0) and moment about x (1). Ball-guided cages: zeros.
+    ``out`` (5): force on the cage (3; x = 0), moment on the cage about x (1), and the moment
+    about x on the guiding ring about its centre (1; the ring also receives minus the force).
+    Ball-guided cages: zeros.
     Outer-ring guidance: the land is on the outer ring (centre at the origin, speed omega_o);
     inner-ring guidance: on the inner ring (its centre and velocity, speed omega_i).
     """
-    for i in range(4):
+    for i in range(5):
         out[i] = 0.0
     guide = par.guidance
     if guide == GUIDE_BALL:
@@ -595,6 +676,39 @@ def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
     out[1] = res[LO_FORCE]
     out[2] = res[LO_FORCE + 1]
     out[3] = res[LO_TORQUE]
+    out[4] = res[LO_RING_TORQUE]
+
+
+# ---------------------------------------------------------------------------------------------
+# ball drag in the oil-air mixture (physics.md §2.6.5)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def ball_drag(y, jb, par):
+    """Drag of the oil-air mixture on ball (state offset ``jb``), the mixture taken at rest in the
+    housing [E]: force -1/2 C_D rho |v| v (pi D^2 / 4) on the centre velocity v, C_D of a sphere
+    (Schiller-Naumann below Re = 1000, 0.44 above), and the viscous moment -8 pi eta R^3 omega
+    of a sphere turning in the mixture (Stokes) [M]. Returns (force (3), moment (3), power >= 0
+    [W]); zeros when traction (lubrication) is off."""
+    if not par.traction:
+        return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 0.0
+    vx, vy, vz = y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2]
+    wx, wy, wz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
+    d = par.ball_diameter
+    rho = par.mixture_density
+    eta = par.mixture_viscosity
+    v = math.sqrt(vx * vx + vy * vy + vz * vz)
+    re = rho * v * d / eta
+    cd = 0.44
+    if re < 1000.0:
+        cd = 24.0 / max(re, 1e-12) * (1.0 + 0.15 * re**0.687)
+    c = -0.5 * cd * rho * v * 0.25 * math.pi * d * d
+    cm = -8.0 * math.pi * eta * (0.5 * d) ** 3
+    f = (c * vx, c * vy, c * vz)
+    m = (cm * wx, cm * wy, cm * wz)
+    power = -(c * v * v + cm * (wx * wx + wy * wy + wz * wz))
+    return f, m, power
 
 
 # ---------------------------------------------------------------------------------------------
@@ -672,6 +786,13 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         mx = ri[K_M_BALL] + ro[K_M_BALL]
         my = ri[K_M_BALL + 1] + ro[K_M_BALL + 1]
         mz = ri[K_M_BALL + 2] + ro[K_M_BALL + 2]
+        fd, md, _ = ball_drag(y, jb, par)
+        fx += fd[0]
+        fy += fd[1]
+        fz += fd[2]
+        mx += md[0]
+        my += md[1]
+        mz += md[2]
         pocket[j] = 0.0
         if cage_on:
             pocket[j] = cage_pocket(y, jb, cb, j, par, crot, come, work, pk)
@@ -714,14 +835,14 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         dydt[rb + i] = 0.0
     dydt[rb + R_PHI_INNER] = par.inner_speed
     dydt[rb + R_PHI_OUTER] = par.outer_speed
-    ld = np.empty(4)
+    ld = np.empty(5)
     if cage_on:
         cage_land(y, cb, iorg, ivel, par, work, ld)
         if par.guidance == GUIDE_INNER_RING:  # reaction on the inner ring
             fry -= ld[1]
             frz -= ld[2]
     else:
-        for i in range(4):
+        for i in range(5):
             ld[i] = 0.0
     if par.ring_free:
         mr = par.ring_mass
@@ -729,7 +850,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
             dydt[rb + R_POS + i] = y[rb + R_VEL + i]
         dydt[rb + R_VEL] = (frx + par.force_x) / mr
         dydt[rb + R_VEL + 1] = (fry + par.force_y) / mr
-        dydt[rb + R_VEL + 2] = (frz + par.force_z) / mr
+        dydt[rb + R_VEL + 2] = (frz + par.force_z) / mr - g
     if par.tilt_mode == TILT_FREE:
         ird, irp, wi = par.ring_diametral_inertia, par.ring_polar_inertia, par.inner_speed
         gy_rate, gz_rate = y[rb + R_TILT_RATE], y[rb + R_TILT_RATE + 1]
@@ -766,8 +887,8 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     """Kinetic + potential energy [J] for the conservative model (traction, damping, cage off).
 
     Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the constant applied
-    force, m g z for gravity along -z. The inner ring's imposed spin is not included (it does no
-    work on frictionless contacts).
+    force, m g z for gravity along -z (balls, and the inner ring when it is free). The inner ring's
+    imposed spin is not included (it does no work on frictionless contacts).
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
@@ -806,4 +927,5 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
             + par.force_y * y[rb + R_POS + 1]
             + par.force_z * y[rb + R_POS + 2]
         )
+        e += par.ring_mass * par.gravity * y[rb + R_POS + 2]
     return e

@@ -102,9 +102,22 @@ K_ENTRAIN = 28  # entrainment (mean rolling) speed [m/s]
 K_RX = 29  # equivalent radius in the rolling direction [m]
 K_RY = 30  # equivalent radius across the groove [m]
 K_ELASTIC = 31  # elastic part of Q, K delta^1.5 [N]
+K_FILM = 32  # central EHL film thickness, inlet shear heating included [m]
+K_POWER_ROLLING = 33  # power of the rolling resistance (EHL inlet + hysteresis) [W]
+K_POWER_SLIDING = 34  # traction power from the slip at the contact centre [W]
+K_POWER_SPIN = 35  # traction power from the relative rotation (spin, differential slip) [W]
 # filled by the observation step (observe.py) for the output samples only
-K_LATITUDE = 32  # latitude of the contact on the ball [rad]
-K_LONGITUDE = 33  # longitude of the contact on the ball [rad]
-K_SPIN_TO_ROLL = 34  # K_SPIN / K_ROLL (0 when not rolling)
-K_FILM = 35  # central EHL film thickness [m]
-N_CONTACT_RECORD = 36
+K_LATITUDE = 36  # latitude of the contact on the ball [rad]
+K_LONGITUDE = 37  # longitude of the contact on the ball [rad]
+K_SPIN_TO_ROLL = 38  # K_SPIN / K_ROLL (0 when not rolling)
+N_CONTACT_RECORD = 39
+
+# ---- per-ball and bearing-level records of the observation step (observe.py) -------------------
+BO_POCKET_FORCE = 0  # pocket normal force [N]
+BO_POCKET_POWER = 1  # power dissipated in the ball-pocket contact [W]
+BO_DRAG_POWER = 2  # power of the oil-air drag on the ball [W]
+N_BALL_OUTPUT = 3
+RO_LAND_POWER = 0  # power dissipated at the cage-guiding land [W]
+RO_FRICTION_TORQUE = 1  # torque needed to turn the inner ring at its speed [N m]
+RO_DRIVE_POWER = 2  # power fed in by the imposed ring rotations [W]
+N_BEARING_OUTPUT = 3

@@ -1,10 +1,14 @@
-"""Per-sample contact quantities of the dynamic model (numba), from stored states.
+"""Per-sample quantities of the dynamic model (numba), from stored states.
 
 For every output sample the right-hand side is evaluated once; it fills the per-contact records
 (layout ``K_*``). This step adds the record slots that only output needs (latitude and longitude on
-the ball, spin-to-roll ratio, film thickness) and keeps the whole record per sample; the table
-``CONTACT_OUTPUTS`` of ``output.py`` then names which slots become results variables. Races: index
-0 inner, 1 outer.
+the ball, spin-to-roll ratio) and keeps the whole record per sample; the table ``CONTACT_OUTPUTS``
+of ``output.py`` names which slots become results variables. It also fills a per-ball record
+(``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power,
+friction torque and drive power of the inner ring). Races: index 0 inner, 1 outer.
+
+Powers: an interaction between two bodies dissipates minus the work rate of its forces and moments
+on both (sum of F . v + M . omega over the pair, velocities of the points the forces act on).
 """
 
 from __future__ import annotations
@@ -14,31 +18,56 @@ import math
 import numpy as np
 from numba import njit
 
-from solver.physics.ehl import film_thickness_central
-from solver.physics.hertz_fast import curvature_sum_and_difference_fast, hertz_coefficients_fast
-
 from . import layout as L
-from .kernels import quaternion_to_matrix, rhs
+from .kernels import (
+    TRACTION_WORK_SIZE,
+    ball_drag,
+    cage_frame,
+    cage_land,
+    cage_pocket,
+    quaternion_to_matrix,
+    rhs,
+    ring_frames,
+)
 
 
 @njit(cache=True)
-def observe(states, par, quad, viscosity, pressure_viscosity, records, pocket_out):
-    """Fill ``records`` (S, Z, 2, N_CONTACT_RECORD) and ``pocket_out`` (S, Z) for the states
-    (S, n)."""
+def observe(states, par, quad, records, balls, bearing):
+    """Fill ``records`` (S, Z, 2, N_CONTACT_RECORD), ``balls`` (S, Z, N_BALL_OUTPUT) and
+    ``bearing`` (S, N_BEARING_OUTPUT) for the states (S, n)."""
     z = par.ball_count
     n = states.shape[1]
     dydt = np.empty(n)
     rec = np.empty((2, z, L.N_CONTACT_RECORD))
     pocket = np.empty(z)
     rot = np.empty((3, 3))
-    eprime = par.eprime
-    d = par.ball_diameter
+    irot = np.empty((3, 3))
+    iorg = np.empty(3)
+    ivel = np.empty(3)
+    iome = np.empty(3)
+    orot = np.empty((3, 3))
+    oome = np.empty(3)
+    crot = np.empty((3, 3))
+    come = np.empty(3)
+    pk = np.empty(12)
+    ld = np.empty(5)
+    work = np.empty(TRACTION_WORK_SIZE)
+    cb = L.BALL_STRIDE * z + L.RING_SIZE
     for s in range(states.shape[0]):
         y = states[s]
         rhs(y, par, quad, dydt, rec[0], rec[1], pocket)
+        ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+        cage_frame(y, cb, crot, come)
+        vcx, vcy, vcz = y[cb + L.C_VEL], y[cb + L.C_VEL + 1], y[cb + L.C_VEL + 2]
+        # moments of the contacts on the inner ring about its centre
+        mix = miy = miz = 0.0
+        mox = 0.0
         for j in range(z):
-            pocket_out[s, j] = pocket[j]
             b = L.BALL_STRIDE * j
+            mix += rec[0, j, L.K_M_RING]
+            miy += rec[0, j, L.K_M_RING + 1]
+            miz += rec[0, j, L.K_M_RING + 2]
+            mox += rec[1, j, L.K_M_RING]
             quaternion_to_matrix(
                 y[b + L.B_QUAT], y[b + L.B_QUAT + 1], y[b + L.B_QUAT + 2], y[b + L.B_QUAT + 3], rot
             )
@@ -53,18 +82,48 @@ def observe(states, par, quad, viscosity, pressure_viscosity, records, pocket_ou
                 r[L.K_LONGITUDE] = math.atan2(eby, ebx)
                 roll = r[L.K_ROLL]
                 r[L.K_SPIN_TO_ROLL] = r[L.K_SPIN] / roll if abs(roll) > 1e-12 else 0.0
-                conf = par.inner_conformity if k == 0 else par.outer_conformity
-                gamma = d * math.cos(r[L.K_ANGLE]) / par.pitch_diameter
-                _, fdiff = curvature_sum_and_difference_fast(d, conf, gamma, k == 0)
-                kappa, _, _ = hertz_coefficients_fast(fdiff)
-                r[L.K_FILM] = film_thickness_central(
-                    r[L.K_ENTRAIN],
-                    viscosity,
-                    pressure_viscosity,
-                    eprime,
-                    r[L.K_RX],
-                    r[L.K_LOAD],
-                    kappa,
-                )
                 for i in range(L.N_CONTACT_RECORD):
                     records[s, j, k, i] = r[i]
+            balls[s, j, L.BO_POCKET_FORCE] = pocket[j]
+            power = 0.0
+            if par.cage and pocket[j] > 0.0:
+                cage_pocket(y, b, cb, j, par, crot, come, work, pk)
+                for i in range(3):
+                    power -= pk[i] * y[b + L.B_VEL + i] + pk[3 + i] * y[b + L.B_OMEGA + i]
+                    power -= pk[9 + i] * come[i]
+                power -= pk[6] * vcx + pk[7] * vcy + pk[8] * vcz
+            balls[s, j, L.BO_POCKET_POWER] = power
+            _, _, drag = ball_drag(y, b, par)
+            balls[s, j, L.BO_DRAG_POWER] = drag
+        # cage land: force F and moment T on the cage, -F and T_ring on the guiding ring
+        land = 0.0
+        ring_torque = 0.0
+        wring = 0.0
+        if par.cage and par.guidance != L.GUIDE_BALL:
+            cage_land(y, cb, iorg, ivel, par, work, ld)
+            ring_torque = ld[4]
+            if par.guidance == L.GUIDE_INNER_RING:
+                vr0, vr1, vr2, wring = ivel[0], ivel[1], ivel[2], iome[0]
+            else:
+                vr0, vr1, vr2, wring = 0.0, 0.0, 0.0, oome[0]
+            land = -(
+                ld[0] * (vcx - vr0)
+                + ld[1] * (vcy - vr1)
+                + ld[2] * (vcz - vr2)
+                + ld[3] * come[0]
+                + ld[4] * wring
+            )
+        bearing[s, L.RO_LAND_POWER] = land
+        # the imposed ring spins take the torques that hold the rings at their speeds
+        wi = par.inner_speed
+        drive_inner = -(mix * iome[0] + miy * iome[1] + miz * iome[2])
+        if par.tilt_mode == L.TILT_FREE:  # only the imposed spin is driven, not the tilt rates
+            rb = L.BALL_STRIDE * z
+            drive_inner += miy * y[rb + L.R_TILT_RATE] + miz * y[rb + L.R_TILT_RATE + 1]
+        if par.guidance == L.GUIDE_INNER_RING:
+            drive_inner -= ring_torque * wring
+        drive_outer = -mox * oome[0]
+        if par.guidance == L.GUIDE_OUTER_RING:
+            drive_outer -= ring_torque * wring
+        bearing[s, L.RO_DRIVE_POWER] = drive_inner + drive_outer
+        bearing[s, L.RO_FRICTION_TORQUE] = drive_inner / wi if wi != 0.0 else 0.0

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from solver.physics.hertz import truncation_margin
+from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
 from solver.results.summary import trajectory_summary
 
@@ -12,6 +13,11 @@ from . import layout as L
 from .observe import observe
 
 _TWO_PI = 2.0 * np.pi
+
+TRACTION_LAW_NAMES = {
+    LAW_RHEOLOGY: "rheology (Barus viscosity, Eyring + film elasticity, limiting shear stress)",
+    LAW_SLIP_CURVE: "ADORE-type slip curve",
+}
 
 
 def _degrees(v):
@@ -45,7 +51,12 @@ CONTACT_OUTPUTS = {
     "spin_to_roll": (L.K_SPIN_TO_ROLL, 1, None),
     "sliding_speed": (L.K_SLIDE, 1, None),
     "film_thickness": (L.K_FILM, 1, None),
+    "contact_heat": (L.K_POWER_ROLLING, 1, None),  # completed in contact_outputs
 }
+
+#: Loss sources per ball (registry dimension ``ball_loss_source``) and in total (``loss_source``).
+BALL_LOSS_SOURCES = ("rolling", "sliding", "spin", "drag", "cage_pocket")
+LOSS_SOURCES = BALL_LOSS_SOURCES + ("cage_land",)
 
 
 def contact_outputs(records: np.ndarray) -> dict:
@@ -58,7 +69,34 @@ def contact_outputs(records: np.ndarray) -> dict:
         else:
             values, dims = records[..., slot : slot + size], tc + ("axis",)
         data[name] = (dims, convert(values) if convert is not None else values.copy())
+    # heat generated in each contact: rolling resistance + sliding + spin
+    heat = records[..., L.K_POWER_ROLLING] + records[..., L.K_POWER_SLIDING]
+    data["contact_heat"] = (tc, heat + records[..., L.K_POWER_SPIN])
     return data
+
+
+def loss_outputs(records: np.ndarray, balls: np.ndarray, bearing: np.ndarray) -> dict:
+    """Power losses by source per ball and in total, friction torque and drive power."""
+    per_ball = np.stack(
+        [
+            records[..., L.K_POWER_ROLLING].sum(axis=-1),
+            records[..., L.K_POWER_SLIDING].sum(axis=-1),
+            records[..., L.K_POWER_SPIN].sum(axis=-1),
+            balls[..., L.BO_DRAG_POWER],
+            balls[..., L.BO_POCKET_POWER],
+        ],
+        axis=-1,
+    )
+    total = np.concatenate(
+        (per_ball.sum(axis=1), bearing[:, L.RO_LAND_POWER : L.RO_LAND_POWER + 1]), axis=-1
+    )
+    return {
+        "ball_power_loss": (("time", "ball", "ball_loss_source"), per_ball),
+        "power_loss": (("time", "loss_source"), total),
+        "total_power_loss": (("time",), total.sum(axis=-1)),
+        "friction_torque": (("time",), bearing[:, L.RO_FRICTION_TORQUE].copy()),
+        "drive_power": (("time",), bearing[:, L.RO_DRIVE_POWER].copy()),
+    }
 
 
 def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> np.ndarray:
@@ -81,9 +119,10 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     z = int(par.ball_count)
     s_count = states.shape[0]
     records = np.zeros((s_count, z, 2, L.N_CONTACT_RECORD))
-    pocket = np.zeros((s_count, z))
-    lub = inputs.lubricant
-    observe(states, par, quad, lub.viscosity, lub.pressure_viscosity, records, pocket)
+    balls_out = np.zeros((s_count, z, L.N_BALL_OUTPUT))
+    bearing_out = np.zeros((s_count, L.N_BEARING_OUTPUT))
+    observe(states, par, quad, records, balls_out, bearing_out)
+    pocket = balls_out[..., L.BO_POCKET_FORCE]
     balls = np.stack(
         [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
     )
@@ -113,7 +152,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         tilt[:, 1] = gy * np.sin(phi) + gz * np.cos(phi)
     tc = ("time", "ball", "race")
     tb = ("time", "ball")
-    data = contact_outputs(records)
+    data = contact_outputs(records) | loss_outputs(records, balls_out, bearing_out)
     data |= {
         "truncation_margin": (tc, truncation_margins(inputs.geometry, angle, semi_major)),
         "ball_azimuth": (tb, np.degrees(psi) % 360.0),
@@ -131,9 +170,12 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     attrs = {
         "stop_reason": stop_reason,
         "gravity": f"{options.gravity:g} m/s^2 along -z of the inertial frame",
-        "traction_model": "ellipse-integrated ADORE-type curve"
+        "traction_model": (
+            f"ellipse-integrated, {TRACTION_LAW_NAMES[par.traction_law]}; rolling resistance "
+            "(EHL inlet + hysteresis) and oil-air drag"
+        )
         if options.traction
-        else "off (frictionless)",
+        else "off (frictionless: no traction, rolling resistance or drag)",
         "damping_ratio": float(options.damping_ratio),
         "cage_model": "6 DOF (translations, rotation, tilts)" if options.cage else "off",
         "lubricant": inputs.lubricant.description,

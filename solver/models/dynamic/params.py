@@ -20,12 +20,31 @@ from solver.physics.cage_contact import (
     pocket_parameters,
     pocket_stiffness_estimate,
 )
-from solver.physics.traction import ellipse_quadrature, traction_curve_parameters
+from solver.physics.rheology import (
+    RH_CONDUCTIVITY,
+    RH_EYRING_STRESS,
+    RH_LIMITING_SLOPE,
+    RH_LIMITING_STRESS,
+    RH_PRESSURE_VISCOSITY,
+    RH_SHEAR_MODULUS,
+    RH_TEMPERATURE_VISCOSITY,
+    RH_VISCOSITY,
+    RHEOLOGY_SIZE,
+)
+from solver.physics.traction import (
+    LAW_RHEOLOGY,
+    LAW_SLIP_CURVE,
+    ellipse_quadrature,
+    traction_curve_parameters,
+)
 
 from . import layout as L
 from .options import SimulationOptions
 
 STEEL_DENSITY = 7800.0
+#: Air at about 40 degC, the gas of the oil-air mixture around the balls.
+AIR_DENSITY = 1.13  # kg/m^3
+AIR_VISCOSITY = 1.9e-5  # Pa s
 #: Assumed cage material (the case format has no cage material): glass-filled polyamide 66.
 CAGE_MATERIAL = Material("glass_filled_polyamide", 8.0e9, 0.4, 1400.0)
 
@@ -70,7 +89,12 @@ class ModelParams(NamedTuple):
     # ---- ball-race contacts
     damping_ratio: float  # critical-damping ratio of the ball-race normal contacts
     traction: bool  # ellipse-integrated traction on (False: frictionless)
+    traction_law: int  # solver.physics.traction.LAW_RHEOLOGY or LAW_SLIP_CURVE
     traction_curve: np.ndarray  # (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D
+    rheology: np.ndarray  # solver.physics.rheology parameter array (RH_*)
+    viscosity: float  # oil viscosity at the inlet temperature [Pa s]
+    pressure_viscosity: float  # Barus alpha [1/Pa]
+    hysteresis: float  # elastic hysteresis loss fraction of the ball-race contacts
     slip_regularisation: float  # regularisation speed of Coulomb-type friction laws [m/s]
     heathcote: bool  # slip evaluated on the curved (deformed) ellipse surface
     # ---- cage
@@ -85,6 +109,9 @@ class ModelParams(NamedTuple):
     guidance: int  # layout.GUIDE_OUTER_RING / GUIDE_INNER_RING / GUIDE_BALL
     land_clearance: float  # guiding radial clearance [m]
     land: np.ndarray  # land law parameters of solver.physics.cage_contact.land_parameters
+    # ---- oil-air mixture around the balls (drag)
+    mixture_density: float  # [kg/m^3]
+    mixture_viscosity: float  # [Pa s]
 
 
 def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
@@ -165,6 +192,7 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         land_k = land_contact_stiffness_estimate(
             cage.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
         )
+    mix = lubricant.oil_volume_fraction
     return ModelParams(
         ball_count=int(g.ball_count),
         ball_diameter=D,
@@ -197,7 +225,12 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         gravity=float(options.gravity),
         damping_ratio=float(options.damping_ratio),
         traction=bool(options.traction),
+        traction_law=LAW_RHEOLOGY if lubricant.traction_model == "rheology" else LAW_SLIP_CURVE,
         traction_curve=traction_curve_parameters(*lubricant.traction.values()),
+        rheology=rheology_parameters(lubricant),
+        viscosity=lubricant.viscosity,
+        pressure_viscosity=lubricant.pressure_viscosity,
+        hysteresis=0.5 * (g.ball_material.hysteresis_loss + g.ring_material.hysteresis_loss),
         slip_regularisation=float(options.friction_regularisation),
         heathcote=bool(options.heathcote),
         cage=bool(options.cage),
@@ -225,10 +258,27 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
             land,
             cage.guide_land_width,
             0.5 * cage.guide_clearance,
-            lubricant.viscosity,
+            # a partly flooded land: the hydrodynamic force scales with the wetted width
+            lubricant.viscosity * cage.land_flooding,
             land_k,
             cage.mass,
             guide != L.GUIDE_INNER_RING,
             slip_regularisation=options.friction_regularisation,
         ),
+        mixture_density=mix * lubricant.density + (1.0 - mix) * AIR_DENSITY,
+        mixture_viscosity=mix * lubricant.viscosity + (1.0 - mix) * AIR_VISCOSITY,
     )
+
+
+def rheology_parameters(lubricant) -> np.ndarray:
+    """Parameter array of solver.physics.rheology (RH_* slots) of a LubricantInputs (SI)."""
+    r = np.zeros(RHEOLOGY_SIZE)
+    r[RH_VISCOSITY] = lubricant.viscosity
+    r[RH_PRESSURE_VISCOSITY] = lubricant.pressure_viscosity
+    r[RH_EYRING_STRESS] = lubricant.eyring_stress
+    r[RH_LIMITING_STRESS] = lubricant.limiting_shear_stress
+    r[RH_LIMITING_SLOPE] = lubricant.limiting_shear_coefficient
+    r[RH_SHEAR_MODULUS] = lubricant.film_shear_modulus
+    r[RH_TEMPERATURE_VISCOSITY] = lubricant.temperature_viscosity
+    r[RH_CONDUCTIVITY] = lubricant.thermal_conductivity
+    return r
