@@ -16,7 +16,8 @@ Hertz ellipse with local pressure p and sliding speed u:
    tau_ve = tau_v tau_e / (tau_v + tau_e) [E: a closed-form stand-in for integrating the Maxwell
    equation along the transit];
 5. limiting shear stress tau_L = tau_L0 + Lambda p [Bair & Winer, J. Lubr. Technol. 101 (1979)
-   251], approached smoothly: tau = tau_ve / sqrt(1 + (tau_ve / tau_L)^2).
+   251], approached smoothly: tau = tau_ve / (1 + (tau_ve / tau_L)^4)^(1/4) [E: a smooth minimum,
+   within 1 % of tau_L once tau_ve > 2.2 tau_L, never above it].
 
 So tau is linear in u at small slip (slope eta_eff / h_c with eta_eff = eta G t / (eta + G t)),
 grows like a logarithm in the Eyring range, and levels off at tau_L. Dividing by p gives the
@@ -34,6 +35,8 @@ from __future__ import annotations
 import math
 
 from numba import njit
+
+from .ehl import W_FLOOR
 
 RH_VISCOSITY = 0
 RH_PRESSURE_VISCOSITY = 1
@@ -72,6 +75,41 @@ def barus_viscosity(viscosity, pressure_viscosity, pressure):
     return viscosity * math.exp(min(x, BARUS_EXPONENT_CAP))
 
 
+#: Above this x = eta gamma_dot / tau_0 the Eyring law uses asinh(x) = ln(2 x) (relative error
+#: below 1e-8), which needs no exponential of the Barus exponent.
+_ASINH_LOG_FROM = 1.0e4
+_LN_ASINH_LOG_FROM = math.log(_ASINH_LOG_FROM)
+_LN2 = math.log(2.0)
+
+
+@njit(cache=True)
+def contact_constants(film, transit_time, rheology):
+    """Per-contact constants of :func:`shear_stress_from_constants`: (ln(eta_0 / (tau_0 h_c)),
+    G t / h_c [Pa s/m]). ``film`` must be > 0."""
+    ln_c = math.log(rheology[RH_VISCOSITY] / (rheology[RH_EYRING_STRESS] * film))
+    return ln_c, rheology[RH_SHEAR_MODULUS] * transit_time / film
+
+
+@njit(cache=True)
+def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
+    """:func:`shear_stress` for u > 0 with the per-contact constants of
+    :func:`contact_constants` (the form evaluated at every quadrature node: one logarithm)."""
+    p = max(pressure, 0.0)
+    tau0 = rheology[RH_EYRING_STRESS]
+    ln_x = ln_c + math.log(u) + min(rheology[RH_PRESSURE_VISCOSITY] * p, BARUS_EXPONENT_CAP)
+    if ln_x > _LN_ASINH_LOG_FROM:
+        tau_v = tau0 * (_LN2 + ln_x)
+    else:
+        x = math.exp(ln_x)
+        tau_v = tau0 * math.log(x + math.sqrt(x * x + 1.0))  # tau_0 asinh(x)
+    tau_e = elastic * u
+    tau = tau_v * tau_e / (tau_v + tau_e) if elastic > 0.0 else tau_v
+    tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
+    r = tau / tau_l
+    r2 = r * r
+    return tau / math.sqrt(math.sqrt(1.0 + r2 * r2))
+
+
 @njit(cache=True)
 def shear_stress(slip_speed, pressure, film, transit_time, rheology):
     """Magnitude of the film's shear stress [Pa] (>= 0) at sliding speed |u| [m/s], local pressure
@@ -81,18 +119,11 @@ def shear_stress(slip_speed, pressure, film, transit_time, rheology):
     if u <= 0.0:
         return 0.0
     p = max(pressure, 0.0)
-    tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
     if film <= 0.0:
+        tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
         return tau_l if u > 1e-9 else 0.0
-    rate = u / film
-    eta = barus_viscosity(rheology[RH_VISCOSITY], rheology[RH_PRESSURE_VISCOSITY], p)
-    tau0 = rheology[RH_EYRING_STRESS]
-    x = eta * rate / tau0
-    tau_v = tau0 * math.log(x + math.sqrt(x * x + 1.0))  # tau_0 asinh(x)
-    tau_e = rheology[RH_SHEAR_MODULUS] * rate * transit_time
-    tau = tau_v * tau_e / (tau_v + tau_e) if transit_time > 0.0 else tau_v
-    r = tau / tau_l
-    return tau / math.sqrt(1.0 + r * r)
+    ln_c, elastic = contact_constants(film, transit_time, rheology)
+    return shear_stress_from_constants(u, p, ln_c, elastic, rheology)
 
 
 @njit(cache=True)
@@ -128,3 +159,44 @@ def ehl_rolling_force(entrainment, viscosity, pressure_viscosity, eprime, r_x, l
     big_g = pressure_viscosity * eprime
     big_w = load / (eprime * r_x * r_x)
     return 2.86 * eprime * r_x * r_x * kappa**0.348 * big_g**0.022 * big_u**0.66 * big_w**0.47
+
+
+@njit(cache=True)
+def film_and_rolling_force(entrainment, slide_to_roll, load, r_x, kappa, p_max, eprime, rheology):
+    """(central film h_c [m], thermal factor phi_T, EHL rolling force [N]) of one contact in one
+    pass: Hamrock–Dowson h_c (solver.physics.ehl.film_thickness_central, same W floor) and
+    :func:`ehl_rolling_force`, both times :func:`inlet_thermal_factor`, with the power laws
+    evaluated through shared logarithms (the per-contact cost in the dynamic model). Viscosity and
+    pressure-viscosity from ``rheology``. No speed or load: (0, 1, 0)."""
+    u = abs(entrainment)
+    eta = rheology[RH_VISCOSITY]
+    alpha = rheology[RH_PRESSURE_VISCOSITY]
+    if not (u > 0.0 and load > 0.0 and eta > 0.0 and alpha > 0.0 and r_x > 0.0):
+        return 0.0, 1.0, 0.0
+    ln_u = math.log(eta * u / (eprime * r_x))
+    ln_g = math.log(alpha * eprime)
+    ln_w = math.log(max(load / (eprime * r_x * r_x), W_FLOOR))
+    film = (
+        2.69
+        * r_x
+        * math.exp(0.67 * ln_u + 0.53 * ln_g - 0.067 * ln_w)
+        * (1.0 - 0.61 * math.exp(-0.73 * kappa))
+    )
+    rolling = (
+        2.86
+        * eprime
+        * r_x
+        * r_x
+        * math.exp(0.348 * math.log(kappa) + 0.022 * ln_g + 0.66 * ln_u + 0.47 * ln_w)
+    )
+    phi = 1.0
+    beta = rheology[RH_TEMPERATURE_VISCOSITY]
+    k = rheology[RH_CONDUCTIVITY]
+    if beta > 0.0 and k > 0.0:
+        ln_l = math.log(beta * eta * u * u / k)
+        srr = abs(slide_to_roll)
+        s83 = math.exp(0.83 * math.log(srr)) if srr > 0.0 else 0.0
+        num = 1.0 - 13.2 * (p_max / eprime) * math.exp(0.42 * ln_l)
+        den = 1.0 + 0.213 * (1.0 + 2.23 * s83) * math.exp(0.64 * ln_l)
+        phi = min(1.0, max(0.05, num / den))
+    return film * phi, phi, rolling * phi

@@ -77,7 +77,7 @@ import numpy as np
 from numba import njit
 from scipy import optimize, special
 
-from .rheology import shear_stress
+from .rheology import contact_constants, shear_stress, shear_stress_from_constants
 
 # ---- traction-curve parameter array ------------------------------------------------------------
 CURVE_A = 0  # mu_zero - mu_infinity
@@ -417,8 +417,13 @@ def ellipse_traction_law(
     on = ox * nx + oy * ny + oz * nz
     ur2 = slip_regularisation * slip_regularisation
     rheological = law == LAW_RHEOLOGY
+    filmed = film > 0.0
+    ln_c = 0.0
+    elastic = 0.0
     if rheological:
         ur2 = 0.0
+        if filmed:
+            ln_c, elastic = contact_constants(film, transit_time, rheology)
     ab = a * b
     f1 = 0.0
     f2 = 0.0
@@ -448,7 +453,11 @@ def ellipse_traction_law(
             area = ab * nodes[k, NODE_AREA]
             if area <= 0.0:
                 continue
-            tau = shear_stress(u, q * nodes[k, NODE_LOAD] / area, film, transit_time, rheology)
+            pk = q * nodes[k, NODE_LOAD] / area
+            if filmed:
+                tau = shear_stress_from_constants(u, pk, ln_c, elastic, rheology)
+            else:
+                tau = shear_stress(u, pk, film, transit_time, rheology)
             g = -tau * area / den
         else:
             mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]

@@ -506,6 +506,8 @@ _COORDINATE_NAMES = {
     "quaternion": "quaternion component",
     "frame": "ring frame in which a trajectory metric is measured",
     "body": "body the material belongs to",
+    "ball_loss_source": "source of a ball's power loss",
+    "loss_source": "source of the bearing's power loss",
 }
 
 
@@ -517,12 +519,15 @@ def dimension_coordinate(dim: str) -> tuple:
     return (dim, values, {"long_name": _COORDINATE_NAMES[dim], "units": "1"})
 
 
-def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dict:
+def coordinates(
+    ball_count: int, times=None, *, quaternion: bool = False, losses: bool = False
+) -> dict:
     """Dimension coordinates of a results Dataset, each with ``units`` and ``long_name``.
 
     ``times`` (s) adds the ``time`` coordinate of the dynamic model; ``quaternion`` adds the
-    [w, x, y, z] dimension of ``ball_orientation``. The ``frame`` dimension comes with the summary
-    metrics, ``body`` with the describing coordinates (solver.results.dataset).
+    [w, x, y, z] dimension of ``ball_orientation``; ``losses`` the loss-source dimensions of the
+    power losses. The ``frame`` dimension comes with the summary metrics, ``body`` with the
+    describing coordinates (solver.results.dataset).
     """
     import numpy as np
 
@@ -537,6 +542,9 @@ def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dic
         if dim == "quaternion" and not quaternion:
             continue
         coords[dim] = dimension_coordinate(dim)
+    if losses:
+        for dim in ("ball_loss_source", "loss_source"):
+            coords[dim] = dimension_coordinate(dim)
     if times is not None:
         coords["time"] = (
             "time",

@@ -41,7 +41,6 @@ from solver.physics.cage_contact import (
     land_force,
     pocket_contact,
 )
-from solver.physics.ehl import film_thickness_central
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
     ellipse_from_coefficients,
@@ -49,12 +48,7 @@ from solver.physics.hertz_fast import (
     hertz_coefficients_fast,
     stiffness_from_coefficients,
 )
-from solver.physics.rheology import (
-    RH_CONDUCTIVITY,
-    RH_TEMPERATURE_VISCOSITY,
-    ehl_rolling_force,
-    inlet_thermal_factor,
-)
+from solver.physics.rheology import film_and_rolling_force
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -400,33 +394,22 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, 
 
 
 @njit(cache=True, inline="always")
-def _film(par, entrain, slide, rx, q, kappa, pmax):
-    """Central film thickness [m]: Hamrock-Dowson at the inlet viscosity, times the inlet shear
-    heating factor (solver.physics.rheology.inlet_thermal_factor). Also returns that factor."""
-    h = film_thickness_central(
-        entrain, par.viscosity, par.pressure_viscosity, par.eprime, rx, q, kappa
-    )
-    phi = inlet_thermal_factor(
+def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
+    """(central film [m], rolling resistance force [N]) of a loaded contact: Hamrock-Dowson film
+    and hydrodynamic inlet force at the inlet viscosity, both reduced for inlet shear heating
+    (solver.physics.rheology.film_and_rolling_force), plus the elastic hysteresis force
+    F_h = 3/16 alpha_h Q b / R_x (physics.md §2.6.5)."""
+    film, _, f_ehl = film_and_rolling_force(
         entrain,
         slide / entrain if entrain > 0.0 else 0.0,
-        par.viscosity,
-        par.rheology[RH_TEMPERATURE_VISCOSITY],
-        par.rheology[RH_CONDUCTIVITY],
+        q,
+        rx,
+        kappa,
         pmax,
         par.eprime,
+        par.rheology,
     )
-    return h * phi, phi
-
-
-@njit(cache=True, inline="always")
-def _rolling_resistance(par, entrain, rx, q, kappa, b, phi):
-    """Rolling resistance force [N]: hydrodynamic (EHL) inlet force, reduced by the inlet thermal
-    factor like the film, plus elastic hysteresis F_h = 3/16 alpha_h Q b / R_x (physics.md
-    §2.6.5)."""
-    f = phi * ehl_rolling_force(
-        entrain, par.viscosity, par.pressure_viscosity, par.eprime, rx, q, kappa
-    )
-    return f + 0.1875 * par.hysteresis * q * b / rx
+    return film, f_ehl + 0.1875 * par.hysteresis * q * b / rx
 
 
 @njit(cache=True)
@@ -492,7 +475,7 @@ def ball_race_contact(
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
     rec[K_PMAX] = pmax
-    film, phi = _film(par, entrain, slide, rx, q, kappa, pmax)
+    film, fr = _film_and_rolling(par, entrain, slide, rx, q, kappa, sb_, pmax)
     rec[K_FILM] = film
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
     fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
@@ -525,7 +508,6 @@ def ball_race_contact(
         mrz_ -= a2 + tout[TR_MOMENT_POINT + 2]
         # rolling resistance: a moment pair M = F_R D/2 about the roll axis, against the relative
         # rolling of ball and ring (the pressure centre shifted into the inlet)
-        fr = _rolling_resistance(par, entrain, rx, q, kappa, sb_, phi)
         mr = -fr * 0.5 * dball * (1.0 if roll >= 0.0 else -1.0)
         mbx += mr * axis[0]
         mby += mr * axis[1]

@@ -1,0 +1,151 @@
+"""Rheological traction law (solver.physics.rheology): limits, dependences and the film/rolling
+force pass, each against an independent closed form written out here."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from solver.physics.ehl import film_thickness_central
+from solver.physics.rheology import (
+    BARUS_EXPONENT_CAP,
+    RH_CONDUCTIVITY,
+    RH_EYRING_STRESS,
+    RH_LIMITING_SLOPE,
+    RH_LIMITING_STRESS,
+    RH_PRESSURE_VISCOSITY,
+    RH_SHEAR_MODULUS,
+    RH_TEMPERATURE_VISCOSITY,
+    RH_VISCOSITY,
+    RHEOLOGY_SIZE,
+    ehl_rolling_force,
+    film_and_rolling_force,
+    inlet_thermal_factor,
+    shear_stress,
+    viscosity_at_temperature,
+)
+
+
+def rheology(eta=0.01, alpha=2.0e-8, tau0=5.0e6, tau_l0=2.0e6, slope=0.075, g=0.5e9):
+    r = np.zeros(RHEOLOGY_SIZE)
+    r[RH_VISCOSITY] = eta
+    r[RH_PRESSURE_VISCOSITY] = alpha
+    r[RH_EYRING_STRESS] = tau0
+    r[RH_LIMITING_STRESS] = tau_l0
+    r[RH_LIMITING_SLOPE] = slope
+    r[RH_SHEAR_MODULUS] = g
+    r[RH_TEMPERATURE_VISCOSITY] = 0.03
+    r[RH_CONDUCTIVITY] = 0.13
+    return r
+
+
+def reference_stress(u, p, h, t, r):
+    """Direct evaluation of the module's law (numpy, no shortcuts)."""
+    eta = r[RH_VISCOSITY] * math.exp(min(r[RH_PRESSURE_VISCOSITY] * p, BARUS_EXPONENT_CAP))
+    rate = u / h
+    tau_v = r[RH_EYRING_STRESS] * np.arcsinh(eta * rate / r[RH_EYRING_STRESS])
+    tau_e = r[RH_SHEAR_MODULUS] * rate * t
+    tau = tau_v * tau_e / (tau_v + tau_e)
+    tau_l = r[RH_LIMITING_STRESS] + r[RH_LIMITING_SLOPE] * p
+    return tau / (1.0 + (tau / tau_l) ** 4) ** 0.25
+
+
+H, T = 0.3e-6, 1.0e-5  # film [m], transit time b / u_e [s]
+
+
+@pytest.mark.parametrize("p", [0.0, 0.3e9, 1.0e9, 2.0e9])
+@pytest.mark.parametrize("u", [1e-6, 1e-3, 0.05, 1.0, 20.0])
+def test_shear_stress_matches_direct_evaluation(u, p):
+    r = rheology()
+    assert shear_stress(u, p, H, T, r) == pytest.approx(reference_stress(u, p, H, T, r), rel=1e-7)
+
+
+def test_linear_newtonian_response_at_low_slip():
+    """At small slip tau = eta_eff u / h with eta_eff = eta G t / (eta + G t) (viscous and elastic
+    in series): twice the slip gives twice the stress, and the slope is that of eta_eff."""
+    r = rheology()
+    p = 1.0e9
+    eta = r[RH_VISCOSITY] * math.exp(r[RH_PRESSURE_VISCOSITY] * p)
+    eta_eff = eta * r[RH_SHEAR_MODULUS] * T / (eta + r[RH_SHEAR_MODULUS] * T)
+    u = 1e-9
+    tau = shear_stress(u, p, H, T, r)
+    assert tau == pytest.approx(eta_eff * u / H, rel=1e-6)
+    assert shear_stress(2 * u, p, H, T, r) == pytest.approx(2 * tau, rel=1e-6)
+    # a low pressure (Newtonian viscous, elastic negligible): tau = eta_0 u / h
+    r_low = rheology(alpha=1e-12, g=1e15)
+    assert shear_stress(1e-6, 0.0, H, T, r_low) == pytest.approx(0.01 * 1e-6 / H, rel=1e-6)
+
+
+@pytest.mark.parametrize("p", [0.5e9, 1.0e9, 2.0e9])
+def test_plateau_at_the_limiting_shear_stress(p):
+    """Large slip: tau -> tau_L = tau_L0 + Lambda p (within 1 % once the Eyring stress is well
+    above it: a stiff oil, tau_0 = 20 MPa), never above it."""
+    r = rheology(tau0=20e6)
+    tau_l = r[RH_LIMITING_STRESS] + r[RH_LIMITING_SLOPE] * p
+    big = shear_stress(10.0, p, H, T, r)
+    assert big == pytest.approx(tau_l, rel=0.01)
+    speeds = np.logspace(-6, 2, 60)
+    taus = np.array([shear_stress(u, p, H, T, r) for u in speeds])
+    assert np.all(taus <= tau_l)
+    assert np.all(np.diff(taus) > 0.0)  # monotone: no spurious peak
+
+
+def test_stress_rises_with_pressure_and_viscosity():
+    r = rheology()
+    u = 0.5
+    taus = [shear_stress(u, p, H, T, r) for p in (0.5e9, 1.0e9, 1.5e9, 2.0e9)]
+    assert np.all(np.diff(taus) > 0.0)
+    # in the viscous (Eyring) range a more viscous oil shears harder: a low-viscosity oil and a
+    # compliant-free film (large G) so that the elastic response does not cap the stress
+    thin, thick = rheology(eta=0.005, g=1e15), rheology(eta=0.05, g=1e15)
+    p, u = 0.4e9, 1e-3
+    assert shear_stress(u, p, H, T, thick) > 1.5 * shear_stress(u, p, H, T, thin)
+    # the limiting shear stress coefficient sets the plateau
+    high, low = rheology(tau0=20e6, slope=0.1), rheology(tau0=20e6, slope=0.075)
+    assert shear_stress(10.0, 1e9, H, T, high) == pytest.approx(
+        shear_stress(10.0, 1e9, H, T, low) * (2e6 + 0.1e9) / (2e6 + 0.075e9), rel=0.02
+    )
+
+
+def test_no_film_gives_the_limiting_stress_and_zero_slip_no_stress():
+    r = rheology()
+    assert shear_stress(0.0, 1e9, H, T, r) == 0.0
+    assert shear_stress(0.1, 1e9, 0.0, T, r) == pytest.approx(2e6 + 0.075e9)
+
+
+def test_viscosity_at_temperature():
+    assert viscosity_at_temperature(0.03, 40.0, 0.03, 40.0) == pytest.approx(0.03)
+    assert viscosity_at_temperature(0.03, 40.0, 0.03, 100.0) == pytest.approx(0.03 * math.exp(-1.8))
+
+
+def test_film_and_rolling_force_pass_matches_the_separate_formulas():
+    r = rheology(eta=0.02)
+    args = dict(entrainment=12.0, load=300.0, r_x=4.0e-3, kappa=6.0, p_max=1.5e9, eprime=2.6e11)
+    film, phi, rolling = film_and_rolling_force(
+        args["entrainment"],
+        0.02,
+        args["load"],
+        args["r_x"],
+        args["kappa"],
+        args["p_max"],
+        args["eprime"],
+        r,
+    )
+    h = film_thickness_central(
+        args["entrainment"], 0.02, 2e-8, args["eprime"], args["r_x"], args["load"], args["kappa"]
+    )
+    f = ehl_rolling_force(
+        args["entrainment"], 0.02, 2e-8, args["eprime"], args["r_x"], args["load"], args["kappa"]
+    )
+    phi_ref = inlet_thermal_factor(
+        args["entrainment"], 0.02, 0.02, 0.03, 0.13, args["p_max"], args["eprime"]
+    )
+    assert 0.05 < phi_ref < 1.0
+    assert phi == pytest.approx(phi_ref, rel=1e-12)
+    assert film == pytest.approx(h * phi_ref, rel=1e-12)
+    assert rolling == pytest.approx(f * phi_ref, rel=1e-12)
+    # the rolling force grows like U^0.66 W^0.47 (Houpert): doubling speed x 2^0.66 isothermally
+    f2 = ehl_rolling_force(24.0, 0.02, 2e-8, 2.6e11, 4.0e-3, 300.0, 6.0)
+    assert f2 / f == pytest.approx(2.0**0.66, rel=1e-12)
