@@ -149,3 +149,21 @@ def test_film_and_rolling_force_pass_matches_the_separate_formulas():
     # the rolling force grows like U^0.66 W^0.47 (Houpert): doubling speed x 2^0.66 isothermally
     f2 = ehl_rolling_force(24.0, 0.02, 2e-8, 2.6e11, 4.0e-3, 300.0, 6.0)
     assert f2 / f == pytest.approx(2.0**0.66, rel=1e-12)
+
+
+def test_named_oils_are_valid_lubricant_sections():
+    """Every named oil of solver.lubricants is a [lubricant] section the case validation accepts,
+    and its inlet viscosity at 40 degC is its ISO grade viscosity times its density."""
+    import tomli_w
+
+    from solver.case import parse_case
+    from solver.lubricants import OILS, lubricant_table
+    from tests.helpers.cases import SPINDLE
+
+    for name in OILS:
+        text = SPINDLE + "\n[lubricant]\n" + tomli_w.dumps(lubricant_table(name))
+        case = parse_case(text)
+        assert case.lubricant.traction_model == "rheology"
+        assert case.lubricant.viscosity_Pas == pytest.approx(lubricant_table(name)["viscosity_Pas"])
+    with pytest.raises(ValueError, match="known oils"):
+        lubricant_table("castor")
