@@ -26,6 +26,9 @@ CASE_OVERRIDES = {
     "samples_per_revolution": ("samples_per_revolution", "simulation.samples_per_revolution"),
 }
 
+#: Integration methods of the dynamic model (option ``method``).
+METHODS = ("rosenbrock", "dopri5")
+
 
 @dataclass(frozen=True)
 class SimulationOptions:
@@ -58,6 +61,12 @@ class SimulationOptions:
     - ``heathcote``: evaluate the slip on the curved deformed surface (differential slip).
     - ``inner_ring_mass`` [kg]: None = estimated from the ring cross-section (width 2 D).
     - ``max_steps_per_chunk``: safety bound on the integrator steps in one chunk.
+    - ``method``: integration method. "rosenbrock" (default): the linearly implicit Rosenbrock-W
+      method ROS34PW2 with per-body block Jacobians (solver.models.dynamic.rosenbrock), whose step
+      is not limited by the stiff contact modes; "dopri5": explicit Dormand–Prince 5(4)
+      (solver.models.dynamic.integrator), kept for validation (docs/numerics.md).
+    - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
+      Rosenbrock method (it is also re-formed after every rejected step).
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;
       falls back to "equilibrium" if it finds no solution) or "equilibrium" (the model's own
       force balance without gyroscopic moment, see ``initial.initial_state``).
@@ -81,6 +90,8 @@ class SimulationOptions:
     heathcote: bool = True
     inner_ring_mass: float | None = None
     max_steps_per_chunk: int = 2_000_000
+    method: str = "dopri5"
+    jacobian_every: int = 10
     start: str = "quasistatic"
 
     def resolved(self, simulation) -> SimulationOptions:
@@ -131,6 +142,21 @@ class SimulationOptions:
                 Problem(
                     "chunk_samples",
                     f"simulation option chunk_samples = {self.chunk_samples}: must be >= 1",
+                )
+            )
+        if self.method not in METHODS:
+            problems.append(
+                Problem(
+                    "method",
+                    f"simulation option method = {self.method!r}: must be one of "
+                    + ", ".join(repr(m) for m in METHODS),
+                )
+            )
+        if self.jacobian_every < 1:
+            problems.append(
+                Problem(
+                    "jacobian_every",
+                    f"simulation option jacobian_every = {self.jacobian_every}: must be >= 1",
                 )
             )
         if self.start not in ("quasistatic", "equilibrium"):

@@ -179,7 +179,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "damping_ratio": float(options.damping_ratio),
         "cage_model": "6 DOF (translations, rotation, tilts)" if options.cage else "off",
         "lubricant": inputs.lubricant.description,
-        "integrator": f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}",
+        "integrator": _integrator_note(options),
         "steps": stats.steps,
         "rejected_steps": stats.rejected,
         "rhs_evaluations": stats.rhs_evaluations,
@@ -200,3 +200,13 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
     return ds
+
+
+def _integrator_note(options) -> str:
+    """Method, step control and tolerance of the run, for the Dataset attrs."""
+    if options.method == "rosenbrock":
+        return (
+            "Rosenbrock-W ROS34PW2 (order 3(2)) with per-body block Jacobians re-formed every "
+            f"{options.jacobian_every} steps, tolerance {options.tolerance:g}"
+        )
+    return f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}"

@@ -38,6 +38,7 @@ from .integrator import (
 from .options import SimulationOptions
 from .output import build_dataset
 from .params import build_params, build_quadrature
+from .rosenbrock import advance_rosenbrock, block_structure, ros34pw2, rosenbrock_work
 
 _DIVERGENCE_CAUSES = MappingProxyType(
     {
@@ -171,6 +172,25 @@ def _inputs(case) -> Inputs:
     return to_inputs(case)
 
 
+def _stepper(options, par):
+    """The integrator of ``options.method`` as a function with the arguments of
+    ``integrator.advance``."""
+    if options.method == "dopri5":
+        return advance
+    tab = ros34pw2()
+    starts, sizes, groups = block_structure(par.ball_count)
+    work = rosenbrock_work(par.ball_count, tab.m.shape[0])
+    every = options.jacobian_every
+
+    def step(*args):
+        return advance_rosenbrock(
+            *args, tab.gamma, tab.a, tab.c, tab.m, tab.e, tab.order,
+            starts, sizes, groups, every, work,
+        )  # fmt: skip
+
+    return step
+
+
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
     """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
 
@@ -211,13 +231,14 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     t = 0.0
     stop_reason = "finished"
     diverged_message = None
+    step = _stepper(options, par)
     start = _time.perf_counter()
     while done <= n_samples:
         if _is_cancelled(cancel):
             stop_reason = "cancelled"
             break
         stop = min(done + options.chunk_samples, n_samples + 1)
-        status, t, h, n_done = advance(
+        status, t, h, n_done = step(
             y,
             t,
             h,

@@ -1,0 +1,133 @@
+"""Accuracy contract of the dynamic model's integration methods (issue 13, docs/numerics.md).
+
+Four short runs, integrated once with the explicit Dormand–Prince method at tolerance 1e-6 and
+kept as test data (``tests/data/dynamic_reference.json``); a run with any method is compared with
+them metric by metric. Regenerate the data (a few minutes) with
+
+    python -m tests.helpers.accuracy
+
+Metrics of a run (over the analysed window of its stored summary): per (ball, race) time-mean
+contact angle [deg] and load [N], the mean cage speed [rad/s], and each race's trajectory excursion
+and band thickness [deg] in its own ring's frame.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from solver.catalogue import resolve_case
+from solver.inputs import to_inputs
+from solver.models.dynamic import SimulationOptions, simulate
+from solver.results.summary import headline, summary
+
+REFERENCE_FILE = Path(__file__).resolve().parents[1] / "data" / "dynamic_reference.json"
+REFERENCE_TOLERANCE = 1e-6
+REFERENCE_METHOD = "dopri5"
+
+#: the contract: contact angles [deg], loads (relative), cage speed (relative), excursion and band
+#: thickness (relative, or absolute [deg] whichever is larger)
+ANGLE_DEG = 0.005
+LOAD_RELATIVE = 0.002
+CAGE_RELATIVE = 0.0005
+TRACK_RELATIVE = 0.02
+TRACK_DEG = 0.002
+
+#: case label -> (catalogue case, operating changes (SI), shaft revolutions)
+CASES = {
+    "spindle_combined": ("spindle-combined-load", {}, 3.0),
+    "heavy_218": ("218-heavy-combined", {}, 3.0),
+    "misalignment_ring": ("spindle-misalignment-ring", {}, 3.0),
+    # light axial preload at high speed: the balls start to skid (spin-to-roll and slip rise)
+    "light_high_speed": (
+        "spindle-axial-preload",
+        {"axial_load": 40.0, "inner_ring_speed": 40000.0 * math.pi / 30.0},
+        3.0,
+    ),
+}
+
+
+def case_inputs(label):
+    """SI inputs of a contract case."""
+    name, changes, _ = CASES[label]
+    inputs = to_inputs(resolve_case(name))
+    if changes:
+        inputs = replace(inputs, operating=replace(inputs.operating, **changes))
+    return inputs
+
+
+def run(label, **option_changes):
+    """The Dataset of a contract case with the given options."""
+    revolutions = CASES[label][2]
+    options = SimulationOptions(
+        shaft_revolutions=revolutions, samples_per_revolution=180, **option_changes
+    )
+    return simulate(case_inputs(label), options=options)
+
+
+def metrics(ds) -> dict:
+    """The compared metrics of a run (plain floats and lists, JSON-ready)."""
+    metric = summary(ds)
+    start = float(metric["analysis_start_time"])
+    window = ds.sel(time=ds["time"] >= start)
+    head = headline(metric)
+    return {
+        "contact_angle_deg": window["contact_angle"].mean("time").values.tolist(),
+        "contact_load_N": window["contact_load"].mean("time").values.tolist(),
+        "cage_speed_rad_s": float(window["cage_speed"].mean("time")),
+        "excursion_deg": [head[r]["excursion_deg"] for r in ("inner", "outer")],
+        "band_thickness_deg": [head[r]["band_thickness_deg"] for r in ("inner", "outer")],
+        "analysis_start_time_s": start,
+        "steps": int(ds.attrs["steps"]),
+        "rhs_evaluations": int(ds.attrs["rhs_evaluations"]),
+    }
+
+
+def deviations(got: dict, ref: dict) -> dict:
+    """Each metric's worst deviation as a fraction of its allowance (<= 1 meets the contract)."""
+    angle = np.abs(np.subtract(got["contact_angle_deg"], ref["contact_angle_deg"])) / ANGLE_DEG
+    ref_load = np.asarray(ref["contact_load_N"])
+    load_scale = LOAD_RELATIVE * np.maximum(np.abs(ref_load), 1e-3 * np.abs(ref_load).max())
+    load = np.abs(np.asarray(got["contact_load_N"]) - ref_load) / load_scale
+    cage = abs(got["cage_speed_rad_s"] - ref["cage_speed_rad_s"]) / (
+        CAGE_RELATIVE * abs(ref["cage_speed_rad_s"])
+    )
+    out = {
+        "contact_angle": float(angle.max()),
+        "contact_load": float(load.max()),
+        "cage_speed": float(cage),
+    }
+    for key in ("excursion_deg", "band_thickness_deg"):
+        r = np.asarray(ref[key])
+        allow = np.maximum(TRACK_RELATIVE * np.abs(r), TRACK_DEG)
+        out[key.removesuffix("_deg")] = float((np.abs(np.asarray(got[key]) - r) / allow).max())
+    return out
+
+
+def load_reference() -> dict:
+    return json.loads(REFERENCE_FILE.read_text())
+
+
+def main():  # pragma: no cover - regenerates the test data
+    data = {
+        "method": REFERENCE_METHOD,
+        "tolerance": REFERENCE_TOLERANCE,
+        "samples_per_revolution": 180,
+        "cases": {},
+    }
+    for label in CASES:
+        ds = run(label, method=REFERENCE_METHOD, tolerance=REFERENCE_TOLERANCE)
+        data["cases"][label] = metrics(ds)
+        print(label, "steps", ds.attrs["steps"], "wall", ds.attrs["wall_time_s"], flush=True)
+    REFERENCE_FILE.parent.mkdir(exist_ok=True)
+    tmp = REFERENCE_FILE.with_suffix(".tmp")
+    tmp.write_text(json.dumps(data, indent=1) + "\n")
+    tmp.replace(REFERENCE_FILE)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()
