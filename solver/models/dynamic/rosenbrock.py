@@ -1,16 +1,27 @@
-"""Linearly implicit Rosenbrock-W integrator with a block-diagonal Jacobian, compiled with numba.
+"""Linearly implicit Rosenbrock-W integrator with an arrow-structured Jacobian, compiled with numba.
 
-The stiff modes of the dynamic model are local to each body (docs/numerics.md): a ball's normal
-contact vibration and the traction's slope against slip on its spin and roll. The matrix ``W`` of
-the method is therefore block-diagonal: one 13 x 13 block per ball, one block for the inner ring
-and one for the cage, formed by forward finite differences of the right-hand side with the blocks
-of a group perturbed together (a ball's own derivatives do not depend on the other balls' states,
-so all balls take 13 evaluations; ring and cage another 12). A W-method keeps its order with any
-matrix, so the blocks are reused over several steps and the neglected ball-ring coupling costs
-accuracy control, not correctness.
+The stiff modes of the dynamic model (docs/numerics.md) are a ball's normal contact vibration, the
+traction's slope against slip on its spin and roll, and the ball-pocket friction that couples every
+ball to the light cage. A ball's derivatives depend on its own state and on the inner ring's and
+the cage's, never on another ball's, so the matrix ``W`` of the method is taken with the arrow
+structure of the true Jacobian:
+
+    W = [[D, B], [C, E]]
+
+- ``D``: one 13 x 13 block per ball, all formed by 13 forward differences (the balls perturbed
+  together);
+- ``B`` (balls x 24) and ``E`` (24 x 24): the columns of the inner ring and the cage (24 slots),
+  one difference each;
+- ``C`` (24 x balls): the ring's and cage's rates against each ball's state, from each ball's own
+  contact and pocket contributions (inner-contact records, :func:`kernels.cage_pocket`) in the
+  same 13 perturbed evaluations.
+
+Linear systems (I / (h gamma) - W) u = x are solved by block elimination: the ball blocks, then the
+24 x 24 Schur complement. A W-method keeps its order with any matrix, so W is reused over several
+steps (``jacobian_every``) and re-formed after a rejected step.
 
 Method (Rang & Angermann 2005, ROS34PW2): 4 stages, order 3 for any W, embedded order 2,
-stiffly accurate and L-stable for W = J. Written in the transformed form (Hairer & Wanner IV.7):
+L-stable for W = J. Written in the transformed form (Hairer & Wanner IV.7):
 
     (I / (h gamma) - W) U_i = f(y + sum_j a_ij U_j) + sum_j (c_ij / h) U_j,
     y_new = y + sum_i m_i U_i,   error = sum_i e_i U_i.
@@ -33,7 +44,7 @@ from .integrator import (
     STATUS_STEP_COLLAPSE,
     STATUS_TOO_MANY_STEPS,
 )
-from .kernels import post_step, rhs
+from .kernels import TRACTION_WORK_SIZE, cage_frame, cage_pocket, post_step, rhs
 
 #: largest block of the block-diagonal W (a ball's 13 state slots)
 MAX_BLOCK = L.BALL_STRIDE
@@ -94,84 +105,220 @@ def ros34pw2() -> RosenbrockTableau:
 
 
 def block_structure(ball_count: int):
-    """(starts, sizes, groups) of the diagonal blocks: one per ball (group 0), the inner ring and
-    the cage (group 1). The blocks of a group are perturbed together when W is formed."""
+    """(starts, sizes) of the ball blocks of W, one per ball."""
     z = int(ball_count)
-    starts = np.array([L.ball_base(j) for j in range(z)] + [L.ring_base(z), L.cage_base(z)])
-    sizes = np.array([L.BALL_STRIDE] * z + [L.RING_SIZE, L.CAGE_SIZE])
-    groups = np.array([0] * z + [1, 1])
-    return starts.astype(np.int64), sizes.astype(np.int64), groups.astype(np.int64)
+    starts = np.array([L.ball_base(j) for j in range(z)], dtype=np.int64)
+    sizes = np.full(z, L.BALL_STRIDE, dtype=np.int64)
+    return starts, sizes
 
 
 class RosenbrockWork(NamedTuple):
-    """Scratch arrays of :func:`advance_rosenbrock`, allocated once per run."""
+    """Scratch arrays of :func:`advance_rosenbrock`, allocated once per run (Z balls, n states,
+    nb = 13 Z ball slots, nr = n - nb = 24 ring and cage slots)."""
 
-    jac: np.ndarray  # (blocks, 13, 13) W blocks
-    lu: np.ndarray  # (blocks, 13, 13) LU factors of I/(h gamma) - W
-    piv: np.ndarray  # (blocks, 13) pivot rows
-    stages: np.ndarray  # (4, n) U_i
+    d: np.ndarray  # (Z, 13, 13) ball blocks of W
+    lu: np.ndarray  # (Z, 13, 13) LU factors of I/(h gamma) - D
+    piv: np.ndarray  # (Z, 13) pivot rows
+    b: np.ndarray  # (nb, nr) ring and cage columns of the ball rows
+    c: np.ndarray  # (nr, nb) ball columns of the ring and cage rows
+    e: np.ndarray  # (nr, nr) ring and cage block
+    mb: np.ndarray  # (nb, nr) (I/(h gamma) - D)^-1 B
+    s: np.ndarray  # (nr, nr) LU factors of the Schur complement
+    spiv: np.ndarray  # (nr,) its pivot rows
+    stages: np.ndarray  # (stages, n) U_i
     f0: np.ndarray  # (n,) f(y)
     yt: np.ndarray  # (n,)
     ft: np.ndarray  # (n,)
-    rec_inner: np.ndarray  # contact records of the Jacobian evaluations
+    fj: np.ndarray  # (n,) f at the Jacobian's base point
+    rows: np.ndarray  # (nr,) scratch
+    rec_inner: np.ndarray  # contact records of the Jacobian evaluations (perturbed)
     rec_outer: np.ndarray
-    pocket: np.ndarray
+    rec_inner0: np.ndarray  # ... and at the base point
+    rec_outer0: np.ndarray
+    pocket: np.ndarray  # (Z,)
+    pocket0: np.ndarray  # (Z, 12) pocket outputs at the base point (kernels.cage_pocket)
+    pk: np.ndarray  # (12,)
+    contact_work: np.ndarray  # (TRACTION_WORK_SIZE,)
+    crot: np.ndarray  # (3, 3) cage orientation
+    come: np.ndarray  # (3,) cage angular velocity
 
 
 def rosenbrock_work(ball_count: int, stages: int = 4) -> RosenbrockWork:
     z = int(ball_count)
     n = L.state_size(z)
-    nb = z + 2
+    nb = L.BALL_STRIDE * z
+    nr = n - nb
     return RosenbrockWork(
-        np.zeros((nb, MAX_BLOCK, MAX_BLOCK)),
-        np.zeros((nb, MAX_BLOCK, MAX_BLOCK)),
-        np.zeros((nb, MAX_BLOCK), dtype=np.int64),
+        np.zeros((z, MAX_BLOCK, MAX_BLOCK)),
+        np.zeros((z, MAX_BLOCK, MAX_BLOCK)),
+        np.zeros((z, MAX_BLOCK), dtype=np.int64),
+        np.zeros((nb, nr)),
+        np.zeros((nr, nb)),
+        np.zeros((nr, nr)),
+        np.zeros((nb, nr)),
+        np.zeros((nr, nr)),
+        np.zeros(nr, dtype=np.int64),
         np.zeros((stages, n)),
         np.zeros(n),
         np.zeros(n),
         np.zeros(n),
+        np.zeros(n),
+        np.zeros(nr),
+        np.zeros((z, L.N_CONTACT_RECORD)),
+        np.zeros((z, L.N_CONTACT_RECORD)),
         np.zeros((z, L.N_CONTACT_RECORD)),
         np.zeros((z, L.N_CONTACT_RECORD)),
         np.zeros(z),
+        np.zeros((z, 12)),
+        np.zeros(12),
+        np.zeros(TRACTION_WORK_SIZE),
+        np.zeros((3, 3)),
+        np.zeros(3),
     )
 
 
 @njit(cache=True)
-def jacobian_blocks(y, f0, par, quad, scale, starts, sizes, groups, work, counters):
-    """Diagonal blocks of df/dy at ``y`` (``f0`` = f(y)) into ``work.jac`` by forward differences;
-    the blocks of one group are perturbed in the same evaluation."""
+def body_rows(par, crot, dfr, dmr, dfc, dmc, out):
+    """Rates of the inner-ring and cage slots (``out``, 24: ring block then cage block) caused by
+    the force ``dfr`` and moment ``dmr`` on the ring and ``dfc``, ``dmc`` on the cage (inertial
+    [N], [N m]), as in ``kernels.rhs``; the other slots are zero."""
+    for i in range(out.shape[0]):
+        out[i] = 0.0
+    if par.ring_free:
+        for i in range(3):
+            out[L.R_VEL + i] = dfr[i] / par.ring_mass
+    if par.tilt_mode == L.TILT_FREE:
+        out[L.R_TILT_RATE] = dmr[1] / par.ring_diametral_inertia
+        out[L.R_TILT_RATE + 1] = dmr[2] / par.ring_diametral_inertia
+    if par.cage:
+        c = L.RING_SIZE
+        for i in range(3):
+            out[c + L.C_VEL + i] = dfc[i] / par.cage_mass
+        ax = crot[0, 0] * dmc[0] + crot[1, 0] * dmc[1] + crot[2, 0] * dmc[2]
+        out[c + L.C_SPEED] = ax / par.cage_polar_inertia
+        out[c + L.C_TILT_RATE] = dmc[1] / par.cage_diametral_inertia
+        out[c + L.C_TILT_RATE + 1] = dmc[2] / par.cage_diametral_inertia
+
+
+@njit(cache=True)
+def jacobian_arrow(y, par, quad, scale, work, counters):
+    """W = [[D, B], [C, E]] of the right-hand side at ``y`` by forward differences (module
+    docstring) into ``work``; 1 + 13 + 24 evaluations."""
     n = y.shape[0]
+    z = int(par.ball_count)
+    nb = L.BALL_STRIDE * z
+    nr = n - nb
+    cb = nb + L.RING_SIZE
     yp = work.yt
     fp = work.ft
-    nb = starts.shape[0]
-    for g in range(2):
-        for col in range(MAX_BLOCK):
-            for i in range(n):
-                yp[i] = y[i]
-            touched = False
-            for b in range(nb):
-                if groups[b] == g and col < sizes[b]:
-                    k = starts[b] + col
-                    yp[k] = y[k] + (1e-5 * scale[k] + 1e-8 * abs(y[k]))
-                    touched = True
-            if not touched:
-                continue
-            rhs(yp, par, quad, fp, work.rec_inner, work.rec_outer, work.pocket)
-            counters[2] += 1
-            for b in range(nb):
-                if groups[b] == g and col < sizes[b]:
-                    k = starts[b] + col
-                    inv = 1.0 / (yp[k] - y[k])
-                    s = starts[b]
-                    for r in range(sizes[b]):
-                        work.jac[b, r, col] = (fp[s + r] - f0[s + r]) * inv
-                    for r in range(sizes[b], MAX_BLOCK):
-                        work.jac[b, r, col] = 0.0
+    f0 = work.fj
+    rhs(y, par, quad, f0, work.rec_inner0, work.rec_outer0, work.pocket)
+    counters[2] += 1
+    cage_frame(y, cb, work.crot, work.come)
+    if par.cage:
+        for j in range(z):
+            cage_pocket(
+                y, L.BALL_STRIDE * j, cb, j, par, work.crot, work.come, work.contact_work, work.pk
+            )
+            for i in range(12):
+                work.pocket0[j, i] = work.pk[i]
+    dfr = np.zeros(3)
+    dmr = np.zeros(3)
+    dfc = np.zeros(3)
+    dmc = np.zeros(3)
+    for col in range(L.BALL_STRIDE):
+        for i in range(n):
+            yp[i] = y[i]
+        for j in range(z):
+            k = L.BALL_STRIDE * j + col
+            yp[k] = y[k] + (1e-5 * scale[k] + 1e-8 * abs(y[k]))
+        rhs(yp, par, quad, fp, work.rec_inner, work.rec_outer, work.pocket)
+        counters[2] += 1
+        for j in range(z):
+            s = L.BALL_STRIDE * j
+            k = s + col
+            inv = 1.0 / (yp[k] - y[k])
+            for r in range(L.BALL_STRIDE):
+                work.d[j, r, col] = (fp[s + r] - f0[s + r]) * inv
+            for i in range(3):
+                dfr[i] = work.rec_inner[j, L.K_F_RING + i] - work.rec_inner0[j, L.K_F_RING + i]
+                dmr[i] = work.rec_inner[j, L.K_M_RING + i] - work.rec_inner0[j, L.K_M_RING + i]
+                dfc[i] = 0.0
+                dmc[i] = 0.0
+            if par.cage:
+                cage_pocket(yp, s, cb, j, par, work.crot, work.come, work.contact_work, work.pk)
+                for i in range(3):
+                    dfc[i] = work.pk[6 + i] - work.pocket0[j, 6 + i]
+                    dmc[i] = work.pk[9 + i] - work.pocket0[j, 9 + i]
+            body_rows(par, work.crot, dfr, dmr, dfc, dmc, work.rows)
+            for r in range(nr):
+                work.c[r, k] = work.rows[r] * inv
+    for col in range(nr):
+        for i in range(n):
+            yp[i] = y[i]
+        k = nb + col
+        yp[k] = y[k] + (1e-5 * scale[k] + 1e-8 * abs(y[k]))
+        rhs(yp, par, quad, fp, work.rec_inner, work.rec_outer, work.pocket)
+        counters[2] += 1
+        inv = 1.0 / (yp[k] - y[k])
+        for r in range(nb):
+            work.b[r, col] = (fp[r] - f0[r]) * inv
+        for r in range(nr):
+            work.e[r, col] = (fp[nb + r] - f0[nb + r]) * inv
+
+
+@njit(cache=True)
+def lu_factor(a, m, piv):
+    """LU factors with partial pivoting of the leading m x m part of ``a``, in place (LAPACK
+    layout: row swaps in ``piv``). Returns False when it is singular."""
+    for k in range(m):
+        p = k
+        big = abs(a[k, k])
+        for r in range(k + 1, m):
+            if abs(a[r, k]) > big:
+                big = abs(a[r, k])
+                p = r
+        piv[k] = p
+        if p != k:
+            for c in range(m):
+                tmp = a[k, c]
+                a[k, c] = a[p, c]
+                a[p, c] = tmp
+        d = a[k, k]
+        if d == 0.0 or d != d:
+            return False
+        for r in range(k + 1, m):
+            f = a[r, k] / d
+            a[r, k] = f
+            for c in range(k + 1, m):
+                a[r, c] -= f * a[k, c]
+    return True
+
+
+@njit(cache=True)
+def lu_solve(a, m, piv, x, s):
+    """Solve with the factors of :func:`lu_factor`, in place on x[s : s + m]."""
+    for k in range(m):
+        p = piv[k]
+        if p != k:
+            tmp = x[s + k]
+            x[s + k] = x[s + p]
+            x[s + p] = tmp
+    for r in range(1, m):
+        acc = x[s + r]
+        for c in range(r):
+            acc -= a[r, c] * x[s + c]
+        x[s + r] = acc
+    for r in range(m - 1, -1, -1):
+        acc = x[s + r]
+        for c in range(r + 1, m):
+            acc -= a[r, c] * x[s + c]
+        x[s + r] = acc / a[r, r]
 
 
 @njit(cache=True)
 def factor_blocks(jac, lu, piv, sizes, diag):
-    """LU factors (partial pivoting, in place in ``lu``) of diag * I - jac, block by block.
+    """LU factors of diag * I - jac, block by block (``sizes[b]`` x ``sizes[b]`` leading parts).
     Returns False when a block is singular."""
     for b in range(sizes.shape[0]):
         m = sizes[b]
@@ -179,27 +326,8 @@ def factor_blocks(jac, lu, piv, sizes, diag):
             for c in range(m):
                 lu[b, r, c] = -jac[b, r, c]
             lu[b, r, r] += diag
-        for k in range(m):
-            p = k
-            big = abs(lu[b, k, k])
-            for r in range(k + 1, m):
-                if abs(lu[b, r, k]) > big:
-                    big = abs(lu[b, r, k])
-                    p = r
-            piv[b, k] = p
-            if p != k:
-                for c in range(m):
-                    tmp = lu[b, k, c]
-                    lu[b, k, c] = lu[b, p, c]
-                    lu[b, p, c] = tmp
-            d = lu[b, k, k]
-            if d == 0.0:
-                return False
-            for r in range(k + 1, m):
-                f = lu[b, r, k] / d
-                lu[b, r, k] = f
-                for c in range(k + 1, m):
-                    lu[b, r, c] -= f * lu[b, k, c]
+        if not lu_factor(lu[b], m, piv[b]):
+            return False
     return True
 
 
@@ -207,24 +335,49 @@ def factor_blocks(jac, lu, piv, sizes, diag):
 def solve_blocks(lu, piv, starts, sizes, x):
     """Solve (diag I - jac) u = x in place, block by block, with the factors of factor_blocks."""
     for b in range(starts.shape[0]):
-        s = starts[b]
-        m = sizes[b]
-        for k in range(m):
-            p = piv[b, k]
-            if p != k:
-                tmp = x[s + k]
-                x[s + k] = x[s + p]
-                x[s + p] = tmp
-        for r in range(1, m):
-            acc = x[s + r]
-            for c in range(r):
-                acc -= lu[b, r, c] * x[s + c]
-            x[s + r] = acc
-        for r in range(m - 1, -1, -1):
-            acc = x[s + r]
-            for c in range(r + 1, m):
-                acc -= lu[b, r, c] * x[s + c]
-            x[s + r] = acc / lu[b, r, r]
+        lu_solve(lu[b], sizes[b], piv[b], x, starts[b])
+
+
+@njit(cache=True)
+def factor_arrow(work, diag, starts, sizes):
+    """Factor diag * I - W (W of :func:`jacobian_arrow`): ball blocks, (diag I - D)^-1 B and the
+    Schur complement diag I - E - C (diag I - D)^-1 B. Returns False when singular."""
+    if not factor_blocks(work.d, work.lu, work.piv, sizes, diag):
+        return False
+    nb, nr = work.b.shape
+    col = work.yt
+    for k in range(nr):
+        for r in range(nb):
+            col[r] = work.b[r, k]
+        solve_blocks(work.lu, work.piv, starts, sizes, col)
+        for r in range(nb):
+            work.mb[r, k] = col[r]
+    for i in range(nr):
+        for k in range(nr):
+            acc = -work.e[i, k]
+            for r in range(nb):
+                acc -= work.c[i, r] * work.mb[r, k]
+            work.s[i, k] = acc
+        work.s[i, i] += diag
+    return lu_factor(work.s, nr, work.spiv)
+
+
+@njit(cache=True)
+def solve_arrow(work, starts, sizes, x):
+    """Solve (diag I - W) u = x in place with the factors of :func:`factor_arrow`."""
+    nb, nr = work.b.shape
+    solve_blocks(work.lu, work.piv, starts, sizes, x)  # v = (diag I - D)^-1 x_b
+    for i in range(nr):
+        acc = x[nb + i]
+        for r in range(nb):
+            acc += work.c[i, r] * x[r]
+        x[nb + i] = acc
+    lu_solve(work.s, nr, work.spiv, x, nb)
+    for r in range(nb):
+        acc = x[r]
+        for k in range(nr):
+            acc += work.mb[r, k] * x[nb + k]
+        x[r] = acc
 
 
 @njit(cache=True)
@@ -252,13 +405,12 @@ def advance_rosenbrock(
     tab_order,
     starts,
     sizes,
-    groups,
     jac_every,
     work,
 ):
     """Integrate from ``t`` through every time in ``t_out`` like ``integrator.advance`` (same
-    arguments, outputs and status codes), with the Rosenbrock-W method ``tab_*`` and the W blocks
-    ``starts``/``sizes``/``groups`` re-formed every ``jac_every`` accepted steps and after a
+    arguments, outputs and status codes), with the Rosenbrock-W method ``tab_*``; ``starts`` /
+    ``sizes``: the ball blocks; W is re-formed every ``jac_every`` accepted steps and after a
     rejected step."""
     n = y.shape[0]
     ns = tab_m.shape[0]
@@ -286,11 +438,11 @@ def advance_rosenbrock(
                 hs = t_target - t
                 clipped = True
             if jac_age >= jac_every:
-                jacobian_blocks(y, f0, par, quad, scale, starts, sizes, groups, work, counters)
+                jacobian_arrow(y, par, quad, scale, work, counters)
                 jac_age = 0
                 h_factored = -1.0
             if hs != h_factored:
-                if not factor_blocks(work.jac, work.lu, work.piv, sizes, 1.0 / (hs * tab_gamma)):
+                if not factor_arrow(work, 1.0 / (hs * tab_gamma), starts, sizes):
                     return STATUS_NOT_FINITE, t, h, n_done
                 h_factored = hs
             for s in range(ns):
@@ -310,7 +462,7 @@ def advance_rosenbrock(
                     for j in range(s):
                         acc += tab_c[s, j] / hs * u[j, i]
                     u[s, i] = acc
-                solve_blocks(work.lu, work.piv, starts, sizes, u[s])
+                solve_arrow(work, starts, sizes, u[s])
             steps += 1
             err = 0.0
             for i in range(n):

@@ -178,14 +178,14 @@ def _stepper(options, par):
     if options.method == "dopri5":
         return advance
     tab = ros34pw2()
-    starts, sizes, groups = block_structure(par.ball_count)
+    starts, sizes = block_structure(par.ball_count)
     work = rosenbrock_work(par.ball_count, tab.m.shape[0])
     every = options.jacobian_every
 
     def step(*args):
         return advance_rosenbrock(
             *args, tab.gamma, tab.a, tab.c, tab.m, tab.e, tab.order,
-            starts, sizes, groups, every, work,
+            starts, sizes, every, work,
         )  # fmt: skip
 
     return step

@@ -1,4 +1,5 @@
-"""Rosenbrock-W integrator: tableau order, block LU against numpy, block structure."""
+"""Rosenbrock-W integrator: tableau order, block LU against numpy, the arrow Jacobian against
+full differences, the arrow solve against a dense solve."""
 
 from __future__ import annotations
 
@@ -10,10 +11,17 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.rosenbrock import (
     MAX_BLOCK,
     block_structure,
+    factor_arrow,
     factor_blocks,
+    jacobian_arrow,
     ros34pw2,
+    rosenbrock_work,
+    solve_arrow,
     solve_blocks,
 )
+from solver.models.dynamic.simulate import state_scales
+from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.dyn_helpers import evaluate, start
 
 
 def _step(tab, f, w, y, h):
@@ -117,11 +125,74 @@ def test_singular_block_is_reported():
     assert not ok
 
 
-def test_blocks_cover_the_state_once():
+def test_ball_blocks_cover_the_ball_slots_once():
     z = 18
-    starts, sizes, groups = block_structure(z)
+    starts, sizes = block_structure(z)
     covered = np.zeros(L.state_size(z), dtype=int)
     for s, m in zip(starts, sizes, strict=True):
         covered[s : s + m] += 1
-    assert (covered == 1).all()
-    assert (groups[:z] == 0).all() and (groups[z:] == 1).all()
+    nb = L.BALL_STRIDE * z
+    assert (covered[:nb] == 1).all() and (covered[nb:] == 0).all()
+
+
+def test_arrow_jacobian_matches_the_full_difference_jacobian():
+    """D, B, C, E of jacobian_arrow against central differences of the whole right-hand side at
+    the spindle's start (radial load and cage on: every coupling is active)."""
+    par, quad, y = start(spindle_inputs(radial=300.0))
+    scale = state_scales(par, y)
+    z = int(par.ball_count)
+    n = y.shape[0]
+    nb = L.BALL_STRIDE * z
+    work = rosenbrock_work(z)
+    jacobian_arrow(y, par, quad, scale, work, np.zeros(3, dtype=np.int64))
+    full = np.empty((n, n))
+    for k in range(n):
+        e = 1e-4 * scale[k]
+        yp, ym = y.copy(), y.copy()
+        yp[k] += e
+        ym[k] -= e
+        full[:, k] = (evaluate(yp, par, quad)[0] - evaluate(ym, par, quad)[0]) / (2 * e)
+    # compare in the scaled variables (rows and columns by the characteristic magnitudes)
+    js = full * scale[None, :] / scale[:, None]
+    norm = np.abs(js).max()
+
+    def scaled(block, rows, cols):
+        return block * scale[cols][None, :] / scale[rows][:, None]
+
+    balls, rest = np.arange(nb), np.arange(nb, n)
+    for j in (0, 7):
+        idx = np.arange(L.BALL_STRIDE * j, L.BALL_STRIDE * (j + 1))
+        got = scaled(work.d[j], idx, idx)
+        np.testing.assert_allclose(got, js[np.ix_(idx, idx)], atol=2e-3 * norm)
+    np.testing.assert_allclose(
+        scaled(work.b, balls, rest), js[np.ix_(balls, rest)], atol=2e-3 * norm
+    )
+    np.testing.assert_allclose(
+        scaled(work.c, rest, balls), js[np.ix_(rest, balls)], atol=2e-3 * norm
+    )
+    np.testing.assert_allclose(scaled(work.e, rest, rest), js[np.ix_(rest, rest)], atol=2e-3 * norm)
+    assert np.abs(work.c).max() > 0.0 and np.abs(work.b).max() > 0.0
+
+
+def test_arrow_solve_matches_a_dense_solve():
+    par, quad, y = start(spindle_inputs(radial=300.0))
+    scale = state_scales(par, y)
+    z = int(par.ball_count)
+    work = rosenbrock_work(z)
+    jacobian_arrow(y, par, quad, scale, work, np.zeros(3, dtype=np.int64))
+    starts, sizes = block_structure(z)
+    diag = 1.0 / (2e-6 * 0.4358665215)
+    assert factor_arrow(work, diag, starts, sizes)
+    nb = L.BALL_STRIDE * z
+    dense = np.zeros((y.shape[0], y.shape[0]))
+    for j in range(z):
+        s = L.BALL_STRIDE * j
+        dense[s : s + 13, s : s + 13] = work.d[j]
+    dense[:nb, nb:] = work.b
+    dense[nb:, :nb] = work.c
+    dense[nb:, nb:] = work.e
+    x = np.random.default_rng(1).normal(size=y.shape[0])
+    got = x.copy()
+    solve_arrow(work, starts, sizes, got)
+    want = np.linalg.solve(diag * np.eye(y.shape[0]) - dense, x)
+    np.testing.assert_allclose(got, want, rtol=1e-8, atol=1e-12 * np.abs(want).max())
