@@ -48,6 +48,10 @@ from .kernels import TRACTION_WORK_SIZE, cage_frame, cage_pocket, post_step, rhs
 
 #: largest block of the block-diagonal W (a ball's 13 state slots)
 MAX_BLOCK = L.BALL_STRIDE
+#: step control: safety factor and largest growth of the step after an accepted step (contacts
+#: and pocket impacts switch within a step: a cautious growth avoids rejected steps)
+SAFETY = 0.8
+MAX_GROWTH = 2.0
 
 
 class RosenbrockTableau(NamedTuple):
@@ -483,10 +487,10 @@ def advance_rosenbrock(
                 continue
             if err <= 1.0:
                 # accept; Gustafsson's predictive controller (Hairer & Wanner IV.8, (8.21))
-                fac = 0.9 * err ** (-expo) if err > 0.0 else 5.0
+                fac = SAFETY * err ** (-expo) if err > 0.0 else MAX_GROWTH
                 if err > 0.0 and steps > 1:
                     fac = min(fac, fac * (hs / h_old) * (err_old / err) ** expo)
-                fac = min(5.0, max(0.2, fac))
+                fac = min(MAX_GROWTH, max(0.2, fac))
                 h_old = hs
                 err_old = max(err, 1e-2)
                 t = t_target if clipped else t + hs
@@ -504,9 +508,10 @@ def advance_rosenbrock(
                 if not clipped or hs * fac > h:
                     h = hs * fac
             else:
-                h = hs * max(0.2, 0.9 * err ** (-expo))
+                h = hs * max(0.2, SAFETY * err ** (-expo))
                 counters[1] += 1
-                jac_age = jac_every
+                if jac_age > 0:  # a second rejection with the same W re-forms it
+                    jac_age = jac_every
                 if h < h_min:
                     return STATUS_STEP_COLLAPSE, t, h, n_done
         for i in range(n):
