@@ -1,0 +1,59 @@
+"""Accuracy contract of the dynamic model's default integration (docs/numerics.md): short runs of
+four cases against the stored explicit reference at tolerance 1e-6 (tests/helpers/accuracy.py)."""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.helpers import accuracy as A
+
+CONTRACT_CASES = [
+    "spindle_combined",
+    pytest.param(
+        "heavy_218",
+        marks=pytest.mark.xfail(
+            strict=True,
+            reason="explicit Dormand-Prince at the default tolerance 1e-4 misses the 0.005 deg "
+            "contact-angle allowance by a few per cent on the 218 heavy case (docs/numerics.md)",
+        ),
+    ),
+    "misalignment_ring",
+    "light_high_speed",
+]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("label", CONTRACT_CASES)
+def test_default_method_meets_the_contract(label):
+    reference = A.load_reference()
+    assert reference["tolerance"] == A.REFERENCE_TOLERANCE
+    ds = A.run(label)
+    assert ds.attrs["complete"] == 1
+    worst = A.deviations(A.metrics(ds), reference["cases"][label])
+    assert max(worst.values()) <= 1.0, worst
+
+
+@pytest.mark.parametrize(
+    ("key", "change", "metric"),
+    [
+        ("contact_angle_deg", lambda v: v + 0.006, "contact_angle"),
+        ("contact_load_N", lambda v: v * 1.003, "contact_load"),
+        ("cage_speed_rad_s", lambda v: v * 1.0006, "cage_speed"),
+        ("band_thickness_deg", lambda v: v * 1.03 + 0.0021, "band_thickness"),
+    ],
+)
+def test_contract_comparison_flags_each_metric(key, change, metric):
+    """The comparison itself: the reference matches itself, and a change just beyond one metric's
+    allowance is flagged on that metric."""
+    reference = A.load_reference()["cases"]["spindle_combined"]
+    assert max(A.deviations(reference, reference).values()) == 0.0
+    changed = dict(reference)
+    value = reference[key]
+    if isinstance(value, list):
+        changed[key] = [
+            [change(x) for x in row] if isinstance(row, list) else change(row) for row in value
+        ]
+    else:
+        changed[key] = change(value)
+    worst = A.deviations(changed, reference)
+    assert worst[metric] > 1.0 and all(v == 0.0 for k, v in worst.items() if k != metric), worst
