@@ -1,4 +1,5 @@
-"""Which modes limit the explicit step: eigenvalues of the dynamic model's Jacobian at a running state.
+"""Which modes limit the explicit step: eigenvalues of the dynamic model's Jacobian at a running
+state.
 
     python benchmarks/stiffness.py [--cases spindle heavy] [--revolutions 0.3]
 
@@ -127,15 +128,15 @@ def report(label, revolutions):
         limits = [dp_reach(lam[i] / abs(lam[i])) / abs(lam[i]) for i in mine if abs(lam[i]) > 0]
         hmin = min(limits) if limits else math.inf
         overall = min(overall, hmin)
-        print(
-            f"   {name:32s} {abs(lk):16.3e} {lk.real:11.3e} {lk.imag:11.3e} {hmin * 1e6:12.2f}"
-        )
+        print(f"   {name:32s} {abs(lk):16.3e} {lk.real:11.3e} {lk.imag:11.3e} {hmin * 1e6:12.2f}")
     print(
         f"   explicit Dormand-Prince stability limit: h <= {overall * 1e6:.2f} us = "
         f"{period / overall:.0f} steps per shaft revolution"
     )
     unstable = lam[lam.real > 1e-3 * np.abs(lam).max()]
-    print(f"   eigenvalues with Re > 0 (growing modes): {len(unstable)}, max Re {lam.real.max():.3e}")
+    print(
+        f"   eigenvalues with Re > 0 (growing modes): {len(unstable)}, max Re {lam.real.max():.3e}"
+    )
     # per-ball 13 x 13 blocks: what a block-diagonal Jacobian captures
     block_max = 0.0
     for j in range(z):
