@@ -1,27 +1,35 @@
 """Benchmark of the dynamic model on a light and a heavy catalogue case.
 
     python benchmarks/dynamic.py [--revolutions N] [--cases spindle heavy]
-                                 [--traction-model case|rheology|slip_curve]
+                                 [--methods dopri5 rosenbrock] [--memory-revolutions 100]
+                                 [--compile-time] [--traction-model case|rheology|slip_curve]
 
 - spindle: catalogue case ``spindle-combined-load`` (7008C-class hybrid, 18 balls, 20 000 rpm,
   500 N axial + 300 N radial, cage on);
 - heavy: ``218-heavy-combined`` (218, 16 balls, 10 000 rpm, 17.8 kN + 8.9 kN, cage on).
 
-Prints wall and CPU time per shaft revolution of a run timed without tracemalloc (after a warm-up
-run that compiles the numba kernels), accepted and rejected steps, right-hand-side evaluations,
-peak memory from a separate one-revolution pass under tracemalloc (Python/numpy allocations;
-ru_maxrss for the process), the memory projected for 100 revolutions of output, and a
+For each case and integration method (option ``method``, docs/numerics.md) prints wall and CPU
+time per shaft revolution of a run timed without tracemalloc (after a warm-up run that loads or
+compiles the numba kernels), steps per revolution, accepted and rejected steps, right-hand-side
+evaluations per step and the cost of one evaluation, peak memory of a separate pass of
+``--memory-revolutions`` revolutions under tracemalloc (Python/numpy allocations; ru_maxrss for
+the process), and a
 breakdown of where the time goes: the cost of one right-hand-side evaluation measured with parts of
 the physics switched off (numba code cannot be profiled by cProfile, so the parts are timed by
 difference), times the number of evaluations, plus the integrator overhead and the output stage.
-Last, whether the spindle case meets the target of 1 s CPU time per shaft revolution.
+Last, each case's figures against the targets of issue 13 (spindle <= 0.1 s, 218 heavy <= 0.06 s
+per revolution, <= 1 GB for 100 revolutions). ``--compile-time`` also times the first run in a
+fresh process with an empty numba cache (compilation of every kernel).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import resource
+import subprocess
 import sys
+import tempfile
 import time
 import tracemalloc
 from dataclasses import replace
@@ -39,10 +47,13 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import initial_state
 from solver.models.dynamic.integrator import advance
 from solver.models.dynamic.kernels import rhs
+from solver.models.dynamic.options import METHODS
 from solver.models.dynamic.params import build_params, build_quadrature
 from solver.models.dynamic.simulate import state_scales
 
 CASES = {"spindle": "spindle-combined-load", "heavy": "218-heavy-combined"}
+TARGETS = {"spindle": 0.1, "heavy": 0.06}  # s wall per shaft revolution (issue 13)
+MEMORY_TARGET = 1e9  # bytes for 100 revolutions
 
 
 def running_state(inputs, options, revolutions=0.1):
@@ -95,23 +106,26 @@ def rhs_cost(inputs, options, y, repeats=300):
     return best
 
 
-def run_case(label, revolutions, traction_model="case"):
+def run_case(label, revolutions, method, memory_revolutions, traction_model="case"):
     case = resolve_case(CASES[label])
     inputs = to_inputs(case)
     if traction_model != "case":
         inputs = replace(inputs, lubricant=replace(inputs.lubricant, traction_model=traction_model))
-    options = SimulationOptions(shaft_revolutions=revolutions)
-    simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # compile / warm caches
+    options = SimulationOptions(shaft_revolutions=revolutions, method=method)
+    first = time.perf_counter()
+    simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # load / compile kernels
+    first = time.perf_counter() - first
     start = time.perf_counter()
     cpu_start = time.process_time()
     ds = simulate(inputs, options=options)
     cpu = time.process_time() - cpu_start
     total = time.perf_counter() - start
-    # memory in a separate, shorter pass: tracemalloc slows numpy-heavy code down
+    # memory in a separate pass: tracemalloc slows numpy-heavy code down
     tracemalloc.start()
-    simulate(inputs, options=replace(options, shaft_revolutions=min(1.0, revolutions)))
+    simulate(inputs, options=replace(options, shaft_revolutions=memory_revolutions))
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1e3
     integ = ds.attrs["wall_time_s"]
     steps, rejected, evals = (
         ds.attrs["steps"],
@@ -124,14 +138,10 @@ def run_case(label, revolutions, traction_model="case"):
     no_cage = rhs_cost(inputs, replace(options, cage=False), y_run)
     normal_only = rhs_cost(inputs, replace(options, traction=False, cage=False), y_run)
     per_rev = integ / revolutions
-    n_state = L.state_size(inputs.geometry.ball_count)
-    samples_100 = 100 * inputs.simulation.samples_per_revolution
-    bytes_state = samples_100 * n_state * 8
-    bytes_ds = ds.nbytes / ds.sizes["time"] * samples_100
-    print(f"\n== {label}: {case.title} (traction model: {inputs.lubricant.traction_model})")
+    print(f"\n== {label}, method {method}: {case.title}")
     print(
         f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = "
-        f"{ds.attrs['complete']}"
+        f"{ds.attrs['complete']}, traction model {inputs.lubricant.traction_model}"
     )
     print(
         f"   wall time: integration {integ:.2f} s = {per_rev:.3f} s per shaft revolution; "
@@ -142,23 +152,20 @@ def run_case(label, revolutions, traction_model="case"):
         "start and output; wall > CPU means the shared machine was busy)"
     )
     print(
-        f"   steps {steps} accepted, {rejected} rejected "
-        f"({steps / revolutions:.0f} per revolution, "
-        f"mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f} us); "
-        f"RHS evaluations {evals}"
+        f"   steps {steps / revolutions:.0f} per revolution ({steps} accepted, {rejected} "
+        f"rejected, mean step {ds.attrs['shaft_period_s'] * revolutions / max(steps, 1) * 1e6:.2f}"
+        f" us); RHS evaluations {evals} = {evals / max(steps + rejected, 1):.2f} per step; "
+        f"one evaluation {full * 1e6:.1f} us"
     )
+    print(f"   first run in this process (kernels from the cache or compiled) {first:.1f} s")
     print(
-        f"   memory (1-revolution pass): tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
-        f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; projected for 100 "
-        f"revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB"
+        f"   memory ({memory_revolutions:g}-revolution pass): tracemalloc peak {peak / 1e6:.1f} MB,"
+        f" process max RSS {rss / 1e6:.0f} MB"
     )
     rhs_total = evals * full
     print("   where the time goes (RHS cost by difference at a running state x evaluations; the")
     print("   machine is shared, so the parts are indicative):")
-    print(
-        f"     one RHS evaluation: {full * 1e6:.1f} us (normal contacts only "
-        f"{normal_only * 1e6:.1f} us)"
-    )
+    print(f"     normal contacts only: {normal_only * 1e6:.1f} us per evaluation")
     parts = {
         "Hertz geometry + normal forces + ball/ring bookkeeping": evals * normal_only,
         "traction, rolling resistance and drag": evals * (full - no_traction),
@@ -167,17 +174,44 @@ def run_case(label, revolutions, traction_model="case"):
     for name, seconds in parts.items():
         print(f"     {name:55s} {seconds:7.2f} s  ({100 * seconds / integ:5.1f} %)")
     print(
-        f"     {'rest: integrator, waiting for the shared CPU':55s} {integ - rhs_total:7.2f} s  "
-        f"({100 * (integ - rhs_total) / integ:5.1f} %)"
+        f"     {'rest: integrator, linear algebra, waiting for the CPU':55s} "
+        f"{integ - rhs_total:7.2f} s  ({100 * (integ - rhs_total) / integ:5.1f} %)"
     )
     print(f"     {'initial state + output Dataset':55s} {total - integ:7.2f} s")
-    return per_rev, cpu / revolutions
+    # the process's resident set plus the traced allocations scaled to 100 revolutions
+    return per_rev, rss + peak * max(100.0 / memory_revolutions - 1.0, 0.0)
+
+
+def compile_time():
+    """Seconds of a first tiny run in a fresh process with an empty numba cache."""
+    code = (
+        "import time; t = time.perf_counter()\n"
+        "from solver.models.dynamic import SimulationOptions, simulate\n"
+        "simulate('spindle-combined-load', options=SimulationOptions(shaft_revolutions=0.01))\n"
+        "print(time.perf_counter() - t)\n"
+    )
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        out = subprocess.run(
+            [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
+        )
+    return float(out.stdout.strip().splitlines()[-1])
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--revolutions", type=float, default=3.0)
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    parser.add_argument(
+        "--methods", nargs="+", default=["dopri5", "rosenbrock"], choices=list(METHODS)
+    )
+    parser.add_argument(
+        "--memory-revolutions",
+        type=float,
+        default=100.0,
+        help="length of the separate memory pass (peak scaled to 100 revolutions if shorter)",
+    )
+    parser.add_argument("--compile-time", action="store_true")
     parser.add_argument(
         "--traction-model",
         default="case",
@@ -186,15 +220,23 @@ def main(argv=None):
     )
     args = parser.parse_args(argv)
     results = {
-        label: run_case(label, args.revolutions, args.traction_model) for label in args.cases
-    }
-    if "spindle" in results:
-        wall, cpu = results["spindle"]
-        verdict = "meets" if cpu <= 1.0 else "misses"
-        print(
-            f"\nspindle: {cpu:.3f} s CPU per shaft revolution (wall {wall:.3f} s on the shared "
-            f"machine): {verdict} the 1 s target"
+        (label, method): run_case(
+            label, args.revolutions, method, args.memory_revolutions, args.traction_model
         )
+        for label in args.cases
+        for method in args.methods
+    }
+    print("\nagainst the targets (wall s per shaft revolution on this machine; memory for 100")
+    print("revolutions, scaled from the memory pass when it was shorter):")
+    for (label, method), (per_rev, memory) in results.items():
+        verdict = "meets" if per_rev <= TARGETS[label] else "misses"
+        mem = "meets" if memory <= MEMORY_TARGET else "misses"
+        print(
+            f"  {label:8s} {method:10s} {per_rev:.3f} s/rev: {verdict} {TARGETS[label]} s; "
+            f"memory <= {memory / 1e6:.0f} MB: {mem} 1 GB"
+        )
+    if args.compile_time:
+        print(f"\nfirst run with an empty numba cache (compile everything): {compile_time():.1f} s")
     return 0
 
 
