@@ -42,6 +42,11 @@ def register(subparsers) -> None:
     )
     parser.add_argument("--tolerance", type=float, help="override [simulation] tolerance")
     parser.add_argument(
+        "--method",
+        choices=("dopri5", "rosenbrock"),
+        help="integration method (default dopri5; docs/numerics.md)",
+    )
+    parser.add_argument(
         "--no-traction", action="store_true", help="frictionless ball-race contacts"
     )
     parser.add_argument("--no-cage", action="store_true", help="leave the cage out of the model")
@@ -108,6 +113,8 @@ def run(args) -> int:
         changes["samples_per_revolution"] = args.samples_per_revolution
     if args.tolerance is not None:
         changes["tolerance"] = args.tolerance
+    if args.method is not None:
+        changes["method"] = args.method
     if args.no_traction:
         changes["traction"] = False
     if args.no_cage:
