@@ -411,8 +411,8 @@ FIELDS: list[Field] = [
         "How the ball-race traction is computed at each point of the contact ellipse: "
         '"rheology" (shear stress of the oil film from viscosity at the local pressure, film '
         "thickness and slip: Eyring, elastic and limiting-shear-stress laws, docs/case-format.md) "
-        'or "slip_curve" (the fixed traction-coefficient curve of the traction table).',
-        default="rheology",
+        'or "slip_curve" (the fixed traction-coefficient curve of the traction table; faster).',
+        default="slip_curve",
         choices=("rheology", "slip_curve"),
         reason="the traction model is one of the listed names",
     ),
