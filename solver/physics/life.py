@@ -138,8 +138,11 @@ def load_factors(
     """(X, Y, e) of ISO 281 Table 3 for a single-row angular contact ball bearing.
 
     Loads in N (magnitudes), ``contact_angle`` in rad (15 to 45 deg, else LifeRangeError),
-    ``ball_diameter`` in m. (1, 0, e) when F_a / F_r <= e."""
+    ``ball_diameter`` in m. (1, 0, e) when F_a / F_r <= e; a pure radial load gives (1, 0, nan)
+    at any contact angle (the rule F_a / F_r <= e holds in every row of the table)."""
     alpha_deg = math.degrees(contact_angle)
+    if axial_load == 0.0:
+        return 1.0, 0.0, math.nan
     if not (MIN_CONTACT_ANGLE_DEG - 1e-9 <= alpha_deg <= MAX_CONTACT_ANGLE_DEG + 1e-9):
         raise LifeRangeError(
             f"nominal contact angle {alpha_deg:.3g} deg: the X, Y factors of ISO 281 Table 3 are "
@@ -161,8 +164,6 @@ def load_factors(
         x = float(np.interp(alpha_deg, _ANGLES, _ANGLE_X))
         y = float(np.interp(alpha_deg, _ANGLES, _ANGLE_Y))
     if fr > 0.0 and fa / fr <= e:
-        return 1.0, 0.0, e
-    if fr == 0.0 and fa == 0.0:
         return 1.0, 0.0, e
     return x, y, e
 

@@ -24,6 +24,7 @@ from solver.physics.hertz_fast import (
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
 
 from .dataset import build_result, case_text
+from .life import rating_life
 from .variables import VARIABLES
 
 MODEL = "quasistatic"
@@ -65,6 +66,7 @@ def solution_to_dataset(
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
     ``lubricant`` (a :class:`solver.inputs.LubricantInputs`, SI, or None) adds ``film_thickness``.
+    The rating lives (ISO 281, ISO/TS 16281: :mod:`solver.results.life`) are added.
     ``operating`` (SI operating point, see :func:`solver.results.dataset.describing_coordinates`)
     defaults to the one the solution was solved for; ``case`` (a Case or TOML text) is kept in
     ``attrs["case"]`` for provenance.
@@ -194,7 +196,7 @@ def solution_to_dataset(
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "
             "the ring-fixed tilt axis coincides with the given azimuth"
         )
-    return build_result(
+    ds = build_result(
         MODEL,
         {name: (VARIABLES[name].dims_for(MODEL), values) for name, values in data.items()},
         geometry,
@@ -203,3 +205,4 @@ def solution_to_dataset(
         attrs=attrs,
         variable_attrs=descriptions,
     )
+    return ds.assign(rating_life(ds).data_vars)

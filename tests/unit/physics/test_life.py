@@ -81,6 +81,8 @@ def test_equivalent_load_table_rows_by_contact_angle():
     assert life.equivalent_dynamic_load(1000.0, 0.0, alpha, D, Z) == pytest.approx(570.0)
     with pytest.raises(life.LifeRangeError, match="contact angle"):
         life.load_factors(1000.0, 0.0, math.radians(10.0), D, Z)
+    # a pure radial load is P = F_r at any contact angle (F_a / F_r = 0 <= e in every row)
+    assert life.equivalent_dynamic_load(0.0, 800.0, math.radians(10.0), D, Z) == 800.0
 
 
 def test_raceway_load_ratings_7008c_at_17_degrees():
