@@ -5,8 +5,8 @@ chunk boundary: the partial result (attrs ``complete = 0``) is written atomicall
 exits with 130. A diverged run also writes what it had and exits with 4, printing the likely cause.
 Case warnings and result warnings (the result leaves the model's validity, the run stopped early or
 is too short to settle) are printed on stderr as ``warning: ...`` lines; they do not change the exit
-code. The trajectory metrics (excursion, band thickness, settling) go to stdout, as JSON with
-``--json``.
+code. The trajectory metrics (excursion, band thickness, settling) and the rating lives (L10,
+L10r) go to stdout, as JSON with ``--json``.
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--json",
         action="store_true",
-        help="print the trajectory metrics and the settling window as JSON",
+        help="print the trajectory metrics, the settling window and the rating lives as JSON",
     )
     parser.set_defaults(func=run)
 
@@ -162,10 +162,13 @@ def run(args) -> int:
 
 
 def print_metrics(ds, as_json: bool, output: Path) -> None:
-    """The trajectory metrics and the settling window on stdout (text or JSON)."""
-    from racetrace.metrics import metrics_json, metrics_text
+    """The trajectory metrics, the settling window and the rating lives on stdout (text or
+    JSON)."""
+    from racetrace.metrics import life_json, life_text, metrics_json, metrics_text
 
     if as_json:
-        print(json.dumps({"output": str(output), "trajectory": metrics_json(ds)}, indent=2))
+        out = {"output": str(output), "trajectory": metrics_json(ds), "life": life_json(ds)}
+        print(json.dumps(out, indent=2))
     else:
         print(metrics_text(ds))
+        print(life_text(ds))
