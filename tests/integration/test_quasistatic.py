@@ -442,7 +442,8 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
     alpha_o, alpha_i = math.radians(33.0), math.radians(45.0)
     x = (g_o + 8e-6) * np.array([math.sin(alpha_o), math.cos(alpha_o)])
     a = x + (g_i + 9e-6) * np.array([math.sin(alpha_i), math.cos(alpha_i)])
-    st = kernels.ball_state(x[0], x[1], a[0], a[1], inner_control, model)
+    control = kernels.race_control_rows([inner_control])[0]
+    st = kernels.ball_state(x[0], x[1], a[0], a[1], control, model)
     res = np.array(st[:2])
     q_i, q_o, a_i, a_o, beta, omega_c, omega_r, f_c = (
         st[5],

@@ -126,15 +126,22 @@ def _static_start(problem: _Problem, load_fraction: float):
 
 
 class _State:
-    """Mutable iterate of the continuation: ring displacement, ball positions, race control."""
+    """Mutable iterate of the continuation: ring displacement, ball positions, and each ball's
+    kinematics record ``control`` (Z, kernels.CONTROL_SIZE): race control or the traction
+    balance."""
 
-    def __init__(self, q, position, inner_control):
+    def __init__(self, q, position, control):
         self.q = q
         self.position = position
-        self.inner_control = inner_control
+        self.control = control
+
+    @property
+    def inner_control(self) -> np.ndarray:
+        """Race-control decision per ball (True = inner control)."""
+        return self.control[:, kernels.CONTROL_MODE] == kernels.INNER_CONTROL
 
     def copy(self):
-        return _State(self.q.copy(), self.position.copy(), self.inner_control.copy())
+        return _State(self.q.copy(), self.position.copy(), self.control.copy())
 
 
 def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fraction: float):
@@ -146,7 +153,7 @@ def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fr
         problem.applied * load_fraction,
         problem.azimuth,
         state.position,
-        state.inner_control,
+        state.control,
         model,
         force_scale,
         length_scale,
@@ -171,7 +178,7 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
             return False, total, merit, note
         states = np.empty((problem.azimuth.size, _STATE_FIELDS))
         kernels.evaluate_balls(
-            state.q, problem.azimuth, state.position, state.inner_control, model, states
+            state.q, problem.azimuth, state.position, state.control, model, states
         )
         decision = _race_control(states, model)
         if np.array_equal(decision, state.inner_control):
@@ -185,7 +192,7 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
             )
             return True, total, merit, note
         history.append(key)
-        state.inner_control = decision
+        state.control = kernels.race_control_rows(decision)
     note = (
         f"race control did not settle in {MAX_RACE_CONTROL_ITERATIONS} iterations; the last "
         "solution is kept with the decision it was solved with"
@@ -226,11 +233,7 @@ def solve_operating_point(
         ok, its, merit, note = _solve_with_race_control(problem, trial, speed, load)
         totals["iterations"] += its
         if ok:
-            state.q, state.position, state.inner_control = (
-                trial.q,
-                trial.position,
-                trial.inner_control,
-            )
+            state.q, state.position, state.control = (trial.q, trial.position, trial.control)
             best["merit"], best["note"] = merit, note
         return ok
 
@@ -243,7 +246,7 @@ def solve_operating_point(
         state = _State(
             np.concatenate([initial.inner_ring_offset, initial.inner_ring_tilt]).astype(float),
             np.array(initial.ball_position, dtype=float),
-            np.asarray(initial.race_control) == "inner",
+            kernels.race_control_rows(np.asarray(initial.race_control) == "inner"),
         )
         state.q[3:] = np.where(problem.free[3:], state.q[3:], operating.imposed_tilt())
         if not attempt(state, 1.0, 1.0):
@@ -251,10 +254,10 @@ def solve_operating_point(
     if state is None:
         # static solution first, with load continuation if the direct solve fails
         q0, pos0 = _static_start(problem, 1.0)
-        state = _State(q0, pos0, np.zeros(z, dtype=np.bool_))
+        state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
         if not attempt(state, 0.0, 1.0):
             q0, pos0 = _static_start(problem, 0.05)
-            state = _State(q0, pos0, np.zeros(z, dtype=np.bool_))
+            state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
             if not attempt(state, 0.0, 0.05):
                 raise NoSolutionError(_no_static_message(problem))
             reached = _continuation(lambda s: attempt(state, 0.0, s), 0.05, 1.0, 1e-4)
@@ -286,9 +289,7 @@ def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
     op = problem.operating
     model = problem.model(reached)
     states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-    kernels.evaluate_balls(
-        state.q, problem.azimuth, state.position, state.inner_control, model, states
-    )
+    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
     alpha_o = math.degrees(float(np.min(states[:, 10])))
     speed = rad_s_to_rpm(reached * op.inner_ring_speed)
     target = rad_s_to_rpm(op.inner_ring_speed)
@@ -306,9 +307,7 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     model = problem.model(1.0)
     z = g.ball_count
     states = np.empty((z, _STATE_FIELDS))
-    kernels.evaluate_balls(
-        state.q, problem.azimuth, state.position, state.inner_control, model, states
-    )
+    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
     psi = problem.azimuth
     alpha = states[:, [9, 10]].copy()
     load = states[:, [5, 6]].copy()
