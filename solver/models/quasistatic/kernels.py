@@ -119,7 +119,8 @@ CONTROL_TAU_INNER = 5  # TRACTION_BALANCE: traction on the ball at the inner con
 #                        (cos alpha_i e_x - sin alpha_i e_r)
 CONTROL_TAU_OUTER = 6  # TRACTION_BALANCE: the same at the outer contact [N], along
 #                        (-cos alpha_o e_x + sin alpha_o e_r)
-CONTROL_SIZE = 7
+CONTROL_YAW = 7  # TRACTION_BALANCE: e_theta component of the ball's spin relative to the cage
+CONTROL_SIZE = 8
 OUTER_CONTROL = 0
 INNER_CONTROL = 1
 TRACTION_BALANCE = 2

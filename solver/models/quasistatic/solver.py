@@ -27,6 +27,8 @@ from .solution import QuasiStaticSolution
 RING_TOLERANCE = 1e-11  # scaled residual norm at which the ring equilibrium is accepted
 MAX_RING_ITERATIONS = 60
 MAX_RACE_CONTROL_ITERATIONS = 12
+MAX_TRACTION_ITERATIONS = 30
+TRACTION_SPEED_TOLERANCE = 1e-9  # fixed point: ball speeds relative to the ring speed, angles rad
 _STATE_FIELDS = 16  # columns of kernels.evaluate_balls
 
 
@@ -218,11 +220,78 @@ def _continuation(solve, start: float, target: float, min_step: float):
     return current
 
 
+def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
+    """From a race-control solution at full speed: ball speeds and transverse tractions from the
+    traction balance (:mod:`.traction_balance`), iterated with the ring solve to a fixed point.
+    Returns (iterations, merit, note); raises NoSolutionError when the balance fails."""
+    from .traction_balance import BalanceFailed, traction_balance, traction_setup
+
+    curve, nodes = traction_setup(lubricant)
+    model = problem.model(1.0)
+    z = problem.azimuth.size
+    relative = abs(problem.operating.inner_ring_speed - problem.operating.outer_ring_speed)
+    total = 0
+    merit = math.nan
+    for iteration in range(1, MAX_TRACTION_ITERATIONS + 1):
+        states = np.empty((z, _STATE_FIELDS))
+        kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
+        try:
+            control, _ = traction_balance(
+                problem.geometry,
+                model,
+                states,
+                state.position,
+                state.q,
+                problem.azimuth,
+                state.control,
+                curve,
+                nodes,
+            )
+        except BalanceFailed as error:
+            raise NoSolutionError(
+                f"the traction balance of the ball speeds failed: {error}. Try "
+                '[simulation] quasistatic_ball_speeds = "race_control".'
+            ) from None
+        previous = state.control
+        state.control = control
+        converged, iterations, merit = _ring_solve(problem, state, 1.0, 1.0)
+        total += iterations
+        if not converged:
+            raise NoSolutionError(
+                "no ring equilibrium with the ball speeds of the traction balance. Try "
+                '[simulation] quasistatic_ball_speeds = "race_control".'
+            )
+        settled = (
+            previous[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
+            and np.max(np.abs(control[:, kernels.CONTROL_ORBITAL] - previous[:, 1]))
+            <= TRACTION_SPEED_TOLERANCE * relative
+            and np.max(np.abs(control[:, kernels.CONTROL_SPIN] - previous[:, 2]))
+            <= TRACTION_SPEED_TOLERANCE * relative
+            and np.max(np.abs(control[:, kernels.CONTROL_ATTITUDE] - previous[:, 3]))
+            <= TRACTION_SPEED_TOLERANCE
+        )
+        if settled:
+            cage = control[0, kernels.CONTROL_ORBITAL] / (2 * math.pi) * 60.0
+            return total, merit, (
+                f"ball speeds from the traction balance (cage speed {cage:.6g} rpm), fixed point "
+                f"after {iteration} iterations"
+            )
+    return total, merit, (
+        f"ball speeds from the traction balance: the fixed point did not settle within "
+        f"{MAX_TRACTION_ITERATIONS} iterations; the last iterate is kept"
+    )
+
+
 def solve_operating_point(
-    geometry, operating: OperatingPoint, initial: QuasiStaticSolution | None = None
+    geometry,
+    operating: OperatingPoint,
+    initial: QuasiStaticSolution | None = None,
+    traction_lubricant=None,
 ) -> QuasiStaticSolution:
     """Quasi-static equilibrium of ``geometry`` at ``operating``; see
-    :func:`solve_quasistatic_state`."""
+    :func:`solve_quasistatic_state`. ``traction_lubricant`` (a
+    :class:`solver.inputs.LubricantInputs`) switches the ball speeds from race control to the
+    traction balance with that lubricant's traction curve (:mod:`.traction_balance`)."""
     problem = _Problem(geometry, operating)
     z = geometry.ball_count
     totals = {"iterations": 0}
@@ -268,9 +337,13 @@ def solve_operating_point(
             reached = _continuation(lambda s: attempt(state, s, 1.0), 0.0, 1.0, 1e-4)
             if reached != 1.0:
                 raise NoSolutionError(_no_speed_message(problem, state, reached))
-    return _pack(
-        problem, state, totals["iterations"], best.get("merit", math.nan), best.get("note", "")
-    )
+    note = best.get("note", "")
+    merit = best.get("merit", math.nan)
+    has_speed = operating.inner_ring_speed != operating.outer_ring_speed
+    if traction_lubricant is not None and has_speed:
+        its, merit, note = _solve_with_traction_balance(problem, state, traction_lubricant)
+        totals["iterations"] += its
+    return _pack(problem, state, totals["iterations"], merit, note)
 
 
 def _no_static_message(problem: _Problem) -> str:
@@ -326,10 +399,15 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
             g.outer_curvature_center_radius + state.position[:, 1],
         ]
     )
-    # angular velocity: omega_c e_x + omega_R (cos beta e_x - sin beta e_r)
+    # angular velocity: omega_c e_x + omega_R (cos beta e_x - sin beta e_r) + w_theta e_theta
+    # (w_theta: the small yaw of the traction balance; 0 under race control)
+    traction = state.control[:, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
+    w_t = np.where(traction, state.control[:, kernels.CONTROL_YAW], 0.0)
     w_x = omega_c + omega_r * np.cos(beta)
     w_r = -omega_r * np.sin(beta)
-    ang = np.column_stack([w_x, w_r * np.cos(psi), w_r * np.sin(psi)])
+    ang = np.column_stack(
+        [w_x, w_r * np.cos(psi) - w_t * np.sin(psi), w_r * np.sin(psi) + w_t * np.cos(psi)]
+    )
     # moment on the inner ring: balls' moment sum (about y, z) must be balanced by the applied one
     m_theta = states[:, 4]
     ball_moment = np.array([np.sum(-m_theta * np.sin(psi)), np.sum(m_theta * np.cos(psi))])
@@ -344,7 +422,9 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
         spin_speed=omega_r,
         attitude_angle=beta,
         ball_angular_velocity=ang,
-        race_control=np.where(state.inner_control, "inner", "outer"),
+        race_control=np.where(
+            traction, "traction", np.where(state.inner_control, "inner", "outer")
+        ),
         inner_ring_offset=state.q[:3].copy(),
         inner_ring_tilt=state.q[3:].copy(),
         cage_speed=float(np.mean(omega_c)),
