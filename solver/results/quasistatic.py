@@ -1,9 +1,10 @@
 """QuasiStaticSolution + case → xarray.Dataset following results-schema.md.
 
 Hertz results (ellipse, peak pressure) come from :mod:`solver.physics.hertz_fast` (the same
-load-deflection law the model was solved with). Under the rolling assumptions of the quasi-static
-model the sliding speed at the contact centre is zero (pure rolling is imposed there); the variable
-is kept so that both models share the schema.
+load-deflection law the model was solved with). The sliding speed at the contact centre is reported
+as zero (race control imposes pure rolling there; with the traction balance the centre slip is a
+small fraction of the rolling speed that is not stored); the variable is kept so that both models
+share the schema.
 """
 
 from __future__ import annotations
@@ -169,25 +170,40 @@ def solution_to_dataset(
     }
     if lubricant is not None:
         data["film_thickness"] = film
+    traction = bool(np.any(np.asarray(sol.race_control, dtype=str) == "traction"))
     descriptions = {
         "sliding_speed": {
             "description": "; zero in the quasi-static model, which imposes pure rolling at the "
             "contact centres"
+            if not traction
+            else "; not computed by the quasi-static model with the traction balance (0)"
         }
     }
     if lubricant is not None:
         descriptions["film_thickness"] = {"description": "; 0 at open contacts"}
+    if traction:
+        kinematics = (
+            "Quasi-static model with the ball speeds from the traction balance: one cage speed "
+            "for all balls (the cage pocket forces sum to zero), each ball's spin from the "
+            "moment balance of the tractions integrated over both contact ellipses (the case's "
+            "traction curve) against its gyroscopic rate; the transverse tractions take the "
+            "gyroscopic moment in the force balances"
+        )
+    else:
+        kinematics = (
+            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control "
+            "per ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / "
+            "lambda_i = 0 under outer control, 1 / 1 under inner control), cage speed = mean "
+            "orbital speed"
+        )
     attrs = {
         "solver_iterations": int(sol.iterations),
         "solver_residual": float(sol.residual),
         "solver_force_scale_N": float(sol.force_scale),
         "race_control_note": sol.race_control_note or "race control settled (fixed point)",
         "model_notes": (
-            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control "
-            "per ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / "
-            "lambda_i = 0 under outer control, 1 / 1 under inner control), centrifugal force at "
-            "the ball's actual orbit radius, cage speed = mean orbital speed. Inner ring moments "
-            "are taken about its centre on the axis in the plane of the inner groove "
+            f"{kinematics}; centrifugal force at the ball's actual orbit radius. Inner ring "
+            "moments are taken about its centre on the axis in the plane of the inner groove "
             "curvature-centre circle."
         ),
     }

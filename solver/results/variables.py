@@ -200,7 +200,12 @@ VARIABLES: dict[str, Variable] = {
         _QS,
     ),
     "race_control": Variable(
-        _B, "1", "controlling race", "'inner' or 'outer' (Jones criterion, decided per ball)", _QS
+        _B,
+        "1",
+        "controlling race",
+        "'inner' or 'outer' (Jones criterion, decided per ball), or 'traction' when the ball "
+        "speeds come from the traction balance ([simulation] quasistatic_ball_speeds)",
+        _QS,
     ),
     "ball_orientation": Variable(
         (*_B, "quaternion"),

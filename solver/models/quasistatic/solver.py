@@ -234,7 +234,9 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
     merit = math.nan
     for iteration in range(1, MAX_TRACTION_ITERATIONS + 1):
         states = np.empty((z, _STATE_FIELDS))
-        kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
+        kernels.evaluate_balls(
+            state.q, problem.azimuth, state.position, state.control, model, states
+        )
         try:
             control, _ = traction_balance(
                 problem.geometry,
@@ -272,13 +274,21 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
         )
         if settled:
             cage = control[0, kernels.CONTROL_ORBITAL] / (2 * math.pi) * 60.0
-            return total, merit, (
-                f"ball speeds from the traction balance (cage speed {cage:.6g} rpm), fixed point "
-                f"after {iteration} iterations"
+            return (
+                total,
+                merit,
+                (
+                    f"ball speeds from the traction balance (cage speed {cage:.6g} rpm), "
+                    f"fixed point after {iteration} iterations"
+                ),
             )
-    return total, merit, (
-        f"ball speeds from the traction balance: the fixed point did not settle within "
-        f"{MAX_TRACTION_ITERATIONS} iterations; the last iterate is kept"
+    return (
+        total,
+        merit,
+        (
+            f"ball speeds from the traction balance: the fixed point did not settle within "
+            f"{MAX_TRACTION_ITERATIONS} iterations; the last iterate is kept"
+        ),
     )
 
 

@@ -177,8 +177,19 @@ def _solve3(a, r):
 
 @njit(cache=True)
 def solve_ball_spin(
-    w0, omega_c, omega_inner, omega_outer, contact_i, contact_o, ring_centre, centre, curve, u_reg,
-    nodes, inertia, moment_scale,
+    w0,
+    omega_c,
+    omega_inner,
+    omega_outer,
+    contact_i,
+    contact_o,
+    ring_centre,
+    centre,
+    curve,
+    u_reg,
+    nodes,
+    inertia,
+    moment_scale,
 ):
     """Angular velocity w (3) of one ball relative to the cage at cage speed omega_c [rad/s] from
     its moment balance, starting from w0. Returns (w, circumferential traction [N], traction
@@ -244,29 +255,130 @@ def solve_ball_spin(
     return w, f_theta, forces, norm <= 1e3 * tol
 
 
-@njit(cache=True)
+def _kinematics(omega_c, omega_inner, omega_outer, ring_centre, centre):
+    """Kinematics records (inner, outer) of one ball in the cage frame (module docstring); the
+    ball's angular velocity is filled in per evaluation."""
+    kin_i = np.zeros(KIN_SIZE)
+    kin_o = np.zeros(KIN_SIZE)
+    for kin in (kin_i, kin_o):
+        kin[KIN_BALL_CENTRE : KIN_BALL_CENTRE + 3] = centre
+    kin_i[KIN_RING_POINT : KIN_RING_POINT + 3] = ring_centre
+    kin_i[KIN_RING_VELOCITY + 1] = omega_c * ring_centre[2]
+    kin_i[KIN_RING_VELOCITY + 2] = -omega_c * ring_centre[1]
+    kin_i[KIN_RING_OMEGA] = omega_inner - omega_c
+    kin_o[KIN_RING_OMEGA] = omega_outer - omega_c
+    return kin_i, kin_o
+
+
+def _ball_spin(
+    j,
+    omega_c,
+    w,
+    omega_inner,
+    omega_outer,
+    contacts,
+    ring_centres,
+    centres,
+    curve,
+    nodes,
+    inertia,
+    moment_scales,
+):
+    """(w, circumferential traction, forces) of ball j: the jitted Newton solve, and where it
+    stalls (near a fold of the traction curve's falling branch) SciPy's hybrid method from its
+    last iterate. BalanceFailed when neither converges."""
+    args = (
+        omega_c,
+        omega_inner,
+        omega_outer,
+        contacts[j, 0],
+        contacts[j, 1],
+        ring_centres[j],
+        centres[j],
+        curve,
+        SLIP_REGULARISATION,
+        nodes,
+        inertia,
+        moment_scales[j],
+    )
+    wj, f_theta, forces, ok = solve_ball_spin(w[j], *args)
+    if ok:
+        return wj, f_theta, forces
+    kin_i, kin_o = _kinematics(omega_c, omega_inner, omega_outer, ring_centres[j], centres[j])
+
+    def residual(x):
+        return _ball_residual(
+            np.asarray(x, dtype=float),
+            omega_c,
+            contacts[j, 0],
+            contacts[j, 1],
+            kin_i,
+            kin_o,
+            curve,
+            SLIP_REGULARISATION,
+            nodes,
+            inertia,
+        )[0]
+
+    for start in (wj, w[j]):
+        sol = optimize.root(residual, start, method="hybr", options={"xtol": 1e-13})
+        if np.max(np.abs(residual(sol.x))) <= 1e3 * BALL_TOLERANCE * moment_scales[j]:
+            _, f_theta, forces = _ball_residual(
+                sol.x,
+                omega_c,
+                contacts[j, 0],
+                contacts[j, 1],
+                kin_i,
+                kin_o,
+                curve,
+                SLIP_REGULARISATION,
+                nodes,
+                inertia,
+            )
+            return sol.x, f_theta, forces
+    raise BalanceFailed(
+        f"the spin of ball {j} could not be balanced at cage speed {omega_c:.6g} rad/s"
+    )
+
+
 def pocket_force_sum(
-    omega_c, w, omega_inner, omega_outer, contacts, ring_centres, centres, curve, u_reg, nodes,
-    inertia, moment_scales, active, forces_out,
+    omega_c,
+    w,
+    omega_inner,
+    omega_outer,
+    contacts,
+    ring_centres,
+    centres,
+    curve,
+    nodes,
+    inertia,
+    moment_scales,
+    active,
+    forces_out,
 ):
     """Sum over the balls of the pocket forces P_j = -(circumferential traction) [N] at cage speed
     omega_c; ``w`` (Z, 3) warm start in, solution out; ``forces_out`` (Z, 2, 3) the traction
-    forces. Returns (sum, all balls solved)."""
+    forces."""
     total = 0.0
-    ok_all = True
     for j in range(w.shape[0]):
         if not active[j]:
             continue
-        wj, f_theta, forces, ok = solve_ball_spin(
-            w[j], omega_c, omega_inner, omega_outer, contacts[j, 0], contacts[j, 1],
-            ring_centres[j], centres[j], curve, u_reg, nodes, inertia, moment_scales[j],
+        w[j], f_theta, forces_out[j] = _ball_spin(
+            j,
+            omega_c,
+            w,
+            omega_inner,
+            omega_outer,
+            contacts,
+            ring_centres,
+            centres,
+            curve,
+            nodes,
+            inertia,
+            moment_scales,
         )
-        if not ok:
-            ok_all = False
-        w[j] = wj
-        forces_out[j] = forces
         total -= f_theta
-    return total, ok_all
+    return total
 
 
 class BalanceFailed(RuntimeError):
@@ -302,15 +414,21 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, cur
     omega_i, omega_o = model.inner_ring_speed, model.outer_ring_speed
 
     def excess(omega_c):
-        total, ok = pocket_force_sum(
-            omega_c, w, omega_i, omega_o, contacts, ring_centres, centres, curve,
-            SLIP_REGULARISATION, nodes, inertia, moment_scales, active, forces,
+        return pocket_force_sum(
+            omega_c,
+            w,
+            omega_i,
+            omega_o,
+            contacts,
+            ring_centres,
+            centres,
+            curve,
+            nodes,
+            inertia,
+            moment_scales,
+            active,
+            forces,
         )
-        if not ok:
-            raise BalanceFailed(
-                f"the spin of a ball could not be balanced at cage speed {omega_c:.6g} rad/s"
-            )
-        return total
 
     span = 0.002 * max(abs(omega_i - omega_o), 1e-9)
     lo, hi = omega_c0 - span, omega_c0 + span
@@ -355,8 +473,8 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, cur
             out[j, kernels.CONTROL_SPIN] = states[j, 13]
             out[j, kernels.CONTROL_ATTITUDE] = states[j, 11]
             out[j, kernels.CONTROL_YAW] = 0.0
-            out[j, kernels.CONTROL_GYRO] = -inertia * omega_c * states[j, 13] * math.sin(
-                states[j, 11]
+            out[j, kernels.CONTROL_GYRO] = (
+                -inertia * omega_c * states[j, 13] * math.sin(states[j, 11])
             )
             out[j, kernels.CONTROL_TAU_INNER] = 0.0
             out[j, kernels.CONTROL_TAU_OUTER] = 0.0
@@ -366,9 +484,7 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, cur
 def _stored_w(row) -> np.ndarray:
     """w (relative to the cage, azimuth frame) of a TRACTION_BALANCE record."""
     omega_r, beta = row[kernels.CONTROL_SPIN], row[kernels.CONTROL_ATTITUDE]
-    return np.array(
-        [omega_r * math.cos(beta), -omega_r * math.sin(beta), row[kernels.CONTROL_YAW]]
-    )
+    return np.array([omega_r * math.cos(beta), -omega_r * math.sin(beta), row[kernels.CONTROL_YAW]])
 
 
 __all__ = ["BalanceFailed", "traction_balance", "traction_setup"]
