@@ -145,7 +145,7 @@ class SimulationInputs:
     gravity: float  # m/s^2, along -z
     tolerance: float  # local error tolerance of the integrator (relative to the state scales)
     cage: bool  # model the cage (False: balls free to bunch)
-    quasistatic_ball_speeds: str = "race_control"  # or "traction" (quasi-static model)
+    quasistatic_ball_speeds: str = "traction"  # or "race_control" (quasi-static model)
 
 
 @dataclass(frozen=True)

@@ -637,7 +637,7 @@ FIELDS: list[Field] = [
         "race_control: rolling kinematics of the controlling race, decided per ball (Jones); "
         "traction: from the traction balance of each ball with one cage speed "
         "(friction-based quasi-dynamic).",
-        default="race_control",
+        default="traction",
         choices=("race_control", "traction"),
     ),
 ]

@@ -170,7 +170,7 @@ def solution_to_dataset(
     }
     if lubricant is not None:
         data["film_thickness"] = film
-    traction = bool(np.any(np.asarray(sol.race_control, dtype=str) == "traction"))
+    traction = getattr(sol, "ball_speeds", "race_control") == "traction"
     descriptions = {
         "sliding_speed": {
             "description": "; zero in the quasi-static model, which imposes pure rolling at the "
@@ -207,6 +207,9 @@ def solution_to_dataset(
             "curvature-centre circle."
         ),
     }
+    attrs["ball_speeds"] = "traction" if traction else "race_control"
+    if getattr(sol, "ball_speeds_note", ""):
+        attrs["ball_speeds_note"] = sol.ball_speeds_note
     if operating.misalignment_frame == "ring" and operating.tilting_moment is None:
         attrs["misalignment_note"] = (
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "

@@ -23,6 +23,7 @@ from solver.physics.kinematics import race_control_is_inner
 
 from . import kernels
 from .solution import QuasiStaticSolution
+from .traction_balance import BalanceFailed, traction_balance, traction_setup
 
 RING_TOLERANCE = 1e-11  # scaled residual norm at which the ring equilibrium is accepted
 MAX_RING_ITERATIONS = 60
@@ -223,8 +224,8 @@ def _continuation(solve, start: float, target: float, min_step: float):
 def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
     """From a race-control solution at full speed: ball speeds and transverse tractions from the
     traction balance (:mod:`.traction_balance`), iterated with the ring solve to a fixed point.
-    Returns (iterations, merit, note); raises NoSolutionError when the balance fails."""
-    from .traction_balance import BalanceFailed, traction_balance, traction_setup
+    Returns (iterations, merit, note); raises BalanceFailed (message: why) when no balance is
+    found."""
 
     curve, nodes = traction_setup(lubricant)
     model = problem.model(1.0)
@@ -237,32 +238,23 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
         kernels.evaluate_balls(
             state.q, problem.azimuth, state.position, state.control, model, states
         )
-        try:
-            control, _ = traction_balance(
-                problem.geometry,
-                model,
-                states,
-                state.position,
-                state.q,
-                problem.azimuth,
-                state.control,
-                curve,
-                nodes,
-            )
-        except BalanceFailed as error:
-            raise NoSolutionError(
-                f"the traction balance of the ball speeds failed: {error}. Try "
-                '[simulation] quasistatic_ball_speeds = "race_control".'
-            ) from None
+        control, _ = traction_balance(
+            problem.geometry,
+            model,
+            states,
+            state.position,
+            state.q,
+            problem.azimuth,
+            state.control,
+            curve,
+            nodes,
+        )
         previous = state.control
         state.control = control
         converged, iterations, merit = _ring_solve(problem, state, 1.0, 1.0)
         total += iterations
         if not converged:
-            raise NoSolutionError(
-                "no ring equilibrium with the ball speeds of the traction balance. Try "
-                '[simulation] quasistatic_ball_speeds = "race_control".'
-            )
+            raise BalanceFailed("no ring equilibrium with the ball speeds of the traction balance")
         settled = (
             previous[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
             and np.max(np.abs(control[:, kernels.CONTROL_ORBITAL] - previous[:, 1]))
@@ -350,10 +342,23 @@ def solve_operating_point(
     note = best.get("note", "")
     merit = best.get("merit", math.nan)
     has_speed = operating.inner_ring_speed != operating.outer_ring_speed
+    ball_speeds, fallback = "race_control", ""
     if traction_lubricant is not None and has_speed:
-        its, merit, note = _solve_with_traction_balance(problem, state, traction_lubricant)
-        totals["iterations"] += its
-    return _pack(problem, state, totals["iterations"], merit, note)
+        race_control = state.copy()
+        try:
+            its, merit, note = _solve_with_traction_balance(problem, state, traction_lubricant)
+            totals["iterations"] += its
+            ball_speeds = "traction"
+        except BalanceFailed as error:
+            state = race_control
+            fallback = (
+                f"the traction balance found no steady ball speeds ({error}); the ball speeds "
+                "come from race control instead"
+            )
+    solution = _pack(problem, state, totals["iterations"], merit, note)
+    solution.ball_speeds = ball_speeds
+    solution.ball_speeds_note = fallback
+    return solution
 
 
 def _no_static_message(problem: _Problem) -> str:
@@ -418,6 +423,16 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     ang = np.column_stack(
         [w_x, w_r * np.cos(psi) - w_t * np.sin(psi), w_r * np.sin(psi) + w_t * np.cos(psi)]
     )
+    # friction taking the gyroscopic moment (kernels.ball_state): lambda M_g / D under race
+    # control, the integrated transverse tractions under the traction balance
+    m_g = states[:, 15]
+    inner = state.inner_control
+    race_traction = (
+        np.column_stack([np.where(inner, m_g, 0.0), np.where(inner, m_g, 2.0 * m_g)])
+        / g.ball_diameter
+    )
+    race_traction[traction, 0] = state.control[traction, kernels.CONTROL_TAU_INNER]
+    race_traction[traction, 1] = state.control[traction, kernels.CONTROL_TAU_OUTER]
     # moment on the inner ring: balls' moment sum (about y, z) must be balanced by the applied one
     m_theta = states[:, 4]
     ball_moment = np.array([np.sum(-m_theta * np.sin(psi)), np.sum(m_theta * np.cos(psi))])
@@ -450,4 +465,5 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
         race_control_note=note,
         ball_position=state.position.copy(),
         operating=op,
+        race_traction=race_traction,
     )

@@ -337,7 +337,8 @@ def _ball_spin(
             )
             return sol.x, f_theta, forces
     raise BalanceFailed(
-        f"the spin of ball {j} could not be balanced at cage speed {omega_c:.6g} rad/s"
+        f"at cage speed {omega_c:.6g} rad/s the spin of ball {j} has no steady balance: its "
+        "tractions reach the falling branch of the traction curve, where the ball slides"
     )
 
 
@@ -433,14 +434,20 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, cur
     span = 0.002 * max(abs(omega_i - omega_o), 1e-9)
     lo, hi = omega_c0 - span, omega_c0 + span
     f_lo, f_hi = excess(lo), excess(hi)
-    for _ in range(20):
+    for _ in range(12):
         if f_lo * f_hi <= 0.0:
             break
         span *= 2.0
-        lo, hi = omega_c0 - span, omega_c0 + span
-        f_lo, f_hi = excess(lo), excess(hi)
+        # step towards the side where the pocket forces change sign
+        if (f_lo > 0.0) == (f_hi > f_lo):
+            lo, f_lo = omega_c0 - span, excess(omega_c0 - span)
+        else:
+            hi, f_hi = omega_c0 + span, excess(omega_c0 + span)
     else:
-        raise BalanceFailed("no cage speed balances the balls' circumferential tractions")
+        raise BalanceFailed(
+            f"no cage speed within {span / abs(omega_c0):.0%} of the race-control one balances "
+            "the balls' circumferential tractions"
+        )
     omega_c = optimize.brentq(
         excess, lo, hi, xtol=CAGE_SPEED_TOLERANCE * abs(omega_c0) + 1e-12, rtol=1e-14
     )
