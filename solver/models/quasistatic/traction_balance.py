@@ -65,8 +65,9 @@ from solver.physics.traction import (
 from . import kernels
 
 #: Ellipse quadrature (points along the rolling direction, strips across the groove) and slip
-#: regularisation [m/s]: the dynamic model's defaults (SimulationOptions.quadrature,
-#: .friction_regularisation).
+#: regularisation [m/s]: the same values as the dynamic model's defaults
+#: (SimulationOptions.quadrature, .friction_regularisation; not imported: the dynamic model imports
+#: this package for its start).
 QUADRATURE = (4, 8)
 SLIP_REGULARISATION = 1.0e-3
 BALL_TOLERANCE = 1e-11  # ball moment residual, relative to its larger load times D / 2
@@ -83,9 +84,11 @@ def traction_setup(lubricant):
 
 def contact_records(geometry, states, position, q, azimuth):
     """Contact records (Z, 2, CONTACT_SIZE) [inner, outer] and inner-ring centres (Z, 3) in each
-    ball's azimuth frame (x, r, theta), origin on the bearing axis in the plane of the outer groove
-    curvature centres' reference, for the iterate ``states`` (kernels.evaluate_balls), ball
-    ``position`` (Z, 2) relative to the outer groove centre and ring displacement ``q``."""
+    ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at the outer ring
+    centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate ``states``
+    (kernels.evaluate_balls), ball ``position`` (Z, 2) relative to the outer groove curvature centre
+    and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points lie on the ball
+    surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
     z = azimuth.size
     D = geometry.ball_diameter
     contacts = np.zeros((z, 2, CONTACT_SIZE))
