@@ -226,7 +226,6 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
     traction balance (:mod:`.traction_balance`), iterated with the ring solve to a fixed point.
     Returns (iterations, merit, note); raises BalanceFailed (message: why) when no balance is
     found."""
-
     curve, nodes = traction_setup(lubricant)
     model = problem.model(1.0)
     z = problem.azimuth.size
@@ -255,14 +254,12 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
         total += iterations
         if not converged:
             raise BalanceFailed("no ring equilibrium with the ball speeds of the traction balance")
+        change = np.abs(control - previous)
         settled = (
             previous[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
-            and np.max(np.abs(control[:, kernels.CONTROL_ORBITAL] - previous[:, 1]))
-            <= TRACTION_SPEED_TOLERANCE * relative
-            and np.max(np.abs(control[:, kernels.CONTROL_SPIN] - previous[:, 2]))
-            <= TRACTION_SPEED_TOLERANCE * relative
-            and np.max(np.abs(control[:, kernels.CONTROL_ATTITUDE] - previous[:, 3]))
-            <= TRACTION_SPEED_TOLERANCE
+            and change[:, kernels.CONTROL_ORBITAL].max() <= TRACTION_SPEED_TOLERANCE * relative
+            and change[:, kernels.CONTROL_SPIN].max() <= TRACTION_SPEED_TOLERANCE * relative
+            and change[:, kernels.CONTROL_ATTITUDE].max() <= TRACTION_SPEED_TOLERANCE
         )
         if settled:
             cage = control[0, kernels.CONTROL_ORBITAL] / (2 * math.pi) * 60.0
