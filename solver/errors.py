@@ -128,3 +128,17 @@ class NoSolutionError(RuntimeError):
 
 class SimulationDiverged(RuntimeError):
     """The dynamic integration diverged; the message names the likely cause."""
+
+
+class ResultWriteError(OSError):
+    """A result file could not be written (folder missing or read-only, disk full, a file-size
+    limit; netCDF4 reports some of these as RuntimeError). ``path`` is the file that was to be
+    written; the message names it and the reason. Nothing is left at ``path`` or beside it."""
+
+    def __init__(self, path, reason: str):
+        self.path = path
+        self.reason = reason
+        super().__init__(f"could not write {path}: {reason}")
+
+    def __str__(self) -> str:
+        return f"could not write {self.path}: {self.reason}"
