@@ -146,10 +146,12 @@ def _options(args, case):
         if args.samples_per_revolution is None
         else "--samples-per-revolution",
     )
-    problems = run_length_problems(revolutions, per_rev, case.bearing.ball_count, names)
+    # a Case, or SI Inputs (scripts and tests may pass those)
+    balls = int(case.bearing.ball_count if hasattr(case, "bearing") else case.geometry.ball_count)
+    problems = run_length_problems(revolutions, per_rev, balls, names)
     if problems:
         raise CaseError(problems)
-    return options, dynamic_run_size(revolutions, per_rev, case.bearing.ball_count)
+    return options, dynamic_run_size(revolutions, per_rev, balls)
 
 
 def _check_room(size, output: Path) -> None:
