@@ -24,6 +24,7 @@ def _beta(nu_40: float, nu_100: float) -> float:
 OILS: dict[str, tuple[dict, str]] = {
     "spindle-mineral-vg32": (
         {
+            "traction_model": "rheology",
             "viscosity_Pas": 32.0e-6 * 870.0,  # 32 mm^2/s at 40 degC, 870 kg/m^3
             "reference_temperature_C": 40.0,
             "temperature_viscosity_per_K": round(_beta(32.0, 5.4), 4),
@@ -41,6 +42,7 @@ OILS: dict[str, tuple[dict, str]] = {
     ),
     "ester-vg22": (
         {
+            "traction_model": "rheology",
             "viscosity_Pas": 22.0e-6 * 920.0,
             "reference_temperature_C": 40.0,
             "temperature_viscosity_per_K": round(_beta(22.0, 4.6), 4),
@@ -58,6 +60,7 @@ OILS: dict[str, tuple[dict, str]] = {
     ),
     "jet-oil-mil-prf-23699": (
         {
+            "traction_model": "rheology",
             "viscosity_Pas": 25.0e-6 * 1000.0,
             "reference_temperature_C": 40.0,
             "temperature_viscosity_per_K": round(_beta(25.0, 5.0), 4),

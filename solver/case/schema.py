@@ -411,8 +411,8 @@ FIELDS: list[Field] = [
         "How the ball-race traction is computed at each point of the contact ellipse: "
         '"rheology" (shear stress of the oil film from viscosity at the local pressure, film '
         "thickness and slip: Eyring, elastic and limiting-shear-stress laws, docs/case-format.md) "
-        'or "slip_curve" (the fixed traction-coefficient curve of the traction table).',
-        default="rheology",
+        'or "slip_curve" (the fixed traction-coefficient curve of the traction table; faster).',
+        default="slip_curve",
         choices=("rheology", "slip_curve"),
         reason="the traction model is one of the listed names",
     ),
@@ -448,7 +448,7 @@ FIELDS: list[Field] = [
         default=0.03,
         minimum=0.0,
         maximum=0.2,
-        reason="oil viscosity falls (or stays) as temperature rises",
+        reason="oil viscosity falls, or stays, as temperature rises",
         reason_high="lubricating oils lie between about 0.01 and 0.07 /K",
     ),
     Field(
@@ -507,13 +507,13 @@ FIELDS: list[Field] = [
         "float",
         "Thermal conductivity",
         "Thermal conductivity of the oil (inlet shear heating of the film).",
-        unit="W/(m K)",
+        unit="W/m/K",
         default=0.13,
         minimum=0.0,
         minimum_inclusive=False,
         maximum=10.0,
         reason="a fluid conducts heat",
-        reason_high="oils conduct about 0.1 to 0.2 W/(m K)",
+        reason_high="oils conduct about 0.1 to 0.2 W/m/K",
     ),
     Field(
         "lubricant.density_kg_m3",
@@ -774,6 +774,17 @@ FIELDS: list[Field] = [
         "Simulate the cage with its pocket and guiding-land contacts (false = "
         "balls are free to bunch).",
         default=True,
+    ),
+    # Quasi-static model switch: where the ball speeds come from.
+    Field(
+        "simulation.quasistatic_ball_speeds",
+        "choice",
+        "Quasi-static ball speeds",
+        "race_control: rolling kinematics of the controlling race, decided per ball (Jones); "
+        "traction: from the traction balance of each ball with one cage speed "
+        "(friction-based quasi-dynamic).",
+        default="traction",
+        choices=("race_control", "traction"),
     ),
 ]
 

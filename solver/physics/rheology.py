@@ -90,7 +90,7 @@ def contact_constants(film, transit_time, rheology):
     return ln_c, rheology[RH_SHEAR_MODULUS] * transit_time / film
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
     """:func:`shear_stress` for u > 0 with the per-contact constants of
     :func:`contact_constants` (the form evaluated at every quadrature node: one logarithm)."""
@@ -105,9 +105,10 @@ def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
     tau_e = elastic * u
     tau = tau_v * tau_e / (tau_v + tau_e) if elastic > 0.0 else tau_v
     tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
-    r = tau / tau_l
-    r2 = r * r
-    return tau / math.sqrt(math.sqrt(1.0 + r2 * r2))
+    # tau / (1 + (tau / tau_L)^4)^(1/4) = tau tau_L / (tau_L^4 + tau^4)^(1/4): one division
+    t2 = tau * tau
+    l2 = tau_l * tau_l
+    return tau * tau_l / math.sqrt(math.sqrt(l2 * l2 + t2 * t2))
 
 
 @njit(cache=True)

@@ -508,14 +508,17 @@ def ball_race_contact(
         mrz_ -= a2 + tout[TR_MOMENT_POINT + 2]
         # rolling resistance: a moment pair M = F_R D/2 about the roll axis, against the relative
         # rolling of ball and ring (the pressure centre shifted into the inlet)
-        mr = -fr * 0.5 * dball * (1.0 if roll >= 0.0 else -1.0)
+        # against the rolling, smoothed below the regularisation speed (no moment without rolling)
+        lever = 0.5 * dball
+        direction = roll / (abs(roll) + par.slip_regularisation / lever)
+        mr = -fr * lever * direction
         mbx += mr * axis[0]
         mby += mr * axis[1]
         mbz += mr * axis[2]
         mrx_ -= mr * axis[0]
         mry_ -= mr * axis[1]
         mrz_ -= mr * axis[2]
-        rec[K_POWER_ROLLING] = fr * 0.5 * dball * abs(roll)
+        rec[K_POWER_ROLLING] = fr * lever * direction * roll
     rec[K_F_BALL] = fbx
     rec[K_F_BALL + 1] = fby
     rec[K_F_BALL + 2] = fbz
