@@ -13,8 +13,9 @@ CONTRACT_CASES = [
         "heavy_218",
         marks=pytest.mark.xfail(
             strict=True,
-            reason="explicit Dormand-Prince at the default tolerance 1e-4 misses the 0.005 deg "
-            "contact-angle allowance by a few per cent on the 218 heavy case (docs/numerics.md)",
+            reason="the 218 heavy case is still in its start transient after 3 revolutions (inner "
+            "band thickness 19 deg): its metrics change with any perturbation of the integration, "
+            "and the default tolerance misses the contract there (docs/numerics.md)",
         ),
     ),
     "misalignment_ring",

@@ -66,7 +66,7 @@ class SimulationOptions:
       is not limited by the stiff contact modes; "dopri5": explicit Dormand–Prince 5(4)
       (solver.models.dynamic.integrator), kept for validation (docs/numerics.md).
     - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
-      Rosenbrock method (it is also re-formed after every rejected step).
+      Rosenbrock method (it is also re-formed when a step fails with an older Jacobian).
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;
       falls back to "equilibrium" if it finds no solution) or "equilibrium" (the model's own
       force balance without gyroscopic moment, see ``initial.initial_state``).

@@ -18,7 +18,7 @@ structure of the true Jacobian:
 
 Linear systems (I / (h gamma) - W) u = x are solved by block elimination: the ball blocks, then the
 24 x 24 Schur complement. A W-method keeps its order with any matrix, so W is reused over several
-steps (``jacobian_every``) and re-formed after a rejected step.
+steps (``jacobian_every``) and re-formed when a step is rejected with a W older than that step.
 
 Method (Rang & Angermann 2005, ROS34PW2): 4 stages, order 3 for any W, embedded order 2,
 L-stable for W = J. Written in the transformed form (Hairer & Wanner IV.7):
@@ -414,8 +414,8 @@ def advance_rosenbrock(
 ):
     """Integrate from ``t`` through every time in ``t_out`` like ``integrator.advance`` (same
     arguments, outputs and status codes), with the Rosenbrock-W method ``tab_*``; ``starts`` /
-    ``sizes``: the ball blocks; W is re-formed every ``jac_every`` accepted steps and after a
-    rejected step."""
+    ``sizes``: the ball blocks; W is re-formed every ``jac_every`` accepted steps and when a step
+    is rejected with a W formed before it."""
     n = y.shape[0]
     ns = tab_m.shape[0]
     u = work.stages
