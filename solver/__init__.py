@@ -8,6 +8,8 @@ Public API (everything else is internal):
 - ``dynamic_problems(case) -> list[Problem]``: why the dynamic model cannot run a valid case
 - ``to_inputs(case) -> Inputs``: the SI inputs both models read
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
+- ``solve_over_revolution(case, angles=36) -> xarray.Dataset``: the quasi-static steady state at
+  inner-ring angles over one shaft revolution (dimension ``ring_angle``)
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
   ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
@@ -45,6 +47,7 @@ _LAZY = {
     "SimulationOptions": "solver.models.dynamic",
     "BearingGeometry": "solver.geometry",
     "solve_quasistatic": "solver.models.quasistatic",
+    "solve_over_revolution": "solver.models.quasistatic",
     "simulate": "solver.models.dynamic",
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
