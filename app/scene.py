@@ -1,13 +1,20 @@
-"""The 3-D bearing scene (pyvista): rings, balls, cage, contact ellipses and trajectory traces.
+"""The 3-D bearing scene (pyvista): rings, balls, cage, painted contact tracks, ellipses, traces.
 
 No trame here: :class:`BearingScene` draws into any ``pyvista.Plotter`` and is driven frame by frame
 from a :class:`app.frames.FrameSource`. Everything is built once; a frame only moves actors (4x4
 user matrices) and rewrites the points of the ellipse and trace meshes.
 
 Frames: the scene is in the inertial frame of case-format.md (x = bearing axis), lengths in m.
-Marks on a raceway (ellipses, traces) are built in that ring's own frame and share the ring's
-transform, so inner-raceway traces turn with the inner ring. Across-groove positions of marks can
-be exaggerated about the run's mean contact angle (``exaggeration``); ellipse sizes stay to scale.
+Marks on a raceway (painted tracks, ellipses, traces, shoulder edges and groove bottom) are built
+in that ring's own frame and share the ring's transform, so inner-raceway marks turn with the inner
+ring. The painted tracks (:mod:`app.tracks`) colour the groove where the contact ellipses ran, by
+dwell or by peak pressure. Across-groove positions of marks can be exaggerated about the run's mean
+contact angle (``exaggeration``), clipped at the shoulders so that marks never leave the groove;
+ellipse sizes are to scale unless ``ellipse_scale`` enlarges them.
+
+Both raceways are in view at once: by default the outer ring is drawn apart from the inner one
+along the bearing axis (``explode``, in ball diameters, away from the camera side) and opened as a
+shell facing the camera (``outer_cutaway``): its raceway is seen from inside, past the inner ring.
 """
 
 from __future__ import annotations
@@ -20,23 +27,37 @@ import pyvista as pv
 
 from .frames import FrameSource, rot_x
 from .raceway import INNER, OUTER, Groove, ellipse_outline, exaggerate, grooves
+from .tracks import (
+    QUANTITIES,
+    QUANTITY_LABELS,
+    QUANTITY_SCALE,
+    TrackGrid,
+    TrackPainter,
+    groove_mesh_arrays,
+)
 
-LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
-CAMERA_PRESETS = ("isometric", "axial", "radial")
+LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "tracks", "edges", "ellipses", "traces")
+DEFAULT_HIDDEN = ("traces",)  # layers off unless asked for: the painted tracks show the paths
+CAMERA_PRESETS = ("isometric", "axial", "radial", "inner track", "outer track")
+TRACK_CMAP = "viridis"
+EDGE_COLOURS = {"shoulder": "#1b1b1b", "bottom": "#2f5597"}
+EDGE_WIDTH_PX = 2.0
 ELLIPSE_POINTS = 24
 MAX_TRACE_SAMPLES = 1500  # per ball and race; longer traces are decimated for drawing
 _RING_COLOUR = "#b8bcc4"
 VIEW_ANGLE_DEG = 30.0  # vertical view angle of the camera presets (VTK's default)
-ISOMETRIC_TILT_DEG = 66.0  # isometric view direction from the bearing axis
+ISOMETRIC_TILT_DEG = 60.0  # isometric view direction from the bearing axis
+TRACK_VIEW_TILT_DEG = 62.0  # "inner track" / "outer track" views: direction from the axis
 FRAME_MARGIN = 0.06  # camera presets leave this fraction of each half-size free around the bearing
 SCALAR_BAR_STRIP = 0.17  # fraction of the view width on the right kept for the colour bar
-BALL_OPACITY = (0.15, 0.6)  # (plain, marked) octants of a translucent ball
+BALL_OPACITY = (0.15, 0.6)
+CAGE_OPACITY = 0.45  # the cage hoops pass in front of the inner raceway: see the track through them  # (plain, marked) octants of a translucent ball
 # Contact ellipses are filled to scale and outlined with a stroke of this width (pixels), so that
 # one of 0.9 x 0.15 mm still shows when the whole bearing is in view (a stroke, not a size).
 ELLIPSE_OUTLINE_PX = 2.0
 TRACE_WIDTH_PX = 3.0
 SCALAR_BAR = {  # vertical, in the strip right of the bearing (see SCALAR_BAR_STRIP)
-    "title": "peak pressure,\nGPa",
+    "title": QUANTITY_LABELS["dwell"],
     "vertical": True,
     "position_x": 0.86,
     "position_y": 0.2,
@@ -49,6 +70,7 @@ SCALAR_BAR = {  # vertical, in the strip right of the bearing (see SCALAR_BAR_ST
     "color": "#202020",
 }
 _MARK_LIFT = 0.004  # fraction of the groove radius that marks are lifted off the raceway
+ELLIPSE_COLOUR = "#e8481c"  # contact ellipses: one colour that stands out on the painted tracks
 
 
 @dataclass
@@ -57,11 +79,19 @@ class SceneOptions:
 
     exaggeration: float = 1.0  # across-groove deviation factor for traces and ellipse centres
     trace_ball: int | None = None  # None: all balls
-    layers: dict = field(default_factory=lambda: {name: True for name in LAYERS})
+    layers: dict = field(
+        default_factory=lambda: {name: name not in DEFAULT_HIDDEN for name in LAYERS}
+    )
+    ellipse_scale: float = 1.0  # drawn size of the contact ellipses / true size
+    track_quantity: str = "dwell"  # colour of the painted tracks: "dwell" or "peak_pressure"
+    track_whole_run: bool = False  # paint the whole run (True) or up to the current frame
+    # Outer ring drawn apart from the inner one along -x (ball diameters), so that its raceway is
+    # seen from the camera side past the inner ring; 0 draws the bearing assembled.
+    explode: float = 2.2
     # Outer ring sector cut away (rad, ring-frame azimuth from +y towards +z), centred on the side
     # the isometric camera looks at, so the balls, cage and raceways show; an opaque cut-away ring
     # renders ~2x faster than a translucent one in software.
-    outer_cutaway: tuple = (math.radians(-70.0), math.radians(70.0))
+    outer_cutaway: tuple = (math.radians(-90.0), math.radians(90.0))
     # Balls drawn see-through (their marking stays opaque enough to read the spin) so the contact
     # ellipses and traces under them show.
     translucent_balls: bool = True
@@ -70,12 +100,11 @@ class SceneOptions:
     view_azimuth: float = 0.0
 
 
-def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n_arc: int = 40):
-    """Closed (x, radius) outline of a ring cross-section, m.
+def groove_half_angle(groove: Groove, ball_diameter: float, shoulder_radius: float) -> float:
+    """Groove latitude theta (rad) of the shoulder edges, which are drawn at +-theta.
 
-    The groove arc runs between the two shoulders at groove latitude +-theta, with
-    cos(theta) = |rho_c - shoulder_radius| / r; when no usable shoulder is given the shoulder height
-    is 0.2 D (a typical spindle-bearing value, drawing only).
+    cos(theta) = |rho_c - shoulder_radius| / r; when no usable shoulder is given the shoulder
+    height is 0.2 D (a typical spindle-bearing value, drawing only).
     """
     D, r = ball_diameter, groove.r
     s = groove.sign  # +1 inner (material below the groove), -1 outer (material above)
@@ -84,7 +113,18 @@ def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n
     )
     if not (np.isfinite(depth) and 0.05 * D < depth < 0.9 * r):
         depth = 0.2 * D
-    theta = math.acos(1.0 - depth / r)
+    return math.acos(1.0 - depth / r)
+
+
+def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n_arc: int = 40):
+    """Closed (x, radius) outline of a ring cross-section, m.
+
+    The groove arc runs between the two shoulders at groove latitude +-theta
+    (:func:`groove_half_angle`).
+    """
+    D, r = ball_diameter, groove.r
+    s = groove.sign  # +1 inner (material below the groove), -1 outer (material above)
+    theta = groove_half_angle(groove, D, shoulder_radius)
     alpha = np.linspace(-theta, theta, n_arc)
     arc_x = groove.x_c - s * r * np.sin(alpha)
     arc_rho = groove.rho_c - s * r * np.cos(alpha)
@@ -180,35 +220,46 @@ def _matrix(rotation: np.ndarray, translation=(0.0, 0.0, 0.0)) -> np.ndarray:
 
 
 def outline_points(
-    inner_profile, outer_profile, cutaway=None, ball_top: float = 0.0, n_phi: int = 72
+    inner_profile,
+    outer_profile,
+    cutaway=None,
+    ball_top: float = 0.0,
+    n_phi: int = 72,
+    outer_shift: float = 0.0,
 ) -> np.ndarray:
     """Points (m, shape (n, 3)) that bound what is drawn, for framing the camera.
 
     Circles at the smallest and largest x of each ring's (x, radius) profile, at its largest
-    radius. Inside the outer ring's cut-away sector ``cutaway`` (rad, (start, end) ring azimuth)
-    the outer ring is not drawn: there the circles have the radius ``ball_top`` (m) of the balls'
-    outermost points instead.
+    radius; the outer ring's are moved by ``outer_shift`` (m) along x. Inside the outer ring's
+    cut-away sector ``cutaway`` (rad, (start, end) ring azimuth) the outer ring is not drawn:
+    there the balls' outermost points (radius ``ball_top``, m, beside the inner ring) bound it.
     """
     phi = np.linspace(0.0, 2 * math.pi, n_phi, endpoint=False)
     cut = np.zeros(n_phi, bool)
     if cutaway is not None:
         cut = np.mod(phi - cutaway[0], 2 * math.pi) < cutaway[1] - cutaway[0]
     circles = []
-    for race, (xs, rhos) in enumerate((inner_profile, outer_profile)):
-        radius = np.full(n_phi, float(np.max(rhos)))
-        if race == OUTER:
-            radius[cut] = ball_top
-        for x in (float(np.min(xs)), float(np.max(xs))):
-            circles.append(
-                np.column_stack([np.full(n_phi, x), radius * np.cos(phi), radius * np.sin(phi)])
-            )
+
+    def circle(x, radius, keep):
+        pts = np.column_stack([np.full(n_phi, x), radius * np.cos(phi), radius * np.sin(phi)])
+        circles.append(pts[keep])
+
+    everywhere = np.ones(n_phi, bool)
+    for x in (float(np.min(inner_profile[0])), float(np.max(inner_profile[0]))):
+        circle(x, float(np.max(inner_profile[1])), everywhere)
+        circle(x, ball_top, cut)
+    for x in (float(np.min(outer_profile[0])), float(np.max(outer_profile[0]))):
+        circle(x + outer_shift, float(np.max(outer_profile[1])), ~cut)
     return np.concatenate(circles)
 
 
 def camera_directions(preset: str, view_azimuth: float) -> tuple[np.ndarray, np.ndarray]:
     """(unit vector from the bearing centre towards the camera, view-up vector) of a preset.
 
-    ``view_azimuth`` (rad, from +y towards +z) is the side the isometric and radial views face.
+    ``view_azimuth`` (rad, from +y towards +z) is the side the isometric and radial views face
+    (the load side). ``inner track`` looks down on the inner raceway there from the +x side,
+    ``outer track`` up into the outer raceway on the opposite side (the far half of the opened
+    outer ring).
     """
     radial = np.array([0.0, math.cos(view_azimuth), math.sin(view_azimuth)])
     across = np.array([0.0, -math.sin(view_azimuth), math.cos(view_azimuth)])
@@ -217,7 +268,11 @@ def camera_directions(preset: str, view_azimuth: float) -> tuple[np.ndarray, np.
         return -axis, across
     if preset == "radial":
         return radial, across
-    tilt = math.radians(ISOMETRIC_TILT_DEG)
+    tilt = math.radians(
+        {"inner track": TRACK_VIEW_TILT_DEG, "outer track": TRACK_VIEW_TILT_DEG}.get(
+            preset, ISOMETRIC_TILT_DEG
+        )
+    )
     direction = math.cos(tilt) * axis + math.sin(tilt) * radial
     up = axis - direction * math.cos(tilt)  # the bearing axis, made normal to the view direction
     return direction, up / np.linalg.norm(up)
@@ -284,6 +339,8 @@ class BearingScene:
         self.frame_index = 0
         self._actors: dict[str, list] = {name: [] for name in LAYERS}
         self._reference = [geometry.free_contact_angle] * 2
+        self.outer_shift = float(self.options.explode) * geometry.ball_diameter  # m along x
+        self.painter: TrackPainter | None = None
         self._build(dark_balls)
 
     # ---- construction ---------------------------------------------------------------------------
@@ -301,6 +358,18 @@ class BearingScene:
             outer_profile,
             cutaway=self.options.outer_cutaway,
             ball_top=0.5 * (g.pitch_diameter + g.ball_diameter),
+            outer_shift=self.outer_shift,
+        )
+        self.grids = tuple(
+            TrackGrid(-theta, theta)
+            for theta in (
+                groove_half_angle(
+                    self.grooves[INNER], g.ball_diameter, g.inner_shoulder_diameter / 2
+                ),
+                groove_half_angle(
+                    self.grooves[OUTER], g.ball_diameter, g.outer_shoulder_diameter / 2
+                ),
+            )
         )
         inner = revolve(*inner_profile)
         # a dark sector on the inner ring makes its rotation visible
@@ -359,10 +428,13 @@ class BearingScene:
             p.add_mesh(
                 cage_mesh(0.5 * g.pitch_diameter, g.ball_diameter, g.ball_count),
                 color="#c8842a",
+                opacity=CAGE_OPACITY,
                 smooth_shading=True,
                 name="cage",
             )
         )
+        self._build_tracks()
+        self._build_edges()
         n_pts = g.ball_count * (ELLIPSE_POINTS + 1)
         self._ellipses, self._traces = [], []
         for race in (INNER, OUTER):
@@ -376,12 +448,9 @@ class BearingScene:
             self._actors["ellipses"].append(
                 p.add_mesh(
                     mesh,
-                    scalars="max_pressure_GPa",
-                    cmap="plasma",
-                    clim=(0.0, 1.0),
-                    show_scalar_bar=race == INNER,
-                    scalar_bar_args=SCALAR_BAR,
+                    color=ELLIPSE_COLOUR,
                     line_width=ELLIPSE_OUTLINE_PX,
+                    lighting=False,
                     name=f"ellipses_{race}",
                 )
             )
@@ -399,9 +468,110 @@ class BearingScene:
                     name=f"traces_{race}",
                 )
             )
+        for name in LAYERS:
+            for actor in self._actors[name]:
+                actor.visibility = bool(self.options.layers.get(name, True))
         bar = p.scalar_bar
         bar.SetVerticalTitleSeparation(10)  # pixels between the title and the top label
+        self._bar_title = SCALAR_BAR["title"]
+        bar.SetTitle(QUANTITY_LABELS[self.options.track_quantity])
         self.set_camera("isometric")
+
+    def _kept_phi_cells(self, race: int) -> np.ndarray:
+        """Phi cells of ``race`` that are drawn: all but the outer ring's cut-away sector."""
+        grid = self.grids[race]
+        centres = (np.arange(grid.n_phi) + 0.5) * grid.d_phi
+        return np.flatnonzero(~self._in_cutaway(race, centres))
+
+    def _build_tracks(self) -> None:
+        """One quad mesh per groove whose cells carry the painted track (NaN: not run over)."""
+        self._tracks, self._track_cells = [], []
+        for race in (INNER, OUTER):
+            groove = self.grooves[race]
+            pts, faces, cells = groove_mesh_arrays(
+                groove,
+                self.grids[race],
+                self._kept_phi_cells(race),
+                lift=0.5 * _MARK_LIFT * groove.r,
+            )
+            mesh = pv.PolyData(pts, faces=faces)
+            mesh.cell_data["track"] = np.full(mesh.n_cells, np.nan)
+            self._tracks.append(mesh)
+            self._track_cells.append(cells)
+            self._actors["tracks"].append(
+                self.plotter.add_mesh(
+                    mesh,
+                    scalars="track",
+                    cmap=TRACK_CMAP,
+                    clim=(0.0, 1.0),
+                    nan_color=_RING_COLOUR,
+                    show_scalar_bar=race == INNER,
+                    scalar_bar_args=SCALAR_BAR,
+                    smooth_shading=False,
+                    specular=0.2,
+                    name=f"tracks_{race}",
+                )
+            )
+
+    def _build_edges(self) -> None:
+        """Both shoulder edges and the groove bottom of each ring, as lines on the groove."""
+        for race in (INNER, OUTER):
+            groove, grid = self.grooves[race], self.grids[race]
+            kept = self._kept_phi_cells(race)
+            runs = np.split(kept, np.flatnonzero(np.diff(kept) != 1) + 1)
+            for kind, alpha in (
+                ("shoulder", grid.alpha_lo),
+                ("shoulder", grid.alpha_hi),
+                ("bottom", 0.0),
+            ):
+                parts = []
+                for run in runs:
+                    if run.size == 0:
+                        continue
+                    phi = grid.phi_edges()[run[0] : run[-1] + 2]
+                    pts = groove.point(phi, alpha, lift=_MARK_LIFT * groove.r)
+                    parts.append(pv.lines_from_points(pts))
+                self._actors["edges"].append(
+                    self.plotter.add_mesh(
+                        pv.merge(parts),
+                        color=EDGE_COLOURS[kind],
+                        line_width=EDGE_WIDTH_PX,
+                        lighting=False,
+                        name=f"edge_{race}_{kind}_{alpha:.3f}",
+                    )
+                )
+        self._edge_race = [INNER] * 3 + [OUTER] * 3
+
+    def _build_painter(self) -> None:
+        if self.source is None:
+            self.painter = None
+            return
+        self.painter = TrackPainter(
+            self.source,
+            self.grooves,
+            self.grids,
+            self._reference,
+            exaggeration=self.options.exaggeration,
+            ellipse_scale=self.options.ellipse_scale,
+        )
+
+    def _update_tracks(self, stop: int) -> None:
+        if self.painter is None:
+            return
+        self.painter.accumulate(self.source.n_frames if self.options.track_whole_run else stop)
+        q = self.options.track_quantity
+        scale = QUANTITY_SCALE[q]
+        lo, hi = self.painter.value_range(q)
+        lo, hi = lo * scale, hi * scale
+        if not hi > lo:
+            hi = lo + max(abs(lo), 1.0) * 1e-3
+        for race in (INNER, OUTER):
+            field = self.painter.field(race, q).ravel()[self._track_cells[race]] * scale
+            painted = self.painter.painted(race).ravel()[self._track_cells[race]]
+            mesh = self._tracks[race]
+            mesh.cell_data["track"] = np.where(painted, field, np.nan)
+            self._actors["tracks"][race].mapper.scalar_range = (lo, hi)
+        self.track_range = (lo, hi)
 
     # ---- data -----------------------------------------------------------------------------------
     def show_source(self, source: FrameSource, frame_index: int = 0) -> None:
@@ -412,10 +582,7 @@ class BearingScene:
             )
         self.source = source
         self._reference = [source.reference_contact_angle(r) for r in (INNER, OUTER)]
-        pmax = np.nan_to_num(source.contact["max_pressure"])
-        top = max(float(pmax.max()) * 1e-9, 1e-3)
-        for actor in self._actors["ellipses"]:
-            actor.mapper.scalar_range = (0.0, top)
+        self._build_painter()
         self.set_frame(frame_index)
 
     def set_frame(self, frame_index: int) -> None:
@@ -424,7 +591,10 @@ class BearingScene:
             return
         f = self.source.frame(frame_index)
         self.frame_index = f.index
-        rings = [_matrix(rot_x(f.ring_angle[INNER])), _matrix(rot_x(f.ring_angle[OUTER]))]
+        rings = [
+            _matrix(rot_x(f.ring_angle[INNER])),
+            _matrix(rot_x(f.ring_angle[OUTER]), (self.outer_shift, 0.0, 0.0)),
+        ]
         self._actors["inner_ring"][0].user_matrix = rings[INNER]
         self._actors["outer_ring"][0].user_matrix = rings[OUTER]
         for j, actor in enumerate(self._actors["balls"]):
@@ -435,9 +605,16 @@ class BearingScene:
             self._update_traces(race, f.index + 1)
             self._actors["ellipses"][race].user_matrix = rings[race]
             self._actors["traces"][race].user_matrix = rings[race]
+            self._actors["tracks"][race].user_matrix = rings[race]
+        for race, actor in zip(self._edge_race, self._actors["edges"], strict=True):
+            actor.user_matrix = rings[race]
+        self._update_tracks(f.index + 1)
 
     def _display_alpha(self, race: int, alpha):
-        return exaggerate(alpha, self._reference[race], self.options.exaggeration)
+        """Exaggerated groove latitude (rad), clipped at the shoulder edges."""
+        grid = self.grids[race]
+        shown = exaggerate(alpha, self._reference[race], self.options.exaggeration)
+        return np.clip(shown, grid.alpha_lo, grid.alpha_hi)
 
     def _in_cutaway(self, race: int, phi) -> np.ndarray:
         """True where a mark on ``race`` at ring azimuth ``phi`` (rad) lies in the removed sector.
@@ -454,8 +631,9 @@ class BearingScene:
         loaded = f.loaded[:, race] & ~self._in_cutaway(race, f.raceway_azimuth[:, race])
         alpha = np.where(loaded, f.contact_angle[:, race], self._reference[race])
         alpha = self._display_alpha(race, alpha)
-        a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0)
-        b = np.where(loaded, np.nan_to_num(f.semi_minor[:, race]), 0.0)
+        scale = self.options.ellipse_scale
+        a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0) * scale
+        b = np.where(loaded, np.nan_to_num(f.semi_minor[:, race]), 0.0) * scale
         phi = f.raceway_azimuth[:, race]
         lift = 2 * _MARK_LIFT * groove.r  # above the traces
         outline = ellipse_outline(groove, phi, alpha, a, b, n=ELLIPSE_POINTS, lift=lift)
@@ -467,6 +645,8 @@ class BearingScene:
         mesh.point_data["max_pressure_GPa"] = np.repeat(p, ELLIPSE_POINTS + 1)
 
     def _update_traces(self, race: int, stop: int) -> None:
+        if not self.options.layers.get("traces", True):
+            return  # redrawn when the layer is shown (set_layer)
         phi, alpha, loaded = self.source.trace(race, stop)
         step = max(1, math.ceil(phi.shape[1] / MAX_TRACE_SAMPLES))
         phi, alpha, loaded = phi[:, ::step], alpha[:, ::step], loaded[:, ::step]
@@ -516,10 +696,40 @@ class BearingScene:
         self.options.layers[name] = bool(visible)
         for actor in self._actors[name]:
             actor.visibility = bool(visible)
+        if name == "traces" and visible and self.source is not None:
+            for race in (INNER, OUTER):
+                self._update_traces(race, self.frame_index + 1)
 
     def set_exaggeration(self, factor: float) -> None:
-        """Across-groove exaggeration factor (>= 1) for traces and ellipse centres."""
-        self.options.exaggeration = max(1.0, float(factor))
+        """Across-groove exaggeration factor (>= 1) for tracks, traces and ellipse centres."""
+        factor = max(1.0, float(factor))
+        if factor != self.options.exaggeration:
+            self.options.exaggeration = factor
+            self._build_painter()
+        self.set_frame(self.frame_index)
+
+    def set_ellipse_scale(self, factor: float) -> None:
+        """Drawn size of the contact ellipses (and their painted footprints) / true size, >= 1."""
+        factor = max(1.0, float(factor))
+        if factor != self.options.ellipse_scale:
+            self.options.ellipse_scale = factor
+            self._build_painter()
+        self.set_frame(self.frame_index)
+
+    def set_track_options(self, quantity: str | None = None, whole_run: bool | None = None):
+        """Colour the painted tracks by ``quantity`` (:data:`app.tracks.QUANTITIES`) and paint
+        the whole run (``whole_run``) or the frames up to the current one."""
+        if quantity is not None:
+            if quantity not in QUANTITIES:
+                raise ValueError(
+                    f"unknown track colouring {quantity!r}; use one of {', '.join(QUANTITIES)}"
+                )
+            self.options.track_quantity = quantity
+            bar = self.plotter.scalar_bars.get(self._bar_title) if self._bar_title else None
+            if bar is not None:
+                bar.SetTitle(QUANTITY_LABELS[quantity])
+        if whole_run is not None:
+            self.options.track_whole_run = bool(whole_run)
         self.set_frame(self.frame_index)
 
     def set_trace_ball(self, ball: int | None) -> None:
@@ -528,14 +738,17 @@ class BearingScene:
         self.set_frame(self.frame_index)
 
     def set_camera(self, preset: str) -> None:
-        """Camera preset: ``isometric``, ``axial`` (along the bearing axis) or ``radial``.
+        """Camera preset: ``isometric``, ``axial``, ``radial``, ``inner track``, ``outer track``.
 
-        Always re-applies the preset (also when it is the one already on show) and frames the
-        whole bearing with a margin of :data:`FRAME_MARGIN` at the render window's aspect, leaving
-        the strip of the colour bar on the right free. ``isometric`` looks at the load side
-        (:attr:`SceneOptions.view_azimuth`, where the outer ring is cut away) from the +x side,
-        where the inner-raceway contacts face, :data:`ISOMETRIC_TILT_DEG` off the axis; ``axial``
-        looks along +x; ``radial`` looks into the cut-away, the bearing axis across the view.
+        Always re-applies the preset (also when it is the one already on show) and frames what it
+        shows with a margin of :data:`FRAME_MARGIN` at the render window's aspect, leaving the
+        strip of the colour bar on the right free. ``isometric`` looks at the load side
+        (:attr:`SceneOptions.view_azimuth`, where the outer ring is opened) from the +x side,
+        where the inner-raceway contacts face, :data:`ISOMETRIC_TILT_DEG` off the axis: the inner
+        raceway in front, the outer raceway behind it from inside; ``axial`` looks along +x;
+        ``radial`` looks into the opened side, the bearing axis across the view. ``inner track``
+        frames the inner raceway's load-side half and ``outer track`` the outer raceway's far
+        half, both :data:`TRACK_VIEW_TILT_DEG` off the axis.
         """
         if preset not in CAMERA_PRESETS:
             raise ValueError(
@@ -544,8 +757,11 @@ class BearingScene:
         direction, up = camera_directions(preset, self.options.view_azimuth)
         self.plotter.camera.view_angle = VIEW_ANGLE_DEG  # a mouse zoom narrows the view angle
         width, height = self.plotter.window_size
+        points = self._outline_points
+        if preset in ("inner track", "outer track"):
+            points = self._track_points(INNER if preset == "inner track" else OUTER)
         position, focal = frame_points(
-            self._outline_points,
+            points,
             direction,
             up,
             view_angle_deg=self.plotter.camera.view_angle,
@@ -555,6 +771,17 @@ class BearingScene:
         self.plotter.camera_position = [tuple(position), tuple(focal), tuple(up)]
         self.plotter.renderer.ResetCameraClippingRange()
         self._framed_size = (width, height)
+
+    def _track_points(self, race: int) -> np.ndarray:
+        """Points (m, drawn position) of the shoulder edges of ``race`` on the half of the raceway
+        that the track presets look at (load side for the inner, opposite side for the outer)."""
+        grid, groove = self.grids[race], self.grooves[race]
+        side = self.options.view_azimuth + (0.0 if race == INNER else math.pi)
+        phi = side + np.linspace(-0.5 * math.pi, 0.5 * math.pi, 37)
+        pts = np.concatenate([groove.point(phi, a) for a in (grid.alpha_lo, grid.alpha_hi)])
+        if race == OUTER:
+            pts[:, 0] += self.outer_shift
+        return pts
 
     def framed_for_window(self) -> bool:
         """Whether the last camera preset was framed for the render window's current size."""

@@ -17,6 +17,7 @@ def scene(qs_dataset, geometry):
     plotter = pv.Plotter(off_screen=True, window_size=(320, 240))
     s = BearingScene(plotter, geometry)
     s.show_source(frame_source(qs_dataset))
+    s.set_layer("traces", True)  # off by default: the painted tracks show the paths
     yield s
     plotter.close()
 
@@ -122,7 +123,9 @@ def test_presets_frame_the_whole_bearing_left_of_the_colour_bar(geometry, preset
     pv.global_theme.multi_samples = 0
     plotter = pv.Plotter(off_screen=True, window_size=(650, 480))
     try:
-        scene = BearingScene(plotter, geometry)
+        from app.scene import SceneOptions
+
+        scene = BearingScene(plotter, geometry, SceneOptions(explode=0.0))  # drawn assembled
         scene.set_camera(preset)
         plotter.render()
         xy = _display_xy(plotter, _bearing_points(geometry))
