@@ -50,8 +50,8 @@ ISOMETRIC_TILT_DEG = 60.0  # isometric view direction from the bearing axis
 TRACK_VIEW_TILT_DEG = 62.0  # "inner track" / "outer track" views: direction from the axis
 FRAME_MARGIN = 0.06  # camera presets leave this fraction of each half-size free around the bearing
 SCALAR_BAR_STRIP = 0.17  # fraction of the view width on the right kept for the colour bar
-BALL_OPACITY = (0.15, 0.6)
-CAGE_OPACITY = 0.45  # the cage hoops pass in front of the inner raceway: see the track through them  # (plain, marked) octants of a translucent ball
+BALL_OPACITY = (0.15, 0.6)  # (plain, marked) octants of a translucent ball
+CAGE_OPACITY = 0.45  # the cage hoops pass in front of the inner raceway: the track shows through
 # Contact ellipses are filled to scale and outlined with a stroke of this width (pixels), so that
 # one of 0.9 x 0.15 mm still shows when the whole bearing is in view (a stroke, not a size).
 ELLIPSE_OUTLINE_PX = 2.0
