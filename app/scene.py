@@ -36,10 +36,28 @@ from .tracks import (
     groove_mesh_arrays,
 )
 
-LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "tracks", "edges", "ellipses", "traces")
+LABEL_FONT_PX = 14
+ARROW_COLOURS = {"rotation": "#1f6f3f", "load": "#b01c1c", "tilt": "#6a3d9a"}
+LEGEND = (  # (text, colour) of the marks the view draws
+    ("contact ellipses now", "#0096c7"),
+    ("shoulder edges", "#1b1b1b"),
+    ("groove bottom", "#2f5597"),
+)
+
+LAYERS = (
+    "inner_ring",
+    "outer_ring",
+    "balls",
+    "cage",
+    "tracks",
+    "edges",
+    "ellipses",
+    "traces",
+    "labels",
+)
 DEFAULT_HIDDEN = ("traces",)  # layers off unless asked for: the painted tracks show the paths
 CAMERA_PRESETS = ("isometric", "axial", "radial", "inner track", "outer track")
-TRACK_CMAP = "viridis"
+TRACK_CMAP = "YlOrRd"  # pale where a point was run over briefly, dark red where longest
 EDGE_COLOURS = {"shoulder": "#1b1b1b", "bottom": "#2f5597"}
 EDGE_WIDTH_PX = 2.0
 ELLIPSE_POINTS = 24
@@ -70,7 +88,7 @@ SCALAR_BAR = {  # vertical, in the strip right of the bearing (see SCALAR_BAR_ST
     "color": "#202020",
 }
 _MARK_LIFT = 0.004  # fraction of the groove radius that marks are lifted off the raceway
-ELLIPSE_COLOUR = "#e8481c"  # contact ellipses: one colour that stands out on the painted tracks
+ELLIPSE_COLOUR = "#0096c7"  # contact ellipses: one colour that stands out on the painted tracks
 
 
 @dataclass
@@ -573,6 +591,119 @@ class BearingScene:
             self._actors["tracks"][race].mapper.scalar_range = (lo, hi)
         self.track_range = (lo, hi)
 
+    # ---- teaching overlay -----------------------------------------------------------------------
+    def show_facts(self, facts) -> None:
+        """Labels and arrows for the operating point ``facts`` (:class:`app.teaching.Facts`):
+        names of the raceways, the shaft's rotation, the radial load direction and the tilt axis
+        ("fixed in space" or "turning with the ring"), and a legend of the marks."""
+        from .teaching import misalignment_words
+
+        p, g = self.plotter, self.geometry
+        for actor in self._actors["labels"]:
+            p.remove_actor(actor)
+        self._actors["labels"] = []
+        self._tilt_actor = None
+        D = g.ball_diameter
+        face = max(float(np.max(ring_profile(self.grooves[INNER], D, np.nan)[0])), 0.95 * D)
+        bore = 0.5 * g.pitch_diameter - 1.2 * D  # inside the inner ring's bore
+        side = self.options.view_azimuth
+        radial = np.array([0.0, math.cos(side), math.sin(side)])
+        across = np.array([0.0, -math.sin(side), math.cos(side)])
+        # raceway names: at the middle of each painted half, on the groove bottom
+        inner_pt = self.grooves[INNER].point(side + 0.35, 0.0)
+        outer_pt = self.grooves[OUTER].point(side + math.pi - 0.35, 0.0) + [self.outer_shift, 0, 0]
+        labels = [("inner raceway", inner_pt), ("outer raceway", outer_pt)]
+        # shaft rotation: an arc round +x on the inner ring's face, arrow head in the turning sense
+        sense = 1.0 if facts.inner_ring_speed >= 0 else -1.0
+        if facts.inner_ring_speed != facts.outer_ring_speed:
+            ang = side + sense * np.linspace(-0.9, 0.6, 40)
+            arc = np.column_stack(
+                [np.full(ang.size, face * 1.02), bore * np.cos(ang), bore * np.sin(ang)]
+            )
+            tip = arc[-1]
+            heading = arc[-1] - arc[-3]
+            self._add_overlay(
+                pv.merge(
+                    [
+                        pv.Spline(arc, 60).tube(radius=0.06 * D),
+                        pv.Cone(
+                            center=tip + 0.25 * D * heading / np.linalg.norm(heading),
+                            direction=heading,
+                            height=0.5 * D,
+                            radius=0.2 * D,
+                        ),
+                    ]
+                ),
+                ARROW_COLOURS["rotation"],
+            )
+            labels.append(("shaft turns", arc[0]))
+        # radial load on the inner ring: from the centre towards the load azimuth
+        if facts.radial_load != 0.0:
+            a = facts.radial_load_angle
+            direction = np.array([0.0, math.cos(a), math.sin(a)])
+            start = np.array([face * 1.02, 0.0, 0.0])
+            self._add_overlay(
+                pv.Arrow(start, direction, scale=0.8 * bore, tip_radius=0.12, shaft_radius=0.04),
+                ARROW_COLOURS["load"],
+            )
+            labels.append(
+                (f"radial load {facts.radial_load:.0f} N", start + 0.6 * bore * direction)
+            )
+        # tilt axis through the centre, on the inner ring's face
+        words = misalignment_words(facts)
+        if words:
+            a = facts.misalignment_axis
+            direction = np.array([0.0, math.cos(a), math.sin(a)])
+            centre = np.array([face * 1.04, 0.0, 0.0])
+            line = pv.Line(centre - 0.9 * bore * direction, centre + 0.9 * bore * direction)
+            actor = self._add_overlay(line.tube(radius=0.05 * D), ARROW_COLOURS["tilt"])
+            if facts.misalignment_turns:
+                self._tilt_actor = actor  # turns with the inner ring (set_frame)
+            labels.append((words, centre + 0.9 * bore * direction))
+        del across, radial
+        points = np.array([pt for _, pt in labels], float)
+        self._label_points = pv.PolyData(points)
+        self._label_base = points.copy()
+        self._label_tilt = len(labels) - 1 if self._tilt_actor is not None else None
+        self._actors["labels"].append(
+            p.add_point_labels(
+                self._label_points,
+                [text for text, _ in labels],
+                font_size=LABEL_FONT_PX,
+                point_size=1,
+                shape_opacity=0.7,
+                always_visible=True,
+                show_points=False,
+                name="labels",
+            )
+        )
+        legend = p.add_legend(
+            [[text, colour] for text, colour in LEGEND],
+            bcolor="white",
+            border=False,
+            size=(0.24, 0.08),
+            loc="lower left",
+            face="rectangle",
+        )
+        self._actors["labels"].append(legend)
+        for actor in self._actors["labels"]:
+            actor.visibility = bool(self.options.layers.get("labels", True))
+
+    def _add_overlay(self, mesh, colour: str):
+        actor = self.plotter.add_mesh(mesh, color=colour, lighting=True, reset_camera=False)
+        self._actors["labels"].append(actor)
+        return actor
+
+    def _move_overlay(self, inner_matrix: np.ndarray) -> None:
+        tilt = getattr(self, "_tilt_actor", None)
+        if tilt is None:
+            return
+        tilt.user_matrix = inner_matrix
+        i = self._label_tilt
+        pts = self._label_base.copy()
+        pts[i] = pts[i] @ inner_matrix[:3, :3].T
+        self._label_points.points = pts
+
     # ---- data -----------------------------------------------------------------------------------
     def show_source(self, source: FrameSource, frame_index: int = 0) -> None:
         """Use ``source`` for the following frames (sets the colour range and reference angles)."""
@@ -608,6 +739,7 @@ class BearingScene:
             self._actors["tracks"][race].user_matrix = rings[race]
         for race, actor in zip(self._edge_race, self._actors["edges"], strict=True):
             actor.user_matrix = rings[race]
+        self._move_overlay(rings[INNER])
         self._update_tracks(f.index + 1)
 
     def _display_alpha(self, race: int, alpha):
