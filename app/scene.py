@@ -643,7 +643,13 @@ class BearingScene:
             direction = np.array([0.0, math.cos(a), math.sin(a)])
             start = np.array([face * 1.02, 0.0, 0.0])
             self._add_overlay(
-                pv.Arrow(start, direction, scale=0.8 * bore, tip_radius=0.12, shaft_radius=0.04),
+                pv.Arrow(
+                    start=start,
+                    direction=direction,
+                    scale=0.8 * bore,
+                    tip_radius=0.12,
+                    shaft_radius=0.04,
+                ),
                 ARROW_COLOURS["load"],
             )
             labels.append(

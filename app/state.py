@@ -40,8 +40,22 @@ PLAY_FPS = 15.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 POLL_S = 0.2  # runner polling period
 PREVIEW_DEBOUNCE_S = 0.1
-CUTAWAY_HALF_WIDTH = math.radians(70.0)  # the outer ring is cut away +-70 deg about the load side
+CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half shell on the load side
 _SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
+SCENE_LAYERS = (
+    "inner_ring",
+    "outer_ring",
+    "balls",
+    "cage",
+    "tracks",
+    "edges",
+    "ellipses",
+    "traces",
+    "labels",
+)  # app.scene.LAYERS (not imported here: the state works without VTK)
+HIDDEN_LAYERS = ("traces",)  # off until asked for: the painted tracks show where the balls ran
+DEFAULT_EXAGGERATION = 5.0  # across-groove deviations drawn 5x: lines and bands tell apart
+PREVIEW_RING_ANGLES = 12  # ring angles solved to preview a misalignment turning with the ring
 CHARTS = (
     "contact_angle",
     "raceway_map",
@@ -90,6 +104,7 @@ class RacetraceApp:
         self.dataset = None  # result on show
         self.quasistatic = None  # latest quasi-static result (for comparison)
         self.source: FrameSource | None = None
+        self.facts = None  # app.teaching.Facts of the result on show
         self._scene_key = None
         self._preview_generation = 0
         self._last_chart_update = 0.0
@@ -163,9 +178,14 @@ class RacetraceApp:
         s.compare_label = ""  # label of the run compared with (B)
         s.compare_summary = []  # rows of charts.summary_rows (plain JSON)
         s.compare_message = ""  # why the chosen run cannot be compared ("" when fine)
-        for layer in ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces"):
-            s[f"show_{layer}"] = True
-        s.exaggeration = 1.0
+        for layer in SCENE_LAYERS:
+            s[f"show_{layer}"] = layer not in HIDDEN_LAYERS
+        s.exaggeration = DEFAULT_EXAGGERATION
+        s.ellipse_scale = 1.0  # drawn size of the contact ellipses / true size
+        s.track_quantity = "dwell"  # painted tracks coloured by "dwell" or "peak_pressure"
+        s.track_whole_run = False  # paint the whole run, not only up to the current frame
+        s.slow_motion = ""  # "1 s on screen = ... of bearing time"
+        s.scene_note = ""  # the "what you see" note beside the view
         s.trace_ball = -1
         s.ball_items = [{"title": "all balls", "value": -1}]
         s.camera = "isometric"
@@ -185,13 +205,10 @@ class RacetraceApp:
         s.change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
         s.change("frame")(self._on_frame)
         s.change("playing")(self._on_playing)
-        s.change(
-            *[
-                f"show_{n}"
-                for n in ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
-            ]
-        )(self._on_layers)
+        s.change(*[f"show_{n}" for n in SCENE_LAYERS])(self._on_layers)
         s.change("exaggeration", "trace_ball")(self._on_trace_options)
+        s.change("ellipse_scale", "track_quantity", "track_whole_run")(self._on_track_options)
+        s.change("speed")(self._on_speed)
         s.change("camera")(self._on_camera)
         s.change("run_id")(self._on_run_id)
         s.change("compare_id")(self._on_compare_id)
@@ -351,7 +368,7 @@ class RacetraceApp:
             return
         case = self.case
         try:
-            ds = await asyncio.to_thread(self._solve_quasistatic, case)
+            ds = await asyncio.to_thread(self._solve_preview, case)
         except Exception as error:  # shown in words in the status line
             if not self.state.busy:
                 with self.state:
@@ -368,7 +385,7 @@ class RacetraceApp:
         if self.case is None:
             return
         try:
-            ds = self._solve_quasistatic(self.case)
+            ds = self._solve_preview(self.case)
         except Exception as error:
             self.state.status = f"error: {error}"
             return
@@ -394,15 +411,33 @@ class RacetraceApp:
 
         return solver.solve_quasistatic(case)
 
+    @staticmethod
+    def _solve_preview(case):
+        """The preview of ``case``: its quasi-static solution, or, for a misalignment turning with
+        the inner ring, the solutions over one revolution (a t = 0 snapshot would show a band
+        where the run draws a line and the reverse)."""
+        import solver
+
+        op = getattr(case, "operating", None)
+        turning = getattr(op, "misalignment_frame", "space") == "ring"
+        if turning and (getattr(op, "misalignment_deg", None) or 0.0) != 0.0:
+            return solver.solve_over_revolution(case, angles=PREVIEW_RING_ANGLES)
+        return solver.solve_quasistatic(case)
+
     # ---- showing a result -----------------------------------------------------------------------
     def show_result(self, ds, label: str) -> None:
         """Show a result Dataset: frame source, scene, charts and the time controls."""
         from solver import parse_case
         from solver.results.dataset import geometry_from_result
 
+        from .teaching import facts_from_result
+
         source = frame_source(ds, **self._animation_options(ds))
+        if "ring_angle" in ds.dims:  # a preview over one revolution: the views read its start
+            ds = ds.isel(ring_angle=0, drop=True)
         self.dataset = ds
         self.source = source
+        self.facts = facts_from_result(ds)
         # the run's own case (provenance): its case warnings, whether the form already shows it, and
         # the quasi-static comparison solved for it; the views read the result's coordinates
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else self.case
@@ -419,6 +454,8 @@ class RacetraceApp:
         if self.render_enabled:
             self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
             self.scene.show_source(source, 0)
+            self.scene.show_facts(self.facts)
+        self._update_words()
         s = self.state
         s.frame_max = source.n_frames - 1
         s.result_label = label
@@ -486,6 +523,9 @@ class RacetraceApp:
         camera = self.plotter.camera_position if self.scene is not None else None
         options = SceneOptions(
             exaggeration=float(self.state.exaggeration),
+            ellipse_scale=float(self.state.ellipse_scale),
+            track_quantity=str(self.state.track_quantity),
+            track_whole_run=bool(self.state.track_whole_run),
             trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
             # face the load zone and cut the outer ring away there
             view_azimuth=load_side,
@@ -517,7 +557,12 @@ class RacetraceApp:
         if self.scene is not None and not self._animating_export:
             self.scene.set_frame(index)
             self._push_view()
-        self.state.frame_time = f"t = {self.source.times[index] * 1e3:8.3f} ms"
+        from .teaching import revolution_words
+
+        t = float(self.source.times[index])
+        total = float(self.source.times[-1])
+        revolutions = revolution_words(t, self.facts, total) if self.facts else ""
+        self.state.frame_time = f"t = {t * 1e3:8.3f} ms · {revolutions}"
         if charts_too:
             self.update_charts(index)
 
@@ -612,15 +657,40 @@ class RacetraceApp:
             self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
         self._push_view()
 
-    def _on_trace_options(self, exaggeration=1.0, trace_ball=-1, **_):
+    def _on_trace_options(self, exaggeration=DEFAULT_EXAGGERATION, trace_ball=-1, **_):
         if self.scene is not None:
             self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
             self.scene.set_exaggeration(float(exaggeration))
             self._push_view()
+        self._update_words()
         self.update_charts()
 
+    def _on_track_options(self, **_):
+        s = self.state
+        if self.scene is not None:
+            self.scene.set_ellipse_scale(float(s.ellipse_scale))
+            self.scene.set_track_options(str(s.track_quantity), bool(s.track_whole_run))
+            self._push_view()
+        self._update_words()
+
+    def _on_speed(self, **_):
+        self._update_words()
+
+    def _update_words(self) -> None:
+        """The slow-motion factor and the "what you see" note for the result on show."""
+        from .teaching import playback_rate, slow_motion_words, what_you_see
+
+        s = self.state
+        if self.source is None or self.facts is None:
+            s.slow_motion, s.scene_note = "", ""
+            return
+        step = float(np.median(np.diff(self.source.times))) if self.source.n_frames > 1 else 0.0
+        s.slow_motion = slow_motion_words(playback_rate(step, int(s.speed), PLAY_FPS))
+        s.scene_note = what_you_see(self.facts, float(s.exaggeration), float(s.ellipse_scale))
+
     def set_camera(self, preset: str) -> None:
-        """Apply camera ``preset`` (isometric, axial, radial), even if it is the current one."""
+        """Apply camera ``preset`` (isometric, axial, radial, inner track, outer track), even if
+        it is the current one."""
         if self.state.camera == preset:
             self._on_camera(preset)  # no state change, so no callback: apply it here
         else:

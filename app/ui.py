@@ -148,9 +148,21 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                         md=7,
                         style="position: sticky; top: 64px; align-self: flex-start;",
                     ):
-                        with html.Div(id="view-3d", style="height: 480px; position: relative;"):
+                        # fills the height the window leaves; the render follows its size, so
+                        # the picture keeps its aspect ratio at any window size
+                        with html.Div(
+                            id="view-3d",
+                            style="height: calc(100vh - 330px); min-height: 320px; "
+                            "position: relative;",
+                        ):
                             view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
                             app.view = view
+                        html.Div(
+                            "{{ scene_note }}",
+                            id="scene-note",
+                            classes="text-caption text-medium-emphasis px-1",
+                            title="What you see",
+                        )
                         _time_controls()
                         _scene_controls(ctrl)
                         _export_controls(ctrl)
@@ -271,7 +283,13 @@ def _time_controls() -> None:
                     density="compact",
                 )
         with v3.VCol(cols="auto"):
-            html.Span("{{ frame_time }}", classes="text-caption", style="font-family: monospace;")
+            html.Span(
+                "{{ frame_time }}",
+                classes="text-caption",
+                style="font-family: monospace;",
+                id="frame-time",
+            )
+            html.Div("{{ slow_motion }}", classes="text-caption", id="slow-motion")
         with v3.VCol(cols=2):
             v3.VSelect(
                 label="speed",
@@ -287,14 +305,14 @@ def _scene_controls(ctrl) -> None:
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols="auto"):
             # plain buttons, not a toggle: pressing the current preset again restores it
-            for preset in ("isometric", "axial", "radial"):
+            for preset in ("isometric", "axial", "radial", "inner track", "outer track"):
                 v3.VBtn(
                     preset,
                     click=(ctrl.set_camera, f"['{preset}']"),
                     size="small",
                     variant=(f"camera === '{preset}' ? 'flat' : 'outlined'",),
                     classes="mr-1",
-                    id=f"camera-{preset}",
+                    id=f"camera-{preset.replace(' ', '-')}",
                 )
         with v3.VCol():
             v3.VSlider(
@@ -306,7 +324,24 @@ def _scene_controls(ctrl) -> None:
                 thumb_label=True,
                 hide_details=True,
                 density="compact",
-                title="Exaggerate the across-groove deviation of traces and ellipse centres",
+                title="Draw the across-groove deviation of the tracks, traces and ellipse centres "
+                "from the run's mean contact angle this many times larger (clipped at the "
+                "shoulders)",
+                id="exaggeration",
+            )
+            html.Span("deviation × {{ exaggeration }}", classes="text-caption")
+        with v3.VCol(cols=2):
+            v3.VSlider(
+                label="ellipses ×",
+                v_model=("ellipse_scale",),
+                min=1,
+                max=10,
+                step=1,
+                thumb_label=True,
+                hide_details=True,
+                density="compact",
+                title="Draw the contact ellipses this many times their true size",
+                id="ellipse-scale",
             )
         with v3.VCol(cols=3):
             v3.VSelect(
@@ -316,14 +351,39 @@ def _scene_controls(ctrl) -> None:
                 density="compact",
                 hide_details=True,
             )
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=4):
+            v3.VSelect(
+                label="tracks coloured by",
+                v_model=("track_quantity",),
+                items=(
+                    "[{title: 'dwell (time under a ball)', value: 'dwell'}, "
+                    "{title: 'highest peak pressure', value: 'peak_pressure'}]",
+                ),
+                density="compact",
+                hide_details=True,
+                id="track-quantity",
+            )
+        with v3.VCol(cols="auto"):
+            v3.VCheckbox(
+                label="whole run",
+                v_model=("track_whole_run",),
+                density="compact",
+                hide_details=True,
+                id="track-whole-run",
+                title="Paint the tracks of the whole run, not only up to the current time",
+            )
     with v3.VRow(dense=True):
         for layer, label in (
             ("outer_ring", "outer ring"),
             ("inner_ring", "inner ring"),
             ("balls", "balls"),
             ("cage", "cage"),
+            ("tracks", "painted tracks"),
+            ("edges", "shoulders"),
             ("ellipses", "ellipses"),
             ("traces", "traces"),
+            ("labels", "labels"),
         ):
             with v3.VCol(cols="auto"):
                 v3.VCheckbox(
