@@ -130,7 +130,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             html.Span("TOML")
                 html.Div("{{ case_message }}", classes="text-error text-caption", id="case-message")
                 section = None
-                for f in app.fields:
+                for f in app.form.fields:
                     if f.section != section:
                         section = f.section
                         html.Div(
@@ -155,8 +155,10 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             style="height: calc(100vh - 330px); min-height: 320px; "
                             "position: relative;",
                         ):
-                            view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
-                            app.view = view
+                            view = PyVistaRCAView(
+                                app.result.plotter, style="width: 100%; height: 100%;"
+                            )
+                            app.result.view = view
                         html.Div(
                             "{{ scene_note }}",
                             id="scene-note",
