@@ -253,7 +253,7 @@ def from_revolution(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
     azimuth (periodic linear interpolation between the solved balls). So a misalignment turning
     with the inner ring is shown over the whole revolution, not frozen at t = 0.
     """
-    first = ds.isel(ring_angle=0, drop=True)
+    first = ds.isel(ring_angle=0).drop_vars("ring_angle")
     base = FrameSource.from_quasistatic(first, **quasistatic_options)
     angles = np.radians(np.asarray(ds["ring_angle"].values, float))
     theta = np.mod(base.ring_angle[:, INNER] - base.ring_angle[:, OUTER], TWO_PI)  # (N,)

@@ -142,7 +142,7 @@ class ResultView(Component):
 
         source = frame_source(ds, **self._animation_options(ds))
         if "ring_angle" in ds.dims:  # a preview over one revolution: the views read its start
-            ds = ds.isel(ring_angle=0, drop=True)
+            ds = ds.isel(ring_angle=0).drop_vars("ring_angle")
         self.dataset = ds
         self.source = source
         self.facts = facts_from_result(ds)

@@ -442,3 +442,30 @@ def test_empty_fields_show_the_default_used(app):
     # an estimated default shows this bearing's value and its rule
     assert p["pocket_diametral_clearance_mm"].startswith("0.2 mm (estimated")
     assert p["ball_count"] == ""  # required: no default
+
+
+def test_a_misalignment_turning_with_the_ring_is_previewed_over_a_revolution(app):
+    """The t = 0 snapshot would draw a band on the inner race where the run draws a line."""
+    _set(app, case_name="spindle-misalignment-ring")
+    app.form.preview_now()
+    src = app.result.source
+    spreads = []
+    for race in (0, 1):
+        phi, alpha, ok = src.trace(race)
+        bins = (np.mod(phi[ok], 2 * np.pi) / (2 * np.pi) * 36).astype(int)
+        alpha = np.degrees(alpha[ok])
+        spreads.append(np.median([np.ptp(alpha[bins == b]) for b in range(36)]))
+    assert spreads[0] < 0.25 * spreads[1], spreads  # a line inside, a band outside
+    assert "ring_angle" not in app.result.dataset.dims  # the views read one element
+    assert "turning with the ring" in app.state.scene_note or "turns with" in app.state.scene_note
+
+
+def test_time_words_name_the_revolution_and_the_slow_motion(app):
+    s = app.state
+    _set(app, frame=int(s.frame_max))
+    assert "revolution" in s.frame_time and " of " in s.frame_time
+    assert s.slow_motion.startswith("1 s on screen = ")
+    before = s.slow_motion
+    _set(app, speed=10)
+    assert s.slow_motion != before
+    assert "painted" in s.scene_note
