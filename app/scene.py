@@ -26,7 +26,15 @@ import numpy as np
 import pyvista as pv
 
 from .frames import FrameSource, rot_x
-from .raceway import INNER, OUTER, Groove, ellipse_outline, exaggerate, grooves
+from .raceway import (
+    INNER,
+    OUTER,
+    Groove,
+    ellipse_outline,
+    exaggerate,
+    groove_half_angle,
+    grooves,
+)
 from .tracks import (
     QUANTITIES,
     QUANTITY_LABELS,
@@ -116,22 +124,6 @@ class SceneOptions:
     # Side (rad, azimuth from +y towards +z) the isometric and radial cameras face: the radial-load
     # direction of the shipped cases, where the load zone is.
     view_azimuth: float = 0.0
-
-
-def groove_half_angle(groove: Groove, ball_diameter: float, shoulder_radius: float) -> float:
-    """Groove latitude theta (rad) of the shoulder edges, which are drawn at +-theta.
-
-    cos(theta) = |rho_c - shoulder_radius| / r; when no usable shoulder is given the shoulder
-    height is 0.2 D (a typical spindle-bearing value, drawing only).
-    """
-    D, r = ball_diameter, groove.r
-    s = groove.sign  # +1 inner (material below the groove), -1 outer (material above)
-    depth = (
-        s * (shoulder_radius - (groove.rho_c - s * r)) if np.isfinite(shoulder_radius) else np.nan
-    )
-    if not (np.isfinite(depth) and 0.05 * D < depth < 0.9 * r):
-        depth = 0.2 * D
-    return math.acos(1.0 - depth / r)
 
 
 def ring_profile(groove: Groove, ball_diameter: float, shoulder_radius: float, n_arc: int = 40):

@@ -171,7 +171,13 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                     with v3.VCol(cols=12, md=5):
                         _run_panel(ctrl)
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
+                        _raceway_map_controls()
                         _chart("chart-raceway-map", "chart_raceway_map", "raceway_map")
+                        html.Div(
+                            "{{ raceway_metrics }}",
+                            id="raceway-metrics",
+                            classes="text-caption px-2 mb-2",
+                        )
                         with v3.VExpansionPanels(
                             v_model=("open_panels",), multiple=True, variant="accordion"
                         ):
@@ -249,6 +255,33 @@ def _summary_table() -> None:
                         classes="text-medium-emphasis px-1",
                     )
         html.Div(HELP["compare_summary"], classes="text-caption text-medium-emphasis px-2")
+
+
+def _raceway_map_controls() -> None:
+    """Options of the raceway map: colouring and the start-up left out (it follows the ball
+    chosen for the traces)."""
+    with v3.VRow(dense=True, align="center", classes="mt-1"):
+        with v3.VCol(cols=6):
+            v3.VSelect(
+                label="raceway map coloured by",
+                v_model=("map_colour",),
+                items=(
+                    "[{title: 'raceway', value: 'race'}, {title: 'ball', value: 'ball'}, "
+                    "{title: 'contact load', value: 'load'}]",
+                ),
+                density="compact",
+                hide_details=True,
+                id="map-colour",
+            )
+        with v3.VCol():
+            v3.VCheckbox(
+                label="skip start-up",
+                v_model=("map_skip_startup",),
+                density="compact",
+                hide_details=True,
+                id="map-skip-startup",
+                title="Leave out the samples before the solver's analysed window (settling)",
+            )
 
 
 def _time_controls() -> None:

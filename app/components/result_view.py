@@ -71,6 +71,10 @@ class ResultView(Component):
         self.quasistatic = None
         self.source: FrameSource | None = None
         self.facts = None  # app.teaching.Facts of the result on show
+        self._map_key = None  # what the cached whole-run raceway map shows
+        self._map_base = None  # its plotly JSON, without the marks of the current frame
+        self._shoulders = None  # (inner, outer) shoulder latitudes (rad) of the result on show
+        self._analysis_start = None  # start of the solver's analysed window (s)
         self.shown_case_text = None  # case TOML of the result on show
         self.shown_run_id = None  # id of the saved run on show (None for a preview)
         self.animating_export = False  # an animation export is moving the scene's frames
@@ -98,6 +102,9 @@ class ResultView(Component):
         s.track_quantity = "dwell"  # painted tracks coloured by "dwell" or "peak_pressure"
         s.track_whole_run = False  # paint the whole run, not only up to the current frame
         s.slow_motion = ""  # "1 s on screen = ... of bearing time"
+        s.map_colour = "race"  # raceway map coloured by "race", "ball" or "load"
+        s.map_skip_startup = False  # raceway map leaves out the start-up (solver's window)
+        s.raceway_metrics = ""  # excursion and band thickness under the raceway map
         s.scene_note = ""  # the "what you see" note beside the view
         s.trace_ball = -1
         s.ball_items = [{"title": "all balls", "value": -1}]
@@ -114,6 +121,7 @@ class ResultView(Component):
         s.change("exaggeration", "trace_ball")(self._on_trace_options)
         s.change("ellipse_scale", "track_quantity", "track_whole_run")(self._on_track_options)
         s.change("speed")(self._on_speed)
+        s.change("map_colour", "map_skip_startup")(self._on_map_options)
         s.change("camera")(self._on_camera)
         s.change("open_panels")(self._on_open_panels)
         c.step = self.step
@@ -146,6 +154,7 @@ class ResultView(Component):
         self.dataset = ds
         self.source = source
         self.facts = facts_from_result(ds)
+        self._describe_tracks(ds)
         # the run's own case (provenance): its case warnings, whether the form already shows it, and
         # the quasi-static comparison solved for it; the views read the result's coordinates
         form_case = self.session.form.case
@@ -176,6 +185,47 @@ class ResultView(Component):
         if s.frame > s.frame_max:
             s.frame = 0
         self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
+
+    def _describe_tracks(self, ds) -> None:
+        """Shoulder limits, settling window and trajectory metrics of ``ds`` for the map."""
+        from solver.results.dataset import geometry_from_result
+
+        from ..raceway import shoulder_angles
+
+        self._map_key = None
+        self._shoulders = shoulder_angles(geometry_from_result(ds))
+        try:
+            summary = ds.racetrace.summary()
+            self.state.raceway_metrics = charts.trajectory_metric_words(summary)
+            start = float(summary["analysis_start_time"]) if "time" in ds.dims else math.nan
+            self._analysis_start = start if math.isfinite(start) else None
+        except (KeyError, ValueError) as error:  # an older result: the map still shows
+            log.warning("no trajectory metrics for the map: %s", error)
+            self._analysis_start = None
+            self.state.raceway_metrics = ""
+
+    def _on_map_options(self, **_):
+        self.update_charts()
+
+    def _raceway_map(self, index: int, balls) -> dict:
+        """The whole-run raceway map (cached per result and options) with the contacts now."""
+        s = self.state
+        skip = bool(s.map_skip_startup) and self._analysis_start is not None
+        key = (int(s.result_serial), balls, str(s.map_colour), skip)
+        if key != self._map_key:
+            fig = charts.raceway_map_figure(
+                self.source,
+                balls=balls,
+                colour=str(s.map_colour),
+                start_time=self._analysis_start if skip else None,
+                shoulders=self._shoulders,
+            )
+            self._map_base, self._map_key = fig_json(fig), key
+        now = charts.current_contact_traces(self.source, index, balls)
+        import plotly.graph_objects as go
+
+        marks = fig_json(go.Figure(data=now))["data"]
+        return {**self._map_base, "data": [*self._map_base["data"], *marks]}
 
     @staticmethod
     def _warnings_of(ds, case) -> list[str]:
@@ -345,7 +395,7 @@ class ResultView(Component):
         ball = int(s.trace_ball)
         balls = (ball,) if ball >= 0 else None  # None: every ball
         s.chart_contact_angle = fig_json(charts.contact_angle_figure(src, balls, current=i))
-        s.chart_raceway_map = fig_json(charts.raceway_map_figure(src, stop=i + 1))
+        s.chart_raceway_map = self._raceway_map(i, balls)
         if "load_azimuth" in open_panels:
             s.chart_load_azimuth = fig_json(charts.load_azimuth_figure(src, i))
         if "ellipse" in open_panels:

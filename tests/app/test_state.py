@@ -64,7 +64,7 @@ def test_opens_on_the_default_case_solved(app):
     assert s.frame_max > 10
     assert app.result.dataset.attrs["model"] == "quasistatic"
     assert len(s.chart_contact_angle["data"]) >= 2
-    assert len(s.chart_raceway_map["data"]) == 2
+    assert len(s.chart_raceway_map["data"]) == 4  # both raceways, and where the balls are now
     assert _length(s.chart_raceway_map["data"][0]["x"]) > 0
     # every case-file key has a form field named after its last segment
     assert {f["name"] for f in s.form} >= {
@@ -469,3 +469,25 @@ def test_time_words_name_the_revolution_and_the_slow_motion(app):
     _set(app, speed=10)
     assert s.slow_motion != before
     assert "painted" in s.scene_note
+
+
+def test_raceway_map_follows_the_ball_and_its_options(app):
+    s = app.state
+    _set(app, frame=3)
+    data = s.chart_raceway_map["data"]
+    assert [t["name"] for t in data[:3]] == ["inner raceway", "outer raceway", "contacts now"]
+    assert "shoulders at" in s.chart_raceway_map["layout"]["title"]["text"]
+    assert "excursion" in s.raceway_metrics and "needs a dynamic run" in s.raceway_metrics
+    _set(app, trace_ball=2)
+    balls = {int(b) for b in _decode_custom(s.chart_raceway_map["data"][0])}
+    assert balls == {2}
+    _set(app, map_colour="load")
+    assert "colorscale" in s.chart_raceway_map["data"][0]["marker"]
+
+
+def _decode_custom(trace):
+    custom = trace["customdata"]
+    if isinstance(custom, dict):
+        values = np.frombuffer(base64.b64decode(custom["bdata"]), dtype=np.dtype(custom["dtype"]))
+        return values.reshape(-1, 2)[:, 0]
+    return [row[0] for row in custom]
