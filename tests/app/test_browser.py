@@ -157,7 +157,8 @@ def test_page_loads_and_the_view_animates(page):
     # plotly drew traces into both charts
     assert page.locator("#chart-contact-angle .scatterlayer .trace").count() >= 2
     # the raceway map is drawn with WebGL (scattergl): count its legend entries instead
-    assert page.locator("#chart-raceway-map .legend .traces").count() == 2
+    # (inner raceway, outer raceway, contacts now)
+    assert page.locator("#chart-raceway-map .legend .traces").count() == 3
     assert page.locator("#chart-raceway-map canvas").count() >= 1
     view = page.locator("#view-3d")
     shots = []
@@ -250,3 +251,69 @@ def test_export_png_and_csv_download(page, server):
         assert response.ok, href
         body = response.body()
         assert magic in body[:200], body[:80]
+
+
+def _view_pixels(pg, name: str):
+    """The 3-D view as an (h, w, 3) int array, saved as ``name``.png in the artefacts."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    png = pg.locator("#view-3d").screenshot(path=str(ARTIFACTS / f"{name}.png"))
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=int)
+
+
+def _open_case(pg, words: str) -> None:
+    serial = pg.evaluate("window.trame.state.get('result_serial')")
+    pg.locator("#case-select .v-field").click()
+    pg.locator(".v-overlay--active .v-list-item").filter(has_text=words).first.click()
+    pg.wait_for_function(
+        f"window.trame.state.get('result_serial') > {serial}", timeout=120_000, polling=200
+    )
+
+
+def _set_state(pg, **values) -> None:
+    for key, value in values.items():
+        pg.evaluate(f"window.trame.state.set('{key}', {json.dumps(value)})")
+
+
+def _track_pixels(pg, name: str):
+    """Pixels of the 3-D view that the painted tracks colour: the view with the tracks shown
+    differs there from the view with them hidden. Returns (outer count, inner count): the outer
+    ring is drawn above the inner one at the default camera, with a gap of rows between them."""
+    import numpy as np
+
+    _set_state(pg, show_tracks=True)
+    time.sleep(2.0)
+    shown = _view_pixels(pg, f"{name}-tracks")
+    _set_state(pg, show_tracks=False)
+    time.sleep(2.0)
+    hidden = _view_pixels(pg, f"{name}-no-tracks")
+    _set_state(pg, show_tracks=True)
+    mask = np.abs(shown - hidden).sum(axis=2) > 60
+    rows = np.flatnonzero(mask.any(axis=1))
+    assert rows.size, f"{name}: no painted track in the 3-D view"
+    gaps = np.diff(rows)
+    cut = rows[int(np.argmax(gaps))] + 1  # the widest run of rows without track pixels
+    assert gaps.max() > 5, f"{name}: the two tracks are not apart ({rows.min()}-{rows.max()})"
+    return int(mask[:cut].sum()), int(mask[cut:].sum())
+
+
+def test_painted_tracks_of_both_rings_show_and_tell_a_line_from_a_band(page):
+    """At the default camera both painted tracks are in the 3-D image; with a misalignment
+    turning with the inner ring the inner track is a line and the outer a band, fixed in space
+    the reverse (quasi-static previews over one revolution, whole run painted)."""
+    page.locator("#play-button").click()  # pause: the frames must hold still
+    _set_state(page, track_whole_run=True)
+    counts = {}
+    for key, words in (("ring", "turning with the inner ring"), ("space", "fixed in space")):
+        _open_case(page, words)
+        counts[key] = _track_pixels(page, f"tracks-{key}")
+    (ring_outer, ring_inner), (space_outer, space_inner) = counts["ring"], counts["space"]
+    for count in (ring_outer, ring_inner, space_outer, space_inner):
+        assert count > 200, counts  # both rings painted in both cases
+    # a band covers more of its groove than a line: outer band (ring) vs outer line (space) ...
+    assert ring_outer > 1.3 * space_outer, counts
+    # ... and inner band (space) vs inner line (ring)
+    assert space_inner > 1.3 * ring_inner, counts
