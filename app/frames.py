@@ -39,6 +39,10 @@ QS_SAMPLES_PER_REVOLUTION = 72  # animation frames per shaft revolution for a qu
 QS_DEFAULT_REVOLUTIONS = 10.0  # shaft revolutions animated when the caller names none
 QS_MAX_REVOLUTIONS = 20.0  # the steady animation repeats; longer runs only add frames to handle
 
+# Read when the result has them (contact[name], (N, Z, 2)); the ball-surface coordinates only from
+# a dynamic result, whose ball orientations they are measured against (angles in rad).
+_OPTIONAL_CONTACT_VARS = ("spin_to_roll", "ball_latitude", "ball_longitude")
+_ANGLE_VARS = ("contact_angle", "ball_latitude", "ball_longitude")
 _CONTACT_VARS = (
     "contact_angle",
     "contact_load",
@@ -163,9 +167,9 @@ class FrameSource:
         else:
             cage = psi.mean(axis=1) - psi[0].mean()
         contact = {}
-        for name in _CONTACT_VARS:
+        for name in (*_CONTACT_VARS, *[v for v in _OPTIONAL_CONTACT_VARS if v in ds]):
             values = _arr(ds, name, ("time", "ball", "race"))
-            contact[name] = np.radians(values) if name == "contact_angle" else values
+            contact[name] = np.radians(values) if name in _ANGLE_VARS else values
         raceway = np.unwrap(
             np.radians(_arr(ds, "raceway_azimuth", ("time", "ball", "race"))), axis=0
         )
@@ -223,7 +227,7 @@ class FrameSource:
         rotation = np.einsum("nzij,nzjk->nzik", rot_x(psi), axis_angle_matrix(axis, angle))
 
         contact = {}
-        for name in _CONTACT_VARS:
+        for name in (*_CONTACT_VARS, *[v for v in ("spin_to_roll",) if v in ds]):
             values = _arr(ds, name, ("ball", "race"))
             if name == "contact_angle":
                 values = np.radians(values)

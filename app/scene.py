@@ -64,7 +64,10 @@ LAYERS = (
     "labels",
 )
 DEFAULT_HIDDEN = ("traces",)  # layers off unless asked for: the painted tracks show the paths
-CAMERA_PRESETS = ("isometric", "axial", "radial", "inner track", "outer track")
+CAMERA_PRESETS = ("isometric", "axial", "radial", "inner track", "outer track", "close-up")
+CLOSEUP_PATH_FRAMES = 120  # frames of recent path drawn in the close-up of one ball
+CLOSEUP_DOME = 0.6  # height of the pressure half-ellipsoid at the peak pressure / semi-major axis
+CLOSEUP_COLOURS = {"path": "#0b6e4f", "ball_path": "#d1495b"}
 TRACK_CMAP = "YlOrRd"  # pale where a point was run over briefly, dark red where longest
 EDGE_COLOURS = {"shoulder": "#1b1b1b", "bottom": "#2f5597"}
 EDGE_WIDTH_PX = 2.0
@@ -114,6 +117,7 @@ class SceneOptions:
     # Outer ring drawn apart from the inner one along -x (ball diameters), so that its raceway is
     # seen from the camera side past the inner ring; 0 draws the bearing assembled.
     explode: float = 2.2
+    closeup_ball: int = 0  # the ball the "close-up" camera follows
     # Outer ring sector cut away (rad, ring-frame azimuth from +y towards +z), centred on the side
     # the isometric camera looks at, so the balls, cage and raceways show; an opaque cut-away ring
     # renders ~2x faster than a translucent one in software.
@@ -481,6 +485,7 @@ class BearingScene:
         for name in LAYERS:
             for actor in self._actors[name]:
                 actor.visibility = bool(self.options.layers.get(name, True))
+        self._build_closeup()
         bar = p.scalar_bar
         bar.SetVerticalTitleSeparation(10)  # pixels between the title and the top label
         self._bar_title = SCALAR_BAR["title"]
@@ -582,6 +587,165 @@ class BearingScene:
             mesh.cell_data["track"] = np.where(painted, field, np.nan)
             self._actors["tracks"][race].mapper.scalar_range = (lo, hi)
         self.track_range = (lo, hi)
+
+    # ---- close-up of one ball -------------------------------------------------------------------
+    def _build_closeup(self) -> None:
+        """Pressure half-ellipsoids, recent ellipse-centre paths (one per race) and the ball's own
+        contact paths, shown with the "close-up" camera only."""
+        p = self.plotter
+        self._closeup = {"domes": [], "paths": [], "ball_paths": []}
+        self._closeup_actors = []
+        n_r, n_t = 8, ELLIPSE_POINTS
+        for race in (INNER, OUTER):
+            faces = []  # quads between neighbouring rings of the (rho, tau) grid
+            for i in range(n_r - 1):
+                for k in range(n_t):
+                    a0 = i * n_t + k
+                    a1 = i * n_t + (k + 1) % n_t
+                    faces.append((4, a0, a1, a1 + n_t, a0 + n_t))
+            mesh = pv.PolyData(np.zeros((n_r * n_t, 3)), faces=np.asarray(faces).ravel())
+            mesh.point_data["pressure_GPa"] = np.zeros(n_r * n_t)
+            self._closeup["domes"].append(mesh)
+            self._closeup_actors.append(
+                p.add_mesh(
+                    mesh,
+                    scalars="pressure_GPa",
+                    cmap="plasma",
+                    clim=(0.0, 1.0),
+                    show_scalar_bar=False,
+                    smooth_shading=True,
+                    name=f"closeup_dome_{race}",
+                )
+            )
+            for kind, store in (("path", "paths"), ("ball_path", "ball_paths")):
+                line = pv.PolyData(np.zeros((2, 3)), lines=np.array([2, 0, 1]))
+                self._closeup[store].append(line)
+                self._closeup_actors.append(
+                    p.add_mesh(
+                        line,
+                        color=CLOSEUP_COLOURS[kind],
+                        line_width=3.0,
+                        lighting=False,
+                        name=f"closeup_{kind}_{race}",
+                    )
+                )
+        self._closeup_n = (n_r, n_t)
+        self._closeup_on = False
+        for actor in self._closeup_actors:
+            actor.visibility = False
+
+    def _update_closeup(self, f, rings) -> None:
+        on = self._closeup_on and self.source is not None
+        for actor in self._closeup_actors:
+            actor.visibility = on
+        j = int(min(max(self.options.closeup_ball, 0), self.geometry.ball_count - 1))
+        # the close-up shows one ball alone, its outer contact where it is (not drawn apart)
+        for k, actor in enumerate(self._actors["balls"]):
+            actor.visibility = self.options.layers.get("balls", True) and (not on or k == j)
+        for actor in self._actors["cage"]:
+            actor.visibility = self.options.layers.get("cage", True) and not on
+        if not on:
+            return
+        rings = [rings[INNER], _matrix(rot_x(f.ring_angle[OUTER]))]
+        n_r, n_t = self._closeup_n
+        rho = np.linspace(0.0, 1.0, n_r)[:, None]
+        tau = np.linspace(0.0, 2 * math.pi, n_t, endpoint=False)[None, :]
+        pmax = np.nan_to_num(self.source.contact["max_pressure"])
+        top = max(float(pmax.max()) * 1e-9, 1e-3)
+        start = max(0, f.index + 1 - CLOSEUP_PATH_FRAMES)
+        for race in (INNER, OUTER):
+            groove = self.grooves[race]
+            loaded = bool(f.loaded[j, race])
+            scale = self.options.ellipse_scale
+            a = float(np.nan_to_num(f.semi_major[j, race])) * scale if loaded else 0.0
+            b = float(np.nan_to_num(f.semi_minor[j, race])) * scale if loaded else 0.0
+            p0 = float(np.nan_to_num(f.max_pressure[j, race])) * 1e-9 if loaded else 0.0
+            alpha = float(self._display_alpha(race, f.contact_angle[j, race] if loaded else 0.0))
+            phi = float(f.raceway_azimuth[j, race])
+            shape = np.sqrt(np.clip(1.0 - rho**2, 0.0, 1.0))
+            lift = 2 * _MARK_LIFT * groove.r + CLOSEUP_DOME * a * shape
+            phis = phi + b / groove.contact_radius(alpha) * rho * np.sin(tau)
+            alphas = alpha + a / groove.r * rho * np.cos(tau)
+            surface = groove.point(phis, alphas)
+            # towards the groove's curvature centre: out of the raceway, into the ball's space
+            toward = groove.point(phis, alphas, lift=groove.r) - surface
+            toward /= np.linalg.norm(toward, axis=-1, keepdims=True)
+            pts = surface + lift[..., None] * toward
+            dome = self._closeup["domes"][race]
+            dome.points = pts.reshape(-1, 3)
+            dome.point_data["pressure_GPa"] = np.broadcast_to(p0 * shape, (n_r, n_t)).ravel()
+            self._closeup_actors[3 * race].mapper.scalar_range = (0.0, top)
+            self._closeup_actors[3 * race].user_matrix = rings[race]
+            # recent path of the ellipse centre on the raceway (ring frame)
+            c = self.source.contact
+            al = c["contact_angle"][start : f.index + 1, j, race]
+            ok = np.isfinite(al) & (
+                np.nan_to_num(c["contact_load"][start : f.index + 1, j, race]) > 0
+            )
+            ph = self.source.raceway_azimuth[start : f.index + 1, j, race]
+            self._set_line(
+                self._closeup["paths"][race],
+                groove.point(
+                    ph[ok], self._display_alpha(race, al[ok]), lift=3 * _MARK_LIFT * groove.r
+                ),
+            )
+            self._closeup_actors[3 * race + 1].user_matrix = rings[race]
+            # the ball's own contact path on its surface (ball-fixed frame, dynamic results)
+            lat = c.get("ball_latitude")
+            if lat is not None and self.source.model == "dynamic":
+                la = lat[start : f.index + 1, j, race][ok]
+                lo = c["ball_longitude"][start : f.index + 1, j, race][ok]
+                radius = 0.5 * self.geometry.ball_diameter * 1.01
+                pts = radius * np.column_stack(
+                    [np.cos(la) * np.cos(lo), np.cos(la) * np.sin(lo), np.sin(la)]
+                )
+                self._set_line(self._closeup["ball_paths"][race], pts)
+                self._closeup_actors[3 * race + 2].user_matrix = _matrix(
+                    f.ball_rotation[j], f.ball_center[j]
+                )
+            else:
+                self._closeup_actors[3 * race + 2].visibility = False
+
+    @staticmethod
+    def _set_line(mesh, pts) -> None:
+        pts = np.asarray(pts, float).reshape(-1, 3)
+        if len(pts) < 2:
+            pts = np.zeros((2, 3))
+        mesh.copy_from(pv.lines_from_points(pts))
+
+    def has_ball_paths(self) -> bool:
+        """Whether the result on show gives the contact path on the ball's surface."""
+        return (
+            self.source is not None
+            and self.source.model == "dynamic"
+            and "ball_latitude" in self.source.contact
+        )
+
+    def set_closeup_ball(self, ball: int) -> None:
+        """The ball the close-up follows (index)."""
+        self.options.closeup_ball = int(ball)
+        self.set_frame(self.frame_index)
+
+    def _closeup_camera(self, f) -> None:
+        """Look at ball ``closeup_ball`` along its rolling direction, the bearing axis across."""
+        j = int(min(max(self.options.closeup_ball, 0), self.geometry.ball_count - 1))
+        psi = float(f.ball_azimuth[j])
+        e_r = np.array([0.0, math.cos(psi), math.sin(psi)])
+        e_t = np.array([0.0, -math.sin(psi), math.cos(psi)])
+        direction = e_t + 0.35 * np.array([1.0, 0.0, 0.0])
+        centre = np.asarray(f.ball_center[j], float)
+        D = self.geometry.ball_diameter
+        pts = np.array(
+            [centre + sx * 0.95 * D * np.array([1.0, 0, 0]) + sr * 0.95 * D * e_r
+             for sx in (-1, 1) for sr in (-1, 1)]
+        )  # fmt: skip
+        width, height = self.plotter.window_size
+        position, focal = frame_points(
+            pts, direction, e_r, self.plotter.camera.view_angle, width / height,
+            right_reserved=SCALAR_BAR_STRIP,
+        )  # fmt: skip
+        self.plotter.camera_position = [tuple(position), tuple(focal), tuple(e_r)]
+        self.plotter.renderer.ResetCameraClippingRange()
 
     # ---- teaching overlay -----------------------------------------------------------------------
     def show_facts(self, facts) -> None:
@@ -738,6 +902,9 @@ class BearingScene:
         for race, actor in zip(self._edge_race, self._actors["edges"], strict=True):
             actor.user_matrix = rings[race]
         self._move_overlay(rings[INNER])
+        self._update_closeup(f, rings)
+        if self._closeup_on:
+            self._closeup_camera(f)
         self._update_tracks(f.index + 1)
 
     def _display_alpha(self, race: int, alpha):
@@ -884,9 +1051,22 @@ class BearingScene:
             raise ValueError(
                 f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}"
             )
-        direction, up = camera_directions(preset, self.options.view_azimuth)
+        self._closeup_on = preset == "close-up"
         self.plotter.camera.view_angle = VIEW_ANGLE_DEG  # a mouse zoom narrows the view angle
         width, height = self.plotter.window_size
+        if self._closeup_on:
+            self._framed_size = (width, height)
+            if self.source is not None:
+                self.set_frame(self.frame_index)
+            return
+        for actor in self._closeup_actors:
+            actor.visibility = False
+        for name in ("balls", "cage"):  # the close-up showed one ball alone
+            for actor in self._actors[name]:
+                actor.visibility = bool(self.options.layers.get(name, True))
+        direction, up = camera_directions(
+            "isometric" if preset == "close-up" else preset, self.options.view_azimuth
+        )
         points = self._outline_points
         if preset in ("inner track", "outer track"):
             points = self._track_points(INNER if preset == "inner track" else OUTER)

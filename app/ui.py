@@ -160,6 +160,12 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             )
                             app.result.view = view
                         html.Div(
+                            "{{ closeup_numbers }}",
+                            id="closeup-numbers",
+                            v_show="closeup_numbers",
+                            classes="text-caption px-1",
+                        )
+                        html.Div(
                             "{{ scene_note }}",
                             id="scene-note",
                             classes="text-caption text-medium-emphasis px-1",
@@ -340,7 +346,14 @@ def _scene_controls(ctrl) -> None:
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols="auto"):
             # plain buttons, not a toggle: pressing the current preset again restores it
-            for preset in ("isometric", "axial", "radial", "inner track", "outer track"):
+            for preset in (
+                "isometric",
+                "axial",
+                "radial",
+                "inner track",
+                "outer track",
+                "close-up",
+            ):
                 v3.VBtn(
                     preset,
                     click=(ctrl.set_camera, f"['{preset}']"),
@@ -380,7 +393,7 @@ def _scene_controls(ctrl) -> None:
             )
         with v3.VCol(cols=3):
             v3.VSelect(
-                label="traces",
+                label="ball (traces, map, close-up)",
                 v_model=("trace_ball",),
                 items=("ball_items",),
                 density="compact",

@@ -105,6 +105,7 @@ class ResultView(Component):
         s.map_colour = "race"  # raceway map coloured by "race", "ball" or "load"
         s.map_skip_startup = False  # raceway map leaves out the start-up (solver's window)
         s.raceway_metrics = ""  # excursion and band thickness under the raceway map
+        s.closeup_numbers = ""  # the close-up ball's contacts in numbers (camera "close-up")
         s.scene_note = ""  # the "what you see" note beside the view
         s.trace_ball = -1
         s.ball_items = [{"title": "all balls", "value": -1}]
@@ -203,6 +204,32 @@ class ResultView(Component):
             log.warning("no trajectory metrics for the map: %s", error)
             self._analysis_start = None
             self.state.raceway_metrics = ""
+
+    def _closeup_numbers(self, index: int) -> str:
+        """The close-up ball's two contacts in numbers at frame ``index``."""
+        from ..raceway import RACES
+
+        j = max(0, int(self.state.trace_ball))
+        f = self.source.frame(index)
+        c = self.source.contact
+        parts = [f"ball {j}"]
+        for race in (0, 1):
+            if not f.loaded[j, race]:
+                parts.append(f"{RACES[race]}: unloaded")
+                continue
+            text = (
+                f"{RACES[race]}: contact angle {math.degrees(f.contact_angle[j, race]):.2f}°, "
+                f"load {f.contact_load[j, race]:.0f} N, "
+                f"peak pressure {f.max_pressure[j, race] * 1e-9:.2f} GPa"
+            )
+            if "spin_to_roll" in c:
+                text += f", spin-to-roll {c['spin_to_roll'][f.index, j, race]:.3f}"
+            parts.append(text)
+        if self.source.model == "dynamic" and "ball_latitude" in c:
+            parts.append("red: the contact paths on the ball's own surface")
+        else:
+            parts.append("the contact path on the ball's surface needs a dynamic run")
+        return " · ".join(parts)
 
     def _on_map_options(self, **_):
         self.update_charts()
@@ -322,6 +349,7 @@ class ResultView(Component):
     def _on_trace_options(self, exaggeration=DEFAULT_EXAGGERATION, trace_ball=-1, **_):
         if self.scene is not None:
             self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
+            self.scene.options.closeup_ball = max(0, int(trace_ball))
             self.scene.set_exaggeration(float(exaggeration))
             self.push_view()
         self._update_words()
@@ -362,6 +390,9 @@ class ResultView(Component):
         if self.scene is not None:
             self.scene.set_camera(camera)
             self.push_view()
+        if self.source is not None:
+            i = int(self.state.frame)
+            self.state.closeup_numbers = self._closeup_numbers(i) if camera == "close-up" else ""
 
     # ---- time and charts ------------------------------------------------------------------------
     def _apply_frame(self, index: int, charts_too: bool) -> None:
@@ -377,6 +408,9 @@ class ResultView(Component):
         total = float(self.source.times[-1])
         revolutions = revolution_words(t, self.facts, total) if self.facts else ""
         self.state.frame_time = f"t = {t * 1e3:8.3f} ms · {revolutions}"
+        self.state.closeup_numbers = (
+            self._closeup_numbers(index) if self.state.camera == "close-up" else ""
+        )
         if charts_too:
             self.update_charts(index)
 

@@ -177,3 +177,36 @@ def test_ellipses_are_outlined_to_scale(scene, geometry):
     outline = mesh.points[j * 25 + 1 : (j + 1) * 25]  # the fan's centre comes first
     across = np.ptp(outline[:, 0]) / np.cos(f.contact_angle[j, INNER])
     assert across == pytest.approx(2 * f.semi_major[j, INNER], rel=0.05)
+
+
+def test_close_up_shows_one_balls_pressure_domes_and_recent_paths(scene, geometry):
+    f = scene.source.frame(40)
+    j = int(np.argmax(np.nan_to_num(f.contact_load[:, INNER])))  # a loaded ball
+    scene.set_closeup_ball(j)
+    scene.set_frame(40)
+    scene.set_camera("close-up")
+    assert scene._closeup_on and all(a.visibility for a in scene._closeup_actors[:2])
+    assert [a.visibility for a in scene._actors["balls"]] == [
+        k == j for k in range(geometry.ball_count)
+    ]
+    for race in (INNER, OUTER):
+        dome = scene._closeup["domes"][race]
+        p = dome.point_data["pressure_GPa"]
+        assert p.max() == pytest.approx(f.max_pressure[j, race] * 1e-9, rel=1e-6)
+        # the dome stands on the groove (ring frame): its rim on the raceway, its top lifted
+        groove = grooves(geometry)[race]
+        pts = dome.points
+        radius = np.hypot(pts[:, 1], pts[:, 2])
+        off = groove.r - np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)
+        rim, top = off[p < 1e-6 * p.max() + 1e-12], off[p == p.max()]
+        assert rim.max() < 0.02 * groove.r
+        assert top.min() == pytest.approx(
+            0.6 * f.semi_major[j, race] + 2 * 0.004 * groove.r, rel=0.05
+        )
+        assert scene._closeup["paths"][race].n_points > 10  # the recent path of its centre
+    # the camera looks at that ball
+    focal = np.array(scene.plotter.camera_position.focal_point)
+    assert np.linalg.norm(focal - f.ball_center[j]) < geometry.ball_diameter
+    scene.set_camera("isometric")
+    assert not any(a.visibility for a in scene._closeup_actors)
+    assert all(a.visibility for a in scene._actors["balls"])
