@@ -488,7 +488,7 @@ class BearingScene:
         self._build_closeup()
         bar = p.scalar_bar
         bar.SetVerticalTitleSeparation(10)  # pixels between the title and the top label
-        self._bar_title = SCALAR_BAR["title"]
+        self._bar = bar  # the painted tracks' colour bar
         bar.SetTitle(QUANTITY_LABELS[self.options.track_quantity])
         self.set_camera("isometric")
 
@@ -1022,9 +1022,7 @@ class BearingScene:
                     f"unknown track colouring {quantity!r}; use one of {', '.join(QUANTITIES)}"
                 )
             self.options.track_quantity = quantity
-            bar = self.plotter.scalar_bars.get(self._bar_title) if self._bar_title else None
-            if bar is not None:
-                bar.SetTitle(QUANTITY_LABELS[quantity])
+            self._bar.SetTitle(QUANTITY_LABELS[quantity])
         if whole_run is not None:
             self.options.track_whole_run = bool(whole_run)
         self.set_frame(self.frame_index)

@@ -210,3 +210,14 @@ def test_close_up_shows_one_balls_pressure_domes_and_recent_paths(scene, geometr
     scene.set_camera("isometric")
     assert not any(a.visibility for a in scene._closeup_actors)
     assert all(a.visibility for a in scene._actors["balls"])
+
+
+def test_tracks_coloured_by_peak_pressure_name_it_on_the_colour_bar(scene):
+    scene.set_track_options(quantity="peak_pressure", whole_run=True)
+    assert "pressure" in scene.plotter.scalar_bar.GetTitle()
+    lo, hi = scene.track_range
+    f = scene.source
+    assert hi == pytest.approx(np.nanmax(f.contact["max_pressure"]) * 1e-9, rel=0.02)
+    assert 0 < lo < hi
+    with pytest.raises(ValueError, match="dwell"):
+        scene.set_track_options(quantity="colour")
