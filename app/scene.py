@@ -77,6 +77,7 @@ _RING_COLOUR = "#b8bcc4"
 VIEW_ANGLE_DEG = 30.0  # vertical view angle of the camera presets (VTK's default)
 ISOMETRIC_TILT_DEG = 75.0  # isometric view direction from the bearing axis
 TRACK_VIEW_TILT_DEG = 62.0  # "inner track" / "outer track" views: direction from the axis
+AXIAL_TILT_DEG = 25.0  # "axial" view direction from the bearing axis
 FRAME_MARGIN = 0.06  # camera presets leave this fraction of each half-size free around the bearing
 SCALAR_BAR_STRIP = 0.17  # fraction of the view width on the right kept for the colour bar
 BALL_OPACITY = (0.15, 0.6)  # (plain, marked) octants of a translucent ball
@@ -278,8 +279,11 @@ def camera_directions(preset: str, view_azimuth: float) -> tuple[np.ndarray, np.
     radial = np.array([0.0, math.cos(view_azimuth), math.sin(view_azimuth)])
     across = np.array([0.0, -math.sin(view_azimuth), math.cos(view_azimuth)])
     axis = np.array([1.0, 0.0, 0.0])
-    if preset == "axial":
-        return -axis, across
+    if preset == "axial":  # from the +x side, tilted towards the view side to see into the grooves
+        tilt = math.radians(AXIAL_TILT_DEG)
+        direction = math.cos(tilt) * axis + math.sin(tilt) * radial
+        up = radial - direction * math.sin(tilt)
+        return direction, up / np.linalg.norm(up)
     if preset == "radial":
         return radial, across
     tilt = math.radians(
@@ -642,8 +646,9 @@ class BearingScene:
         # the close-up shows one ball alone, its outer contact where it is (not drawn apart)
         for k, actor in enumerate(self._actors["balls"]):
             actor.visibility = self.options.layers.get("balls", True) and (not on or k == j)
-        for actor in self._actors["cage"]:
-            actor.visibility = self.options.layers.get("cage", True) and not on
+        for name in ("cage", "outer_ring"):  # the outer ring is drawn apart: out of the way
+            for actor in self._actors[name]:
+                actor.visibility = self.options.layers.get(name, True) and not on
         if not on:
             return
         rings = [rings[INNER], _matrix(rot_x(f.ring_angle[OUTER]))]
@@ -1059,7 +1064,7 @@ class BearingScene:
             return
         for actor in self._closeup_actors:
             actor.visibility = False
-        for name in ("balls", "cage"):  # the close-up showed one ball alone
+        for name in ("balls", "cage", "outer_ring"):  # the close-up showed one ball alone
             for actor in self._actors[name]:
                 actor.visibility = bool(self.options.layers.get(name, True))
         direction, up = camera_directions(

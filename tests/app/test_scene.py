@@ -221,3 +221,34 @@ def test_tracks_coloured_by_peak_pressure_name_it_on_the_colour_bar(scene):
     assert 0 < lo < hi
     with pytest.raises(ValueError, match="dwell"):
         scene.set_track_options(quantity="colour")
+
+
+def _track_pixels(scene, race: int) -> int:
+    """Pixels the painted track of ``race`` colours: the image with it minus the image without."""
+    p = scene.plotter
+    p.render()
+    shown = p.screenshot(return_img=True).astype(int)
+    scene._actors["tracks"][race].visibility = False
+    p.render()
+    hidden = p.screenshot(return_img=True).astype(int)
+    scene._actors["tracks"][race].visibility = True
+    return int((np.abs(shown - hidden).sum(axis=2) > 60).sum())
+
+
+@pytest.mark.parametrize(
+    "preset, races",
+    [
+        ("isometric", (INNER, OUTER)),  # the default: both tracks
+        ("radial", (INNER, OUTER)),
+        ("axial", (INNER,)),
+        ("inner track", (INNER,)),
+        ("outer track", (OUTER,)),
+        ("close-up", (INNER,)),
+    ],
+)
+def test_camera_presets_show_painted_tracks(scene, preset, races):
+    scene.set_layer("traces", False)
+    scene.set_track_options(whole_run=True)
+    scene.set_camera(preset)
+    for race in races:
+        assert _track_pixels(scene, race) > 40, (preset, race)
