@@ -40,8 +40,8 @@ from .raceway import INNER, OUTER, Groove
 QUANTITIES = ("dwell", "peak_pressure")
 QUANTITY_LABELS = {"dwell": "dwell,\nms", "peak_pressure": "peak pressure,\nGPa"}
 QUANTITY_SCALE = {"dwell": 1e3, "peak_pressure": 1e-9}  # SI -> the units of the colour bar
-N_PHI = 360  # cells around each raceway
-N_ALPHA = 96  # cells across each groove, shoulder to shoulder
+N_PHI = 240  # cells around each raceway (1.5 degree)
+N_ALPHA = 64  # cells across each groove, shoulder to shoulder
 
 
 @dataclass(frozen=True)
