@@ -14,6 +14,7 @@ import xarray as xr
 
 from .frames import RPM, TWO_PI, FrameSource
 from .raceway import INNER, OUTER, RACES
+from .teaching import BALL_PALETTE
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
 
@@ -232,10 +233,7 @@ def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
 
 
 MAP_COLOURINGS = ("race", "ball", "load")
-BALL_COLOURS = (  # per-ball colours of the raceway map (cycled), the 3-D traces use tab20 alike
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-    "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896", "#c5b0d5", "#c49c94",
-)  # fmt: skip
+BALL_COLOURS = BALL_PALETTE  # per-ball colours, the same as the 3-D view's traces
 
 
 def raceway_map_figure(
@@ -310,6 +308,18 @@ def raceway_map_figure(
         )
     if current is not None:
         fig.add_traces(current_contact_traces(source, current, balls))
+    if colour == "ball":  # the legend of the per-ball colours (legend entries only)
+        shown = range(source.ball_count) if chosen is None else chosen
+        for j in shown:
+            fig.add_trace(
+                go.Scatter(
+                    x=[None],
+                    y=[None],
+                    mode="markers",
+                    name=f"ball {j}",
+                    marker={"size": 8, "color": BALL_COLOURS[j % len(BALL_COLOURS)]},
+                )
+            )
     fig.update_xaxes(range=[0, 360])
     _layout(
         fig, "Unrolled raceways", "raceway azimuth (ring frame), degree", "contact angle, degree"

@@ -35,6 +35,7 @@ from .raceway import (
     groove_half_angle,
     grooves,
 )
+from .teaching import BALL_PALETTE
 from .tracks import (
     QUANTITIES,
     QUANTITY_LABELS,
@@ -479,8 +480,9 @@ class BearingScene:
                 p.add_mesh(
                     trace,
                     scalars="ball",
-                    cmap="tab20",
-                    clim=(0, max(1, g.ball_count - 1)),
+                    cmap=[BALL_PALETTE[j % len(BALL_PALETTE)] for j in range(g.ball_count)],
+                    n_colors=g.ball_count,
+                    clim=(-0.5, g.ball_count - 0.5),
                     show_scalar_bar=False,
                     line_width=TRACE_WIDTH_PX,
                     name=f"traces_{race}",
