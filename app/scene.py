@@ -97,7 +97,7 @@ SCALAR_BAR = {  # vertical, in the strip right of the bearing (see SCALAR_BAR_ST
     "title_font_size": 13,
     "label_font_size": 12,
     "n_labels": 5,
-    "fmt": "%.2f",
+    "fmt": "%.3g",
     "color": "#202020",
 }
 _MARK_LIFT = 0.004  # fraction of the groove radius that marks are lifted off the raceway
