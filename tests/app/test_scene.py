@@ -252,3 +252,20 @@ def test_camera_presets_show_painted_tracks(scene, preset, races):
     scene.set_camera(preset)
     for race in races:
         assert _track_pixels(scene, race) > 40, (preset, race)
+
+
+def test_exaggerated_marks_stay_on_the_groove_between_the_shoulders(scene, geometry):
+    scene.set_exaggeration(30.0)
+    scene.set_frame(150)
+    for race in (INNER, OUTER):
+        groove, grid = grooves(geometry)[race], scene.grids[race]
+        pts = scene._traces[race].points
+        assert len(pts) > 10
+        radius = np.hypot(pts[:, 1], pts[:, 2])
+        distance = np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)  # marks are lifted
+        np.testing.assert_allclose(distance, groove.r, rtol=0.01)
+        # latitude of each point on the groove: within the shoulder edges
+        alpha = np.arcsin(np.clip(-(pts[:, 0] - groove.x_c) / (groove.sign * distance), -1, 1))
+        assert alpha.min() >= grid.alpha_lo - 1e-3 and alpha.max() <= grid.alpha_hi + 1e-3
+        if race == INNER:  # 30x the fixture's +-3 deg reaches the shoulder: clipped there
+            assert np.isclose(np.abs(alpha).max(), grid.alpha_hi, atol=2e-3)
