@@ -1,7 +1,8 @@
 """Saved runs and the background dynamic run of this session.
 
 State keys: ``runs`` (the runs folder's list, shared by every session), ``run_id`` (the saved run
-on show), ``busy``, ``run_disabled``, ``progress`` (0-100), ``eta``. The run's status goes to the
+on show), ``busy``, ``run_disabled``, ``progress`` (0-100), ``eta``, ``run_note`` (feedback near
+Run). The run's status goes to the
 session's ``status`` (ends in ``done``, ``cancelled`` or ``error: ...``).
 """
 
@@ -20,10 +21,17 @@ from .base import Component
 POLL_S = 0.2  # runner polling period
 
 
+def _job() -> str:
+    """The solver job of a run (looked up at each run, so that tests can swap it)."""
+    return runner_module.DYNAMIC_JOB
+
+
 class Runs(Component):
     def __init__(self, session):
         super().__init__(session)
-        self.runner = session.services.pool.runner()
+        self.pool = session.services.pool
+        self.runner = self.pool.runner()
+        self.ticket = None  # the run's place in the solver queue, or its slot while it runs
         self.run_info = {}
         self._cancel_requested = False
         self._poll_task = None
@@ -38,6 +46,7 @@ class Runs(Component):
         s.run_disabled = True
         s.progress = 0
         s.eta = ""
+        s.run_note = ""  # feedback near Run (e.g. to an extra press while a run is going)
         s.runs = []
         s.run_id = None
         self.refresh()
@@ -72,9 +81,13 @@ class Runs(Component):
 
     # ---- the background run ---------------------------------------------------------------------
     def run(self) -> None:
-        """Start the dynamic model on the current case in the background."""
+        """Start the dynamic model on the current case in the background (or queue it for a
+        solver slot, with its place shown in ``status``)."""
         form = self.session.form
-        if self.runner.busy or form.validate() is None or form.case is None:
+        if self.ticket is not None:
+            self.state.run_note = "a run is already going: wait for it to end, or press Cancel"
+            return
+        if form.validate() is None or form.case is None:
             return
         if self.state.run_reason:  # the form says why
             return
@@ -84,7 +97,7 @@ class Runs(Component):
         title = describe_case(form.case)
         self.run_info = {"case_text": case_text, "title": title, "out": out}
         self._cancel_requested = False
-        self.runner.start(case_text, out, target=runner_module.DYNAMIC_JOB)
+        self.ticket = self.pool.enqueue()
         with self.state:
             # the animation would take processor time from the solver (2 cores here): pause it
             self.state.playing = False
@@ -92,23 +105,39 @@ class Runs(Component):
             self.state.run_disabled = True
             self.state.progress = 0
             self.state.eta = ""
-            self.state.status = "running dynamic"
+            self._start_when_free()
         try:
             loop = asyncio.get_running_loop()
         except RuntimeError:
             return  # tests drive poll_runner() themselves
         self._poll_task = loop.create_task(self._poll_loop())
 
+    def _start_when_free(self) -> bool:
+        """Start the queued run if a solver slot is free (True), else show its place."""
+        if not self.pool.try_acquire(self.ticket):
+            ahead = self.ticket.place
+            self.state.status = (
+                f"queued: waiting for a solver slot ({ahead} run{'s' * (ahead != 1)} ahead; "
+                f"at most {self.pool.max_runs} at once)"
+            )
+            return False
+        self.runner.start(self.run_info["case_text"], self.run_info["out"], target=_job())
+        self.state.status = "running dynamic"
+        return True
+
     def cancel(self) -> None:
-        """Stop the run; the part computed so far is kept and saved."""
-        if not self.runner.busy:
+        """Stop the run; the part computed so far is kept and saved. A queued run is dropped."""
+        if self.ticket is None:
             return
         self._cancel_requested = True
+        if not self.ticket.held:
+            self._end_run("cancelled")
+            return
         self.state.status = "cancelling"
         self.runner.cancel()
 
     async def _poll_loop(self) -> None:
-        while self.runner.busy or self.state.busy:
+        while self.ticket is not None:
             with self.state:
                 finished = self.poll_runner()
             if finished:
@@ -117,6 +146,10 @@ class Runs(Component):
 
     def poll_runner(self) -> bool:
         """Apply runner events to the state; True once the run has finished."""
+        if self.ticket is None:
+            return True
+        if not self.ticket.held and not self._start_when_free():
+            return False
         events = self.runner.poll()
         if not events and not self.runner.busy and self.state.busy:
             # the runner was shut down before its last event (SolverRunner.shutdown)
@@ -158,9 +191,14 @@ class Runs(Component):
         if status == "done":
             s.progress = 100
         s.status = status
+        s.run_note = ""
+        self.pool.drop(self.ticket)
+        self.ticket = None
         out = self.run_info.get("out")
         if out is not None:
             Path(out).unlink(missing_ok=True)
 
     def shutdown(self) -> None:
-        self.session.services.pool.release(self.runner)
+        self.pool.release(self.runner)
+        self.pool.drop(self.ticket)
+        self.ticket = None

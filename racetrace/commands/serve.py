@@ -43,6 +43,19 @@ def register(subparsers) -> None:
     p.add_argument(
         "--case", default=None, help="shipped case to open (default spindle-combined-load)"
     )
+    p.add_argument(
+        "--shared",
+        action="store_true",
+        help="one session for every browser (a design review on a shared screen); by default "
+        "each browser gets its own case, run, camera and view size",
+    )
+    p.add_argument(
+        "--max-runs",
+        type=int,
+        default=None,
+        help="solver processes at once, over all sessions (default: the number of cores); "
+        "further runs wait in a queue",
+    )
     p.set_defaults(func=run)
 
 
@@ -80,4 +93,6 @@ def run(args) -> int:
         open_browser=args.open,
         runs_dir=args.runs_dir,
         case_name=args.case,
+        shared=args.shared,
+        max_runs=args.max_runs,
     )
