@@ -73,10 +73,10 @@ class CaseForm(Component):
         s.uploaded_case = None
 
     def bind(self) -> None:
-        self.state.change("case_name")(self._on_case_name)
-        self.state.change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
-        self.state.change("uploaded_case")(self._on_upload)
-        self.ctrl.reset_case = self.reset_case
+        self.on_change("case_name")(self._on_case_name)
+        self.on_change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
+        self.on_change("uploaded_case")(self._on_upload)
+        self.action("reset_case", self.reset_case)
 
     def first_case_name(self, case_name: str) -> str:
         """``case_name`` if it is a shipped case, else the first shipped case."""

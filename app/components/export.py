@@ -31,7 +31,7 @@ class Export(Component):
         s.exporting = False
 
     def bind(self) -> None:
-        self.ctrl.export = self.request_export
+        self.action("export", self.request_export)
 
     @property
     def exports_dir(self) -> Path:

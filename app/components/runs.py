@@ -9,6 +9,7 @@ session's ``status`` (ends in ``done``, ``cancelled`` or ``error: ...``).
 from __future__ import annotations
 
 import asyncio
+import os
 import secrets
 from pathlib import Path
 
@@ -19,6 +20,7 @@ from ..runs import describe_case, load_netcdf
 from .base import Component
 
 POLL_S = 0.2  # runner polling period
+WATCH_S = 2.0  # runs folder check period (runs saved by other sessions)
 
 
 def _job() -> str:
@@ -35,6 +37,8 @@ class Runs(Component):
         self.run_info = {}
         self._cancel_requested = False
         self._poll_task = None
+        self._watch_task = None
+        self._folder_key = ()
 
     @property
     def store(self):
@@ -52,18 +56,50 @@ class Runs(Component):
         self.refresh()
 
     def bind(self) -> None:
-        self.state.change("run_id")(self._on_run_id)
-        self.ctrl.run = self.run
-        self.ctrl.cancel = self.cancel
-        self.ctrl.refresh_runs = self.refresh
+        self.on_change("run_id")(self._on_run_id)
+        self.action("run", self.run)
+        self.action("cancel", self.cancel)
+        self.action("refresh_runs", self.refresh)
 
     # ---- saved runs -----------------------------------------------------------------------------
     def refresh(self) -> None:
         """List the runs folder in ``runs``."""
+        self._folder_key = self._folder_signature()
         self.state.runs = [{"title": r.label, "value": r.run_id} for r in self.store.list()]
+
+    def is_listed(self, run_id) -> bool:
+        """Whether ``run_id`` (as a client sent it) names a run of the folder; only those are
+        ever opened (a client's text never becomes a path)."""
+        if not isinstance(run_id, str):
+            return False
+        if all(r["value"] != run_id for r in self.state.runs):
+            self.refresh()  # another session may have just saved it
+        return any(r["value"] == run_id for r in self.state.runs)
+
+    def _folder_signature(self):
+        """What changes when a run is saved or removed: the folder's visible entries."""
+        try:
+            return tuple(sorted(e.name for e in os.scandir(self.store.root) if e.name[0] != "."))
+        except OSError:
+            return ()
+
+    def watch(self) -> None:
+        """Follow the runs folder (other sessions save runs there), while the loop runs."""
+        if self._watch_task is None or self._watch_task.done():
+            self._watch_task = asyncio.get_running_loop().create_task(self._watch_loop())
+
+    async def _watch_loop(self) -> None:
+        while True:
+            await asyncio.sleep(WATCH_S)
+            if self._folder_signature() != self._folder_key:
+                with self.state:
+                    self.refresh()
 
     def _on_run_id(self, run_id=None, **_):
         if not run_id or run_id == self.session.result.shown_run_id:
+            return
+        if not self.is_listed(run_id):
+            self.state.status = f"error: no run {str(run_id)[:80]!r} in the runs folder"
             return
         try:
             ds, case_text = self.store.load(run_id)
@@ -199,6 +235,8 @@ class Runs(Component):
             Path(out).unlink(missing_ok=True)
 
     def shutdown(self) -> None:
+        if self._watch_task is not None:
+            self._watch_task.cancel()
         self.pool.release(self.runner)
         self.pool.drop(self.ticket)
         self.ticket = None
