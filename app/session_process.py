@@ -11,21 +11,7 @@ session saves a run in progress (marked incomplete) and stops its solver process
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
-
-
-def die_with_parent(sig: int = signal.SIGTERM) -> None:
-    """Ask Linux to send ``sig`` to this process when its parent ends (no-op elsewhere)."""
-    if not sys.platform.startswith("linux"):
-        return
-    import ctypes
-
-    try:
-        libc = ctypes.CDLL("libc.so.6", use_errno=True)
-        libc.prctl(1, int(sig))  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        pass
 
 
 def main(argv=None) -> int:
@@ -36,6 +22,8 @@ def main(argv=None) -> int:
     p.add_argument("--slots-dir", default=None)
     p.add_argument("--max-runs", type=int, default=None)
     args = p.parse_args(argv)
+    from .services.process import die_with_parent
+
     die_with_parent()
     from .offscreen import configure_environment
 

@@ -123,6 +123,7 @@ class ResultView(Component):
         form_case = self.session.form.case
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
         self.shown_case_text = case.to_toml() if case is not None else None
+        self.session.form.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:
             self.quasistatic = ds

@@ -2,15 +2,18 @@
 
 State keys: ``runs`` (the runs folder's list, shared by every session), ``run_id`` (the saved run
 on show), ``busy``, ``run_disabled``, ``progress`` (0-100), ``eta``, ``run_note`` (feedback near
-Run). The run's status goes to the
-session's ``status`` (ends in ``done``, ``cancelled`` or ``error: ...``).
+Run), ``run_confirm`` (Run asks for confirmation: the result on show leaves the model's
+validity). The run's status goes to the session's ``status`` (ends in ``done``, ``cancelled`` or
+``error: ...``; queued runs say their place).
 """
 
 from __future__ import annotations
 
 import asyncio
+import math
 import os
 import secrets
+import time
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +23,23 @@ from ..runs import describe_case, load_netcdf
 from .base import Component
 
 POLL_S = 0.2  # runner polling period
+STOP_TIMEOUT_S = 20.0  # a stopping server waits this long for the run's partial result
 WATCH_S = 2.0  # runs folder check period (runs saved by other sessions)
+
+
+def _title(ds, run_info: dict) -> str:
+    """The run's title with the revolutions reached (a cancelled run stops short)."""
+    title = run_info["title"]
+    planned = run_info.get("revolutions")
+    if "time" not in ds.dims or not planned:
+        return title
+    from solver.results.dataset import ring_speeds
+
+    inner, outer = ring_speeds(ds)
+    reached = float(ds["time"][-1]) * abs(inner - outer) / (2 * math.pi)
+    if reached >= planned * 0.999:
+        return title
+    return title.replace(f"{planned:g} rev", f"{reached:.3g} of {planned:g} rev")
 
 
 def _job() -> str:
@@ -39,6 +58,7 @@ class Runs(Component):
         self._poll_task = None
         self._watch_task = None
         self._folder_key = ()
+        self._compiling = False  # the run's first step waits for numba to compile
 
     @property
     def store(self):
@@ -51,6 +71,7 @@ class Runs(Component):
         s.progress = 0
         s.eta = ""
         s.run_note = ""  # feedback near Run (e.g. to an extra press while a run is going)
+        s.run_confirm = False  # Run asks: the result of this case leaves the model's validity
         s.runs = []
         s.run_id = None
         self.refresh()
@@ -58,6 +79,7 @@ class Runs(Component):
     def bind(self) -> None:
         self.on_change("run_id")(self._on_run_id)
         self.action("run", self.run)
+        self.action("run_anyway", self.run_anyway)
         self.action("cancel", self.cancel)
         self.action("refresh_runs", self.refresh)
 
@@ -113,25 +135,40 @@ class Runs(Component):
         with self.state:
             self.session.result.show_saved_run(ds, run_id, label)
             if not self.state.busy:
+                self.state.progress = 0  # the bar belongs to a run going, not to this one
+                self.state.eta = ""
                 self.state.status = "saved run opened: done"  # at rest the status ends in done
 
     # ---- the background run ---------------------------------------------------------------------
-    def run(self) -> None:
+    def run(self, confirmed: bool = False) -> None:
         """Start the dynamic model on the current case in the background (or queue it for a
-        solver slot, with its place shown in ``status``)."""
+        solver slot, with its place shown in ``status``). When the result on show, of this very
+        case, leaves the model's validity, ask first (``run_confirm``) unless ``confirmed``."""
         form = self.session.form
+        self.state.run_confirm = False
         if self.ticket is not None:
             self.state.run_note = "a run is already going: wait for it to end, or press Cancel"
             return
         if form.validate() is None or form.case is None:
+            self.state.run_note = self.state.run_blocked
             return
         if self.state.run_reason:  # the form says why
+            return
+        warnings = self.state.result_warnings
+        if not confirmed and warnings and not self.state.result_stale:
+            self.state.run_confirm = True  # the page shows the warnings and asks
             return
         self.store.root.mkdir(parents=True, exist_ok=True)
         out = self.store.root / f".job-{secrets.token_hex(4)}.nc"
         case_text = form.case.to_toml()
         title = describe_case(form.case)
-        self.run_info = {"case_text": case_text, "title": title, "out": out}
+        revolutions = getattr(getattr(form.case, "simulation", None), "shaft_revolutions", None)
+        self.run_info = {
+            "case_text": case_text,
+            "title": title,
+            "out": out,
+            "revolutions": revolutions,
+        }
         self._cancel_requested = False
         self.ticket = self.pool.enqueue()
         with self.state:
@@ -148,6 +185,10 @@ class Runs(Component):
             return  # tests drive poll_runner() themselves
         self._poll_task = loop.create_task(self._poll_loop())
 
+    def run_anyway(self) -> None:
+        """Run although the result on show leaves the model's validity (the user confirmed)."""
+        self.run(confirmed=True)
+
     def _start_when_free(self) -> bool:
         """Start the queued run if a solver slot is free (True), else show its place."""
         if not self.pool.try_acquire(self.ticket):
@@ -157,8 +198,13 @@ class Runs(Component):
                 f"at most {self.pool.max_runs} at once)"
             )
             return False
+        from solver.compiled import dynamic_model_compiled
+
         self.runner.start(self.run_info["case_text"], self.run_info["out"], target=_job())
-        self.state.status = "running dynamic"
+        self._compiling = not dynamic_model_compiled()
+        self.state.status = (
+            "running dynamic: compiling (first run only)" if self._compiling else "running dynamic"
+        )
         return True
 
     def cancel(self) -> None:
@@ -193,6 +239,9 @@ class Runs(Component):
             return True
         for event in events:
             if event.kind == "progress":
+                if self._compiling and event.fraction > 0:
+                    self._compiling = False  # the first step is done: compiled
+                    self.state.status = "running dynamic"
                 self.state.progress = round(100 * event.fraction, 1)
                 if np.isfinite(event.eta_s):
                     self.state.eta = f"about {event.eta_s:.0f} s left"
@@ -205,19 +254,56 @@ class Runs(Component):
                 return True
         return False
 
-    def _finish_run(self, event) -> None:
+    def _finish_run(self, event, stopping: bool = False) -> None:
+        """Save the run's result and show it. ``stopping``: the server is stopping, the run is
+        saved marked incomplete and not shown."""
         out = Path(event.path)
         try:
             ds = load_netcdf(out)
-            info = self.store.save(ds, self.run_info["case_text"], self.run_info["title"])
+            samples = int(ds.sizes.get("time", 1))
+            if samples < 2 and int(ds.attrs.get("complete", 1)) != 1:
+                # stopped before a step was computed: nothing worth a run in the list
+                self._end_run("cancelled before the first step: nothing to save")
+                return
+            status = "incomplete" if stopping else None
+            info = self.store.save(
+                ds, self.run_info["case_text"], _title(ds, self.run_info), status
+            )
         except Exception as error:
             self._end_run(f"error: the result could not be saved ({error})")
             return
         finally:
             out.unlink(missing_ok=True)
+        if stopping:
+            self._end_run(f"stopped with the server: saved as {info.run_id} (incomplete)")
+            return
         self.refresh()
         self.session.result.show_saved_run(ds, info.run_id, info.label)
         self._end_run("cancelled" if info.status == "cancelled" else "done")
+
+    def stop_and_keep(self, timeout_s: float = STOP_TIMEOUT_S) -> None:
+        """The server is stopping: stop the run, save what it computed (marked incomplete) and
+        end its solver process."""
+        if self.ticket is None:
+            return
+        if not self.ticket.held:
+            self._end_run("cancelled")
+            return
+        self._cancel_requested = True
+        self.runner.cancel()
+        end = time.monotonic() + timeout_s
+        while time.monotonic() < end:
+            for event in self.runner.poll():
+                if event.kind == "done":
+                    self._finish_run(event, stopping=True)
+                    return
+                if event.kind == "error":
+                    self._end_run(f"error: {event.text}")
+                    return
+            if not self.runner.busy:
+                break
+            time.sleep(0.1)
+        self._end_run("error: the run did not stop in time; nothing saved")
 
     def _end_run(self, status: str) -> None:
         s = self.state
@@ -235,6 +321,7 @@ class Runs(Component):
             Path(out).unlink(missing_ok=True)
 
     def shutdown(self) -> None:
+        self.stop_and_keep()
         if self._watch_task is not None:
             self._watch_task.cancel()
         self.pool.release(self.runner)

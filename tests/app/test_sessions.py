@@ -65,7 +65,7 @@ def test_a_second_run_waits_for_the_slot_with_its_place_shown(two, monkeypatch):
     monkeypatch.setattr(runner_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
     a, b = two
     a.runs.run()
-    assert a.state.status == "running dynamic"
+    assert a.state.status.startswith("running dynamic")
     b.runs.run()
     assert b.state.busy and b.state.status.startswith("queued: waiting for a solver slot")
     assert "0 runs ahead" in b.state.status and "at most 1 at once" in b.state.status
@@ -156,3 +156,44 @@ def test_crafted_values_do_not_stop_the_animation(two):
 
     moved, stopped = asyncio.run(play())
     assert moved and stopped
+
+
+def test_case_download_follows_edits(two):
+    import urllib.parse
+
+    a, _ = two
+    assert "Fr-300-N" in a.state.case_file_name
+    original = urllib.parse.unquote(a.state.case_toml_href)
+    assert "300 N radial" in original  # the picked case's own title, not edited
+    _set(a, fv_radial_load_N="450")
+    assert "Fr-450-N" in a.state.case_file_name and "300" not in a.state.case_file_name
+    edited = urllib.parse.unquote(a.state.case_toml_href)
+    assert "300 N radial" not in edited and "Fr 450 N" in edited
+    _set(a, fv_title="my own title")
+    assert 'title = "my own title"' in urllib.parse.unquote(a.state.case_toml_href)
+
+
+def test_invalid_form_says_why_run_is_off_and_marks_the_result_out_of_date(two):
+    a, _ = two
+    assert a.state.run_blocked == "" and a.state.result_stale is False
+    _set(a, fv_ball_count="0")
+    assert a.state.run_disabled
+    assert a.state.run_blocked.startswith("Run is off until the form is fixed: ")
+    assert "all" in a.state.run_blocked.lower() or "ball" in a.state.run_blocked.lower()
+    assert a.state.result_stale is True
+    a.runs.run()
+    assert a.state.run_note == a.state.run_blocked and not a.state.busy
+
+
+def test_run_on_a_result_outside_the_model_asks_first(two, monkeypatch):
+    monkeypatch.setattr(runner_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
+    a, _ = two
+    _set(a, fv_axial_load_N="1e9")
+    a.form.preview_now()
+    assert a.state.result_warnings and not a.state.result_stale
+    a.runs.run()
+    assert a.state.run_confirm is True and not a.state.busy  # asked, not started
+    a.runs.run_anyway()
+    assert a.state.run_confirm is False and a.state.busy
+    a.runs.cancel()
+    _wait(a)
