@@ -22,6 +22,7 @@ from .base import Component
 log = logging.getLogger("racetrace.app")
 
 PREVIEW_DEBOUNCE_S = 0.1
+MAX_UPLOAD_BYTES = 1024 * 1024  # an uploaded case file is at most 1 MB
 _SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
 
 
@@ -139,14 +140,24 @@ class CaseForm(Component):
 
         item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
         self.state.uploaded_case = None  # empty the file box, so the same file can be sent again
-        name = str(item.get("name", "file"))
+        if not isinstance(item, dict):
+            self.state.status = "error: the upload was not a file"
+            return
+        name = str(item.get("name", "file"))[:200]
         content = item.get("content", b"")
+        if len(content) > MAX_UPLOAD_BYTES:
+            self.state.case_message = (
+                f"{name}: {len(content)} bytes; a case file is at most {MAX_UPLOAD_BYTES} bytes"
+            )
+            self.state.status = f"error: upload refused: {name} is too large"
+            return
         try:
             # the upload is case text, never a path on the server
             text = decode_case_bytes(content, name) if isinstance(content, bytes) else str(content)
             case = parse_case(text, source=f"uploaded file {name}")
         except CaseError as error:
             self.state.case_message = f"{name}: {error}"
+            self.state.status = f"error: upload {name} is not a valid case (see above the form)"
             return
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         self.set_base_case(case)

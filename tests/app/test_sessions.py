@@ -197,3 +197,49 @@ def test_run_on_a_result_outside_the_model_asks_first(two, monkeypatch):
     assert a.state.run_confirm is False and a.state.busy
     a.runs.cancel()
     _wait(a)
+
+
+def test_upload_errors_show_in_the_status(two):
+    a, _ = two
+    _set(a, uploaded_case={"name": "big.toml", "content": b"#" * (1024 * 1024 + 1)})
+    assert a.state.status == "error: upload refused: big.toml is too large"
+    _set(a, uploaded_case={"name": "bad.toml", "content": b"ball_count = ="})
+    assert a.state.status.startswith("error: upload bad.toml is not a valid case")
+
+
+def test_opening_a_corrupt_run_says_so_in_the_status(two):
+    a, _ = two
+    saved = a.store.save(a.result.dataset, a.form.case.to_toml(), "to be damaged")
+    (a.store.path(saved.run_id) / "result.nc").write_bytes(b"not a netcdf file")
+    a.runs.refresh()
+    _set(a, run_id=saved.run_id)
+    assert a.state.status.startswith("error: ")
+    assert a.state.result_label == "quasi-static preview"  # the result on show stays
+
+
+def test_cancel_right_after_run_saves_nothing(two):
+    a, _ = two
+    _set(a, fv_shaft_revolutions="0.3")
+    a.runs.run()
+    a.runs.cancel()
+    _wait(a, timeout=300)
+    assert a.state.status.startswith("cancelled"), a.state.status
+    assert a.store.list() == [] and a.state.runs == []
+
+
+def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):
+    a, _ = two
+    _set(a, fv_shaft_revolutions="3")
+    a.runs.run()
+    end = time.monotonic() + 300
+    while a.state.progress <= 0:  # wait for the first steps
+        assert not a.runs.poll_runner() and time.monotonic() < end, a.state.status
+        time.sleep(0.1)
+    process = a.runs.runner._process
+    a.shutdown()  # what the session process does on SIGTERM
+    assert not process.is_alive()
+    (saved,) = a.store.list()
+    assert saved.status == "incomplete"
+    assert " of 3 rev" in saved.title  # the revolutions reached, not those asked for
+    ds, _ = a.store.load(saved.run_id)
+    assert ds.attrs["complete"] == 0 and ds.sizes["time"] >= 2
