@@ -54,6 +54,10 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+class NoSession(Exception):
+    """A websocket from a browser that has no session (it did not open the page)."""
+
+
 @dataclass
 class Session:
     """A session process and the browsers using it."""
@@ -133,9 +137,10 @@ class Front:
         session = self.sessions.get(sid)
         if session is not None and session.alive:
             return session, False
+        if request.headers.get("Upgrade", "").lower() == "websocket":
+            raise NoSession("no session for this browser: open the page first")
         await self.start_spare()
-        websocket = request.headers.get("Upgrade", "").lower() == "websocket"
-        if not websocket and "text/html" not in request.headers.get("Accept", ""):
+        if "text/html" not in request.headers.get("Accept", ""):
             # not a page being opened (a script, a health check): every session serves the same
             # files, so the spare answers without being given away
             return self._spare, False
@@ -184,6 +189,8 @@ class Front:
         try:
             session, new = await self._session_for(request)
             await asyncio.shield(session.ready)
+        except NoSession as error:
+            return web.Response(status=403, text=f"racetrace: {error}\n")
         except RuntimeError as error:
             return web.Response(status=503, text=f"racetrace: {error}; see the server log\n")
         if request.headers.get("Upgrade", "").lower() == "websocket":
