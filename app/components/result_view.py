@@ -17,6 +17,7 @@ import time
 
 from .. import charts
 from ..frames import FrameSource, frame_source
+from ..runs import describe_case
 from .base import Component, as_float, as_int, fig_json
 from .case_form import solve_quasistatic
 
@@ -58,6 +59,7 @@ class ResultView(Component):
         self.source: FrameSource | None = None
         self.shown_case_text = None  # case TOML of the result on show
         self.shown_run_id = None  # id of the saved run on show (None for a preview)
+        self.shown_title = ""  # the case and loads of the result on show, in words
         self.animating_export = False  # an animation export is moving the scene's frames
         self._scene_key = None
         self._last_chart_update = 0.0
@@ -123,6 +125,8 @@ class ResultView(Component):
         form_case = self.session.form.case
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
         self.shown_case_text = case.to_toml() if case is not None else None
+        model = "dynamic" if "time" in ds.dims else "quasi-static"
+        self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
         self.session.form.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:

@@ -192,10 +192,10 @@ class Runs(Component):
     def _start_when_free(self) -> bool:
         """Start the queued run if a solver slot is free (True), else show its place."""
         if not self.pool.try_acquire(self.ticket):
-            ahead = self.ticket.place
+            cap = self.pool.max_runs
             self.state.status = (
-                f"queued: waiting for a solver slot ({ahead} run{'s' * (ahead != 1)} ahead; "
-                f"at most {self.pool.max_runs} at once)"
+                f"queued: place {self.ticket.place + 1} in the queue for a solver "
+                f"(at most {cap} run{'s' * (cap != 1)} at once)"
             )
             return False
         from solver.compiled import dynamic_model_compiled

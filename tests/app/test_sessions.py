@@ -67,8 +67,8 @@ def test_a_second_run_waits_for_the_slot_with_its_place_shown(two, monkeypatch):
     a.runs.run()
     assert a.state.status.startswith("running dynamic")
     b.runs.run()
-    assert b.state.busy and b.state.status.startswith("queued: waiting for a solver slot")
-    assert "0 runs ahead" in b.state.status and "at most 1 at once" in b.state.status
+    assert b.state.busy and b.state.status.startswith("queued: place 1 in the queue")
+    assert "at most 1 run at once" in b.state.status
     assert not b.runs.runner.busy
     b.runs.run()  # an extra press says why nothing happens
     assert "already going" in b.state.run_note

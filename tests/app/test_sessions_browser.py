@@ -210,7 +210,7 @@ def test_a_second_run_waits_in_the_queue(browser, server):
         second.locator("#run-button").click()
         text = _wait_status(second, lambda s: s.startswith("queued"), 30)
         second.screenshot(path=str(ARTIFACTS / "sessions-queued.png"))
-        assert "0 runs ahead" in text and "at most 1 at once" in text
+        assert "place 1 in the queue" in text and "at most 1 run at once" in text
         second.locator("#cancel-button").click()
         assert _wait_status(second, lambda s: s.startswith("cancelled"), 30) == "cancelled"
         first.locator("#cancel-button").click()
