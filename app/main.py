@@ -37,10 +37,12 @@ def serve(
         return EXIT_NO_RENDERING
     from .access import Access, is_loopback, new_token
     from .front import Front, pool_dir, run_front
-    from .runs import default_runs_dir
+    from .runs import RunStore, default_runs_dir
     from .services.pool import default_max_runs
 
     runs = str(runs_dir if runs_dir is not None else default_runs_dir())
+    for line in RunStore(runs).recover().messages():  # what a stopped server left behind
+        print(f"racetrace: {line}", flush=True)
     max_runs = max_runs or default_max_runs()
     token = "" if is_loopback(host) else new_token()
     session_args = ["--runs-dir", runs, "--slots-dir", str(pool_dir()), "--max-runs", str(max_runs)]

@@ -255,8 +255,9 @@ class Runs(Component):
         return False
 
     def _finish_run(self, event, stopping: bool = False) -> None:
-        """Save the run's result and show it. ``stopping``: the server is stopping, the run is
-        saved marked incomplete and not shown."""
+        """Save the run's result and show it. ``stopping``: the server is stopping; the partial
+        run is saved (``cancelled``, its result marked incomplete, "server stopped" in its title)
+        and not shown."""
         out = Path(event.path)
         try:
             ds = load_netcdf(out)
@@ -265,10 +266,8 @@ class Runs(Component):
                 # stopped before a step was computed: nothing worth a run in the list
                 self._end_run("cancelled before the first step: nothing to save")
                 return
-            status = "incomplete" if stopping else None
-            info = self.store.save(
-                ds, self.run_info["case_text"], _title(ds, self.run_info), status
-            )
+            title = _title(ds, self.run_info) + (" (server stopped)" if stopping else "")
+            info = self.store.save(ds, self.run_info["case_text"], title)
         except Exception as error:
             self._end_run(f"error: the result could not be saved ({error})")
             return
@@ -280,6 +279,8 @@ class Runs(Component):
         self.refresh()
         self.session.result.show_saved_run(ds, info.run_id, info.label)
         self._end_run("cancelled" if info.status == "cancelled" else "done")
+        if not info.saved:  # kept in memory: the page says so, and offers the download
+            self.state.run_note = info.problem
 
     def stop_and_keep(self, timeout_s: float = STOP_TIMEOUT_S) -> None:
         """The server is stopping: stop the run, save what it computed (marked incomplete) and

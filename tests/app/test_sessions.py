@@ -239,7 +239,7 @@ def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):
     a.shutdown()  # what the session process does on SIGTERM
     assert not process.is_alive()
     (saved,) = a.store.list()
-    assert saved.status == "incomplete"
+    assert saved.status == "cancelled" and saved.title.endswith("(server stopped)")
     assert " of 3 rev" in saved.title  # the revolutions reached, not those asked for
     ds, _ = a.store.load(saved.run_id)
     assert ds.attrs["complete"] == 0 and ds.sizes["time"] >= 2

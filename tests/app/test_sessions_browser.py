@@ -290,7 +290,7 @@ def test_killed_server_saves_the_run_and_leaves_no_solver(browser, tmp_path):
             time.sleep(0.5)
         page.context.close()
         metas = [json.loads(p.read_text()) for p in Path(s["runs"]).glob("*/run.json")]
-        assert [m["status"] for m in metas] == ["incomplete"], metas
-        assert " of 200 rev" in metas[0]["title"]
+        assert [m["status"] for m in metas] == ["cancelled"], metas
+        assert " of 200 rev" in metas[0]["title"] and "server stopped" in metas[0]["title"]
     finally:
         _stop(s)
