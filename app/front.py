@@ -35,7 +35,7 @@ log = logging.getLogger("racetrace.front")
 COOKIE = "racetrace_session"
 IDLE_S = 120.0  # a session without browsers is stopped after this
 START_TIMEOUT_S = 300.0  # a cold numba cache compiles the quasi-static kernels first
-STOP_TIMEOUT_S = 15.0  # a session stopping saves its run first
+STOP_TIMEOUT_S = 40.0  # a session stopping saves its run first (it waits up to 20 s for it)
 _HOP_HEADERS = {
     "connection",
     "keep-alive",

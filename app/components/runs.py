@@ -264,7 +264,7 @@ class Runs(Component):
             samples = int(ds.sizes.get("time", 1))
             if samples < 2 and int(ds.attrs.get("complete", 1)) != 1:
                 # stopped before a step was computed: nothing worth a run in the list
-                self._end_run("cancelled before the first step: nothing to save")
+                self._end_run("nothing computed yet, so nothing saved: cancelled")
                 return
             title = _title(ds, self.run_info) + (" (server stopped)" if stopping else "")
             info = self.store.save(ds, self.run_info["case_text"], title)

@@ -229,7 +229,8 @@ def test_cancel_stops_a_long_run_and_keeps_it(page, server):
     page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
     page.locator("#run-button").click()
     page.wait_for_function("!document.querySelector('#cancel-button').disabled", timeout=30_000)
-    time.sleep(3)
+    # a Cancel before the first step saves nothing: wait for progress
+    page.wait_for_function("window.trame.state.get('progress') > 0", timeout=300_000)
     page.locator("#cancel-button").click()
     status = _wait_status(page, ("cancelled", "done"), 120)
     assert status == "cancelled"

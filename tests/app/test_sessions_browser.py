@@ -72,7 +72,7 @@ def _stop(server: dict) -> None:
     if proc.poll() is None:
         proc.terminate()
         try:
-            proc.wait(timeout=30)
+            proc.wait(timeout=60)
         except subprocess.TimeoutExpired:
             proc.kill()
     server["log"].close()
@@ -292,5 +292,22 @@ def test_killed_server_saves_the_run_and_leaves_no_solver(browser, tmp_path):
         metas = [json.loads(p.read_text()) for p in Path(s["runs"]).glob("*/run.json")]
         assert [m["status"] for m in metas] == ["cancelled"], metas
         assert " of 200 rev" in metas[0]["title"] and "server stopped" in metas[0]["title"]
+    finally:
+        _stop(s)
+
+
+def test_shared_mode_gives_every_browser_the_same_session(tmp_path):
+    s = _start(tmp_path, "--shared")
+    try:
+        assert "one session for every browser" in s["banner"]
+
+        def session_cookie() -> str:  # a new browser each time: no cookies sent
+            request = urllib.request.Request(s["url"], headers={"Accept": "text/html"})
+            with urllib.request.urlopen(request, timeout=START_S) as response:
+                cookie = response.headers.get("Set-Cookie", "")
+            assert cookie.startswith("racetrace_session="), cookie
+            return cookie.split(";")[0]
+
+        assert session_cookie() == session_cookie()
     finally:
         _stop(s)
