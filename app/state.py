@@ -84,6 +84,7 @@ class RacetraceApp:
             self._client_ids.add(client_id)
             self.clients = len(self._client_ids)
             self.result._on_playing(self.state.playing)
+            self.runs.watch()
 
         def on_close(client_id):
             close(client_id)

@@ -79,7 +79,16 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
         layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
             v3.VSpacer()
-            html.Div("{{ result_label }}", classes="text-body-2 mr-4")
+            v3.VChip(
+                "out of date: the form has changed",
+                id="result-stale",
+                v_show="result_stale",
+                color="warning",
+                size="small",
+                classes="mr-2",
+                title="The result on show is not of the case in the form",
+            )
+            html.Div("{{ result_label }}", id="result-label", classes="text-body-2 mr-4")
 
         with layout.drawer as drawer:
             drawer.width = 380
@@ -388,6 +397,43 @@ def _run_panel(ctrl) -> None:
             with v3.VCol():
                 html.Div("{{ status }}", id="status", classes="text-body-2")
                 html.Div("{{ eta }}", classes="text-caption")
+        html.Div(
+            "{{ run_blocked }}",
+            id="run-blocked",
+            v_show="run_blocked",
+            classes="text-caption text-error",
+        )
+        html.Div(
+            "{{ run_note }}", id="run-note", v_show="run_note", classes="text-caption text-warning"
+        )
+        with v3.VAlert(
+            id="run-confirm",
+            v_if="run_confirm",
+            type="warning",
+            density="compact",
+            variant="tonal",
+            classes="my-1 text-caption",
+        ):
+            html.Div(
+                "The result of this case leaves the model's validity (see the warnings below). "
+                "Run the dynamic model anyway?"
+            )
+            v3.VBtn(
+                "Run anyway",
+                id="run-anyway",
+                click=ctrl.run_anyway,
+                size="small",
+                color="warning",
+                classes="mt-1 mr-2",
+            )
+            v3.VBtn(
+                "Back",
+                id="run-back",
+                click="run_confirm = false",
+                size="small",
+                variant="text",
+                classes="mt-1",
+            )
         html.Div(
             "{{ run_reason }}",
             id="run-reason",
