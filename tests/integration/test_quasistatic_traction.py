@@ -83,8 +83,8 @@ def test_without_a_steady_balance_race_control_is_used_and_said():
     ds = solver.solve_quasistatic(
         case.with_values({"simulation.quasistatic_ball_speeds": "traction"})
     )
-    assert ds.attrs["ball_speeds"] == "race_control"
-    assert "no steady ball speeds" in ds.attrs["ball_speeds_note"]
+    assert ds.attrs["kinematics"] == "race_control"
+    assert "no steady ball speeds" in ds.attrs["kinematics_note"]
     assert set(ds.race_control.values) <= {"inner", "outer"}
     warnings = ds.racetrace.warnings()
     assert any(w.startswith("quasi-static ball speeds: the traction balance") for w in warnings)
