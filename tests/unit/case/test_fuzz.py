@@ -12,7 +12,7 @@ from tests.helpers.fuzz import OUTCOMES, mutated_case_bytes, outcome
 _COMMON = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow], database=None)
 
 
-@settings(max_examples=300, derandomize=True, **_COMMON)
+@settings(max_examples=200, derandomize=True, **_COMMON)
 @given(st.randoms(use_true_random=False))
 def test_every_mutated_case_ends_cleanly(rng):
     assert outcome(mutated_case_bytes(rng)) in OUTCOMES
