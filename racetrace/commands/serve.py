@@ -1,7 +1,6 @@
 """``racetrace serve``: the browser app (3-D view, charts, background runs).
 
-The app needs the ``app`` extra; without it the command says how to install it and exits 2. Before
-serving, the runs folder is tidied and reported on (:func:`report_runs_folder`).
+The app needs the ``app`` extra; without it the command says how to install it and exits 2.
 """
 
 from __future__ import annotations
@@ -68,24 +67,11 @@ def app_extra_problem() -> str | None:
     return f"racetrace serve: {APP_EXTRA_MESSAGE}\n(missing: {', '.join(missing)})"
 
 
-def report_runs_folder(runs_dir: str | None) -> None:
-    """Tidy the runs folder before serving and say what was found (stderr): job results of a
-    stopped server saved as runs, leftovers removed, runs that stopped early, broken runs, and a
-    folder that cannot take new runs (app.runs.RunStore.recover)."""
-    from app.runs import RunStore, default_runs_dir
-    from solver.errors import clean_message
-
-    store = RunStore(runs_dir if runs_dir is not None else default_runs_dir())
-    for line in store.recover().messages():
-        print(f"racetrace serve: {clean_message(line)}", file=sys.stderr)
-
-
 def run(args) -> int:
     problem = app_extra_problem()
     if problem:
         print(problem, file=sys.stderr)
         return EXIT_NO_APP
-    report_runs_folder(args.runs_dir)
     from app.main import serve
 
     return serve(

@@ -82,26 +82,3 @@ def test_wslink_lines_about_a_closed_browser_are_dropped():
         record("ClientConnectionResetError('Cannot write to closing transport')")
     )
     assert _not_a_closed_connection_text(record("KeyError('frame')"))
-
-
-def test_serve_tidies_and_reports_the_runs_folder_first(tmp_path, capsys, qs_dataset):
-    import json
-    import os
-    import time
-
-    from app.runs import META_FILE, RunStore
-    from solver.results.io import save_dataset
-
-    store = RunStore(tmp_path)
-    broken = store.save(qs_dataset, qs_dataset.attrs["case"], "to break")
-    meta = tmp_path / broken.run_id / META_FILE
-    meta.write_text(json.dumps({**json.loads(meta.read_text()), "created": None}))
-    job = tmp_path / ".job-0123abcd.nc"
-    save_dataset(qs_dataset.assign_attrs(complete=0), job)
-    old = time.time() - 3600
-    os.utime(job, (old, old))
-    assert cli.main(["serve", "--runs-dir", str(tmp_path), "--port", "70000"]) == 2
-    err = capsys.readouterr().err
-    assert "racetrace serve: recovered the result of a stopped server as run " in err
-    assert f"racetrace serve: broken run {broken.run_id}: run.json: 'created' is null" in err
-    assert "stopped early" in err and not job.exists()
