@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 
+from solver.errors import printable
+
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
@@ -71,7 +73,7 @@ def run(args) -> int:
     from solver.catalogue import resolve_case
 
     case = resolve_case(args.case)
-    print(summary(case))
+    print(printable(summary(case), keep_newlines=True))  # the title is the user's text
     for problem in dynamic_problems(case):
         print(f"dynamic model: {problem.message}")
     for warning in case.warnings():
