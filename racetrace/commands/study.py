@@ -185,6 +185,8 @@ def show_table(ds, model: str | None = None) -> str:
     """The points and their metrics as a text table (one row per point and model)."""
     import json
 
+    import numpy as np
+
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
     headers = ["point", "model", *(k.rsplit(".", 1)[-1] for k in keys), "status"]
     headers += [c[2] for c in SHOW_COLUMNS]
@@ -200,7 +202,10 @@ def show_table(ds, model: str | None = None) -> str:
             row = [str(point), str(name)]
             for key in keys:
                 value = ds[key].values[i]
-                row.append(f"{value:g}" if isinstance(value, float | int) else str(value))
+                if isinstance(value, float | int | np.floating):
+                    row.append(f"{value:g}" if math.isfinite(value) else "-")
+                else:
+                    row.append(str(value))
             row.append(status)
             for var, race, _h, scale, fmt in SHOW_COLUMNS:
                 da = ds[var].isel(point=i, model=j)
