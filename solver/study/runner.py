@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import os
 import time
+import uuid
 from dataclasses import dataclass
 
 from .store import FAILED, StudyFolder
@@ -122,9 +123,12 @@ def run_study(
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
         tasks = _tasks(todo, n_workers)
         total = len(todo)
+        session = uuid.uuid4().hex[:8]  # keys unique per session: a cancelled key may linger
         futures = {
-            client.submit(run_batch, task, pure=False, key=f"racetrace-{task[0][0]}-{task[0][1]}-{i}"): task
-            for i, task in enumerate(tasks)
+            client.submit(
+                run_batch, task, pure=False, key=f"racetrace-{task[0][0]}-{task[0][1]}-{session}"
+            ): task
+            for task in tasks
         }
         pending = set(futures)
         done = failed = 0
@@ -149,8 +153,11 @@ def run_study(
             if cancel is not None and cancel.is_set():
                 client.cancel(list(pending))
                 break
-            result = wait(pending, timeout=0.5, return_when="FIRST_COMPLETED")
-            for future in result.done:
+            try:
+                finished_now = wait(pending, timeout=0.5, return_when="FIRST_COMPLETED").done
+            except TimeoutError:
+                continue
+            for future in finished_now:
                 pending.discard(future)
                 task = futures[future]
                 try:
