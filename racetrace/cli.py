@@ -20,6 +20,7 @@ COMMAND_MODULES = (
     "quasistatic",
     "simulate",
     "study",
+    "report",
     "export",
     "serve",
     "cache",
