@@ -30,15 +30,13 @@ body { font-family: sans-serif; }
 .rt-table th { background: #f2f2f2; }
 .rt-table td.text, .rt-table th.text { text-align: left; }
 .rt-warn { color: #8a4b00; }
-.rt-print-only { display: none; }
 pre.rt-case { font-size: 11px; background: #f7f7f7; padding: 6px; white-space: pre-wrap; }
-@media print {
-  .rt-print-only { display: block; }
-  .rt-screen-only, .bk-toolbar { display: none !important; }
-  .rt-section { break-inside: avoid; page-break-inside: avoid; }
-  body { margin: 0; }
-}
+@media print { .rt-section { break-inside: avoid; page-break-inside: avoid; } }
 """
+#: Panel components live in shadow roots: each gets its own stylesheet for screen and print.
+SCREEN_ONLY_CSS = "@media print { :host { display: none !important; } }"
+PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
+PAGE_CSS = "@media print { :host { break-inside: avoid; page-break-inside: avoid; } }"
 
 
 def missing_report_modules() -> list[str]:
@@ -193,15 +191,22 @@ def run_sections(ds, source_name: str):
         notes.append(note)
     png = base64.b64encode(screenshot_png(plotter)).decode("ascii")
     vtk = pn.pane.VTK(
-        plotter.ren_win, height=520, sizing_mode="stretch_width", css_classes=["rt-screen-only"]
+        plotter.ren_win, height=520, sizing_mode="stretch_width", stylesheets=[SCREEN_ONLY_CSS]
     )
-    sections.append(pn.pane.Markdown("## 3-D scene (drag to turn, wheel to zoom)"))
+    sections.append(
+        pn.pane.Markdown(
+            "## 3-D scene (drag to turn, wheel to zoom)\n\nThe bearing at the last sample, with "
+            "the contact trajectories of the run on both raceways; ellipses coloured by peak "
+            "pressure."
+        )
+    )
     sections.append(vtk)
     sections.append(
         pn.pane.HTML(
-            f'<div class="rt-print-only"><img src="data:image/png;base64,{png}" '
-            'style="width:100%;max-width:900px" alt="3-D scene"></div>',
+            f'<img src="data:image/png;base64,{png}" style="width:100%;max-width:900px" '
+            'alt="3-D scene">',
             sizing_mode="stretch_width",
+            stylesheets=[PRINT_ONLY_CSS],
         )
     )
     figs = []
@@ -246,6 +251,7 @@ def _section(title: str, body_html: str):
     return pn.pane.HTML(
         f'<div class="rt-section"><h2>{html.escape(title)}</h2>{body_html}</div>',
         sizing_mode="stretch_width",
+        stylesheets=[PRINT_CSS],
     )
 
 
@@ -376,7 +382,6 @@ def build_report(source, output) -> dict:
             )
         )
     page = pn.Column(
-        pn.pane.HTML(f"<style>{PRINT_CSS}</style>"),
         *sections,
         sizing_mode="stretch_width",
         styles={"max-width": "1200px", "margin": "0 auto"},
