@@ -176,7 +176,10 @@ def run_sections(ds, source_name: str):
     )
     sections.append(_section("Result warnings", warn_html))
     sections.append(
-        _section("Operating point and bearing", _table(("quantity", "value", "units"), _operating_rows(ds)))
+        _section(
+            "Operating point and bearing",
+            _table(("quantity", "value", "units"), _operating_rows(ds)),
+        )
     )
     window = ds.racetrace.summary().attrs.get("analysed_window", "the quasi-static snapshot")
     sections.append(
@@ -315,7 +318,9 @@ def study_sections(ds):
             row.append(status)
             for var, _short, _unit, scale in columns:
                 for race in ("inner", "outer"):
-                    row.append(_fmt(float(ds[var].values[i, j, 0 if race == "inner" else 1]) * scale))
+                    row.append(
+                        _fmt(float(ds[var].values[i, j, 0 if race == "inner" else 1]) * scale)
+                    )
             row.append(_fmt(float(ds["cage_slip"].values[i, j])))
             row.append(str(ds["message"].values[i, j])[:200])
             rows.append(row)
@@ -339,9 +344,7 @@ def _load(source):
     if path.is_dir():
         return "study", study_dataset(open_study(path)), path.name
     if not path.is_file():
-        raise CaseError(
-            Problem("report", f"{source}: no such result file or study folder")
-        )
+        raise CaseError(Problem("report", f"{source}: no such result file or study folder"))
     try:
         ds = load_dataset(path)
     except (OSError, ValueError) as error:
@@ -361,11 +364,10 @@ def build_report(source, output) -> dict:
     import panel as pn
     from bokeh.resources import INLINE
 
+    import solver  # noqa: F401  (registers ds.racetrace)
     from solver.results.io import atomic_write
 
     from .offline import external_urls, inline_cdn_links
-
-    import solver  # noqa: F401  (registers ds.racetrace)
 
     kind, ds, name = _load(source)
     pn.config.inline = True

@@ -81,7 +81,9 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
             masked = np.where(load > 0, values, np.nan) * scale
             with np.errstate(all="ignore"):
                 mean = np.nanmean(masked, axis=1)
-            fig.line(t[::step], mean[::step], color=RACE_COLOURS[race], legend_label=f"{race}, mean")
+            fig.line(
+                t[::step], mean[::step], color=RACE_COLOURS[race], legend_label=f"{race}, mean"
+            )
             fig.line(
                 t[::step],
                 masked[::step, 0],

@@ -12,7 +12,9 @@ import base64
 import re
 from pathlib import Path
 
-_CDN = re.compile(r"https://cdn\.holoviz\.org/panel/[^/\"'\\]+/dist/([^\"'\\?#)\s]+)(\?[^\"'\\)\s]*)?")
+_CDN = re.compile(
+    r"https://cdn\.holoviz\.org/panel/[^/\"'\\]+/dist/([^\"'\\?#)\s]+)(\?[^\"'\\)\s]*)?"
+)
 
 
 def _panel_dist() -> Path:
@@ -47,6 +49,8 @@ def external_urls(html: str) -> list[str]:
     """URLs the page would load from outside: ``src``/``href`` attributes and stylesheet URLs in
     the document JSON that start with http(s) (links a reader clicks, such as <a href>, count
     too; the report has none)."""
-    found = re.findall(r"""<(?:script|link|img|iframe)\b[^>]*?(?:src|href)\s*=\s*["'](https?://[^"']+)""", html)
+    found = re.findall(
+        r"""<(?:script|link|img|iframe)\b[^>]*?(?:src|href)\s*=\s*["'](https?://[^"']+)""", html
+    )
     found += re.findall(r'\\?"url\\?"\s*:\s*\\?"(https?://[^"\\]+)', html)
     return sorted(set(found))

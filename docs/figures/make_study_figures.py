@@ -78,8 +78,10 @@ def line_or_band(seed, out: Path) -> None:
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("across the groove, own ring's frame [um]")
     axes[1].legend(fontsize=8)
-    fig.suptitle("7008C-class hybrid, 500 N axial, 20 000 rpm: a line on one race, a band on the other",
-                 fontsize=11)  # fmt: skip
+    fig.suptitle(
+        "7008C-class hybrid, 500 N axial, 20 000 rpm: a line on one race, a band on the other",
+        fontsize=11,
+    )
     fig.savefig(out, dpi=110)
     plt.close(fig)
 

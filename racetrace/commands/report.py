@@ -28,14 +28,13 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     from racetrace.cli import EXIT_INVALID_INPUT
-
     from report.build import missing_report_modules
 
     missing = missing_report_modules()
     if missing:
         print(
             "racetrace: the report needs the 'report' extra (missing: "
-            f"{', '.join(missing)}). Install it with: pip install -e \".[report]\"",
+            f'{", ".join(missing)}). Install it with: pip install -e ".[report]"',
             file=sys.stderr,
         )
         return EXIT_INVALID_INPUT
@@ -43,7 +42,9 @@ def run(args) -> int:
 
     info = build_report(args.source, args.output)
     size = info["bytes"] / 1e6
-    print(f"racetrace: wrote {info['path']} ({size:.1f} MB, {info['kind']} report)", file=sys.stderr)
+    print(
+        f"racetrace: wrote {info['path']} ({size:.1f} MB, {info['kind']} report)", file=sys.stderr
+    )
     for note in info["notes"]:
         print(f"racetrace: decimated: {note}", file=sys.stderr)
     if info["unresolved"]:

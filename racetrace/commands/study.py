@@ -214,7 +214,9 @@ def show_table(ds, model: str | None = None) -> str:
             rows.append(row)
             if status == "failed":
                 messages.append(f"{point} {name}: {ds['message'].values[i, j]}")
-    widths = [max(len(h), *(len(r[k]) for r in rows)) if rows else len(h) for k, h in enumerate(headers)]
+    widths = [
+        max(len(h), *(len(r[k]) for r in rows)) if rows else len(h) for k, h in enumerate(headers)
+    ]
     lines = ["  ".join(h.rjust(w) for h, w in zip(headers, widths, strict=True))]
     lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)) for r in rows]
     if messages:

@@ -259,7 +259,9 @@ def parse_study(text: str, source: str = "study", folder: Path | None = None) ->
             sweep = _sweep(raw, f"sweep[{i + 1}].", defaults, problems, i)
             if not sweep.vary:
                 problems.append(
-                    Problem(f"sweep[{i + 1}].vary", f"sweep[{i + 1}].vary: the sweep varies nothing")
+                    Problem(
+                        f"sweep[{i + 1}].vary", f"sweep[{i + 1}].vary: the sweep varies nothing"
+                    )
                 )
             sweeps.append(sweep)
     total = sum(s.size for s in sweeps)
@@ -306,7 +308,8 @@ def shipped_studies() -> dict[str, object]:
     except (FileNotFoundError, NotADirectoryError):
         return {}
     return {
-        r.name.removesuffix(".toml"): r for r in sorted(resources, key=lambda r: r.name)
+        r.name.removesuffix(".toml"): r
+        for r in sorted(resources, key=lambda r: r.name)
         if r.name.endswith(".toml")
     }
 

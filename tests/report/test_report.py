@@ -20,7 +20,8 @@ CHART_ROWS = """() => {
   const rows = [];
   for (const doc of (window.Bokeh ? Bokeh.documents : [])) {
     for (const m of doc.all_models) {
-      if (m.type === "ColumnDataSource" || (m.constructor && m.constructor.name === "ColumnDataSource")) {
+      const name = m.type || (m.constructor && m.constructor.name);
+      if (name === "ColumnDataSource") {
         const cols = Object.values(m.data);
         rows.push(cols.length ? cols[0].length : 0);
       }

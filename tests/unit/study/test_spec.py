@@ -20,9 +20,9 @@ def problems(text: str) -> dict[str, str]:
 def test_quoted_and_dotted_keys_mean_the_same():
     quoted = parse_study(BASE + '[vary]\n"operating.radial_load_N" = [0.0, 300.0]\n')
     dotted = parse_study(BASE + "vary.operating.radial_load_N = [0.0, 300.0]\n")
-    assert quoted.sweeps[0].vary == dotted.sweeps[0].vary == {
-        "operating.radial_load_N": [0.0, 300.0]
-    }
+    assert (
+        quoted.sweeps[0].vary == dotted.sweeps[0].vary == {"operating.radial_load_N": [0.0, 300.0]}
+    )
 
 
 def test_grid_has_every_combination_last_key_fastest():
@@ -33,7 +33,10 @@ def test_grid_has_every_combination_last_key_fastest():
     )
     points = Study.from_text(text).points()
     assert [p.name for p in points] == [f"p{i:04d}" for i in range(1, 7)]
-    assert [(p.values["operating.radial_load_N"], p.values["operating.axial_load_N"]) for p in points] == [
+    pairs = [
+        (p.values["operating.radial_load_N"], p.values["operating.axial_load_N"]) for p in points
+    ]
+    assert pairs == [
         (0.0, 400.0), (0.0, 500.0), (0.0, 600.0), (300.0, 400.0), (300.0, 500.0), (300.0, 600.0)
     ]  # fmt: skip
     assert points[4].case.operating.axial_load_N == 500.0
@@ -131,9 +134,7 @@ def test_base_file_is_relative_to_the_study_file(tmp_path):
     from solver.catalogue import catalogue
 
     (tmp_path / "cases").mkdir()
-    (tmp_path / "cases" / "mine.toml").write_text(
-        catalogue().get("spindle-axial-preload").text()
-    )
+    (tmp_path / "cases" / "mine.toml").write_text(catalogue().get("spindle-axial-preload").text())
     study = tmp_path / "s.toml"
     study.write_text('base = "cases/mine.toml"\n[vary]\n"operating.radial_load_N" = [10.0]\n')
     points = Study.from_file(study).points()
