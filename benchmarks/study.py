@@ -69,7 +69,7 @@ def main() -> None:
         for workers in (1, 2):
             cluster, client = start_local_cluster(workers)
             try:
-                client.register_plugin(WarmUp(), idempotent=True)
+                client.register_plugin(WarmUp())
                 wall, ds = timed_run(study, client, work / f"dyn{workers}")
                 done = int((ds["status"] == "done").sum())
                 runs = ds["wall_time"].sel(model="dynamic").values
@@ -88,7 +88,7 @@ def main() -> None:
 
         cluster, client = start_local_cluster(1)
         try:
-            client.register_plugin(WarmUp(), idempotent=True)
+            client.register_plugin(WarmUp())
             qs = quasistatic_study(args.qs_points)
             timed_run(quasistatic_study(4), client, work / "qs-warm")  # imports on the worker
             wall, ds = timed_run(qs, client, work / "qs")

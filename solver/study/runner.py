@@ -119,7 +119,7 @@ def run_study(
             log(f"starting a local Dask cluster: {workers or os.cpu_count()} worker(s)")
         own_cluster, client = start_local_cluster(workers)
     try:
-        client.register_plugin(WarmUp(), idempotent=True)  # once per worker, not per study
+        client.register_plugin(WarmUp())
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
         tasks = _tasks(todo, n_workers)
         total = len(todo)

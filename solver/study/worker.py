@@ -30,6 +30,7 @@ class WarmUp(WorkerPlugin):
     crash, so that no task pays for loading them."""
 
     name = "racetrace-warm-up"
+    idempotent = True  # registering again (each study on the same cluster) keeps the warm workers
 
     def setup(self, worker):  # noqa: ARG002 - the plugin interface
         warm_up()
