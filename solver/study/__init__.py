@@ -55,12 +55,15 @@ class Study:
         progress=None,
         cancel=None,
         log=None,
+        shared_folder: bool | None = None,
     ):
         """Run the points not yet finished in the study folder ``output`` and return the study
         Dataset. ``client``: a ``dask.distributed.Client`` (default: a LocalCluster of
         ``workers`` single-threaded processes, closed at the end). ``progress``: callable with a
         :class:`Progress`; ``cancel``: a ``threading.Event`` that stops the study, keeping what is
-        done. ``resume``: allowed to continue a folder that holds this study."""
+        done. ``resume``: allowed to continue a folder that holds this study. ``shared_folder``:
+        the workers write each run into ``output`` themselves (default: only with the local
+        cluster started here; give True for a ``client`` whose workers share this file system)."""
         import solver
 
         folder = run_study(
@@ -74,6 +77,7 @@ class Study:
             cancel=cancel,
             version=solver.__version__,
             log=log,
+            shared_folder=shared_folder,
         )
         return study_dataset(folder)
 

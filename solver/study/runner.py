@@ -7,8 +7,10 @@ scheduling overhead small). Without a client it starts a ``LocalCluster`` of sin
 worker processes (one per core by default) and closes it at the end. Each worker loads the
 compiled numba kernels from the on-disk cache once, when it starts (solver.study.worker).
 
-Results come back to this process, which writes each run's NetCDF file and record atomically
-(solver.study.store) as soon as it arrives, so a stop loses only the runs that were running. A
+Each run's NetCDF file and record are written atomically (solver.study.store) as soon as it
+finishes, so a stop loses only the runs that were running: by the worker itself when it shares
+this machine's file system (``shared_folder``; the default for the local cluster, so the writing
+runs in parallel), otherwise by this process when the result comes back. A
 run that fails (no quasi-static solution, diverged, invalid) is recorded with its message and the
 others go on; a worker that dies has its tasks run again by Dask on the other workers. ``cancel``
 (a ``threading.Event``) stops the study: pending tasks are cancelled and what is done is kept.
@@ -84,12 +86,15 @@ def run_study(
     cancel=None,
     version: str = "",
     log=None,
+    shared_folder: bool | None = None,
 ) -> StudyFolder:
     """Run every unfinished (point, model) of ``points`` and save them in ``output``.
 
     Returns the :class:`~solver.study.store.StudyFolder` (its Dataset holds what was done). See
     the module docstring for the client, cancel and saving rules. ``log``: callable(str) for
-    one-line notes (skipped runs, warm-up).
+    one-line notes (skipped runs, warm-up). ``shared_folder``: the workers write the runs into
+    the study folder themselves (default: True with the local cluster this function starts, False
+    with a given client).
     """
     from dask.distributed import wait
 
@@ -118,6 +123,9 @@ def run_study(
         if log is not None:
             log(f"starting a local Dask cluster: {workers or os.cpu_count()} worker(s)")
         own_cluster, client = start_local_cluster(workers)
+    if shared_folder is None:
+        shared_folder = own_cluster is not None
+    target = str(folder.path.resolve()) if shared_folder else None
     try:
         client.register_plugin(WarmUp())
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
@@ -126,7 +134,11 @@ def run_study(
         session = uuid.uuid4().hex[:8]  # keys unique per session: a cancelled key may linger
         futures = {
             client.submit(
-                run_batch, task, pure=False, key=f"racetrace-{task[0][0]}-{task[0][1]}-{session}"
+                run_batch,
+                task,
+                target,
+                pure=False,
+                key=f"racetrace-{task[0][0]}-{task[0][1]}-{session}",
             ): task
             for task in tasks
         }
@@ -176,7 +188,8 @@ def run_study(
                         for name, model, _case in task
                     ]
                 for name, model, record, ds in outcome:
-                    folder.save_run(name, model, record, ds)
+                    if not record.get("saved"):
+                        folder.save_run(name, model, record, ds)
                     done += 1
                     failed += record["status"] == FAILED
                     last = f"{name} {model}: {record['status']}"
