@@ -98,7 +98,7 @@ def main() -> None:
             wall, ds = timed_run(qs, client, work / "qs")
             records = list(StudyFolder(work / "qs").finished().values())
             solve = np.array([r["wall_time_s"] for r in records])
-            save = np.array([r.get("save_time_s", 0.0) for r in records])
+            save = np.array([r.get("write_time_s", 0.0) for r in records])
             point = solve + save  # a point's own time: solving it and writing its files
             overhead = (wall - float(point.sum())) / len(records)
             share = overhead / float(point.mean())

@@ -34,9 +34,11 @@ pre.rt-case { font-size: 11px; background: #f7f7f7; padding: 6px; white-space: p
 @media print { .rt-section { break-inside: avoid; page-break-inside: avoid; } }
 """
 #: Panel components live in shadow roots: each gets its own stylesheet for screen and print.
-SCREEN_ONLY_CSS = "@media print { :host { display: none !important; } }"
+#: The page column hides the vtk.js scene when printing (a still image stands in for it).
+PAGE_PRINT_CSS = (
+    "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } }"
+)
 PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
-PAGE_CSS = "@media print { :host { break-inside: avoid; page-break-inside: avoid; } }"
 
 
 def missing_report_modules() -> list[str]:
@@ -193,9 +195,7 @@ def run_sections(ds, source_name: str):
     if note:
         notes.append(note)
     png = base64.b64encode(screenshot_png(plotter)).decode("ascii")
-    vtk = pn.pane.VTK(
-        plotter.ren_win, height=520, sizing_mode="stretch_width", stylesheets=[SCREEN_ONLY_CSS]
-    )
+    vtk = pn.pane.VTK(plotter.ren_win, height=520, sizing_mode="stretch_width")
     sections.append(
         pn.pane.Markdown(
             "## 3-D scene (drag to turn, wheel to zoom)\n\nThe bearing at the last sample, with "
@@ -387,6 +387,7 @@ def build_report(source, output) -> dict:
         *sections,
         sizing_mode="stretch_width",
         styles={"max-width": "1200px", "margin": "0 auto"},
+        stylesheets=[PAGE_PRINT_CSS],
     )
     output = Path(output)
 

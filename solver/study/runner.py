@@ -146,19 +146,28 @@ def run_study(
         done = failed = 0
         last = ""
         t0 = time.perf_counter()
-        run_start = None
+
+        left = {m: sum(1 for t in todo if t[1] == m) for m in ("quasistatic", "dynamic")}
+        times: dict[str, list[float]] = {"quasistatic": [], "dynamic": []}
 
         def report() -> None:
             if progress is None:
                 return
             elapsed = time.perf_counter() - t0
             running = min(len(pending), n_workers)
-            if done and run_start is not None:
-                rate = (time.perf_counter() - run_start) / done
-                eta = rate * (total - done)
-            else:
-                eta = math.nan
-            progress(Progress(done, failed, running, total, len(finished), elapsed, eta, last))
+            progress(Progress(done, failed, running, total, len(finished), elapsed, eta(), last))
+
+        def eta() -> float:
+            """Runs left of each model times that model's mean run time so far, shared by the
+            workers (nan until a run of each model left has finished)."""
+            work = 0.0
+            for model, count in left.items():
+                if count == 0:
+                    continue
+                if not times[model]:
+                    return math.nan
+                work += count * sum(times[model]) / len(times[model])
+            return work / n_workers
 
         report()
         while pending:
@@ -193,8 +202,10 @@ def run_study(
                     done += 1
                     failed += record["status"] == FAILED
                     last = f"{name} {model}: {record['status']}"
-                if run_start is None:
-                    run_start = t0
+                    left[model] -= 1
+                    spent = record.get("wall_time_s")
+                    if spent is not None:
+                        times[model].append(spent + record.get("write_time_s", 0.0))
             report()
     finally:
         if own_cluster is not None:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -148,8 +149,10 @@ class StudyFolder:
         """Save one finished run: its result (when there is one), then its record."""
         record = dict(record)
         if ds is not None:
+            start = time.perf_counter()
             save_dataset(ds, self.result_path(point, model))
             record["result"] = f"{POINTS}/{point}.{model}.nc"
+            record["write_time_s"] = time.perf_counter() - start
         _write_json(self.record_path(point, model), record)
 
     def save_dataset(self) -> Path:

@@ -70,18 +70,16 @@ def run_batch(items: list, folder=None) -> list:
     ``[(point name, model, record, Dataset or None), ...]``.
 
     With ``folder`` (the study folder, when the worker shares the client's file system) each run
-    is saved there by the worker as soon as it finishes (result, then record; ``save_time_s`` in
-    the record) and comes back without its Dataset, ``record["saved"]`` True."""
+    is saved there by the worker as soon as it finishes (result, then record) and comes back
+    without its Dataset, ``record["saved"]`` True."""
     from .store import StudyFolder
 
     out = []
     for name, model, case in items:
         record, ds = run_one(case, model)
         if folder is not None:
-            start = time.perf_counter()
             record["saved"] = True
             StudyFolder(folder).save_run(name, model, record, ds)
-            record["save_time_s"] = time.perf_counter() - start
             ds = None
         out.append((name, model, record, ds))
     return out

@@ -100,6 +100,13 @@ def test_run_report_is_standalone_and_draws(run_file, tmp_path):
         assert len(colours) > 50, "the 3-D canvas is blank"
         rows = page.evaluate(CHART_ROWS)
         assert sum(r > 0 for r in rows) >= 4, rows  # raceway maps, angle and load lines
+        # printed, the still image of the scene stands in for the interactive canvas
+        picture = page.locator("img[alt='3-D scene']")
+        assert not picture.is_visible()
+        page.emulate_media(media="print")
+        assert picture.is_visible()
+        assert not page.locator("canvas").first.is_visible()
+        assert len(page.pdf()) > 10_000
 
     _open_offline(tmp_path / "review.html", check)
 
