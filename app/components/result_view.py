@@ -21,7 +21,8 @@ import numpy as np
 
 from .. import charts
 from ..frames import FrameSource, frame_source
-from .base import Component, fig_json
+from ..runs import describe_case
+from .base import Component, as_float, as_int, fig_json
 from .case_form import solve_quasistatic
 
 log = logging.getLogger("racetrace.app")
@@ -29,6 +30,9 @@ log = logging.getLogger("racetrace.app")
 PLAY_FPS = 15.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half shell on the load side
+MAX_EXAGGERATION = 1000.0
+MAX_SPEED = 1000  # frames per animation tick
+MAX_ELLIPSE_SCALE = 100.0
 LAYERS = (
     "inner_ring",
     "outer_ring",
@@ -77,6 +81,7 @@ class ResultView(Component):
         self._analysis_start = None  # start of the solver's analysed window (s)
         self.shown_case_text = None  # case TOML of the result on show
         self.shown_run_id = None  # id of the saved run on show (None for a preview)
+        self.shown_title = ""  # the case and loads of the result on show, in words
         self.animating_export = False  # an animation export is moving the scene's frames
         self._scene_key = None
         self._last_chart_update = 0.0
@@ -115,18 +120,17 @@ class ResultView(Component):
             s[f"chart_{name}"] = {"data": [], "layout": {}}
 
     def bind(self) -> None:
-        s, c = self.state, self.ctrl
-        s.change("frame")(self._on_frame)
-        s.change("playing")(self._on_playing)
-        s.change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
-        s.change("exaggeration", "trace_ball")(self._on_trace_options)
-        s.change("ellipse_scale", "track_quantity", "track_whole_run")(self._on_track_options)
-        s.change("speed")(self._on_speed)
-        s.change("map_colour", "map_skip_startup")(self._on_map_options)
-        s.change("camera")(self._on_camera)
-        s.change("open_panels")(self._on_open_panels)
-        c.step = self.step
-        c.set_camera = self.set_camera
+        self.on_change("frame")(self._on_frame)
+        self.on_change("playing")(self._on_playing)
+        self.on_change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
+        self.on_change("exaggeration", "trace_ball")(self._on_trace_options)
+        self.on_change("ellipse_scale", "track_quantity", "track_whole_run")(self._on_track_options)
+        self.on_change("speed")(self._on_speed)
+        self.on_change("map_colour", "map_skip_startup")(self._on_map_options)
+        self.on_change("camera")(self._on_camera)
+        self.on_change("open_panels")(self._on_open_panels)
+        self.action("step", self.step)
+        self.action("set_camera", self.set_camera)
 
     # ---- what is shown --------------------------------------------------------------------------
     def show_preview(self, ds) -> None:
@@ -161,6 +165,9 @@ class ResultView(Component):
         form_case = self.session.form.case
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
         self.shown_case_text = case.to_toml() if case is not None else None
+        model = "dynamic" if "time" in ds.dims else "quasi-static"
+        self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
+        self.session.form.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:
             self.quasistatic = ds
@@ -183,9 +190,9 @@ class ResultView(Component):
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
-        if s.frame > s.frame_max:
+        if as_int(s.frame, 0) > s.frame_max:
             s.frame = 0
-        self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
+        self._apply_frame(as_int(s.frame, 0), charts_too=True)  # includes an open comparison
 
     def _describe_tracks(self, ds) -> None:
         """Shoulder limits, settling window and trajectory metrics of ``ds`` for the map."""
@@ -209,7 +216,7 @@ class ResultView(Component):
         """The close-up ball's two contacts in numbers at frame ``index``."""
         from ..raceway import RACES
 
-        j = max(0, int(self.state.trace_ball))
+        j = max(0, self._trace_ball(self.state.trace_ball, self.source.ball_count))
         f = self.source.frame(index)
         c = self.source.contact
         parts = [f"ball {j}"]
@@ -309,12 +316,13 @@ class ResultView(Component):
                 self.plotter.remove_scalar_bar(title)
             self.plotter.clear_actors()
         camera = self.plotter.camera_position if self.scene is not None else None
+        ball = self._trace_ball(self.state.trace_ball, geometry.ball_count)
         options = SceneOptions(
-            exaggeration=float(self.state.exaggeration),
-            ellipse_scale=float(self.state.ellipse_scale),
-            track_quantity=str(self.state.track_quantity),
+            exaggeration=self._exaggeration(self.state.exaggeration),
+            ellipse_scale=self._ellipse_scale(self.state.ellipse_scale),
+            track_quantity=self._track_quantity(self.state.track_quantity),
             track_whole_run=bool(self.state.track_whole_run),
-            trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
+            trace_ball=None if ball < 0 else ball,
             # face the load zone and cut the outer ring away there
             view_azimuth=load_side,
             outer_cutaway=(load_side - CUTAWAY_HALF_WIDTH, load_side + CUTAWAY_HALF_WIDTH),
@@ -346,11 +354,29 @@ class ResultView(Component):
             self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
         self.push_view()
 
+    @staticmethod
+    def _trace_ball(value, ball_count: int) -> int:
+        """The ball whose traces are drawn (-1: every ball), from the page's ``trace_ball``."""
+        return as_int(value, -1, -1, ball_count - 1)
+
+    @staticmethod
+    def _exaggeration(value) -> float:
+        return as_float(value, DEFAULT_EXAGGERATION, 1.0, MAX_EXAGGERATION)
+
+    @staticmethod
+    def _ellipse_scale(value) -> float:
+        return as_float(value, 1.0, 1.0, MAX_ELLIPSE_SCALE)
+
+    @staticmethod
+    def _track_quantity(value) -> str:
+        return str(value) if value in ("dwell", "peak_pressure") else "dwell"
+
     def _on_trace_options(self, exaggeration=DEFAULT_EXAGGERATION, trace_ball=-1, **_):
         if self.scene is not None:
-            self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
-            self.scene.options.closeup_ball = max(0, int(trace_ball))
-            self.scene.set_exaggeration(float(exaggeration))
+            ball = self._trace_ball(trace_ball, self.scene.geometry.ball_count)
+            self.scene.options.trace_ball = None if ball < 0 else ball
+            self.scene.options.closeup_ball = max(0, ball)
+            self.scene.set_exaggeration(self._exaggeration(exaggeration))
             self.push_view()
         self._update_words()
         self.update_charts()
@@ -358,8 +384,10 @@ class ResultView(Component):
     def _on_track_options(self, **_):
         s = self.state
         if self.scene is not None:
-            self.scene.set_ellipse_scale(float(s.ellipse_scale))
-            self.scene.set_track_options(str(s.track_quantity), bool(s.track_whole_run))
+            self.scene.set_ellipse_scale(self._ellipse_scale(s.ellipse_scale))
+            self.scene.set_track_options(
+                self._track_quantity(s.track_quantity), bool(s.track_whole_run)
+            )
             self.push_view()
         self._update_words()
 
@@ -375,8 +403,11 @@ class ResultView(Component):
             s.slow_motion, s.scene_note = "", ""
             return
         step = float(np.median(np.diff(self.source.times))) if self.source.n_frames > 1 else 0.0
-        s.slow_motion = slow_motion_words(playback_rate(step, int(s.speed), PLAY_FPS))
-        s.scene_note = what_you_see(self.facts, float(s.exaggeration), float(s.ellipse_scale))
+        speed = as_int(s.speed, 1, 1, MAX_SPEED)
+        s.slow_motion = slow_motion_words(playback_rate(step, speed, PLAY_FPS))
+        s.scene_note = what_you_see(
+            self.facts, self._exaggeration(s.exaggeration), self._ellipse_scale(s.ellipse_scale)
+        )
 
     def set_camera(self, preset: str) -> None:
         """Apply camera ``preset`` (isometric, axial, radial, inner track, outer track), even if
@@ -391,7 +422,7 @@ class ResultView(Component):
             self.scene.set_camera(camera)
             self.push_view()
         if self.source is not None:
-            i = int(self.state.frame)
+            i = as_int(self.state.frame, 0, 0, self.source.n_frames - 1)
             self.state.closeup_numbers = self._closeup_numbers(i) if camera == "close-up" else ""
 
     # ---- time and charts ------------------------------------------------------------------------
@@ -423,10 +454,14 @@ class ResultView(Component):
         """
         if self.source is None:
             return
-        i = int(self.state.frame) if index is None else index
         src, s = self.source, self.state
-        open_panels = set(s.open_panels or ())
-        ball = int(s.trace_ball)
+        i = as_int(s.frame, 0) if index is None else index
+        i = min(max(i, 0), src.n_frames - 1)
+        panels = s.open_panels
+        open_panels = (
+            {p for p in panels if isinstance(p, str)} if isinstance(panels, list) else set()
+        )
+        ball = self._trace_ball(s.trace_ball, src.ball_count)
         balls = (ball,) if ball >= 0 else None  # None: every ball
         s.chart_contact_angle = fig_json(charts.contact_angle_figure(src, balls, current=i))
         s.chart_raceway_map = self._raceway_map(i, balls)
@@ -453,13 +488,14 @@ class ResultView(Component):
         follow = (
             not self.state.playing or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S
         )
-        self._apply_frame(int(frame), charts_too=follow)
+        self._apply_frame(as_int(frame, 0), charts_too=follow)
 
     def step(self, delta: int = 1) -> None:
         """Move ``delta`` frames (wrapping at the ends)."""
         if self.source is None:
             return
-        self.state.frame = int((int(self.state.frame) + int(delta)) % self.source.n_frames)
+        frame = as_int(self.state.frame, 0) + as_int(delta, 1, -1_000_000, 1_000_000)
+        self.state.frame = frame % self.source.n_frames
 
     def _on_playing(self, playing=False, **_):
         if playing and (self._play_task is None or self._play_task.done()):
@@ -475,9 +511,13 @@ class ResultView(Component):
         period = 1.0 / PLAY_FPS
         while self.state.playing and self.session.clients > 0 and self.source is not None:
             t0 = time.monotonic()
-            with self.state:
-                step = max(1, int(self.state.speed))
-                self.state.frame = (int(self.state.frame) + step) % self.source.n_frames
+            try:
+                with self.state:
+                    step = as_int(self.state.speed, 1, 1, MAX_SPEED)
+                    frame = as_int(self.state.frame, 0) + step
+                    self.state.frame = frame % self.source.n_frames
+            except Exception:  # a frame that fails to draw must not stop the animation
+                log.exception("animation frame failed")
             await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
 
     def shutdown(self) -> None:

@@ -91,8 +91,8 @@ SCHEMA_WORDS = {
     "solve_over_revolution",
     "racetrace",
     "result_warnings",
-    "ball_speeds",
-    "ball_speeds_note",
+    "kinematics",
+    "kinematics_note",
 }
 
 
