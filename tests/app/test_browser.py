@@ -283,8 +283,10 @@ def _set_state(pg, **values) -> None:
 
 def _track_pixels(pg, name: str):
     """Pixels of the 3-D view that the painted tracks colour: the view with the tracks shown
-    differs there from the view with them hidden. Returns (outer count, inner count): the outer
-    ring is drawn above the inner one at the default camera, with a gap of rows between them."""
+    differs there from the view with them hidden. The outer ring is drawn above the inner one at
+    the default camera, with a gap of rows between them. Returns, for (outer, inner): the number
+    of track pixels and the track's thickness across the groove in pixels (90th percentile over
+    the image columns it crosses; balls in front hide parts of the inner track)."""
     import numpy as np
 
     _set_state(pg, show_tracks=True)
@@ -300,7 +302,12 @@ def _track_pixels(pg, name: str):
     gaps = np.diff(rows)
     cut = rows[int(np.argmax(gaps))] + 1  # the widest run of rows without track pixels
     assert gaps.max() > 5, f"{name}: the two tracks are not apart ({rows.min()}-{rows.max()})"
-    return int(mask[:cut].sum()), int(mask[cut:].sum())
+    found = []
+    for part in (mask[:cut], mask[cut:]):
+        columns = part.sum(axis=0)
+        columns = columns[columns > 0]
+        found.append((int(part.sum()), float(np.percentile(columns, 90)) if columns.size else 0.0))
+    return tuple(found)
 
 
 def test_painted_tracks_of_both_rings_show_and_tell_a_line_from_a_band(page):
@@ -314,33 +321,9 @@ def test_painted_tracks_of_both_rings_show_and_tell_a_line_from_a_band(page):
         _open_case(page, words)
         counts[key] = _track_pixels(page, f"tracks-{key}")
     (ring_outer, ring_inner), (space_outer, space_inner) = counts["ring"], counts["space"]
-    for count in (ring_outer, ring_inner, space_outer, space_inner):
+    for count, _ in (ring_outer, ring_inner, space_outer, space_inner):
         assert count > 200, counts  # both rings painted in both cases
-    # a band covers more of its groove than a line: outer band (ring) vs outer line (space) ...
-    assert ring_outer > 1.3 * space_outer, counts
+    # a band is thicker across the groove than a line: outer band (ring) vs outer line (space) ...
+    assert ring_outer[1] > 1.5 * space_outer[1], counts
     # ... and inner band (space) vs inner line (ring)
-    assert space_inner > 1.3 * ring_inner, counts
-
-
-@pytest.mark.parametrize("size", [(1280, 720), (1920, 1080)])
-def test_the_3d_view_fills_its_space_and_keeps_its_aspect(browser, server, size):
-    context = browser.new_context(viewport={"width": size[0], "height": size[1]})
-    pg = context.new_page()
-    try:
-        pg.goto(server["url"])
-        pg.wait_for_selector("#view-3d img[src]", timeout=120_000)
-        deadline = time.monotonic() + 60
-        while True:  # the server renders at the element's size once the page reports it
-            box = pg.locator("#view-3d").bounding_box()
-            natural = pg.evaluate(
-                "(() => { const i = document.querySelector('#view-3d img');"
-                " return [i.naturalWidth, i.naturalHeight]; })()"
-            )
-            if natural[1] and abs(natural[0] / natural[1] - box["width"] / box["height"]) < 0.03:
-                break
-            assert time.monotonic() < deadline, (natural, box)
-            time.sleep(0.5)
-        assert box["height"] > 0.45 * size[1] and box["width"] > 0.4 * size[0], box
-        pg.screenshot(path=str(ARTIFACTS / f"page-{size[0]}x{size[1]}.png"))
-    finally:
-        context.close()
+    assert space_inner[1] > 1.5 * ring_inner[1], counts
