@@ -327,3 +327,27 @@ def test_painted_tracks_of_both_rings_show_and_tell_a_line_from_a_band(page):
     assert ring_outer[1] > 1.5 * space_outer[1], counts
     # ... and inner band (space) vs inner line (ring)
     assert space_inner[1] > 1.5 * ring_inner[1], counts
+
+
+@pytest.mark.parametrize("size", [(1280, 720), (1920, 1080)])
+def test_the_3d_view_fills_its_space_and_keeps_its_aspect(browser, server, size):
+    context = browser.new_context(viewport={"width": size[0], "height": size[1]})
+    pg = context.new_page()
+    try:
+        pg.goto(server["url"])
+        pg.wait_for_selector("#view-3d img[src]", timeout=120_000)
+        deadline = time.monotonic() + 60
+        while True:  # the server renders at the element's size once the page reports it
+            box = pg.locator("#view-3d").bounding_box()
+            natural = pg.evaluate(
+                "(() => { const i = document.querySelector('#view-3d img');"
+                " return [i.naturalWidth, i.naturalHeight]; })()"
+            )
+            if natural[1] and abs(natural[0] / natural[1] - box["width"] / box["height"]) < 0.03:
+                break
+            assert time.monotonic() < deadline, (natural, box)
+            time.sleep(0.5)
+        assert box["height"] > 0.45 * size[1] and box["width"] > 0.4 * size[0], box
+        pg.screenshot(path=str(ARTIFACTS / f"page-{size[0]}x{size[1]}.png"))
+    finally:
+        context.close()
