@@ -55,7 +55,7 @@ def summary(ds) -> dict:
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
 
-    from racetrace.metrics import metrics_json
+    from racetrace.metrics import life_json, metrics_json
     from solver.results.dataset import ring_speeds
 
     load = ds.contact_load.values
@@ -90,6 +90,7 @@ def summary(ds) -> dict:
             "race_control_note": ds.attrs.get("race_control_note", ""),
         },
         "trajectory": metrics_json(ds),
+        "life": life_json(ds),
         "balls": [
             {
                 "azimuth_deg": float(ds.ball_azimuth.values[j]),
@@ -120,7 +121,7 @@ def summary(ds) -> dict:
 def table(ds, case) -> str:
     """Readable table: header (bearing, speed, loads, ring displacement, cage speed, peak pressure)
     and one row per ball."""
-    from racetrace.metrics import metrics_text
+    from racetrace.metrics import life_text, metrics_text
     from solver.results.dataset import ring_speeds
 
     op = case.operating
@@ -180,7 +181,7 @@ def table(ds, case) -> str:
         "alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the"
     )
     lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
-    lines += ["", metrics_text(ds)]
+    lines += ["", metrics_text(ds), life_text(ds)]
     return "\n".join(lines)
 
 

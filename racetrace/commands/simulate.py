@@ -10,8 +10,8 @@ the result cannot be written where asked (disk full, file-size limit), it is wri
 the temporary folder instead, named on stderr, and the command exits with 5.
 Case warnings and result warnings (the result leaves the model's validity, the run stopped early or
 is too short to settle) are printed on stderr as ``warning: ...`` lines; they do not change the exit
-code. The trajectory metrics (excursion, band thickness, settling) go to stdout, as JSON with
-``--json``.
+code. The trajectory metrics (excursion, band thickness, settling) and the rating lives (L10,
+L10r) go to stdout, as JSON with ``--json``.
 """
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--json",
         action="store_true",
-        help="print the trajectory metrics and the settling window as JSON",
+        help="print the trajectory metrics, the settling window and the rating lives as JSON",
     )
     parser.set_defaults(func=run)
 
@@ -280,19 +280,21 @@ def _restore(previous: dict) -> None:
 
 
 def print_metrics(ds, as_json: bool, output: Path | None) -> None:
-    """The trajectory metrics and the settling window on stdout (text or JSON; ``output`` is the
-    file written, None when the result could not be written)."""
-    from racetrace.metrics import metrics_json, metrics_text
+    """The trajectory metrics, the settling window and the rating lives on stdout (text or JSON;
+    ``output`` is the file written, None when the result could not be written)."""
+    from racetrace.metrics import life_json, life_text, metrics_json, metrics_text
 
     try:
         if as_json:
             out = {
                 "output": None if output is None else str(output),
                 "trajectory": metrics_json(ds),
+                "life": life_json(ds),
             }
             print(json.dumps(out, indent=2, allow_nan=False))
         else:
             print(metrics_text(ds))
+            print(life_text(ds))
         sys.stdout.flush()
     except BrokenPipeError:  # output piped into e.g. `head`: not an error
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
