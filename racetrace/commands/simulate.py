@@ -16,6 +16,7 @@ L10r) go to stdout, as JSON with ``--json``.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
@@ -236,7 +237,8 @@ def run(args) -> int:
         written = save_result(ds, output, _say)
     finally:
         _restore(previous)
-    print_result_warnings(ds)
+    with contextlib.suppress(OSError, ValueError):  # a closed terminal: the file is what matters
+        print_result_warnings(ds)
     print_metrics(ds, args.json, written)
     if written is None:
         return EXIT_NOT_WRITTEN
