@@ -42,6 +42,14 @@ def quasistatic_job(case_text: str, progress, cancel):
 
 def _child_main(target: str, case_text: str, out_path: str, messages, cancel_event) -> None:
     """Entry point of the child process: never raises, always ends with a done/error message."""
+    import signal
+
+    from app.services.process import die_with_parent
+
+    die_with_parent(signal.SIGKILL)  # a solver never runs on without the server
+    # Ctrl-C in the server's terminal reaches this process too: the server stops the run itself
+    # (cancel event), so that the part computed so far is saved
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     from solver import CaseError, NoSolutionError, ResultWriteError, SimulationDiverged
     from solver.errors import clean_message
 

@@ -18,7 +18,17 @@ from solver.errors import clean_message
 
 # Sub-command modules, in the order they are listed by --help. Each defines
 # ``register(subparsers)``, which adds its parser and sets ``func`` to a callable(args) -> int.
-COMMAND_MODULES = ("cases", "check", "quasistatic", "simulate", "export", "serve", "cache")
+COMMAND_MODULES = (
+    "cases",
+    "check",
+    "quasistatic",
+    "simulate",
+    "study",
+    "report",
+    "export",
+    "serve",
+    "cache",
+)
 
 EXIT_OK = 0
 EXIT_INVALID_INPUT = 2

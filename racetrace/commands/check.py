@@ -60,7 +60,10 @@ def summary(case) -> str:
         names = ", ".join(sorted(k.split(".", 1)[1] for k in case.estimated))
         lines.append(f"estimated: {names} (from the bearing; see docs/case-format.md)")
     if not case.lubricant_given:
-        lines.append("lubricant: no [lubricant] section; the dynamic model uses the default oil")
+        users = "the dynamic model uses"
+        if case.simulation.quasistatic_ball_speeds == "traction":
+            users = "the dynamic model and the quasi-static traction balance use"
+        lines.append(f"lubricant: no [lubricant] section; {users} the default oil")
     lines.append("OK: the case is valid")
     return "\n".join(lines)
 
