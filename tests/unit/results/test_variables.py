@@ -8,7 +8,7 @@ import pytest
 from solver.results.variables import COORDINATES, DIMENSION_VALUES, VARIABLES, variable
 
 SCHEMA = Path(__file__).resolve().parents[3] / "docs" / "results-schema.md"
-ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3"}
+ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3", "W"}
 
 
 def test_every_variable_has_units_names_and_known_dims():
