@@ -30,6 +30,7 @@ import numpy as np
 from . import charts
 from .caseform import apply_form, case_form_values, form_fields, form_text
 from .frames import FrameSource, frame_source
+from .lessons.panel import LessonController
 from .runner import DYNAMIC_JOB, SolverRunner
 from .runs import RunStore, default_runs_dir, describe_case, load_netcdf
 
@@ -110,6 +111,7 @@ class RacetraceApp:
         self.clients = 0  # connected browsers
         self._init_state()
         self._bind()
+        self.lessons = LessonController(self)  # the Lessons panel and presenter mode
 
     # ---- set-up ---------------------------------------------------------------------------------
     def _init_state(self) -> None:
@@ -380,6 +382,16 @@ class RacetraceApp:
         self.state.run_id = None
         self._shown_run_id = None
         self.show_result(ds, "quasi-static preview")
+
+    def show_lesson_result(self, case, ds, label: str) -> None:
+        """Put ``case`` in the form and show ``ds``, a result of that case (a lesson's), without
+        solving a preview; the runs list then names no run."""
+        self._preview_generation += 1  # a preview still on its way must not replace it
+        self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
+        self._take_case(case)
+        self.state.run_id = None
+        self._shown_run_id = None
+        self.show_result(ds, label)
 
     def _show_saved_run(self, ds, run_id: str, label: str) -> None:
         """Show saved run ``run_id``, named in the runs list; a pending preview is dropped."""

@@ -15,6 +15,7 @@ from trame.widgets import vuetify3 as v3
 
 from . import lazy_charts
 from .charts import HELP, SUMMARY_COLUMNS
+from .lessons import widgets as lesson_widgets
 
 _SECTION_TITLES = {
     "bearing": "Bearing",
@@ -58,7 +59,8 @@ def _field(f) -> None:
 
 
 def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
-    with html.Div(id=element_id, classes="mb-2"):
+    # highlighted when a lesson points at it; the one chart shown in presenter mode
+    with html.Div(id=element_id, classes=lesson_widgets.chart_classes(key.removeprefix("chart_"))):
         lazy_charts.ChartFigure(
             key, display_mode_bar=False, style=f"height: {height}px; width: 100%;"
         )
@@ -75,11 +77,13 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
     lazy_charts.enable(server)
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         client.Script(lazy_charts.LOAD_AFTER_FIRST_FRAME)
+        lesson_widgets.page_assets()
         layout.title.set_text("racetrace")
         layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
             v3.VSpacer()
             html.Div("{{ result_label }}", classes="text-body-2 mr-4")
+            lesson_widgets.presenter_button()
 
         with layout.drawer as drawer:
             drawer.width = 380
@@ -140,7 +144,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                     _field(f)
 
         with layout.content:
-            with v3.VContainer(fluid=True, classes="pa-2"):
+            with v3.VContainer(
+                fluid=True, classes=("presenter ? 'pa-2 rt-presenter' : 'pa-2'",), id="content"
+            ):
                 with v3.VRow(dense=True):
                     # the 3-D view stays in sight while the chart column scrolls
                     with v3.VCol(
@@ -152,10 +158,13 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
                             app.view = view
                         _time_controls()
-                        _scene_controls(ctrl)
-                        _export_controls(ctrl)
+                        with html.Div(classes=lesson_widgets.HIDE):
+                            _scene_controls(ctrl)
+                            _export_controls(ctrl)
                     with v3.VCol(cols=12, md=5):
-                        _run_panel(ctrl)
+                        lesson_widgets.lessons_panel(ctrl)
+                        with html.Div(classes=lesson_widgets.HIDE):
+                            _run_panel(ctrl)
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
                         _chart("chart-raceway-map", "chart_raceway_map", "raceway_map")
                         with v3.VExpansionPanels(
@@ -176,7 +185,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             help_key,
                                         )
                             with v3.VExpansionPanel(
-                                title="Compare two runs side by side", value="compare"
+                                title="Compare two runs side by side",
+                                value="compare",
+                                classes=lesson_widgets.HIDE,
                             ):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
