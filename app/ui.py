@@ -282,7 +282,11 @@ def _time_controls() -> None:
                     density="compact",
                 )
         with v3.VCol(cols="auto"):
-            html.Span("{{ frame_time }}", classes="text-caption", style="font-family: monospace;")
+            html.Span(
+                "{{ frame_time }}",
+                classes="text-caption rt-frame-time",
+                style="font-family: monospace;",
+            )
         with v3.VCol(cols=2):
             v3.VSelect(
                 label="speed",

@@ -35,10 +35,10 @@ PRESENTER_CSS = """
 .rt-presenter .rt-lesson-chart > div:first-child { height: calc(100vh - 420px) !important;
   min-height: 240px; }
 .rt-presenter #lessons-panel { background: #111; color: #fff; border-color: #fff; }
-.rt-presenter #lesson-title { font-size: 1.6rem; line-height: 1.3; }
-.rt-presenter #lesson-text { font-size: 1.25rem; line-height: 1.45; max-height: 230px;
-  overflow-y: auto; }
-.rt-presenter .rt-frame-time { font-size: 1.1rem; color: #fff; }
+.rt-presenter #lesson-title { font-size: 1.6rem !important; line-height: 1.3 !important; }
+.rt-presenter #lesson-text { font-size: 1.25rem !important; line-height: 1.45 !important;
+  max-height: 230px; overflow-y: auto; }
+.rt-presenter .rt-frame-time { font-size: 1.1rem !important; color: #fff; }
 """
 
 KEYS_SCRIPT = """
@@ -78,7 +78,7 @@ def chart_classes(chart: str) -> tuple[str]:
 def presenter_button() -> None:
     """Toolbar button: presenter mode on and off."""
     v3.VBtn(
-        ("presenter ? 'leave presenter mode' : 'presenter mode'",),
+        text=("presenter ? 'leave presenter mode' : 'presenter mode'",),
         id="presenter-button",
         click="presenter = !presenter",
         prepend_icon="mdi-projector-screen",
