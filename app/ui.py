@@ -161,7 +161,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                         with html.Div(classes=lesson_widgets.HIDE):
                             _scene_controls(ctrl)
                             _export_controls(ctrl)
-                    with v3.VCol(cols=12, md=5):
+                    with v3.VCol(cols=12, md=5, classes="rt-side"):
                         lesson_widgets.lessons_panel(ctrl)
                         with html.Div(classes=lesson_widgets.HIDE):
                             _run_panel(ctrl)

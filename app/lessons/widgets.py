@@ -10,7 +10,9 @@ Presenter mode adds the class ``rt-presenter`` around the page content (:data:`P
 the form drawer, the scene and export controls, the runs card and every chart but the lesson's
 (or the contact-angle chart) are hidden; the 3-D view and that chart fill the screen in large,
 high-contrast type. :data:`KEYS_SCRIPT` sends space, the arrows, N, P and Escape to the server
-(``lesson_key``) unless a text field has the focus.
+(``lesson_key``) unless a text field has the focus; Escape leaves presenter mode in the page
+itself. The drawer (``main_drawer``) is closed and opened by the page as presenter mode is
+switched, and by the server when it switches it.
 """
 
 from __future__ import annotations
@@ -32,12 +34,14 @@ PRESENTER_CSS = """
 .rt-presenter .v-expansion-panel-text__wrapper { background: transparent; padding: 0; }
 .rt-presenter .v-expansion-panel::after { border: none; }
 .rt-presenter #view-3d { height: calc(100vh - 150px) !important; }
-.rt-presenter .rt-lesson-chart > div:first-child { height: calc(100vh - 420px) !important;
-  min-height: 240px; }
+.rt-presenter .rt-side { display: flex; flex-direction: column; }
+.rt-presenter .rt-side > * { order: 1; }
+.rt-presenter .rt-side > #lessons-panel { order: 2; }
+.rt-presenter .rt-lesson-chart > div:first-child { height: 55vh !important; min-height: 240px; }
 .rt-presenter #lessons-panel { background: #111; color: #fff; border-color: #fff; }
 .rt-presenter #lesson-title { font-size: 1.6rem !important; line-height: 1.3 !important; }
 .rt-presenter #lesson-text { font-size: 1.25rem !important; line-height: 1.45 !important;
-  max-height: 230px; overflow-y: auto; }
+  max-height: calc(45vh - 190px); min-height: 4em; overflow-y: auto; }
 .rt-presenter .rt-frame-time { font-size: 1.1rem !important; color: #fff; }
 """
 
@@ -54,6 +58,10 @@ KEYS_SCRIPT = """
         tag === 'SELECT')) return;
     if (KEYS.indexOf(event.key) < 0 || !window.trame) return;
     event.preventDefault();
+    if (event.key === 'Escape') {  // leave presenter mode here: the drawer comes back at once
+      window.trame.state.update({ presenter: false, main_drawer: true });
+      return;
+    }
     window.trame.trigger('lesson_key', [event.key]);
   });
 })();
@@ -80,7 +88,7 @@ def presenter_button() -> None:
     v3.VBtn(
         text=("presenter ? 'leave presenter mode' : 'presenter mode'",),
         id="presenter-button",
-        click="presenter = !presenter",
+        click="presenter = !presenter; main_drawer = !presenter",
         prepend_icon="mdi-projector-screen",
         variant="tonal",
         size="small",
