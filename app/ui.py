@@ -134,7 +134,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             html.Span("TOML")
                 html.Div("{{ case_message }}", classes="text-error text-caption", id="case-message")
                 section = None
-                for f in app.fields:
+                for f in app.form.fields:
                     if f.section != section:
                         section = f.section
                         html.Div(
@@ -155,8 +155,10 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                         style="position: sticky; top: 64px; align-self: flex-start;",
                     ):
                         with html.Div(id="view-3d", style="height: 480px; position: relative;"):
-                            view = PyVistaRCAView(app.plotter, style="width: 100%; height: 100%;")
-                            app.view = view
+                            view = PyVistaRCAView(
+                                app.result.plotter, style="width: 100%; height: 100%;"
+                            )
+                            app.result.view = view
                         _time_controls()
                         with html.Div(classes=lesson_widgets.HIDE):
                             _scene_controls(ctrl)

@@ -11,6 +11,7 @@ import importlib
 import sys
 
 from solver import CaseError, NoSolutionError, __version__
+from solver.errors import clean_message
 
 # Sub-command modules, in the order they are listed by --help. Each defines
 # ``register(subparsers)``, which adds its parser and sets ``func`` to a callable(args) -> int.
@@ -43,10 +44,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(args.func(args) or 0)
     except CaseError as error:
-        print(f"racetrace: invalid input:\n{error}", file=sys.stderr)
+        print(f"racetrace: invalid input:\n{clean_message(error)}", file=sys.stderr)
         return EXIT_INVALID_INPUT
     except NoSolutionError as error:
-        print(f"racetrace: no solution: {error}", file=sys.stderr)
+        print(f"racetrace: no solution: {clean_message(error)}", file=sys.stderr)
         return EXIT_NO_SOLUTION
     except KeyboardInterrupt:
         print("racetrace: interrupted", file=sys.stderr)

@@ -1,7 +1,8 @@
-"""The trajectory metrics of a result as text and as JSON, for the commands that print them.
+"""The trajectory metrics and rating lives of a result as text and as JSON, for the commands that
+print them.
 
-The numbers come from ``ds.racetrace.summary()`` (defined in :mod:`solver.results.summary`); each
-race is reported in its own ring's frame, the headline value.
+The numbers come from ``ds.racetrace.summary()`` (defined in :mod:`solver.results.summary` and
+:mod:`solver.results.life`); each race is reported in its own ring's frame, the headline value.
 """
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ import math
 
 import solver  # noqa: F401  (registers the ds.racetrace accessor)
 from solver.results.dataset import ring_speeds
-from solver.results.summary import QUASISTATIC_THICKNESS_NOTE, headline
+from solver.results.summary import QUASISTATIC_THICKNESS_NOTE, headline, life_headline
 
 
 def _finite_or_none(value: float) -> float | None:
@@ -80,4 +81,59 @@ def metrics_text(ds) -> str:
     return "\n".join(lines)
 
 
-__all__ = ["metrics_json", "metrics_text"]
+def life_json(ds) -> dict:
+    """JSON-ready rating lives: L10 (ISO 281) and L10r (ISO/TS 16281) in million revolutions and
+    hours, C_r and P_r in N; a life that is not finite is null, with the reason in ``notes``."""
+    values = life_headline(ds.racetrace.summary())
+    notes = list(values.pop("notes"))
+    if any(math.isinf(v) for v in values.values()):
+        notes.append(
+            "an infinite life (no loaded contact, or rings not turning relative to each other) "
+            "is written as null"
+        )
+    out = {key: _finite_or_none(v) for key, v in values.items()}
+    out["reliability_percent"] = 90
+    out["notes"] = notes
+    return out
+
+
+def _life_value(million_revolutions: float, hours: float) -> str:
+    if math.isnan(million_revolutions):
+        return "n/a"
+    if math.isinf(million_revolutions):
+        return "infinite (no loaded contact)"
+    revolutions = _number(million_revolutions)
+    if math.isinf(hours):
+        return f"{revolutions} million revolutions (rings not turning: no hours)"
+    return f"{revolutions} million revolutions = {_number(hours)} h"
+
+
+def _number(value: float) -> str:
+    """Whole numbers from 100 up, three significant digits below."""
+    return f"{value:.0f}" if abs(value) >= 100.0 else f"{value:.3g}"
+
+
+def life_text(ds) -> str:
+    """Readable lines: L10 (ISO 281, applied loads) and L10r (ISO/TS 16281, computed contact
+    loads) in million revolutions and hours, with C_r, P_r and the notes."""
+    values = life_headline(ds.racetrace.summary())
+    window = " over the analysed window" if "time" in ds.dims else ""
+    rating = (
+        f" (C_r {values['basic_load_rating_N']:.0f} N, P_r {values['equivalent_load_N']:.0f} N)"
+        if math.isfinite(values["basic_load_rating_N"])
+        else ""
+    )
+    lines = [
+        "rating life (90 % reliability, no life modification factor):",
+        "  L10  (ISO 281, applied loads):       "
+        + _life_value(values["L10_million_revolutions"], values["L10_hours"])
+        + rating,
+        "  L10r (ISO/TS 16281, contact loads): "
+        + _life_value(values["L10r_million_revolutions"], values["L10r_hours"])
+        + window,
+    ]
+    lines += [f"  note: {note}" for note in values["notes"]]
+    return "\n".join(lines)
+
+
+__all__ = ["life_json", "life_text", "metrics_json", "metrics_text"]

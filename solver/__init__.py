@@ -15,7 +15,8 @@ Public API (everything else is internal):
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
   ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
 - ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
-  ``SimulationDiverged`` (the dynamic integration failed)
+  ``SimulationDiverged`` (the dynamic integration failed), ``ResultWriteError`` (a result file
+  could not be written; an OSError naming the file)
 
 The numba kernels are imported on first use; registering the accessor imports xarray.
 """
@@ -24,7 +25,7 @@ from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 
 from ._numba_cache import SOLVER_DIR, configure_numba_cache
-from .errors import CaseError, NoSolutionError, Problem, SimulationDiverged
+from .errors import CaseError, NoSolutionError, Problem, ResultWriteError, SimulationDiverged
 
 # Before any kernel is defined: compiled kernels are cached per version of the solver sources.
 configure_numba_cache(SOLVER_DIR)
@@ -63,6 +64,7 @@ __all__ = [
     "CaseError",
     "NoSolutionError",
     "Problem",
+    "ResultWriteError",
     "SimulationDiverged",
     "__version__",
     "catalogue",
@@ -74,3 +76,7 @@ def __getattr__(name: str):
     if name in _LAZY:
         return getattr(import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'solver' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

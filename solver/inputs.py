@@ -135,7 +135,8 @@ class LubricantInputs:
 
 @dataclass(frozen=True)
 class SimulationInputs:
-    """Length, sampling and physics switches of a dynamic run."""
+    """Length, sampling and physics switches of a dynamic run, and the quasi-static model's
+    source of the ball speeds."""
 
     shaft_revolutions: float
     samples_per_revolution: int
@@ -144,6 +145,7 @@ class SimulationInputs:
     gravity: float  # m/s^2, along -z
     tolerance: float  # local error tolerance of the integrator (relative to the state scales)
     cage: bool  # model the cage (False: balls free to bunch)
+    quasistatic_ball_speeds: str = "traction"  # or "race_control" (quasi-static model)
 
 
 @dataclass(frozen=True)
@@ -253,6 +255,7 @@ def simulation_inputs(simulation) -> SimulationInputs:
         gravity=float(simulation.gravity_m_s2),
         tolerance=float(simulation.tolerance),
         cage=bool(simulation.model_cage),
+        quasistatic_ball_speeds=str(simulation.quasistatic_ball_speeds),
     )
 
 

@@ -1,12 +1,12 @@
-"""The Lessons panel's state and handlers, and presenter mode, beside the app's page state.
+"""The Lessons panel's state and handlers, and presenter mode: a component of the session.
 
-:class:`LessonController` is given the page's :class:`app.state.RacetraceApp` and uses only its
-public hooks: ``show_lesson_result`` (put a case in the form and show a result without a preview),
-``set_camera``, ``step`` and the shared state (``open_panels``, ``playing``). One click on a
-lesson (``open_lesson``) shows its first result, places the camera, opens and highlights its
-chart and fills its text from the results; its other results are one click away
-(``lesson_result``). Presenter mode (``presenter``) is a state flag the page styles
-(app/lessons/widgets.py); its keys come here as ``lesson_key``.
+:class:`LessonController` reaches the other components through the session: the case form
+(``session.form``: the lesson's case goes in the form, no preview is solved) and the result view
+(``session.result``: the result, camera, time and charts). One click on a lesson
+(``open_lesson``) shows its first result, places the camera, opens and highlights its chart and
+fills its text from the results; its other results are one click away (``show_lesson_result``).
+Presenter mode (``presenter``) is a state flag the page styles (app/lessons/widgets.py); its keys
+come here as ``lesson_key``.
 
 State (all plain JSON): ``lessons`` (id, title, summary per lesson), ``lesson_problems`` (broken
 lesson files, in words), ``lesson_id``, ``lesson_title``, ``lesson_explain``, ``lesson_try``,
@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import logging
 
+from ..components.base import Component
 from .format import LessonSet, load_lessons
 from .results import lesson_result
 from .text import lesson_text
@@ -30,16 +31,19 @@ log = logging.getLogger(__name__)
 ALWAYS_SHOWN = ("contact_angle", "raceway_map")
 
 
-class LessonController:
-    """Lessons and presenter mode for one page (see the module docstring)."""
+class LessonController(Component):
+    """Lessons and presenter mode for one session (see the module docstring). ``lessons``: the
+    lessons to offer (default: the shipped ones); ``cache_dir``: where results solved on first use
+    are kept (default: :func:`app.lessons.results.lesson_cache_dir`)."""
 
-    def __init__(self, app, lessons: LessonSet | None = None, cache_dir=None):
-        self.app = app
-        self.state = app.state
+    def __init__(self, session, lessons: LessonSet | None = None, cache_dir=None):
+        super().__init__(session)
         self.set = load_lessons() if lessons is None else lessons
         self.cache_dir = cache_dir
         self._results: dict[tuple[str, str], object] = {}  # (lesson, result) -> Dataset
         self._values: dict[tuple[str, str], dict] = {}
+
+    def init_state(self) -> None:
         s = self.state
         s.lessons = [
             {"id": lesson.id, "title": lesson.title, "summary": lesson.summary}
@@ -56,19 +60,21 @@ class LessonController:
         s.lesson_chart = None
         s.lesson_message = ""
         s.presenter = False
-        ctrl = app.ctrl
+
+    def bind(self) -> None:
+        s, ctrl = self.state, self.ctrl
         ctrl.open_lesson = self.open_lesson
         ctrl.show_lesson_result = self.show_result
         ctrl.next_lesson = self.next_lesson
         ctrl.previous_lesson = self.previous_lesson
         ctrl.lesson_key = self.key
-        app.server.trigger("lesson_key")(self.key)  # window.trame.trigger from the key handler
+        self.session.server.trigger("lesson_key")(self.key)  # called by the page's key handler
         s.change("presenter")(self._on_presenter)
 
     def _on_presenter(self, presenter=False, **_):
         """Presenter mode hides the form (the drawer); the charts are redrawn at their new size."""
         self.state.main_drawer = not presenter
-        self.app.update_charts()
+        self.session.result.update_charts()
 
     # ---- results ---------------------------------------------------------------------------------
     def _dataset(self, lesson, spec):
@@ -105,7 +111,7 @@ class LessonController:
             if lesson.chart not in ALWAYS_SHOWN:
                 s.open_panels = sorted(set(s.open_panels or ()) | {lesson.chart})
         self.show_result(result_name or lesson.results[0].name)
-        self.app.set_camera(lesson.camera)
+        self.session.result.set_camera(lesson.camera)
 
     def show_result(self, name: str) -> None:
         """Show result ``name`` of the open lesson: its case in the form, the result in the view."""
@@ -114,7 +120,13 @@ class LessonController:
         lesson = self.set.get(self.state.lesson_id)
         spec = lesson.result(name)
         ds = self._dataset(lesson, spec)
-        self.app.show_lesson_result(spec.case(), ds, f"lesson: {spec.label}")
+        form, view = self.session.form, self.session.result
+        form.drop_pending_preview()  # a preview on its way must not replace the lesson's result
+        self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
+        form.take_case(spec.case())  # fills the form without solving a preview
+        self.state.run_id = None  # the runs list names no run
+        view.shown_run_id = None
+        view.show_result(ds, f"lesson: {spec.label}")
         with self.state:
             self.state.lesson_result = spec.name
             self.state.lesson_warnings = ds.racetrace.warnings()
@@ -141,10 +153,10 @@ class LessonController:
             self.state.playing = not self.state.playing
         elif key == "ArrowRight":
             self.state.playing = False
-            self.app.step(1)
+            self.session.result.step(1)
         elif key == "ArrowLeft":
             self.state.playing = False
-            self.app.step(-1)
+            self.session.result.step(-1)
         elif key in ("n", "N"):
             self.next_lesson()
         elif key in ("p", "P"):

@@ -111,6 +111,8 @@ def _race_control(ds):
     if "race_control" not in ds:
         return None
     words = [str(v) for v in np.asarray(ds["race_control"].values).ravel()]
+    if not set(words) <= set(RACES):
+        return None  # ball speeds from a traction balance: no controlling race
     inner = words.count("inner")
     if inner == len(words):
         return "inner"

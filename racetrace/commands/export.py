@@ -4,13 +4,17 @@ accessor.
 ``--csv`` writes the per-contact table (one row per time, ball and race; columns named
 ``<variable> [<units>]``, solver.results.io.contact_table), atomically. Images and animations of
 the 3-D view need the app's renderer: export them from the app. Exit codes: 0 written, 2 invalid
-input (a missing or unreadable result, no export named, an output folder that does not exist).
+input (a missing or unreadable result, no export named, an output that cannot be written).
 """
 
 from __future__ import annotations
 
 import sys
 from pathlib import Path
+
+from solver.errors import clean_message
+
+from ._output import output_problem
 
 EXIT_INVALID_INPUT = 2
 
@@ -42,17 +46,18 @@ def run(args) -> int:
     if not source.is_file():
         return _fail(f"{args.result}: no such results file")
     target = Path(args.csv)
-    if not target.parent.is_dir():
-        return _fail(f"--csv {args.csv}: directory '{target.parent}' does not exist")
+    problem = output_problem(target, "--csv")
+    if problem:
+        return _fail(problem)
     try:
         ds = load_dataset(source)
-    except (OSError, ValueError) as error:
-        return _fail(f"{args.result}: not a readable results NetCDF file ({error})")
+    except (OSError, ValueError, RuntimeError) as error:
+        return _fail(f"{args.result}: not a readable results NetCDF file ({clean_message(error)})")
     try:
         ds.racetrace.to_csv(target)
     except ValueError as error:
         return _fail(f"{args.result}: {error}")
     except OSError as error:
-        return _fail(f"--csv {args.csv}: could not write it ({error})")
+        return _fail(f"--csv {args.csv}: {clean_message(error)}")
     print(f"racetrace: wrote {target}", file=sys.stderr)
     return 0

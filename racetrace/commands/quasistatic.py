@@ -6,8 +6,10 @@ Default output is a readable table with units, followed by the trajectory metric
 under ``trajectory``); ``--output`` writes the full results Dataset (NetCDF, results-schema.md).
 Case warnings and result warnings (:func:`solver.results.checks.result_warnings`: the result leaves
 the model's validity) go to stderr as ``warning: ...`` lines and leave the exit code alone. Exit
-codes: 0 success, 2 invalid input, 3 no solution (the message says why and what to try) — mapped
-by racetrace.cli.
+codes: 0 success, 2 invalid input (including an ``--output`` that cannot be written: checked before
+solving), 3 no solution (the message says why and what to try) — mapped by racetrace.cli — and 5
+when the result could not be written to ``--output`` (it is then written to a file in the
+temporary folder, named on stderr).
 """
 
 from __future__ import annotations
@@ -19,6 +21,11 @@ import sys
 from pathlib import Path
 
 import numpy as np
+
+from ._output import output_problem, save_result
+
+#: The result could not be written to --output: it went to the temporary folder, or nowhere.
+EXIT_NOT_WRITTEN = 5
 
 
 def register(subparsers) -> None:
@@ -48,7 +55,7 @@ def summary(ds) -> dict:
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
 
-    from racetrace.metrics import metrics_json
+    from racetrace.metrics import life_json, metrics_json
     from solver.results.dataset import ring_speeds
 
     load = ds.contact_load.values
@@ -83,6 +90,7 @@ def summary(ds) -> dict:
             "race_control_note": ds.attrs.get("race_control_note", ""),
         },
         "trajectory": metrics_json(ds),
+        "life": life_json(ds),
         "balls": [
             {
                 "azimuth_deg": float(ds.ball_azimuth.values[j]),
@@ -113,7 +121,7 @@ def summary(ds) -> dict:
 def table(ds, case) -> str:
     """Readable table: header (bearing, speed, loads, ring displacement, cage speed, peak pressure)
     and one row per ball."""
-    from racetrace.metrics import metrics_text
+    from racetrace.metrics import life_text, metrics_text
     from solver.results.dataset import ring_speeds
 
     op = case.operating
@@ -173,7 +181,7 @@ def table(ds, case) -> str:
         "alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the"
     )
     lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
-    lines += ["", metrics_text(ds)]
+    lines += ["", metrics_text(ds), life_text(ds)]
     return "\n".join(lines)
 
 
@@ -192,42 +200,33 @@ def print_result_warnings(ds, stream=None) -> None:
 
 def run(args) -> int:
     from solver.catalogue import resolve_case
+    from solver.errors import CaseError, Problem
     from solver.models.quasistatic import solve_quasistatic
 
     case = resolve_case(args.case)
     for warning in case.warnings():
         print(f"warning: {warning.message}", file=sys.stderr)
     if args.output:
-        target = Path(args.output)
-        if not target.parent.is_dir():
-            print(
-                f"racetrace: invalid input:\n--output {args.output}: directory "
-                f"'{target.parent}' does not exist",
-                file=sys.stderr,
-            )
-            return 2
+        problem = output_problem(Path(args.output))
+        if problem:
+            raise CaseError(Problem("output", problem))
     ds = solve_quasistatic(case)
     print_result_warnings(ds)
-    if args.output:
-        from solver.results.io import save_dataset
-
-        try:
-            save_dataset(ds, args.output)
-        except OSError as error:
-            print(f"racetrace: could not write {args.output}: {error}", file=sys.stderr)
-            return 2
+    written = save_result(ds, Path(args.output)) if args.output else None
     if args.json:
         out = summary(ds)
         if args.output:
-            out["output"] = str(args.output)
-        text = json.dumps(out, indent=2)
+            out["output"] = None if written is None else str(written)
+        text = json.dumps(out, indent=2, allow_nan=False)
     else:
         text = table(ds, case)
-        if args.output:
-            text += f"\n\nresults written to {args.output}"
+        if written is not None:
+            text += f"\n\nresults written to {written}"
     try:
         print(text)
         sys.stdout.flush()
     except BrokenPipeError:  # output piped into e.g. `head`: not an error
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    if args.output and written != Path(args.output):
+        return EXIT_NOT_WRITTEN
     return 0

@@ -1,24 +1,38 @@
 """``racetrace simulate CASE --output run.nc``: run the dynamic model and save the result (NetCDF).
 
-A progress bar with the simulated time and an ETA goes to stderr. Ctrl-C stops the run at the next
-chunk boundary: the partial result (attrs ``complete = 0``) is written atomically and the command
-exits with 130. A diverged run also writes what it had and exits with 4, printing the likely cause.
+A progress bar with the simulated time and an ETA goes to stderr. Before the run, the output path
+is checked (its folder exists and is writable, it is not a folder) and the run's size is compared
+with the free memory, disk and file-size limit: each problem is an invalid input (exit 2). Ctrl-C,
+SIGTERM or SIGHUP stop the run at the next chunk boundary: the partial result (attrs
+``complete = 0``) is written atomically and the command exits with 128 + the signal number (130 for
+Ctrl-C). A diverged run also writes what it had and exits with 4, printing the likely cause. When
+the result cannot be written where asked (disk full, file-size limit), it is written to a file in
+the temporary folder instead, named on stderr, and the command exits with 5.
 Case warnings and result warnings (the result leaves the model's validity, the run stopped early or
 is too short to settle) are printed on stderr as ``warning: ...`` lines; they do not change the exit
-code. The trajectory metrics (excursion, band thickness, settling) go to stdout, as JSON with
-``--json``.
+code. The trajectory metrics (excursion, band thickness, settling) and the rating lives (L10,
+L10r) go to stdout, as JSON with ``--json``.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import signal
 import sys
 import threading
 import time
 from pathlib import Path
 
+from solver.errors import clean_message
+
+from ._output import output_problem, save_result, size_problems
+from ._output import say as _say
+
 EXIT_DIVERGED = 4
+#: The result could not be written to the output path: it went to a file in the temporary folder
+#: (named on stderr), or nowhere.
+EXIT_NOT_WRITTEN = 5
 EXIT_INTERRUPTED = 130
 
 
@@ -49,7 +63,7 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--json",
         action="store_true",
-        help="print the trajectory metrics and the settling window as JSON",
+        help="print the trajectory metrics, the settling window and the rating lives as JSON",
     )
     parser.set_defaults(func=run)
 
@@ -73,15 +87,23 @@ class ProgressBar:
         eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
         filled = int(round(self.width * fraction))
         bar = "#" * filled + "." * (self.width - filled)
-        self.stream.write(
+        self._write(
             f"\r[{bar}] {100 * fraction:5.1f}%  t = {simulated_time * 1e3:.3f} ms  "
             f"elapsed {elapsed:.0f} s  ETA {eta:.0f} s "
         )
-        self.stream.flush()
 
     def close(self) -> None:
-        self.stream.write("\n")
-        self.stream.flush()
+        self._write("\n")
+
+    def _write(self, text: str) -> None:
+        """Write and flush; a closed terminal (after a hang-up) silences the bar, never the run."""
+        if self.stream is None:
+            return
+        try:
+            self.stream.write(text)
+            self.stream.flush()
+        except (OSError, ValueError):
+            self.stream = None
 
 
 def _print_case_warnings(case) -> None:
@@ -91,16 +113,13 @@ def _print_case_warnings(case) -> None:
         print(f"warning: {warning.message}", file=sys.stderr)
 
 
-def run(args) -> int:
-    from solver.errors import SimulationDiverged
-    from solver.models.dynamic import SimulationOptions, simulate
-    from solver.results.io import save_dataset
+def _options(args, case):
+    """SimulationOptions from the command line, checked with the case keys' bounds and the run
+    length rules (CaseError naming the option otherwise), and the run's size estimate."""
+    from solver.case.validate import dynamic_run_size, run_length_problems
+    from solver.errors import CaseError
+    from solver.models.dynamic import SimulationOptions
 
-    from .quasistatic import print_result_warnings
-
-    case = _load_case(args.case)
-    _print_case_warnings(case)
-    output = Path(args.output) if args.output else Path(Path(args.case).stem + ".nc")
     changes = {}
     if args.revolutions is not None:
         changes["shaft_revolutions"] = args.revolutions
@@ -113,16 +132,71 @@ def run(args) -> int:
     if args.no_cage:
         changes["cage"] = False
     # the case's [simulation] values, overridden by the command line
-    options = SimulationOptions(**changes)
+    options = SimulationOptions(**changes).validated()
+    sim = case.simulation
+    revolutions = sim.shaft_revolutions if args.revolutions is None else args.revolutions
+    per_rev = (
+        sim.samples_per_revolution
+        if args.samples_per_revolution is None
+        else args.samples_per_revolution
+    )
+    names = (
+        "simulation.shaft_revolutions" if args.revolutions is None else "--revolutions",
+        "simulation.samples_per_revolution"
+        if args.samples_per_revolution is None
+        else "--samples-per-revolution",
+    )
+    # a Case, or SI Inputs (scripts and tests may pass those)
+    balls = int(case.bearing.ball_count if hasattr(case, "bearing") else case.geometry.ball_count)
+    problems = run_length_problems(revolutions, per_rev, balls, names)
+    if problems:
+        raise CaseError(problems)
+    return options, dynamic_run_size(revolutions, per_rev, balls)
+
+
+def _check_room(size, output: Path) -> None:
+    """Refuse a run whose result would not fit in the memory, the disk or the file-size limit
+    (CaseError); warn when it takes more than half of the memory or disk."""
+    from solver.errors import CaseError, Problem
+
+    errors, warnings = size_problems(size.memory_bytes, size.file_bytes, output.parent)
+    for warning in warnings:
+        _say(f"warning: {warning}")
+    if errors:
+        raise CaseError([Problem("output", e) for e in errors])
+
+
+def run(args) -> int:
+    from solver.errors import CaseError, Problem, SimulationDiverged
+    from solver.models.dynamic import simulate
+
+    from .quasistatic import print_result_warnings
+
+    case = _load_case(args.case)
+    _print_case_warnings(case)
+    output = Path(args.output) if args.output else Path(Path(args.case).stem + ".nc")
+    # everything that can be checked before a run that may take hours
+    problem = output_problem(output, "--output" if args.output else "output")
+    if problem:
+        raise CaseError(Problem("output", problem))
+    options, size = _options(args, case)
+    _check_room(size, output)
+
     stop = threading.Event()
+    received: list[int] = []
 
-    def on_sigint(signum, frame):  # noqa: ARG001 - signal handler signature
-        if stop.is_set():  # second Ctrl-C: give up at once
+    def on_signal(signum, frame):  # noqa: ARG001 - signal handler signature
+        if stop.is_set():  # a second signal: give up at once
             raise KeyboardInterrupt
+        received.append(signum)
         stop.set()
-        print("\nracetrace: interrupt received, stopping at the next chunk ...", file=sys.stderr)
+        _say(
+            f"\nracetrace: {signal.Signals(signum).name} received, stopping at the next chunk "
+            "(the partial result is kept) ..."
+        )
 
-    previous = signal.signal(signal.SIGINT, on_sigint)
+    # the handlers stay until the result is written: a signal during the write is deferred
+    previous = _install(on_signal)
     bar = None if args.quiet else ProgressBar()
     try:
         try:
@@ -133,39 +207,77 @@ def run(args) -> int:
             if bar is not None:
                 bar.close()
                 bar = None
-            print(f"racetrace: {error}", file=sys.stderr)
+            _say(f"racetrace: {clean_message(error)}")
             if ds is None:
                 return EXIT_DIVERGED
             code = EXIT_DIVERGED
+        finally:
+            if bar is not None:
+                bar.close()
+        written = save_result(ds, output, _say)
     finally:
-        signal.signal(signal.SIGINT, previous)
-        if bar is not None:
-            bar.close()
-    save_dataset(ds, output)
+        _restore(previous)
     print_result_warnings(ds)
-    print_metrics(ds, args.json, output)
+    print_metrics(ds, args.json, written)
+    if written is None:
+        return EXIT_NOT_WRITTEN
+    moved = written != output
     if ds.attrs.get("complete", 0) != 1 and code == 0:
-        print(
-            f"racetrace: interrupted; partial result ({ds.sizes['time']} samples up to "
-            f"t = {float(ds.time[-1]):.6g} s) written to {output}",
-            file=sys.stderr,
+        name = signal.Signals(received[0]).name if received else "interrupt"
+        _say(
+            f"racetrace: stopped by {name}; partial result ({ds.sizes['time']} samples up to "
+            f"t = {float(ds.time[-1]):.6g} s) written to {written}"
         )
-        return EXIT_INTERRUPTED
+        return EXIT_NOT_WRITTEN if moved else 128 + (received[0] if received else signal.SIGINT)
     if code == EXIT_DIVERGED:
-        print(f"racetrace: partial result written to {output}", file=sys.stderr)
-        return code
-    print(
-        f"racetrace: wrote {output} ({ds.sizes['time']} samples, {ds.attrs['wall_time_s']:.1f} s)",
-        file=sys.stderr,
+        _say(f"racetrace: partial result written to {written}")
+        return EXIT_NOT_WRITTEN if moved else code
+    _say(
+        f"racetrace: wrote {written} ({ds.sizes['time']} samples, {ds.attrs['wall_time_s']:.1f} s)"
     )
-    return 0
+    return EXIT_NOT_WRITTEN if moved else 0
 
 
-def print_metrics(ds, as_json: bool, output: Path) -> None:
-    """The trajectory metrics and the settling window on stdout (text or JSON)."""
-    from racetrace.metrics import metrics_json, metrics_text
+#: Signals that stop a run and keep its partial result (SIGHUP: the terminal was closed).
+STOP_SIGNALS = tuple(
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
 
-    if as_json:
-        print(json.dumps({"output": str(output), "trajectory": metrics_json(ds)}, indent=2))
-    else:
-        print(metrics_text(ds))
+
+def _install(handler) -> dict:
+    """Set ``handler`` for :data:`STOP_SIGNALS`; returns the previous handlers (none when not on
+    the main thread, where signals cannot be handled)."""
+    previous = {}
+    if threading.current_thread() is not threading.main_thread():
+        return previous
+    for signum in STOP_SIGNALS:
+        previous[signum] = signal.signal(signum, handler)
+    return previous
+
+
+def _restore(previous: dict) -> None:
+    for signum, handler in previous.items():
+        signal.signal(signum, handler)
+
+
+def print_metrics(ds, as_json: bool, output: Path | None) -> None:
+    """The trajectory metrics, the settling window and the rating lives on stdout (text or JSON;
+    ``output`` is the file written, None when the result could not be written)."""
+    from racetrace.metrics import life_json, life_text, metrics_json, metrics_text
+
+    try:
+        if as_json:
+            out = {
+                "output": None if output is None else str(output),
+                "trajectory": metrics_json(ds),
+                "life": life_json(ds),
+            }
+            print(json.dumps(out, indent=2, allow_nan=False))
+        else:
+            print(metrics_text(ds))
+            print(life_text(ds))
+        sys.stdout.flush()
+    except BrokenPipeError:  # output piped into e.g. `head`: not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except OSError:  # the terminal was closed (SIGHUP): the result file is what matters
+        pass

@@ -629,6 +629,17 @@ FIELDS: list[Field] = [
         "balls are free to bunch).",
         default=True,
     ),
+    # Quasi-static model switch: where the ball speeds come from.
+    Field(
+        "simulation.quasistatic_ball_speeds",
+        "choice",
+        "Quasi-static ball speeds",
+        "race_control: rolling kinematics of the controlling race, decided per ball (Jones); "
+        "traction: from the traction balance of each ball with one cage speed "
+        "(friction-based quasi-dynamic).",
+        default="traction",
+        choices=("race_control", "traction"),
+    ),
 ]
 
 #: Keys of a material table (under [materials.NAME], or inline for ball_material/ring_material).

@@ -719,35 +719,93 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
 
 
 # ---- rules of one model ------------------------------------------------------------------------
-#: Most output samples times balls a dynamic run may store: a run keeps about 1.5 kB per ball and
-#: sample in memory (state, observations and the result Dataset), so this is about 3 GB.
+#: Memory a dynamic run holds per ball and output sample, in bytes (state, observations and the
+#: result Dataset, at the peak while the Dataset is built).
+RUN_BYTES_PER_BALL_SAMPLE = 1_500
+#: Most output samples times balls a dynamic run may store (about 3 GB of memory).
 MAX_DYNAMIC_BALL_SAMPLES = 2_000_000
+#: Size of a dynamic result file: bytes per ball and output sample, plus a fixed part (the
+#: per-ball variables, the case text and the file's own structure).
+RESULT_FILE_BYTES_PER_BALL_SAMPLE = 400
+RESULT_FILE_BASE_BYTES = 150_000
+
+
+@dataclass(frozen=True)
+class RunSize:
+    """Output of a dynamic run: ``samples`` output samples after the start (the result holds
+    ``samples + 1`` times), the memory the run holds at its peak and the size of its result file,
+    in bytes (estimates)."""
+
+    samples: int
+    memory_bytes: int
+    file_bytes: int
+
+
+def dynamic_run_size(revolutions: float, samples_per_revolution: int, ball_count: int) -> RunSize:
+    """The :class:`RunSize` of a dynamic run of ``revolutions`` shaft revolutions."""
+    samples = int(round(revolutions * samples_per_revolution))
+    ball_samples = (samples + 1) * ball_count
+    return RunSize(
+        samples,
+        ball_samples * RUN_BYTES_PER_BALL_SAMPLE,
+        RESULT_FILE_BASE_BYTES + ball_samples * RESULT_FILE_BYTES_PER_BALL_SAMPLE,
+    )
+
+
+def run_length_problems(
+    revolutions: float,
+    samples_per_revolution: int,
+    ball_count: int,
+    names: tuple[str, str] = ("simulation.shaft_revolutions", "simulation.samples_per_revolution"),
+) -> list[Problem]:
+    """Why a dynamic run of this length cannot be done: fewer than one output sample after the
+    start, or more ball-samples than :data:`MAX_DYNAMIC_BALL_SAMPLES`. ``names`` are how the two
+    values are named in messages (case keys, or command-line options)."""
+    revolutions_name, samples_name = names
+    size = dynamic_run_size(revolutions, samples_per_revolution, ball_count)
+    given = (
+        f"{revolutions_name} = {format_number(revolutions)} at "
+        f"{samples_name} = {samples_per_revolution}"
+    )
+    related = (samples_name, "bearing.ball_count")
+    if size.samples < 1:
+        shortest = f"{1.0 / samples_per_revolution:.3g}"
+        return [
+            Problem(
+                revolutions_name,
+                f"{given}: the run would end before its first output sample; give at least "
+                f"{shortest} revolutions (one sample), and several revolutions for the "
+                "trajectory metrics",
+                related,
+            )
+        ]
+    if size.samples * ball_count > MAX_DYNAMIC_BALL_SAMPLES:
+        return [
+            Problem(
+                revolutions_name,
+                f"{given}: {size.samples} samples of {ball_count} balls exceed the "
+                f"{MAX_DYNAMIC_BALL_SAMPLES:,} ball-samples a run can keep in memory (about 3 GB); "
+                "give fewer revolutions or samples per revolution, or split the run",
+                related,
+            )
+        ]
+    return []
 
 
 def dynamic_problems(case) -> list[Problem]:
     """Why the dynamic model cannot run the valid ``case`` (empty when it can).
 
     The dynamic model integrates the motion over shaft revolutions of the inner ring relative to
-    the outer ring, so the rings must turn relative to each other; and it keeps every output sample
-    of every ball in memory, at most :data:`MAX_DYNAMIC_BALL_SAMPLES`. The quasi-static model needs
-    neither rule: it solves a bearing at rest too, and stores one sample.
+    the outer ring, so the rings must turn relative to each other; it stores at least one output
+    sample after the start, and keeps every output sample of every ball in memory, at most
+    :data:`MAX_DYNAMIC_BALL_SAMPLES` (:func:`run_length_problems`). The quasi-static model needs
+    none of these rules: it solves a bearing at rest too, and stores one sample.
     """
     op = case.operating
-    found: list[Problem] = []
     sim = case.simulation
-    samples = round(sim.shaft_revolutions * sim.samples_per_revolution)
-    if samples * case.bearing.ball_count > MAX_DYNAMIC_BALL_SAMPLES:
-        found.append(
-            Problem(
-                "simulation.shaft_revolutions",
-                f"simulation.shaft_revolutions = {format_number(sim.shaft_revolutions)} at "
-                f"simulation.samples_per_revolution = {sim.samples_per_revolution}: {samples} "
-                f"samples of {case.bearing.ball_count} balls exceed the "
-                f"{MAX_DYNAMIC_BALL_SAMPLES:,} ball-samples a run can keep in memory (about 3 GB); "
-                "give fewer revolutions or samples per revolution, or split the run",
-                ("simulation.samples_per_revolution", "bearing.ball_count"),
-            )
-        )
+    found = run_length_problems(
+        sim.shaft_revolutions, sim.samples_per_revolution, case.bearing.ball_count
+    )
     if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
         speed = format_number(op.inner_ring_speed_rpm)
         found.append(
@@ -763,4 +821,13 @@ def dynamic_problems(case) -> list[Problem]:
     return found
 
 
-__all__ = ["CaseValues", "check_value", "dynamic_problems", "show", "validate"]
+__all__ = [
+    "CaseValues",
+    "RunSize",
+    "check_value",
+    "dynamic_problems",
+    "dynamic_run_size",
+    "run_length_problems",
+    "show",
+    "validate",
+]

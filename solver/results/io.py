@@ -3,6 +3,7 @@ CSV; every file is written atomically."""
 
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 from collections.abc import Callable
@@ -19,8 +20,9 @@ def save_dataset(ds: xr.Dataset, path) -> Path:
     """Write ``ds`` to ``path`` atomically: a temporary file in the same directory, then os.replace.
 
     The temporary file is removed if writing fails; an existing file at ``path`` is left untouched
-    then. String variables (e.g. ``race_control``) are stored as NetCDF variable-length strings.
-    Returns the path written.
+    then, and :class:`solver.errors.ResultWriteError` names ``path`` and the reason (a missing or
+    read-only folder, a full disk, a file-size limit). String variables (e.g. ``race_control``)
+    are stored as NetCDF variable-length strings. Returns the path written.
     """
     return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
 
@@ -68,23 +70,53 @@ def save_csv(ds: xr.Dataset, path) -> Path:
 
 def atomic_write(path, write: Callable[[str], object]) -> Path:
     """Call ``write(temporary_path)`` for a temporary file next to ``path``, then move it onto
-    ``path``. On any failure the temporary file is removed and ``path`` is left as it was. The
-    file gets the permissions the umask gives a new file. Returns ``Path(path)``."""
+    ``path``. On any failure, an interruption (KeyboardInterrupt, SystemExit) included, the
+    temporary file is removed and ``path`` is left as it was. The file gets the permissions the
+    umask gives a new file. Returns ``Path(path)``.
+
+    A failure to write (OSError, or the RuntimeError netCDF4 raises for a full disk) is raised as
+    :class:`solver.errors.ResultWriteError` naming ``path``; an existing ``path`` that is not a
+    regular file (a folder, a device such as /dev/null) is refused the same way, never replaced.
+    """
+    from solver.errors import ResultWriteError
+
     path = Path(path)
     directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
+    if path.is_dir():
+        raise ResultWriteError(path, "it is a folder; give a file name")
+    if path.exists() and not path.is_file():
+        raise ResultWriteError(path, "it exists and is not a regular file")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
+    except OSError as error:
+        raise ResultWriteError(path, _reason(error)) from error
     os.close(fd)
     try:
         write(tmp)
         os.chmod(tmp, 0o666 & ~_current_umask())  # mkstemp made it private (0600)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as error:
         try:
             os.remove(tmp)
         except FileNotFoundError:
             pass
+        if isinstance(error, OSError | RuntimeError) and not isinstance(error, ResultWriteError):
+            raise ResultWriteError(path, _reason(error)) from error
         raise
     return path
+
+
+def _reason(error: BaseException) -> str:
+    """Why a write failed, in words: the OS's reason, or netCDF4's message with a hint."""
+    if isinstance(error, OSError) and error.strerror:
+        reason = error.strerror
+        if error.errno == errno.EFBIG:
+            reason += " (a file-size limit, e.g. ulimit -f)"
+        return reason
+    text = str(error) or type(error).__name__
+    if isinstance(error, RuntimeError):  # netCDF4 gives no errno: "NetCDF: HDF error" and such
+        text += " (is the disk full or the folder read-only?)"
+    return text
 
 
 def _current_umask() -> int:

@@ -1,9 +1,10 @@
 """QuasiStaticSolution + case → xarray.Dataset following results-schema.md.
 
 Hertz results (ellipse, peak pressure) come from :mod:`solver.physics.hertz_fast` (the same
-load-deflection law the model was solved with). Under the rolling assumptions of the quasi-static
-model the sliding speed at the contact centre is zero (pure rolling is imposed there); the variable
-is kept so that both models share the schema.
+load-deflection law the model was solved with). The sliding speed at the contact centre is reported
+as zero (race control imposes pure rolling there; with the traction balance the centre slip is a
+small fraction of the rolling speed that is not stored); the variable is kept so that both models
+share the schema.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from solver.physics.hertz_fast import (
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
 
 from .dataset import build_result, case_text
+from .life import rating_life
 from .variables import VARIABLES
 
 MODEL = "quasistatic"
@@ -65,6 +67,7 @@ def solution_to_dataset(
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
     ``lubricant`` (a :class:`solver.inputs.LubricantInputs`, SI, or None) adds ``film_thickness``.
+    The rating lives (ISO 281, ISO/TS 16281: :mod:`solver.results.life`) are added.
     ``operating`` (SI operating point, see :func:`solver.results.dataset.describing_coordinates`)
     defaults to the one the solution was solved for; ``case`` (a Case or TOML text) is kept in
     ``attrs["case"]`` for provenance.
@@ -167,34 +170,52 @@ def solution_to_dataset(
     }
     if lubricant is not None:
         data["film_thickness"] = film
+    traction = getattr(sol, "ball_speeds", "race_control") == "traction"
     descriptions = {
         "sliding_speed": {
             "description": "; zero in the quasi-static model, which imposes pure rolling at the "
             "contact centres"
+            if not traction
+            else "; not computed by the quasi-static model with the traction balance (0)"
         }
     }
     if lubricant is not None:
         descriptions["film_thickness"] = {"description": "; 0 at open contacts"}
+    if traction:
+        kinematics = (
+            "Quasi-static model with the ball speeds from the traction balance: one cage speed "
+            "for all balls (the cage pocket forces sum to zero), each ball's spin from the "
+            "moment balance of the tractions integrated over both contact ellipses (the case's "
+            "traction curve) against its gyroscopic rate; the transverse tractions take the "
+            "gyroscopic moment in the force balances"
+        )
+    else:
+        kinematics = (
+            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control "
+            "per ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / "
+            "lambda_i = 0 under outer control, 1 / 1 under inner control), cage speed = mean "
+            "orbital speed"
+        )
     attrs = {
         "solver_iterations": int(sol.iterations),
         "solver_residual": float(sol.residual),
         "solver_force_scale_N": float(sol.force_scale),
         "race_control_note": sol.race_control_note or "race control settled (fixed point)",
         "model_notes": (
-            "Jones-Harris quasi-static model: pure rolling at both contact centres, race control "
-            "per ball (Jones criterion), gyroscopic moment taken by friction (lambda_o = 2 / "
-            "lambda_i = 0 under outer control, 1 / 1 under inner control), centrifugal force at "
-            "the ball's actual orbit radius, cage speed = mean orbital speed. Inner ring moments "
-            "are taken about its centre on the axis in the plane of the inner groove "
+            f"{kinematics}; centrifugal force at the ball's actual orbit radius. Inner ring "
+            "moments are taken about its centre on the axis in the plane of the inner groove "
             "curvature-centre circle."
         ),
     }
+    attrs["ball_speeds"] = "traction" if traction else "race_control"
+    if getattr(sol, "ball_speeds_note", ""):
+        attrs["ball_speeds_note"] = sol.ball_speeds_note
     if operating.misalignment_frame == "ring" and operating.tilting_moment is None:
         attrs["misalignment_note"] = (
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "
             "the ring-fixed tilt axis coincides with the given azimuth"
         )
-    return build_result(
+    ds = build_result(
         MODEL,
         {name: (VARIABLES[name].dims_for(MODEL), values) for name, values in data.items()},
         geometry,
@@ -203,3 +224,4 @@ def solution_to_dataset(
         attrs=attrs,
         variable_attrs=descriptions,
     )
+    return ds.assign(rating_life(ds).data_vars)

@@ -59,6 +59,7 @@ import numpy as np
 import xarray as xr
 
 from .dataset import ring_speeds
+from .life import LIFE_METRICS, rating_life
 from .variables import dimension_coordinate, variable
 
 AZIMUTH_BINS = 36
@@ -345,7 +346,8 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
             var_attrs["note"] = QUASISTATIC_THICKNESS_NOTE
         out[name] = (spec.dims, value, var_attrs)
     coords = {"race": dimension_coordinate("race"), "frame": dimension_coordinate("frame")}
-    return xr.Dataset(out, coords=coords, attrs=attrs)
+    metrics = xr.Dataset(out, coords=coords, attrs=attrs)
+    return metrics.assign(rating_life(ds, first).data_vars)
 
 
 def trajectory_summary(ds: xr.Dataset, skip_fraction: float = UNSETTLED_SKIP_FRACTION):
@@ -370,13 +372,22 @@ def trajectory_summary(ds: xr.Dataset, skip_fraction: float = UNSETTLED_SKIP_FRA
 
 
 def stored_summary(ds: xr.Dataset) -> xr.Dataset | None:
-    """The metrics stored in a result (a dynamic run writes them), or None when any is missing."""
+    """The metrics stored in a result (a dynamic run writes them), or None when any trajectory
+    metric is missing. Life metrics missing from a stored result (written before they existed)
+    are computed over its stored analysed window."""
     names = TRACK_METRICS + (WINDOW_METRICS if "time" in ds.dims else ())
     if not all(name in ds for name in names):
         return None
-    out = ds[list(names)]
+    stored_life = all(name in ds for name in LIFE_METRICS)
+    out = ds[list(names) + (list(LIFE_METRICS) if stored_life else [])]
     out = out.drop_vars([c for c in out.coords if c not in ("race", "frame", *out.dims)])
     out.attrs = {k: ds.attrs[k] for k in ("analysed_window",) if k in ds.attrs}
+    if not stored_life:
+        first = 0
+        if "time" in ds.dims:
+            start = float(ds["analysis_start_time"])
+            first = int(np.searchsorted(np.asarray(ds["time"].values, float), start))
+        out = out.assign(rating_life(ds, min(first, ds.sizes.get("time", 1) - 1)).data_vars)
     return out
 
 
@@ -390,7 +401,8 @@ def headline(metrics: xr.Dataset) -> dict:
     """Each race's metrics in its own ring's frame (plain floats, SI units and degree):
     ``{race: {"excursion_deg", "excursion_m", "band_thickness_deg", "band_thickness_m",
     "ellipse_semi_major_mean_m", "band_width_deg"}}`` plus ``settled`` / ``settling_time_s`` /
-    ``analysis_start_time_s`` for a dynamic result (for one element: no extra dimensions)."""
+    ``analysis_start_time_s`` for a dynamic result, and ``life`` (:func:`life_headline`) (for one
+    element: no extra dimensions)."""
     out = {}
     for race in RACES:
         own = {"race": race, "frame": f"{race}_ring"}
@@ -402,10 +414,34 @@ def headline(metrics: xr.Dataset) -> dict:
             "ellipse_semi_major_mean_m": float(metrics["ellipse_semi_major_mean"].sel(race=race)),
             "band_width_deg": float(metrics["trajectory_band_width"].sel(race=race)),
         }
+    out["life"] = life_headline(metrics)
     if "settled" in metrics:
         out["settled"] = bool(int(metrics["settled"]))
         out["settling_time_s"] = float(metrics["settling_time"])
         out["analysis_start_time_s"] = float(metrics["analysis_start_time"])
+    return out
+
+
+def life_headline(metrics: xr.Dataset) -> dict:
+    """The rating lives of a summary as plain floats: ``{"L10_million_revolutions",
+    "L10_hours", "L10r_million_revolutions", "L10r_hours", "basic_load_rating_N",
+    "equivalent_load_N"}`` (NaN where not available, inf for an unloaded or non-rotating
+    bearing) and ``notes`` (the life variables' notes, without repeats)."""
+    hour = 3600.0
+    out = {
+        "L10_million_revolutions": float(metrics["basic_rating_life"]) / 1e6,
+        "L10_hours": float(metrics["basic_rating_life_time"]) / hour,
+        "L10r_million_revolutions": float(metrics["reference_rating_life"]) / 1e6,
+        "L10r_hours": float(metrics["reference_rating_life_time"]) / hour,
+        "basic_load_rating_N": float(metrics["basic_load_rating"]),
+        "equivalent_load_N": float(metrics["equivalent_load"]),
+    }
+    notes = []
+    for name in LIFE_METRICS:
+        note = metrics[name].attrs.get("note")
+        if note and note not in notes and name != "raceway_equivalent_load":
+            notes.append(note)
+    out["notes"] = notes
     return out
 
 
@@ -419,6 +455,7 @@ __all__ = [
     "Settling",
     "analysis_start",
     "headline",
+    "life_headline",
     "settling",
     "stored_summary",
     "summary",

@@ -200,7 +200,12 @@ VARIABLES: dict[str, Variable] = {
         _QS,
     ),
     "race_control": Variable(
-        _B, "1", "controlling race", "'inner' or 'outer' (Jones criterion, decided per ball)", _QS
+        _B,
+        "1",
+        "controlling race",
+        "'inner' or 'outer' (Jones criterion, decided per ball), or 'traction' when the ball "
+        "speeds come from the traction balance ([simulation] quasistatic_ball_speeds)",
+        _QS,
     ),
     "ball_orientation": Variable(
         (*_B, "quaternion"),
@@ -336,6 +341,80 @@ VARIABLES: dict[str, Variable] = {
         "metrics then cover the last part of an unsettled run; result_warnings says so)",
         _DYN,
         False,
+    ),
+    # ---- rating life (solver.results.life; stored in both models' results) --------------------
+    "basic_load_rating": Variable(
+        (),
+        "N",
+        "basic dynamic load rating C_r (ISO 281)",
+        "ISO 281 basic dynamic radial load rating of the bearing from its ball count, ball and "
+        "pitch diameters and free contact angle (b_m = 1.3, f_c from Table 1)",
+        time_dependent=False,
+    ),
+    "equivalent_load": Variable(
+        (),
+        "N",
+        "dynamic equivalent load P_r (ISO 281)",
+        "ISO 281 dynamic equivalent radial load X F_r + Y F_a of the applied axial and radial "
+        "loads (Table 3, single-row angular contact, at the free contact angle)",
+        time_dependent=False,
+    ),
+    "basic_rating_life": Variable(
+        (),
+        "1",
+        "basic rating life L10 (ISO 281)",
+        "ISO 281 basic rating life (C_r / P_r)^3, in revolutions of one ring relative to the "
+        "other (90 % reliability, no life modification factor)",
+        time_dependent=False,
+    ),
+    "basic_rating_life_time": Variable(
+        (),
+        "s",
+        "basic rating life L10 as time (ISO 281)",
+        "basic_rating_life at the result's relative ring speed; inf when the rings do not turn "
+        "relative to each other",
+        time_dependent=False,
+    ),
+    "raceway_load_rating": Variable(
+        ("race",),
+        "N",
+        "raceway dynamic load rating Q_c (ISO/TS 16281)",
+        "basic dynamic load rating of one ball-raceway contact at the mean contact angle of the "
+        "loaded contacts (each contact's own angle enters the life); NaN when none is loaded",
+        time_dependent=False,
+    ),
+    "raceway_equivalent_load": Variable(
+        ("race",),
+        "N",
+        "raceway equivalent rolling-element load Q_e (ISO/TS 16281)",
+        "cubic mean (ring rotating relative to the load) or 10/3 mean (ring stationary relative to "
+        "it) of the contact loads over every ball (and sample of a dynamic run's analysed window)",
+        time_dependent=False,
+    ),
+    "raceway_rating_life": Variable(
+        ("race",),
+        "1",
+        "raceway rating life (ISO/TS 16281)",
+        "life of each raceway, (Q_c / Q_e)^3 with each contact's own Q_c, in revolutions of one "
+        "ring relative to the other; inf when no contact of the race is loaded",
+        time_dependent=False,
+    ),
+    "reference_rating_life": Variable(
+        (),
+        "1",
+        "reference rating life L10r (ISO/TS 16281)",
+        "ISO/TS 16281 basic reference rating life from the computed contact loads: (L_inner^(-e) "
+        "+ L_outer^(-e))^(-1/e), e = 10/9, in revolutions of one ring relative to the other; "
+        "clearance, misalignment and the load distribution enter through the loads",
+        time_dependent=False,
+    ),
+    "reference_rating_life_time": Variable(
+        (),
+        "s",
+        "reference rating life L10r as time (ISO/TS 16281)",
+        "reference_rating_life at the result's relative ring speed; inf when the rings do not "
+        "turn relative to each other",
+        time_dependent=False,
     ),
 }
 

@@ -10,7 +10,7 @@ import uuid
 import numpy as np
 import pytest
 
-from app import state as state_module
+from app import runner as runner_module
 from app.runner import QUASISTATIC_JOB
 from app.state import DEFAULT_CASE, RacetraceApp
 
@@ -62,7 +62,7 @@ def test_opens_on_the_default_case_solved(app):
     assert s.status == "preview done"
     assert s.case_valid and not s.run_disabled
     assert s.frame_max > 10
-    assert app.dataset.attrs["model"] == "quasistatic"
+    assert app.result.dataset.attrs["model"] == "quasistatic"
     assert len(s.chart_contact_angle["data"]) >= 2
     assert len(s.chart_raceway_map["data"]) == 2
     assert _length(s.chart_raceway_map["data"][0]["x"]) > 0
@@ -86,63 +86,63 @@ def test_invalid_field_shows_message_and_disables_run(app):
     _set(app, fv_inner_groove_radius_ratio="0.56", fv_axial_load_N="800")
     assert s.fe_inner_groove_radius_ratio == "" and s.fe_axial_load_N == ""
     assert s.case_valid and not s.run_disabled
-    assert app.case.operating.axial_load_N == 800.0
-    assert app.case.bearing.inner_groove_radius_ratio == 0.56
+    assert app.form.case.operating.axial_load_N == 800.0
+    assert app.form.case.bearing.inner_groove_radius_ratio == 0.56
 
 
 def test_preview_follows_a_valid_edit(app):
-    before = float(app.dataset["contact_angle"].sel(race="inner").mean())
+    before = float(app.result.dataset["contact_angle"].sel(race="inner").mean())
     load = float(app.state.fv_axial_load_N or 0)
     _set(app, fv_axial_load_N=str(3 * load + 500))
-    app.preview_now()  # the server does this after a short debounce
-    after = float(app.dataset["contact_angle"].sel(race="inner").mean())
+    app.form.preview_now()  # the server does this after a short debounce
+    after = float(app.result.dataset["contact_angle"].sel(race="inner").mean())
     assert after > before  # more thrust, larger contact angle
 
 
 def test_time_controls(app):
     s = app.state
-    app.step(1)
+    app.result.step(1)
     assert s.frame == 1
-    app.step(-2)
+    app.result.step(-2)
     assert s.frame == s.frame_max
     _set(app, frame=5)
     assert s.frame_time.strip().startswith("t =")
-    t5 = app.source.times[5] * 1e3
+    t5 = app.result.source.times[5] * 1e3
     assert f"{t5:8.3f}" in s.frame_time
 
 
 def test_scene_follows_frames_and_options(tmp_path):
     a = RacetraceApp(_server(), runs_dir=tmp_path, render=True, window_size=(200, 150))
     view = CountingView()
-    a.view = view
+    a.result.view = view
     a.start(DEFAULT_CASE, play=False)
     try:
         _set(a, frame=7)
-        assert a.scene.frame_index == 7
+        assert a.result.scene.frame_index == 7
         assert view.renders >= 1
         _set(a, show_cage=False)
-        assert not a.scene._actors["cage"][0].visibility
+        assert not a.result.scene._actors["cage"][0].visibility
         _set(a, exaggeration=8)
-        assert a.scene.options.exaggeration == 8
+        assert a.result.scene.options.exaggeration == 8
         # the view faces the load zone: a radial load towards +z (90 deg) turns it there
-        assert a.scene.options.view_azimuth == pytest.approx(0.0)
+        assert a.result.scene.options.view_azimuth == pytest.approx(0.0)
         _set(a, fv_radial_load_angle_deg="90")
-        a.preview_now()
-        assert a.scene.options.view_azimuth == pytest.approx(math.pi / 2)
-        lo, hi = a.scene.options.outer_cutaway
+        a.form.preview_now()
+        assert a.result.scene.options.view_azimuth == pytest.approx(math.pi / 2)
+        lo, hi = a.result.scene.options.outer_cutaway
         assert (lo + hi) / 2 == pytest.approx(math.pi / 2)
         # another bearing and back: the pressure colour bar is drawn each time
         for case_name in ("209-deep-groove", DEFAULT_CASE):
             _set(a, case_name=case_name)
-            props = a.plotter.renderer.GetViewProps()
+            props = a.result.plotter.renderer.GetViewProps()
             props = [props.GetItemAsObject(i) for i in range(props.GetNumberOfItems())]
             bars = [x for x in props if x.IsA("vtkScalarBarActor")]
             assert len(bars) == 1 and bars[0].GetVisibility(), case_name
         # a resized view is framed again before the next frame is sent
-        a.plotter.window_size = (150, 150)
-        assert not a.scene.framed_for_window()
+        a.result.plotter.window_size = (150, 150)
+        assert not a.result.scene.framed_for_window()
         _set(a, frame=3)
-        assert a.scene.framed_for_window()
+        assert a.result.scene.framed_for_window()
     finally:
         a.shutdown()
 
@@ -150,7 +150,7 @@ def test_scene_follows_frames_and_options(tmp_path):
 def _wait_run(app, timeout=180.0):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
-        if app.poll_runner():
+        if app.runs.poll_runner():
             return
         time.sleep(0.1)
     raise AssertionError(f"run did not finish in {timeout} s; status {app.state.status!r}")
@@ -158,8 +158,8 @@ def _wait_run(app, timeout=180.0):
 
 def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
     # a fast run: the quasi-static job in place of the dynamic one
-    monkeypatch.setattr(state_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
-    app.run()
+    monkeypatch.setattr(runner_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
+    app.runs.run()
     assert app.state.busy and app.state.run_disabled
     assert app.state.status.startswith("running")
     _wait_run(app)
@@ -172,7 +172,7 @@ def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
     again.start(DEFAULT_CASE, play=False)
     _set(again, run_id=app.state.runs[0]["value"])
     assert again.state.result_label == app.state.runs[0]["title"]
-    assert again.dataset.attrs["case"] == app.dataset.attrs["case"]
+    assert again.result.dataset.attrs["case"] == app.result.dataset.attrs["case"]
     # compare the preview with the saved run side by side
     _set(again, compare_id=app.state.runs[0]["value"])
     assert len(again.state.chart_compare_runs["data"]) == 4
@@ -182,22 +182,22 @@ def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
 def test_run_refused_while_invalid(app):
     _set(app, fv_ball_count="0")
     assert app.state.run_disabled
-    app.run()
-    assert not app.runner.busy and not app.state.busy
+    app.runs.run()
+    assert not app.runs.runner.busy and not app.state.busy
 
 
 def test_exports_from_the_app(app):
-    path = app.export("csv")
+    path = app.exports.export("csv")
     assert path.is_file() and path.parent == app.exports_dir
     assert (
         app.state.export_href.startswith("racetrace-exports/")
         and app.state.export_name == path.name
     )
-    assert app.export("netcdf").suffix == ".nc"
-    assert app.export("png") is None  # render=False: no 3-D view
+    assert app.exports.export("netcdf").suffix == ".nc"
+    assert app.exports.export("png") is None  # render=False: no 3-D view
     assert "not available" in app.state.export_message
     with pytest.raises(ValueError, match="netcdf, csv"):
-        app.export("xls")
+        app.exports.export("xls")
 
 
 def test_uploaded_case_fills_the_form(app, fixture_model):
@@ -253,8 +253,8 @@ def test_a_case_the_dynamic_model_cannot_run_disables_run_with_the_reason(app):
     assert s.case_valid and s.run_disabled  # valid: the quasi-static preview still works
     assert s.run_reason.startswith("dynamic model: ")
     assert "turn relative to each other" in s.run_reason
-    app.run()
-    assert not app.runner.busy and not app.state.busy
+    app.runs.run()
+    assert not app.runs.runner.busy and not app.state.busy
     _set(app, fv_outer_ring_speed_rpm="0")
     assert s.case_valid and not s.run_disabled and s.run_reason == ""
 
@@ -264,7 +264,7 @@ def test_reset_undoes_the_edits(app):
     original = s.fv_ball_diameter_mm
     _set(app, fv_ball_diameter_mm="", fv_axial_load_N="650")
     assert not s.case_valid
-    app.reset_case()
+    app.form.reset_case()
     assert s.fv_ball_diameter_mm == original and s.fv_axial_load_N in ("500", "500.0")
     assert s.case_valid
 
@@ -272,15 +272,15 @@ def test_reset_undoes_the_edits(app):
 def test_a_reopened_run_stays_on_show(app):
     s = app.state
     _set(app, fv_radial_load_N="0")
-    app.preview_now()
-    saved = app.store.save(app.dataset, app.case.to_toml(), "pure axial")
+    app.form.preview_now()
+    saved = app.store.save(app.result.dataset, app.form.case.to_toml(), "pure axial")
     _set(app, fv_radial_load_N="300")  # a different case on show
-    app.preview_now()
-    app._refresh_runs()
+    app.form.preview_now()
+    app.runs.refresh()
     _set(app, run_id=saved.run_id)
     assert s.result_label == saved.label and s.fv_radial_load_N in ("0", "0.0")
     # the form's change callbacks arrive after the run is on show: no preview may replace it
-    app._on_field()
+    app.form._on_field()
     assert s.result_label == saved.label
     assert s.status == "saved run opened: done"
     # an edit does replace it, and the runs list then names no run
@@ -291,23 +291,23 @@ def test_a_reopened_run_stays_on_show(app):
 def test_run_title_says_what_was_run(app):
     _set(app, fv_radial_load_N="0", fv_axial_load_N="650", fv_shaft_revolutions="0.2")
     _set(app, playing=True)
-    app.run()
+    app.runs.run()
     try:
-        title = app._run_info["title"]
+        title = app.runs.run_info["title"]
         assert "Fa 650 N" in title and "Fr" not in title and "0.2 rev" in title
         assert app.state.playing is False  # the animation pauses while the solver runs
     finally:
-        app.cancel()
-        app.runner.shutdown()
+        app.runs.cancel()
+        app.runs.runner.shutdown()
 
 
 def test_export_in_the_background(app):
     import asyncio
 
     async def export_csv():
-        app.request_export("csv")
-        assert app._export_task is not None
-        await app._export_task
+        app.exports.request_export("csv")
+        assert app.exports.task is not None
+        await app.exports.task
 
     asyncio.run(export_csv())
     assert app.state.exporting is False
@@ -318,26 +318,26 @@ def test_export_in_the_background(app):
 def test_dynamic_run_reports_progress_and_shows_its_result(app):
     _set(app, fv_shaft_revolutions="0.3", open_panels=["comparison"])
     assert app.state.case_valid
-    app.run()
+    app.runs.run()
     progress = []
     end = time.monotonic() + 300
-    while not app.poll_runner():
+    while not app.runs.poll_runner():
         progress.append(app.state.progress)
         assert time.monotonic() < end, app.state.status
         time.sleep(0.05)
     assert app.state.status == "done", app.state.status
     assert app.state.progress == 100
-    assert "time" in app.dataset.dims and app.source.model == "dynamic"
-    omega = app.case.operating.inner_ring_speed_rpm * 2 * np.pi / 60
-    assert float(app.dataset.time[-1]) == pytest.approx(0.3 * 2 * np.pi / omega, rel=0.02)
+    assert "time" in app.result.dataset.dims and app.result.source.model == "dynamic"
+    omega = app.form.case.operating.inner_ring_speed_rpm * 2 * np.pi / 60
+    assert float(app.result.dataset.time[-1]) == pytest.approx(0.3 * 2 * np.pi / omega, rel=0.02)
     x = app.state.chart_contact_angle["data"][0]["x"]  # plotly JSON: base64 typed array
     # "all balls": every ball's samples on one line per race, a gap after each ball
-    assert _length(x) == app.source.ball_count * (app.source.n_frames + 1)
+    assert _length(x) == app.result.source.ball_count * (app.result.source.n_frames + 1)
     # quasi-static versus dynamic: both models of the same case
     names = [t["name"] for t in app.state.chart_comparison["data"]]
     assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
-    assert app.quasistatic.attrs["case"] == app.dataset.attrs["case"]
-    assert app.state.frame_max == app.dataset.sizes["time"] - 1
+    assert app.result.quasistatic.attrs["case"] == app.result.dataset.attrs["case"]
+    assert app.state.frame_max == app.result.dataset.sizes["time"] - 1
 
 
 def test_panel_charts_are_computed_only_while_their_panel_is_open(app):
@@ -374,12 +374,12 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     assert float(radial) > 0  # the default case is a combined load
     # save a pure-axial run of the same bearing, then go back to the combined load (run A)
     _set(app, fv_radial_load_N="0")
-    app.preview_now()
-    axial = app.store.save(app.dataset, app.case.to_toml(), "pure axial")
+    app.form.preview_now()
+    axial = app.store.save(app.result.dataset, app.form.case.to_toml(), "pure axial")
     _set(app, fv_radial_load_N=radial)
-    app.preview_now()
-    combined = app.store.save(app.dataset, app.case.to_toml(), "combined load")
-    app._refresh_runs()
+    app.form.preview_now()
+    combined = app.store.save(app.result.dataset, app.form.case.to_toml(), "combined load")
+    app.runs.refresh()
 
     _set(app, compare_id=axial.run_id)
     assert s.compare_message == ""
@@ -388,7 +388,7 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     names = ["A inner", "A outer", "B inner", "B outer"]
     for key in ("chart_compare_angle", "chart_compare_load"):
         assert [t["name"] for t in s[key]["data"]] == names
-    balls = app.source.ball_count
+    balls = app.result.source.ball_count
     # pure axial load: every ball carries the same load; the combined load has a load zone
     axial_load = _decode(_trace(s.chart_compare_load, "B inner")["y"])
     combined_load = _decode(_trace(s.chart_compare_load, "A inner")["y"])

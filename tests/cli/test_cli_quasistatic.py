@@ -50,6 +50,14 @@ def test_table_for_a_catalogue_case():
         if line.strip().endswith(("outer", "inner")) and line.strip()[0].isdigit()
     ]
     assert len(rows) == 18
+    # rating lives: ISO 281 hand-worked in tests/unit/physics/test_life.py (10 190 million
+    # revolutions, 8 492 h at 20 000 rpm, C_r 17 411 N, P_r 803 N)
+    assert (
+        "L10  (ISO 281, applied loads):       10190 million revolutions = 8492 h "
+        "(C_r 17411 N, P_r 803 N)" in out
+    )
+    assert "L10r (ISO/TS 16281, contact loads): " in out
+    assert "note: ISO 281 and ISO/TS 16281 rate rings and balls of bearing steel" in out
 
 
 def test_json_summary_and_netcdf_output(tmp_path):
@@ -70,6 +78,12 @@ def test_json_summary_and_netcdf_output(tmp_path):
     assert max(b["contact_load_N"]["inner"] for b in summary["balls"]) == pytest.approx(
         float(ds.contact_load.values[:, 0].max())
     )
+    life = summary["life"]
+    assert life["L10r_million_revolutions"] == pytest.approx(float(ds.reference_rating_life) / 1e6)
+    # hours = revolutions / (10 000 rev/min * 60 min/h)
+    assert life["L10_hours"] == pytest.approx(life["L10_million_revolutions"] * 1e6 / 6e5)
+    assert life["L10r_hours"] == pytest.approx(life["L10r_million_revolutions"] * 1e6 / 6e5)
+    assert life["notes"] == []  # steel balls and rings, 40 deg: inside both standards
 
 
 def test_invalid_case_exits_2_without_traceback(tmp_path):

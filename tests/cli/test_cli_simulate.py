@@ -1,4 +1,5 @@
-"""``racetrace simulate``: case warnings and result warnings on stderr, exit code unchanged."""
+"""``racetrace simulate``: case warnings and result warnings on stderr, exit code unchanged; the
+rating lives on stdout."""
 
 import subprocess
 import sys
@@ -44,3 +45,6 @@ def test_simulate_prints_case_and_result_warnings(tmp_path):
             for line in lines
         ), out.stderr
     assert "Traceback" not in out.stderr
+    life = [line for line in out.stdout.splitlines() if line.startswith("  L10")]
+    assert len(life) == 2, out.stdout
+    assert "million revolutions" in life[1] and "over the analysed window" in life[1]

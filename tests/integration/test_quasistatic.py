@@ -53,10 +53,17 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
     a_i, a_o = sol.contact_angle[:, 0], sol.contact_angle[:, 1]
     q_i, q_o = sol.contact_load[:, 0], sol.contact_load[:, 1]
     inner = sol.race_control == "inner"
+    traction = sol.race_control == "traction"
     lam_o = np.where(inner, 1.0, 2.0)
     lam_i = np.where(inner, 1.0, 0.0)
     m_g = sol.gyroscopic_moment
     f_c = sol.centrifugal_force
+    # friction taking the gyroscopic moment: lambda M_g / D under race control (checked against the
+    # reported values), the integrated tractions of the traction balance as reported
+    t_i = np.where(traction, sol.race_traction[:, 0], lam_i * m_g / D)
+    t_o = np.where(traction, sol.race_traction[:, 1], lam_o * m_g / D)
+    np.testing.assert_allclose(sol.race_traction[:, 0], t_i, rtol=1e-12, atol=0)
+    np.testing.assert_allclose(sol.race_traction[:, 1], t_o, rtol=1e-12, atol=0)
     assert np.all(np.isfinite(sol.contact_load)) and np.all(np.isfinite(sol.contact_angle))
     # 1. geometry: deflections and angles from the ball centres and the ring displacement
     x_o, r_o = geometry.outer_curvature_center_axial, geometry.outer_curvature_center_radius
@@ -96,33 +103,31 @@ def check_equilibrium(geometry, op, sol, rel=1e-8):
             expected = stiffness(geometry, sol.contact_angle[j, k], race) * delta**1.5
             assert sol.contact_load[j, k] == pytest.approx(expected, rel=1e-8, abs=1e-12)
     # 3. ball force balance (physics.md §2.5.4)
-    fx = (
-        -q_o * np.sin(a_o)
-        - lam_o * m_g / D * np.cos(a_o)
-        + q_i * np.sin(a_i)
-        + lam_i * m_g / D * np.cos(a_i)
-    )
-    fr = (
-        -q_o * np.cos(a_o)
-        + lam_o * m_g / D * np.sin(a_o)
-        + q_i * np.cos(a_i)
-        - lam_i * m_g / D * np.sin(a_i)
-        + f_c
-    )
+    fx = -q_o * np.sin(a_o) - t_o * np.cos(a_o) + q_i * np.sin(a_i) + t_i * np.cos(a_i)
+    fr = -q_o * np.cos(a_o) + t_o * np.sin(a_o) + q_i * np.cos(a_i) - t_i * np.sin(a_i) + f_c
     # relative to the ball's own largest force; a ball carrying less than 1e-4 of the bearing's
     # force scale (e.g. an unloaded ball held only by a minute centrifugal force) is held to 1e-12
     # of it
     scale = np.maximum.reduce(
-        [q_i, q_o, np.abs(f_c), 2 * np.abs(m_g) / D, np.full(z, 1e-4 * sol.force_scale)]
+        [
+            q_i,
+            q_o,
+            np.abs(f_c),
+            2 * np.abs(m_g) / D,
+            np.abs(t_i),
+            np.abs(t_o),
+            np.full(z, 1e-4 * sol.force_scale),
+        ]
     )
     assert np.max(np.hypot(fx, fr) / scale) < rel
-    # ball moment balance: friction moment about the ball centre = M_g (lambda_o + lambda_i = 2)
+    # ball moment balance: friction moment about the ball centre = M_g (lambda_o + lambda_i = 2);
+    # the traction balance's moments are checked in tests/unit/quasistatic/test_traction_balance.py
     np.testing.assert_allclose(0.5 * (lam_o + lam_i) * m_g, m_g, rtol=0)
     # 4. inner ring: forces the balls exert, moments about the ring centre (groove plane)
-    ring_x = -(q_i * np.sin(a_i) + lam_i * m_g / D * np.cos(a_i))
-    ring_r = -(q_i * np.cos(a_i) - lam_i * m_g / D * np.sin(a_i))
+    ring_x = -(q_i * np.sin(a_i) + t_i * np.cos(a_i))
+    ring_r = -(q_i * np.cos(a_i) - t_i * np.sin(a_i))
     lever = geometry.inner_groove_radius + 0.5 * sol.contact_deflection[:, 0]
-    m_theta = -geometry.inner_curvature_center_radius * ring_x - lever * lam_i * m_g / D
+    m_theta = -geometry.inner_curvature_center_radius * ring_x - lever * t_i
     applied = op.applied_loads()
     total = np.array(
         [
@@ -442,7 +447,8 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
     alpha_o, alpha_i = math.radians(33.0), math.radians(45.0)
     x = (g_o + 8e-6) * np.array([math.sin(alpha_o), math.cos(alpha_o)])
     a = x + (g_i + 9e-6) * np.array([math.sin(alpha_i), math.cos(alpha_i)])
-    st = kernels.ball_state(x[0], x[1], a[0], a[1], inner_control, model)
+    control = kernels.race_control_rows([inner_control])[0]
+    st = kernels.ball_state(x[0], x[1], a[0], a[1], control, model)
     res = np.array(st[:2])
     q_i, q_o, a_i, a_o, beta, omega_c, omega_r, f_c = (
         st[5],

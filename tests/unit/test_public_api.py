@@ -32,3 +32,11 @@ def test_result_warnings_is_the_checks_function():
     from solver.results.checks import result_warnings
 
     assert solver.result_warnings is result_warnings
+
+
+def test_dir_lists_the_lazy_public_names():
+    import solver
+
+    listed = dir(solver)
+    for name in ("load_case", "parse_case", "solve_quasistatic", "simulate", "SimulationOptions"):
+        assert name in listed

@@ -21,6 +21,7 @@ from types import MappingProxyType
 import numpy as np
 
 from solver.case import dynamic_problems
+from solver.case.validate import run_length_problems
 from solver.catalogue import resolve_case
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
@@ -35,7 +36,7 @@ from .integrator import (
     STATUS_TOO_MANY_STEPS,
     advance,
 )
-from .options import SimulationOptions
+from .options import CASE_OVERRIDES, SimulationOptions
 from .output import build_dataset
 from .params import build_params, build_quadrature
 
@@ -171,6 +172,17 @@ def _inputs(case) -> Inputs:
     return to_inputs(case)
 
 
+def _length_names(options: SimulationOptions) -> tuple[str, str]:
+    """How the run length's two values are named in messages: the option when it was given,
+    else the case key."""
+    return tuple(
+        f"simulation option {name}"
+        if getattr(options, name) is not None
+        else CASE_OVERRIDES[name][1]
+        for name in ("shaft_revolutions", "samples_per_revolution")
+    )
+
+
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
     """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
 
@@ -181,7 +193,16 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     None = the case's ``[simulation]`` values and the default numerical knobs.
     """
     inputs = _inputs(case)
-    options = (options or SimulationOptions()).validated().resolved(inputs.simulation)
+    given = (options or SimulationOptions()).validated()
+    options = given.resolved(inputs.simulation)
+    problems = run_length_problems(
+        options.shaft_revolutions,
+        options.samples_per_revolution,
+        int(inputs.geometry.ball_count),
+        _length_names(given),
+    )
+    if problems:
+        raise CaseError(problems)
     op = inputs.operating
     speed = abs(op.inner_ring_speed - op.outer_ring_speed)
     if not speed > 0.0:  # a Case with equal ring speeds was refused above

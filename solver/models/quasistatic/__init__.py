@@ -17,8 +17,11 @@ ball centre positions (2 per ball, solved ball by ball) and the inner ring's 5 D
 theta_y, theta_z); an imposed misalignment fixes the tilt (the moment is an output), a given tilting
 moment frees it. Ball loads Q = K(alpha) delta^1.5 with the tabulated exact Hertz constant at the
 current contact angle; centrifugal force at the actual orbit radius; gyroscopic moment taken by race
-friction; race control decided per ball by the Jones criterion and iterated to a fixed point. At
-zero speed the model is the classic static load distribution.
+friction; race control decided per ball by the Jones criterion and iterated to a fixed point. With
+``[simulation] quasistatic_ball_speeds = "traction"`` the ball speeds come instead from the traction
+balance of every ball with one cage speed (:mod:`.traction_balance`, docs/quasistatic-traction.md),
+iterated with the ring solve to a fixed point. At zero speed the model is the classic static load
+distribution.
 
 Ball-fixed frame at t = 0 (ball latitude/longitude; the dynamic model uses the same one for its
 initial quaternion): z_b = cos(beta) e_x - sin(beta) e_r, y_b = e_theta,
@@ -65,6 +68,14 @@ def _film_lubricant(inputs: Inputs):
     return inputs.lubricant if inputs.lubricant.given else None
 
 
+def _traction_lubricant(inputs: Inputs):
+    """The lubricant whose traction curve sets the ball speeds when the case asks for the traction
+    balance (``[simulation] quasistatic_ball_speeds = "traction"``), else None (race control)."""
+    if inputs.simulation.quasistatic_ball_speeds == "traction":
+        return inputs.lubricant
+    return None
+
+
 def solve_quasistatic_state(
     case, initial: QuasiStaticSolution | None = None
 ) -> QuasiStaticSolution:
@@ -72,7 +83,9 @@ def solve_quasistatic_state(
     same bearing) is used as the starting point when given. Raises NoSolutionError (message: why,
     what to try) when no equilibrium is found."""
     inputs = _inputs(case)
-    return solve_operating_point(inputs.geometry, inputs.operating, initial)
+    return solve_operating_point(
+        inputs.geometry, inputs.operating, initial, _traction_lubricant(inputs)
+    )
 
 
 def solve_quasistatic(case):
@@ -80,7 +93,9 @@ def solve_quasistatic(case):
     from solver.results.quasistatic import solution_to_dataset
 
     inputs = _inputs(case)
-    solution = solve_operating_point(inputs.geometry, inputs.operating)
+    solution = solve_operating_point(
+        inputs.geometry, inputs.operating, traction_lubricant=_traction_lubricant(inputs)
+    )
     return solution_to_dataset(solution, inputs.geometry, inputs.case_text, _film_lubricant(inputs))
 
 
@@ -119,7 +134,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     for rpm in speeds:
         op = dataclasses.replace(inputs.operating, inner_ring_speed=rpm_to_rad_s(rpm))
         try:
-            previous = solve_operating_point(geometry, op, previous)
+            previous = solve_operating_point(geometry, op, previous, _traction_lubricant(inputs))
         except NoSolutionError as error:
             raise NoSolutionError(f"speed sweep stopped at {rpm:g} rpm: {error}") from None
         datasets.append(solution_to_dataset(previous, geometry, text, lubricant, op))

@@ -109,10 +109,42 @@ def contact_stiffness(model, contact_angle, is_inner):
     return contact_stiffness_fast(sum_rho, f_rho, model.effective_modulus)
 
 
+# ---- per-ball kinematics record: one row of ``control`` (Z, CONTROL_SIZE) per ball ------------
+CONTROL_MODE = 0  # OUTER_CONTROL, INNER_CONTROL or TRACTION_BALANCE
+CONTROL_ORBITAL = 1  # TRACTION_BALANCE: orbital speed omega_c [rad/s]
+CONTROL_SPIN = 2  # TRACTION_BALANCE: spin speed omega_R relative to the cage [rad/s]
+CONTROL_ATTITUDE = 3  # TRACTION_BALANCE: attitude angle beta [rad]
+CONTROL_GYRO = 4  # TRACTION_BALANCE: gyroscopic moment M_g along e_theta [N m]
+CONTROL_TAU_INNER = 5  # TRACTION_BALANCE: traction on the ball at the inner contact [N], along
+#                        (cos alpha_i e_x - sin alpha_i e_r)
+CONTROL_TAU_OUTER = 6  # TRACTION_BALANCE: the same at the outer contact [N], along
+#                        (-cos alpha_o e_x + sin alpha_o e_r)
+CONTROL_YAW = 7  # TRACTION_BALANCE: e_theta component of the ball's spin relative to the cage
+CONTROL_SIZE = 8
+OUTER_CONTROL = 0
+INNER_CONTROL = 1
+TRACTION_BALANCE = 2
+
+
+def race_control_rows(inner_control) -> np.ndarray:
+    """``control`` array (Z, CONTROL_SIZE) of a race-control decision (bool per ball: True =
+    inner control)."""
+    inner = np.asarray(inner_control, dtype=np.bool_)
+    out = np.zeros((inner.size, CONTROL_SIZE))
+    out[:, CONTROL_MODE] = np.where(inner, INNER_CONTROL, OUTER_CONTROL)
+    return out
+
+
 @njit(cache=True)
-def ball_state(x1, x2, a1, a2, inner_control, model):
+def ball_state(x1, x2, a1, a2, control, model):
     """Everything about one ball whose centre is (x1, x2) and inner groove centre (a1, a2), both
     relative to the outer groove centre in the ball's meridian plane [m].
+
+    ``control`` (CONTROL_SIZE) says how the ball's speeds and race friction are found: from race
+    control (OUTER_CONTROL / INNER_CONTROL: rolling kinematics, gyroscopic moment taken by friction
+    with the lambda split of the module docstring) or given (TRACTION_BALANCE: orbital and spin
+    speed, attitude, gyroscopic moment and the transverse tractions of both contacts from the
+    traction balance, :mod:`.traction_balance`).
 
     Returns a tuple:
     (res_x, res_r,            net force on the ball [N] (zero in equilibrium), axial and radial
@@ -146,31 +178,41 @@ def ball_state(x1, x2, a1, a2, inner_control, model):
     # wide open inner contact (possible in trial iterates far from equilibrium) can point anywhere,
     # while rolling kinematics need both contacts on opposite sides of the ball. Continuous, and
     # inactive for any real contact.
-    kin_alpha_i = min(max(alpha_i, alpha_o - 1.0), alpha_o + 1.0)
-    beta = attitude_angle(kin_alpha_i, alpha_o, model.gamma_prime, inner_control)
-    omega_c, omega_r = orbital_and_spin_speed(
-        kin_alpha_i,
-        alpha_o,
-        beta,
-        model.gamma_prime,
-        model.inner_ring_speed,
-        model.outer_ring_speed,
-    )
-    f_c = model.ball_mass * (model.outer_center_radius + x2) * omega_c * omega_c
-    m_g = gyroscopic_moment(model.ball_inertia, omega_r, omega_c, beta)
-    if inner_control:
-        lam_o = 1.0
-        lam_i = 1.0
+    mode = int(control[CONTROL_MODE])
+    if mode == TRACTION_BALANCE:
+        beta = control[CONTROL_ATTITUDE]
+        omega_c = control[CONTROL_ORBITAL]
+        omega_r = control[CONTROL_SPIN]
+        m_g = control[CONTROL_GYRO]
+        t_i = control[CONTROL_TAU_INNER]
+        t_o = control[CONTROL_TAU_OUTER]
     else:
-        lam_o = 2.0
-        lam_i = 0.0
+        inner_control = mode == INNER_CONTROL
+        kin_alpha_i = min(max(alpha_i, alpha_o - 1.0), alpha_o + 1.0)
+        beta = attitude_angle(kin_alpha_i, alpha_o, model.gamma_prime, inner_control)
+        omega_c, omega_r = orbital_and_spin_speed(
+            kin_alpha_i,
+            alpha_o,
+            beta,
+            model.gamma_prime,
+            model.inner_ring_speed,
+            model.outer_ring_speed,
+        )
+        m_g = gyroscopic_moment(model.ball_inertia, omega_r, omega_c, beta)
+        if inner_control:
+            lam_o = 1.0
+            lam_i = 1.0
+        else:
+            lam_o = 2.0
+            lam_i = 0.0
+        t_o = lam_o * m_g / D
+        t_i = lam_i * m_g / D
+    f_c = model.ball_mass * (model.outer_center_radius + x2) * omega_c * omega_c
 
     s_o = math.sin(alpha_o)
     c_o = math.cos(alpha_o)
     s_i = math.sin(alpha_i)
     c_i = math.cos(alpha_i)
-    t_o = lam_o * m_g / D
-    t_i = lam_i * m_g / D
     res_x = -q_o * s_o - t_o * c_o + q_i * s_i + t_i * c_i
     res_r = -q_o * c_o + t_o * s_o + q_i * c_i - t_i * s_i + f_c
 
@@ -211,8 +253,8 @@ def inner_center(q, psi, model):
 
 
 @njit(cache=True)
-def _residual_norm(x1, x2, a1, a2, inner_control, model):
-    st = ball_state(x1, x2, a1, a2, inner_control, model)
+def _residual_norm(x1, x2, a1, a2, control, model):
+    st = ball_state(x1, x2, a1, a2, control, model)
     return st[0], st[1]
 
 
@@ -233,12 +275,12 @@ def _fd_step(x1, x2, a1, a2, model):
 
 
 @njit(cache=True)
-def _ball_tolerance(x1, x2, a1, a2, inner_control, model, force_scale):
+def _ball_tolerance(x1, x2, a1, a2, control, model, force_scale):
     """Residual tolerance [N] of one ball: 1e-12 of its own largest force (contact loads,
     centrifugal force, gyroscopic friction), but not below what round-off of the positions allows
     (contact stiffness times a few ulp of the coordinates) nor 1e-16 of the bearing's force
     scale."""
-    st = ball_state(x1, x2, a1, a2, inner_control, model)
+    st = ball_state(x1, x2, a1, a2, control, model)
     own = max(max(st[5], st[6]), max(abs(st[14]), 2.0 * abs(st[15]) / model.ball_diameter))
     stiffness = 0.0
     if st[7] > 0.0:
@@ -273,7 +315,7 @@ def _static_ball(a1, a2, model):
 
 
 @njit(cache=True)
-def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
+def solve_ball(a1, a2, x1, x2, control, model, force_scale):
     """Equilibrium position (x1, x2) [m] of one ball for the inner groove centre (a1, a2), starting
     from (x1, x2). Returns (x1, x2, ok). Damped Newton with a finite-difference 2x2 Jacobian;
     without speed the closed form of :func:`_static_ball` is used.
@@ -287,7 +329,7 @@ def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
     # A ball clear of the outer race is first put onto it (centrifugal force holds it there).
     l_o = math.sqrt(x1 * x1 + x2 * x2)
     if l_o - model.outer_center_offset <= 0.0 or l_o == 0.0:
-        st = ball_state(x1, x2, a1, a2, inner_control, model)
+        st = ball_state(x1, x2, a1, a2, control, model)
         if l_o == 0.0:
             n1, n2 = 0.0, 1.0
         else:
@@ -301,19 +343,19 @@ def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
     # Cartesian step cannot follow.
     rho = math.sqrt(x1 * x1 + x2 * x2)
     phi = math.atan2(x1, x2)
-    r1, r2 = _residual_norm(x1, x2, a1, a2, inner_control, model)
+    r1, r2 = _residual_norm(x1, x2, a1, a2, control, model)
     norm = math.hypot(r1, r2)
     for _ in range(60):
-        tol = _ball_tolerance(x1, x2, a1, a2, inner_control, model, force_scale)
+        tol = _ball_tolerance(x1, x2, a1, a2, control, model, force_scale)
         if norm <= tol:
             return x1, x2, True
         h = _fd_step(x1, x2, a1, a2, model)
         hp = h / rho
         p1, p2 = _residual_norm(
-            (rho + h) * math.sin(phi), (rho + h) * math.cos(phi), a1, a2, inner_control, model
+            (rho + h) * math.sin(phi), (rho + h) * math.cos(phi), a1, a2, control, model
         )
         s1, s2 = _residual_norm(
-            rho * math.sin(phi + hp), rho * math.cos(phi + hp), a1, a2, inner_control, model
+            rho * math.sin(phi + hp), rho * math.cos(phi + hp), a1, a2, control, model
         )
         j11 = (p1 - r1) / h
         j21 = (p2 - r2) / h
@@ -342,7 +384,7 @@ def solve_ball(a1, a2, x1, x2, inner_control, model, force_scale):
             n_phi = phi + t * d_phi
             n1 = n_rho * math.sin(n_phi)
             n2 = n_rho * math.cos(n_phi)
-            q1, q2 = _residual_norm(n1, n2, a1, a2, inner_control, model)
+            q1, q2 = _residual_norm(n1, n2, a1, a2, control, model)
             new_norm = math.hypot(q1, q2)
             if new_norm < (1.0 - 1e-4 * t) * norm or new_norm <= tol:
                 accepted = True
@@ -376,7 +418,7 @@ def ring_residual_and_jacobian(
     applied,
     azimuth,
     position,
-    inner_control,
+    control,
     model,
     force_scale,
     want_jacobian,
@@ -402,13 +444,13 @@ def ring_residual_and_jacobian(
         psi = azimuth[j]
         a1, a2 = inner_center(q, psi, model)
         x1, x2, ok = solve_ball(
-            a1, a2, position[j, 0], position[j, 1], inner_control[j], model, force_scale
+            a1, a2, position[j, 0], position[j, 1], control[j], model, force_scale
         )
         if not ok:
             ok_all = False
         position[j, 0] = x1
         position[j, 1] = x2
-        st = ball_state(x1, x2, a1, a2, inner_control[j], model)
+        st = ball_state(x1, x2, a1, a2, control[j], model)
         _generalised(st[2], st[3], st[4], psi, gen)
         for k in range(5):
             residual[k] += gen[k]
@@ -427,7 +469,7 @@ def ring_residual_and_jacobian(
                 b1 += h
             else:
                 b2 += h
-            sp = ball_state(y1, y2, b1, b2, inner_control[j], model)
+            sp = ball_state(y1, y2, b1, b2, control[j], model)
             for row in range(5):
                 d[row, col] = (sp[row] - st[row]) / h
         det = d[0, 0] * d[1, 1] - d[0, 1] * d[1, 0]
@@ -486,7 +528,7 @@ def solve_ring(
     applied,
     azimuth,
     position,
-    inner_control,
+    control,
     model,
     force_scale,
     length_scale,
@@ -523,7 +565,7 @@ def solve_ring(
     trial_pos = position.copy()
     trial_q = q.copy()
     ok = ring_residual_and_jacobian(
-        q, applied, azimuth, position, inner_control, model, force_scale, True, residual, jacobian
+        q, applied, azimuth, position, control, model, force_scale, True, residual, jacobian
     )
     merit = _merit(residual, free, rscale)
     mu = 0.0
@@ -619,7 +661,7 @@ def solve_ring(
                     applied,
                     azimuth,
                     trial_pos,
-                    inner_control,
+                    control,
                     model,
                     force_scale,
                     False,
@@ -649,7 +691,7 @@ def solve_ring(
             applied,
             azimuth,
             position,
-            inner_control,
+            control,
             model,
             force_scale,
             True,
@@ -661,11 +703,11 @@ def solve_ring(
 
 
 @njit(cache=True)
-def evaluate_balls(q, azimuth, position, inner_control, model, out):
+def evaluate_balls(q, azimuth, position, control, model, out):
     """Fill ``out`` (Z, 16) with :func:`ball_state` of every ball at its current position."""
     for j in range(azimuth.shape[0]):
         a1, a2 = inner_center(q, azimuth[j], model)
-        st = ball_state(position[j, 0], position[j, 1], a1, a2, inner_control[j], model)
+        st = ball_state(position[j, 0], position[j, 1], a1, a2, control[j], model)
         for k in range(16):
             out[j, k] = st[k]
 
@@ -678,11 +720,12 @@ def _static_excess(q, k, applied, azimuth, model, direction):
     total = 0.0
     loaded = 0
     gen = np.empty(5)
+    outer_control = np.zeros(CONTROL_SIZE)  # no speed: the kinematics do not matter
     for j in range(azimuth.shape[0]):
         psi = azimuth[j]
         a1, a2 = inner_center(q, psi, model)
         x1, x2 = _static_ball(a1, a2, model)
-        st = ball_state(x1, x2, a1, a2, False, model)
+        st = ball_state(x1, x2, a1, a2, outer_control, model)
         _generalised(st[2], st[3], st[4], psi, gen)
         if k == 0:
             total += gen[0]

@@ -21,6 +21,10 @@ class QuasiStaticSolution:
     curvature centres (where the ball would touch if the gap closed; a ball without any contact sits
     on that line). ``applied_moment`` (y, z) is the moment acting on the inner ring: the given one
     when the tilt is solved, otherwise the moment needed to hold the imposed tilt.
+    ``race_traction`` is the friction force on the ball in the meridian plane that takes the
+    gyroscopic moment: at the inner contact along (cos alpha_i e_x - sin alpha_i e_r), at the outer
+    along (-cos alpha_o e_x + sin alpha_o e_r) (race control: lambda M_g / D; traction balance: the
+    integrated tractions).
     """
 
     ball_azimuth: np.ndarray
@@ -46,6 +50,11 @@ class QuasiStaticSolution:
     iterations: int
     force_scale: float  # N
     race_control_note: str = ""
+    race_traction: np.ndarray = field(
+        default=None, repr=False
+    )  # (Z, 2) [inner, outer] transverse friction on the ball [N], see below
+    ball_speeds: str = "race_control"  # "race_control" or "traction" (where the speeds came from)
+    ball_speeds_note: str = ""  # why the traction balance was asked for but not used, else ""
     ball_position: np.ndarray = field(
         default=None, repr=False
     )  # (Z, 2) relative to the outer groove centre

@@ -23,10 +23,13 @@ from solver.physics.kinematics import race_control_is_inner
 
 from . import kernels
 from .solution import QuasiStaticSolution
+from .traction_balance import BalanceFailed, traction_balance, traction_setup
 
 RING_TOLERANCE = 1e-11  # scaled residual norm at which the ring equilibrium is accepted
 MAX_RING_ITERATIONS = 60
 MAX_RACE_CONTROL_ITERATIONS = 12
+MAX_TRACTION_ITERATIONS = 30
+TRACTION_SPEED_TOLERANCE = 1e-9  # fixed point: ball speeds relative to the ring speed, angles rad
 _STATE_FIELDS = 16  # columns of kernels.evaluate_balls
 
 
@@ -126,15 +129,22 @@ def _static_start(problem: _Problem, load_fraction: float):
 
 
 class _State:
-    """Mutable iterate of the continuation: ring displacement, ball positions, race control."""
+    """Mutable iterate of the continuation: ring displacement, ball positions, and each ball's
+    kinematics record ``control`` (Z, kernels.CONTROL_SIZE): race control or the traction
+    balance."""
 
-    def __init__(self, q, position, inner_control):
+    def __init__(self, q, position, control):
         self.q = q
         self.position = position
-        self.inner_control = inner_control
+        self.control = control
+
+    @property
+    def inner_control(self) -> np.ndarray:
+        """Race-control decision per ball (True = inner control)."""
+        return self.control[:, kernels.CONTROL_MODE] == kernels.INNER_CONTROL
 
     def copy(self):
-        return _State(self.q.copy(), self.position.copy(), self.inner_control.copy())
+        return _State(self.q.copy(), self.position.copy(), self.control.copy())
 
 
 def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fraction: float):
@@ -146,7 +156,7 @@ def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fr
         problem.applied * load_fraction,
         problem.azimuth,
         state.position,
-        state.inner_control,
+        state.control,
         model,
         force_scale,
         length_scale,
@@ -171,7 +181,7 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
             return False, total, merit, note
         states = np.empty((problem.azimuth.size, _STATE_FIELDS))
         kernels.evaluate_balls(
-            state.q, problem.azimuth, state.position, state.inner_control, model, states
+            state.q, problem.azimuth, state.position, state.control, model, states
         )
         decision = _race_control(states, model)
         if np.array_equal(decision, state.inner_control):
@@ -185,7 +195,7 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
             )
             return True, total, merit, note
         history.append(key)
-        state.inner_control = decision
+        state.control = kernels.race_control_rows(decision)
     note = (
         f"race control did not settle in {MAX_RACE_CONTROL_ITERATIONS} iterations; the last "
         "solution is kept with the decision it was solved with"
@@ -211,11 +221,76 @@ def _continuation(solve, start: float, target: float, min_step: float):
     return current
 
 
+def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
+    """From a race-control solution at full speed: ball speeds and transverse tractions from the
+    traction balance (:mod:`.traction_balance`), iterated with the ring solve to a fixed point.
+    Returns (iterations, merit, note); raises BalanceFailed (message: why) when no balance is
+    found."""
+    curve, nodes = traction_setup(lubricant)
+    model = problem.model(1.0)
+    z = problem.azimuth.size
+    relative = abs(problem.operating.inner_ring_speed - problem.operating.outer_ring_speed)
+    total = 0
+    merit = math.nan
+    for iteration in range(1, MAX_TRACTION_ITERATIONS + 1):
+        states = np.empty((z, _STATE_FIELDS))
+        kernels.evaluate_balls(
+            state.q, problem.azimuth, state.position, state.control, model, states
+        )
+        control, _ = traction_balance(
+            problem.geometry,
+            model,
+            states,
+            state.position,
+            state.q,
+            problem.azimuth,
+            state.control,
+            curve,
+            nodes,
+        )
+        previous = state.control
+        state.control = control
+        converged, iterations, merit = _ring_solve(problem, state, 1.0, 1.0)
+        total += iterations
+        if not converged:
+            raise BalanceFailed("no ring equilibrium with the ball speeds of the traction balance")
+        change = np.abs(control - previous)
+        settled = (
+            previous[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
+            and change[:, kernels.CONTROL_ORBITAL].max() <= TRACTION_SPEED_TOLERANCE * relative
+            and change[:, kernels.CONTROL_SPIN].max() <= TRACTION_SPEED_TOLERANCE * relative
+            and change[:, kernels.CONTROL_ATTITUDE].max() <= TRACTION_SPEED_TOLERANCE
+        )
+        if settled:
+            cage = control[0, kernels.CONTROL_ORBITAL] / (2 * math.pi) * 60.0
+            return (
+                total,
+                merit,
+                (
+                    f"ball speeds from the traction balance (cage speed {cage:.6g} rpm), "
+                    f"fixed point after {iteration} iterations"
+                ),
+            )
+    return (
+        total,
+        merit,
+        (
+            f"ball speeds from the traction balance: the fixed point did not settle within "
+            f"{MAX_TRACTION_ITERATIONS} iterations; the last iterate is kept"
+        ),
+    )
+
+
 def solve_operating_point(
-    geometry, operating: OperatingPoint, initial: QuasiStaticSolution | None = None
+    geometry,
+    operating: OperatingPoint,
+    initial: QuasiStaticSolution | None = None,
+    traction_lubricant=None,
 ) -> QuasiStaticSolution:
     """Quasi-static equilibrium of ``geometry`` at ``operating``; see
-    :func:`solve_quasistatic_state`."""
+    :func:`solve_quasistatic_state`. ``traction_lubricant`` (a
+    :class:`solver.inputs.LubricantInputs`) switches the ball speeds from race control to the
+    traction balance with that lubricant's traction curve (:mod:`.traction_balance`)."""
     problem = _Problem(geometry, operating)
     z = geometry.ball_count
     totals = {"iterations": 0}
@@ -226,11 +301,7 @@ def solve_operating_point(
         ok, its, merit, note = _solve_with_race_control(problem, trial, speed, load)
         totals["iterations"] += its
         if ok:
-            state.q, state.position, state.inner_control = (
-                trial.q,
-                trial.position,
-                trial.inner_control,
-            )
+            state.q, state.position, state.control = (trial.q, trial.position, trial.control)
             best["merit"], best["note"] = merit, note
         return ok
 
@@ -243,7 +314,7 @@ def solve_operating_point(
         state = _State(
             np.concatenate([initial.inner_ring_offset, initial.inner_ring_tilt]).astype(float),
             np.array(initial.ball_position, dtype=float),
-            np.asarray(initial.race_control) == "inner",
+            kernels.race_control_rows(np.asarray(initial.race_control) == "inner"),
         )
         state.q[3:] = np.where(problem.free[3:], state.q[3:], operating.imposed_tilt())
         if not attempt(state, 1.0, 1.0):
@@ -251,10 +322,10 @@ def solve_operating_point(
     if state is None:
         # static solution first, with load continuation if the direct solve fails
         q0, pos0 = _static_start(problem, 1.0)
-        state = _State(q0, pos0, np.zeros(z, dtype=np.bool_))
+        state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
         if not attempt(state, 0.0, 1.0):
             q0, pos0 = _static_start(problem, 0.05)
-            state = _State(q0, pos0, np.zeros(z, dtype=np.bool_))
+            state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
             if not attempt(state, 0.0, 0.05):
                 raise NoSolutionError(_no_static_message(problem))
             reached = _continuation(lambda s: attempt(state, 0.0, s), 0.05, 1.0, 1e-4)
@@ -265,9 +336,26 @@ def solve_operating_point(
             reached = _continuation(lambda s: attempt(state, s, 1.0), 0.0, 1.0, 1e-4)
             if reached != 1.0:
                 raise NoSolutionError(_no_speed_message(problem, state, reached))
-    return _pack(
-        problem, state, totals["iterations"], best.get("merit", math.nan), best.get("note", "")
-    )
+    note = best.get("note", "")
+    merit = best.get("merit", math.nan)
+    has_speed = operating.inner_ring_speed != operating.outer_ring_speed
+    ball_speeds, fallback = "race_control", ""
+    if traction_lubricant is not None and has_speed:
+        race_control = state.copy()
+        try:
+            its, merit, note = _solve_with_traction_balance(problem, state, traction_lubricant)
+            totals["iterations"] += its
+            ball_speeds = "traction"
+        except BalanceFailed as error:
+            state = race_control
+            fallback = (
+                f"the traction balance found no steady ball speeds ({error}); the ball speeds "
+                "come from race control instead"
+            )
+    solution = _pack(problem, state, totals["iterations"], merit, note)
+    solution.ball_speeds = ball_speeds
+    solution.ball_speeds_note = fallback
+    return solution
 
 
 def _no_static_message(problem: _Problem) -> str:
@@ -286,9 +374,7 @@ def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
     op = problem.operating
     model = problem.model(reached)
     states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-    kernels.evaluate_balls(
-        state.q, problem.azimuth, state.position, state.inner_control, model, states
-    )
+    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
     alpha_o = math.degrees(float(np.min(states[:, 10])))
     speed = rad_s_to_rpm(reached * op.inner_ring_speed)
     target = rad_s_to_rpm(op.inner_ring_speed)
@@ -306,9 +392,7 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     model = problem.model(1.0)
     z = g.ball_count
     states = np.empty((z, _STATE_FIELDS))
-    kernels.evaluate_balls(
-        state.q, problem.azimuth, state.position, state.inner_control, model, states
-    )
+    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
     psi = problem.azimuth
     alpha = states[:, [9, 10]].copy()
     load = states[:, [5, 6]].copy()
@@ -327,10 +411,25 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
             g.outer_curvature_center_radius + state.position[:, 1],
         ]
     )
-    # angular velocity: omega_c e_x + omega_R (cos beta e_x - sin beta e_r)
+    # angular velocity: omega_c e_x + omega_R (cos beta e_x - sin beta e_r) + w_theta e_theta
+    # (w_theta: the small yaw of the traction balance; 0 under race control)
+    traction = state.control[:, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
+    w_t = np.where(traction, state.control[:, kernels.CONTROL_YAW], 0.0)
     w_x = omega_c + omega_r * np.cos(beta)
     w_r = -omega_r * np.sin(beta)
-    ang = np.column_stack([w_x, w_r * np.cos(psi), w_r * np.sin(psi)])
+    ang = np.column_stack(
+        [w_x, w_r * np.cos(psi) - w_t * np.sin(psi), w_r * np.sin(psi) + w_t * np.cos(psi)]
+    )
+    # friction taking the gyroscopic moment (kernels.ball_state): lambda M_g / D under race
+    # control, the integrated transverse tractions under the traction balance
+    m_g = states[:, 15]
+    inner = state.inner_control
+    race_traction = (
+        np.column_stack([np.where(inner, m_g, 0.0), np.where(inner, m_g, 2.0 * m_g)])
+        / g.ball_diameter
+    )
+    race_traction[traction, 0] = state.control[traction, kernels.CONTROL_TAU_INNER]
+    race_traction[traction, 1] = state.control[traction, kernels.CONTROL_TAU_OUTER]
     # moment on the inner ring: balls' moment sum (about y, z) must be balanced by the applied one
     m_theta = states[:, 4]
     ball_moment = np.array([np.sum(-m_theta * np.sin(psi)), np.sum(m_theta * np.cos(psi))])
@@ -345,7 +444,9 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
         spin_speed=omega_r,
         attitude_angle=beta,
         ball_angular_velocity=ang,
-        race_control=np.where(state.inner_control, "inner", "outer"),
+        race_control=np.where(
+            traction, "traction", np.where(state.inner_control, "inner", "outer")
+        ),
         inner_ring_offset=state.q[:3].copy(),
         inner_ring_tilt=state.q[3:].copy(),
         cage_speed=float(np.mean(omega_c)),
@@ -361,4 +462,5 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
         race_control_note=note,
         ball_position=state.position.copy(),
         operating=op,
+        race_traction=race_traction,
     )

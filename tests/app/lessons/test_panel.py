@@ -53,25 +53,25 @@ def test_one_click_opens_a_lesson(app, lesson_id):
     # the result on show is the lesson's, and the form holds its case
     case = spec.case()
     assert s.result_label == f"lesson: {spec.label}"
-    assert app.dataset.attrs["model"] == spec.model
-    assert float(app.dataset.coords["axial_load"]) == case.operating.axial_load_N
+    assert app.result.dataset.attrs["model"] == spec.model
+    assert float(app.result.dataset.coords["axial_load"]) == case.operating.axial_load_N
     assert float(s.fv_axial_load_N) == case.operating.axial_load_N
     assert s.case_valid and s.case_name is None
     # numbers in the text come from that result
     assert s.lesson_explain and "{" not in s.lesson_explain and "(no " not in s.lesson_explain
     assert s.lesson_try
     assert [r["name"] for r in s.lesson_results] == [r.name for r in lesson.results]
-    assert s.lesson_warnings == app.dataset.racetrace.warnings()
+    assert s.lesson_warnings == app.result.dataset.racetrace.warnings()
     s.flush()  # no preview replaces the lesson's result
     assert s.result_label == f"lesson: {spec.label}"
 
 
 def test_other_result_of_a_lesson(app):
     app.lessons.open_lesson("04-misalignment")
-    assert str(app.dataset.coords["misalignment_frame"].values) == "space"
+    assert str(app.result.dataset.coords["misalignment_frame"].values) == "space"
     app.lessons.show_result("ring")
     assert app.state.lesson_result == "ring"
-    assert str(app.dataset.coords["misalignment_frame"].values) == "ring"
+    assert str(app.result.dataset.coords["misalignment_frame"].values) == "ring"
     assert app.state.fv_misalignment_frame == "ring"
 
 
@@ -121,13 +121,14 @@ def test_broken_lesson_is_reported_others_still_open(tmp_path, app):
     shutil.copytree(str(shipped_lessons_dir()), folder, ignore=shutil.ignore_patterns("*.nc"))
     (folder / "00-broken.toml").write_text('title = "x"\n[view]\ncamera = "top"\n', "utf-8")
     controller = LessonController(app, lessons=load_lessons(folder))
+    controller.init_state()
     try:
         assert len(app.state.lesson_problems) == 1 == len(controller.set.problems)
         assert app.state.lesson_problems[0].startswith("lesson 00-broken.toml:")
         assert "camera must be one of" in app.state.lesson_problems[0]
         assert [item["id"] for item in app.state.lessons] == IDS
     finally:
-        app.lessons = LessonController(app, cache_dir=app.lessons.cache_dir)
+        app.lessons.init_state()  # the session's own lessons again
 
 
 def test_a_lesson_that_cannot_open_says_why(app, monkeypatch):

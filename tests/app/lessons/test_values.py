@@ -111,3 +111,9 @@ def test_docs_example_is_the_shipped_lesson_and_reads():
     shipped = Path(__file__).resolve().parents[3] / "assets" / "lessons" / "02-speed.toml"
     assert example == shipped.read_text(encoding="utf-8")
     assert parse_lesson(example, "02-speed") == LESSONS.get("02-speed")
+
+
+def test_no_controlling_race_when_ball_speeds_come_from_traction():
+    overload = _shipped("06-overload", "overload")  # the default quasi-static ball speeds
+    assert set(overload["race_control"].values) == {"traction"}
+    assert lesson_values(overload)["race_control"] is None

@@ -184,6 +184,7 @@ def test_every_simulation_switch_has_its_default_in_the_schema(valid):
         "gravity_m_s2": 9.81,
         "tolerance": 1e-4,
         "model_cage": True,
+        "quasistatic_ball_speeds": "traction",
     }
     for name, value in expected.items():
         f = next(f for f in FIELDS if f.key == f"simulation.{name}")

@@ -32,7 +32,8 @@ def test_import_solver_registers_the_accessor_in_a_fresh_interpreter(tmp_path):
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
-    assert out.stdout.split() == ["RacetraceAccessor", "7"]
+    # 7 trajectory metrics + 9 rating-life metrics
+    assert out.stdout.split() == ["RacetraceAccessor", "16"]
 
 
 def test_summary_and_warnings_are_the_solver_definitions(qs):

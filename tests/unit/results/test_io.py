@@ -66,3 +66,49 @@ def test_saved_file_has_the_usual_permissions(tmp_path):
     finally:
         os.umask(mask)
     assert stat.S_IMODE(path.stat().st_mode) == 0o644
+
+
+@pytest.mark.parametrize(
+    ("failure", "words"),
+    [
+        (
+            RuntimeError("NetCDF: HDF error"),
+            "NetCDF: HDF error (is the disk full or the folder read-only?)",
+        ),
+        (OSError(28, "No space left on device"), "No space left on device"),
+        (OSError(27, "File too large"), "File too large (a file-size limit, e.g. ulimit -f)"),
+        (KeyboardInterrupt(), None),
+        (SystemExit(143), None),
+    ],
+)
+def test_interrupted_or_failed_write_names_the_file_and_cleans_up(
+    tmp_path, monkeypatch, failure, words
+):  # noqa: E501
+    from solver.errors import ResultWriteError
+
+    def broken(self, *args, **kwargs):
+        Path(args[0]).write_bytes(b"\x89HDF\r\n\x1a\npartial")
+        raise failure
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    target = tmp_path / "r.nc"
+    expected = ResultWriteError if words else type(failure)
+    with pytest.raises(expected) as caught:
+        save_dataset(small_dataset(), target)
+    if words:
+        assert str(caught.value) == f"could not write {target}: {words}"
+        assert isinstance(caught.value, OSError) and caught.value.path == target
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_missing_folder_folder_and_device_are_refused_by_name(tmp_path):
+    from solver.errors import ResultWriteError
+
+    for target, words in [
+        (tmp_path / "missing" / "r.nc", "No such file or directory"),
+        (tmp_path, "it is a folder"),
+        (Path("/dev/null"), "not a regular file"),
+    ]:
+        with pytest.raises(ResultWriteError, match=words):
+            save_dataset(small_dataset(), target)
+    assert Path("/dev/null").exists() and not Path("/dev/null").is_file()

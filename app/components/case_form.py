@@ -1,0 +1,252 @@
+"""The case form: the shipped-case list, uploads, the field values and messages, and the debounced
+quasi-static preview of the edited case.
+
+State keys: ``case_items``/``case_name`` (shipped cases), ``form`` (field descriptors),
+``fv_<name>`` (field text), ``fe_<name>`` (field message, "" when valid), ``placeholders``,
+``case_message``, ``case_valid``, ``case_toml_href``/``case_file_name`` (download of the edited
+case), ``run_reason`` (why the dynamic model cannot run a valid case, "" when it can),
+``uploaded_case``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import urllib.parse
+
+from ..caseform import apply_form, case_form_values, form_fields, form_text
+from .base import Component
+
+log = logging.getLogger("racetrace.app")
+
+PREVIEW_DEBOUNCE_S = 0.1
+_SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
+
+
+class CaseForm(Component):
+    """The case being edited: ``base_case`` (picked, uploaded or opened) and ``case`` (the valid
+    edited case, or None while the form is invalid)."""
+
+    def __init__(self, session):
+        super().__init__(session)
+        self.fields = form_fields()
+        self._field_by_name = {f.name: f for f in self.fields}
+        self.base_case = None
+        self.case = None
+        self.case_text = None  # case TOML of the valid edited case
+        self._catalogue = {}
+        self._filling = False
+        self._preview_generation = 0
+
+    # ---- set-up ---------------------------------------------------------------------------------
+    def init_state(self) -> None:
+        s = self.state
+        from solver.catalogue import catalogue
+
+        entries = list(catalogue())
+        s.case_items = [{"title": f"{e.title} ({e.kind})", "value": e.name} for e in entries]
+        self._catalogue = {e.name: e for e in entries}
+        s.case_name = None
+        s.form = [
+            {
+                "name": f.name,
+                "key": f.key,
+                "label": f.label,
+                "kind": f.kind,
+                "unit": f.unit,
+                "help": f.help,
+                "choices": list(f.choices),
+                "section": f.section,
+            }
+            for f in self.fields
+        ]
+        for f in self.fields:
+            s[f"fv_{f.name}"] = ""
+            s[f"fe_{f.name}"] = ""
+        # what an empty field means: the default the solver uses (estimated ones per case)
+        s.placeholders = {f.name: f.default_text for f in self.fields}
+        s.case_message = ""
+        s.case_valid = False
+        s.case_toml_href = ""
+        s.case_file_name = "case.toml"
+        s.run_reason = ""
+        s.uploaded_case = None
+
+    def bind(self) -> None:
+        self.state.change("case_name")(self._on_case_name)
+        self.state.change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
+        self.state.change("uploaded_case")(self._on_upload)
+        self.ctrl.reset_case = self.reset_case
+
+    def first_case_name(self, case_name: str) -> str:
+        """``case_name`` if it is a shipped case, else the first shipped case."""
+        return case_name if case_name in self._catalogue else next(iter(self._catalogue))
+
+    # ---- case and form --------------------------------------------------------------------------
+    def _on_case_name(self, case_name=None, synchronous=False, **_):
+        entry = self._catalogue.get(case_name)
+        if entry is None:
+            return
+        self.set_base_case(entry.load(), synchronous=synchronous)
+
+    def set_base_case(self, case, synchronous: bool = False) -> None:
+        """Put ``case`` in the form and preview it."""
+        self.take_case(case)
+        if synchronous:
+            self.preview_now()
+        else:
+            self.schedule_preview()
+
+    def take_case(self, case) -> None:
+        """Make ``case`` the one the form edits: its values, placeholders and messages."""
+        self.base_case = case
+        self._fill_form(case)
+        self._update_placeholders(case)
+        self.validate()
+
+    def _fill_form(self, case) -> None:
+        """Put the values of ``case`` in the form without triggering a preview per field."""
+        values = case_form_values(case, self.fields)
+        self._filling = True
+        try:
+            with self.state:
+                for name, value in values.items():
+                    empty = None if self._field_by_name[name].kind in _SELECT_KINDS else ""
+                    self.state[f"fv_{name}"] = empty if value is None else form_text(value)
+                    self.state[f"fe_{name}"] = ""
+        finally:
+            self._filling = False
+
+    def _update_placeholders(self, case) -> None:
+        from ..caseform import estimated_default_texts
+
+        placeholders = {f.name: f.default_text for f in self.fields}
+        try:
+            placeholders.update(estimated_default_texts(case, self.fields))
+        except (ValueError, ArithmeticError) as error:  # a doubtful case keeps the rules
+            log.warning("no estimated defaults for this case: %s", error)
+        self.state.placeholders = placeholders
+
+    def _on_upload(self, uploaded_case=None, **_):
+        if not uploaded_case:
+            return
+        from solver import CaseError, parse_case
+        from solver.case.io import decode_case_bytes
+
+        item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
+        self.state.uploaded_case = None  # empty the file box, so the same file can be sent again
+        name = str(item.get("name", "file"))
+        content = item.get("content", b"")
+        try:
+            # the upload is case text, never a path on the server
+            text = decode_case_bytes(content, name) if isinstance(content, bytes) else str(content)
+            case = parse_case(text, source=f"uploaded file {name}")
+        except CaseError as error:
+            self.state.case_message = f"{name}: {error}"
+            return
+        self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
+        self.set_base_case(case)
+
+    def reset_case(self) -> None:
+        """Undo the edits: the form gets the values of the case last picked, uploaded or opened."""
+        entry = self._catalogue.get(self.state.case_name)
+        case = entry.load() if entry is not None else self.base_case
+        if case is not None:
+            self.set_base_case(case)
+
+    def form_values(self) -> dict:
+        return {f.name: self.state[f"fv_{f.name}"] for f in self.fields}
+
+    def validate(self):
+        """Check the form; set field messages, ``case_valid``, ``run_disabled``; return result."""
+        if self.base_case is None:
+            return None
+        result = apply_form(self.base_case, self.fields, self.form_values())
+        with self.state:
+            for f in self.fields:
+                self.state[f"fe_{f.name}"] = result.errors.get(f.name, "")
+            self.state.case_message = "\n".join(result.general)
+            self.state.case_valid = result.valid
+            self.state.run_reason = self._run_reason(result.case) if result.valid else ""
+            self.state.run_disabled = (
+                not result.valid or bool(self.state.run_reason) or self.state.busy
+            )
+        self.case = result.case if result.valid else None
+        self.case_text = self.case.to_toml() if self.case is not None else None
+        if self.case is not None:
+            self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(
+                self.case_text
+            )
+            name = self.state.case_name or self.case.bearing.designation or "case"
+            self.state.case_file_name = "".join(c if c.isalnum() else "-" for c in name) + ".toml"
+        return result
+
+    @staticmethod
+    def _run_reason(case) -> str:
+        """Why the dynamic model cannot run the valid ``case`` ("" when it can)."""
+        from solver import dynamic_problems
+
+        return "\n".join(f"dynamic model: {p.message}" for p in dynamic_problems(case))
+
+    def _on_field(self, **_):
+        if self._filling:
+            return
+        if self.validate() is not None and self.case is not None:
+            if self.case_text == self.session.result.shown_case_text:
+                return  # the result on show is already this case (e.g. a reopened run)
+            self.schedule_preview()
+
+    # ---- quasi-static preview -------------------------------------------------------------------
+    def drop_pending_preview(self) -> None:
+        """A preview still on its way must not replace what is about to be shown."""
+        self._preview_generation += 1
+
+    def schedule_preview(self) -> None:
+        """Recompute the quasi-static preview soon (debounced) without blocking the page."""
+        self._preview_generation += 1
+        generation = self._preview_generation
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            self.preview_now()
+            return
+        if not self.state.busy:
+            self.state.status = "updating preview"
+        loop.create_task(self._preview_async(generation))
+
+    async def _preview_async(self, generation: int) -> None:
+        await asyncio.sleep(PREVIEW_DEBOUNCE_S)
+        if generation != self._preview_generation or self.case is None:
+            return
+        case = self.case
+        try:
+            ds = await asyncio.to_thread(solve_quasistatic, case)
+        except Exception as error:  # shown in words in the status line
+            if not self.state.busy:
+                with self.state:
+                    self.state.status = f"error: {error}"
+            return
+        if generation == self._preview_generation:
+            with self.state:
+                self.session.result.show_preview(ds)
+                if not self.state.busy:  # a run's status stays until it ends
+                    self.state.status = "preview done"
+
+    def preview_now(self) -> None:
+        """Solve the quasi-static model for the current case now and show it."""
+        if self.case is None:
+            return
+        try:
+            ds = solve_quasistatic(self.case)
+        except Exception as error:
+            self.state.status = f"error: {error}"
+            return
+        self.session.result.show_preview(ds)
+        self.state.status = "preview done"
+
+
+def solve_quasistatic(case):
+    """The quasi-static result of ``case`` (a Dataset)."""
+    import solver
+
+    return solver.solve_quasistatic(case)

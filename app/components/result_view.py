@@ -1,0 +1,336 @@
+"""The result on show (a quasi-static preview or a saved run): its 3-D scene, its charts and the
+time controls.
+
+State keys: ``frame``/``frame_max``/``frame_time``/``playing``/``speed``, ``result_label``,
+``result_serial`` (incremented whenever a new result is shown), ``result_warnings``,
+``open_panels`` (chart panels open on the page), scene options (``show_<layer>``,
+``exaggeration``, ``trace_ball``, ``ball_items``, ``camera``), ``chart_help`` and the chart
+figures ``chart_<name>`` (plotly JSON).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import math
+import time
+
+from .. import charts
+from ..frames import FrameSource, frame_source
+from .base import Component, fig_json
+from .case_form import solve_quasistatic
+
+log = logging.getLogger("racetrace.app")
+
+PLAY_FPS = 15.0  # animation ticks per second while playing
+CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
+CUTAWAY_HALF_WIDTH = math.radians(70.0)  # the outer ring is cut away +-70 deg about the load side
+LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
+CHARTS = (
+    "contact_angle",
+    "raceway_map",
+    "load_azimuth",
+    "ellipse",
+    "cage_speed",
+    "comparison",
+    "compare_runs",
+    "compare_angle",
+    "compare_load",
+)
+
+
+class ResultView(Component):
+    """The result on show: ``dataset``, its ``source`` of frames, the quasi-static solution of
+    the same case (``quasistatic``, for the comparison chart), the pyvista ``plotter``/``scene``
+    (when ``render_enabled``) and the page's ``view`` (set by the UI: an object with render())."""
+
+    def __init__(self, session, render: bool = True, window_size=(650, 480)):
+        super().__init__(session)
+        self.render_enabled = render
+        self.window_size = window_size
+        self.plotter = None
+        self.scene = None
+        self.view = None
+        self.dataset = None
+        self.quasistatic = None
+        self.source: FrameSource | None = None
+        self.shown_case_text = None  # case TOML of the result on show
+        self.shown_run_id = None  # id of the saved run on show (None for a preview)
+        self.animating_export = False  # an animation export is moving the scene's frames
+        self._scene_key = None
+        self._last_chart_update = 0.0
+        self._play_task = None
+        self._comparison_serial = -1  # result_serial of the quasi-static vs dynamic chart shown
+
+    # ---- set-up ---------------------------------------------------------------------------------
+    def init_state(self) -> None:
+        s = self.state
+        s.result_warnings = []  # where the result on show leaves the model's validity
+        s.frame = 0
+        s.frame_max = 0
+        s.frame_time = ""
+        s.playing = False
+        s.speed = 1
+        s.result_label = ""
+        s.result_serial = 0
+        s.open_panels = []
+        for layer in LAYERS:
+            s[f"show_{layer}"] = True
+        s.exaggeration = 1.0
+        s.trace_ball = -1
+        s.ball_items = [{"title": "all balls", "value": -1}]
+        s.camera = "isometric"
+        s.chart_help = dict(charts.HELP)
+        for name in CHARTS:
+            s[f"chart_{name}"] = {"data": [], "layout": {}}
+
+    def bind(self) -> None:
+        s, c = self.state, self.ctrl
+        s.change("frame")(self._on_frame)
+        s.change("playing")(self._on_playing)
+        s.change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
+        s.change("exaggeration", "trace_ball")(self._on_trace_options)
+        s.change("camera")(self._on_camera)
+        s.change("open_panels")(self._on_open_panels)
+        c.step = self.step
+        c.set_camera = self.set_camera
+
+    # ---- what is shown --------------------------------------------------------------------------
+    def show_preview(self, ds) -> None:
+        """Show a quasi-static preview; the runs list then names no run."""
+        self.state.run_id = None
+        self.shown_run_id = None
+        self.show_result(ds, "quasi-static preview")
+
+    def show_saved_run(self, ds, run_id: str, label: str) -> None:
+        """Show saved run ``run_id``, named in the runs list; a pending preview is dropped."""
+        self.session.form.drop_pending_preview()
+        self.show_result(ds, label)
+        self.shown_run_id = run_id
+        self.state.run_id = run_id
+
+    def show_result(self, ds, label: str) -> None:
+        """Show a result Dataset: frame source, scene, charts and the time controls."""
+        from solver import parse_case
+        from solver.results.dataset import geometry_from_result
+
+        source = frame_source(ds, **self._animation_options(ds))
+        self.dataset = ds
+        self.source = source
+        # the run's own case (provenance): its case warnings, whether the form already shows it, and
+        # the quasi-static comparison solved for it; the views read the result's coordinates
+        form_case = self.session.form.case
+        case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
+        self.shown_case_text = case.to_toml() if case is not None else None
+        self.state.result_warnings = self._warnings_of(ds, case)
+        if "time" not in ds.dims:
+            self.quasistatic = ds
+        else:  # the quasi-static solution of the same case, for the comparison chart
+            try:
+                self.quasistatic = solve_quasistatic(case)
+            except Exception as error:  # the comparison is then left out, with the reason logged
+                log.warning("no quasi-static comparison for this run: %s", error)
+                self.quasistatic = None
+        if self.render_enabled:
+            self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
+            self.scene.show_source(source, 0)
+        s = self.state
+        s.frame_max = source.n_frames - 1
+        s.result_label = label
+        s.result_serial = int(s.result_serial) + 1
+        self.session.exports.forget_download()
+        s.ball_items = [{"title": "all balls", "value": -1}] + [
+            {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
+        ]
+        if s.frame > s.frame_max:
+            s.frame = 0
+        self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
+
+    @staticmethod
+    def _warnings_of(ds, case) -> list[str]:
+        """Case warnings and :func:`solver.result_warnings` of the result ``ds`` (plain text)."""
+        import solver
+
+        found = [str(w) for w in case.warnings()] if case is not None else []
+        try:
+            found += solver.result_warnings(ds)
+        except (KeyError, ValueError) as error:  # an older result without some variable
+            log.warning("result checks skipped: %s", error)
+        return found
+
+    @staticmethod
+    def _load_side(ds) -> float:
+        """Azimuth (rad, from +y towards +z) of the radial load of the result ``ds`` (its
+        ``radial_load_angle`` coordinate, degree): where the load zone is."""
+        return math.radians(float(ds.coords["radial_load_angle"]))
+
+    def _animation_options(self, ds) -> dict:
+        """Options of :func:`app.frames.frame_source`: a quasi-static result is animated for the
+        form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form)."""
+        case = self.session.form.case
+        if "time" in ds.dims or case is None:
+            return {}
+        revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
+        return {} if revolutions is None else {"revolutions": float(revolutions)}
+
+    # ---- 3-D scene ------------------------------------------------------------------------------
+    def _ensure_scene(self, geometry, load_side: float) -> None:
+        key = (
+            geometry.ball_count,
+            geometry.ball_diameter,
+            geometry.pitch_diameter,
+            geometry.inner_conformity,
+            geometry.outer_conformity,
+            geometry.free_contact_angle,
+            geometry.inner_shoulder_diameter,
+            geometry.outer_shoulder_diameter,
+            geometry.ball_material.name,
+            load_side,
+        )
+        if self.scene is not None and key == self._scene_key:
+            return
+        import pyvista as pv
+
+        from ..scene import BearingScene, SceneOptions
+
+        if self.plotter is None:
+            pv.global_theme.multi_samples = 0
+            self.plotter = pv.Plotter(off_screen=True, window_size=self.window_size)
+        else:  # a new bearing: drop the old scene, its colour bar too (else never redrawn)
+            for title in list(self.plotter.scalar_bars.keys()):
+                self.plotter.remove_scalar_bar(title)
+            self.plotter.clear_actors()
+        camera = self.plotter.camera_position if self.scene is not None else None
+        options = SceneOptions(
+            exaggeration=float(self.state.exaggeration),
+            trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
+            # face the load zone and cut the outer ring away there
+            view_azimuth=load_side,
+            outer_cutaway=(load_side - CUTAWAY_HALF_WIDTH, load_side + CUTAWAY_HALF_WIDTH),
+        )
+        dark = geometry.ball_material.density < 5000.0  # ceramic balls drawn dark
+        self.scene = BearingScene(self.plotter, geometry, options, dark_balls=dark)
+        for layer in options.layers:
+            self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
+        if camera is not None:
+            self.plotter.camera_position = camera
+        self._scene_key = key
+        if camera is None:  # a new scene: frame it with the chosen preset
+            self.scene.set_camera(str(self.state.camera))
+            self.push_view()
+
+    def push_view(self) -> None:
+        """Send the current 3-D image to the page."""
+        if self.view is None:
+            return
+        if self.scene is not None and not self.scene.framed_for_window():
+            # the page resized the view since the preset was applied: frame it again
+            self.scene.set_camera(str(self.state.camera))
+        self.view.render()
+
+    def _on_layers(self, **_):
+        if self.scene is None:
+            return
+        for layer in self.scene.options.layers:
+            self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
+        self.push_view()
+
+    def _on_trace_options(self, exaggeration=1.0, trace_ball=-1, **_):
+        if self.scene is not None:
+            self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
+            self.scene.set_exaggeration(float(exaggeration))
+            self.push_view()
+        self.update_charts()
+
+    def set_camera(self, preset: str) -> None:
+        """Apply camera ``preset`` (isometric, axial, radial), even if it is the current one."""
+        if self.state.camera == preset:
+            self._on_camera(preset)  # no state change, so no callback: apply it here
+        else:
+            self.state.camera = preset
+
+    def _on_camera(self, camera="isometric", **_):
+        if self.scene is not None:
+            self.scene.set_camera(camera)
+            self.push_view()
+
+    # ---- time and charts ------------------------------------------------------------------------
+    def _apply_frame(self, index: int, charts_too: bool) -> None:
+        if self.source is None:
+            return
+        index = int(min(max(index, 0), self.source.n_frames - 1))
+        if self.scene is not None and not self.animating_export:
+            self.scene.set_frame(index)
+            self.push_view()
+        self.state.frame_time = f"t = {self.source.times[index] * 1e3:8.3f} ms"
+        if charts_too:
+            self.update_charts(index)
+
+    def update_charts(self, index: int | None = None) -> None:
+        """Recompute the chart figures for frame ``index`` (default: the current frame).
+
+        The two charts always on the page are recomputed every time; those in the collapsible
+        panels only while their panel is open (``open_panels``), since each figure costs 10-30 ms
+        and the preview must stay quick. Opening a panel brings its chart up to date.
+        """
+        if self.source is None:
+            return
+        i = int(self.state.frame) if index is None else index
+        src, s = self.source, self.state
+        open_panels = set(s.open_panels or ())
+        ball = int(s.trace_ball)
+        balls = (ball,) if ball >= 0 else None  # None: every ball
+        s.chart_contact_angle = fig_json(charts.contact_angle_figure(src, balls, current=i))
+        s.chart_raceway_map = fig_json(charts.raceway_map_figure(src, stop=i + 1))
+        if "load_azimuth" in open_panels:
+            s.chart_load_azimuth = fig_json(charts.load_azimuth_figure(src, i))
+        if "ellipse" in open_panels:
+            s.chart_ellipse = fig_json(charts.ellipse_figure(src, i))
+        if "cage_speed" in open_panels:
+            s.chart_cage_speed = fig_json(charts.cage_speed_figure(src, self.dataset, current=i))
+        serial = int(s.result_serial)
+        if "comparison" in open_panels and self._comparison_serial != serial:
+            if self.quasistatic is not None:  # does not follow time: once per result
+                dyn = self.dataset if "time" in self.dataset.dims else None
+                s.chart_comparison = fig_json(charts.comparison_figure(self.quasistatic, dyn))
+            self._comparison_serial = serial
+        if "compare" in open_panels and not self.session.compare.is_current():
+            self.session.compare.update_comparison()
+        self._last_chart_update = time.monotonic()
+
+    def _on_open_panels(self, **_):
+        self.update_charts()
+
+    def _on_frame(self, frame=0, **_):
+        follow = (
+            not self.state.playing or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S
+        )
+        self._apply_frame(int(frame), charts_too=follow)
+
+    def step(self, delta: int = 1) -> None:
+        """Move ``delta`` frames (wrapping at the ends)."""
+        if self.source is None:
+            return
+        self.state.frame = int((int(self.state.frame) + int(delta)) % self.source.n_frames)
+
+    def _on_playing(self, playing=False, **_):
+        if playing and (self._play_task is None or self._play_task.done()):
+            try:
+                loop = asyncio.get_running_loop()
+            except RuntimeError:
+                return  # started when a browser connects (see RacetraceApp)
+            self._play_task = loop.create_task(self._play_loop())
+        if not playing:
+            self.update_charts()
+
+    async def _play_loop(self) -> None:
+        period = 1.0 / PLAY_FPS
+        while self.state.playing and self.session.clients > 0 and self.source is not None:
+            t0 = time.monotonic()
+            with self.state:
+                step = max(1, int(self.state.speed))
+                self.state.frame = (int(self.state.frame) + step) % self.source.n_frames
+            await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
+
+    def shutdown(self) -> None:
+        self.state.playing = False
