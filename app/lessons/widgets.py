@@ -164,6 +164,7 @@ def lessons_panel(ctrl) -> None:
                     click=(ctrl.show_lesson_result, "[result.name]"),
                     size="x-small",
                     variant=("lesson_result === result.name ? 'flat' : 'outlined'",),
+                    color="primary",
                     classes="ma-1 text-none",
                 )
             html.Div(
