@@ -174,3 +174,11 @@ def test_shipped_lessons_all_load():
     ]
     for lesson in found.lessons:
         assert lesson.camera in CAMERAS and lesson.chart in CHARTS
+
+
+def test_lesson_cameras_and_charts_are_the_apps():
+    from app.charts import HELP
+    from app.scene import CAMERA_PRESETS
+
+    assert set(CAMERAS) <= set(CAMERA_PRESETS)  # every camera a lesson may name is a preset
+    assert set(CHARTS) <= set(HELP)  # and every chart one of the page's chart panels
