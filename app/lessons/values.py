@@ -34,7 +34,7 @@ class Value:
     name: str
     unit: str
     meaning: str
-    compute: Callable[[xr.Dataset, dict], object]
+    compute: Callable[[xr.Dataset, xr.Dataset], object]  # (result, its analysed window)
 
 
 # ---- reading the Dataset -------------------------------------------------------------------------
@@ -47,9 +47,8 @@ def _window(ds: xr.Dataset) -> xr.Dataset:
     return ds.sel(time=ds["time"] >= start - 1e-12)
 
 
-def _contacts(ds: xr.Dataset, name: str, race: str, loaded_only: bool = True) -> np.ndarray:
-    """Values of a per-contact variable on one race in the analysed window, flattened."""
-    window = _window(ds)
+def _contacts(window: xr.Dataset, name: str, race: str, loaded_only: bool = True) -> np.ndarray:
+    """Values of a per-contact variable on one race in the analysed ``window``, flattened."""
     values = np.asarray(window[name].sel(race=race).values, dtype=float).ravel()
     if loaded_only:
         load = np.asarray(window["contact_load"].sel(race=race).values, dtype=float).ravel()
@@ -73,7 +72,7 @@ def _summary_metric(ds, metric: str, race: str):
 def _mean_var(ds, name: str, scale=1.0):
     if name not in ds:
         return None
-    values = np.asarray(_window(ds)[name].values, dtype=float)
+    values = np.asarray(ds[name].values, dtype=float)
     values = values[np.isfinite(values)]
     return float(values.mean()) * scale if values.size else None
 
@@ -121,9 +120,8 @@ def _race_control(ds):
     return f"inner for {inner} balls, outer for {len(words) - inner}"
 
 
-def _loaded_balls(ds):
+def _loaded_balls(window):
     """Balls carrying load on the inner race; for a dynamic run the median count per sample."""
-    window = _window(ds)
     load = window["contact_load"].sel(race="inner")
     if "time" in load.dims:
         counts = (load > 0.0).sum("ball").values
@@ -131,11 +129,10 @@ def _loaded_balls(ds):
     return int((load > 0.0).sum())
 
 
-def _truncated_contacts(ds):
+def _truncated_contacts(window):
     """(ball, race) contacts whose ellipse runs over the shoulder at least once."""
-    if "truncation_margin" not in ds:
+    if "truncation_margin" not in window:
         return 0
-    window = _window(ds)
     over = (window["truncation_margin"] < 0.0) & (window["contact_load"] > 0.0)
     if "time" in over.dims:
         over = over.any("time")
@@ -184,87 +181,87 @@ def _registry() -> dict[str, Value]:
             "speed_rpm",
             "rpm",
             "inner-ring (shaft) speed",
-            lambda ds, _: _coord(ds, "inner_ring_speed", 1.0 / RPM),
+            lambda ds, w: _coord(ds, "inner_ring_speed", 1.0 / RPM),
         ),
         Value(
             "axial_load",
             "N",
             "axial load on the inner ring",
-            lambda ds, _: _coord(ds, "axial_load"),
+            lambda ds, w: _coord(ds, "axial_load"),
         ),
         Value(
             "radial_load",
             "N",
             "radial load on the inner ring",
-            lambda ds, _: _coord(ds, "radial_load"),
+            lambda ds, w: _coord(ds, "radial_load"),
         ),
         Value(
             "misalignment",
             "deg",
             "imposed tilt of the inner ring",
-            lambda ds, _: _coord(ds, "misalignment"),
+            lambda ds, w: _coord(ds, "misalignment"),
         ),
         Value(
             "misalignment_frame",
             "",
             '"fixed in space" or "turning with the inner ring"',
-            lambda ds, _: _misalignment_frame(ds),
+            lambda ds, w: _misalignment_frame(ds),
         ),
         Value(
             "free_contact_angle",
             "deg",
             "contact angle of the unloaded bearing",
-            lambda ds, _: _coord(ds, "free_contact_angle"),
+            lambda ds, w: _coord(ds, "free_contact_angle"),
         ),
-        Value("ball_count", "", "number of balls", lambda ds, _: int(ds.coords["ball_count"])),
+        Value("ball_count", "", "number of balls", lambda ds, w: int(ds.coords["ball_count"])),
         Value(
             "shaft_revolutions",
             "",
             "shaft revolutions the dynamic run covers",
-            lambda ds, _: _revolutions(ds),
+            lambda ds, w: _revolutions(ds),
         ),
         Value(
             "centrifugal_force",
             "N",
             "mean centrifugal force on one ball",
-            lambda ds, _: _centrifugal_force(ds),
+            lambda ds, w: _centrifugal_force(w),
         ),
         Value(
             "gyroscopic_moment",
             "mN m",
             "mean gyroscopic moment on one ball (quasi-static)",
-            lambda ds, _: _mean_var(ds, "gyroscopic_moment", 1e3),
+            lambda ds, w: _mean_var(w, "gyroscopic_moment", 1e3),
         ),
         Value(
             "race_control",
             "",
             'the raceway that "controls" the ball (quasi-static)',
-            lambda ds, _: _race_control(ds),
+            lambda ds, w: _race_control(ds),
         ),
         Value(
-            "loaded_balls", "", "balls carrying load (inner race)", lambda ds, _: _loaded_balls(ds)
+            "loaded_balls", "", "balls carrying load (inner race)", lambda ds, w: _loaded_balls(w)
         ),
-        Value("cage_speed_rpm", "rpm", "mean cage speed", lambda ds, _: _cage_speed_rpm(ds)),
+        Value("cage_speed_rpm", "rpm", "mean cage speed", lambda ds, w: _cage_speed_rpm(w)),
         Value(
             "epicyclic_cage_speed_rpm",
             "rpm",
             "cage speed of pure rolling at the free contact angle",
-            lambda ds, _: epicyclic_cage_speed(ds) / RPM,
+            lambda ds, w: epicyclic_cage_speed(ds) / RPM,
         ),
         Value(
             "cage_slip",
             "%",
             "how much slower than epicyclic the cage runs (negative: faster)",
-            lambda ds, _: _cage_slip(ds),
+            lambda ds, w: _cage_slip(w),
         ),
         Value(
             "max_pressure",
             "GPa",
             "highest peak contact pressure on either race",
-            lambda ds, _: max(
+            lambda ds, w: max(
                 (
                     p
-                    for p in (_stat(ds, "max_pressure", r, "max", 1e-9) for r in RACES)
+                    for p in (_stat(w, "max_pressure", r, "max", 1e-9) for r in RACES)
                     if p is not None
                 ),
                 default=None,
@@ -274,19 +271,19 @@ def _registry() -> dict[str, Value]:
             "pressure_limit",
             "GPa",
             "static pressure limit (ISO 76) the warnings use",
-            lambda ds, _: _pressure_limit(ds),
+            lambda ds, w: _pressure_limit(ds),
         ),
         Value(
             "truncated_contacts",
             "",
             "ball-race contacts whose ellipse runs over the shoulder",
-            lambda ds, _: _truncated_contacts(ds),
+            lambda ds, w: _truncated_contacts(w),
         ),
         Value(
             "warning_count",
             "",
             "number of warnings the result gives",
-            lambda ds, _: len(ds.racetrace.warnings()),
+            lambda ds, w: len(ds.racetrace.warnings()),
         ),
     ]
     for race in RACES:
@@ -295,79 +292,79 @@ def _registry() -> dict[str, Value]:
                 f"{race}_contact_angle",
                 "deg",
                 f"mean {race} contact angle",
-                lambda ds, _, r=race: _stat(ds, "contact_angle", r, "mean"),
+                lambda ds, w, r=race: _stat(w, "contact_angle", r, "mean"),
             ),
             Value(
                 f"{race}_contact_angle_min",
                 "deg",
                 f"smallest {race} contact angle",
-                lambda ds, _, r=race: _stat(ds, "contact_angle", r, "min"),
+                lambda ds, w, r=race: _stat(w, "contact_angle", r, "min"),
             ),
             Value(
                 f"{race}_contact_angle_max",
                 "deg",
                 f"largest {race} contact angle",
-                lambda ds, _, r=race: _stat(ds, "contact_angle", r, "max"),
+                lambda ds, w, r=race: _stat(w, "contact_angle", r, "max"),
             ),
             Value(
                 f"{race}_load",
                 "N",
                 f"mean {race} contact load (loaded contacts)",
-                lambda ds, _, r=race: _stat(ds, "contact_load", r, "mean"),
+                lambda ds, w, r=race: _stat(w, "contact_load", r, "mean"),
             ),
             Value(
                 f"{race}_load_max",
                 "N",
                 f"largest {race} contact load",
-                lambda ds, _, r=race: _stat(ds, "contact_load", r, "max"),
+                lambda ds, w, r=race: _stat(w, "contact_load", r, "max"),
             ),
             Value(
                 f"{race}_load_min",
                 "N",
                 f"smallest {race} contact load (0 when a ball is unloaded)",
-                lambda ds, _, r=race: _stat(ds, "contact_load", r, "min", loaded_only=False),
+                lambda ds, w, r=race: _stat(w, "contact_load", r, "min", loaded_only=False),
             ),
             Value(
                 f"{race}_pressure",
                 "GPa",
                 f"highest {race} peak contact pressure",
-                lambda ds, _, r=race: _stat(ds, "max_pressure", r, "max", 1e-9),
+                lambda ds, w, r=race: _stat(w, "max_pressure", r, "max", 1e-9),
             ),
             Value(
                 f"{race}_semi_major",
                 "mm",
                 f"mean {race} ellipse semi-axis across the groove",
-                lambda ds, _, r=race: _stat(ds, "ellipse_semi_major", r, "mean", 1e3),
+                lambda ds, w, r=race: _stat(w, "ellipse_semi_major", r, "mean", 1e3),
             ),
             Value(
                 f"{race}_semi_minor",
                 "mm",
                 f"mean {race} ellipse semi-axis along the rolling direction",
-                lambda ds, _, r=race: _stat(ds, "ellipse_semi_minor", r, "mean", 1e3),
+                lambda ds, w, r=race: _stat(w, "ellipse_semi_minor", r, "mean", 1e3),
             ),
             Value(
                 f"{race}_spin_to_roll",
                 "",
                 f"mean {race} spin-to-roll ratio",
-                lambda ds, _, r=race: _stat(ds, "spin_to_roll", r, "mean"),
+                lambda ds, w, r=race: _stat(w, "spin_to_roll", r, "mean"),
             ),
             Value(
                 f"{race}_excursion",
                 "deg",
                 f"{race} track excursion in its own ring's frame",
-                lambda ds, _, r=race: _summary_metric(ds, "trajectory_excursion", r),
+                lambda ds, w, r=race: _summary_metric(ds, "trajectory_excursion", r),
             ),
             Value(
                 f"{race}_band_thickness",
                 "deg",
                 f"{race} track band thickness in its own ring's frame (dynamic)",
-                lambda ds, _, r=race: _summary_metric(ds, "trajectory_band_thickness", r),
+                lambda ds, w, r=race: _summary_metric(ds, "trajectory_band_thickness", r),
             ),
             Value(
                 f"{race}_truncation_margin",
                 "deg",
                 f"smallest margin between the {race} ellipse and the shoulder (negative: over it)",
-                lambda ds, _, r=race: _min_margin(ds, r),
+                lambda ds, w, r=race: _min_margin(w, r),
             ),
         ]
     return {v.name: v for v in entries}
@@ -381,8 +378,9 @@ VALUE_NAMES = frozenset(VALUES)
 def lesson_values(ds: xr.Dataset) -> dict[str, object]:
     """Every value of :data:`VALUES` for one result (None where the result does not have it)."""
     out = {}
+    window = _window(ds)
     for name, value in VALUES.items():
-        result = value.compute(ds, out)
+        result = value.compute(ds, window)
         if isinstance(result, float) and not math.isfinite(result):
             result = None
         out[name] = result
