@@ -12,7 +12,9 @@ State (all plain JSON): ``lessons`` (id, title, summary per lesson), ``lesson_pr
 lesson files, in words), ``lesson_id``, ``lesson_title``, ``lesson_explain``, ``lesson_try``,
 ``lesson_result`` (name of the result on show), ``lesson_results`` (name and label per result),
 ``lesson_warnings`` (the warnings of the result on show), ``lesson_chart`` (the chart
-highlighted), ``lesson_message`` (why a lesson could not open), ``presenter``.
+highlighted), ``lesson_message`` (why a lesson could not open), ``lesson_stale`` (true once
+another result is on show than the lesson's: its text then no longer describes the view),
+``presenter``.
 """
 
 from __future__ import annotations
@@ -42,6 +44,7 @@ class LessonController(Component):
         self.cache_dir = cache_dir
         self._results: dict[tuple[str, str], object] = {}  # (lesson, result) -> Dataset
         self._values: dict[tuple[str, str], dict] = {}
+        self._shown_serial = None  # result_serial of the lesson's result on show
 
     def init_state(self) -> None:
         s = self.state
@@ -59,6 +62,7 @@ class LessonController(Component):
         s.lesson_warnings = []
         s.lesson_chart = None
         s.lesson_message = ""
+        s.lesson_stale = False
         s.presenter = False
 
     def bind(self) -> None:
@@ -70,6 +74,13 @@ class LessonController(Component):
         ctrl.lesson_key = self.key
         self.session.server.trigger("lesson_key")(self.key)  # called by the page's key handler
         s.change("presenter")(self._on_presenter)
+        s.change("result_serial")(self._on_result_serial)
+
+    def _on_result_serial(self, result_serial=0, **_):
+        """Another result than the lesson's is on show (a preview after an edit, a run): the
+        lesson's text no longer describes the view, and the page says so."""
+        if self.state.lesson_id and result_serial != self._shown_serial:
+            self.state.lesson_stale = True
 
     def _on_presenter(self, presenter=False, **_):
         """Presenter mode hides the form (the drawer); the charts are redrawn at their new size."""
@@ -127,7 +138,9 @@ class LessonController(Component):
         self.state.run_id = None  # the runs list names no run
         view.shown_run_id = None
         view.show_result(ds, f"lesson: {spec.label}")
+        self._shown_serial = self.state.result_serial
         with self.state:
+            self.state.lesson_stale = False
             self.state.lesson_result = spec.name
             self.state.lesson_warnings = ds.racetrace.warnings()
 

@@ -2,9 +2,9 @@
 :class:`app.lessons.panel.LessonController`.
 
 Stable element ids used by tests: lessons-panel, lesson-<id> (one button per lesson),
-lesson-title, lesson-text, lesson-try, lesson-result-<name> (one button per result of the open
-lesson), lesson-warnings, lesson-problems, lesson-message, lesson-previous, lesson-next,
-presenter-button.
+lesson-title, lesson-text, lesson-stale, lesson-try, lesson-result-<name> (one button per result
+of the open lesson), lesson-warnings, lesson-problems, lesson-message, lesson-previous,
+lesson-next, presenter-button.
 
 Presenter mode adds the class ``rt-presenter`` around the page content (:data:`PRESENTER_CSS`):
 the form drawer, the scene and export controls, the runs card and every chart but the lesson's
@@ -167,6 +167,14 @@ def lessons_panel(ctrl) -> None:
                     color="primary",
                     classes="ma-1 text-none",
                 )
+            html.Div(
+                "The result on show is no longer this lesson's, so the numbers below describe "
+                "the lesson's result ({{ lesson_results.find(r => r.name === lesson_result)"
+                "?.label }}). Open the lesson again to return to it.",
+                v_if="lesson_stale",
+                id="lesson-stale",
+                classes="text-caption text-warning my-1",
+            )
             html.Div(
                 "{{ lesson_explain }}",
                 id="lesson-text",

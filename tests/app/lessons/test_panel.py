@@ -143,3 +143,19 @@ def test_a_lesson_that_cannot_open_says_why(app, monkeypatch):
     app.lessons.open_lesson(IDS[1])
     assert "could not be opened: disk on fire" in app.state.lesson_message
     assert app.state.lesson_id == IDS[0]  # the open lesson stays
+
+
+def test_text_is_marked_once_another_result_is_on_show(app):
+    app.lessons.open_lesson("02-speed")
+    s = app.state
+    s.flush()
+    assert s.lesson_stale is False
+    with s:
+        s.fv_axial_load_N = "700"  # an edit: the preview replaces the lesson's result
+    app.form.preview_now()
+    s.flush()
+    assert s.result_label == "quasi-static preview"
+    assert s.lesson_stale is True and s.lesson_id == "02-speed"
+    app.lessons.show_result("rest")  # back to a result of the lesson
+    s.flush()
+    assert s.lesson_stale is False
