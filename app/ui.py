@@ -82,7 +82,16 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
         layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
             v3.VSpacer()
-            html.Div("{{ result_label }}", classes="text-body-2 mr-4")
+            v3.VChip(
+                "out of date: the form has changed",
+                id="result-stale",
+                v_show="result_stale",
+                color="warning",
+                size="small",
+                classes="mr-2",
+                title="The result on show is not of the case in the form",
+            )
+            html.Div("{{ result_label }}", id="result-label", classes="text-body-2 mr-4")
             lesson_widgets.presenter_button()
 
         with layout.drawer as drawer:
@@ -202,7 +211,93 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             hide_details=True,
                                         )
                                     _compare_panel()
+                            with v3.VExpansionPanel(title="Studies", value="studies"):
+                                with v3.VExpansionPanelText():
+                                    _studies_panel(ctrl)
     return layout
+
+
+def _studies_panel(ctrl) -> None:
+    """Run a shipped study (app.components.studies), chart a metric and open any point."""
+    with html.Div(id="studies", classes="mb-2"):
+        with v3.VRow(dense=True, align="center"):
+            with v3.VCol(cols=6):
+                v3.VSelect(
+                    label="Shipped study",
+                    v_model=("study_name",),
+                    items=("study_names",),
+                    density="compact",
+                    hide_details=True,
+                    disabled=("study_running",),
+                )
+            with v3.VCol(cols="auto"):
+                v3.VBtn(
+                    "Run study",
+                    id="study-run",
+                    click=ctrl.study_run,
+                    disabled=("study_running",),
+                    color="primary",
+                    size="small",
+                )
+            with v3.VCol(cols="auto"):
+                v3.VBtn(
+                    "Cancel",
+                    id="study-cancel",
+                    click=ctrl.study_cancel,
+                    disabled=("!study_running",),
+                    size="small",
+                )
+        html.Div("{{ study_status }}", id="study-status", classes="text-caption my-1")
+        with v3.VRow(dense=True):
+            with v3.VCol(cols=6):
+                v3.VSelect(
+                    label="Sweep",
+                    v_model=("study_sweep",),
+                    items=("study_sweeps",),
+                    density="compact",
+                    hide_details=True,
+                )
+            with v3.VCol(cols=6):
+                v3.VSelect(
+                    label="Metric",
+                    v_model=("study_metric",),
+                    items=("study_metric_items",),
+                    density="compact",
+                    hide_details=True,
+                )
+        with html.Div(id="chart-study", classes="mb-2"):
+            lazy_charts.ChartFigure(
+                "chart_study", display_mode_bar=False, style="height: 280px; width: 100%;"
+            )
+        with v3.VTable(density="compact", id="study-table"):
+            with html.Thead():
+                with html.Tr():
+                    for head in (
+                        "point",
+                        "model",
+                        "values",
+                        "status",
+                        "exc i/o deg",
+                        "band i/o deg",
+                        "",
+                    ):
+                        html.Th(head)
+            with html.Tbody():
+                with html.Tr(v_for="row in study_rows", key="row.key"):
+                    html.Td("{{ row.point }}")
+                    html.Td("{{ row.model }}")
+                    html.Td("{{ row.values }}")
+                    html.Td("{{ row.status }}")
+                    html.Td("{{ row.excursion_inner }} / {{ row.excursion_outer }}")
+                    html.Td("{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}")
+                    with html.Td():
+                        v3.VBtn(
+                            "open",
+                            size="x-small",
+                            variant="text",
+                            disabled=("row.status !== 'done'",),
+                            click=(ctrl.study_open, "[row.point, row.model]"),
+                        )
 
 
 def _compare_panel() -> None:
@@ -403,6 +498,43 @@ def _run_panel(ctrl) -> None:
             with v3.VCol():
                 html.Div("{{ status }}", id="status", classes="text-body-2")
                 html.Div("{{ eta }}", classes="text-caption")
+        html.Div(
+            "{{ run_blocked }}",
+            id="run-blocked",
+            v_show="run_blocked",
+            classes="text-caption text-error",
+        )
+        html.Div(
+            "{{ run_note }}", id="run-note", v_show="run_note", classes="text-caption text-warning"
+        )
+        with v3.VAlert(
+            id="run-confirm",
+            v_if="run_confirm",
+            type="warning",
+            density="compact",
+            variant="tonal",
+            classes="my-1 text-caption",
+        ):
+            html.Div(
+                "The result of this case leaves the model's validity (see the warnings below). "
+                "Run the dynamic model anyway?"
+            )
+            v3.VBtn(
+                "Run anyway",
+                id="run-anyway",
+                click=ctrl.run_anyway,
+                size="small",
+                color="warning",
+                classes="mt-1 mr-2",
+            )
+            v3.VBtn(
+                "Back",
+                id="run-back",
+                click="run_confirm = false",
+                size="small",
+                variant="text",
+                classes="mt-1",
+            )
         html.Div(
             "{{ run_reason }}",
             id="run-reason",

@@ -1,14 +1,16 @@
 """Benchmark of the dynamic model on a light and a heavy catalogue case.
 
     python benchmarks/dynamic.py [--revolutions N] [--cases spindle heavy]
+                                 [--traction-model case|rheology|slip_curve]
 
 - spindle: catalogue case ``spindle-combined-load`` (7008C-class hybrid, 18 balls, 20 000 rpm,
   500 N axial + 300 N radial, cage on);
 - heavy: ``218-heavy-combined`` (218, 16 balls, 10 000 rpm, 17.8 kN + 8.9 kN, cage on).
 
-Prints wall time per shaft revolution (after a warm-up run that compiles the numba kernels),
-accepted and rejected steps, right-hand-side evaluations, peak memory (tracemalloc for Python/numpy
-allocations, ru_maxrss for the process), the memory projected for 100 revolutions of output, and a
+Prints wall and CPU time per shaft revolution of a run timed without tracemalloc (after a warm-up
+run that compiles the numba kernels), accepted and rejected steps, right-hand-side evaluations,
+peak memory from a separate one-revolution pass under tracemalloc (Python/numpy allocations;
+ru_maxrss for the process), the memory projected for 100 revolutions of output, and a
 breakdown of where the time goes: the cost of one right-hand-side evaluation measured with parts of
 the physics switched off (numba code cannot be profiled by cProfile, so the parts are timed by
 difference), times the number of evaluations, plus the integrator overhead and the output stage.
@@ -48,7 +50,7 @@ def running_state(inputs, options, revolutions=0.1):
     par = build_params(inputs, options)
     quad = build_quadrature(options)
     y = initial_state(par, quad)
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     scale = state_scales(par, y)
     op = inputs.operating
     t_end = revolutions * 2.0 * np.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
@@ -78,7 +80,7 @@ def rhs_cost(inputs, options, y, repeats=300):
     """Seconds per right-hand-side evaluation at state ``y`` (best of 7 batches)."""
     par = build_params(inputs, options)
     quad = build_quadrature(options)
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
@@ -93,17 +95,21 @@ def rhs_cost(inputs, options, y, repeats=300):
     return best
 
 
-def run_case(label, revolutions):
+def run_case(label, revolutions, traction_model="case"):
     case = resolve_case(CASES[label])
     inputs = to_inputs(case)
+    if traction_model != "case":
+        inputs = replace(inputs, lubricant=replace(inputs.lubricant, traction_model=traction_model))
     options = SimulationOptions(shaft_revolutions=revolutions)
     simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # compile / warm caches
-    tracemalloc.start()
     start = time.perf_counter()
     cpu_start = time.process_time()
     ds = simulate(inputs, options=options)
     cpu = time.process_time() - cpu_start
     total = time.perf_counter() - start
+    # memory in a separate, shorter pass: tracemalloc slows numpy-heavy code down
+    tracemalloc.start()
+    simulate(inputs, options=replace(options, shaft_revolutions=min(1.0, revolutions)))
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     integ = ds.attrs["wall_time_s"]
@@ -122,7 +128,7 @@ def run_case(label, revolutions):
     samples_100 = 100 * inputs.simulation.samples_per_revolution
     bytes_state = samples_100 * n_state * 8
     bytes_ds = ds.nbytes / ds.sizes["time"] * samples_100
-    print(f"\n== {label}: {case.title}")
+    print(f"\n== {label}: {case.title} (traction model: {inputs.lubricant.traction_model})")
     print(
         f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = "
         f"{ds.attrs['complete']}"
@@ -142,7 +148,7 @@ def run_case(label, revolutions):
         f"RHS evaluations {evals}"
     )
     print(
-        f"   memory: tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
+        f"   memory (1-revolution pass): tracemalloc peak {peak / 1e6:.1f} MB, process max RSS "
         f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e3:.0f} MB; projected for 100 "
         f"revolutions: states {bytes_state / 1e6:.0f} MB + Dataset {bytes_ds / 1e6:.0f} MB"
     )
@@ -155,7 +161,7 @@ def run_case(label, revolutions):
     )
     parts = {
         "Hertz geometry + normal forces + ball/ring bookkeeping": evals * normal_only,
-        "ellipse-integrated traction": evals * (full - no_traction),
+        "traction, rolling resistance and drag": evals * (full - no_traction),
         "cage pockets and land": evals * (full - no_cage),
     }
     for name, seconds in parts.items():
@@ -172,8 +178,16 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--revolutions", type=float, default=3.0)
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    parser.add_argument(
+        "--traction-model",
+        default="case",
+        choices=("case", "rheology", "slip_curve"),
+        help="traction law of the ball-race contacts (default: the case's)",
+    )
     args = parser.parse_args(argv)
-    results = {label: run_case(label, args.revolutions) for label in args.cases}
+    results = {
+        label: run_case(label, args.revolutions, args.traction_model) for label in args.cases
+    }
     if "spindle" in results:
         wall, cpu = results["spindle"]
         verdict = "meets" if cpu <= 1.0 else "misses"

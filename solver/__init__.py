@@ -14,6 +14,8 @@ Public API (everything else is internal):
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
   ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
+- ``Study.from_file(path)`` / ``open_study(folder)``: parameter studies run on Dask
+  (docs/study-format.md)
 - ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
   ``SimulationDiverged`` (the dynamic integration failed), ``ResultWriteError`` (a result file
   could not be written; an OSError naming the file)
@@ -51,6 +53,8 @@ _LAZY = {
     "load_dataset": "solver.results.io",
     "result_warnings": "solver.results.checks",
     "trajectory_summary": "solver.results.summary",
+    "Study": "solver.study",
+    "open_study": "solver.study",
     "contact_table": "solver.results.io",
     "RacetraceAccessor": "solver.results.accessor",
 }

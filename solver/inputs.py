@@ -15,6 +15,7 @@ import numpy as np
 
 from .geometry import BearingGeometry, free_contact_angle_from_clearance
 from .materials import Material
+from .physics.rheology import viscosity_at_temperature
 
 #: SI value of one case unit.
 MM = 1e-3  # m
@@ -92,6 +93,7 @@ class CageInputs:
     mass: float  # kg
     pocket_friction: float
     guide_land_width: float  # m
+    land_flooding: float  # flooded fraction of the guiding land
 
 
 @dataclass(frozen=True)
@@ -114,10 +116,20 @@ class LubricantInputs:
     """The lubricant, SI units. ``given`` is False when the case has no ``[lubricant]`` section
     and these are the schema's default oil."""
 
-    viscosity: float  # Pa s
+    viscosity: float  # Pa s, at the inlet temperature
     pressure_viscosity: float  # 1/Pa
     traction: TractionCurve
     given: bool
+    traction_model: str  # "rheology" | "slip_curve"
+    inlet_temperature: float  # degC
+    temperature_viscosity: float  # beta, 1/K
+    eyring_stress: float  # Pa
+    limiting_shear_stress: float  # tau_L0, Pa
+    limiting_shear_coefficient: float  # Lambda
+    film_shear_modulus: float  # Pa
+    thermal_conductivity: float  # W/(m K)
+    density: float  # kg/m^3
+    oil_volume_fraction: float
 
     @property
     def description(self) -> str:
@@ -127,7 +139,8 @@ class LubricantInputs:
         t = self.traction
         return (
             "no [lubricant] in the case: the default oil of the case schema was used (viscosity "
-            f"{self.viscosity:g} Pa s, pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
+            f"{self.viscosity:g} Pa s at the inlet, traction model {self.traction_model}, "
+            "pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
             f"/GPa, traction mu_zero {t.mu_zero:g}, mu_max {t.mu_max:g} at {t.slip_at_max:g} m/s, "
             f"mu_infinity {t.mu_infinity:g}; docs/case-format.md)"
         )
@@ -226,14 +239,23 @@ def cage_inputs(cage) -> CageInputs:
         mass=float(cage.mass_g) * GRAM,
         pocket_friction=float(cage.pocket_friction),
         guide_land_width=float(cage.guide_land_width_mm) * MM,
+        land_flooding=float(cage.land_flooding),
     )
 
 
 def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
-    """SI lubricant of a case's ``[lubricant]`` section (Pa s, 1/GPa, m/s)."""
+    """SI lubricant of a case's ``[lubricant]`` section (Pa s, 1/GPa, m/s, MPa, GPa); the
+    viscosity is taken to the inlet temperature (solver.physics.rheology.viscosity_at_temperature).
+    """
     t = lubricant.traction
+    viscosity = viscosity_at_temperature(
+        float(lubricant.viscosity_Pas),
+        float(lubricant.reference_temperature_C),
+        float(lubricant.temperature_viscosity_per_K),
+        float(lubricant.inlet_temperature_C),
+    )
     return LubricantInputs(
-        viscosity=float(lubricant.viscosity_Pas),
+        viscosity=viscosity,
         pressure_viscosity=float(lubricant.pressure_viscosity_per_GPa) * PER_GPA,
         traction=TractionCurve(
             mu_zero=float(t.mu_zero),
@@ -242,6 +264,16 @@ def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
             mu_infinity=float(t.mu_infinity),
         ),
         given=bool(given),
+        traction_model=str(lubricant.traction_model),
+        inlet_temperature=float(lubricant.inlet_temperature_C),
+        temperature_viscosity=float(lubricant.temperature_viscosity_per_K),
+        eyring_stress=float(lubricant.eyring_stress_MPa) * 1.0e6,
+        limiting_shear_stress=float(lubricant.limiting_shear_stress_MPa) * 1.0e6,
+        limiting_shear_coefficient=float(lubricant.limiting_shear_coefficient),
+        film_shear_modulus=float(lubricant.film_shear_modulus_GPa) * GPA,
+        thermal_conductivity=float(lubricant.thermal_conductivity_W_mK),
+        density=float(lubricant.density_kg_m3),
+        oil_volume_fraction=float(lubricant.oil_volume_fraction),
     )
 
 

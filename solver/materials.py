@@ -14,13 +14,16 @@ class Material:
     """An isotropic elastic material.
 
     Attributes are SI: ``youngs_modulus`` in Pa, ``poisson_ratio`` dimensionless, ``density`` in
-    kg/m^3.
+    kg/m^3. ``hysteresis_loss``: fraction of the elastic strain energy lost per rolling cycle
+    (elastic hysteresis, Tabor; about 0.5-2 % for hardened bearing steel, physics.md §2.6.5 [M/E]);
+    materials defined in a case file get the default.
     """
 
     name: str
     youngs_modulus: float
     poisson_ratio: float
     density: float
+    hysteresis_loss: float = 0.01
 
     @property
     def compliance(self) -> float:
@@ -30,9 +33,10 @@ class Material:
 
 BUILTIN_MATERIALS: dict[str, Material] = {
     # AISI 52100 through-hardened bearing steel.
-    "bearing_steel": Material("bearing_steel", 208.0e9, 0.3, 7800.0),
+    "bearing_steel": Material("bearing_steel", 208.0e9, 0.3, 7800.0, hysteresis_loss=0.01),
     # Hot-isostatically-pressed silicon nitride (hybrid-bearing balls).
-    "silicon_nitride": Material("silicon_nitride", 310.0e9, 0.26, 3200.0),
+    # Ceramics dissipate less than steel under cyclic contact stress [E].
+    "silicon_nitride": Material("silicon_nitride", 310.0e9, 0.26, 3200.0, hysteresis_loss=0.005),
 }
 
 

@@ -31,7 +31,7 @@ class Export(Component):
         s.exporting = False
 
     def bind(self) -> None:
-        self.ctrl.export = self.request_export
+        self.action("export", self.request_export)
 
     @property
     def exports_dir(self) -> Path:
@@ -60,6 +60,12 @@ class Export(Component):
         if kind in ("png", "gif", "mp4") and result.scene is None:
             return "export failed: the 3-D view is not available"
         return ""
+
+    def caption(self, index: int) -> str:
+        """What an exported image says about itself: the case, its loads, the time shown."""
+        result = self.session.result
+        t_ms = float(result.source.times[index]) * 1e3
+        return f"t = {t_ms:.3f} ms   {result.shown_title}   (racetrace)"
 
     def _animation_step(self) -> int:
         return max(1, -(-self.session.result.source.n_frames // MAX_ANIMATION_FRAMES))
@@ -117,7 +123,7 @@ class Export(Component):
             elif kind == "csv":
                 await asyncio.to_thread(ex.export_csv, dataset, path)
             elif kind == "png":
-                ex.export_png(result.plotter, path)
+                ex.export_png(result.plotter, path, self.caption(result.scene.frame_index))
             else:
                 await self._export_animation(ex, path)
         except (OSError, ValueError) as error:
@@ -141,7 +147,9 @@ class Export(Component):
         with self.state:
             self.state.playing = False
         result.animating_export = True  # frame changes from the page wait until it is written
-        frames = ex.iter_export_animation(result.scene, path, step=self._animation_step())
+        frames = ex.iter_export_animation(
+            result.scene, path, step=self._animation_step(), caption=self.caption
+        )
         for fraction in frames:
             with self.state:
                 self.state.export_message = f"writing {path.name}: {100 * fraction:.0f} %"

@@ -17,7 +17,8 @@ import time
 
 from .. import charts
 from ..frames import FrameSource, frame_source
-from .base import Component, fig_json
+from ..runs import describe_case
+from .base import Component, as_float, as_int, fig_json
 from .case_form import solve_quasistatic
 
 log = logging.getLogger("racetrace.app")
@@ -25,6 +26,8 @@ log = logging.getLogger("racetrace.app")
 PLAY_FPS = 15.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 CUTAWAY_HALF_WIDTH = math.radians(70.0)  # the outer ring is cut away +-70 deg about the load side
+MAX_EXAGGERATION = 1000.0
+MAX_SPEED = 1000  # frames per animation tick
 LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
 CHARTS = (
     "contact_angle",
@@ -56,6 +59,7 @@ class ResultView(Component):
         self.source: FrameSource | None = None
         self.shown_case_text = None  # case TOML of the result on show
         self.shown_run_id = None  # id of the saved run on show (None for a preview)
+        self.shown_title = ""  # the case and loads of the result on show, in words
         self.animating_export = False  # an animation export is moving the scene's frames
         self._scene_key = None
         self._last_chart_update = 0.0
@@ -85,15 +89,14 @@ class ResultView(Component):
             s[f"chart_{name}"] = {"data": [], "layout": {}}
 
     def bind(self) -> None:
-        s, c = self.state, self.ctrl
-        s.change("frame")(self._on_frame)
-        s.change("playing")(self._on_playing)
-        s.change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
-        s.change("exaggeration", "trace_ball")(self._on_trace_options)
-        s.change("camera")(self._on_camera)
-        s.change("open_panels")(self._on_open_panels)
-        c.step = self.step
-        c.set_camera = self.set_camera
+        self.on_change("frame")(self._on_frame)
+        self.on_change("playing")(self._on_playing)
+        self.on_change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
+        self.on_change("exaggeration", "trace_ball")(self._on_trace_options)
+        self.on_change("camera")(self._on_camera)
+        self.on_change("open_panels")(self._on_open_panels)
+        self.action("step", self.step)
+        self.action("set_camera", self.set_camera)
 
     # ---- what is shown --------------------------------------------------------------------------
     def show_preview(self, ds) -> None:
@@ -122,6 +125,9 @@ class ResultView(Component):
         form_case = self.session.form.case
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
         self.shown_case_text = case.to_toml() if case is not None else None
+        model = "dynamic" if "time" in ds.dims else "quasi-static"
+        self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
+        self.session.form.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:
             self.quasistatic = ds
@@ -142,9 +148,9 @@ class ResultView(Component):
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
-        if s.frame > s.frame_max:
+        if as_int(s.frame, 0) > s.frame_max:
             s.frame = 0
-        self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
+        self._apply_frame(as_int(s.frame, 0), charts_too=True)  # includes an open comparison
 
     @staticmethod
     def _warnings_of(ds, case) -> list[str]:
@@ -201,9 +207,10 @@ class ResultView(Component):
                 self.plotter.remove_scalar_bar(title)
             self.plotter.clear_actors()
         camera = self.plotter.camera_position if self.scene is not None else None
+        ball = self._trace_ball(self.state.trace_ball, geometry.ball_count)
         options = SceneOptions(
-            exaggeration=float(self.state.exaggeration),
-            trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
+            exaggeration=self._exaggeration(self.state.exaggeration),
+            trace_ball=None if ball < 0 else ball,
             # face the load zone and cut the outer ring away there
             view_azimuth=load_side,
             outer_cutaway=(load_side - CUTAWAY_HALF_WIDTH, load_side + CUTAWAY_HALF_WIDTH),
@@ -235,10 +242,20 @@ class ResultView(Component):
             self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
         self.push_view()
 
+    @staticmethod
+    def _trace_ball(value, ball_count: int) -> int:
+        """The ball whose traces are drawn (-1: every ball), from the page's ``trace_ball``."""
+        return as_int(value, -1, -1, ball_count - 1)
+
+    @staticmethod
+    def _exaggeration(value) -> float:
+        return as_float(value, 1.0, 1.0, MAX_EXAGGERATION)
+
     def _on_trace_options(self, exaggeration=1.0, trace_ball=-1, **_):
         if self.scene is not None:
-            self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
-            self.scene.set_exaggeration(float(exaggeration))
+            ball = self._trace_ball(trace_ball, self.scene.geometry.ball_count)
+            self.scene.options.trace_ball = None if ball < 0 else ball
+            self.scene.set_exaggeration(self._exaggeration(exaggeration))
             self.push_view()
         self.update_charts()
 
@@ -275,10 +292,14 @@ class ResultView(Component):
         """
         if self.source is None:
             return
-        i = int(self.state.frame) if index is None else index
         src, s = self.source, self.state
-        open_panels = set(s.open_panels or ())
-        ball = int(s.trace_ball)
+        i = as_int(s.frame, 0) if index is None else index
+        i = min(max(i, 0), src.n_frames - 1)
+        panels = s.open_panels
+        open_panels = (
+            {p for p in panels if isinstance(p, str)} if isinstance(panels, list) else set()
+        )
+        ball = self._trace_ball(s.trace_ball, src.ball_count)
         balls = (ball,) if ball >= 0 else None  # None: every ball
         s.chart_contact_angle = fig_json(charts.contact_angle_figure(src, balls, current=i))
         s.chart_raceway_map = fig_json(charts.raceway_map_figure(src, stop=i + 1))
@@ -305,13 +326,14 @@ class ResultView(Component):
         follow = (
             not self.state.playing or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S
         )
-        self._apply_frame(int(frame), charts_too=follow)
+        self._apply_frame(as_int(frame, 0), charts_too=follow)
 
     def step(self, delta: int = 1) -> None:
         """Move ``delta`` frames (wrapping at the ends)."""
         if self.source is None:
             return
-        self.state.frame = int((int(self.state.frame) + int(delta)) % self.source.n_frames)
+        frame = as_int(self.state.frame, 0) + as_int(delta, 1, -1_000_000, 1_000_000)
+        self.state.frame = frame % self.source.n_frames
 
     def _on_playing(self, playing=False, **_):
         if playing and (self._play_task is None or self._play_task.done()):
@@ -327,9 +349,13 @@ class ResultView(Component):
         period = 1.0 / PLAY_FPS
         while self.state.playing and self.session.clients > 0 and self.source is not None:
             t0 = time.monotonic()
-            with self.state:
-                step = max(1, int(self.state.speed))
-                self.state.frame = (int(self.state.frame) + step) % self.source.n_frames
+            try:
+                with self.state:
+                    step = as_int(self.state.speed, 1, 1, MAX_SPEED)
+                    frame = as_int(self.state.frame, 0) + step
+                    self.state.frame = frame % self.source.n_frames
+            except Exception:  # a frame that fails to draw must not stop the animation
+                log.exception("animation frame failed")
             await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
 
     def shutdown(self) -> None:

@@ -9,6 +9,7 @@ Scalar ``@njit(cache=True)`` functions, callable from other numba code, that rep
 * ``hertz_contact_fast(load, curvature_sum, F, effective_modulus) -> (a, b, delta, p_max, K)``
 * ``curvature_sum_and_difference_fast(ball_diameter, conformity, gamma, is_inner) -> (Σρ, F)``
 * ``equivalent_radii_fast(ball_diameter, conformity, gamma, is_inner) -> (R_x, R_y)``
+* ``stiffness_from_coefficients`` / ``ellipse_from_coefficients``: the same from one table look-up
 
 Method. The exact solution is tabulated once, at import, on a uniform grid of
 x = ln(R_y/R_x) = 2 artanh F(ρ) over 0 ≤ x ≤ 10 (F from 0, the circle, to F_MAX = tanh 5 ≈ 0.99991,
@@ -117,7 +118,8 @@ def hertz_coefficients_fast(curvature_difference):
 
 
 @njit(cache=True)
-def _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus):
+def stiffness_from_coefficients(kappa, big_k, big_e, curvature_sum, effective_modulus):
+    """K [N/m^1.5] from the table's (kappa, K(m), E(m)) of ``hertz_coefficients_fast``."""
     return (
         math.pi
         * kappa
@@ -130,11 +132,13 @@ def _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus):
 def contact_stiffness_fast(curvature_sum, curvature_difference, effective_modulus):
     """Load-deflection constant K [N/m^1.5] (Q = K δ^1.5) from Σρ [1/m], F [-], E' [Pa]."""
     kappa, big_k, big_e = hertz_coefficients_fast(curvature_difference)
-    return _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus)
+    return stiffness_from_coefficients(kappa, big_k, big_e, curvature_sum, effective_modulus)
 
 
 @njit(cache=True)
-def _ellipse_from(load, kappa, big_k, big_e, curvature_sum, effective_modulus):
+def ellipse_from_coefficients(load, kappa, big_k, big_e, curvature_sum, effective_modulus):
+    """(a, b, delta, p_max) from the table's (kappa, K(m), E(m)), as ``contact_ellipse_fast``: a
+    kernel that needs both the stiffness and the ellipse looks the table up once."""
     if not load > 0.0:
         return 0.0, 0.0, 0.0, 0.0
     r = 1.0 / curvature_sum
@@ -154,7 +158,7 @@ def contact_ellipse_fast(load, curvature_sum, curvature_difference, effective_mo
     """(a, b, δ, p_max): semi-major [m] (transverse), semi-minor [m] (rolling), approach [m] and
     peak pressure [Pa] for a normal load Q [N] (Q ≤ 0 → all zero), Σρ [1/m], F [-], E' [Pa]."""
     kappa, big_k, big_e = hertz_coefficients_fast(curvature_difference)
-    return _ellipse_from(load, kappa, big_k, big_e, curvature_sum, effective_modulus)
+    return ellipse_from_coefficients(load, kappa, big_k, big_e, curvature_sum, effective_modulus)
 
 
 @njit(cache=True)
@@ -162,13 +166,15 @@ def hertz_contact_fast(load, curvature_sum, curvature_difference, effective_modu
     """(a, b, δ, p_max, K) in one table look-up; units as in contact_ellipse_fast and
     contact_stiffness_fast."""
     kappa, big_k, big_e = hertz_coefficients_fast(curvature_difference)
-    a, b, delta, p_max = _ellipse_from(load, kappa, big_k, big_e, curvature_sum, effective_modulus)
+    a, b, delta, p_max = ellipse_from_coefficients(
+        load, kappa, big_k, big_e, curvature_sum, effective_modulus
+    )
     return (
         a,
         b,
         delta,
         p_max,
-        _stiffness_from(kappa, big_k, big_e, curvature_sum, effective_modulus),
+        stiffness_from_coefficients(kappa, big_k, big_e, curvature_sum, effective_modulus),
     )
 
 

@@ -53,6 +53,12 @@ Output ``out`` (float64, length ``TRACTION_OUT_SIZE``, overwritten)
     ``TR_SLIP_SPEED``: |slip| at P [m/s]. ``TR_SPIN``: spin speed (w_b - w_r) . n [rad/s].
     ``TR_ENTRAINMENT``: entrainment speed 0.5 |v_ball,t + v_ring,t| at P [m/s].
     ``TR_POWER``: friction power dissipated in the contact, -sum(tau . dv dA) >= 0 [W].
+    ``TR_POWER_SLIDING``: -F . s_0, the work rate of the traction force on the relative velocity
+    s_0 of the two bodies at the contact centre [W]; ``TR_POWER_SPIN``: -M_P . Omega from the
+    relative rotation Omega (spin, and the rolling-axis part that makes the differential slip)
+    [W]. Their sum is the power the traction takes out of the two rigid bodies (the node velocity
+    difference is s_0 + Omega x r); it equals ``TR_POWER`` up to the normal components that the
+    local tangent planes drop.
 
 Quadrature on the contact ellipse (:func:`ellipse_quadrature`)
     Strips across the major axis (Gauss–Jacobi, weight 1 - y^2) times Gauss points along the
@@ -70,6 +76,8 @@ import math
 import numpy as np
 from numba import njit
 from scipy import optimize, special
+
+from .rheology import contact_constants, shear_stress, shear_stress_from_constants
 
 # ---- traction-curve parameter array ------------------------------------------------------------
 CURVE_A = 0  # mu_zero - mu_infinity
@@ -106,7 +114,13 @@ TR_SLIP_SPEED = 12
 TR_SPIN = 13
 TR_ENTRAINMENT = 14
 TR_POWER = 15
-TRACTION_OUT_SIZE = 16
+TR_POWER_SLIDING = 16
+TR_POWER_SPIN = 17
+TRACTION_OUT_SIZE = 18
+
+# ---- local traction laws of ellipse_traction_law -------------------------------------------------
+LAW_SLIP_CURVE = 0  # mu(|dv|) of the 4-parameter curve, times the local pressure
+LAW_RHEOLOGY = 1  # shear stress of solver.physics.rheology.shear_stress
 
 # ---- quadrature node table columns ---------------------------------------------------------------
 NODE_ROLLING = 0
@@ -360,8 +374,13 @@ def _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy,
 
 
 @njit(cache=True)
-def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out):
-    """Traction force and moments on the ball integrated over the Hertz contact ellipse.
+def ellipse_traction_law(
+    contact, kinematics, law, curve, rheology, film, transit_time, slip_regularisation, nodes, out
+):
+    """Traction force and moments on the ball integrated over the Hertz contact ellipse, with the
+    local law ``law``: ``LAW_SLIP_CURVE`` (tau = mu(|dv|) p, ``curve``) or ``LAW_RHEOLOGY`` (tau of
+    :func:`solver.physics.rheology.shear_stress` with ``rheology``, central film ``film`` [m] and
+    transit time ``transit_time`` [s]; no regularisation needed: tau vanishes linearly with slip).
 
     ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and
     the output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes``
@@ -387,6 +406,8 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
         for i in range(9):
             out[TR_FORCE + i] = 0.0
         out[TR_POWER] = 0.0
+        out[TR_POWER_SLIDING] = 0.0
+        out[TR_POWER_SPIN] = 0.0
         return
     # Work in the contact basis (t1, t2, n). Slip at P and the relative angular velocity Omega:
     s01 = (vbx - vrx) * t1x + (vby - vry) * t1y + (vbz - vrz) * t1z
@@ -395,6 +416,15 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
     o2 = ox * t2x + oy * t2y + oz * t2z
     on = ox * nx + oy * ny + oz * nz
     ur2 = slip_regularisation * slip_regularisation
+    rheological = law == LAW_RHEOLOGY
+    filmed = film > 0.0
+    ln_c = 0.0
+    elastic = 0.0
+    if rheological:
+        ur2 = 0.0
+        if filmed:
+            ln_c, elastic = contact_constants(film, transit_time, rheology)
+    ab = a * b
     f1 = 0.0
     f2 = 0.0
     fn = 0.0
@@ -419,8 +449,19 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
         if den <= 0.0:
             continue
         u = math.sqrt(u2)
-        mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
-        g = -q * nodes[k, NODE_LOAD] * mu / den
+        if rheological:
+            area = ab * nodes[k, NODE_AREA]
+            if area <= 0.0:
+                continue
+            pk = q * nodes[k, NODE_LOAD] / area
+            if filmed:
+                tau = shear_stress_from_constants(u, pk, ln_c, elastic, rheology)
+            else:
+                tau = shear_stress(u, pk, film, transit_time, rheology)
+            g = -tau * area / den
+        else:
+            mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
+            g = -q * nodes[k, NODE_LOAD] * mu / den
         tau1 = g * v1
         tau2 = g * v2 * cphi
         taun = -g * v2 * sphi
@@ -447,6 +488,17 @@ def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out
     out[TR_MOMENT_BALL + 1] = rbz * fx - rbx * fz + my
     out[TR_MOMENT_BALL + 2] = rbx * fy - rby * fx + mz
     out[TR_POWER] = power
+    s0n = (vbx - vrx) * nx + (vby - vry) * ny + (vbz - vrz) * nz
+    out[TR_POWER_SLIDING] = -(f1 * s01 + f2 * s02 + fn * s0n)
+    out[TR_POWER_SPIN] = -(m1 * o1 + m2 * o2 + mn * on)
+
+
+@njit(cache=True)
+def ellipse_traction(contact, kinematics, curve, slip_regularisation, nodes, out):
+    """:func:`ellipse_traction_law` with the slip curve ``curve`` (``LAW_SLIP_CURVE``)."""
+    ellipse_traction_law(
+        contact, kinematics, LAW_SLIP_CURVE, curve, curve, 0.0, 0.0, slip_regularisation, nodes, out
+    )
 
 
 @njit(cache=True)
@@ -476,6 +528,8 @@ def centre_traction(contact, kinematics, curve, slip_regularisation, out):
     out[TR_MOMENT_BALL + 1] = rbz * fx - rbx * fz
     out[TR_MOMENT_BALL + 2] = rbx * fy - rby * fx
     out[TR_POWER] = -(fx * sx + fy * sy + fz * sz)
+    out[TR_POWER_SLIDING] = out[TR_POWER]
+    out[TR_POWER_SPIN] = 0.0
 
 
 # ================================================================================================

@@ -142,7 +142,12 @@ def build_result(
         for key, value in extra.get(name, {}).items():
             var_attrs[key] = var_attrs[key] + value if key == "description" else value
         variables[name] = (target, values, var_attrs)
-    coords = coordinates(int(geometry.ball_count), times, quaternion="ball_orientation" in data)
+    coords = coordinates(
+        int(geometry.ball_count),
+        times,
+        quaternion="ball_orientation" in data,
+        losses="power_loss" in data,
+    )
     coords.update(describing_coordinates(geometry, operating))
     base = {
         "model": model,

@@ -207,9 +207,9 @@ def solution_to_dataset(
             "curvature-centre circle."
         ),
     }
-    attrs["ball_speeds"] = "traction" if traction else "race_control"
+    attrs["kinematics"] = "traction" if traction else "race_control"
     if getattr(sol, "ball_speeds_note", ""):
-        attrs["ball_speeds_note"] = sol.ball_speeds_note
+        attrs["kinematics_note"] = sol.ball_speeds_note
     if operating.misalignment_frame == "ring" and operating.tilting_moment is None:
         attrs["misalignment_note"] = (
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "

@@ -25,6 +25,8 @@ DIMENSION_VALUES = {
     "quaternion": ["w", "x", "y", "z"],
     "frame": ["inner_ring", "outer_ring"],
     "body": ["ball", "ring"],
+    "ball_loss_source": ["rolling", "sliding", "spin", "drag", "cage_pocket"],
+    "loss_source": ["rolling", "sliding", "spin", "drag", "cage_pocket", "cage_land"],
 }
 
 
@@ -140,7 +142,8 @@ VARIABLES: dict[str, Variable] = {
         _C,
         "m",
         "central EHL film thickness",
-        "Hamrock-Dowson isothermal central film thickness (only with a lubricant)",
+        "Hamrock-Dowson central film thickness (only with a lubricant); the dynamic model "
+        "reduces it for inlet shear heating (solver.physics.rheology.inlet_thermal_factor)",
     ),
     "truncation_margin": Variable(
         _C,
@@ -246,6 +249,52 @@ VARIABLES: dict[str, Variable] = {
         "cage angular speed about +x (quasi-static: mean of the balls' orbital speeds)",
     ),
     "cage_center": Variable(("axis",), "m", "cage centre", "cage centre, inertial", _DYN),
+    # ---- losses, torque and heat (dynamic model; 0 with traction off) -------------------------
+    "contact_heat": Variable(
+        _C,
+        "W",
+        "heat generated in the contact",
+        "power dissipated in the ball-race contact: rolling resistance (EHL inlet force and "
+        "elastic hysteresis) + traction from sliding + traction from spin",
+        _DYN,
+    ),
+    "ball_power_loss": Variable(
+        ("ball", "ball_loss_source"),
+        "W",
+        "power loss per ball by source",
+        "rolling: rolling resistance of both race contacts; sliding and spin: traction power of "
+        "both race contacts from the centre slip and from the relative rotation; drag: oil-air "
+        "drag on the ball; cage_pocket: dissipated in the ball's pocket contact (friction and "
+        "contact damping)",
+        _DYN,
+    ),
+    "power_loss": Variable(
+        ("loss_source",),
+        "W",
+        "bearing power loss by source",
+        "ball_power_loss summed over the balls, plus cage_land: dissipated at the cage-guiding "
+        "land (hydrodynamic and metal contact)",
+        _DYN,
+    ),
+    "total_power_loss": Variable(
+        (), "W", "total power loss", "sum of power_loss over its sources", _DYN
+    ),
+    "friction_torque": Variable(
+        (),
+        "N m",
+        "friction torque on the inner ring",
+        "torque about the inner ring's axis that holds the ring at its imposed speed (positive "
+        "when it drives the ring forwards: the bearing's friction torque)",
+        _DYN,
+    ),
+    "drive_power": Variable(
+        (),
+        "W",
+        "drive power",
+        "power fed in through the imposed ring rotations; in a steady state its mean equals the "
+        "mean total_power_loss (power balance)",
+        _DYN,
+    ),
     # ---- summary metrics (solver.results.summary; stored in dynamic results) ------------------
     "trajectory_excursion": Variable(
         ("race", "frame"),
@@ -536,6 +585,8 @@ _COORDINATE_NAMES = {
     "quaternion": "quaternion component",
     "frame": "ring frame in which a trajectory metric is measured",
     "body": "body the material belongs to",
+    "ball_loss_source": "source of a ball's power loss",
+    "loss_source": "source of the bearing's power loss",
 }
 
 
@@ -547,12 +598,15 @@ def dimension_coordinate(dim: str) -> tuple:
     return (dim, values, {"long_name": _COORDINATE_NAMES[dim], "units": "1"})
 
 
-def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dict:
+def coordinates(
+    ball_count: int, times=None, *, quaternion: bool = False, losses: bool = False
+) -> dict:
     """Dimension coordinates of a results Dataset, each with ``units`` and ``long_name``.
 
     ``times`` (s) adds the ``time`` coordinate of the dynamic model; ``quaternion`` adds the
-    [w, x, y, z] dimension of ``ball_orientation``. The ``frame`` dimension comes with the summary
-    metrics, ``body`` with the describing coordinates (solver.results.dataset).
+    [w, x, y, z] dimension of ``ball_orientation``; ``losses`` the loss-source dimensions of the
+    power losses. The ``frame`` dimension comes with the summary metrics, ``body`` with the
+    describing coordinates (solver.results.dataset).
     """
     import numpy as np
 
@@ -567,6 +621,9 @@ def coordinates(ball_count: int, times=None, *, quaternion: bool = False) -> dic
         if dim == "quaternion" and not quaternion:
             continue
         coords[dim] = dimension_coordinate(dim)
+    if losses:
+        for dim in ("ball_loss_source", "loss_source"):
+            coords[dim] = dimension_coordinate(dim)
     if times is not None:
         coords["time"] = (
             "time",

@@ -37,6 +37,7 @@ LAUNCH_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
+FIRST_IMAGE = "#view-3d img[src]:not([src=''])"  # the first drawn image, not an empty img
 ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
 
 
@@ -97,13 +98,14 @@ def page(browser, server):
     # page time (ms from navigation start) at which #view-3d first received an image
     pg.add_init_script(
         """new MutationObserver((_, observer) => {
-             if (document.querySelector('#view-3d img[src]')) {
+             const img = document.querySelector('#view-3d img[src]');
+             if (img && img.getAttribute('src')) {  // a drawn image, not an empty src=""
                window.__firstFrameMs = performance.now(); observer.disconnect(); }
            }).observe(document, {subtree: true, childList: true, attributes: true});"""
     )
     t0 = time.monotonic()
     pg.goto(server["url"])
-    pg.wait_for_selector("#view-3d img", timeout=60_000)
+    pg.wait_for_selector(FIRST_IMAGE, timeout=60_000)
     pg.first_frame_s = time.monotonic() - t0
     # the chart library is fetched after the first 3-D frame (app.lazy_charts); wait for a chart
     pg.wait_for_selector("#chart-contact-angle .main-svg", timeout=60_000)
@@ -215,7 +217,7 @@ def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     saved = [p for p in Path(server["runs"]).iterdir() if not p.name.startswith(".")]
     assert len(saved) >= 1
     page.reload()
-    page.wait_for_selector("#view-3d img", timeout=60_000)
+    page.wait_for_selector(FIRST_IMAGE, timeout=60_000)
     page.locator("#runs-select .v-field").click()
     items = page.locator(".v-overlay--active .v-list-item")
     items.first.wait_for(timeout=10_000)
@@ -227,7 +229,8 @@ def test_cancel_stops_a_long_run_and_keeps_it(page, server):
     page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
     page.locator("#run-button").click()
     page.wait_for_function("!document.querySelector('#cancel-button').disabled", timeout=30_000)
-    time.sleep(3)
+    # a Cancel before the first step saves nothing: wait for progress
+    page.wait_for_function("window.trame.state.get('progress') > 0", timeout=300_000)
     page.locator("#cancel-button").click()
     status = _wait_status(page, ("cancelled", "done"), 120)
     assert status == "cancelled"

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from solver.case.schema import field
 from solver.geometry import BearingGeometry
 from solver.inputs import (
     CageInputs,
@@ -13,7 +12,6 @@ from solver.inputs import (
     LubricantInputs,
     OperatingPoint,
     SimulationInputs,
-    TractionCurve,
 )
 from solver.materials import BUILTIN_MATERIALS
 
@@ -36,21 +34,18 @@ def spindle_geometry() -> BearingGeometry:
 
 def default_oil() -> LubricantInputs:
     """The case schema's default oil (a case without [lubricant]), SI."""
+    from solver.case import FIELDS
+    from solver.case.model import Lubricant, Traction
+    from solver.inputs import lubricant_inputs
 
-    def default(key):
-        return field(key).default
+    def defaults(path):
+        n = len(path)
+        return {f.name: f.default for f in FIELDS if f.path[:-1] == path and len(f.path) == n + 1}
 
-    return LubricantInputs(
-        viscosity=default("lubricant.viscosity_Pas"),
-        pressure_viscosity=default("lubricant.pressure_viscosity_per_GPa") * 1e-9,
-        traction=TractionCurve(
-            mu_zero=default("lubricant.traction.mu_zero"),
-            mu_max=default("lubricant.traction.mu_max"),
-            slip_at_max=default("lubricant.traction.slip_at_max_m_s"),
-            mu_infinity=default("lubricant.traction.mu_infinity"),
-        ),
-        given=False,
+    lubricant = Lubricant(
+        **defaults(("lubricant",)), traction=Traction(**defaults(("lubricant", "traction")))
     )
+    return lubricant_inputs(lubricant, given=False)
 
 
 def spindle_inputs(rpm=20000.0, axial=500.0, radial=0.0, **operating_changes) -> Inputs:
@@ -78,6 +73,7 @@ def spindle_inputs(rpm=20000.0, axial=500.0, radial=0.0, **operating_changes) ->
             mass=6.0e-3,
             pocket_friction=0.08,
             guide_land_width=3.0e-3,
+            land_flooding=1.0,
         ),
         lubricant=default_oil(),
         simulation=SimulationInputs(

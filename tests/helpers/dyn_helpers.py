@@ -20,7 +20,7 @@ def setup(inputs, **option_changes):
 
 def evaluate(y, par, quad):
     """(dydt, inner records, outer records, pocket forces) at state y."""
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
@@ -39,7 +39,7 @@ def integrate_states(par, quad, y0, times, tolerance=1e-3):
     from solver.models.dynamic.integrator import STATUS_OK, advance
     from solver.models.dynamic.simulate import state_scales
 
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     scale = state_scales(par, y0)
     y = y0.copy()
     states = np.empty((len(times), y.shape[0]))

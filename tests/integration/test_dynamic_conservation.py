@@ -9,13 +9,18 @@ import math
 import numpy as np
 
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_land, mechanical_energy
+from solver.models.dynamic.kernels import (
+    TRACTION_WORK_SIZE,
+    ball_drag,
+    cage_land,
+    mechanical_energy,
+)
 from tests.helpers.dyn_bearings import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
 
 def _energies(states, par, quad):
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     ri = np.zeros((z, L.N_CONTACT_RECORD))
     ro = np.zeros((z, L.N_CONTACT_RECORD))
     energy, elastic = [], []
@@ -37,7 +42,7 @@ def test_energy_is_conserved_without_traction_and_damping():
     par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.0, cage=False
     )
-    period = 2 * math.pi / par[L.P_WI]
+    period = 2 * math.pi / par.inner_speed
     times = np.linspace(0.0, 3 * period, 181)
     states, _ = integrate_states(par, quad, y0, times, tolerance=1e-4)
     energy, elastic = _energies(states, par, quad)
@@ -57,11 +62,11 @@ def test_damping_dissipates_energy():
     for j in range(18):
         b = L.ball_base(j)
         y0[b + L.B_VEL] += 0.05
-    period = 2 * math.pi / par[L.P_WI]
+    period = 2 * math.pi / par.inner_speed
     times = np.linspace(0.0, 0.5 * period, 31)
     states, _ = integrate_states(par, quad, y0, times, tolerance=1e-4)
     energy, elastic = _energies(states, par, quad)
-    kick = 18 * 0.5 * par[L.P_MB] * 0.05**2
+    kick = 18 * 0.5 * par.ball_mass * 0.05**2
     # zeta = 0.2 at the ~70 kHz contact mode removes most of the kick within 0.5 rev
     assert energy[0] - energy[-1] > 0.25 * kick
     assert np.all(np.diff(energy) <= 1e-4 * elastic.mean())  # the conservation tolerance above
@@ -69,14 +74,15 @@ def test_damping_dissipates_energy():
 
 def test_linear_momentum_balance_of_the_rhs():
     """Sum of m a over balls, inner ring and cage equals the external forces: applied load on the
-    ring, outer-ring contact forces on the balls, cage-land force and gravity (all internal
+    ring, outer-ring contact forces on the balls, cage-land force, drag of the oil-air mixture on
+    the balls and gravity (all internal
     ball-ring and ball-cage forces cancel), with traction, damping and cage on."""
     par, quad, y0 = start(spindle_inputs(radial=300.0))
     rng = np.random.default_rng(7)
     y = y0.copy()
     z = 18
     cb = L.cage_base(z)
-    y[cb + 1 : cb + 3] += 0.9 * par[L.P_CG] * np.array([0.6, 0.8])  # cage against its land
+    y[cb + 1 : cb + 3] += 0.9 * par.land_clearance * np.array([0.6, 0.8])  # cage against its land
     for j in range(z):
         b = L.ball_base(j)
         y[b + L.B_VEL : b + L.B_VEL + 3] += rng.normal(size=3) * 0.3
@@ -87,14 +93,17 @@ def test_linear_momentum_balance_of_the_rhs():
     total = np.zeros(3)
     for j in range(z):
         b = L.ball_base(j)
-        total += par[L.P_MB] * dydt[b + L.B_VEL : b + L.B_VEL + 3]
-    total += par[L.P_MR] * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
-    total += par[L.P_MC] * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
-    land = np.zeros(4)
+        total += par.ball_mass * dydt[b + L.B_VEL : b + L.B_VEL + 3]
+    total += par.ring_mass * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
+    total += par.cage_mass * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
+    land = np.zeros(5)
     cage_land(y, cb, y[rb : rb + 3], y[rb + 3 : rb + 6], par, np.zeros(TRACTION_WORK_SIZE), land)
     external = ro[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
-    external += np.array([par[L.P_FX], par[L.P_FY], par[L.P_FZ]])
+    external += np.array([par.force_x, par.force_y, par.force_z])
     assert abs(land[1]) + abs(land[2]) > 0.0  # the land force is exercised
     external += land[:3]
-    external[2] -= par[L.P_GRAVITY] * (z * par[L.P_MB] + par[L.P_MC])
+    drag = np.array([ball_drag(y, L.ball_base(j), par)[0] for j in range(z)])
+    assert np.abs(drag).sum() > 0.0  # the oil-air drag is exercised
+    external += drag.sum(axis=0)
+    external[2] -= par.gravity * (z * par.ball_mass + par.cage_mass + par.ring_mass)
     np.testing.assert_allclose(total, external, atol=1e-9 * ri[:, L.K_LOAD].sum())

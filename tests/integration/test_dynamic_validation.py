@@ -13,6 +13,7 @@ ball).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -226,3 +227,40 @@ def test_tilting_moment_gives_the_quasistatic_tilt():
     assert tilt[1] == pytest.approx(qs_tilt[1], rel=0.05)
     assert abs(tilt[0] - qs_tilt[0]) < 0.01
     assert qs_tilt[1] > 0.05  # the case really tilts
+
+
+# ---- power balance: drive power = sum of the losses ----------------------------------------------
+def _check_power_balance(window):
+    drive = float(window.drive_power.mean())
+    losses = window.power_loss.mean("time")
+    assert drive > 0.0
+    assert float(losses.sum()) == pytest.approx(drive, rel=0.02)
+    assert float(window.total_power_loss.mean()) == pytest.approx(float(losses.sum()), rel=1e-12)
+    for source in ("rolling", "sliding", "spin", "drag", "cage_land"):
+        assert float(losses.sel(loss_source=source)) > 0.0, source
+    # the friction torque times the ring speed is the drive power (outer ring fixed)
+    speed = float(window.inner_ring_speed)
+    assert float(window.friction_torque.mean()) * speed == pytest.approx(drive, rel=1e-9)
+    # the heat of the race contacts is the rolling + sliding + spin loss of the balls
+    heat = float(window.contact_heat.sum(("ball", "race")).mean())
+    ball = window.ball_power_loss.sel(ball_loss_source=["rolling", "sliding", "spin"])
+    assert heat == pytest.approx(float(ball.sum(("ball", "ball_loss_source")).mean()), rel=1e-9)
+
+
+def test_drive_power_equals_the_sum_of_the_losses(radial_run):
+    """Over the last two revolutions of the steady combined-load run the power fed in through the
+    inner ring's imposed rotation equals the power dissipated by all loss sources (rolling
+    resistance, sliding and spin traction, oil-air drag, cage pockets and land): the kinetic energy
+    no longer grows, so the two means agree to the contact-damping dissipation and the sampling of
+    the mean."""
+    _check_power_balance(radial_run.isel(time=slice(-2 * SAMPLES, None)))
+
+
+def test_power_balance_with_traction_from_rheology():
+    """The same balance with the rheological traction law (a shorter run started from the
+    quasi-static solution: its last revolution), and the rheology changes the traction losses."""
+    inputs = spindle_inputs(rpm=20000.0, axial=500.0, radial=300.0)
+    inputs = replace(inputs, lubricant=replace(inputs.lubricant, traction_model="rheology"))
+    ds = _run(inputs, 2.0)
+    assert "rheology" in ds.attrs["traction_model"]
+    _check_power_balance(ds.isel(time=slice(-SAMPLES, None)))

@@ -84,14 +84,10 @@ def ball_frame(psi: float, beta: float) -> np.ndarray:
     return np.column_stack((xb, et, zb))
 
 
-def _static_par(par: np.ndarray) -> np.ndarray:
-    p = par.copy()
-    p[L.P_TRACTION] = 0.0
-    p[L.P_ZETA] = 0.0
-    p[L.P_CAGE_ON] = 0.0
-    p[L.P_GRAVITY] = 0.0
-    p[L.P_RING_FREE] = 1.0
-    return p
+def _static_par(par):
+    """The parameters of the static force balance: no traction, damping, cage or gravity; ring
+    free."""
+    return par._replace(traction=False, damping_ratio=0.0, cage=False, gravity=0.0, ring_free=True)
 
 
 def _state_from_unknowns(u, z, base_state, tilt_dof, length_scale, pitch_radius):
@@ -115,7 +111,7 @@ def _state_from_unknowns(u, z, base_state, tilt_dof, length_scale, pitch_radius)
 
 
 def _contact_angles(y, par, quad):
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt = np.zeros_like(y)
@@ -123,21 +119,22 @@ def _contact_angles(y, par, quad):
     return rec_i, rec_o
 
 
-def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndarray:
+def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
     """Initial state vector (layout ``L``) in quasi-static equilibrium for the parameters ``par``.
 
     Raises NoSolutionError when the force balance cannot be solved (e.g. no load holds the balls).
     """
-    z = int(par[L.P_Z])
-    d, dm = par[L.P_D], par[L.P_DM]
+    z = int(par.ball_count)
+    d, dm = par.ball_diameter, par.pitch_diameter
     n = L.state_size(z)
     rb = L.ring_base(z)
     cb = L.cage_base(z)
     gamma_prime = d / dm
     alpha0 = math.atan2(
-        par[L.P_XCI] - par[L.P_XCO], par[L.P_RCI] - par[L.P_RCO]
+        par.inner_centre_axial - par.outer_centre_axial,
+        par.inner_centre_radius - par.outer_centre_radius,
     )  # free contact angle from the curvature-centre circles
-    tilt_dof = int(par[L.P_TILT_MODE]) == 2
+    tilt_dof = par.tilt_mode == L.TILT_FREE
     base = np.zeros(n)
     for j in range(z):
         psi = 2.0 * math.pi * j / z
@@ -146,20 +143,20 @@ def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndar
         base[b + 2] = 0.5 * dm * math.sin(psi)
         base[b + L.B_QUAT] = 1.0
     if not tilt_dof:
-        base[rb + L.R_TILT] = par[L.P_TILT_Y]
-        base[rb + L.R_TILT + 1] = par[L.P_TILT_Z]
+        base[rb + L.R_TILT] = par.tilt_y
+        base[rb + L.R_TILT + 1] = par.tilt_z
     pstat = _static_par(par)
-    mb = par[L.P_MB]
-    mr = par[L.P_MR]
-    wrel = par[L.P_WI] - par[L.P_WO]
-    load = max(abs(par[L.P_FX]), math.hypot(par[L.P_FY], par[L.P_FZ]), 1e-3)
+    mb = par.ball_mass
+    mr = par.ring_mass
+    wrel = par.inner_speed - par.outer_speed
+    load = max(abs(par.force_x), math.hypot(par.force_y, par.force_z), 1e-3)
     fscale = load / z
     ls = 1e-6  # unknowns in micrometres
-    ird = par[L.P_IRD]
+    ird = par.ring_diametral_inertia
     # first guess: rigid axial shift sharing the axial load, balls on the pitch circle
     u0 = np.zeros(2 * z + (5 if tilt_dof else 3))
     u0[2 * z] = 1.0
-    omega_c = par[L.P_WO] + wrel * 0.5 * (1.0 - gamma_prime * math.cos(alpha0))
+    omega_c = par.outer_speed + wrel * 0.5 * (1.0 - gamma_prime * math.cos(alpha0))
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt = np.zeros(n)
@@ -212,7 +209,7 @@ def initial_state(par: np.ndarray, quad: np.ndarray, passes: int = 3) -> np.ndar
         ai = float(np.mean(rec_i[loaded, L.K_ANGLE]))
         ao = float(np.mean(rec_o[loaded, L.K_ANGLE]))
         ratio_c, _, _ = outer_control_kinematics(ai, ao, gamma_prime)
-        omega_c = par[L.P_WO] + wrel * ratio_c
+        omega_c = par.outer_speed + wrel * ratio_c
     sol = least_squares(
         residual,
         u,
@@ -257,7 +254,7 @@ def quasistatic_solution(inputs):
     return solve_operating_point(inputs.geometry, inputs.operating)
 
 
-def initial_state_from_quasistatic(par: np.ndarray, qs) -> np.ndarray:
+def initial_state_from_quasistatic(par, qs) -> np.ndarray:
     """Initial state (layout ``L``) from a :class:`QuasiStaticSolution`: ball centres (axial, radial
     at each ball azimuth), orbital speeds, attitude and angular velocity (inertial) per ball,
     inner-ring offset and tilt, cage centred at the mean ball plane turning at the mean orbital
@@ -267,7 +264,7 @@ def initial_state_from_quasistatic(par: np.ndarray, qs) -> np.ndarray:
     assumption; in the dynamic model the same moment needs traction slips that develop in the first
     fraction of a revolution.
     """
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     y = np.zeros(L.state_size(z))
     rb = L.ring_base(z)
     cb = L.cage_base(z)

@@ -6,18 +6,21 @@ the requested output times. Error norm: max over components of |err_i| / (tol * 
 error control is therefore absolute per physical quantity, which keeps it meaningful for positions
 that are large (the pitch radius) but whose relevant variations are tiny (contact deflections).
 
-After each accepted step the ball quaternions are renormalised (projection onto the unit sphere).
+The model supplies two kernels (``kernels.rhs`` and ``kernels.post_step``), the only model code
+this module calls: the right-hand side, and a hook run after every accepted step (the dynamic model
+renormalises its quaternions there and reports a ball that left the raceways). Integrator options
+(tolerance, smallest step, step budget) are arguments of ``advance``, separate from the model's
+parameter record. A stiff or implicit method is another ``advance``-like loop over the same two
+kernels (numba compiles a function passed as an argument anew in every process, so the kernels are
+bound by import rather than passed in).
 """
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-from .kernels import rhs
-from .layout import B_POS, B_QUAT, BALL_STRIDE, K_DEFLECTION, P_D, P_DM, P_Z
+from .kernels import post_step, rhs
 
 # Status codes returned by ``advance``.
 STATUS_OK = 0
@@ -57,32 +60,6 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 
 
 @njit(cache=True)
-def _normalise_quaternions(y, z):
-    for j in range(z):
-        b = BALL_STRIDE * j + B_QUAT
-        n = math.sqrt(y[b] ** 2 + y[b + 1] ** 2 + y[b + 2] ** 2 + y[b + 3] ** 2)
-        for i in range(4):
-            y[b + i] /= n
-
-
-@njit(cache=True)
-def _ball_escaped(y, rec_inner, rec_outer, par):
-    """True when a ball has left the raceways: its centre is more than D/4 from the pitch circle, or
-    a contact is compressed by more than 2 % of D (far beyond any realistic Hertz deflection)."""
-    z = int(par[P_Z])
-    d = par[P_D]
-    rp = 0.5 * par[P_DM]
-    for j in range(z):
-        b = BALL_STRIDE * j + B_POS
-        r = math.sqrt(y[b + 1] ** 2 + y[b + 2] ** 2)
-        if abs(r - rp) > 0.25 * d or abs(y[b]) > 0.25 * d:
-            return True
-        if rec_inner[j, K_DEFLECTION] > 0.02 * d or rec_outer[j, K_DEFLECTION] > 0.02 * d:
-            return True
-    return False
-
-
-@njit(cache=True)
 def advance(
     y,
     t,
@@ -108,7 +85,6 @@ def advance(
     with, and how many output samples were written.
     """
     n = y.shape[0]
-    z = int(par[P_Z])
     k1 = np.empty(n)
     k2 = np.empty(n)
     k3 = np.empty(n)
@@ -187,10 +163,9 @@ def advance(
                 t = t_target if clipped else t + hs
                 for i in range(n):
                     y[i] = ynew[i]
-                _normalise_quaternions(y, z)
-                if _ball_escaped(y, rec_inner, rec_outer, par):
+                if not post_step(y, par, rec_inner, rec_outer):
                     return STATUS_BALL_ESCAPED, t, h, n_done
-                # FSAL: k7 is f(ynew); the quaternion projection changes y slightly, so re-use k7
+                # FSAL: k7 is f(ynew); the post-step projection changes y slightly, so re-use k7
                 for i in range(n):
                     k1[i] = k7[i]
                 counters[0] += 1

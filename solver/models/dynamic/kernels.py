@@ -22,12 +22,12 @@ from numba import njit
 from solver.physics.cage_contact import (
     LAND_KIN_SIZE,
     LAND_OUT_SIZE,
-    LAND_PARAM_SIZE,
     LK_CAGE_SPEED,
     LK_OFFSET,
     LK_RING_SPEED,
     LK_VELOCITY,
     LO_FORCE,
+    LO_RING_TORQUE,
     LO_TORQUE,
     PK_OMEGA,
     PK_POSITION,
@@ -38,15 +38,17 @@ from solver.physics.cage_contact import (
     PO_POINT,
     POCKET_KIN_SIZE,
     POCKET_OUT_SIZE,
-    POCKET_PARAM_SIZE,
     land_force,
     pocket_contact,
 )
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
+    ellipse_from_coefficients,
     equivalent_radii_fast,
     hertz_coefficients_fast,
+    stiffness_from_coefficients,
 )
+from solver.physics.rheology import film_and_rolling_force
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -66,9 +68,11 @@ from solver.physics.traction import (
     TR_FORCE,
     TR_MOMENT_BALL,
     TR_MOMENT_POINT,
+    TR_POWER_SLIDING,
+    TR_POWER_SPIN,
     TRACTION_OUT_SIZE,
     damped_normal_force,
-    ellipse_traction,
+    ellipse_traction_law,
 )
 
 from .layout import (
@@ -84,6 +88,9 @@ from .layout import (
     C_TILT_RATE,
     C_VEL,
     CAGE_SIZE,
+    GUIDE_BALL,
+    GUIDE_INNER_RING,
+    GUIDE_OUTER_RING,
     K_ANGLE,
     K_AZIMUTH,
     K_DEFLECTION,
@@ -91,12 +98,16 @@ from .layout import (
     K_ENTRAIN,
     K_F_BALL,
     K_F_RING,
+    K_FILM,
     K_LOAD,
     K_M_BALL,
     K_M_RING,
     K_NORMAL,
     K_PMAX,
     K_POINT,
+    K_POWER_ROLLING,
+    K_POWER_SLIDING,
+    K_POWER_SPIN,
     K_ROLL,
     K_RX,
     K_RY,
@@ -104,47 +115,6 @@ from .layout import (
     K_SEMI_MINOR,
     K_SLIDE,
     K_SPIN,
-    P_CAGE_ON,
-    P_CAGE_R,
-    P_D,
-    P_DM,
-    P_EPRIME,
-    P_FI,
-    P_FO,
-    P_FX,
-    P_FY,
-    P_FZ,
-    P_GRAVITY,
-    P_GUIDE,
-    P_HEATHCOTE,
-    P_IC,
-    P_ICD,
-    P_IRD,
-    P_IRP,
-    P_JB,
-    P_LAND_BLOCK,
-    P_MB,
-    P_MC,
-    P_MR,
-    P_MU_A,
-    P_MU_D,
-    P_MY,
-    P_MZ,
-    P_POCKET_BLOCK,
-    P_RCI,
-    P_RCO,
-    P_RI,
-    P_RING_FREE,
-    P_RO,
-    P_TILT_MODE,
-    P_TRACTION,
-    P_V_REG,
-    P_WI,
-    P_WO,
-    P_XCI,
-    P_XCO,
-    P_Z,
-    P_ZETA,
     R_PHI_INNER,
     R_PHI_OUTER,
     R_POS,
@@ -152,6 +122,8 @@ from .layout import (
     R_TILT_RATE,
     R_VEL,
     RING_SIZE,
+    TILT_FREE,
+    TILT_TURNING_WITH_RING,
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -213,16 +185,16 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
     fixed in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring):
     R = R_x(phi) R(g). Outer ring: R = R_x(phi_o) about the fixed axis.
     """
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     rb = BALL_STRIDE * z
     tilt = np.empty((3, 3))
     rotation_from_vector(0.0, y[rb + R_TILT], y[rb + R_TILT + 1], tilt)
     phi = y[rb + R_PHI_INNER]
     spin = np.empty((3, 3))
     rotation_from_vector(phi, 0.0, 0.0, spin)
-    mode = int(par[P_TILT_MODE])
-    wi = par[P_WI]
-    if mode == 1:
+    mode = par.tilt_mode
+    wi = par.inner_speed
+    if mode == TILT_TURNING_WITH_RING:
         inner_rot[:, :] = spin @ tilt
         inner_omega[0] = wi
         inner_omega[1] = 0.0
@@ -231,34 +203,22 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
         inner_rot[:, :] = tilt @ spin
         for i in range(3):
             inner_omega[i] = wi * tilt[i, 0]
-        if mode == 2:
+        if mode == TILT_FREE:
             inner_omega[1] += y[rb + R_TILT_RATE]
             inner_omega[2] += y[rb + R_TILT_RATE + 1]
     for i in range(3):
         inner_origin[i] = y[rb + R_POS + i]
         inner_vel[i] = y[rb + R_VEL + i]
     rotation_from_vector(y[rb + R_PHI_OUTER], 0.0, 0.0, outer_rot)
-    outer_omega[0] = par[P_WO]
+    outer_omega[0] = par.outer_speed
     outer_omega[1] = 0.0
     outer_omega[2] = 0.0
 
 
 # ---------------------------------------------------------------------------------------------
-# Hertz (exact, tabulated: solver.physics.hertz_fast)
+# ball-race contact (physics.md §2.6.3-2.6.6): geometry, Hertz, kinematics, traction helpers,
+# inlined into ball_race_contact
 # ---------------------------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def hertz_constants(ball_diameter, conformity, gamma, is_inner, eprime):
-    """(R_x, R_y, kappa, E(m), K) of a ball-groove contact; K in N/m^1.5 so that Q = K delta^1.5.
-
-    Exact Hertz solution through the tabulated kernels of solver.physics.hertz_fast."""
-    rx, ry = equivalent_radii_fast(ball_diameter, conformity, gamma, is_inner)
-    csum, cdiff = curvature_sum_and_difference_fast(ball_diameter, conformity, gamma, is_inner)
-    kappa, ell_k, ell_e = hertz_coefficients_fast(cdiff)
-    k = math.pi * kappa * eprime * math.sqrt(2.0 * ell_e / (9.0 * csum * ell_k**3))
-    return rx, ry, kappa, ell_e, k
-
 
 #: scratch space of one traction, pocket or land evaluation: the input/output arrays of the
 #: kernels of solver.physics.traction and solver.physics.cage_contact
@@ -268,32 +228,47 @@ TRACTION_WORK_SIZE = max(
     LAND_KIN_SIZE + LAND_OUT_SIZE,
 )
 
-# ---------------------------------------------------------------------------------------------
-# ball-race contact (physics.md §2.6.3-2.6.6)
-# ---------------------------------------------------------------------------------------------
 
-
-@njit(cache=True)
-def ball_race_contact(
-    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
-):
-    """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
-
-    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
-    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
-    """
-    dball = par[P_D]
-    rball = 0.5 * dball
+@njit(cache=True, inline="always")
+def _groove(par, is_inner):
+    """(curvature-centre axial position, circle radius, groove radius, conformity, hand sign)."""
     if is_inner:
-        xc, rc, rg, conf, sgn = par[P_XCI], par[P_RCI], par[P_RI], par[P_FI], -1.0
-    else:
-        xc, rc, rg, conf, sgn = par[P_XCO], par[P_RCO], par[P_RO], par[P_FO], 1.0
-    pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
-    vbx, vby, vbz = y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2]
-    wbx, wby, wbz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
-    R = ring_rot
-    ox, oy, oz = ring_origin[0], ring_origin[1], ring_origin[2]
-    dx, dy, dz = pbx - ox, pby - oy, pbz - oz
+        return (
+            par.inner_centre_axial,
+            par.inner_centre_radius,
+            par.inner_groove_radius,
+            par.inner_conformity,
+            -1.0,
+        )
+    return (
+        par.outer_centre_axial,
+        par.outer_centre_radius,
+        par.outer_groove_radius,
+        par.outer_conformity,
+        1.0,
+    )
+
+
+@njit(cache=True, inline="always")
+def _to_inertial(R, x, y, z):
+    """Ring-frame components (x, y, z) to inertial components (rotation only)."""
+    return (
+        R[0, 0] * x + R[0, 1] * y + R[0, 2] * z,
+        R[1, 0] * x + R[1, 1] * y + R[1, 2] * z,
+        R[2, 0] * x + R[2, 1] * y + R[2, 2] * z,
+    )
+
+
+@njit(cache=True, inline="always")
+def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
+    """Contact geometry of a ball with centre ``pb`` (inertial) in a groove of the ring with
+    orientation ``R`` and origin ``o``.
+
+    Returns (delta [m], alpha [rad], ring-frame azimuth of the ball phi, ring-frame contact point
+    (3), inertial normal n (3), inertial contact point P (3), inertial groove centre (3), rolling
+    direction t1 (3)). The normal points from the groove centre through the ball centre to the
+    contact."""
+    dx, dy, dz = pb[0] - o[0], pb[1] - o[1], pb[2] - o[2]
     # ball centre in ring-frame components
     cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
     cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
@@ -310,65 +285,167 @@ def ball_race_contact(
     alpha = math.atan2(sgn * nx, sgn * n_rho)
     reach = rg + 0.5 * max(delta, 0.0)
     prx, pry, prz = gx + reach * nx, gy + reach * ny, gz + reach * nz
-    # to inertial
-    nix = R[0, 0] * nx + R[0, 1] * ny + R[0, 2] * nz
-    niy = R[1, 0] * nx + R[1, 1] * ny + R[1, 2] * nz
-    niz = R[2, 0] * nx + R[2, 1] * ny + R[2, 2] * nz
-    pix = ox + R[0, 0] * prx + R[0, 1] * pry + R[0, 2] * prz
-    piy = oy + R[1, 0] * prx + R[1, 1] * pry + R[1, 2] * prz
-    piz = oz + R[2, 0] * prx + R[2, 1] * pry + R[2, 2] * prz
-    gix = ox + R[0, 0] * gx + R[0, 1] * gy + R[0, 2] * gz
-    giy = oy + R[1, 0] * gx + R[1, 1] * gy + R[1, 2] * gz
-    giz = oz + R[2, 0] * gx + R[2, 1] * gy + R[2, 2] * gz
-    # rolling direction t1 = ring-frame e_theta, t2 = n x t1
-    t1x = -R[0, 1] * sph + R[0, 2] * cph
-    t1y = -R[1, 1] * sph + R[1, 2] * cph
-    t1z = -R[2, 1] * sph + R[2, 2] * cph
-    t2x, t2y, t2z = _cross(nix, niy, niz, t1x, t1y, t1z)
-    # velocities at the contact centre
-    wrx, wry, wrz = ring_omega[0], ring_omega[1], ring_omega[2]
-    rbx, rby, rbz = pix - pbx, piy - pby, piz - pbz
-    a0, a1, a2 = _cross(wbx, wby, wbz, rbx, rby, rbz)
-    vsbx, vsby, vsbz = vbx + a0, vby + a1, vbz + a2  # ball surface
-    a0, a1, a2 = _cross(wrx, wry, wrz, pix - ox, piy - oy, piz - oz)
-    vsrx, vsry, vsrz = ring_vel[0] + a0, ring_vel[1] + a1, ring_vel[2] + a2  # ring surface
+    ni = _to_inertial(R, nx, ny, nz)
+    pi_ = _to_inertial(R, prx, pry, prz)
+    gi = _to_inertial(R, gx, gy, gz)
+    # rolling direction t1 = ring-frame e_theta
+    t1 = _to_inertial(R, 0.0, -sph, cph)
+    return (
+        delta,
+        alpha,
+        phi,
+        (prx, pry, prz),
+        ni,
+        (o[0] + pi_[0], o[1] + pi_[1], o[2] + pi_[2]),
+        (o[0] + gi[0], o[1] + gi[1], o[2] + gi[2]),
+        t1,
+    )
+
+
+@njit(cache=True, inline="always")
+def _hertz(dball, conf, gamma, is_inner, eprime):
+    """(R_x, R_y, Sigma rho, kappa, K(m), E(m), K [N/m^1.5]) of a ball-groove contact from the
+    tabulated exact solution of solver.physics.hertz_fast (one table look-up)."""
+    rx, ry = equivalent_radii_fast(dball, conf, gamma, is_inner)
+    csum, cdiff = curvature_sum_and_difference_fast(dball, conf, gamma, is_inner)
+    kappa, big_k, big_e = hertz_coefficients_fast(cdiff)
+    k = stiffness_from_coefficients(kappa, big_k, big_e, csum, eprime)
+    return rx, ry, csum, kappa, big_k, big_e, k
+
+
+@njit(cache=True, inline="always")
+def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
+    """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial).
+
+    Returns (sliding speed at P [m/s], spin [rad/s], rolling [rad/s], entrainment speed [m/s],
+    roll axis (3, inertial)).
+    Spin: component of ball-minus-ring angular velocity along the contact normal (sign by race
+    hand); rolling: along the roll axis cos(alpha) e_x - sin(alpha) e_r (ring frame); entrainment:
+    half the sum of the surface speeds relative to the contact, which orbits with the ball."""
+    rbx, rby, rbz = p[0] - pb[0], p[1] - pb[1], p[2] - pb[2]
+    a0, a1, a2 = _cross(wb[0], wb[1], wb[2], rbx, rby, rbz)
+    vsbx, vsby, vsbz = vb[0] + a0, vb[1] + a1, vb[2] + a2  # ball surface
+    a0, a1, a2 = _cross(wr[0], wr[1], wr[2], p[0] - o[0], p[1] - o[1], p[2] - o[2])
+    vsrx, vsry, vsrz = vr[0] + a0, vr[1] + a1, vr[2] + a2  # ring surface
     dvx, dvy, dvz = vsbx - vsrx, vsby - vsry, vsbz - vsrz
-    dvn = dvx * nix + dvy * niy + dvz * niz
+    dvn = dvx * n[0] + dvy * n[1] + dvz * n[2]
     slide = math.sqrt(max((dvx * dvx + dvy * dvy + dvz * dvz) - dvn * dvn, 0.0))
-    omx, omy, omz = wbx - wrx, wby - wry, wbz - wrz
-    spin = sgn * (omx * nix + omy * niy + omz * niz)
-    # roll axis: cos(alpha) e_x - sin(alpha) e_r in ring frame
+    omx, omy, omz = wb[0] - wr[0], wb[1] - wr[1], wb[2] - wr[2]
+    spin = sgn * (omx * n[0] + omy * n[1] + omz * n[2])
     ca, sa = math.cos(alpha), math.sin(alpha)
-    mrx, mry, mrz = ca, -sa * cph, -sa * sph
-    mix = R[0, 0] * mrx + R[0, 1] * mry + R[0, 2] * mrz
-    miy = R[1, 0] * mrx + R[1, 1] * mry + R[1, 2] * mrz
-    miz = R[2, 0] * mrx + R[2, 1] * mry + R[2, 2] * mrz
+    cph, sph = math.cos(phi), math.sin(phi)
+    mix, miy, miz = _to_inertial(R, ca, -sa * cph, -sa * sph)
     roll = omx * mix + omy * miy + omz * miz
-    # entrainment: surface speeds relative to the contact, which moves with the ball's orbit
-    rr2 = pby * pby + pbz * pbz
-    orbit = (pby * vbz - pbz * vby) / rr2 if rr2 > 0.0 else 0.0
+    rr2 = pb[1] * pb[1] + pb[2] * pb[2]
+    orbit = (pb[1] * vb[2] - pb[2] * vb[1]) / rr2 if rr2 > 0.0 else 0.0
     a0, a1, a2 = _cross(orbit, 0.0, 0.0, rbx, rby, rbz)
-    vpx, vpy, vpz = vbx + a0, vby + a1, vbz + a2
+    vpx, vpy, vpz = vb[0] + a0, vb[1] + a1, vb[2] + a2
     sx = vsbx + vsrx - 2.0 * vpx
     sy = vsby + vsry - 2.0 * vpy
     sz = vsbz + vsrz - 2.0 * vpz
-    sn = sx * nix + sy * niy + sz * niz
+    sn = sx * n[0] + sy * n[1] + sz * n[2]
     entrain = 0.5 * math.sqrt(max(sx * sx + sy * sy + sz * sz - sn * sn, 0.0))
-    # Hertz with the current contact angle
-    gamma = dball * ca / par[P_DM]
-    eprime = par[P_EPRIME]
-    rx, ry, kappa, ell_e, kh = hertz_constants(dball, conf, gamma, is_inner, eprime)
+    return slide, spin, roll, entrain, (mix, miy, miz)
+
+
+@njit(cache=True, inline="always")
+def _approach_rate(vb, o, vr, wr, g, n):
+    """Rate of approach [m/s] (> 0 closing): ball-centre velocity relative to the ring-fixed groove
+    centre point ``g``, along the normal."""
+    a0, a1, a2 = _cross(wr[0], wr[1], wr[2], g[0] - o[0], g[1] - o[1], g[2] - o[2])
+    return (vb[0] - vr[0] - a0) * n[0] + (vb[1] - vr[1] - a1) * n[1] + (vb[2] - vr[2] - a2) * n[2]
+
+
+@njit(cache=True, inline="always")
+def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, vb, wb, o, vr, wr):
+    """Ellipse-integrated traction (solver.physics.traction.ellipse_traction_law, local law
+    ``par.traction_law``) on the ball: returns the output array (force on the ball, moments about
+    the ball centre and about P, powers)."""
+    ct = work[:CONTACT_SIZE]
+    kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
+    tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
+    for i in range(3):
+        ct[CT_POINT + i] = p[i]
+        ct[CT_NORMAL + i] = n[i]
+        ct[CT_ROLLING + i] = t1[i]
+        kin[KIN_BALL_CENTRE + i] = pb[i]
+        kin[KIN_BALL_VELOCITY + i] = vb[i]
+        kin[KIN_BALL_OMEGA + i] = wb[i]
+        kin[KIN_RING_POINT + i] = o[i]
+        kin[KIN_RING_VELOCITY + i] = vr[i]
+        kin[KIN_RING_OMEGA + i] = wr[i]
+    ct[CT_SEMI_MAJOR] = a
+    ct[CT_SEMI_MINOR] = b
+    ct[CT_LOAD] = q
+    ct[CT_CURVATURE] = curvature
+    ellipse_traction_law(
+        ct,
+        kin,
+        par.traction_law,
+        par.traction_curve,
+        par.rheology,
+        film,
+        transit,
+        par.slip_regularisation,
+        quad,
+        tout,
+    )
+    return tout
+
+
+@njit(cache=True, inline="always")
+def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
+    """(central film [m], rolling resistance force [N]) of a loaded contact: Hamrock-Dowson film
+    and hydrodynamic inlet force at the inlet viscosity, both reduced for inlet shear heating
+    (solver.physics.rheology.film_and_rolling_force), plus the elastic hysteresis force
+    F_h = 3/16 alpha_h Q b / R_x (physics.md §2.6.5)."""
+    film, _, f_ehl = film_and_rolling_force(
+        entrain,
+        slide / entrain if entrain > 0.0 else 0.0,
+        q,
+        rx,
+        kappa,
+        pmax,
+        par.eprime,
+        par.rheology,
+    )
+    return film, f_ehl + 0.1875 * par.hysteresis * q * b / rx
+
+
+@njit(cache=True)
+def ball_race_contact(
+    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
+):
+    """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
+
+    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
+    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
+    """
+    dball = par.ball_diameter
+    xc, rc, rg, conf, sgn = _groove(par, is_inner)
+    pb = (y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2])
+    vb = (y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2])
+    wb = (y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2])
+    o = (ring_origin[0], ring_origin[1], ring_origin[2])
+    vr = (ring_vel[0], ring_vel[1], ring_vel[2])
+    wr = (ring_omega[0], ring_omega[1], ring_omega[2])
+    delta, alpha, phi, pr, n, p, g, t1 = _contact_geometry(
+        pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
+    )
+    slide, spin, roll, entrain, axis = _contact_kinematics(
+        pb, vb, wb, o, vr, wr, p, n, alpha, phi, ring_rot, sgn
+    )
+    gamma = dball * math.cos(alpha) / par.pitch_diameter
+    eprime = par.eprime
+    rx, ry, csum, kappa, big_k, big_e, kh = _hertz(dball, conf, gamma, is_inner, eprime)
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
     rec[K_ANGLE] = alpha
-    rec[K_AZIMUTH] = math.atan2(prz, pry)
-    rec[K_POINT] = prx
-    rec[K_POINT + 1] = pry
-    rec[K_POINT + 2] = prz
-    rec[K_NORMAL] = nix
-    rec[K_NORMAL + 1] = niy
-    rec[K_NORMAL + 2] = niz
+    rec[K_AZIMUTH] = math.atan2(pr[2], pr[1])
+    for i in range(3):
+        rec[K_POINT + i] = pr[i]
+        rec[K_NORMAL + i] = n[i]
     rec[K_SPIN] = spin
     rec[K_ROLL] = roll
     rec[K_SLIDE] = slide
@@ -377,80 +454,43 @@ def ball_race_contact(
     rec[K_RY] = ry
     rec[K_LOAD] = 0.0
     rec[K_ELASTIC] = 0.0
+    rec[K_FILM] = 0.0
+    rec[K_POWER_ROLLING] = 0.0
+    rec[K_POWER_SLIDING] = 0.0
+    rec[K_POWER_SPIN] = 0.0
     rec[K_SEMI_MAJOR] = 0.0
     rec[K_SEMI_MINOR] = 0.0
     rec[K_PMAX] = 0.0
     if delta <= 0.0:
         return
-    q_el = kh * delta**1.5
-    # damping: c = 2 zeta sqrt(k_lin m), k_lin = 1.5 K sqrt(delta); rate of approach from the
-    # ball-centre velocity relative to the ring-fixed groove centre point
-    a0, a1, a2 = _cross(wrx, wry, wrz, gix - ox, giy - oy, giz - oz)
-    ddelta = (
-        (vbx - ring_vel[0] - a0) * nix
-        + (vby - ring_vel[1] - a1) * niy
-        + (vbz - ring_vel[2] - a2) * niz
-    )
-    # the damped Hertz law of solver.physics.traction.damped_normal_force:
-    # c = 2 zeta sqrt(1.5 K delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never
-    # pulling
-    q = damped_normal_force(delta, ddelta, kh, par[P_ZETA], par[P_MB])
+    # damped Hertz law of solver.physics.traction.damped_normal_force: c = 2 zeta sqrt(1.5 K
+    # delta^0.5 m_ball), vanishing like delta^(1/4) at contact onset, never pulling
+    ddelta = _approach_rate(vb, o, vr, wr, g, n)
+    q = damped_normal_force(delta, ddelta, kh, par.damping_ratio, par.ball_mass)
     rec[K_LOAD] = q
-    rec[K_ELASTIC] = q_el
+    rec[K_ELASTIC] = kh * delta**1.5
     if q <= 0.0:
         return
-    r_eq = 1.0 / (1.0 / rx + 1.0 / ry)
-    sa_ = (6.0 * kappa * kappa * ell_e * q * r_eq / (math.pi * eprime)) ** (1.0 / 3.0)
-    sb_ = (6.0 * ell_e * q * r_eq / (math.pi * kappa * eprime)) ** (1.0 / 3.0)
+    sa_, sb_, _, pmax = ellipse_from_coefficients(q, kappa, big_k, big_e, csum, eprime)
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
-    rec[K_PMAX] = 1.5 * q / (math.pi * sa_ * sb_)
+    rec[K_PMAX] = pmax
+    film, fr = _film_and_rolling(par, entrain, slide, rx, q, kappa, sb_, pmax)
+    rec[K_FILM] = film
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
-    fbx, fby, fbz = -q * nix, -q * niy, -q * niz
+    fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
     mbx = mby = mbz = 0.0
     frx, fry, frz = -fbx, -fby, -fbz
-    mrx_, mry_, mrz_ = _cross(pix - ox, piy - oy, piz - oz, frx, fry, frz)
-    if par[P_TRACTION] > 0.0:
-        # the ellipse-integrated traction of solver.physics.traction.ellipse_traction:
-        # Hertz-weighted quadrature of the local slip of the two rigid bodies on the curved contact
-        # surface
-        ct = work[:CONTACT_SIZE]
-        kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
-        tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
-        ct[CT_POINT] = pix
-        ct[CT_POINT + 1] = piy
-        ct[CT_POINT + 2] = piz
-        ct[CT_NORMAL] = nix
-        ct[CT_NORMAL + 1] = niy
-        ct[CT_NORMAL + 2] = niz
-        ct[CT_ROLLING] = t1x
-        ct[CT_ROLLING + 1] = t1y
-        ct[CT_ROLLING + 2] = t1z
-        ct[CT_SEMI_MAJOR] = sa_
-        ct[CT_SEMI_MINOR] = sb_
-        ct[CT_LOAD] = q
-        ct[CT_CURVATURE] = (
-            (2.0 * rg + dball) / (2.0 * rg * dball) if par[P_HEATHCOTE] > 0.0 else 0.0
+    lx, ly, lz = p[0] - o[0], p[1] - o[1], p[2] - o[2]
+    mrx_, mry_, mrz_ = _cross(lx, ly, lz, frx, fry, frz)
+    if par.traction:
+        curvature = (2.0 * rg + dball) / (2.0 * rg * dball) if par.heathcote else 0.0
+        transit = sb_ / entrain if entrain > 0.0 else 0.0
+        tout = _traction(
+            par, quad, work, p, n, t1, sa_, sb_, q, curvature, film, transit, pb, vb, wb, o, vr, wr
         )
-        kin[KIN_BALL_CENTRE] = pbx
-        kin[KIN_BALL_CENTRE + 1] = pby
-        kin[KIN_BALL_CENTRE + 2] = pbz
-        kin[KIN_BALL_VELOCITY] = vbx
-        kin[KIN_BALL_VELOCITY + 1] = vby
-        kin[KIN_BALL_VELOCITY + 2] = vbz
-        kin[KIN_BALL_OMEGA] = wbx
-        kin[KIN_BALL_OMEGA + 1] = wby
-        kin[KIN_BALL_OMEGA + 2] = wbz
-        kin[KIN_RING_POINT] = ox
-        kin[KIN_RING_POINT + 1] = oy
-        kin[KIN_RING_POINT + 2] = oz
-        kin[KIN_RING_VELOCITY] = ring_vel[0]
-        kin[KIN_RING_VELOCITY + 1] = ring_vel[1]
-        kin[KIN_RING_VELOCITY + 2] = ring_vel[2]
-        kin[KIN_RING_OMEGA] = wrx
-        kin[KIN_RING_OMEGA + 1] = wry
-        kin[KIN_RING_OMEGA + 2] = wrz
-        ellipse_traction(ct, kin, par[P_MU_A : P_MU_D + 1], par[P_V_REG], quad, tout)
+        rec[K_POWER_SLIDING] = tout[TR_POWER_SLIDING]
+        rec[K_POWER_SPIN] = tout[TR_POWER_SPIN]
         tfx, tfy, tfz = tout[TR_FORCE], tout[TR_FORCE + 1], tout[TR_FORCE + 2]
         fbx += tfx
         fby += tfy
@@ -462,10 +502,23 @@ def ball_race_contact(
         fry -= tfy
         frz -= tfz
         # moment on the ring about its centre: -((P - c_r) x F + M_P)
-        a0, a1, a2 = _cross(pix - ox, piy - oy, piz - oz, tfx, tfy, tfz)
+        a0, a1, a2 = _cross(lx, ly, lz, tfx, tfy, tfz)
         mrx_ -= a0 + tout[TR_MOMENT_POINT]
         mry_ -= a1 + tout[TR_MOMENT_POINT + 1]
         mrz_ -= a2 + tout[TR_MOMENT_POINT + 2]
+        # rolling resistance: a moment pair M = F_R D/2 about the roll axis, against the relative
+        # rolling of ball and ring (the pressure centre shifted into the inlet)
+        # against the rolling, smoothed below the regularisation speed (no moment without rolling)
+        lever = 0.5 * dball
+        direction = roll / (abs(roll) + par.slip_regularisation / lever)
+        mr = -fr * lever * direction
+        mbx += mr * axis[0]
+        mby += mr * axis[1]
+        mbz += mr * axis[2]
+        mrx_ -= mr * axis[0]
+        mry_ -= mr * axis[1]
+        mrz_ -= mr * axis[2]
+        rec[K_POWER_ROLLING] = fr * lever * direction * roll
     rec[K_F_BALL] = fbx
     rec[K_F_BALL + 1] = fby
     rec[K_F_BALL + 2] = fbz
@@ -512,7 +565,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     """
     for i in range(12):
         out[i] = 0.0
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     psi = 2.0 * math.pi * j / z
     cp, sp = math.cos(psi), math.sin(psi)
     R = cage_rot
@@ -524,7 +577,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     etx = -R[0, 1] * sp + R[0, 2] * cp
     ety = -R[1, 1] * sp + R[1, 2] * cp
     etz = -R[2, 1] * sp + R[2, 2] * cp
-    rp = par[P_CAGE_R]
+    rp = par.pocket_radius
     ccx, ccy, ccz = y[cb + C_POS], y[cb + C_POS + 1], y[cb + C_POS + 2]
     wcx, wcy, wcz = cage_omega[0], cage_omega[1], cage_omega[2]
     pbx, pby, pbz = y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2]
@@ -550,7 +603,7 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     kin[PK_OMEGA] = wx * exx + wy * exy + wz * exz
     kin[PK_OMEGA + 1] = wx * erx + wy * ery + wz * erz
     kin[PK_OMEGA + 2] = wx * etx + wy * ety + wz * etz
-    pocket_contact(kin, par[P_POCKET_BLOCK : P_POCKET_BLOCK + POCKET_PARAM_SIZE], res)
+    pocket_contact(kin, par.pocket, res)
     fn = res[PO_NORMAL_FORCE]
     if fn <= 0.0:
         return 0.0
@@ -578,34 +631,99 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
 def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
     """Guiding-land force on the cage through solver.physics.cage_contact.land_force.
 
-    ``out`` (4): force on the cage (3; x = 0) and moment about x (1). Ball-guided cages: zeros.
+    ``out`` (5): force on the cage (3; x = 0), moment on the cage about x (1), and the moment
+    about x on the guiding ring about its centre (1; the ring also receives minus the force).
+    Ball-guided cages: zeros.
     Outer-ring guidance: the land is on the outer ring (centre at the origin, speed omega_o);
     inner-ring guidance: on the inner ring (its centre and velocity, speed omega_i).
     """
-    for i in range(4):
+    for i in range(5):
         out[i] = 0.0
-    guide = int(par[P_GUIDE])
-    if guide == 2:
+    guide = par.guidance
+    if guide == GUIDE_BALL:
         return
     kin = work[:LAND_KIN_SIZE]
     res = work[LAND_KIN_SIZE : LAND_KIN_SIZE + LAND_OUT_SIZE]
-    if guide == 0:
+    if guide == GUIDE_OUTER_RING:
         kin[LK_OFFSET] = y[cb + C_POS + 1]
         kin[LK_OFFSET + 1] = y[cb + C_POS + 2]
         kin[LK_VELOCITY] = y[cb + C_VEL + 1]
         kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2]
-        kin[LK_RING_SPEED] = par[P_WO]
+        kin[LK_RING_SPEED] = par.outer_speed
     else:
         kin[LK_OFFSET] = y[cb + C_POS + 1] - ring_origin[1]
         kin[LK_OFFSET + 1] = y[cb + C_POS + 2] - ring_origin[2]
         kin[LK_VELOCITY] = y[cb + C_VEL + 1] - ring_vel[1]
         kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2] - ring_vel[2]
-        kin[LK_RING_SPEED] = par[P_WI]
+        kin[LK_RING_SPEED] = par.inner_speed
     kin[LK_CAGE_SPEED] = y[cb + C_SPEED]
-    land_force(kin, par[P_LAND_BLOCK : P_LAND_BLOCK + LAND_PARAM_SIZE], res)
+    land_force(kin, par.land, res)
     out[1] = res[LO_FORCE]
     out[2] = res[LO_FORCE + 1]
     out[3] = res[LO_TORQUE]
+    out[4] = res[LO_RING_TORQUE]
+
+
+# ---------------------------------------------------------------------------------------------
+# ball drag in the oil-air mixture (physics.md §2.6.5)
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def ball_drag(y, jb, par):
+    """Drag of the oil-air mixture on ball (state offset ``jb``), the mixture taken at rest in the
+    housing [E]: force -1/2 C_D rho |v| v (pi D^2 / 4) on the centre velocity v, C_D of a sphere
+    (Schiller-Naumann below Re = 1000, 0.44 above), and the viscous moment -8 pi eta R^3 omega
+    of a sphere turning in the mixture (Stokes) [M]. Returns (force (3), moment (3), power >= 0
+    [W]); zeros when traction (lubrication) is off."""
+    if not par.traction:
+        return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 0.0
+    vx, vy, vz = y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2]
+    wx, wy, wz = y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2]
+    d = par.ball_diameter
+    rho = par.mixture_density
+    eta = par.mixture_viscosity
+    v = math.sqrt(vx * vx + vy * vy + vz * vz)
+    re = rho * v * d / eta
+    cd = 0.44
+    if re < 1000.0:
+        cd = 24.0 / max(re, 1e-12) * (1.0 + 0.15 * re**0.687)
+    c = -0.5 * cd * rho * v * 0.25 * math.pi * d * d
+    cm = -8.0 * math.pi * eta * (0.5 * d) ** 3
+    f = (c * vx, c * vy, c * vz)
+    m = (cm * wx, cm * wy, cm * wz)
+    power = -(c * v * v + cm * (wx * wx + wy * wy + wz * wz))
+    return f, m, power
+
+
+# ---------------------------------------------------------------------------------------------
+# post-step hook of the integrator
+# ---------------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def post_step(y, par, rec_inner, rec_outer):
+    """Run after every accepted integrator step: renormalise the ball quaternions (projection onto
+    the unit sphere) and check that every ball is still between the raceways. Returns False when a
+    ball has left them: its centre is more than D/4 from the pitch circle, or a contact (records of
+    the last right-hand-side evaluation) is compressed by more than 2 % of D, far beyond any
+    realistic Hertz deflection."""
+    z = par.ball_count
+    d = par.ball_diameter
+    rp = 0.5 * par.pitch_diameter
+    ok = True
+    for j in range(z):
+        b = BALL_STRIDE * j + B_QUAT
+        n = math.sqrt(y[b] ** 2 + y[b + 1] ** 2 + y[b + 2] ** 2 + y[b + 3] ** 2)
+        for i in range(4):
+            y[b + i] /= n
+        b = BALL_STRIDE * j + B_POS
+        r = math.sqrt(y[b + 1] ** 2 + y[b + 2] ** 2)
+        if abs(r - rp) > 0.25 * d or abs(y[b]) > 0.25 * d:
+            ok = False
+        if rec_inner[j, K_DEFLECTION] > 0.02 * d or rec_outer[j, K_DEFLECTION] > 0.02 * d:
+            ok = False
+    return ok
 
 
 # ---------------------------------------------------------------------------------------------
@@ -617,7 +735,7 @@ def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
 def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
     (Z,) receive the contact records and pocket normal forces of this evaluation."""
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     rb = BALL_STRIDE * z
     cb = rb + RING_SIZE
     irot = np.empty((3, 3))
@@ -628,10 +746,10 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     oome = np.empty(3)
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
-    mb = par[P_MB]
-    jinv = 1.0 / par[P_JB]
-    g = par[P_GRAVITY]
-    cage_on = par[P_CAGE_ON] > 0.0
+    mb = par.ball_mass
+    jinv = 1.0 / par.ball_inertia
+    g = par.gravity
+    cage_on = par.cage
     pk = np.empty(12)
     work = np.empty(TRACTION_WORK_SIZE)
     crot = np.empty((3, 3))
@@ -653,6 +771,13 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         mx = ri[K_M_BALL] + ro[K_M_BALL]
         my = ri[K_M_BALL + 1] + ro[K_M_BALL + 1]
         mz = ri[K_M_BALL + 2] + ro[K_M_BALL + 2]
+        fd, md, _ = ball_drag(y, jb, par)
+        fx += fd[0]
+        fy += fd[1]
+        fz += fd[2]
+        mx += md[0]
+        my += md[1]
+        mz += md[2]
         pocket[j] = 0.0
         if cage_on:
             pocket[j] = cage_pocket(y, jb, cb, j, par, crot, come, work, pk)
@@ -693,36 +818,36 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     # inner ring
     for i in range(RING_SIZE):
         dydt[rb + i] = 0.0
-    dydt[rb + R_PHI_INNER] = par[P_WI]
-    dydt[rb + R_PHI_OUTER] = par[P_WO]
-    ld = np.empty(4)
+    dydt[rb + R_PHI_INNER] = par.inner_speed
+    dydt[rb + R_PHI_OUTER] = par.outer_speed
+    ld = np.empty(5)
     if cage_on:
         cage_land(y, cb, iorg, ivel, par, work, ld)
-        if int(par[P_GUIDE]) == 1:  # reaction on the inner ring
+        if par.guidance == GUIDE_INNER_RING:  # reaction on the inner ring
             fry -= ld[1]
             frz -= ld[2]
     else:
-        for i in range(4):
+        for i in range(5):
             ld[i] = 0.0
-    if par[P_RING_FREE] > 0.0:
-        mr = par[P_MR]
+    if par.ring_free:
+        mr = par.ring_mass
         for i in range(3):
             dydt[rb + R_POS + i] = y[rb + R_VEL + i]
-        dydt[rb + R_VEL] = (frx + par[P_FX]) / mr
-        dydt[rb + R_VEL + 1] = (fry + par[P_FY]) / mr
-        dydt[rb + R_VEL + 2] = (frz + par[P_FZ]) / mr
-    if int(par[P_TILT_MODE]) == 2:
-        ird, irp, wi = par[P_IRD], par[P_IRP], par[P_WI]
+        dydt[rb + R_VEL] = (frx + par.force_x) / mr
+        dydt[rb + R_VEL + 1] = (fry + par.force_y) / mr
+        dydt[rb + R_VEL + 2] = (frz + par.force_z) / mr - g
+    if par.tilt_mode == TILT_FREE:
+        ird, irp, wi = par.ring_diametral_inertia, par.ring_polar_inertia, par.inner_speed
         gy_rate, gz_rate = y[rb + R_TILT_RATE], y[rb + R_TILT_RATE + 1]
         dydt[rb + R_TILT] = gy_rate
         dydt[rb + R_TILT + 1] = gz_rate
-        dydt[rb + R_TILT_RATE] = (mry + par[P_MY] - irp * wi * gz_rate) / ird
-        dydt[rb + R_TILT_RATE + 1] = (mrz + par[P_MZ] + irp * wi * gy_rate) / ird
+        dydt[rb + R_TILT_RATE] = (mry + par.moment_y - irp * wi * gz_rate) / ird
+        dydt[rb + R_TILT_RATE + 1] = (mrz + par.moment_z + irp * wi * gy_rate) / ird
     # cage
     for i in range(CAGE_SIZE):
         dydt[cb + i] = 0.0
     if cage_on:
-        mc = par[P_MC]
+        mc = par.cage_mass
         for i in range(3):
             dydt[cb + C_POS + i] = y[cb + C_VEL + i]
         dydt[cb + C_VEL] = (fcx + ld[0]) / mc
@@ -730,7 +855,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         dydt[cb + C_VEL + 2] = (fcz + ld[2]) / mc - g
         # spin about the cage's own axis, and the two tilts (rigid ring: polar inertia I_p,
         # diametral I_d; small tilts with the gyroscopic coupling as for the inner ring)
-        icp, icd = par[P_IC], par[P_ICD]
+        icp, icd = par.cage_polar_inertia, par.cage_diametral_inertia
         ax = crot[0, 0] * mcx + crot[1, 0] * mcy + crot[2, 0] * mcz
         dydt[cb + C_ANGLE] = y[cb + C_SPEED]
         dydt[cb + C_SPEED] = (ax + ld[3]) / icp
@@ -747,10 +872,10 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     """Kinetic + potential energy [J] for the conservative model (traction, damping, cage off).
 
     Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the constant applied
-    force, m g z for gravity along -z. The inner ring's imposed spin is not included (it does no
-    work on frictionless contacts).
+    force, m g z for gravity along -z (balls, and the inner ring when it is free). The inner ring's
+    imposed spin is not included (it does no work on frictionless contacts).
     """
-    z = int(par[P_Z])
+    z = int(par.ball_count)
     rb = BALL_STRIDE * z
     irot = np.empty((3, 3))
     iorg = np.empty(3)
@@ -761,7 +886,7 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
     work = np.empty(TRACTION_WORK_SIZE)
-    mb = par[P_MB]
+    mb = par.ball_mass
     e = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
@@ -776,15 +901,16 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
         for i in range(3):
             v2 += y[jb + B_VEL + i] ** 2
             w2 += y[jb + B_OMEGA + i] ** 2
-        e += 0.5 * mb * v2 + 0.5 * par[P_JB] * w2 + mb * par[P_GRAVITY] * y[jb + B_POS + 2]
-    if par[P_RING_FREE] > 0.0:
+        e += 0.5 * mb * v2 + 0.5 * par.ball_inertia * w2 + mb * par.gravity * y[jb + B_POS + 2]
+    if par.ring_free:
         v2 = 0.0
         for i in range(3):
             v2 += y[rb + R_VEL + i] ** 2
-        e += 0.5 * par[P_MR] * v2
+        e += 0.5 * par.ring_mass * v2
         e -= (
-            par[P_FX] * y[rb + R_POS]
-            + par[P_FY] * y[rb + R_POS + 1]
-            + par[P_FZ] * y[rb + R_POS + 2]
+            par.force_x * y[rb + R_POS]
+            + par.force_y * y[rb + R_POS + 1]
+            + par.force_z * y[rb + R_POS + 2]
         )
+        e += par.ring_mass * par.gravity * y[rb + R_POS + 2]
     return e

@@ -1,7 +1,9 @@
-"""Layout of the dynamic model's state vector, parameter vector and per-contact result record.
+"""Layout of the dynamic model's state vector and per-contact result record, and the integer mode
+constants of its parameter record.
 
-Everything the numba kernels exchange is a flat float64 array whose slots are named here, so the
-kernels never take long positional tuples and every slot is documented in one place.
+The state and the per-contact record are flat float64 arrays (the integrator works on the state
+vector as a whole) whose slots are named here. The parameters are a named record,
+:class:`solver.models.dynamic.params.ModelParams`.
 
 State vector ``y`` (SI units, inertial frame of case-format.md: x = bearing axis, gravity along -z;
 origin = outer-ring centre on the plane of the ball centres in the just-touching reference state):
@@ -69,64 +71,15 @@ def state_size(ball_count: int) -> int:
     return BALL_STRIDE * ball_count + RING_SIZE + CAGE_SIZE
 
 
-# ---- parameter vector ---------------------------------------------------------------------------
-# Every entry SI. Flags are stored as 0.0/1.0.
-P_Z = 0  # ball count
-P_D = 1  # ball diameter [m]
-P_DM = 2  # pitch diameter [m]
-P_MB = 3  # ball mass [kg]
-P_JB = 4  # ball polar inertia [kg m^2]
-P_RI = 5  # inner groove radius r_i [m]
-P_RO = 6  # outer groove radius r_o [m]
-P_XCI = 7  # inner groove curvature-centre axial position, ring frame [m]
-P_RCI = 8  # inner groove curvature-centre circle radius [m]
-P_XCO = 9  # outer groove curvature-centre axial position [m]
-P_RCO = 10  # outer groove curvature-centre circle radius [m]
-P_FI = 11  # inner conformity f_i
-P_FO = 12  # outer conformity f_o
-P_EPRIME = 13  # effective modulus E' [Pa]
-P_WI = 14  # inner ring speed [rad/s]
-P_WO = 15  # outer ring speed [rad/s]
-P_MR = 16  # inner ring (+ shaft share) mass [kg]
-P_IRD = 17  # inner ring diametral inertia [kg m^2]
-P_IRP = 18  # inner ring polar inertia [kg m^2]
-P_FX = 19  # applied force on the inner ring, x [N]
-P_FY = 20  # y [N]
-P_FZ = 21  # z [N]
-P_MY = 22  # applied moment on the inner ring about y [N m]
-P_MZ = 23  # about z [N m]
-P_TILT_MODE = 24  # 0 imposed tilt fixed in space, 1 imposed tilt turning with the ring, 2 tilt DOF
-P_TILT_Y = 25  # imposed tilt vector, y component [rad]
-P_TILT_Z = 26  # imposed tilt vector, z component [rad]
-P_RING_FREE = 27  # 1: ring translations are DOF; 0: ring held at its initial position
-P_GRAVITY = 28  # gravitational acceleration along -z [m/s^2]
-P_ZETA = 29  # ball-race contact damping ratio (0 = none)
-P_TRACTION = 30  # 1: ellipse-integrated traction on; 0: frictionless contacts
-P_MU_A = 31  # traction curve mu(u) = (A + B u) exp(-C u) + D
-P_MU_B = 32
-P_MU_C = 33
-P_MU_D = 34
-P_CAGE_ON = 35  # 1: cage modelled
-P_MC = 36  # cage mass [kg]
-P_IC = 37  # cage polar inertia [kg m^2]
-P_CAGE_R = 38  # pocket-centre radius in the cage [m]
-P_CP = 39  # pocket diametral clearance [m]
-P_KP = 40  # pocket contact stiffness (linear) [N/m]
-P_ZETA_P = 41  # pocket contact damping ratio
-P_MU_P = 42  # ball-pocket friction coefficient
-P_GUIDE = 43  # cage guidance: 0 outer ring land, 1 inner ring land, 2 ball-guided
-P_RG = 44  # guiding land radius [m]
-P_CG = 45  # guiding radial clearance [m]
-P_LG = 46  # guiding land width [m]
-P_ETA = 47  # lubricant dynamic viscosity [Pa s]
-P_KG = 48  # cage-land metal contact stiffness [N/m]
-P_MU_G = 49  # cage-land metal contact friction coefficient
-P_V_REG = 50  # regularisation speed of Coulomb friction (tanh) [m/s]
-P_HEATHCOTE = 51  # 1: evaluate slip on the curved (deformed) ellipse surface
-P_POCKET_BLOCK = 52  # start of the pocket parameter array of solver.physics.cage_contact (9 slots)
-P_LAND_BLOCK = 61  # start of the land parameter array of solver.physics.cage_contact (14 slots)
-P_ICD = 75  # cage diametral inertia [kg m^2]
-N_PARAMS = 76
+# ---- integer mode constants of the parameter record (solver.models.dynamic.params.ModelParams) --
+# tilt_mode: how the inner ring's misalignment enters
+TILT_FIXED_IN_SPACE = 0  # imposed tilt fixed in space (housing/shaft misalignment)
+TILT_TURNING_WITH_RING = 1  # imposed tilt turning with the ring (rotating runout)
+TILT_FREE = 2  # tilts are degrees of freedom under an applied moment
+# guidance: which surface guides the cage
+GUIDE_OUTER_RING = 0
+GUIDE_INNER_RING = 1
+GUIDE_BALL = 2
 
 # ---- per-contact record written by the contact kernel -------------------------------------------
 K_F_BALL = 0  # force on the ball, inertial (3) [N]
@@ -149,4 +102,22 @@ K_ENTRAIN = 28  # entrainment (mean rolling) speed [m/s]
 K_RX = 29  # equivalent radius in the rolling direction [m]
 K_RY = 30  # equivalent radius across the groove [m]
 K_ELASTIC = 31  # elastic part of Q, K delta^1.5 [N]
-N_CONTACT_RECORD = 32
+K_FILM = 32  # central EHL film thickness, inlet shear heating included [m]
+K_POWER_ROLLING = 33  # power of the rolling resistance (EHL inlet + hysteresis) [W]
+K_POWER_SLIDING = 34  # traction power from the slip at the contact centre [W]
+K_POWER_SPIN = 35  # traction power from the relative rotation (spin, differential slip) [W]
+# filled by the observation step (observe.py) for the output samples only
+K_LATITUDE = 36  # latitude of the contact on the ball [rad]
+K_LONGITUDE = 37  # longitude of the contact on the ball [rad]
+K_SPIN_TO_ROLL = 38  # K_SPIN / K_ROLL (0 when not rolling)
+N_CONTACT_RECORD = 39
+
+# ---- per-ball and bearing-level records of the observation step (observe.py) -------------------
+BO_POCKET_FORCE = 0  # pocket normal force [N]
+BO_POCKET_POWER = 1  # power dissipated in the ball-pocket contact [W]
+BO_DRAG_POWER = 2  # power of the oil-air drag on the ball [W]
+N_BALL_OUTPUT = 3
+RO_LAND_POWER = 0  # power dissipated at the cage-guiding land [W]
+RO_FRICTION_TORQUE = 1  # torque needed to turn the inner ring at its speed [N m]
+RO_DRIVE_POWER = 2  # power fed in by the imposed ring rotations [W]
+N_BEARING_OUTPUT = 3

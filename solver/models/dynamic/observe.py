@@ -1,7 +1,14 @@
-"""Per-sample contact quantities of the dynamic model (numba), from stored states.
+"""Per-sample quantities of the dynamic model (numba), from stored states.
 
-For every output sample the right-hand side is evaluated once (it fills the contact records); the
-quantities of results-schema.md are then derived here. Races: index 0 inner, 1 outer.
+For every output sample the right-hand side is evaluated once; it fills the per-contact records
+(layout ``K_*``). This step adds the record slots that only output needs (latitude and longitude on
+the ball, spin-to-roll ratio) and keeps the whole record per sample; the table ``CONTACT_OUTPUTS``
+of ``output.py`` names which slots become results variables. It also fills a per-ball record
+(``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power,
+friction torque and drive power of the inner ring). Races: index 0 inner, 1 outer.
+
+Powers: an interaction between two bodies dissipates minus the work rate of its forces and moments
+on both (sum of F . v + M . omega over the pair, velocities of the points the forces act on).
 """
 
 from __future__ import annotations
@@ -11,76 +18,112 @@ import math
 import numpy as np
 from numba import njit
 
-from solver.physics.ehl import film_thickness_central
-from solver.physics.hertz_fast import curvature_sum_and_difference_fast, hertz_coefficients_fast
-
 from . import layout as L
-from .kernels import quaternion_to_matrix, rhs
-
-O_LOAD = 0  # N
-O_ANGLE = 1  # rad
-O_DEFLECTION = 2  # m, clipped at 0
-O_SEMI_MAJOR = 3  # m
-O_SEMI_MINOR = 4  # m
-O_PMAX = 5  # Pa
-O_AZIMUTH = 6  # rad, ring frame, wrapped to [0, 2 pi)
-O_POINT = 7  # (3) m, ring frame
-O_LATITUDE = 10  # rad, on the ball
-O_LONGITUDE = 11  # rad
-O_SPIN_TO_ROLL = 12
-O_SLIDE = 13  # m/s
-O_FILM = 14  # m, central film thickness
-N_OBS = 15
+from .kernels import (
+    TRACTION_WORK_SIZE,
+    ball_drag,
+    cage_frame,
+    cage_land,
+    cage_pocket,
+    quaternion_to_matrix,
+    rhs,
+    ring_frames,
+)
 
 
 @njit(cache=True)
-def observe(states, par, quad, viscosity, pressure_viscosity, obs, pocket_out):
-    """Fill ``obs`` (S, Z, 2, N_OBS) and ``pocket_out`` (S, Z) for the states (S, n)."""
-    z = int(par[L.P_Z])
+def observe(states, par, quad, records, balls, bearing):
+    """Fill ``records`` (S, Z, 2, N_CONTACT_RECORD), ``balls`` (S, Z, N_BALL_OUTPUT) and
+    ``bearing`` (S, N_BEARING_OUTPUT) for the states (S, n)."""
+    z = par.ball_count
     n = states.shape[1]
     dydt = np.empty(n)
     rec = np.empty((2, z, L.N_CONTACT_RECORD))
     pocket = np.empty(z)
     rot = np.empty((3, 3))
-    eprime = par[L.P_EPRIME]
-    d = par[L.P_D]
+    irot = np.empty((3, 3))
+    iorg = np.empty(3)
+    ivel = np.empty(3)
+    iome = np.empty(3)
+    orot = np.empty((3, 3))
+    oome = np.empty(3)
+    crot = np.empty((3, 3))
+    come = np.empty(3)
+    pk = np.empty(12)
+    ld = np.empty(5)
+    work = np.empty(TRACTION_WORK_SIZE)
+    cb = L.BALL_STRIDE * z + L.RING_SIZE
     for s in range(states.shape[0]):
         y = states[s]
         rhs(y, par, quad, dydt, rec[0], rec[1], pocket)
+        ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+        cage_frame(y, cb, crot, come)
+        vcx, vcy, vcz = y[cb + L.C_VEL], y[cb + L.C_VEL + 1], y[cb + L.C_VEL + 2]
+        # moments of the contacts on the inner ring about its centre
+        mix = miy = miz = 0.0
+        mox = 0.0
         for j in range(z):
-            pocket_out[s, j] = pocket[j]
             b = L.BALL_STRIDE * j
+            mix += rec[0, j, L.K_M_RING]
+            miy += rec[0, j, L.K_M_RING + 1]
+            miz += rec[0, j, L.K_M_RING + 2]
+            mox += rec[1, j, L.K_M_RING]
             quaternion_to_matrix(
                 y[b + L.B_QUAT], y[b + L.B_QUAT + 1], y[b + L.B_QUAT + 2], y[b + L.B_QUAT + 3], rot
             )
             for k in range(2):
                 r = rec[k, j]
-                o = obs[s, j, k]
-                q = r[L.K_LOAD]
-                o[O_LOAD] = q
-                o[O_ANGLE] = r[L.K_ANGLE]
-                o[O_DEFLECTION] = max(r[L.K_DEFLECTION], 0.0)
-                o[O_SEMI_MAJOR] = r[L.K_SEMI_MAJOR]
-                o[O_SEMI_MINOR] = r[L.K_SEMI_MINOR]
-                o[O_PMAX] = r[L.K_PMAX]
-                az = r[L.K_AZIMUTH] % (2.0 * math.pi)
-                o[O_AZIMUTH] = az
-                for i in range(3):
-                    o[O_POINT + i] = r[L.K_POINT + i]
                 nx, ny, nz = r[L.K_NORMAL], r[L.K_NORMAL + 1], r[L.K_NORMAL + 2]
                 # ball-fixed components e_b = R^T n
                 ebx = rot[0, 0] * nx + rot[1, 0] * ny + rot[2, 0] * nz
                 eby = rot[0, 1] * nx + rot[1, 1] * ny + rot[2, 1] * nz
                 ebz = rot[0, 2] * nx + rot[1, 2] * ny + rot[2, 2] * nz
-                o[O_LATITUDE] = math.asin(min(1.0, max(-1.0, ebz)))
-                o[O_LONGITUDE] = math.atan2(eby, ebx)
+                r[L.K_LATITUDE] = math.asin(min(1.0, max(-1.0, ebz)))
+                r[L.K_LONGITUDE] = math.atan2(eby, ebx)
                 roll = r[L.K_ROLL]
-                o[O_SPIN_TO_ROLL] = r[L.K_SPIN] / roll if abs(roll) > 1e-12 else 0.0
-                o[O_SLIDE] = r[L.K_SLIDE]
-                conf = par[L.P_FI] if k == 0 else par[L.P_FO]
-                gamma = d * math.cos(r[L.K_ANGLE]) / par[L.P_DM]
-                _, fdiff = curvature_sum_and_difference_fast(d, conf, gamma, k == 0)
-                kappa, _, _ = hertz_coefficients_fast(fdiff)
-                o[O_FILM] = film_thickness_central(
-                    r[L.K_ENTRAIN], viscosity, pressure_viscosity, eprime, r[L.K_RX], q, kappa
-                )
+                r[L.K_SPIN_TO_ROLL] = r[L.K_SPIN] / roll if abs(roll) > 1e-12 else 0.0
+                for i in range(L.N_CONTACT_RECORD):
+                    records[s, j, k, i] = r[i]
+            balls[s, j, L.BO_POCKET_FORCE] = pocket[j]
+            power = 0.0
+            if par.cage and pocket[j] > 0.0:
+                cage_pocket(y, b, cb, j, par, crot, come, work, pk)
+                for i in range(3):
+                    power -= pk[i] * y[b + L.B_VEL + i] + pk[3 + i] * y[b + L.B_OMEGA + i]
+                    power -= pk[9 + i] * come[i]
+                power -= pk[6] * vcx + pk[7] * vcy + pk[8] * vcz
+            balls[s, j, L.BO_POCKET_POWER] = power
+            _, _, drag = ball_drag(y, b, par)
+            balls[s, j, L.BO_DRAG_POWER] = drag
+        # cage land: force F and moment T on the cage, -F and T_ring on the guiding ring
+        land = 0.0
+        ring_torque = 0.0
+        wring = 0.0
+        if par.cage and par.guidance != L.GUIDE_BALL:
+            cage_land(y, cb, iorg, ivel, par, work, ld)
+            ring_torque = ld[4]
+            if par.guidance == L.GUIDE_INNER_RING:
+                vr0, vr1, vr2, wring = ivel[0], ivel[1], ivel[2], iome[0]
+            else:
+                vr0, vr1, vr2, wring = 0.0, 0.0, 0.0, oome[0]
+            land = -(
+                ld[0] * (vcx - vr0)
+                + ld[1] * (vcy - vr1)
+                + ld[2] * (vcz - vr2)
+                + ld[3] * come[0]
+                + ld[4] * wring
+            )
+        bearing[s, L.RO_LAND_POWER] = land
+        # the imposed ring spins take the torques that hold the rings at their speeds
+        wi = par.inner_speed
+        drive_inner = -(mix * iome[0] + miy * iome[1] + miz * iome[2])
+        if par.tilt_mode == L.TILT_FREE:  # only the imposed spin is driven, not the tilt rates
+            rb = L.BALL_STRIDE * z
+            drive_inner += miy * y[rb + L.R_TILT_RATE] + miz * y[rb + L.R_TILT_RATE + 1]
+        if par.guidance == L.GUIDE_INNER_RING:
+            drive_inner -= ring_torque * wring
+        drive_outer = -mox * oome[0]
+        if par.guidance == L.GUIDE_OUTER_RING:
+            drive_outer -= ring_torque * wring
+        bearing[s, L.RO_DRIVE_POWER] = drive_inner + drive_outer
+        bearing[s, L.RO_FRICTION_TORQUE] = drive_inner / wi if wi != 0.0 else 0.0

@@ -5,27 +5,98 @@ from __future__ import annotations
 import numpy as np
 
 from solver.physics.hertz import truncation_margin
+from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
 from solver.results.summary import trajectory_summary
 
 from . import layout as L
-from .observe import (
-    N_OBS,
-    O_ANGLE,
-    O_AZIMUTH,
-    O_DEFLECTION,
-    O_FILM,
-    O_LATITUDE,
-    O_LOAD,
-    O_LONGITUDE,
-    O_PMAX,
-    O_POINT,
-    O_SEMI_MAJOR,
-    O_SEMI_MINOR,
-    O_SLIDE,
-    O_SPIN_TO_ROLL,
-    observe,
-)
+from .observe import observe
+
+_TWO_PI = 2.0 * np.pi
+
+TRACTION_LAW_NAMES = {
+    LAW_RHEOLOGY: "rheology (Barus viscosity, Eyring + film elasticity, limiting shear stress)",
+    LAW_SLIP_CURVE: "ADORE-type slip curve",
+}
+
+
+def _degrees(v):
+    return np.degrees(v)
+
+
+def _azimuth_degrees(v):
+    return np.degrees(v % _TWO_PI) % 360.0
+
+
+def _clip_negative(v):
+    return np.maximum(v, 0.0)
+
+
+#: Per-contact results variables of the dynamic model: name (a key of the registry
+#: solver.results.variables, which gives dims, units and meaning) -> (first slot of the contact
+#: record, layout ``K_*``; number of slots, 1 or 3 for an ``axis`` vector; conversion of the stored
+#: SI value to the registry's units, or None). Adding a per-contact output: write its slot in the
+#: kernel (layout + kernels.py), one line here, one entry in the registry.
+CONTACT_OUTPUTS = {
+    "contact_load": (L.K_LOAD, 1, None),
+    "contact_angle": (L.K_ANGLE, 1, _degrees),
+    "contact_deflection": (L.K_DEFLECTION, 1, _clip_negative),
+    "ellipse_semi_major": (L.K_SEMI_MAJOR, 1, None),
+    "ellipse_semi_minor": (L.K_SEMI_MINOR, 1, None),
+    "max_pressure": (L.K_PMAX, 1, None),
+    "raceway_azimuth": (L.K_AZIMUTH, 1, _azimuth_degrees),
+    "raceway_contact_point": (L.K_POINT, 3, None),
+    "ball_latitude": (L.K_LATITUDE, 1, _degrees),
+    "ball_longitude": (L.K_LONGITUDE, 1, _degrees),
+    "spin_to_roll": (L.K_SPIN_TO_ROLL, 1, None),
+    "sliding_speed": (L.K_SLIDE, 1, None),
+    "film_thickness": (L.K_FILM, 1, None),
+    "contact_heat": (L.K_POWER_ROLLING, 1, None),  # completed in contact_outputs
+}
+
+#: Loss sources per ball (registry dimension ``ball_loss_source``) and in total (``loss_source``).
+BALL_LOSS_SOURCES = ("rolling", "sliding", "spin", "drag", "cage_pocket")
+LOSS_SOURCES = BALL_LOSS_SOURCES + ("cage_land",)
+
+
+def contact_outputs(records: np.ndarray) -> dict:
+    """Data variables (dims, values) of :data:`CONTACT_OUTPUTS` from the records (S, Z, 2, K)."""
+    tc = ("time", "ball", "race")
+    data = {}
+    for name, (slot, size, convert) in CONTACT_OUTPUTS.items():
+        if size == 1:
+            values, dims = records[..., slot], tc
+        else:
+            values, dims = records[..., slot : slot + size], tc + ("axis",)
+        data[name] = (dims, convert(values) if convert is not None else values.copy())
+    # heat generated in each contact: rolling resistance + sliding + spin
+    heat = records[..., L.K_POWER_ROLLING] + records[..., L.K_POWER_SLIDING]
+    data["contact_heat"] = (tc, heat + records[..., L.K_POWER_SPIN])
+    return data
+
+
+def loss_outputs(records: np.ndarray, balls: np.ndarray, bearing: np.ndarray) -> dict:
+    """Power losses by source per ball and in total, friction torque and drive power."""
+    per_ball = np.stack(
+        [
+            records[..., L.K_POWER_ROLLING].sum(axis=-1),
+            records[..., L.K_POWER_SLIDING].sum(axis=-1),
+            records[..., L.K_POWER_SPIN].sum(axis=-1),
+            balls[..., L.BO_DRAG_POWER],
+            balls[..., L.BO_POCKET_POWER],
+        ],
+        axis=-1,
+    )
+    total = np.concatenate(
+        (per_ball.sum(axis=1), bearing[:, L.RO_LAND_POWER : L.RO_LAND_POWER + 1]), axis=-1
+    )
+    return {
+        "ball_power_loss": (("time", "ball", "ball_loss_source"), per_ball),
+        "power_loss": (("time", "loss_source"), total),
+        "total_power_loss": (("time",), total.sum(axis=-1)),
+        "friction_torque": (("time",), bearing[:, L.RO_FRICTION_TORQUE].copy()),
+        "drive_power": (("time",), bearing[:, L.RO_DRIVE_POWER].copy()),
+    }
 
 
 def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> np.ndarray:
@@ -45,12 +116,13 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
 def build_dataset(inputs, options, par, quad, times, states, period, complete, stop_reason, stats):
     """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,), with the
     trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it."""
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     s_count = states.shape[0]
-    obs = np.zeros((s_count, z, 2, N_OBS))
-    pocket = np.zeros((s_count, z))
-    lub = inputs.lubricant
-    observe(states, par, quad, lub.viscosity, lub.pressure_viscosity, obs, pocket)
+    records = np.zeros((s_count, z, 2, L.N_CONTACT_RECORD))
+    balls_out = np.zeros((s_count, z, L.N_BALL_OUTPUT))
+    bearing_out = np.zeros((s_count, L.N_BEARING_OUTPUT))
+    observe(states, par, quad, records, balls_out, bearing_out)
+    pocket = balls_out[..., L.BO_POCKET_FORCE]
     balls = np.stack(
         [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
     )
@@ -66,12 +138,12 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     # attitude angle from the ball's angular velocity relative to its orbiting frame
     w_x = omega[..., 0] - orbital
     w_r = omega[..., 1] * np.cos(psi) + omega[..., 2] * np.sin(psi)
-    sgn = -1.0 if (par[L.P_WI] - par[L.P_WO]) >= 0 else 1.0
+    sgn = -1.0 if (par.inner_speed - par.outer_speed) >= 0 else 1.0
     attitude = np.degrees(np.arctan2(-sgn * w_r, sgn * w_x))
-    angle = obs[..., O_ANGLE]
-    semi_major = obs[..., O_SEMI_MAJOR]
+    angle = records[..., L.K_ANGLE]
+    semi_major = records[..., L.K_SEMI_MAJOR]
     tilt = states[:, rb + L.R_TILT : rb + L.R_TILT + 2].copy()
-    if int(par[L.P_TILT_MODE]) == 1:
+    if par.tilt_mode == L.TILT_TURNING_WITH_RING:
         # tilt turning with the ring: R = R_x(phi) R(g) = R(R_x(phi) g) R_x(phi), so the tilt
         # vector relative to the outer ring (inertial axes) is g turned by the ring angle phi
         phi = states[:, rb + L.R_PHI_INNER]
@@ -80,20 +152,8 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         tilt[:, 1] = gy * np.sin(phi) + gz * np.cos(phi)
     tc = ("time", "ball", "race")
     tb = ("time", "ball")
-    data = {
-        "contact_load": (tc, obs[..., O_LOAD]),
-        "contact_angle": (tc, np.degrees(angle)),
-        "contact_deflection": (tc, obs[..., O_DEFLECTION]),
-        "ellipse_semi_major": (tc, semi_major),
-        "ellipse_semi_minor": (tc, obs[..., O_SEMI_MINOR]),
-        "max_pressure": (tc, obs[..., O_PMAX]),
-        "raceway_azimuth": (tc, np.degrees(obs[..., O_AZIMUTH]) % 360.0),
-        "raceway_contact_point": (tc + ("axis",), obs[..., O_POINT : O_POINT + 3]),
-        "ball_latitude": (tc, np.degrees(obs[..., O_LATITUDE])),
-        "ball_longitude": (tc, np.degrees(obs[..., O_LONGITUDE])),
-        "spin_to_roll": (tc, obs[..., O_SPIN_TO_ROLL]),
-        "sliding_speed": (tc, obs[..., O_SLIDE]),
-        "film_thickness": (tc, obs[..., O_FILM]),
+    data = contact_outputs(records) | loss_outputs(records, balls_out, bearing_out)
+    data |= {
         "truncation_margin": (tc, truncation_margins(inputs.geometry, angle, semi_major)),
         "ball_azimuth": (tb, np.degrees(psi) % 360.0),
         "orbital_speed": (tb, orbital),
@@ -110,9 +170,12 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     attrs = {
         "stop_reason": stop_reason,
         "gravity": f"{options.gravity:g} m/s^2 along -z of the inertial frame",
-        "traction_model": "ellipse-integrated ADORE-type curve"
+        "traction_model": (
+            f"ellipse-integrated, {TRACTION_LAW_NAMES[par.traction_law]}; rolling resistance "
+            "(EHL inlet + hysteresis) and oil-air drag"
+        )
         if options.traction
-        else "off (frictionless)",
+        else "off (frictionless: no traction, rolling resistance or drag)",
         "damping_ratio": float(options.damping_ratio),
         "cage_model": "6 DOF (translations, rotation, tilts)" if options.cage else "off",
         "lubricant": inputs.lubricant.description,

@@ -1,29 +1,117 @@
-"""Build the parameter vector (layout ``P_*``) and the ellipse quadrature of the dynamic model."""
+"""The parameter record of the dynamic model's kernels, and the ellipse quadrature.
+
+:class:`ModelParams` is a NamedTuple of scalars, flags, integer modes (constants in ``layout``)
+and small arrays; numba compiles it as a typed record, so a kernel reads ``par.ball_mass`` and a new
+parameter is one new field here (with its unit) plus one line in :func:`build_params`.
+"""
 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
 from solver.inputs import Inputs
 from solver.materials import Material, effective_modulus
 from solver.physics.cage_contact import (
-    LAND_PARAM_SIZE,
-    POCKET_PARAM_SIZE,
     land_contact_stiffness_estimate,
     land_parameters,
     pocket_parameters,
     pocket_stiffness_estimate,
 )
-from solver.physics.traction import ellipse_quadrature, traction_curve_parameters
+from solver.physics.rheology import (
+    RH_CONDUCTIVITY,
+    RH_EYRING_STRESS,
+    RH_LIMITING_SLOPE,
+    RH_LIMITING_STRESS,
+    RH_PRESSURE_VISCOSITY,
+    RH_SHEAR_MODULUS,
+    RH_TEMPERATURE_VISCOSITY,
+    RH_VISCOSITY,
+    RHEOLOGY_SIZE,
+)
+from solver.physics.traction import (
+    LAW_RHEOLOGY,
+    LAW_SLIP_CURVE,
+    ellipse_quadrature,
+    traction_curve_parameters,
+)
 
 from . import layout as L
 from .options import SimulationOptions
 
 STEEL_DENSITY = 7800.0
+#: Air at about 40 degC, the gas of the oil-air mixture around the balls.
+AIR_DENSITY = 1.13  # kg/m^3
+AIR_VISCOSITY = 1.9e-5  # Pa s
 #: Assumed cage material (the case format has no cage material): glass-filled polyamide 66.
 CAGE_MATERIAL = Material("glass_filled_polyamide", 8.0e9, 0.4, 1400.0)
+
+
+class ModelParams(NamedTuple):
+    """Everything the dynamic model's kernels read besides the state, SI units.
+
+    Frames and signs as in ``layout`` and ``kernels`` (inertial x = bearing axis, gravity -z).
+    """
+
+    # ---- geometry and masses
+    ball_count: int
+    ball_diameter: float  # D [m]
+    pitch_diameter: float  # d_m [m]
+    ball_mass: float  # [kg]
+    ball_inertia: float  # ball polar inertia [kg m^2]
+    inner_groove_radius: float  # r_i [m]
+    outer_groove_radius: float  # r_o [m]
+    inner_centre_axial: float  # inner groove curvature-centre axial position, ring frame [m]
+    inner_centre_radius: float  # inner groove curvature-centre circle radius [m]
+    outer_centre_axial: float  # outer groove curvature-centre axial position [m]
+    outer_centre_radius: float  # outer groove curvature-centre circle radius [m]
+    inner_conformity: float  # f_i = r_i / D
+    outer_conformity: float  # f_o
+    eprime: float  # effective modulus E' [Pa]
+    # ---- rings, loads and modes
+    inner_speed: float  # inner ring speed [rad/s]
+    outer_speed: float  # outer ring speed [rad/s]
+    ring_mass: float  # inner ring (+ shaft share) mass [kg]
+    ring_diametral_inertia: float  # [kg m^2]
+    ring_polar_inertia: float  # [kg m^2]
+    force_x: float  # applied force on the inner ring [N], inertial x
+    force_y: float
+    force_z: float
+    moment_y: float  # applied moment on the inner ring about y [N m] (tilt_mode TILT_FREE)
+    moment_z: float
+    tilt_mode: int  # layout.TILT_FIXED_IN_SPACE / TILT_TURNING_WITH_RING / TILT_FREE
+    tilt_y: float  # imposed tilt vector, y component [rad]
+    tilt_z: float  # z component [rad]
+    ring_free: bool  # ring translations are DOF (False: held at the initial position)
+    gravity: float  # gravitational acceleration along -z [m/s^2]
+    # ---- ball-race contacts
+    damping_ratio: float  # critical-damping ratio of the ball-race normal contacts
+    traction: bool  # ellipse-integrated traction on (False: frictionless)
+    traction_law: int  # solver.physics.traction.LAW_RHEOLOGY or LAW_SLIP_CURVE
+    traction_curve: np.ndarray  # (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D
+    rheology: np.ndarray  # solver.physics.rheology parameter array (RH_*)
+    viscosity: float  # oil viscosity at the inlet temperature [Pa s]
+    pressure_viscosity: float  # Barus alpha [1/Pa]
+    hysteresis: float  # elastic hysteresis loss fraction of the ball-race contacts
+    slip_regularisation: float  # regularisation speed of Coulomb-type friction laws [m/s]
+    heathcote: bool  # slip evaluated on the curved (deformed) ellipse surface
+    # ---- cage
+    cage: bool  # cage modelled
+    cage_mass: float  # [kg]
+    cage_polar_inertia: float  # [kg m^2]
+    cage_diametral_inertia: float  # [kg m^2]
+    pocket_radius: float  # pocket-centre radius in the cage [m]
+    pocket_clearance: float  # pocket diametral clearance [m]
+    pocket_stiffness: float  # linear pocket contact stiffness [N/m]
+    pocket: np.ndarray  # pocket law parameters of solver.physics.cage_contact.pocket_parameters
+    guidance: int  # layout.GUIDE_OUTER_RING / GUIDE_INNER_RING / GUIDE_BALL
+    land_clearance: float  # guiding radial clearance [m]
+    land: np.ndarray  # land law parameters of solver.physics.cage_contact.land_parameters
+    # ---- oil-air mixture around the balls (drag)
+    mixture_density: float  # [kg/m^3]
+    mixture_viscosity: float  # [Pa s]
 
 
 def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
@@ -53,8 +141,8 @@ def build_quadrature(options: SimulationOptions) -> np.ndarray:
     return np.ascontiguousarray(ellipse_quadrature(n_roll, n_trans))
 
 
-def build_params(inputs: Inputs, options: SimulationOptions) -> np.ndarray:
-    """Parameter vector for the numba kernels (every slot documented in ``layout``).
+def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
+    """Parameter record for the numba kernels.
 
     The physics switches are those of ``options`` where given, else the case's
     (``inputs.simulation``)."""
@@ -63,68 +151,35 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> np.ndarray:
     op = inputs.operating
     cage = inputs.cage
     lubricant = inputs.lubricant
-    p = np.zeros(L.N_PARAMS)
     D, dm = g.ball_diameter, g.pitch_diameter
-    p[L.P_Z] = g.ball_count
-    p[L.P_D] = D
-    p[L.P_DM] = dm
-    p[L.P_MB] = g.ball_mass
-    p[L.P_JB] = g.ball_inertia
-    p[L.P_RI] = g.inner_groove_radius
-    p[L.P_RO] = g.outer_groove_radius
-    p[L.P_XCI] = g.inner_curvature_center_axial
-    p[L.P_RCI] = g.inner_curvature_center_radius
-    p[L.P_XCO] = g.outer_curvature_center_axial
-    p[L.P_RCO] = g.outer_curvature_center_radius
-    p[L.P_FI] = g.inner_conformity
-    p[L.P_FO] = g.outer_conformity
-    p[L.P_EPRIME] = g.effective_modulus
-    p[L.P_WI] = op.inner_ring_speed
-    p[L.P_WO] = op.outer_ring_speed
-    mass, diametral, polar = ring_mass_properties(inputs, options)
-    p[L.P_MR] = mass
-    p[L.P_IRD] = diametral
-    p[L.P_IRP] = polar
-    p[L.P_FX] = op.axial_load
-    p[L.P_FY] = op.radial_load * math.cos(op.radial_load_angle)
-    p[L.P_FZ] = op.radial_load * math.sin(op.radial_load_angle)
     if op.tilting_moment is not None:
-        p[L.P_TILT_MODE] = 2
-        p[L.P_MY] = op.tilting_moment * math.cos(op.moment_axis)
-        p[L.P_MZ] = op.tilting_moment * math.sin(op.moment_axis)
+        tilt_mode = L.TILT_FREE
+        moment = (
+            op.tilting_moment * math.cos(op.moment_axis),
+            op.tilting_moment * math.sin(op.moment_axis),
+        )
+        tilt = (0.0, 0.0)
     else:
-        p[L.P_TILT_MODE] = 1 if op.misalignment_frame == "ring" else 0
-        p[L.P_TILT_Y] = op.misalignment * math.cos(op.misalignment_axis)
-        p[L.P_TILT_Z] = op.misalignment * math.sin(op.misalignment_axis)
-    p[L.P_RING_FREE] = 1.0 if options.ring_free else 0.0
-    p[L.P_GRAVITY] = options.gravity
-    p[L.P_ZETA] = options.damping_ratio
-    p[L.P_TRACTION] = 1.0 if options.traction else 0.0
-    curve = traction_curve_parameters(*lubricant.traction.values())
-    p[L.P_MU_A : L.P_MU_D + 1] = curve
-    p[L.P_CAGE_ON] = 1.0 if options.cage else 0.0
-    p[L.P_MC] = cage.mass
-    p[L.P_CAGE_R] = 0.5 * dm
-    # cage as a thin ring of radius d_m/2 and width D: polar m R^2, diametral m R^2 / 2 + m D^2 / 12
-    p[L.P_IC] = cage.mass * (0.5 * dm) ** 2
-    p[L.P_ICD] = 0.5 * cage.mass * (0.5 * dm) ** 2 + cage.mass * D**2 / 12.0
-    p[L.P_CP] = cage.pocket_clearance
-    p[L.P_ZETA_P] = options.pocket_damping_ratio
-    p[L.P_MU_P] = cage.pocket_friction
-    guide = {"outer_ring": 0, "inner_ring": 1, "ball": 2}[cage.guidance]
-    p[L.P_GUIDE] = guide
-    if guide == 0:
+        tilt_mode = (
+            L.TILT_TURNING_WITH_RING if op.misalignment_frame == "ring" else L.TILT_FIXED_IN_SPACE
+        )
+        moment = (0.0, 0.0)
+        tilt = (
+            op.misalignment * math.cos(op.misalignment_axis),
+            op.misalignment * math.sin(op.misalignment_axis),
+        )
+    ring_mass, ring_diametral, ring_polar = ring_mass_properties(inputs, options)
+    guide = {
+        "outer_ring": L.GUIDE_OUTER_RING,
+        "inner_ring": L.GUIDE_INNER_RING,
+        "ball": L.GUIDE_BALL,
+    }[cage.guidance]
+    if guide == L.GUIDE_OUTER_RING:
         shoulder = g.outer_shoulder_diameter
         land = 0.5 * shoulder if math.isfinite(shoulder) else 0.5 * dm + 0.35 * D
     else:
         shoulder = g.inner_shoulder_diameter
         land = 0.5 * shoulder if math.isfinite(shoulder) else 0.5 * dm - 0.35 * D
-    p[L.P_RG] = land
-    p[L.P_CG] = 0.5 * cage.guide_clearance
-    p[L.P_LG] = cage.guide_land_width
-    p[L.P_ETA] = lubricant.viscosity
-    p[L.P_V_REG] = options.friction_regularisation
-    p[L.P_HEATHCOTE] = 1.0 if options.heathcote else 0.0
     # cage contact laws of solver.physics.cage_contact; the case gives no cage material: a
     # glass-filled polyamide cage (linear pocket law, secant of the Hertz law at 10 N) is assumed
     pocket_k = options.pocket_stiffness
@@ -132,31 +187,98 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> np.ndarray:
         pocket_k = pocket_stiffness_estimate(
             D, cage.pocket_clearance, g.ball_material, CAGE_MATERIAL, exponent=1.0
         )
-    p[L.P_KP] = pocket_k
-    p[L.P_POCKET_BLOCK : L.P_POCKET_BLOCK + POCKET_PARAM_SIZE] = pocket_parameters(
-        pocket_k,
-        1.0,
-        options.pocket_damping_ratio,
-        g.ball_mass,
-        cage.pocket_friction,
-        cage.pocket_clearance,
-        D,
-        slip_regularisation=options.friction_regularisation,
-    )
     land_k = options.land_stiffness
     if land_k is None:
         land_k = land_contact_stiffness_estimate(
             cage.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
         )
-    p[L.P_KG] = land_k
-    p[L.P_LAND_BLOCK : L.P_LAND_BLOCK + LAND_PARAM_SIZE] = land_parameters(
-        land,
-        cage.guide_land_width,
-        0.5 * cage.guide_clearance,
-        lubricant.viscosity,
-        land_k,
-        cage.mass,
-        guide != 1,
-        slip_regularisation=options.friction_regularisation,
+    mix = lubricant.oil_volume_fraction
+    return ModelParams(
+        ball_count=int(g.ball_count),
+        ball_diameter=D,
+        pitch_diameter=dm,
+        ball_mass=g.ball_mass,
+        ball_inertia=g.ball_inertia,
+        inner_groove_radius=g.inner_groove_radius,
+        outer_groove_radius=g.outer_groove_radius,
+        inner_centre_axial=g.inner_curvature_center_axial,
+        inner_centre_radius=g.inner_curvature_center_radius,
+        outer_centre_axial=g.outer_curvature_center_axial,
+        outer_centre_radius=g.outer_curvature_center_radius,
+        inner_conformity=g.inner_conformity,
+        outer_conformity=g.outer_conformity,
+        eprime=g.effective_modulus,
+        inner_speed=op.inner_ring_speed,
+        outer_speed=op.outer_ring_speed,
+        ring_mass=ring_mass,
+        ring_diametral_inertia=ring_diametral,
+        ring_polar_inertia=ring_polar,
+        force_x=op.axial_load,
+        force_y=op.radial_load * math.cos(op.radial_load_angle),
+        force_z=op.radial_load * math.sin(op.radial_load_angle),
+        moment_y=moment[0],
+        moment_z=moment[1],
+        tilt_mode=tilt_mode,
+        tilt_y=tilt[0],
+        tilt_z=tilt[1],
+        ring_free=bool(options.ring_free),
+        gravity=float(options.gravity),
+        damping_ratio=float(options.damping_ratio),
+        traction=bool(options.traction),
+        traction_law=LAW_RHEOLOGY if lubricant.traction_model == "rheology" else LAW_SLIP_CURVE,
+        traction_curve=traction_curve_parameters(*lubricant.traction.values()),
+        rheology=rheology_parameters(lubricant),
+        viscosity=lubricant.viscosity,
+        pressure_viscosity=lubricant.pressure_viscosity,
+        hysteresis=0.5 * (g.ball_material.hysteresis_loss + g.ring_material.hysteresis_loss),
+        slip_regularisation=float(options.friction_regularisation),
+        heathcote=bool(options.heathcote),
+        cage=bool(options.cage),
+        cage_mass=cage.mass,
+        # cage as a thin ring of radius d_m/2 and width D: polar m R^2, diametral
+        # m R^2 / 2 + m D^2 / 12
+        cage_polar_inertia=cage.mass * (0.5 * dm) ** 2,
+        cage_diametral_inertia=0.5 * cage.mass * (0.5 * dm) ** 2 + cage.mass * D**2 / 12.0,
+        pocket_radius=0.5 * dm,
+        pocket_clearance=cage.pocket_clearance,
+        pocket_stiffness=float(pocket_k),
+        pocket=pocket_parameters(
+            pocket_k,
+            1.0,
+            options.pocket_damping_ratio,
+            g.ball_mass,
+            cage.pocket_friction,
+            cage.pocket_clearance,
+            D,
+            slip_regularisation=options.friction_regularisation,
+        ),
+        guidance=guide,
+        land_clearance=0.5 * cage.guide_clearance,
+        land=land_parameters(
+            land,
+            cage.guide_land_width,
+            0.5 * cage.guide_clearance,
+            # a partly flooded land: the hydrodynamic force scales with the wetted width
+            lubricant.viscosity * cage.land_flooding,
+            land_k,
+            cage.mass,
+            guide != L.GUIDE_INNER_RING,
+            slip_regularisation=options.friction_regularisation,
+        ),
+        mixture_density=mix * lubricant.density + (1.0 - mix) * AIR_DENSITY,
+        mixture_viscosity=mix * lubricant.viscosity + (1.0 - mix) * AIR_VISCOSITY,
     )
-    return p
+
+
+def rheology_parameters(lubricant) -> np.ndarray:
+    """Parameter array of solver.physics.rheology (RH_* slots) of a LubricantInputs (SI)."""
+    r = np.zeros(RHEOLOGY_SIZE)
+    r[RH_VISCOSITY] = lubricant.viscosity
+    r[RH_PRESSURE_VISCOSITY] = lubricant.pressure_viscosity
+    r[RH_EYRING_STRESS] = lubricant.eyring_stress
+    r[RH_LIMITING_STRESS] = lubricant.limiting_shear_stress
+    r[RH_LIMITING_SLOPE] = lubricant.limiting_shear_coefficient
+    r[RH_SHEAR_MODULUS] = lubricant.film_shear_modulus
+    r[RH_TEMPERATURE_VISCOSITY] = lubricant.temperature_viscosity
+    r[RH_CONDUCTIVITY] = lubricant.thermal_conductivity
+    return r

@@ -72,14 +72,14 @@ def _is_cancelled(cancel) -> bool:
     return bool(cancel())
 
 
-def state_scales(par: np.ndarray, y0: np.ndarray) -> np.ndarray:
+def state_scales(par, y0: np.ndarray) -> np.ndarray:
     """Characteristic magnitudes of the state components for the error norm.
 
     delta_ref = largest contact deflection at the start (>= 0.1 um); V = delta_ref * omega_n with
     the ball's contact natural frequency omega_n = sqrt(2 k_lin / m), k_lin = 1.5 Q / delta.
     Positions scale with delta_ref, velocities with V, angles with delta_ref over the lever arm.
     """
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     n = y0.shape[0]
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
@@ -91,10 +91,10 @@ def state_scales(par: np.ndarray, y0: np.ndarray) -> np.ndarray:
     k = int(np.argmax(defl))
     delta_ref = max(float(defl[k]), 1e-7)
     k_lin = 1.5 * load[k] / defl[k] if defl[k] > 0 else 1e7
-    omega_n = math.sqrt(2.0 * k_lin / par[L.P_MB])
+    omega_n = math.sqrt(2.0 * k_lin / par.ball_mass)
     v = delta_ref * omega_n
-    rball = 0.5 * par[L.P_D]
-    rpitch = 0.5 * par[L.P_DM]
+    rball = 0.5 * par.ball_diameter
+    rpitch = 0.5 * par.pitch_diameter
     s = np.empty(n)
     for j in range(z):
         b = L.ball_base(j)
@@ -218,7 +218,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     states = np.empty((n_samples + 1, y.shape[0]))
     states[0] = y
     scale = state_scales(par, y)
-    z = int(par[L.P_Z])
+    z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)

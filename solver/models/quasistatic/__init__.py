@@ -52,6 +52,16 @@ __all__ = [
 ]
 
 
+#: Attributes of one sweep element that a stacked sweep drops (they describe one solve).
+_ELEMENT_ATTRS = (
+    "solver_iterations",
+    "solver_residual",
+    "solver_force_scale_N",
+    "race_control_note",
+    "kinematics_note",
+)
+
+
 def _inputs(case) -> Inputs:
     """SI inputs of a Case, a case-file path or a catalogue name (CaseError if invalid); Inputs
     as given."""
@@ -105,7 +115,8 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     operating point in its coordinates. Each speed starts from the previous solution. Raises
     NoSolutionError naming the first speed without a solution.
 
-    Attributes that differ between the elements (solver statistics, notes) are dropped;
+    The elements' solver statistics and notes, and any other attribute that differs between them,
+    are dropped;
     ``attrs["case"]`` is the case text as given, with a first comment line saying that
     ``operating.inner_ring_speed_rpm`` varies along the sweep (provenance only: the speed of an
     element is its ``inner_ring_speed`` coordinate).
@@ -147,5 +158,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
         join="outer",
         combine_attrs="drop_conflicts",
     )
+    for key in _ELEMENT_ATTRS:  # one element's statistics and notes, even where they agree
+        ds.attrs.pop(key, None)
     ds.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
     return ds

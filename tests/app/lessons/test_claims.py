@@ -91,8 +91,8 @@ def test_lesson_2_speed_outer_angle_falls_below_inner_and_free(shipped):
 
 def test_lesson_3_radial_load_zone_band_inner_line_outer(shipped):
     ds = shipped["03-radial-load"]["radial"]
-    loaded = (ds["contact_load"].sel(race="inner") > 0).sum("ball").values
-    assert np.median(loaded) < int(ds.coords["ball_count"])  # a load zone, not the whole ring
+    loads = _loaded(ds, "contact_load", "inner")
+    assert loads.max() > 5.0 * loads.min()  # a load zone: the loads differ round the ring
     assert _thickness(ds, "inner") > 5.0 * _thickness(ds, "outer")
     angles = _loaded(ds, "contact_angle", "inner")
     assert np.ptp(angles) > 5.0  # the contact angle changes around the ring

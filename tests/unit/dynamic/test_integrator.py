@@ -10,9 +10,9 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.integrator import (
     STATUS_BALL_ESCAPED,
     STATUS_NOT_FINITE,
-    _ball_escaped,
     advance,
 )
+from solver.models.dynamic.kernels import post_step
 from solver.models.dynamic.simulate import state_scales
 from tests.helpers.dyn_bearings import spindle_inputs
 from tests.helpers.dyn_helpers import integrate_states, start
@@ -23,7 +23,7 @@ def test_local_error_control_converges():
     reference to a small fraction of the deflection, and 1e-2 is visibly worse (the control
     works)."""
     par, quad, y0 = start(spindle_inputs(radial=300.0))
-    period = 2 * math.pi / par[L.P_WI]
+    period = 2 * math.pi / par.inner_speed
     times = np.array([0.0, 0.2 * period])
     ref, _ = integrate_states(par, quad, y0, times, tolerance=1e-8)
     scale = state_scales(par, y0)
@@ -40,11 +40,11 @@ def test_ball_escape_is_detected():
     par, quad, y0 = start(spindle_inputs())
     z = 18
     rec = np.zeros((z, L.N_CONTACT_RECORD))
-    assert not _ball_escaped(y0, rec, rec, par)
     y = y0.copy()
+    assert post_step(y, par, rec, rec)
     b = L.ball_base(5)
-    y[b + 1 : b + 3] *= 1.0 + 0.3 * par[L.P_D] / (0.5 * par[L.P_DM])
-    assert _ball_escaped(y, rec, rec, par)
+    y[b + 1 : b + 3] *= 1.0 + 0.3 * par.ball_diameter / (0.5 * par.pitch_diameter)
+    assert not post_step(y, par, rec, rec)
 
 
 def test_non_finite_state_stops_with_status():
@@ -81,7 +81,7 @@ def test_escape_status_from_advance():
     par, quad, y0 = start(spindle_inputs(), traction=False, cage=False, damping_ratio=0.0)
     y = y0.copy()
     b = L.ball_base(0)
-    par[L.P_EPRIME] *= 1e-6  # a soft race lets the ball through
+    par = par._replace(eprime=par.eprime * 1e-6)  # a soft race lets the ball through
     y[b + L.B_VEL + 1] += 50.0
     z = 18
     scale = state_scales(par, y0)

@@ -12,6 +12,7 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
 from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
 from solver.physics.hertz import race_contact
+from solver.physics.traction import LAW_SLIP_CURVE
 from tests.helpers.dyn_bearings import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, setup, start
 
@@ -81,7 +82,7 @@ def test_ring_frames_tilt_modes(mode):
     """Space-fixed tilt: the ring axis stays put as the ring turns; ring-fixed tilt: it
     precesses."""
     par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
-    par[L.P_TILT_MODE] = mode
+    par = par._replace(tilt_mode=mode)
     z = 18
     rb = L.ring_base(z)
     y = np.zeros(L.state_size(z))
@@ -174,7 +175,7 @@ def test_initial_state_is_in_equilibrium():
     cb = L.cage_base(z)
     wc = y0[cb + L.C_SPEED]
     q_scale = ri[:, L.K_LOAD].max()
-    mb = par[L.P_MB]
+    mb = par.ball_mass
     for j in range(z):
         b = L.ball_base(j)
         pos = y0[b : b + 3]
@@ -186,7 +187,7 @@ def test_initial_state_is_in_equilibrium():
         # tangential: only the small out-of-meridian tilt of the offset inner ring's normal
         assert abs(net @ e_t) < 2e-4 * q_scale
     rb = L.ring_base(z)
-    np.testing.assert_allclose(dydt[rb + 3 : rb + 6] * par[L.P_MR], 0.0, atol=1e-5 * q_scale)
+    np.testing.assert_allclose(dydt[rb + 3 : rb + 6] * par.ring_mass, 0.0, atol=1e-5 * q_scale)
     # outer-race control start: the spin at the outer contact vanishes
     # (to 1e-4 of the roll rate: the cage speed is common, the per-ball angles differ slightly)
     np.testing.assert_allclose(ro[:, L.K_SPIN], 0.0, atol=1e-4 * abs(ro[:, L.K_ROLL]).max())
@@ -228,8 +229,9 @@ def test_newton_third_law_ball_inner_ring():
 def _outer_contact_setup(mu, heathcote=False, quadrature=(4, 8)):
     inp = spindle_inputs()
     par, quad, y0 = start(inp, heathcote=heathcote, quadrature=quadrature, damping_ratio=0.0)
-    par[L.P_MU_A : L.P_MU_D + 1] = (0.0, 0.0, 0.0, mu)  # constant (Coulomb) coefficient
-    par[L.P_V_REG] = 1e-9
+    # the slip-curve law with a constant (Coulomb) coefficient
+    par = par._replace(traction_law=LAW_SLIP_CURVE, traction_curve=np.array([0.0, 0.0, 0.0, mu]))
+    par = par._replace(slip_regularisation=1e-9)
     y = y0.copy()
     b = L.ball_base(0)
     y[b + L.B_VEL : b + L.B_VEL + 3] = 0.0
@@ -249,7 +251,7 @@ def test_pure_sliding_gives_coulomb_force_opposite_to_slip():
     f = ro[0, L.K_F_BALL : L.K_F_BALL + 3] + q * n
     np.testing.assert_allclose(f, [0.0, 0.0, -mu * q], atol=1e-9 * q)
     # lever arm: contact centre at (D/2 - delta/2) along n from the ball centre
-    arm = 0.5 * par[L.P_D] - 0.5 * ro[0, L.K_DEFLECTION]
+    arm = 0.5 * par.ball_diameter - 0.5 * ro[0, L.K_DEFLECTION]
     np.testing.assert_allclose(
         ro[0, L.K_M_BALL : L.K_M_BALL + 3], np.cross(arm * n, f), atol=1e-9 * q * arm
     )
@@ -300,7 +302,7 @@ def test_contact_forces_nearly_balance_at_the_quasistatic_state(radial):
     y = initial_state_from_quasistatic(par, qs)
     dydt, ri, ro, _ = evaluate(y, par, quad)
     q_mean = float(np.mean(qs.contact_load))
-    mb = par[L.P_MB]
+    mb = par.ball_mass
     for j in range(18):
         b = L.ball_base(j)
         pos = y[b : b + 3]
@@ -316,7 +318,7 @@ def test_contact_forces_nearly_balance_at_the_quasistatic_state(radial):
     np.testing.assert_allclose(ri[:, L.K_ANGLE], qs.contact_angle[:, 0], atol=1e-3)
     np.testing.assert_allclose(ro[:, L.K_ANGLE], qs.contact_angle[:, 1], atol=1e-3)
     rb = L.ring_base(18)
-    assert np.linalg.norm(dydt[rb + 3 : rb + 6] * par[L.P_MR]) < 0.01 * 500.0
+    assert np.linalg.norm(dydt[rb + 3 : rb + 6] * par.ring_mass) < 0.01 * 500.0
 
 
 def test_pocket_force_frame_transform_and_cage_reaction():
@@ -336,32 +338,31 @@ def test_pocket_force_frame_transform_and_cage_reaction():
     e_r = np.array([0.0, math.cos(psi), math.sin(psi)])
     e_t = np.array([0.0, -math.sin(psi), math.cos(psi)])
     pen = 2e-6
-    shift = 0.5 * par[L.P_CP] + pen
-    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + shift * e_t
+    shift = 0.5 * par.pocket_clearance + pen
+    y[b : b + 3] = 0.5 * par.pitch_diameter * e_r + shift * e_t
     y[b + 3 : b + 6] = 0.0
     y[b + 10 : b + 13] = 0.0
     out = np.zeros(12)
     rot, om = np.empty((3, 3)), np.empty(3)
     cage_frame(y, cb, rot, om)
     fn = cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out)
-    assert fn == pytest.approx(par[L.P_KP] * pen, rel=1e-9)
+    assert fn == pytest.approx(par.pocket_stiffness * pen, rel=1e-9)
     np.testing.assert_allclose(out[0:3], -fn * e_t, atol=1e-12 * fn)
     np.testing.assert_allclose(out[6:9], fn * e_t, atol=1e-12 * fn)
     # the force acts at the contact point at radius ~ d_m/2 (plus the shift): moment about x
-    lever = 0.5 * par[L.P_DM] * e_r + (shift + 0.5 * par[L.P_D]) * e_t
+    lever = 0.5 * par.pitch_diameter * e_r + (shift + 0.5 * par.ball_diameter) * e_t
     assert out[9] == pytest.approx(np.cross(lever, fn * e_t)[0], rel=1e-9)
     # inside the clearance: no force
-    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + 0.4 * par[L.P_CP] * e_t
+    y[b : b + 3] = 0.5 * par.pitch_diameter * e_r + 0.4 * par.pocket_clearance * e_t
     assert cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
 
 
-def test_gravity_acts_along_minus_z_on_balls_and_cage():
-    """Free balls (just-touching positions, no deflection) and a centred cage at rest fall with
-    acceleration g along -z of the inertial frame; the inner ring (held by the shaft's applied
-    load only) gets no weight."""
+def test_gravity_acts_along_minus_z_on_balls_cage_and_inner_ring():
+    """Free balls (just-touching positions, no deflection), a centred cage at rest and the free
+    inner ring fall with acceleration g along -z of the inertial frame."""
     inp = spindle_inputs(axial=0.0)
     par, quad, _ = setup(inp, gravity=9.81)
-    par[L.P_FX] = 0.0
+    par = par._replace(force_x=0.0)
     y = _nominal_state(18, inp.geometry.pitch_diameter)
     dydt, *_ = evaluate(y, par, quad)
     for j in range(18):
@@ -370,7 +371,7 @@ def test_gravity_acts_along_minus_z_on_balls_and_cage():
     cb = L.cage_base(18)
     np.testing.assert_allclose(dydt[cb + 3 : cb + 6], [0.0, 0.0, -9.81], atol=1e-9)
     rb = L.ring_base(18)
-    np.testing.assert_allclose(dydt[rb + 3 : rb + 6], 0.0, atol=1e-9)
+    np.testing.assert_allclose(dydt[rb + 3 : rb + 6], [0.0, 0.0, -9.81], atol=1e-9)
 
 
 def test_tilted_cage_pocket_follows_the_cage():
@@ -394,12 +395,15 @@ def test_tilted_cage_pocket_follows_the_cage():
     y[b + 3 : b + 6] = 0.0
     y[b + 10 : b + 13] = 0.0
     out = np.zeros(12)
-    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r
+    y[b : b + 3] = 0.5 * par.pitch_diameter * e_r
     assert cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out) == 0.0
     pen = 3e-6
-    y[b : b + 3] = 0.5 * par[L.P_DM] * e_r + (0.5 * par[L.P_CP] + pen) * e_t
+    y[b : b + 3] = 0.5 * par.pitch_diameter * e_r + (0.5 * par.pocket_clearance + pen) * e_t
     fn = cage_pocket(y, b, cb, j, par, rot, om, np.zeros(TRACTION_WORK_SIZE), out)
-    assert fn == pytest.approx(par[L.P_KP] * pen, rel=1e-9)
+    assert fn == pytest.approx(par.pocket_stiffness * pen, rel=1e-9)
     np.testing.assert_allclose(out[0:3], -fn * e_t, atol=1e-12 * fn)
-    lever = 0.5 * par[L.P_DM] * e_r + (0.5 * par[L.P_CP] + pen + 0.5 * par[L.P_D]) * e_t
+    lever = (
+        0.5 * par.pitch_diameter * e_r
+        + (0.5 * par.pocket_clearance + pen + 0.5 * par.ball_diameter) * e_t
+    )
     np.testing.assert_allclose(out[9:12], np.cross(lever, fn * e_t), atol=1e-9 * fn * 0.03)

@@ -84,8 +84,8 @@ SCHEMA_WORDS = {
     "quasistatic_speed_sweep",
     "racetrace",
     "result_warnings",
-    "ball_speeds",
-    "ball_speeds_note",
+    "kinematics",
+    "kinematics_note",
 }
 
 

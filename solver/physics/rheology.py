@@ -1,0 +1,203 @@
+"""Lubricant rheology of an EHL contact: local shear stress from pressure, film and slip (SI units).
+
+physics.md §2.6.4 ("how a rheological law is usually assembled, node by node"). At a point of the
+Hertz ellipse with local pressure p and sliding speed u:
+
+1. viscosity at the inlet temperature and local pressure, Barus: eta = eta_0 exp(alpha p), with the
+   exponent capped at ``BARUS_EXPONENT_CAP`` (Barus over-predicts above ~1 GPa; the cap only keeps
+   the number finite, the limiting shear stress below governs there);
+2. shear rate over the central film, gamma_dot = u / h_c (h_c: Hamrock–Dowson, reduced for inlet
+   shear heating by :func:`inlet_thermal_factor`);
+3. viscous (Eyring) stress tau_v = tau_0 asinh(eta gamma_dot / tau_0) [Johnson & Tevaarwerk, Proc.
+   R. Soc. A 356 (1977) 215];
+4. elastic stress the film reaches in its transit through the contact, tau_e = G gamma_dot t with t
+   = b / u_e (the Maxwell response that governs the linear region at small slide-to-roll ratio,
+   Johnson & Tevaarwerk 1977); viscous and elastic responses act in series, combined here as
+   tau_ve = tau_v tau_e / (tau_v + tau_e) [E: a closed-form stand-in for integrating the Maxwell
+   equation along the transit];
+5. limiting shear stress tau_L = tau_L0 + Lambda p [Bair & Winer, J. Lubr. Technol. 101 (1979)
+   251], approached smoothly: tau = tau_ve / (1 + (tau_ve / tau_L)^4)^(1/4) [E: a smooth minimum,
+   within 1 % of tau_L once tau_ve > 2.2 tau_L, never above it].
+
+So tau is linear in u at small slip (slope eta_eff / h_c with eta_eff = eta G t / (eta + G t)),
+grows like a logarithm in the Eyring range, and levels off at tau_L. Dividing by p gives the
+local traction coefficient. The law is odd in u and vanishes at u = 0 (no regularisation needed).
+
+Rheology parameter array ``rheology`` (float64, length ``RHEOLOGY_SIZE``):
+``RH_VISCOSITY`` eta_0 [Pa s] at the inlet temperature; ``RH_PRESSURE_VISCOSITY`` alpha [1/Pa];
+``RH_EYRING_STRESS`` tau_0 [Pa]; ``RH_LIMITING_STRESS`` tau_L0 [Pa]; ``RH_LIMITING_SLOPE`` Lambda
+[-]; ``RH_SHEAR_MODULUS`` G [Pa]; ``RH_TEMPERATURE_VISCOSITY`` beta [1/K] (for the thermal film
+reduction); ``RH_CONDUCTIVITY`` k [W/(m K)].
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .ehl import W_FLOOR
+
+RH_VISCOSITY = 0
+RH_PRESSURE_VISCOSITY = 1
+RH_EYRING_STRESS = 2
+RH_LIMITING_STRESS = 3
+RH_LIMITING_SLOPE = 4
+RH_SHEAR_MODULUS = 5
+RH_TEMPERATURE_VISCOSITY = 6
+RH_CONDUCTIVITY = 7
+RHEOLOGY_SIZE = 8
+
+#: Largest Barus exponent alpha p used (e^60 ~ 1e26): keeps eta finite at any pressure.
+BARUS_EXPONENT_CAP = 60.0
+
+
+def viscosity_at_temperature(
+    reference_viscosity: float,
+    reference_temperature: float,
+    temperature_viscosity: float,
+    temperature: float,
+) -> float:
+    """Dynamic viscosity [Pa s] at ``temperature`` [degC] from the viscosity at the reference
+    temperature and the temperature-viscosity coefficient beta [1/K] (Reynolds' exponential law,
+    eta = eta_ref exp(-beta (T - T_ref)))."""
+    return reference_viscosity * math.exp(
+        -temperature_viscosity * (temperature - reference_temperature)
+    )
+
+
+@njit(cache=True)
+def barus_viscosity(viscosity, pressure_viscosity, pressure):
+    """eta_0 exp(alpha p) [Pa s], exponent capped at ``BARUS_EXPONENT_CAP``; p <= 0 gives eta_0."""
+    x = pressure_viscosity * pressure
+    if x <= 0.0:
+        return viscosity
+    return viscosity * math.exp(min(x, BARUS_EXPONENT_CAP))
+
+
+#: Above this x = eta gamma_dot / tau_0 the Eyring law uses asinh(x) = ln(2 x) (relative error
+#: below 1e-8), which needs no exponential of the Barus exponent.
+_ASINH_LOG_FROM = 1.0e4
+_LN_ASINH_LOG_FROM = math.log(_ASINH_LOG_FROM)
+_LN2 = math.log(2.0)
+
+
+@njit(cache=True)
+def contact_constants(film, transit_time, rheology):
+    """Per-contact constants of :func:`shear_stress_from_constants`: (ln(eta_0 / (tau_0 h_c)),
+    G t / h_c [Pa s/m]). ``film`` must be > 0."""
+    ln_c = math.log(rheology[RH_VISCOSITY] / (rheology[RH_EYRING_STRESS] * film))
+    return ln_c, rheology[RH_SHEAR_MODULUS] * transit_time / film
+
+
+@njit(cache=True, inline="always")
+def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
+    """:func:`shear_stress` for u > 0 with the per-contact constants of
+    :func:`contact_constants` (the form evaluated at every quadrature node: one logarithm)."""
+    p = max(pressure, 0.0)
+    tau0 = rheology[RH_EYRING_STRESS]
+    ln_x = ln_c + math.log(u) + min(rheology[RH_PRESSURE_VISCOSITY] * p, BARUS_EXPONENT_CAP)
+    if ln_x > _LN_ASINH_LOG_FROM:
+        tau_v = tau0 * (_LN2 + ln_x)
+    else:
+        x = math.exp(ln_x)
+        tau_v = tau0 * math.log(x + math.sqrt(x * x + 1.0))  # tau_0 asinh(x)
+    tau_e = elastic * u
+    tau = tau_v * tau_e / (tau_v + tau_e) if elastic > 0.0 else tau_v
+    tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
+    # tau / (1 + (tau / tau_L)^4)^(1/4) = tau tau_L / (tau_L^4 + tau^4)^(1/4): one division
+    t2 = tau * tau
+    l2 = tau_l * tau_l
+    return tau * tau_l / math.sqrt(math.sqrt(l2 * l2 + t2 * t2))
+
+
+@njit(cache=True)
+def shear_stress(slip_speed, pressure, film, transit_time, rheology):
+    """Magnitude of the film's shear stress [Pa] (>= 0) at sliding speed |u| [m/s], local pressure
+    p [Pa], central film h_c [m] and transit time t = b / u_e [s] (module docstring). ``film`` <= 0
+    (no film: no entrainment) gives the limiting shear stress for any slip above 1e-9 m/s."""
+    u = abs(slip_speed)
+    if u <= 0.0:
+        return 0.0
+    p = max(pressure, 0.0)
+    if film <= 0.0:
+        tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
+        return tau_l if u > 1e-9 else 0.0
+    ln_c, elastic = contact_constants(film, transit_time, rheology)
+    return shear_stress_from_constants(u, p, ln_c, elastic, rheology)
+
+
+@njit(cache=True)
+def inlet_thermal_factor(
+    entrainment, slide_to_roll, viscosity, temperature_viscosity, conductivity, p_max, eprime
+):
+    """Film reduction factor phi_T <= 1 for inlet shear heating [Gupta, Cheng, Zhu, Forster &
+    Schrand, J. Tribol. 114 (1992) 1-6] [M]:
+    phi_T = (1 - 13.2 (p_h / E') L^0.42) / (1 + 0.213 (1 + 2.23 SRR^0.83) L^0.64),
+    thermal loading L = beta eta_0 u_e^2 / k. Clipped to [0.05, 1]."""
+    if not (conductivity > 0.0 and temperature_viscosity > 0.0):
+        return 1.0
+    load = temperature_viscosity * viscosity * entrainment * entrainment / conductivity
+    if load <= 0.0:
+        return 1.0
+    srr = abs(slide_to_roll)
+    num = 1.0 - 13.2 * (p_max / eprime) * load**0.42
+    den = 1.0 + 0.213 * (1.0 + 2.23 * srr**0.83) * load**0.64
+    return min(1.0, max(0.05, num / den))
+
+
+@njit(cache=True)
+def ehl_rolling_force(entrainment, viscosity, pressure_viscosity, eprime, r_x, load, kappa):
+    """Hydrodynamic (EHL) rolling resistance force [N] of the inlet, isothermal
+    [Houpert, "Hydrodynamic load calculation in rolling element bearings", Tribol. Trans. 1999;
+    form quoted by Harris & Kotzalas, Advanced Concepts of Bearing Technology, 2007] [M]:
+    F_R = 2.86 E' R_x^2 kappa^0.348 G^0.022 U^0.66 W^0.47,
+    U = eta_0 u_e / (E' R_x), G = alpha E', W = Q / (E' R_x^2). Zero without speed or load."""
+    u = abs(entrainment)
+    if not (u > 0.0 and load > 0.0 and viscosity > 0.0 and r_x > 0.0):
+        return 0.0
+    big_u = viscosity * u / (eprime * r_x)
+    big_g = pressure_viscosity * eprime
+    big_w = load / (eprime * r_x * r_x)
+    return 2.86 * eprime * r_x * r_x * kappa**0.348 * big_g**0.022 * big_u**0.66 * big_w**0.47
+
+
+@njit(cache=True)
+def film_and_rolling_force(entrainment, slide_to_roll, load, r_x, kappa, p_max, eprime, rheology):
+    """(central film h_c [m], thermal factor phi_T, EHL rolling force [N]) of one contact in one
+    pass: Hamrock–Dowson h_c (solver.physics.ehl.film_thickness_central, same W floor) and
+    :func:`ehl_rolling_force`, both times :func:`inlet_thermal_factor`, with the power laws
+    evaluated through shared logarithms (the per-contact cost in the dynamic model). Viscosity and
+    pressure-viscosity from ``rheology``. No speed or load: (0, 1, 0)."""
+    u = abs(entrainment)
+    eta = rheology[RH_VISCOSITY]
+    alpha = rheology[RH_PRESSURE_VISCOSITY]
+    if not (u > 0.0 and load > 0.0 and eta > 0.0 and alpha > 0.0 and r_x > 0.0):
+        return 0.0, 1.0, 0.0
+    ln_u = math.log(eta * u / (eprime * r_x))
+    ln_g = math.log(alpha * eprime)
+    ln_w = math.log(max(load / (eprime * r_x * r_x), W_FLOOR))
+    film = (
+        2.69
+        * r_x
+        * math.exp(0.67 * ln_u + 0.53 * ln_g - 0.067 * ln_w)
+        * (1.0 - 0.61 * math.exp(-0.73 * kappa))
+    )
+    rolling = (
+        2.86
+        * eprime
+        * r_x
+        * r_x
+        * math.exp(0.348 * math.log(kappa) + 0.022 * ln_g + 0.66 * ln_u + 0.47 * ln_w)
+    )
+    phi = 1.0
+    beta = rheology[RH_TEMPERATURE_VISCOSITY]
+    k = rheology[RH_CONDUCTIVITY]
+    if beta > 0.0 and k > 0.0:
+        ln_l = math.log(beta * eta * u * u / k)
+        srr = abs(slide_to_roll)
+        s83 = math.exp(0.83 * math.log(srr)) if srr > 0.0 else 0.0
+        num = 1.0 - 13.2 * (p_max / eprime) * math.exp(0.42 * ln_l)
+        den = 1.0 + 0.213 * (1.0 + 2.23 * s83) * math.exp(0.64 * ln_l)
+        phi = min(1.0, max(0.05, num / den))
+    return film * phi, phi, rolling * phi
