@@ -34,6 +34,7 @@ log = logging.getLogger("racetrace.front")
 
 COOKIE = "racetrace_session"
 IDLE_S = 120.0  # a session without browsers is stopped after this
+MAX_SESSIONS = 8  # sessions (browsers) at once; each is a process of about 0.5 GB
 START_TIMEOUT_S = 300.0  # a cold numba cache compiles the quasi-static kernels first
 STOP_TIMEOUT_S = 40.0  # a session stopping saves its run first (it waits up to 20 s for it)
 _HOP_HEADERS = {
@@ -55,7 +56,8 @@ def free_port() -> int:
 
 
 class NoSession(Exception):
-    """A websocket from a browser that has no session (it did not open the page)."""
+    """No session for this request: a websocket from a browser that did not open the page, or a
+    new browser beyond :data:`MAX_SESSIONS`."""
 
 
 @dataclass
@@ -140,6 +142,13 @@ class Front:
         if request.headers.get("Upgrade", "").lower() == "websocket":
             raise NoSession("no session for this browser: open the page first")
         await self.start_spare()
+        if "text/html" in request.headers.get("Accept", "") and not self.shared:
+            alive = sum(s.alive for s in self.sessions.values())
+            if alive >= MAX_SESSIONS:
+                raise NoSession(
+                    f"{alive} sessions are open, the most this server keeps: close a browser "
+                    "window (its session ends 2 minutes later), or start with --shared"
+                )
         if "text/html" not in request.headers.get("Accept", ""):
             # not a page being opened (a script, a health check): every session serves the same
             # files, so the spare answers without being given away
@@ -277,13 +286,14 @@ async def _pump(source, target) -> None:
         await target.close()
 
 
-def run_front(front: Front, host: str, port: int) -> None:
-    """Serve ``front`` until Ctrl-C or SIGTERM; the session processes are stopped on the way out."""
+def run_front(front: Front, host: str, port: int, on_listening=None) -> None:
+    """Serve ``front`` until Ctrl-C or SIGTERM; the session processes are stopped on the way out.
+    ``on_listening()`` is called once the port listens."""
     web.run_app(
         front.application(),
         host=host,
         port=port,
-        print=None,
+        print=lambda _: on_listening() if on_listening is not None else None,
         handle_signals=True,
         shutdown_timeout=STOP_TIMEOUT_S,
     )

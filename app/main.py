@@ -1,7 +1,9 @@
-"""Entry point of the browser app: check off-screen rendering, build the app, serve the page."""
+"""Entry point of the browser app: check the address and off-screen rendering, then run the front
+server (one session process per browser, :mod:`app.front`)."""
 
 from __future__ import annotations
 
+import shutil
 import sys
 
 from .offscreen import check_offscreen_rendering, configure_environment
@@ -45,36 +47,41 @@ def serve(
         print(f"racetrace: {line}", flush=True)
     max_runs = max_runs or default_max_runs()
     token = "" if is_loopback(host) else new_token()
-    session_args = ["--runs-dir", runs, "--slots-dir", str(pool_dir()), "--max-runs", str(max_runs)]
+    slots = pool_dir()
+    session_args = ["--runs-dir", runs, "--slots-dir", str(slots), "--max-runs", str(max_runs)]
     if case_name:
         session_args += ["--case", case_name]
     front = Front(Access(host, token), session_args, shared=shared)
     shown_host = f"[{host}]" if ":" in host else host
     url = f"http://{shown_host}:{port}/" + (f"?token={token}" if token else "")
     mode = "one session for every browser" if shared else "one session per browser"
-    print(
+    banner = (
         f"racetrace: serving on {url}  (runs folder: {runs}; {mode}; "
-        f"at most {max_runs} solver run{'s' * (max_runs != 1)} at once)",
-        flush=True,
+        f"at most {max_runs} solver run{'s' * (max_runs != 1)} at once)"
     )
     if token:
-        print(
-            f"racetrace: WARNING: --host {host} is reachable from the network; only browsers "
-            "given the address above (with its access token) can use the app",
-            flush=True,
+        banner += (
+            f"\nracetrace: WARNING: --host {host} is reachable from the network; only browsers "
+            "given the address above (with its access token) can use the app"
         )
-    if open_browser:
-        import webbrowser
 
-        webbrowser.open(url)
+    def listening() -> None:
+        print(banner, flush=True)
+        if open_browser:
+            import webbrowser
+
+            webbrowser.open(url)
+
     try:
-        run_front(front, host, port)
+        run_front(front, host, port, listening)
     except OSError as error:  # e.g. the port was taken while we started
         print(
             f"racetrace serve: cannot serve on {host}:{port}: {error.strerror or error}",
             file=sys.stderr,
         )
         return EXIT_NO_RENDERING
+    finally:
+        shutil.rmtree(slots, ignore_errors=True)
     return 0
 
 

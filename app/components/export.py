@@ -7,6 +7,8 @@ State keys: ``export_href``/``export_name`` (the file offered for download), ``e
 from __future__ import annotations
 
 import asyncio
+import os
+import tempfile
 import time
 import urllib.parse
 from pathlib import Path
@@ -22,6 +24,7 @@ class Export(Component):
     def __init__(self, session):
         super().__init__(session)
         self.task = None  # the export running in the background, if any
+        self._dir = None  # see exports_dir
 
     def init_state(self) -> None:
         s = self.state
@@ -35,8 +38,19 @@ class Export(Component):
 
     @property
     def exports_dir(self) -> Path:
-        """Where exported files are written (served under ``/racetrace-exports/``)."""
-        return self.session.store.root / ".exports"
+        """Where exported files are written (served under ``/racetrace-exports/``): ``.exports``
+        in the runs folder, or a temporary folder when the runs folder cannot take files."""
+        if self._dir is None:
+            wanted = self.session.store.root / ".exports"
+            try:
+                wanted.mkdir(parents=True, exist_ok=True)
+                writable = os.access(wanted, os.W_OK)
+            except OSError:
+                writable = False
+            if not writable:
+                wanted = Path(tempfile.mkdtemp(prefix="racetrace-exports-"))
+            self._dir = wanted
+        return self._dir
 
     def forget_download(self) -> None:
         """A new result is on show: the file offered is no longer of it."""

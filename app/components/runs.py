@@ -13,6 +13,7 @@ import asyncio
 import math
 import os
 import secrets
+import tempfile
 import time
 from pathlib import Path
 
@@ -158,8 +159,10 @@ class Runs(Component):
         if not confirmed and warnings and not self.state.result_stale:
             self.state.run_confirm = True  # the page shows the warnings and asks
             return
-        self.store.root.mkdir(parents=True, exist_ok=True)
-        out = self.store.root / f".job-{secrets.token_hex(4)}.nc"
+        # the solver's result goes next to the runs (a stopped server's is recovered from there),
+        # or to the temporary folder when the runs folder cannot take files
+        folder = Path(tempfile.gettempdir()) if self.store.folder_problem() else self.store.root
+        out = folder / f".job-{secrets.token_hex(4)}.nc"
         case_text = form.case.to_toml()
         title = describe_case(form.case)
         revolutions = getattr(getattr(form.case, "simulation", None), "shaft_revolutions", None)

@@ -186,8 +186,9 @@ def solution_to_dataset(
             "Quasi-static model with the ball speeds from the traction balance: one cage speed "
             "for all balls (the cage pocket forces sum to zero), each ball's spin from the "
             "moment balance of the tractions integrated over both contact ellipses (the case's "
-            "traction curve) against its gyroscopic rate; the transverse tractions take the "
-            "gyroscopic moment in the force balances"
+            "traction curve lubricant.traction, whatever the dynamic model's traction_model) "
+            "against its gyroscopic rate; the transverse tractions take the gyroscopic moment in "
+            "the force balances"
         )
     else:
         kinematics = (

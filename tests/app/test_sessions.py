@@ -243,3 +243,23 @@ def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):
     assert " of 3 rev" in saved.title  # the revolutions reached, not those asked for
     ds, _ = a.store.load(saved.run_id)
     assert ds.attrs["complete"] == 0 and ds.sizes["time"] >= 2
+
+
+def test_a_read_only_runs_folder_still_gives_a_session(tmp_path, monkeypatch):
+    """The session starts and exports into a temporary folder (runs are kept in memory by the
+    run store, which says so)."""
+    from tests.helpers.faults import read_only_folder
+
+    with read_only_folder(tmp_path / "ro") as runs:
+        app = RacetraceApp(_server(), runs_dir=runs, render=False)
+        app.start(DEFAULT_CASE, play=False)
+        path = app.exports.export("csv")
+        assert path is not None and path.is_file() and runs not in path.parents
+        # a run still runs; its result is kept in memory and the page says so
+        monkeypatch.setattr(runner_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
+        app.runs.run()
+        _wait(app)
+        assert app.state.status == "done", app.state.status
+        assert "could not be saved" in app.state.run_note
+        assert len(app.state.runs) == 1
+        app.shutdown()

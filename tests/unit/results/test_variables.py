@@ -8,11 +8,12 @@ import pytest
 from solver.results.variables import COORDINATES, DIMENSION_VALUES, VARIABLES, variable
 
 SCHEMA = Path(__file__).resolve().parents[3] / "docs" / "results-schema.md"
-ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3"}
+ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3", "W"}
 
 
 def test_every_variable_has_units_names_and_known_dims():
     dims = {"ball", "race", "axis", "tilt_axis", "quaternion", "frame", "body"}
+    dims |= {"ball_loss_source", "loss_source"}
     for name, spec in {**VARIABLES, **COORDINATES}.items():
         assert spec.units in ALLOWED_UNITS, name
         assert spec.long_name and spec.description, name
