@@ -15,6 +15,7 @@ from trame.widgets import vuetify3 as v3
 
 from . import lazy_charts
 from .charts import HELP, SUMMARY_COLUMNS
+from .lessons import widgets as lesson_widgets
 
 _SECTION_TITLES = {
     "bearing": "Bearing",
@@ -58,7 +59,8 @@ def _field(f) -> None:
 
 
 def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
-    with html.Div(id=element_id, classes="mb-2"):
+    # highlighted when a lesson points at it; the one chart shown in presenter mode
+    with html.Div(id=element_id, classes=lesson_widgets.chart_classes(key.removeprefix("chart_"))):
         lazy_charts.ChartFigure(
             key, display_mode_bar=False, style=f"height: {height}px; width: 100%;"
         )
@@ -75,6 +77,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
     lazy_charts.enable(server)
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         client.Script(lazy_charts.LOAD_AFTER_FIRST_FRAME)
+        lesson_widgets.page_assets()
         layout.title.set_text("racetrace")
         layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
@@ -89,6 +92,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                 title="The result on show is not of the case in the form",
             )
             html.Div("{{ result_label }}", id="result-label", classes="text-body-2 mr-4")
+            lesson_widgets.presenter_button()
 
         with layout.drawer as drawer:
             drawer.width = 380
@@ -149,7 +153,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                     _field(f)
 
         with layout.content:
-            with v3.VContainer(fluid=True, classes="pa-2"):
+            with v3.VContainer(
+                fluid=True, classes=("presenter ? 'pa-2 rt-presenter' : 'pa-2'",), id="content"
+            ):
                 with v3.VRow(dense=True):
                     # the 3-D view stays in sight while the chart column scrolls
                     with v3.VCol(
@@ -181,10 +187,13 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                             title="What you see",
                         )
                         _time_controls()
-                        _scene_controls(ctrl)
-                        _export_controls(ctrl)
-                    with v3.VCol(cols=12, md=5):
-                        _run_panel(ctrl)
+                        with html.Div(classes=lesson_widgets.HIDE):
+                            _scene_controls(ctrl)
+                            _export_controls(ctrl)
+                    with v3.VCol(cols=12, md=5, classes="rt-side"):
+                        lesson_widgets.lessons_panel(ctrl)
+                        with html.Div(classes=lesson_widgets.HIDE):
+                            _run_panel(ctrl)
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
                         _raceway_map_controls()
                         _chart("chart-raceway-map", "chart_raceway_map", "raceway_map")
@@ -211,7 +220,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             help_key,
                                         )
                             with v3.VExpansionPanel(
-                                title="Compare two runs side by side", value="compare"
+                                title="Compare two runs side by side",
+                                value="compare",
+                                classes=lesson_widgets.HIDE,
                             ):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
@@ -421,7 +432,7 @@ def _time_controls() -> None:
         with v3.VCol(cols="auto"):
             html.Span(
                 "{{ frame_time }}",
-                classes="text-caption",
+                classes="text-caption rt-frame-time",
                 style="font-family: monospace;",
                 id="frame-time",
             )
