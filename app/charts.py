@@ -14,6 +14,7 @@ import xarray as xr
 
 from .frames import RPM, TWO_PI, FrameSource
 from .raceway import INNER, OUTER, RACES
+from .teaching import BALL_PALETTE
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
 
@@ -29,8 +30,12 @@ HELP = {
     ),
     "raceway_map": (
         "Unrolled raceway map: each raceway cut open and laid flat, circumferential position "
-        "(in the ring's own frame) across, contact angle up. Each dot is where a ball touched. A "
-        "thin line means every ball follows the same path; a band means the path wanders."
+        "(in the ring's own frame) across, contact angle up. Each dot is where a ball touched, "
+        "over the whole run; open circles are where the balls touch now. A thin line means "
+        "every ball follows the same path; a band means the path wanders. Dashed lines: the "
+        "shoulder edges. "
+        "Below: the solver's excursion (how far the mean track wanders across the groove) and band "
+        "thickness (the spread at one place), each race in its own ring's frame."
     ),
     "ellipse": (
         "Contact ellipse: the flattened patch where ball and raceway touch (Hertz theory). "
@@ -227,31 +232,156 @@ def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
     return fig
 
 
+MAP_COLOURINGS = ("race", "ball", "load")
+BALL_COLOURS = BALL_PALETTE  # per-ball colours, the same as the 3-D view's traces
+
+
 def raceway_map_figure(
-    source: FrameSource, stop: int | None = None, max_points: int = 20000
+    source: FrameSource,
+    stop: int | None = None,
+    max_points: int = 20000,
+    *,
+    current: int | None = None,
+    balls=None,
+    colour: str = "race",
+    start_time: float | None = None,
+    shoulders: tuple[float, float] | None = None,
 ) -> go.Figure:
-    """Unrolled raceway maps: raceway azimuth (ring frame) x contact angle, both races."""
+    """Unrolled raceway maps: raceway azimuth (ring frame) x contact angle, both races.
+
+    ``stop``: frames ``[0, stop)`` (default: the whole run); ``current``: frame marked with open
+    circles (where the contacts are now); ``balls``: ball indices drawn (default all);
+    ``colour``: "race" (one colour per raceway), "ball" (one per ball) or "load" (contact load,
+    N, colour bar); ``start_time`` (s): leave out the samples before it (the start-up transient,
+    e.g. the solver's ``analysis_start_time``); ``shoulders``: (inner, outer) groove latitude of
+    the shoulder edges (rad), drawn as dashed lines at +-theta. The first two traces are the
+    inner and outer samples; hovering one gives ball, azimuth and contact angle.
+    """
+    if colour not in MAP_COLOURINGS:
+        raise ValueError(f"unknown colouring {colour!r}; use one of {', '.join(MAP_COLOURINGS)}")
     fig = go.Figure()
+    first = 0
+    if start_time is not None and source.n_frames > 1:
+        first = int(np.searchsorted(source.times, float(start_time)))
+        first = min(first, source.n_frames - 2)
+    chosen = None if balls is None else np.asarray(list(balls), int)
     for race in (INNER, OUTER):
         phi, alpha, loaded = source.trace(race, stop)
+        load = source.contact["contact_load"][: phi.shape[1], :, race].T
+        loaded = loaded.copy()
+        loaded[:, :first] = False
+        if chosen is not None:
+            keep = np.zeros(loaded.shape[0], bool)
+            keep[chosen[(chosen >= 0) & (chosen < loaded.shape[0])]] = True
+            loaded &= keep[:, None]
+        ball = np.broadcast_to(np.arange(loaded.shape[0])[:, None], loaded.shape)[loaded]
         step = max(1, int(np.ceil(loaded.sum() / max_points)))
         x = np.mod(np.degrees(phi[loaded]), 360.0)[::step]
         y = np.degrees(alpha[loaded])[::step]
+        ball = ball[::step]
+        q = load[loaded][::step]
+        marker = {"size": 3, "color": RACE_COLOURS[race]}
+        if colour == "ball":
+            marker["color"] = [BALL_COLOURS[j % len(BALL_COLOURS)] for j in ball]
+        elif colour == "load":
+            marker.update(
+                color=q,
+                colorscale="Viridis",
+                cmin=0.0,
+                showscale=race == INNER,
+                colorbar={"title": {"text": "load, N"}, "thickness": 10, "len": 0.8},
+            )
         fig.add_trace(
             go.Scattergl(
                 x=x,
                 y=y,
                 mode="markers",
                 name=f"{RACES[race]} raceway",
-                marker={"size": 3, "color": RACE_COLOURS[race]},
+                marker=marker,
+                customdata=np.column_stack([ball, q]),
+                hovertemplate=(
+                    f"{RACES[race]} raceway<br>ball %{{customdata[0]}}<br>"
+                    "azimuth %{x:.1f}°<br>contact angle %{y:.3f}°<br>"
+                    "load %{customdata[1]:.0f} N<extra></extra>"
+                ),
             )
         )
+    if current is not None:
+        fig.add_traces(current_contact_traces(source, current, balls))
+    if colour == "ball":  # the legend of the per-ball colours (legend entries only)
+        shown = range(source.ball_count) if chosen is None else chosen
+        for j in shown:
+            fig.add_trace(
+                go.Scatter(
+                    x=[None],
+                    y=[None],
+                    mode="markers",
+                    name=f"ball {j}",
+                    marker={"size": 8, "color": BALL_COLOURS[j % len(BALL_COLOURS)]},
+                )
+            )
     fig.update_xaxes(range=[0, 360])
     _layout(
         fig, "Unrolled raceways", "raceway azimuth (ring frame), degree", "contact angle, degree"
     )
     _pad_y(fig, ANGLE_MIN_SPAN_DEG)
+    if shoulders is not None:
+        # dashed lines at the shoulder edges; the axis keeps to the track, so a shoulder far from
+        # it is named in the title instead of squeezing the track into a line
+        words = []
+        for race, theta in zip((INNER, OUTER), shoulders, strict=True):
+            edge = float(np.degrees(theta))
+            words.append(f"{RACES[race]} ±{edge:.0f}°")
+            for y in (-edge, edge):
+                fig.add_hline(y=y, line={"dash": "dash", "color": RACE_COLOURS[race], "width": 1})
+        fig.update_layout(title_text="Unrolled raceways; shoulders at " + ", ".join(words))
     return fig
+
+
+def current_contact_traces(source: FrameSource, current: int, balls=None) -> list:
+    """Open circles at the contacts of frame ``current`` (of ``balls``, default all), one trace
+    per race, for the raceway map."""
+    f = source.frame(current)
+    traces = []
+    for race in (INNER, OUTER):
+        ok = f.loaded[:, race].copy()
+        if balls is not None:
+            ok &= np.isin(np.arange(ok.size), np.asarray(list(balls), int))
+        traces.append(
+            go.Scatter(
+                x=np.mod(np.degrees(f.raceway_azimuth[ok, race]), 360.0),
+                y=np.degrees(f.contact_angle[ok, race]),
+                mode="markers",
+                name="contacts now" if race == INNER else f"{RACES[race]} now",
+                marker={
+                    "size": 9,
+                    "symbol": "circle-open",
+                    "color": "#000000",
+                    "line": {"width": 2},
+                },
+                hoverinfo="skip",
+                showlegend=race == INNER,
+            )
+        )
+    return traces
+
+
+def trajectory_metric_words(summary) -> str:
+    """Excursion and band thickness of each race in its own ring's frame, from
+    ``ds.racetrace.summary()`` (degree and micrometres)."""
+    parts = []
+    for race, frame in ((INNER, "inner_ring"), (OUTER, "outer_ring")):
+        pick = {"race": RACES[race], "frame": frame}
+        exc = float(summary["trajectory_excursion"].sel(pick))
+        exc_arc = float(summary["trajectory_excursion_arc"].sel(pick)) * 1e6
+        thick = float(summary["trajectory_band_thickness"].sel(pick))
+        if np.isfinite(thick):
+            thick_arc = float(summary["trajectory_band_thickness_arc"].sel(pick)) * 1e6
+            band = f"band thickness {thick:.3f}° ({thick_arc:.0f} µm)"
+        else:
+            band = "band thickness needs a dynamic run"
+        parts.append(f"{RACES[race]} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
+    return "; ".join(parts)
 
 
 def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
@@ -363,7 +493,7 @@ def side_by_side_raceway_maps(a: FrameSource, b: FrameSource, max_points: int = 
         horizontal_spacing=0.04,
         subplot_titles=("A (run on show)", "B (compared run)"),  # full names: caption above
     )
-    for col, source in ((1, a), (2, b)):
+    for col, tag, source in ((1, "A", a), (2, "B", b)):
         for race in (INNER, OUTER):
             phi, alpha, loaded = source.trace(race)
             step = max(1, int(np.ceil(loaded.sum() / max_points)))
@@ -372,9 +502,8 @@ def side_by_side_raceway_maps(a: FrameSource, b: FrameSource, max_points: int = 
                     x=np.mod(np.degrees(phi[loaded]), 360.0)[::step],
                     y=np.degrees(alpha[loaded])[::step],
                     mode="markers",
-                    marker={"size": 3, "color": RACE_COLOURS[race]},
-                    name=f"{RACES[race]} raceway",
-                    showlegend=col == 1,
+                    marker={"size": 3, "color": RUN_COLOURS[tag][race]},
+                    name=f"{tag} {RACES[race]} raceway",
                 ),
                 row=1,
                 col=col,
@@ -404,18 +533,23 @@ RUN_STYLES = {
     "A": {"dash": "solid", "symbol": "circle", "size": 5},
     "B": {"dash": "dash", "symbol": "x", "size": 6},
 }
+# Runs A and B in distinct colours (per race: a lighter and a darker shade), not only markers.
+RUN_COLOURS = {
+    "A": {INNER: "#1f77b4", OUTER: "#0b3d6b"},
+    "B": {INNER: "#ff7f0e", OUTER: "#a84300"},
+}
 
 HELP["compare_angle"] = (
-    "Contact angle versus ball azimuth, both runs overlaid (A: circles on a solid line, B: "
-    "crosses on a dashed line; a dynamic run is a cloud of its samples). Under pure axial "
+    "Contact angle versus ball azimuth, both runs overlaid (A: blue circles on a solid line, B: "
+    "orange crosses on a dashed line; a dynamic run is a cloud of its samples). Under pure axial "
     "load every ball has the same contact angles, so each race is a flat line; a radial load "
     "spreads them: balls in the load zone press deeper into the groove than the others."
 )
 HELP["compare_load"] = (
-    "Contact load versus ball azimuth, both runs overlaid (A: circles on a solid line, B: crosses "
-    "on a dashed line; a dynamic run is a cloud of its samples). Pure axial load shares the load "
-    "equally (a flat line); with a radial load the loads concentrate in a load "
-    "zone around the load direction and the balls opposite it carry less, or nothing."
+    "Contact load versus ball azimuth, both runs overlaid (A: blue circles on a solid line, B: "
+    "orange crosses on a dashed line; a dynamic run is a cloud of its samples). Pure axial "
+    "load shares the load equally (a flat line); with a radial load the loads concentrate in "
+    "a load zone around the load direction and the balls opposite it carry less, or nothing."
 )
 HELP["compare_summary"] = (
     "Summary per run and race. Contact angle min/max tell where the contact sits in the groove; "
@@ -556,7 +690,7 @@ def _azimuth_trace(
     else:
         y = np.nan_to_num(load)
     style = RUN_STYLES[tag]
-    colour = RACE_COLOURS[race]
+    colour = RUN_COLOURS[tag][race]
     name = f"{tag} {RACES[race]}"
     if source.model == "quasistatic":  # one value per ball: a line through the balls
         order = np.argsort(psi)

@@ -54,11 +54,50 @@ def export_csv(ds: xr.Dataset, path: str | Path) -> Path:
     return ds.racetrace.to_csv(path)
 
 
-def export_png(plotter, path: str | Path) -> Path:
-    """The 3-D view as PNG (renders first: ``screenshot`` alone can return a stale image)."""
+def captioned(image: np.ndarray, caption: str | None) -> np.ndarray:
+    """``image`` (height x width x RGB[A], uint8) with ``caption`` written in a dark band along
+    its bottom (the image keeps its size); unchanged when ``caption`` is empty."""
+    if not caption:
+        return image
+    from PIL import Image, ImageDraw, ImageFont
+
+    picture = Image.fromarray(np.ascontiguousarray(image[..., :3]))
+    height = picture.height
+    draw = ImageDraw.Draw(picture)
+    size = max(8, min(16, height // 28))
+    while True:  # the largest size (down to 8 px) at which the caption fits the width
+        try:
+            font = ImageFont.load_default(size=size)
+        except TypeError:  # Pillow < 10.1: one bitmap size
+            font = ImageFont.load_default()
+            break
+        if size <= 8 or draw.textlength(caption, font=font) <= picture.width - 8:
+            break
+        size -= 1
+    band = size + 6
+    draw.rectangle([0, height - band, picture.width, height], fill=(20, 20, 20))
+    draw.text((4, height - band + 3), caption, fill=(240, 240, 240), font=font)
+    return np.asarray(picture)
+
+
+def even_sized(image: np.ndarray) -> np.ndarray:
+    """``image`` padded by one edge row/column where its height/width is odd (H.264 in MP4
+    needs even sizes)."""
+    pad_h, pad_w = image.shape[0] % 2, image.shape[1] % 2
+    if not (pad_h or pad_w):
+        return image
+    return np.pad(image, ((0, pad_h), (0, pad_w), (0, 0)), mode="edge")
+
+
+def export_png(plotter, path: str | Path, caption: str | None = None) -> Path:
+    """The 3-D view as PNG, with ``caption`` along its bottom (renders first: ``screenshot``
+    alone can return a stale image)."""
+    import imageio.v2 as imageio
+
     plotter.render()
     plotter.render_window.Render()
-    return _atomic(Path(path), lambda tmp: plotter.screenshot(str(tmp)))
+    image = captioned(np.asarray(plotter.screenshot(return_img=True)), caption)
+    return _atomic(Path(path), lambda tmp: imageio.imwrite(str(tmp), image, format="PNG"))
 
 
 def export_animation(
@@ -68,12 +107,13 @@ def export_animation(
     stop: int | None = None,
     step: int = 1,
     fps: float = 12.0,
+    caption=None,
 ) -> Path:
     """Frames ``start:stop:step`` of the scene's current source as GIF or MP4 (by suffix).
 
     The scene is left at its previous frame afterwards. See :func:`iter_export_animation`.
     """
-    for _ in iter_export_animation(scene, path, start, stop, step, fps):
+    for _ in iter_export_animation(scene, path, start, stop, step, fps, caption):
         pass
     return Path(path)
 
@@ -85,8 +125,12 @@ def iter_export_animation(
     stop: int | None = None,
     step: int = 1,
     fps: float = 12.0,
+    caption=None,
 ):
     """Write the animation frame by frame, yielding the fraction done (0-1] after each frame.
+
+    ``caption``: a function of the frame index giving the text written along the bottom of that
+    frame (None: no caption). MP4 frames of odd width or height are padded to even sizes.
 
     Lets the caller keep its event loop going between frames (rendering must stay in the thread
     that owns the VTK window). ``fps`` is the playback rate stored in the file (GIF frame delay
@@ -118,7 +162,9 @@ def iter_export_animation(
             for done, i in enumerate(indices, start=1):
                 scene.set_frame(i)
                 plotter.render_window.Render()
-                writer.append_data(np.asarray(plotter.screenshot(return_img=True)))
+                image = np.asarray(plotter.screenshot(return_img=True))
+                image = captioned(image, caption(i) if caption is not None else None)
+                writer.append_data(even_sized(image) if fmt == "mp4" else image)
                 yield done / len(indices)
     finally:
         scene.set_frame(previous)

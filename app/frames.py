@@ -8,6 +8,8 @@ Two ways to build one (:func:`frame_source` picks the right one):
 
 * :meth:`FrameSource.from_dynamic` — a dynamic result (``time`` dimension): frame ``i`` is
   time index ``i``.
+* :func:`from_revolution` — a quasi-static solution over one revolution (``ring_angle``
+  dimension): as below, with the contacts of the inner ring's angle at each frame.
 * :meth:`FrameSource.from_quasistatic` — a quasi-static result (no ``time``): rigid steady
   kinematics.
   The balls orbit at the quasi-static cage speed (the cage keeps their spacing; per-ball orbital
@@ -37,6 +39,10 @@ QS_SAMPLES_PER_REVOLUTION = 72  # animation frames per shaft revolution for a qu
 QS_DEFAULT_REVOLUTIONS = 10.0  # shaft revolutions animated when the caller names none
 QS_MAX_REVOLUTIONS = 20.0  # the steady animation repeats; longer runs only add frames to handle
 
+# Read when the result has them (contact[name], (N, Z, 2)); the ball-surface coordinates only from
+# a dynamic result, whose ball orientations they are measured against (angles in rad).
+_OPTIONAL_CONTACT_VARS = ("spin_to_roll", "ball_latitude", "ball_longitude")
+_ANGLE_VARS = ("contact_angle", "ball_latitude", "ball_longitude")
 _CONTACT_VARS = (
     "contact_angle",
     "contact_load",
@@ -161,9 +167,9 @@ class FrameSource:
         else:
             cage = psi.mean(axis=1) - psi[0].mean()
         contact = {}
-        for name in _CONTACT_VARS:
+        for name in (*_CONTACT_VARS, *[v for v in _OPTIONAL_CONTACT_VARS if v in ds]):
             values = _arr(ds, name, ("time", "ball", "race"))
-            contact[name] = np.radians(values) if name == "contact_angle" else values
+            contact[name] = np.radians(values) if name in _ANGLE_VARS else values
         raceway = np.unwrap(
             np.radians(_arr(ds, "raceway_azimuth", ("time", "ball", "race"))), axis=0
         )
@@ -221,7 +227,7 @@ class FrameSource:
         rotation = np.einsum("nzij,nzjk->nzik", rot_x(psi), axis_angle_matrix(axis, angle))
 
         contact = {}
-        for name in _CONTACT_VARS:
+        for name in (*_CONTACT_VARS, *[v for v in ("spin_to_roll",) if v in ds]):
             values = _arr(ds, name, ("ball", "race"))
             if name == "contact_angle":
                 values = np.radians(values)
@@ -233,10 +239,56 @@ class FrameSource:
 
 
 def frame_source(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
-    """Frame source for a result: dynamic when it has a ``time`` dimension, else quasi-static."""
+    """Frame source for a result: dynamic when it has a ``time`` dimension, quasi-static over a
+    revolution when it has a ``ring_angle`` dimension, else quasi-static."""
     if "time" in ds.dims:
         return FrameSource.from_dynamic(ds)
+    if "ring_angle" in ds.dims:
+        return from_revolution(ds, **quasistatic_options)
     return FrameSource.from_quasistatic(ds, **quasistatic_options)
+
+
+def from_revolution(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
+    """Frames of a quasi-static solution over one revolution (``solver.solve_over_revolution``).
+
+    The kinematics are those of :meth:`FrameSource.from_quasistatic` for the first ring angle; the
+    contact data at a frame are those of the solution at the inner ring's angle at that time
+    relative to the outer ring (linear between the solved angles, periodic), each at the ball's
+    azimuth (periodic linear interpolation between the solved balls). So a misalignment turning
+    with the inner ring is shown over the whole revolution, not frozen at t = 0.
+    """
+    first = ds.isel(ring_angle=0).drop_vars("ring_angle")
+    base = FrameSource.from_quasistatic(first, **quasistatic_options)
+    angles = np.radians(np.asarray(ds["ring_angle"].values, float))
+    theta = np.mod(base.ring_angle[:, INNER] - base.ring_angle[:, OUTER], TWO_PI)  # (N,)
+    position = np.interp(theta, np.append(angles, TWO_PI), np.arange(angles.size + 1))
+    k0 = np.floor(position).astype(int) % angles.size
+    k1 = (k0 + 1) % angles.size
+    w = (position - np.floor(position))[:, None, None]
+    psi0 = np.radians(_arr(ds, "ball_azimuth", ("ring_angle", "ball")))  # (K, Z)
+    stacked = np.stack(
+        [_arr(ds, name, ("ring_angle", "ball", "race")) for name in _CONTACT_VARS], axis=-1
+    )  # (K, Z, 2, V)
+    rows = np.arange(base.n_frames)
+    per_angle = np.array(
+        [periodic_interp(base.ball_azimuth, psi0[k], stacked[k]) for k in range(angles.size)]
+    )  # (K, N, Z, 2, V)
+    blended = (1.0 - w[..., None]) * per_angle[k0, rows] + w[..., None] * per_angle[k1, rows]
+    contact = {}
+    for v, name in enumerate(_CONTACT_VARS):
+        values = blended[..., v]
+        contact[name] = np.radians(values) if name == "contact_angle" else values
+    return FrameSource(
+        "quasistatic",
+        base.times,
+        base.ball_center,
+        base.ball_rotation,
+        base.ball_azimuth,
+        base.ring_angle,
+        base.cage_angle,
+        contact,
+        base.raceway_azimuth,
+    )
 
 
 # ---- helpers ------------------------------------------------------------------------------------

@@ -4,7 +4,8 @@
 the page runs before it mounts: parsing it kept the first 3-D frame waiting ~2.5 s on this 2-core
 machine. Here the page gets a small stand-in component instead (``static/racetrace-charts.js``,
 element ``<racetrace-chart>``); the bundle is only served, and the page script
-:data:`LOAD_AFTER_FIRST_FRAME` fetches it once ``#view-3d`` shows an image (or after 10 s). The
+:data:`LOAD_AFTER_FIRST_FRAME` fetches it once ``#view-3d`` shows a drawn image (not the empty
+``<img src="">`` it holds before the first frame; or after 10 s). The
 stand-in then renders trame-plotly's chart with the same attributes.
 """
 
@@ -37,11 +38,12 @@ def enable(server) -> None:
     )
 
 
-# Waits for the first image in #view-3d (at most 10 s), then fetches the chart library.
+# Waits for the first drawn image in #view-3d (an <img src=""> is there before the first frame;
+# at most 10 s), then fetches the chart library.
 LOAD_AFTER_FIRST_FRAME = """
 (function racetraceLoadCharts(tries) {
-  if (window.racetrace_charts &&
-      (document.querySelector('#view-3d img[src]') || tries > 100)) {
+  var img = document.querySelector('#view-3d img[src]');
+  if (window.racetrace_charts && ((img && img.getAttribute('src')) || tries > 100)) {
     window.racetrace_charts.load('__BUNDLE_URL__');
   } else {
     setTimeout(function () { racetraceLoadCharts(tries + 1); }, 100);

@@ -1,7 +1,9 @@
-"""Entry point of the browser app: check off-screen rendering, build the app, serve the page."""
+"""Entry point of the browser app: check the address and off-screen rendering, then run the front
+server (one session process per browser, :mod:`app.front`)."""
 
 from __future__ import annotations
 
+import shutil
 import sys
 
 from .offscreen import check_offscreen_rendering, configure_environment
@@ -15,42 +17,63 @@ def serve(
     open_browser: bool = False,
     runs_dir: str | None = None,
     case_name: str | None = None,
+    shared: bool = False,
+    max_runs: int | None = None,
 ) -> int:
-    """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here."""
+    """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here.
+
+    Each browser gets its own session process (:mod:`app.front`); ``shared``: one session for
+    every browser. ``max_runs``: solver processes at once (default: the number of cores).
+    """
     problem = _port_problem(host, port)
     if problem:
         print(f"racetrace serve: {problem}", file=sys.stderr)
+        return EXIT_NO_RENDERING
+    if max_runs is not None and max_runs < 1:
+        print(f"racetrace serve: --max-runs {max_runs}: must be at least 1", file=sys.stderr)
         return EXIT_NO_RENDERING
     configure_environment()
     check = check_offscreen_rendering()
     if not check.ok:
         print(check.message, file=sys.stderr)
         return EXIT_NO_RENDERING
-    import pyvista as pv
-    from trame.app import get_server
+    from .access import Access, is_loopback, new_token
+    from .front import Front, pool_dir, run_front
+    from .runs import RunStore, default_runs_dir
+    from .services.pool import default_max_runs
 
-    from .state import DEFAULT_CASE, RacetraceApp
-    from .ui import build_ui
-
-    pv.global_theme.multi_samples = 0
-    server = get_server("racetrace", client_type="vue3")
-    app = RacetraceApp(server, runs_dir=runs_dir)
-    app.start(case_name or DEFAULT_CASE)
-    app.exports_dir.mkdir(parents=True, exist_ok=True)
-    server.enable_module({"serve": {app.EXPORT_URL: str(app.exports_dir)}})
-    build_ui(app)
-    server.controller.on_server_ready.add(_quiet_closed_connections)
-    print(
-        f"racetrace: serving on http://{host}:{port}/  (runs folder: {app.store.root})", flush=True
+    runs = str(runs_dir if runs_dir is not None else default_runs_dir())
+    for line in RunStore(runs).recover().messages():  # what a stopped server left behind
+        print(f"racetrace: {line}", flush=True)
+    max_runs = max_runs or default_max_runs()
+    token = "" if is_loopback(host) else new_token()
+    slots = pool_dir()
+    session_args = ["--runs-dir", runs, "--slots-dir", str(slots), "--max-runs", str(max_runs)]
+    if case_name:
+        session_args += ["--case", case_name]
+    front = Front(Access(host, token), session_args, shared=shared)
+    shown_host = f"[{host}]" if ":" in host else host
+    url = f"http://{shown_host}:{port}/" + (f"?token={token}" if token else "")
+    mode = "one session for every browser" if shared else "one session per browser"
+    banner = (
+        f"racetrace: serving on {url}  (runs folder: {runs}; {mode}; "
+        f"at most {max_runs} solver run{'s' * (max_runs != 1)} at once)"
     )
-    try:
-        server.start(
-            host=host,
-            port=port,
-            open_browser=open_browser,
-            show_connection_info=False,
-            disable_logging=True,
+    if token:
+        banner += (
+            f"\nracetrace: WARNING: --host {host} is reachable from the network; only browsers "
+            "given the address above (with its access token) can use the app"
         )
+
+    def listening() -> None:
+        print(banner, flush=True)
+        if open_browser:
+            import webbrowser
+
+            webbrowser.open(url)
+
+    try:
+        run_front(front, host, port, listening)
     except OSError as error:  # e.g. the port was taken while we started
         print(
             f"racetrace serve: cannot serve on {host}:{port}: {error.strerror or error}",
@@ -58,11 +81,11 @@ def serve(
         )
         return EXIT_NO_RENDERING
     finally:
-        app.shutdown()
+        shutil.rmtree(slots, ignore_errors=True)
     return 0
 
 
-def _quiet_closed_connections(**_) -> None:
+def quiet_closed_connections(**_) -> None:
     """Drop the 'Cannot write to closing transport' task errors of a browser that just left.
 
     Frames already queued for a closing websocket fail harmlessly; asyncio would log each failed

@@ -13,6 +13,7 @@ upper signs for the inner groove, lower signs for the outer one. Lengths in m.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,6 +47,22 @@ class Groove:
     def contact_radius(self, alpha) -> np.ndarray:
         """Distance of the raceway point from the bearing axis, m: rho_c -+ r cos(alpha)."""
         return self.rho_c - self.sign * self.r * np.cos(np.asarray(alpha, float))
+
+
+def groove_half_angle(groove: Groove, ball_diameter: float, shoulder_radius: float) -> float:
+    """Groove latitude theta (rad) of the shoulder edges, which are drawn at +-theta.
+
+    cos(theta) = |rho_c - shoulder_radius| / r; when no usable shoulder is given the shoulder
+    height is 0.2 D (a typical spindle-bearing value, drawing only).
+    """
+    D, r = ball_diameter, groove.r
+    s = groove.sign  # +1 inner (material below the groove), -1 outer (material above)
+    depth = (
+        s * (shoulder_radius - (groove.rho_c - s * r)) if np.isfinite(shoulder_radius) else np.nan
+    )
+    if not (np.isfinite(depth) and 0.05 * D < depth < 0.9 * r):
+        depth = 0.2 * D
+    return math.acos(1.0 - depth / r)
 
 
 def grooves(geometry) -> tuple[Groove, Groove]:
@@ -88,3 +105,12 @@ def ellipse_outline(groove: Groove, phi, alpha, semi_major, semi_minor, n: int =
     b = np.asarray(semi_minor, float)[..., None]
     rho = groove.contact_radius(alpha)
     return groove.point(phi + b / rho * np.sin(tau), alpha + a / groove.r * np.cos(tau), lift=lift)
+
+
+def shoulder_angles(geometry) -> tuple[float, float]:
+    """(inner, outer) groove latitude theta (rad) of the shoulder edges drawn at +-theta."""
+    inner, outer = grooves(geometry)
+    return (
+        groove_half_angle(inner, geometry.ball_diameter, geometry.inner_shoulder_diameter / 2),
+        groove_half_angle(outer, geometry.ball_diameter, geometry.outer_shoulder_diameter / 2),
+    )

@@ -1,9 +1,11 @@
 """Run a solver in a separate ``spawn`` process, with a progress queue and a cancel event.
 
 The child process imports the job (``"module:function"``, called as ``job(case_text, progress,
-cancel) -> xarray.Dataset``), saves the Dataset to a NetCDF file given by the parent and reports
-through a queue. ``spawn`` keeps the server's VTK/EGL state out of the child, and a crash of the
-child (even a segfault) only ends that run: :meth:`SolverRunner.poll` reports it as an error.
+cancel) -> xarray.Dataset``), saves the Dataset to a NetCDF file given by the parent (or, when that
+folder cannot take it, to the temporary folder: the ``done`` message names the file written) and
+reports through a queue. ``spawn`` keeps the server's VTK/EGL state out of the child, and a crash
+of the child (even a segfault) only ends that run: :meth:`SolverRunner.poll` reports it as an
+error.
 
 Messages from the child, as tuples:
 ``("progress", fraction, simulated_time_s, text)``, ``("done", path, complete)``,
@@ -40,8 +42,16 @@ def quasistatic_job(case_text: str, progress, cancel):
 
 def _child_main(target: str, case_text: str, out_path: str, messages, cancel_event) -> None:
     """Entry point of the child process: never raises, always ends with a done/error message."""
-    from solver import CaseError, NoSolutionError, SimulationDiverged
-    from solver.results.io import save_dataset
+    import signal
+
+    from app.services.process import die_with_parent
+
+    die_with_parent(signal.SIGKILL)  # a solver never runs on without the server
+    # Ctrl-C in the server's terminal reaches this process too: the server stops the run itself
+    # (cancel event), so that the part computed so far is saved
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from solver import CaseError, NoSolutionError, ResultWriteError, SimulationDiverged
+    from solver.errors import clean_message
 
     try:
         module_name, func_name = target.split(":")
@@ -51,15 +61,35 @@ def _child_main(target: str, case_text: str, out_path: str, messages, cancel_eve
             messages.put(("progress", float(fraction), float(simulated_time), str(text)))
 
         ds = job(case_text, progress, cancel_event)
-        save_dataset(ds, out_path)
-        messages.put(("done", out_path, int(ds.attrs.get("complete", 1))))
-    except (CaseError, NoSolutionError, SimulationDiverged) as error:
-        messages.put(("error", str(error)))
+        written = _save(ds, out_path)
+        messages.put(("done", written, int(ds.attrs.get("complete", 1))))
+    except (CaseError, NoSolutionError, SimulationDiverged, ResultWriteError) as error:
+        messages.put(("error", clean_message(error)))
     except Exception as error:  # an unexpected failure: say what it was, in one line
         import traceback
 
         traceback.print_exc(file=sys.stderr)  # the server log keeps the details
         messages.put(("error", f"internal error in the solver ({type(error).__name__}: {error})"))
+
+
+def _save(ds, out_path: str) -> str:
+    """Save the job's result at ``out_path``, or, when the runs folder cannot take it (read-only,
+    full), in the temporary folder; returns the path written. ResultWriteError when neither works
+    (both reasons in the message)."""
+    import tempfile
+    from pathlib import Path
+
+    from solver.errors import ResultWriteError
+    from solver.results.io import save_dataset
+
+    try:
+        return str(save_dataset(ds, out_path))
+    except ResultWriteError as error:
+        fallback = Path(tempfile.gettempdir()) / Path(out_path).name.lstrip(".")
+        try:
+            return str(save_dataset(ds, fallback))
+        except ResultWriteError as second:
+            raise ResultWriteError(out_path, f"{error.reason}; and {second}") from None
 
 
 # ---- parent side ---------------------------------------------------------------------------------

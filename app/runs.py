@@ -252,6 +252,15 @@ class RunStore:
             )
         return ""
 
+    def job_path(self) -> Path:
+        """A new file for a background job's result: a hidden ``.job-*.nc`` in the runs folder, or
+        in the temporary folder when the runs folder cannot take files (:meth:`folder_problem`).
+        :meth:`recover` collects job files left in the runs folder by a stopped server."""
+        name = f".job-{secrets.token_hex(4)}.nc"
+        if self.folder_problem():
+            return Path(tempfile.gettempdir()) / name
+        return self.root / name
+
     # ---- listing and loading ---------------------------------------------------------------------
     def _folders(self) -> list[Path]:
         """Run folders: the visible sub-folders of the root (not symbolic links)."""

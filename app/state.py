@@ -3,20 +3,22 @@ browser).
 
 :class:`RacetraceApp` composes the session's components (:mod:`app.components`): the case form
 (``form``), the result on show with its scene, charts and time controls (``result``), the saved
-runs and the background run (``runs``), the comparison with a saved run (``compare``) and the
-exports (``exports``). Process-wide services (the run store and the solver pool,
-:mod:`app.services`) are shared with the other sessions. The page layout (:mod:`app.ui`) only
-binds widgets to the state keys and controller actions the components define; each component's
-module lists its keys. The session itself keeps ``status`` (ends in ``done``, ``cancelled`` or
-``error: ...``) and counts the connected browsers.
+runs and the background run (``runs``), the comparison with a saved run (``compare``), the
+exports (``exports``), the studies (``studies``) and the Lessons panel with presenter mode
+(``lessons``, :mod:`app.lessons.panel`). Process-wide services (the run store and the solver
+pool, :mod:`app.services`) are shared with the other sessions. The page layout (:mod:`app.ui`)
+only binds widgets to the state keys and controller actions the components define; each
+component's module lists its keys. The session itself keeps ``status`` (ends in ``done``,
+``cancelled`` or ``error: ...``) and counts the connected browsers.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from .components import CaseForm, Compare, Export, ResultView, Runs
+from .components import CaseForm, Compare, Export, ResultView, Runs, Studies
 from .components.export import EXPORT_URL
+from .lessons.panel import LessonController
 from .services import Services
 
 DEFAULT_CASE = "spindle-combined-load"
@@ -50,7 +52,17 @@ class RacetraceApp:
         self.runs = Runs(self)
         self.compare = Compare(self)
         self.exports = Export(self)
-        self.components = (self.form, self.result, self.runs, self.compare, self.exports)
+        self.studies = Studies(self)
+        self.lessons = LessonController(self)
+        self.components = (
+            self.form,
+            self.result,
+            self.runs,
+            self.compare,
+            self.exports,
+            self.studies,
+            self.lessons,
+        )
         self.state.status = "starting"
         for component in self.components:
             component.init_state()
@@ -84,6 +96,7 @@ class RacetraceApp:
             self._client_ids.add(client_id)
             self.clients = len(self._client_ids)
             self.result._on_playing(self.state.playing)
+            self.runs.watch()
 
         def on_close(client_id):
             close(client_id)

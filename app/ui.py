@@ -15,6 +15,7 @@ from trame.widgets import vuetify3 as v3
 
 from . import lazy_charts
 from .charts import HELP, SUMMARY_COLUMNS
+from .lessons import widgets as lesson_widgets
 
 _SECTION_TITLES = {
     "bearing": "Bearing",
@@ -58,7 +59,8 @@ def _field(f) -> None:
 
 
 def _chart(element_id: str, key: str, help_key: str, height: int = 250) -> None:
-    with html.Div(id=element_id, classes="mb-2"):
+    # highlighted when a lesson points at it; the one chart shown in presenter mode
+    with html.Div(id=element_id, classes=lesson_widgets.chart_classes(key.removeprefix("chart_"))):
         lazy_charts.ChartFigure(
             key, display_mode_bar=False, style=f"height: {height}px; width: 100%;"
         )
@@ -75,11 +77,22 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
     lazy_charts.enable(server)
     with SinglePageWithDrawerLayout(server, full_height=True) as layout:
         client.Script(lazy_charts.LOAD_AFTER_FIRST_FRAME)
+        lesson_widgets.page_assets()
         layout.title.set_text("racetrace")
         layout.footer.hide()  # trame's footer covered the chart captions
         with layout.toolbar:
             v3.VSpacer()
-            html.Div("{{ result_label }}", classes="text-body-2 mr-4")
+            v3.VChip(
+                "out of date: the form has changed",
+                id="result-stale",
+                v_show="result_stale",
+                color="warning",
+                size="small",
+                classes="mr-2",
+                title="The result on show is not of the case in the form",
+            )
+            html.Div("{{ result_label }}", id="result-label", classes="text-body-2 mr-4")
+            lesson_widgets.presenter_button()
 
         with layout.drawer as drawer:
             drawer.width = 380
@@ -140,7 +153,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                     _field(f)
 
         with layout.content:
-            with v3.VContainer(fluid=True, classes="pa-2"):
+            with v3.VContainer(
+                fluid=True, classes=("presenter ? 'pa-2 rt-presenter' : 'pa-2'",), id="content"
+            ):
                 with v3.VRow(dense=True):
                     # the 3-D view stays in sight while the chart column scrolls
                     with v3.VCol(
@@ -148,18 +163,45 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                         md=7,
                         style="position: sticky; top: 64px; align-self: flex-start;",
                     ):
-                        with html.Div(id="view-3d", style="height: 480px; position: relative;"):
+                        # fills the height the window leaves; the render follows its size, so
+                        # the picture keeps its aspect ratio at any window size
+                        with html.Div(
+                            id="view-3d",
+                            style="height: calc(100vh - 330px); min-height: 320px; "
+                            "position: relative;",
+                        ):
                             view = PyVistaRCAView(
                                 app.result.plotter, style="width: 100%; height: 100%;"
                             )
                             app.result.view = view
+                        html.Div(
+                            "{{ closeup_numbers }}",
+                            id="closeup-numbers",
+                            v_show="closeup_numbers",
+                            classes="text-caption px-1",
+                        )
+                        html.Div(
+                            "{{ scene_note }}",
+                            id="scene-note",
+                            classes="text-caption text-medium-emphasis px-1",
+                            title="What you see",
+                        )
                         _time_controls()
-                        _scene_controls(ctrl)
-                        _export_controls(ctrl)
-                    with v3.VCol(cols=12, md=5):
-                        _run_panel(ctrl)
+                        with html.Div(classes=lesson_widgets.HIDE):
+                            _scene_controls(ctrl)
+                            _export_controls(ctrl)
+                    with v3.VCol(cols=12, md=5, classes="rt-side"):
+                        lesson_widgets.lessons_panel(ctrl)
+                        with html.Div(classes=lesson_widgets.HIDE):
+                            _run_panel(ctrl)
                         _chart("chart-contact-angle", "chart_contact_angle", "contact_angle")
+                        _raceway_map_controls()
                         _chart("chart-raceway-map", "chart_raceway_map", "raceway_map")
+                        html.Div(
+                            "{{ raceway_metrics }}",
+                            id="raceway-metrics",
+                            classes="text-caption px-2 mb-2",
+                        )
                         with v3.VExpansionPanels(
                             v_model=("open_panels",), multiple=True, variant="accordion"
                         ):
@@ -178,7 +220,9 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             help_key,
                                         )
                             with v3.VExpansionPanel(
-                                title="Compare two runs side by side", value="compare"
+                                title="Compare two runs side by side",
+                                value="compare",
+                                classes=lesson_widgets.HIDE,
                             ):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
@@ -191,7 +235,93 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             hide_details=True,
                                         )
                                     _compare_panel()
+                            with v3.VExpansionPanel(title="Studies", value="studies"):
+                                with v3.VExpansionPanelText():
+                                    _studies_panel(ctrl)
     return layout
+
+
+def _studies_panel(ctrl) -> None:
+    """Run a shipped study (app.components.studies), chart a metric and open any point."""
+    with html.Div(id="studies", classes="mb-2"):
+        with v3.VRow(dense=True, align="center"):
+            with v3.VCol(cols=6):
+                v3.VSelect(
+                    label="Shipped study",
+                    v_model=("study_name",),
+                    items=("study_names",),
+                    density="compact",
+                    hide_details=True,
+                    disabled=("study_running",),
+                )
+            with v3.VCol(cols="auto"):
+                v3.VBtn(
+                    "Run study",
+                    id="study-run",
+                    click=ctrl.study_run,
+                    disabled=("study_running",),
+                    color="primary",
+                    size="small",
+                )
+            with v3.VCol(cols="auto"):
+                v3.VBtn(
+                    "Cancel",
+                    id="study-cancel",
+                    click=ctrl.study_cancel,
+                    disabled=("!study_running",),
+                    size="small",
+                )
+        html.Div("{{ study_status }}", id="study-status", classes="text-caption my-1")
+        with v3.VRow(dense=True):
+            with v3.VCol(cols=6):
+                v3.VSelect(
+                    label="Sweep",
+                    v_model=("study_sweep",),
+                    items=("study_sweeps",),
+                    density="compact",
+                    hide_details=True,
+                )
+            with v3.VCol(cols=6):
+                v3.VSelect(
+                    label="Metric",
+                    v_model=("study_metric",),
+                    items=("study_metric_items",),
+                    density="compact",
+                    hide_details=True,
+                )
+        with html.Div(id="chart-study", classes="mb-2"):
+            lazy_charts.ChartFigure(
+                "chart_study", display_mode_bar=False, style="height: 280px; width: 100%;"
+            )
+        with v3.VTable(density="compact", id="study-table"):
+            with html.Thead():
+                with html.Tr():
+                    for head in (
+                        "point",
+                        "model",
+                        "values",
+                        "status",
+                        "exc i/o deg",
+                        "band i/o deg",
+                        "",
+                    ):
+                        html.Th(head)
+            with html.Tbody():
+                with html.Tr(v_for="row in study_rows", key="row.key"):
+                    html.Td("{{ row.point }}")
+                    html.Td("{{ row.model }}")
+                    html.Td("{{ row.values }}")
+                    html.Td("{{ row.status }}")
+                    html.Td("{{ row.excursion_inner }} / {{ row.excursion_outer }}")
+                    html.Td("{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}")
+                    with html.Td():
+                        v3.VBtn(
+                            "open",
+                            size="x-small",
+                            variant="text",
+                            disabled=("row.status !== 'done'",),
+                            click=(ctrl.study_open, "[row.point, row.model]"),
+                        )
 
 
 def _compare_panel() -> None:
@@ -239,6 +369,33 @@ def _summary_table() -> None:
         html.Div(HELP["compare_summary"], classes="text-caption text-medium-emphasis px-2")
 
 
+def _raceway_map_controls() -> None:
+    """Options of the raceway map: colouring and the start-up left out (it follows the ball
+    chosen for the traces)."""
+    with v3.VRow(dense=True, align="center", classes="mt-1"):
+        with v3.VCol(cols=6):
+            v3.VSelect(
+                label="raceway map coloured by",
+                v_model=("map_colour",),
+                items=(
+                    "[{title: 'raceway', value: 'race'}, {title: 'ball', value: 'ball'}, "
+                    "{title: 'contact load', value: 'load'}]",
+                ),
+                density="compact",
+                hide_details=True,
+                id="map-colour",
+            )
+        with v3.VCol():
+            v3.VCheckbox(
+                label="skip start-up",
+                v_model=("map_skip_startup",),
+                density="compact",
+                hide_details=True,
+                id="map-skip-startup",
+                title="Leave out the samples before the solver's analysed window (settling)",
+            )
+
+
 def _time_controls() -> None:
     with v3.VRow(dense=True, align="center", classes="mt-1"):
         with v3.VCol(cols="auto"):
@@ -273,7 +430,13 @@ def _time_controls() -> None:
                     density="compact",
                 )
         with v3.VCol(cols="auto"):
-            html.Span("{{ frame_time }}", classes="text-caption", style="font-family: monospace;")
+            html.Span(
+                "{{ frame_time }}",
+                classes="text-caption rt-frame-time",
+                style="font-family: monospace;",
+                id="frame-time",
+            )
+            html.Div("{{ slow_motion }}", classes="text-caption", id="slow-motion")
         with v3.VCol(cols=2):
             v3.VSelect(
                 label="speed",
@@ -289,14 +452,21 @@ def _scene_controls(ctrl) -> None:
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols="auto"):
             # plain buttons, not a toggle: pressing the current preset again restores it
-            for preset in ("isometric", "axial", "radial"):
+            for preset in (
+                "isometric",
+                "axial",
+                "radial",
+                "inner track",
+                "outer track",
+                "close-up",
+            ):
                 v3.VBtn(
                     preset,
                     click=(ctrl.set_camera, f"['{preset}']"),
                     size="small",
                     variant=(f"camera === '{preset}' ? 'flat' : 'outlined'",),
                     classes="mr-1",
-                    id=f"camera-{preset}",
+                    id=f"camera-{preset.replace(' ', '-')}",
                 )
         with v3.VCol():
             v3.VSlider(
@@ -308,15 +478,54 @@ def _scene_controls(ctrl) -> None:
                 thumb_label=True,
                 hide_details=True,
                 density="compact",
-                title="Exaggerate the across-groove deviation of traces and ellipse centres",
+                title="Draw the across-groove deviation of the tracks, traces and ellipse centres "
+                "from the run's mean contact angle this many times larger (clipped at the "
+                "shoulders)",
+                id="exaggeration",
+            )
+            html.Span("deviation × {{ exaggeration }}", classes="text-caption")
+        with v3.VCol(cols=2):
+            v3.VSlider(
+                label="ellipses ×",
+                v_model=("ellipse_scale",),
+                min=1,
+                max=10,
+                step=1,
+                thumb_label=True,
+                hide_details=True,
+                density="compact",
+                title="Draw the contact ellipses this many times their true size",
+                id="ellipse-scale",
             )
         with v3.VCol(cols=3):
             v3.VSelect(
-                label="traces",
+                label="ball (traces, map, close-up)",
                 v_model=("trace_ball",),
                 items=("ball_items",),
                 density="compact",
                 hide_details=True,
+            )
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=4):
+            v3.VSelect(
+                label="tracks coloured by",
+                v_model=("track_quantity",),
+                items=(
+                    "[{title: 'dwell (time under a ball)', value: 'dwell'}, "
+                    "{title: 'highest peak pressure', value: 'peak_pressure'}]",
+                ),
+                density="compact",
+                hide_details=True,
+                id="track-quantity",
+            )
+        with v3.VCol(cols="auto"):
+            v3.VCheckbox(
+                label="whole run",
+                v_model=("track_whole_run",),
+                density="compact",
+                hide_details=True,
+                id="track-whole-run",
+                title="Paint the tracks of the whole run, not only up to the current time",
             )
     with v3.VRow(dense=True):
         for layer, label in (
@@ -324,8 +533,11 @@ def _scene_controls(ctrl) -> None:
             ("inner_ring", "inner ring"),
             ("balls", "balls"),
             ("cage", "cage"),
+            ("tracks", "painted tracks"),
+            ("edges", "shoulders"),
             ("ellipses", "ellipses"),
             ("traces", "traces"),
+            ("labels", "labels"),
         ):
             with v3.VCol(cols="auto"):
                 v3.VCheckbox(
@@ -388,6 +600,43 @@ def _run_panel(ctrl) -> None:
             with v3.VCol():
                 html.Div("{{ status }}", id="status", classes="text-body-2")
                 html.Div("{{ eta }}", classes="text-caption")
+        html.Div(
+            "{{ run_blocked }}",
+            id="run-blocked",
+            v_show="run_blocked",
+            classes="text-caption text-error",
+        )
+        html.Div(
+            "{{ run_note }}", id="run-note", v_show="run_note", classes="text-caption text-warning"
+        )
+        with v3.VAlert(
+            id="run-confirm",
+            v_if="run_confirm",
+            type="warning",
+            density="compact",
+            variant="tonal",
+            classes="my-1 text-caption",
+        ):
+            html.Div(
+                "The result of this case leaves the model's validity (see the warnings below). "
+                "Run the dynamic model anyway?"
+            )
+            v3.VBtn(
+                "Run anyway",
+                id="run-anyway",
+                click=ctrl.run_anyway,
+                size="small",
+                color="warning",
+                classes="mt-1 mr-2",
+            )
+            v3.VBtn(
+                "Back",
+                id="run-back",
+                click="run_confirm = false",
+                size="small",
+                variant="text",
+                classes="mt-1",
+            )
         html.Div(
             "{{ run_reason }}",
             id="run-reason",

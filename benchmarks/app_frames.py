@@ -8,8 +8,9 @@ Starts ``racetrace serve`` on a free port and drives headless Chromium (/usr/bin
 - frames shown while playing: distinct images received by #view-3d per second over 8 s;
 - quasi-static preview refresh: seconds from a field edit (axial load) until the browser has the
   new result (state ``result_serial`` advanced; includes the 0.1 s debounce);
-- server memory: resident set size of the server process after loading a real dynamic run of 100
-  shaft revolutions of the default case (computed first unless ``--run FILE`` gives one).
+- server memory: proportional set size of the server's processes (front, sessions) after loading a
+  real dynamic run of 100 shaft revolutions of the default case (computed first unless
+  ``--run FILE`` gives one).
 """
 
 from __future__ import annotations
@@ -88,11 +89,43 @@ new MutationObserver((_, observer) => {
 """
 
 
+def _tree(pid: int) -> list[int]:
+    """``pid`` and every process below it (the front, its session processes, their solvers)."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                ppid = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except OSError:
+                continue
+            children.setdefault(ppid, []).append(int(entry.name))
+    found, todo = [pid], [pid]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            found.append(child)
+            todo.append(child)
+    return found
+
+
 def rss_mb(pid: int) -> float:
-    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-        if line.startswith("VmRSS:"):
-            return int(line.split()[1]) / 1024
-    return float("nan")
+    """Memory of the server: proportional set size (shared pages split between the processes that
+    share them; resident size where the kernel gives no PSS) summed over the process tree."""
+    total = 0.0
+    for p in _tree(pid):
+        try:
+            rollup = Path(f"/proc/{p}/smaps_rollup").read_text().splitlines()
+            key = "Pss:"
+        except OSError:
+            try:
+                rollup = Path(f"/proc/{p}/status").read_text().splitlines()
+                key = "VmRSS:"
+            except OSError:
+                continue
+        for line in rollup:
+            if line.startswith(key):
+                total += int(line.split()[1]) / 1024
+                break
+    return total
 
 
 def frames_per_s(page, seconds: float = 8.0) -> float:
@@ -140,22 +173,26 @@ def main() -> int:
         with sync_playwright() as p:
             browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
             firsts = []
-            for _ in range(args.loads):  # the first load is the cold one a new user sees
-                page = browser.new_page(viewport={"width": 1500, "height": 1000})
+            # the first load is a new browser (it gets the spare session, started ahead); the
+            # others load the page again in the same browser (its own session)
+            context = browser.new_context(viewport={"width": 1500, "height": 1000})
+            for _ in range(args.loads):
+                page = context.new_page()
                 page.add_init_script(FIRST_FRAME_PROBE)
                 page.goto(url)
                 page.wait_for_function("window.__firstFrameMs !== undefined", timeout=60_000)
                 firsts.append(page.evaluate("window.__firstFrameMs") / 1e3)
                 page.wait_for_function(CHARTS_READY, timeout=60_000)
                 page.close()
+            context.close()
             print(
-                f"first 3-D frame after navigation start: first load {firsts[0]:.2f} s, median of "
-                f"{len(firsts)} loads {statistics.median(firsts):.2f} s "
+                f"first 3-D frame after navigation start: new browser {firsts[0]:.2f} s, median "
+                f"of {len(firsts)} loads {statistics.median(firsts):.2f} s "
                 f"(all: {', '.join(f'{x:.2f}' for x in firsts)})"
             )
             page = browser.new_page(viewport={"width": 1500, "height": 1000})
-            page.goto(url)
-            page.wait_for_function(CHARTS_READY, timeout=60_000)
+            page.goto(url, timeout=300_000)  # a second new browser: its session may be starting
+            page.wait_for_function(CHARTS_READY, timeout=300_000)
             time.sleep(1)
             print(f"frames shown while playing the default case: {frames_per_s(page):.1f} /s")
             page.locator("#play-button").click()  # pause
@@ -200,10 +237,24 @@ def main() -> int:
                 f"run loaded ({info.run_id}), {rss_mb(proc.pid):.0f} MB after playing it with "
                 "every chart panel open"
             )
+            other = browser.new_page(viewport={"width": 1200, "height": 900})  # a second session
+            other.goto(url, timeout=300_000)
+            other.wait_for_function(CHARTS_READY, timeout=300_000)
+            other.locator("#runs-select .v-field").click()
+            other.locator(".v-overlay--active .v-list-item").first.click()
+            other.wait_for_function(
+                f"(window.trame.state.get('result_label') || '').includes('{info.title}')",
+                timeout=120_000,
+            )
+            time.sleep(2)
+            print(
+                f"server memory with two sessions, each with the 100-revolution run loaded: "
+                f"{rss_mb(proc.pid):.0f} MB (front, {len(_tree(proc.pid)) - 1} processes below it)"
+            )
             browser.close()
     finally:
         proc.terminate()
-        proc.wait(timeout=10)
+        proc.wait(timeout=60)  # the sessions stop first
     return 0
 
 

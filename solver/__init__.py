@@ -8,12 +8,16 @@ Public API (everything else is internal):
 - ``dynamic_problems(case) -> list[Problem]``: why the dynamic model cannot run a valid case
 - ``to_inputs(case) -> Inputs``: the SI inputs both models read
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
+- ``solve_over_revolution(case, angles=36) -> xarray.Dataset``: the quasi-static steady state at
+  inner-ring angles over one shaft revolution (dimension ``ring_angle``)
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
   ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
   ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
+- ``Study.from_file(path)`` / ``open_study(folder)``: parameter studies run on Dask
+  (docs/study-format.md)
 - ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
   ``SimulationDiverged`` (the dynamic integration failed), ``ResultWriteError`` (a result file
   could not be written; an OSError naming the file)
@@ -46,11 +50,14 @@ _LAZY = {
     "SimulationOptions": "solver.models.dynamic",
     "BearingGeometry": "solver.geometry",
     "solve_quasistatic": "solver.models.quasistatic",
+    "solve_over_revolution": "solver.models.quasistatic",
     "simulate": "solver.models.dynamic",
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
     "result_warnings": "solver.results.checks",
     "trajectory_summary": "solver.results.summary",
+    "Study": "solver.study",
+    "open_study": "solver.study",
     "contact_table": "solver.results.io",
     "RacetraceAccessor": "solver.results.accessor",
 }

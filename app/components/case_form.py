@@ -5,7 +5,8 @@ State keys: ``case_items``/``case_name`` (shipped cases), ``form`` (field descri
 ``fv_<name>`` (field text), ``fe_<name>`` (field message, "" when valid), ``placeholders``,
 ``case_message``, ``case_valid``, ``case_toml_href``/``case_file_name`` (download of the edited
 case), ``run_reason`` (why the dynamic model cannot run a valid case, "" when it can),
-``uploaded_case``.
+``run_blocked`` (why Run is off while the form is invalid), ``result_stale`` (the result on show
+is not of the form's case), ``uploaded_case``.
 """
 
 from __future__ import annotations
@@ -15,11 +16,13 @@ import logging
 import urllib.parse
 
 from ..caseform import apply_form, case_form_values, form_fields, form_text
+from ..runs import describe_case
 from .base import Component
 
 log = logging.getLogger("racetrace.app")
 
 PREVIEW_DEBOUNCE_S = 0.1
+MAX_UPLOAD_BYTES = 1024 * 1024  # an uploaded case file is at most 1 MB
 _SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
 
 
@@ -70,13 +73,15 @@ class CaseForm(Component):
         s.case_toml_href = ""
         s.case_file_name = "case.toml"
         s.run_reason = ""
+        s.run_blocked = ""  # why Run is off because of the form ("" when valid)
+        s.result_stale = False  # the result on show is not of the case in the form
         s.uploaded_case = None
 
     def bind(self) -> None:
-        self.state.change("case_name")(self._on_case_name)
-        self.state.change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
-        self.state.change("uploaded_case")(self._on_upload)
-        self.ctrl.reset_case = self.reset_case
+        self.on_change("case_name")(self._on_case_name)
+        self.on_change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
+        self.on_change("uploaded_case")(self._on_upload)
+        self.action("reset_case", self.reset_case)
 
     def first_case_name(self, case_name: str) -> str:
         """``case_name`` if it is a shipped case, else the first shipped case."""
@@ -135,14 +140,24 @@ class CaseForm(Component):
 
         item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
         self.state.uploaded_case = None  # empty the file box, so the same file can be sent again
-        name = str(item.get("name", "file"))
+        if not isinstance(item, dict):
+            self.state.status = "error: the upload was not a file"
+            return
+        name = str(item.get("name", "file"))[:200]
         content = item.get("content", b"")
+        if len(content) > MAX_UPLOAD_BYTES:
+            self.state.case_message = (
+                f"{name}: {len(content)} bytes; a case file is at most {MAX_UPLOAD_BYTES} bytes"
+            )
+            self.state.status = f"error: upload refused: {name} is too large"
+            return
         try:
             # the upload is case text, never a path on the server
             text = decode_case_bytes(content, name) if isinstance(content, bytes) else str(content)
             case = parse_case(text, source=f"uploaded file {name}")
         except CaseError as error:
             self.state.case_message = f"{name}: {error}"
+            self.state.status = f"error: upload {name} is not a valid case (see above the form)"
             return
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         self.set_base_case(case)
@@ -173,13 +188,45 @@ class CaseForm(Component):
             )
         self.case = result.case if result.valid else None
         self.case_text = self.case.to_toml() if self.case is not None else None
+        self.state.run_blocked = self._blocked_reason(result)
+        self.update_staleness()
         if self.case is not None:
+            download = self._download_case(self.case)
             self.state.case_toml_href = "data:application/toml;charset=utf-8," + urllib.parse.quote(
-                self.case_text
+                download.to_toml()
             )
-            name = self.state.case_name or self.case.bearing.designation or "case"
-            self.state.case_file_name = "".join(c if c.isalnum() else "-" for c in name) + ".toml"
+            self.state.case_file_name = _file_name(describe_case(self.case)) + ".toml"
         return result
+
+    def _download_case(self, case):
+        """The edited case as offered for download: a title left as the picked case had it, but
+        with other values edited, no longer describes it; it is then rewritten from the values."""
+        import dataclasses
+
+        base = self.base_case
+        if base is None or case.title != base.title:
+            return case  # the user's own title
+        if dataclasses.replace(case, title=None) == dataclasses.replace(base, title=None):
+            return case  # not edited
+        return dataclasses.replace(case, title=describe_case(case))
+
+    def _blocked_reason(self, result) -> str:
+        """Why Run is off because of the form ("" when the form is valid)."""
+        if result.valid:
+            return ""
+        labels = [f.label for f in self.fields if result.errors.get(f.name)]
+        if labels:
+            shown = ", ".join(labels[:4]) + (
+                f" and {len(labels) - 4} more" if len(labels) > 4 else ""
+            )
+            return f"Run is off until the form is fixed: {shown}"
+        return "Run is off until the case is fixed (see the message above the form)"
+
+    def update_staleness(self) -> None:
+        """``result_stale``: the result on show is not of the case in the form (edited, or the
+        form is invalid)."""
+        shown = self.session.result.shown_case_text
+        self.state.result_stale = shown is not None and self.case_text != shown
 
     @staticmethod
     def _run_reason(case) -> str:
@@ -220,7 +267,7 @@ class CaseForm(Component):
             return
         case = self.case
         try:
-            ds = await asyncio.to_thread(solve_quasistatic, case)
+            ds = await asyncio.to_thread(solve_preview, case)
         except Exception as error:  # shown in words in the status line
             if not self.state.busy:
                 with self.state:
@@ -237,7 +284,7 @@ class CaseForm(Component):
         if self.case is None:
             return
         try:
-            ds = solve_quasistatic(self.case)
+            ds = solve_preview(self.case)
         except Exception as error:
             self.state.status = f"error: {error}"
             return
@@ -249,4 +296,28 @@ def solve_quasistatic(case):
     """The quasi-static result of ``case`` (a Dataset)."""
     import solver
 
+    return solver.solve_quasistatic(case)
+
+
+def _file_name(text: str) -> str:
+    """``text`` as a file name stem: letters and digits, runs of anything else as one dash."""
+    stem = "".join(c if c.isalnum() else "-" for c in text)
+    while "--" in stem:
+        stem = stem.replace("--", "-")
+    return stem.strip("-")[:80] or "case"
+
+
+PREVIEW_RING_ANGLES = 12  # ring angles solved to preview a misalignment turning with the ring
+
+
+def solve_preview(case):
+    """The preview of ``case``: its quasi-static solution, or, for a misalignment turning with the
+    inner ring, the solutions over one revolution (``solver.solve_over_revolution``): a t = 0
+    snapshot would show a band where the run draws a line and the reverse."""
+    import solver
+
+    op = getattr(case, "operating", None)
+    turning = getattr(op, "misalignment_frame", "space") == "ring"
+    if turning and (getattr(op, "misalignment_deg", None) or 0.0) != 0.0:
+        return solver.solve_over_revolution(case, angles=PREVIEW_RING_ANGLES)
     return solver.solve_quasistatic(case)

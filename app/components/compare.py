@@ -27,7 +27,7 @@ class Compare(Component):
         s.compare_message = ""
 
     def bind(self) -> None:
-        self.state.change("compare_id")(self._on_compare_id)
+        self.on_change("compare_id")(self._on_compare_id)
 
     def is_current(self) -> bool:
         """Whether the comparison shown is of the result on show and the chosen run."""
@@ -48,6 +48,9 @@ class Compare(Component):
         run_id = self.state.compare_id
         if not run_id or result.source is None:
             self._clear_comparison("")
+            return
+        if not self.session.runs.is_listed(run_id):
+            self._clear_comparison(f"cannot compare with {str(run_id)[:80]}: not a saved run")
             return
         try:
             ds, other = self._load_compare_run(run_id)

@@ -7,6 +7,8 @@ State keys: ``export_href``/``export_name`` (the file offered for download), ``e
 from __future__ import annotations
 
 import asyncio
+import os
+import tempfile
 import time
 import urllib.parse
 from pathlib import Path
@@ -22,6 +24,7 @@ class Export(Component):
     def __init__(self, session):
         super().__init__(session)
         self.task = None  # the export running in the background, if any
+        self._dir = None  # see exports_dir
 
     def init_state(self) -> None:
         s = self.state
@@ -31,12 +34,23 @@ class Export(Component):
         s.exporting = False
 
     def bind(self) -> None:
-        self.ctrl.export = self.request_export
+        self.action("export", self.request_export)
 
     @property
     def exports_dir(self) -> Path:
-        """Where exported files are written (served under ``/racetrace-exports/``)."""
-        return self.session.store.root / ".exports"
+        """Where exported files are written (served under ``/racetrace-exports/``): ``.exports``
+        in the runs folder, or a temporary folder when the runs folder cannot take files."""
+        if self._dir is None:
+            wanted = self.session.store.root / ".exports"
+            try:
+                wanted.mkdir(parents=True, exist_ok=True)
+                writable = os.access(wanted, os.W_OK)
+            except OSError:
+                writable = False
+            if not writable:
+                wanted = Path(tempfile.mkdtemp(prefix="racetrace-exports-"))
+            self._dir = wanted
+        return self._dir
 
     def forget_download(self) -> None:
         """A new result is on show: the file offered is no longer of it."""
@@ -60,6 +74,12 @@ class Export(Component):
         if kind in ("png", "gif", "mp4") and result.scene is None:
             return "export failed: the 3-D view is not available"
         return ""
+
+    def caption(self, index: int) -> str:
+        """What an exported image says about itself: the case, its loads, the time shown."""
+        result = self.session.result
+        t_ms = float(result.source.times[index]) * 1e3
+        return f"t = {t_ms:.3f} ms   {result.shown_title}   (racetrace)"
 
     def _animation_step(self) -> int:
         return max(1, -(-self.session.result.source.n_frames // MAX_ANIMATION_FRAMES))
@@ -117,7 +137,7 @@ class Export(Component):
             elif kind == "csv":
                 await asyncio.to_thread(ex.export_csv, dataset, path)
             elif kind == "png":
-                ex.export_png(result.plotter, path)
+                ex.export_png(result.plotter, path, self.caption(result.scene.frame_index))
             else:
                 await self._export_animation(ex, path)
         except (OSError, ValueError) as error:
@@ -141,7 +161,9 @@ class Export(Component):
         with self.state:
             self.state.playing = False
         result.animating_export = True  # frame changes from the page wait until it is written
-        frames = ex.iter_export_animation(result.scene, path, step=self._animation_step())
+        frames = ex.iter_export_animation(
+            result.scene, path, step=self._animation_step(), caption=self.caption
+        )
         for fraction in frames:
             with self.state:
                 self.state.export_message = f"writing {path.name}: {100 * fraction:.0f} %"

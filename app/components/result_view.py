@@ -1,11 +1,13 @@
 """The result on show (a quasi-static preview or a saved run): its 3-D scene, its charts and the
 time controls.
 
-State keys: ``frame``/``frame_max``/``frame_time``/``playing``/``speed``, ``result_label``,
-``result_serial`` (incremented whenever a new result is shown), ``result_warnings``,
-``open_panels`` (chart panels open on the page), scene options (``show_<layer>``,
-``exaggeration``, ``trace_ball``, ``ball_items``, ``camera``), ``chart_help`` and the chart
-figures ``chart_<name>`` (plotly JSON).
+State keys: ``frame``/``frame_max``/``frame_time`` (time and revolution counter)/``playing``/
+``speed``, ``slow_motion`` (the playback rate in words), ``scene_note`` (what the view shows),
+``result_label``, ``result_serial`` (incremented whenever a new result is shown),
+``result_warnings``, ``open_panels`` (chart panels open on the page), scene options
+(``show_<layer>``, ``exaggeration``, ``ellipse_scale``, ``track_quantity``, ``track_whole_run``,
+``trace_ball``, ``ball_items``, ``camera``), ``chart_help`` and the chart figures
+``chart_<name>`` (plotly JSON).
 """
 
 from __future__ import annotations
@@ -15,17 +17,35 @@ import logging
 import math
 import time
 
+import numpy as np
+
 from .. import charts
 from ..frames import FrameSource, frame_source
-from .base import Component, fig_json
+from ..runs import describe_case
+from .base import Component, as_float, as_int, fig_json
 from .case_form import solve_quasistatic
 
 log = logging.getLogger("racetrace.app")
 
 PLAY_FPS = 15.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
-CUTAWAY_HALF_WIDTH = math.radians(70.0)  # the outer ring is cut away +-70 deg about the load side
-LAYERS = ("inner_ring", "outer_ring", "balls", "cage", "ellipses", "traces")
+CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half shell on the load side
+MAX_EXAGGERATION = 1000.0
+MAX_SPEED = 1000  # frames per animation tick
+MAX_ELLIPSE_SCALE = 100.0
+LAYERS = (
+    "inner_ring",
+    "outer_ring",
+    "balls",
+    "cage",
+    "tracks",
+    "edges",
+    "ellipses",
+    "traces",
+    "labels",
+)  # app.scene.LAYERS (not imported here: the state works without VTK)
+HIDDEN_LAYERS = ("traces",)  # off until asked for: the painted tracks show where the balls ran
+DEFAULT_EXAGGERATION = 5.0  # across-groove deviations drawn 5x: lines and bands tell apart
 CHARTS = (
     "contact_angle",
     "raceway_map",
@@ -54,8 +74,14 @@ class ResultView(Component):
         self.dataset = None
         self.quasistatic = None
         self.source: FrameSource | None = None
+        self.facts = None  # app.teaching.Facts of the result on show
+        self._map_key = None  # what the cached whole-run raceway map shows
+        self._map_base = None  # its plotly JSON, without the marks of the current frame
+        self._shoulders = None  # (inner, outer) shoulder latitudes (rad) of the result on show
+        self._analysis_start = None  # start of the solver's analysed window (s)
         self.shown_case_text = None  # case TOML of the result on show
         self.shown_run_id = None  # id of the saved run on show (None for a preview)
+        self.shown_title = ""  # the case and loads of the result on show, in words
         self.animating_export = False  # an animation export is moving the scene's frames
         self._scene_key = None
         self._last_chart_update = 0.0
@@ -75,8 +101,17 @@ class ResultView(Component):
         s.result_serial = 0
         s.open_panels = []
         for layer in LAYERS:
-            s[f"show_{layer}"] = True
-        s.exaggeration = 1.0
+            s[f"show_{layer}"] = layer not in HIDDEN_LAYERS
+        s.exaggeration = DEFAULT_EXAGGERATION
+        s.ellipse_scale = 1.0  # drawn size of the contact ellipses / true size
+        s.track_quantity = "dwell"  # painted tracks coloured by "dwell" or "peak_pressure"
+        s.track_whole_run = False  # paint the whole run, not only up to the current frame
+        s.slow_motion = ""  # "1 s on screen = ... of bearing time"
+        s.map_colour = "race"  # raceway map coloured by "race", "ball" or "load"
+        s.map_skip_startup = False  # raceway map leaves out the start-up (solver's window)
+        s.raceway_metrics = ""  # excursion and band thickness under the raceway map
+        s.closeup_numbers = ""  # the close-up ball's contacts in numbers (camera "close-up")
+        s.scene_note = ""  # the "what you see" note beside the view
         s.trace_ball = -1
         s.ball_items = [{"title": "all balls", "value": -1}]
         s.camera = "isometric"
@@ -85,15 +120,17 @@ class ResultView(Component):
             s[f"chart_{name}"] = {"data": [], "layout": {}}
 
     def bind(self) -> None:
-        s, c = self.state, self.ctrl
-        s.change("frame")(self._on_frame)
-        s.change("playing")(self._on_playing)
-        s.change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
-        s.change("exaggeration", "trace_ball")(self._on_trace_options)
-        s.change("camera")(self._on_camera)
-        s.change("open_panels")(self._on_open_panels)
-        c.step = self.step
-        c.set_camera = self.set_camera
+        self.on_change("frame")(self._on_frame)
+        self.on_change("playing")(self._on_playing)
+        self.on_change(*[f"show_{n}" for n in LAYERS])(self._on_layers)
+        self.on_change("exaggeration", "trace_ball")(self._on_trace_options)
+        self.on_change("ellipse_scale", "track_quantity", "track_whole_run")(self._on_track_options)
+        self.on_change("speed")(self._on_speed)
+        self.on_change("map_colour", "map_skip_startup")(self._on_map_options)
+        self.on_change("camera")(self._on_camera)
+        self.on_change("open_panels")(self._on_open_panels)
+        self.action("step", self.step)
+        self.action("set_camera", self.set_camera)
 
     # ---- what is shown --------------------------------------------------------------------------
     def show_preview(self, ds) -> None:
@@ -114,14 +151,23 @@ class ResultView(Component):
         from solver import parse_case
         from solver.results.dataset import geometry_from_result
 
+        from ..teaching import facts_from_result
+
         source = frame_source(ds, **self._animation_options(ds))
+        if "ring_angle" in ds.dims:  # a preview over one revolution: the views read its start
+            ds = ds.isel(ring_angle=0).drop_vars("ring_angle")
         self.dataset = ds
         self.source = source
+        self.facts = facts_from_result(ds)
+        self._describe_tracks(ds)
         # the run's own case (provenance): its case warnings, whether the form already shows it, and
         # the quasi-static comparison solved for it; the views read the result's coordinates
         form_case = self.session.form.case
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
         self.shown_case_text = case.to_toml() if case is not None else None
+        model = "dynamic" if "time" in ds.dims else "quasi-static"
+        self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
+        self.session.form.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
         if "time" not in ds.dims:
             self.quasistatic = ds
@@ -134,6 +180,8 @@ class ResultView(Component):
         if self.render_enabled:
             self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
             self.scene.show_source(source, 0)
+            self.scene.show_facts(self.facts)
+        self._update_words()
         s = self.state
         s.frame_max = source.n_frames - 1
         s.result_label = label
@@ -142,9 +190,76 @@ class ResultView(Component):
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
-        if s.frame > s.frame_max:
+        if as_int(s.frame, 0) > s.frame_max:
             s.frame = 0
-        self._apply_frame(int(s.frame), charts_too=True)  # includes an open comparison
+        self._apply_frame(as_int(s.frame, 0), charts_too=True)  # includes an open comparison
+
+    def _describe_tracks(self, ds) -> None:
+        """Shoulder limits, settling window and trajectory metrics of ``ds`` for the map."""
+        from solver.results.dataset import geometry_from_result
+
+        from ..raceway import shoulder_angles
+
+        self._map_key = None
+        self._shoulders = shoulder_angles(geometry_from_result(ds))
+        try:
+            summary = ds.racetrace.summary()
+            self.state.raceway_metrics = charts.trajectory_metric_words(summary)
+            start = float(summary["analysis_start_time"]) if "time" in ds.dims else math.nan
+            self._analysis_start = start if math.isfinite(start) else None
+        except (KeyError, ValueError) as error:  # an older result: the map still shows
+            log.warning("no trajectory metrics for the map: %s", error)
+            self._analysis_start = None
+            self.state.raceway_metrics = ""
+
+    def _closeup_numbers(self, index: int) -> str:
+        """The close-up ball's two contacts in numbers at frame ``index``."""
+        from ..raceway import RACES
+
+        j = max(0, self._trace_ball(self.state.trace_ball, self.source.ball_count))
+        f = self.source.frame(index)
+        c = self.source.contact
+        parts = [f"ball {j}"]
+        for race in (0, 1):
+            if not f.loaded[j, race]:
+                parts.append(f"{RACES[race]}: unloaded")
+                continue
+            text = (
+                f"{RACES[race]}: contact angle {math.degrees(f.contact_angle[j, race]):.2f}°, "
+                f"load {f.contact_load[j, race]:.0f} N, "
+                f"peak pressure {f.max_pressure[j, race] * 1e-9:.2f} GPa"
+            )
+            if "spin_to_roll" in c:
+                text += f", spin-to-roll {c['spin_to_roll'][f.index, j, race]:.3f}"
+            parts.append(text)
+        if self.source.model == "dynamic" and "ball_latitude" in c:
+            parts.append("red: the contact paths on the ball's own surface")
+        else:
+            parts.append("the contact path on the ball's surface needs a dynamic run")
+        return " · ".join(parts)
+
+    def _on_map_options(self, **_):
+        self.update_charts()
+
+    def _raceway_map(self, index: int, balls) -> dict:
+        """The whole-run raceway map (cached per result and options) with the contacts now."""
+        s = self.state
+        skip = bool(s.map_skip_startup) and self._analysis_start is not None
+        key = (int(s.result_serial), balls, str(s.map_colour), skip)
+        if key != self._map_key:
+            fig = charts.raceway_map_figure(
+                self.source,
+                balls=balls,
+                colour=str(s.map_colour),
+                start_time=self._analysis_start if skip else None,
+                shoulders=self._shoulders,
+            )
+            self._map_base, self._map_key = fig_json(fig), key
+        now = charts.current_contact_traces(self.source, index, balls)
+        import plotly.graph_objects as go
+
+        marks = fig_json(go.Figure(data=now))["data"]
+        return {**self._map_base, "data": [*self._map_base["data"], *marks]}
 
     @staticmethod
     def _warnings_of(ds, case) -> list[str]:
@@ -201,9 +316,13 @@ class ResultView(Component):
                 self.plotter.remove_scalar_bar(title)
             self.plotter.clear_actors()
         camera = self.plotter.camera_position if self.scene is not None else None
+        ball = self._trace_ball(self.state.trace_ball, geometry.ball_count)
         options = SceneOptions(
-            exaggeration=float(self.state.exaggeration),
-            trace_ball=None if int(self.state.trace_ball) < 0 else int(self.state.trace_ball),
+            exaggeration=self._exaggeration(self.state.exaggeration),
+            ellipse_scale=self._ellipse_scale(self.state.ellipse_scale),
+            track_quantity=self._track_quantity(self.state.track_quantity),
+            track_whole_run=bool(self.state.track_whole_run),
+            trace_ball=None if ball < 0 else ball,
             # face the load zone and cut the outer ring away there
             view_azimuth=load_side,
             outer_cutaway=(load_side - CUTAWAY_HALF_WIDTH, load_side + CUTAWAY_HALF_WIDTH),
@@ -235,15 +354,64 @@ class ResultView(Component):
             self.scene.set_layer(layer, bool(self.state[f"show_{layer}"]))
         self.push_view()
 
-    def _on_trace_options(self, exaggeration=1.0, trace_ball=-1, **_):
+    @staticmethod
+    def _trace_ball(value, ball_count: int) -> int:
+        """The ball whose traces are drawn (-1: every ball), from the page's ``trace_ball``."""
+        return as_int(value, -1, -1, ball_count - 1)
+
+    @staticmethod
+    def _exaggeration(value) -> float:
+        return as_float(value, DEFAULT_EXAGGERATION, 1.0, MAX_EXAGGERATION)
+
+    @staticmethod
+    def _ellipse_scale(value) -> float:
+        return as_float(value, 1.0, 1.0, MAX_ELLIPSE_SCALE)
+
+    @staticmethod
+    def _track_quantity(value) -> str:
+        return str(value) if value in ("dwell", "peak_pressure") else "dwell"
+
+    def _on_trace_options(self, exaggeration=DEFAULT_EXAGGERATION, trace_ball=-1, **_):
         if self.scene is not None:
-            self.scene.options.trace_ball = None if int(trace_ball) < 0 else int(trace_ball)
-            self.scene.set_exaggeration(float(exaggeration))
+            ball = self._trace_ball(trace_ball, self.scene.geometry.ball_count)
+            self.scene.options.trace_ball = None if ball < 0 else ball
+            self.scene.options.closeup_ball = max(0, ball)
+            self.scene.set_exaggeration(self._exaggeration(exaggeration))
             self.push_view()
+        self._update_words()
         self.update_charts()
 
+    def _on_track_options(self, **_):
+        s = self.state
+        if self.scene is not None:
+            self.scene.set_ellipse_scale(self._ellipse_scale(s.ellipse_scale))
+            self.scene.set_track_options(
+                self._track_quantity(s.track_quantity), bool(s.track_whole_run)
+            )
+            self.push_view()
+        self._update_words()
+
+    def _on_speed(self, **_):
+        self._update_words()
+
+    def _update_words(self) -> None:
+        """The slow-motion factor and the "what you see" note for the result on show."""
+        from ..teaching import playback_rate, slow_motion_words, what_you_see
+
+        s = self.state
+        if self.source is None or self.facts is None:
+            s.slow_motion, s.scene_note = "", ""
+            return
+        step = float(np.median(np.diff(self.source.times))) if self.source.n_frames > 1 else 0.0
+        speed = as_int(s.speed, 1, 1, MAX_SPEED)
+        s.slow_motion = slow_motion_words(playback_rate(step, speed, PLAY_FPS))
+        s.scene_note = what_you_see(
+            self.facts, self._exaggeration(s.exaggeration), self._ellipse_scale(s.ellipse_scale)
+        )
+
     def set_camera(self, preset: str) -> None:
-        """Apply camera ``preset`` (isometric, axial, radial), even if it is the current one."""
+        """Apply camera ``preset`` (isometric, axial, radial, inner track, outer track), even if
+        it is the current one."""
         if self.state.camera == preset:
             self._on_camera(preset)  # no state change, so no callback: apply it here
         else:
@@ -253,6 +421,9 @@ class ResultView(Component):
         if self.scene is not None:
             self.scene.set_camera(camera)
             self.push_view()
+        if self.source is not None:
+            i = as_int(self.state.frame, 0, 0, self.source.n_frames - 1)
+            self.state.closeup_numbers = self._closeup_numbers(i) if camera == "close-up" else ""
 
     # ---- time and charts ------------------------------------------------------------------------
     def _apply_frame(self, index: int, charts_too: bool) -> None:
@@ -262,7 +433,15 @@ class ResultView(Component):
         if self.scene is not None and not self.animating_export:
             self.scene.set_frame(index)
             self.push_view()
-        self.state.frame_time = f"t = {self.source.times[index] * 1e3:8.3f} ms"
+        from ..teaching import revolution_words
+
+        t = float(self.source.times[index])
+        total = float(self.source.times[-1])
+        revolutions = revolution_words(t, self.facts, total) if self.facts else ""
+        self.state.frame_time = f"t = {t * 1e3:8.3f} ms · {revolutions}"
+        self.state.closeup_numbers = (
+            self._closeup_numbers(index) if self.state.camera == "close-up" else ""
+        )
         if charts_too:
             self.update_charts(index)
 
@@ -275,13 +454,17 @@ class ResultView(Component):
         """
         if self.source is None:
             return
-        i = int(self.state.frame) if index is None else index
         src, s = self.source, self.state
-        open_panels = set(s.open_panels or ())
-        ball = int(s.trace_ball)
+        i = as_int(s.frame, 0) if index is None else index
+        i = min(max(i, 0), src.n_frames - 1)
+        panels = s.open_panels
+        open_panels = (
+            {p for p in panels if isinstance(p, str)} if isinstance(panels, list) else set()
+        )
+        ball = self._trace_ball(s.trace_ball, src.ball_count)
         balls = (ball,) if ball >= 0 else None  # None: every ball
         s.chart_contact_angle = fig_json(charts.contact_angle_figure(src, balls, current=i))
-        s.chart_raceway_map = fig_json(charts.raceway_map_figure(src, stop=i + 1))
+        s.chart_raceway_map = self._raceway_map(i, balls)
         if "load_azimuth" in open_panels:
             s.chart_load_azimuth = fig_json(charts.load_azimuth_figure(src, i))
         if "ellipse" in open_panels:
@@ -305,13 +488,14 @@ class ResultView(Component):
         follow = (
             not self.state.playing or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S
         )
-        self._apply_frame(int(frame), charts_too=follow)
+        self._apply_frame(as_int(frame, 0), charts_too=follow)
 
     def step(self, delta: int = 1) -> None:
         """Move ``delta`` frames (wrapping at the ends)."""
         if self.source is None:
             return
-        self.state.frame = int((int(self.state.frame) + int(delta)) % self.source.n_frames)
+        frame = as_int(self.state.frame, 0) + as_int(delta, 1, -1_000_000, 1_000_000)
+        self.state.frame = frame % self.source.n_frames
 
     def _on_playing(self, playing=False, **_):
         if playing and (self._play_task is None or self._play_task.done()):
@@ -327,9 +511,13 @@ class ResultView(Component):
         period = 1.0 / PLAY_FPS
         while self.state.playing and self.session.clients > 0 and self.source is not None:
             t0 = time.monotonic()
-            with self.state:
-                step = max(1, int(self.state.speed))
-                self.state.frame = (int(self.state.frame) + step) % self.source.n_frames
+            try:
+                with self.state:
+                    step = as_int(self.state.speed, 1, 1, MAX_SPEED)
+                    frame = as_int(self.state.frame, 0) + step
+                    self.state.frame = frame % self.source.n_frames
+            except Exception:  # a frame that fails to draw must not stop the animation
+                log.exception("animation frame failed")
             await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
 
     def shutdown(self) -> None:

@@ -14,11 +14,16 @@ from .pool import SolverPool
 
 class Services:
     """The run store on ``runs_dir`` (default :func:`app.runs.default_runs_dir`) and the pool of
-    solver processes."""
+    solver processes (``slots_dir``, ``max_runs``: see :class:`SolverPool`)."""
 
-    def __init__(self, runs_dir: str | Path | None = None):
+    def __init__(
+        self,
+        runs_dir: str | Path | None = None,
+        slots_dir: str | Path | None = None,
+        max_runs: int | None = None,
+    ):
         self.store = RunStore(runs_dir if runs_dir is not None else default_runs_dir())
-        self.pool = SolverPool()
+        self.pool = SolverPool(slots_dir, max_runs)
 
     def shutdown(self) -> None:
         """Stop every solver process (the server is exiting)."""

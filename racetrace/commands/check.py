@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 
+from solver.errors import printable
+
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
@@ -58,7 +60,10 @@ def summary(case) -> str:
         names = ", ".join(sorted(k.split(".", 1)[1] for k in case.estimated))
         lines.append(f"estimated: {names} (from the bearing; see docs/case-format.md)")
     if not case.lubricant_given:
-        lines.append("lubricant: no [lubricant] section; the dynamic model uses the default oil")
+        users = "the dynamic model uses"
+        if case.simulation.quasistatic_ball_speeds == "traction":
+            users = "the dynamic model and the quasi-static traction balance use"
+        lines.append(f"lubricant: no [lubricant] section; {users} the default oil")
     lines.append("OK: the case is valid")
     return "\n".join(lines)
 
@@ -68,7 +73,7 @@ def run(args) -> int:
     from solver.catalogue import resolve_case
 
     case = resolve_case(args.case)
-    print(summary(case))
+    print(printable(summary(case), keep_newlines=True))  # the title is the user's text
     for problem in dynamic_problems(case):
         print(f"dynamic model: {problem.message}")
     for warning in case.warnings():

@@ -200,7 +200,7 @@ def print_result_warnings(ds, stream=None) -> None:
 
 def run(args) -> int:
     from solver.catalogue import resolve_case
-    from solver.errors import CaseError, Problem
+    from solver.errors import CaseError, Problem, printable
     from solver.models.quasistatic import solve_quasistatic
 
     case = resolve_case(args.case)
@@ -219,7 +219,7 @@ def run(args) -> int:
             out["output"] = None if written is None else str(written)
         text = json.dumps(out, indent=2, allow_nan=False)
     else:
-        text = table(ds, case)
+        text = printable(table(ds, case), keep_newlines=True)  # the title is the user's text
         if written is not None:
             text += f"\n\nresults written to {written}"
     try:

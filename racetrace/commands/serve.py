@@ -22,6 +22,7 @@ APP_MODULES = (
     "plotly",
     "imageio",
     "imageio_ffmpeg",
+    "aiohttp",
 )
 
 
@@ -30,7 +31,10 @@ def register(subparsers) -> None:
         "serve",
         help="open the browser app",
         description="Serve the racetrace browser app. It opens on the default case, already "
-        "solved, so the page shows a moving bearing straight away.",
+        "solved, so the page shows a moving bearing straight away. Each browser gets its own "
+        "session (--shared: one for all). A --host other than a loopback address is reachable "
+        "from the network: the server then prints its address with a random access token and "
+        "refuses requests without it.",
     )
     p.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1)")
     p.add_argument("--port", type=int, default=8080, help="port (default 8080)")
@@ -42,6 +46,19 @@ def register(subparsers) -> None:
     )
     p.add_argument(
         "--case", default=None, help="shipped case to open (default spindle-combined-load)"
+    )
+    p.add_argument(
+        "--shared",
+        action="store_true",
+        help="one session for every browser (a design review on a shared screen); by default "
+        "each browser gets its own case, run, camera and view size",
+    )
+    p.add_argument(
+        "--max-runs",
+        type=int,
+        default=None,
+        help="solver processes at once, over all sessions (default: the number of cores); "
+        "further runs wait in a queue",
     )
     p.set_defaults(func=run)
 
@@ -80,4 +97,6 @@ def run(args) -> int:
         open_browser=args.open,
         runs_dir=args.runs_dir,
         case_name=args.case,
+        shared=args.shared,
+        max_runs=args.max_runs,
     )

@@ -16,6 +16,7 @@ L10r) go to stdout, as JSON with ``--json``.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
@@ -86,15 +87,29 @@ class ProgressBar:
         self.stream = stream if stream is not None else sys.stderr
         self.width = width
         self.start = time.perf_counter()
+        self._first = None  # (wall time, fraction) of the first report: the rate is timed from it
+
+    def eta(self, now: float, fraction: float) -> float:
+        """Seconds left from the rate since the first report (NaN until at least 1 s and 0.5 % of
+        progress after it: start-up and compiling say nothing about the rate)."""
+        if self._first is None:
+            self._first = (now, fraction)
+            return float("nan")
+        t0, f0 = self._first
+        if now - t0 < 1.0 or fraction - f0 < 0.005:
+            return float("nan")
+        return (now - t0) / (fraction - f0) * (1.0 - fraction)
 
     def __call__(self, fraction: float, simulated_time: float, message: str = "") -> None:
-        elapsed = time.perf_counter() - self.start
-        eta = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
+        now = time.perf_counter()
+        elapsed = now - self.start
+        eta = self.eta(now, fraction)
+        eta_text = f"ETA {eta:.0f} s" if eta == eta else "ETA --"
         filled = int(round(self.width * fraction))
         bar = "#" * filled + "." * (self.width - filled)
         self._write(
             f"\r[{bar}] {100 * fraction:5.1f}%  t = {simulated_time * 1e3:.3f} ms  "
-            f"elapsed {elapsed:.0f} s  ETA {eta:.0f} s "
+            f"elapsed {elapsed:.0f} s  {eta_text} "
         )
 
     def close(self) -> None:
@@ -205,6 +220,11 @@ def run(args) -> int:
     # the handlers stay until the result is written: a signal during the write is deferred
     previous = _install(on_signal)
     bar = None if args.quiet else ProgressBar()
+    if bar is not None:
+        from solver.compiled import dynamic_model_compiled
+
+        if not dynamic_model_compiled():
+            print("racetrace: compiling the dynamic model (first run only) ...", file=sys.stderr)
     try:
         try:
             ds = simulate(case, progress=bar, cancel=stop, options=options)
@@ -224,7 +244,8 @@ def run(args) -> int:
         written = save_result(ds, output, _say)
     finally:
         _restore(previous)
-    print_result_warnings(ds)
+    with contextlib.suppress(OSError, ValueError):  # a closed terminal: the file is what matters
+        print_result_warnings(ds)
     print_metrics(ds, args.json, written)
     if written is None:
         return EXIT_NOT_WRITTEN

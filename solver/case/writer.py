@@ -85,7 +85,11 @@ def case_to_toml(case) -> str:
                     lines.append(_line(f"{m.key} = {toml_value(table[m.key])}", m.help))
             continue
         if section == "lubricant" and not case.lubricant_given:
-            lines += ["", "# [lubricant] not given: the dynamic model uses the default oil below"]
+            lines += [
+                "",
+                "# [lubricant] not given: the dynamic model (and the quasi-static traction "
+                "balance) use the default oil below",
+            ]
             lines += _section_lines(case, section, prefix="# ")
             continue
         lines += ["", f"[{section}]", *_section_lines(case, section)]

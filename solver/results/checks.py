@@ -21,7 +21,7 @@ The checks, per race:
   top of the groove (contact angle + semi-major / groove radius > 90 deg), or its semi-major axis
   exceeds the ball radius D/2.
 
-the quasi-static **ball speeds fell back to race control** (attribute ``ball_speeds_note``: the
+the quasi-static **ball speeds fell back to race control** (attribute ``kinematics_note``: the
 traction balance asked for by the case found no steady ball speeds), and, for a dynamic result,
 **stopped early**: ``complete`` == 0, and **run too short to settle**:
 ``settled`` == 0 (the stored flag; computed by :func:`solver.results.summary.settling` for a result
@@ -51,9 +51,9 @@ def result_warnings(ds) -> list[str]:
     or ``(ball, race, time)``. Angles in the Dataset are in degree, lengths in m, pressures in Pa.
     """
     found: list[str] = []
-    if ds.attrs.get("ball_speeds_note"):
+    if ds.attrs.get("kinematics_note"):
         found.append(
-            f"quasi-static ball speeds: {ds.attrs['ball_speeds_note']}. Race control puts the "
+            f"quasi-static ball speeds: {ds.attrs['kinematics_note']}. Race control puts the "
             "gyroscopic moment on one race and differs from the dynamic model's steady contact "
             "angles by a few tenths of a degree (docs/quasistatic-traction.md)."
         )

@@ -180,7 +180,7 @@ def geometry_from_result(ds: xr.Dataset):
     """The :class:`solver.geometry.BearingGeometry` a result was computed for, from its
     coordinates (no case text is read). ValueError when the result lacks them."""
     from solver.geometry import BearingGeometry
-    from solver.materials import Material
+    from solver.materials import BUILTIN_MATERIALS, Material
 
     for name in ("groove_radius", "shoulder_diameter", "material"):
         _present(ds, name)
@@ -191,12 +191,19 @@ def geometry_from_result(ds: xr.Dataset):
         raise ValueError("the result holds several cases: select one element first")
 
     def material(body: str) -> Material:
-        return Material(
-            str(ds.coords["material"].sel(body=body).values.item()),
+        name = str(ds.coords["material"].sel(body=body).values.item())
+        elastic = (
             float(ds.coords["youngs_modulus"].sel(body=body)),
             float(ds.coords["poisson_ratio"].sel(body=body)),
             float(ds.coords["density"].sel(body=body)),
         )
+        builtin = BUILTIN_MATERIALS.get(name)
+        if (
+            builtin is not None
+            and (builtin.youngs_modulus, builtin.poisson_ratio, builtin.density) == elastic
+        ):
+            return builtin  # its hysteresis loss too (not a coordinate of the result)
+        return Material(name, *elastic)
 
     return BearingGeometry(
         ball_count=int(_scalar(ds, "ball_count")),

@@ -186,8 +186,9 @@ def solution_to_dataset(
             "Quasi-static model with the ball speeds from the traction balance: one cage speed "
             "for all balls (the cage pocket forces sum to zero), each ball's spin from the "
             "moment balance of the tractions integrated over both contact ellipses (the case's "
-            "traction curve) against its gyroscopic rate; the transverse tractions take the "
-            "gyroscopic moment in the force balances"
+            "traction curve lubricant.traction, whatever the dynamic model's traction_model) "
+            "against its gyroscopic rate; the transverse tractions take the gyroscopic moment in "
+            "the force balances"
         )
     else:
         kinematics = (
@@ -207,9 +208,9 @@ def solution_to_dataset(
             "curvature-centre circle."
         ),
     }
-    attrs["ball_speeds"] = "traction" if traction else "race_control"
+    attrs["kinematics"] = "traction" if traction else "race_control"
     if getattr(sol, "ball_speeds_note", ""):
-        attrs["ball_speeds_note"] = sol.ball_speeds_note
+        attrs["kinematics_note"] = sol.ball_speeds_note
     if operating.misalignment_frame == "ring" and operating.tilting_moment is None:
         attrs["misalignment_note"] = (
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "

@@ -564,6 +564,19 @@ COORDINATES: dict[str, Variable] = {
 }
 
 
+#: Numeric dimension coordinates of derived results (besides ``time``): their values are the
+#: dimension's own, e.g. the inner-ring angles of ``solve_over_revolution``.
+DIMENSION_COORDINATES: dict[str, Variable] = {
+    "ring_angle": Variable(
+        ("ring_angle",),
+        "degree",
+        "inner ring angle",
+        "angle the inner ring has turned relative to the outer ring since t = 0, about +x "
+        "(dimension of a quasi-static solution over one revolution)",
+    ),
+}
+
+
 def variable(name: str) -> Variable:
     """The registered definition of ``name`` (a results variable or a describing coordinate);
     KeyError naming the known names otherwise."""

@@ -37,6 +37,7 @@ LAUNCH_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
+FIRST_IMAGE = "#view-3d img[src]:not([src=''])"  # the first drawn image, not an empty img
 ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
 
 
@@ -97,13 +98,14 @@ def page(browser, server):
     # page time (ms from navigation start) at which #view-3d first received an image
     pg.add_init_script(
         """new MutationObserver((_, observer) => {
-             if (document.querySelector('#view-3d img[src]')) {
+             const img = document.querySelector('#view-3d img[src]');
+             if (img && img.getAttribute('src')) {  // a drawn image, not an empty src=""
                window.__firstFrameMs = performance.now(); observer.disconnect(); }
            }).observe(document, {subtree: true, childList: true, attributes: true});"""
     )
     t0 = time.monotonic()
     pg.goto(server["url"])
-    pg.wait_for_selector("#view-3d img", timeout=60_000)
+    pg.wait_for_selector(FIRST_IMAGE, timeout=60_000)
     pg.first_frame_s = time.monotonic() - t0
     # the chart library is fetched after the first 3-D frame (app.lazy_charts); wait for a chart
     pg.wait_for_selector("#chart-contact-angle .main-svg", timeout=60_000)
@@ -157,7 +159,8 @@ def test_page_loads_and_the_view_animates(page):
     # plotly drew traces into both charts
     assert page.locator("#chart-contact-angle .scatterlayer .trace").count() >= 2
     # the raceway map is drawn with WebGL (scattergl): count its legend entries instead
-    assert page.locator("#chart-raceway-map .legend .traces").count() == 2
+    # (inner raceway, outer raceway, contacts now)
+    assert page.locator("#chart-raceway-map .legend .traces").count() == 3
     assert page.locator("#chart-raceway-map canvas").count() >= 1
     view = page.locator("#view-3d")
     shots = []
@@ -215,7 +218,7 @@ def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     saved = [p for p in Path(server["runs"]).iterdir() if not p.name.startswith(".")]
     assert len(saved) >= 1
     page.reload()
-    page.wait_for_selector("#view-3d img", timeout=60_000)
+    page.wait_for_selector(FIRST_IMAGE, timeout=60_000)
     page.locator("#runs-select .v-field").click()
     items = page.locator(".v-overlay--active .v-list-item")
     items.first.wait_for(timeout=10_000)
@@ -227,7 +230,8 @@ def test_cancel_stops_a_long_run_and_keeps_it(page, server):
     page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
     page.locator("#run-button").click()
     page.wait_for_function("!document.querySelector('#cancel-button').disabled", timeout=30_000)
-    time.sleep(3)
+    # a Cancel before the first step saves nothing: wait for progress
+    page.wait_for_function("window.trame.state.get('progress') > 0", timeout=300_000)
     page.locator("#cancel-button").click()
     status = _wait_status(page, ("cancelled", "done"), 120)
     assert status == "cancelled"
@@ -250,3 +254,100 @@ def test_export_png_and_csv_download(page, server):
         assert response.ok, href
         body = response.body()
         assert magic in body[:200], body[:80]
+
+
+def _view_pixels(pg, name: str):
+    """The 3-D view as an (h, w, 3) int array, saved as ``name``.png in the artefacts."""
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    png = pg.locator("#view-3d").screenshot(path=str(ARTIFACTS / f"{name}.png"))
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=int)
+
+
+def _open_case(pg, words: str) -> None:
+    serial = pg.evaluate("window.trame.state.get('result_serial')")
+    pg.locator("#case-select .v-field").click()
+    pg.locator(".v-overlay--active .v-list-item").filter(has_text=words).first.click()
+    pg.wait_for_function(
+        f"window.trame.state.get('result_serial') > {serial}", timeout=120_000, polling=200
+    )
+
+
+def _set_state(pg, **values) -> None:
+    for key, value in values.items():
+        pg.evaluate(f"window.trame.state.set('{key}', {json.dumps(value)})")
+
+
+def _track_pixels(pg, name: str):
+    """Pixels of the 3-D view that the painted tracks colour: the view with the tracks shown
+    differs there from the view with them hidden. The outer ring is drawn above the inner one at
+    the default camera, with a gap of rows between them. Returns, for (outer, inner): the number
+    of track pixels and the track's thickness across the groove in pixels (90th percentile over
+    the image columns it crosses; balls in front hide parts of the inner track)."""
+    import numpy as np
+
+    _set_state(pg, show_tracks=True)
+    time.sleep(2.0)
+    shown = _view_pixels(pg, f"{name}-tracks")
+    _set_state(pg, show_tracks=False)
+    time.sleep(2.0)
+    hidden = _view_pixels(pg, f"{name}-no-tracks")
+    _set_state(pg, show_tracks=True)
+    mask = np.abs(shown - hidden).sum(axis=2) > 60
+    rows = np.flatnonzero(mask.any(axis=1))
+    assert rows.size, f"{name}: no painted track in the 3-D view"
+    gaps = np.diff(rows)
+    cut = rows[int(np.argmax(gaps))] + 1  # the widest run of rows without track pixels
+    assert gaps.max() > 5, f"{name}: the two tracks are not apart ({rows.min()}-{rows.max()})"
+    found = []
+    for part in (mask[:cut], mask[cut:]):
+        columns = part.sum(axis=0)
+        columns = columns[columns > 0]
+        found.append((int(part.sum()), float(np.percentile(columns, 90)) if columns.size else 0.0))
+    return tuple(found)
+
+
+def test_painted_tracks_of_both_rings_show_and_tell_a_line_from_a_band(page):
+    """At the default camera both painted tracks are in the 3-D image; with a misalignment
+    turning with the inner ring the inner track is a line and the outer a band, fixed in space
+    the reverse (quasi-static previews over one revolution, whole run painted)."""
+    page.locator("#play-button").click()  # pause: the frames must hold still
+    _set_state(page, track_whole_run=True)
+    counts = {}
+    for key, words in (("ring", "turning with the inner ring"), ("space", "fixed in space")):
+        _open_case(page, words)
+        counts[key] = _track_pixels(page, f"tracks-{key}")
+    (ring_outer, ring_inner), (space_outer, space_inner) = counts["ring"], counts["space"]
+    for count, _ in (ring_outer, ring_inner, space_outer, space_inner):
+        assert count > 200, counts  # both rings painted in both cases
+    # a band is thicker across the groove than a line: outer band (ring) vs outer line (space) ...
+    assert ring_outer[1] > 1.5 * space_outer[1], counts
+    # ... and inner band (space) vs inner line (ring)
+    assert space_inner[1] > 1.5 * ring_inner[1], counts
+
+
+@pytest.mark.parametrize("size", [(1280, 720), (1920, 1080)])
+def test_the_3d_view_fills_its_space_and_keeps_its_aspect(browser, server, size):
+    context = browser.new_context(viewport={"width": size[0], "height": size[1]})
+    pg = context.new_page()
+    try:
+        pg.goto(server["url"])
+        pg.wait_for_selector("#view-3d img[src]", timeout=120_000)
+        deadline = time.monotonic() + 60
+        while True:  # the server renders at the element's size once the page reports it
+            box = pg.locator("#view-3d").bounding_box()
+            natural = pg.evaluate(
+                "(() => { const i = document.querySelector('#view-3d img');"
+                " return [i.naturalWidth, i.naturalHeight]; })()"
+            )
+            if natural[1] and abs(natural[0] / natural[1] - box["width"] / box["height"]) < 0.03:
+                break
+            assert time.monotonic() < deadline, (natural, box)
+            time.sleep(0.5)
+        assert box["height"] > 0.45 * size[1] and box["width"] > 0.4 * size[0], box
+        pg.screenshot(path=str(ARTIFACTS / f"page-{size[0]}x{size[1]}.png"))
+    finally:
+        context.close()

@@ -112,7 +112,7 @@ def test_default_text_of_dynamic_switches_is_what_a_run_uses():
     from solver.catalogue import resolve_case
     from solver.inputs import to_inputs
 
-    case = resolve_case("218-heavy-combined")  # no switches in the file
+    case = resolve_case("218-heavy-combined")  # no dynamic-model switches in the file
     sim = to_inputs(case).simulation
     by_name = {f.name: f for f in form_fields()}
     used = {

@@ -243,8 +243,55 @@ def test_ellipse_chart_pressure_axis_has_room_for_its_labels(qs_dataset):
 
 def test_compare_help_describes_the_drawing():
     for key in ("compare_angle", "compare_load"):
-        assert "B: crosses" in charts.HELP[key] and "B dashed" not in charts.HELP[key]
+        assert "B: orange crosses" in charts.HELP[key] and "B dashed" not in charts.HELP[key]
     assert charts.RUN_STYLES["B"]["symbol"] == "x"
+
+
+def test_compared_runs_have_distinct_colours(qs_dataset, dynamic_dataset):
+    a, b = frame_source(qs_dataset), frame_source(dynamic_dataset)
+    for fig in (charts.side_by_side_raceway_maps(a, b), charts.compare_angle_figure(a, b)):
+        colours = {}
+        for trace in fig.data:
+            colours.setdefault(trace.name.split()[0], set()).add(trace.marker.color)
+        assert set(colours) == {"A", "B"}
+        assert not colours["A"] & colours["B"]
+
+
+def test_raceway_map_marks_now_follows_balls_and_names_samples_on_hover(dynamic_dataset):
+    src = frame_source(dynamic_dataset)
+    whole = charts.raceway_map_figure(src, current=5)
+    inner, outer, now_inner, now_outer = whole.data[:4]
+    # the whole run by default, the contacts of frame 5 marked apart
+    assert len(inner.x) == int(src.trace(0)[2].sum())
+    f = src.frame(5)
+    np.testing.assert_allclose(
+        np.sort(now_inner.y), np.sort(np.degrees(f.contact_angle[f.loaded[:, 0], 0]))
+    )
+    assert "ball %{customdata[0]}" in inner.hovertemplate and "°" in inner.hovertemplate
+    # one ball: only its samples
+    one = charts.raceway_map_figure(src, balls=(3,))
+    assert set(np.asarray(one.data[0].customdata)[:, 0].astype(int)) == {3}
+    # coloured by ball: as many colours as balls; by load: the load values
+    by_ball = charts.raceway_map_figure(src, colour="ball")
+    assert len(set(by_ball.data[0].marker.color)) == src.ball_count
+    # with its legend: one entry per ball in that ball's colour
+    legend = by_ball.data[2:]
+    assert [t.name for t in legend] == [f"ball {j}" for j in range(src.ball_count)]
+    assert [t.marker.color for t in legend] == list(charts.BALL_COLOURS[: src.ball_count])
+    by_load = charts.raceway_map_figure(src, colour="load")
+    assert np.max(by_load.data[0].marker.color) > 0
+    # leaving out the start-up: only samples from that time on
+    late = charts.raceway_map_figure(src, start_time=float(src.times[src.n_frames // 2]))
+    assert 0 < len(late.data[0].x) < 0.6 * len(inner.x)
+    with pytest.raises(ValueError, match="colouring"):
+        charts.raceway_map_figure(src, colour="rainbow")
+
+
+def test_raceway_map_draws_the_shoulders(qs_dataset):
+    fig = charts.raceway_map_figure(frame_source(qs_dataset), shoulders=(0.9, 0.8))
+    lines = sorted(round(shape.y0, 3) for shape in fig.layout.shapes)
+    assert lines == sorted(round(v, 3) for v in np.degrees([-0.9, 0.9, -0.8, 0.8]))
+    assert "±52°" in fig.layout.title.text and "±46°" in fig.layout.title.text
 
 
 def test_contact_angle_of_all_balls(dynamic_dataset):

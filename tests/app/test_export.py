@@ -69,3 +69,31 @@ def test_png_and_animation(tmp_path, qs_dataset, geometry):
     with pytest.raises(ValueError, match=".gif or .mp4"):
         export_animation(scene, tmp_path / "anim.avi")
     plotter.close()
+
+
+def test_mp4_of_an_odd_sized_view_and_captions(tmp_path, qs_dataset, geometry):
+    """An odd view width (a browser decides it) still gives an MP4; the caption is drawn in."""
+    import imageio.v2 as imageio
+    import pyvista as pv
+
+    from app.export import captioned, even_sized
+    from app.scene import BearingScene
+
+    plotter = pv.Plotter(off_screen=True, window_size=(161, 121))
+    scene = BearingScene(plotter, geometry)
+    scene.show_source(frame_source(qs_dataset))
+    mp4 = export_animation(scene, tmp_path / "odd.mp4", stop=4, caption=lambda i: f"frame {i}")
+    frames = imageio.mimread(mp4, format="FFMPEG")
+    assert len(frames) == 4 and frames[0].shape[:2] == (122, 162)
+    plain = tmp_path / "plain.png"
+    export_png(plotter, plain)
+    shown = tmp_path / "captioned.png"
+    export_png(plotter, shown, caption="case X, Fa 500 N, t = 1.000 ms")
+    a, b = imageio.imread(plain), imageio.imread(shown)
+    assert a.shape == b.shape
+    rows_changed = np.flatnonzero(np.any(a[..., :3] != b[..., :3], axis=(1, 2)))
+    assert rows_changed.min() > 0.75 * a.shape[0]  # only the band along the bottom
+    plotter.close()
+    odd = np.zeros((5, 7, 3), np.uint8)
+    assert even_sized(odd).shape == (6, 8, 3)
+    assert captioned(odd, "") is odd

@@ -6,10 +6,13 @@ from __future__ import annotations
 
 import json
 import os
+import tempfile
 import time
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from app.runs import CASE_FILE, META_FILE, RESULT_FILE, RunNotSavedError, RunStore, UnknownRunError
 from tests.helpers.faults import read_only_folder, small_file_system
@@ -229,6 +232,15 @@ def test_read_only_folder_keeps_finished_runs_in_memory(tmp_path, qs_dataset):
         assert list(root.iterdir()) == []
 
 
+def test_job_path_is_in_the_runs_folder_or_else_in_the_temp_folder(tmp_path, monkeypatch):
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path / "tmp"))
+    writable = RunStore(tmp_path / "runs").job_path()
+    assert writable.parent == tmp_path / "runs" and writable.name.startswith(".job-")
+    with read_only_folder(tmp_path / "ro") as root:
+        elsewhere = RunStore(root).job_path()
+    assert elsewhere.parent == tmp_path / "tmp" and elsewhere.suffix == ".nc"
+
+
 def test_netcdf_runtime_error_keeps_the_run_and_leaves_no_files(tmp_path, qs_dataset, monkeypatch):
     import app.runs
 
@@ -253,3 +265,39 @@ def test_full_file_system_keeps_the_run_in_memory(tmp_path, dynamic_dataset):
         assert not info.saved and str(root) in info.problem
         assert [p.name for p in root.iterdir()] == []
         assert store.load(info.run_id)[0] is big
+
+
+# ---- any run.json ----------------------------------------------------------------------------
+_JSON = st.recursive(
+    st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=20),
+    lambda inner: (
+        st.lists(inner, max_size=4) | st.dictionaries(st.text(max_size=8), inner, max_size=4)
+    ),
+    max_leaves=12,
+)
+_FIELDS = st.fixed_dictionaries(
+    {},
+    optional={k: _JSON | st.text(max_size=30) for k in ("title", "model", "status", "created")},
+)
+
+
+@settings(max_examples=60, deadline=None, database=None, derandomize=True)
+@given(meta=_FIELDS | _JSON)
+def test_any_run_json_is_listed_never_raises(tmp_path_factory, meta):
+    root = tmp_path_factory.mktemp("runs")
+    folder = root / "20260101-000000-run-abcd"
+    folder.mkdir()
+    (folder / META_FILE).write_text(json.dumps(meta), encoding="utf-8")
+    (folder / RESULT_FILE).write_bytes(b"CDF\x01" + b"\0" * 20)
+    (folder / CASE_FILE).write_text("")
+    (info,) = RunStore(root).list()
+    assert info.status in ("done", "cancelled", "broken")
+    assert info.broken == bool(info.problem)
+    assert not _has_control(info.label)
+    if info.broken:
+        with pytest.raises(ValueError, match="is broken"):
+            RunStore(root).load(info.run_id)
+
+
+def _has_control(text: str) -> bool:
+    return any(ord(c) < 32 or 0x7F <= ord(c) < 0xA0 for c in text)

@@ -17,6 +17,7 @@ def scene(qs_dataset, geometry):
     plotter = pv.Plotter(off_screen=True, window_size=(320, 240))
     s = BearingScene(plotter, geometry)
     s.show_source(frame_source(qs_dataset))
+    s.set_layer("traces", True)  # off by default: the painted tracks show the paths
     yield s
     plotter.close()
 
@@ -122,7 +123,9 @@ def test_presets_frame_the_whole_bearing_left_of_the_colour_bar(geometry, preset
     pv.global_theme.multi_samples = 0
     plotter = pv.Plotter(off_screen=True, window_size=(650, 480))
     try:
-        scene = BearingScene(plotter, geometry)
+        from app.scene import SceneOptions
+
+        scene = BearingScene(plotter, geometry, SceneOptions(explode=0.0))  # drawn assembled
         scene.set_camera(preset)
         plotter.render()
         xy = _display_xy(plotter, _bearing_points(geometry))
@@ -174,3 +177,95 @@ def test_ellipses_are_outlined_to_scale(scene, geometry):
     outline = mesh.points[j * 25 + 1 : (j + 1) * 25]  # the fan's centre comes first
     across = np.ptp(outline[:, 0]) / np.cos(f.contact_angle[j, INNER])
     assert across == pytest.approx(2 * f.semi_major[j, INNER], rel=0.05)
+
+
+def test_close_up_shows_one_balls_pressure_domes_and_recent_paths(scene, geometry):
+    f = scene.source.frame(40)
+    j = int(np.argmax(np.nan_to_num(f.contact_load[:, INNER])))  # a loaded ball
+    scene.set_closeup_ball(j)
+    scene.set_frame(40)
+    scene.set_camera("close-up")
+    assert scene._closeup_on and all(a.visibility for a in scene._closeup_actors[:2])
+    assert [a.visibility for a in scene._actors["balls"]] == [
+        k == j for k in range(geometry.ball_count)
+    ]
+    for race in (INNER, OUTER):
+        dome = scene._closeup["domes"][race]
+        p = dome.point_data["pressure_GPa"]
+        assert p.max() == pytest.approx(f.max_pressure[j, race] * 1e-9, rel=1e-6)
+        # the dome stands on the groove (ring frame): its rim on the raceway, its top lifted
+        groove = grooves(geometry)[race]
+        pts = dome.points
+        radius = np.hypot(pts[:, 1], pts[:, 2])
+        off = groove.r - np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)
+        rim, top = off[p < 1e-6 * p.max() + 1e-12], off[p == p.max()]
+        assert rim.max() < 0.02 * groove.r
+        assert top.min() == pytest.approx(
+            0.6 * f.semi_major[j, race] + 2 * 0.004 * groove.r, rel=0.05
+        )
+        assert scene._closeup["paths"][race].n_points > 10  # the recent path of its centre
+    # the camera looks at that ball
+    focal = np.array(scene.plotter.camera_position.focal_point)
+    assert np.linalg.norm(focal - f.ball_center[j]) < geometry.ball_diameter
+    scene.set_camera("isometric")
+    assert not any(a.visibility for a in scene._closeup_actors)
+    assert all(a.visibility for a in scene._actors["balls"])
+
+
+def test_tracks_coloured_by_peak_pressure_name_it_on_the_colour_bar(scene):
+    scene.set_track_options(quantity="peak_pressure", whole_run=True)
+    assert "pressure" in scene.plotter.scalar_bar.GetTitle()
+    lo, hi = scene.track_range
+    f = scene.source
+    assert hi == pytest.approx(np.nanmax(f.contact["max_pressure"]) * 1e-9, rel=0.02)
+    assert 0 < lo < hi
+    with pytest.raises(ValueError, match="dwell"):
+        scene.set_track_options(quantity="colour")
+
+
+def _track_pixels(scene, race: int) -> int:
+    """Pixels the painted track of ``race`` colours: the image with it minus the image without."""
+    p = scene.plotter
+    p.render()
+    shown = p.screenshot(return_img=True).astype(int)
+    scene._actors["tracks"][race].visibility = False
+    p.render()
+    hidden = p.screenshot(return_img=True).astype(int)
+    scene._actors["tracks"][race].visibility = True
+    return int((np.abs(shown - hidden).sum(axis=2) > 60).sum())
+
+
+@pytest.mark.parametrize(
+    "preset, races",
+    [
+        ("isometric", (INNER, OUTER)),  # the default: both tracks
+        ("radial", (INNER, OUTER)),
+        ("axial", (INNER,)),
+        ("inner track", (INNER,)),
+        ("outer track", (OUTER,)),
+        ("close-up", (INNER,)),
+    ],
+)
+def test_camera_presets_show_painted_tracks(scene, preset, races):
+    scene.set_layer("traces", False)
+    scene.set_track_options(whole_run=True)
+    scene.set_camera(preset)
+    for race in races:
+        assert _track_pixels(scene, race) > 40, (preset, race)
+
+
+def test_exaggerated_marks_stay_on_the_groove_between_the_shoulders(scene, geometry):
+    scene.set_exaggeration(30.0)
+    scene.set_frame(150)
+    for race in (INNER, OUTER):
+        groove, grid = grooves(geometry)[race], scene.grids[race]
+        pts = scene._traces[race].points
+        assert len(pts) > 10
+        radius = np.hypot(pts[:, 1], pts[:, 2])
+        distance = np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)  # marks are lifted
+        np.testing.assert_allclose(distance, groove.r, rtol=0.01)
+        # latitude of each point on the groove: within the shoulder edges
+        alpha = np.arcsin(np.clip(-(pts[:, 0] - groove.x_c) / (groove.sign * distance), -1, 1))
+        assert alpha.min() >= grid.alpha_lo - 1e-3 and alpha.max() <= grid.alpha_hi + 1e-3
+        if race == INNER:  # 30x the fixture's +-3 deg reaches the shoulder: clipped there
+            assert np.isclose(np.abs(alpha).max(), grid.alpha_hi, atol=2e-3)

@@ -64,7 +64,7 @@ def test_opens_on_the_default_case_solved(app):
     assert s.frame_max > 10
     assert app.result.dataset.attrs["model"] == "quasistatic"
     assert len(s.chart_contact_angle["data"]) >= 2
-    assert len(s.chart_raceway_map["data"]) == 2
+    assert len(s.chart_raceway_map["data"]) == 4  # both raceways, and where the balls are now
     assert _length(s.chart_raceway_map["data"][0]["x"]) > 0
     # every case-file key has a form field named after its last segment
     assert {f["name"] for f in s.form} >= {
@@ -442,3 +442,52 @@ def test_empty_fields_show_the_default_used(app):
     # an estimated default shows this bearing's value and its rule
     assert p["pocket_diametral_clearance_mm"].startswith("0.2 mm (estimated")
     assert p["ball_count"] == ""  # required: no default
+
+
+def test_a_misalignment_turning_with_the_ring_is_previewed_over_a_revolution(app):
+    """The t = 0 snapshot would draw a band on the inner race where the run draws a line."""
+    _set(app, case_name="spindle-misalignment-ring")
+    app.form.preview_now()
+    src = app.result.source
+    spreads = []
+    for race in (0, 1):
+        phi, alpha, ok = src.trace(race)
+        bins = (np.mod(phi[ok], 2 * np.pi) / (2 * np.pi) * 36).astype(int)
+        alpha = np.degrees(alpha[ok])
+        spreads.append(np.median([np.ptp(alpha[bins == b]) for b in range(36)]))
+    assert spreads[0] < 0.25 * spreads[1], spreads  # a line inside, a band outside
+    assert "ring_angle" not in app.result.dataset.dims  # the views read one element
+    assert "turning with the ring" in app.state.scene_note or "turns with" in app.state.scene_note
+
+
+def test_time_words_name_the_revolution_and_the_slow_motion(app):
+    s = app.state
+    _set(app, frame=int(s.frame_max))
+    assert "revolution" in s.frame_time and " of " in s.frame_time
+    assert s.slow_motion.startswith("1 s on screen = ")
+    before = s.slow_motion
+    _set(app, speed=10)
+    assert s.slow_motion != before
+    assert "painted" in s.scene_note
+
+
+def test_raceway_map_follows_the_ball_and_its_options(app):
+    s = app.state
+    _set(app, frame=3)
+    data = s.chart_raceway_map["data"]
+    assert [t["name"] for t in data[:3]] == ["inner raceway", "outer raceway", "contacts now"]
+    assert "shoulders at" in s.chart_raceway_map["layout"]["title"]["text"]
+    assert "excursion" in s.raceway_metrics and "needs a dynamic run" in s.raceway_metrics
+    _set(app, trace_ball=2)
+    balls = {int(b) for b in _decode_custom(s.chart_raceway_map["data"][0])}
+    assert balls == {2}
+    _set(app, map_colour="load")
+    assert "colorscale" in s.chart_raceway_map["data"][0]["marker"]
+
+
+def _decode_custom(trace):
+    custom = trace["customdata"]
+    if isinstance(custom, dict):
+        values = np.frombuffer(base64.b64decode(custom["bdata"]), dtype=np.dtype(custom["dtype"]))
+        return values.reshape(-1, 2)[:, 0]
+    return [row[0] for row in custom]

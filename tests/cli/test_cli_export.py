@@ -5,6 +5,7 @@ import csv
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -41,12 +42,17 @@ def test_export_writes_the_per_contact_table(result, tmp_path):
         (["{result}"], ["--csv OUT.csv", "use the app"]),
         (["{result}", "--csv", "{tmp}/missing/x.csv"], ["does not exist"]),
         (["{junk}", "--csv", "{tmp}/x.csv"], ["not a readable results NetCDF file"]),
+        (["{truncated}", "--csv", "{tmp}/x.csv"], ["not a readable results NetCDF file"]),
+        (["{result}", "--csv", "{tmp}"], ["is a folder"]),
+        (["{result}", "--csv", "/dev/null"], ["not a regular file"]),
     ],
 )
 def test_export_refuses_bad_input_with_exit_2(result, tmp_path, args, words):
     junk = tmp_path / "junk.nc"
     junk.write_text("not netcdf")
-    names = {"tmp": tmp_path, "result": result[0], "junk": junk}
+    truncated = tmp_path / "truncated.nc"
+    truncated.write_bytes(Path(result[0]).read_bytes()[:2000])
+    names = {"tmp": tmp_path, "result": result[0], "junk": junk, "truncated": truncated}
     given = [a.format(**names) for a in args]
     if given[0].startswith("--"):
         given.insert(0, str(tmp_path / "absent.nc"))

@@ -47,7 +47,7 @@ def test_table_for_a_catalogue_case():
     rows = [
         line
         for line in out.splitlines()
-        if line.strip().endswith(("outer", "inner")) and line.strip()[0].isdigit()
+        if line.strip().endswith(("outer", "inner", "traction")) and line.strip()[0].isdigit()
     ]
     assert len(rows) == 18
     # rating lives: ISO 281 hand-worked in tests/unit/physics/test_life.py (10 190 million

@@ -156,6 +156,24 @@ def test_signals_keep_the_partial_result(tmp_path, signum):
     assert [p.name for p in tmp_path.iterdir()] == ["run.nc"]  # no temporary file left
 
 
+def test_hangup_with_the_terminal_gone_still_saves(tmp_path):
+    """After a hang-up, writing to the terminal fails: the progress bar and the messages must not
+    stop the command before the partial result is saved (here both pipes are closed)."""
+    out = tmp_path / "run.nc"
+    process = _start(tmp_path, "--output", str(out), "--revolutions", "200", "--json")
+    try:
+        assert b"%" in _wait_for_progress(process)
+        process.stdout.close()
+        process.stderr.close()
+        process.send_signal(signal.SIGHUP)
+        process.wait(timeout=300)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == 128 + signal.SIGHUP
+    assert load_dataset(out).attrs["complete"] == 0
+
+
 # ---- write failures ------------------------------------------------------------------------------
 def test_file_size_limit_is_refused_before_the_run(tmp_path):
     def limit():

@@ -16,7 +16,7 @@ from solver.geometry import BearingGeometry, free_contact_angle_from_clearance
 from solver.materials import BUILTIN_MATERIALS
 from solver.models.quasistatic import solve_operating_point
 from solver.physics.hertz import race_contact
-from tests.helpers.dyn_bearings import operating_point
+from tests.helpers.dyn_bearings import operating_point, spindle_geometry
 
 STEEL = BUILTIN_MATERIALS["bearing_steel"]
 SI3N4 = BUILTIN_MATERIALS["silicon_nitride"]
@@ -527,3 +527,33 @@ def test_race_control_inner_at_high_speed_is_consistent():
         )
         rhs = q_o * co.semi_major * co.elliptic_e
         assert (sol.race_control[j] == "inner") == (lhs > rhs)
+
+
+@pytest.mark.parametrize("field", ["contact_load", "cage_speed", "inner_ring_tilt"])
+def test_a_solution_that_is_not_finite_is_no_solution(monkeypatch, field, capsys):
+    """Whatever overflows inside the iteration, NaN or inf never leaves as a solution: the solver
+    raises NoSolutionError, and the CLI exits 3 with the reason and valid JSON."""
+    import json
+
+    from racetrace.cli import main
+    from solver.models.quasistatic import solver as qs_solver
+
+    real = qs_solver._pack
+
+    def overflowing(*args, **kwargs):
+        solution = real(*args, **kwargs)
+        value = getattr(solution, field)
+        if np.ndim(value):
+            value = np.array(value, dtype=float)
+            value.flat[0] = np.nan
+        else:
+            value = math.inf
+        setattr(solution, field, value)
+        return solution
+
+    monkeypatch.setattr(qs_solver, "_pack", overflowing)
+    with pytest.raises(NoSolutionError, match=f"not finite numbers \\({field}\\)"):
+        solve_operating_point(spindle_geometry(), operating_point(2094.4, 0.0, 500.0, 300.0))
+    assert main(["quasistatic", "spindle-combined-load", "--json"]) == 3
+    out = capsys.readouterr().out
+    assert json.loads(out)["error"]["kind"] == "no solution"

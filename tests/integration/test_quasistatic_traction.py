@@ -75,11 +75,16 @@ def test_low_speed_limit_is_rolling_kinematics():
 
 
 def test_without_a_steady_balance_race_control_is_used_and_said():
-    """218 heavy combined load: the most loaded balls' tractions reach the falling branch of the
-    traction curve and no cage speed balances them; the result uses race control and says so."""
-    ds = solver.solve_quasistatic("218-heavy-combined")
-    assert ds.attrs["ball_speeds"] == "race_control"
-    assert "no steady ball speeds" in ds.attrs["ball_speeds_note"]
+    """218 heavy combined load (whose catalogue case therefore asks for race control): the most
+    loaded balls' tractions reach the falling branch of the traction curve and no cage speed
+    balances them; asked for the traction balance, the result uses race control and says so."""
+    case = resolve_case("218-heavy-combined")
+    assert case.simulation.quasistatic_ball_speeds == "race_control"
+    ds = solver.solve_quasistatic(
+        case.with_values({"simulation.quasistatic_ball_speeds": "traction"})
+    )
+    assert ds.attrs["kinematics"] == "race_control"
+    assert "no steady ball speeds" in ds.attrs["kinematics_note"]
     assert set(ds.race_control.values) <= {"inner", "outer"}
     warnings = ds.racetrace.warnings()
     assert any(w.startswith("quasi-static ball speeds: the traction balance") for w in warnings)

@@ -87,3 +87,17 @@ def test_printable(text, expected):
 def test_clean_message_keeps_lines_and_caps_length():
     assert clean_message("one\ntwo\x1b") == "one\ntwo\\x1b"
     assert len(clean_message("x" * 100_000, limit=100)) < 140
+
+
+@pytest.mark.parametrize("command", ["check", "quasistatic"])
+def test_a_title_with_control_characters_is_printed_escaped(tmp_path, capsys, command):
+    case = tmp_path / "title.toml"
+    text = SPINDLE.replace(
+        'title = "7008C-class hybrid spindle bearing, combined load"',
+        'title = "clear\\u001b[2J\\u001b]0;pwned\\u0007"',
+    )
+    case.write_text(text, encoding="utf-8")
+    assert main([command, str(case)]) == 0
+    out = capsys.readouterr().out
+    assert "clear\\x1b[2J\\x1b]0;pwned\\x07" in out
+    assert not _CONTROL.search(out.replace("\n", "")), repr(out)

@@ -9,6 +9,9 @@ Public API:
   model starts from it)
 - ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked along the
   ``inner_ring_speed`` dimension, each speed started from the previous solution (continuation)
+- ``solve_over_revolution(case, angles=36) -> xarray.Dataset`` stacked along the ``ring_angle``
+  dimension: the steady state at a set of inner-ring angles over one shaft revolution, so that a
+  misalignment turning with the inner ring is seen over a whole revolution, not at t = 0 only
 - ``solve_operating_point(geometry, operating, initial=None)`` for callers that build a
   :class:`solver.geometry.BearingGeometry` and an :class:`solver.inputs.OperatingPoint` directly
 
@@ -47,9 +50,20 @@ __all__ = [
     "QuasiStaticSolution",
     "quasistatic_speed_sweep",
     "solve_operating_point",
+    "solve_over_revolution",
     "solve_quasistatic",
     "solve_quasistatic_state",
 ]
+
+
+#: Attributes of one sweep element that a stacked sweep drops (they describe one solve).
+_ELEMENT_ATTRS = (
+    "solver_iterations",
+    "solver_residual",
+    "solver_force_scale_N",
+    "race_control_note",
+    "kinematics_note",
+)
 
 
 def _inputs(case) -> Inputs:
@@ -105,7 +119,8 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     operating point in its coordinates. Each speed starts from the previous solution. Raises
     NoSolutionError naming the first speed without a solution.
 
-    Attributes that differ between the elements (solver statistics, notes) are dropped;
+    The elements' solver statistics and notes, and any other attribute that differs between them,
+    are dropped;
     ``attrs["case"]`` is the case text as given, with a first comment line saying that
     ``operating.inner_ring_speed_rpm`` varies along the sweep (provenance only: the speed of an
     element is its ``inner_ring_speed`` coordinate).
@@ -147,5 +162,76 @@ def quasistatic_speed_sweep(case, speeds_rpm):
         join="outer",
         combine_attrs="drop_conflicts",
     )
+    for key in _ELEMENT_ATTRS:  # one element's statistics and notes, even where they agree
+        ds.attrs.pop(key, None)
     ds.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
     return ds
+
+
+def solve_over_revolution(case, angles: int = 36):
+    """Quasi-static solutions of ``case`` at ``angles`` equally spaced inner-ring angles over one
+    shaft revolution, stacked along the ``ring_angle`` dimension (degree, 0 <= angle < 360).
+
+    The inner ring is turned by ``ring_angle`` relative to the outer ring; what is fixed in space
+    (loads, a misalignment with ``misalignment_frame = "space"``) stays, and a misalignment turning
+    with the inner ring (``"ring"``) has its axis at ``misalignment_axis + ring_angle``. Each
+    element carries its own operating point in its coordinates (``misalignment_axis`` gains the
+    ``ring_angle`` dimension when it turns). ``raceway_azimuth`` is each contact's azimuth in its
+    own ring's frame at that angle: the inner ring's is turned back by the ring angle, the outer
+    ring's by the outer ring's angle at the same time (ring speeds from the case; a stationary
+    outer ring keeps its azimuths). Each angle starts from the previous solution. Raises
+    ValueError for fewer than 2 angles and NoSolutionError naming the first angle without a
+    solution.
+    """
+    import math
+    from datetime import UTC, datetime
+
+    import xarray as xr
+
+    from solver.results.quasistatic import solution_to_dataset
+    from solver.results.variables import DIMENSION_COORDINATES
+
+    count = int(angles)
+    if count < 2:
+        raise ValueError(f"angles must be at least 2 (got {angles!r}): angles over one revolution")
+    inputs = _inputs(case)
+    geometry, base = inputs.geometry, inputs.operating
+    lubricant = _film_lubricant(inputs)
+    turning = base.misalignment_frame == "ring"
+    w_in, w_out = base.inner_ring_speed, base.outer_ring_speed
+    w_rel = w_in - w_out
+    ring_angles = np.arange(count) * 2.0 * math.pi / count
+    datasets = []
+    previous = None
+    for theta in ring_angles:
+        op = base
+        if turning:
+            op = dataclasses.replace(base, misalignment_axis=base.misalignment_axis + theta)
+        try:
+            previous = solve_operating_point(geometry, op, previous)
+        except NoSolutionError as error:
+            raise NoSolutionError(
+                f"solution over a revolution stopped at ring angle {math.degrees(theta):g} "
+                f"degree: {error}"
+            ) from None
+        ds = solution_to_dataset(previous, geometry, inputs.case_text, lubricant, op)
+        # each ring's own frame at this angle: the inner ring turned by theta relative to the
+        # outer ring, the outer ring by w_out * t with t = theta / (w_in - w_out)
+        outer_turn = w_out * theta / w_rel if w_rel != 0.0 else 0.0
+        turn = np.degrees(np.array([theta + outer_turn, outer_turn]))
+        azimuth = (ds["raceway_azimuth"] - xr.DataArray(turn, dims="race")) % 360.0
+        ds["raceway_azimuth"] = azimuth.assign_attrs(ds["raceway_azimuth"].attrs)
+        datasets.append(ds)
+    result = xr.concat(
+        datasets,
+        dim="ring_angle",
+        data_vars="all",
+        coords="different",
+        compat="equals",
+        join="outer",
+        combine_attrs="drop_conflicts",
+    )
+    spec = DIMENSION_COORDINATES["ring_angle"]
+    result = result.assign_coords(ring_angle=("ring_angle", np.degrees(ring_angles), spec.attrs()))
+    result.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
+    return result

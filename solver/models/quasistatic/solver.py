@@ -355,7 +355,43 @@ def solve_operating_point(
     solution = _pack(problem, state, totals["iterations"], merit, note)
     solution.ball_speeds = ball_speeds
     solution.ball_speeds_note = fallback
+    _check_finite(solution)
     return solution
+
+
+#: Solution fields that must be finite numbers in every solution returned.
+_FINITE_FIELDS = (
+    "ball_center",
+    "contact_angle",
+    "contact_load",
+    "contact_deflection",
+    "orbital_speed",
+    "spin_speed",
+    "attitude_angle",
+    "ball_angular_velocity",
+    "inner_ring_offset",
+    "inner_ring_tilt",
+    "cage_speed",
+    "centrifugal_force",
+    "gyroscopic_moment",
+    "applied_moment",
+)
+
+
+def _check_finite(solution) -> None:
+    """NoSolutionError when a value of the solution is not finite (the iteration overflowed or
+    divided by zero somewhere): a result with NaN or inf is never returned as a solution."""
+    bad = [
+        name
+        for name in _FINITE_FIELDS
+        if not np.all(np.isfinite(np.asarray(getattr(solution, name), dtype=float)))
+    ]
+    if bad:
+        raise NoSolutionError(
+            "the quasi-static iteration ended with values that are not finite numbers "
+            f"({', '.join(bad)}): the case lies outside what the model can compute. Try loads, "
+            "speeds and misalignment closer to the bearing's rating."
+        )
 
 
 def _no_static_message(problem: _Problem) -> str:

@@ -451,9 +451,18 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, cur
             f"no cage speed within {span / abs(omega_c0):.0%} of the race-control one balances "
             "the balls' circumferential tractions"
         )
-    omega_c = optimize.brentq(
-        excess, lo, hi, xtol=CAGE_SPEED_TOLERANCE * abs(omega_c0) + 1e-12, rtol=1e-14
-    )
+    if not (math.isfinite(f_lo) and math.isfinite(f_hi)):
+        raise BalanceFailed(
+            "the balls' circumferential tractions are not finite near the cage speed"
+        )
+    try:
+        omega_c = optimize.brentq(
+            excess, lo, hi, xtol=CAGE_SPEED_TOLERANCE * abs(omega_c0) + 1e-12, rtol=1e-14
+        )
+    except (ValueError, RuntimeError) as error:
+        # each evaluation starts its inner solve from the previous one, so a bracket found above
+        # can lose its sign change when brentq evaluates its ends again
+        raise BalanceFailed(f"the cage speed could not be bracketed ({error})") from None
     excess(omega_c)  # leaves w and forces at the root
     pocket = np.zeros(z)
     out = control.copy()

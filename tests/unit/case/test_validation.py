@@ -644,3 +644,19 @@ def test_a_dynamic_run_too_large_for_memory_is_refused_with_the_numbers(valid):
     limit = MAX_DYNAMIC_BALL_SAMPLES // (18 * 180) * 1.0  # revolutions at the limit
     ok = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": limit}})
     assert dynamic_problems(Case.from_dict(ok)) == []
+
+
+def test_a_dynamic_run_shorter_than_one_sample_is_refused(valid):
+    from solver.case import dynamic_problems
+    from solver.case.validate import dynamic_run_size, run_length_problems
+
+    short = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": 1e-9}})
+    (problem,) = dynamic_problems(Case.from_dict(short))
+    assert problem.key == "simulation.shaft_revolutions"
+    assert "before its first output sample" in problem.message and "0.00556" in problem.message
+    one = edit(copy.deepcopy(valid), {"simulation": {"shaft_revolutions": 1 / 180}})
+    assert dynamic_problems(Case.from_dict(one)) == []
+    (named,) = run_length_problems(1e-9, 8, 18, ("--revolutions", "--samples-per-revolution"))
+    assert named.message.startswith("--revolutions = 1e-09 at --samples-per-revolution = 8")
+    size = dynamic_run_size(1.0, 180, 18)
+    assert size.samples == 180 and size.memory_bytes == 181 * 18 * 1_500

@@ -5,15 +5,22 @@ from pathlib import Path
 
 import pytest
 
-from solver.results.variables import COORDINATES, DIMENSION_VALUES, VARIABLES, variable
+from solver.results.variables import (
+    COORDINATES,
+    DIMENSION_COORDINATES,
+    DIMENSION_VALUES,
+    VARIABLES,
+    variable,
+)
 
 SCHEMA = Path(__file__).resolve().parents[3] / "docs" / "results-schema.md"
-ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3"}
+ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3", "W"}
 
 
 def test_every_variable_has_units_names_and_known_dims():
-    dims = {"ball", "race", "axis", "tilt_axis", "quaternion", "frame", "body"}
-    for name, spec in {**VARIABLES, **COORDINATES}.items():
+    dims = {"ball", "race", "axis", "tilt_axis", "quaternion", "frame", "body", "ring_angle"}
+    dims |= {"ball_loss_source", "loss_source"}
+    for name, spec in {**VARIABLES, **COORDINATES, **DIMENSION_COORDINATES}.items():
         assert spec.units in ALLOWED_UNITS, name
         assert spec.long_name and spec.description, name
         assert set(spec.dims) <= dims, name
@@ -82,10 +89,11 @@ SCHEMA_WORDS = {
     "Pa",
     "s",
     "quasistatic_speed_sweep",
+    "solve_over_revolution",
     "racetrace",
     "result_warnings",
-    "ball_speeds",
-    "ball_speeds_note",
+    "kinematics",
+    "kinematics_note",
 }
 
 
@@ -96,7 +104,8 @@ def test_registry_covers_every_name_in_the_schema_document():
     text = SCHEMA.read_text(encoding="utf-8")
     names = set(re.findall(r"`([a-z_]+)`", text))
     labels = set(DIMENSION_VALUES) | {v for values in DIMENSION_VALUES.values() for v in values}
-    known = set(VARIABLES) | set(COORDINATES) | labels | SCHEMA_WORDS | {"ball"}
+    known = set(VARIABLES) | set(COORDINATES) | set(DIMENSION_COORDINATES) | labels
+    known |= SCHEMA_WORDS | {"ball"}
     missing = sorted(names - known)
     assert not missing, missing
 
@@ -104,5 +113,6 @@ def test_registry_covers_every_name_in_the_schema_document():
 def test_schema_document_names_every_registered_name():
     text = SCHEMA.read_text(encoding="utf-8")
     documented = set(re.findall(r"`([a-z_]+)`", text))
-    missing = sorted(n for n in set(VARIABLES) | set(COORDINATES) if n not in documented)
+    registered = set(VARIABLES) | set(COORDINATES) | set(DIMENSION_COORDINATES)
+    missing = sorted(n for n in registered if n not in documented)
     assert not missing, missing

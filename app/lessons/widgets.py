@@ -1,0 +1,213 @@
+"""The Lessons panel and presenter mode on the page (trame + Vuetify 3), bound to the state of
+:class:`app.lessons.panel.LessonController`.
+
+Stable element ids used by tests: lessons-panel, lesson-<id> (one button per lesson),
+lesson-title, lesson-text, lesson-stale, lesson-try, lesson-result-<name> (one button per result
+of the open lesson), lesson-warnings, lesson-problems, lesson-message, lesson-previous,
+lesson-next, presenter-button.
+
+Presenter mode adds the class ``rt-presenter`` around the page content (:data:`PRESENTER_CSS`):
+the form drawer, the scene and export controls, the runs card and every chart but the lesson's
+(or the contact-angle chart) are hidden; the 3-D view and that chart fill the screen in large,
+high-contrast type. :data:`KEYS_SCRIPT` sends space, the arrows, N, P and Escape to the server
+(``lesson_key``) unless a text field has the focus; Escape leaves presenter mode in the page
+itself. The drawer (``main_drawer``) is closed and opened by the page as presenter mode is
+switched, and by the server when it switches it.
+"""
+
+from __future__ import annotations
+
+from trame.widgets import client, html
+from trame.widgets import vuetify3 as v3
+
+#: Class of the blocks that presenter mode hides.
+HIDE = "rt-hide-in-presenter"
+
+PRESENTER_CSS = """
+.rt-lesson-chart { outline: 3px solid #ffb300; outline-offset: 2px; border-radius: 4px; }
+.rt-presenter { background: #000; color: #fff; min-height: calc(100vh - 64px); }
+.rt-presenter .rt-hide-in-presenter,
+.rt-presenter .rt-chart:not(.rt-lesson-chart),
+.rt-presenter .rt-chart .text-caption,
+.rt-presenter .v-expansion-panel-title { display: none !important; }
+.rt-presenter .v-expansion-panel,
+.rt-presenter .v-expansion-panel-text__wrapper { background: transparent; padding: 0; }
+.rt-presenter .v-expansion-panel::after { border: none; }
+.rt-presenter #view-3d { height: calc(100vh - 150px) !important; }
+.rt-presenter .rt-side { display: flex; flex-direction: column; }
+.rt-presenter .rt-side > * { order: 1; }
+.rt-presenter .rt-side > #lessons-panel { order: 2; }
+.rt-presenter .rt-lesson-chart > div:first-child { height: 55vh !important; min-height: 240px; }
+.rt-presenter #lessons-panel { background: #111; color: #fff; border-color: #fff; }
+.rt-presenter #lesson-title { font-size: 1.6rem !important; line-height: 1.3 !important; }
+.rt-presenter #lesson-text { font-size: 1.25rem !important; line-height: 1.45 !important;
+  max-height: calc(45vh - 190px); min-height: 4em; overflow-y: auto; }
+.rt-presenter .rt-frame-time { font-size: 1.1rem !important; color: #fff; }
+"""
+
+KEYS_SCRIPT = """
+(function () {
+  if (window.racetraceLessonKeys) return;
+  window.racetraceLessonKeys = true;
+  const KEYS = [' ', 'ArrowLeft', 'ArrowRight', 'n', 'N', 'p', 'P', 'Escape'];
+  document.addEventListener('keydown', function (event) {
+    const target = event.target;
+    const tag = target && target.tagName;
+    if (event.ctrlKey || event.metaKey || event.altKey) return;
+    if (target && (target.isContentEditable || tag === 'INPUT' || tag === 'TEXTAREA' ||
+        tag === 'SELECT')) return;
+    if (KEYS.indexOf(event.key) < 0 || !window.trame) return;
+    event.preventDefault();
+    if (event.key === 'Escape') {  // leave presenter mode here: the drawer comes back at once
+      window.trame.state.update({ presenter: false, main_drawer: true });
+      return;
+    }
+    window.trame.trigger('lesson_key', [event.key]);
+  });
+})();
+"""
+
+
+def page_assets() -> None:
+    """The presenter-mode style sheet and the key handler (once per page)."""
+    client.Style(PRESENTER_CSS)
+    client.Script(KEYS_SCRIPT)
+
+
+def chart_classes(chart: str) -> tuple[str]:
+    """The ``classes`` binding of a chart's wrapper: highlighted when it is the lesson's chart
+    (in presenter mode without a lesson, the contact-angle chart is the one shown)."""
+    return (
+        f"(lesson_chart || (presenter ? 'contact_angle' : '')) === '{chart}' "
+        "? 'mb-2 rt-chart rt-lesson-chart' : 'mb-2 rt-chart'",
+    )
+
+
+def presenter_button() -> None:
+    """Toolbar button: presenter mode on and off."""
+    v3.VBtn(
+        text=("presenter ? 'leave presenter mode' : 'presenter mode'",),
+        id="presenter-button",
+        click="presenter = !presenter; main_drawer = !presenter",
+        prepend_icon="mdi-projector-screen",
+        variant="tonal",
+        size="small",
+        classes="mr-2",
+        title="Projector view: 3-D view and one chart, large type. Keys: space play/pause, "
+        "arrows step, N/P next/previous lesson, Esc leaves.",
+    )
+
+
+def lessons_panel(ctrl) -> None:
+    """The Lessons card: one button per lesson; the open lesson's text, results and warnings."""
+    with v3.VCard(variant="outlined", classes="mb-2 pa-2", id="lessons-panel"):
+        with v3.VRow(dense=True, align="center", classes=HIDE):
+            with v3.VCol(cols="auto"):
+                html.Span("Lessons", classes="text-subtitle-1")
+            with v3.VCol():
+                v3.VBtn(
+                    "{{ lesson.title }}",
+                    v_for="lesson in lessons",
+                    key="lesson.id",
+                    id=("'lesson-' + lesson.id",),
+                    title=("lesson.summary",),
+                    click=(ctrl.open_lesson, "[lesson.id]"),
+                    size="x-small",
+                    variant=("lesson_id === lesson.id ? 'flat' : 'tonal'",),
+                    color="primary",
+                    classes="ma-1 text-none",
+                )
+        html.Div(
+            "{{ lesson_message }}",
+            v_if="lesson_message",
+            id="lesson-message",
+            classes="text-error text-caption",
+        )
+        with html.Div(v_if="lesson_problems.length", id="lesson-problems", classes=HIDE):
+            v3.VAlert(
+                "{{ problem }}",
+                v_for="problem in lesson_problems",
+                key="problem",
+                type="error",
+                density="compact",
+                variant="tonal",
+                classes="my-1 text-caption",
+            )
+        with html.Div(v_if="lesson_id"):
+            with v3.VRow(dense=True, align="center", classes="mt-1"):
+                with v3.VCol(cols="auto"):
+                    v3.VBtn(
+                        icon="mdi-chevron-left",
+                        click=ctrl.previous_lesson,
+                        size="x-small",
+                        variant="text",
+                        id="lesson-previous",
+                        title="previous lesson (P)",
+                    )
+                with v3.VCol():
+                    html.Div("{{ lesson_title }}", id="lesson-title", classes="text-subtitle-1")
+                with v3.VCol(cols="auto"):
+                    v3.VBtn(
+                        icon="mdi-chevron-right",
+                        click=ctrl.next_lesson,
+                        size="x-small",
+                        variant="text",
+                        id="lesson-next",
+                        title="next lesson (N)",
+                    )
+            with html.Div(v_if="lesson_results.length > 1", classes="my-1"):
+                v3.VBtn(
+                    "{{ result.label }}",
+                    v_for="result in lesson_results",
+                    key="result.name",
+                    id=("'lesson-result-' + result.name",),
+                    click=(ctrl.show_lesson_result, "[result.name]"),
+                    size="x-small",
+                    variant=("lesson_result === result.name ? 'flat' : 'outlined'",),
+                    color="primary",
+                    classes="ma-1 text-none",
+                )
+            html.Div(
+                "The result on show is no longer this lesson's, so the numbers below describe "
+                "the lesson's result ({{ lesson_results.find(r => r.name === lesson_result)"
+                "?.label }}). Open the lesson again to return to it.",
+                v_if="lesson_stale",
+                id="lesson-stale",
+                classes="text-caption text-warning my-1",
+            )
+            html.Div(
+                "{{ lesson_explain }}",
+                id="lesson-text",
+                classes="text-body-2 my-1",
+                style="white-space: pre-line;",
+            )
+            v3.VAlert(
+                "{{ lesson_try }}",
+                id="lesson-try",
+                title="Try this",
+                type="info",
+                density="compact",
+                variant="tonal",
+                classes=f"my-1 text-body-2 {HIDE}",
+            )
+            with html.Div(v_if="lesson_warnings.length", id="lesson-warnings"):
+                v3.VAlert(
+                    "{{ warning }}",
+                    v_for="warning in lesson_warnings",
+                    key="warning",
+                    type="warning",
+                    density="compact",
+                    variant="tonal",
+                    classes="my-1 text-caption",
+                )
+
+
+__all__ = [
+    "HIDE",
+    "KEYS_SCRIPT",
+    "PRESENTER_CSS",
+    "chart_classes",
+    "lessons_panel",
+    "page_assets",
+    "presenter_button",
+]

@@ -1,0 +1,155 @@
+"""What the 3-D view says in words: the operating point, revolution counter, slow motion, a note.
+
+Pure functions of a result's coordinates (results-schema.md) and of the animation settings; no
+rendering. Angles in rad, speeds in rad/s, times in s, loads in N.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+TWO_PI = 2.0 * math.pi
+# Per-ball colours (cycled) of the 3-D traces and of the raceway map coloured by ball.
+BALL_PALETTE = (
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+    "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896", "#c5b0d5", "#c49c94",
+)  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Facts:
+    """The operating point of a result, as the teaching overlay needs it."""
+
+    model: str  # "quasistatic" | "dynamic"
+    inner_ring_speed: float  # rad/s about +x
+    outer_ring_speed: float  # rad/s about +x
+    axial_load: float  # N
+    radial_load: float  # N
+    radial_load_angle: float  # rad, from +y towards +z
+    misalignment: float  # rad
+    misalignment_axis: float  # rad, azimuth of the tilt axis (at t = 0 when turning)
+    misalignment_frame: str  # "space" | "ring"
+
+    @property
+    def shaft_period(self) -> float:
+        """Seconds per revolution of the inner ring relative to the outer ring (inf at rest)."""
+        w = abs(self.inner_ring_speed - self.outer_ring_speed)
+        return TWO_PI / w if w > 0 else math.inf
+
+    @property
+    def misalignment_turns(self) -> bool:
+        return self.misalignment_frame == "ring"
+
+
+def facts_from_result(ds) -> Facts:
+    """:class:`Facts` from a results Dataset's describing coordinates (ValueError naming what is
+    missing)."""
+    names = (
+        "inner_ring_speed",
+        "outer_ring_speed",
+        "axial_load",
+        "radial_load",
+        "radial_load_angle",
+        "misalignment",
+        "misalignment_axis",
+        "misalignment_frame",
+    )
+    missing = [n for n in names if n not in ds.coords]
+    if missing:
+        raise ValueError(
+            f"the result lacks the coordinates {', '.join(missing)} (results-schema.md); "
+            "run the case again with this version"
+        )
+
+    def scalar(name):
+        values = ds.coords[name].values
+        return values.flat[0] if values.ndim else values.item()
+
+    return Facts(
+        model=str(ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")),
+        inner_ring_speed=float(scalar("inner_ring_speed")),
+        outer_ring_speed=float(scalar("outer_ring_speed")),
+        axial_load=float(scalar("axial_load")),
+        radial_load=float(scalar("radial_load")),
+        radial_load_angle=math.radians(float(scalar("radial_load_angle"))),
+        misalignment=math.radians(float(scalar("misalignment"))),
+        misalignment_axis=math.radians(float(scalar("misalignment_axis"))),
+        misalignment_frame=str(scalar("misalignment_frame")),
+    )
+
+
+def _duration_words(seconds: float) -> str:
+    """'1 ms', '250 us', '2.5 s': a duration with a unit that keeps the number readable."""
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6)):
+        if seconds >= scale or unit == "µs":
+            value = seconds / scale
+            return f"{value:.3g} {unit}"
+    return f"{seconds:.3g} s"  # pragma: no cover
+
+
+def slow_motion_words(bearing_seconds_per_screen_second: float) -> str:
+    """'1 s on screen = 1.2 ms of bearing time' for a playback rate (bearing s per screen s)."""
+    if not bearing_seconds_per_screen_second > 0:
+        return ""
+    return f"1 s on screen = {_duration_words(bearing_seconds_per_screen_second)} of bearing time"
+
+
+def playback_rate(frame_step_s: float, frames_per_tick: int, ticks_per_second: float) -> float:
+    """Bearing seconds shown per screen second: time per frame x frames per tick x ticks/s."""
+    return float(frame_step_s) * int(frames_per_tick) * float(ticks_per_second)
+
+
+def revolution_words(time: float, facts: Facts, total_time: float | None = None) -> str:
+    """'revolution 2.4 of 6' (shaft revolutions relative to the outer ring since t = 0)."""
+    period = facts.shaft_period
+    if not math.isfinite(period):
+        return "rings at rest"
+    done = time / period
+    if total_time is None:
+        return f"revolution {done:.1f}"
+    return f"revolution {done:.1f} of {total_time / period:.3g}"
+
+
+def misalignment_words(facts: Facts) -> str:
+    """'tilt axis, fixed in space' / 'tilt axis, turning with the ring' ('' without a tilt)."""
+    if facts.misalignment == 0.0:
+        return ""
+    where = "turning with the ring" if facts.misalignment_turns else "fixed in space"
+    return f"tilt axis, {where}"
+
+
+def what_you_see(facts: Facts, exaggeration: float = 1.0, ellipse_scale: float = 1.0) -> str:
+    """A short note on what the 3-D view shows for this operating point."""
+    parts = [
+        "Each raceway is painted where the contact ellipses (blue) ran: the colour is how long "
+        "a point spent under a ball (dwell) or the highest pressure it saw. Black lines: the "
+        "shoulder edges; blue line: the groove bottom. The outer ring is drawn apart and opened "
+        "so that its raceway shows from inside."
+    ]
+    if facts.model == "quasistatic":
+        parts.append(
+            "This is the quasi-static preview: every ball repeats the steady load zone, so tracks "
+            "are ideal lines; run the dynamic model to see the real spread."
+        )
+    fixed_to_inner = facts.misalignment != 0.0 and facts.misalignment_turns
+    fixed_in_space = facts.radial_load != 0.0 or (
+        facts.misalignment != 0.0 and not facts.misalignment_turns
+    )
+    if fixed_to_inner and not fixed_in_space:
+        parts.append(
+            "The tilt turns with the inner ring: the inner track is a thin line that wanders "
+            "across its groove, the outer track a band."
+        )
+    elif fixed_in_space and not fixed_to_inner:
+        parts.append(
+            "The load (or tilt) is fixed in space: the outer track is a thin line, the inner "
+            "track, which turns under the load, a band."
+        )
+    elif not fixed_to_inner and not fixed_in_space:
+        parts.append("Pure axial load: every ball runs on the same circle on both raceways.")
+    if exaggeration != 1.0:
+        parts.append(f"Across-groove deviations are drawn {exaggeration:g}x larger than true.")
+    if ellipse_scale != 1.0:
+        parts.append(f"Ellipses are drawn {ellipse_scale:g}x their true size.")
+    return " ".join(parts)

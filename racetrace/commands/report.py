@@ -1,0 +1,55 @@
+"""``racetrace report RUN_OR_STUDY --output review.html``: the standalone review report.
+
+RUN_OR_STUDY is a result NetCDF file (racetrace simulate / quasistatic --output, the app's runs
+folder) or a study folder (racetrace study --output). The page is one HTML file with everything
+embedded: it opens from disk with no server and no network, and prints to PDF from the browser.
+Needs the ``report`` extra; without it the command says how to install it (exit 2).
+"""
+
+from __future__ import annotations
+
+import sys
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "report",
+        help="write a standalone HTML review report of a result or a study",
+        description=(
+            "Write a self-contained HTML review report (Panel) of RUN_OR_STUDY: a results NetCDF "
+            "file or a study folder. Exit codes: 0 written, 2 invalid input or the report extra "
+            "missing."
+        ),
+    )
+    parser.add_argument("source", metavar="RUN_OR_STUDY", help="result .nc file or study folder")
+    parser.add_argument("--output", "-o", default="review.html", help="HTML file to write")
+    parser.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from racetrace.cli import EXIT_INVALID_INPUT
+    from report.build import missing_report_modules
+
+    missing = missing_report_modules()
+    if missing:
+        print(
+            "racetrace: the report needs the 'report' extra (missing: "
+            f'{", ".join(missing)}). Install it with: pip install -e ".[report]"',
+            file=sys.stderr,
+        )
+        return EXIT_INVALID_INPUT
+    from report import build_report
+
+    info = build_report(args.source, args.output)
+    size = info["bytes"] / 1e6
+    print(
+        f"racetrace: wrote {info['path']} ({size:.1f} MB, {info['kind']} report)", file=sys.stderr
+    )
+    for note in info["notes"]:
+        print(f"racetrace: decimated: {note}", file=sys.stderr)
+    if info["unresolved"]:
+        print(
+            "warning: the page still refers to: " + ", ".join(info["unresolved"][:5]),
+            file=sys.stderr,
+        )
+    return 0

@@ -1,0 +1,411 @@
+"""Assemble the review report and save it as one self-contained HTML file.
+
+A run report holds: the case with provenance and the software version, the result warnings, the
+summary table with units, the 3-D scene (vtk.js; a PNG of it stands in when printing), the
+raceway maps, contact-angle and load charts and the contact-ellipse table. A study report holds
+the study's metric charts, its table of points and, for each point, links to nothing external:
+the per-point results stay in the study folder. What was decimated is listed on the page.
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import html
+import importlib.util
+import json
+import math
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+#: Top-level modules of the ``report`` extra (checked before building).
+REPORT_MODULES = ("panel", "bokeh", "pyvista", "vtkmodules", "PIL")
+
+PRINT_CSS = """
+body { font-family: sans-serif; }
+.rt-table { border-collapse: collapse; font-size: 13px; margin: 4px 0 12px 0; }
+.rt-table th, .rt-table td { border: 1px solid #ccc; padding: 2px 6px; text-align: right; }
+.rt-table th { background: #f2f2f2; }
+.rt-table td.text, .rt-table th.text { text-align: left; }
+.rt-warn { color: #8a4b00; }
+pre.rt-case { font-size: 11px; background: #f7f7f7; padding: 6px; white-space: pre-wrap; }
+@media print { .rt-section { break-inside: avoid; page-break-inside: avoid; } }
+"""
+#: Panel components live in shadow roots: each gets its own stylesheet for screen and print.
+#: The page column hides the vtk.js scene when printing (a still image stands in for it).
+PAGE_PRINT_CSS = (
+    "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } }"
+)
+PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
+
+
+def missing_report_modules() -> list[str]:
+    """Modules of the ``report`` extra that are not installed."""
+    missing = []
+    for name in REPORT_MODULES:
+        try:
+            found = importlib.util.find_spec(name) is not None
+        except (ImportError, ValueError):
+            found = False
+        if not found:
+            missing.append(name)
+    return missing
+
+
+def _table(headers, rows, text_columns=(0,)) -> str:
+    def cell(tag, k, value):
+        cls = ' class="text"' if k in text_columns else ""
+        return f"<{tag}{cls}>{html.escape(str(value))}</{tag}>"
+
+    head = "".join(cell("th", k, h) for k, h in enumerate(headers))
+    body = "".join(
+        "<tr>" + "".join(cell("td", k, v) for k, v in enumerate(row)) + "</tr>" for row in rows
+    )
+    return f'<table class="rt-table"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def _fmt(value, digits: int = 4) -> str:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        return str(value)
+    return f"{value:.{digits}g}" if math.isfinite(value) else "-"
+
+
+def _provenance(ds) -> str:
+    """The bearing's geometry provenance from the run's case text (kept for provenance)."""
+    try:
+        case = tomllib.loads(ds.attrs.get("case", ""))
+    except tomllib.TOMLDecodeError:
+        return "unknown"
+    return str(case.get("bearing", {}).get("provenance", "estimated"))
+
+
+# ---- one run --------------------------------------------------------------------------------
+def _operating_rows(ds):
+    from solver.results.variables import variable
+
+    rows = []
+    for name in (
+        "inner_ring_speed",
+        "outer_ring_speed",
+        "axial_load",
+        "radial_load",
+        "radial_load_angle",
+        "misalignment",
+        "misalignment_axis",
+        "misalignment_frame",
+        "tilting_moment",
+        "ball_count",
+        "ball_diameter",
+        "pitch_diameter",
+        "free_contact_angle",
+    ):
+        if name not in ds.coords:
+            continue
+        spec = variable(name)
+        value = ds.coords[name].values
+        if name.endswith("_speed"):
+            rows.append((spec.long_name, _fmt(float(value) * 30.0 / math.pi, 6), "rpm"))
+        elif value.dtype.kind in "fiu":
+            rows.append((spec.long_name, _fmt(value, 6), spec.units))
+        else:
+            rows.append((spec.long_name, str(value), spec.units))
+    return rows
+
+
+def _summary_rows(ds):
+    from solver.study.metrics import POINT_METRICS, point_metrics
+
+    metrics = point_metrics(ds)
+    rows = []
+    for name, (dims, units, long_name, _d) in POINT_METRICS.items():
+        value = metrics.get(name)
+        if dims:
+            rows.append((long_name, _fmt(value["inner"]), _fmt(value["outer"]), units))
+        else:
+            rows.append((long_name, _fmt(value), "", units))
+    return rows
+
+
+def _ellipse_rows(ds):
+    last = ds.isel(time=-1) if "time" in ds.dims else ds
+    rows = []
+    for j in range(ds.sizes["ball"]):
+        row = [str(j + 1), _fmt(float(last["ball_azimuth"].isel(ball=j)), 4)]
+        for race in ("inner", "outer"):
+            c = last.isel(ball=j).sel(race=race)
+            row += [
+                _fmt(float(c["contact_load"]), 4),
+                _fmt(float(c["contact_angle"]), 4),
+                _fmt(float(c["ellipse_semi_major"]) * 1e3, 4),
+                _fmt(float(c["ellipse_semi_minor"]) * 1e3, 4),
+                _fmt(float(c["max_pressure"]) * 1e-9, 4),
+            ]
+        rows.append(row)
+    headers = ["ball", "azimuth deg"]
+    for race in ("inner", "outer"):
+        r = race[0]
+        headers += [f"Q_{r} N", f"alpha_{r} deg", f"a_{r} mm", f"b_{r} mm", f"p_{r} GPa"]
+    return headers, rows
+
+
+def run_sections(ds, source_name: str):
+    """The Panel objects of a run report and the decimation notes."""
+    import panel as pn
+
+    from . import charts
+    from .scene import bearing_plotter, screenshot_png
+
+    notes = []
+    model = ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")
+    title = ds.attrs.get("title") or _case_title(ds)
+    header = (
+        f"# racetrace review: {html.escape(title)}\n\n"
+        f"**{model} result** `{html.escape(source_name)}` · computed with "
+        f"{html.escape(ds.attrs.get('software', 'racetrace'))} on {ds.attrs.get('created', '?')} · "
+        f"report made {_dt.datetime.now(_dt.UTC).strftime('%Y-%m-%d %H:%M UTC')} · bearing "
+        f"geometry: **{html.escape(_provenance(ds))}**"
+    )
+    sections = [pn.pane.Markdown(header, sizing_mode="stretch_width")]
+    warnings = ds.racetrace.warnings()
+    warn_html = (
+        "<ul>" + "".join(f'<li class="rt-warn">{html.escape(w)}</li>' for w in warnings) + "</ul>"
+        if warnings
+        else "<p>none: the result stays within the model's validity checks</p>"
+    )
+    sections.append(_section("Result warnings", warn_html))
+    sections.append(
+        _section(
+            "Operating point and bearing",
+            _table(("quantity", "value", "units"), _operating_rows(ds)),
+        )
+    )
+    window = ds.racetrace.summary().attrs.get("analysed_window", "the quasi-static snapshot")
+    sections.append(
+        _section(
+            "Summary (each race in its own ring's frame)",
+            _table(("metric", "inner", "outer", "units"), _summary_rows(ds))
+            + f"<p>Analysed window: {html.escape(window)}.</p>",
+        )
+    )
+    plotter, note = bearing_plotter(ds)
+    if note:
+        notes.append(note)
+    png = base64.b64encode(screenshot_png(plotter)).decode("ascii")
+    vtk = pn.pane.VTK(plotter.ren_win, height=520, sizing_mode="stretch_width")
+    sections.append(
+        pn.pane.Markdown(
+            "## 3-D scene (drag to turn, wheel to zoom)\n\nThe bearing at the last sample, with "
+            "the contact trajectories of the run on both raceways; ellipses coloured by peak "
+            "pressure."
+        )
+    )
+    sections.append(vtk)
+    sections.append(
+        pn.pane.HTML(
+            f'<img src="data:image/png;base64,{png}" style="width:100%;max-width:900px" '
+            'alt="3-D scene">',
+            sizing_mode="stretch_width",
+            stylesheets=[PRINT_ONLY_CSS],
+        )
+    )
+    figs = []
+    for race in ("inner", "outer"):
+        fig, note = charts.raceway_map(ds, race)
+        figs.append(fig)
+        if note:
+            notes.append(note)
+    sections.append(pn.pane.Markdown("## Raceway maps"))
+    sections.append(pn.Row(*(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs)))
+    angle, note_a = charts.contact_series(ds, "contact_angle", "contact angle [deg]")
+    load, _ = charts.contact_series(ds, "contact_load", "contact load [N]")
+    if note_a:
+        notes.append(note_a.replace("contact angle [deg]", "contact-angle and load charts"))
+    sections.append(pn.pane.Markdown("## Contact angle and load"))
+    sections.append(pn.pane.Bokeh(angle, sizing_mode="stretch_width"))
+    sections.append(pn.pane.Bokeh(load, sizing_mode="stretch_width"))
+    headers, rows = _ellipse_rows(ds)
+    when = "at the last sample" if "time" in ds.dims else ""
+    sections.append(
+        _section(f"Contact ellipses {when}".strip(), _table(headers, rows, text_columns=()))
+    )
+    sections.append(
+        _section(
+            "Case (as run)",
+            f'<pre class="rt-case">{html.escape(ds.attrs.get("case", ""))}</pre>',
+        )
+    )
+    return sections, notes
+
+
+def _case_title(ds) -> str:
+    try:
+        return str(tomllib.loads(ds.attrs.get("case", "")).get("title", "result"))
+    except tomllib.TOMLDecodeError:
+        return "result"
+
+
+def _section(title: str, body_html: str):
+    import panel as pn
+
+    return pn.pane.HTML(
+        f'<div class="rt-section"><h2>{html.escape(title)}</h2>{body_html}</div>',
+        sizing_mode="stretch_width",
+        stylesheets=[PRINT_CSS],
+    )
+
+
+# ---- a study --------------------------------------------------------------------------------
+STUDY_CHART_METRICS = (
+    ("excursion", "excursion [deg]", 1.0),
+    ("band_thickness", "band thickness [deg]", 1.0),
+    ("mean_contact_angle", "mean contact angle [deg]", 1.0),
+    ("peak_pressure", "peak pressure [GPa]", 1e-9),
+)
+
+
+def study_sections(ds):
+    import panel as pn
+
+    from . import charts
+
+    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
+    header = (
+        f"# racetrace study review: {html.escape(ds.attrs.get('title', ''))}\n\n"
+        f"Base case `{html.escape(ds.attrs.get('base_case', ''))}` · "
+        f"{ds.sizes['point']} points · {html.escape(ds.attrs.get('software_version', ''))} · "
+        f"report made {_dt.datetime.now(_dt.UTC).strftime('%Y-%m-%d %H:%M UTC')}\n\n"
+        f"{html.escape(ds.attrs.get('description', ''))}"
+    )
+    sections = [pn.pane.Markdown(header, sizing_mode="stretch_width")]
+    for sweep in dict.fromkeys(str(s) for s in ds["sweep"].values):
+        select = np.asarray(ds["sweep"].values) == sweep
+        varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
+        if not varied:
+            continue
+        figs = charts.study_metric_charts(ds, sweep, varied[0], STUDY_CHART_METRICS)
+        if figs:
+            sections.append(pn.pane.Markdown(f"## {html.escape(sweep)}"))
+            sections.append(
+                pn.GridBox(
+                    *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
+                    ncols=2,
+                    sizing_mode="stretch_width",
+                )
+            )
+    headers = ["point", "sweep", "model", *(k.rsplit(".", 1)[-1] for k in keys), "status"]
+    columns = (
+        ("excursion", "exc", "deg", 1.0),
+        ("band_thickness", "band", "deg", 1.0),
+        ("mean_contact_angle", "alpha", "deg", 1.0),
+        ("peak_pressure", "p", "GPa", 1e-9),
+        ("largest_load", "Q", "N", 1.0),
+    )
+    for _v, short, unit, _s in columns:
+        headers += [f"{short}_i {unit}", f"{short}_o {unit}"]
+    headers += ["cage slip", "message"]
+    rows = []
+    for i, point in enumerate(ds["point"].values):
+        for j, model in enumerate(ds["model"].values):
+            status = str(ds["status"].values[i, j])
+            if status == "not run":
+                continue
+            row = [str(point), str(ds["sweep"].values[i]), str(model)]
+            row += [_fmt(ds[k].values[i], 5) for k in keys]
+            row.append(status)
+            for var, _short, _unit, scale in columns:
+                for race in ("inner", "outer"):
+                    row.append(
+                        _fmt(float(ds[var].values[i, j, 0 if race == "inner" else 1]) * scale)
+                    )
+            row.append(_fmt(float(ds["cage_slip"].values[i, j])))
+            row.append(str(ds["message"].values[i, j])[:200])
+            rows.append(row)
+    sections.append(
+        _section(
+            "Points (each race in its own ring's frame)",
+            _table(headers, rows, text_columns=(0, 1, 2, len(headers) - 1)),
+        )
+    )
+    return sections, []
+
+
+# ---- the page -------------------------------------------------------------------------------
+def _load(source):
+    """('run', Dataset, name) or ('study', Dataset, name) for a result file or study folder."""
+    from solver.errors import CaseError, Problem
+    from solver.results.io import load_dataset
+    from solver.study import open_study, study_dataset
+
+    path = Path(source)
+    if path.is_dir():
+        return "study", study_dataset(open_study(path)), path.name
+    if not path.is_file():
+        raise CaseError(Problem("report", f"{source}: no such result file or study folder"))
+    try:
+        ds = load_dataset(path)
+    except (OSError, ValueError) as error:
+        raise CaseError(
+            Problem("report", f"{source}: not a readable results NetCDF file ({error})")
+        ) from None
+    if ds.attrs.get("racetrace_kind") == "study":
+        return "study", ds, path.name
+    return "run", ds, path.name
+
+
+def build_report(source, output) -> dict:
+    """Write the report of ``source`` (a result NetCDF file or a study folder) to ``output``.
+
+    Returns ``{"path", "bytes", "kind", "notes", "unresolved"}``: the decimation notes shown on the
+    page and any external URL that could not be inlined (empty when the page is standalone)."""
+    import panel as pn
+    from bokeh.resources import INLINE
+
+    import solver  # noqa: F401  (registers ds.racetrace)
+    from solver.results.io import atomic_write
+
+    from .offline import external_urls, inline_cdn_links
+
+    kind, ds, name = _load(source)
+    pn.config.inline = True
+    if kind == "run":
+        sections, notes = run_sections(ds, name)
+    else:
+        sections, notes = study_sections(ds)
+    if notes:
+        sections.append(
+            _section(
+                "Decimated for this page",
+                "<ul>" + "".join(f"<li>{html.escape(n)}</li>" for n in notes) + "</ul>"
+                "<p>The full result keeps every sample.</p>",
+            )
+        )
+    page = pn.Column(
+        *sections,
+        sizing_mode="stretch_width",
+        styles={"max-width": "1200px", "margin": "0 auto"},
+        stylesheets=[PAGE_PRINT_CSS],
+    )
+    output = Path(output)
+
+    def write(tmp):
+        raw = Path(tmp).with_suffix(".raw.html")
+        try:
+            page.save(str(raw), embed=True, resources=INLINE, title=f"racetrace review: {name}")
+            text, _missing = inline_cdn_links(raw.read_text(encoding="utf-8"))
+        finally:
+            raw.unlink(missing_ok=True)
+        Path(tmp).write_text(text, encoding="utf-8")
+
+    atomic_write(output, write)
+    text = output.read_text(encoding="utf-8")
+    return {
+        "path": output,
+        "bytes": output.stat().st_size,
+        "kind": kind,
+        "notes": notes,
+        "unresolved": external_urls(text),
+    }

@@ -1,0 +1,139 @@
+"""Bokeh charts of the report: raceway maps, contact angle and load, study metrics.
+
+Each chart embeds its data in the page, so long runs are decimated: at most
+:data:`MAX_MAP_POINTS` contact samples per raceway map and :data:`MAX_TIME_POINTS` samples per
+time series (an even stride; the caption says so).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+MAX_MAP_POINTS = 20_000
+MAX_TIME_POINTS = 2_000
+RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
+MODEL_DASH = {"quasistatic": "dashed", "dynamic": "solid"}
+PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
+
+
+def _figure(title: str, x_label: str, y_label: str, **kwargs):
+    from bokeh.plotting import figure
+
+    fig = figure(
+        title=title,
+        x_axis_label=x_label,
+        y_axis_label=y_label,
+        height=kwargs.pop("height", 300),
+        sizing_mode="stretch_width",
+        tools="pan,wheel_zoom,box_zoom,reset,hover,save",
+        **kwargs,
+    )
+    fig.toolbar.logo = None
+    return fig
+
+
+def _stride(n: int, limit: int) -> int:
+    return max(1, math.ceil(n / limit))
+
+
+def raceway_map(ds, race: str):
+    """Contact angle against raceway azimuth in the race's own ring frame (every loaded contact
+    sample of the run, decimated), and a note on decimation."""
+    angle = np.asarray(ds["contact_angle"].sel(race=race).values, float).ravel()
+    azimuth = np.asarray(ds["raceway_azimuth"].sel(race=race).values, float).ravel()
+    load = np.asarray(ds["contact_load"].sel(race=race).values, float).ravel()
+    ok = np.isfinite(angle) & np.isfinite(azimuth) & (load > 0)
+    angle, azimuth = angle[ok], azimuth[ok]
+    step = _stride(angle.size, MAX_MAP_POINTS)
+    fig = _figure(
+        f"{race} raceway map (own ring frame)", "raceway azimuth [deg]", "contact angle [deg]"
+    )
+    fig.scatter(
+        azimuth[::step],
+        angle[::step],
+        size=2,
+        alpha=0.4,
+        color=RACE_COLOURS[race],
+        legend_label=f"{race} contacts",
+    )
+    note = (
+        f"{race} raceway map: {angle.size} loaded contact samples, every {step}th shown"
+        if step > 1
+        else ""
+    )
+    return fig, note
+
+
+def contact_series(ds, name: str, label: str, scale: float = 1.0):
+    """A contact variable per race: against time for a dynamic result (mean over the loaded
+    balls, and ball 1), against ball azimuth for a quasi-static one."""
+    if "time" in ds.dims:
+        t = np.asarray(ds["time"].values, float) * 1e3
+        step = _stride(t.size, MAX_TIME_POINTS)
+        fig = _figure(f"{label} against time", "time [ms]", label)
+        for race in ("inner", "outer"):
+            values = np.asarray(ds[name].sel(race=race).transpose("time", "ball").values, float)
+            load = np.asarray(
+                ds["contact_load"].sel(race=race).transpose("time", "ball").values, float
+            )
+            masked = np.where(load > 0, values, np.nan) * scale
+            with np.errstate(all="ignore"):
+                mean = np.nanmean(masked, axis=1)
+            fig.line(
+                t[::step], mean[::step], color=RACE_COLOURS[race], legend_label=f"{race}, mean"
+            )
+            fig.line(
+                t[::step],
+                masked[::step, 0],
+                color=RACE_COLOURS[race],
+                alpha=0.5,
+                line_dash="dotted",
+                legend_label=f"{race}, ball 1",
+            )
+        note = f"{label}: {t.size} time samples, every {step}th shown" if step > 1 else ""
+    else:
+        psi = np.asarray(ds["ball_azimuth"].values, float)
+        order = np.argsort(psi)
+        fig = _figure(f"{label} around the bearing", "ball azimuth [deg]", label)
+        for race in ("inner", "outer"):
+            values = np.asarray(ds[name].sel(race=race).values, float) * scale
+            fig.line(psi[order], values[order], color=RACE_COLOURS[race], legend_label=race)
+            fig.scatter(psi[order], values[order], color=RACE_COLOURS[race], size=6)
+        note = ""
+    fig.legend.click_policy = "hide"
+    return fig, note
+
+
+def study_metric_charts(ds, sweep: str, key: str, metrics):
+    """Charts of ``metrics`` [(variable, label, scale)] against varied key ``key`` for the points
+    of ``sweep``: one line per race and model."""
+    select = np.asarray(ds["sweep"].values) == sweep
+    x = np.asarray(ds[key].values)[select]
+    if x.dtype.kind not in "fi":
+        return []
+    order = np.argsort(x)
+    figures = []
+    for var, label, scale in metrics:
+        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=260)
+        drawn = False
+        for model in ds["model"].values:
+            for race in ("inner", "outer"):
+                y = np.asarray(ds[var].sel(model=model, race=race).values, float)[select] * scale
+                if not np.isfinite(y).any():
+                    continue
+                drawn = True
+                fig.line(
+                    x[order],
+                    y[order],
+                    color=RACE_COLOURS[race],
+                    line_dash=MODEL_DASH.get(str(model), "solid"),
+                    legend_label=f"{race}, {model}",
+                )
+                fig.scatter(x[order], y[order], color=RACE_COLOURS[race], size=6)
+        if drawn:
+            fig.legend.click_policy = "hide"
+            fig.legend.location = "top_left"
+            figures.append(fig)
+    return figures

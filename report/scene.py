@@ -1,0 +1,51 @@
+"""The report's 3-D scene: the app's bearing scene (app.scene) at the last sample of a result,
+with the contact trajectories of the whole run painted on both raceways.
+
+Returns the pyvista Plotter; the page shows its render window through Panel's VTK pane (vtk.js,
+turn and zoom in the browser) and a PNG of it for printing. Traces hold at most
+``app.scene.MAX_TRACE_SAMPLES`` samples per ball and race (longer runs are decimated).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def bearing_plotter(ds, size=(900, 600)):
+    """(plotter, note) for result ``ds``: rings, balls, cage, contact ellipses at the last
+    sample and the trajectories; ``note`` says what was decimated ("" when nothing was)."""
+    import pyvista as pv
+
+    from app.frames import FrameSource
+    from app.scene import MAX_TRACE_SAMPLES, BearingScene
+    from solver.results.dataset import geometry_from_result
+
+    pv.OFF_SCREEN = True
+    plotter = pv.Plotter(off_screen=True, window_size=list(size))
+    geometry = geometry_from_result(ds)
+    scene = BearingScene(plotter, geometry)
+    if "time" in ds.dims:
+        source = FrameSource.from_dynamic(ds)
+    else:
+        source = FrameSource.from_quasistatic(ds)
+    scene.show_source(source, source.n_frames - 1)
+    scene.set_camera("isometric")
+    note = ""
+    if source.n_frames > MAX_TRACE_SAMPLES:
+        note = (
+            f"3-D trajectories: {source.n_frames} samples per ball and race decimated to at most "
+            f"{MAX_TRACE_SAMPLES}"
+        )
+    return plotter, note
+
+
+def screenshot_png(plotter) -> bytes:
+    """The plotter's current image as PNG bytes (for the printed page)."""
+    import io
+
+    from PIL import Image
+
+    image = plotter.screenshot(return_img=True)
+    buffer = io.BytesIO()
+    Image.fromarray(np.asarray(image)).save(buffer, format="PNG", optimize=True)
+    return buffer.getvalue()

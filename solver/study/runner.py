@@ -1,0 +1,215 @@
+"""Running a study's points on Dask (``dask.distributed``) and saving each run as it finishes.
+
+:func:`run_study` submits the runs not yet finished in the study folder to a Dask client: one task
+per dynamic run, and the quasi-static runs in batches (a quasi-static run takes tens of
+milliseconds, about the cost of scheduling one task, so a batch holds enough runs to keep the
+scheduling overhead small). Without a client it starts a ``LocalCluster`` of single-threaded
+worker processes (one per core by default) and closes it at the end. Each worker loads the
+compiled numba kernels from the on-disk cache once, when it starts (solver.study.worker).
+
+Each run's NetCDF file and record are written atomically (solver.study.store) as soon as it
+finishes, so a stop loses only the runs that were running: by the worker itself when it shares
+this machine's file system (``shared_folder``; the default for the local cluster, so the writing
+runs in parallel), otherwise by this process when the result comes back. A
+run that fails (no quasi-static solution, diverged, invalid) is recorded with its message and the
+others go on; a worker that dies has its tasks run again by Dask on the other workers. ``cancel``
+(a ``threading.Event``) stops the study: pending tasks are cancelled and what is done is kept.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+import uuid
+from dataclasses import dataclass
+
+from .store import FAILED, StudyFolder
+
+#: Quasi-static runs per task: at least this many ...
+QS_BATCH_MIN = 4
+#: ... and at most this many, so that every worker gets several batches.
+QS_BATCH_MAX = 32
+
+
+@dataclass(frozen=True)
+class Progress:
+    """What :func:`run_study` reports to its ``progress`` callback after every change."""
+
+    done: int  # runs finished (including failed) in this session
+    failed: int
+    running: int  # runs in tasks that a worker is executing (estimate: tasks in flight)
+    total: int  # runs to do in this session
+    skipped: int  # runs already finished before (resume)
+    elapsed_s: float
+    eta_s: float  # nan until the first run finishes
+    last: str  # the last run finished, as "p0003 dynamic: done"
+
+
+def _tasks(todo: list, workers: int) -> list[list]:
+    """Group the runs to do: each dynamic run alone, quasi-static runs in batches."""
+    dynamic = [t for t in todo if t[1] == "dynamic"]
+    quasi = [t for t in todo if t[1] == "quasistatic"]
+    tasks = [[t] for t in dynamic]
+    if quasi:
+        size = math.ceil(len(quasi) / max(4 * workers, 1))
+        size = max(QS_BATCH_MIN, min(QS_BATCH_MAX, size))
+        tasks = [quasi[i : i + size] for i in range(0, len(quasi), size)] + tasks
+    return tasks
+
+
+def start_local_cluster(workers: int | None = None):
+    """A LocalCluster of ``workers`` single-threaded worker processes (default: one per core),
+    without dashboard, and its Client."""
+    from dask.distributed import Client, LocalCluster
+
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(
+        n_workers=n,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        memory_limit=0,
+        silence_logs=40,
+    )
+    return cluster, Client(cluster)
+
+
+def run_study(
+    spec,
+    points,
+    output,
+    client=None,
+    workers: int | None = None,
+    resume: bool = False,
+    progress=None,
+    cancel=None,
+    version: str = "",
+    log=None,
+    shared_folder: bool | None = None,
+) -> StudyFolder:
+    """Run every unfinished (point, model) of ``points`` and save them in ``output``.
+
+    Returns the :class:`~solver.study.store.StudyFolder` (its Dataset holds what was done). See
+    the module docstring for the client, cancel and saving rules. ``log``: callable(str) for
+    one-line notes (skipped runs, warm-up). ``shared_folder``: the workers write the runs into
+    the study folder themselves (default: True with the local cluster this function starts, False
+    with a given client).
+    """
+    from dask.distributed import wait
+
+    from .worker import WarmUp, run_batch
+
+    folder = StudyFolder(output)
+    folder.start(spec, points, version, resume)
+    finished = folder.finished()
+    todo = [
+        (p.name, model, p.case)
+        for p in points
+        for model in p.models
+        if (p.name, model) not in finished
+    ]
+    if finished and log is not None:
+        failed = sum(1 for r in finished.values() if r.get("status") == FAILED)
+        log(
+            f"resume: {len(finished)} run(s) already finished in {folder.path} are skipped "
+            f"({failed} of them failed; delete a point's .json record to run it again)"
+        )
+    own_cluster = None
+    if not todo:
+        folder.save_dataset()
+        return folder
+    if client is None:
+        if log is not None:
+            log(f"starting a local Dask cluster: {workers or os.cpu_count()} worker(s)")
+        own_cluster, client = start_local_cluster(workers)
+    if shared_folder is None:
+        shared_folder = own_cluster is not None
+    target = str(folder.path.resolve()) if shared_folder else None
+    try:
+        client.register_plugin(WarmUp())
+        n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
+        tasks = _tasks(todo, n_workers)
+        total = len(todo)
+        session = uuid.uuid4().hex[:8]  # keys unique per session: a cancelled key may linger
+        futures = {
+            client.submit(
+                run_batch,
+                task,
+                target,
+                pure=False,
+                key=f"racetrace-{task[0][0]}-{task[0][1]}-{session}",
+            ): task
+            for task in tasks
+        }
+        pending = set(futures)
+        done = failed = 0
+        last = ""
+        t0 = time.perf_counter()
+
+        left = {m: sum(1 for t in todo if t[1] == m) for m in ("quasistatic", "dynamic")}
+        times: dict[str, list[float]] = {"quasistatic": [], "dynamic": []}
+
+        def report() -> None:
+            if progress is None:
+                return
+            elapsed = time.perf_counter() - t0
+            running = min(len(pending), n_workers)
+            progress(Progress(done, failed, running, total, len(finished), elapsed, eta(), last))
+
+        def eta() -> float:
+            """Runs left of each model times that model's mean run time so far, shared by the
+            workers (nan until a run of each model left has finished)."""
+            work = 0.0
+            for model, count in left.items():
+                if count == 0:
+                    continue
+                if not times[model]:
+                    return math.nan
+                work += count * sum(times[model]) / len(times[model])
+            return work / n_workers
+
+        report()
+        while pending:
+            if cancel is not None and cancel.is_set():
+                client.cancel(list(pending))
+                break
+            try:
+                finished_now = wait(pending, timeout=0.5, return_when="FIRST_COMPLETED").done
+            except TimeoutError:
+                continue
+            for future in finished_now:
+                pending.discard(future)
+                task = futures[future]
+                try:
+                    outcome = future.result()
+                except Exception as error:  # noqa: BLE001 - a task that raised (or lost workers)
+                    outcome = [
+                        (
+                            name,
+                            model,
+                            {
+                                "status": FAILED,
+                                "message": f"{type(error).__name__}: {error}",
+                            },
+                            None,
+                        )
+                        for name, model, _case in task
+                    ]
+                for name, model, record, ds in outcome:
+                    if not record.get("saved"):
+                        folder.save_run(name, model, record, ds)
+                    done += 1
+                    failed += record["status"] == FAILED
+                    last = f"{name} {model}: {record['status']}"
+                    left[model] -= 1
+                    spent = record.get("wall_time_s")
+                    if spent is not None:
+                        times[model].append(spent + record.get("write_time_s", 0.0))
+            report()
+    finally:
+        if own_cluster is not None:
+            client.close()
+            own_cluster.close()
+        folder.save_dataset()
+    return folder

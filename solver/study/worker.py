@@ -1,0 +1,85 @@
+"""What runs on a Dask worker: the numba warm-up plugin and the run of one batch of points.
+
+Imported by solver.study.runner only when a study runs (it imports ``dask.distributed``).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+from distributed import WorkerPlugin
+
+from .store import DONE, FAILED
+
+
+def warm_up() -> str:
+    """Load (or compile, the first time on a machine) the numba kernels of both models by solving
+    a catalogue case and integrating a few hundredths of a revolution."""
+    import solver
+    from solver.models.dynamic import SimulationOptions
+
+    case = solver.catalogue().get("spindle-combined-load").load()
+    solver.solve_quasistatic(case)
+    solver.simulate(case, options=SimulationOptions(shaft_revolutions=0.02))
+    return "warm"
+
+
+class WarmUp(WorkerPlugin):
+    """Warms the kernels once when a worker starts, also a worker that Dask restarts after a
+    crash, so that no task pays for loading them."""
+
+    name = "racetrace-warm-up"
+    idempotent = True  # registering again (each study on the same cluster) keeps the warm workers
+
+    def setup(self, worker):  # noqa: ARG002 - the plugin interface
+        warm_up()
+
+
+def run_one(case, model: str) -> tuple[dict, object]:
+    """Run one model on one case: (record, result Dataset or None). A case the model cannot solve
+    gives a ``failed`` record with the message, never an exception."""
+    import solver
+    from solver.errors import CaseError, NoSolutionError, SimulationDiverged
+
+    from .metrics import point_metrics
+
+    start = time.perf_counter()
+    ds = None
+    try:
+        if model == "quasistatic":
+            ds = solver.solve_quasistatic(case)
+        else:
+            ds = solver.simulate(case)
+        record = {"status": DONE, "message": "", "metrics": point_metrics(ds)}
+        warnings = ds.racetrace.warnings()
+        if warnings:
+            record["message"] = " | ".join(warnings)
+    except SimulationDiverged as error:
+        ds = getattr(error, "dataset", None)
+        record = {"status": FAILED, "message": f"diverged: {error}"}
+    except (NoSolutionError, CaseError, ValueError, FloatingPointError) as error:
+        record = {"status": FAILED, "message": f"{type(error).__name__}: {error}"}
+    record["wall_time_s"] = time.perf_counter() - start
+    record["worker_pid"] = os.getpid()
+    return record, ds
+
+
+def run_batch(items: list, folder=None) -> list:
+    """Run ``[(point name, model, case), ...]`` one after the other (one Dask task):
+    ``[(point name, model, record, Dataset or None), ...]``.
+
+    With ``folder`` (the study folder, when the worker shares the client's file system) each run
+    is saved there by the worker as soon as it finishes (result, then record) and comes back
+    without its Dataset, ``record["saved"]`` True."""
+    from .store import StudyFolder
+
+    out = []
+    for name, model, case in items:
+        record, ds = run_one(case, model)
+        if folder is not None:
+            record["saved"] = True
+            StudyFolder(folder).save_run(name, model, record, ds)
+            ds = None
+        out.append((name, model, record, ds))
+    return out

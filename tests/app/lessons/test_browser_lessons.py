@@ -1,0 +1,173 @@
+"""The Lessons panel and presenter mode in headless Chromium: every lesson opens from its button
+with its chart highlighted; presenter mode at 1280x720 and 1920x1080 gives the 3-D view and one
+chart the screen, in large type, and answers its keys. Screenshots are kept in
+``test-artifacts/browser/lessons/``."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from app.lessons.format import load_lessons
+from tests.app.test_browser import ARTIFACTS, CHROMIUM, LAUNCH_ARGS, playwright_api, server
+
+pytestmark = [
+    pytest.mark.browser,
+    pytest.mark.skipif(not __import__("pathlib").Path(CHROMIUM).exists(), reason="no chromium"),
+]
+LESSONS = load_lessons().lessons
+SHOTS = ARTIFACTS / "lessons"
+DRAWER_OPEN = (
+    "document.querySelector('nav.v-navigation-drawer')"
+    ".classList.contains('v-navigation-drawer--active')"
+)
+__all__ = ["server"]  # the served app (module fixture of tests/app/test_browser.py)
+
+
+@pytest.fixture(scope="module")
+def page(server):
+    """One page for the whole module (the served app is one session: each new page costs the
+    busy server a first frame); the tests resize its viewport."""
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    with playwright_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        context = browser.new_context(viewport={"width": 1280, "height": 720})
+        pg = context.new_page()
+        pg.goto(server["url"])
+        pg.wait_for_selector("#view-3d img", timeout=120_000)
+        pg.wait_for_selector("#chart-contact-angle .main-svg", timeout=120_000)
+        # paused: on this shared 2-core machine a playing view keeps the server rendering
+        pg.evaluate("window.trame.state.set('playing', false)")
+        yield pg
+        context.close()
+        browser.close()
+
+
+def _open_lesson(page, lesson):
+    page.locator(f"#lesson-{lesson.id}").click()
+    try:
+        page.wait_for_function(
+            "t => (document.querySelector('#lesson-title') || {}).innerText === t",
+            arg=lesson.title,
+            timeout=120_000,
+        )
+    except playwright_api.TimeoutError:
+        page.screenshot(path=str(SHOTS / f"failed-{lesson.id}.png"))
+        raise
+
+
+def _chart_id(chart):
+    return "chart-" + chart.replace("_", "-")
+
+
+def test_every_lesson_opens_from_its_button(page):
+    page.set_viewport_size({"width": 1280, "height": 720})
+    assert page.locator("#lessons-panel [id^=lesson-0]").count() == len(LESSONS)
+    for lesson in LESSONS:
+        _open_lesson(page, lesson)
+        text = page.locator("#lesson-text").inner_text()
+        assert len(text) > 200 and "{" not in text and "(no " not in text
+        assert page.locator("#lesson-try").inner_text().strip()
+        chart = page.locator(f"#{_chart_id(lesson.chart)}")
+        chart.wait_for(state="visible", timeout=120_000)
+        assert "rt-lesson-chart" in chart.get_attribute("class")
+        assert page.locator(".rt-lesson-chart").count() == 1
+        page.wait_for_function(
+            "l => document.body.innerText.includes(l)",
+            arg=f"lesson: {lesson.results[0].label}",
+            timeout=120_000,
+        )
+        page.screenshot(path=str(SHOTS / f"{lesson.id}-1280x720.png"))
+    # a lesson's other result is one click away
+    _open_lesson(page, next(ls for ls in LESSONS if ls.id == "04-misalignment"))
+    page.locator("#lesson-result-ring").click()
+    page.wait_for_function(
+        "() => document.body.innerText.includes('turning with the inner ring (dynamic run)')"
+        " && document.querySelector('#field-misalignment_frame').innerText.includes('ring')",
+        timeout=120_000,
+    )
+
+
+@pytest.mark.parametrize(("width", "height"), [(1280, 720), (1920, 1080)])
+def test_presenter_mode(page, width, height):
+    page.set_viewport_size({"width": width, "height": height})
+    try:
+        lesson = LESSONS[2]
+        _open_lesson(page, lesson)
+        assert page.locator("#field-axial_load_N").is_visible()
+        page.locator("#presenter-button").click()
+        page.wait_for_selector("#content.rt-presenter", timeout=120_000)
+        page.wait_for_function(f"() => !{DRAWER_OPEN}", timeout=120_000)
+        for hidden in ("#run-button", "#export", "#camera-axial"):
+            assert not page.locator(hidden).is_visible(), hidden
+        time.sleep(1.5)  # the drawer slides away, the chart redraws at its new size
+        view = page.locator("#view-3d").bounding_box()
+        chart = page.locator(f"#{_chart_id(lesson.chart)}").bounding_box()
+        assert view["height"] > 0.75 * height
+        assert view["width"] > 0.5 * width
+        assert chart["height"] > 0.3 * height and chart["x"] >= view["x"] + view["width"] - 1
+        assert view["width"] + chart["width"] > 0.9 * width
+        # the only chart on screen is the lesson's
+        visible = [c for c in page.locator(".rt-chart").all() if c.is_visible()]
+        assert len(visible) == 1
+        # large, high-contrast type
+        size = page.evaluate(
+            "parseFloat(getComputedStyle(document.querySelector('#lesson-title')).fontSize)"
+        )
+        assert size >= 24
+        colours = page.evaluate(
+            "[getComputedStyle(document.querySelector('#content')).backgroundColor,"
+            " getComputedStyle(document.querySelector('#content')).color]"
+        )
+        assert colours == ["rgb(0, 0, 0)", "rgb(255, 255, 255)"]
+        # the rendered 3-D image follows the larger view
+        page.wait_for_function(
+            "h => document.querySelector('#view-3d img').naturalHeight > 0.6 * h",
+            arg=height,
+            timeout=120_000,
+        )
+        page.screenshot(path=str(SHOTS / f"presenter-{width}x{height}.png"))
+        # keys: N and P move between lessons, space plays and pauses, arrows step
+        page.keyboard.press("n")
+        page.wait_for_function(
+            "t => document.querySelector('#lesson-title').innerText === t",
+            arg=LESSONS[3].title,
+            timeout=120_000,
+        )
+        page.keyboard.press("p")
+        page.wait_for_function(
+            "t => document.querySelector('#lesson-title').innerText === t",
+            arg=lesson.title,
+            timeout=120_000,
+        )
+        icon = page.locator("#play-button i")
+        playing = "mdi-pause" in icon.get_attribute("class")
+        page.keyboard.press(" ")
+        expected = "mdi-play" if playing else "mdi-pause"
+        page.wait_for_function(
+            "c => document.querySelector('#play-button i').className.includes(c)",
+            arg=expected,
+            timeout=120_000,
+        )
+        if expected == "mdi-pause":
+            page.keyboard.press(" ")
+            page.wait_for_function(
+                "() => document.querySelector('#play-button i').className.includes('mdi-play')",
+                timeout=120_000,
+            )
+        time.sleep(0.5)
+        before = page.locator(".rt-frame-time").inner_text()
+        page.keyboard.press("ArrowRight")
+        page.wait_for_function(
+            "b => document.querySelector('.rt-frame-time').innerText !== b",
+            arg=before,
+            timeout=120_000,
+        )
+        page.screenshot(path=str(SHOTS / f"presenter-{width}x{height}-stepped.png"))
+        page.keyboard.press("Escape")
+        page.wait_for_selector("#content:not(.rt-presenter)", timeout=120_000)
+        page.wait_for_function(f"() => {DRAWER_OPEN}", timeout=120_000)
+    finally:
+        if page.evaluate("window.trame.state.get('presenter')"):
+            page.locator("#presenter-button").click()

@@ -1,0 +1,146 @@
+"""Each shipped lesson's claim holds in its own shipped data, the shipped results are current and
+small, and every text fills with numbers from the results (none missing, no NaN)."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+import solver  # noqa: F401  (registers ds.racetrace)
+from app.lessons import results as lesson_results
+from app.lessons.format import load_lessons
+from app.lessons.text import lesson_text
+from app.lessons.values import lesson_values
+
+MAX_SHIPPED_BYTES = 1_500_000
+LESSONS = load_lessons()
+
+
+@pytest.fixture(scope="module")
+def shipped():
+    """lesson id -> {result name: Dataset}, read from the shipped files only."""
+    out = {}
+    for lesson in LESSONS.lessons:
+        out[lesson.id] = {}
+        for spec in lesson.results:
+            path = lesson_results.shipped_results_dir() / lesson_results.shipped_name(lesson, spec)
+            ds = lesson_results._read_matching(path, lesson_results.fingerprint(spec))
+            assert ds is not None, (
+                f"{path.name} is missing or out of date: run tools/make_lesson_results.py"
+            )
+            out[lesson.id][spec.name] = ds
+    return out
+
+
+def _thickness(ds, race):
+    """Band thickness of a race in its own ring's frame (solver metric), degree."""
+    frame = {"inner": "inner_ring", "outer": "outer_ring"}[race]
+    return float(ds.racetrace.summary()["trajectory_band_thickness"].sel(race=race, frame=frame))
+
+
+def _loaded(ds, name, race):
+    values = ds[name].sel(race=race).values
+    return values[ds["contact_load"].sel(race=race).values > 0]
+
+
+def test_shipped_files_are_small():
+    for lesson in LESSONS.lessons:
+        for spec in lesson.results:
+            path = lesson_results.shipped_results_dir() / lesson_results.shipped_name(lesson, spec)
+            assert path.stat().st_size < MAX_SHIPPED_BYTES, path.name
+
+
+def test_lesson_1_axial_every_ball_alike_and_a_line_on_both_raceways(shipped):
+    ds = shipped["01-axial-load"]["axial"]
+    assert float(ds.coords["radial_load"]) == 0.0
+    start = float(ds.racetrace.summary()["analysis_start_time"])
+    loads = ds["contact_load"].sel(race="inner", time=ds["time"] >= start).transpose("time", "ball")
+    spread = np.ptp(loads.values, axis=1) / loads.values.mean(axis=1)
+    assert spread.max() < 0.01  # at every instant of the analysed window all balls share alike
+    half_width = {  # ellipse half-width across the groove, as groove arc in degree
+        race: np.degrees(
+            np.mean(_loaded(ds, "ellipse_semi_major", race))
+            / float(ds.coords["groove_radius"].sel(race=race))
+        )
+        for race in ("inner", "outer")
+    }
+    for race in ("inner", "outer"):
+        assert _thickness(ds, race) < 0.02 * half_width[race]
+    assert not ds.racetrace.warnings()
+
+
+def test_lesson_2_speed_outer_angle_falls_below_inner_and_free(shipped):
+    speed, rest = shipped["02-speed"]["speed"], shipped["02-speed"]["rest"]
+    free = float(speed.coords["free_contact_angle"])
+    inner = float(_loaded(speed, "contact_angle", "inner").mean())
+    outer = float(_loaded(speed, "contact_angle", "outer").mean())
+    assert outer < inner and outer < free
+    at_rest = rest["contact_angle"].values
+    assert np.ptp(at_rest) < 0.01  # at rest inner and outer coincide, every ball alike
+    assert outer < at_rest.mean() < inner
+    assert float(speed["centrifugal_force"].mean()) > 0.0
+    assert float(rest["centrifugal_force"].max()) == 0.0
+    assert set(speed["race_control"].values) == {"outer"}
+    # the controlling (outer) raceway: the ball nearly rolls; at the inner contact it spins
+    outer_spin = abs(float(speed["spin_to_roll"].sel(race="outer").mean()))
+    inner_spin = abs(float(speed["spin_to_roll"].sel(race="inner").mean()))
+    assert outer_spin < inner_spin / 3 and inner_spin > 0.05
+
+
+def test_lesson_3_radial_load_zone_band_inner_line_outer(shipped):
+    ds = shipped["03-radial-load"]["radial"]
+    loads = _loaded(ds, "contact_load", "inner")
+    assert loads.max() > 5.0 * loads.min()  # a load zone: the loads differ round the ring
+    assert _thickness(ds, "inner") > 5.0 * _thickness(ds, "outer")
+    angles = _loaded(ds, "contact_angle", "inner")
+    assert np.ptp(angles) > 5.0  # the contact angle changes around the ring
+
+
+def test_lesson_4_line_and_band_swap_between_frames(shipped):
+    space, ring = shipped["04-misalignment"]["space"], shipped["04-misalignment"]["ring"]
+    assert str(space.coords["misalignment_frame"].values) == "space"
+    assert str(ring.coords["misalignment_frame"].values) == "ring"
+    assert _thickness(space, "inner") > 10.0 * _thickness(space, "outer")  # band in, line out
+    assert _thickness(ring, "outer") > 10.0 * _thickness(ring, "inner")  # line in, band out
+
+
+def _mean_cage(ds):
+    return lesson_values(ds)["cage_speed_rpm"]
+
+
+def test_lesson_5_cage_follows_rolling_under_preload_and_skids_at_light_load(shipped):
+    runs = shipped["05-cage"]
+    preload = _mean_cage(runs["preload"]) / _mean_cage(runs["preload_rolling"]) - 1.0
+    light = _mean_cage(runs["light"]) / _mean_cage(runs["light_rolling"]) - 1.0
+    assert abs(preload) < 0.005  # within 0.5 % of pure rolling
+    assert light < -0.02  # more than 2 % slower: skidding
+    assert abs(light) > 5.0 * abs(preload)
+    shaft = lesson_values(runs["light"])["speed_rpm"]
+    epicyclic = lesson_values(runs["light"])["epicyclic_cage_speed_rpm"]
+    assert 0.4 * shaft < epicyclic < 0.5 * shaft
+
+
+def test_lesson_6_overload_warns_heavy_does_not(shipped):
+    overload, heavy = shipped["06-overload"]["overload"], shipped["06-overload"]["heavy"]
+    warnings = overload.racetrace.warnings()
+    assert any("runs over the shoulder" in w for w in warnings)
+    assert any("peak contact pressure" in w for w in warnings)
+    assert float(overload["max_pressure"].max()) > 4.2e9
+    assert float(overload["truncation_margin"].min()) < 0.0
+    assert heavy.racetrace.warnings() == []
+    assert float(heavy["truncation_margin"].min()) > 0.0
+
+
+@pytest.mark.parametrize("lesson", LESSONS.lessons, ids=lambda lesson: lesson.id)
+def test_every_text_fills_from_the_results(lesson, shipped):
+    values = {name: lesson_values(ds) for name, ds in shipped[lesson.id].items()}
+    explain, try_this = lesson_text(lesson, values)
+    for text in (explain, try_this):
+        assert "{" not in text and "(no " not in text and "nan" not in text.lower()
+    # a number that the template formats appears in the text as the result gives it
+    first = lesson.results[0].name
+    for field, spec in re.findall(r"\{([a-z_.]+):([^}]+)\}", lesson.explain):
+        result, _, name = field.rpartition(".")
+        assert format(values[result or first][name], spec) in explain

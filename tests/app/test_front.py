@@ -1,0 +1,82 @@
+"""The front server's choice of session per request (app.front), without processes."""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+
+import pytest
+from aiohttp.test_utils import make_mocked_request
+
+from app import front as front_module
+from app.access import Access
+from app.front import COOKIE, Front, NoSession, Session
+
+
+class FakeProcess:
+    returncode = None
+
+
+def _front(monkeypatch, shared=False) -> Front:
+    front = Front(Access("127.0.0.1"), [], shared=shared)
+    ports = itertools.count(40000)
+
+    async def spawn():
+        ready = asyncio.get_running_loop().create_future()
+        ready.set_result(True)
+        port = next(ports)
+        return Session(f"s{port}", port, FakeProcess(), ready)
+
+    monkeypatch.setattr(front, "_spawn", spawn)
+    return front
+
+
+def _request(cookie: str = "", accept: str = "text/html", websocket: bool = False):
+    headers = {"Host": "127.0.0.1:8080", "Accept": accept}
+    if cookie:
+        headers["Cookie"] = f"{COOKIE}={cookie}"
+    if websocket:
+        headers.update({"Upgrade": "websocket", "Connection": "Upgrade"})
+    return make_mocked_request("GET", "/ws" if websocket else "/", headers=headers)
+
+
+def test_each_new_browser_gets_its_own_session(monkeypatch):
+    async def scenario():
+        front = _front(monkeypatch)
+        a, new_a = await front._session_for(_request())
+        b, new_b = await front._session_for(_request())
+        assert new_a and new_b and a.sid != b.sid
+        again, new = await front._session_for(_request(cookie=a.sid))
+        assert again is a and not new
+        # a script or a health check without a cookie is answered by the spare, not given it
+        spare, new = await front._session_for(_request(accept="*/*"))
+        assert not new and spare.sid not in front.sessions
+        # a websocket without a session is refused
+        with pytest.raises(NoSession, match="open the page first"):
+            await front._session_for(_request(websocket=True))
+        ws, _ = await front._session_for(_request(cookie=b.sid, websocket=True))
+        assert ws is b
+
+    asyncio.run(scenario())
+
+
+def test_new_browsers_beyond_the_limit_are_told_why(monkeypatch):
+    monkeypatch.setattr(front_module, "MAX_SESSIONS", 2)
+
+    async def scenario():
+        front = _front(monkeypatch)
+        await front._session_for(_request())
+        await front._session_for(_request())
+        with pytest.raises(NoSession, match="--shared"):
+            await front._session_for(_request())
+
+    asyncio.run(scenario())
+
+
+def test_shared_mode_gives_everyone_one_session(monkeypatch):
+    async def scenario():
+        front = _front(monkeypatch, shared=True)
+        sids = {(await front._session_for(_request()))[0].sid for _ in range(4)}
+        assert len(sids) == 1
+
+    asyncio.run(scenario())

@@ -1,0 +1,236 @@
+"""Mutated case files for the fuzz tests and ``benchmarks/robustness.py``.
+
+:func:`mutated_case_bytes` starts from a valid case and changes it the ways a careless user or an
+attacker would: values of the wrong type, non-finite, huge, tiny or just past a bound; missing and
+unknown keys (with control characters); sections replaced by values; values nested hundreds of
+levels deep; other encodings, stray bytes and cut files. :func:`outcome` runs the bytes through
+everything a case meets (decoding, parsing, validation, the dynamic model's rules, the TOML writer,
+the quasi-static solver and its JSON summary) and says how it ended; anything but a clean
+:class:`~solver.errors.CaseError`, :class:`~solver.errors.NoSolutionError` or a finite solution
+propagates as the exception it is.
+"""
+
+from __future__ import annotations
+
+import datetime
+import json
+import math
+import random
+import tomllib
+
+import numpy as np
+import tomli_w
+
+from solver.case.schema import FIELDS
+
+from .cases import CONTRACT_EXAMPLE, DEEP_GROOVE_RADIAL, LUBRICANT, SPINDLE
+
+BASES = (SPINDLE, SPINDLE + LUBRICANT, DEEP_GROOVE_RADIAL, CONTRACT_EXAMPLE)
+OUTCOMES = ("solution", "case error", "no solution")
+#: Result variables that may be NaN or inf by definition (docs/results-schema.md): no shoulder
+#: given; ISO 281 figures outside the tabulated contact angles, or an infinite life.
+MAY_BE_NAN = {
+    "truncation_margin",
+    "basic_load_rating",
+    "equivalent_load",
+    "basic_rating_life",
+    "basic_rating_life_time",
+}
+#: Lives that are inf when no contact is loaded or the rings do not turn, never NaN.
+MAY_BE_INF = {"raceway_rating_life", "reference_rating_life", "reference_rating_life_time"}
+
+ODD_VALUES = (
+    "",
+    "text",
+    "\x1b[2J\x1b]0;title\x07",
+    "/proc/self/environ",
+    True,
+    False,
+    0,
+    -1,
+    1,
+    2**63,
+    -(2**63),
+    10**400,
+    1e308,
+    -1e308,
+    5e-324,
+    1e-300,
+    math.nan,
+    math.inf,
+    -math.inf,
+    [],
+    [1.0, 2.0],
+    {"a": 1},
+    {"x": {"y": {"z": 1}}},
+    datetime.date(2026, 1, 1),
+    datetime.time(12, 0),
+)
+NUMERIC = [f for f in FIELDS if f.type in ("float", "int")]
+
+
+def _bound_values(field, rng: random.Random) -> list:
+    """Values on, just inside and just past the bounds of a numeric key (and far past them)."""
+    values = []
+    for bound in (field.minimum, field.maximum):
+        if bound is None:
+            continue
+        step = max(abs(bound), 1.0) * 1e-9
+        values += [bound, bound - step, bound + step, bound * 10 + 1, -bound]
+    values += [rng.uniform(-1e6, 1e6), 0.0]
+    if field.type == "int":
+        values = [int(v) if math.isfinite(v) and abs(v) < 1e18 else v for v in values]
+    return values
+
+
+def _within(field, rng: random.Random):
+    """A value inside the bounds of a numeric key: log-uniform over a positive range, uniform
+    otherwise (bounds that are absent are taken as 1e6 away)."""
+    low = field.minimum if field.minimum is not None else -1e6
+    high = field.maximum if field.maximum is not None else 1e6
+    if low >= 0 and high > 0:
+        low_log = math.log10(max(low, high * 1e-9))
+        value = 10 ** rng.uniform(low_log, math.log10(high))
+    else:
+        value = rng.uniform(low, high)
+    value = min(max(value, low), high)
+    return int(round(value)) if field.type == "int" else value
+
+
+def _set(data: dict, key: str, value) -> None:
+    *path, last = key.split(".")
+    table = data
+    for part in path:
+        if not isinstance(table.get(part), dict):
+            table[part] = {}
+        table = table[part]
+    table[last] = value
+
+
+def _delete(data: dict, key: str) -> None:
+    *path, last = key.split(".")
+    table = data
+    for part in path:
+        table = table.get(part)
+        if not isinstance(table, dict):
+            return
+    table.pop(last, None)
+
+
+def _mutate(data: dict, rng: random.Random) -> str:
+    """Change ``data`` in place, or return TOML text to append (deep nesting)."""
+    kind = rng.choice(
+        ["within"] * 4 + ["bound"] * 3 + ["odd", "odd", "delete", "unknown", "section", "deep"]
+    )
+    field = rng.choice(FIELDS)
+    if kind == "within":  # valid values in odd combinations: these reach the solvers
+        for numeric in rng.sample(NUMERIC, rng.randint(1, 6)):
+            _set(data, numeric.key, _within(numeric, rng))
+    elif kind == "bound":
+        numeric = rng.choice(NUMERIC)
+        _set(data, numeric.key, rng.choice(_bound_values(numeric, rng)))
+    elif kind == "odd":
+        _set(data, field.key, rng.choice(ODD_VALUES))
+    elif kind == "delete":
+        _delete(data, field.key)
+    elif kind == "unknown":
+        name = rng.choice(["x", "bal_count", "ball_count_", "\x1b[31mred", "a" * 300, "ünï"])
+        section = rng.choice(["", "bearing", "operating", "nowhere", "materials"])
+        _set(data, f"{section}.{name}" if section else name, rng.choice(ODD_VALUES))
+    elif kind == "section":
+        section = rng.choice(["bearing", "operating", "simulation", "lubricant", "cage"])
+        data[section] = rng.choice(ODD_VALUES)
+    else:
+        depth = rng.choice([10, 200, 400, 1000, 5000])
+        table = rng.choice(["deep", "bearing_x"])
+        return f"\n[{table}]\nv = " + "[" * depth + "1" + "]" * depth + "\n"
+    return ""
+
+
+def _encode(text: str, rng: random.Random) -> bytes:
+    kind = rng.choice(["utf8"] * 6 + ["bom", "utf16", "latin1", "nul", "cut", "flip", "control"])
+    data = text.encode("utf-8")
+    if kind == "bom":
+        return b"\xef\xbb\xbf" + data
+    if kind == "utf16":
+        return text.encode("utf-16")
+    if kind == "latin1":
+        return (text + "\n# r\xe9sum\xe9 \xb0C\n").encode("latin-1", "replace")
+    if kind == "nul":
+        at = rng.randrange(len(data) + 1)
+        return data[:at] + b"\x00" + data[at:]
+    if kind == "cut":
+        return data[: rng.randrange(len(data) + 1)]
+    if kind == "flip":
+        at = rng.randrange(max(len(data), 1))
+        return data[:at] + bytes([rng.randrange(256)]) + data[at + 1 :]
+    at = rng.randrange(len(data) + 1)
+    return data[:at] + rng.choice([b"\x1b[2J", b"\r", b"\x7f", b"\x0c"]) + data[at:]
+
+
+#: Keys whose valid values stress the solvers most: loads, speeds, misalignment, lubricant.
+SOLVER_KEYS = [f for f in NUMERIC if f.section in ("operating", "lubricant")]
+
+
+def _valid_extremes(data: dict, rng: random.Random) -> None:
+    """Valid operating values in odd combinations, often on their bounds: these reach the
+    quasi-static solver."""
+    for field in rng.sample(SOLVER_KEYS, rng.randint(1, 6)):
+        bounds = [b for b in (field.minimum, field.maximum) if b is not None]
+        if bounds and rng.random() < 0.4:
+            value = rng.choice(bounds)
+            if field.type == "float":
+                value = float(value)
+        else:
+            value = _within(field, rng)
+        _set(data, field.key, value)
+    if rng.random() < 0.3:  # and sometimes a bearing value too
+        _set(data, (f := rng.choice(NUMERIC)).key, _within(f, rng))
+
+
+def mutated_case_bytes(rng: random.Random) -> bytes:
+    """A case file's bytes: a valid case with valid values in odd combinations (two in five), or
+    one to four mutations of any kind in some encoding."""
+    data = tomllib.loads(rng.choice(BASES))
+    if rng.random() < 0.4:
+        _valid_extremes(data, rng)
+        return tomli_w.dumps(data).encode()
+    extra = ""
+    for _ in range(rng.randint(1, 4)):
+        extra += _mutate(data, rng)
+    try:
+        text = tomli_w.dumps(data) + extra
+    except (TypeError, ValueError):  # a value TOML cannot hold: write it as text instead
+        text = tomli_w.dumps({"title": repr(data)[:200]}) + extra
+    return _encode(text, rng)
+
+
+def outcome(content: bytes) -> str:
+    """How a case file's bytes end: one of :data:`OUTCOMES`. Any other exception propagates; a
+    solution that is not finite, or whose JSON summary is not valid JSON, fails an assertion."""
+    import solver
+    from racetrace.commands.quasistatic import summary
+    from solver.case.io import decode_case_bytes
+
+    try:
+        case = solver.parse_case(decode_case_bytes(content, "fuzz.toml"), "fuzz.toml")
+        case.warnings()
+        solver.dynamic_problems(case)
+        solver.parse_case(case.to_toml())  # what the writer writes reads back
+        ds = solver.solve_quasistatic(case)
+    except solver.CaseError as error:
+        assert str(error), "a CaseError without a message"
+        return "case error"
+    except solver.NoSolutionError as error:
+        assert str(error), "a NoSolutionError without a message"
+        return "no solution"
+    for name, variable in ds.data_vars.items():
+        if variable.dtype.kind != "f" or name in MAY_BE_NAN:
+            continue
+        values = variable.values
+        if name in MAY_BE_INF:
+            assert not np.isnan(values).any() and (values > 0).all(), f"{name} = {values}"
+        else:
+            assert np.isfinite(values).all(), f"{name} is not finite in a solution"
+    json.dumps(summary(ds), allow_nan=False)  # what --json prints
+    return "solution"
