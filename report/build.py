@@ -12,7 +12,6 @@ from __future__ import annotations
 import base64
 import datetime as _dt
 import html
-import importlib.util
 import json
 import math
 import tomllib
@@ -43,15 +42,9 @@ PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block
 
 def missing_report_modules() -> list[str]:
     """Modules of the ``report`` extra that are not installed."""
-    missing = []
-    for name in REPORT_MODULES:
-        try:
-            found = importlib.util.find_spec(name) is not None
-        except (ImportError, ValueError):
-            found = False
-        if not found:
-            missing.append(name)
-    return missing
+    from racetrace.extras import missing_modules
+
+    return missing_modules(REPORT_MODULES)
 
 
 def _table(headers, rows, text_columns=(0,)) -> str:

@@ -5,8 +5,9 @@ The app needs the ``app`` extra; without it the command says how to install it a
 
 from __future__ import annotations
 
-import importlib.util
 import sys
+
+from ..extras import missing_modules
 
 EXIT_NO_APP = 2
 APP_EXTRA_MESSAGE = "the browser app needs the app extra: pip install 'racetrace[app]'"
@@ -65,15 +66,7 @@ def register(subparsers) -> None:
 
 def missing_app_modules() -> list[str]:
     """The modules of the ``app`` extra that cannot be found here (the extra is not installed)."""
-    missing = []
-    for name in APP_MODULES:
-        try:
-            found = importlib.util.find_spec(name) is not None
-        except (ImportError, ValueError):
-            found = False
-        if not found:
-            missing.append(name)
-    return missing
+    return missing_modules(APP_MODULES)
 
 
 def app_extra_problem() -> str | None:
