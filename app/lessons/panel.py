@@ -134,7 +134,9 @@ class LessonController(Component):
         form, view = self.session.form, self.session.result
         form.drop_pending_preview()  # a preview on its way must not replace the lesson's result
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
-        form.take_case(spec.case())  # fills the form without solving a preview
+        # the form holds the lesson's case under a title naming what the lesson changed; the result
+        # on show was solved from spec.case(), which differs only in this title
+        form.take_case(spec.case().with_values({"title": f"{lesson.title}: {spec.label}"}))
         self.state.run_id = None  # the runs list names no run
         view.shown_run_id = None
         view.show_result(ds, f"lesson: {spec.label}")

@@ -56,6 +56,7 @@ def test_one_click_opens_a_lesson(app, lesson_id):
     assert app.result.dataset.attrs["model"] == spec.model
     assert float(app.result.dataset.coords["axial_load"]) == case.operating.axial_load_N
     assert float(s.fv_axial_load_N) == case.operating.axial_load_N
+    assert s.fv_title == f"{lesson.title}: {spec.label}"  # not the base case's title
     assert s.case_valid and s.case_name is None
     # numbers in the text come from that result
     assert s.lesson_explain and "{" not in s.lesson_explain and "(no " not in s.lesson_explain
