@@ -27,7 +27,7 @@ from .case_form import solve_quasistatic
 
 log = logging.getLogger("racetrace.app")
 
-PLAY_FPS = 15.0  # animation ticks per second while playing
+PLAY_FPS = 24.0  # animation ticks per second while playing
 CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
 CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half shell on the load side
 MAX_EXAGGERATION = 1000.0
