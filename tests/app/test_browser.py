@@ -256,15 +256,29 @@ def test_export_png_and_csv_download(page, server):
         assert magic in body[:200], body[:80]
 
 
-def _view_pixels(pg, name: str):
-    """The 3-D view as an (h, w, 3) int array, saved as ``name``.png in the artefacts."""
+def _view_pixels(pg, name: str, differs_from=None, settle: float = 30.0):
+    """The 3-D view as an (h, w, 3) int array once it holds still (two screenshots a second
+    apart are identical) and, if given, differs from the array ``differs_from``; saved as
+    ``name``.png in the artefacts."""
     import io
 
     import numpy as np
     from PIL import Image
 
-    png = pg.locator("#view-3d").screenshot(path=str(ARTIFACTS / f"{name}.png"))
-    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=int)
+    view = pg.locator("#view-3d")
+    deadline = time.monotonic() + settle
+    png = view.screenshot()
+    while True:
+        time.sleep(1.0)
+        again = view.screenshot()
+        if again == png:
+            pixels = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=int)
+            if differs_from is None or not np.array_equal(pixels, differs_from):
+                break
+        assert time.monotonic() < deadline, f"{name}: the 3-D view did not settle or change"
+        png = again
+    (ARTIFACTS / f"{name}.png").write_bytes(png)
+    return pixels
 
 
 def _open_case(pg, words: str) -> None:
@@ -290,11 +304,9 @@ def _track_pixels(pg, name: str):
     import numpy as np
 
     _set_state(pg, show_tracks=True)
-    time.sleep(2.0)
     shown = _view_pixels(pg, f"{name}-tracks")
     _set_state(pg, show_tracks=False)
-    time.sleep(2.0)
-    hidden = _view_pixels(pg, f"{name}-no-tracks")
+    hidden = _view_pixels(pg, f"{name}-no-tracks", differs_from=shown)
     _set_state(pg, show_tracks=True)
     mask = np.abs(shown - hidden).sum(axis=2) > 60
     rows = np.flatnonzero(mask.any(axis=1))
@@ -314,12 +326,12 @@ def test_painted_tracks_of_both_rings_show_and_tell_a_line_from_a_band(page):
     """At the default camera both painted tracks are in the 3-D image; with a misalignment
     turning with the inner ring the inner track is a line and the outer a band, fixed in space
     the reverse (quasi-static previews over one revolution, whole run painted)."""
-    page.locator("#play-button").click()  # pause: the frames must hold still
-    _set_state(page, track_whole_run=True)
+    _set_state(page, playing=False, track_whole_run=True)  # the frames must hold still
     counts = {}
     for key, words in (("ring", "turning with the inner ring"), ("space", "fixed in space")):
         _open_case(page, words)
         counts[key] = _track_pixels(page, f"tracks-{key}")
+    print("track pixels and thickness", counts)
     (ring_outer, ring_inner), (space_outer, space_inner) = counts["ring"], counts["space"]
     for count, _ in (ring_outer, ring_inner, space_outer, space_inner):
         assert count > 200, counts  # both rings painted in both cases
