@@ -102,6 +102,12 @@ SCALAR_BAR = {  # vertical, in the strip right of the bearing (see SCALAR_BAR_ST
 }
 _MARK_LIFT = 0.004  # fraction of the groove radius that marks are lifted off the raceway
 ELLIPSE_COLOUR = "#0096c7"  # contact ellipses: one colour that stands out on the painted tracks
+# Three lights that follow the camera, (position in camera coordinates: x right, y up, z towards
+# the viewer; intensity): from the eye, a key light from the upper left and a fill light from the
+# lower right, which lights the outer raceway seen from inside. Software rendering pays for every
+# light at every pixel: three cost about 10 ms a frame less than pyvista's five-light kit at
+# 820 x 670, with much the same shading.
+LIGHTS = (((0.0, 0.0, 1.0), 0.5), ((-0.5, 1.0, 0.8), 0.5), ((0.5, -1.0, 0.5), 0.4))
 
 
 @dataclass
@@ -366,6 +372,13 @@ class BearingScene:
     def _build(self, dark_balls: bool) -> None:
         g, p = self.geometry, self.plotter
         p.set_background("white")
+        p.remove_all_lights()
+        for position, intensity in LIGHTS:
+            p.add_light(pv.Light(position=position, light_type="camera light", intensity=intensity))
+        # The see-through balls and cage are blended in drawing order: order-independent
+        # translucency looks the same here (a few hundred pixels differ) and costs about 8 ms a
+        # frame in software.
+        p.renderer.SetUseOIT(False)
         inner_profile = ring_profile(
             self.grooves[INNER], g.ball_diameter, g.inner_shoulder_diameter / 2
         )
@@ -390,6 +403,9 @@ class BearingScene:
                 ),
             )
         )
+        # The painted tracks lie just above the groove: drawn first, they hide the groove under them
+        # before it is shaded (the depth test drops those pixels), which saves a shading pass there.
+        self._build_tracks()
         inner = revolve(*inner_profile)
         # a dark sector on the inner ring makes its rotation visible
         phi = np.arctan2(inner.cell_centers().points[:, 2], inner.cell_centers().points[:, 1])
@@ -452,7 +468,6 @@ class BearingScene:
                 name="cage",
             )
         )
-        self._build_tracks()
         self._build_edges()
         n_pts = g.ball_count * (ELLIPSE_POINTS + 1)
         self._ellipses, self._traces = [], []
