@@ -10,6 +10,7 @@ they share.
 from __future__ import annotations
 
 import gc
+import logging
 
 from app.offscreen import configure_environment
 
@@ -36,4 +37,25 @@ import solver.results.dataset  # noqa: E402, F401
 import solver.results.io  # noqa: E402, F401
 import solver.results.summary  # noqa: E402, F401
 
+
+def _warm() -> None:
+    """Load the compiled numba kernels a session uses at once (the quasi-static solve of the
+    default case and the track painter), so the forked sessions share them too."""
+    import numpy as np
+
+    from app.state import DEFAULT_CASE
+    from app.tracks import _paint
+    from solver.catalogue import catalogue
+
+    entries = {entry.name: entry for entry in catalogue()}
+    if DEFAULT_CASE in entries:
+        solver.solve_quasistatic(entries[DEFAULT_CASE].load())
+    i, f = np.zeros(1, np.int64), np.zeros(1)
+    _paint(np.zeros((1, 1)), np.zeros((1, 1)), i, i, i, i, f, f + 1.0, f, f, 0.0, 1.0, 1)
+
+
+try:
+    _warm()
+except Exception as error:  # a session then loads them itself; never stop the fork server
+    logging.getLogger("racetrace.front").warning("fork server warm-up skipped: %s", error)
 gc.freeze()
