@@ -13,8 +13,8 @@ import plotly.graph_objects as go
 import xarray as xr
 
 from .frames import RPM, TWO_PI, FrameSource
+from .palette import ball_colours
 from .raceway import INNER, OUTER, RACES
-from .teaching import BALL_PALETTE
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
 
@@ -233,7 +233,6 @@ def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
 
 
 MAP_COLOURINGS = ("race", "ball", "load")
-BALL_COLOURS = BALL_PALETTE  # per-ball colours, the same as the 3-D view's traces
 
 
 def raceway_map_figure(
@@ -282,7 +281,8 @@ def raceway_map_figure(
         q = load[loaded][::step]
         marker = {"size": 3, "color": RACE_COLOURS[race]}
         if colour == "ball":
-            marker["color"] = [BALL_COLOURS[j % len(BALL_COLOURS)] for j in ball]
+            palette = ball_colours(source.ball_count)  # the 3-D view's ball colours
+            marker["color"] = [palette[j] for j in ball]
         elif colour == "load":
             marker.update(
                 color=q,
@@ -317,7 +317,7 @@ def raceway_map_figure(
                     y=[None],
                     mode="markers",
                     name=f"ball {j}",
-                    marker={"size": 8, "color": BALL_COLOURS[j % len(BALL_COLOURS)]},
+                    marker={"size": 8, "color": ball_colours(source.ball_count)[j]},
                 )
             )
     fig.update_xaxes(range=[0, 360])

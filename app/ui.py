@@ -174,6 +174,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                 app.result.plotter, style="width: 100%; height: 100%;"
                             )
                             app.result.view = view
+                            _ball_legend()
                         html.Div(
                             "{{ closeup_numbers }}",
                             id="closeup-numbers",
@@ -239,6 +240,36 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                 with v3.VExpansionPanelText():
                                     _studies_panel(ctrl)
     return layout
+
+
+def _ball_legend() -> None:
+    """``div#ball-legend`` over the top of the 3-D view: each ball's number in the colour of its
+    marking (and of its trace and its raceway-map samples), state ``ball_legend``."""
+    with html.Div(
+        id="ball-legend",
+        v_show="ball_legend.length && (show_balls || show_traces)",
+        title="Ball colours: the marking on each ball, its trace and its samples in the raceway "
+        "map coloured by ball",
+        style="position: absolute; top: 4px; left: 4px; right: 18%; display: flex; "
+        "flex-wrap: wrap; align-items: center; gap: 2px 6px; padding: 2px 6px; "
+        "background: rgba(255, 255, 255, 0.8); border-radius: 4px; font-size: 12px; "
+        "line-height: 16px; pointer-events: none; z-index: 2;",
+    ):
+        html.Span("balls", classes="font-weight-medium mr-1")
+        with html.Span(
+            v_for="item in ball_legend",
+            key="item.ball",
+            classes="rt-ball-entry",
+            style="white-space: nowrap;",
+        ):
+            html.Span(
+                style=(
+                    "{display: 'inline-block', width: '10px', height: '10px', "
+                    "borderRadius: '50%', marginRight: '2px', verticalAlign: 'middle', "
+                    "background: item.colour}",
+                ),
+            )
+            html.Span("{{ item.ball }}")
 
 
 def _studies_panel(ctrl) -> None:

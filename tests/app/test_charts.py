@@ -7,6 +7,7 @@ import pytest
 
 from app import charts
 from app.frames import frame_source
+from app.palette import ball_colours
 
 
 def test_contact_angle_chart(qs_dataset):
@@ -277,7 +278,7 @@ def test_raceway_map_marks_now_follows_balls_and_names_samples_on_hover(dynamic_
     # with its legend: one entry per ball in that ball's colour
     legend = by_ball.data[2:]
     assert [t.name for t in legend] == [f"ball {j}" for j in range(src.ball_count)]
-    assert [t.marker.color for t in legend] == list(charts.BALL_COLOURS[: src.ball_count])
+    assert [t.marker.color for t in legend] == ball_colours(src.ball_count)
     by_load = charts.raceway_map_figure(src, colour="load")
     assert np.max(by_load.data[0].marker.color) > 0
     # leaving out the start-up: only samples from that time on

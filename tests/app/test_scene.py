@@ -269,3 +269,13 @@ def test_exaggerated_marks_stay_on_the_groove_between_the_shoulders(scene, geome
         assert alpha.min() >= grid.alpha_lo - 1e-3 and alpha.max() <= grid.alpha_hi + 1e-3
         if race == INNER:  # 30x the fixture's +-3 deg reaches the shoulder: clipped there
             assert np.isclose(np.abs(alpha).max(), grid.alpha_hi, atol=2e-3)
+
+
+def test_each_ball_is_marked_in_its_legend_colour(scene, geometry):
+    from app.palette import ball_colours
+
+    colours = ball_colours(geometry.ball_count)
+    for actor, colour in zip(scene._actors["balls"], colours, strict=True):
+        marked = np.array(actor.mapper.lookup_table.values)[-1, :3]
+        expected = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
+        assert np.allclose(marked, expected, atol=2), (marked, colour)

@@ -491,3 +491,14 @@ def _decode_custom(trace):
         values = np.frombuffer(base64.b64decode(custom["bdata"]), dtype=np.dtype(custom["dtype"]))
         return values.reshape(-1, 2)[:, 0]
     return [row[0] for row in custom]
+
+
+def test_ball_legend_gives_each_ball_of_the_result_its_colour(app, dynamic_dataset):
+    from app.palette import ball_colours
+
+    s = app.state
+    z = app.result.source.ball_count
+    assert [e["ball"] for e in s.ball_legend] == list(range(z))
+    assert [e["colour"] for e in s.ball_legend] == ball_colours(z)
+    app.result.show_result(dynamic_dataset, "fixture")  # 12 balls
+    assert len(s.ball_legend) == 12
