@@ -3,8 +3,8 @@
 Stable element ids used by tests: run-button, cancel-button, progress, status, view-3d, play-button,
 time-slider, case-select, chart-contact-angle, chart-raceway-map, field-<name> for every case
 input (its validation message is shown inside the same element) and, in the run comparison panel,
-compare-select, compare-message, chart-compare-runs, chart-compare-angle, chart-compare-load and
-compare-summary.
+compare-select, compare-legend, compare-message, chart-compare-runs, chart-compare-angle,
+chart-compare-load and compare-summary; ball-legend over the 3-D view.
 """
 
 from __future__ import annotations
@@ -221,17 +221,20 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             help_key,
                                         )
                             with v3.VExpansionPanel(
-                                title="Compare two runs side by side",
+                                title="Compare runs side by side",
                                 value="compare",
                                 classes=lesson_widgets.HIDE,
                             ):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
                                         v3.VSelect(
-                                            label="Compare with saved run",
-                                            v_model=("compare_id",),
+                                            label="Compare with saved runs (any number)",
+                                            v_model=("compare_ids",),
                                             items=("runs",),
                                             density="compact",
+                                            multiple=True,
+                                            chips=True,
+                                            closable_chips=True,
                                             clearable=True,
                                             hide_details=True,
                                         )
@@ -355,23 +358,63 @@ def _studies_panel(ctrl) -> None:
                         )
 
 
-def _compare_panel() -> None:
-    """Inside the comparison panel: run A (on show) versus run B (``compare_id``)."""
-    html.Div(
-        "A = {{ result_label }}; B = {{ compare_label }}",
-        v_if="compare_label",
-        classes="text-caption my-1",
+def _swatch(colour_expr: str, symbol: str = "") -> None:
+    html.Span(
+        symbol,
+        style=(
+            "{display: 'inline-block', width: '12px', height: '12px', borderRadius: '2px', "
+            f"verticalAlign: 'middle', background: {colour_expr}}}",
+        ),
     )
+
+
+def _compare_panel() -> None:
+    """Inside the comparison panel: the run on show (A) versus the saved runs chosen
+    (``compare_ids``: B, C ...), each in its own colour, named in full in the legend."""
+    with html.Div(id="compare-legend", v_if="compare_legend.length", classes="my-1"):
+        with html.Div(
+            v_for="entry in compare_legend",
+            key="entry.tag",
+            classes="rt-compare-entry text-caption d-flex align-start mb-1",
+            title=("entry.label",),
+        ):
+            with html.Span(classes="mr-1 mt-1", style="white-space: nowrap;"):
+                _swatch("entry.colour")
+                _swatch("entry.outer_colour")
+            html.B("{{ entry.tag }}", classes="mr-1")
+            # the full name, wrapped (never cut): it says what differs between the runs
+            html.Span("{{ entry.label }}", style="overflow-wrap: anywhere;")
+        html.Div(
+            "Each run in its colour: the inner race in the lighter shade, the outer race in the "
+            "darker one.",
+            classes="text-caption text-medium-emphasis",
+        )
     html.Div(
         "{{ compare_message }}",
         v_if="compare_message",
         id="compare-message",
         classes="text-error text-caption my-1",
     )
-    with html.Div(v_if="compare_label"):  # no empty axes before a run is chosen
-        _chart("chart-compare-runs", "chart_compare_runs", "compare_runs", height=300)
-        _chart("chart-compare-angle", "chart_compare_angle", "compare_angle", height=280)
-        _chart("chart-compare-load", "chart_compare_load", "compare_load", height=280)
+    with html.Div(v_if="compare_legend.length"):  # no empty axes before a run is chosen
+        for element_id, key, help_key, extra in (
+            ("chart-compare-runs", "chart_compare_runs", "compare_runs", 20),
+            ("chart-compare-angle", "chart_compare_angle", "compare_angle", 0),
+            ("chart-compare-load", "chart_compare_load", "compare_load", 0),
+        ):
+            with html.Div(
+                id=element_id, classes=lesson_widgets.chart_classes(key.removeprefix("chart_"))
+            ):
+                height = (
+                    f"compare_chart_px + {extra}"
+                    if key != "chart_compare_runs"
+                    else "compare_chart_px + 20 + 220 * (Math.ceil(compare_legend.length / 3) - 1)"
+                )
+                lazy_charts.ChartFigure(
+                    key,
+                    display_mode_bar=False,
+                    style=(f"`height: ${{{height}}}px; width: 100%;`",),
+                )
+                html.Div(HELP[help_key], classes="text-caption text-medium-emphasis px-2")
     _summary_table()
 
 
@@ -387,6 +430,13 @@ def _summary_table() -> None:
             with html.Tbody():
                 with html.Tr(v_for="row in compare_summary", key="row.key"):
                     for key, _, fmt in SUMMARY_COLUMNS:
+                        if key == "run":  # the run's colour and tag; its full name on hover
+                            with html.Td(
+                                classes="px-1", title=("row.label",), style="white-space: nowrap;"
+                            ):
+                                _swatch("row.colour")
+                                html.Span(" {{ row.run }}")
+                            continue
                         html.Td(
                             f"{{{{ row.{key} }}}}",
                             classes="px-1" + (" text-right" if fmt else ""),
