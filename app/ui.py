@@ -275,9 +275,91 @@ def _ball_legend() -> None:
             html.Span("{{ item.ball }}")
 
 
+def _study_builder(ctrl) -> None:
+    """``div#study-build``: a study built from the case in the form (app.components.studies)."""
+    with html.Div(id="study-build", classes="mt-2 pa-2", style="border: 1px solid #ddd;"):
+        html.Div("Build a study from the current case", classes="text-subtitle-2")
+        for n in (1, 2):
+            with v3.VRow(dense=True, align="center"):
+                with v3.VCol(cols=7), html.Div(id=f"study-key{n}"):
+                    v3.VAutocomplete(
+                        label="key to vary" if n == 1 else "second key (optional)",
+                        v_model=(f"study_key{n}",),
+                        items=("study_key_items",),
+                        density="compact",
+                        hide_details=True,
+                        clearable=n == 2,
+                        disabled=("study_running",),
+                    )
+                with v3.VCol(cols=5), html.Div(id=f"study-values{n}"):
+                    v3.VTextField(
+                        label="values",
+                        v_model=(f"study_values{n}",),
+                        placeholder="0, 300, 600 or 0:1500:6",
+                        persistent_placeholder=True,
+                        density="compact",
+                        hide_details=True,
+                        title="A list (0, 300, 600) or start:stop:count (0:1500:6)",
+                        disabled=("study_running",),
+                    )
+        with v3.VRow(dense=True, align="center"):
+            with v3.VCol(cols=4), html.Div(id="study-combine"):
+                v3.VSelect(
+                    label="two keys",
+                    v_model=("study_combine",),
+                    items=(
+                        "[{title: 'grid (every pair)', value: 'grid'}, "
+                        "{title: 'zipped (side by side)', value: 'zip'}]",
+                    ),
+                    density="compact",
+                    hide_details=True,
+                )
+            with v3.VCol(cols=4), html.Div(id="study-model"):
+                v3.VSelect(
+                    label="model",
+                    v_model=("study_model",),
+                    items=(
+                        "[{title: 'quasi-static', value: 'quasistatic'}, "
+                        "{title: 'dynamic', value: 'dynamic'}, {title: 'both', value: 'both'}]",
+                    ),
+                    density="compact",
+                    hide_details=True,
+                )
+            with v3.VCol(cols=4), html.Div(id="study-revolutions"):
+                v3.VTextField(
+                    label="revolutions (dynamic)",
+                    v_model=("study_revolutions",),
+                    density="compact",
+                    hide_details=True,
+                    disabled=("study_model === 'quasistatic'",),
+                )
+        v3.VBtn(
+            "Build and run",
+            id="study-build-run",
+            click=ctrl.study_build,
+            disabled=("study_running || !case_valid",),
+            color="primary",
+            size="small",
+            classes="mt-1",
+            title="Write a study file with the case in the form as its base and run it",
+        )
+
+
 def _studies_panel(ctrl) -> None:
-    """Run a shipped study (app.components.studies), chart a metric and open any point."""
+    """Run a shipped study or one built from the current case (app.components.studies), open
+    earlier results, chart a metric and open any point."""
     with html.Div(id="studies", classes="mb-2"):
+        with html.Div(id="study-results"):
+            v3.VSelect(
+                label="Open study results",
+                v_model=("study_results",),
+                items=("study_results_items",),
+                density="compact",
+                hide_details=True,
+                disabled=("study_running",),
+                no_data_text="no study results yet",
+                classes="mb-2",
+            )
         with v3.VRow(dense=True, align="center"):
             with v3.VCol(cols=6):
                 v3.VSelect(
@@ -305,7 +387,15 @@ def _studies_panel(ctrl) -> None:
                     disabled=("!study_running",),
                     size="small",
                 )
-        html.Div("{{ study_status }}", id="study-status", classes="text-caption my-1")
+        _study_builder(ctrl)
+        html.Div(
+            "{{ study_status }}",
+            id="study-status",
+            classes=(
+                "study_status.startsWith('error') ? 'text-caption my-1 text-error' : "
+                "'text-caption my-1'",
+            ),
+        )
         with v3.VRow(dense=True):
             with v3.VCol(cols=6):
                 v3.VSelect(
@@ -353,7 +443,7 @@ def _studies_panel(ctrl) -> None:
                             "open",
                             size="x-small",
                             variant="text",
-                            disabled=("row.status !== 'done'",),
+                            disabled=("!row.openable",),
                             click=(ctrl.study_open, "[row.point, row.model]"),
                         )
 
