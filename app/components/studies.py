@@ -282,7 +282,8 @@ class Studies(Component):
                 if key not in keys:
                     raise StudyInputError(f"{str(key)[:80]!r} is not a numeric key of the case")
                 varied.append((key, parse_values(s[f"study_values{n}"], f"values of {key}")))
-            title = f"{case.title}: " + " and ".join(k.rsplit(".", 1)[-1] for k, _ in varied)
+            varied_words = " and ".join(k.rsplit(".", 1)[-1] for k, _ in varied)
+            title = f"{case.bearing.designation or 'bearing'}: {varied_words} (built in the app)"
             text = build_study_text(
                 title, varied, str(s.study_combine), str(s.study_model), s.study_revolutions
             )
@@ -418,7 +419,10 @@ class Studies(Component):
         self.state.run_id = None
         self.session.result.shown_run_id = None
         title = self.study.title if self.study is not None else self.folder.path.name
-        self.session.result.show_result(ds, f"{title}: {point} {model}")
+        values = next(
+            (r["values"] for r in self.state.study_rows if r["point"] == point), ""
+        )  # what the point changes, e.g. "radial_load_N = 300"
+        self.session.result.show_result(ds, f"{title}: {point} ({values}) {model}")
 
     # ---- results of studies run before ----------------------------------------------------------
     def list_results(self) -> None:
@@ -489,8 +493,12 @@ def _keys_by_sweep(ds, keys) -> dict:
 
 
 def _text(value, digits: int = 5) -> str:
+    """A table cell: a number to ``digits`` significant figures ("0" below 1e-9: rounding noise
+    of a zero), "-" for NaN."""
     if isinstance(value, float | np.floating):
-        return f"{float(value):.{digits}g}" if math.isfinite(value) else "-"
+        if not math.isfinite(value):
+            return "-"
+        return "0" if abs(value) < 1e-9 else f"{float(value):.{digits}g}"
     return str(value)
 
 

@@ -162,6 +162,7 @@ def test_build_a_study_from_the_current_case_runs_it_and_lists_it(app):
     assert "../" + folder.name + ".base.toml" in (folder / "study.toml").read_text()
     assert "700" in base
     app.studies.open_point("p0006", "quasistatic")
+    assert "p0006 (radial_load_N = 800, inner_ring_speed_rpm = 20000)" in s.result_label
     ds = app.result.dataset
     assert ds.coords["radial_load"] == pytest.approx(800.0)
     assert ds.coords["axial_load"] == pytest.approx(700.0)
