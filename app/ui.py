@@ -388,6 +388,14 @@ def _studies_panel(ctrl) -> None:
                     size="small",
                 )
         _study_builder(ctrl)
+        v3.VProgressLinear(
+            id="study-progress",
+            model_value=("study_progress",),
+            v_show="study_running",
+            height=6,
+            color="primary",
+            classes="mt-2",
+        )
         html.Div(
             "{{ study_status }}",
             id="study-status",

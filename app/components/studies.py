@@ -4,17 +4,17 @@ before; watch a study build up point by point, chart a metric against the varied
 any point's run.
 
 State keys: ``study_names`` (shipped studies), ``study_name`` (the one chosen), ``study_running``,
-``study_status`` (progress or how it ended), ``study_rows`` (one row per point and model: values,
-status, metrics), ``study_sweeps`` / ``study_sweep`` (the sweep charted), ``study_metric`` (the
-metric charted, a name of :data:`solver.study.metrics.POINT_METRICS`) and the chart
-``chart_study`` (the metric against the sweep's varied key, inner and outer race side by side, a
-line per model). Opening results: ``study_results_items`` / ``study_results`` (shipped study
-results and the study folders of the runs folder). Building a study from the current case:
-``study_key_items`` (the form's numeric keys), ``study_key1``/``study_values1`` and
-``study_key2``/``study_values2`` (values: ``0, 300, 600`` or ``start:stop:count``),
-``study_combine`` (grid | zip), ``study_model`` (quasistatic | dynamic | both),
-``study_revolutions`` (run length of the dynamic points). Controller: ``study_run``,
-``study_build``, ``study_cancel``, ``study_open(point, model)``.
+``study_status`` (progress or how it ended), ``study_progress`` (percent done), ``study_rows``
+(one row per point and model: values, status, metrics), ``study_sweeps`` / ``study_sweep`` (the
+sweep charted), ``study_metric`` (the metric charted, a name of
+:data:`solver.study.metrics.POINT_METRICS`) and the chart ``chart_study`` (the metric against
+the sweep's varied key, inner and outer race side by side, a line per model). Opening results:
+``study_results_items`` / ``study_results`` (shipped study results and the study folders of the
+runs folder). Building a study from the current case: ``study_key_items`` (the form's numeric
+keys), ``study_key1``/``study_values1`` and ``study_key2``/``study_values2`` (values:
+``0, 300, 600`` or ``start:stop:count``), ``study_combine`` (grid | zip), ``study_model``
+(quasistatic | dynamic | both), ``study_revolutions`` (run length of the dynamic points).
+Controller: ``study_run``, ``study_build``, ``study_cancel``, ``study_open(point, model)``.
 
 The study runs in a thread of this process (a local Dask cluster of one single-threaded worker
 per core, closed at the end) and keeps its folder under the runs folder (``.studies/``); the page
@@ -162,6 +162,7 @@ class Studies(Component):
         s.study_names = names
         s.study_name = names[0] if names else None
         s.study_running = False
+        s.study_progress = 0  # percent of the running study's runs finished
         s.study_status = ""
         s.study_rows = []
         s.study_sweeps = []
@@ -234,6 +235,7 @@ class Studies(Component):
         self._thread.start()
         with self.state:
             self.state.study_running = True
+            self.state.study_progress = 0
             self.state.study_status = f"starting {self.study.title} ..."
         try:
             loop = asyncio.get_running_loop()
@@ -279,7 +281,7 @@ class Studies(Component):
                     if n == 1:
                         raise StudyInputError("choose the key to vary (first key)")
                     continue
-                if key not in keys:
+                if not isinstance(key, str) or key not in keys:
                     raise StudyInputError(f"{str(key)[:80]!r} is not a numeric key of the case")
                 varied.append((key, parse_values(s[f"study_values{n}"], f"values of {key}")))
             varied_words = " and ".join(k.rsplit(".", 1)[-1] for k, _ in varied)
@@ -330,6 +332,7 @@ class Studies(Component):
         if running:
             if p is not None:
                 eta = f", about {p.eta_s:.0f} s left" if math.isfinite(p.eta_s) else ""
+                s.study_progress = round(100 * p.done / p.total) if p.total else 0
                 s.study_status = f"{p.done}/{p.total} runs done, {p.running} running{eta}" + (
                     f", {p.failed} failed" if p.failed else ""
                 )
@@ -341,6 +344,7 @@ class Studies(Component):
             s.study_status = "cancelled: the finished runs are kept"
         else:
             s.study_status = "done"
+            s.study_progress = 100
         self.list_results()
         return True
 
@@ -454,8 +458,10 @@ class Studies(Component):
         if self.busy:
             self.state.study_status = "a study is running: cancel it before opening other results"
             return
-        if value not in {item["value"] for item in self.state.study_results_items}:
+        known = {item["value"] for item in self.state.study_results_items}
+        if not isinstance(value, str) or value not in known:
             self.state.study_status = f"error: no such study results {str(value)[:80]!r}"
+            self.state.study_results = None
             return
         kind, name = value.split(":", 1)
         try:

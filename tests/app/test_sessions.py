@@ -125,6 +125,8 @@ def test_a_session_sees_runs_saved_by_another(two, monkeypatch):
         {"run_id": ["x"]},
         {"compare_ids": {"x": 1}},
         {"compare_ids": [{"x": 1}, 5, "../../etc"]},
+        {"study_results": {"x": 1}},
+        {"study_results": "folder:../../etc"},
         {"uploaded_case": {"name": 5}},
         {"fv_ball_count": ["12"]},
     ],

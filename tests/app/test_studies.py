@@ -154,7 +154,7 @@ def test_build_a_study_from_the_current_case_runs_it_and_lists_it(app):
     app.studies.build()
     assert s.study_running, s.study_status
     _wait(app)
-    assert s.study_status == "done"
+    assert s.study_status == "done" and s.study_progress == 100
     assert len(s.study_rows) == 6 and all(r["status"] == "done" for r in s.study_rows)
     assert all(r["openable"] for r in s.study_rows)
     folder = app.studies.folder.path
