@@ -76,8 +76,8 @@ def barus_viscosity(viscosity, pressure_viscosity, pressure):
 
 
 #: Above this x = eta gamma_dot / tau_0 the Eyring law uses asinh(x) = ln(2 x) (relative error
-#: below 1e-8), which needs no exponential of the Barus exponent.
-_ASINH_LOG_FROM = 1.0e4
+#: below 4e-8), which needs no exponential of the Barus exponent.
+_ASINH_LOG_FROM = 1.0e3
 _LN_ASINH_LOG_FROM = math.log(_ASINH_LOG_FROM)
 _LN2 = math.log(2.0)
 
@@ -90,7 +90,7 @@ _LN_ASINH_SERIES_FROM = math.log(_ASINH_SERIES_FROM)
 
 @njit(cache=True, inline="always")
 def _asinh_from_log(ln_x):
-    """asinh(x) from ln x: ln(2x) above x = 1e4; ln(2x) + sum_n (-1)^(n-1) (2n-1)!! / (2n (2n)!!)
+    """asinh(x) from ln x: ln(2x) above x = 1e3; ln(2x) + sum_n (-1)^(n-1) (2n-1)!! / (2n (2n)!!)
     x^(-2n), n = 1..5, above x = 3 (one exponential, no logarithm); the closed form below."""
     if ln_x > _LN_ASINH_LOG_FROM:
         return _LN2 + ln_x

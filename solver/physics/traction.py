@@ -452,7 +452,49 @@ def ellipse_traction_law(
     power = 0.0
     y_strip = 2.0  # outside [-1, 1]: the first node starts a strip
     eta = sphi = cphi = z = 0.0
-    for k in range(nodes.shape[0]):
+    if rheological and filmed:
+        # the rheology's own loop (the law at every node: solver.physics.rheology.stress_over_slip)
+        for k in range(nodes.shape[0]):
+            xi = b * nodes[k, NODE_ROLLING]
+            if nodes[k, NODE_TRANSVERSE] != y_strip:
+                y_strip = nodes[k, NODE_TRANSVERSE]
+                eta = a * y_strip
+                sphi = kappa * eta
+                cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
+                z = -kappa * eta * eta / (1.0 + cphi)
+            v1 = s01 + o2 * z - on * eta
+            v2 = s02 + on * xi - o1 * z
+            u2 = v1 * v1 + v2 * v2
+            if u2 <= 0.0:
+                continue
+            ps = nodes[k, NODE_PRESSURE]
+            g = (
+                -ab
+                * nodes[k, NODE_AREA]
+                * stress_over_slip(
+                    math.sqrt(u2),
+                    0.5 * math.log(u2),
+                    alpha_pmax * ps,
+                    tl0 + lam_pmax * ps,
+                    ln_c,
+                    elastic,
+                    tau_0,
+                )
+            )
+            tau1 = g * v1
+            tau2 = g * v2 * cphi
+            taun = -g * v2 * sphi
+            f1 += tau1
+            f2 += tau2
+            fn += taun
+            m1 += eta * taun - z * tau2
+            m2 += z * tau1 - xi * taun
+            mn += xi * tau2 - eta * tau1
+            power -= g * u2
+        nodes_done = nodes.shape[0]
+    else:
+        nodes_done = 0
+    for k in range(nodes_done, nodes.shape[0]):
         xi = b * nodes[k, NODE_ROLLING]
         if nodes[k, NODE_TRANSVERSE] != y_strip:  # a new strip: its curvature terms
             y_strip = nodes[k, NODE_TRANSVERSE]
@@ -467,19 +509,13 @@ def ellipse_traction_law(
         v1 = s01 + o2 * z - on * eta
         v2 = s02 + on * xi - o1 * z
         u2 = v1 * v1 + v2 * v2
-        if rheological:
+        if rheological:  # no film (no entrainment): the limiting shear stress
             if u2 <= 0.0:
                 continue
             u = math.sqrt(u2)
             area = ab * nodes[k, NODE_AREA]
-            if filmed:
-                ps = nodes[k, NODE_PRESSURE]
-                g = -area * stress_over_slip(
-                    u, math.log(u), alpha_pmax * ps, tl0 + lam_pmax * ps, ln_c, elastic, tau_0
-                )
-            else:
-                pk = p_max * nodes[k, NODE_PRESSURE]
-                g = -area * shear_stress(u, pk, film, 0.0, rheology) / u
+            pk = p_max * nodes[k, NODE_PRESSURE]
+            g = -area * shear_stress(u, pk, film, 0.0, rheology) / u
         else:
             den = math.sqrt(u2 + ur2)
             if den <= 0.0:
