@@ -169,6 +169,20 @@ def test_named_oils_are_valid_lubricant_sections():
         lubricant_table("castor")
 
 
+def test_every_named_oil_value_has_a_source_or_is_marked_an_estimate():
+    """Each key of each oil names its document (one of the module's references in brackets) or
+    starts with ESTIMATE; the rheology numbers are estimates (no measured values were found)."""
+    from solver.lubricants import KEY_SOURCES, OILS, estimated_keys
+
+    for name, (keys, _) in OILS.items():
+        assert set(KEY_SOURCES[name]) == set(keys), name
+        for key, source in KEY_SOURCES[name].items():
+            cited = any(ref in source for ref in ("[ISO3448]", "[SB-T2.3]", "[MIL23699]"))
+            assert cited or source.startswith("ESTIMATE") or key == "traction_model", (name, key)
+        assert "eyring_stress_MPa" in estimated_keys(name)
+    assert "pressure_viscosity_per_GPa" not in estimated_keys("spindle-mineral-vg32")
+
+
 E_PRIME, R_X, KAPPA = 2.28e11, 9.5e-3, 10.0  # steel ball-race contact: E', R_x [m], a / b
 
 
@@ -179,7 +193,7 @@ def _contact(p_max):
     return a, b, 2.0 / 3.0 * math.pi * a * b * p_max
 
 
-def _mu(slip, r, p_max, entrainment=10.0):
+def _mu(slip, r, p_max, entrainment=10.0, n_nodes=(8, 16)):
     """Traction coefficient F / Q of the contact under uniform slip [m/s], integrated over the
     Hertz ellipse with rheology ``r`` and the Hamrock-Dowson central film."""
     from solver.physics.traction import NODE_AREA, NODE_LOAD, ellipse_quadrature
@@ -188,7 +202,7 @@ def _mu(slip, r, p_max, entrainment=10.0):
     h = film_thickness_central(
         entrainment, r[RH_VISCOSITY], r[RH_PRESSURE_VISCOSITY], E_PRIME, R_X, q, KAPPA
     )
-    nodes = ellipse_quadrature(8, 16)
+    nodes = ellipse_quadrature(*n_nodes)
     force = 0.0
     for k in range(len(nodes)):
         area = a * b * nodes[k, NODE_AREA]
@@ -236,8 +250,10 @@ def test_contact_traction_is_linear_at_low_slide_to_roll_ratio():
     eta_area = np.sum(eta * gt / (eta + gt) * 2.0 * math.pi * rho / 4000) * a * b
     srr = 1e-7
     expected = srr * ue * eta_area / (h * q)
-    assert _mu(srr * ue, r, p_max, ue) == pytest.approx(expected, rel=2e-3)
-    assert _mu(2 * srr * ue, r, p_max, ue) == pytest.approx(2 * expected, rel=2e-3)
+    # the product rule converges slowly where eta(p) crosses G t (1.4 % off with 8 x 16 nodes)
+    fine = (24, 48)
+    assert _mu(srr * ue, r, p_max, ue, fine) == pytest.approx(expected, rel=2e-3)
+    assert _mu(2 * srr * ue, r, p_max, ue, fine) == pytest.approx(2 * expected, rel=2e-3)
 
 
 def test_contact_traction_plateau_is_the_load_weighted_limiting_stress():
