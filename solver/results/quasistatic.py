@@ -187,8 +187,8 @@ def solution_to_dataset(
             "for all balls (the cage pocket forces sum to zero), each ball's spin from the "
             "moment balance of the tractions integrated over both contact ellipses (with the "
             "dynamic model's traction law, lubricant.traction_model: the traction curve or the "
-            "oil's rheology) against its gyroscopic rate; the transverse tractions take the gyroscopic moment in "
-            "the force balances"
+            "oil's rheology) against its gyroscopic rate; the transverse tractions take the "
+            "gyroscopic moment in the force balances"
         )
     else:
         kinematics = (
