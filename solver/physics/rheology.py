@@ -100,8 +100,7 @@ def _asinh_from_log(ln_x):
             0.25 - w * (0.09375 - w * (0.052083333333333336 - w * (0.0341796875 - w * 0.024609375)))
         )
         return _LN2 + ln_x + series
-    x = math.exp(ln_x)
-    return math.log(x + math.sqrt(x * x + 1.0))
+    return math.asinh(math.exp(ln_x))  # accurate also for x -> 0 (Newtonian limit)
 
 
 @njit(cache=True)

@@ -312,3 +312,16 @@ def test_jet_oil_traction_against_the_mil_l_23699_data_set():
     assert mu[0.05] < mu[0.2] < mu[1.0]
     # at higher pressure the plateau rises towards Lambda + tau_L0 / p (Bair-Winer)
     assert _contact_traction_coefficient(5.0, "jet-oil-mil-prf-23699", 100.0, 2.0e9) > mu[5.0]
+
+
+@pytest.mark.parametrize("film, transit", [(1e-15, 1e3), (1e-12, 1e-3), (1e-6, 1e-12)])
+def test_extreme_film_and_transit_stay_finite_and_below_the_limit(film, transit):
+    """A vanishing film with a long transit (entrainment -> 0) makes the elastic stress huge: the
+    stress stays finite, positive and at most tau_L; a tiny transit makes it elastic-limited."""
+    r = rheology()
+    for u in (1e-9, 1e-3, 1.0, 30.0):
+        for p in (0.0, 1e9, 3e9):
+            tau = shear_stress(u, p, film, transit, r)
+            tau_l = r[RH_LIMITING_STRESS] + r[RH_LIMITING_SLOPE] * p
+            assert math.isfinite(tau) and 0.0 < tau <= tau_l * (1.0 + 1e-12)
+            assert tau == pytest.approx(reference_stress(u, p, film, transit, r), rel=1e-6)

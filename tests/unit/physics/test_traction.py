@@ -160,6 +160,10 @@ def test_quadrature_integrates_hertz_pressure(nr, nt):
     np.testing.assert_allclose(
         nodes[:, tr.NODE_LOAD], nodes[:, tr.NODE_AREA] * p * a * b / q, rtol=1e-12
     )
+    np.testing.assert_allclose(nodes[:, tr.NODE_PRESSURE], p / pmax, rtol=1e-12)
+    # nodes of one strip are consecutive (the kernels compute the strip terms once per strip)
+    strips = np.flatnonzero(np.diff(y) != 0.0).size + 1
+    assert strips == nt
 
 
 def test_quadrature_pressure_moments():
