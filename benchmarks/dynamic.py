@@ -3,6 +3,7 @@
     python benchmarks/dynamic.py [--revolutions N] [--cases spindle heavy]
                                  [--methods dopri5 rosenbrock] [--memory-revolutions 100]
                                  [--compile-time] [--traction-model case|rheology|slip_curve]
+                                 [--compare-traction [REPEATS]]
 
 - spindle: catalogue case ``spindle-combined-load`` (7008C-class hybrid, 18 balls, 20 000 rpm,
   500 N axial + 300 N radial, cage on);
@@ -20,6 +21,13 @@ difference), times the number of evaluations, plus the integrator overhead and t
 Last, each case's figures against the targets of issue 13 (spindle <= 0.1 s, 218 heavy <= 0.06 s
 per revolution, <= 1 GB for 100 revolutions). ``--compile-time`` also times the first run in a
 fresh process with an empty numba cache (compilation of every kernel).
+
+``--compare-traction`` instead times the two traction models of the ball-race contacts against
+each other (issue 12: the rheology may make a shaft revolution at most 25 % slower than the slip
+curve): for each case and method, runs with the slip curve and with the rheology alternate
+(interleaved, so that the load of the shared machine falls on both alike), REPEATS times each
+(default 3), and prints the median wall and CPU seconds per shaft revolution, the steps per
+revolution and the cost of one right-hand-side evaluation of each, and their ratios.
 """
 
 from __future__ import annotations
@@ -182,6 +190,57 @@ def run_case(label, revolutions, method, memory_revolutions, traction_model="cas
     return per_rev, rss + peak * max(100.0 / memory_revolutions - 1.0, 0.0)
 
 
+TRACTION_MODELS = ("slip_curve", "rheology")
+
+
+def compare_traction(label, revolutions, method, repeats):
+    """Interleaved runs with each traction model; prints medians and the rheology / slip-curve
+    ratios. Returns the ratio of the median wall seconds per shaft revolution."""
+    case = resolve_case(CASES[label])
+    base = to_inputs(case)
+    inputs = {
+        m: replace(base, lubricant=replace(base.lubricant, traction_model=m))
+        for m in TRACTION_MODELS
+    }
+    options = SimulationOptions(shaft_revolutions=revolutions, method=method)
+    for m in TRACTION_MODELS:  # load / compile the kernels of both
+        simulate(inputs[m], options=replace(options, shaft_revolutions=0.05))
+    wall = {m: [] for m in TRACTION_MODELS}
+    cpu = {m: [] for m in TRACTION_MODELS}
+    steps = {}
+    for _ in range(repeats):
+        for m in TRACTION_MODELS:
+            cpu_start = time.process_time()
+            ds = simulate(inputs[m], options=options)
+            cpu[m].append((time.process_time() - cpu_start) / revolutions)
+            wall[m].append(ds.attrs["wall_time_s"] / revolutions)
+            steps[m] = (ds.attrs["steps"] + ds.attrs["rejected_steps"]) / revolutions
+    y_run = running_state(inputs["slip_curve"], options)
+    evaluation = {}
+    for _ in range(2):
+        for m in TRACTION_MODELS:
+            cost = rhs_cost(inputs[m], options, y_run, repeats=200)
+            evaluation[m] = min(evaluation.get(m, float("inf")), cost)
+    med = {m: float(np.median(wall[m])) for m in TRACTION_MODELS}
+    med_cpu = {m: float(np.median(cpu[m])) for m in TRACTION_MODELS}
+    print(f"\n== {label}, method {method}: {case.title}; {revolutions:g} revolutions x {repeats}")
+    for m in TRACTION_MODELS:
+        print(
+            f"   {m:10s} integration {med[m]:.3f} s/rev wall (median; runs "
+            f"{', '.join(f'{w:.3f}' for w in wall[m])}), simulate() CPU {med_cpu[m]:.3f} s/rev, "
+            f"{steps[m]:.0f} steps/rev (incl. rejected), "
+            f"one evaluation {evaluation[m] * 1e6:.1f} us"
+        )
+    ratio = med["rheology"] / med["slip_curve"]
+    print(
+        f"   rheology / slip curve: wall {ratio:.2f}, CPU "
+        f"{med_cpu['rheology'] / med_cpu['slip_curve']:.2f}, steps "
+        f"{steps['rheology'] / steps['slip_curve']:.2f}, one evaluation (same state) "
+        f"{evaluation['rheology'] / evaluation['slip_curve']:.2f}"
+    )
+    return ratio
+
+
 def compile_time():
     """Seconds of a first tiny run in a fresh process with an empty numba cache."""
     code = (
@@ -218,7 +277,29 @@ def main(argv=None):
         choices=("case", "rheology", "slip_curve"),
         help="traction law of the ball-race contacts (default: the case's)",
     )
+    parser.add_argument(
+        "--compare-traction",
+        type=int,
+        nargs="?",
+        const=3,
+        default=0,
+        metavar="REPEATS",
+        help="time the rheology against the slip curve (interleaved runs, medians)",
+    )
     args = parser.parse_args(argv)
+    if args.compare_traction:
+        ratios = {
+            (label, method): compare_traction(
+                label, args.revolutions, method, args.compare_traction
+            )
+            for label in args.cases
+            for method in args.methods
+        }
+        print("\nrheology / slip curve, wall s per shaft revolution (issue 12 allows 1.25):")
+        for (label, method), ratio in ratios.items():
+            verdict = "within" if ratio <= 1.25 else "over"
+            print(f"  {label:8s} {method:10s} {ratio:.2f}: {verdict} 1.25")
+        return 0
     results = {
         (label, method): run_case(
             label, args.revolutions, method, args.memory_revolutions, args.traction_model

@@ -20,17 +20,6 @@ from solver.physics.cage_contact import (
     pocket_parameters,
     pocket_stiffness_estimate,
 )
-from solver.physics.rheology import (
-    RH_CONDUCTIVITY,
-    RH_EYRING_STRESS,
-    RH_LIMITING_SLOPE,
-    RH_LIMITING_STRESS,
-    RH_PRESSURE_VISCOSITY,
-    RH_SHEAR_MODULUS,
-    RH_TEMPERATURE_VISCOSITY,
-    RH_VISCOSITY,
-    RHEOLOGY_SIZE,
-)
 from solver.physics.traction import (
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
@@ -272,13 +261,4 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
 
 def rheology_parameters(lubricant) -> np.ndarray:
     """Parameter array of solver.physics.rheology (RH_* slots) of a LubricantInputs (SI)."""
-    r = np.zeros(RHEOLOGY_SIZE)
-    r[RH_VISCOSITY] = lubricant.viscosity
-    r[RH_PRESSURE_VISCOSITY] = lubricant.pressure_viscosity
-    r[RH_EYRING_STRESS] = lubricant.eyring_stress
-    r[RH_LIMITING_STRESS] = lubricant.limiting_shear_stress
-    r[RH_LIMITING_SLOPE] = lubricant.limiting_shear_coefficient
-    r[RH_SHEAR_MODULUS] = lubricant.film_shear_modulus
-    r[RH_TEMPERATURE_VISCOSITY] = lubricant.temperature_viscosity
-    r[RH_CONDUCTIVITY] = lubricant.thermal_conductivity
-    return r
+    return lubricant.rheology_array()
