@@ -284,15 +284,16 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
 
     Returns (delta [m], alpha [rad], ring-frame azimuth of the ball phi, ring-frame contact point
     (3), inertial normal n (3), inertial contact point P (3), inertial groove centre (3), rolling
-    direction t1 (3)). The normal points from the groove centre through the ball centre to the
-    contact."""
+    direction t1 (3), (cos phi, sin phi), (cos alpha, sin alpha)). The normal points from the
+    groove centre through the ball centre to the contact."""
     dx, dy, dz = pb[0] - o[0], pb[1] - o[1], pb[2] - o[2]
     # ball centre in ring-frame components
     cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
     cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
     cz = R[0, 2] * dx + R[1, 2] * dy + R[2, 2] * dz
     phi = math.atan2(cz, cy)
-    cph, sph = math.cos(phi), math.sin(phi)
+    inv_rho = 1.0 / math.sqrt(cy * cy + cz * cz)
+    cph, sph = cy * inv_rho, cz * inv_rho
     # groove curvature centre at that azimuth, and the contact normal
     gx, gy, gz = xc, rc * cph, rc * sph
     ex, ey, ez = cx - gx, cy - gy, cz - gz
@@ -301,6 +302,9 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     delta = length - (rg - rball)
     n_rho = ny * cph + nz * sph
     alpha = math.atan2(sgn * nx, sgn * n_rho)
+    # cos and sin of alpha without evaluating them: n lies in the meridional plane (e_x, e_rho)
+    inv_r = 1.0 / math.sqrt(nx * nx + n_rho * n_rho)
+    ca, sa = sgn * n_rho * inv_r, sgn * nx * inv_r
     reach = rg + 0.5 * max(delta, 0.0)
     prx, pry, prz = gx + reach * nx, gy + reach * ny, gz + reach * nz
     ni = _to_inertial(R, nx, ny, nz)
@@ -317,6 +321,8 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
         (o[0] + pi_[0], o[1] + pi_[1], o[2] + pi_[2]),
         (o[0] + gi[0], o[1] + gi[1], o[2] + gi[2]),
         t1,
+        (cph, sph),
+        (ca, sa),
     )
 
 
@@ -332,8 +338,9 @@ def _hertz(dball, conf, gamma, is_inner, eprime):
 
 
 @njit(cache=True, inline="always")
-def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
-    """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial).
+def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, R, sgn):
+    """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial); ``trig_alpha``
+    and ``trig_phi`` are (cos, sin) of the contact angle and of the ball's ring-frame azimuth.
 
     Returns (sliding speed at P [m/s], spin [rad/s], rolling [rad/s], entrainment speed [m/s],
     roll axis (3, inertial)).
@@ -350,8 +357,8 @@ def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
     slide = math.sqrt(max((dvx * dvx + dvy * dvy + dvz * dvz) - dvn * dvn, 0.0))
     omx, omy, omz = wb[0] - wr[0], wb[1] - wr[1], wb[2] - wr[2]
     spin = sgn * (omx * n[0] + omy * n[1] + omz * n[2])
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cph, sph = math.cos(phi), math.sin(phi)
+    ca, sa = trig_alpha
+    cph, sph = trig_phi
     mix, miy, miz = _to_inertial(R, ca, -sa * cph, -sa * sph)
     roll = omx * mix + omy * miy + omz * miz
     rr2 = pb[1] * pb[1] + pb[2] * pb[2]
@@ -447,20 +454,20 @@ def ball_race_contact(
     o = (ring_origin[0], ring_origin[1], ring_origin[2])
     vr = (ring_vel[0], ring_vel[1], ring_vel[2])
     wr = (ring_omega[0], ring_omega[1], ring_omega[2])
-    delta, alpha, phi, pr, n, p, g, t1 = _contact_geometry(
+    delta, alpha, phi, pr, n, p, g, t1, trig_phi, trig_alpha = _contact_geometry(
         pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
     )
     slide, spin, roll, entrain, axis = _contact_kinematics(
-        pb, vb, wb, o, vr, wr, p, n, alpha, phi, ring_rot, sgn
+        pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, ring_rot, sgn
     )
-    gamma = dball * math.cos(alpha) / par.pitch_diameter
+    gamma = dball * trig_alpha[0] / par.pitch_diameter
     eprime = par.eprime
     rx, ry, csum, kappa, big_k, big_e, kh = _hertz(dball, conf, gamma, is_inner, eprime)
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
     rec[K_ANGLE] = alpha
-    rec[K_AZIMUTH] = math.atan2(pr[2], pr[1])
+    rec[K_AZIMUTH] = phi  # the contact point lies in the ball centre's meridional plane
     for i in range(3):
         rec[K_POINT + i] = pr[i]
         rec[K_NORMAL + i] = n[i]
