@@ -59,7 +59,7 @@ MEMORY_TARGET = 1e9  # bytes for 100 revolutions
 def running_state(inputs, options, revolutions=0.1):
     """A state of the running bearing: the initial state advanced by ``revolutions``."""
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     y = initial_state(par, quad)
     z = int(par.ball_count)
     scale = state_scales(par, y)
@@ -90,7 +90,7 @@ def running_state(inputs, options, revolutions=0.1):
 def rhs_cost(inputs, options, y, repeats=300):
     """Seconds per right-hand-side evaluation at state ``y`` (best of 7 batches)."""
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
