@@ -183,19 +183,22 @@ def run_case(label, revolutions, method, memory_revolutions, traction_model="cas
 
 
 def compile_time():
-    """Seconds of a first tiny run in a fresh process with an empty numba cache."""
+    """(wall, CPU) seconds of a first tiny run in a fresh process with an empty numba cache."""
     code = (
         "import time; t = time.perf_counter()\n"
         "from solver.models.dynamic import SimulationOptions, simulate\n"
         "simulate('spindle-combined-load', options=SimulationOptions(shaft_revolutions=0.01))\n"
         "print(time.perf_counter() - t)\n"
     )
+    cpu = resource.getrusage(resource.RUSAGE_CHILDREN)
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache)
         out = subprocess.run(
             [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
         )
-    return float(out.stdout.strip().splitlines()[-1])
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - cpu.ru_utime - cpu.ru_stime
+    return float(out.stdout.strip().splitlines()[-1]), cpu
 
 
 def main(argv=None):
@@ -236,7 +239,11 @@ def main(argv=None):
             f"memory <= {memory / 1e6:.0f} MB: {mem} 1 GB"
         )
     if args.compile_time:
-        print(f"\nfirst run with an empty numba cache (compile everything): {compile_time():.1f} s")
+        wall, cpu = compile_time()
+        print(
+            f"\nfirst run with an empty numba cache (compile everything): {wall:.1f} s wall, "
+            f"{cpu:.1f} s CPU"
+        )
     return 0
 
 
