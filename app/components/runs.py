@@ -173,6 +173,7 @@ class Runs(Component):
             "revolutions": revolutions,
         }
         self._cancel_requested = False
+        form.drop_pending_preview()  # the run's result, not a preview still on its way, is next
         self.ticket = self.pool.enqueue()
         with self.state:
             # the animation would take processor time from the solver (2 cores here): pause it

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import threading
 import time
 import uuid
 
@@ -225,6 +226,48 @@ def test_cancel_right_after_run_saves_nothing(two):
     _wait(a, timeout=300)
     assert a.state.status == "nothing computed yet, so nothing saved: cancelled", a.state.status
     assert a.store.list() == [] and a.state.runs == []
+
+
+def test_a_preview_still_on_its_way_does_not_overwrite_a_run(two, monkeypatch):
+    """An edit schedules a preview; Run is pressed and cancelled before that preview arrives: the
+    late preview is dropped and does not replace the run's final status."""
+    from app.components import case_form
+
+    a, _ = two
+    _set(a, fv_shaft_revolutions="0.3")
+    slow = case_form.solve_preview
+
+    def late_preview(case):  # arrives only after the run has ended (a loaded machine)
+        end = time.monotonic() + 300
+        while not ran.is_set() or a.runs.ticket is not None:
+            assert time.monotonic() < end
+            time.sleep(0.05)
+        try:
+            return slow(case)
+        finally:
+            previewed.set()
+
+    ran, previewed = threading.Event(), threading.Event()
+
+    monkeypatch.setattr(case_form, "solve_preview", late_preview)
+
+    async def scenario():
+        a.form.schedule_preview()  # what an edit does, with the page's event loop running
+        await asyncio.sleep(0.3)  # the preview is being computed
+        a.runs.run()
+        ran.set()
+        a.runs.cancel()
+        end = time.monotonic() + 300
+        while a.runs.ticket is not None:
+            assert time.monotonic() < end, a.state.status
+            await asyncio.sleep(0.1)
+        while not previewed.is_set():  # the late preview arrives ...
+            assert time.monotonic() < end
+            await asyncio.sleep(0.1)
+        await asyncio.sleep(0.5)  # ... and its task has had its turn
+
+    asyncio.run(scenario())
+    assert a.state.status.endswith("cancelled"), a.state.status
 
 
 def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):

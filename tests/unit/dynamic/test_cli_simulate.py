@@ -47,6 +47,7 @@ def test_simulate_writes_netcdf_and_reports_progress(fake_case, tmp_path, capsys
 
 
 def test_ctrl_c_writes_partial_result_and_exits_130(fake_case, tmp_path, capsys, monkeypatch):
+    before = signal.getsignal(signal.SIGINT)  # SIG_IGN when the tests run in a background job
     calls = []
     original = command.ProgressBar.__call__
 
@@ -75,7 +76,7 @@ def test_ctrl_c_writes_partial_result_and_exits_130(fake_case, tmp_path, capsys,
     assert ds.attrs["complete"] == 0 and ds.attrs["stop_reason"] == "cancelled"
     assert ds.sizes["time"] == 61  # t = 0 and the first chunk
     assert "partial result" in capsys.readouterr().err
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    assert signal.getsignal(signal.SIGINT) is before  # the command's handler is removed again
 
 
 def test_divergence_exits_4_with_partial_file(fake_case, tmp_path, capsys, monkeypatch):
