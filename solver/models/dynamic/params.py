@@ -28,7 +28,7 @@ from solver.physics.traction import (
 )
 
 from . import layout as L
-from .options import SimulationOptions
+from .options import DEFAULT_QUADRATURE, SimulationOptions
 
 STEEL_DENSITY = 7800.0
 #: Air at about 40 degC, the gas of the oil-air mixture around the balls.
@@ -124,9 +124,11 @@ def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
     return mass, diametral, polar
 
 
-def build_quadrature(options: SimulationOptions) -> np.ndarray:
-    """Node table of the ellipse traction rule (solver.physics.traction.ellipse_quadrature)."""
-    n_roll, n_trans = options.quadrature
+def build_quadrature(options: SimulationOptions, par: ModelParams) -> np.ndarray:
+    """Node table of the ellipse traction rule (solver.physics.traction.ellipse_quadrature):
+    ``options.quadrature``, or when that is None the default of the traction law of ``par``
+    (:data:`~solver.models.dynamic.options.DEFAULT_QUADRATURE`)."""
+    n_roll, n_trans = options.quadrature or DEFAULT_QUADRATURE[par.traction_law]
     return np.ascontiguousarray(ellipse_quadrature(n_roll, n_trans))
 
 

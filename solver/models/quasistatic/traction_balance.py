@@ -72,9 +72,11 @@ from solver.physics.traction import (
 from . import kernels
 
 #: Ellipse quadrature (points along the rolling direction, strips across the groove) and slip
-#: regularisation [m/s]: the same values as the dynamic model's defaults
-#: (SimulationOptions.quadrature, .friction_regularisation; not imported: the dynamic model imports
-#: this package for its start).
+#: regularisation [m/s]: the dynamic model's rheology-law quadrature and its slip regularisation
+#: (solver.models.dynamic.options.DEFAULT_QUADRATURE, SimulationOptions.friction_regularisation;
+#: not imported: the dynamic model imports this package for its start). With the slip-curve law
+#: the dynamic model uses two points along the rolling direction instead of four, which changes
+#: the traction by far less than the start transient.
 QUADRATURE = (4, 8)
 SLIP_REGULARISATION = 1.0e-3
 BALL_TOLERANCE = 1e-11  # ball moment residual, relative to its larger load times D / 2
