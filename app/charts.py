@@ -13,8 +13,8 @@ import plotly.graph_objects as go
 import xarray as xr
 
 from .frames import RPM, TWO_PI, FrameSource
+from .palette import MAX_COMPARED, ball_colours, run_colours, run_style, run_tag
 from .raceway import INNER, OUTER, RACES
-from .teaching import BALL_PALETTE
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
 
@@ -233,7 +233,6 @@ def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
 
 
 MAP_COLOURINGS = ("race", "ball", "load")
-BALL_COLOURS = BALL_PALETTE  # per-ball colours, the same as the 3-D view's traces
 
 
 def raceway_map_figure(
@@ -282,7 +281,8 @@ def raceway_map_figure(
         q = load[loaded][::step]
         marker = {"size": 3, "color": RACE_COLOURS[race]}
         if colour == "ball":
-            marker["color"] = [BALL_COLOURS[j % len(BALL_COLOURS)] for j in ball]
+            palette = ball_colours(source.ball_count)  # the 3-D view's ball colours
+            marker["color"] = [palette[j] for j in ball]
         elif colour == "load":
             marker.update(
                 color=q,
@@ -317,7 +317,7 @@ def raceway_map_figure(
                     y=[None],
                     mode="markers",
                     name=f"ball {j}",
-                    marker={"size": 8, "color": BALL_COLOURS[j % len(BALL_COLOURS)]},
+                    marker={"size": 8, "color": ball_colours(source.ball_count)[j]},
                 )
             )
     fig.update_xaxes(range=[0, 360])
@@ -480,74 +480,92 @@ def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go
     return fig
 
 
-def side_by_side_raceway_maps(a: FrameSource, b: FrameSource, max_points: int = 10000) -> go.Figure:
-    """Two runs compared: unrolled raceway maps of run A (left) and run B (right), same
-    contact-angle axis. The runs' full names are too long for the narrow column: the page names
-    them above the chart."""
+MAP_COLUMNS = 3  # raceway maps per row when several runs are compared
+
+
+def side_by_side_raceway_maps(*sources: FrameSource, max_points: int = 10000) -> go.Figure:
+    """Runs compared: unrolled raceway maps of each run (A = the run on show, then B, C ...),
+    side by side (at most :data:`MAP_COLUMNS` per row), same contact-angle axis, each run in its
+    own colour (:func:`app.palette.run_colours`; inner race its colour, outer race a darker shade).
+    The runs' full names are too long for the narrow column: the page lists them above the chart."""
     from plotly.subplots import make_subplots
 
+    n = len(sources)
+    cols = max(1, min(n, MAP_COLUMNS))
+    rows = max(1, -(-n // cols))
+    titles = [f"{run_tag(i)} (run on show)" if i == 0 else run_tag(i) for i in range(n)]
     fig = make_subplots(
-        rows=1,
-        cols=2,
-        shared_yaxes=True,
+        rows=rows,
+        cols=cols,
+        shared_yaxes="all",
         horizontal_spacing=0.04,
-        subplot_titles=("A (run on show)", "B (compared run)"),  # full names: caption above
+        vertical_spacing=0.12 if rows > 1 else 0.0,
+        subplot_titles=titles,  # full names: listed above the chart
     )
-    for col, tag, source in ((1, "A", a), (2, "B", b)):
+    per_panel = max(1, max_points // max(1, n))
+    for i, source in enumerate(sources):
+        row, col = i // cols + 1, i % cols + 1
+        colours = run_colours(i)
         for race in (INNER, OUTER):
             phi, alpha, loaded = source.trace(race)
-            step = max(1, int(np.ceil(loaded.sum() / max_points)))
+            step = max(1, int(np.ceil(loaded.sum() / per_panel)))
             fig.add_trace(
                 go.Scattergl(
                     x=np.mod(np.degrees(phi[loaded]), 360.0)[::step],
                     y=np.degrees(alpha[loaded])[::step],
                     mode="markers",
-                    marker={"size": 3, "color": RUN_COLOURS[tag][race]},
-                    name=f"{tag} {RACES[race]} raceway",
+                    marker={"size": 3, "color": colours[race]},
+                    name=f"{run_tag(i)} {RACES[race]} raceway",
                 ),
-                row=1,
+                row=row,
                 col=col,
             )
-        fig.update_xaxes(range=[0, 360], title_text="raceway azimuth, degree", row=1, col=col)
-    fig.update_yaxes(title_text="contact angle, degree", row=1, col=1)
+        fig.update_xaxes(range=[0, 360], row=row, col=col)
+    fig.update_xaxes(title_text="raceway azimuth, degree", row=rows)
+    fig.update_yaxes(title_text="contact angle, degree", col=1)
     _layout(fig, "", "", "")
     fig.update_layout(
         xaxis_title="raceway azimuth, degree",
         yaxis_title="contact angle, degree",
-        margin={"t": 30},  # the run names stand above the two maps; the legend is below
+        margin={"t": 30},  # the run names stand above the maps; the legend is below
     )
-    yrange = padded_range(np.concatenate([np.asarray(t.y, float) for t in fig.data]), 1.0)
+    ys = [np.asarray(t.y, float) for t in fig.data]
+    yrange = padded_range(np.concatenate(ys), 1.0) if ys else None
     if yrange is not None:
         fig.update_yaxes(range=yrange)
     return fig
 
 
+def compare_chart_px(n_runs: int, base_px: int = 280) -> int:
+    """Height (pixels) of a comparison chart of ``n_runs`` runs: room for its legend rows (two
+    entries per run) and, for the raceway maps, a row of maps per :data:`MAP_COLUMNS` runs."""
+    legend_rows = -(-2 * n_runs // ENTRIES_PER_ROW)
+    return base_px + LEGEND_ROW_PX * max(0, legend_rows - 2)
+
+
 HELP["compare_runs"] = (
-    "Two runs side by side: the contact tracks on both raceways of the run on show (left) and of "
-    "the run chosen for comparison (right), e.g. without and with radial load."
+    "Runs side by side: the contact tracks on both raceways of the run on show (A) and of each "
+    "run chosen for comparison (B, C ...; named in full above), e.g. without and with radial "
+    "load, on the same contact-angle axis."
 )
 
 
-# ---- comparing two runs (A = the run on show, B = the saved run chosen for comparison) ----------
-RUN_STYLES = {
-    "A": {"dash": "solid", "symbol": "circle", "size": 5},
-    "B": {"dash": "dash", "symbol": "x", "size": 6},
-}
-# Runs A and B in distinct colours (per race: a lighter and a darker shade), not only markers.
-RUN_COLOURS = {
-    "A": {INNER: "#1f77b4", OUTER: "#0b3d6b"},
-    "B": {INNER: "#ff7f0e", OUTER: "#a84300"},
-}
+# Compared runs (A = the run on show, then B, C ...): each its own colour (the inner race in it,
+# the outer race in a darker shade), marker and line dash (app.palette).
+RUN_STYLES = {run_tag(i): run_style(i) for i in range(MAX_COMPARED)}
+RUN_COLOURS = {run_tag(i): run_colours(i) for i in range(MAX_COMPARED)}
 
 HELP["compare_angle"] = (
-    "Contact angle versus ball azimuth, both runs overlaid (A: blue circles on a solid line, B: "
-    "orange crosses on a dashed line; a dynamic run is a cloud of its samples). Under pure axial "
+    "Contact angle versus ball azimuth, the runs overlaid (A: blue circles on a solid line, B: "
+    "orange crosses on a dashed line, C: green diamonds ...; the outer race in a darker shade of "
+    "the run's colour; a dynamic run is a cloud of its samples). Under pure axial "
     "load every ball has the same contact angles, so each race is a flat line; a radial load "
     "spreads them: balls in the load zone press deeper into the groove than the others."
 )
 HELP["compare_load"] = (
-    "Contact load versus ball azimuth, both runs overlaid (A: blue circles on a solid line, B: "
-    "orange crosses on a dashed line; a dynamic run is a cloud of its samples). Pure axial "
+    "Contact load versus ball azimuth, the runs overlaid (A: blue circles on a solid line, B: "
+    "orange crosses on a dashed line, C: green diamonds ...; the outer race in a darker shade of "
+    "the run's colour; a dynamic run is a cloud of its samples). Pure axial "
     "load shares the load equally (a flat line); with a radial load the loads concentrate in "
     "a load zone around the load direction and the balls opposite it carry less, or nothing."
 )
@@ -714,10 +732,11 @@ def _azimuth_trace(
 
 
 def _compare_azimuth_figure(
-    a: FrameSource, b: FrameSource, quantity: str, title: str, ytitle: str, max_points: int
+    sources, quantity: str, title: str, ytitle: str, max_points: int
 ) -> go.Figure:
     fig = go.Figure()
-    for tag, source in (("A", a), ("B", b)):
+    for i, source in enumerate(sources):
+        tag = run_tag(i)
         for race in (INNER, OUTER):
             fig.add_trace(_azimuth_trace(source, tag, race, quantity, max_points))
     fig.update_xaxes(range=[0, 360])
@@ -729,32 +748,32 @@ def _compare_azimuth_figure(
     return fig
 
 
-def compare_angle_figure(a: FrameSource, b: FrameSource, max_points: int = 5000) -> go.Figure:
-    """Contact angle (degree) versus ball azimuth (degree) of runs A and B, both races.
+def compare_angle_figure(*sources: FrameSource, max_points: int = 5000) -> go.Figure:
+    """Contact angle (degree) versus ball azimuth (degree) of the runs ``sources`` (A, B, C ...),
+    both races.
 
-    Traces "A inner", "A outer", "B inner", "B outer"; a quasi-static run is a line through its
-    balls, a dynamic run a cloud of all its samples (at most ``max_points`` per trace).
+    Traces "A inner", "A outer", "B inner", "B outer" ...; a quasi-static run is a line through
+    its balls, a dynamic run a cloud of all its samples (at most ``max_points`` per trace).
     """
     return _compare_azimuth_figure(
-        a,
-        b,
+        sources,
         "contact_angle",
-        "Contact angle versus ball azimuth (A circles, B crosses)",
+        "Contact angle versus ball azimuth",
         "contact angle, degree",
         max_points,
     )
 
 
-def compare_load_figure(a: FrameSource, b: FrameSource, max_points: int = 5000) -> go.Figure:
-    """Contact load (N) versus ball azimuth (degree) of runs A and B, both races.
+def compare_load_figure(*sources: FrameSource, max_points: int = 5000) -> go.Figure:
+    """Contact load (N) versus ball azimuth (degree) of the runs ``sources`` (A, B, C ...), both
+    races.
 
     Same traces and conventions as :func:`compare_angle_figure`; unloaded contacts show 0 N.
     """
     return _compare_azimuth_figure(
-        a,
-        b,
+        sources,
         "contact_load",
-        "Contact load versus ball azimuth (A circles, B crosses)",
+        "Contact load versus ball azimuth",
         "contact load, N",
         max_points,
     )

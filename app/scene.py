@@ -26,6 +26,7 @@ import numpy as np
 import pyvista as pv
 
 from .frames import FrameSource, rot_x
+from .palette import ball_colours
 from .raceway import (
     INNER,
     OUTER,
@@ -35,7 +36,6 @@ from .raceway import (
     groove_half_angle,
     grooves,
 )
-from .teaching import BALL_PALETTE
 from .tracks import (
     QUANTITIES,
     QUANTITY_LABELS,
@@ -445,11 +445,12 @@ class BearingScene:
         if self.options.translucent_balls:
             # see-through balls: plain octants almost clear, marked octants dark enough to read
             colours = ["#9a9a9a", "#1a1a1a"] if dark_balls else ["#d0d0d0", "#4a5560"]
-        for j in range(g.ball_count):
+        # each ball's marked octants in its own colour (app.palette; the legend over the view)
+        for j, colour in enumerate(ball_colours(g.ball_count)):
             actor = p.add_mesh(
                 sphere,
                 scalars="mark",
-                cmap=colours,
+                cmap=[colours[0], colour],
                 n_colors=2,
                 show_scalar_bar=False,
                 smooth_shading=True,
@@ -498,7 +499,7 @@ class BearingScene:
                 p.add_mesh(
                     trace,
                     scalars="ball",
-                    cmap=[BALL_PALETTE[j % len(BALL_PALETTE)] for j in range(g.ball_count)],
+                    cmap=ball_colours(g.ball_count),
                     n_colors=g.ball_count,
                     clim=(-0.5, g.ball_count - 0.5),
                     show_scalar_bar=False,

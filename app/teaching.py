@@ -10,11 +10,6 @@ import math
 from dataclasses import dataclass
 
 TWO_PI = 2.0 * math.pi
-# Per-ball colours (cycled) of the 3-D traces and of the raceway map coloured by ball.
-BALL_PALETTE = (
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-    "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896", "#c5b0d5", "#c49c94",
-)  # fmt: skip
 
 
 @dataclass(frozen=True)

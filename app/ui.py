@@ -3,8 +3,8 @@
 Stable element ids used by tests: run-button, cancel-button, progress, status, view-3d, play-button,
 time-slider, case-select, chart-contact-angle, chart-raceway-map, field-<name> for every case
 input (its validation message is shown inside the same element) and, in the run comparison panel,
-compare-select, compare-message, chart-compare-runs, chart-compare-angle, chart-compare-load and
-compare-summary.
+compare-select, compare-legend, compare-message, chart-compare-runs, chart-compare-angle,
+chart-compare-load and compare-summary; ball-legend over the 3-D view.
 """
 
 from __future__ import annotations
@@ -174,6 +174,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                 app.result.plotter, style="width: 100%; height: 100%;"
                             )
                             app.result.view = view
+                            _ball_legend()
                         html.Div(
                             "{{ closeup_numbers }}",
                             id="closeup-numbers",
@@ -220,17 +221,20 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
                                             help_key,
                                         )
                             with v3.VExpansionPanel(
-                                title="Compare two runs side by side",
+                                title="Compare runs side by side",
                                 value="compare",
                                 classes=lesson_widgets.HIDE,
                             ):
                                 with v3.VExpansionPanelText():
                                     with html.Div(id="compare-select"):
                                         v3.VSelect(
-                                            label="Compare with saved run",
-                                            v_model=("compare_id",),
+                                            label="Compare with saved runs (any number)",
+                                            v_model=("compare_ids",),
                                             items=("runs",),
                                             density="compact",
+                                            multiple=True,
+                                            chips=True,
+                                            closable_chips=True,
                                             clearable=True,
                                             hide_details=True,
                                         )
@@ -241,9 +245,121 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
     return layout
 
 
+def _ball_legend() -> None:
+    """``div#ball-legend`` over the top of the 3-D view: each ball's number in the colour of its
+    marking (and of its trace and its raceway-map samples), state ``ball_legend``."""
+    with html.Div(
+        id="ball-legend",
+        v_show="ball_legend.length && (show_balls || show_traces)",
+        title="Ball colours: the marking on each ball, its trace and its samples in the raceway "
+        "map coloured by ball",
+        style="position: absolute; top: 4px; left: 4px; right: 18%; display: flex; "
+        "flex-wrap: wrap; align-items: center; gap: 2px 6px; padding: 2px 6px; "
+        "background: rgba(255, 255, 255, 0.8); border-radius: 4px; font-size: 12px; "
+        "line-height: 16px; pointer-events: none; z-index: 2;",
+    ):
+        html.Span("balls", classes="font-weight-medium mr-1")
+        with html.Span(
+            v_for="item in ball_legend",
+            key="item.ball",
+            classes="rt-ball-entry",
+            style="white-space: nowrap;",
+        ):
+            html.Span(
+                style=(
+                    "{display: 'inline-block', width: '10px', height: '10px', "
+                    "borderRadius: '50%', marginRight: '2px', verticalAlign: 'middle', "
+                    "background: item.colour}",
+                ),
+            )
+            html.Span("{{ item.ball }}")
+
+
+def _study_builder(ctrl) -> None:
+    """``div#study-build``: a study built from the case in the form (app.components.studies)."""
+    with html.Div(id="study-build", classes="mt-2 pa-2", style="border: 1px solid #ddd;"):
+        html.Div("Build a study from the current case", classes="text-subtitle-2")
+        for n in (1, 2):
+            with v3.VRow(dense=True, align="center"):
+                with v3.VCol(cols=7), html.Div(id=f"study-key{n}"):
+                    v3.VAutocomplete(
+                        label="key to vary" if n == 1 else "second key (optional)",
+                        v_model=(f"study_key{n}",),
+                        items=("study_key_items",),
+                        density="compact",
+                        hide_details=True,
+                        clearable=n == 2,
+                        disabled=("study_running",),
+                    )
+                with v3.VCol(cols=5), html.Div(id=f"study-values{n}"):
+                    v3.VTextField(
+                        label="values",
+                        v_model=(f"study_values{n}",),
+                        placeholder="0, 300, 600 or 0:1500:6",
+                        persistent_placeholder=True,
+                        density="compact",
+                        hide_details=True,
+                        title="A list (0, 300, 600) or start:stop:count (0:1500:6)",
+                        disabled=("study_running",),
+                    )
+        with v3.VRow(dense=True, align="center"):
+            with v3.VCol(cols=4), html.Div(id="study-combine"):
+                v3.VSelect(
+                    label="two keys",
+                    v_model=("study_combine",),
+                    items=(
+                        "[{title: 'grid (every pair)', value: 'grid'}, "
+                        "{title: 'zipped (side by side)', value: 'zip'}]",
+                    ),
+                    density="compact",
+                    hide_details=True,
+                )
+            with v3.VCol(cols=4), html.Div(id="study-model"):
+                v3.VSelect(
+                    label="model",
+                    v_model=("study_model",),
+                    items=(
+                        "[{title: 'quasi-static', value: 'quasistatic'}, "
+                        "{title: 'dynamic', value: 'dynamic'}, {title: 'both', value: 'both'}]",
+                    ),
+                    density="compact",
+                    hide_details=True,
+                )
+            with v3.VCol(cols=4), html.Div(id="study-revolutions"):
+                v3.VTextField(
+                    label="revolutions (dynamic)",
+                    v_model=("study_revolutions",),
+                    density="compact",
+                    hide_details=True,
+                    disabled=("study_model === 'quasistatic'",),
+                )
+        v3.VBtn(
+            "Build and run",
+            id="study-build-run",
+            click=ctrl.study_build,
+            disabled=("study_running || !case_valid",),
+            color="primary",
+            size="small",
+            classes="mt-1",
+            title="Write a study file with the case in the form as its base and run it",
+        )
+
+
 def _studies_panel(ctrl) -> None:
-    """Run a shipped study (app.components.studies), chart a metric and open any point."""
+    """Run a shipped study or one built from the current case (app.components.studies), open
+    earlier results, chart a metric and open any point."""
     with html.Div(id="studies", classes="mb-2"):
+        with html.Div(id="study-results"):
+            v3.VSelect(
+                label="Open study results",
+                v_model=("study_results",),
+                items=("study_results_items",),
+                density="compact",
+                hide_details=True,
+                disabled=("study_running",),
+                no_data_text="no study results yet",
+                classes="mb-2",
+            )
         with v3.VRow(dense=True, align="center"):
             with v3.VCol(cols=6):
                 v3.VSelect(
@@ -271,7 +387,23 @@ def _studies_panel(ctrl) -> None:
                     disabled=("!study_running",),
                     size="small",
                 )
-        html.Div("{{ study_status }}", id="study-status", classes="text-caption my-1")
+        _study_builder(ctrl)
+        v3.VProgressLinear(
+            id="study-progress",
+            model_value=("study_progress",),
+            v_show="study_running",
+            height=6,
+            color="primary",
+            classes="mt-2",
+        )
+        html.Div(
+            "{{ study_status }}",
+            id="study-status",
+            classes=(
+                "study_status.startsWith('error') ? 'text-caption my-1 text-error' : "
+                "'text-caption my-1'",
+            ),
+        )
         with v3.VRow(dense=True):
             with v3.VCol(cols=6):
                 v3.VSelect(
@@ -319,28 +451,68 @@ def _studies_panel(ctrl) -> None:
                             "open",
                             size="x-small",
                             variant="text",
-                            disabled=("row.status !== 'done'",),
+                            disabled=("!row.openable",),
                             click=(ctrl.study_open, "[row.point, row.model]"),
                         )
 
 
-def _compare_panel() -> None:
-    """Inside the comparison panel: run A (on show) versus run B (``compare_id``)."""
-    html.Div(
-        "A = {{ result_label }}; B = {{ compare_label }}",
-        v_if="compare_label",
-        classes="text-caption my-1",
+def _swatch(colour_expr: str, symbol: str = "") -> None:
+    html.Span(
+        symbol,
+        style=(
+            "{display: 'inline-block', width: '12px', height: '12px', borderRadius: '2px', "
+            f"verticalAlign: 'middle', background: {colour_expr}}}",
+        ),
     )
+
+
+def _compare_panel() -> None:
+    """Inside the comparison panel: the run on show (A) versus the saved runs chosen
+    (``compare_ids``: B, C ...), each in its own colour, named in full in the legend."""
+    with html.Div(id="compare-legend", v_if="compare_legend.length", classes="my-1"):
+        with html.Div(
+            v_for="entry in compare_legend",
+            key="entry.tag",
+            classes="rt-compare-entry text-caption d-flex align-start mb-1",
+            title=("entry.label",),
+        ):
+            with html.Span(classes="mr-1 mt-1", style="white-space: nowrap;"):
+                _swatch("entry.colour")
+                _swatch("entry.outer_colour")
+            html.B("{{ entry.tag }}", classes="mr-1")
+            # the full name, wrapped (never cut): it says what differs between the runs
+            html.Span("{{ entry.label }}", style="overflow-wrap: anywhere;")
+        html.Div(
+            "Each run in its colour: the inner race in the lighter shade, the outer race in the "
+            "darker one.",
+            classes="text-caption text-medium-emphasis",
+        )
     html.Div(
         "{{ compare_message }}",
         v_if="compare_message",
         id="compare-message",
         classes="text-error text-caption my-1",
     )
-    with html.Div(v_if="compare_label"):  # no empty axes before a run is chosen
-        _chart("chart-compare-runs", "chart_compare_runs", "compare_runs", height=300)
-        _chart("chart-compare-angle", "chart_compare_angle", "compare_angle", height=280)
-        _chart("chart-compare-load", "chart_compare_load", "compare_load", height=280)
+    with html.Div(v_if="compare_legend.length"):  # no empty axes before a run is chosen
+        for element_id, key, help_key, extra in (
+            ("chart-compare-runs", "chart_compare_runs", "compare_runs", 20),
+            ("chart-compare-angle", "chart_compare_angle", "compare_angle", 0),
+            ("chart-compare-load", "chart_compare_load", "compare_load", 0),
+        ):
+            with html.Div(
+                id=element_id, classes=lesson_widgets.chart_classes(key.removeprefix("chart_"))
+            ):
+                height = (
+                    f"compare_chart_px + {extra}"
+                    if key != "chart_compare_runs"
+                    else "compare_chart_px + 20 + 220 * (Math.ceil(compare_legend.length / 3) - 1)"
+                )
+                lazy_charts.ChartFigure(
+                    key,
+                    display_mode_bar=False,
+                    style=(f"`height: ${{{height}}}px; width: 100%;`",),
+                )
+                html.Div(HELP[help_key], classes="text-caption text-medium-emphasis px-2")
     _summary_table()
 
 
@@ -356,6 +528,13 @@ def _summary_table() -> None:
             with html.Tbody():
                 with html.Tr(v_for="row in compare_summary", key="row.key"):
                     for key, _, fmt in SUMMARY_COLUMNS:
+                        if key == "run":  # the run's colour and tag; its full name on hover
+                            with html.Td(
+                                classes="px-1", title=("row.label",), style="white-space: nowrap;"
+                            ):
+                                _swatch("row.colour")
+                                html.Span(" {{ row.run }}")
+                            continue
                         html.Td(
                             f"{{{{ row.{key} }}}}",
                             classes="px-1" + (" text-right" if fmt else ""),

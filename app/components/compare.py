@@ -1,83 +1,138 @@
-"""Comparison of the result on show (A) with a saved run (B).
+"""Comparison of the result on show (A) with any number of saved runs (B, C ...).
 
-State keys: ``compare_id`` (the run chosen as B), ``compare_label``, ``compare_summary`` (rows of
-:func:`app.charts.summary_rows`), ``compare_message`` (why the chosen run cannot be compared, ""
-when fine); the charts ``chart_compare_runs``, ``chart_compare_angle``, ``chart_compare_load``
-are set here too (declared by :mod:`app.components.result_view`).
+State keys: ``compare_ids`` (the saved runs chosen, in order: B, C ...), ``compare_legend`` (one
+entry per run drawn, A first: ``tag``, ``label`` (the run's full title), ``colour`` (inner race),
+``outer_colour``, ``symbol``), ``compare_summary`` (rows of :func:`app.charts.summary_rows`, one
+per run and race, with the run's ``label`` and ``colour``), ``compare_chart_px`` (height of the
+comparison charts, which grows with the legend), ``compare_message`` (why a chosen run cannot be
+compared, "" when fine); the charts ``chart_compare_runs``, ``chart_compare_angle``,
+``chart_compare_load`` are set here too (declared by :mod:`app.components.result_view`).
 """
 
 from __future__ import annotations
 
 from .. import charts
 from ..frames import frame_source
+from ..palette import MAX_COMPARED, run_colours, run_style, run_tag
 from .base import Component, fig_json
+
+MAX_CACHED = MAX_COMPARED  # loaded runs kept for the next comparison
 
 
 class Compare(Component):
     def __init__(self, session):
         super().__init__(session)
-        self._compare_key = None  # (result_serial, compare_id) of the comparison shown
-        self._compare_run = None  # (run_id, Dataset, FrameSource) of the last run compared with
+        self._compare_key = None  # (result_serial, run ids) of the comparison shown
+        self._loaded = {}  # run id -> (Dataset, FrameSource) of runs compared with
 
     def init_state(self) -> None:
         s = self.state
-        s.compare_id = None
-        s.compare_label = ""
+        s.compare_ids = []
+        s.compare_legend = []
         s.compare_summary = []
         s.compare_message = ""
+        s.compare_chart_px = charts.compare_chart_px(2)
 
     def bind(self) -> None:
-        self.on_change("compare_id")(self._on_compare_id)
+        self.on_change("compare_ids")(self._on_compare_ids)
+
+    def chosen(self) -> list:
+        """The run ids chosen for comparison (``compare_ids``, as a client sent it), in order,
+        without repeats; anything that is not a list of texts counts as nothing chosen."""
+        ids = self.state.compare_ids
+        if not isinstance(ids, list | tuple):
+            return []
+        return list(dict.fromkeys(i for i in ids if isinstance(i, str) and i))
 
     def is_current(self) -> bool:
-        """Whether the comparison shown is of the result on show and the chosen run."""
-        return self._compare_key == (int(self.state.result_serial), self.state.compare_id)
+        """Whether the comparison shown is of the result on show and the chosen runs."""
+        return self._compare_key == (int(self.state.result_serial), tuple(self.chosen()))
 
-    def _on_compare_id(self, compare_id=None, **_):
+    def _on_compare_ids(self, **_):
         self.update_comparison()
 
     def update_comparison(self) -> None:
-        """Compare the result on show (A) with the saved run chosen in ``compare_id`` (B).
+        """Compare the result on show (A) with the saved runs chosen in ``compare_ids`` (B, C ...).
 
-        Sets ``chart_compare_runs`` (side-by-side raceway maps), ``chart_compare_angle`` and
+        Sets ``chart_compare_runs`` (raceway maps side by side), ``chart_compare_angle`` and
         ``chart_compare_load`` (overlays versus ball azimuth), ``compare_summary`` (table rows of
-        :func:`app.charts.run_summary`) and ``compare_label``; all are emptied when nothing is
-        chosen or the run cannot be loaded, and ``compare_message`` then says why in words.
-        """
+        :func:`app.charts.run_summary`) and ``compare_legend``; all are emptied when nothing is
+        chosen, and ``compare_message`` says in words why a chosen run is left out (not a saved
+        run, cannot be loaded, more than the page can tell apart)."""
         result = self.session.result
-        run_id = self.state.compare_id
-        if not run_id or result.source is None:
+        ids = self.chosen()
+        if not ids or result.source is None:
             self._clear_comparison("")
             return
-        if not self.session.runs.is_listed(run_id):
-            self._clear_comparison(f"cannot compare with {str(run_id)[:80]}: not a saved run")
+        problems = []
+        if len(ids) > MAX_COMPARED - 1:
+            problems.append(
+                f"at most {MAX_COMPARED - 1} runs are compared with the one on show: "
+                f"{len(ids) - MAX_COMPARED + 1} left out"
+            )
+            ids = ids[: MAX_COMPARED - 1]
+        runs = []  # (run id, label, Dataset, FrameSource)
+        for run_id in ids:
+            if not self.session.runs.is_listed(run_id):
+                problems.append(f"cannot compare with {run_id[:80]}: not a saved run")
+                continue
+            try:
+                ds, source = self._load_compare_run(run_id)
+            except (OSError, ValueError) as error:
+                problems.append(f"cannot compare with {run_id}: {error}")
+                continue
+            label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
+            runs.append((run_id, label, ds, source))
+        if not runs:
+            self._clear_comparison("; ".join(problems))
             return
-        try:
-            ds, other = self._load_compare_run(run_id)
-        except (OSError, ValueError) as error:
-            self._clear_comparison(f"cannot compare with {run_id}: {error}")
-            return
-        self._compare_key = (int(self.state.result_serial), run_id)
-        label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
+        self._compare_key = (int(self.state.result_serial), tuple(self.chosen()))
+        label = self.state.result_label or "run on show"
+        if result.shown_title and result.shown_title not in label:
+            label = f"{label}: {result.shown_title}"  # e.g. a preview: its case and loads
+        shown = [(None, label, result.dataset, result.source)]
+        shown += runs
+        sources = [source for _, _, _, source in shown]
         summaries = {
-            "A": charts.run_summary(result.source, result.dataset),
-            "B": charts.run_summary(other, ds),
+            run_tag(i): charts.run_summary(source, ds) for i, (_, _, ds, source) in enumerate(shown)
         }
+        legend = []
+        for i, (_, label, _, _) in enumerate(shown):
+            colours = run_colours(i)
+            legend.append(
+                {
+                    "tag": run_tag(i),
+                    "label": label + (" (on show)" if i == 0 else ""),
+                    "colour": colours[0],
+                    "outer_colour": colours[1],
+                    "symbol": run_style(i)["symbol"],
+                }
+            )
+        by_tag = {e["tag"]: e for e in legend}
+        rows = charts.summary_rows(summaries)
+        for row in rows:
+            row["label"] = by_tag[row["run"]]["label"]
+            row["colour"] = by_tag[row["run"]]["colour"]
         with self.state:
             s = self.state
-            s.chart_compare_runs = fig_json(charts.side_by_side_raceway_maps(result.source, other))
-            s.chart_compare_angle = fig_json(charts.compare_angle_figure(result.source, other))
-            s.chart_compare_load = fig_json(charts.compare_load_figure(result.source, other))
-            s.compare_summary = charts.summary_rows(summaries)
-            s.compare_label = label
-            s.compare_message = ""
+            s.chart_compare_runs = fig_json(charts.side_by_side_raceway_maps(*sources))
+            s.chart_compare_angle = fig_json(charts.compare_angle_figure(*sources))
+            s.chart_compare_load = fig_json(charts.compare_load_figure(*sources))
+            s.compare_chart_px = charts.compare_chart_px(len(sources))
+            s.compare_summary = rows
+            s.compare_legend = legend
+            s.compare_message = "; ".join(problems)
 
     def _load_compare_run(self, run_id: str):
-        """(Dataset, FrameSource) of saved run ``run_id``; the last one is kept for reuse."""
-        if self._compare_run is None or self._compare_run[0] != run_id:
+        """(Dataset, FrameSource) of saved run ``run_id``; the runs last compared are kept."""
+        if run_id not in self._loaded:
             ds, _ = self.session.store.load(run_id)
-            self._compare_run = (run_id, ds, frame_source(ds))
-        return self._compare_run[1], self._compare_run[2]
+            self._loaded[run_id] = (ds, frame_source(ds))
+        keep = set(self.chosen())
+        for old in [k for k in self._loaded if k not in keep]:
+            if len(self._loaded) > MAX_CACHED:
+                del self._loaded[old]
+        return self._loaded[run_id]
 
     def _clear_comparison(self, message: str) -> None:
         """Empty the comparison charts and table; ``message`` says why ("" when not asked for)."""
@@ -86,6 +141,6 @@ class Compare(Component):
             for name in ("compare_runs", "compare_angle", "compare_load"):
                 s[f"chart_{name}"] = {"data": [], "layout": {}}
             s.compare_summary = []
-            s.compare_label = ""
+            s.compare_legend = []
             s.compare_message = message
         self._compare_key = None

@@ -6,7 +6,8 @@ State keys: ``frame``/``frame_max``/``frame_time`` (time and revolution counter)
 ``result_label``, ``result_serial`` (incremented whenever a new result is shown),
 ``result_warnings``, ``open_panels`` (chart panels open on the page), scene options
 (``show_<layer>``, ``exaggeration``, ``ellipse_scale``, ``track_quantity``, ``track_whole_run``,
-``trace_ball``, ``ball_items``, ``camera``), ``chart_help`` and the chart figures
+``trace_ball``, ``ball_items``, ``camera``), ``ball_legend`` (each ball's colour in the 3-D
+view and the raceway map: ``[{"ball": j, "colour": "#..."}]``), ``chart_help`` and the chart figures
 ``chart_<name>`` (plotly JSON).
 """
 
@@ -21,6 +22,7 @@ import numpy as np
 
 from .. import charts
 from ..frames import FrameSource, frame_source
+from ..palette import ball_legend
 from ..runs import describe_case
 from .base import Component, as_float, as_int, fig_json
 from .case_form import solve_quasistatic
@@ -114,6 +116,7 @@ class ResultView(Component):
         s.scene_note = ""  # the "what you see" note beside the view
         s.trace_ball = -1
         s.ball_items = [{"title": "all balls", "value": -1}]
+        s.ball_legend = []  # [{"ball": j, "colour": "#..."}]: the balls' colours in the 3-D view
         s.camera = "isometric"
         s.chart_help = dict(charts.HELP)
         for name in CHARTS:
@@ -190,6 +193,7 @@ class ResultView(Component):
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
+        s.ball_legend = ball_legend(source.ball_count)
         if as_int(s.frame, 0) > s.frame_max:
             s.frame = 0
         self._apply_frame(as_int(s.frame, 0), charts_too=True)  # includes an open comparison

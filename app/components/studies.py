@@ -1,12 +1,20 @@
-"""Studies: run a shipped study in the background on the Dask machinery of ``racetrace study``,
-watch it build up point by point, chart a metric against the varied key and open any point's run.
+"""Studies: run a shipped study, or one built from the case in the form, in the background on the
+Dask machinery of ``racetrace study``; open the results of a shipped study or of a study run
+before; watch a study build up point by point, chart a metric against the varied key and open
+any point's run.
 
 State keys: ``study_names`` (shipped studies), ``study_name`` (the one chosen), ``study_running``,
-``study_status`` (progress or how it ended), ``study_rows`` (one row per point and model: values,
-status, metrics), ``study_sweeps`` / ``study_sweep`` (the sweep charted), ``study_metric`` (the
-metric charted, a name of :data:`solver.study.metrics.POINT_METRICS`) and the chart
-``chart_study`` (the metric against the sweep's varied key, inner and outer race side by side, a
-line per model). Controller: ``study_run``, ``study_cancel``, ``study_open(point, model)``.
+``study_status`` (progress or how it ended), ``study_progress`` (percent done), ``study_rows``
+(one row per point and model: values, status, metrics), ``study_sweeps`` / ``study_sweep`` (the
+sweep charted), ``study_metric`` (the metric charted, a name of
+:data:`solver.study.metrics.POINT_METRICS`) and the chart ``chart_study`` (the metric against
+the sweep's varied key, inner and outer race side by side, a line per model). Opening results:
+``study_results_items`` / ``study_results`` (shipped study results and the study folders of the
+runs folder). Building a study from the current case: ``study_key_items`` (the form's numeric
+keys), ``study_key1``/``study_values1`` and ``study_key2``/``study_values2`` (values:
+``0, 300, 600`` or ``start:stop:count``), ``study_combine`` (grid | zip), ``study_model``
+(quasistatic | dynamic | both), ``study_revolutions`` (run length of the dynamic points).
+Controller: ``study_run``, ``study_build``, ``study_cancel``, ``study_open(point, model)``.
 
 The study runs in a thread of this process (a local Dask cluster of one single-threaded worker
 per core, closed at the end) and keeps its folder under the runs folder (``.studies/``); the page
@@ -20,6 +28,7 @@ import json
 import math
 import secrets
 import threading
+from pathlib import Path
 
 import numpy as np
 
@@ -35,6 +44,100 @@ CHART_METRICS = (
     ("largest_load", "largest contact load [N]", 1.0),
 )
 RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
+# Study Datasets of the shipped studies' runs (docs/studies.md); their full runs are not shipped.
+SHIPPED_RESULTS = Path(__file__).resolve().parents[2] / "assets" / "studies" / "results"
+STUDIES_DIR = ".studies"  # study folders under the runs folder
+MAX_BUILT_POINTS = 200  # points of a study built in the page
+BUILD_MODELS = ("quasistatic", "dynamic", "both")
+
+
+class StudyInputError(ValueError):
+    """A study built in the page cannot be made: the message says what to change."""
+
+
+def parse_values(text, what: str) -> list[float]:
+    """Values typed for a varied key: ``0, 300, 600`` (a list) or ``start:stop:count`` (count
+    values from start to stop, both included). StudyInputError naming ``what`` when unreadable."""
+    text = str(text or "").strip()
+    if not text:
+        raise StudyInputError(f"{what}: give values, e.g. 0, 300, 600 or 0:1500:6")
+    try:
+        if ":" in text:
+            parts = [p.strip() for p in text.split(":")]
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, count = float(parts[0]), float(parts[1]), float(parts[2])
+            if count != int(count) or not 2 <= count <= MAX_BUILT_POINTS:
+                raise StudyInputError(
+                    f"{what}: the count in start:stop:count must be a whole number from 2 to "
+                    f"{MAX_BUILT_POINTS} (got {parts[2]})"
+                )
+            values = np.linspace(start, stop, int(count)).tolist()
+        else:
+            values = [float(v) for v in text.replace(";", ",").split(",") if v.strip()]
+    except StudyInputError:
+        raise
+    except ValueError:
+        raise StudyInputError(
+            f"{what}: {text!r} is not a list of numbers (0, 300, 600) nor start:stop:count "
+            "(0:1500:6)"
+        ) from None
+    if not all(math.isfinite(v) for v in values):
+        raise StudyInputError(f"{what}: values must be finite numbers")
+    if len(values) > MAX_BUILT_POINTS:
+        raise StudyInputError(f"{what}: at most {MAX_BUILT_POINTS} values")
+    return [round(v, 12) for v in values]
+
+
+def build_study_text(
+    title: str,
+    varied: list[tuple[str, list[float]]],
+    combine: str,
+    model: str,
+    revolutions,
+    base: str = "base.toml",
+) -> str:
+    """The study file (docs/study-format.md) of a study around the case file ``base``: the keys
+    of ``varied`` take their lists of values, ``combine``d; ``model`` runs at each point; the
+    dynamic points run ``revolutions`` shaft revolutions. StudyInputError says what is wrong."""
+    if combine not in ("grid", "zip"):
+        raise StudyInputError(f"combine: {combine!r} is not grid or zip")
+    if model not in BUILD_MODELS:
+        raise StudyInputError(f"model: {model!r} is not one of {', '.join(BUILD_MODELS)}")
+    keys = [k for k, _ in varied]
+    if len(set(keys)) != len(keys):
+        raise StudyInputError("the two varied keys are the same: choose another second key")
+    if combine == "zip" and len({len(v) for _, v in varied}) > 1:
+        lengths = " and ".join(str(len(v)) for _, v in varied)
+        raise StudyInputError(
+            f"zipped keys need as many values each (got {lengths}): give equal lists or use grid"
+        )
+    points = math.prod(len(v) for _, v in varied) if combine == "grid" else len(varied[0][1])
+    if points > MAX_BUILT_POINTS:
+        raise StudyInputError(
+            f"{points} points: at most {MAX_BUILT_POINTS} from the page (use racetrace study for "
+            "more)"
+        )
+    lines = [
+        f"title = {json.dumps(title)}",
+        f"base = {json.dumps(base)}",
+        f'model = "{model}"',
+        f'combine = "{combine}"',
+    ]
+    if model != "quasistatic":
+        try:
+            revs = float(revolutions)
+        except (TypeError, ValueError):
+            raise StudyInputError(
+                f"run length: {revolutions!r} is not a number of shaft revolutions"
+            ) from None
+        if not (math.isfinite(revs) and revs > 0):
+            raise StudyInputError("run length: give a number of shaft revolutions above 0")
+        lines += ["", "[run]", f"shaft_revolutions = {revs!r}"]
+    lines += ["", "[vary]"]
+    for key, values in varied:
+        lines.append(f'"{key}" = [{", ".join(repr(float(v)) for v in values)}]')
+    return "\n".join(lines) + "\n"
 
 
 class Studies(Component):
@@ -42,6 +145,8 @@ class Studies(Component):
         super().__init__(session)
         self.workers = workers
         self.folder = None  # solver.study.StudyFolder of the study on show
+        self._shipped = None  # the study Dataset of shipped results on show (no folder)
+        self.study_text = ""  # the study file of the last study built from the form's case
         self.study = None
         self._thread = None
         self._stop = threading.Event()
@@ -57,6 +162,7 @@ class Studies(Component):
         s.study_names = names
         s.study_name = names[0] if names else None
         s.study_running = False
+        s.study_progress = 0  # percent of the running study's runs finished
         s.study_status = ""
         s.study_rows = []
         s.study_sweeps = []
@@ -64,12 +170,27 @@ class Studies(Component):
         s.study_metric = "excursion"
         s.study_metric_items = [{"title": label, "value": name} for name, label, _ in CHART_METRICS]
         s.chart_study = {"data": [], "layout": {}}
+        s.study_results_items = []
+        s.study_results = None
+        fields = [f for f in self.session.form.fields if f.kind in ("int", "float")]
+        s.study_key_items = [{"title": f"{f.key} ({f.label})", "value": f.key} for f in fields]
+        keys = [f.key for f in fields]
+        s.study_key1 = "operating.radial_load_N" if "operating.radial_load_N" in keys else None
+        s.study_values1 = "0, 500, 1000"
+        s.study_key2 = None
+        s.study_values2 = ""
+        s.study_combine = "grid"
+        s.study_model = "quasistatic"
+        s.study_revolutions = "2"
+        self.list_results()
 
     def bind(self) -> None:
         self.ctrl.study_run = self.run
         self.ctrl.study_cancel = self.cancel
         self.ctrl.study_open = self.open_point
+        self.action("study_build", self.build)
         self.state.change("study_sweep", "study_metric")(self._on_chart_choice)
+        self.on_change("study_results")(self._on_results)
 
     # ---- running --------------------------------------------------------------------------------
     @property
@@ -90,24 +211,31 @@ class Studies(Component):
             return
         self.start(study, self.state.study_name)
 
-    def start(self, study, name: str) -> None:
-        """Run ``study`` (a :class:`solver.study.Study`) in the background, in a new folder
-        ``.studies/<name>-<random>`` of the runs folder."""
+    def new_folder(self, name: str) -> Path:
+        """A new study folder ``.studies/<name>-<random>`` of the runs folder (not created)."""
+        root = self.session.store.root / STUDIES_DIR
+        root.mkdir(parents=True, exist_ok=True)
+        safe = "".join(c if c.isalnum() or c in "-_" else "-" for c in name)[:40] or "study"
+        return root / f"{safe}-{secrets.token_hex(3)}"
+
+    def start(self, study, name: str, path: Path | None = None) -> None:
+        """Run ``study`` (a :class:`solver.study.Study`) in the background, in the study folder
+        ``path`` (default: a new one, :meth:`new_folder`)."""
         from solver.study import StudyFolder
 
         if self.busy:
             return
         self.study = study
-        root = self.session.store.root / ".studies"
-        root.mkdir(parents=True, exist_ok=True)
-        path = root / f"{name}-{secrets.token_hex(3)}"
+        path = path if path is not None else self.new_folder(name)
         self.folder = StudyFolder(path)
+        self._shipped = None
         self._stop.clear()
         self._progress, self._error = None, ""
         self._thread = threading.Thread(target=self._work, name="racetrace-study", daemon=True)
         self._thread.start()
         with self.state:
             self.state.study_running = True
+            self.state.study_progress = 0
             self.state.study_status = f"starting {self.study.title} ..."
         try:
             loop = asyncio.get_running_loop()
@@ -128,6 +256,58 @@ class Studies(Component):
 
     def _on_progress(self, progress) -> None:
         self._progress = progress
+
+    def build(self) -> None:
+        """Build a study from the case in the form (its base, written as ``<folder>.base.toml``
+        beside the study folder) with the keys and values chosen and run it (the study runner
+        writes its study file into the folder)."""
+        from solver.errors import CaseError
+        from solver.study import Study
+
+        if self.busy:
+            self.state.study_status = "a study is running: cancel it or wait for it to end"
+            return
+        s = self.state
+        case = self.session.form.case
+        if case is None:
+            s.study_status = "error: the case in the form is not valid: fix the fields in red first"
+            return
+        keys = {item["value"] for item in s.study_key_items}
+        varied = []
+        try:
+            for n in (1, 2):
+                key = s[f"study_key{n}"]
+                if not key:
+                    if n == 1:
+                        raise StudyInputError("choose the key to vary (first key)")
+                    continue
+                if not isinstance(key, str) or key not in keys:
+                    raise StudyInputError(f"{str(key)[:80]!r} is not a numeric key of the case")
+                varied.append((key, parse_values(s[f"study_values{n}"], f"values of {key}")))
+            varied_words = " and ".join(k.rsplit(".", 1)[-1] for k, _ in varied)
+            title = f"{case.bearing.designation or 'bearing'}: {varied_words} (built in the app)"
+            text = build_study_text(
+                title, varied, str(s.study_combine), str(s.study_model), s.study_revolutions
+            )
+        except StudyInputError as error:
+            s.study_status = f"error: {error}"
+            return
+        path = self.new_folder("built-" + varied[0][0].rsplit(".", 1)[-1])
+        # the base case beside the study folder (a study runs only into an empty folder); the
+        # study file names it relative to itself, so a resume finds it
+        base = path.parent / f"{path.name}.base.toml"
+        base.write_text(case.to_toml(), encoding="utf-8")
+        path.mkdir()
+        text = text.replace('base = "base.toml"', f"base = {json.dumps('../' + base.name)}")
+        try:
+            study = Study.from_text(text, "the study built here", folder=path)
+        except CaseError as error:
+            path.rmdir()
+            base.unlink()
+            s.study_status = f"error: {error}"
+            return
+        self.study_text = text
+        self.start(study, path.name, path)
 
     def cancel(self) -> None:
         """Stop the study: the runs finished so far are kept."""
@@ -152,6 +332,7 @@ class Studies(Component):
         if running:
             if p is not None:
                 eta = f", about {p.eta_s:.0f} s left" if math.isfinite(p.eta_s) else ""
+                s.study_progress = round(100 * p.done / p.total) if p.total else 0
                 s.study_status = f"{p.done}/{p.total} runs done, {p.running} running{eta}" + (
                     f", {p.failed} failed" if p.failed else ""
                 )
@@ -163,12 +344,16 @@ class Studies(Component):
             s.study_status = "cancelled: the finished runs are kept"
         else:
             s.study_status = "done"
+            s.study_progress = 100
+        self.list_results()
         return True
 
     # ---- showing --------------------------------------------------------------------------------
     def dataset(self):
         from solver.study import study_dataset
 
+        if self._shipped is not None:
+            return self._shipped
         if self.folder is None or not self.folder.exists():
             return None
         return study_dataset(self.folder)
@@ -179,6 +364,7 @@ class Studies(Component):
         if ds is None:
             return
         keys = json.loads(ds.attrs.get("varied_keys", "[]"))
+        shown = _keys_by_sweep(ds, keys)
         rows = []
         for i, point in enumerate(ds["point"].values):
             for j, model in enumerate(ds["model"].values):
@@ -186,7 +372,8 @@ class Studies(Component):
                 if status == "not run":
                     continue
                 values = ", ".join(
-                    f"{k.rsplit('.', 1)[-1]} = {_text(ds[k].values[i])}" for k in keys
+                    f"{k.rsplit('.', 1)[-1]} = {_text(ds[k].values[i])}"
+                    for k in shown[str(ds["sweep"].values[i])]
                 )
                 row = {
                     "key": f"{point}-{model}",
@@ -195,6 +382,7 @@ class Studies(Component):
                     "sweep": str(ds["sweep"].values[i]),
                     "values": values,
                     "status": status,
+                    "openable": status == "done" and self._shipped is None,
                 }
                 for name in ("excursion", "band_thickness"):
                     for k, race in enumerate(("inner", "outer")):
@@ -220,24 +408,103 @@ class Studies(Component):
         """Show one point's run in the 3-D view, the raceway map and the charts."""
         from solver.errors import CaseError
 
+        if self._shipped is not None:
+            self.state.study_status = (
+                "the full runs of a shipped study are not shipped: run the study to open a point"
+            )
+            return
         if self.folder is None:
             return
         try:
-            ds = self.folder.load_point(point, model)
+            ds = self.folder.load_point(str(point), str(model))
         except (CaseError, OSError, ValueError) as error:
             self.state.study_status = f"cannot open {point} {model}: {error}"
             return
         self.state.run_id = None
         self.session.result.shown_run_id = None
-        self.session.result.show_result(ds, f"{self.study.title}: {point} {model}")
+        title = self.study.title if self.study is not None else self.folder.path.name
+        values = next(
+            (r["values"] for r in self.state.study_rows if r["point"] == point), ""
+        )  # what the point changes, e.g. "radial_load_N = 300"
+        self.session.result.show_result(ds, f"{title}: {point} ({values}) {model}")
+
+    # ---- results of studies run before ----------------------------------------------------------
+    def list_results(self) -> None:
+        """``study_results_items``: the shipped studies' results and the study folders of the
+        runs folder (newest first)."""
+        items = [
+            {"title": f"shipped: {p.name.removesuffix('.study.nc')}", "value": f"shipped:{p.name}"}
+            for p in sorted(SHIPPED_RESULTS.glob("*.study.nc"))
+        ]
+        root = self.session.store.root / STUDIES_DIR
+        if root.is_dir():
+            folders = [p for p in root.iterdir() if (p / "study.json").is_file()]
+            for p in sorted(folders, key=lambda p: p.stat().st_mtime, reverse=True):
+                items.append({"title": f"run here: {p.name}", "value": f"folder:{p.name}"})
+        if items != self.state.study_results_items:
+            self.state.study_results_items = items
+
+    def _on_results(self, study_results=None, **_):
+        if study_results:
+            self.open_results(study_results)
+
+    def open_results(self, value: str) -> None:
+        """Show the results ``value`` of :meth:`list_results` in the table and the chart."""
+        import xarray as xr
+
+        from solver.errors import CaseError
+        from solver.study import open_study
+
+        if self.busy:
+            self.state.study_status = "a study is running: cancel it before opening other results"
+            return
+        known = {item["value"] for item in self.state.study_results_items}
+        if not isinstance(value, str) or value not in known:
+            self.state.study_status = f"error: no such study results {str(value)[:80]!r}"
+            self.state.study_results = None
+            return
+        kind, name = value.split(":", 1)
+        try:
+            if kind == "shipped":
+                with xr.open_dataset(SHIPPED_RESULTS / name) as ds:
+                    self._shipped = ds.load()
+                self.folder, self.study = None, None
+                title = self._shipped.attrs.get("title", name)
+                note = " (the study Dataset only: run the study to open its points)"
+            else:
+                folder = open_study(self.session.store.root / STUDIES_DIR / name)
+                self.folder, self._shipped, self.study = folder, None, None
+                title = folder.manifest().get("title", name)
+                note = ""
+        except (CaseError, OSError, ValueError) as error:
+            self.state.study_status = f"error: cannot open {name}: {error}"
+            return
+        self.state.study_status = f"showing {title}{note}"
+        self.refresh()
 
     def shutdown(self) -> None:
         self._stop.set()
 
 
+def _keys_by_sweep(ds, keys) -> dict:
+    """{sweep: the keys whose values differ between that sweep's points} (all ``keys`` for a
+    sweep of one point), so that the table names what each sweep varies."""
+    sweeps = np.asarray(ds["sweep"].values).astype(str)
+    out = {}
+    for sweep in dict.fromkeys(sweeps.tolist()):
+        rows = sweeps == sweep
+        varying = [k for k in keys if len({str(v) for v in np.asarray(ds[k].values)[rows]}) > 1]
+        out[sweep] = varying or list(keys)
+    return out
+
+
 def _text(value, digits: int = 5) -> str:
+    """A table cell: a number to ``digits`` significant figures ("0" below 1e-9: rounding noise
+    of a zero), "-" for NaN."""
     if isinstance(value, float | np.floating):
-        return f"{float(value):.{digits}g}" if math.isfinite(value) else "-"
+        if not math.isfinite(value):
+            return "-"
+        return "0" if abs(value) < 1e-9 else f"{float(value):.{digits}g}"
     return str(value)
 
 
@@ -278,5 +545,8 @@ def study_figure(ds, sweep: str | None, metric: str):
                 )
         fig.update_xaxes(title_text=key.rsplit(".", 1)[-1])
     fig.update_yaxes(title_text=label, col=1)
-    fig.update_layout(margin={"l": 50, "r": 10, "t": 30, "b": 40}, legend={"orientation": "h"})
+    fig.update_layout(
+        margin={"l": 50, "r": 10, "t": 30, "b": 90},
+        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
+    )
     return fig

@@ -1,11 +1,12 @@
 """Draw the figures of docs/studies.md from the study Datasets of the shipped studies.
 
 Run from the repository root: ``python docs/figures/make_study_figures.py [SEED.nc 218.nc]``
-(needs matplotlib). By default it reads the study Datasets kept in ``docs/figures/data/``, written
-by ``racetrace study seed-spindle --output seed`` and ``racetrace study 218-radial-load --output
-s218`` (each folder's ``study.nc``). Writes ``study-track-width.png`` (across-groove width of the
-track on each race, dynamic runs) and ``study-line-or-band.png`` (excursion and band thickness of
-each race in its own ring's frame under misalignment fixed in space and turning with the ring).
+(needs matplotlib). By default it reads the study Datasets kept in ``assets/studies/results/``
+(the app opens them too), written by ``racetrace study seed-spindle --output seed`` and
+``racetrace study 218-radial-load --output s218`` (each folder's ``study.nc``). Writes
+``study-track-width.png`` (across-groove width of the track on each race, dynamic runs) and
+``study-line-or-band.png`` (excursion and band thickness of each race in its own ring's frame
+under misalignment fixed in space and turning with the ring).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 HERE = Path(__file__).parent
+DATA = HERE.parents[1] / "assets" / "studies" / "results"
 COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
 
 
@@ -87,8 +89,8 @@ def line_or_band(seed, out: Path) -> None:
 
 
 def main(argv: list[str]) -> None:
-    seed_path = Path(argv[0]) if argv else HERE / "data" / "seed-spindle.study.nc"
-    s218_path = Path(argv[1]) if len(argv) > 1 else HERE / "data" / "218-radial-load.study.nc"
+    seed_path = Path(argv[0]) if argv else DATA / "seed-spindle.study.nc"
+    s218_path = Path(argv[1]) if len(argv) > 1 else DATA / "218-radial-load.study.nc"
     with xr.open_dataset(seed_path) as seed, xr.open_dataset(s218_path) as s218:
         seed, s218 = seed.load(), s218.load()
     track_width(seed, s218, HERE / "study-track-width.png")

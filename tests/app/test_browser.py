@@ -185,7 +185,7 @@ def test_page_loads_and_the_view_animates(page):
         assert time.monotonic() < deadline, "the 3-D view kept changing after pause"
         a = b
     # the run comparison panel holds the summary table (rendered when the panel opens)
-    page.get_by_text("Compare two runs side by side").click()
+    page.get_by_text("Compare runs side by side").click()
     page.wait_for_selector("#compare-summary table", timeout=10_000)
 
 

@@ -7,6 +7,7 @@ import pytest
 
 from app import charts
 from app.frames import frame_source
+from app.palette import ball_colours
 
 
 def test_contact_angle_chart(qs_dataset):
@@ -81,7 +82,7 @@ def test_side_by_side_maps(qs_dataset, dynamic_dataset):
     fig = charts.side_by_side_raceway_maps(a, b)
     assert len(fig.data) == 4
     assert [t.xaxis for t in fig.data] == ["x", "x", "x2", "x2"]
-    assert [a.text for a in fig.layout.annotations] == ["A (run on show)", "B (compared run)"]
+    assert [a.text for a in fig.layout.annotations] == ["A (run on show)", "B"]
     # the right panel shows run b: its outer-race contact angles
     np.testing.assert_allclose(
         sorted(fig.data[3].y), sorted(np.degrees(b.trace(1)[1][b.trace(1)[2]])), rtol=1e-12
@@ -277,7 +278,7 @@ def test_raceway_map_marks_now_follows_balls_and_names_samples_on_hover(dynamic_
     # with its legend: one entry per ball in that ball's colour
     legend = by_ball.data[2:]
     assert [t.name for t in legend] == [f"ball {j}" for j in range(src.ball_count)]
-    assert [t.marker.color for t in legend] == list(charts.BALL_COLOURS[: src.ball_count])
+    assert [t.marker.color for t in legend] == ball_colours(src.ball_count)
     by_load = charts.raceway_map_figure(src, colour="load")
     assert np.max(by_load.data[0].marker.color) > 0
     # leaving out the start-up: only samples from that time on
@@ -320,3 +321,24 @@ def test_all_balls_chart_stays_light(qs_dataset):
     assert total > 0.5 * charts.ALL_BALLS_MAX_POINTS  # decimated, not thrown away
     with pytest.raises(ValueError, match="balls are 0 to 11"):
         charts.contact_angle_figure(src, balls=(12,))
+
+
+def test_many_runs_compared_each_in_its_colour(qs_dataset, dynamic_dataset):
+    q, d = frame_source(qs_dataset), frame_source(dynamic_dataset)
+    runs = (q, d, q, d, q)
+    maps = charts.side_by_side_raceway_maps(*runs)
+    assert len(maps.data) == 10
+    assert [a.text for a in maps.layout.annotations] == ["A (run on show)", "B", "C", "D", "E"]
+    # three maps a row: the fourth and fifth runs on a second row, the same angle axis
+    assert maps.data[6].xaxis == "x4" and maps.data[6].yaxis == "y4"
+    assert maps.layout.yaxis4.range == maps.layout.yaxis.range
+    angle = charts.compare_angle_figure(*runs)
+    by_run = {}
+    for trace in angle.data:
+        by_run.setdefault(trace.name.split()[0], set()).add(trace.marker.color)
+    assert list(by_run) == ["A", "B", "C", "D", "E"]
+    seen = set()
+    for colours in by_run.values():
+        assert len(colours) == 2 and not colours & seen  # two shades, no run shares one
+        seen |= colours
+    assert charts.compare_chart_px(5) > charts.compare_chart_px(2)

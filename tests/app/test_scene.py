@@ -283,3 +283,13 @@ def test_scene_lighting_is_cheap_for_software_rendering(scene):
     tracks = [props.index(a) for a in scene._actors["tracks"]]
     rings = [props.index(a) for a in scene._actors["inner_ring"] + scene._actors["outer_ring"]]
     assert max(tracks) < min(rings)
+
+
+def test_each_ball_is_marked_in_its_legend_colour(scene, geometry):
+    from app.palette import ball_colours
+
+    colours = ball_colours(geometry.ball_count)
+    for actor, colour in zip(scene._actors["balls"], colours, strict=True):
+        marked = np.array(actor.mapper.lookup_table.values)[-1, :3]
+        expected = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
+        assert np.allclose(marked, expected, atol=2), (marked, colour)

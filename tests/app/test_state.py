@@ -174,7 +174,7 @@ def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
     assert again.state.result_label == app.state.runs[0]["title"]
     assert again.result.dataset.attrs["case"] == app.result.dataset.attrs["case"]
     # compare the preview with the saved run side by side
-    _set(again, compare_id=app.state.runs[0]["value"])
+    _set(again, compare_ids=[app.state.runs[0]["value"]])
     assert len(again.state.chart_compare_runs["data"]) == 4
     again.shutdown()
 
@@ -381,9 +381,10 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     combined = app.store.save(app.result.dataset, app.form.case.to_toml(), "combined load")
     app.runs.refresh()
 
-    _set(app, compare_id=axial.run_id)
+    _set(app, compare_ids=[axial.run_id])
     assert s.compare_message == ""
-    assert s.compare_label == axial.label
+    assert [e["tag"] for e in s.compare_legend] == ["A", "B"]
+    assert s.compare_legend[1]["label"] == axial.label
     assert len(s.chart_compare_runs["data"]) == 4
     names = ["A inner", "A outer", "B inner", "B outer"]
     for key in ("chart_compare_angle", "chart_compare_load"):
@@ -406,23 +407,23 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     assert float(rows["B-outer"]["cage_speed_rpm"]) > 0
 
     # the same combined run saved and compared with itself: identical numbers
-    _set(app, compare_id=combined.run_id)
+    _set(app, compare_ids=[combined.run_id])
     rows = {r["key"]: r for r in s.compare_summary}
-    assert {k: v for k, v in rows["A-inner"].items() if k not in ("key", "run")} == {
-        k: v for k, v in rows["B-inner"].items() if k not in ("key", "run")
-    }
+    assert {
+        k: v for k, v in rows["A-inner"].items() if k not in ("key", "run", "label", "colour")
+    } == {k: v for k, v in rows["B-inner"].items() if k not in ("key", "run", "label", "colour")}
 
     # a run that cannot be loaded says so in words and empties the comparison
-    _set(app, compare_id="no-such-run")
+    _set(app, compare_ids=["no-such-run"])
     assert "no-such-run" in s.compare_message
     assert s.chart_compare_load["data"] == [] and s.compare_summary == []
 
-    _set(app, compare_id=axial.run_id)
+    _set(app, compare_ids=[axial.run_id])
     assert len(s.compare_summary) == 4 and s.compare_message == ""
-    _set(app, compare_id=None)
+    _set(app, compare_ids=None)
     for key in ("chart_compare_runs", "chart_compare_angle", "chart_compare_load"):
         assert s[key]["data"] == []
-    assert s.compare_summary == [] and s.compare_label == "" and s.compare_message == ""
+    assert s.compare_summary == [] and s.compare_legend == [] and s.compare_message == ""
 
 
 def test_a_result_outside_the_models_validity_is_flagged(app):
@@ -491,3 +492,59 @@ def _decode_custom(trace):
         values = np.frombuffer(base64.b64decode(custom["bdata"]), dtype=np.dtype(custom["dtype"]))
         return values.reshape(-1, 2)[:, 0]
     return [row[0] for row in custom]
+
+
+def test_ball_legend_gives_each_ball_of_the_result_its_colour(app, dynamic_dataset):
+    from app.palette import ball_colours
+
+    s = app.state
+    z = app.result.source.ball_count
+    assert [e["ball"] for e in s.ball_legend] == list(range(z))
+    assert [e["colour"] for e in s.ball_legend] == ball_colours(z)
+    app.result.show_result(dynamic_dataset, "fixture")  # 12 balls
+    assert len(s.ball_legend) == 12
+
+
+def test_compare_any_number_of_runs_each_in_its_own_colour(app):
+    from app.palette import run_colours
+
+    s = app.state
+    saved = []
+    for radial in ("0", "400", "800", "1200"):
+        _set(app, fv_radial_load_N=radial)
+        app.form.preview_now()
+        title = f"spindle, a title long enough to be cut in a narrow column, radial {radial} N"
+        saved.append(app.store.save(app.result.dataset, app.form.case.to_toml(), title))
+    app.runs.refresh()
+    _set(app, compare_ids=[r.run_id for r in saved] + ["no-such-run"])
+    # A (on show) and four saved runs: each its own tag, full name and colour
+    tags = ["A", "B", "C", "D", "E"]
+    assert [e["tag"] for e in s.compare_legend] == tags
+    assert [e["label"] for e in s.compare_legend[1:]] == [r.label for r in saved]
+    assert "radial 1200 N" in s.compare_legend[4]["label"]  # never truncated
+    colours = [e["colour"] for e in s.compare_legend]
+    assert len(set(colours)) == 5
+    assert "no-such-run" in s.compare_message  # the others are still compared
+    # every chart holds every run, in its colour; the table has a row per run and race
+    maps = s.chart_compare_runs["data"]
+    assert [t["name"].split()[0] for t in maps] == [t for t in tags for _ in (0, 1)]
+    for i, tag in enumerate(tags):
+        for key in ("chart_compare_angle", "chart_compare_load"):
+            inner = _trace(s[key], f"{tag} inner")
+            outer = _trace(s[key], f"{tag} outer")
+            assert inner["marker"]["color"] == run_colours(i)[0]
+            assert outer["marker"]["color"] == run_colours(i)[1]
+    assert [r["key"] for r in s.compare_summary] == [
+        f"{t}-{race}" for t in tags for race in ("inner", "outer")
+    ]
+    assert [r["colour"] for r in s.compare_summary[::2]] == colours
+    # the radial loads differ run by run: so does the largest contact load in the table
+    loads = [float(r["contact_load_max_N"]) for r in s.compare_summary[2::2]]
+    assert loads == sorted(loads) and loads[0] < loads[-1]
+    assert s.compare_chart_px > charts_height_for_two()
+
+
+def charts_height_for_two() -> int:
+    from app import charts
+
+    return charts.compare_chart_px(2)

@@ -75,3 +75,120 @@ def test_cancel_keeps_the_finished_runs(app):
     assert app.state.study_status.startswith("cancelled")
     assert not app.state.study_running
     assert {r["status"] for r in app.state.study_rows} <= {"done", "pending"}
+
+
+# ---- results of shipped studies and studies run before -------------------------------------------
+def test_a_shipped_studys_results_open_without_running(app):
+    s = app.state
+    values = [i["value"] for i in s.study_results_items]
+    assert "shipped:seed-spindle.study.nc" in values
+    s.study_results = "shipped:seed-spindle.study.nc"
+    s.flush()
+    assert s.study_status.startswith("showing Seed study")
+    assert len(s.study_rows) == 30  # 15 points, quasi-static and dynamic
+    assert "radial load" in s.study_sweeps and s.study_sweep == "radial load"
+    outer = next(t for t in s.chart_study["data"] if t["name"] == "outer, dynamic")
+    assert list(outer["x"]) == [0.0, 300.0, 600.0, 1000.0, 1500.0]
+    # its full runs are not shipped: opening a point says so, the result on show stays
+    assert not any(r["openable"] for r in s.study_rows)
+    serial = int(s.result_serial)
+    app.studies.open_point("p0002", "dynamic")
+    assert "not shipped" in s.study_status and int(s.result_serial) == serial
+    s.study_results = "folder:../../etc"
+    s.flush()
+    assert s.study_status.startswith("error: no such study results")
+
+
+# ---- a study built from the case in the form -----------------------------------------------------
+def test_values_are_a_list_or_start_stop_count():
+    from app.components.studies import StudyInputError, parse_values
+
+    assert parse_values("0, 300, 600", "v") == [0.0, 300.0, 600.0]
+    assert parse_values("0:1500:4", "v") == [0.0, 500.0, 1000.0, 1500.0]
+    for text, words in (
+        ("", "give values"),
+        ("0, lots", "not a list of numbers"),
+        ("0:10:2.5", "whole number"),
+        ("0:10", "not a list of numbers"),
+        ("nan", "finite"),
+    ):
+        with pytest.raises(StudyInputError, match=words):
+            parse_values(text, "values of operating.radial_load_N")
+
+
+def test_a_built_study_file_is_valid_and_says_what_is_wrong(tmp_path):
+    from app.components.studies import StudyInputError, build_study_text
+    from solver.catalogue import catalogue
+
+    (tmp_path / "base.toml").write_text(catalogue().get(DEFAULT_CASE).load().to_toml())
+    varied = [("operating.radial_load_N", [0.0, 500.0]), ("operating.axial_load_N", [300.0, 600.0])]
+    text = build_study_text("t", varied, "zip", "both", "1.5")
+    study = Study.from_text(text, folder=tmp_path)
+    assert len(study.points()) == 2
+    assert "shaft_revolutions = 1.5" in text and 'combine = "zip"' in text
+    assert (
+        len(
+            Study.from_text(
+                build_study_text("t", varied, "grid", "quasistatic", ""), folder=tmp_path
+            ).points()
+        )
+        == 4
+    )
+    with pytest.raises(StudyInputError, match="as many values"):
+        build_study_text("t", [varied[0], ("operating.axial_load_N", [1.0])], "zip", "both", 1)
+    with pytest.raises(StudyInputError, match="run length"):
+        build_study_text("t", varied, "grid", "dynamic", "long")
+    with pytest.raises(StudyInputError, match="the same"):
+        build_study_text("t", [varied[0], varied[0]], "grid", "quasistatic", 1)
+
+
+def test_build_a_study_from_the_current_case_runs_it_and_lists_it(app):
+    s = app.state
+    assert "operating.radial_load_N" in {i["value"] for i in s.study_key_items}
+    s.fv_axial_load_N = "700"  # an edit in the form: the study's base is the edited case
+    s.flush()
+    s.study_key1, s.study_values1 = "operating.radial_load_N", "0:800:3"
+    s.study_key2, s.study_values2 = "operating.inner_ring_speed_rpm", "10000, 20000"
+    s.study_combine, s.study_model = "grid", "quasistatic"
+    s.flush()
+    app.studies.build()
+    assert s.study_running, s.study_status
+    _wait(app)
+    assert s.study_status == "done" and s.study_progress == 100
+    assert len(s.study_rows) == 6 and all(r["status"] == "done" for r in s.study_rows)
+    assert all(r["openable"] for r in s.study_rows)
+    folder = app.studies.folder.path
+    base = (folder.parent / f"{folder.name}.base.toml").read_text()
+    assert "../" + folder.name + ".base.toml" in (folder / "study.toml").read_text()
+    assert "700" in base
+    app.studies.open_point("p0006", "quasistatic")
+    assert "p0006 (radial_load_N = 800, inner_ring_speed_rpm = 20000)" in s.result_label
+    ds = app.result.dataset
+    assert ds.coords["radial_load"] == pytest.approx(800.0)
+    assert ds.coords["axial_load"] == pytest.approx(700.0)
+    # the study is listed among the results to open again
+    name = app.studies.folder.path.name
+    assert f"folder:{name}" in [i["value"] for i in s.study_results_items]
+
+
+def test_a_study_that_cannot_be_built_is_said_in_words(app):
+    s = app.state
+    s.study_key1, s.study_values1 = "operating.radial_load_N", "0, -500"
+    s.flush()
+    app.studies.build()
+    assert not s.study_running
+    assert s.study_status.startswith("error:") and "radial_load_N" in s.study_status
+    assert not list((app.store.root / ".studies").iterdir())  # nothing left behind
+    s.study_values1 = "lots"
+    s.flush()
+    app.studies.build()
+    assert "not a list of numbers" in s.study_status
+    s.study_key1 = "bearing.nothing"
+    s.flush()
+    app.studies.build()
+    assert "not a numeric key" in s.study_status
+    s.fv_ball_count = "0"
+    s.study_key1 = "operating.radial_load_N"
+    s.flush()
+    app.studies.build()
+    assert "not valid" in s.study_status
