@@ -538,7 +538,11 @@ def study_figure(ds, sweep: str | None, metric: str):
                             "color": RACE_COLOURS[race],
                             "dash": "dash" if model == "quasistatic" else "solid",
                         },
-                        customdata=np.asarray(ds["point"].values)[select][order].tolist(),
+                        # (point, model) of each marker: a click opens that run
+                        customdata=[
+                            [str(pt), str(model)]
+                            for pt in np.asarray(ds["point"].values)[select][order]
+                        ],
                     ),
                     row=1,
                     col=col,
