@@ -229,6 +229,7 @@ class Studies(Component):
         path = path if path is not None else self.new_folder(name)
         self.folder = StudyFolder(path)
         self._shipped = None
+        self.state.study_results = None  # the panel now shows the study started here
         self._stop.clear()
         self._progress, self._error = None, ""
         self._thread = threading.Thread(target=self._work, name="racetrace-study", daemon=True)
