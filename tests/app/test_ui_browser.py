@@ -223,4 +223,13 @@ def test_studies_panel_opens_shipped_results_and_runs_a_study_built_from_the_cas
     page.locator("#study-table tbody tr").nth(1).get_by_role("button", name="open").click()
     _wait(page, f"window.trame.state.get('result_serial') > {serial}", 60, "the point's run")
     assert "p0002" in page.locator("#result-label").inner_text()
+    # a click on a point of the chart opens that point's run (plotly's click event, as a click
+    # on the marker sends it)
+    serial = _state(page, "result_serial")
+    page.evaluate(
+        "document.querySelector('#chart-study .js-plotly-plot').emit('plotly_click', "
+        "{points: [{customdata: ['p0003', 'quasistatic']}]})"
+    )
+    _wait(page, f"window.trame.state.get('result_serial') > {serial}", 60, "the clicked run")
+    assert "p0003" in page.locator("#result-label").inner_text()
     page.screenshot(path=str(SHOTS / "study-built.png"))
