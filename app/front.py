@@ -7,6 +7,9 @@ browser's HTTP requests and websocket to it. With ``shared=True`` every browser 
 session (a design review on a shared screen). All sessions use the same runs folder and the same
 solver slots (:class:`app.services.pool.SolverPool`).
 
+Session processes are forked from a fork server that has imported what they all use
+(:mod:`app.services.forkserver`), so they share that memory instead of each holding a copy; with
+``fork=False`` (or where there is no fork server) each is a new Python process.
 A spare session is started ahead, so that a new browser does not wait for one to start. A session
 whose browsers have all left is stopped after :data:`IDLE_S`. Session processes stop when the
 front ends, even when it is killed (they watch their parent).
@@ -66,7 +69,7 @@ class Session:
 
     sid: str
     port: int
-    process: asyncio.subprocess.Process
+    process: asyncio.subprocess.Process  # or a forkserver.ForkedProcess, which behaves alike
     ready: asyncio.Future
     sockets: int = 0
     idle_since: float = field(default_factory=time.monotonic)
@@ -83,8 +86,13 @@ class Front:
     solver slots).
     """
 
-    def __init__(self, access: Access, session_args: list[str], shared: bool = False):
+    def __init__(
+        self, access: Access, session_args: list[str], shared: bool = False, fork: bool = True
+    ):
+        from .services import forkserver
+
         self.access = access
+        self.fork = fork and forkserver.available()
         self.session_args = session_args
         self.shared = shared
         self.sessions: dict[str, Session] = {}
@@ -96,14 +104,15 @@ class Front:
     async def _spawn(self) -> Session:
         port = free_port()
         sid = secrets.token_urlsafe(16)
-        process = await asyncio.create_subprocess_exec(
-            sys.executable,
-            "-m",
-            "app.session_process",
-            "--port",
-            str(port),
-            *self.session_args,
-        )
+        argv = ["--port", str(port), *self.session_args]
+        if self.fork:  # forked from the pre-imported fork server: shares its memory
+            from .services import forkserver
+
+            process = await asyncio.to_thread(forkserver.start_session, argv)
+        else:
+            process = await asyncio.create_subprocess_exec(
+                sys.executable, "-m", "app.session_process", *argv
+            )
         session = Session(sid, port, process, asyncio.get_running_loop().create_future())
         asyncio.get_running_loop().create_task(self._wait_ready(session))
         return session

@@ -131,6 +131,16 @@ def load_netcdf(path: Path) -> xr.Dataset:
     return load_dataset(path)
 
 
+def open_netcdf(path: Path) -> xr.Dataset:
+    """A saved result opened lazily: the file stays open and a variable is read from it each time
+    a view uses it (not kept: the views keep what they need in their own form). A session so
+    holds none of the 140 MB of a 100-revolution run's variables, only the frames made of some.
+    Saved runs are never rewritten, so the file stays what was opened."""
+    from solver.results.io import ENGINE
+
+    return xr.open_dataset(path, engine=ENGINE, cache=False)
+
+
 def _meta_problem(meta) -> str:
     """Why a parsed ``run.json`` cannot describe a run ("" when it can)."""
     if not isinstance(meta, dict):
@@ -352,7 +362,7 @@ class RunStore:
             raise ValueError(f"saved run {run_id} is broken: {info.problem}")
         folder = self.root / run_id
         try:
-            ds = load_netcdf(folder / RESULT_FILE)
+            ds = open_netcdf(folder / RESULT_FILE)  # runs are never rewritten: read on demand
             case_text = (folder / CASE_FILE).read_text(encoding="utf-8")
         except (OSError, RuntimeError, ValueError, UnicodeDecodeError) as error:
             reason = _clean_text(getattr(error, "strerror", None) or str(error))

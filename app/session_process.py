@@ -1,8 +1,10 @@
 """One session of ``racetrace serve`` in its own process: a trame server on a loopback port.
 
 Started by the front server (:mod:`app.front`), which relays one browser (or, with ``--shared``,
-every browser) to it. The process ends with its parent: when the front ends, even killed, the
-session saves a run in progress (marked incomplete) and stops its solver process.
+every browser) to it: forked from the front's pre-imported fork server
+(:mod:`app.services.forkserver`), or as a new Python process with the command below. The process
+ends with its parent: when the front ends, even killed, the session saves a run in progress
+(marked incomplete) and stops its solver process.
 
 ``python -m app.session_process --port P [--runs-dir D] [--case NAME] [--slots-dir S]
 [--max-runs N]``

@@ -252,30 +252,40 @@ class TrackPainter:
         return self.field(race, quantity).sum(axis=0)
 
 
-def groove_mesh_arrays(groove: Groove, grid: TrackGrid, phi_cells=None, lift: float = 0.0):
-    """Quad mesh of the groove cells: (points (n, 3) m, faces (VTK layout), cell indices).
+def groove_surface_arrays(
+    groove: Groove, grid: TrackGrid, phis, n_alpha_points: int, lift: float = 0.0
+):
+    """Quad mesh over the groove, shoulder to shoulder, textured by the track fields.
 
-    ``phi_cells``: the phi cells drawn (default all); the returned cell indices map each quad to
-    the flat index ``j * n_alpha + i`` of the track fields, ring frame.
+    Returns (points (n, 3) m in the ring frame, faces (VTK layout), texture coordinates (n, 2)).
+    ``phis``: ring azimuths (rad, increasing) of the mesh's rows of points; ``n_alpha_points``:
+    points across the groove. The texture coordinates are ``u = phi / 2 pi`` (above 1 past a full
+    turn: the texture repeats) and ``v = (alpha - alpha_lo) / (alpha_hi - alpha_lo)``, so that a
+    texture of ``n_phi`` x ``n_alpha`` texels (:func:`track_colours`, nearest texel) shows each
+    cell of the fields where it lies, however coarse the mesh.
     """
-    phi_cells = np.arange(grid.n_phi) if phi_cells is None else np.asarray(phi_cells, int)
-    a_edges = grid.alpha_edges()
-    p_edges = grid.phi_edges()
-    na = grid.n_alpha
-    points, faces, cells = [], [], []
-    base = 0
-    # consecutive runs of phi cells share their edge points
-    runs = np.split(phi_cells, np.flatnonzero(np.diff(phi_cells) != 1) + 1)
-    for run in runs:
-        if run.size == 0:
-            continue
-        phis = p_edges[run[0] : run[-1] + 2]
-        pts = groove.point(phis[:, None], a_edges[None, :], lift=lift).reshape(-1, 3)
-        jj, ii = np.meshgrid(np.arange(run.size), np.arange(na), indexing="ij")
-        p00 = base + jj * (na + 1) + ii
-        quad = np.stack([np.full(p00.shape, 4), p00, p00 + 1, p00 + na + 2, p00 + na + 1], axis=-1)
-        faces.append(quad.reshape(-1, 5))
-        cells.append((run[:, None] * na + np.arange(na)[None, :]).ravel())
-        points.append(pts)
-        base += pts.shape[0]
-    return np.concatenate(points), np.concatenate(faces).ravel(), np.concatenate(cells)
+    phis = np.asarray(phis, float)
+    alphas = np.linspace(grid.alpha_lo, grid.alpha_hi, int(n_alpha_points))
+    na = alphas.size
+    points = groove.point(phis[:, None], alphas[None, :], lift=lift).reshape(-1, 3)
+    jj, ii = np.meshgrid(np.arange(phis.size - 1), np.arange(na - 1), indexing="ij")
+    p00 = (jj * na + ii).ravel()
+    faces = np.stack([np.full(p00.shape, 4), p00, p00 + 1, p00 + na + 1, p00 + na], axis=-1)
+    u = np.repeat(phis / (2.0 * math.pi), na)
+    v = np.tile((alphas - grid.alpha_lo) / (grid.alpha_hi - grid.alpha_lo), phis.size)
+    return points, faces.ravel(), np.stack([u, v], axis=1)
+
+
+def track_colours(field: np.ndarray, painted: np.ndarray, lo: float, hi: float, table, nan_rgba):
+    """RGBA texels (n_alpha * n_phi, 4) uint8 of a track field (n_phi, n_alpha), phi fastest.
+
+    ``table``: the colour map (m, 4) uint8 spread linearly over ``[lo, hi]`` (values outside take
+    the end colours); cells not ``painted`` take ``nan_rgba``.
+    """
+    table = np.asarray(table, np.uint8)
+    m = table.shape[0]
+    span = hi - lo if hi > lo else 1.0
+    index = np.clip(((field.T - lo) / span * m).astype(np.int64), 0, m - 1)
+    out = table[index]
+    out[~painted.T] = np.asarray(nan_rgba, np.uint8)
+    return out.reshape(-1, 4)

@@ -3,6 +3,8 @@
     python benchmarks/dynamic.py [--revolutions N] [--cases spindle heavy]
                                  [--methods dopri5 rosenbrock] [--memory-revolutions 100]
                                  [--compile-time] [--traction-model case|rheology|slip_curve]
+                                 [--compare-traction [REPEATS]]
+                                 [--tolerance 1e-3]
 
 - spindle: catalogue case ``spindle-combined-load`` (7008C-class hybrid, 18 balls, 20 000 rpm,
   500 N axial + 300 N radial, cage on);
@@ -20,6 +22,13 @@ difference), times the number of evaluations, plus the integrator overhead and t
 Last, each case's figures against the targets of issue 13 (spindle <= 0.1 s, 218 heavy <= 0.06 s
 per revolution, <= 1 GB for 100 revolutions). ``--compile-time`` also times the first run in a
 fresh process with an empty numba cache (compilation of every kernel).
+
+``--compare-traction`` instead times the two traction models of the ball-race contacts against
+each other (issue 12: the rheology may make a shaft revolution at most 25 % slower than the slip
+curve): for each case and method, runs with the slip curve and with the rheology alternate
+(interleaved, so that the load of the shared machine falls on both alike), REPEATS times each
+(default 3), and prints the median wall and CPU seconds per shaft revolution, the steps per
+revolution and the cost of one right-hand-side evaluation of each, and their ratios.
 """
 
 from __future__ import annotations
@@ -59,7 +68,7 @@ MEMORY_TARGET = 1e9  # bytes for 100 revolutions
 def running_state(inputs, options, revolutions=0.1):
     """A state of the running bearing: the initial state advanced by ``revolutions``."""
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     y = initial_state(par, quad)
     z = int(par.ball_count)
     scale = state_scales(par, y)
@@ -88,9 +97,9 @@ def running_state(inputs, options, revolutions=0.1):
 
 
 def rhs_cost(inputs, options, y, repeats=300):
-    """Seconds per right-hand-side evaluation at state ``y`` (best of 7 batches)."""
+    """CPU seconds per right-hand-side evaluation at state ``y`` (best of 7 batches)."""
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
@@ -98,20 +107,20 @@ def rhs_cost(inputs, options, y, repeats=300):
     dydt = np.zeros_like(y)
     rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
     best = float("inf")
-    for _ in range(7):  # best of 7: the machine is shared, the minimum is the undisturbed cost
-        start = time.perf_counter()
+    for _ in range(7):  # best of 7 in CPU time: the machine is shared
+        start = time.process_time()
         for _ in range(repeats):
             rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
-        best = min(best, (time.perf_counter() - start) / repeats)
+        best = min(best, (time.process_time() - start) / repeats)
     return best
 
 
-def run_case(label, revolutions, method, memory_revolutions, traction_model="case"):
+def run_case(label, revolutions, method, memory_revolutions, traction_model="case", tolerance=None):
     case = resolve_case(CASES[label])
     inputs = to_inputs(case)
     if traction_model != "case":
         inputs = replace(inputs, lubricant=replace(inputs.lubricant, traction_model=traction_model))
-    options = SimulationOptions(shaft_revolutions=revolutions, method=method)
+    options = SimulationOptions(shaft_revolutions=revolutions, method=method, tolerance=tolerance)
     first = time.perf_counter()
     simulate(inputs, options=replace(options, shaft_revolutions=0.05))  # load / compile kernels
     first = time.perf_counter() - first
@@ -138,7 +147,8 @@ def run_case(label, revolutions, method, memory_revolutions, traction_model="cas
     no_cage = rhs_cost(inputs, replace(options, cage=False), y_run)
     normal_only = rhs_cost(inputs, replace(options, traction=False, cage=False), y_run)
     per_rev = integ / revolutions
-    print(f"\n== {label}, method {method}: {case.title}")
+    tol = options.resolved(inputs.simulation).tolerance
+    print(f"\n== {label}, method {method}, tolerance {tol:g}: {case.title}")
     print(
         f"   {revolutions:g} shaft revolutions, {ds.sizes['time']} samples, complete = "
         f"{ds.attrs['complete']}, traction model {inputs.lubricant.traction_model}"
@@ -182,20 +192,74 @@ def run_case(label, revolutions, method, memory_revolutions, traction_model="cas
     return per_rev, rss + peak * max(100.0 / memory_revolutions - 1.0, 0.0)
 
 
+TRACTION_MODELS = ("slip_curve", "rheology")
+
+
+def compare_traction(label, revolutions, method, repeats):
+    """Interleaved runs with each traction model; prints medians and the rheology / slip-curve
+    ratios. Returns the ratio of the median wall seconds per shaft revolution."""
+    case = resolve_case(CASES[label])
+    base = to_inputs(case)
+    inputs = {
+        m: replace(base, lubricant=replace(base.lubricant, traction_model=m))
+        for m in TRACTION_MODELS
+    }
+    options = SimulationOptions(shaft_revolutions=revolutions, method=method)
+    for m in TRACTION_MODELS:  # load / compile the kernels of both
+        simulate(inputs[m], options=replace(options, shaft_revolutions=0.05))
+    wall = {m: [] for m in TRACTION_MODELS}
+    cpu = {m: [] for m in TRACTION_MODELS}
+    steps = {}
+    for _ in range(repeats):
+        for m in TRACTION_MODELS:
+            cpu_start = time.process_time()
+            ds = simulate(inputs[m], options=options)
+            cpu[m].append((time.process_time() - cpu_start) / revolutions)
+            wall[m].append(ds.attrs["wall_time_s"] / revolutions)
+            steps[m] = (ds.attrs["steps"] + ds.attrs["rejected_steps"]) / revolutions
+    y_run = running_state(inputs["slip_curve"], options)
+    evaluation = {}
+    for _ in range(2):
+        for m in TRACTION_MODELS:
+            cost = rhs_cost(inputs[m], options, y_run, repeats=200)
+            evaluation[m] = min(evaluation.get(m, float("inf")), cost)
+    med = {m: float(np.median(wall[m])) for m in TRACTION_MODELS}
+    med_cpu = {m: float(np.median(cpu[m])) for m in TRACTION_MODELS}
+    print(f"\n== {label}, method {method}: {case.title}; {revolutions:g} revolutions x {repeats}")
+    for m in TRACTION_MODELS:
+        print(
+            f"   {m:10s} integration {med[m]:.3f} s/rev wall (median; runs "
+            f"{', '.join(f'{w:.3f}' for w in wall[m])}), simulate() CPU {med_cpu[m]:.3f} s/rev, "
+            f"{steps[m]:.0f} steps/rev (incl. rejected), "
+            f"one evaluation {evaluation[m] * 1e6:.1f} us"
+        )
+    ratio = med["rheology"] / med["slip_curve"]
+    print(
+        f"   rheology / slip curve: wall {ratio:.2f}, CPU "
+        f"{med_cpu['rheology'] / med_cpu['slip_curve']:.2f}, steps "
+        f"{steps['rheology'] / steps['slip_curve']:.2f}, one evaluation (same state) "
+        f"{evaluation['rheology'] / evaluation['slip_curve']:.2f}"
+    )
+    return ratio
+
+
 def compile_time():
-    """Seconds of a first tiny run in a fresh process with an empty numba cache."""
+    """(wall, CPU) seconds of a first tiny run in a fresh process with an empty numba cache."""
     code = (
         "import time; t = time.perf_counter()\n"
         "from solver.models.dynamic import SimulationOptions, simulate\n"
         "simulate('spindle-combined-load', options=SimulationOptions(shaft_revolutions=0.01))\n"
         "print(time.perf_counter() - t)\n"
     )
+    cpu = resource.getrusage(resource.RUSAGE_CHILDREN)
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, NUMBA_CACHE_DIR=cache)
         out = subprocess.run(
             [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
         )
-    return float(out.stdout.strip().splitlines()[-1])
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - cpu.ru_utime - cpu.ru_stime
+    return float(out.stdout.strip().splitlines()[-1]), cpu
 
 
 def main(argv=None):
@@ -213,15 +277,45 @@ def main(argv=None):
     )
     parser.add_argument("--compile-time", action="store_true")
     parser.add_argument(
+        "--tolerance", type=float, default=None, help="integrator tolerance (default: the case's)"
+    )
+    parser.add_argument(
         "--traction-model",
         default="case",
         choices=("case", "rheology", "slip_curve"),
         help="traction law of the ball-race contacts (default: the case's)",
     )
+    parser.add_argument(
+        "--compare-traction",
+        type=int,
+        nargs="?",
+        const=3,
+        default=0,
+        metavar="REPEATS",
+        help="time the rheology against the slip curve (interleaved runs, medians)",
+    )
     args = parser.parse_args(argv)
+    if args.compare_traction:
+        ratios = {
+            (label, method): compare_traction(
+                label, args.revolutions, method, args.compare_traction
+            )
+            for label in args.cases
+            for method in args.methods
+        }
+        print("\nrheology / slip curve, wall s per shaft revolution (issue 12 allows 1.25):")
+        for (label, method), ratio in ratios.items():
+            verdict = "within" if ratio <= 1.25 else "over"
+            print(f"  {label:8s} {method:10s} {ratio:.2f}: {verdict} 1.25")
+        return 0
     results = {
         (label, method): run_case(
-            label, args.revolutions, method, args.memory_revolutions, args.traction_model
+            label,
+            args.revolutions,
+            method,
+            args.memory_revolutions,
+            args.traction_model,
+            args.tolerance,
         )
         for label in args.cases
         for method in args.methods
@@ -236,7 +330,11 @@ def main(argv=None):
             f"memory <= {memory / 1e6:.0f} MB: {mem} 1 GB"
         )
     if args.compile_time:
-        print(f"\nfirst run with an empty numba cache (compile everything): {compile_time():.1f} s")
+        wall, cpu = compile_time()
+        print(
+            f"\nfirst run with an empty numba cache (compile everything): {wall:.1f} s wall, "
+            f"{cpu:.1f} s CPU"
+        )
     return 0
 
 

@@ -101,7 +101,7 @@ def report(label, revolutions):
     inputs = to_inputs(case)
     options = SimulationOptions(shaft_revolutions=revolutions)
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     y0 = initial_state_from_quasistatic(par, quasistatic_solution(inputs))
     scale = state_scales(par, y0)
     op = inputs.operating

@@ -15,6 +15,7 @@ import numpy as np
 
 from .geometry import BearingGeometry, free_contact_angle_from_clearance
 from .materials import Material
+from .physics import rheology as rh
 from .physics.rheology import viscosity_at_temperature
 
 #: SI value of one case unit.
@@ -130,6 +131,19 @@ class LubricantInputs:
     thermal_conductivity: float  # W/(m K)
     density: float  # kg/m^3
     oil_volume_fraction: float
+
+    def rheology_array(self):
+        """Parameter array of solver.physics.rheology (its RH_* slots, SI) of this lubricant."""
+        r = np.zeros(rh.RHEOLOGY_SIZE)
+        r[rh.RH_VISCOSITY] = self.viscosity
+        r[rh.RH_PRESSURE_VISCOSITY] = self.pressure_viscosity
+        r[rh.RH_EYRING_STRESS] = self.eyring_stress
+        r[rh.RH_LIMITING_STRESS] = self.limiting_shear_stress
+        r[rh.RH_LIMITING_SLOPE] = self.limiting_shear_coefficient
+        r[rh.RH_SHEAR_MODULUS] = self.film_shear_modulus
+        r[rh.RH_TEMPERATURE_VISCOSITY] = self.temperature_viscosity
+        r[rh.RH_CONDUCTIVITY] = self.thermal_conductivity
+        return r
 
     @property
     def description(self) -> str:

@@ -76,10 +76,31 @@ def barus_viscosity(viscosity, pressure_viscosity, pressure):
 
 
 #: Above this x = eta gamma_dot / tau_0 the Eyring law uses asinh(x) = ln(2 x) (relative error
-#: below 1e-8), which needs no exponential of the Barus exponent.
-_ASINH_LOG_FROM = 1.0e4
+#: below 4e-8), which needs no exponential of the Barus exponent.
+_ASINH_LOG_FROM = 1.0e3
 _LN_ASINH_LOG_FROM = math.log(_ASINH_LOG_FROM)
 _LN2 = math.log(2.0)
+
+
+#: From this x on, :func:`_asinh_from_log` uses the series of asinh(x) in 1/x^2 (five terms,
+#: relative error below 1e-7).
+_ASINH_SERIES_FROM = 3.0
+_LN_ASINH_SERIES_FROM = math.log(_ASINH_SERIES_FROM)
+
+
+@njit(cache=True, inline="always")
+def _asinh_from_log(ln_x):
+    """asinh(x) from ln x: ln(2x) above x = 1e3; ln(2x) + sum_n (-1)^(n-1) (2n-1)!! / (2n (2n)!!)
+    x^(-2n), n = 1..5, above x = 3 (one exponential, no logarithm); the closed form below."""
+    if ln_x > _LN_ASINH_LOG_FROM:
+        return _LN2 + ln_x
+    if ln_x > _LN_ASINH_SERIES_FROM:
+        w = math.exp(-2.0 * ln_x)
+        series = w * (
+            0.25 - w * (0.09375 - w * (0.052083333333333336 - w * (0.0341796875 - w * 0.024609375)))
+        )
+        return _LN2 + ln_x + series
+    return math.asinh(math.exp(ln_x))  # accurate also for x -> 0 (Newtonian limit)
 
 
 @njit(cache=True)
@@ -90,25 +111,52 @@ def contact_constants(film, transit_time, rheology):
     return ln_c, rheology[RH_SHEAR_MODULUS] * transit_time / film
 
 
+#: Largest elastic stress G gamma_dot t [Pa] used by :func:`stress_over_slip` (~ 1e30: keeps the
+#: fourth powers there finite when the entrainment, and so the film, vanishes; far above any
+#: limiting shear stress, so the result is unchanged).
+_ELASTIC_STRESS_CAP = 1.0e30
+
+
+@njit(cache=True, inline="always")
+def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
+    """tau / u [Pa s/m] of :func:`shear_stress` at slip speed u > 0 [m/s] (``ln_u`` = ln u), with
+    the node's Barus exponent ``alpha_p`` = alpha p, limiting shear stress ``tau_l`` = tau_L0 +
+    Lambda p [Pa], the per-contact constants of :func:`contact_constants` and the Eyring stress
+    ``tau_0`` [Pa]. The form evaluated at every quadrature node: one logarithm, two square roots
+    and one division.
+
+    With tau_v the Eyring stress and tau_e = E u (E = ``elastic``), the series combination
+    tau_ve = N / D (N = tau_v E u, D = tau_v + E u) and the smooth limit tau = tau_ve tau_L /
+    (tau_L^4 + tau_ve^4)^(1/4) give tau / u = tau_v E tau_L / ((tau_L D)^4 + N^4)^(1/4).
+    """
+    ln_x = ln_c + ln_u + min(alpha_p, BARUS_EXPONENT_CAP)
+    tau_v = tau_0 * _asinh_from_log(ln_x)
+    if elastic > 0.0:
+        eu = min(elastic * u, _ELASTIC_STRESS_CAP)
+        ld = tau_l * (tau_v + eu)
+        n = tau_v * eu
+        ld2 = ld * ld
+        n2 = n * n
+        return tau_v * eu * tau_l / (u * math.sqrt(math.sqrt(ld2 * ld2 + n2 * n2)))
+    l2 = tau_l * tau_l
+    v2 = tau_v * tau_v
+    return tau_v * tau_l / (u * math.sqrt(math.sqrt(l2 * l2 + v2 * v2)))
+
+
 @njit(cache=True, inline="always")
 def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
     """:func:`shear_stress` for u > 0 with the per-contact constants of
-    :func:`contact_constants` (the form evaluated at every quadrature node: one logarithm)."""
+    :func:`contact_constants` (through :func:`stress_over_slip`)."""
     p = max(pressure, 0.0)
-    tau0 = rheology[RH_EYRING_STRESS]
-    ln_x = ln_c + math.log(u) + min(rheology[RH_PRESSURE_VISCOSITY] * p, BARUS_EXPONENT_CAP)
-    if ln_x > _LN_ASINH_LOG_FROM:
-        tau_v = tau0 * (_LN2 + ln_x)
-    else:
-        x = math.exp(ln_x)
-        tau_v = tau0 * math.log(x + math.sqrt(x * x + 1.0))  # tau_0 asinh(x)
-    tau_e = elastic * u
-    tau = tau_v * tau_e / (tau_v + tau_e) if elastic > 0.0 else tau_v
-    tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
-    # tau / (1 + (tau / tau_L)^4)^(1/4) = tau tau_L / (tau_L^4 + tau^4)^(1/4): one division
-    t2 = tau * tau
-    l2 = tau_l * tau_l
-    return tau * tau_l / math.sqrt(math.sqrt(l2 * l2 + t2 * t2))
+    return u * stress_over_slip(
+        u,
+        math.log(u),
+        rheology[RH_PRESSURE_VISCOSITY] * p,
+        rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p,
+        ln_c,
+        elastic,
+        rheology[RH_EYRING_STRESS],
+    )
 
 
 @njit(cache=True)

@@ -66,7 +66,8 @@ Quadrature on the contact ellipse (:func:`ellipse_quadrature`)
     The Hertz pressure p = p_max sqrt(1 - x^2 - y^2) = p_max sqrt(1 - y^2) sqrt(1 - t^2) is then
     exactly the rule's weight, so the pressure integrates to Q to rounding error for any node
     count. Node table columns: ``NODE_ROLLING`` x = xi/b, ``NODE_TRANSVERSE`` y = eta/a,
-    ``NODE_AREA`` area weight on the unit disc, ``NODE_LOAD`` load fraction p dA / Q (sum = 1).
+    ``NODE_AREA`` area weight on the unit disc, ``NODE_LOAD`` load fraction p dA / Q (sum = 1),
+    ``NODE_PRESSURE`` p / p_max = sqrt(1 - x^2 - y^2). Nodes of one strip are consecutive.
 """
 
 from __future__ import annotations
@@ -77,7 +78,15 @@ import numpy as np
 from numba import njit
 from scipy import optimize, special
 
-from .rheology import contact_constants, shear_stress, shear_stress_from_constants
+from .rheology import (
+    RH_EYRING_STRESS,
+    RH_LIMITING_SLOPE,
+    RH_LIMITING_STRESS,
+    RH_PRESSURE_VISCOSITY,
+    contact_constants,
+    shear_stress,
+    stress_over_slip,
+)
 
 # ---- traction-curve parameter array ------------------------------------------------------------
 CURVE_A = 0  # mu_zero - mu_infinity
@@ -127,7 +136,8 @@ NODE_ROLLING = 0
 NODE_TRANSVERSE = 1
 NODE_AREA = 2
 NODE_LOAD = 3
-NODE_COLUMNS = 4
+NODE_PRESSURE = 4
+NODE_COLUMNS = 5
 
 DEFAULT_N_ROLLING = 4
 DEFAULT_N_TRANSVERSE = 10
@@ -256,10 +266,10 @@ def ellipse_quadrature(
 
     ``n_rolling`` points along the rolling direction (minor axis b) on each of ``n_transverse``
     strips across the major axis a. Returns an array (n_rolling * n_transverse, ``NODE_COLUMNS``): x
-    = xi/b, y = eta/a, area weight (so that sum w f(x, y) ~ integral of f over the unit disc) and
-    load fraction (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz
-    pressure). The pressure itself is integrated exactly (sum of load fractions = 1 to rounding
-    error).
+    = xi/b, y = eta/a, area weight (so that sum w f(x, y) ~ integral of f over the unit disc), load
+    fraction (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz pressure)
+    and the Hertz pressure over its maximum; strip by strip. The pressure itself is integrated
+    exactly (sum of load fractions = 1 to rounding error).
     """
     for name, n in (("n_rolling", n_rolling), ("n_transverse", n_transverse)):
         if int(n) != n or n < 1 or n > 200:
@@ -276,6 +286,7 @@ def ellipse_quadrature(
             nodes[k, NODE_TRANSVERSE] = y[j]
             nodes[k, NODE_AREA] = wy[j] * wt[i] / (sy * st)
             nodes[k, NODE_LOAD] = 1.5 / math.pi * wy[j] * wt[i]
+            nodes[k, NODE_PRESSURE] = sy * st
             k += 1
     return nodes
 
@@ -420,11 +431,18 @@ def ellipse_traction_law(
     filmed = film > 0.0
     ln_c = 0.0
     elastic = 0.0
+    ab = a * b
+    # rheology: Hertz p_max = 1.5 Q / (pi a b); per node p = p_max (p / p_max), so the Barus
+    # exponent and the limiting shear stress are p_max-scaled node constants
+    p_max = 1.5 * q / (math.pi * ab)
+    alpha_pmax = rheology[RH_PRESSURE_VISCOSITY] * p_max if rheological else 0.0
+    tl0 = rheology[RH_LIMITING_STRESS] if rheological else 0.0
+    lam_pmax = rheology[RH_LIMITING_SLOPE] * p_max if rheological else 0.0
+    tau_0 = rheology[RH_EYRING_STRESS] if rheological else 0.0
     if rheological:
         ur2 = 0.0
         if filmed:
             ln_c, elastic = contact_constants(film, transit_time, rheology)
-    ab = a * b
     f1 = 0.0
     f2 = 0.0
     fn = 0.0
@@ -432,12 +450,58 @@ def ellipse_traction_law(
     m2 = 0.0
     mn = 0.0
     power = 0.0
-    for k in range(nodes.shape[0]):
+    y_strip = 2.0  # outside [-1, 1]: the first node starts a strip
+    eta = sphi = cphi = z = 0.0
+    if rheological and filmed:
+        # the rheology's own loop (the law at every node: solver.physics.rheology.stress_over_slip)
+        for k in range(nodes.shape[0]):
+            xi = b * nodes[k, NODE_ROLLING]
+            if nodes[k, NODE_TRANSVERSE] != y_strip:
+                y_strip = nodes[k, NODE_TRANSVERSE]
+                eta = a * y_strip
+                sphi = kappa * eta
+                cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
+                z = -kappa * eta * eta / (1.0 + cphi)
+            v1 = s01 + o2 * z - on * eta
+            v2 = s02 + on * xi - o1 * z
+            u2 = v1 * v1 + v2 * v2
+            if u2 <= 0.0:
+                continue
+            ps = nodes[k, NODE_PRESSURE]
+            g = (
+                -ab
+                * nodes[k, NODE_AREA]
+                * stress_over_slip(
+                    math.sqrt(u2),
+                    0.5 * math.log(u2),
+                    alpha_pmax * ps,
+                    tl0 + lam_pmax * ps,
+                    ln_c,
+                    elastic,
+                    tau_0,
+                )
+            )
+            tau1 = g * v1
+            tau2 = g * v2 * cphi
+            taun = -g * v2 * sphi
+            f1 += tau1
+            f2 += tau2
+            fn += taun
+            m1 += eta * taun - z * tau2
+            m2 += z * tau1 - xi * taun
+            mn += xi * tau2 - eta * tau1
+            power -= g * u2
+        nodes_done = nodes.shape[0]
+    else:
+        nodes_done = 0
+    for k in range(nodes_done, nodes.shape[0]):
         xi = b * nodes[k, NODE_ROLLING]
-        eta = a * nodes[k, NODE_TRANSVERSE]
-        sphi = kappa * eta
-        cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
-        z = -kappa * eta * eta / (1.0 + cphi)
+        if nodes[k, NODE_TRANSVERSE] != y_strip:  # a new strip: its curvature terms
+            y_strip = nodes[k, NODE_TRANSVERSE]
+            eta = a * y_strip
+            sphi = kappa * eta
+            cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
+            z = -kappa * eta * eta / (1.0 + cphi)
         # Rigid-body slip at the node p = P + (xi, eta, z): dv = s0 + Omega x (xi, eta, z). Its n
         # component is the approach rate of the undeformed bodies (taken up by the elastic
         # deformation, not slip) and is dropped; the rolling component v1 stays along t1 and the
@@ -445,21 +509,18 @@ def ellipse_traction_law(
         v1 = s01 + o2 * z - on * eta
         v2 = s02 + on * xi - o1 * z
         u2 = v1 * v1 + v2 * v2
-        den = math.sqrt(u2 + ur2)
-        if den <= 0.0:
-            continue
-        u = math.sqrt(u2)
-        if rheological:
-            area = ab * nodes[k, NODE_AREA]
-            if area <= 0.0:
+        if rheological:  # no film (no entrainment): the limiting shear stress
+            if u2 <= 0.0:
                 continue
-            pk = q * nodes[k, NODE_LOAD] / area
-            if filmed:
-                tau = shear_stress_from_constants(u, pk, ln_c, elastic, rheology)
-            else:
-                tau = shear_stress(u, pk, film, transit_time, rheology)
-            g = -tau * area / den
+            u = math.sqrt(u2)
+            area = ab * nodes[k, NODE_AREA]
+            pk = p_max * nodes[k, NODE_PRESSURE]
+            g = -area * shear_stress(u, pk, film, 0.0, rheology) / u
         else:
+            den = math.sqrt(u2 + ur2)
+            if den <= 0.0:
+                continue
+            u = math.sqrt(u2)
             mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
             g = -q * nodes[k, NODE_LOAD] * mu / den
         tau1 = g * v1

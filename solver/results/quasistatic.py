@@ -185,10 +185,10 @@ def solution_to_dataset(
         kinematics = (
             "Quasi-static model with the ball speeds from the traction balance: one cage speed "
             "for all balls (the cage pocket forces sum to zero), each ball's spin from the "
-            "moment balance of the tractions integrated over both contact ellipses (the case's "
-            "traction curve lubricant.traction, whatever the dynamic model's traction_model) "
-            "against its gyroscopic rate; the transverse tractions take the gyroscopic moment in "
-            "the force balances"
+            "moment balance of the tractions integrated over both contact ellipses (with the "
+            "dynamic model's traction law, lubricant.traction_model: the traction curve or the "
+            "oil's rheology) against its gyroscopic rate; the transverse tractions take the "
+            "gyroscopic moment in the force balances"
         )
     else:
         kinematics = (

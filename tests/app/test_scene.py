@@ -271,6 +271,20 @@ def test_exaggerated_marks_stay_on_the_groove_between_the_shoulders(scene, geome
             assert np.isclose(np.abs(alpha).max(), grid.alpha_hi, atol=2e-3)
 
 
+def test_scene_lighting_is_cheap_for_software_rendering(scene):
+    """Few camera lights and no order-independent translucency: each costs every pixel a frame."""
+    from app.scene import LIGHTS
+
+    renderer = scene.plotter.renderer
+    assert renderer.GetLights().GetNumberOfItems() == len(LIGHTS) <= 3
+    assert not renderer.GetUseOIT()
+    # the painted tracks are drawn before the rings, so the groove under them is not shaded
+    props = list(renderer.GetViewProps())
+    tracks = [props.index(a) for a in scene._actors["tracks"]]
+    rings = [props.index(a) for a in scene._actors["inner_ring"] + scene._actors["outer_ring"]]
+    assert max(tracks) < min(rings)
+
+
 def test_each_ball_is_marked_in_its_legend_colour(scene, geometry):
     from app.palette import ball_colours
 

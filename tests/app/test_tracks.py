@@ -10,7 +10,7 @@ import pytest
 
 from app.frames import FrameSource
 from app.raceway import INNER, OUTER, Groove
-from app.tracks import TrackGrid, TrackPainter, groove_mesh_arrays
+from app.tracks import TrackGrid, TrackPainter, groove_surface_arrays, track_colours
 
 GROOVE = Groove(rho_c=0.025, x_c=0.0, r=0.004, sign=1.0)  # inner-like groove, m
 GRID = TrackGrid(-0.6, 0.6, n_phi=360, n_alpha=120)  # 0.01 rad per alpha cell
@@ -135,16 +135,33 @@ def test_a_line_and_a_band_are_told_apart():
     assert widths[1] > 1.2 * widths[0]
 
 
-def test_groove_mesh_cells_map_to_the_track_field_and_lie_on_the_groove():
+def test_groove_surface_lies_on_the_groove_and_addresses_the_cells_by_texture():
     grid = TrackGrid(-0.5, 0.5, n_phi=36, n_alpha=8)
-    kept = np.r_[0:5, 20:36]
-    pts, faces, cells = groove_mesh_arrays(GROOVE, grid, kept)
-    assert faces.reshape(-1, 5)[:, 0].tolist() == [4] * len(cells)
-    assert sorted(cells.tolist()) == sorted(
-        (j * grid.n_alpha + i) for j in kept for i in range(grid.n_alpha)
-    )
+    phis = np.linspace(4.0, 4.0 + np.pi, 7)  # a half shell running past phi = 2 pi
+    pts, faces, tcoords = groove_surface_arrays(GROOVE, grid, phis, 5)
+    quads = faces.reshape(-1, 5)
+    assert quads.shape == (6 * 4, 5) and set(quads[:, 0]) == {4}
+    assert quads[:, 1:].max() == len(pts) - 1
     radius = np.hypot(pts[:, 1], pts[:, 2])
     np.testing.assert_allclose(np.hypot(pts[:, 0] - GROOVE.x_c, radius - GROOVE.rho_c), GROOVE.r)
+    # u: turns of phi (the texture repeats past 1); v: 0 at one shoulder, 1 at the other
+    np.testing.assert_allclose(tcoords[:, 0], np.repeat(phis / (2 * np.pi), 5))
+    np.testing.assert_allclose(tcoords[:, 1], np.tile(np.linspace(0, 1, 5), 7))
+    # the point at phi, alpha: alpha from v over the grid's shoulders, phi from the azimuth
+    alpha = grid.alpha_lo + tcoords[:, 1] * (grid.alpha_hi - grid.alpha_lo)
+    np.testing.assert_allclose(pts, GROOVE.point(2 * np.pi * tcoords[:, 0], alpha), atol=1e-12)
+
+
+def test_track_colours_spread_the_colour_map_over_the_range_and_mark_unpainted_cells():
+    table = np.array([[0, 0, 0, 255], [100, 0, 0, 255], [200, 0, 0, 255], [255, 0, 0, 255]])
+    field = np.array([[0.0, 0.3, 0.6], [0.9, 1.0, 5.0]])  # (n_phi=2, n_alpha=3)
+    painted = np.array([[True, True, True], [True, True, False]])
+    rgba = track_colours(field, painted, 0.0, 1.0, table, (7, 8, 9, 255))
+    assert rgba.shape == (6, 4) and rgba.dtype == np.uint8
+    texel = rgba.reshape(3, 2, 4)  # [alpha cell, phi cell]: phi runs fastest
+    assert texel[0, 0, 0] == 0 and texel[1, 0, 0] == 100 and texel[2, 0, 0] == 200
+    assert texel[0, 1, 0] == 255 and texel[1, 1, 0] == 255  # 0.9 and the top of the range
+    assert texel[2, 1].tolist() == [7, 8, 9, 255]  # not run over: the ring colour
 
 
 def test_unknown_quantity_is_named():

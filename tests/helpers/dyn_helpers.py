@@ -14,7 +14,7 @@ from solver.models.dynamic.params import build_params, build_quadrature
 def setup(inputs, **option_changes):
     options = SimulationOptions(**option_changes)
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     return par, quad, options
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .kernels import post_step, rhs
+from .kernels import post_step, rhs_into, rhs_work
 
 # Status codes returned by ``advance``.
 STATUS_OK = 0
@@ -94,7 +94,8 @@ def advance(
     k7 = np.empty(n)
     yt = np.empty(n)
     ynew = np.empty(n)
-    rhs(y, par, quad, k1, rec_inner, rec_outer, pocket)
+    scratch = rhs_work()
+    rhs_into(y, par, quad, k1, rec_inner, rec_outer, pocket, scratch)
     counters[2] += 1
     err_old = 1e-4
     steps = 0
@@ -111,26 +112,26 @@ def advance(
                 clipped = True
             for i in range(n):
                 yt[i] = y[i] + hs * _A21 * k1[i]
-            rhs(yt, par, quad, k2, rec_inner, rec_outer, pocket)
+            rhs_into(yt, par, quad, k2, rec_inner, rec_outer, pocket, scratch)
             for i in range(n):
                 yt[i] = y[i] + hs * (_A31 * k1[i] + _A32 * k2[i])
-            rhs(yt, par, quad, k3, rec_inner, rec_outer, pocket)
+            rhs_into(yt, par, quad, k3, rec_inner, rec_outer, pocket, scratch)
             for i in range(n):
                 yt[i] = y[i] + hs * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-            rhs(yt, par, quad, k4, rec_inner, rec_outer, pocket)
+            rhs_into(yt, par, quad, k4, rec_inner, rec_outer, pocket, scratch)
             for i in range(n):
                 yt[i] = y[i] + hs * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-            rhs(yt, par, quad, k5, rec_inner, rec_outer, pocket)
+            rhs_into(yt, par, quad, k5, rec_inner, rec_outer, pocket, scratch)
             for i in range(n):
                 yt[i] = y[i] + hs * (
                     _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
                 )
-            rhs(yt, par, quad, k6, rec_inner, rec_outer, pocket)
+            rhs_into(yt, par, quad, k6, rec_inner, rec_outer, pocket, scratch)
             for i in range(n):
                 ynew[i] = y[i] + hs * (
                     _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
                 )
-            rhs(ynew, par, quad, k7, rec_inner, rec_outer, pocket)
+            rhs_into(ynew, par, quad, k7, rec_inner, rec_outer, pocket, scratch)
             counters[2] += 6
             steps += 1
             err = 0.0

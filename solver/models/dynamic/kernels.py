@@ -15,6 +15,7 @@ Every kernel reads the flat arrays described in :mod:`solver.models.dynamic.layo
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -177,32 +178,49 @@ def quaternion_to_matrix(w, x, y, z, out):
     out[2, 2] = 1.0 - 2.0 * (x * x + y * y)
 
 
+@njit(cache=True, inline="always")
+def _then_about_x(rot, c, s):
+    """``rot`` <- ``rot`` R_x (R_x: rotation by the angle of cosine c, sine s about x), in place."""
+    for i in range(3):
+        r1, r2 = rot[i, 1], rot[i, 2]
+        rot[i, 1] = c * r1 + s * r2
+        rot[i, 2] = -s * r1 + c * r2
+
+
+@njit(cache=True, inline="always")
+def _about_x_then(rot, c, s):
+    """``rot`` <- R_x ``rot`` (R_x as in ``_then_about_x``), in place."""
+    for k in range(3):
+        r1, r2 = rot[1, k], rot[2, k]
+        rot[1, k] = c * r1 - s * r2
+        rot[2, k] = s * r1 + c * r2
+
+
 @njit(cache=True)
 def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_rot, outer_omega):
     """Orientation, origin, velocity and angular velocity of both rings at state ``y``.
 
     Inner ring: tilt vector ``g`` (small rotation about y, z) and spin angle ``phi``. Mode 0 (tilt
     fixed in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring):
-    R = R_x(phi) R(g). Outer ring: R = R_x(phi_o) about the fixed axis.
+    R = R_x(phi) R(g). Outer ring: R = R_x(phi_o) about the fixed axis. Writes only into the
+    given arrays (no allocation).
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
-    tilt = np.empty((3, 3))
-    rotation_from_vector(0.0, y[rb + R_TILT], y[rb + R_TILT + 1], tilt)
+    rotation_from_vector(0.0, y[rb + R_TILT], y[rb + R_TILT + 1], inner_rot)  # R(g) for now
     phi = y[rb + R_PHI_INNER]
-    spin = np.empty((3, 3))
-    rotation_from_vector(phi, 0.0, 0.0, spin)
+    c, s = math.cos(phi), math.sin(phi)
     mode = par.tilt_mode
     wi = par.inner_speed
     if mode == TILT_TURNING_WITH_RING:
-        inner_rot[:, :] = spin @ tilt
+        _about_x_then(inner_rot, c, s)
         inner_omega[0] = wi
         inner_omega[1] = 0.0
         inner_omega[2] = 0.0
     else:
-        inner_rot[:, :] = tilt @ spin
-        for i in range(3):
-            inner_omega[i] = wi * tilt[i, 0]
+        for i in range(3):  # first column of R(g) = first column of R(g) R_x
+            inner_omega[i] = wi * inner_rot[i, 0]
+        _then_about_x(inner_rot, c, s)
         if mode == TILT_FREE:
             inner_omega[1] += y[rb + R_TILT_RATE]
             inner_omega[2] += y[rb + R_TILT_RATE + 1]
@@ -266,15 +284,16 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
 
     Returns (delta [m], alpha [rad], ring-frame azimuth of the ball phi, ring-frame contact point
     (3), inertial normal n (3), inertial contact point P (3), inertial groove centre (3), rolling
-    direction t1 (3)). The normal points from the groove centre through the ball centre to the
-    contact."""
+    direction t1 (3), (cos phi, sin phi), (cos alpha, sin alpha)). The normal points from the
+    groove centre through the ball centre to the contact."""
     dx, dy, dz = pb[0] - o[0], pb[1] - o[1], pb[2] - o[2]
     # ball centre in ring-frame components
     cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
     cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
     cz = R[0, 2] * dx + R[1, 2] * dy + R[2, 2] * dz
     phi = math.atan2(cz, cy)
-    cph, sph = math.cos(phi), math.sin(phi)
+    inv_rho = 1.0 / math.sqrt(cy * cy + cz * cz)
+    cph, sph = cy * inv_rho, cz * inv_rho
     # groove curvature centre at that azimuth, and the contact normal
     gx, gy, gz = xc, rc * cph, rc * sph
     ex, ey, ez = cx - gx, cy - gy, cz - gz
@@ -283,6 +302,9 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     delta = length - (rg - rball)
     n_rho = ny * cph + nz * sph
     alpha = math.atan2(sgn * nx, sgn * n_rho)
+    # cos and sin of alpha without evaluating them: n lies in the meridional plane (e_x, e_rho)
+    inv_r = 1.0 / math.sqrt(nx * nx + n_rho * n_rho)
+    ca, sa = sgn * n_rho * inv_r, sgn * nx * inv_r
     reach = rg + 0.5 * max(delta, 0.0)
     prx, pry, prz = gx + reach * nx, gy + reach * ny, gz + reach * nz
     ni = _to_inertial(R, nx, ny, nz)
@@ -299,6 +321,8 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
         (o[0] + pi_[0], o[1] + pi_[1], o[2] + pi_[2]),
         (o[0] + gi[0], o[1] + gi[1], o[2] + gi[2]),
         t1,
+        (cph, sph),
+        (ca, sa),
     )
 
 
@@ -314,8 +338,9 @@ def _hertz(dball, conf, gamma, is_inner, eprime):
 
 
 @njit(cache=True, inline="always")
-def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
-    """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial).
+def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, R, sgn):
+    """Surface kinematics at the contact point ``p`` with normal ``n`` (inertial); ``trig_alpha``
+    and ``trig_phi`` are (cos, sin) of the contact angle and of the ball's ring-frame azimuth.
 
     Returns (sliding speed at P [m/s], spin [rad/s], rolling [rad/s], entrainment speed [m/s],
     roll axis (3, inertial)).
@@ -332,8 +357,8 @@ def _contact_kinematics(pb, vb, wb, o, vr, wr, p, n, alpha, phi, R, sgn):
     slide = math.sqrt(max((dvx * dvx + dvy * dvy + dvz * dvz) - dvn * dvn, 0.0))
     omx, omy, omz = wb[0] - wr[0], wb[1] - wr[1], wb[2] - wr[2]
     spin = sgn * (omx * n[0] + omy * n[1] + omz * n[2])
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cph, sph = math.cos(phi), math.sin(phi)
+    ca, sa = trig_alpha
+    cph, sph = trig_phi
     mix, miy, miz = _to_inertial(R, ca, -sa * cph, -sa * sph)
     roll = omx * mix + omy * miy + omz * miz
     rr2 = pb[1] * pb[1] + pb[2] * pb[2]
@@ -429,20 +454,20 @@ def ball_race_contact(
     o = (ring_origin[0], ring_origin[1], ring_origin[2])
     vr = (ring_vel[0], ring_vel[1], ring_vel[2])
     wr = (ring_omega[0], ring_omega[1], ring_omega[2])
-    delta, alpha, phi, pr, n, p, g, t1 = _contact_geometry(
+    delta, alpha, phi, pr, n, p, g, t1, trig_phi, trig_alpha = _contact_geometry(
         pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
     )
     slide, spin, roll, entrain, axis = _contact_kinematics(
-        pb, vb, wb, o, vr, wr, p, n, alpha, phi, ring_rot, sgn
+        pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, ring_rot, sgn
     )
-    gamma = dball * math.cos(alpha) / par.pitch_diameter
+    gamma = dball * trig_alpha[0] / par.pitch_diameter
     eprime = par.eprime
     rx, ry, csum, kappa, big_k, big_e, kh = _hertz(dball, conf, gamma, is_inner, eprime)
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
     rec[K_ANGLE] = alpha
-    rec[K_AZIMUTH] = math.atan2(pr[2], pr[1])
+    rec[K_AZIMUTH] = phi  # the contact point lies in the ball centre's meridional plane
     for i in range(3):
         rec[K_POINT + i] = pr[i]
         rec[K_NORMAL + i] = n[i]
@@ -541,16 +566,15 @@ def ball_race_contact(
 @njit(cache=True)
 def cage_frame(y, cb, rot, omega):
     """Cage orientation ``rot`` = R(tilt) R_x(angle) (cage axes in inertial components) and angular
-    velocity ``omega`` = speed * (R(tilt) e_x) + tilt rates (small-tilt kinematics), inertial."""
-    tilt = np.empty((3, 3))
-    rotation_from_vector(0.0, y[cb + C_TILT], y[cb + C_TILT + 1], tilt)
-    spin = np.empty((3, 3))
-    rotation_from_vector(y[cb + C_ANGLE], 0.0, 0.0, spin)
-    rot[:, :] = tilt @ spin
+    velocity ``omega`` = speed * (R(tilt) e_x) + tilt rates (small-tilt kinematics), inertial.
+    Writes only into the given arrays (no allocation)."""
+    rotation_from_vector(0.0, y[cb + C_TILT], y[cb + C_TILT + 1], rot)  # R(tilt) for now
     wc = y[cb + C_SPEED]
-    omega[0] = wc * tilt[0, 0]
-    omega[1] = wc * tilt[1, 0] + y[cb + C_TILT_RATE]
-    omega[2] = wc * tilt[2, 0] + y[cb + C_TILT_RATE + 1]
+    omega[0] = wc * rot[0, 0]
+    omega[1] = wc * rot[1, 0] + y[cb + C_TILT_RATE]
+    omega[2] = wc * rot[2, 0] + y[cb + C_TILT_RATE + 1]
+    angle = y[cb + C_ANGLE]
+    _then_about_x(rot, math.cos(angle), math.sin(angle))
 
 
 @njit(cache=True)
@@ -731,29 +755,73 @@ def post_step(y, par, rec_inner, rec_outer):
 # ---------------------------------------------------------------------------------------------
 
 
+class RhsWork(NamedTuple):
+    """Scratch arrays of one right-hand-side evaluation (:func:`rhs_into`), made once per
+    integration chunk by :func:`rhs_work` so that the evaluations allocate nothing."""
+
+    inner_rot: np.ndarray  # (3, 3) inner-ring axes, inertial components
+    inner_origin: np.ndarray  # (3,) [m]
+    inner_vel: np.ndarray  # (3,) [m/s]
+    inner_omega: np.ndarray  # (3,) [rad/s]
+    outer_rot: np.ndarray  # (3, 3)
+    outer_omega: np.ndarray  # (3,) [rad/s]
+    zero3: np.ndarray  # (3,) zeros: origin and velocity of the outer ring
+    cage_rot: np.ndarray  # (3, 3)
+    cage_omega: np.ndarray  # (3,) [rad/s]
+    pocket: np.ndarray  # (12,) output of cage_pocket
+    land: np.ndarray  # (5,) output of cage_land
+    contact: np.ndarray  # (TRACTION_WORK_SIZE,) scratch of the contact kernels
+
+
+@njit(cache=True)
+def rhs_work():
+    """A fresh :class:`RhsWork`."""
+    return RhsWork(
+        np.empty((3, 3)),
+        np.empty(3),
+        np.empty(3),
+        np.empty(3),
+        np.empty((3, 3)),
+        np.empty(3),
+        np.zeros(3),
+        np.empty((3, 3)),
+        np.empty(3),
+        np.empty(12),
+        np.empty(5),
+        np.empty(TRACTION_WORK_SIZE),
+    )
+
+
 @njit(cache=True)
 def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
-    (Z,) receive the contact records and pocket normal forces of this evaluation."""
+    (Z,) receive the contact records and pocket normal forces of this evaluation.
+    :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
+    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work())
+
+
+@njit(cache=True)
+def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
+    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation."""
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
     cb = rb + RING_SIZE
-    irot = np.empty((3, 3))
-    iorg = np.empty(3)
-    ivel = np.empty(3)
-    iome = np.empty(3)
-    orot = np.empty((3, 3))
-    oome = np.empty(3)
+    irot = scratch.inner_rot
+    iorg = scratch.inner_origin
+    ivel = scratch.inner_vel
+    iome = scratch.inner_omega
+    orot = scratch.outer_rot
+    oome = scratch.outer_omega
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
-    zero3 = np.zeros(3)
+    zero3 = scratch.zero3
     mb = par.ball_mass
     jinv = 1.0 / par.ball_inertia
     g = par.gravity
     cage_on = par.cage
-    pk = np.empty(12)
-    work = np.empty(TRACTION_WORK_SIZE)
-    crot = np.empty((3, 3))
-    come = np.empty(3)
+    pk = scratch.pocket
+    work = scratch.contact
+    crot = scratch.cage_rot
+    come = scratch.cage_omega
     cage_frame(y, cb, crot, come)
     frx = fry = frz = 0.0
     mrx = mry = mrz = 0.0
@@ -820,7 +888,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
         dydt[rb + i] = 0.0
     dydt[rb + R_PHI_INNER] = par.inner_speed
     dydt[rb + R_PHI_OUTER] = par.outer_speed
-    ld = np.empty(5)
+    ld = scratch.land
     if cage_on:
         cage_land(y, cb, iorg, ivel, par, work, ld)
         if par.guidance == GUIDE_INNER_RING:  # reaction on the inner ring

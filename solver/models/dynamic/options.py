@@ -13,6 +13,7 @@ from dataclasses import dataclass, fields, replace
 from solver.case.schema import field as schema_field
 from solver.case.validate import check_value
 from solver.errors import CaseError, Problem
+from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.summary import UNSETTLED_SKIP_FRACTION
 
 #: Options that override a ``[simulation]`` case key: option -> (SimulationInputs field, case key).
@@ -25,6 +26,14 @@ CASE_OVERRIDES = {
     "shaft_revolutions": ("shaft_revolutions", "simulation.shaft_revolutions"),
     "samples_per_revolution": ("samples_per_revolution", "simulation.samples_per_revolution"),
 }
+
+#: Default ellipse quadrature (points along the rolling direction, strips across the groove) per
+#: traction law (option ``quadrature`` = None). Slip curve: the local traction depends on the slip
+#: only, which varies linearly along the rolling direction, and two points there give the results
+#: of four within 0.015 of the accuracy contract's allowances (docs/numerics.md) at half the cost.
+#: Rheology: the shear stress also follows the Hertz pressure along the rolling direction; four
+#: points are kept (two move the mean contact angles by about twice the contract's allowance).
+DEFAULT_QUADRATURE = {LAW_SLIP_CURVE: (2, 8), LAW_RHEOLOGY: (4, 8)}
 
 #: Integration methods of the dynamic model (option ``method``).
 METHODS = ("rosenbrock", "dopri5")
@@ -53,7 +62,7 @@ class SimulationOptions:
       the run does not settle (a settled run is analysed from its settling time on;
       solver.results.summary).
     - ``quadrature``: (points along the rolling direction, strips across the groove) of the ellipse
-      traction rule.
+      traction rule; None: :data:`DEFAULT_QUADRATURE` of the case's traction law.
     - ``pocket_stiffness`` [N/m], ``pocket_damping_ratio``: linear ball-pocket contact law (None:
       solver.physics.cage_contact.pocket_stiffness_estimate for a glass-filled polyamide cage).
     - ``land_stiffness`` [N/m]: cage-land metal contact (None: land_contact_stiffness_estimate).
@@ -83,7 +92,7 @@ class SimulationOptions:
     samples_per_revolution: int | None = None
     chunk_samples: int = 60
     analysis_skip_fraction: float = UNSETTLED_SKIP_FRACTION
-    quadrature: tuple[int, int] = (4, 8)
+    quadrature: tuple[int, int] | None = None
     pocket_stiffness: float | None = None
     pocket_damping_ratio: float = 0.1
     land_stiffness: float | None = None

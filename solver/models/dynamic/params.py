@@ -20,17 +20,6 @@ from solver.physics.cage_contact import (
     pocket_parameters,
     pocket_stiffness_estimate,
 )
-from solver.physics.rheology import (
-    RH_CONDUCTIVITY,
-    RH_EYRING_STRESS,
-    RH_LIMITING_SLOPE,
-    RH_LIMITING_STRESS,
-    RH_PRESSURE_VISCOSITY,
-    RH_SHEAR_MODULUS,
-    RH_TEMPERATURE_VISCOSITY,
-    RH_VISCOSITY,
-    RHEOLOGY_SIZE,
-)
 from solver.physics.traction import (
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
@@ -39,7 +28,7 @@ from solver.physics.traction import (
 )
 
 from . import layout as L
-from .options import SimulationOptions
+from .options import DEFAULT_QUADRATURE, SimulationOptions
 
 STEEL_DENSITY = 7800.0
 #: Air at about 40 degC, the gas of the oil-air mixture around the balls.
@@ -135,9 +124,11 @@ def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
     return mass, diametral, polar
 
 
-def build_quadrature(options: SimulationOptions) -> np.ndarray:
-    """Node table of the ellipse traction rule (solver.physics.traction.ellipse_quadrature)."""
-    n_roll, n_trans = options.quadrature
+def build_quadrature(options: SimulationOptions, par: ModelParams) -> np.ndarray:
+    """Node table of the ellipse traction rule (solver.physics.traction.ellipse_quadrature):
+    ``options.quadrature``, or when that is None the default of the traction law of ``par``
+    (:data:`~solver.models.dynamic.options.DEFAULT_QUADRATURE`)."""
+    n_roll, n_trans = options.quadrature or DEFAULT_QUADRATURE[par.traction_law]
     return np.ascontiguousarray(ellipse_quadrature(n_roll, n_trans))
 
 
@@ -272,13 +263,4 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
 
 def rheology_parameters(lubricant) -> np.ndarray:
     """Parameter array of solver.physics.rheology (RH_* slots) of a LubricantInputs (SI)."""
-    r = np.zeros(RHEOLOGY_SIZE)
-    r[RH_VISCOSITY] = lubricant.viscosity
-    r[RH_PRESSURE_VISCOSITY] = lubricant.pressure_viscosity
-    r[RH_EYRING_STRESS] = lubricant.eyring_stress
-    r[RH_LIMITING_STRESS] = lubricant.limiting_shear_stress
-    r[RH_LIMITING_SLOPE] = lubricant.limiting_shear_coefficient
-    r[RH_SHEAR_MODULUS] = lubricant.film_shear_modulus
-    r[RH_TEMPERATURE_VISCOSITY] = lubricant.temperature_viscosity
-    r[RH_CONDUCTIVITY] = lubricant.thermal_conductivity
-    return r
+    return lubricant.rheology_array()

@@ -230,7 +230,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     revolutions = options.shaft_revolutions
     per_rev = options.samples_per_revolution
     par = build_params(inputs, options)
-    quad = build_quadrature(options)
+    quad = build_quadrature(options, par)
     y, start_note = _start(inputs, options, par, quad)
     period = 2.0 * math.pi / speed
     n_samples = int(round(revolutions * per_rev))

@@ -14,8 +14,11 @@ dynamic model finds them at steady state:
 - P_j = -(F_theta,inner + F_theta,outer): the pocket force takes the circumferential traction.
 
 The tractions are integrated over each Hertz ellipse with the dynamic model's kernel
-(:func:`solver.physics.traction.ellipse_traction`: the case's traction curve, spin, Heathcote slip
-on the deformed surface), evaluated in the cage frame (ball centre at rest, rings turning at
+(:func:`solver.physics.traction.ellipse_traction_law`, spin and Heathcote slip on the deformed
+surface) and the dynamic model's local law (``lubricant.traction_model``): the case's traction
+curve, or the rheology of the oil with each contact's central film (Hamrock-Dowson with the inlet
+thermal reduction, at the entrainment speed of rolling at the iterate's cage speed) and transit
+time, evaluated in the cage frame (ball centre at rest, rings turning at
 omega_ring - omega_c about the bearing axis, the inner ring about its displaced centre). For each
 trial cage speed every ball's w is found by Newton's method (finite-difference 3x3 Jacobian); the
 cage speed is the root of sum P_j.
@@ -38,6 +41,7 @@ from numba import njit
 from scipy import optimize
 
 from solver.physics.hertz_fast import contact_ellipse_fast, curvature_sum_and_difference_fast
+from solver.physics.rheology import RHEOLOGY_SIZE, film_and_rolling_force
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -47,27 +51,32 @@ from solver.physics.traction import (
     CT_ROLLING,
     CT_SEMI_MAJOR,
     CT_SEMI_MINOR,
+    CURVE_SIZE,
     KIN_BALL_CENTRE,
     KIN_BALL_OMEGA,
     KIN_RING_OMEGA,
     KIN_RING_POINT,
     KIN_RING_VELOCITY,
     KIN_SIZE,
+    LAW_RHEOLOGY,
+    LAW_SLIP_CURVE,
     TR_FORCE,
     TR_MOMENT_BALL,
     TRACTION_OUT_SIZE,
     deformed_surface_curvature,
     ellipse_quadrature,
-    ellipse_traction,
+    ellipse_traction_law,
     traction_curve_parameters,
 )
 
 from . import kernels
 
 #: Ellipse quadrature (points along the rolling direction, strips across the groove) and slip
-#: regularisation [m/s]: the same values as the dynamic model's defaults
-#: (SimulationOptions.quadrature, .friction_regularisation; not imported: the dynamic model imports
-#: this package for its start).
+#: regularisation [m/s]: the dynamic model's rheology-law quadrature and its slip regularisation
+#: (solver.models.dynamic.options.DEFAULT_QUADRATURE, SimulationOptions.friction_regularisation;
+#: not imported: the dynamic model imports this package for its start). With the slip-curve law
+#: the dynamic model uses two points along the rolling direction instead of four, which changes
+#: the traction by far less than the start transient.
 QUADRATURE = (4, 8)
 SLIP_REGULARISATION = 1.0e-3
 BALL_TOLERANCE = 1e-11  # ball moment residual, relative to its larger load times D / 2
@@ -75,23 +84,70 @@ MAX_BALL_ITERATIONS = 50
 CAGE_SPEED_TOLERANCE = 1e-10  # relative
 
 
+#: Traction-law array of the traction balance (float64, ``TRACTION_SIZE``): the local law
+#: (solver.physics.traction.LAW_*), the slip curve (``CURVE_SIZE`` slots) and the rheology
+#: (``RHEOLOGY_SIZE`` slots, solver.physics.rheology).
+TL_LAW = 0
+TL_CURVE = 1
+TL_RHEOLOGY = TL_CURVE + CURVE_SIZE
+TRACTION_SIZE = TL_RHEOLOGY + RHEOLOGY_SIZE
+
+#: Contact records carry, after the ``CONTACT_SIZE`` slots of solver.physics.traction, the central
+#: film [m] and transit time b / u_e [s] of the contact (used by the rheology only).
+CT_FILM = CONTACT_SIZE
+CT_TRANSIT = CONTACT_SIZE + 1
+RECORD_SIZE = CONTACT_SIZE + 2
+
+
 def traction_setup(lubricant):
-    """(traction curve array, quadrature nodes) for a :class:`solver.inputs.LubricantInputs`."""
-    curve = traction_curve_parameters(*lubricant.traction.values())
+    """(traction-law array (``TRACTION_SIZE``), quadrature nodes) for a
+    :class:`solver.inputs.LubricantInputs`: its ``traction_model``, traction curve and rheology."""
+    traction = np.zeros(TRACTION_SIZE)
+    rheological = lubricant.traction_model == "rheology"
+    traction[TL_LAW] = LAW_RHEOLOGY if rheological else LAW_SLIP_CURVE
+    traction[TL_CURVE : TL_CURVE + CURVE_SIZE] = traction_curve_parameters(
+        *lubricant.traction.values()
+    )
+    traction[TL_RHEOLOGY:] = lubricant.rheology_array()
     nodes = np.ascontiguousarray(ellipse_quadrature(*QUADRATURE))
-    return curve, nodes
+    return traction, nodes
+
+
+def _contact_films(geometry, contacts, states, omega_inner, omega_outer, rheology):
+    """Central film and transit time of each loaded contact into ``contacts`` (CT_FILM,
+    CT_TRANSIT): entrainment u_e = r |omega_ring - omega_c| of rolling at the contact radius r
+    about the bearing axis (omega_c: the iterate's orbital speed), Hamrock-Dowson film with the
+    inlet thermal reduction (solver.physics.rheology.film_and_rolling_force), R_x = D (1 -+ gamma)
+    / 2, ellipticity a / b, transit b / u_e."""
+    D = geometry.ball_diameter
+    for j in range(contacts.shape[0]):
+        omega_c = states[j, 12]
+        for k, omega_ring in ((0, omega_inner), (1, omega_outer)):
+            rec = contacts[j, k]
+            load, a, b = rec[CT_LOAD], rec[CT_SEMI_MAJOR], rec[CT_SEMI_MINOR]
+            entrainment = abs(rec[CT_POINT + 1]) * abs(omega_ring - omega_c)
+            if not (load > 0.0 and a > 0.0 and b > 0.0 and entrainment > 0.0):
+                continue
+            gamma = D * math.cos(states[j, 9 + k]) / geometry.pitch_diameter
+            r_x = 0.5 * D * (1.0 - gamma if k == 0 else 1.0 + gamma)
+            p_max = 1.5 * load / (math.pi * a * b)
+            film, _, _ = film_and_rolling_force(
+                entrainment, 0.0, load, r_x, a / b, p_max, geometry.effective_modulus, rheology
+            )
+            rec[CT_FILM] = film
+            rec[CT_TRANSIT] = b / entrainment
 
 
 def contact_records(geometry, states, position, q, azimuth):
-    """Contact records (Z, 2, CONTACT_SIZE) [inner, outer] and inner-ring centres (Z, 3) in each
-    ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at the outer ring
-    centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate ``states``
-    (kernels.evaluate_balls), ball ``position`` (Z, 2) relative to the outer groove curvature centre
-    and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points lie on the ball
-    surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
+    """Contact records (Z, 2, RECORD_SIZE; films left 0) [inner, outer] and inner-ring centres
+    (Z, 3) in each ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at
+    the outer ring centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate
+    ``states`` (kernels.evaluate_balls), ball ``position`` (Z, 2) relative to the outer groove
+    curvature centre and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points
+    lie on the ball surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
     z = azimuth.size
     D = geometry.ball_diameter
-    contacts = np.zeros((z, 2, CONTACT_SIZE))
+    contacts = np.zeros((z, 2, RECORD_SIZE))
     ring_centre = np.zeros((z, 3))
     e_mod = geometry.effective_modulus
     curvature = (
@@ -130,7 +186,7 @@ def contact_records(geometry, states, position, q, azimuth):
 
 
 @njit(cache=True)
-def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, curve, u_reg, nodes, inertia):
+def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia):
     """Moment residual [N m] (3) of one ball spinning at w relative to the cage, and its
     circumferential traction force [N] (sum of both contacts), plus both traction forces (2, 3)."""
     out = np.empty(TRACTION_OUT_SIZE)
@@ -142,7 +198,18 @@ def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, curve, u_reg,
         kin[KIN_BALL_OMEGA] = w[0]
         kin[KIN_BALL_OMEGA + 1] = w[1]
         kin[KIN_BALL_OMEGA + 2] = w[2]
-        ellipse_traction(contact, kin, curve, u_reg, nodes, out)
+        ellipse_traction_law(
+            contact,
+            kin,
+            int(traction[TL_LAW]),
+            traction[TL_CURVE : TL_CURVE + CURVE_SIZE],
+            traction[TL_RHEOLOGY:],
+            contact[CT_FILM],
+            contact[CT_TRANSIT],
+            u_reg,
+            nodes,
+            out,
+        )
         for m in range(3):
             res[m] += out[TR_MOMENT_BALL + m]
             forces[k, m] = out[TR_FORCE + m]
@@ -188,7 +255,7 @@ def solve_ball_spin(
     contact_o,
     ring_centre,
     centre,
-    curve,
+    traction,
     u_reg,
     nodes,
     inertia,
@@ -214,7 +281,7 @@ def solve_ball_spin(
     kin_o[KIN_RING_OMEGA] = omega_outer - omega_c
     w = w0.copy()
     res, f_theta, forces = _ball_residual(
-        w, omega_c, contact_i, contact_o, kin_i, kin_o, curve, u_reg, nodes, inertia
+        w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia
     )
     norm = math.sqrt(res[0] ** 2 + res[1] ** 2 + res[2] ** 2)
     tol = BALL_TOLERANCE * moment_scale
@@ -228,7 +295,7 @@ def solve_ball_spin(
             wp = w.copy()
             wp[m] += h
             rp, _, _ = _ball_residual(
-                wp, omega_c, contact_i, contact_o, kin_i, kin_o, curve, u_reg, nodes, inertia
+                wp, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia
             )
             for r in range(3):
                 jac[r, m] = (rp[r] - res[r]) / h
@@ -245,7 +312,7 @@ def solve_ball_spin(
         for _ls in range(30):
             wn = w + t * step
             rn, fn, forces_n = _ball_residual(
-                wn, omega_c, contact_i, contact_o, kin_i, kin_o, curve, u_reg, nodes, inertia
+                wn, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia
             )
             nn = math.sqrt(rn[0] ** 2 + rn[1] ** 2 + rn[2] ** 2)
             if nn < (1.0 - 1e-4 * t) * norm or nn <= tol:
@@ -282,7 +349,7 @@ def _ball_spin(
     contacts,
     ring_centres,
     centres,
-    curve,
+    traction,
     nodes,
     inertia,
     moment_scales,
@@ -298,7 +365,7 @@ def _ball_spin(
         contacts[j, 1],
         ring_centres[j],
         centres[j],
-        curve,
+        traction,
         SLIP_REGULARISATION,
         nodes,
         inertia,
@@ -317,7 +384,7 @@ def _ball_spin(
             contacts[j, 1],
             kin_i,
             kin_o,
-            curve,
+            traction,
             SLIP_REGULARISATION,
             nodes,
             inertia,
@@ -333,7 +400,7 @@ def _ball_spin(
                 contacts[j, 1],
                 kin_i,
                 kin_o,
-                curve,
+                traction,
                 SLIP_REGULARISATION,
                 nodes,
                 inertia,
@@ -341,7 +408,7 @@ def _ball_spin(
             return sol.x, f_theta, forces
     raise BalanceFailed(
         f"at cage speed {omega_c:.6g} rad/s the spin of ball {j} has no steady balance: its "
-        "tractions reach the falling branch of the traction curve, where the ball slides"
+        "tractions reach the falling branch of the traction law, where the ball slides"
     )
 
 
@@ -353,7 +420,7 @@ def pocket_force_sum(
     contacts,
     ring_centres,
     centres,
-    curve,
+    traction,
     nodes,
     inertia,
     moment_scales,
@@ -376,7 +443,7 @@ def pocket_force_sum(
             contacts,
             ring_centres,
             centres,
-            curve,
+            traction,
             nodes,
             inertia,
             moment_scales,
@@ -389,12 +456,21 @@ class BalanceFailed(RuntimeError):
     """The traction balance found no cage speed or ball spin (message: why)."""
 
 
-def traction_balance(geometry, model, states, position, q, azimuth, control, curve, nodes):
+def traction_balance(geometry, model, states, position, q, azimuth, control, traction, nodes):
     """New kinematics records (Z, CONTROL_SIZE) from the traction balance of the iterate
     (``states`` from kernels.evaluate_balls with the records ``control`` it was solved with).
     Also returns the pocket forces P_j [N] (Z). Raises BalanceFailed when no balance is found."""
     z = azimuth.size
     contacts, ring_centres = contact_records(geometry, states, position, q, azimuth)
+    if int(traction[TL_LAW]) == LAW_RHEOLOGY:
+        _contact_films(
+            geometry,
+            contacts,
+            states,
+            model.inner_ring_speed,
+            model.outer_ring_speed,
+            traction[TL_RHEOLOGY:],
+        )
     centres = np.zeros((z, 3))
     centres[:, 0] = geometry.outer_curvature_center_axial + position[:, 0]
     centres[:, 1] = geometry.outer_curvature_center_radius + position[:, 1]
@@ -426,7 +502,7 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, cur
             contacts,
             ring_centres,
             centres,
-            curve,
+            traction,
             nodes,
             inertia,
             moment_scales,

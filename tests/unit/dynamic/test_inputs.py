@@ -64,3 +64,21 @@ def test_public_api_runs_a_catalogue_case():
     axis = np.degrees(np.unwrap(np.arctan2(tilt[:, 1], tilt[:, 0])))
     turned = math.degrees(float(ds.time[-1]) * 20000.0 * math.pi / 30.0)
     assert axis[-1] - axis[0] == pytest.approx(turned, rel=1e-6)
+
+
+@pytest.mark.parametrize(("law", "nodes"), [("slip_curve", 2 * 8), ("rheology", 4 * 8)])
+def test_default_quadrature_follows_the_traction_law(law, nodes):
+    """Two points along the rolling direction with the slip curve, four with the rheology law
+    (docs/numerics.md); an explicit option wins."""
+    from dataclasses import replace
+
+    from solver.models.dynamic.params import build_params, build_quadrature
+
+    inp = to_inputs(resolve_case("spindle-combined-load"))
+    inp = replace(inp, lubricant=replace(inp.lubricant, traction_model=law))
+    options = SimulationOptions()
+    par = build_params(inp, options)
+    quad = build_quadrature(options, par)
+    assert quad.shape[0] == nodes
+    assert sum(quad[:, 3]) == pytest.approx(1.0, rel=1e-12)  # load fractions
+    assert build_quadrature(SimulationOptions(quadrature=(3, 5)), par).shape[0] == 15

@@ -1,0 +1,73 @@
+"""Session processes forked from the pre-imported fork server (app.services.forkserver)."""
+
+from __future__ import annotations
+
+import asyncio
+import multiprocessing
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from app.services import forkserver
+
+
+def _sleep() -> None:
+    time.sleep(60)
+
+
+def test_forked_process_behaves_like_an_asyncio_subprocess():
+    process = multiprocessing.get_context("fork").Process(target=_sleep)
+    process.start()
+    forked = forkserver.ForkedProcess(process)
+    try:
+        assert forked.pid == process.pid
+        assert forked.returncode is None
+        forked.send_signal(signal.SIGTERM)
+        assert asyncio.run(asyncio.wait_for(forked.wait(), 30)) == -signal.SIGTERM
+        assert forked.returncode == -signal.SIGTERM
+        forked.kill()  # an ended process: nothing to signal, no error
+    finally:
+        process.kill()
+        process.join()
+
+
+def test_preload_imports_without_threads_or_render_window():
+    """The fork server imports PRELOAD before forking: it must not start Python threads or make
+    a VTK render window (each session makes its own after the fork)."""
+    code = (
+        "import threading, sys\n"
+        "import app.services.preload\n"
+        "import vtkmodules.vtkRenderingCore as rc\n"
+        "print(threading.active_count(), 'pyvista' in sys.modules, 'app.state' in sys.modules)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+    assert out.stdout.split() == ["1", "True", "True"], out.stderr[-2000:]
+
+
+def test_the_session_lets_go_of_the_fork_servers_alive_pipe(monkeypatch):
+    import os
+    from multiprocessing import forkserver as mp_forkserver
+
+    read, write = os.pipe()
+    os.set_blocking(read, False)  # reading with the write end still open raises, never hangs
+    server = mp_forkserver.ForkServer()
+    server._forkserver_alive_fd = write
+    monkeypatch.setattr(mp_forkserver, "_forkserver", server)
+    forkserver._let_go_of_the_fork_server()
+    assert server._forkserver_alive_fd is None
+    assert os.read(read, 1) == b""  # the only write end is closed: the reader sees the end
+    os.close(read)
+
+
+@pytest.mark.skipif(not forkserver.available(), reason="no fork server on this platform")
+def test_front_forks_sessions_where_it_can():
+    from app.access import Access
+    from app.front import Front
+
+    assert Front(Access("127.0.0.1"), []).fork
+    assert not Front(Access("127.0.0.1"), [], fork=False).fork
