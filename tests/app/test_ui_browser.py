@@ -90,9 +90,11 @@ def page(browser, server):  # noqa: F811 - the imported browser fixture
     SHOTS.mkdir(parents=True, exist_ok=True)
     context = browser.new_context(viewport={"width": 1500, "height": 1000})
     pg = context.new_page()
-    pg.goto(server["url"])
-    pg.wait_for_selector(FIRST_IMAGE, timeout=90_000)
-    pg.wait_for_function("window.trame && window.trame.state.get('result_serial') > 0")
+    pg.goto(server["url"], timeout=120_000)  # a loaded machine starts sessions slowly
+    pg.wait_for_selector(FIRST_IMAGE, timeout=120_000)
+    pg.wait_for_function(
+        "window.trame && window.trame.state.get('result_serial') > 0", timeout=60_000
+    )
     pg.evaluate("window.trame.state.set('playing', false)")
     yield pg
     context.close()
