@@ -203,16 +203,16 @@ def test_a_second_run_waits_in_the_queue(browser, server):
         for page in (first, second):
             _set_field(page, "shaft_revolutions", "200")
             page.wait_for_function(
-                "!document.querySelector('#run-button').disabled", timeout=30_000
+                "!document.querySelector('#run-button').disabled", timeout=120_000
             )
         first.locator("#run-button").click()
-        _wait_status(first, lambda s: s.startswith("running"), 60)
+        _wait_status(first, lambda s: s.startswith("running"), 180)
         second.locator("#run-button").click()
-        text = _wait_status(second, lambda s: s.startswith("queued"), 30)
+        text = _wait_status(second, lambda s: s.startswith("queued"), 120)
         second.screenshot(path=str(ARTIFACTS / "sessions-queued.png"))
         assert "place 1 in the queue" in text and "at most 1 run at once" in text
         second.locator("#cancel-button").click()
-        assert _wait_status(second, lambda s: s.startswith("cancelled"), 30) == "cancelled"
+        assert _wait_status(second, lambda s: s.startswith("cancelled"), 120) == "cancelled"
         first.locator("#cancel-button").click()
         _wait_status(first, lambda s: s.endswith(("cancelled", "done")), 120)
     finally:
