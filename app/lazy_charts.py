@@ -63,3 +63,4 @@ class ChartFigure(AbstractElement):
             **kwargs,
         )
         self._attr_names += ["data", "layout", ("display_mode_bar", "displayModeBar")]
+        self._event_names += ["click"]  # plotly's click on a point: $event.points[0] ...

@@ -422,8 +422,15 @@ def _studies_panel(ctrl) -> None:
                     hide_details=True,
                 )
         with html.Div(id="chart-study", classes="mb-2"):
+            # a click on a point opens that point's run (its (point, model) is the customdata)
             lazy_charts.ChartFigure(
-                "chart_study", display_mode_bar=False, style="height: 280px; width: 100%;"
+                "chart_study",
+                display_mode_bar=False,
+                style="height: 280px; width: 100%;",
+                click=(
+                    ctrl.study_open,
+                    "[$event.points[0].customdata[0], $event.points[0].customdata[1]]",
+                ),
             )
         with v3.VTable(density="compact", id="study-table"):
             with html.Thead():

@@ -10,7 +10,8 @@ Starts ``racetrace serve`` on a free port and drives headless Chromium (/usr/bin
   new result (state ``result_serial`` advanced; includes the 0.1 s debounce);
 - server memory: proportional set size of the server's processes (front, sessions) after loading a
   real dynamic run of 100 shaft revolutions of the default case (computed first unless
-  ``--run FILE`` gives one).
+  ``--run FILE`` gives one); with two sessions holding it, each process's share and role (front,
+  fork server, sessions).
 """
 
 from __future__ import annotations
@@ -126,6 +127,37 @@ def rss_mb(pid: int) -> float:
                 total += int(line.split()[1]) / 1024
                 break
     return total
+
+
+def _role(pid: int, front: int) -> str:
+    """What process ``pid`` of the server's tree is, from its command line."""
+    try:
+        cmd = Path(f"/proc/{pid}/cmdline").read_text().replace("\0", " ")
+        ppid = int(Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[1])
+    except OSError:
+        return "gone"
+    if pid == front:
+        return "front"
+    if "resource_tracker" in cmd:
+        return "resource tracker"
+    if "forkserver" in cmd:
+        return "fork server" if ppid == front else "session (forked)"
+    if "app.session_process" in cmd:
+        return "session"
+    return "solver or other"
+
+
+def memory_by_process(pid: int) -> str:
+    """Proportional set size of each process of the server's tree, with its role, one a line."""
+    rows = []
+    for p in _tree(pid):
+        try:
+            rollup = Path(f"/proc/{p}/smaps_rollup").read_text().splitlines()
+        except OSError:
+            continue
+        pss = next((int(x.split()[1]) / 1024 for x in rollup if x.startswith("Pss:")), 0.0)
+        rows.append(f"   {p:>8} {_role(p, pid):18s} {pss:7.0f} MB")
+    return "\n".join(rows)
 
 
 def frames_per_s(page, seconds: float = 8.0) -> float:
@@ -251,6 +283,7 @@ def main() -> int:
                 f"server memory with two sessions, each with the 100-revolution run loaded: "
                 f"{rss_mb(proc.pid):.0f} MB (front, {len(_tree(proc.pid)) - 1} processes below it)"
             )
+            print(memory_by_process(proc.pid))
             browser.close()
     finally:
         proc.terminate()

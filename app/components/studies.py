@@ -229,6 +229,7 @@ class Studies(Component):
         path = path if path is not None else self.new_folder(name)
         self.folder = StudyFolder(path)
         self._shipped = None
+        self.state.study_results = None  # the panel now shows the study started here
         self._stop.clear()
         self._progress, self._error = None, ""
         self._thread = threading.Thread(target=self._work, name="racetrace-study", daemon=True)
@@ -538,7 +539,11 @@ def study_figure(ds, sweep: str | None, metric: str):
                             "color": RACE_COLOURS[race],
                             "dash": "dash" if model == "quasistatic" else "solid",
                         },
-                        customdata=np.asarray(ds["point"].values)[select][order].tolist(),
+                        # (point, model) of each marker: a click opens that run
+                        customdata=[
+                            [str(pt), str(model)]
+                            for pt in np.asarray(ds["point"].values)[select][order]
+                        ],
                     ),
                     row=1,
                     col=col,

@@ -1,15 +1,16 @@
 """Session processes forked from one pre-imported process, so that they share its memory.
 
 A session process (:mod:`app.session_process`) imports VTK, pyvista, trame, plotly, xarray, numba
-and the solver: about 400 MB of memory that is the same in every session. Started from
+and the solver: about 300 MB of memory that is the same in every session. Started from
 :mod:`multiprocessing`'s fork server, whose process has imported all that once
 (:data:`PRELOAD`, :mod:`app.services.preload`), every session is a fork of it and shares those
 pages with it and with the other sessions (copy on write) instead of holding its own copy.
 
 The fork server is a child of the front, started with the first session; it imports the modules
-only (no render window, no OpenGL context, no thread): each session creates its own render window
-after the fork. When the front ends, the fork server ends, and so do the sessions (they watch their
-parent, :func:`app.services.process.die_with_parent`).
+and loads the numba kernels a session uses first, and nothing more (no render window, no OpenGL
+context, no thread): each session creates its own render window after the fork. When the front
+ends, the fork server ends, and so do the sessions (they watch their parent,
+:func:`app.services.process.die_with_parent`).
 
 :class:`ForkedProcess` gives a forked session the interface of ``asyncio.subprocess.Process`` that
 :class:`app.front.Front` uses (``pid``, ``returncode``, ``send_signal``, ``kill``, ``wait``).

@@ -413,7 +413,7 @@ def ellipse_traction_law(
     b = contact[CT_SEMI_MINOR]
     q = contact[CT_LOAD]
     kappa = contact[CT_CURVATURE]
-    if q <= 0.0:  # unloaded contact: no traction (the centre kinematics above are still reported)
+    if not q > 0.0:  # unloaded (or not finite): no traction; the centre kinematics are reported
         for i in range(9):
             out[TR_FORCE + i] = 0.0
         out[TR_POWER] = 0.0

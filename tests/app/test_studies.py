@@ -57,6 +57,8 @@ def test_a_study_builds_up_charts_and_opens_a_point(app):
     assert len(traces) == 2  # inner and outer, one model
     outer = next(t for t in traces if t["name"].startswith("outer"))
     assert list(outer["x"]) == [0.0, 400.0, 800.0]
+    # each marker knows its run: a click on it opens that point
+    assert outer["customdata"] == [[p, "quasistatic"] for p in ("p0001", "p0002", "p0003")]
     assert outer["y"][0] < outer["y"][1] < outer["y"][2]
     s.study_metric = "peak_pressure"
     s.flush()

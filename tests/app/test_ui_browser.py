@@ -90,9 +90,11 @@ def page(browser, server):  # noqa: F811 - the imported browser fixture
     SHOTS.mkdir(parents=True, exist_ok=True)
     context = browser.new_context(viewport={"width": 1500, "height": 1000})
     pg = context.new_page()
-    pg.goto(server["url"])
-    pg.wait_for_selector(FIRST_IMAGE, timeout=90_000)
-    pg.wait_for_function("window.trame && window.trame.state.get('result_serial') > 0")
+    pg.goto(server["url"], timeout=120_000)  # a loaded machine starts sessions slowly
+    pg.wait_for_selector(FIRST_IMAGE, timeout=120_000)
+    pg.wait_for_function(
+        "window.trame && window.trame.state.get('result_serial') > 0", timeout=60_000
+    )
     pg.evaluate("window.trame.state.set('playing', false)")
     yield pg
     context.close()
@@ -223,4 +225,13 @@ def test_studies_panel_opens_shipped_results_and_runs_a_study_built_from_the_cas
     page.locator("#study-table tbody tr").nth(1).get_by_role("button", name="open").click()
     _wait(page, f"window.trame.state.get('result_serial') > {serial}", 60, "the point's run")
     assert "p0002" in page.locator("#result-label").inner_text()
+    # a click on a point of the chart opens that point's run (plotly's click event, as a click
+    # on the marker sends it)
+    serial = _state(page, "result_serial")
+    page.evaluate(
+        "document.querySelector('#chart-study .js-plotly-plot').emit('plotly_click', "
+        "{points: [{customdata: ['p0003', 'quasistatic']}]})"
+    )
+    _wait(page, f"window.trame.state.get('result_serial') > {serial}", 60, "the clicked run")
+    assert "p0003" in page.locator("#result-label").inner_text()
     page.screenshot(path=str(SHOTS / "study-built.png"))

@@ -494,7 +494,7 @@ def ball_race_contact(
     q = damped_normal_force(delta, ddelta, kh, par.damping_ratio, par.ball_mass)
     rec[K_LOAD] = q
     rec[K_ELASTIC] = kh * delta**1.5
-    if q <= 0.0:
+    if not q > 0.0:  # unloaded, or NaN from a non-finite state (kept in rec for the integrator)
         return
     sa_, sb_, _, pmax = ellipse_from_coefficients(q, kappa, big_k, big_e, csum, eprime)
     rec[K_SEMI_MAJOR] = sa_
