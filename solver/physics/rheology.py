@@ -123,7 +123,7 @@ def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
     the node's Barus exponent ``alpha_p`` = alpha p, limiting shear stress ``tau_l`` = tau_L0 +
     Lambda p [Pa], the per-contact constants of :func:`contact_constants` and the Eyring stress
     ``tau_0`` [Pa]. The form evaluated at every quadrature node: one logarithm, two square roots
-    and one division.
+    and one division (0 where that division would be by zero: no limiting or viscous stress).
 
     With tau_v the Eyring stress and tau_e = E u (E = ``elastic``), the series combination
     tau_ve = N / D (N = tau_v E u, D = tau_v + E u) and the smooth limit tau = tau_ve tau_L /
@@ -137,10 +137,12 @@ def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
         n = tau_v * eu
         ld2 = ld * ld
         n2 = n * n
-        return tau_v * eu * tau_l / (u * math.sqrt(math.sqrt(ld2 * ld2 + n2 * n2)))
+        den = u * math.sqrt(math.sqrt(ld2 * ld2 + n2 * n2))
+        return tau_v * eu * tau_l / den if den > 0.0 else 0.0
     l2 = tau_l * tau_l
     v2 = tau_v * tau_v
-    return tau_v * tau_l / (u * math.sqrt(math.sqrt(l2 * l2 + v2 * v2)))
+    den = u * math.sqrt(math.sqrt(l2 * l2 + v2 * v2))
+    return tau_v * tau_l / den if den > 0.0 else 0.0
 
 
 @njit(cache=True, inline="always")

@@ -434,7 +434,7 @@ def ellipse_traction_law(
     ab = a * b
     # rheology: Hertz p_max = 1.5 Q / (pi a b); per node p = p_max (p / p_max), so the Barus
     # exponent and the limiting shear stress are p_max-scaled node constants
-    p_max = 1.5 * q / (math.pi * ab)
+    p_max = 1.5 * q / (math.pi * ab) if rheological and ab > 0.0 else 0.0
     alpha_pmax = rheology[RH_PRESSURE_VISCOSITY] * p_max if rheological else 0.0
     tl0 = rheology[RH_LIMITING_STRESS] if rheological else 0.0
     lam_pmax = rheology[RH_LIMITING_SLOPE] * p_max if rheological else 0.0
