@@ -7,15 +7,12 @@ The server runs in a subprocess on a free port with its own runs folder. Screens
 from __future__ import annotations
 
 import json
-import os
-import socket
-import subprocess
-import sys
 import time
-import urllib.request
 from pathlib import Path
 
 import pytest
+
+from tests.helpers.serve import start_server, stop_server
 
 CHROMIUM = "/usr/bin/chromium"
 pytestmark = [
@@ -41,42 +38,12 @@ FIRST_IMAGE = "#view-3d img[src]:not([src=''])"  # the first drawn image, not an
 ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
     runs = tmp_path_factory.mktemp("runs")
-    port = _free_port()
-    log = open(tmp_path_factory.mktemp("log") / "serve.log", "w+")
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
-        stdout=log,
-        stderr=subprocess.STDOUT,
-        env=dict(os.environ),
-    )
-    url = f"http://127.0.0.1:{port}/"
-    deadline = time.monotonic() + 300  # a cold numba cache compiles the QS kernels first
-    while True:
-        try:
-            urllib.request.urlopen(url, timeout=2)
-            break
-        except OSError:
-            if proc.poll() is not None or time.monotonic() > deadline:
-                log.seek(0)
-                proc.kill()
-                pytest.fail(f"racetrace serve did not start:\n{log.read()[-3000:]}")
-            time.sleep(0.5)
-    yield {"url": url, "runs": runs, "proc": proc}
-    proc.terminate()
-    try:
-        proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-    log.close()
+    served = start_server(runs, tmp_path_factory.mktemp("log") / "serve.log")
+    yield served
+    stop_server(served)
 
 
 @pytest.fixture(scope="module")

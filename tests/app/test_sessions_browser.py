@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -18,6 +17,8 @@ import urllib.request
 from pathlib import Path
 
 import pytest
+
+from tests.helpers.serve import free_port
 
 CHROMIUM = "/usr/bin/chromium"
 pytestmark = [
@@ -35,15 +36,9 @@ FIRST_IMAGE = "#view-3d img[src]:not([src=''])"
 START_S = 300  # a cold numba cache compiles the quasi-static kernels first; the machine is shared
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def _start(tmp_path: Path, *options: str) -> dict:
     runs = tmp_path / "runs"
-    port = _free_port()
+    port = free_port()
     log = open(tmp_path / f"serve-{port}.log", "w+")  # noqa: SIM115 - closed in _stop
     proc = subprocess.Popen(
         [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)]

@@ -9,10 +9,6 @@ Screenshots go to ``test-artifacts/browser/ui/``.
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
-import time
-import urllib.request
 
 import pytest
 
@@ -20,9 +16,9 @@ from tests.app.test_browser import (  # noqa: F401 - the browser fixture is used
     ARTIFACTS,
     CHROMIUM,
     FIRST_IMAGE,
-    _free_port,
     browser,
 )
+from tests.helpers.serve import start_server, stop_server
 
 pytestmark = [
     pytest.mark.browser,
@@ -56,33 +52,9 @@ def _save_runs(root) -> list[str]:
 def server(tmp_path_factory):
     runs = tmp_path_factory.mktemp("runs")
     titles = _save_runs(runs)
-    port = _free_port()
-    log = open(tmp_path_factory.mktemp("log") / "serve.log", "w+")
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
-        stdout=log,
-        stderr=subprocess.STDOUT,
-        env=dict(os.environ),
-    )
-    url = f"http://127.0.0.1:{port}/"
-    deadline = time.monotonic() + 300
-    while True:
-        try:
-            urllib.request.urlopen(url, timeout=2)
-            break
-        except OSError:
-            if proc.poll() is not None or time.monotonic() > deadline:
-                log.seek(0)
-                proc.kill()
-                pytest.fail(f"racetrace serve did not start:\n{log.read()[-3000:]}")
-            time.sleep(0.5)
-    yield {"url": url, "runs": runs, "titles": titles}
-    proc.terminate()
-    try:
-        proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-    log.close()
+    served = start_server(runs, tmp_path_factory.mktemp("log") / "serve.log")
+    yield {**served, "titles": titles}
+    stop_server(served)
 
 
 @pytest.fixture
