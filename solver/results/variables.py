@@ -26,7 +26,7 @@ DIMENSION_VALUES = {
     "frame": ["inner_ring", "outer_ring"],
     "body": ["ball", "ring"],
     "ball_loss_source": ["rolling", "sliding", "spin", "drag", "cage_pocket"],
-    "loss_source": ["rolling", "sliding", "spin", "drag", "cage_pocket", "cage_land"],
+    "loss_source": ["rolling", "sliding", "spin", "drag", "cage_pocket", "cage_land", "cage_drag"],
 }
 
 
@@ -273,7 +273,8 @@ VARIABLES: dict[str, Variable] = {
         "W",
         "bearing power loss by source",
         "ball_power_loss summed over the balls, plus cage_land: dissipated at the cage-guiding "
-        "land (hydrodynamic and metal contact)",
+        "land (hydrodynamic and metal contact), and cage_drag: oil-air drag moment on the "
+        "cage's rotation",
         _DYN,
     ),
     "total_power_loss": Variable(

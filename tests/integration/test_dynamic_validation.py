@@ -236,7 +236,7 @@ def _check_power_balance(window):
     assert drive > 0.0
     assert float(losses.sum()) == pytest.approx(drive, rel=0.02)
     assert float(window.total_power_loss.mean()) == pytest.approx(float(losses.sum()), rel=1e-12)
-    for source in ("rolling", "sliding", "spin", "drag", "cage_land"):
+    for source in ("rolling", "sliding", "spin", "drag", "cage_land", "cage_drag"):
         assert float(losses.sel(loss_source=source)) > 0.0, source
     # the friction torque times the ring speed is the drive power (outer ring fixed)
     speed = float(window.inner_ring_speed)

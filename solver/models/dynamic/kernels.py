@@ -42,6 +42,7 @@ from solver.physics.cage_contact import (
     land_force,
     pocket_contact,
 )
+from solver.physics.drag import cage_drag_moment
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
     ellipse_from_coefficients,
@@ -720,6 +721,25 @@ def ball_drag(y, jb, par):
     return f, m, power
 
 
+@njit(cache=True)
+def cage_drag(y, cb, par):
+    """Drag of the oil-air mixture on the cage (state offset ``cb``) about its own axis
+    (solver.physics.drag: free-disc moment on its two side faces, mixture at rest in the housing
+    as for the ball drag). Returns (moment [N m], power >= 0 [W]); zeros when traction
+    (lubrication) is off."""
+    if not par.traction:
+        return 0.0, 0.0
+    wc = y[cb + C_SPEED]
+    m = cage_drag_moment(
+        wc,
+        par.mixture_density,
+        par.mixture_viscosity,
+        par.cage_face_outer_radius,
+        par.cage_face_inner_radius,
+    )
+    return m, -m * wc
+
+
 # ---------------------------------------------------------------------------------------------
 # post-step hook of the integrator
 # ---------------------------------------------------------------------------------------------
@@ -926,7 +946,8 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
         icp, icd = par.cage_polar_inertia, par.cage_diametral_inertia
         ax = crot[0, 0] * mcx + crot[1, 0] * mcy + crot[2, 0] * mcz
         dydt[cb + C_ANGLE] = y[cb + C_SPEED]
-        dydt[cb + C_SPEED] = (ax + ld[3]) / icp
+        drag, _ = cage_drag(y, cb, par)
+        dydt[cb + C_SPEED] = (ax + ld[3] + drag) / icp
         wc = y[cb + C_SPEED]
         ty_rate, tz_rate = y[cb + C_TILT_RATE], y[cb + C_TILT_RATE + 1]
         dydt[cb + C_TILT] = ty_rate

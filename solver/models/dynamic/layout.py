@@ -120,4 +120,5 @@ N_BALL_OUTPUT = 3
 RO_LAND_POWER = 0  # power dissipated at the cage-guiding land [W]
 RO_FRICTION_TORQUE = 1  # torque needed to turn the inner ring at its speed [N m]
 RO_DRIVE_POWER = 2  # power fed in by the imposed ring rotations [W]
-N_BEARING_OUTPUT = 3
+RO_CAGE_DRAG_POWER = 3  # power of the oil-air drag on the cage [W]
+N_BEARING_OUTPUT = 4

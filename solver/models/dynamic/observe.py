@@ -4,8 +4,8 @@ For every output sample the right-hand side is evaluated once; it fills the per-
 (layout ``K_*``). This step adds the record slots that only output needs (latitude and longitude on
 the ball, spin-to-roll ratio) and keeps the whole record per sample; the table ``CONTACT_OUTPUTS``
 of ``output.py`` names which slots become results variables. It also fills a per-ball record
-(``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power,
-friction torque and drive power of the inner ring). Races: index 0 inner, 1 outer.
+(``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power, cage
+drag power, friction torque and drive power of the inner ring). Races: index 0 inner, 1 outer.
 
 Powers: an interaction between two bodies dissipates minus the work rate of its forces and moments
 on both (sum of F . v + M . omega over the pair, velocities of the points the forces act on).
@@ -22,6 +22,7 @@ from . import layout as L
 from .kernels import (
     TRACTION_WORK_SIZE,
     ball_drag,
+    cage_drag,
     cage_frame,
     cage_land,
     cage_pocket,
@@ -114,6 +115,10 @@ def observe(states, par, quad, records, balls, bearing):
                 + ld[4] * wring
             )
         bearing[s, L.RO_LAND_POWER] = land
+        cage_drag_power = 0.0
+        if par.cage:
+            _, cage_drag_power = cage_drag(y, cb, par)
+        bearing[s, L.RO_CAGE_DRAG_POWER] = cage_drag_power
         # the imposed ring spins take the torques that hold the rings at their speeds
         wi = par.inner_speed
         drive_inner = -(mix * iome[0] + miy * iome[1] + miz * iome[2])

@@ -56,7 +56,7 @@ CONTACT_OUTPUTS = {
 
 #: Loss sources per ball (registry dimension ``ball_loss_source``) and in total (``loss_source``).
 BALL_LOSS_SOURCES = ("rolling", "sliding", "spin", "drag", "cage_pocket")
-LOSS_SOURCES = BALL_LOSS_SOURCES + ("cage_land",)
+LOSS_SOURCES = BALL_LOSS_SOURCES + ("cage_land", "cage_drag")
 
 
 def contact_outputs(records: np.ndarray) -> dict:
@@ -87,9 +87,8 @@ def loss_outputs(records: np.ndarray, balls: np.ndarray, bearing: np.ndarray) ->
         ],
         axis=-1,
     )
-    total = np.concatenate(
-        (per_ball.sum(axis=1), bearing[:, L.RO_LAND_POWER : L.RO_LAND_POWER + 1]), axis=-1
-    )
+    cage = bearing[:, [L.RO_LAND_POWER, L.RO_CAGE_DRAG_POWER]]  # order of LOSS_SOURCES
+    total = np.concatenate((per_ball.sum(axis=1), cage), axis=-1)
     return {
         "ball_power_loss": (("time", "ball", "ball_loss_source"), per_ball),
         "power_loss": (("time", "loss_source"), total),
@@ -172,7 +171,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "gravity": f"{options.gravity:g} m/s^2 along -z of the inertial frame",
         "traction_model": (
             f"ellipse-integrated, {TRACTION_LAW_NAMES[par.traction_law]}; rolling resistance "
-            "(EHL inlet + hysteresis) and oil-air drag"
+            "(EHL inlet + hysteresis) and oil-air drag on the balls and cage"
         )
         if options.traction
         else "off (frictionless: no traction, rolling resistance or drag)",

@@ -34,6 +34,7 @@ STEEL_DENSITY = 7800.0
 #: Air at about 40 degC, the gas of the oil-air mixture around the balls.
 AIR_DENSITY = 1.13  # kg/m^3
 AIR_VISCOSITY = 1.9e-5  # Pa s
+CAGE_FACE_HALF_HEIGHT = 0.35  # radial half-height of the cage's side faces, in ball diameters
 #: Assumed cage material (the case format has no cage material): glass-filled polyamide 66.
 CAGE_MATERIAL = Material("glass_filled_polyamide", 8.0e9, 0.4, 1400.0)
 
@@ -101,6 +102,9 @@ class ModelParams(NamedTuple):
     # ---- oil-air mixture around the balls (drag)
     mixture_density: float  # [kg/m^3]
     mixture_viscosity: float  # [Pa s]
+    # ---- side faces of the cage (drag of the mixture, solver.physics.drag)
+    cage_face_outer_radius: float  # [m]
+    cage_face_inner_radius: float  # [m]
 
 
 def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
@@ -258,6 +262,10 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         ),
         mixture_density=mix * lubricant.density + (1.0 - mix) * AIR_DENSITY,
         mixture_viscosity=mix * lubricant.viscosity + (1.0 - mix) * AIR_VISCOSITY,
+        # the case gives no cage section: its side faces are taken to span d_m/2 +- 0.35 D, the
+        # band between the estimated shoulders of the rings
+        cage_face_outer_radius=0.5 * dm + CAGE_FACE_HALF_HEIGHT * D,
+        cage_face_inner_radius=0.5 * dm - CAGE_FACE_HALF_HEIGHT * D,
     )
 
 
