@@ -407,3 +407,38 @@ def test_tilted_cage_pocket_follows_the_cage():
         + (0.5 * par.pocket_clearance + pen + 0.5 * par.ball_diameter) * e_t
     )
     np.testing.assert_allclose(out[9:12], np.cross(lever, fn * e_t), atol=1e-9 * fn * 0.03)
+
+
+def test_cage_drag_moment_acts_on_the_cage_spin():
+    """The right-hand side adds the oil-air drag moment of solver.physics.drag (mixture of the
+    case's oil fraction, side faces d_m/2 +- 0.35 D) to the cage's spin equation: the cage's spin
+    acceleration differs by M / I_p from a cage whose faces have no area; its power is -M w_c > 0,
+    zero with traction (lubrication) off; more oil in the mixture, more drag."""
+    from dataclasses import replace
+
+    from solver.models.dynamic.kernels import cage_drag
+    from solver.physics.drag import cage_drag_moment
+
+    inp = spindle_inputs(rpm=20000.0, axial=500.0)
+    par, quad, y = start(inp)
+    cb = L.cage_base(18)
+    wc = y[cb + L.C_SPEED]
+    assert wc > 0.0
+    dm, d = inp.geometry.pitch_diameter, inp.geometry.ball_diameter
+    oil = inp.lubricant
+    rho = oil.oil_volume_fraction * oil.density + (1 - oil.oil_volume_fraction) * 1.13
+    eta = oil.oil_volume_fraction * oil.viscosity + (1 - oil.oil_volume_fraction) * 1.9e-5
+    m = cage_drag_moment(wc, rho, eta, 0.5 * dm + 0.35 * d, 0.5 * dm - 0.35 * d)
+    assert m < 0.0
+    moment, power = cage_drag(y, cb, par)
+    assert moment == pytest.approx(m, rel=1e-12)
+    assert power == pytest.approx(-m * wc, rel=1e-12)
+    dydt, *_ = evaluate(y, par, quad)
+    bare = par._replace(cage_face_inner_radius=par.cage_face_outer_radius)
+    dydt_bare, *_ = evaluate(y, bare, quad)
+    accel = dydt[cb + L.C_SPEED] - dydt_bare[cb + L.C_SPEED]
+    assert accel == pytest.approx(m / par.cage_polar_inertia, rel=1e-9)
+    assert cage_drag(y, cb, par._replace(traction=False)) == (0.0, 0.0)
+    wetter = replace(inp, lubricant=replace(oil, oil_volume_fraction=0.05))
+    par_wet, *_ = setup(wetter)
+    assert cage_drag(y, cb, par_wet)[0] < moment
