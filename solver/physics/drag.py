@@ -24,9 +24,35 @@ import math
 
 from numba import njit
 
-#: laminar and turbulent free-disc moment coefficients (C_M = a Re^-n) and exponents
+#: a of the laminar and turbulent free-disc moment coefficients C_M = a Re^-n
 LAMINAR_COEFFICIENT = 3.87
 TURBULENT_COEFFICIENT = 0.146
+
+
+def cage_drag_coefficients(density, viscosity, r_out, r_in):
+    """(laminar, turbulent) coefficients of :func:`cage_drag_moment_from`, fixed for a mixture
+    (``density`` [kg/m^3], ``viscosity`` [Pa s]) and the annular side faces (radii [m],
+    0 <= r_in < r_out): with Re = rho omega R^2 / eta the two moments above become
+    laminar 1/2 3.87 (1 - k^4) R^4 (rho eta)^1/2 omega^3/2 and
+    turbulent 1/2 0.146 (1 - k^23/5) R^23/5 rho^4/5 eta^1/5 omega^9/5."""
+    k = r_in / r_out
+    laminar = 0.5 * LAMINAR_COEFFICIENT * (1.0 - k**4) * r_out**4 * math.sqrt(density * viscosity)
+    turbulent = (
+        0.5 * TURBULENT_COEFFICIENT * (1.0 - k**4.6) * r_out**4.6 * density**0.8 * viscosity**0.2
+    )
+    return laminar, turbulent
+
+
+@njit(cache=True)
+def cage_drag_moment_from(omega, laminar, turbulent):
+    """Moment [N m] about the cage axis, opposing ``omega`` [rad/s], from the coefficients of
+    :func:`cage_drag_coefficients`: -sign(omega) max(laminar |omega|^3/2,
+    turbulent |omega|^9/5)."""
+    w = abs(omega)
+    if w == 0.0:
+        return 0.0
+    m = max(laminar * w * math.sqrt(w), turbulent * w**1.8)
+    return -m if omega > 0.0 else m
 
 
 @njit(cache=True)

@@ -42,7 +42,7 @@ from solver.physics.cage_contact import (
     land_force,
     pocket_contact,
 )
-from solver.physics.drag import cage_drag_moment
+from solver.physics.drag import cage_drag_moment_from
 from solver.physics.hertz_fast import (
     curvature_sum_and_difference_fast,
     ellipse_from_coefficients,
@@ -730,13 +730,7 @@ def cage_drag(y, cb, par):
     if not par.traction:
         return 0.0, 0.0
     wc = y[cb + C_SPEED]
-    m = cage_drag_moment(
-        wc,
-        par.mixture_density,
-        par.mixture_viscosity,
-        par.cage_face_outer_radius,
-        par.cage_face_inner_radius,
-    )
+    m = cage_drag_moment_from(wc, par.cage_drag_laminar, par.cage_drag_turbulent)
     return m, -m * wc
 
 

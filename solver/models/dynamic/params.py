@@ -20,6 +20,7 @@ from solver.physics.cage_contact import (
     pocket_parameters,
     pocket_stiffness_estimate,
 )
+from solver.physics.drag import cage_drag_coefficients
 from solver.physics.traction import (
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
@@ -102,9 +103,9 @@ class ModelParams(NamedTuple):
     # ---- oil-air mixture around the balls (drag)
     mixture_density: float  # [kg/m^3]
     mixture_viscosity: float  # [Pa s]
-    # ---- side faces of the cage (drag of the mixture, solver.physics.drag)
-    cage_face_outer_radius: float  # [m]
-    cage_face_inner_radius: float  # [m]
+    # ---- drag of the mixture on the cage's side faces (solver.physics.drag)
+    cage_drag_laminar: float  # laminar coefficient of cage_drag_moment_from [N m s^1.5]
+    cage_drag_turbulent: float  # turbulent coefficient of cage_drag_moment_from [N m s^1.8]
 
 
 def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
@@ -188,6 +189,13 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
             cage.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
         )
     mix = lubricant.oil_volume_fraction
+    rho_mix = mix * lubricant.density + (1.0 - mix) * AIR_DENSITY
+    eta_mix = mix * lubricant.viscosity + (1.0 - mix) * AIR_VISCOSITY
+    # the case gives no cage section: its side faces are taken to span d_m/2 +- 0.35 D, the band
+    # between the estimated shoulders of the rings
+    cage_drag = cage_drag_coefficients(
+        rho_mix, eta_mix, 0.5 * dm + CAGE_FACE_HALF_HEIGHT * D, 0.5 * dm - CAGE_FACE_HALF_HEIGHT * D
+    )
     return ModelParams(
         ball_count=int(g.ball_count),
         ball_diameter=D,
@@ -260,12 +268,10 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
             guide != L.GUIDE_INNER_RING,
             slip_regularisation=options.friction_regularisation,
         ),
-        mixture_density=mix * lubricant.density + (1.0 - mix) * AIR_DENSITY,
-        mixture_viscosity=mix * lubricant.viscosity + (1.0 - mix) * AIR_VISCOSITY,
-        # the case gives no cage section: its side faces are taken to span d_m/2 +- 0.35 D, the
-        # band between the estimated shoulders of the rings
-        cage_face_outer_radius=0.5 * dm + CAGE_FACE_HALF_HEIGHT * D,
-        cage_face_inner_radius=0.5 * dm - CAGE_FACE_HALF_HEIGHT * D,
+        mixture_density=rho_mix,
+        mixture_viscosity=eta_mix,
+        cage_drag_laminar=cage_drag[0],
+        cage_drag_turbulent=cage_drag[1],
     )
 
 

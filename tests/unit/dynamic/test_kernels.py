@@ -412,7 +412,7 @@ def test_tilted_cage_pocket_follows_the_cage():
 def test_cage_drag_moment_acts_on_the_cage_spin():
     """The right-hand side adds the oil-air drag moment of solver.physics.drag (mixture of the
     case's oil fraction, side faces d_m/2 +- 0.35 D) to the cage's spin equation: the cage's spin
-    acceleration differs by M / I_p from a cage whose faces have no area; its power is -M w_c > 0,
+    acceleration differs by M / I_p from a cage without drag; its power is -M w_c > 0,
     zero with traction (lubrication) off; more oil in the mixture, more drag."""
     from dataclasses import replace
 
@@ -434,7 +434,7 @@ def test_cage_drag_moment_acts_on_the_cage_spin():
     assert moment == pytest.approx(m, rel=1e-12)
     assert power == pytest.approx(-m * wc, rel=1e-12)
     dydt, *_ = evaluate(y, par, quad)
-    bare = par._replace(cage_face_inner_radius=par.cage_face_outer_radius)
+    bare = par._replace(cage_drag_laminar=0.0, cage_drag_turbulent=0.0)
     dydt_bare, *_ = evaluate(y, bare, quad)
     accel = dydt[cb + L.C_SPEED] - dydt_bare[cb + L.C_SPEED]
     assert accel == pytest.approx(m / par.cage_polar_inertia, rel=1e-9)

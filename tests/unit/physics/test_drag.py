@@ -13,7 +13,7 @@ import math
 import pytest
 from scipy import integrate
 
-from solver.physics.drag import cage_drag_moment
+from solver.physics.drag import cage_drag_coefficients, cage_drag_moment, cage_drag_moment_from
 
 RHO_OIL_AIR = 0.01 * 870.0 + 0.99 * 1.13  # 1 % oil in air [kg/m^3]
 ETA_OIL_AIR = 0.01 * 0.02 + 0.99 * 1.9e-5  # [Pa s]
@@ -84,3 +84,13 @@ def test_continuous_between_the_branches():
     ms = [-cage_drag_moment(w, rho, eta, R_OUT, 0.0) for w in ws]
     assert all(b > a for a, b in zip(ms, ms[1:], strict=False))
     assert max(b / a for a, b in zip(ms, ms[1:], strict=False)) < 1.01**2.1
+
+
+@pytest.mark.parametrize(("rho", "eta"), [(900.0, 0.5), (RHO_OIL_AIR, ETA_OIL_AIR), (1.13, 1.9e-5)])
+@pytest.mark.parametrize("omega", [3.0, 300.0, -3000.0])
+def test_precomputed_coefficients_give_the_same_moment(rho, eta, omega):
+    """The kernel's form (coefficients fixed per mixture and cage) = the Reynolds-number form."""
+    lam, turb = cage_drag_coefficients(rho, eta, R_OUT, R_IN)
+    assert cage_drag_moment_from(omega, lam, turb) == pytest.approx(
+        cage_drag_moment(omega, rho, eta, R_OUT, R_IN), rel=1e-12
+    )
