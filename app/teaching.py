@@ -77,9 +77,9 @@ def facts_from_result(ds) -> Facts:
 def _duration_words(seconds: float) -> str:
     """'1 ms', '250 us', '2.5 s': a duration with a unit that keeps the number readable."""
     for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6)):
-        if seconds >= scale or unit == "µs":
-            value = seconds / scale
-            return f"{value:.3g} {unit}"
+        shown = float(f"{seconds / scale:.3g}")  # as printed: 999.99 µs is printed as 1 ms
+        if shown >= 1.0 or unit == "µs":
+            return f"{shown:g} {unit}"
     return f"{seconds:.3g} s"  # pragma: no cover
 
 

@@ -39,6 +39,9 @@ def test_slow_motion_in_words():
     assert rate == pytest.approx(3e-4)
     assert slow_motion_words(rate) == "1 s on screen = 300 µs of bearing time"
     assert slow_motion_words(1e-3) == "1 s on screen = 1 ms of bearing time"
+    # a rate a rounding error below 1 ms reads as 1 ms, not "1e+03 µs"
+    assert slow_motion_words(0.02 / 20) == "1 s on screen = 1 ms of bearing time"
+    assert slow_motion_words(0.9999999e-3) == "1 s on screen = 1 ms of bearing time"
     assert slow_motion_words(2.5) == "1 s on screen = 2.5 s of bearing time"
     assert slow_motion_words(0.0) == ""
 
