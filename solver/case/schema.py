@@ -519,7 +519,7 @@ FIELDS: list[Field] = [
         "lubricant.density_kg_m3",
         "float",
         "Oil density",
-        "Density of the oil (ball drag in the oil-air mixture).",
+        "Density of the oil (ball and cage drag in the oil-air mixture).",
         unit="kg/m3",
         default=870.0,
         minimum=0.0,
@@ -532,8 +532,8 @@ FIELDS: list[Field] = [
         "lubricant.oil_volume_fraction",
         "float",
         "Oil volume fraction",
-        "Volume fraction of oil in the oil-air mixture around the balls (drag); jet and mist "
-        "lubrication run at about 1 percent or less.",
+        "Volume fraction of oil in the oil-air mixture around the balls and cage (drag); jet and "
+        "mist lubrication run at about 1 percent or less.",
         default=0.01,
         minimum=0.0,
         maximum=1.0,
