@@ -14,7 +14,7 @@ from solver.results.dataset import ring_speeds
 from solver.results.summary import QUASISTATIC_THICKNESS_NOTE, headline, life_headline
 
 
-def _finite_or_none(value: float) -> float | None:
+def finite_or_none(value: float) -> float | None:
     return float(value) if math.isfinite(value) else None
 
 
@@ -27,10 +27,10 @@ def metrics_json(ds) -> dict:
         "units": {"angle": "degree", "length": "m", "time": "s"},
     }
     for race in ("inner", "outer"):
-        out[race] = {key: _finite_or_none(v) for key, v in values[race].items()}
+        out[race] = {key: finite_or_none(v) for key, v in values[race].items()}
     if "settled" in values:
         out["settled"] = values["settled"]
-        out["settling_time_s"] = _finite_or_none(values["settling_time_s"])
+        out["settling_time_s"] = finite_or_none(values["settling_time_s"])
         out["analysis_start_time_s"] = values["analysis_start_time_s"]
         out["analysed_window"] = metrics.attrs.get("analysed_window", "")
     else:
@@ -91,7 +91,7 @@ def life_json(ds) -> dict:
             "an infinite life (no loaded contact, or rings not turning relative to each other) "
             "is written as null"
         )
-    out = {key: _finite_or_none(v) for key, v in values.items()}
+    out = {key: finite_or_none(v) for key, v in values.items()}
     out["reliability_percent"] = 90
     out["notes"] = notes
     return out

@@ -55,7 +55,7 @@ def summary(ds) -> dict:
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
 
-    from racetrace.metrics import life_json, metrics_json
+    from racetrace.metrics import finite_or_none, life_json, metrics_json
     from solver.results.dataset import ring_speeds
 
     load = ds.contact_load.values
@@ -76,9 +76,9 @@ def summary(ds) -> dict:
         "inner_ring_tilt_deg": floats(ds.inner_ring_tilt.values),
         "inner_ring_moment_Nm": floats(ds.inner_ring_moment.values),
         "cage_speed_rad_s": float(ds.cage_speed.values),
-        "cage_to_shaft_speed_ratio": (
-            float(ds.cage_speed.values) / inner_speed if inner_speed else None
-        ),
+        "cage_to_shaft_speed_ratio": finite_or_none(
+            float(ds.cage_speed.values) / inner_speed if inner_speed else math.nan
+        ),  # null for a shaft at rest (or so slow that the ratio overflows)
         "max_contact_load_N": {"inner": float(load[:, 0].max()), "outer": float(load[:, 1].max())},
         "max_pressure_Pa": {
             "inner": float(ds.max_pressure.values[:, 0].max()),
@@ -132,7 +132,8 @@ def table(ds, case) -> str:
     offset = ds.inner_ring_offset.values * 1e6
     tilt = ds.inner_ring_tilt.values
     moment = ds.inner_ring_moment.values
-    ratio = f" ({float(ds.cage_speed) / inner_speed:.4f} x shaft)" if inner_speed else ""
+    cage_ratio = float(ds.cage_speed) / inner_speed if inner_speed else math.nan
+    ratio = f" ({cage_ratio:.4f} x shaft)" if math.isfinite(cage_ratio) else ""
     lines = [
         f"case:    {case.title or '(no title)'}",
         f"bearing: {b.designation or '(no designation)'}, {b.ball_count} balls of "

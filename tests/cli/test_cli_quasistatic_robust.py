@@ -59,3 +59,16 @@ def test_invalid_input_json_lists_the_problems(tmp_path, capsys):
     code, body = _run(path, capsys)
     assert code == 2 and body["error"]["kind"] == "invalid input"
     assert [p["key"] for p in body["error"]["problems"]] == ["bearing.ball_count"]
+
+
+def test_a_shaft_so_slow_that_the_speed_ratio_overflows_gives_null(tmp_path, capsys):
+    """A subnormal shaft speed (what the fuzz test found: 1.1e-308 rpm) makes cage speed / shaft
+    speed overflow; the JSON says null instead of failing on Infinity."""
+    data = tomllib.loads(SPINDLE)
+    data["operating"]["inner_ring_speed_rpm"] = 1.1e-308
+    data["operating"]["outer_ring_speed_rpm"] = -20000.0
+    path = tmp_path / "case.toml"
+    path.write_text(tomli_w.dumps(data))
+    code, body = _run(path, capsys)
+    assert code == 0, body
+    assert body["cage_to_shaft_speed_ratio"] is None
