@@ -19,7 +19,8 @@ def test_every_mutated_case_ends_cleanly(rng):
 
 
 @pytest.mark.slow
-@settings(max_examples=5000, **_COMMON)
+@settings(max_examples=5000, derandomize=True, **_COMMON)  # the same 5000 every run: CI repeatable;
+# benchmarks/robustness.py --seed explores new mutations
 @given(st.randoms(use_true_random=False))
 def test_every_mutated_case_ends_cleanly_many(rng):
     assert outcome(mutated_case_bytes(rng)) in OUTCOMES
