@@ -26,6 +26,7 @@ import numpy as np
 import pyvista as pv
 
 from .frames import FrameSource, rot_x
+from .layers import LAYERS
 from .palette import ball_colours
 from .raceway import (
     INNER,
@@ -54,17 +55,6 @@ LEGEND = (  # (text, colour) of the marks the view draws
     ("groove bottom", "#2f5597"),
 )
 
-LAYERS = (
-    "inner_ring",
-    "outer_ring",
-    "balls",
-    "cage",
-    "tracks",
-    "edges",
-    "ellipses",
-    "traces",
-    "labels",
-)
 DEFAULT_HIDDEN = ("traces",)  # layers off unless asked for: the painted tracks show the paths
 CAMERA_PRESETS = ("isometric", "axial", "radial", "inner track", "outer track", "close-up")
 CLOSEUP_PATH_FRAMES = 120  # frames of recent path drawn in the close-up of one ball

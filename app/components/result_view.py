@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import charts
 from ..frames import FrameSource, frame_source
+from ..layers import LAYERS
 from ..palette import ball_legend
 from ..runs import describe_case
 from .base import Component, as_float, as_int, fig_json
@@ -35,17 +36,6 @@ CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half sh
 MAX_EXAGGERATION = 1000.0
 MAX_SPEED = 1000  # frames per animation tick
 MAX_ELLIPSE_SCALE = 100.0
-LAYERS = (
-    "inner_ring",
-    "outer_ring",
-    "balls",
-    "cage",
-    "tracks",
-    "edges",
-    "ellipses",
-    "traces",
-    "labels",
-)  # app.scene.LAYERS (not imported here: the state works without VTK)
 HIDDEN_LAYERS = ("traces",)  # off until asked for: the painted tracks show where the balls ran
 DEFAULT_EXAGGERATION = 5.0  # across-groove deviations drawn 5x: lines and bands tell apart
 CHARTS = (
