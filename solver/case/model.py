@@ -94,6 +94,7 @@ def case_from_values(checked: CaseValues) -> Case:
         materials=checked.materials,
         estimated=checked.estimated,
         lubricant_given="lubricant" not in checked.absent_sections,
+        traction_given=checked.traction_given,
         **sections,
     )
 
@@ -109,7 +110,9 @@ class Case:
     comments by :meth:`to_toml`, so they follow the bearing when it is edited.
     ``lubricant_given`` is False when the file has no ``[lubricant]`` section: ``lubricant`` then
     holds the schema's default oil, :meth:`to_toml` writes it as comments and the dynamic result
-    says that the default oil was used.
+    says that the default oil was used. ``traction_given`` is True when the file has a
+    ``lubricant.traction`` table (the slip curve): otherwise ``lubricant.traction`` holds the
+    schema's default curve, which :meth:`to_dict` leaves out and :meth:`to_toml` writes as a comment.
     """
 
     title: str
@@ -121,6 +124,7 @@ class Case:
     simulation: Simulation = None
     estimated: frozenset = frozenset()
     lubricant_given: bool = True
+    traction_given: bool = False
 
     # ---- materials -----------------------------------------------------------------------------
     def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
@@ -149,12 +153,25 @@ class Case:
     def warnings(self) -> list[Problem]:
         """Valid but doubtful data, each naming its key: the CLI and the app show these.
 
-        Today: shoulder (land) diameters that do not rise above their groove. Such a land offers no
+        Shoulder (land) diameters that do not rise above their groove: such a land offers no
         shoulder, so the truncation check reports every contact of that race as truncated. (A land
-        at or beyond the pitch diameter is not a warning but a validation error.)
+        at or beyond the pitch diameter is not a warning but a validation error.) A
+        ``lubricant.traction`` table given while the traction model is the rheology, which does not
+        read it.
         """
         g = self.geometry()
         found: list[Problem] = []
+        model = self.lubricant.traction_model
+        if self.traction_given and model != "slip_curve":
+            found.append(
+                Problem(
+                    "lubricant.traction",
+                    f'lubricant.traction is given but lubricant.traction_model = "{model}" does '
+                    'not read it (the traction comes from the oil\'s rheology); set '
+                    'lubricant.traction_model = "slip_curve" to use the table, or remove the table',
+                    ("lubricant.traction_model",),
+                )
+            )
         checks = (
             (
                 "inner",
@@ -195,6 +212,8 @@ class Case:
         out: dict = {"title": self.title}
         for f in FIELDS:
             if f.section == "" or (f.section == "lubricant" and not self.lubricant_given):
+                continue
+            if f.path[:2] == ("lubricant", "traction") and not self.traction_given:
                 continue
             section_obj = getattr(self, f.section)
             value = section_obj

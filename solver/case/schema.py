@@ -411,8 +411,9 @@ FIELDS: list[Field] = [
         "How the ball-race traction is computed at each point of the contact ellipse: "
         '"rheology" (shear stress of the oil film from viscosity at the local pressure, film '
         "thickness and slip: Eyring, elastic and limiting-shear-stress laws, docs/case-format.md) "
-        'or "slip_curve" (the fixed traction-coefficient curve of the traction table; faster).',
-        default="slip_curve",
+        'or "slip_curve" (the fixed traction-coefficient curve of the traction table, which '
+        "only this model reads: a measured curve, or for comparison).",
+        default="rheology",
         choices=("rheology", "slip_curve"),
         reason="the traction model is one of the listed names",
     ),
@@ -543,7 +544,7 @@ FIELDS: list[Field] = [
         "lubricant.traction.mu_zero",
         "float",
         "Traction at zero slip",
-        "Traction coefficient at zero slip.",
+        "Traction coefficient at zero slip (slip_curve model only).",
         default=0.0,
         minimum=0.0,
         maximum=1.0,
@@ -554,7 +555,7 @@ FIELDS: list[Field] = [
         "lubricant.traction.mu_max",
         "float",
         "Peak traction",
-        "Peak traction coefficient.",
+        "Peak traction coefficient (slip_curve model only).",
         default=0.05,
         minimum=0.0,
         minimum_inclusive=False,
@@ -566,7 +567,7 @@ FIELDS: list[Field] = [
         "lubricant.traction.slip_at_max_m_s",
         "float",
         "Slip at peak traction",
-        "Slip speed at which the traction peaks.",
+        "Slip speed at which the traction peaks (slip_curve model only).",
         unit="m/s",
         default=1.0,
         minimum=0.0,
@@ -579,7 +580,7 @@ FIELDS: list[Field] = [
         "lubricant.traction.mu_infinity",
         "float",
         "Traction at high slip",
-        "Traction coefficient approached at large slip.",
+        "Traction coefficient approached at large slip (slip_curve model only).",
         default=0.036,
         minimum=0.0,
         minimum_inclusive=False,

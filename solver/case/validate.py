@@ -620,7 +620,8 @@ class CaseValues:
     ``{name: value}`` (the inline ``traction`` table as a nested dict); absent optional keys are
     None. ``materials`` holds the user material tables as written. ``estimated`` lists the dotted
     keys whose values were estimated from the bearing; ``absent_sections`` the optional sections the
-    input did not have (their values are all defaults).
+    input did not have (their values are all defaults). ``traction_given`` says whether the input
+    had a ``lubricant.traction`` table (whole or partial).
     """
 
     title: str
@@ -628,6 +629,7 @@ class CaseValues:
     materials: dict
     estimated: frozenset
     absent_sections: frozenset
+    traction_given: bool = False
 
 
 def validate(data) -> CaseValues:
@@ -709,12 +711,14 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
             target = target.setdefault(part, {})
         target[f.name] = value
     absent = frozenset(s for s in OPTIONAL_SECTIONS if s != "materials" and s not in data)
+    lubricant = data.get("lubricant")
     return CaseValues(
         title=values.get("title", ""),
         sections=sections,
         materials=users,
         estimated=frozenset(estimated),
         absent_sections=absent,
+        traction_given=isinstance(lubricant, dict) and "traction" in lubricant,
     )
 
 

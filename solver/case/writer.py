@@ -66,7 +66,13 @@ def _section_lines(case, section: str, prefix: str = "") -> list[str]:
         sub = getattr(obj, name)
         table = {f.name: getattr(sub, f.name) for f in fields}
         idx = lines.index(f"@@{name}")
-        lines[idx] = f"{prefix}{name} = {toml_value(table)}"
+        line = f"{prefix}{name} = {toml_value(table)}"
+        if (section, name) == ("lubricant", "traction") and not case.traction_given:
+            line = _line(
+                f"# {name} = {toml_value(table)}",
+                'default curve, read only by traction_model = "slip_curve"',
+            )
+        lines[idx] = line
     return lines
 
 

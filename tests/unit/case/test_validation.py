@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from solver.case import Case
+from solver.case import Case, parse_case
 
 DELETE = object()
 
@@ -486,6 +486,35 @@ def test_lands_off_their_groove_still_load(valid):
         "bearing.inner_shoulder_diameter_mm",
         "bearing.outer_shoulder_diameter_mm",
     }
+
+
+@pytest.mark.parametrize(
+    ("lubricant", "warned"),
+    [
+        ({"traction": {"mu_max": 0.06}}, True),  # rheology by default: the table is not read
+        ({"traction_model": "rheology", "traction": {"mu_max": 0.06}}, True),
+        ({"traction_model": "slip_curve", "traction": {"mu_max": 0.06}}, False),
+        ({"viscosity_Pas": 0.02}, False),  # no table
+        (None, False),  # no [lubricant]
+    ],
+)
+def test_traction_table_ignored_by_the_rheology_is_a_warning(valid, lubricant, warned):
+    """A traction table the rheology does not read loads, with a warning naming the table and the
+    fix; the warning survives saving and loading, and a case without a table never gains one."""
+    if lubricant is not None:
+        valid["lubricant"] = lubricant
+    case = Case.from_dict(valid)
+    found = [w for w in case.warnings() if w.key == "lubricant.traction"]
+    assert len(found) == int(warned)
+    if warned:
+        assert 'traction_model = "slip_curve"' in found[0].message
+        assert "lubricant.traction_model" in found[0].keys
+    for again in (Case.from_dict(case.to_dict()), parse_case(case.to_toml())):
+        assert again == case
+        assert [w.key for w in again.warnings()].count("lubricant.traction") == int(warned)
+    edited = case.with_values({"operating.axial_load_N": 600.0})
+    assert [w.key for w in edited.warnings()].count("lubricant.traction") == int(warned)
+    assert edited.lubricant.traction == case.lubricant.traction
 
 
 # ---- rules between keys name every key involved ------------------------------------------------
