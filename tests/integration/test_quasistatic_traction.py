@@ -75,19 +75,36 @@ def test_low_speed_limit_is_rolling_kinematics():
 
 
 def test_without_a_steady_balance_race_control_is_used_and_said():
-    """218 heavy combined load (whose catalogue case therefore asks for race control): the most
-    loaded balls' tractions reach the falling branch of the traction curve and no cage speed
-    balances them; asked for the traction balance, the result uses race control and says so."""
+    """218 heavy combined load with the ADORE slip curve: the most loaded balls' tractions reach
+    the falling branch of the traction curve and no cage speed balances them; asked for the
+    traction balance, the result uses race control and says so."""
     case = resolve_case("218-heavy-combined")
-    assert case.simulation.quasistatic_ball_speeds == "race_control"
     ds = solver.solve_quasistatic(
-        case.with_values({"simulation.quasistatic_ball_speeds": "traction"})
+        case.with_values(
+            {
+                "simulation.quasistatic_ball_speeds": "traction",
+                "lubricant.traction_model": "slip_curve",
+            }
+        )
     )
     assert ds.attrs["kinematics"] == "race_control"
     assert "no steady ball speeds" in ds.attrs["kinematics_note"]
     assert set(ds.race_control.values) <= {"inner", "outer"}
     warnings = ds.racetrace.warnings()
     assert any(w.startswith("quasi-static ball speeds: the traction balance") for w in warnings)
+
+
+def test_the_rheology_balances_the_heavy_case():
+    """The shipped 218 heavy case (the default oil's rheology, the default traction balance): the
+    oil film's traction holds the most loaded balls, the balance has a steady solution and no
+    result warning is given."""
+    case = resolve_case("218-heavy-combined")
+    assert case.lubricant.traction_model == "rheology"
+    assert case.simulation.quasistatic_ball_speeds == "traction"
+    ds = solver.solve_quasistatic(case)
+    assert ds.attrs["kinematics"] == "traction"
+    assert ds.racetrace.warnings() == []
+    assert 0.4 < float(ds.cage_speed) / rpm_to_rad_s(10000.0) < 0.5
 
 
 def test_the_case_switch_selects_race_control():
