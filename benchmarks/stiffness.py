@@ -99,6 +99,24 @@ def parts(z):
     }
 
 
+def slot_name(z, i):
+    """Name of state slot ``i`` (its body and quantity)."""
+    ball = {L.B_POS: "position", L.B_VEL: "velocity", L.B_QUAT: "quaternion", L.B_OMEGA: "omega"}
+    cage = {L.C_POS: "position", L.C_VEL: "velocity", L.C_ANGLE: "angle", L.C_SPEED: "speed"}
+    cage |= {L.C_TILT: "tilt", L.C_TILT_RATE: "tilt rate"}
+    axes = "xyz"
+    if i < L.ring_base(z):
+        j, o = divmod(i, L.BALL_STRIDE)
+        start = max(k for k in ball if k <= o)
+        return f"ball {j} {ball[start]}[{o - start}]"
+    if i < L.cage_base(z):
+        return f"inner ring slot {i - L.ring_base(z)}"
+    o = i - L.cage_base(z)
+    start = max(k for k in cage if k <= o)
+    suffix = f" {axes[o - start]}" if cage[start] in ("position", "velocity") else ""
+    return f"cage {cage[start]}{suffix}"
+
+
 def report(label, revolutions, traction_model=None):
     case = resolve_case(CASES[label])
     inputs = to_inputs(case)
@@ -123,7 +141,10 @@ def report(label, revolutions, traction_model=None):
     law = inputs.lubricant.traction_model
     print(f"\n== {label}: {case.title}, traction {law}, state after {revolutions:g} revolutions")
     print(f"   shaft period {period * 1e3:.3f} ms; {len(lam)} eigenvalues")
-    print(f"   {'part':32s} {'max |lambda| 1/s':>16s} {'Re':>11s} {'Im':>11s} {'DP h_max us':>12s}")
+    print(
+        f"   {'part':32s} {'max |lambda| 1/s':>16s} {'Re':>11s} {'Im':>11s} {'DP h_max us':>12s}"
+        "  largest slot of its mode"
+    )
     overall = math.inf
     for name, idx in groups.items():
         share = weights[idx].sum(axis=0)
@@ -135,7 +156,11 @@ def report(label, revolutions, traction_model=None):
         limits = [dp_reach(lam[i] / abs(lam[i])) / abs(lam[i]) for i in mine if abs(lam[i]) > 0]
         hmin = min(limits) if limits else math.inf
         overall = min(overall, hmin)
-        print(f"   {name:32s} {abs(lk):16.3e} {lk.real:11.3e} {lk.imag:11.3e} {hmin * 1e6:12.2f}")
+        slot = slot_name(z, int(np.argmax(weights[:, k])))
+        print(
+            f"   {name:32s} {abs(lk):16.3e} {lk.real:11.3e} {lk.imag:11.3e} {hmin * 1e6:12.2f}"
+            f"  {slot}"
+        )
     print(
         f"   explicit Dormand-Prince stability limit: h <= {overall * 1e6:.2f} us = "
         f"{period / overall:.0f} steps per shaft revolution"
