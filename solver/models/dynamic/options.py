@@ -36,7 +36,7 @@ CASE_OVERRIDES = {
 DEFAULT_QUADRATURE = {LAW_SLIP_CURVE: (2, 8), LAW_RHEOLOGY: (4, 8)}
 
 #: Integration methods of the dynamic model (option ``method``).
-METHODS = ("rosenbrock", "dopri5")
+METHODS = ("dopri5", "imex", "rosenbrock")
 
 
 @dataclass(frozen=True)
@@ -73,8 +73,10 @@ class SimulationOptions:
     - ``method``: integration method. "dopri5" (default): explicit Dormand–Prince 5(4)
       (solver.models.dynamic.integrator); "rosenbrock": the linearly implicit Rosenbrock-W method
       ROS34PW2 with an arrow-structured Jacobian (solver.models.dynamic.rosenbrock), whose step is
-      not limited by the stiff traction and pocket-friction modes. docs/numerics.md compares them:
-      on the shipped cases the explicit method is the faster at equal accuracy.
+      not limited by the stiff traction and pocket-friction modes; "imex": additive Runge–Kutta
+      ARK4(3)6L[2]SA with the cage's guiding-land film implicit (solver.models.dynamic.imex),
+      whose step is not limited by the film's squeeze damping on a cage running near its land.
+      docs/numerics.md compares them.
     - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
       Rosenbrock method (it is also re-formed when a step fails with an older Jacobian).
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;

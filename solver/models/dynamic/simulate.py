@@ -27,6 +27,7 @@ from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
 
 from . import layout as L
+from .imex import advance_imex, ark436l2sa
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
 from .integrator import (
     STATUS_BALL_ESCAPED,
@@ -178,6 +179,13 @@ def _stepper(options, par):
     ``integrator.advance``."""
     if options.method == "dopri5":
         return advance
+    if options.method == "imex":
+        ark = ark436l2sa()
+
+        def step_imex(*args):
+            return advance_imex(*args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order)
+
+        return step_imex
     tab = ros34pw2()
     starts, sizes = block_structure(par.ball_count)
     work = rosenbrock_work(par.ball_count, tab.m.shape[0])

@@ -1,0 +1,257 @@
+"""Additive (implicit–explicit) Runge–Kutta integrator: the cage's guiding-land film implicit,
+everything else explicit; compiled with numba.
+
+A cage running in its guiding land near the land (eccentricity above about 0.95 of the clearance)
+is held by the film's squeeze damping, which on the light cage is an overdamped mode of the cage's
+radial velocity of about -1.5e6 1/s on the 218 heavy case: it sets the explicit step there
+(docs/numerics.md). The right-hand side is split exactly as
+
+    f(Y) = f_E(Y) + f_I(Y),   f_I(Y) = P A P (Y - y_n),   f_E = f - f_I,
+
+where P selects the cage's radial velocity (inertial y, z) and A is the derivative of those rates
+with respect to that velocity through the land force (:func:`kernels.cage_land`, two extra calls of
+the land kernel per step, forward differences at the step's start). Any A keeps the order (the
+split is exact); an A close to the true block removes the stability limit of the film mode.
+
+Method: ARK4(3)6L[2]SA of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003, 139–181): an explicit
+tableau coupled to an L-stable ESDIRK (gamma = 1/4), sharing b and c; order 4, embedded order 3;
+six right-hand-side evaluations per accepted step (five on a rejected one). Each implicit stage
+solves a 2 x 2 system. Error norm, status codes and post-step hook as in ``integrator``; PI step
+control with exponent 1/4.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from .integrator import (
+    STATUS_BALL_ESCAPED,
+    STATUS_NOT_FINITE,
+    STATUS_OK,
+    STATUS_STEP_COLLAPSE,
+    STATUS_TOO_MANY_STEPS,
+)
+from .kernels import cage_land, post_step, rhs_into, rhs_work
+from .layout import BALL_STRIDE, C_VEL, RING_SIZE
+
+#: relative velocity step of the land Jacobian's forward differences (of the cage state's
+#: characteristic velocity)
+JACOBIAN_STEP = 1e-4
+
+
+class ArkTableau(NamedTuple):
+    """Additive Runge–Kutta pair: explicit and implicit stage matrices, shared weights, the
+    weights minus the embedded weights, and the order of the embedded solution + 1."""
+
+    explicit: np.ndarray
+    implicit: np.ndarray
+    b: np.ndarray
+    e: np.ndarray
+    order: int
+
+
+def ark436l2sa() -> ArkTableau:
+    """ARK4(3)6L[2]SA (Kennedy & Carpenter 2003, tables of §5)."""
+    ae = np.zeros((6, 6))
+    ae[1, 0] = 0.5
+    ae[2, :2] = (13861.0 / 62500.0, 6889.0 / 62500.0)
+    ae[3, :3] = (
+        -116923316275.0 / 2393684061468.0,
+        -2731218467317.0 / 15368042101831.0,
+        9408046702089.0 / 11113171139209.0,
+    )
+    ae[4, :4] = (
+        -451086348788.0 / 2902428689909.0,
+        -2682348792572.0 / 7519795681897.0,
+        12662868775082.0 / 11960479115383.0,
+        3355817975965.0 / 11060851509271.0,
+    )
+    ae[5, :5] = (
+        647845179188.0 / 3216320057751.0,
+        73281519250.0 / 8382639484533.0,
+        552539513391.0 / 3454668386233.0,
+        3354512671639.0 / 8306763924573.0,
+        4040.0 / 17871.0,
+    )
+    ai = np.zeros((6, 6))
+    ai[1, :2] = (0.25, 0.25)
+    ai[2, :3] = (8611.0 / 62500.0, -1743.0 / 31250.0, 0.25)
+    ai[3, :4] = (5012029.0 / 34652500.0, -654441.0 / 2922500.0, 174375.0 / 388108.0, 0.25)
+    ai[4, :5] = (
+        15267082809.0 / 155376265600.0,
+        -71443401.0 / 120774400.0,
+        730878875.0 / 902184768.0,
+        2285395.0 / 8070912.0,
+        0.25,
+    )
+    b = np.array(
+        (82889.0 / 524892.0, 0.0, 15625.0 / 83664.0, 69875.0 / 102672.0, -2260.0 / 8211.0, 0.25)
+    )
+    ai[5, :] = b  # stiffly accurate
+    b_hat = np.array(
+        (
+            4586570599.0 / 29645900160.0,
+            0.0,
+            178811875.0 / 945068544.0,
+            814220225.0 / 1159782912.0,
+            -3700637.0 / 11593932.0,
+            61727.0 / 225920.0,
+        )
+    )
+    return ArkTableau(ae, ai, b, b - b_hat, 4)
+
+
+@njit(cache=True)
+def land_jacobian(y, cb, par, scratch, dv, jac):
+    """``jac`` (2, 2) <- d(cage acceleration y, z)/d(cage velocity y, z) [1/s] of the guiding-land
+    force at ``y`` (forward differences of step ``dv`` [m/s]). Uses the inner-ring frame held in
+    ``scratch`` by the last right-hand-side evaluation (inner-ring guidance). ``y`` is restored."""
+    out = scratch.land
+    work = scratch.contact
+    iorg = scratch.inner_origin
+    ivel = scratch.inner_vel
+    cage_land(y, cb, iorg, ivel, par, work, out)
+    f1, f2 = out[1], out[2]
+    inv = 1.0 / (par.cage_mass * dv)
+    for c in range(2):
+        k = cb + C_VEL + 1 + c
+        keep = y[k]
+        y[k] = keep + dv
+        cage_land(y, cb, iorg, ivel, par, work, out)
+        y[k] = keep
+        jac[0, c] = (out[1] - f1) * inv
+        jac[1, c] = (out[2] - f2) * inv
+
+
+@njit(cache=True)
+def advance_imex(
+    y,
+    t,
+    h,
+    t_out,
+    out_states,
+    par,
+    quad,
+    scale,
+    tol,
+    h_min,
+    max_steps,
+    counters,
+    rec_inner,
+    rec_outer,
+    pocket,
+    ae,
+    ai,
+    b,
+    e,
+    order,
+):
+    """``integrator.advance`` with the additive pair (``ae``, ``ai``, ``b``, ``e``, ``order``) of
+    :func:`ark436l2sa`: same arguments before the tableau, same returns (status, t, h, n_done)."""
+    n = y.shape[0]
+    ns = b.shape[0]
+    z = int(par.ball_count)
+    cb = BALL_STRIDE * z + RING_SIZE
+    k0 = cb + C_VEL + 1  # first implicit slot (cage velocity y); the second is k0 + 1
+    implicit = bool(par.cage)
+    gamma = ai[1, 1]
+    k = np.empty((ns, n))  # f at the stages
+    fi = np.zeros((ns, 2))  # implicit part at the stages
+    yt = np.empty(n)
+    ynew = np.empty(n)
+    jac = np.zeros((2, 2))
+    scratch = rhs_work()
+    rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
+    counters[2] += 1
+    dv = JACOBIAN_STEP * scale[cb + C_VEL + 1]
+    err_old = 1e-4
+    steps = 0
+    n_done = 0
+    exponent = 0.7 / order
+    memory = 0.4 / order
+    for kk in range(t_out.shape[0]):
+        t_target = t_out[kk]
+        while t < t_target:
+            if steps >= max_steps:
+                return STATUS_TOO_MANY_STEPS, t, h, n_done
+            clipped = False
+            hs = h
+            if t + hs >= t_target:
+                hs = t_target - t
+                clipped = True
+            if implicit:
+                land_jacobian(y, cb, par, scratch, dv, jac)
+            # (I - hs gamma A)^-1 for the implicit stages
+            m00 = 1.0 - hs * gamma * jac[0, 0]
+            m01 = -hs * gamma * jac[0, 1]
+            m10 = -hs * gamma * jac[1, 0]
+            m11 = 1.0 - hs * gamma * jac[1, 1]
+            det = m00 * m11 - m01 * m10
+            fi[0, 0] = 0.0
+            fi[0, 1] = 0.0
+            for s in range(1, ns):
+                for i in range(n):
+                    acc = 0.0
+                    for j in range(s):
+                        acc += ae[s, j] * k[j, i]
+                    yt[i] = y[i] + hs * acc
+                if implicit:
+                    r0 = yt[k0]
+                    r1 = yt[k0 + 1]
+                    for j in range(s):
+                        r0 += hs * ((ai[s, j] - ae[s, j]) * fi[j, 0])
+                        r1 += hs * ((ai[s, j] - ae[s, j]) * fi[j, 1])
+                    r0 -= y[k0]
+                    r1 -= y[k0 + 1]
+                    d0 = (m11 * r0 - m01 * r1) / det
+                    d1 = (m00 * r1 - m10 * r0) / det
+                    yt[k0] = y[k0] + d0
+                    yt[k0 + 1] = y[k0 + 1] + d1
+                    fi[s, 0] = jac[0, 0] * d0 + jac[0, 1] * d1
+                    fi[s, 1] = jac[1, 0] * d0 + jac[1, 1] * d1
+                rhs_into(yt, par, quad, k[s], rec_inner, rec_outer, pocket, scratch)
+            counters[2] += ns - 1
+            steps += 1
+            err = 0.0
+            for i in range(n):
+                acc = 0.0
+                est = 0.0
+                for j in range(ns):
+                    acc += b[j] * k[j, i]
+                    est += e[j] * k[j, i]
+                ynew[i] = y[i] + hs * acc
+                r = abs(hs * est) / (tol * scale[i])
+                if r > err or r != r:  # keep a NaN: it must reach the finiteness check
+                    err = r
+            if not (err < 1e300):
+                h = 0.1 * hs
+                counters[1] += 1
+                if h < h_min:
+                    return STATUS_NOT_FINITE, t, h, n_done
+                continue
+            if err <= 1.0:
+                fac = 0.9 * err ** (-exponent) * err_old**memory if err > 0.0 else 5.0
+                fac = min(5.0, max(0.2, fac))
+                err_old = max(err, 1e-4)
+                t = t_target if clipped else t + hs
+                for i in range(n):
+                    y[i] = ynew[i]
+                if not post_step(y, par, rec_inner, rec_outer):
+                    return STATUS_BALL_ESCAPED, t, h, n_done
+                rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
+                counters[2] += 1
+                counters[0] += 1
+                if not clipped or hs * fac > h:
+                    h = hs * fac
+            else:
+                h = hs * max(0.2, 0.9 * err ** (-1.0 / order))
+                counters[1] += 1
+                if h < h_min:
+                    return STATUS_STEP_COLLAPSE, t, h, n_done
+        for i in range(n):
+            out_states[kk, i] = y[i]
+        n_done += 1
+    return STATUS_OK, t, h, n_done
