@@ -8,15 +8,16 @@ radial velocity of about -1.5e6 1/s on the 218 heavy case: it sets the explicit 
 
     f(Y) = f_E(Y) + f_I(Y),   f_I(Y) = P A P (Y - y_n),   f_E = f - f_I,
 
-where P selects the cage's radial velocity (inertial y, z) and A is the derivative of those rates
-with respect to that velocity through the land force (:func:`kernels.cage_land`, two extra calls of
-the land kernel per step, forward differences at the step's start). Any A keeps the order (the
-split is exact); an A close to the true block removes the stability limit of the film mode.
+where P selects the cage's velocity (3 slots) and A is the derivative of the cage's acceleration
+with respect to its velocity through the guiding-land and pocket forces
+(:func:`kernels.cage_land`, :func:`kernels.cage_pocket`; forward differences at the step's start,
+no right-hand-side evaluation). Any A keeps the order (the split is exact); an A close to the true
+block removes the stability limit of the film mode.
 
 Method: ARK4(3)6L[2]SA of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003, 139–181): an explicit
 tableau coupled to an L-stable ESDIRK (gamma = 1/4), sharing b and c; order 4, embedded order 3;
 six right-hand-side evaluations per accepted step (five on a rejected one). Each implicit stage
-solves a 2 x 2 system. Error norm, status codes and post-step hook as in ``integrator``; PI step
+solves a 3 x 3 system. Error norm, status codes and post-step hook as in ``integrator``; PI step
 control with exponent 1/4.
 """
 
@@ -34,7 +35,7 @@ from .integrator import (
     STATUS_STEP_COLLAPSE,
     STATUS_TOO_MANY_STEPS,
 )
-from .kernels import cage_land, post_step, rhs_into, rhs_work
+from .kernels import cage_land, cage_pocket, post_step, rhs_into, rhs_work
 from .layout import BALL_STRIDE, C_VEL, RING_SIZE
 
 #: relative velocity step of the land Jacobian's forward differences (of the cage state's
@@ -105,25 +106,68 @@ def ark436l2sa() -> ArkTableau:
 
 
 @njit(cache=True)
-def land_jacobian(y, cb, par, scratch, dv, jac):
-    """``jac`` (2, 2) <- d(cage acceleration y, z)/d(cage velocity y, z) [1/s] of the guiding-land
-    force at ``y`` (forward differences of step ``dv`` [m/s]). Uses the inner-ring frame held in
-    ``scratch`` by the last right-hand-side evaluation (inner-ring guidance). ``y`` is restored."""
-    out = scratch.land
+def _lu3(m):
+    """In-place LU factors (no pivoting: the matrix is I - h gamma A with A a damping block, whose
+    diagonal dominates) of the 3 x 3 ``m``."""
+    for p in range(3):
+        for r in range(p + 1, 3):
+            m[r, p] /= m[p, p]
+            for c in range(p + 1, 3):
+                m[r, c] -= m[r, p] * m[p, c]
+
+
+@njit(cache=True)
+def _solve3(m, rhs, out):
+    """``out`` <- solution of (L U) out = rhs with the factors of :func:`_lu3`."""
+    for r in range(3):
+        acc = rhs[r]
+        for c in range(r):
+            acc -= m[r, c] * out[c]
+        out[r] = acc
+    for r in range(2, -1, -1):
+        acc = out[r]
+        for c in range(r + 1, 3):
+            acc -= m[r, c] * out[c]
+        out[r] = acc / m[r, r]
+
+
+@njit(cache=True)
+def _cage_force(y, cb, par, scratch, out):
+    """``out`` (3,) <- force on the cage [N] from its guiding land and all its pockets at ``y``,
+    with the ring and cage frames held in ``scratch`` by the last right-hand-side evaluation."""
+    z = int(par.ball_count)
     work = scratch.contact
-    iorg = scratch.inner_origin
-    ivel = scratch.inner_vel
-    cage_land(y, cb, iorg, ivel, par, work, out)
-    f1, f2 = out[1], out[2]
+    pk = scratch.pocket
+    ld = scratch.land
+    cage_land(y, cb, scratch.inner_origin, scratch.inner_vel, par, work, ld)
+    out[0] = ld[0]
+    out[1] = ld[1]
+    out[2] = ld[2]
+    rot = scratch.cage_rot
+    omega = scratch.cage_omega
+    for j in range(z):
+        if cage_pocket(y, BALL_STRIDE * j, cb, j, par, rot, omega, work, pk) > 0.0:
+            out[0] += pk[6]
+            out[1] += pk[7]
+            out[2] += pk[8]
+
+
+@njit(cache=True)
+def cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac):
+    """``jac`` (3, 3) <- d(cage acceleration)/d(cage velocity) [1/s] of the guiding-land and pocket
+    forces at ``y`` (forward differences of step ``dv`` [m/s]); ``base``, ``moved``: (3,) scratch.
+    The ring and cage frames are those of the last right-hand-side evaluation (the cage velocity
+    does not enter them). ``y`` is restored."""
+    _cage_force(y, cb, par, scratch, base)
     inv = 1.0 / (par.cage_mass * dv)
-    for c in range(2):
-        k = cb + C_VEL + 1 + c
+    for c in range(3):
+        k = cb + C_VEL + c
         keep = y[k]
         y[k] = keep + dv
-        cage_land(y, cb, iorg, ivel, par, work, out)
+        _cage_force(y, cb, par, scratch, moved)
         y[k] = keep
-        jac[0, c] = (out[1] - f1) * inv
-        jac[1, c] = (out[2] - f2) * inv
+        for r in range(3):
+            jac[r, c] = (moved[r] - base[r]) * inv
 
 
 @njit(cache=True)
@@ -155,18 +199,23 @@ def advance_imex(
     ns = b.shape[0]
     z = int(par.ball_count)
     cb = BALL_STRIDE * z + RING_SIZE
-    k0 = cb + C_VEL + 1  # first implicit slot (cage velocity y); the second is k0 + 1
+    k0 = cb + C_VEL  # the implicit slots: cage velocity x, y, z
     implicit = bool(par.cage)
     gamma = ai[1, 1]
     k = np.empty((ns, n))  # f at the stages
-    fi = np.zeros((ns, 2))  # implicit part at the stages
+    fi = np.zeros((ns, 3))  # implicit part at the stages
     yt = np.empty(n)
     ynew = np.empty(n)
-    jac = np.zeros((2, 2))
+    jac = np.zeros((3, 3))
+    lu = np.empty((3, 3))
+    rr = np.empty(3)
+    dd = np.empty(3)
+    base = np.empty(3)
+    moved = np.empty(3)
     scratch = rhs_work()
     rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
     counters[2] += 1
-    dv = JACOBIAN_STEP * scale[cb + C_VEL + 1]
+    dv = JACOBIAN_STEP * scale[k0]
     err_old = 1e-4
     steps = 0
     n_done = 0
@@ -183,15 +232,13 @@ def advance_imex(
                 hs = t_target - t
                 clipped = True
             if implicit:
-                land_jacobian(y, cb, par, scratch, dv, jac)
-            # (I - hs gamma A)^-1 for the implicit stages
-            m00 = 1.0 - hs * gamma * jac[0, 0]
-            m01 = -hs * gamma * jac[0, 1]
-            m10 = -hs * gamma * jac[1, 0]
-            m11 = 1.0 - hs * gamma * jac[1, 1]
-            det = m00 * m11 - m01 * m10
-            fi[0, 0] = 0.0
-            fi[0, 1] = 0.0
+                cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac)
+            for r in range(3):
+                for c in range(3):
+                    lu[r, c] = (1.0 if r == c else 0.0) - hs * gamma * jac[r, c]
+            _lu3(lu)
+            for c in range(3):
+                fi[0, c] = 0.0
             for s in range(1, ns):
                 for i in range(n):
                     acc = 0.0
@@ -199,19 +246,16 @@ def advance_imex(
                         acc += ae[s, j] * k[j, i]
                     yt[i] = y[i] + hs * acc
                 if implicit:
-                    r0 = yt[k0]
-                    r1 = yt[k0 + 1]
-                    for j in range(s):
-                        r0 += hs * ((ai[s, j] - ae[s, j]) * fi[j, 0])
-                        r1 += hs * ((ai[s, j] - ae[s, j]) * fi[j, 1])
-                    r0 -= y[k0]
-                    r1 -= y[k0 + 1]
-                    d0 = (m11 * r0 - m01 * r1) / det
-                    d1 = (m00 * r1 - m10 * r0) / det
-                    yt[k0] = y[k0] + d0
-                    yt[k0 + 1] = y[k0 + 1] + d1
-                    fi[s, 0] = jac[0, 0] * d0 + jac[0, 1] * d1
-                    fi[s, 1] = jac[1, 0] * d0 + jac[1, 1] * d1
+                    for c in range(3):
+                        acc = yt[k0 + c] - y[k0 + c]
+                        for j in range(s):
+                            acc += hs * (ai[s, j] - ae[s, j]) * fi[j, c]
+                        rr[c] = acc
+                    _solve3(lu, rr, dd)
+                    for c in range(3):
+                        yt[k0 + c] = y[k0 + c] + dd[c]
+                    for r in range(3):
+                        fi[s, r] = jac[r, 0] * dd[0] + jac[r, 1] * dd[1] + jac[r, 2] * dd[2]
                 rhs_into(yt, par, quad, k[s], rec_inner, rec_outer, pocket, scratch)
             counters[2] += ns - 1
             steps += 1
