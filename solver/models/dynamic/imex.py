@@ -18,7 +18,9 @@ Method: ARK4(3)6L[2]SA of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003, 139â
 tableau coupled to an L-stable ESDIRK (gamma = 1/4), sharing b and c; order 4, embedded order 3;
 six right-hand-side evaluations per accepted step (five on a rejected one). Each implicit stage
 solves a 3 x 3 system. Error norm, status codes and post-step hook as in ``integrator``; PI step
-control with exponent 1/4.
+control with exponent 1/4. Output times inside a step are filled by cubic Hermite interpolation
+of the step's end values and slopes (local error O(h^4), no extra evaluation); the step stops
+exactly only at the last output time of each call.
 """
 
 from __future__ import annotations
@@ -221,81 +223,96 @@ def advance_imex(
     n_done = 0
     exponent = 0.7 / order
     memory = 0.4 / order
-    for kk in range(t_out.shape[0]):
-        t_target = t_out[kk]
-        while t < t_target:
-            if steps >= max_steps:
-                return STATUS_TOO_MANY_STEPS, t, h, n_done
-            clipped = False
-            hs = h
-            if t + hs >= t_target:
-                hs = t_target - t
-                clipped = True
-            if implicit:
-                cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac)
-            for r in range(3):
-                for c in range(3):
-                    lu[r, c] = (1.0 if r == c else 0.0) - hs * gamma * jac[r, c]
-            _lu3(lu)
+    n_out = t_out.shape[0]
+    if n_out == 0:
+        return STATUS_OK, t, h, 0
+    t_target = t_out[n_out - 1]
+    while t < t_target:
+        if steps >= max_steps:
+            return STATUS_TOO_MANY_STEPS, t, h, n_done
+        clipped = False
+        hs = h
+        if t + hs >= t_target:
+            hs = t_target - t
+            clipped = True
+        if implicit:
+            cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac)
+        for r in range(3):
             for c in range(3):
-                fi[0, c] = 0.0
-            for s in range(1, ns):
-                for i in range(n):
-                    acc = 0.0
-                    for j in range(s):
-                        acc += ae[s, j] * k[j, i]
-                    yt[i] = y[i] + hs * acc
-                if implicit:
-                    for c in range(3):
-                        acc = yt[k0 + c] - y[k0 + c]
-                        for j in range(s):
-                            acc += hs * (ai[s, j] - ae[s, j]) * fi[j, c]
-                        rr[c] = acc
-                    _solve3(lu, rr, dd)
-                    for c in range(3):
-                        yt[k0 + c] = y[k0 + c] + dd[c]
-                    for r in range(3):
-                        fi[s, r] = jac[r, 0] * dd[0] + jac[r, 1] * dd[1] + jac[r, 2] * dd[2]
-                rhs_into(yt, par, quad, k[s], rec_inner, rec_outer, pocket, scratch)
-            counters[2] += ns - 1
-            steps += 1
-            err = 0.0
+                lu[r, c] = (1.0 if r == c else 0.0) - hs * gamma * jac[r, c]
+        _lu3(lu)
+        for c in range(3):
+            fi[0, c] = 0.0
+        for s in range(1, ns):
             for i in range(n):
                 acc = 0.0
-                est = 0.0
-                for j in range(ns):
-                    acc += b[j] * k[j, i]
-                    est += e[j] * k[j, i]
-                ynew[i] = y[i] + hs * acc
-                r = abs(hs * est) / (tol * scale[i])
-                if r > err or r != r:  # keep a NaN: it must reach the finiteness check
-                    err = r
-            if not (err < 1e300):
-                h = 0.1 * hs
-                counters[1] += 1
-                if h < h_min:
-                    return STATUS_NOT_FINITE, t, h, n_done
-                continue
-            if err <= 1.0:
-                fac = 0.9 * err ** (-exponent) * err_old**memory if err > 0.0 else 5.0
-                fac = min(5.0, max(0.2, fac))
-                err_old = max(err, 1e-4)
-                t = t_target if clipped else t + hs
-                for i in range(n):
-                    y[i] = ynew[i]
-                if not post_step(y, par, rec_inner, rec_outer):
-                    return STATUS_BALL_ESCAPED, t, h, n_done
-                rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
-                counters[2] += 1
-                counters[0] += 1
-                if not clipped or hs * fac > h:
-                    h = hs * fac
-            else:
-                h = hs * max(0.2, 0.9 * err ** (-1.0 / order))
-                counters[1] += 1
-                if h < h_min:
-                    return STATUS_STEP_COLLAPSE, t, h, n_done
+                for j in range(s):
+                    acc += ae[s, j] * k[j, i]
+                yt[i] = y[i] + hs * acc
+            if implicit:
+                for c in range(3):
+                    acc = yt[k0 + c] - y[k0 + c]
+                    for j in range(s):
+                        acc += hs * (ai[s, j] - ae[s, j]) * fi[j, c]
+                    rr[c] = acc
+                _solve3(lu, rr, dd)
+                for c in range(3):
+                    yt[k0 + c] = y[k0 + c] + dd[c]
+                for r in range(3):
+                    fi[s, r] = jac[r, 0] * dd[0] + jac[r, 1] * dd[1] + jac[r, 2] * dd[2]
+            rhs_into(yt, par, quad, k[s], rec_inner, rec_outer, pocket, scratch)
+        counters[2] += ns - 1
+        steps += 1
+        err = 0.0
         for i in range(n):
-            out_states[kk, i] = y[i]
-        n_done += 1
-    return STATUS_OK, t, h, n_done
+            acc = 0.0
+            est = 0.0
+            for j in range(ns):
+                acc += b[j] * k[j, i]
+                est += e[j] * k[j, i]
+            ynew[i] = y[i] + hs * acc
+            r = abs(hs * est) / (tol * scale[i])
+            if r > err or r != r:  # keep a NaN: it must reach the finiteness check
+                err = r
+        if not (err < 1e300):
+            h = 0.1 * hs
+            counters[1] += 1
+            if h < h_min:
+                return STATUS_NOT_FINITE, t, h, n_done
+            continue
+        if err <= 1.0:
+            fac = 0.9 * err ** (-exponent) * err_old**memory if err > 0.0 else 5.0
+            fac = min(5.0, max(0.2, fac))
+            err_old = max(err, 1e-4)
+            t_new = t_target if clipped else t + hs
+            for i in range(n):
+                yt[i] = y[i]  # keep y_n for the outputs inside the step
+                y[i] = ynew[i]
+            if not post_step(y, par, rec_inner, rec_outer):
+                return STATUS_BALL_ESCAPED, t, h, n_done
+            for i in range(n):
+                ynew[i] = k[0, i]  # keep f(y_n)
+            rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
+            counters[2] += 1
+            # outputs inside the step: cubic Hermite interpolation of y_n, y, f(y_n), f(y)
+            while n_done < n_out - 1 and t_out[n_done] <= t_new:
+                th = (t_out[n_done] - t) / hs
+                h00 = (1.0 + 2.0 * th) * (1.0 - th) ** 2
+                h10 = th * (1.0 - th) ** 2 * hs
+                h01 = th * th * (3.0 - 2.0 * th)
+                h11 = th * th * (th - 1.0) * hs
+                for i in range(n):
+                    out_states[n_done, i] = h00 * yt[i] + h10 * ynew[i] + h01 * y[i] + h11 * k[0, i]
+                n_done += 1
+            t = t_new
+            counters[0] += 1
+            if not clipped or hs * fac > h:
+                h = hs * fac
+        else:
+            h = hs * max(0.2, 0.9 * err ** (-1.0 / order))
+            counters[1] += 1
+            if h < h_min:
+                return STATUS_STEP_COLLAPSE, t, h, n_done
+    for i in range(n):
+        out_states[n_out - 1, i] = y[i]
+    return STATUS_OK, t, h, n_out

@@ -90,10 +90,10 @@ def advance(
     rec_outer,
     pocket,
 ):
-    """Integrate from ``t`` through every time in ``t_out`` (increasing, all after ``t``), storing
-    the state at each in ``out_states[k]`` (from the continuous extension, except the last, where the
-    integration stops exactly). ``y`` is updated in place. ``counters`` (3,) accumulates
-    [accepted steps, rejected steps, rhs evaluations].
+    """Integrate from ``t`` through every time in ``t_out`` (increasing, all after ``t``),
+    storing the state at each in ``out_states[k]`` (from the continuous extension, except the
+    last, where the integration stops exactly). ``y`` is updated in place. ``counters`` (3,)
+    accumulates [accepted steps, rejected steps, rhs evaluations].
 
         Returns (status, t, h, n_done): the status code, the time reached, the step size to continue
         with, and how many output samples were written.
