@@ -36,10 +36,16 @@ from .integrator import (
     STATUS_OK,
     STATUS_STEP_COLLAPSE,
     STATUS_TOO_MANY_STEPS,
+    dp5_dense,
+    dp5_error,
+    dp5_stages,
 )
 from .kernels import cage_land, cage_pocket, post_step, rhs_into, rhs_work
 from .layout import BALL_STRIDE, C_VEL, RING_SIZE
 
+#: method "auto": largest step size times the cage block's spectral bound taken by an explicit
+#: Dormand–Prince step (its stability interval on the negative real axis reaches 3.3)
+SWITCH_BOUND = 1.5
 #: relative velocity step of the land Jacobian's forward differences (of the cage state's
 #: characteristic velocity)
 JACOBIAN_STEP = 1e-4
@@ -194,9 +200,16 @@ def advance_imex(
     b,
     e,
     order,
+    switch,
 ):
     """``integrator.advance`` with the additive pair (``ae``, ``ai``, ``b``, ``e``, ``order``) of
-    :func:`ark436l2sa`: same arguments before the tableau, same returns (status, t, h, n_done)."""
+    :func:`ark436l2sa`: same arguments before the tableau, same returns (status, t, h, n_done).
+
+    ``switch`` > 0: a step whose size times the cage block's spectral bound (largest absolute row
+    sum of A) stays at or below ``switch`` is an explicit Dormand–Prince step
+    (``integrator.dp5_stages``, its own error estimate, step control and continuous extension);
+    only the steps that the film's damping would make unstable or inaccurate for the explicit
+    method are additive ones. ``switch`` = 0: every step is additive."""
     n = y.shape[0]
     ns = b.shape[0]
     z = int(par.ball_count)
@@ -204,7 +217,7 @@ def advance_imex(
     k0 = cb + C_VEL  # the implicit slots: cage velocity x, y, z
     implicit = bool(par.cage)
     gamma = ai[1, 1]
-    k = np.empty((ns, n))  # f at the stages
+    k = np.empty((max(ns, 7), n))  # f at the stages (seven for a Dormand–Prince step)
     fi = np.zeros((ns, 3))  # implicit part at the stages
     yt = np.empty(n)
     ynew = np.empty(n)
@@ -237,6 +250,51 @@ def advance_imex(
             clipped = True
         if implicit:
             cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac)
+        if switch > 0.0:
+            bound = 0.0
+            for r in range(3):
+                bound = max(bound, abs(jac[r, 0]) + abs(jac[r, 1]) + abs(jac[r, 2]))
+            if hs * bound <= switch:
+                dp5_stages(
+                    y, hs, k[0], k[1], k[2], k[3], k[4], k[5], k[6], yt, ynew, par, quad,
+                    rec_inner, rec_outer, pocket, scratch,
+                )  # fmt: skip
+                counters[2] += 6
+                steps += 1
+                err = dp5_error(hs, k[0], k[2], k[3], k[4], k[5], k[6], scale, tol)
+                if not (err < 1e300):
+                    h = 0.1 * hs
+                    counters[1] += 1
+                    if h < h_min:
+                        return STATUS_NOT_FINITE, t, h, n_done
+                    continue
+                if err <= 1.0:
+                    fac = 0.9 * err ** (-0.17) * err_old**0.04 if err > 0.0 else 5.0
+                    fac = min(5.0, max(0.2, fac))
+                    err_old = max(err, 1e-4)
+                    t_new = t_target if clipped else t + hs
+                    while n_done < n_out - 1 and t_out[n_done] <= t_new:
+                        th = (t_out[n_done] - t) / hs
+                        dp5_dense(
+                            y, ynew, hs, th, k[0], k[2], k[3], k[4], k[5], k[6], out_states[n_done]
+                        )
+                        n_done += 1
+                    t = t_new
+                    for i in range(n):
+                        y[i] = ynew[i]
+                    if not post_step(y, par, rec_inner, rec_outer):
+                        return STATUS_BALL_ESCAPED, t, h, n_done
+                    for i in range(n):
+                        k[0, i] = k[6, i]  # FSAL
+                    counters[0] += 1
+                    if not clipped or hs * fac > h:
+                        h = hs * fac
+                else:
+                    h = hs * max(0.2, 0.9 * err ** (-0.2))
+                    counters[1] += 1
+                    if h < h_min:
+                        return STATUS_STEP_COLLAPSE, t, h, n_done
+                continue
         for r in range(3):
             for c in range(3):
                 lu[r, c] = (1.0 if r == c else 0.0) - hs * gamma * jac[r, c]

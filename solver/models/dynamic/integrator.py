@@ -73,6 +73,63 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 
 
 @njit(cache=True)
+def dp5_stages(y, hs, k1, k2, k3, k4, k5, k6, k7, yt, ynew, par, quad, rec_i, rec_o, pocket, work):
+    """One Dormand–Prince step of size ``hs`` from ``y`` with ``k1`` = f(y): the stages k2..k7
+    and the new state ``ynew`` (k7 = f(ynew)); six right-hand-side evaluations."""
+    n = y.shape[0]
+    for i in range(n):
+        yt[i] = y[i] + hs * _A21 * k1[i]
+    rhs_into(yt, par, quad, k2, rec_i, rec_o, pocket, work)
+    for i in range(n):
+        yt[i] = y[i] + hs * (_A31 * k1[i] + _A32 * k2[i])
+    rhs_into(yt, par, quad, k3, rec_i, rec_o, pocket, work)
+    for i in range(n):
+        yt[i] = y[i] + hs * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
+    rhs_into(yt, par, quad, k4, rec_i, rec_o, pocket, work)
+    for i in range(n):
+        yt[i] = y[i] + hs * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
+    rhs_into(yt, par, quad, k5, rec_i, rec_o, pocket, work)
+    for i in range(n):
+        yt[i] = y[i] + hs * (
+            _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
+        )
+    rhs_into(yt, par, quad, k6, rec_i, rec_o, pocket, work)
+    for i in range(n):
+        ynew[i] = y[i] + hs * (
+            _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
+        )
+    rhs_into(ynew, par, quad, k7, rec_i, rec_o, pocket, work)
+
+
+@njit(cache=True)
+def dp5_error(hs, k1, k3, k4, k5, k6, k7, scale, tol):
+    """Error norm of a Dormand–Prince step: max |err_i| / (tol scale_i) (NaN kept)."""
+    err = 0.0
+    for i in range(k1.shape[0]):
+        e = hs * (_E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i])
+        r = abs(e) / (tol * scale[i])
+        if r > err or r != r:  # keep a NaN: it must reach the finiteness check
+            err = r
+            if r != r:
+                break
+    return err
+
+
+@njit(cache=True)
+def dp5_dense(y, ynew, hs, th, k1, k3, k4, k5, k6, k7, out):
+    """``out`` <- the continuous extension of a Dormand–Prince step at ``th`` in [0, 1]."""
+    th1 = 1.0 - th
+    for i in range(y.shape[0]):
+        r2 = ynew[i] - y[i]
+        r3 = hs * k1[i] - r2
+        r4 = r2 - hs * k7[i] - r3
+        r5 = hs * (
+            _D1 * k1[i] + _D3 * k3[i] + _D4 * k4[i] + _D5 * k5[i] + _D6 * k6[i] + _D7 * k7[i]
+        )
+        out[i] = y[i] + th * (r2 + th1 * (r3 + th * (r4 + th1 * r5)))
+
+
+@njit(cache=True)
 def advance(
     y,
     t,
@@ -95,8 +152,8 @@ def advance(
     last, where the integration stops exactly). ``y`` is updated in place. ``counters`` (3,)
     accumulates [accepted steps, rejected steps, rhs evaluations].
 
-        Returns (status, t, h, n_done): the status code, the time reached, the step size to continue
-        with, and how many output samples were written.
+    Returns (status, t, h, n_done): the status code, the time reached, the step size to continue
+    with, and how many output samples were written.
     """
     n = y.shape[0]
     k1 = np.empty(n)
@@ -126,40 +183,13 @@ def advance(
         if t + hs >= t_end:
             hs = t_end - t
             clipped = True
-        for i in range(n):
-            yt[i] = y[i] + hs * _A21 * k1[i]
-        rhs_into(yt, par, quad, k2, rec_inner, rec_outer, pocket, scratch)
-        for i in range(n):
-            yt[i] = y[i] + hs * (_A31 * k1[i] + _A32 * k2[i])
-        rhs_into(yt, par, quad, k3, rec_inner, rec_outer, pocket, scratch)
-        for i in range(n):
-            yt[i] = y[i] + hs * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-        rhs_into(yt, par, quad, k4, rec_inner, rec_outer, pocket, scratch)
-        for i in range(n):
-            yt[i] = y[i] + hs * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-        rhs_into(yt, par, quad, k5, rec_inner, rec_outer, pocket, scratch)
-        for i in range(n):
-            yt[i] = y[i] + hs * (
-                _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
-            )
-        rhs_into(yt, par, quad, k6, rec_inner, rec_outer, pocket, scratch)
-        for i in range(n):
-            ynew[i] = y[i] + hs * (
-                _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
-            )
-        rhs_into(ynew, par, quad, k7, rec_inner, rec_outer, pocket, scratch)
+        dp5_stages(
+            y, hs, k1, k2, k3, k4, k5, k6, k7, yt, ynew, par, quad, rec_inner, rec_outer, pocket,
+            scratch,
+        )  # fmt: skip
         counters[2] += 6
         steps += 1
-        err = 0.0
-        for i in range(n):
-            e = hs * (
-                _E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i]
-            )
-            r = abs(e) / (tol * scale[i])
-            if r > err or r != r:  # keep a NaN: it must reach the finiteness check
-                err = r
-                if r != r:
-                    break
+        err = dp5_error(hs, k1, k3, k4, k5, k6, k7, scale, tol)
         if not (err < 1e300):  # NaN/inf in the new state reaches err through k7
             # NaN/inf somewhere: retry with a much smaller step, give up below h_min
             h = 0.1 * hs
@@ -176,20 +206,7 @@ def advance(
             # outputs inside the step from the continuous extension
             while n_done < n_out - 1 and t_out[n_done] <= t_new:
                 th = (t_out[n_done] - t) / hs
-                th1 = 1.0 - th
-                for i in range(n):
-                    r2 = ynew[i] - y[i]
-                    r3 = hs * k1[i] - r2
-                    r4 = r2 - hs * k7[i] - r3
-                    r5 = hs * (
-                        _D1 * k1[i]
-                        + _D3 * k3[i]
-                        + _D4 * k4[i]
-                        + _D5 * k5[i]
-                        + _D6 * k6[i]
-                        + _D7 * k7[i]
-                    )
-                    out_states[n_done, i] = y[i] + th * (r2 + th1 * (r3 + th * (r4 + th1 * r5)))
+                dp5_dense(y, ynew, hs, th, k1, k3, k4, k5, k6, k7, out_states[n_done])
                 n_done += 1
             t = t_new
             for i in range(n):

@@ -36,7 +36,7 @@ CASE_OVERRIDES = {
 DEFAULT_QUADRATURE = {LAW_SLIP_CURVE: (2, 8), LAW_RHEOLOGY: (4, 8)}
 
 #: Integration methods of the dynamic model (option ``method``).
-METHODS = ("dopri5", "imex", "rosenbrock")
+METHODS = ("dopri5", "auto", "imex", "rosenbrock")
 
 
 @dataclass(frozen=True)
@@ -75,8 +75,9 @@ class SimulationOptions:
       ROS34PW2 with an arrow-structured Jacobian (solver.models.dynamic.rosenbrock), whose step is
       not limited by the stiff traction and pocket-friction modes; "imex": additive Runge–Kutta
       ARK4(3)6L[2]SA with the cage's guiding-land film implicit (solver.models.dynamic.imex),
-      whose step is not limited by the film's squeeze damping on a cage running near its land.
-      docs/numerics.md compares them.
+      whose step is not limited by the film's squeeze damping on a cage running near its land;
+      "auto": Dormand–Prince steps, and the additive steps only where that film would limit the
+      explicit step. docs/numerics.md compares them.
     - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
       Rosenbrock method (it is also re-formed when a step fails with an older Jacobian).
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;

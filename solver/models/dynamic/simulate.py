@@ -27,7 +27,7 @@ from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
 
 from . import layout as L
-from .imex import advance_imex, ark436l2sa
+from .imex import SWITCH_BOUND, advance_imex, ark436l2sa
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
 from .integrator import (
     STATUS_BALL_ESCAPED,
@@ -179,11 +179,12 @@ def _stepper(options, par):
     ``integrator.advance``."""
     if options.method == "dopri5":
         return advance
-    if options.method == "imex":
+    if options.method in ("imex", "auto"):
         ark = ark436l2sa()
+        switch = SWITCH_BOUND if options.method == "auto" else 0.0
 
         def step_imex(*args):
-            return advance_imex(*args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order)
+            return advance_imex(*args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order, switch)
 
         return step_imex
     tab = ros34pw2()
