@@ -26,6 +26,7 @@ import time
 from pathlib import Path
 
 from solver.errors import clean_message
+from solver.models.dynamic.options import METHODS
 
 from ._output import output_problem, save_result, size_problems
 from ._output import say as _say
@@ -58,8 +59,8 @@ def register(subparsers) -> None:
     parser.add_argument("--tolerance", type=float, help="override [simulation] tolerance")
     parser.add_argument(
         "--method",
-        choices=("dopri5", "rosenbrock"),
-        help="integration method (default dopri5; docs/numerics.md)",
+        choices=METHODS,
+        help="integration method (default auto; docs/numerics.md)",
     )
     parser.add_argument(
         "--no-traction", action="store_true", help="frictionless ball-race contacts"

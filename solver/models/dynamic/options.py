@@ -70,14 +70,14 @@ class SimulationOptions:
     - ``heathcote``: evaluate the slip on the curved deformed surface (differential slip).
     - ``inner_ring_mass`` [kg]: None = estimated from the ring cross-section (width 2 D).
     - ``max_steps_per_chunk``: safety bound on the integrator steps in one chunk.
-    - ``method``: integration method. "dopri5" (default): explicit Dormand–Prince 5(4)
+    - ``method``: integration method. "dopri5": explicit Dormand–Prince 5(4)
       (solver.models.dynamic.integrator); "rosenbrock": the linearly implicit Rosenbrock-W method
       ROS34PW2 with an arrow-structured Jacobian (solver.models.dynamic.rosenbrock), whose step is
       not limited by the stiff traction and pocket-friction modes; "imex": additive Runge–Kutta
       ARK4(3)6L[2]SA with the cage's guiding-land film implicit (solver.models.dynamic.imex),
       whose step is not limited by the film's squeeze damping on a cage running near its land;
-      "auto": Dormand–Prince steps, and the additive steps only where that film would limit the
-      explicit step. docs/numerics.md compares them.
+      "auto" (default): Dormand–Prince steps, and the additive steps only where that film would
+      limit the explicit step. docs/numerics.md compares them.
     - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
       Rosenbrock method (it is also re-formed when a step fails with an older Jacobian).
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;
@@ -103,7 +103,7 @@ class SimulationOptions:
     heathcote: bool = True
     inner_ring_mass: float | None = None
     max_steps_per_chunk: int = 2_000_000
-    method: str = "dopri5"
+    method: str = "auto"
     jacobian_every: int = 10
     start: str = "quasistatic"
 
