@@ -6,6 +6,7 @@ and short runs against the explicit method."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -177,17 +178,20 @@ def test_imex_run_agrees_with_dopri5(method, chunk):
 
 
 def test_auto_takes_fewer_steps_than_dopri5_where_the_land_film_is_stiff():
-    """218 heavy case from its quasi-static start: the cage runs into its guiding land's film
-    within a few tenths of a revolution; there the switching method takes additive steps and
-    needs fewer steps and rejections than the explicit method, with the same loads."""
+    """218 heavy case with the rheology traction law from its quasi-static start: the cage runs
+    in its guiding land's film (docs/numerics.md: the film's damping sets the explicit step);
+    there the switching method takes additive steps and needs about half the steps and
+    rejections of the explicit method (0.5 revolution: 415 against 830), with the same loads."""
     inputs = to_inputs(resolve_case("218-heavy-combined"))
+    lubricant = replace(inputs.lubricant, traction_model="rheology")
+    inputs = replace(inputs, lubricant=lubricant)
     options = dict(shaft_revolutions=0.5, samples_per_revolution=60)
     runs = {
         m: simulate(inputs, options=SimulationOptions(method=m, **options))
         for m in ("dopri5", "auto")
     }
     steps = {m: ds.attrs["steps"] + ds.attrs["rejected_steps"] for m, ds in runs.items()}
-    assert steps["auto"] < 0.85 * steps["dopri5"], steps
+    assert steps["auto"] < 0.75 * steps["dopri5"], steps
     load = runs["dopri5"]["contact_load"]
     diff = np.abs(runs["auto"]["contact_load"] - load).max()
     assert float(diff) < 0.01 * float(np.abs(load).max())
