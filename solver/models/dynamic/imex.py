@@ -140,9 +140,10 @@ def _solve3(m, rhs, out):
 
 
 @njit(cache=True)
-def _cage_force(y, cb, par, scratch, out):
-    """``out`` (3,) <- force on the cage [N] from its guiding land and all its pockets at ``y``,
-    with the ring and cage frames held in ``scratch`` by the last right-hand-side evaluation."""
+def _cage_force(y, cb, par, scratch, pockets, out):
+    """``out`` (3,) <- force on the cage [N] from its guiding land and (``pockets`` True) all its
+    pockets at ``y``, with the ring and cage frames held in ``scratch`` by the last
+    right-hand-side evaluation."""
     z = int(par.ball_count)
     work = scratch.contact
     pk = scratch.pocket
@@ -151,6 +152,8 @@ def _cage_force(y, cb, par, scratch, out):
     out[0] = ld[0]
     out[1] = ld[1]
     out[2] = ld[2]
+    if not pockets:
+        return
     rot = scratch.cage_rot
     omega = scratch.cage_omega
     for j in range(z):
@@ -161,18 +164,19 @@ def _cage_force(y, cb, par, scratch, out):
 
 
 @njit(cache=True)
-def cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac):
-    """``jac`` (3, 3) <- d(cage acceleration)/d(cage velocity) [1/s] of the guiding-land and pocket
-    forces at ``y`` (forward differences of step ``dv`` [m/s]); ``base``, ``moved``: (3,) scratch.
+def cage_velocity_jacobian(y, cb, par, scratch, dv, pockets, base, moved, jac):
+    """``jac`` (3, 3) <- d(cage acceleration)/d(cage velocity) [1/s] of the guiding-land and
+    (``pockets`` True) pocket forces at ``y`` (forward differences of step ``dv`` [m/s]);
+    ``base``, ``moved``: (3,) scratch.
     The ring and cage frames are those of the last right-hand-side evaluation (the cage velocity
     does not enter them). ``y`` is restored."""
-    _cage_force(y, cb, par, scratch, base)
+    _cage_force(y, cb, par, scratch, pockets, base)
     inv = 1.0 / (par.cage_mass * dv)
     for c in range(3):
         k = cb + C_VEL + c
         keep = y[k]
         y[k] = keep + dv
-        _cage_force(y, cb, par, scratch, moved)
+        _cage_force(y, cb, par, scratch, pockets, moved)
         y[k] = keep
         for r in range(3):
             jac[r, c] = (moved[r] - base[r]) * inv
@@ -205,8 +209,8 @@ def advance_imex(
     """``integrator.advance`` with the additive pair (``ae``, ``ai``, ``b``, ``e``, ``order``) of
     :func:`ark436l2sa`: same arguments before the tableau, same returns (status, t, h, n_done).
 
-    ``switch`` > 0: a step whose size times the cage block's spectral bound (largest absolute row
-    sum of A) stays at or below ``switch`` is an explicit Dormand–Prince step
+    ``switch`` > 0: a step whose size times the spectral bound (largest absolute row sum) of the
+    land force's part of A stays at or below ``switch`` is an explicit Dormand–Prince step
     (``integrator.dp5_stages``, its own error estimate, step control and continuous extension);
     only the steps that the film's damping would make unstable or inaccurate for the explicit
     method are additive ones. ``switch`` = 0: every step is additive."""
@@ -248,8 +252,9 @@ def advance_imex(
         if t + hs >= t_target:
             hs = t_target - t
             clipped = True
-        if implicit:
-            cage_velocity_jacobian(y, cb, par, scratch, dv, base, moved, jac)
+        if implicit and switch > 0.0:
+            # the land alone decides the switch (the pockets' damping is far from stiff)
+            cage_velocity_jacobian(y, cb, par, scratch, dv, False, base, moved, jac)
         if switch > 0.0:
             bound = 0.0
             for r in range(3):
@@ -295,6 +300,8 @@ def advance_imex(
                     if h < h_min:
                         return STATUS_STEP_COLLAPSE, t, h, n_done
                 continue
+        if implicit:
+            cage_velocity_jacobian(y, cb, par, scratch, dv, True, base, moved, jac)
         for r in range(3):
             for c in range(3):
                 lu[r, c] = (1.0 if r == c else 0.0) - hs * gamma * jac[r, c]
