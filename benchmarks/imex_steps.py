@@ -11,7 +11,10 @@ components, A their 3 x 3 block of the whole right-hand side's Jacobian (forward
 step's start, evaluations not counted; solver.models.dynamic.imex, the compiled method, differences
 the land kernel alone), and a pair of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003, 139–181):
 ARK4(3)6L[2]SA (default; order 4(3), six evaluations per step) or ARK3(2)4L[2]SA (order 3(2),
-four). ``--implicit none`` runs the pair's explicit part alone. Same error norm as the solver's
+four). ``--implicit none`` runs the pair's explicit part alone; ``--implicit cage+rotation``
+adds every ball's angular velocity to the implicit slots (the traction slope on the balls'
+rotation; A the dense block of those slots, the best case of a per-ball treatment). Same error
+norm as the solver's
 integrators, PI step control. Python loop: slow, use a revolution or less.
 """
 
@@ -137,7 +140,9 @@ def run(label, traction_model, revolutions, tolerance, implicit, pair="ark4"):
     scale = state_scales(par, y)
     z, n = int(par.ball_count), y.shape[0]
     cb = L.cage_base(z)
-    idx = [cb + L.C_VEL + i for i in range(3)] if implicit == "cage" else []
+    idx = [cb + L.C_VEL + i for i in range(3)] if implicit != "none" else []
+    if implicit == "cage+rotation":  # and every ball's angular velocity (dense block, best case)
+        idx += [L.ball_base(j) + L.B_OMEGA + i for j in range(z) for i in range(3)]
     m = len(idx)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
@@ -207,7 +212,7 @@ def main(argv=None):
     parser.add_argument("--traction-model", choices=("slip_curve", "rheology"), default=None)
     parser.add_argument("--revolutions", type=float, default=1.0)
     parser.add_argument("--tolerance", type=float, default=1e-4)
-    parser.add_argument("--implicit", choices=("cage", "none"), default="cage")
+    parser.add_argument("--implicit", choices=("cage", "cage+rotation", "none"), default="cage")
     parser.add_argument("--pair", choices=list(PAIRS), default="ark4")
     args = parser.parse_args(argv)
     run(args.case, args.traction_model, args.revolutions, args.tolerance, args.implicit, args.pair)
