@@ -43,9 +43,14 @@ from .integrator import (
 from .kernels import cage_land, cage_pocket, post_step, rhs_into, rhs_work
 from .layout import BALL_STRIDE, C_VEL, RING_SIZE
 
-#: method "auto": largest step size times the cage block's spectral bound taken by an explicit
-#: Dormand–Prince step (its stability interval on the negative real axis reaches 3.3)
-SWITCH_BOUND = 1.5
+#: method "auto": largest step size times the land block's spectral bound (largest absolute row
+#: sum; about 1.2x its largest eigenvalue on the 218 heavy case) taken by an explicit
+#: Dormand–Prince step, whose stability interval on the negative real axis reaches 3.3; and the
+#: value below which explicit steps resume after an additive step (hysteresis: without it a
+#: rejected additive step hands a shrunken step to the explicit method, whose growth overshoots
+#: into a rejected additive step again). Chosen by measurement (docs/numerics.md).
+SWITCH_BOUND = 3.0
+SWITCH_BACK = 1.5
 #: whether the implicit block also holds the pockets' forces: False, the land's alone (the pockets'
 #: damping is far from stiff; with them the 218 heavy case took the same steps, 806 per
 #: revolution, and each step cost 72 more pocket evaluations)
@@ -209,6 +214,7 @@ def advance_imex(
     e,
     order,
     switch,
+    switch_back,
 ):
     """``integrator.advance`` with the additive pair (``ae``, ``ai``, ``b``, ``e``, ``order``) of
     :func:`ark436l2sa`: same arguments before the tableau, same returns (status, t, h, n_done).
@@ -217,7 +223,8 @@ def advance_imex(
     matrix A stays at or below ``switch`` is an explicit Dormand–Prince step
     (``integrator.dp5_stages``, its own error estimate, step control and continuous extension);
     only the steps that the film's damping would make unstable or inaccurate for the explicit
-    method are additive ones. ``switch`` = 0: every step is additive."""
+    method are additive ones; after an additive step, explicit steps resume only at or below
+    ``switch_back`` (< ``switch``). ``switch`` = 0: every step is additive."""
     n = y.shape[0]
     ns = b.shape[0]
     z = int(par.ball_count)
@@ -240,6 +247,7 @@ def advance_imex(
     counters[2] += 1
     dv = JACOBIAN_STEP * scale[k0]
     err_old = 1e-4
+    additive = False  # the method of the last step (switching: with hysteresis)
     steps = 0
     n_done = 0
     exponent = 0.7 / order
@@ -262,7 +270,9 @@ def advance_imex(
             bound = 0.0
             for r in range(3):
                 bound = max(bound, abs(jac[r, 0]) + abs(jac[r, 1]) + abs(jac[r, 2]))
-            if hs * bound <= switch:
+            # with hysteresis (SWITCH_BACK)
+            additive = hs * bound > (switch_back if additive else switch)
+            if not additive:
                 dp5_stages(
                     y, hs, k[0], k[1], k[2], k[3], k[4], k[5], k[6], yt, ynew, par, quad,
                     rec_inner, rec_outer, pocket, scratch,

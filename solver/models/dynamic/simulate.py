@@ -26,8 +26,8 @@ from solver.catalogue import resolve_case
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
 
+from . import imex
 from . import layout as L
-from .imex import SWITCH_BOUND, advance_imex, ark436l2sa
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
 from .integrator import (
     STATUS_BALL_ESCAPED,
@@ -180,11 +180,13 @@ def _stepper(options, par):
     if options.method == "dopri5":
         return advance
     if options.method in ("imex", "auto"):
-        ark = ark436l2sa()
-        switch = SWITCH_BOUND if options.method == "auto" else 0.0
+        ark = imex.ark436l2sa()
+        switch = (imex.SWITCH_BOUND, imex.SWITCH_BACK) if options.method == "auto" else (0.0, 0.0)
 
         def step_imex(*args):
-            return advance_imex(*args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order, switch)
+            return imex.advance_imex(
+                *args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order, *switch
+            )
 
         return step_imex
     tab = ros34pw2()
