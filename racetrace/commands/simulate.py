@@ -26,7 +26,6 @@ import time
 from pathlib import Path
 
 from solver.errors import clean_message
-from solver.models.dynamic.options import METHODS
 
 from ._output import output_problem, save_result, size_problems
 from ._output import say as _say
@@ -36,6 +35,9 @@ EXIT_DIVERGED = 4
 #: (named on stderr), or nowhere.
 EXIT_NOT_WRITTEN = 5
 EXIT_INTERRUPTED = 130
+#: solver.models.dynamic.options.METHODS, written out so that the command line does not import the
+#: numba kernels to build its parser (a test keeps the two equal)
+METHODS = ("auto", "dopri5", "imex", "rosenbrock")
 
 
 def register(subparsers) -> None:

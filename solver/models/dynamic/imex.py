@@ -1,5 +1,6 @@
 """Additive (implicit–explicit) Runge–Kutta integrator: the cage's guiding-land film implicit,
-everything else explicit; compiled with numba.
+everything else explicit; and the default method "auto" that switches between it and the explicit
+Dormand–Prince step; compiled with numba.
 
 A cage running in its guiding land near the land (eccentricity above about 0.95 of the clearance)
 is held by the film's squeeze damping, which on the light cage is an overdamped mode of the cage's
@@ -21,6 +22,11 @@ solves a 3 x 3 system. Error norm, status codes and post-step hook as in ``integ
 control with exponent 1/4. Output times inside a step are filled by cubic Hermite interpolation
 of the step's end values and slopes (local error O(h^4), no extra evaluation); the step stops
 exactly only at the last output time of each call.
+
+Method "auto" (``switch`` > 0 in :func:`advance_imex`): a step is an explicit Dormand–Prince step
+(``integrator.dp5_stages``) while its size times the spectral bound of A stays at or below
+``SWITCH_BOUND``, an additive step otherwise, with hysteresis (``SWITCH_BACK``). Where the cage
+is not near its land (the spindle cases) every step is explicit.
 """
 
 from __future__ import annotations
@@ -52,8 +58,8 @@ from .layout import BALL_STRIDE, C_VEL, RING_SIZE
 SWITCH_BOUND = 3.0
 SWITCH_BACK = 1.5
 #: whether the implicit block also holds the pockets' forces: False, the land's alone (the pockets'
-#: damping is far from stiff; with them the 218 heavy case took the same steps, 806 per
-#: revolution, and each step cost 72 more pocket evaluations)
+#: damping is far from stiff: with them the 218 heavy case takes as many steps, and each step
+#: costs 72 more pocket evaluations)
 LAND_POCKETS = False
 #: relative velocity step of the land Jacobian's forward differences (of the cage state's
 #: characteristic velocity)
