@@ -546,23 +546,38 @@ def _split_rule_sums(
     ra, rb = _rolling_slip_zeros(a, kappa, s01, o2, on)
     f1 = f2 = fn = m1 = m2 = mn = power = 0.0
     lo = -1.0
+    area_lo = -0.25 * math.pi  # plain-area primitive 0.5 (y sqrt(1 - y^2) + asin y) at lo
     for piece in range(3):
         hi = ra if piece == 0 else (rb if piece == 1 else 1.0)
         if hi - lo <= 1e-9:
             continue
         mid = 0.5 * (lo + hi)
         half = 0.5 * (hi - lo)
-        lo = hi
+        # scale the strips' weights so that the piece's plain area and load (weights sqrt(1 -
+        # y^2) and 1 - y^2 across) come out exactly: a saturated piece is then exact
+        sum_area = 0.0
+        sum_load = 0.0
         for j in range(n_y):
             y = mid + half * rule[j, SPLIT_Y]
-            wy = half * rule[j, SPLIT_Y_WEIGHT]
+            sy2 = max(1.0 - y * y, 0.0)
+            sum_area += rule[j, SPLIT_Y_WEIGHT] * math.sqrt(sy2)
+            sum_load += rule[j, SPLIT_Y_WEIGHT] * sy2
+        area_hi = 0.5 * (hi * math.sqrt(max(1.0 - hi * hi, 0.0)) + math.asin(min(hi, 1.0)))
+        load_piece = (hi - hi * hi * hi / 3.0) - (lo - lo * lo * lo / 3.0)
+        area_scale = (area_hi - area_lo) / sum_area if sum_area > 0.0 else 0.0
+        load_scale = 1.5 / math.pi * load_piece / sum_load if sum_load > 0.0 else 0.0
+        lo = hi
+        area_lo = area_hi
+        for j in range(n_y):
+            y = mid + half * rule[j, SPLIT_Y]
+            wy = rule[j, SPLIT_Y_WEIGHT]
             sy = math.sqrt(max(1.0 - y * y, 0.0))
             eta = a * y
             sphi = kappa * eta
             cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
             z = -kappa * eta * eta / (1.0 + cphi)
-            w_load = 1.5 / math.pi * sy * sy * wy
-            w_uniform = sy * wy
+            w_load = load_scale * sy * sy * wy
+            w_uniform = area_scale * sy * wy
             v1 = s01 + o2 * z - on * eta
             for i in range(n_t):
                 xi = b * sy * rule[i, SPLIT_T]

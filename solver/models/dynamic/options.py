@@ -35,6 +35,19 @@ CASE_OVERRIDES = {
 #: points are kept (two move the mean contact angles by about twice the contract's allowance).
 DEFAULT_QUADRATURE = {LAW_SLIP_CURVE: (2, 8), LAW_RHEOLOGY: (4, 8)}
 
+#: Ellipse rules (option ``ellipse_rule``): "product", the fixed product rule of
+#: solver.physics.traction.ellipse_quadrature; "split", the rule of
+#: solver.physics.traction.split_ellipse_rule, whose strips are placed per contact on the pieces of
+#: the major axis between the lines of zero rolling slip (where the rheology's saturated stress
+#: changes sign).
+ELLIPSE_RULES = ("product", "split")
+
+#: Default ellipse rule per traction law (option ``ellipse_rule`` = None and no ``quadrature``).
+DEFAULT_ELLIPSE_RULE = {LAW_SLIP_CURVE: "product", LAW_RHEOLOGY: "product"}
+
+#: Default (points along the rolling direction, strips per piece) of the split rule.
+DEFAULT_SPLIT_COUNTS = (2, 3)
+
 #: Integration methods of the dynamic model (option ``method``).
 METHODS = ("rosenbrock", "dopri5")
 
@@ -62,7 +75,11 @@ class SimulationOptions:
       the run does not settle (a settled run is analysed from its settling time on;
       solver.results.summary).
     - ``quadrature``: (points along the rolling direction, strips across the groove) of the ellipse
-      traction rule; None: :data:`DEFAULT_QUADRATURE` of the case's traction law.
+      traction rule; with ``ellipse_rule`` = "split", (points along the rolling direction, strips
+      on each piece between the lines of zero rolling slip). None: :data:`DEFAULT_QUADRATURE` of
+      the case's traction law (product rule) or :data:`DEFAULT_SPLIT_COUNTS` (split rule).
+    - ``ellipse_rule``: "product" or "split" (:data:`ELLIPSE_RULES`); None: "product" when
+      ``quadrature`` is given, else :data:`DEFAULT_ELLIPSE_RULE` of the case's traction law.
     - ``pocket_stiffness`` [N/m], ``pocket_damping_ratio``: linear ball-pocket contact law (None:
       solver.physics.cage_contact.pocket_stiffness_estimate for a glass-filled polyamide cage).
     - ``land_stiffness`` [N/m]: cage-land metal contact (None: land_contact_stiffness_estimate).
@@ -93,6 +110,7 @@ class SimulationOptions:
     chunk_samples: int = 60
     analysis_skip_fraction: float = UNSETTLED_SKIP_FRACTION
     quadrature: tuple[int, int] | None = None
+    ellipse_rule: str | None = None
     pocket_stiffness: float | None = None
     pocket_damping_ratio: float = 0.1
     land_stiffness: float | None = None
@@ -160,6 +178,14 @@ class SimulationOptions:
                     "method",
                     f"simulation option method = {self.method!r}: must be one of "
                     + ", ".join(repr(m) for m in METHODS),
+                )
+            )
+        if self.ellipse_rule is not None and self.ellipse_rule not in ELLIPSE_RULES:
+            problems.append(
+                Problem(
+                    "ellipse_rule",
+                    f"simulation option ellipse_rule = {self.ellipse_rule!r}: must be one of "
+                    + ", ".join(repr(m) for m in ELLIPSE_RULES),
                 )
             )
         if self.jacobian_every < 1:
