@@ -81,6 +81,20 @@ Rheology on the ellipse
     both parts are then exact for any node count; pressure-weighting the tau_L0 dA part instead
     (tau_L0 / p times the pressure) integrates an edge singularity and loses up to 9 % of the
     area with two points along the rolling direction.
+
+Split rule (:func:`split_ellipse_rule`)
+    Because the rheological stress saturates within a few mm/s of slip, its rolling component
+    changes sign almost as a jump across the groove where the rolling slip v1(eta) = s01 + o2
+    z(eta) - on eta does (the lines of pure rolling), and fixed strips integrate that jump only to
+    O(1 / strips). The split rule finds the zeros of v1 in (-a, a) per contact (the quadratic with
+    z ~ -kappa eta^2 / 2, one Newton step on the exact z) and puts ``strips_per_piece``
+    Gauss-Legendre strips on each of the (up to three) pieces of the major axis between them,
+    with ``n_rolling`` Gauss-Chebyshev points along each strip (the weights of the fixed rule
+    along the strip). The strip weights of each piece are scaled so that its plain area (weight
+    sqrt(1 - y^2)) and its load (weight 1 - y^2) come out exactly. The nodes move continuously
+    with the contact state (a piece shrinks to nothing before it disappears), so the integral has
+    no jumps. The kernels tell the two tables apart by their column count (``NODE_COLUMNS`` or
+    ``SPLIT_COLUMNS``).
 """
 
 from __future__ import annotations
@@ -621,7 +635,8 @@ def ellipse_traction_law(
 
     ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and
     the output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes``
-    comes from :func:`ellipse_quadrature`; ``slip_regularisation`` u_reg [m/s] >= 0.
+    comes from :func:`ellipse_quadrature` or :func:`split_ellipse_rule`; ``slip_regularisation``
+    u_reg [m/s] >= 0.
 
     At each node the surface point p = P + xi t1 + eta t2 + z(eta) n lies on the deformed surface of
     curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the
