@@ -1011,3 +1011,15 @@ def test_split_rule_rejects_bad_counts():
         tr.split_ellipse_rule(0, 3)
     with pytest.raises(ValueError, match="strips_per_piece"):
         tr.split_ellipse_rule(2, 1.5)
+
+
+@pytest.mark.parametrize("law", [tr.LAW_SLIP_CURVE, tr.LAW_RHEOLOGY])
+@pytest.mark.parametrize("load", [0.0, Q_])
+def test_split_rule_no_nan_without_slip(law, load):
+    """No slip anywhere (and no load): the split rule gives zero force and moments, no NaN."""
+    n, t1, _ = _frame(1)
+    contact = _contact(np.zeros(3), n, t1, A_, B_, load, KAPPA)
+    kin = _kin(-R_BALL * n, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
+    out = _law(contact, kin, tr.split_ellipse_rule(3, 3), law, tr.constant_traction_parameters(0.1))
+    assert np.all(np.isfinite(out))
+    assert np.all(out[0:9] == 0.0)
