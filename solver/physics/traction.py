@@ -86,14 +86,15 @@ Split rule (:func:`split_ellipse_rule`)
     Because the rheological stress saturates within a few mm/s of slip, its rolling component
     changes sign almost as a jump across the groove where the rolling slip v1(eta) = s01 + o2
     z(eta) - on eta does (the lines of pure rolling), and fixed strips integrate that jump only to
-    O(1 / strips). The split rule finds the zeros of v1 in (-a, a) per contact (the quadratic with
-    z ~ -kappa eta^2 / 2, one Newton step on the exact z) and puts ``strips_per_piece``
+    O(1 / strips). The split rule finds the zeros of v1 in (-a, a) per contact (exactly: a line
+    meets a circle, :func:`_rolling_slip_zeros`) and puts ``strips_per_piece``
     Gauss-Legendre strips on each of the (up to three) pieces of the major axis between them,
     with ``n_rolling`` Gauss-Chebyshev points along each strip (the weights of the fixed rule
     along the strip). The strip weights of each piece are scaled so that its plain area (weight
     sqrt(1 - y^2)) and its load (weight 1 - y^2) come out exactly. The nodes move continuously
-    with the contact state (a piece shrinks to nothing before it disappears), so the integral has
-    no jumps. The kernels tell the two tables apart by their column count (``NODE_COLUMNS`` or
+    with the contact state (a piece shrinks to nothing before it disappears; where the two zeros
+    have not appeared yet, the pieces meet at the point where they will), so the integral has no
+    jumps. The kernels tell the two tables apart by their column count (``NODE_COLUMNS`` or
     ``SPLIT_COLUMNS``).
 """
 
@@ -495,41 +496,38 @@ def _node_factor(
 
 @njit(cache=True, inline="always")
 def _rolling_slip_zeros(a, kappa, s01, o2, on):
-    """The zeros y = eta / a in (-1, 1) of the rolling slip v1(eta) = s01 + o2 z(eta) - on eta
-    across the major axis (lines of pure rolling), ascending; -2 for a missing zero. From z ~
-    -kappa eta^2 / 2 (a quadratic in y), each root refined by one Newton step on the exact z."""
-    qa = -0.5 * o2 * kappa * a * a
-    qb = -on * a
-    qc = s01
+    """Break points y = eta / a in (-1, 1) of the split rule, ascending, -2 for a missing one: the
+    zeros of the rolling slip v1(eta) = s01 + o2 z(eta) - on eta across the major axis (lines of
+    pure rolling). With z = sqrt(R^2 - eta^2) - R (R = 1 / kappa) they are where a line meets a
+    circle: (on^2 + o2^2) eta^2 + 2 on c eta - s01 (2 o2 R - s01) = 0, c = o2 R - s01, solved in a
+    form free of cancellation. Where the line misses the circle, both break points are its point
+    of closest approach, where the two zeros appear together, so the pieces change continuously
+    with the state. (Squaring also admits crossings of the circle's far half; they are kept as
+    break points: they cannot reach the ellipse's zeros without leaving |eta| < R > a.) Flat
+    contact: the one zero s01 / on."""
     r1 = -2.0
     r2 = -2.0
-    if qa != 0.0:
-        disc = qb * qb - 4.0 * qa * qc
-        if disc > 0.0:
-            qq = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))
-            r1 = qq / qa
-            r2 = qc / qq
-    elif qb != 0.0:
-        r1 = -qc / qb
-    r1 = _newton_rolling_zero(r1, a, kappa, s01, o2, on)
-    r2 = _newton_rolling_zero(r2, a, kappa, s01, o2, on)
+    if kappa > 0.0:
+        r = 1.0 / kappa
+        qa = on * on + o2 * o2
+        if qa > 0.0:
+            half_b = on * (o2 * r - s01)
+            qc = -s01 * (2.0 * o2 * r - s01)
+            disc = on * on * r * r + 2.0 * o2 * r * s01 - s01 * s01  # (half_b^2 - qa qc) / o2^2
+            q = 0.0
+            if disc > 0.0:
+                q = -(half_b + math.copysign(abs(o2) * math.sqrt(disc), half_b))
+            if q != 0.0:
+                r1 = q / qa / a
+                r2 = qc / q / a
+            else:  # no crossing (or a double one): the point of closest approach
+                r1 = -half_b / qa / a
+                r2 = r1
+    elif on != 0.0:
+        r1 = s01 / on / a
+    r1 = r1 if -1.0 < r1 < 1.0 else -2.0
+    r2 = r2 if -1.0 < r2 < 1.0 else -2.0
     return min(r1, r2), max(r1, r2)
-
-
-@njit(cache=True, inline="always")
-def _newton_rolling_zero(r, a, kappa, s01, o2, on):
-    """One Newton step on v1(a r) = 0 (:func:`_rolling_slip_zeros`) for r in (-1, 1); -2 when r or
-    the refined root lies outside."""
-    if not -1.0 < r < 1.0:
-        return -2.0
-    eta = a * r
-    sphi = kappa * eta
-    cphi = math.sqrt(max(1.0 - sphi * sphi, 1e-12))
-    f = s01 - o2 * kappa * eta * eta / (1.0 + cphi) - on * eta
-    fp = -on * a - o2 * kappa * a * eta / cphi
-    if fp != 0.0:
-        r -= f / fp
-    return r if -1.0 < r < 1.0 else -2.0
 
 
 @njit(cache=True)

@@ -949,29 +949,41 @@ def test_split_rule_uniform_sliding_force_is_q_mu(counts, kappa):
 
 def test_rolling_slip_zeros_match_a_root_finder():
     """The lines of zero rolling slip v1(eta) = s01 + o2 z(eta) - on eta (z on the deformed surface
-    of curvature kappa) against brentq on the exact v1: within 2e-4 of the half-width after the one
-    Newton step (the saturated stress turns over a band of about 1e-2 there; the quadratic
-    estimate alone is off by up to 1e-2 at this curvature, kappa a = 0.55)."""
+    of curvature kappa) against brentq on the exact v1, to 1e-9 of the half-width; without a zero,
+    both break points sit where v1 comes closest to zero (where the two zeros will appear)."""
     from scipy import optimize
 
     a, kappa = 1.2e-3, 1.0 / 2.2e-3
+
+    def v1(y, s01, o2, on, kappa=kappa):
+        eta = a * y
+        z = math.sqrt(1.0 / kappa**2 - eta**2) - 1.0 / kappa if kappa > 0.0 else 0.0
+        return s01 + o2 * z - on * eta
+
     counts = []
-    for s01, o2, on in ((0.05, 3000.0, 300.0), (-0.2, 2500.0, -100.0), (0.01, 0.0, 500.0)):
-
-        def v1(y, s01=s01, o2=o2, on=on):
-            eta = a * y
-            return s01 + o2 * (math.sqrt(1.0 / kappa**2 - eta**2) - 1.0 / kappa) - on * eta
-
+    for s01, o2, on, k in (
+        (0.05, 3000.0, 300.0, kappa),
+        (-0.2, 2500.0, -100.0, kappa),
+        (0.01, 0.0, 500.0, kappa),
+        (0.1, 800.0, -400.0, 0.0),
+    ):
         ys = np.linspace(-1.0, 1.0, 2001)
-        vals = np.array([v1(y) for y in ys])
+        vals = np.array([v1(y, s01, o2, on, k) for y in ys])
         flips = np.flatnonzero(np.sign(vals[1:]) != np.sign(vals[:-1]))
-        roots = sorted(optimize.brentq(v1, ys[i], ys[i + 1], xtol=1e-14) for i in flips)
-        lo, hi = tr._rolling_slip_zeros(a, kappa, s01, o2, on)
-        found = [r for r in (lo, hi) if r > -1.5]
-        assert len(found) == len(roots)
-        np.testing.assert_allclose(found, roots, atol=2e-4)
+        roots = sorted(
+            optimize.brentq(v1, ys[i], ys[i + 1], args=(s01, o2, on, k), xtol=1e-14) for i in flips
+        )
+        lo, hi = tr._rolling_slip_zeros(a, k, s01, o2, on)
+        found = sorted({r for r in (lo, hi) if r > -1.5})  # a double break point counts once
         counts.append(len(roots))
-    assert counts == [2, 0, 1]
+        if roots:
+            assert len(found) == len(roots)
+            np.testing.assert_allclose(found, roots, atol=1e-9)
+        else:  # the closest approach: a minimum of |v1| inside the ellipse
+            assert lo == hi and abs(v1(lo, s01, o2, on, k)) == pytest.approx(
+                np.min(np.abs(vals)), rel=1e-3
+            )
+    assert counts == [2, 0, 1, 1]
 
 
 def test_split_rule_converges_to_the_independent_integral():
@@ -1023,3 +1035,38 @@ def test_split_rule_no_nan_without_slip(law, load):
     out = _law(contact, kin, tr.split_ellipse_rule(3, 3), law, tr.constant_traction_parameters(0.1))
     assert np.all(np.isfinite(out))
     assert np.all(out[0:9] == 0.0)
+
+
+@pytest.mark.parametrize("kappa", [0.0, KAPPA])
+def test_split_rule_is_continuous_where_lines_of_pure_rolling_appear(kappa):
+    """As the centre slip is swept, a line of pure rolling enters the ellipse at an edge (flat
+    contact) or two of them appear together (curved contact, where the parabola of the rolling slip
+    touches zero): the split rule's traction changes smoothly through it, with no step larger than
+    twice the typical change between neighbouring sweep points."""
+    n, t1, t2 = _frame(3)
+    P = np.array([0.0, 0.025, 0.0])
+    cb = P - R_BALL * n
+    contact = _contact(P, n, t1, A_, B_, Q_, kappa)
+    spin, roll = 300.0, 4000.0 if kappa > 0.0 else 0.0
+    # v1(eta) = s01 + roll z(eta) - spin eta: zero at the edge eta = -a (flat) or at the vertex
+    if kappa > 0.0:
+        eta_v = -spin / (roll * kappa)
+        s_edge = spin * eta_v + 0.5 * roll * kappa * eta_v**2
+    else:
+        s_edge = -spin * A_
+    sweep = s_edge + np.linspace(-0.02, 0.02, 81) * abs(s_edge)
+    forces = []
+    for s01 in sweep:
+        # the ball's rolling adds R roll t1 at P: the ball velocity makes the centre slip s01
+        vb = (s01 - R_BALL * roll) * t1 + 0.01 * t2
+        kin = _kin(cb, vb, spin * n + roll * t2, np.zeros(3), np.zeros(3), np.zeros(3))
+        out = _law(contact, kin, tr.split_ellipse_rule(3, 3))
+        forces.append(out[tr.TR_FORCE : tr.TR_FORCE + 3])
+    breaks = [
+        len({r for r in tr._rolling_slip_zeros(A_, kappa, s01, roll, spin) if r > -1.5})
+        for s01 in (sweep[0], sweep[-1])
+    ]
+    assert breaks[0] != breaks[-1]  # the sweep passes the change of pieces
+    steps = np.linalg.norm(np.diff(np.array(forces), axis=0), axis=1)
+    assert np.all(np.isfinite(steps))
+    assert steps.max() < 2.0 * np.median(steps)
