@@ -502,9 +502,9 @@ def _rolling_slip_zeros(a, kappa, s01, o2, on):
     circle: (on^2 + o2^2) eta^2 + 2 on c eta - s01 (2 o2 R - s01) = 0, c = o2 R - s01, solved in a
     form free of cancellation. Where the line misses the circle, both break points are its point
     of closest approach, where the two zeros appear together, so the pieces change continuously
-    with the state. (Squaring also admits crossings of the circle's far half; they are kept as
-    break points: they cannot reach the ellipse's zeros without leaving |eta| < R > a.) Flat
-    contact: the one zero s01 / on."""
+    with the state. (Squaring also admits crossings of the circle's far half, z < -R; they are kept
+    as break points, which keeps the pieces continuous and costs no accuracy.) Flat contact: the
+    one zero s01 / on."""
     r1 = -2.0
     r2 = -2.0
     if kappa > 0.0:
