@@ -25,6 +25,7 @@ from solver.case.validate import run_length_problems
 from solver.catalogue import resolve_case
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
+from solver.physics.traction import NODE_COLUMNS
 
 from . import imex
 from . import layout as L
@@ -87,7 +88,7 @@ def state_scales(par, y0: np.ndarray) -> np.ndarray:
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     from .kernels import rhs
 
-    rhs(y0, par, np.zeros((1, 4)), np.zeros(n), rec_i, rec_o, np.zeros(z))  # quadrature weight 0
+    rhs(y0, par, np.zeros((1, NODE_COLUMNS)), np.zeros(n), rec_i, rec_o, np.zeros(z))  # weight 0
     defl = np.concatenate((rec_i[:, L.K_DEFLECTION], rec_o[:, L.K_DEFLECTION]))
     load = np.concatenate((rec_i[:, L.K_ELASTIC], rec_o[:, L.K_ELASTIC]))
     k = int(np.argmax(defl))
