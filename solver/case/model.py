@@ -112,7 +112,8 @@ class Case:
     holds the schema's default oil, :meth:`to_toml` writes it as comments and the dynamic result
     says that the default oil was used. ``traction_given`` is True when the file has a
     ``lubricant.traction`` table (the slip curve): otherwise ``lubricant.traction`` holds the
-    schema's default curve, which :meth:`to_dict` leaves out and :meth:`to_toml` writes as a comment.
+    schema's default curve, which :meth:`to_dict` leaves out and :meth:`to_toml` writes as a
+    comment.
     """
 
     title: str
@@ -167,7 +168,7 @@ class Case:
                 Problem(
                     "lubricant.traction",
                     f'lubricant.traction is given but lubricant.traction_model = "{model}" does '
-                    'not read it (the traction comes from the oil\'s rheology); set '
+                    "not read it (the traction comes from the oil's rheology); set "
                     'lubricant.traction_model = "slip_curve" to use the table, or remove the table',
                     ("lubricant.traction_model",),
                 )
