@@ -438,7 +438,7 @@ def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
     return film, f_ehl + 0.1875 * par.hysteresis * q * b / rx
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ball_race_contact(
     y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
 ):
@@ -578,7 +578,7 @@ def cage_frame(y, cb, rot, omega):
     _then_about_x(rot, math.cos(angle), math.sin(angle))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     """Ball ``j`` against its cage pocket through the kernel of solver.physics.cage_contact.
 
