@@ -77,6 +77,7 @@ from solver.physics.traction import (
     ellipse_traction_law,
 )
 
+from .borrow import borrowed
 from .layout import (
     B_OMEGA,
     B_POS,
@@ -816,7 +817,37 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
 
 @njit(cache=True)
 def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
-    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation."""
+    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
+    evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
+    and slices of them cost no atomic reference counts."""
+    _rhs_borrowed(
+        borrowed(y),
+        par,
+        borrowed(quad),
+        borrowed(dydt),
+        borrowed(rec_inner),
+        borrowed(rec_outer),
+        borrowed(pocket),
+        RhsWork(
+            borrowed(scratch.inner_rot),
+            borrowed(scratch.inner_origin),
+            borrowed(scratch.inner_vel),
+            borrowed(scratch.inner_omega),
+            borrowed(scratch.outer_rot),
+            borrowed(scratch.outer_omega),
+            borrowed(scratch.zero3),
+            borrowed(scratch.cage_rot),
+            borrowed(scratch.cage_omega),
+            borrowed(scratch.pocket),
+            borrowed(scratch.land),
+            borrowed(scratch.contact),
+        ),
+    )
+
+
+@njit(cache=True)
+def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
+    """Body of :func:`rhs_into`, on the views it borrows."""
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
     cb = rb + RING_SIZE
