@@ -284,16 +284,17 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     """Contact geometry of a ball with centre ``pb`` (inertial) in a groove of the ring with
     orientation ``R`` and origin ``o``.
 
-    Returns (delta [m], alpha [rad], ring-frame azimuth of the ball phi, ring-frame contact point
-    (3), inertial normal n (3), inertial contact point P (3), inertial groove centre (3), rolling
-    direction t1 (3), (cos phi, sin phi), (cos alpha, sin alpha)). The normal points from the
-    groove centre through the ball centre to the contact."""
+    Returns (delta [m], the arguments (y, x) of atan2 for the contact angle alpha and for the
+    ring-frame azimuth of the ball phi (4), ring-frame contact point (3), inertial normal n (3),
+    inertial contact point P (3), inertial groove centre (3), rolling direction t1 (3),
+    (cos phi, sin phi), (cos alpha, sin alpha)). The normal points from the groove centre through
+    the ball centre to the contact. The angles themselves are left to the caller: only the
+    observed evaluations record them."""
     dx, dy, dz = pb[0] - o[0], pb[1] - o[1], pb[2] - o[2]
     # ball centre in ring-frame components
     cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
     cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
     cz = R[0, 2] * dx + R[1, 2] * dy + R[2, 2] * dz
-    phi = math.atan2(cz, cy)
     inv_rho = 1.0 / math.sqrt(cy * cy + cz * cz)
     cph, sph = cy * inv_rho, cz * inv_rho
     # groove curvature centre at that azimuth, and the contact normal
@@ -303,7 +304,6 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     nx, ny, nz = ex / length, ey / length, ez / length
     delta = length - (rg - rball)
     n_rho = ny * cph + nz * sph
-    alpha = math.atan2(sgn * nx, sgn * n_rho)
     # cos and sin of alpha without evaluating them: n lies in the meridional plane (e_x, e_rho)
     inv_r = 1.0 / math.sqrt(nx * nx + n_rho * n_rho)
     ca, sa = sgn * n_rho * inv_r, sgn * nx * inv_r
@@ -316,8 +316,7 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     t1 = _to_inertial(R, 0.0, -sph, cph)
     return (
         delta,
-        alpha,
-        phi,
+        (sgn * nx, sgn * n_rho, cz, cy),
         (prx, pry, prz),
         ni,
         (o[0] + pi_[0], o[1] + pi_[1], o[2] + pi_[2]),
@@ -441,12 +440,14 @@ def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
 
 @njit(cache=True, inline="always")
 def ball_race_contact(
-    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
+    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work, observed
 ):
     """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
 
     ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
-    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
+    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*). ``observed``
+    False (the integrator's evaluations): ``rec`` gets only what the forces and the integrator's
+    checks need; the contact angle, raceway azimuth and elastic load are NaN there.
     """
     dball = par.ball_diameter
     xc, rc, rg, conf, sgn = _groove(par, is_inner)
@@ -456,7 +457,7 @@ def ball_race_contact(
     o = (ring_origin[0], ring_origin[1], ring_origin[2])
     vr = (ring_vel[0], ring_vel[1], ring_vel[2])
     wr = (ring_omega[0], ring_omega[1], ring_omega[2])
-    delta, alpha, phi, pr, n, p, g, t1, trig_phi, trig_alpha = _contact_geometry(
+    delta, angle_args, pr, n, p, g, t1, trig_phi, trig_alpha = _contact_geometry(
         pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
     )
     slide, spin, roll, entrain, axis = _contact_kinematics(
@@ -468,8 +469,13 @@ def ball_race_contact(
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
-    rec[K_ANGLE] = alpha
-    rec[K_AZIMUTH] = phi  # the contact point lies in the ball centre's meridional plane
+    if observed:
+        rec[K_ANGLE] = math.atan2(angle_args[0], angle_args[1])
+        # the contact point lies in the ball centre's meridional plane
+        rec[K_AZIMUTH] = math.atan2(angle_args[2], angle_args[3])
+    else:
+        rec[K_ANGLE] = math.nan
+        rec[K_AZIMUTH] = math.nan
     for i in range(3):
         rec[K_POINT + i] = pr[i]
         rec[K_NORMAL + i] = n[i]
@@ -495,7 +501,7 @@ def ball_race_contact(
     ddelta = _approach_rate(vb, o, vr, wr, g, n)
     q = damped_normal_force(delta, ddelta, kh, par.damping_ratio, par.ball_mass)
     rec[K_LOAD] = q
-    rec[K_ELASTIC] = kh * delta**1.5
+    rec[K_ELASTIC] = kh * delta**1.5 if observed else math.nan
     if not q > 0.0:  # unloaded, or NaN from a non-finite state (kept in rec for the integrator)
         return
     sa_, sb_, _, pmax = ellipse_from_coefficients(q, kappa, big_k, big_e, csum, eprime)
@@ -812,14 +818,16 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
     (Z,) receive the contact records and pocket normal forces of this evaluation.
     :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
-    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work())
+    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work(), True)
 
 
 @njit(cache=True)
-def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
+def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
     """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
     evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
-    and slices of them cost no atomic reference counts."""
+    and slices of them cost no atomic reference counts. ``observed`` False (the integrator's
+    stages): the records hold only what the forces and ``post_step`` need (contact angle,
+    raceway azimuth and elastic load NaN; see :func:`ball_race_contact`)."""
     _rhs_borrowed(
         borrowed(y),
         par,
@@ -828,6 +836,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
         borrowed(rec_inner),
         borrowed(rec_outer),
         borrowed(pocket),
+        observed,
         RhsWork(
             borrowed(scratch.inner_rot),
             borrowed(scratch.inner_origin),
@@ -846,7 +855,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
 
 
 @njit(cache=True)
-def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
+def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, scratch):
     """Body of :func:`rhs_into`, on the views it borrows."""
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
@@ -876,8 +885,8 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
         jb = BALL_STRIDE * j
         ri = rec_inner[j]
         ro = rec_outer[j]
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work)
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work, observed)
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work, observed)
         fx = ri[K_F_BALL] + ro[K_F_BALL]
         fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
         fz = ri[K_F_BALL + 2] + ro[K_F_BALL + 2] - mb * g
@@ -1004,8 +1013,9 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     e = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, rec_inner[j], work)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, rec_outer[j], work)
+        ri, ro = rec_inner[j], rec_outer[j]
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work, True)
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work, True)
         for rec in (rec_inner[j], rec_outer[j]):
             d = rec[K_DEFLECTION]
             if d > 0.0:
