@@ -43,13 +43,8 @@ from solver.physics.cage_contact import (
     pocket_contact,
 )
 from solver.physics.drag import cage_drag_moment_from
-from solver.physics.hertz_fast import (
-    curvature_sum_and_difference_fast,
-    ellipse_from_coefficients,
-    equivalent_radii_fast,
-    hertz_coefficients_fast,
-    stiffness_from_coefficients,
-)
+from solver.physics.hertz_fast import equivalent_radii_fast
+from solver.physics.hertz_race import race_coefficients, race_coefficients_direct
 from solver.physics.rheology import film_and_rolling_force
 from solver.physics.traction import (
     CONTACT_SIZE,
@@ -328,14 +323,16 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
 
 
 @njit(cache=True, inline="always")
-def _hertz(dball, conf, gamma, is_inner, eprime):
-    """(R_x, R_y, Sigma rho, kappa, K(m), E(m), K [N/m^1.5]) of a ball-groove contact from the
-    tabulated exact solution of solver.physics.hertz_fast (one table look-up)."""
+def _hertz(dball, conf, cos_alpha, dm, is_inner, eprime, table):
+    """(R_x, R_y [m], kappa, K [N/m^1.5], A, B [m^(2/3)]) of a ball-groove contact at contact
+    angle cosine ``cos_alpha``: one look-up in the race's table of solver.physics.hertz_race
+    (semi-axes a = A (Q/E')^(1/3), b = B (Q/E')^(1/3)), its closed forms outside the table."""
+    gamma = dball * cos_alpha / dm
     rx, ry = equivalent_radii_fast(dball, conf, gamma, is_inner)
-    csum, cdiff = curvature_sum_and_difference_fast(dball, conf, gamma, is_inner)
-    kappa, big_k, big_e = hertz_coefficients_fast(cdiff)
-    k = stiffness_from_coefficients(kappa, big_k, big_e, csum, eprime)
-    return rx, ry, csum, kappa, big_k, big_e, k
+    kappa, s, ca, cb = race_coefficients(table, cos_alpha)
+    if not s == s:
+        kappa, s, ca, cb = race_coefficients_direct(dball, conf, gamma, is_inner)
+    return rx, ry, kappa, s * eprime, ca, cb
 
 
 @njit(cache=True, inline="always")
@@ -440,11 +437,25 @@ def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
 
 @njit(cache=True, inline="always")
 def ball_race_contact(
-    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work, observed
+    y,
+    jb,
+    ring_rot,
+    ring_origin,
+    ring_vel,
+    ring_omega,
+    is_inner,
+    par,
+    table,
+    quad,
+    rec,
+    work,
+    observed,
 ):
     """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
 
-    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
+    ``table``: the race's Hertz table (``par.inner_hertz`` or ``par.outer_hertz``, of
+    solver.physics.hertz_race); ``quad``: node table of
+    :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
     array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*). ``observed``
     False (the integrator's evaluations): ``rec`` gets only what the forces and the integrator's
     checks need; the contact angle, raceway azimuth and elastic load are NaN there.
@@ -463,9 +474,10 @@ def ball_race_contact(
     slide, spin, roll, entrain, axis = _contact_kinematics(
         pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, ring_rot, sgn
     )
-    gamma = dball * trig_alpha[0] / par.pitch_diameter
     eprime = par.eprime
-    rx, ry, csum, kappa, big_k, big_e, kh = _hertz(dball, conf, gamma, is_inner, eprime)
+    rx, ry, kappa, kh, coef_a, coef_b = _hertz(
+        dball, conf, trig_alpha[0], par.pitch_diameter, is_inner, eprime, table
+    )
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
@@ -504,7 +516,10 @@ def ball_race_contact(
     rec[K_ELASTIC] = kh * delta**1.5 if observed else math.nan
     if not q > 0.0:  # unloaded, or NaN from a non-finite state (kept in rec for the integrator)
         return
-    sa_, sb_, _, pmax = ellipse_from_coefficients(q, kappa, big_k, big_e, csum, eprime)
+    q13 = np.cbrt(q / eprime)
+    sa_ = coef_a * q13
+    sb_ = coef_b * q13
+    pmax = 1.5 * q / (math.pi * sa_ * sb_)
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
     rec[K_PMAX] = pmax
@@ -877,6 +892,8 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
     crot = scratch.cage_rot
     come = scratch.cage_omega
     cage_frame(y, cb, crot, come)
+    hi = borrowed(par.inner_hertz)
+    ho = borrowed(par.outer_hertz)
     frx = fry = frz = 0.0
     mrx = mry = mrz = 0.0
     fcx = fcy = fcz = 0.0
@@ -885,8 +902,8 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
         jb = BALL_STRIDE * j
         ri = rec_inner[j]
         ro = rec_outer[j]
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work, observed)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work, observed)
+        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, hi, quad, ri, work, observed)
+        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, ho, quad, ro, work, observed)
         fx = ri[K_F_BALL] + ro[K_F_BALL]
         fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
         fz = ri[K_F_BALL + 2] + ro[K_F_BALL + 2] - mb * g
@@ -1014,8 +1031,12 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     for j in range(z):
         jb = BALL_STRIDE * j
         ri, ro = rec_inner[j], rec_outer[j]
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work, True)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work, True)
+        ball_race_contact(
+            y, jb, irot, iorg, ivel, iome, True, par, par.inner_hertz, quad, ri, work, True
+        )
+        ball_race_contact(
+            y, jb, orot, zero3, zero3, oome, False, par, par.outer_hertz, quad, ro, work, True
+        )
         for rec in (rec_inner[j], rec_outer[j]):
             d = rec[K_DEFLECTION]
             if d > 0.0:

@@ -21,6 +21,7 @@ from solver.physics.cage_contact import (
     pocket_stiffness_estimate,
 )
 from solver.physics.drag import cage_drag_coefficients
+from solver.physics.hertz_race import race_table
 from solver.physics.traction import (
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
@@ -61,6 +62,8 @@ class ModelParams(NamedTuple):
     inner_conformity: float  # f_i = r_i / D
     outer_conformity: float  # f_o
     eprime: float  # effective modulus E' [Pa]
+    inner_hertz: np.ndarray  # Hertz table of the inner race (solver.physics.hertz_race.race_table)
+    outer_hertz: np.ndarray  # of the outer race
     # ---- rings, loads and modes
     inner_speed: float  # inner ring speed [rad/s]
     outer_speed: float  # outer ring speed [rad/s]
@@ -211,6 +214,8 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         inner_conformity=g.inner_conformity,
         outer_conformity=g.outer_conformity,
         eprime=g.effective_modulus,
+        inner_hertz=race_table(D, dm, g.inner_conformity, True),
+        outer_hertz=race_table(D, dm, g.outer_conformity, False),
         inner_speed=op.inner_ring_speed,
         outer_speed=op.outer_ring_speed,
         ring_mass=ring_mass,
