@@ -72,7 +72,7 @@ from solver.physics.traction import (
     ellipse_traction_law,
 )
 
-from .borrow import borrowed
+from .borrow import borrowed, borrowed_record
 from .layout import (
     B_OMEGA,
     B_POS,
@@ -845,7 +845,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
     raceway azimuth and elastic load NaN; see :func:`ball_race_contact`)."""
     _rhs_borrowed(
         borrowed(y),
-        par,
+        borrowed_record(par),
         borrowed(quad),
         borrowed(dydt),
         borrowed(rec_inner),
@@ -892,8 +892,8 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
     crot = scratch.cage_rot
     come = scratch.cage_omega
     cage_frame(y, cb, crot, come)
-    hi = borrowed(par.inner_hertz)
-    ho = borrowed(par.outer_hertz)
+    hi = par.inner_hertz
+    ho = par.outer_hertz
     frx = fry = frz = 0.0
     mrx = mry = mrz = 0.0
     fcx = fcy = fcz = 0.0
