@@ -869,9 +869,11 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
     )
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, scratch):
-    """Body of :func:`rhs_into`, on the views it borrows."""
+    """Body of :func:`rhs_into`, on the views it borrows. Compiled with numpy's error model: a
+    division by zero gives inf or NaN (which the integrator's finiteness check turns into a
+    failed step) instead of a test and a branch to an exception before every division."""
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
     cb = rb + RING_SIZE
