@@ -837,12 +837,12 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
 
 
 @njit(cache=True)
-def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
+def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed=True):
     """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
     evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
-    and slices of them cost no atomic reference counts. ``observed`` False (the integrator's
-    stages): the records hold only what the forces and ``post_step`` need (contact angle,
-    raceway azimuth and elastic load NaN; see :func:`ball_race_contact`)."""
+    and slices of them cost no atomic reference counts. ``observed`` False (integrators' stages,
+    which pass it explicitly): the records hold only what the forces and ``post_step`` need
+    (contact angle, raceway azimuth and elastic load NaN; see :func:`ball_race_contact`)."""
     _rhs_borrowed(
         borrowed(y),
         borrowed_record(par),
