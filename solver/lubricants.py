@@ -19,6 +19,12 @@ through the project's tools states). Documents:
   lubricants at high pressure, J. Lubr. Technol. 101 (1979) 251-257: the form of the rheological
   law (Eyring stress, film shear modulus, limiting shear stress growing with pressure); the
   numbers given to each oil are estimates of the class, not values read from these papers.
+- [VEO] "Observations of viscoelastic behaviour of an elastohydrodynamic lubricant film", abstract
+  (scilit record c72484bb7d8f02b302ce42281110aa4a): a high-viscosity mineral oil at 23 degC has an
+  effective elastic shear modulus of 0.1 to 1.0 GPa over 1.0 to 2.0 GPa contact pressure.
+
+No published traction curve with numbers was found to fit these parameters to (the search record
+is in docs/case-format.md, "Validation against a published traction curve").
 """
 
 from __future__ import annotations
@@ -94,7 +100,8 @@ _COMMON = {
     "eyring_stress_MPa": _RHEOLOGY_ESTIMATE,
     "limiting_shear_stress_MPa": _RHEOLOGY_ESTIMATE,
     "limiting_shear_coefficient": _RHEOLOGY_ESTIMATE,
-    "film_shear_modulus_GPa": _RHEOLOGY_ESTIMATE,
+    "film_shear_modulus_GPa": _RHEOLOGY_ESTIMATE
+    + "; inside the 0.1-1.0 GPa measured for a mineral oil at 23 degC and 1-2 GPa [VEO]",
     "thermal_conductivity_W_mK": "ESTIMATE: typical of lubricating oils (0.12-0.16 W/(m K))",
 }
 

@@ -1,5 +1,5 @@
-"""``racetrace quasistatic CASE [--output result.nc] [--json]``: the Jones–Harris quasi-static
-solution.
+"""``racetrace quasistatic CASE [--output result.nc] [--json]`` (also ``racetrace solve``): the
+Jones–Harris quasi-static solution.
 
 Default output is a readable table with units, followed by the trajectory metrics
 (:mod:`racetrace.metrics`); ``--json`` prints a machine-parseable summary instead (the metrics
@@ -31,6 +31,7 @@ EXIT_NOT_WRITTEN = 5
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
         "quasistatic",
+        aliases=["solve"],
         help="solve the quasi-static (Jones-Harris) model of a case",
         description="Solve the quasi-static Jones-Harris model of a case (file or catalogue name) "
         "and print the load distribution; optionally save the results Dataset as NetCDF.",

@@ -37,6 +37,22 @@ def run(*args):
     )
 
 
+def test_solve_is_the_same_command():
+    solve = subprocess.run(
+        [sys.executable, "-m", "racetrace", "solve", "spindle-combined-load", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert solve.returncode == 0, solve.stderr
+    quasistatic = run("spindle-combined-load", "--json")
+    assert json.loads(solve.stdout) == json.loads(quasistatic.stdout)
+    listed = subprocess.run(
+        [sys.executable, "-m", "racetrace", "--help"], capture_output=True, text=True, timeout=60
+    )
+    assert "quasistatic (solve)" in listed.stdout
+
+
 def test_table_for_a_catalogue_case():
     result = run("spindle-combined-load")
     assert result.returncode == 0, result.stderr

@@ -183,6 +183,19 @@ def test_every_named_oil_value_has_a_source_or_is_marked_an_estimate():
     assert "pressure_viscosity_per_GPa" not in estimated_keys("spindle-mineral-vg32")
 
 
+def test_named_oil_film_shear_modulus_lies_in_the_measured_range_its_source_cites():
+    """KEY_SOURCES says each oil's film shear modulus G lies inside the 0.1-1.0 GPa measured for a
+    high-viscosity mineral oil at 23 degC and 1.0-2.0 GPa contact pressure ([VEO]: abstract of
+    "Observations of viscoelastic behaviour of an elastohydrodynamic lubricant film", scilit
+    record c72484bb7d8f02b302ce42281110aa4a). The value stays an estimate (other oils, other
+    temperatures); this keeps the stated bound true."""
+    from solver.lubricants import KEY_SOURCES, OILS, lubricant_table
+
+    for name in OILS:
+        assert "[VEO]" in KEY_SOURCES[name]["film_shear_modulus_GPa"], name
+        assert 0.1 <= lubricant_table(name)["film_shear_modulus_GPa"] <= 1.0, name
+
+
 E_PRIME, R_X, KAPPA = 2.28e11, 9.5e-3, 10.0  # steel ball-race contact: E', R_x [m], a / b
 
 
