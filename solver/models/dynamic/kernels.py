@@ -45,7 +45,7 @@ from solver.physics.cage_contact import (
 from solver.physics.drag import cage_drag_moment_from
 from solver.physics.hertz_fast import equivalent_radii_fast
 from solver.physics.hertz_race import race_coefficients, race_coefficients_direct
-from solver.physics.rheology import film_and_rolling_force
+from solver.physics.rheology import film_and_rolling_from_factors
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -324,15 +324,16 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
 
 @njit(cache=True, inline="always")
 def _hertz(dball, conf, cos_alpha, dm, is_inner, eprime, table):
-    """(R_x, R_y [m], kappa, K [N/m^1.5], A, B [m^(2/3)]) of a ball-groove contact at contact
-    angle cosine ``cos_alpha``: one look-up in the race's table of solver.physics.hertz_race
-    (semi-axes a = A (Q/E')^(1/3), b = B (Q/E')^(1/3)), its closed forms outside the table."""
+    """(R_x, R_y [m], kappa, K [N/m^1.5], A, B [m^(2/3)], film ellipticity factor, rolling
+    ellipticity logarithm) of a ball-groove contact at contact angle cosine ``cos_alpha``: one
+    look-up in the race's table of solver.physics.hertz_race (semi-axes a = A (Q/E')^(1/3),
+    b = B (Q/E')^(1/3)), its closed forms outside the table."""
     gamma = dball * cos_alpha / dm
     rx, ry = equivalent_radii_fast(dball, conf, gamma, is_inner)
-    kappa, s, ca, cb = race_coefficients(table, cos_alpha)
+    kappa, s, ca, cb, film_k, rolling_k = race_coefficients(table, cos_alpha)
     if not s == s:
-        kappa, s, ca, cb = race_coefficients_direct(dball, conf, gamma, is_inner)
-    return rx, ry, kappa, s * eprime, ca, cb
+        kappa, s, ca, cb, film_k, rolling_k = race_coefficients_direct(dball, conf, gamma, is_inner)
+    return rx, ry, kappa, s * eprime, ca, cb, film_k, rolling_k
 
 
 @njit(cache=True, inline="always")
@@ -417,17 +418,19 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, 
 
 
 @njit(cache=True, inline="always")
-def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
+def _film_and_rolling(par, entrain, slide, rx, q, film_k, rolling_k, b, pmax):
     """(central film [m], rolling resistance force [N]) of a loaded contact: Hamrock-Dowson film
     and hydrodynamic inlet force at the inlet viscosity, both reduced for inlet shear heating
-    (solver.physics.rheology.film_and_rolling_force), plus the elastic hysteresis force
+    (solver.physics.rheology.film_and_rolling_from_factors, with the ellipticity terms
+    ``film_k``, ``rolling_k`` of the race table), plus the elastic hysteresis force
     F_h = 3/16 alpha_h Q b / R_x (physics.md §2.6.5)."""
-    film, _, f_ehl = film_and_rolling_force(
+    film, _, f_ehl = film_and_rolling_from_factors(
         entrain,
         slide / entrain if entrain > 0.0 else 0.0,
         q,
         rx,
-        kappa,
+        film_k,
+        rolling_k,
         pmax,
         par.eprime,
         par.rheology,
@@ -475,7 +478,7 @@ def ball_race_contact(
         pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, ring_rot, sgn
     )
     eprime = par.eprime
-    rx, ry, kappa, kh, coef_a, coef_b = _hertz(
+    rx, ry, _, kh, coef_a, coef_b, film_k, rolling_k = _hertz(
         dball, conf, trig_alpha[0], par.pitch_diameter, is_inner, eprime, table
     )
     for i in range(K_F_BALL, K_M_RING + 3):
@@ -523,7 +526,7 @@ def ball_race_contact(
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
     rec[K_PMAX] = pmax
-    film, fr = _film_and_rolling(par, entrain, slide, rx, q, kappa, sb_, pmax)
+    film, fr = _film_and_rolling(par, entrain, slide, rx, q, film_k, rolling_k, sb_, pmax)
     rec[K_FILM] = film
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
     fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]

@@ -8,7 +8,12 @@ import pytest
 from numba import njit
 
 from solver.physics import hertz
-from solver.physics.hertz_race import RACE_TABLE_NODES, race_coefficients, race_table
+from solver.physics.hertz_race import (
+    RACE_TABLE_NODES,
+    race_coefficients,
+    race_coefficients_direct,
+    race_table,
+)
 
 STATED_BOUND = 1e-10  # the accuracy stated in the module docstring
 
@@ -24,9 +29,10 @@ BEARINGS = [
 @njit(cache=True)
 def _sweep(table, c):
     """Called from another njit function, as the dynamic model does."""
-    out = np.empty((4, c.size))
+    out = np.empty((6, c.size))
     for j in range(c.size):
-        out[0, j], out[1, j], out[2, j], out[3, j] = race_coefficients(table, c[j])
+        k, s, a, b, film, rolling = race_coefficients(table, c[j])
+        out[0, j], out[1, j], out[2, j], out[3, j], out[4, j], out[5, j] = k, s, a, b, film, rolling
     return out
 
 
@@ -50,6 +56,22 @@ def test_dense_sweep_within_stated_error(bearing, race):
     np.testing.assert_allclose(got[1] * e_mod, exact.stiffness, rtol=STATED_BOUND, atol=0)
     np.testing.assert_allclose(got[2] * q13, exact.semi_major, rtol=STATED_BOUND, atol=0)
     np.testing.assert_allclose(got[3] * q13, exact.semi_minor, rtol=STATED_BOUND, atol=0)
+    # the film laws' ellipticity terms, from kappa as defined in solver.physics.ehl / rheology
+    np.testing.assert_allclose(
+        got[4], 1.0 - 0.61 * np.exp(-0.73 * exact.kappa), rtol=STATED_BOUND, atol=0
+    )
+    np.testing.assert_allclose(got[5], 0.348 * np.log(exact.kappa), rtol=0, atol=STATED_BOUND)
+
+
+@pytest.mark.parametrize("race", ["inner", "outer"])
+def test_direct_values_match_the_table(race):
+    """The fallback outside the table computes the same six values."""
+    d, dm, fi, fo = BEARINGS[1]
+    f = fi if race == "inner" else fo
+    table = race_table(d, dm, f, race == "inner")
+    for c in (0.0, 0.3, 0.77, 1.0):
+        direct = race_coefficients_direct(d, f, d * c / dm, race == "inner")
+        np.testing.assert_allclose(_sweep(table, np.array([c]))[:, 0], direct, rtol=1e-10)
 
 
 def test_outside_the_table_is_nan():
