@@ -907,8 +907,23 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
         jb = BALL_STRIDE * j
         ri = rec_inner[j]
         ro = rec_outer[j]
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, hi, quad, ri, work, observed)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, ho, quad, ro, work, observed)
+        for race in range(2):  # one inlined copy of the contact kernel for both races
+            inner = race == 0
+            ball_race_contact(
+                y,
+                jb,
+                irot if inner else orot,
+                iorg if inner else zero3,
+                ivel if inner else zero3,
+                iome if inner else oome,
+                inner,
+                par,
+                hi if inner else ho,
+                quad,
+                ri if inner else ro,
+                work,
+                observed,
+            )
         fx = ri[K_F_BALL] + ro[K_F_BALL]
         fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
         fz = ri[K_F_BALL + 2] + ro[K_F_BALL + 2] - mb * g
