@@ -1,7 +1,7 @@
 """Benchmark of the dynamic model on a light and a heavy catalogue case.
 
     python benchmarks/dynamic.py [--revolutions N] [--cases spindle heavy]
-                                 [--methods dopri5 rosenbrock] [--memory-revolutions 100]
+                                 [--methods auto dopri5] [--memory-revolutions 100]
                                  [--compile-time] [--traction-model case|rheology|slip_curve]
                                  [--compare-traction [REPEATS]]
                                  [--tolerance 1e-3]
@@ -277,9 +277,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--revolutions", type=float, default=3.0)
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
-    parser.add_argument(
-        "--methods", nargs="+", default=["dopri5", "rosenbrock"], choices=list(METHODS)
-    )
+    parser.add_argument("--methods", nargs="+", default=["auto", "dopri5"], choices=list(METHODS))
     parser.add_argument(
         "--memory-revolutions",
         type=float,

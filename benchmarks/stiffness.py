@@ -2,6 +2,7 @@
 state.
 
     python benchmarks/stiffness.py [--cases spindle heavy] [--revolutions 0.3]
+                                   [--traction-model slip_curve|rheology]
 
 For each case the bearing is run for ``--revolutions`` shaft revolutions from its quasi-static
 start (explicit Dormand–Prince), then the Jacobian of the right-hand side is formed by central
@@ -11,7 +12,8 @@ of its eigenvector's weight (eigenvector scaled by the characteristic magnitudes
 (position/velocity), ball rotation (quaternion/angular velocity), inner ring, cage. Printed: the
 largest |lambda| of each part, the Dormand–Prince 5(4) step limit it implies (the stability
 region's reach along the eigenvalue's direction), and the same for the per-ball 13 x 13 diagonal
-blocks alone (what a per-ball block Jacobian sees).
+blocks alone (what a per-ball block Jacobian sees). ``--traction-model`` replaces the case's
+lubricant traction law (default: the case's own).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from dataclasses import replace
 
 import numpy as np
 
@@ -96,9 +99,30 @@ def parts(z):
     }
 
 
-def report(label, revolutions):
+def slot_name(z, i):
+    """Name of state slot ``i`` (its body and quantity)."""
+    ball = {L.B_POS: "position", L.B_VEL: "velocity", L.B_QUAT: "quaternion", L.B_OMEGA: "omega"}
+    cage = {L.C_POS: "position", L.C_VEL: "velocity", L.C_ANGLE: "angle", L.C_SPEED: "speed"}
+    cage |= {L.C_TILT: "tilt", L.C_TILT_RATE: "tilt rate"}
+    axes = "xyz"
+    if i < L.ring_base(z):
+        j, o = divmod(i, L.BALL_STRIDE)
+        start = max(k for k in ball if k <= o)
+        return f"ball {j} {ball[start]}[{o - start}]"
+    if i < L.cage_base(z):
+        return f"inner ring slot {i - L.ring_base(z)}"
+    o = i - L.cage_base(z)
+    start = max(k for k in cage if k <= o)
+    suffix = f" {axes[o - start]}" if cage[start] in ("position", "velocity") else ""
+    return f"cage {cage[start]}{suffix}"
+
+
+def report(label, revolutions, traction_model=None):
     case = resolve_case(CASES[label])
     inputs = to_inputs(case)
+    if traction_model is not None:
+        lubricant = replace(inputs.lubricant, traction_model=traction_model)
+        inputs = replace(inputs, lubricant=lubricant)
     options = SimulationOptions(shaft_revolutions=revolutions)
     par = build_params(inputs, options)
     quad = build_quadrature(options, par)
@@ -114,9 +138,13 @@ def report(label, revolutions):
     lam, vec = np.linalg.eig(js)
     weights = np.abs(vec) ** 2
     groups = parts(z)
-    print(f"\n== {label}: {case.title}, state after {revolutions:g} revolutions")
+    law = inputs.lubricant.traction_model
+    print(f"\n== {label}: {case.title}, traction {law}, state after {revolutions:g} revolutions")
     print(f"   shaft period {period * 1e3:.3f} ms; {len(lam)} eigenvalues")
-    print(f"   {'part':32s} {'max |lambda| 1/s':>16s} {'Re':>11s} {'Im':>11s} {'DP h_max us':>12s}")
+    print(
+        f"   {'part':32s} {'max |lambda| 1/s':>16s} {'Re':>11s} {'Im':>11s} {'DP h_max us':>12s}"
+        "  largest slot of its mode"
+    )
     overall = math.inf
     for name, idx in groups.items():
         share = weights[idx].sum(axis=0)
@@ -128,7 +156,11 @@ def report(label, revolutions):
         limits = [dp_reach(lam[i] / abs(lam[i])) / abs(lam[i]) for i in mine if abs(lam[i]) > 0]
         hmin = min(limits) if limits else math.inf
         overall = min(overall, hmin)
-        print(f"   {name:32s} {abs(lk):16.3e} {lk.real:11.3e} {lk.imag:11.3e} {hmin * 1e6:12.2f}")
+        slot = slot_name(z, int(np.argmax(weights[:, k])))
+        print(
+            f"   {name:32s} {abs(lk):16.3e} {lk.real:11.3e} {lk.imag:11.3e} {hmin * 1e6:12.2f}"
+            f"  {slot}"
+        )
     print(
         f"   explicit Dormand-Prince stability limit: h <= {overall * 1e6:.2f} us = "
         f"{period / overall:.0f} steps per shaft revolution"
@@ -184,9 +216,15 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     parser.add_argument("--revolutions", type=float, default=0.3)
+    parser.add_argument(
+        "--traction-model",
+        choices=("slip_curve", "rheology"),
+        default=None,
+        help="lubricant traction law (default: the case's)",
+    )
     args = parser.parse_args(argv)
     for label in args.cases:
-        report(label, args.revolutions)
+        report(label, args.revolutions, args.traction_model)
     return 0
 
 

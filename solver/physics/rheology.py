@@ -118,16 +118,17 @@ _ELASTIC_STRESS_CAP = 1.0e30
 
 
 @njit(cache=True, inline="always")
-def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
-    """tau / u [Pa s/m] of :func:`shear_stress` at slip speed u > 0 [m/s] (``ln_u`` = ln u), with
-    the node's Barus exponent ``alpha_p`` = alpha p, limiting shear stress ``tau_l`` = tau_L0 +
-    Lambda p [Pa], the per-contact constants of :func:`contact_constants` and the Eyring stress
-    ``tau_0`` [Pa]. The form evaluated at every quadrature node: one logarithm, two square roots
-    and one division (0 where that division would be by zero: no limiting or viscous stress).
+def saturation_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
+    """s / u [s/m], s = tau / tau_L the saturation (in [0, 1)) of :func:`shear_stress` at slip
+    speed u > 0 [m/s] (``ln_u`` = ln u), with the node's Barus exponent ``alpha_p`` = alpha p,
+    limiting shear stress ``tau_l`` = tau_L0 + Lambda p [Pa], the per-contact constants of
+    :func:`contact_constants` and the Eyring stress ``tau_0`` [Pa]. The form evaluated at every
+    quadrature node: one logarithm, two square roots and one division (0 where that division
+    would be by zero: no limiting or viscous stress).
 
     With tau_v the Eyring stress and tau_e = E u (E = ``elastic``), the series combination
     tau_ve = N / D (N = tau_v E u, D = tau_v + E u) and the smooth limit tau = tau_ve tau_L /
-    (tau_L^4 + tau_ve^4)^(1/4) give tau / u = tau_v E tau_L / ((tau_L D)^4 + N^4)^(1/4).
+    (tau_L^4 + tau_ve^4)^(1/4) give s / u = tau_v E / ((tau_L D)^4 + N^4)^(1/4).
     """
     ln_x = ln_c + ln_u + min(alpha_p, BARUS_EXPONENT_CAP)
     tau_v = tau_0 * _asinh_from_log(ln_x)
@@ -138,11 +139,18 @@ def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
         ld2 = ld * ld
         n2 = n * n
         den = u * math.sqrt(math.sqrt(ld2 * ld2 + n2 * n2))
-        return tau_v * eu * tau_l / den if den > 0.0 else 0.0
+        return tau_v * eu / den if den > 0.0 else 0.0
     l2 = tau_l * tau_l
     v2 = tau_v * tau_v
     den = u * math.sqrt(math.sqrt(l2 * l2 + v2 * v2))
-    return tau_v * tau_l / den if den > 0.0 else 0.0
+    return tau_v / den if den > 0.0 else 0.0
+
+
+@njit(cache=True, inline="always")
+def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
+    """tau / u [Pa s/m] of :func:`shear_stress`: tau_L times :func:`saturation_over_slip` (same
+    arguments)."""
+    return tau_l * saturation_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0)
 
 
 @njit(cache=True, inline="always")

@@ -67,7 +67,35 @@ Quadrature on the contact ellipse (:func:`ellipse_quadrature`)
     exactly the rule's weight, so the pressure integrates to Q to rounding error for any node
     count. Node table columns: ``NODE_ROLLING`` x = xi/b, ``NODE_TRANSVERSE`` y = eta/a,
     ``NODE_AREA`` area weight on the unit disc, ``NODE_LOAD`` load fraction p dA / Q (sum = 1),
-    ``NODE_PRESSURE`` p / p_max = sqrt(1 - x^2 - y^2). Nodes of one strip are consecutive.
+    ``NODE_PRESSURE`` p / p_max = sqrt(1 - x^2 - y^2), ``NODE_UNIFORM`` a second area weight on
+    the same nodes that integrates the uniform measure (the plain area) exactly: interpolatory
+    weights along the strip (exact for polynomials in t of degree n_rolling - 1) and across the
+    strips (weight sqrt(1 - y^2), exact to degree n_transverse - 1). Nodes of one strip are
+    consecutive.
+
+Rheology on the ellipse
+    The rheological stress is written tau = tau_L(p) s with the limiting shear stress tau_L = tau_L0
+    + Lambda p and the saturation s = tau / tau_L in [0, 1). So tau dA = s (tau_L0 dA + Lambda p
+    dA): the first part is integrated with ``NODE_UNIFORM`` and the second with the pressure
+    weight ``NODE_LOAD``. Where the film is saturated (s = 1, reached within a few mm/s of slip)
+    both parts are then exact for any node count; pressure-weighting the tau_L0 dA part instead
+    (tau_L0 / p times the pressure) integrates an edge singularity and loses up to 9 % of the
+    area with two points along the rolling direction.
+
+Split rule (:func:`split_ellipse_rule`)
+    Because the rheological stress saturates within a few mm/s of slip, its rolling component
+    changes sign almost as a jump across the groove where the rolling slip v1(eta) = s01 + o2
+    z(eta) - on eta does (the lines of pure rolling), and fixed strips integrate that jump only to
+    O(1 / strips). The split rule finds the zeros of v1 in (-a, a) per contact (exactly: a line
+    meets a circle, :func:`_rolling_slip_zeros`) and puts ``strips_per_piece``
+    Gauss-Legendre strips on each of the (up to three) pieces of the major axis between them,
+    with ``n_rolling`` Gauss-Chebyshev points along each strip (the weights of the fixed rule
+    along the strip). The strip weights of each piece are scaled so that its plain area (weight
+    sqrt(1 - y^2)) and its load (weight 1 - y^2) come out exactly. The nodes move continuously
+    with the contact state (a piece shrinks to nothing before it disappears; where the two zeros
+    have not appeared yet, the pieces meet at the point where they will), so the integral has no
+    jumps. The kernels tell the two tables apart by their column count (``NODE_COLUMNS`` or
+    ``SPLIT_COLUMNS``).
 """
 
 from __future__ import annotations
@@ -84,8 +112,7 @@ from .rheology import (
     RH_LIMITING_STRESS,
     RH_PRESSURE_VISCOSITY,
     contact_constants,
-    shear_stress,
-    stress_over_slip,
+    saturation_over_slip,
 )
 
 # ---- traction-curve parameter array ------------------------------------------------------------
@@ -137,7 +164,18 @@ NODE_TRANSVERSE = 1
 NODE_AREA = 2
 NODE_LOAD = 3
 NODE_PRESSURE = 4
-NODE_COLUMNS = 5
+NODE_UNIFORM = 5
+NODE_COLUMNS = 6
+
+# ---- split rule table columns (:func:`split_ellipse_rule`; SPLIT_COLUMNS != NODE_COLUMNS) -------
+SPLIT_T = 0  # node t along the rolling direction (Gauss-Chebyshev 2nd kind)
+SPLIT_T_LOAD = 1  # its weight for the pressure-weighted integral (weight sqrt(1 - t^2))
+SPLIT_T_UNIFORM = 2  # its weight for the plain integral over t in [-1, 1]
+SPLIT_T_PRESSURE = 3  # sqrt(1 - t^2)
+SPLIT_Y = 4  # Gauss-Legendre node on [-1, 1] for each piece across the groove
+SPLIT_Y_WEIGHT = 5  # its weight
+SPLIT_COUNTS = 6  # row 0: points along the rolling direction; row 1: strips per piece
+SPLIT_COLUMNS = 7
 
 DEFAULT_N_ROLLING = 4
 DEFAULT_N_TRANSVERSE = 10
@@ -267,8 +305,9 @@ def ellipse_quadrature(
     ``n_rolling`` points along the rolling direction (minor axis b) on each of ``n_transverse``
     strips across the major axis a. Returns an array (n_rolling * n_transverse, ``NODE_COLUMNS``): x
     = xi/b, y = eta/a, area weight (so that sum w f(x, y) ~ integral of f over the unit disc), load
-    fraction (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz pressure)
-    and the Hertz pressure over its maximum; strip by strip. The pressure itself is integrated
+    fraction (so that sum of fraction * g(x, y) ~ integral of p g dA / Q for the Hertz pressure),
+    the Hertz pressure over its maximum and the plain-area weight (module docstring); strip by
+    strip. The pressure itself is integrated
     exactly (sum of load fractions = 1 to rounding error).
     """
     for name, n in (("n_rolling", n_rolling), ("n_transverse", n_transverse)):
@@ -276,6 +315,9 @@ def ellipse_quadrature(
             raise ValueError(f"{name} = {n!r}: must be an integer between 1 and 200")
     t, wt = special.roots_chebyu(int(n_rolling))  # weight sqrt(1 - t^2)
     y, wy = special.roots_jacobi(int(n_transverse), 1.0, 1.0)  # weight (1 - y^2)
+    # the plain area on the same nodes: weight 1 along the strip, sqrt(1 - y^2) across
+    ut = _interpolatory_weights(t, special.eval_legendre, 2.0)
+    uy = _interpolatory_weights(y, special.eval_chebyu, 0.5 * math.pi)
     nodes = np.empty((int(n_rolling) * int(n_transverse), NODE_COLUMNS))
     k = 0
     for j in range(len(y)):
@@ -287,8 +329,44 @@ def ellipse_quadrature(
             nodes[k, NODE_AREA] = wy[j] * wt[i] / (sy * st)
             nodes[k, NODE_LOAD] = 1.5 / math.pi * wy[j] * wt[i]
             nodes[k, NODE_PRESSURE] = sy * st
+            nodes[k, NODE_UNIFORM] = uy[j] * ut[i]
             k += 1
     return nodes
+
+
+def split_ellipse_rule(n_rolling: int = 2, strips_per_piece: int = 3) -> np.ndarray:
+    """Table of the split rule of :func:`ellipse_traction_law` (module docstring, "Split rule"):
+    ``n_rolling`` points along the rolling direction and ``strips_per_piece`` Gauss-Legendre strips
+    on each piece of the major axis between the lines of zero rolling slip. Returns an array
+    (max(n_rolling, strips_per_piece, 2), ``SPLIT_COLUMNS``); unused entries are NaN."""
+    for name, n in (("n_rolling", n_rolling), ("strips_per_piece", strips_per_piece)):
+        if int(n) != n or n < 1 or n > 200:
+            raise ValueError(f"{name} = {n!r}: must be an integer between 1 and 200")
+    n_rolling = int(n_rolling)
+    strips_per_piece = int(strips_per_piece)
+    rule = np.full((max(n_rolling, strips_per_piece, 2), SPLIT_COLUMNS), np.nan)
+    t, wt = special.roots_chebyu(n_rolling)
+    rule[:n_rolling, SPLIT_T] = t
+    rule[:n_rolling, SPLIT_T_LOAD] = wt
+    rule[:n_rolling, SPLIT_T_UNIFORM] = _interpolatory_weights(t, special.eval_legendre, 2.0)
+    rule[:n_rolling, SPLIT_T_PRESSURE] = np.sqrt(1.0 - t * t)
+    y, wy = special.roots_legendre(strips_per_piece)
+    rule[:strips_per_piece, SPLIT_Y] = y
+    rule[:strips_per_piece, SPLIT_Y_WEIGHT] = wy
+    rule[0, SPLIT_COUNTS] = n_rolling
+    rule[1, SPLIT_COUNTS] = strips_per_piece
+    return rule
+
+
+def _interpolatory_weights(points: np.ndarray, basis, moment0: float) -> np.ndarray:
+    """Weights w at ``points`` with sum w basis_k(points) = integral of basis_k for k < n, given an
+    orthogonal basis ``basis(k, x)`` of the integral's weight whose integral is ``moment0`` for
+    k = 0 and zero for k >= 1 (exact for polynomials of degree n - 1)."""
+    n = len(points)
+    v = np.array([basis(k, points) for k in range(n)])
+    rhs = np.zeros(n)
+    rhs[0] = moment0
+    return np.linalg.solve(v, rhs)
 
 
 def deformed_surface_curvature(groove_radius: float, ball_diameter: float) -> float:
@@ -384,6 +462,166 @@ def _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy,
     return sx, sy, sz
 
 
+@njit(cache=True, inline="always")
+def _node_factor(
+    u2, ps, w_load, w_uniform, law_data, q, curve, ur2, tl0_area, lam_q, ln_c, elastic
+):
+    """g [N s/m] with tau dA = g dv at a node of slip speed squared ``u2`` [m^2/s^2], pressure
+    ``ps`` p / p_max, load fraction ``w_load`` (p dA / Q) and plain-area fraction ``w_uniform``
+    (dA / (a b)). ``law_data`` = (rheological, filmed, p_max alpha, tau_L0, p_max Lambda, tau_0)."""
+    rheological, filmed, alpha_pmax, tl0, lam_pmax, tau_0 = law_data
+    if rheological:
+        if u2 <= 0.0:
+            return 0.0
+        weight = tl0_area * w_uniform + lam_q * w_load
+        if filmed:
+            return -weight * saturation_over_slip(
+                math.sqrt(u2),
+                0.5 * math.log(u2),
+                alpha_pmax * ps,
+                tl0 + lam_pmax * ps,
+                ln_c,
+                elastic,
+                tau_0,
+            )
+        u = math.sqrt(u2)
+        return -weight / u if u > 1e-9 else 0.0
+    den = math.sqrt(u2 + ur2)
+    if den <= 0.0:
+        return 0.0
+    u = math.sqrt(u2)
+    mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
+    return -q * w_load * mu / den
+
+
+@njit(cache=True, inline="always")
+def _rolling_slip_zeros(a, kappa, s01, o2, on):
+    """Break points y = eta / a in (-1, 1) of the split rule, ascending, -2 for a missing one: the
+    zeros of the rolling slip v1(eta) = s01 + o2 z(eta) - on eta across the major axis (lines of
+    pure rolling). With z = sqrt(R^2 - eta^2) - R (R = 1 / kappa) they are where a line meets a
+    circle: (on^2 + o2^2) eta^2 + 2 on c eta - s01 (2 o2 R - s01) = 0, c = o2 R - s01, solved in a
+    form free of cancellation. Where the line misses the circle, both break points are its point
+    of closest approach, where the two zeros appear together, so the pieces change continuously
+    with the state. (Squaring also admits crossings of the circle's far half, z < -R; they are kept
+    as break points, which keeps the pieces continuous and costs no accuracy.) Flat contact: the
+    one zero s01 / on."""
+    r1 = -2.0
+    r2 = -2.0
+    if kappa > 0.0:
+        r = 1.0 / kappa
+        qa = on * on + o2 * o2
+        if qa > 0.0:
+            half_b = on * (o2 * r - s01)
+            qc = -s01 * (2.0 * o2 * r - s01)
+            disc = on * on * r * r + 2.0 * o2 * r * s01 - s01 * s01  # (half_b^2 - qa qc) / o2^2
+            q = 0.0
+            if disc > 0.0:
+                q = -(half_b + math.copysign(abs(o2) * math.sqrt(disc), half_b))
+            if q != 0.0:
+                r1 = q / qa / a
+                r2 = qc / q / a
+            else:  # no crossing (or a double one): the point of closest approach
+                r1 = -half_b / qa / a
+                r2 = r1
+    elif on != 0.0:
+        r1 = s01 / on / a
+    r1 = r1 if -1.0 < r1 < 1.0 else -2.0
+    r2 = r2 if -1.0 < r2 < 1.0 else -2.0
+    return min(r1, r2), max(r1, r2)
+
+
+@njit(cache=True)
+def _split_rule_sums(
+    rule,
+    a,
+    b,
+    kappa,
+    s01,
+    s02,
+    o1,
+    o2,
+    on,
+    law_data,
+    q,
+    curve,
+    ur2,
+    tl0_area,
+    lam_q,
+    ln_c,
+    elastic,
+):
+    """(f1, f2, fn, m1, m2, mn, power) of :func:`ellipse_traction_law` with the split rule
+    ``rule`` (:func:`split_ellipse_rule`): Gauss-Legendre strips on each piece of the major axis
+    between the zeros of the rolling slip, the rolling-direction points of the rule on each."""
+    n_t = int(rule[0, SPLIT_COUNTS])
+    n_y = int(rule[1, SPLIT_COUNTS])
+    ra, rb = _rolling_slip_zeros(a, kappa, s01, o2, on)
+    f1 = f2 = fn = m1 = m2 = mn = power = 0.0
+    lo = -1.0
+    area_lo = -0.25 * math.pi  # plain-area primitive 0.5 (y sqrt(1 - y^2) + asin y) at lo
+    for piece in range(3):
+        hi = ra if piece == 0 else (rb if piece == 1 else 1.0)
+        if hi - lo <= 1e-9:
+            continue
+        mid = 0.5 * (lo + hi)
+        half = 0.5 * (hi - lo)
+        # scale the strips' weights so that the piece's plain area and load (weights sqrt(1 -
+        # y^2) and 1 - y^2 across) come out exactly: a saturated piece is then exact
+        sum_area = 0.0
+        sum_load = 0.0
+        for j in range(n_y):
+            y = mid + half * rule[j, SPLIT_Y]
+            sy2 = max(1.0 - y * y, 0.0)
+            sum_area += rule[j, SPLIT_Y_WEIGHT] * math.sqrt(sy2)
+            sum_load += rule[j, SPLIT_Y_WEIGHT] * sy2
+        area_hi = 0.5 * (hi * math.sqrt(max(1.0 - hi * hi, 0.0)) + math.asin(min(hi, 1.0)))
+        load_piece = (hi - hi * hi * hi / 3.0) - (lo - lo * lo * lo / 3.0)
+        area_scale = (area_hi - area_lo) / sum_area if sum_area > 0.0 else 0.0
+        load_scale = 1.5 / math.pi * load_piece / sum_load if sum_load > 0.0 else 0.0
+        lo = hi
+        area_lo = area_hi
+        for j in range(n_y):
+            y = mid + half * rule[j, SPLIT_Y]
+            wy = rule[j, SPLIT_Y_WEIGHT]
+            sy = math.sqrt(max(1.0 - y * y, 0.0))
+            eta = a * y
+            sphi = kappa * eta
+            cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
+            z = -kappa * eta * eta / (1.0 + cphi)
+            w_load = load_scale * sy * sy * wy
+            w_uniform = area_scale * sy * wy
+            v1 = s01 + o2 * z - on * eta
+            for i in range(n_t):
+                xi = b * sy * rule[i, SPLIT_T]
+                v2 = s02 + on * xi - o1 * z
+                u2 = v1 * v1 + v2 * v2
+                g = _node_factor(
+                    u2,
+                    sy * rule[i, SPLIT_T_PRESSURE],
+                    w_load * rule[i, SPLIT_T_LOAD],
+                    w_uniform * rule[i, SPLIT_T_UNIFORM],
+                    law_data,
+                    q,
+                    curve,
+                    ur2,
+                    tl0_area,
+                    lam_q,
+                    ln_c,
+                    elastic,
+                )
+                tau1 = g * v1
+                tau2 = g * v2 * cphi
+                taun = -g * v2 * sphi
+                f1 += tau1
+                f2 += tau2
+                fn += taun
+                m1 += eta * taun - z * tau2
+                m2 += z * tau1 - xi * taun
+                mn += xi * tau2 - eta * tau1
+                power -= g * u2
+    return f1, f2, fn, m1, m2, mn, power
+
+
 @njit(cache=True)
 def ellipse_traction_law(
     contact, kinematics, law, curve, rheology, film, transit_time, slip_regularisation, nodes, out
@@ -395,7 +633,8 @@ def ellipse_traction_law(
 
     ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and
     the output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes``
-    comes from :func:`ellipse_quadrature`; ``slip_regularisation`` u_reg [m/s] >= 0.
+    comes from :func:`ellipse_quadrature` or :func:`split_ellipse_rule`; ``slip_regularisation``
+    u_reg [m/s] >= 0.
 
     At each node the surface point p = P + xi t1 + eta t2 + z(eta) n lies on the deformed surface of
     curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the
@@ -439,6 +678,8 @@ def ellipse_traction_law(
     tl0 = rheology[RH_LIMITING_STRESS] if rheological else 0.0
     lam_pmax = rheology[RH_LIMITING_SLOPE] * p_max if rheological else 0.0
     tau_0 = rheology[RH_EYRING_STRESS] if rheological else 0.0
+    tl0_area = tl0 * ab
+    lam_q = rheology[RH_LIMITING_SLOPE] * q if rheological else 0.0
     if rheological:
         ur2 = 0.0
         if filmed:
@@ -452,8 +693,29 @@ def ellipse_traction_law(
     power = 0.0
     y_strip = 2.0  # outside [-1, 1]: the first node starts a strip
     eta = sphi = cphi = z = 0.0
-    if rheological and filmed:
-        # the rheology's own loop (the law at every node: solver.physics.rheology.stress_over_slip)
+    if nodes.shape[1] == SPLIT_COLUMNS:
+        f1, f2, fn, m1, m2, mn, power = _split_rule_sums(
+            nodes,
+            a,
+            b,
+            kappa,
+            s01,
+            s02,
+            o1,
+            o2,
+            on,
+            (rheological, filmed, alpha_pmax, tl0, lam_pmax, tau_0),
+            q,
+            curve,
+            ur2,
+            tl0_area,
+            lam_q,
+            ln_c,
+            elastic,
+        )
+        nodes_done = nodes.shape[0]
+    elif rheological and filmed:
+        # the rheology's own loop (the law at every node: rheology.saturation_over_slip)
         for k in range(nodes.shape[0]):
             xi = b * nodes[k, NODE_ROLLING]
             if nodes[k, NODE_TRANSVERSE] != y_strip:
@@ -468,18 +730,17 @@ def ellipse_traction_law(
             if u2 <= 0.0:
                 continue
             ps = nodes[k, NODE_PRESSURE]
-            g = (
-                -ab
-                * nodes[k, NODE_AREA]
-                * stress_over_slip(
-                    math.sqrt(u2),
-                    0.5 * math.log(u2),
-                    alpha_pmax * ps,
-                    tl0 + lam_pmax * ps,
-                    ln_c,
-                    elastic,
-                    tau_0,
-                )
+            # tau dA = s (tau_L0 dA + Lambda p dA): plain-area and load weights (module docstring)
+            g = -(
+                tl0_area * nodes[k, NODE_UNIFORM] + lam_q * nodes[k, NODE_LOAD]
+            ) * saturation_over_slip(
+                math.sqrt(u2),
+                0.5 * math.log(u2),
+                alpha_pmax * ps,
+                tl0 + lam_pmax * ps,
+                ln_c,
+                elastic,
+                tau_0,
             )
             tau1 = g * v1
             tau2 = g * v2 * cphi
@@ -513,9 +774,11 @@ def ellipse_traction_law(
             if u2 <= 0.0:
                 continue
             u = math.sqrt(u2)
-            area = ab * nodes[k, NODE_AREA]
-            pk = p_max * nodes[k, NODE_PRESSURE]
-            g = -area * shear_stress(u, pk, film, 0.0, rheology) / u
+            # the limiting shear stress tau_L0 + Lambda p for any slip above 1e-9 m/s
+            # (solver.physics.rheology.shear_stress without a film), integrated as above
+            if u <= 1e-9:
+                continue
+            g = -(tl0_area * nodes[k, NODE_UNIFORM] + lam_q * nodes[k, NODE_LOAD]) / u
         else:
             den = math.sqrt(u2 + ur2)
             if den <= 0.0:

@@ -27,16 +27,31 @@ CASE_OVERRIDES = {
     "samples_per_revolution": ("samples_per_revolution", "simulation.samples_per_revolution"),
 }
 
-#: Default ellipse quadrature (points along the rolling direction, strips across the groove) per
-#: traction law (option ``quadrature`` = None). Slip curve: the local traction depends on the slip
-#: only, which varies linearly along the rolling direction, and two points there give the results
-#: of four within 0.015 of the accuracy contract's allowances (docs/numerics.md) at half the cost.
-#: Rheology: the shear stress also follows the Hertz pressure along the rolling direction; four
-#: points are kept (two move the mean contact angles by about twice the contract's allowance).
+#: Default ellipse quadrature of the product rule (points along the rolling direction, strips
+#: across the groove) per traction law (option ``quadrature`` = None). Slip curve: the local
+#: traction depends on the slip only, which varies linearly along the rolling direction, and two
+#: points there give the results of four within 0.015 of the accuracy contract's allowances
+#: (docs/numerics.md) at half the cost.
 DEFAULT_QUADRATURE = {LAW_SLIP_CURVE: (2, 8), LAW_RHEOLOGY: (4, 8)}
 
+#: Ellipse rules (option ``ellipse_rule``): "product", the fixed product rule of
+#: solver.physics.traction.ellipse_quadrature; "split", the rule of
+#: solver.physics.traction.split_ellipse_rule, whose strips are placed per contact on the pieces of
+#: the major axis between the lines of zero rolling slip (where the rheology's saturated stress
+#: changes sign).
+ELLIPSE_RULES = ("product", "split")
+
+#: Default ellipse rule per traction law (option ``ellipse_rule`` = None and no ``quadrature``).
+#: Rheology: its stress saturates within a few mm/s of slip, so across the groove it jumps where
+#: the rolling slip changes sign; the split rule with 3 x 3 nodes per piece (at most 27) is closer
+#: to the converged integral than the product rule's 4 x 8 and 12 % cheaper (docs/numerics.md).
+DEFAULT_ELLIPSE_RULE = {LAW_SLIP_CURVE: "product", LAW_RHEOLOGY: "split"}
+
+#: Default (points along the rolling direction, strips per piece) of the split rule.
+DEFAULT_SPLIT_COUNTS = (3, 3)
+
 #: Integration methods of the dynamic model (option ``method``).
-METHODS = ("rosenbrock", "dopri5")
+METHODS = ("dopri5", "auto", "imex", "rosenbrock")
 
 
 @dataclass(frozen=True)
@@ -62,7 +77,11 @@ class SimulationOptions:
       the run does not settle (a settled run is analysed from its settling time on;
       solver.results.summary).
     - ``quadrature``: (points along the rolling direction, strips across the groove) of the ellipse
-      traction rule; None: :data:`DEFAULT_QUADRATURE` of the case's traction law.
+      traction rule; with ``ellipse_rule`` = "split", (points along the rolling direction, strips
+      on each piece between the lines of zero rolling slip). None: :data:`DEFAULT_QUADRATURE` of
+      the case's traction law (product rule) or :data:`DEFAULT_SPLIT_COUNTS` (split rule).
+    - ``ellipse_rule``: "product" or "split" (:data:`ELLIPSE_RULES`); None: "product" when
+      ``quadrature`` is given, else :data:`DEFAULT_ELLIPSE_RULE` of the case's traction law.
     - ``pocket_stiffness`` [N/m], ``pocket_damping_ratio``: linear ball-pocket contact law (None:
       solver.physics.cage_contact.pocket_stiffness_estimate for a glass-filled polyamide cage).
     - ``land_stiffness`` [N/m]: cage-land metal contact (None: land_contact_stiffness_estimate).
@@ -70,11 +89,14 @@ class SimulationOptions:
     - ``heathcote``: evaluate the slip on the curved deformed surface (differential slip).
     - ``inner_ring_mass`` [kg]: None = estimated from the ring cross-section (width 2 D).
     - ``max_steps_per_chunk``: safety bound on the integrator steps in one chunk.
-    - ``method``: integration method. "dopri5" (default): explicit Dormand–Prince 5(4)
+    - ``method``: integration method. "dopri5": explicit Dormand–Prince 5(4)
       (solver.models.dynamic.integrator); "rosenbrock": the linearly implicit Rosenbrock-W method
       ROS34PW2 with an arrow-structured Jacobian (solver.models.dynamic.rosenbrock), whose step is
-      not limited by the stiff traction and pocket-friction modes. docs/numerics.md compares them:
-      on the shipped cases the explicit method is the faster at equal accuracy.
+      not limited by the stiff traction and pocket-friction modes; "imex": additive Runge–Kutta
+      ARK4(3)6L[2]SA with the cage's guiding-land film implicit (solver.models.dynamic.imex),
+      whose step is not limited by the film's squeeze damping on a cage running near its land;
+      "auto" (default): Dormand–Prince steps, and the additive steps only where that film would
+      limit the explicit step. docs/numerics.md compares them.
     - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
       Rosenbrock method (it is also re-formed when a step fails with an older Jacobian).
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;
@@ -93,6 +115,7 @@ class SimulationOptions:
     chunk_samples: int = 60
     analysis_skip_fraction: float = UNSETTLED_SKIP_FRACTION
     quadrature: tuple[int, int] | None = None
+    ellipse_rule: str | None = None
     pocket_stiffness: float | None = None
     pocket_damping_ratio: float = 0.1
     land_stiffness: float | None = None
@@ -100,7 +123,7 @@ class SimulationOptions:
     heathcote: bool = True
     inner_ring_mass: float | None = None
     max_steps_per_chunk: int = 2_000_000
-    method: str = "dopri5"
+    method: str = "auto"
     jacobian_every: int = 10
     start: str = "quasistatic"
 
@@ -160,6 +183,14 @@ class SimulationOptions:
                     "method",
                     f"simulation option method = {self.method!r}: must be one of "
                     + ", ".join(repr(m) for m in METHODS),
+                )
+            )
+        if self.ellipse_rule is not None and self.ellipse_rule not in ELLIPSE_RULES:
+            problems.append(
+                Problem(
+                    "ellipse_rule",
+                    f"simulation option ellipse_rule = {self.ellipse_rule!r}: must be one of "
+                    + ", ".join(repr(m) for m in ELLIPSE_RULES),
                 )
             )
         if self.jacobian_every < 1:

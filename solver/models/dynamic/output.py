@@ -208,4 +208,15 @@ def _integrator_note(options) -> str:
             "Rosenbrock-W ROS34PW2 (order 3(2)) with per-body block Jacobians re-formed every "
             f"{options.jacobian_every} steps, tolerance {options.tolerance:g}"
         )
+    if options.method == "auto":
+        return (
+            "Dormand-Prince 5(4), with additive Runge-Kutta ARK4(3)6L[2]SA steps (the cage's "
+            "guiding-land film implicit) where the film limits the explicit step; PI step "
+            f"control, tolerance {options.tolerance:g}"
+        )
+    if options.method == "imex":
+        return (
+            "additive Runge-Kutta ARK4(3)6L[2]SA, the cage's guiding-land film implicit, PI step "
+            f"control, tolerance {options.tolerance:g}"
+        )
     return f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}"

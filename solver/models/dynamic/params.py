@@ -26,11 +26,17 @@ from solver.physics.traction import (
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
     ellipse_quadrature,
+    split_ellipse_rule,
     traction_curve_parameters,
 )
 
 from . import layout as L
-from .options import DEFAULT_QUADRATURE, SimulationOptions
+from .options import (
+    DEFAULT_ELLIPSE_RULE,
+    DEFAULT_QUADRATURE,
+    DEFAULT_SPLIT_COUNTS,
+    SimulationOptions,
+)
 
 STEEL_DENSITY = 7800.0
 #: Air at about 40 degC, the gas of the oil-air mixture around the balls.
@@ -133,9 +139,20 @@ def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
 
 
 def build_quadrature(options: SimulationOptions, par: ModelParams) -> np.ndarray:
-    """Node table of the ellipse traction rule (solver.physics.traction.ellipse_quadrature):
-    ``options.quadrature``, or when that is None the default of the traction law of ``par``
-    (:data:`~solver.models.dynamic.options.DEFAULT_QUADRATURE`)."""
+    """Node table of the ellipse traction rule: ``options.ellipse_rule`` (None: "product" when
+    ``options.quadrature`` is given, else the default rule of the traction law of ``par``,
+    :data:`~solver.models.dynamic.options.DEFAULT_ELLIPSE_RULE`) with the counts
+    ``options.quadrature`` or the rule's default (:data:`~solver.models.dynamic.options.
+    DEFAULT_QUADRATURE` of the traction law, :data:`~solver.models.dynamic.options.
+    DEFAULT_SPLIT_COUNTS`). Product rule: solver.physics.traction.ellipse_quadrature; split rule:
+    solver.physics.traction.split_ellipse_rule."""
+    rule = options.ellipse_rule
+    if rule is None:
+        rule = "product" if options.quadrature else DEFAULT_ELLIPSE_RULE[par.traction_law]
+    if rule == "split":
+        return np.ascontiguousarray(
+            split_ellipse_rule(*(options.quadrature or DEFAULT_SPLIT_COUNTS))
+        )
     n_roll, n_trans = options.quadrature or DEFAULT_QUADRATURE[par.traction_law]
     return np.ascontiguousarray(ellipse_quadrature(n_roll, n_trans))
 

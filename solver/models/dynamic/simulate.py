@@ -25,7 +25,9 @@ from solver.case.validate import run_length_problems
 from solver.catalogue import resolve_case
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
+from solver.physics.traction import NODE_COLUMNS
 
+from . import imex
 from . import layout as L
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
 from .integrator import (
@@ -86,7 +88,7 @@ def state_scales(par, y0: np.ndarray) -> np.ndarray:
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     from .kernels import rhs
 
-    rhs(y0, par, np.zeros((1, 4)), np.zeros(n), rec_i, rec_o, np.zeros(z))  # quadrature weight 0
+    rhs(y0, par, np.zeros((1, NODE_COLUMNS)), np.zeros(n), rec_i, rec_o, np.zeros(z))  # weight 0
     defl = np.concatenate((rec_i[:, L.K_DEFLECTION], rec_o[:, L.K_DEFLECTION]))
     load = np.concatenate((rec_i[:, L.K_ELASTIC], rec_o[:, L.K_ELASTIC]))
     k = int(np.argmax(defl))
@@ -178,6 +180,16 @@ def _stepper(options, par):
     ``integrator.advance``."""
     if options.method == "dopri5":
         return advance
+    if options.method in ("imex", "auto"):
+        ark = imex.ark436l2sa()
+        switch = (imex.SWITCH_BOUND, imex.SWITCH_BACK) if options.method == "auto" else (0.0, 0.0)
+
+        def step_imex(*args):
+            return imex.advance_imex(
+                *args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order, *switch
+            )
+
+        return step_imex
     tab = ros34pw2()
     starts, sizes = block_structure(par.ball_count)
     work = rosenbrock_work(par.ball_count, tab.m.shape[0])

@@ -66,18 +66,23 @@ from solver.physics.traction import (
     deformed_surface_curvature,
     ellipse_quadrature,
     ellipse_traction_law,
+    split_ellipse_rule,
     traction_curve_parameters,
 )
 
 from . import kernels
 
-#: Ellipse quadrature (points along the rolling direction, strips across the groove) and slip
-#: regularisation [m/s]: the dynamic model's rheology-law quadrature and its slip regularisation
-#: (solver.models.dynamic.options.DEFAULT_QUADRATURE, SimulationOptions.friction_regularisation;
-#: not imported: the dynamic model imports this package for its start). With the slip-curve law
-#: the dynamic model uses two points along the rolling direction instead of four, which changes
-#: the traction by far less than the start transient.
+#: Ellipse rules and slip regularisation [m/s]: the dynamic model's rheology-law rule (the split
+#: rule of solver.physics.traction.split_ellipse_rule with (points along the rolling direction,
+#: strips per piece) ``SPLIT_RULE_COUNTS``) and its slip regularisation
+#: (solver.models.dynamic.options.DEFAULT_ELLIPSE_RULE, DEFAULT_SPLIT_COUNTS,
+#: SimulationOptions.friction_regularisation; not imported: the dynamic model imports this package
+#: for its start). With the slip-curve law the product rule with ``QUADRATURE`` (points along the
+#: rolling direction, strips across the groove); the dynamic model uses two points along the
+#: rolling direction instead of four, which changes the traction by far less than the start
+#: transient.
 QUADRATURE = (4, 8)
+SPLIT_RULE_COUNTS = (3, 3)
 SLIP_REGULARISATION = 1.0e-3
 BALL_TOLERANCE = 1e-11  # ball moment residual, relative to its larger load times D / 2
 MAX_BALL_ITERATIONS = 50
@@ -109,7 +114,9 @@ def traction_setup(lubricant):
         *lubricant.traction.values()
     )
     traction[TL_RHEOLOGY:] = lubricant.rheology_array()
-    nodes = np.ascontiguousarray(ellipse_quadrature(*QUADRATURE))
+    nodes = np.ascontiguousarray(
+        split_ellipse_rule(*SPLIT_RULE_COUNTS) if rheological else ellipse_quadrature(*QUADRATURE)
+    )
     return traction, nodes
 
 

@@ -117,3 +117,12 @@ def test_simulate_prints_the_metrics_and_json_on_request(fake_case, tmp_path, ca
         float(stored.trajectory_band_thickness.sel(race="inner", frame="inner_ring"))
     )
     assert trajectory["analysis_start_time_s"] == pytest.approx(float(stored.analysis_start_time))
+
+
+def test_method_choices_are_the_solver_methods():
+    """The command line's --method choices, written out to keep numba out of its parser, are the
+    solver's methods; the default is the solver's."""
+    from solver.models.dynamic.options import METHODS, SimulationOptions
+
+    assert set(command.METHODS) == set(METHODS)
+    assert SimulationOptions().method in command.METHODS

@@ -66,19 +66,27 @@ def test_public_api_runs_a_catalogue_case():
     assert axis[-1] - axis[0] == pytest.approx(turned, rel=1e-6)
 
 
-@pytest.mark.parametrize(("law", "nodes"), [("slip_curve", 2 * 8), ("rheology", 4 * 8)])
-def test_default_quadrature_follows_the_traction_law(law, nodes):
-    """Two points along the rolling direction with the slip curve, four with the rheology law
-    (docs/numerics.md); an explicit option wins."""
+@pytest.mark.parametrize(
+    ("law", "rule", "rows"), [("slip_curve", "product", 2 * 8), ("rheology", "split", 3)]
+)
+def test_default_quadrature_follows_the_traction_law(law, rule, rows):
+    """The product rule with two points along the rolling direction for the slip curve, the split
+    rule with 3 x 3 for the rheology law (docs/numerics.md); explicit options win."""
     from dataclasses import replace
 
     from solver.models.dynamic.params import build_params, build_quadrature
+    from solver.physics import traction as tr
 
     inp = to_inputs(resolve_case("spindle-combined-load"))
     inp = replace(inp, lubricant=replace(inp.lubricant, traction_model=law))
     options = SimulationOptions()
     par = build_params(inp, options)
     quad = build_quadrature(options, par)
-    assert quad.shape[0] == nodes
-    assert sum(quad[:, 3]) == pytest.approx(1.0, rel=1e-12)  # load fractions
+    assert quad.shape == (rows, tr.NODE_COLUMNS if rule == "product" else tr.SPLIT_COLUMNS)
+    if rule == "product":
+        assert sum(quad[:, tr.NODE_LOAD]) == pytest.approx(1.0, rel=1e-12)
+    else:
+        assert tuple(quad[:2, tr.SPLIT_COUNTS]) == (3, 3)
+    split = build_quadrature(SimulationOptions(ellipse_rule="split", quadrature=(2, 4)), par)
+    assert split.shape == (4, tr.SPLIT_COLUMNS)
     assert build_quadrature(SimulationOptions(quadrature=(3, 5)), par).shape[0] == 15

@@ -196,6 +196,15 @@ def test_options_are_checked_against_the_case_key_bounds():
     assert "simulation option damping_ratio = -1: must be at least 0" in text
 
 
+def test_unknown_ellipse_rule_is_refused():
+    with pytest.raises(CaseError) as info:
+        SimulationOptions(ellipse_rule="gauss").validated()
+    assert "simulation option ellipse_rule = 'gauss': must be one of 'product', 'split'" in str(
+        info.value
+    )
+    assert SimulationOptions(ellipse_rule="split").validated().ellipse_rule == "split"
+
+
 def test_equal_ring_speeds_are_refused_by_the_validator_rule():
     from solver.case import dynamic_problems
     from solver.catalogue import resolve_case

@@ -845,3 +845,228 @@ def test_spin_moment_circular_contact_closed_form():
     assert m == pytest.approx(3.0 * math.pi / 16.0 * mu * Q_ * a, rel=1e-3)
     # the spin power is the moment times the spin speed
     assert out[tr.TR_POWER] == pytest.approx(abs(m) * 800.0, rel=1e-12)
+
+
+# ------------------------------------------------------------------------------------------------
+# plain-area weights and the split rule (rheology on the ellipse)
+# ------------------------------------------------------------------------------------------------
+def _disc_moment(p, q):
+    """Integral of x^(2p) y^(2q) over the unit disc: Gamma(p+1/2) Gamma(q+1/2) / Gamma(p+q+2)."""
+    return math.gamma(p + 0.5) * math.gamma(q + 0.5) / math.gamma(p + q + 2)
+
+
+@pytest.mark.parametrize("nr, nt", [(1, 1), (2, 8), (3, 5), (4, 8), (5, 9)])
+def test_plain_area_weights_integrate_polynomials_on_the_disc(nr, nt):
+    """NODE_UNIFORM integrates x^(2p) y^(2q) = (1 - y^2)^p t^(2p) y^(2q) exactly for 2p <= nr - 1
+    along the strip and 2p + 2q <= nt - 1 across; odd moments vanish. The pressure-weighted
+    area weight NODE_AREA misses the plain area (9.5 % with two points along rolling)."""
+    nodes = tr.ellipse_quadrature(nr, nt)
+    w = nodes[:, tr.NODE_UNIFORM]
+    x, y = nodes[:, tr.NODE_ROLLING], nodes[:, tr.NODE_TRANSVERSE]
+    checked = 0
+    for p in range(3):
+        for q in range(4):
+            if 2 * p <= nr - 1 and 2 * p + 2 * q <= nt - 1:
+                assert np.sum(w * x ** (2 * p) * y ** (2 * q)) == pytest.approx(
+                    _disc_moment(p, q), rel=1e-12
+                )
+                checked += 1
+    assert checked >= 1
+    assert abs(np.sum(w * x)) < 1e-14 and abs(np.sum(w * y * x**2)) < 1e-14
+    if nr == 2:
+        assert np.sum(nodes[:, tr.NODE_AREA]) < 0.91 * math.pi
+
+
+def _rheology_params(tau_l0=2e6):
+    r = np.zeros(RHEOLOGY_SIZE)
+    r[RH_VISCOSITY], r[RH_PRESSURE_VISCOSITY] = 0.01, 2.0e-8
+    r[RH_EYRING_STRESS], r[RH_LIMITING_STRESS], r[RH_LIMITING_SLOPE] = 5e6, tau_l0, 0.075
+    r[RH_SHEAR_MODULUS] = 0.5e9
+    return r
+
+
+def _law(contact, kin, nodes, law=tr.LAW_RHEOLOGY, curve=None, film=0.3e-6, r=None, ureg=0.0):
+    out = np.full(tr.TRACTION_OUT_SIZE, np.nan)
+    tr.ellipse_traction_law(
+        contact,
+        kin,
+        law,
+        np.zeros(tr.CURVE_SIZE) if curve is None else curve,
+        _rheology_params() if r is None else r,
+        film,
+        5.0e-6,
+        ureg,
+        nodes,
+        out,
+    )
+    return out
+
+
+RULES = [
+    tr.ellipse_quadrature(1, 1),
+    tr.ellipse_quadrature(2, 8),
+    tr.ellipse_quadrature(4, 8),
+    tr.split_ellipse_rule(1, 1),
+    tr.split_ellipse_rule(2, 3),
+    tr.split_ellipse_rule(3, 2),
+]
+
+
+@pytest.mark.parametrize("nodes", RULES)
+def test_saturated_rheology_is_exact_for_any_rule(nodes):
+    """Without a film the stress is the limiting shear stress tau_L0 + Lambda p at every point; for
+    uniform sliding the force is then (tau_L0 pi a b + Lambda Q) against the slip, exactly for any
+    rule (plain-area weight for tau_L0, load weight for Lambda p). tau_L0 is made large here so
+    that its part (38 % of the force) shows."""
+    n, t1, t2 = _frame(7)
+    P = np.array([0.0, 0.025, 0.0])
+    cb = P - R_BALL * n
+    contact = _contact(P, n, t1, A_, B_, Q_, 0.0)
+    direction = (0.6 * t1 - 0.8 * t2) / np.linalg.norm(0.6 * t1 - 0.8 * t2)
+    kin = _kin(cb, 0.3 * direction, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
+    r = _rheology_params(tau_l0=50e6)
+    out = _law(contact, kin, nodes, film=0.0, r=r)
+    expected = -(50e6 * math.pi * A_ * B_ + 0.075 * Q_) * direction
+    np.testing.assert_allclose(out[tr.TR_FORCE : tr.TR_FORCE + 3], expected, rtol=1e-12)
+
+
+@pytest.mark.parametrize("counts", [(1, 1), (2, 3), (3, 2), (1, 5)])
+@pytest.mark.parametrize("kappa", [0.0, KAPPA])
+def test_split_rule_uniform_sliding_force_is_q_mu(counts, kappa):
+    """The split rule's load weights integrate the Hertz pressure exactly for any counts: a
+    Coulomb coefficient gives Q mu (also on the curved surface, sliding along the rolling
+    direction); the strips lie on one piece (no zero of the rolling slip)."""
+    n, t1, _ = _frame(5)
+    P = np.array([0.0, 0.025, 0.0])
+    cb = P - R_BALL * n
+    contact = _contact(P, n, t1, A_, B_, Q_, kappa)
+    vb = 0.4 * t1
+    kin = _kin(cb, vb, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
+    curve = tr.constant_traction_parameters(0.07)
+    out = _law(contact, kin, tr.split_ellipse_rule(*counts), tr.LAW_SLIP_CURVE, curve)
+    np.testing.assert_allclose(out[tr.TR_FORCE : tr.TR_FORCE + 3], -0.07 * Q_ * t1, rtol=1e-12)
+
+
+def test_rolling_slip_zeros_match_a_root_finder():
+    """The lines of zero rolling slip v1(eta) = s01 + o2 z(eta) - on eta (z on the deformed surface
+    of curvature kappa) against brentq on the exact v1, to 1e-9 of the half-width; without a zero,
+    both break points sit where v1 comes closest to zero (where the two zeros will appear)."""
+    from scipy import optimize
+
+    a, kappa = 1.2e-3, 1.0 / 2.2e-3
+
+    def v1(y, s01, o2, on, kappa=kappa):
+        eta = a * y
+        z = math.sqrt(1.0 / kappa**2 - eta**2) - 1.0 / kappa if kappa > 0.0 else 0.0
+        return s01 + o2 * z - on * eta
+
+    counts = []
+    for s01, o2, on, k in (
+        (0.05, 3000.0, 300.0, kappa),
+        (-0.2, 2500.0, -100.0, kappa),
+        (0.01, 0.0, 500.0, kappa),
+        (0.1, 800.0, -400.0, 0.0),
+    ):
+        ys = np.linspace(-1.0, 1.0, 2001)
+        vals = np.array([v1(y, s01, o2, on, k) for y in ys])
+        flips = np.flatnonzero(np.sign(vals[1:]) != np.sign(vals[:-1]))
+        roots = sorted(
+            optimize.brentq(v1, ys[i], ys[i + 1], args=(s01, o2, on, k), xtol=1e-14) for i in flips
+        )
+        lo, hi = tr._rolling_slip_zeros(a, k, s01, o2, on)
+        found = sorted({r for r in (lo, hi) if r > -1.5})  # a double break point counts once
+        counts.append(len(roots))
+        if roots:
+            assert len(found) == len(roots)
+            np.testing.assert_allclose(found, roots, atol=1e-9)
+        else:  # the closest approach: a minimum of |v1| inside the ellipse
+            assert lo == hi and abs(v1(lo, s01, o2, on, k)) == pytest.approx(
+                np.min(np.abs(vals)), rel=1e-3
+            )
+    assert counts == [2, 0, 1, 1]
+
+
+def test_split_rule_converges_to_the_independent_integral():
+    """Rheology law on a contact with rolling, sliding, spin and curvature (two lines of zero
+    rolling slip cross the ellipse): the split rule converges to the independent polar integral
+    (max of the force and moment errors 0.2, 0.009, 0.002, 1.2e-4 with 2 x 2 ... 16 x 16). On the
+    running contacts of the catalogue cases it beats the product rule at equal node counts
+    (benchmarks/traction_rules.py)."""
+    contact, kin = _general_case(kappa=KAPPA)
+    r = _rheology_params()
+    film, transit = 0.3e-6, 5.0e-6
+    F, MP, _, pw = _reference(
+        contact,
+        kin,
+        np.zeros(tr.CURVE_SIZE),
+        0.0,
+        n_panels=60,
+        stress=lambda u, p: _rheology_stress(u, p, film, transit, r),
+    )
+    fs, ms = np.linalg.norm(F), np.linalg.norm(MP)
+
+    def error(nodes):
+        out = _law(contact, kin, nodes, film=film, r=r)
+        return max(
+            np.linalg.norm(out[tr.TR_FORCE : tr.TR_FORCE + 3] - F) / fs,
+            np.linalg.norm(out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3] - MP) / ms,
+        )
+
+    errors = [error(tr.split_ellipse_rule(n, n)) for n in (2, 4, 8, 16)]
+    assert errors[-1] < 5e-4
+    assert errors[1] < 0.02
+    assert all(errors[i + 1] < errors[i] for i in range(len(errors) - 1))
+
+
+def test_split_rule_rejects_bad_counts():
+    with pytest.raises(ValueError, match="n_rolling"):
+        tr.split_ellipse_rule(0, 3)
+    with pytest.raises(ValueError, match="strips_per_piece"):
+        tr.split_ellipse_rule(2, 1.5)
+
+
+@pytest.mark.parametrize("law", [tr.LAW_SLIP_CURVE, tr.LAW_RHEOLOGY])
+@pytest.mark.parametrize("load", [0.0, Q_])
+def test_split_rule_no_nan_without_slip(law, load):
+    """No slip anywhere (and no load): the split rule gives zero force and moments, no NaN."""
+    n, t1, _ = _frame(1)
+    contact = _contact(np.zeros(3), n, t1, A_, B_, load, KAPPA)
+    kin = _kin(-R_BALL * n, np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
+    out = _law(contact, kin, tr.split_ellipse_rule(3, 3), law, tr.constant_traction_parameters(0.1))
+    assert np.all(np.isfinite(out))
+    assert np.all(out[0:9] == 0.0)
+
+
+@pytest.mark.parametrize("kappa", [0.0, KAPPA])
+def test_split_rule_is_continuous_where_lines_of_pure_rolling_appear(kappa):
+    """As the centre slip is swept, a line of pure rolling enters the ellipse at an edge (flat
+    contact) or two of them appear together (curved contact, where the parabola of the rolling slip
+    touches zero): the split rule's traction changes smoothly through it, with no step larger than
+    twice the typical change between neighbouring sweep points."""
+    n, t1, t2 = _frame(3)
+    P = np.array([0.0, 0.025, 0.0])
+    cb = P - R_BALL * n
+    contact = _contact(P, n, t1, A_, B_, Q_, kappa)
+    spin, roll = 300.0, 4000.0 if kappa > 0.0 else 0.0
+    # v1(eta) = s01 + roll z(eta) - spin eta: zero at the edge eta = -a (flat) or at the vertex
+    if kappa > 0.0:
+        eta_v = -spin / (roll * kappa)
+        s_edge = spin * eta_v + 0.5 * roll * kappa * eta_v**2
+    else:
+        s_edge = -spin * A_
+    sweep = s_edge + np.linspace(-0.02, 0.02, 81) * abs(s_edge)
+    forces = []
+    for s01 in sweep:
+        # the ball's rolling adds R roll t1 at P: the ball velocity makes the centre slip s01
+        vb = (s01 - R_BALL * roll) * t1 + 0.01 * t2
+        kin = _kin(cb, vb, spin * n + roll * t2, np.zeros(3), np.zeros(3), np.zeros(3))
+        out = _law(contact, kin, tr.split_ellipse_rule(3, 3))
+        forces.append(out[tr.TR_FORCE : tr.TR_FORCE + 3])
+    breaks = [
+        len({r for r in tr._rolling_slip_zeros(A_, kappa, s01, roll, spin) if r > -1.5})
+        for s01 in (sweep[0], sweep[-1])
+    ]
+    assert breaks[0] != breaks[-1]  # the sweep passes the change of pieces
+    steps = np.linalg.norm(np.diff(np.array(forces), axis=0), axis=1)
+    assert np.all(np.isfinite(steps))
+    assert steps.max() < 2.0 * np.median(steps)
