@@ -221,12 +221,45 @@ def ehl_rolling_force(entrainment, viscosity, pressure_viscosity, eprime, r_x, l
 
 
 @njit(cache=True)
+def film_ellipticity_factor(kappa):
+    """The ellipticity factor 1 - 0.61 exp(-0.73 kappa) of the Hamrock–Dowson central film."""
+    return 1.0 - 0.61 * math.exp(-0.73 * kappa)
+
+
+@njit(cache=True)
+def rolling_ellipticity_log(kappa):
+    """ln(kappa^0.348): the ellipticity term of :func:`ehl_rolling_force`, as a logarithm."""
+    return 0.348 * math.log(kappa)
+
+
+@njit(cache=True)
 def film_and_rolling_force(entrainment, slide_to_roll, load, r_x, kappa, p_max, eprime, rheology):
     """(central film h_c [m], thermal factor phi_T, EHL rolling force [N]) of one contact in one
     pass: Hamrock–Dowson h_c (solver.physics.ehl.film_thickness_central, same W floor) and
     :func:`ehl_rolling_force`, both times :func:`inlet_thermal_factor`, with the power laws
     evaluated through shared logarithms (the per-contact cost in the dynamic model). Viscosity and
     pressure-viscosity from ``rheology``. No speed or load: (0, 1, 0)."""
+    return film_and_rolling_from_factors(
+        entrainment,
+        slide_to_roll,
+        load,
+        r_x,
+        film_ellipticity_factor(kappa),
+        rolling_ellipticity_log(kappa),
+        p_max,
+        eprime,
+        rheology,
+    )
+
+
+@njit(cache=True, inline="always")
+def film_and_rolling_from_factors(
+    entrainment, slide_to_roll, load, r_x, film_factor, rolling_log, p_max, eprime, rheology
+):
+    """:func:`film_and_rolling_force` with the ellipticity's two terms given:
+    ``film_factor`` = :func:`film_ellipticity_factor` and ``rolling_log`` =
+    :func:`rolling_ellipticity_log` of kappa (the dynamic model tabulates them per race against
+    the contact angle, solver.physics.hertz_race)."""
     u = abs(entrainment)
     eta = rheology[RH_VISCOSITY]
     alpha = rheology[RH_PRESSURE_VISCOSITY]
@@ -235,18 +268,9 @@ def film_and_rolling_force(entrainment, slide_to_roll, load, r_x, kappa, p_max, 
     ln_u = math.log(eta * u / (eprime * r_x))
     ln_g = math.log(alpha * eprime)
     ln_w = math.log(max(load / (eprime * r_x * r_x), W_FLOOR))
-    film = (
-        2.69
-        * r_x
-        * math.exp(0.67 * ln_u + 0.53 * ln_g - 0.067 * ln_w)
-        * (1.0 - 0.61 * math.exp(-0.73 * kappa))
-    )
+    film = 2.69 * r_x * math.exp(0.67 * ln_u + 0.53 * ln_g - 0.067 * ln_w) * film_factor
     rolling = (
-        2.86
-        * eprime
-        * r_x
-        * r_x
-        * math.exp(0.348 * math.log(kappa) + 0.022 * ln_g + 0.66 * ln_u + 0.47 * ln_w)
+        2.86 * eprime * r_x * r_x * math.exp(rolling_log + 0.022 * ln_g + 0.66 * ln_u + 0.47 * ln_w)
     )
     phi = 1.0
     beta = rheology[RH_TEMPERATURE_VISCOSITY]

@@ -249,7 +249,7 @@ def advance_imex(
     base = np.empty(3)
     moved = np.empty(3)
     scratch = rhs_work()
-    rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
+    rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch, False)
     counters[2] += 1
     dv = JACOBIAN_STEP * scale[k0]
     err_old = 1e-4
@@ -342,7 +342,7 @@ def advance_imex(
                     yt[k0 + c] = y[k0 + c] + dd[c]
                 for r in range(3):
                     fi[s, r] = jac[r, 0] * dd[0] + jac[r, 1] * dd[1] + jac[r, 2] * dd[2]
-            rhs_into(yt, par, quad, k[s], rec_inner, rec_outer, pocket, scratch)
+            rhs_into(yt, par, quad, k[s], rec_inner, rec_outer, pocket, scratch, False)
         counters[2] += ns - 1
         steps += 1
         err = 0.0
@@ -374,7 +374,7 @@ def advance_imex(
                 return STATUS_BALL_ESCAPED, t, h, n_done
             for i in range(n):
                 ynew[i] = k[0, i]  # keep f(y_n)
-            rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch)
+            rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch, False)
             counters[2] += 1
             # outputs inside the step: cubic Hermite interpolation of y_n, y, f(y_n), f(y)
             while n_done < n_out - 1 and t_out[n_done] <= t_new:

@@ -79,26 +79,26 @@ def dp5_stages(y, hs, k1, k2, k3, k4, k5, k6, k7, yt, ynew, par, quad, rec_i, re
     n = y.shape[0]
     for i in range(n):
         yt[i] = y[i] + hs * _A21 * k1[i]
-    rhs_into(yt, par, quad, k2, rec_i, rec_o, pocket, work)
+    rhs_into(yt, par, quad, k2, rec_i, rec_o, pocket, work, False)
     for i in range(n):
         yt[i] = y[i] + hs * (_A31 * k1[i] + _A32 * k2[i])
-    rhs_into(yt, par, quad, k3, rec_i, rec_o, pocket, work)
+    rhs_into(yt, par, quad, k3, rec_i, rec_o, pocket, work, False)
     for i in range(n):
         yt[i] = y[i] + hs * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-    rhs_into(yt, par, quad, k4, rec_i, rec_o, pocket, work)
+    rhs_into(yt, par, quad, k4, rec_i, rec_o, pocket, work, False)
     for i in range(n):
         yt[i] = y[i] + hs * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-    rhs_into(yt, par, quad, k5, rec_i, rec_o, pocket, work)
+    rhs_into(yt, par, quad, k5, rec_i, rec_o, pocket, work, False)
     for i in range(n):
         yt[i] = y[i] + hs * (
             _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
         )
-    rhs_into(yt, par, quad, k6, rec_i, rec_o, pocket, work)
+    rhs_into(yt, par, quad, k6, rec_i, rec_o, pocket, work, False)
     for i in range(n):
         ynew[i] = y[i] + hs * (
             _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
         )
-    rhs_into(ynew, par, quad, k7, rec_i, rec_o, pocket, work)
+    rhs_into(ynew, par, quad, k7, rec_i, rec_o, pocket, work, False)
 
 
 @njit(cache=True)
@@ -166,7 +166,7 @@ def advance(
     yt = np.empty(n)
     ynew = np.empty(n)
     scratch = rhs_work()
-    rhs_into(y, par, quad, k1, rec_inner, rec_outer, pocket, scratch)
+    rhs_into(y, par, quad, k1, rec_inner, rec_outer, pocket, scratch, False)
     counters[2] += 1
     err_old = 1e-4
     steps = 0

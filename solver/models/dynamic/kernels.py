@@ -43,14 +43,9 @@ from solver.physics.cage_contact import (
     pocket_contact,
 )
 from solver.physics.drag import cage_drag_moment_from
-from solver.physics.hertz_fast import (
-    curvature_sum_and_difference_fast,
-    ellipse_from_coefficients,
-    equivalent_radii_fast,
-    hertz_coefficients_fast,
-    stiffness_from_coefficients,
-)
-from solver.physics.rheology import film_and_rolling_force
+from solver.physics.hertz_fast import equivalent_radii_fast
+from solver.physics.hertz_race import race_coefficients, race_coefficients_direct
+from solver.physics.rheology import film_and_rolling_from_factors
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -77,6 +72,7 @@ from solver.physics.traction import (
     ellipse_traction_law,
 )
 
+from .borrow import borrowed, borrowed_record
 from .layout import (
     B_OMEGA,
     B_POS,
@@ -283,16 +279,17 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     """Contact geometry of a ball with centre ``pb`` (inertial) in a groove of the ring with
     orientation ``R`` and origin ``o``.
 
-    Returns (delta [m], alpha [rad], ring-frame azimuth of the ball phi, ring-frame contact point
-    (3), inertial normal n (3), inertial contact point P (3), inertial groove centre (3), rolling
-    direction t1 (3), (cos phi, sin phi), (cos alpha, sin alpha)). The normal points from the
-    groove centre through the ball centre to the contact."""
+    Returns (delta [m], the arguments (y, x) of atan2 for the contact angle alpha and for the
+    ring-frame azimuth of the ball phi (4), ring-frame contact point (3), inertial normal n (3),
+    inertial contact point P (3), inertial groove centre (3), rolling direction t1 (3),
+    (cos phi, sin phi), (cos alpha, sin alpha)). The normal points from the groove centre through
+    the ball centre to the contact. The angles themselves are left to the caller: only the
+    observed evaluations record them."""
     dx, dy, dz = pb[0] - o[0], pb[1] - o[1], pb[2] - o[2]
     # ball centre in ring-frame components
     cx = R[0, 0] * dx + R[1, 0] * dy + R[2, 0] * dz
     cy = R[0, 1] * dx + R[1, 1] * dy + R[2, 1] * dz
     cz = R[0, 2] * dx + R[1, 2] * dy + R[2, 2] * dz
-    phi = math.atan2(cz, cy)
     inv_rho = 1.0 / math.sqrt(cy * cy + cz * cz)
     cph, sph = cy * inv_rho, cz * inv_rho
     # groove curvature centre at that azimuth, and the contact normal
@@ -302,7 +299,6 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     nx, ny, nz = ex / length, ey / length, ez / length
     delta = length - (rg - rball)
     n_rho = ny * cph + nz * sph
-    alpha = math.atan2(sgn * nx, sgn * n_rho)
     # cos and sin of alpha without evaluating them: n lies in the meridional plane (e_x, e_rho)
     inv_r = 1.0 / math.sqrt(nx * nx + n_rho * n_rho)
     ca, sa = sgn * n_rho * inv_r, sgn * nx * inv_r
@@ -315,8 +311,7 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
     t1 = _to_inertial(R, 0.0, -sph, cph)
     return (
         delta,
-        alpha,
-        phi,
+        (sgn * nx, sgn * n_rho, cz, cy),
         (prx, pry, prz),
         ni,
         (o[0] + pi_[0], o[1] + pi_[1], o[2] + pi_[2]),
@@ -328,14 +323,17 @@ def _contact_geometry(pb, R, o, xc, rc, rg, rball, sgn):
 
 
 @njit(cache=True, inline="always")
-def _hertz(dball, conf, gamma, is_inner, eprime):
-    """(R_x, R_y, Sigma rho, kappa, K(m), E(m), K [N/m^1.5]) of a ball-groove contact from the
-    tabulated exact solution of solver.physics.hertz_fast (one table look-up)."""
+def _hertz(dball, conf, cos_alpha, dm, is_inner, eprime, table):
+    """(R_x, R_y [m], kappa, K [N/m^1.5], A, B [m^(2/3)], film ellipticity factor, rolling
+    ellipticity logarithm) of a ball-groove contact at contact angle cosine ``cos_alpha``: one
+    look-up in the race's table of solver.physics.hertz_race (semi-axes a = A (Q/E')^(1/3),
+    b = B (Q/E')^(1/3)), its closed forms outside the table."""
+    gamma = dball * cos_alpha / dm
     rx, ry = equivalent_radii_fast(dball, conf, gamma, is_inner)
-    csum, cdiff = curvature_sum_and_difference_fast(dball, conf, gamma, is_inner)
-    kappa, big_k, big_e = hertz_coefficients_fast(cdiff)
-    k = stiffness_from_coefficients(kappa, big_k, big_e, csum, eprime)
-    return rx, ry, csum, kappa, big_k, big_e, k
+    kappa, s, ca, cb, film_k, rolling_k = race_coefficients(table, cos_alpha)
+    if not s == s:
+        kappa, s, ca, cb, film_k, rolling_k = race_coefficients_direct(dball, conf, gamma, is_inner)
+    return rx, ry, kappa, s * eprime, ca, cb, film_k, rolling_k
 
 
 @njit(cache=True, inline="always")
@@ -420,17 +418,19 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, 
 
 
 @njit(cache=True, inline="always")
-def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
+def _film_and_rolling(par, entrain, slide, rx, q, film_k, rolling_k, b, pmax):
     """(central film [m], rolling resistance force [N]) of a loaded contact: Hamrock-Dowson film
     and hydrodynamic inlet force at the inlet viscosity, both reduced for inlet shear heating
-    (solver.physics.rheology.film_and_rolling_force), plus the elastic hysteresis force
+    (solver.physics.rheology.film_and_rolling_from_factors, with the ellipticity terms
+    ``film_k``, ``rolling_k`` of the race table), plus the elastic hysteresis force
     F_h = 3/16 alpha_h Q b / R_x (physics.md §2.6.5)."""
-    film, _, f_ehl = film_and_rolling_force(
+    film, _, f_ehl = film_and_rolling_from_factors(
         entrain,
         slide / entrain if entrain > 0.0 else 0.0,
         q,
         rx,
-        kappa,
+        film_k,
+        rolling_k,
         pmax,
         par.eprime,
         par.rheology,
@@ -438,14 +438,30 @@ def _film_and_rolling(par, entrain, slide, rx, q, kappa, b, pmax):
     return film, f_ehl + 0.1875 * par.hysteresis * q * b / rx
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ball_race_contact(
-    y, jb, ring_rot, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work
+    y,
+    jb,
+    ring_rot,
+    ring_origin,
+    ring_vel,
+    ring_omega,
+    is_inner,
+    par,
+    table,
+    quad,
+    rec,
+    work,
+    observed,
 ):
     """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
 
-    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
-    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*).
+    ``table``: the race's Hertz table (``par.inner_hertz`` or ``par.outer_hertz``, of
+    solver.physics.hertz_race); ``quad``: node table of
+    :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
+    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*). ``observed``
+    False (the integrator's evaluations): ``rec`` gets only what the forces and the integrator's
+    checks need; the contact angle, raceway azimuth and elastic load are NaN there.
     """
     dball = par.ball_diameter
     xc, rc, rg, conf, sgn = _groove(par, is_inner)
@@ -455,20 +471,26 @@ def ball_race_contact(
     o = (ring_origin[0], ring_origin[1], ring_origin[2])
     vr = (ring_vel[0], ring_vel[1], ring_vel[2])
     wr = (ring_omega[0], ring_omega[1], ring_omega[2])
-    delta, alpha, phi, pr, n, p, g, t1, trig_phi, trig_alpha = _contact_geometry(
+    delta, angle_args, pr, n, p, g, t1, trig_phi, trig_alpha = _contact_geometry(
         pb, ring_rot, o, xc, rc, rg, 0.5 * dball, sgn
     )
     slide, spin, roll, entrain, axis = _contact_kinematics(
         pb, vb, wb, o, vr, wr, p, n, trig_alpha, trig_phi, ring_rot, sgn
     )
-    gamma = dball * trig_alpha[0] / par.pitch_diameter
     eprime = par.eprime
-    rx, ry, csum, kappa, big_k, big_e, kh = _hertz(dball, conf, gamma, is_inner, eprime)
+    rx, ry, _, kh, coef_a, coef_b, film_k, rolling_k = _hertz(
+        dball, conf, trig_alpha[0], par.pitch_diameter, is_inner, eprime, table
+    )
     for i in range(K_F_BALL, K_M_RING + 3):
         rec[i] = 0.0
     rec[K_DEFLECTION] = delta
-    rec[K_ANGLE] = alpha
-    rec[K_AZIMUTH] = phi  # the contact point lies in the ball centre's meridional plane
+    if observed:
+        rec[K_ANGLE] = math.atan2(angle_args[0], angle_args[1])
+        # the contact point lies in the ball centre's meridional plane
+        rec[K_AZIMUTH] = math.atan2(angle_args[2], angle_args[3])
+    else:
+        rec[K_ANGLE] = math.nan
+        rec[K_AZIMUTH] = math.nan
     for i in range(3):
         rec[K_POINT + i] = pr[i]
         rec[K_NORMAL + i] = n[i]
@@ -494,14 +516,17 @@ def ball_race_contact(
     ddelta = _approach_rate(vb, o, vr, wr, g, n)
     q = damped_normal_force(delta, ddelta, kh, par.damping_ratio, par.ball_mass)
     rec[K_LOAD] = q
-    rec[K_ELASTIC] = kh * delta**1.5
+    rec[K_ELASTIC] = kh * delta**1.5 if observed else math.nan
     if not q > 0.0:  # unloaded, or NaN from a non-finite state (kept in rec for the integrator)
         return
-    sa_, sb_, _, pmax = ellipse_from_coefficients(q, kappa, big_k, big_e, csum, eprime)
+    q13 = np.cbrt(q / eprime)
+    sa_ = coef_a * q13
+    sb_ = coef_b * q13
+    pmax = 1.5 * q / (math.pi * sa_ * sb_)
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
     rec[K_PMAX] = pmax
-    film, fr = _film_and_rolling(par, entrain, slide, rx, q, kappa, sb_, pmax)
+    film, fr = _film_and_rolling(par, entrain, slide, rx, q, film_k, rolling_k, sb_, pmax)
     rec[K_FILM] = film
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
     fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
@@ -578,7 +603,7 @@ def cage_frame(y, cb, rot, omega):
     _then_about_x(rot, math.cos(angle), math.sin(angle))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
     """Ball ``j`` against its cage pocket through the kernel of solver.physics.cage_contact.
 
@@ -811,12 +836,47 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
     (Z,) receive the contact records and pocket normal forces of this evaluation.
     :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
-    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work())
+    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work(), True)
 
 
 @njit(cache=True)
-def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
-    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation."""
+def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed=True):
+    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
+    evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
+    and slices of them cost no atomic reference counts. ``observed`` False (integrators' stages,
+    which pass it explicitly): the records hold only what the forces and ``post_step`` need
+    (contact angle, raceway azimuth and elastic load NaN; see :func:`ball_race_contact`)."""
+    _rhs_borrowed(
+        borrowed(y),
+        borrowed_record(par),
+        borrowed(quad),
+        borrowed(dydt),
+        borrowed(rec_inner),
+        borrowed(rec_outer),
+        borrowed(pocket),
+        observed,
+        RhsWork(
+            borrowed(scratch.inner_rot),
+            borrowed(scratch.inner_origin),
+            borrowed(scratch.inner_vel),
+            borrowed(scratch.inner_omega),
+            borrowed(scratch.outer_rot),
+            borrowed(scratch.outer_omega),
+            borrowed(scratch.zero3),
+            borrowed(scratch.cage_rot),
+            borrowed(scratch.cage_omega),
+            borrowed(scratch.pocket),
+            borrowed(scratch.land),
+            borrowed(scratch.contact),
+        ),
+    )
+
+
+@njit(cache=True, error_model="numpy")
+def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, scratch):
+    """Body of :func:`rhs_into`, on the views it borrows. Compiled with numpy's error model: a
+    division by zero gives inf or NaN (which the integrator's finiteness check turns into a
+    failed step) instead of a test and a branch to an exception before every division."""
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
     cb = rb + RING_SIZE
@@ -837,6 +897,8 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
     crot = scratch.cage_rot
     come = scratch.cage_omega
     cage_frame(y, cb, crot, come)
+    hi = par.inner_hertz
+    ho = par.outer_hertz
     frx = fry = frz = 0.0
     mrx = mry = mrz = 0.0
     fcx = fcy = fcz = 0.0
@@ -845,8 +907,23 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch):
         jb = BALL_STRIDE * j
         ri = rec_inner[j]
         ro = rec_outer[j]
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, ri, work)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, ro, work)
+        for race in range(2):  # one inlined copy of the contact kernel for both races
+            inner = race == 0
+            ball_race_contact(
+                y,
+                jb,
+                irot if inner else orot,
+                iorg if inner else zero3,
+                ivel if inner else zero3,
+                iome if inner else oome,
+                inner,
+                par,
+                hi if inner else ho,
+                quad,
+                ri if inner else ro,
+                work,
+                observed,
+            )
         fx = ri[K_F_BALL] + ro[K_F_BALL]
         fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
         fz = ri[K_F_BALL + 2] + ro[K_F_BALL + 2] - mb * g
@@ -973,8 +1050,13 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     e = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
-        ball_race_contact(y, jb, irot, iorg, ivel, iome, True, par, quad, rec_inner[j], work)
-        ball_race_contact(y, jb, orot, zero3, zero3, oome, False, par, quad, rec_outer[j], work)
+        ri, ro = rec_inner[j], rec_outer[j]
+        ball_race_contact(
+            y, jb, irot, iorg, ivel, iome, True, par, par.inner_hertz, quad, ri, work, True
+        )
+        ball_race_contact(
+            y, jb, orot, zero3, zero3, oome, False, par, par.outer_hertz, quad, ro, work, True
+        )
         for rec in (rec_inner[j], rec_outer[j]):
             d = rec[K_DEFLECTION]
             if d > 0.0:

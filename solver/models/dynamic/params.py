@@ -21,6 +21,7 @@ from solver.physics.cage_contact import (
     pocket_stiffness_estimate,
 )
 from solver.physics.drag import cage_drag_coefficients
+from solver.physics.hertz_race import race_table
 from solver.physics.traction import (
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
@@ -67,6 +68,8 @@ class ModelParams(NamedTuple):
     inner_conformity: float  # f_i = r_i / D
     outer_conformity: float  # f_o
     eprime: float  # effective modulus E' [Pa]
+    inner_hertz: np.ndarray  # Hertz table of the inner race (solver.physics.hertz_race.race_table)
+    outer_hertz: np.ndarray  # of the outer race
     # ---- rings, loads and modes
     inner_speed: float  # inner ring speed [rad/s]
     outer_speed: float  # outer ring speed [rad/s]
@@ -87,8 +90,8 @@ class ModelParams(NamedTuple):
     damping_ratio: float  # critical-damping ratio of the ball-race normal contacts
     traction: bool  # ellipse-integrated traction on (False: frictionless)
     traction_law: int  # solver.physics.traction.LAW_RHEOLOGY or LAW_SLIP_CURVE
-    traction_curve: np.ndarray  # (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D
-    rheology: np.ndarray  # solver.physics.rheology parameter array (RH_*)
+    traction_curve: tuple  # (A, B, C, D) of mu(u) = (A + B u) exp(-C u) + D
+    rheology: tuple  # solver.physics.rheology parameters (RH_* slots)
     viscosity: float  # oil viscosity at the inlet temperature [Pa s]
     pressure_viscosity: float  # Barus alpha [1/Pa]
     hysteresis: float  # elastic hysteresis loss fraction of the ball-race contacts
@@ -102,10 +105,10 @@ class ModelParams(NamedTuple):
     pocket_radius: float  # pocket-centre radius in the cage [m]
     pocket_clearance: float  # pocket diametral clearance [m]
     pocket_stiffness: float  # linear pocket contact stiffness [N/m]
-    pocket: np.ndarray  # pocket law parameters of solver.physics.cage_contact.pocket_parameters
+    pocket: tuple  # pocket law parameters of solver.physics.cage_contact.pocket_parameters
     guidance: int  # layout.GUIDE_OUTER_RING / GUIDE_INNER_RING / GUIDE_BALL
     land_clearance: float  # guiding radial clearance [m]
-    land: np.ndarray  # land law parameters of solver.physics.cage_contact.land_parameters
+    land: tuple  # land law parameters of solver.physics.cage_contact.land_parameters
     # ---- oil-air mixture around the balls (drag)
     mixture_density: float  # [kg/m^3]
     mixture_viscosity: float  # [Pa s]
@@ -228,6 +231,8 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         inner_conformity=g.inner_conformity,
         outer_conformity=g.outer_conformity,
         eprime=g.effective_modulus,
+        inner_hertz=race_table(D, dm, g.inner_conformity, True),
+        outer_hertz=race_table(D, dm, g.outer_conformity, False),
         inner_speed=op.inner_ring_speed,
         outer_speed=op.outer_ring_speed,
         ring_mass=ring_mass,
@@ -246,8 +251,8 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         damping_ratio=float(options.damping_ratio),
         traction=bool(options.traction),
         traction_law=LAW_RHEOLOGY if lubricant.traction_model == "rheology" else LAW_SLIP_CURVE,
-        traction_curve=traction_curve_parameters(*lubricant.traction.values()),
-        rheology=rheology_parameters(lubricant),
+        traction_curve=_floats(traction_curve_parameters(*lubricant.traction.values())),
+        rheology=_floats(rheology_parameters(lubricant)),
         viscosity=lubricant.viscosity,
         pressure_viscosity=lubricant.pressure_viscosity,
         hysteresis=0.5 * (g.ball_material.hysteresis_loss + g.ring_material.hysteresis_loss),
@@ -262,34 +267,45 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         pocket_radius=0.5 * dm,
         pocket_clearance=cage.pocket_clearance,
         pocket_stiffness=float(pocket_k),
-        pocket=pocket_parameters(
-            pocket_k,
-            1.0,
-            options.pocket_damping_ratio,
-            g.ball_mass,
-            cage.pocket_friction,
-            cage.pocket_clearance,
-            D,
-            slip_regularisation=options.friction_regularisation,
+        pocket=_floats(
+            pocket_parameters(
+                pocket_k,
+                1.0,
+                options.pocket_damping_ratio,
+                g.ball_mass,
+                cage.pocket_friction,
+                cage.pocket_clearance,
+                D,
+                slip_regularisation=options.friction_regularisation,
+            )
         ),
         guidance=guide,
         land_clearance=0.5 * cage.guide_clearance,
-        land=land_parameters(
-            land,
-            cage.guide_land_width,
-            0.5 * cage.guide_clearance,
-            # a partly flooded land: the hydrodynamic force scales with the wetted width
-            lubricant.viscosity * cage.land_flooding,
-            land_k,
-            cage.mass,
-            guide != L.GUIDE_INNER_RING,
-            slip_regularisation=options.friction_regularisation,
+        land=_floats(
+            land_parameters(
+                land,
+                cage.guide_land_width,
+                0.5 * cage.guide_clearance,
+                # a partly flooded land: the hydrodynamic force scales with the wetted width
+                lubricant.viscosity * cage.land_flooding,
+                land_k,
+                cage.mass,
+                guide != L.GUIDE_INNER_RING,
+                slip_regularisation=options.friction_regularisation,
+            )
         ),
         mixture_density=rho_mix,
         mixture_viscosity=eta_mix,
         cage_drag_laminar=cage_drag[0],
         cage_drag_turbulent=cage_drag[1],
     )
+
+
+def _floats(values) -> tuple:
+    """A parameter array as a tuple of floats: numba passes a tuple of scalars by value, where an
+    array in the record would cost two atomic reference-count updates at every kernel call that
+    receives the record."""
+    return tuple(float(v) for v in values)
 
 
 def rheology_parameters(lubricant) -> np.ndarray:

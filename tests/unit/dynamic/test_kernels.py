@@ -230,7 +230,7 @@ def _outer_contact_setup(mu, heathcote=False, quadrature=(4, 8)):
     inp = spindle_inputs()
     par, quad, y0 = start(inp, heathcote=heathcote, quadrature=quadrature, damping_ratio=0.0)
     # the slip-curve law with a constant (Coulomb) coefficient
-    par = par._replace(traction_law=LAW_SLIP_CURVE, traction_curve=np.array([0.0, 0.0, 0.0, mu]))
+    par = par._replace(traction_law=LAW_SLIP_CURVE, traction_curve=(0.0, 0.0, 0.0, mu))
     par = par._replace(slip_regularisation=1e-9)
     y = y0.copy()
     b = L.ball_base(0)
