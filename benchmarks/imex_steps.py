@@ -33,6 +33,7 @@ from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions
 from solver.models.dynamic import layout as L
+from solver.models.dynamic.imex import ark436l2sa
 from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
 from solver.models.dynamic.kernels import post_step, rhs_into, rhs_work
 from solver.models.dynamic.params import build_params, build_quadrature
@@ -71,56 +72,10 @@ def _ark3():
 
 
 def _ark4():
-    """ARK4(3)6L[2]SA: (explicit A, implicit A, b, embedded b, order)."""
-    ae = np.zeros((6, 6))
-    ae[1, 0] = 0.5
-    ae[2, :2] = (13861.0 / 62500.0, 6889.0 / 62500.0)
-    ae[3, :3] = (
-        -116923316275.0 / 2393684061468.0,
-        -2731218467317.0 / 15368042101831.0,
-        9408046702089.0 / 11113171139209.0,
-    )
-    ae[4, :4] = (
-        -451086348788.0 / 2902428689909.0,
-        -2682348792572.0 / 7519795681897.0,
-        12662868775082.0 / 11960479115383.0,
-        3355817975965.0 / 11060851509271.0,
-    )
-    ae[5, :5] = (
-        647845179188.0 / 3216320057751.0,
-        73281519250.0 / 8382639484533.0,
-        552539513391.0 / 3454668386233.0,
-        3354512671639.0 / 8306763924573.0,
-        4040.0 / 17871.0,
-    )
-    ai = np.zeros((6, 6))
-    ai[1, :2] = (0.25, 0.25)
-    ai[2, :3] = (8611.0 / 62500.0, -1743.0 / 31250.0, 0.25)
-    ai[3, :4] = (5012029.0 / 34652500.0, -654441.0 / 2922500.0, 174375.0 / 388108.0, 0.25)
-    ai[4, :5] = (
-        15267082809.0 / 155376265600.0,
-        -71443401.0 / 120774400.0,
-        730878875.0 / 902184768.0,
-        2285395.0 / 8070912.0,
-        0.25,
-    )
-    ai[5, :] = (
-        82889.0 / 524892.0,
-        0.0,
-        15625.0 / 83664.0,
-        69875.0 / 102672.0,
-        -2260.0 / 8211.0,
-        0.25,
-    )
-    b_hat = (
-        4586570599.0 / 29645900160.0,
-        0.0,
-        178811875.0 / 945068544.0,
-        814220225.0 / 1159782912.0,
-        -3700637.0 / 11593932.0,
-        61727.0 / 225920.0,
-    )
-    return ae, ai, ai[5].copy(), np.array(b_hat), 4
+    """ARK4(3)6L[2]SA, the compiled method's tableau: (explicit A, implicit A, b, embedded b,
+    order)."""
+    t = ark436l2sa()
+    return t.explicit, t.implicit, t.b, t.b - t.e, t.order
 
 
 PAIRS = {"ark3": _ark3, "ark4": _ark4}

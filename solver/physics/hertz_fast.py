@@ -80,6 +80,21 @@ _TABLE = _build_table()
 _INV_STEP = 1.0 / TABLE_STEP
 
 
+@njit(cache=True, inline="always")
+def hermite_cell(u, node_count):
+    """Cell and cubic Hermite basis at ``u`` (in node spacings from the first of ``node_count``
+    equally spaced nodes, u >= 0): (i, h00, h10, h01, h11), the value weights of nodes i and i + 1
+    and their slope weights per node spacing (multiply those by the spacing). Beyond the last
+    cell, the last cell's polynomial continues."""
+    i = int(u)
+    if i > node_count - 2:
+        i = node_count - 2
+    s = u - i
+    s2 = s * s
+    s3 = s2 * s
+    return i, 2.0 * s3 - 3.0 * s2 + 1.0, s3 - 2.0 * s2 + s, -2.0 * s3 + 3.0 * s2, s3 - s2
+
+
 @njit(cache=True)
 def hertz_coefficients_fast(curvature_difference):
     """(κ, 𝒦, ℰ) for a curvature difference F(ρ) [-]: ellipticity a/b, complete elliptic integrals.
@@ -98,17 +113,7 @@ def hertz_coefficients_fast(curvature_difference):
         x = 2.0 * math.atanh(f)
         if x > X_MAX:
             x = X_MAX
-    u = x * _INV_STEP
-    i = int(u)
-    if i > _N_NODES - 2:
-        i = _N_NODES - 2
-    s = u - i
-    s2 = s * s
-    s3 = s2 * s
-    h00 = 2.0 * s3 - 3.0 * s2 + 1.0
-    h10 = s3 - 2.0 * s2 + s
-    h01 = -2.0 * s3 + 3.0 * s2
-    h11 = s3 - s2
+    i, h00, h10, h01, h11 = hermite_cell(x * _INV_STEP, _N_NODES)
     t = _TABLE
     h = TABLE_STEP
     log_kappa = h00 * t[0, i] + h10 * h * t[3, i] + h01 * t[0, i + 1] + h11 * h * t[3, i + 1]

@@ -35,7 +35,11 @@ from numba import njit
 from scipy.interpolate import CubicSpline
 
 from .hertz import ellipticity_exact
-from .hertz_fast import curvature_sum_and_difference_fast, hertz_coefficients_fast
+from .hertz_fast import (
+    curvature_sum_and_difference_fast,
+    hermite_cell,
+    hertz_coefficients_fast,
+)
 from .rheology import film_ellipticity_factor, rolling_ellipticity_log
 
 __all__ = [
@@ -127,17 +131,9 @@ def race_coefficients(table, cos_alpha):
         return math.nan, math.nan, math.nan, math.nan, math.nan, math.nan
     n = table.shape[1]
     h = 1.0 / (n - 1)
-    u = cos_alpha * (n - 1)
-    i = int(u)
-    if i > n - 2:
-        i = n - 2
-    s = u - i
-    s2 = s * s
-    s3 = s2 * s
-    h00 = 2.0 * s3 - 3.0 * s2 + 1.0
-    h10 = (s3 - 2.0 * s2 + s) * h
-    h01 = -2.0 * s3 + 3.0 * s2
-    h11 = (s3 - s2) * h
+    i, h00, h10, h01, h11 = hermite_cell(cos_alpha * (n - 1), n)
+    h10 *= h
+    h11 *= h
     t = table
     d = N_ROWS
     return (
