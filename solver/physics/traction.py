@@ -463,6 +463,35 @@ def _write_centre_outputs(out, nx, ny, nz, vbx, vby, vbz, vrx, vry, vrz, ox, oy,
 
 
 @njit(cache=True, inline="always")
+def _strip_terms(a, kappa, y):
+    """Curvature terms of the strip at y = eta / a [-] across the groove: (eta [m], sin(phi),
+    cos(phi), z [m]) of the curved surface (module docstring, "Contact description")."""
+    eta = a * y
+    sphi = kappa * eta
+    cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
+    return eta, sphi, cphi, -kappa * eta * eta / (1.0 + cphi)
+
+
+@njit(cache=True, inline="always")
+def _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi):
+    """``sums`` (f1, f2, fn, m1, m2, mn, power) plus the node's traction tau dA = g dv (dv = v1 t1 +
+    v2 t2'), its moment about the contact centre and its friction power -g |dv|^2."""
+    f1, f2, fn, m1, m2, mn, power = sums
+    tau1 = g * v1
+    tau2 = g * v2 * cphi
+    taun = -g * v2 * sphi
+    return (
+        f1 + tau1,
+        f2 + tau2,
+        fn + taun,
+        m1 + (eta * taun - z * tau2),
+        m2 + (z * tau1 - xi * taun),
+        mn + (xi * tau2 - eta * tau1),
+        power - g * u2,
+    )
+
+
+@njit(cache=True, inline="always")
 def _node_factor(
     u2, ps, w_load, w_uniform, law_data, q, curve, ur2, tl0_area, lam_q, ln_c, elastic
 ):
@@ -556,7 +585,7 @@ def _split_rule_sums(
     n_t = int(rule[0, SPLIT_COUNTS])
     n_y = int(rule[1, SPLIT_COUNTS])
     ra, rb = _rolling_slip_zeros(a, kappa, s01, o2, on)
-    f1 = f2 = fn = m1 = m2 = mn = power = 0.0
+    sums = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
     lo = -1.0
     area_lo = -0.25 * math.pi  # plain-area primitive 0.5 (y sqrt(1 - y^2) + asin y) at lo
     for piece in range(3):
@@ -584,10 +613,7 @@ def _split_rule_sums(
             y = mid + half * rule[j, SPLIT_Y]
             wy = rule[j, SPLIT_Y_WEIGHT]
             sy = math.sqrt(max(1.0 - y * y, 0.0))
-            eta = a * y
-            sphi = kappa * eta
-            cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
-            z = -kappa * eta * eta / (1.0 + cphi)
+            eta, sphi, cphi, z = _strip_terms(a, kappa, y)
             w_load = load_scale * sy * sy * wy
             w_uniform = area_scale * sy * wy
             v1 = s01 + o2 * z - on * eta
@@ -609,17 +635,8 @@ def _split_rule_sums(
                     ln_c,
                     elastic,
                 )
-                tau1 = g * v1
-                tau2 = g * v2 * cphi
-                taun = -g * v2 * sphi
-                f1 += tau1
-                f2 += tau2
-                fn += taun
-                m1 += eta * taun - z * tau2
-                m2 += z * tau1 - xi * taun
-                mn += xi * tau2 - eta * tau1
-                power -= g * u2
-    return f1, f2, fn, m1, m2, mn, power
+                sums = _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi)
+    return sums
 
 
 @njit(cache=True)
@@ -684,17 +701,11 @@ def ellipse_traction_law(
         ur2 = 0.0
         if filmed:
             ln_c, elastic = contact_constants(film, transit_time, rheology)
-    f1 = 0.0
-    f2 = 0.0
-    fn = 0.0
-    m1 = 0.0
-    m2 = 0.0
-    mn = 0.0
-    power = 0.0
+    sums = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # f1, f2, fn, m1, m2, mn, power (_add_node)
     y_strip = 2.0  # outside [-1, 1]: the first node starts a strip
     eta = sphi = cphi = z = 0.0
     if nodes.shape[1] == SPLIT_COLUMNS:
-        f1, f2, fn, m1, m2, mn, power = _split_rule_sums(
+        sums = _split_rule_sums(
             nodes,
             a,
             b,
@@ -720,10 +731,7 @@ def ellipse_traction_law(
             xi = b * nodes[k, NODE_ROLLING]
             if nodes[k, NODE_TRANSVERSE] != y_strip:
                 y_strip = nodes[k, NODE_TRANSVERSE]
-                eta = a * y_strip
-                sphi = kappa * eta
-                cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
-                z = -kappa * eta * eta / (1.0 + cphi)
+                eta, sphi, cphi, z = _strip_terms(a, kappa, y_strip)
             v1 = s01 + o2 * z - on * eta
             v2 = s02 + on * xi - o1 * z
             u2 = v1 * v1 + v2 * v2
@@ -742,16 +750,7 @@ def ellipse_traction_law(
                 elastic,
                 tau_0,
             )
-            tau1 = g * v1
-            tau2 = g * v2 * cphi
-            taun = -g * v2 * sphi
-            f1 += tau1
-            f2 += tau2
-            fn += taun
-            m1 += eta * taun - z * tau2
-            m2 += z * tau1 - xi * taun
-            mn += xi * tau2 - eta * tau1
-            power -= g * u2
+            sums = _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi)
         nodes_done = nodes.shape[0]
     else:
         nodes_done = 0
@@ -759,10 +758,7 @@ def ellipse_traction_law(
         xi = b * nodes[k, NODE_ROLLING]
         if nodes[k, NODE_TRANSVERSE] != y_strip:  # a new strip: its curvature terms
             y_strip = nodes[k, NODE_TRANSVERSE]
-            eta = a * y_strip
-            sphi = kappa * eta
-            cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
-            z = -kappa * eta * eta / (1.0 + cphi)
+            eta, sphi, cphi, z = _strip_terms(a, kappa, y_strip)
         # Rigid-body slip at the node p = P + (xi, eta, z): dv = s0 + Omega x (xi, eta, z). Its n
         # component is the approach rate of the undeformed bodies (taken up by the elastic
         # deformation, not slip) and is dropped; the rolling component v1 stays along t1 and the
@@ -786,16 +782,8 @@ def ellipse_traction_law(
             u = math.sqrt(u2)
             mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
             g = -q * nodes[k, NODE_LOAD] * mu / den
-        tau1 = g * v1
-        tau2 = g * v2 * cphi
-        taun = -g * v2 * sphi
-        f1 += tau1
-        f2 += tau2
-        fn += taun
-        m1 += eta * taun - z * tau2
-        m2 += z * tau1 - xi * taun
-        mn += xi * tau2 - eta * tau1
-        power -= g * u2
+        sums = _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi)
+    f1, f2, fn, m1, m2, mn, power = sums
     fx = f1 * t1x + f2 * t2x + fn * nx
     fy = f1 * t1y + f2 * t2y + fn * ny
     fz = f1 * t1z + f2 * t2z + fn * nz
