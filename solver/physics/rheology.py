@@ -37,6 +37,7 @@ import math
 from numba import njit
 
 from .ehl import W_FLOOR
+from .lanes import asinh_lanes, exp_lanes, log_lanes
 
 RH_VISCOSITY = 0
 RH_PRESSURE_VISCOSITY = 1
@@ -91,16 +92,19 @@ _LN_ASINH_SERIES_FROM = math.log(_ASINH_SERIES_FROM)
 @njit(cache=True, inline="always")
 def _asinh_from_log(ln_x):
     """asinh(x) from ln x: ln(2x) above x = 1e3; ln(2x) + sum_n (-1)^(n-1) (2n-1)!! / (2n (2n)!!)
-    x^(-2n), n = 1..5, above x = 3 (one exponential, no logarithm); the closed form below."""
+    x^(-2n), n = 1..5, above x = 3 (one exponential, no logarithm); the closed form below. Plain
+    arithmetic (solver.physics.lanes), so that the traction kernels' node loops vectorise."""
     if ln_x > _LN_ASINH_LOG_FROM:
         return _LN2 + ln_x
     if ln_x > _LN_ASINH_SERIES_FROM:
-        w = math.exp(-2.0 * ln_x)
+        w = exp_lanes(-2.0 * ln_x)
         series = w * (
             0.25 - w * (0.09375 - w * (0.052083333333333336 - w * (0.0341796875 - w * 0.024609375)))
         )
         return _LN2 + ln_x + series
-    return math.asinh(math.exp(ln_x))  # accurate also for x -> 0 (Newtonian limit)
+    # accurate also for x -> 0 (Newtonian limit); the argument is kept within the branch's range
+    # so that the lanes of a vectorised loop that take another branch stay finite
+    return asinh_lanes(exp_lanes(min(ln_x, _LN_ASINH_SERIES_FROM)))
 
 
 @njit(cache=True)
@@ -160,7 +164,7 @@ def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
     p = max(pressure, 0.0)
     return u * stress_over_slip(
         u,
-        math.log(u),
+        log_lanes(u),
         rheology[RH_PRESSURE_VISCOSITY] * p,
         rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p,
         ln_c,

@@ -106,6 +106,7 @@ import numpy as np
 from numba import njit
 from scipy import optimize, special
 
+from .lanes import exp_lanes, log_lanes
 from .rheology import (
     RH_EYRING_STRESS,
     RH_LIMITING_SLOPE,
@@ -176,6 +177,22 @@ SPLIT_Y = 4  # Gauss-Legendre node on [-1, 1] for each piece across the groove
 SPLIT_Y_WEIGHT = 5  # its weight
 SPLIT_COUNTS = 6  # row 0: points along the rolling direction; row 1: strips per piece
 SPLIT_COLUMNS = 7
+
+# ---- node batch of ellipse_traction_into: float64 (NODE_BATCH_ROWS, capacity in nodes) -------
+NB_XI = 0  # rolling coordinate xi [m]
+NB_ETA = 1  # transverse coordinate eta [m]
+NB_Z = 2  # z(eta) of the curved surface [m]
+NB_SIN = 3  # sin(phi) of the local tangent t2'
+NB_COS = 4  # cos(phi)
+NB_PRESSURE = 5  # p / p_max
+NB_LOAD = 6  # load fraction p dA / Q
+NB_UNIFORM = 7  # plain-area fraction dA / (a b)
+NB_FACTOR = 8  # g [N s/m] of the local law, tau dA = g dv
+NB_V1 = 9  # rolling slip v1 [m/s]
+NB_V2 = 10  # transverse slip v2 [m/s]
+NB_U2 = 11  # |dv|^2 [m^2/s^2]
+NODE_BATCH_ROWS = 12
+NODE_BATCH = 64  # nodes in a batch of the kernels' callers (the default rules have <= 32)
 
 DEFAULT_N_ROLLING = 4
 DEFAULT_N_TRANSVERSE = 10
@@ -492,35 +509,108 @@ def _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi):
 
 
 @njit(cache=True, inline="always")
-def _node_factor(
-    u2, ps, w_load, w_uniform, law_data, q, curve, ur2, tl0_area, lam_q, ln_c, elastic
-):
-    """g [N s/m] with tau dA = g dv at a node of slip speed squared ``u2`` [m^2/s^2], pressure
-    ``ps`` p / p_max, load fraction ``w_load`` (p dA / Q) and plain-area fraction ``w_uniform``
-    (dA / (a b)). ``law_data`` = (rheological, filmed, p_max alpha, tau_L0, p_max Lambda, tau_0)."""
-    rheological, filmed, alpha_pmax, tl0, lam_pmax, tau_0 = law_data
-    if rheological:
-        if u2 <= 0.0:
-            return 0.0
-        weight = tl0_area * w_uniform + lam_q * w_load
-        if filmed:
-            return -weight * saturation_over_slip(
+def _put_node(batch, k, xi, eta, z, sphi, cphi, ps, w_load, w_uniform):
+    """Geometry and weights of node ``k`` into the node batch ``batch`` (``NB_*`` rows; units
+    there)."""
+    batch[NB_XI, k] = xi
+    batch[NB_ETA, k] = eta
+    batch[NB_Z, k] = z
+    batch[NB_SIN, k] = sphi
+    batch[NB_COS, k] = cphi
+    batch[NB_PRESSURE, k] = ps
+    batch[NB_LOAD, k] = w_load
+    batch[NB_UNIFORM, k] = w_uniform
+
+
+@njit(cache=True, inline="always")
+def _node_slip(batch, k, s01, s02, o1, o2, on):
+    """(v1, v2, |dv|^2) [m/s, m/s, m^2/s^2] at node ``k`` of the batch, from the slip (s01, s02)
+    at the contact centre and the relative angular velocity (o1, o2, on) in the contact basis.
+
+    Rigid-body slip at the node p = P + (xi, eta, z): dv = s0 + Omega x (xi, eta, z). Its n
+    component is the approach rate of the undeformed bodies (taken up by the elastic deformation,
+    not slip) and is dropped; the rolling component v1 stays along t1 and the transverse one v2 is
+    laid along the local tangent t2' = cos(phi) t2 - sin(phi) n."""
+    eta = batch[NB_ETA, k]
+    z = batch[NB_Z, k]
+    v1 = s01 + o2 * z - on * eta
+    v2 = s02 + on * batch[NB_XI, k] - o1 * z
+    return v1, v2, v1 * v1 + v2 * v2
+
+
+@njit(cache=True, inline="always")
+def _batch_sums(sums, batch, count, slip, law_data):
+    """``sums`` (f1, f2, fn, m1, m2, mn, power; :func:`_add_node`) plus the contributions of the
+    first ``count`` nodes of the node batch ``batch`` (geometry filled by :func:`_put_node`).
+    ``slip`` = (s01, s02, o1, o2, on) [m/s, rad/s] in the contact basis; ``law_data`` = (law,
+    filmed, Q [N], the curve's A, B [s/m], C [s/m], D, u_reg^2 [m^2/s^2], alpha p_max, tau_L0
+    [Pa], Lambda p_max [Pa], tau_0 [Pa], tau_L0 a b [N], Lambda Q [N], ln(eta_0 / (tau_0 h_c)),
+    G t / h_c [Pa s/m]).
+
+    First the local law at every node, g [N s/m] with tau dA = g dv, in a loop with no dependence
+    between nodes and no library call (exp and log of solver.physics.lanes), which LLVM
+    vectorises; then the sums in node order. Inlined into kernels compiled with numpy's error
+    model: no test and branch before each division (a division by zero is never selected)."""
+    s01, s02, o1, o2, on = slip
+    (law, filmed, q, c0, c1, c2, c3, ur2) = law_data[:8]
+    (alpha_pmax, tl0, lam_pmax, tau_0, tl0_area, lam_q, ln_c, elastic) = law_data[8:]
+    if law == LAW_RHEOLOGY and filmed:
+        for k in range(count):
+            v1, v2, u2 = _node_slip(batch, k, s01, s02, o1, o2, on)
+            ps = batch[NB_PRESSURE, k]
+            # tau dA = s (tau_L0 dA + Lambda p dA): plain-area and load weights (module docstring)
+            weight = tl0_area * batch[NB_UNIFORM, k] + lam_q * batch[NB_LOAD, k]
+            g = -weight * saturation_over_slip(
                 math.sqrt(u2),
-                0.5 * math.log(u2),
+                0.5 * log_lanes(u2),
                 alpha_pmax * ps,
                 tl0 + lam_pmax * ps,
                 ln_c,
                 elastic,
                 tau_0,
             )
-        u = math.sqrt(u2)
-        return -weight / u if u > 1e-9 else 0.0
-    den = math.sqrt(u2 + ur2)
-    if den <= 0.0:
-        return 0.0
-    u = math.sqrt(u2)
-    mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
-    return -q * w_load * mu / den
+            batch[NB_FACTOR, k] = g if u2 > 0.0 else 0.0
+            batch[NB_V1, k] = v1
+            batch[NB_V2, k] = v2
+            batch[NB_U2, k] = u2
+    elif law == LAW_RHEOLOGY:
+        # no film (no entrainment): the limiting shear stress tau_L0 + Lambda p for any slip above
+        # 1e-9 m/s (solver.physics.rheology.shear_stress without a film), integrated as above
+        for k in range(count):
+            v1, v2, u2 = _node_slip(batch, k, s01, s02, o1, o2, on)
+            u = math.sqrt(u2)
+            weight = tl0_area * batch[NB_UNIFORM, k] + lam_q * batch[NB_LOAD, k]
+            g = -weight / u
+            batch[NB_FACTOR, k] = g if u > 1e-9 else 0.0
+            batch[NB_V1, k] = v1
+            batch[NB_V2, k] = v2
+            batch[NB_U2, k] = u2
+    else:
+        # slip curve: tau = -mu(|dv|) p dv / sqrt(|dv|^2 + u_reg^2)
+        for k in range(count):
+            v1, v2, u2 = _node_slip(batch, k, s01, s02, o1, o2, on)
+            den = math.sqrt(u2 + ur2)
+            u = math.sqrt(u2)
+            mu = (c0 + c1 * u) * exp_lanes(-c2 * u) + c3
+            g = -q * batch[NB_LOAD, k] * mu / den
+            batch[NB_FACTOR, k] = g if den > 0.0 else 0.0
+            batch[NB_V1, k] = v1
+            batch[NB_V2, k] = v2
+            batch[NB_U2, k] = u2
+    for k in range(count):
+        sums = _add_node(
+            sums,
+            batch[NB_FACTOR, k],
+            batch[NB_V1, k],
+            batch[NB_V2, k],
+            batch[NB_U2, k],
+            batch[NB_XI, k],
+            batch[NB_ETA, k],
+            batch[NB_Z, k],
+            batch[NB_SIN, k],
+            batch[NB_COS, k],
+        )
+    return sums
 
 
 @njit(cache=True, inline="always")
@@ -559,107 +649,35 @@ def _rolling_slip_zeros(a, kappa, s01, o2, on):
     return min(r1, r2), max(r1, r2)
 
 
-@njit(cache=True)
-def _split_rule_sums(
-    rule,
-    a,
-    b,
-    kappa,
-    s01,
-    s02,
-    o1,
-    o2,
-    on,
-    law_data,
-    q,
+@njit(cache=True, error_model="numpy")
+def _full_batch_sums(sums, batch, slip, law_data):
+    """:func:`_batch_sums` of a full batch, as a call: rules with more nodes than a batch holds
+    are rare, so the node loops keep one inlined copy of the batch's loops (at their end)."""
+    return _batch_sums(sums, batch, batch.shape[1], slip, law_data)
+
+
+@njit(cache=True, error_model="numpy")
+def ellipse_traction_into(
+    contact,
+    kinematics,
+    law,
     curve,
-    ur2,
-    tl0_area,
-    lam_q,
-    ln_c,
-    elastic,
+    rheology,
+    film,
+    transit_time,
+    slip_regularisation,
+    nodes,
+    out,
+    batch,
 ):
-    """(f1, f2, fn, m1, m2, mn, power) of :func:`ellipse_traction_law` with the split rule
-    ``rule`` (:func:`split_ellipse_rule`): Gauss-Legendre strips on each piece of the major axis
-    between the zeros of the rolling slip, the rolling-direction points of the rule on each."""
-    n_t = int(rule[0, SPLIT_COUNTS])
-    n_y = int(rule[1, SPLIT_COUNTS])
-    ra, rb = _rolling_slip_zeros(a, kappa, s01, o2, on)
-    sums = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-    lo = -1.0
-    area_lo = -0.25 * math.pi  # plain-area primitive 0.5 (y sqrt(1 - y^2) + asin y) at lo
-    for piece in range(3):
-        hi = ra if piece == 0 else (rb if piece == 1 else 1.0)
-        if hi - lo <= 1e-9:
-            continue
-        mid = 0.5 * (lo + hi)
-        half = 0.5 * (hi - lo)
-        # scale the strips' weights so that the piece's plain area and load (weights sqrt(1 -
-        # y^2) and 1 - y^2 across) come out exactly: a saturated piece is then exact
-        sum_area = 0.0
-        sum_load = 0.0
-        for j in range(n_y):
-            y = mid + half * rule[j, SPLIT_Y]
-            sy2 = max(1.0 - y * y, 0.0)
-            sum_area += rule[j, SPLIT_Y_WEIGHT] * math.sqrt(sy2)
-            sum_load += rule[j, SPLIT_Y_WEIGHT] * sy2
-        area_hi = 0.5 * (hi * math.sqrt(max(1.0 - hi * hi, 0.0)) + math.asin(min(hi, 1.0)))
-        load_piece = (hi - hi * hi * hi / 3.0) - (lo - lo * lo * lo / 3.0)
-        area_scale = (area_hi - area_lo) / sum_area if sum_area > 0.0 else 0.0
-        load_scale = 1.5 / math.pi * load_piece / sum_load if sum_load > 0.0 else 0.0
-        lo = hi
-        area_lo = area_hi
-        for j in range(n_y):
-            y = mid + half * rule[j, SPLIT_Y]
-            wy = rule[j, SPLIT_Y_WEIGHT]
-            sy = math.sqrt(max(1.0 - y * y, 0.0))
-            eta, sphi, cphi, z = _strip_terms(a, kappa, y)
-            w_load = load_scale * sy * sy * wy
-            w_uniform = area_scale * sy * wy
-            v1 = s01 + o2 * z - on * eta
-            for i in range(n_t):
-                xi = b * sy * rule[i, SPLIT_T]
-                v2 = s02 + on * xi - o1 * z
-                u2 = v1 * v1 + v2 * v2
-                g = _node_factor(
-                    u2,
-                    sy * rule[i, SPLIT_T_PRESSURE],
-                    w_load * rule[i, SPLIT_T_LOAD],
-                    w_uniform * rule[i, SPLIT_T_UNIFORM],
-                    law_data,
-                    q,
-                    curve,
-                    ur2,
-                    tl0_area,
-                    lam_q,
-                    ln_c,
-                    elastic,
-                )
-                sums = _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi)
-    return sums
+    """:func:`ellipse_traction_law` with the caller's node batch ``batch``: a C-contiguous float64
+    scratch array (``NODE_BATCH_ROWS``, capacity), any capacity >= 1 (``NODE_BATCH`` is the usual
+    one). Allocates nothing.
 
-
-@njit(cache=True)
-def ellipse_traction_law(
-    contact, kinematics, law, curve, rheology, film, transit_time, slip_regularisation, nodes, out
-):
-    """Traction force and moments on the ball integrated over the Hertz contact ellipse, with the
-    local law ``law``: ``LAW_SLIP_CURVE`` (tau = mu(|dv|) p, ``curve``) or ``LAW_RHEOLOGY`` (tau of
-    :func:`solver.physics.rheology.shear_stress` with ``rheology``, central film ``film`` [m] and
-    transit time ``transit_time`` [s]; no regularisation needed: tau vanishes linearly with slip).
-
-    ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and
-    the output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes``
-    comes from :func:`ellipse_quadrature` or :func:`split_ellipse_rule`; ``slip_regularisation``
-    u_reg [m/s] >= 0.
-
-    At each node the surface point p = P + xi t1 + eta t2 + z(eta) n lies on the deformed surface of
-    curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the
-    ring surface there (rigid-body velocities of both bodies, rolling and transverse components laid
-    on the local tangent plane, see the module docstring) gives the local shear tau = -mu(|dv|) p dv
-    / sqrt(|dv|^2 + u_reg^2). Spin moment and the differential (Heathcote) slip thus come out of one
-    formula. Returns nothing; fills ``out``.
-    """
+    The nodes are taken a batch at a time: their geometry and weights (per strip, and per piece
+    of the split rule) are put into the batch, then :func:`_batch_sums` evaluates the local law
+    at all of them in one vectorised loop and adds their contributions to the force, moment and
+    power sums in node order."""
     nx, ny, nz, t1x, t1y, t1z, t2x, t2y, t2z = _contact_basis(contact)
     (rbx, rby, rbz, vbx, vby, vbz, vrx, vry, vrz, ox, oy, oz) = _centre_kinematics(
         contact, kinematics, nx, ny, nz
@@ -701,88 +719,106 @@ def ellipse_traction_law(
         ur2 = 0.0
         if filmed:
             ln_c, elastic = contact_constants(film, transit_time, rheology)
+    slip = (s01, s02, o1, o2, on)
+    law_data = (
+        law,
+        filmed,
+        q,
+        curve[0],
+        curve[1],
+        curve[2],
+        curve[3],
+        ur2,
+        alpha_pmax,
+        tl0,
+        lam_pmax,
+        tau_0,
+        tl0_area,
+        lam_q,
+        ln_c,
+        elastic,
+    )
+    cap = batch.shape[1]
+    count = 0
     sums = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # f1, f2, fn, m1, m2, mn, power (_add_node)
-    y_strip = 2.0  # outside [-1, 1]: the first node starts a strip
-    eta = sphi = cphi = z = 0.0
     if nodes.shape[1] == SPLIT_COLUMNS:
-        sums = _split_rule_sums(
-            nodes,
-            a,
-            b,
-            kappa,
-            s01,
-            s02,
-            o1,
-            o2,
-            on,
-            (rheological, filmed, alpha_pmax, tl0, lam_pmax, tau_0),
-            q,
-            curve,
-            ur2,
-            tl0_area,
-            lam_q,
-            ln_c,
-            elastic,
-        )
-        nodes_done = nodes.shape[0]
-    elif rheological and filmed:
-        # the rheology's own loop (the law at every node: rheology.saturation_over_slip)
+        # split rule: Gauss-Legendre strips on each piece of the major axis between the zeros of
+        # the rolling slip, the rolling-direction points of the rule on each
+        n_t = int(nodes[0, SPLIT_COUNTS])
+        n_y = int(nodes[1, SPLIT_COUNTS])
+        ra, rb = _rolling_slip_zeros(a, kappa, s01, o2, on)
+        lo = -1.0
+        area_lo = -0.25 * math.pi  # plain-area primitive 0.5 (y sqrt(1 - y^2) + asin y) at lo
+        for piece in range(3):
+            hi = ra if piece == 0 else (rb if piece == 1 else 1.0)
+            if hi - lo <= 1e-9:
+                continue
+            mid = 0.5 * (lo + hi)
+            half = 0.5 * (hi - lo)
+            # scale the strips' weights so that the piece's plain area and load (weights sqrt(1 -
+            # y^2) and 1 - y^2 across) come out exactly: a saturated piece is then exact
+            sum_area = 0.0
+            sum_load = 0.0
+            for j in range(n_y):
+                y = mid + half * nodes[j, SPLIT_Y]
+                sy2 = max(1.0 - y * y, 0.0)
+                sum_area += nodes[j, SPLIT_Y_WEIGHT] * math.sqrt(sy2)
+                sum_load += nodes[j, SPLIT_Y_WEIGHT] * sy2
+            area_hi = 0.5 * (hi * math.sqrt(max(1.0 - hi * hi, 0.0)) + math.asin(min(hi, 1.0)))
+            load_piece = (hi - hi * hi * hi / 3.0) - (lo - lo * lo * lo / 3.0)
+            area_scale = (area_hi - area_lo) / sum_area if sum_area > 0.0 else 0.0
+            load_scale = 1.5 / math.pi * load_piece / sum_load if sum_load > 0.0 else 0.0
+            lo = hi
+            area_lo = area_hi
+            for j in range(n_y):
+                y = mid + half * nodes[j, SPLIT_Y]
+                wy = nodes[j, SPLIT_Y_WEIGHT]
+                sy = math.sqrt(max(1.0 - y * y, 0.0))
+                eta, sphi, cphi, z = _strip_terms(a, kappa, y)
+                w_load = load_scale * sy * sy * wy
+                w_uniform = area_scale * sy * wy
+                for i in range(n_t):
+                    _put_node(
+                        batch,
+                        count,
+                        b * sy * nodes[i, SPLIT_T],
+                        eta,
+                        z,
+                        sphi,
+                        cphi,
+                        sy * nodes[i, SPLIT_T_PRESSURE],
+                        w_load * nodes[i, SPLIT_T_LOAD],
+                        w_uniform * nodes[i, SPLIT_T_UNIFORM],
+                    )
+                    count += 1
+                    if count == cap:
+                        sums = _full_batch_sums(sums, batch, slip, law_data)
+                        count = 0
+    else:
+        y_strip = 2.0  # outside [-1, 1]: the first node starts a strip
+        eta = sphi = cphi = z = 0.0
         for k in range(nodes.shape[0]):
-            xi = b * nodes[k, NODE_ROLLING]
-            if nodes[k, NODE_TRANSVERSE] != y_strip:
+            if nodes[k, NODE_TRANSVERSE] != y_strip:  # a new strip: its curvature terms
                 y_strip = nodes[k, NODE_TRANSVERSE]
                 eta, sphi, cphi, z = _strip_terms(a, kappa, y_strip)
-            v1 = s01 + o2 * z - on * eta
-            v2 = s02 + on * xi - o1 * z
-            u2 = v1 * v1 + v2 * v2
-            if u2 <= 0.0:
-                continue
-            ps = nodes[k, NODE_PRESSURE]
-            # tau dA = s (tau_L0 dA + Lambda p dA): plain-area and load weights (module docstring)
-            g = -(
-                tl0_area * nodes[k, NODE_UNIFORM] + lam_q * nodes[k, NODE_LOAD]
-            ) * saturation_over_slip(
-                math.sqrt(u2),
-                0.5 * math.log(u2),
-                alpha_pmax * ps,
-                tl0 + lam_pmax * ps,
-                ln_c,
-                elastic,
-                tau_0,
+            _put_node(
+                batch,
+                count,
+                b * nodes[k, NODE_ROLLING],
+                eta,
+                z,
+                sphi,
+                cphi,
+                nodes[k, NODE_PRESSURE],
+                nodes[k, NODE_LOAD],
+                nodes[k, NODE_UNIFORM],
             )
-            sums = _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi)
-        nodes_done = nodes.shape[0]
-    else:
-        nodes_done = 0
-    for k in range(nodes_done, nodes.shape[0]):
-        xi = b * nodes[k, NODE_ROLLING]
-        if nodes[k, NODE_TRANSVERSE] != y_strip:  # a new strip: its curvature terms
-            y_strip = nodes[k, NODE_TRANSVERSE]
-            eta, sphi, cphi, z = _strip_terms(a, kappa, y_strip)
-        # Rigid-body slip at the node p = P + (xi, eta, z): dv = s0 + Omega x (xi, eta, z). Its n
-        # component is the approach rate of the undeformed bodies (taken up by the elastic
-        # deformation, not slip) and is dropped; the rolling component v1 stays along t1 and the
-        # transverse one v2 is laid along the local tangent t2' = cos(phi) t2 - sin(phi) n.
-        v1 = s01 + o2 * z - on * eta
-        v2 = s02 + on * xi - o1 * z
-        u2 = v1 * v1 + v2 * v2
-        if rheological:  # no film (no entrainment): the limiting shear stress
-            if u2 <= 0.0:
-                continue
-            u = math.sqrt(u2)
-            # the limiting shear stress tau_L0 + Lambda p for any slip above 1e-9 m/s
-            # (solver.physics.rheology.shear_stress without a film), integrated as above
-            if u <= 1e-9:
-                continue
-            g = -(tl0_area * nodes[k, NODE_UNIFORM] + lam_q * nodes[k, NODE_LOAD]) / u
-        else:
-            den = math.sqrt(u2 + ur2)
-            if den <= 0.0:
-                continue
-            u = math.sqrt(u2)
-            mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
-            g = -q * nodes[k, NODE_LOAD] * mu / den
-        sums = _add_node(sums, g, v1, v2, u2, xi, eta, z, sphi, cphi)
+            count += 1
+            if count == cap:
+                sums = _full_batch_sums(sums, batch, slip, law_data)
+                count = 0
+    if count > 0:
+        sums = _batch_sums(sums, batch, count, slip, law_data)
     f1, f2, fn, m1, m2, mn, power = sums
     fx = f1 * t1x + f2 * t2x + fn * nx
     fy = f1 * t1y + f2 * t2y + fn * ny
@@ -803,6 +839,43 @@ def ellipse_traction_law(
     s0n = (vbx - vrx) * nx + (vby - vry) * ny + (vbz - vrz) * nz
     out[TR_POWER_SLIDING] = -(f1 * s01 + f2 * s02 + fn * s0n)
     out[TR_POWER_SPIN] = -(m1 * o1 + m2 * o2 + mn * on)
+
+
+@njit(cache=True)
+def ellipse_traction_law(
+    contact, kinematics, law, curve, rheology, film, transit_time, slip_regularisation, nodes, out
+):
+    """Traction force and moments on the ball integrated over the Hertz contact ellipse, with the
+    local law ``law``: ``LAW_SLIP_CURVE`` (tau = mu(|dv|) p, ``curve``) or ``LAW_RHEOLOGY`` (tau of
+    :func:`solver.physics.rheology.shear_stress` with ``rheology``, central film ``film`` [m] and
+    transit time ``transit_time`` [s]; no regularisation needed: tau vanishes linearly with slip).
+
+    ``contact`` (``CONTACT_SIZE``), ``kinematics`` (``KIN_SIZE``), ``curve`` (``CURVE_SIZE``) and
+    the output ``out`` (``TRACTION_OUT_SIZE``) are laid out as in the module docstring; ``nodes``
+    comes from :func:`ellipse_quadrature` or :func:`split_ellipse_rule`; ``slip_regularisation``
+    u_reg [m/s] >= 0.
+
+    At each node the surface point p = P + xi t1 + eta t2 + z(eta) n lies on the deformed surface of
+    curvature ``contact[CT_CURVATURE]`` across the groove; the slip of the ball surface over the
+    ring surface there (rigid-body velocities of both bodies, rolling and transverse components laid
+    on the local tangent plane, see the module docstring) gives the local shear tau = -mu(|dv|) p dv
+    / sqrt(|dv|^2 + u_reg^2). Spin moment and the differential (Heathcote) slip thus come out of one
+    formula. Returns nothing; fills ``out``. Allocates its node batch
+    (:func:`ellipse_traction_into` takes the caller's).
+    """
+    ellipse_traction_into(
+        contact,
+        kinematics,
+        law,
+        curve,
+        rheology,
+        film,
+        transit_time,
+        slip_regularisation,
+        nodes,
+        out,
+        np.empty((NODE_BATCH_ROWS, NODE_BATCH)),
+    )
 
 
 @njit(cache=True)

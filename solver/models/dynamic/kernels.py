@@ -62,6 +62,8 @@ from solver.physics.traction import (
     KIN_RING_POINT,
     KIN_RING_VELOCITY,
     KIN_SIZE,
+    NODE_BATCH,
+    NODE_BATCH_ROWS,
     TR_FORCE,
     TR_MOMENT_BALL,
     TR_MOMENT_POINT,
@@ -69,7 +71,7 @@ from solver.physics.traction import (
     TR_POWER_SPIN,
     TRACTION_OUT_SIZE,
     damped_normal_force,
-    ellipse_traction_law,
+    ellipse_traction_into,
 )
 
 from .borrow import borrowed, borrowed_record
@@ -236,9 +238,11 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
 # ---------------------------------------------------------------------------------------------
 
 #: scratch space of one traction, pocket or land evaluation: the input/output arrays of the
-#: kernels of solver.physics.traction and solver.physics.cage_contact
+#: kernels of solver.physics.traction (with the traction's node batch) and
+#: solver.physics.cage_contact
+_BATCH_AT = CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE
 TRACTION_WORK_SIZE = max(
-    CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE,
+    _BATCH_AT + NODE_BATCH_ROWS * NODE_BATCH,
     POCKET_KIN_SIZE + POCKET_OUT_SIZE,
     LAND_KIN_SIZE + LAND_OUT_SIZE,
 )
@@ -382,12 +386,15 @@ def _approach_rate(vb, o, vr, wr, g, n):
 
 @njit(cache=True, inline="always")
 def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, vb, wb, o, vr, wr):
-    """Ellipse-integrated traction (solver.physics.traction.ellipse_traction_law, local law
-    ``par.traction_law``) on the ball: returns the output array (force on the ball, moments about
-    the ball centre and about P, powers)."""
+    """Ellipse-integrated traction (solver.physics.traction.ellipse_traction_into, local law
+    ``par.traction_law``, node batch in ``work``) on the ball: returns the output array (force on
+    the ball, moments about the ball centre and about P, powers)."""
     ct = work[:CONTACT_SIZE]
     kin = work[CONTACT_SIZE : CONTACT_SIZE + KIN_SIZE]
-    tout = work[CONTACT_SIZE + KIN_SIZE : CONTACT_SIZE + KIN_SIZE + TRACTION_OUT_SIZE]
+    tout = work[CONTACT_SIZE + KIN_SIZE : _BATCH_AT]
+    batch = work[_BATCH_AT : _BATCH_AT + NODE_BATCH_ROWS * NODE_BATCH].reshape(
+        (NODE_BATCH_ROWS, NODE_BATCH)
+    )
     for i in range(3):
         ct[CT_POINT + i] = p[i]
         ct[CT_NORMAL + i] = n[i]
@@ -402,7 +409,7 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, 
     ct[CT_SEMI_MINOR] = b
     ct[CT_LOAD] = q
     ct[CT_CURVATURE] = curvature
-    ellipse_traction_law(
+    ellipse_traction_into(
         ct,
         kin,
         par.traction_law,
@@ -413,6 +420,7 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, 
         par.slip_regularisation,
         quad,
         tout,
+        batch,
     )
     return tout
 
