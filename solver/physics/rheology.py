@@ -37,7 +37,6 @@ import math
 from numba import njit
 
 from .ehl import W_FLOOR
-from .lanes import asinh_lanes, exp_lanes, log_lanes
 
 RH_VISCOSITY = 0
 RH_PRESSURE_VISCOSITY = 1
@@ -81,30 +80,45 @@ def barus_viscosity(viscosity, pressure_viscosity, pressure):
 _ASINH_LOG_FROM = 1.0e3
 _LN_ASINH_LOG_FROM = math.log(_ASINH_LOG_FROM)
 _LN2 = math.log(2.0)
+#: ln x above which the Eyring law's asinh(x) is ln(2 x) (:func:`eyring_asinh_large`).
+EYRING_LARGE_FROM = _LN_ASINH_LOG_FROM
 
 
-#: From this x on, :func:`_asinh_from_log` uses the series of asinh(x) in 1/x^2 (five terms,
+#: From this x on, :func:`eyring_asinh` uses the series of asinh(x) in 1/x^2 (five terms,
 #: relative error below 1e-7).
 _ASINH_SERIES_FROM = 3.0
 _LN_ASINH_SERIES_FROM = math.log(_ASINH_SERIES_FROM)
 
 
 @njit(cache=True, inline="always")
-def _asinh_from_log(ln_x):
-    """asinh(x) from ln x: ln(2x) above x = 1e3; ln(2x) + sum_n (-1)^(n-1) (2n-1)!! / (2n (2n)!!)
-    x^(-2n), n = 1..5, above x = 3 (one exponential, no logarithm); the closed form below. Plain
-    arithmetic (solver.physics.lanes), so that the traction kernels' node loops vectorise."""
-    if ln_x > _LN_ASINH_LOG_FROM:
-        return _LN2 + ln_x
+def eyring_asinh(ln_x):
+    """asinh(x) from ln x: ln(2x) above x = 1e3 (:func:`eyring_asinh_large`); ln(2x) + sum_n
+    (-1)^(n-1) (2n-1)!! / (2n (2n)!!) x^(-2n), n = 1..5, above x = 3 (one exponential, no
+    logarithm); the closed form below."""
+    if ln_x > EYRING_LARGE_FROM:
+        return eyring_asinh_large(ln_x)
     if ln_x > _LN_ASINH_SERIES_FROM:
-        w = exp_lanes(-2.0 * ln_x)
+        w = math.exp(-2.0 * ln_x)
         series = w * (
             0.25 - w * (0.09375 - w * (0.052083333333333336 - w * (0.0341796875 - w * 0.024609375)))
         )
         return _LN2 + ln_x + series
-    # accurate also for x -> 0 (Newtonian limit); the argument is kept within the branch's range
-    # so that the lanes of a vectorised loop that take another branch stay finite
-    return asinh_lanes(exp_lanes(min(ln_x, _LN_ASINH_SERIES_FROM)))
+    return math.asinh(math.exp(ln_x))  # accurate also for x -> 0 (Newtonian limit)
+
+
+@njit(cache=True, inline="always")
+def eyring_asinh_large(ln_x):
+    """asinh(x) = ln(2 x) from ln x, for ln x > ``EYRING_LARGE_FROM`` (relative error below
+    4e-8): no library call, so a loop that calls it vectorises."""
+    return _LN2 + ln_x
+
+
+@njit(cache=True, inline="always")
+def eyring_log_argument(ln_u, alpha_p, ln_c):
+    """ln x of the Eyring law's argument x = eta gamma_dot / tau_0 at slip speed u (``ln_u`` = ln
+    u [ln(m/s)]), Barus exponent ``alpha_p`` = alpha p (capped at ``BARUS_EXPONENT_CAP``) and the
+    per-contact ``ln_c`` = ln(eta_0 / (tau_0 h_c)) of :func:`contact_constants`."""
+    return ln_c + ln_u + min(alpha_p, BARUS_EXPONENT_CAP)
 
 
 @njit(cache=True)
@@ -134,8 +148,16 @@ def saturation_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
     tau_ve = N / D (N = tau_v E u, D = tau_v + E u) and the smooth limit tau = tau_ve tau_L /
     (tau_L^4 + tau_ve^4)^(1/4) give s / u = tau_v E / ((tau_L D)^4 + N^4)^(1/4).
     """
-    ln_x = ln_c + ln_u + min(alpha_p, BARUS_EXPONENT_CAP)
-    tau_v = tau_0 * _asinh_from_log(ln_x)
+    return saturation_from_eyring(
+        u, tau_0 * eyring_asinh(eyring_log_argument(ln_u, alpha_p, ln_c)), tau_l, elastic
+    )
+
+
+@njit(cache=True, inline="always")
+def saturation_from_eyring(u, tau_v, tau_l, elastic):
+    """s / u [s/m] of :func:`saturation_over_slip` from the node's Eyring stress ``tau_v`` =
+    tau_0 asinh(x) [Pa], at slip speed u > 0 [m/s], limiting shear stress ``tau_l`` [Pa] and the
+    per-contact ``elastic`` = G t / h_c [Pa s/m] (formula there)."""
     if elastic > 0.0:
         eu = min(elastic * u, _ELASTIC_STRESS_CAP)
         ld = tau_l * (tau_v + eu)
@@ -164,7 +186,7 @@ def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
     p = max(pressure, 0.0)
     return u * stress_over_slip(
         u,
-        log_lanes(u),
+        math.log(u),
         rheology[RH_PRESSURE_VISCOSITY] * p,
         rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p,
         ln_c,

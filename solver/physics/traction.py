@@ -108,12 +108,16 @@ from scipy import optimize, special
 
 from .lanes import exp_lanes, log_lanes
 from .rheology import (
+    EYRING_LARGE_FROM,
     RH_EYRING_STRESS,
     RH_LIMITING_SLOPE,
     RH_LIMITING_STRESS,
     RH_PRESSURE_VISCOSITY,
     contact_constants,
-    saturation_over_slip,
+    eyring_asinh,
+    eyring_asinh_large,
+    eyring_log_argument,
+    saturation_from_eyring,
 )
 
 # ---- traction-curve parameter array ------------------------------------------------------------
@@ -191,7 +195,8 @@ NB_FACTOR = 8  # g [N s/m] of the local law, tau dA = g dv
 NB_V1 = 9  # rolling slip v1 [m/s]
 NB_V2 = 10  # transverse slip v2 [m/s]
 NB_U2 = 11  # |dv|^2 [m^2/s^2]
-NODE_BATCH_ROWS = 12
+NB_LOG_ARGUMENT = 12  # ln x of the rheology's Eyring law (solver.physics.rheology)
+NODE_BATCH_ROWS = 13
 NODE_BATCH = 64  # nodes in a batch of the kernels' callers (the default rules have <= 32)
 
 DEFAULT_N_ROLLING = 4
@@ -555,24 +560,34 @@ def _batch_sums(sums, batch, count, slip, law_data):
     (law, filmed, q, c0, c1, c2, c3, ur2) = law_data[:8]
     (alpha_pmax, tl0, lam_pmax, tau_0, tl0_area, lam_q, ln_c, elastic) = law_data[8:]
     if law == LAW_RHEOLOGY and filmed:
+        # Eyring stress as tau_0 ln(2 x) (x = eta gamma_dot / tau_0), as it is at nearly every
+        # node: no library call, the loop vectorises; the few nodes with a smaller x are redone
+        # with the full law (solver.physics.rheology.eyring_asinh) below
         for k in range(count):
             v1, v2, u2 = _node_slip(batch, k, s01, s02, o1, o2, on)
             ps = batch[NB_PRESSURE, k]
             # tau dA = s (tau_L0 dA + Lambda p dA): plain-area and load weights (module docstring)
             weight = tl0_area * batch[NB_UNIFORM, k] + lam_q * batch[NB_LOAD, k]
-            g = -weight * saturation_over_slip(
-                math.sqrt(u2),
-                0.5 * log_lanes(u2),
-                alpha_pmax * ps,
-                tl0 + lam_pmax * ps,
-                ln_c,
-                elastic,
-                tau_0,
+            ln_x = eyring_log_argument(0.5 * log_lanes(u2), alpha_pmax * ps, ln_c)
+            g = -weight * saturation_from_eyring(
+                math.sqrt(u2), tau_0 * eyring_asinh_large(ln_x), tl0 + lam_pmax * ps, elastic
             )
             batch[NB_FACTOR, k] = g if u2 > 0.0 else 0.0
+            batch[NB_LOG_ARGUMENT, k] = ln_x
             batch[NB_V1, k] = v1
             batch[NB_V2, k] = v2
             batch[NB_U2, k] = u2
+        for k in range(count):
+            ln_x = batch[NB_LOG_ARGUMENT, k]
+            if ln_x <= EYRING_LARGE_FROM and batch[NB_U2, k] > 0.0:
+                ps = batch[NB_PRESSURE, k]
+                weight = tl0_area * batch[NB_UNIFORM, k] + lam_q * batch[NB_LOAD, k]
+                batch[NB_FACTOR, k] = -weight * saturation_from_eyring(
+                    math.sqrt(batch[NB_U2, k]),
+                    tau_0 * eyring_asinh(ln_x),
+                    tl0 + lam_pmax * ps,
+                    elastic,
+                )
     elif law == LAW_RHEOLOGY:
         # no film (no entrainment): the limiting shear stress tau_L0 + Lambda p for any slip above
         # 1e-9 m/s (solver.physics.rheology.shear_stress without a film), integrated as above
