@@ -1070,3 +1070,188 @@ def test_split_rule_is_continuous_where_lines_of_pure_rolling_appear(kappa):
     steps = np.linalg.norm(np.diff(np.array(forces), axis=0), axis=1)
     assert np.all(np.isfinite(steps))
     assert steps.max() < 2.0 * np.median(steps)
+
+
+# ------------------------------------------------------------------------------------------------
+# node batches (ellipse_traction_into): the vectorised law against the node-by-node formulation
+# ------------------------------------------------------------------------------------------------
+def _node_by_node(contact, kin, law, curve, r, film, transit, ureg, nodes):
+    """(force, moment about P, power) of the ellipse integral written node by node, as the kernel
+    did before its node loop was batched: the law at each node with math.exp / math.log
+    (solver.physics.rheology.saturation_over_slip), the sums in node order."""
+    from solver.physics.rheology import contact_constants, saturation_over_slip
+
+    n = contact[tr.CT_NORMAL : tr.CT_NORMAL + 3]
+    n = n / np.linalg.norm(n)
+    t1 = contact[tr.CT_ROLLING : tr.CT_ROLLING + 3]
+    t1 = t1 - np.dot(t1, n) * n
+    t1 = t1 / np.linalg.norm(t1)
+    t2 = np.cross(n, t1)
+    P = contact[tr.CT_POINT : tr.CT_POINT + 3]
+    cb = kin[tr.KIN_BALL_CENTRE : tr.KIN_BALL_CENTRE + 3]
+    cr = kin[tr.KIN_RING_POINT : tr.KIN_RING_POINT + 3]
+    wb = kin[tr.KIN_BALL_OMEGA : tr.KIN_BALL_OMEGA + 3]
+    wr = kin[tr.KIN_RING_OMEGA : tr.KIN_RING_OMEGA + 3]
+    s0 = (kin[tr.KIN_BALL_VELOCITY : tr.KIN_BALL_VELOCITY + 3] + np.cross(wb, P - cb)) - (
+        kin[tr.KIN_RING_VELOCITY : tr.KIN_RING_VELOCITY + 3] + np.cross(wr, P - cr)
+    )
+    om = wb - wr
+    s01, s02 = np.dot(s0, t1), np.dot(s0, t2)
+    o1, o2, on = np.dot(om, t1), np.dot(om, t2), np.dot(om, n)
+    a, b, q = contact[tr.CT_SEMI_MAJOR], contact[tr.CT_SEMI_MINOR], contact[tr.CT_LOAD]
+    kappa = contact[tr.CT_CURVATURE]
+    p_max = 1.5 * q / (math.pi * a * b)
+    ln_c, elastic = contact_constants(film, transit, r) if film > 0.0 else (0.0, 0.0)
+
+    def factor(u2, ps, w_load, w_uniform):
+        if law == tr.LAW_SLIP_CURVE:
+            den = math.sqrt(u2 + ureg * ureg)
+            u = math.sqrt(u2)
+            mu = (curve[0] + curve[1] * u) * math.exp(-curve[2] * u) + curve[3]
+            return -q * w_load * mu / den if den > 0.0 else 0.0
+        weight = r[RH_LIMITING_STRESS] * a * b * w_uniform + r[RH_LIMITING_SLOPE] * q * w_load
+        if u2 <= 0.0:
+            return 0.0
+        if film <= 0.0:
+            return -weight / math.sqrt(u2) if math.sqrt(u2) > 1e-9 else 0.0
+        return -weight * saturation_over_slip(
+            math.sqrt(u2),
+            0.5 * math.log(u2),
+            r[RH_PRESSURE_VISCOSITY] * p_max * ps,
+            r[RH_LIMITING_STRESS] + r[RH_LIMITING_SLOPE] * p_max * ps,
+            ln_c,
+            elastic,
+            r[RH_EYRING_STRESS],
+        )
+
+    points = []  # (xi, y, ps, w_load, w_uniform)
+    if nodes.shape[1] == tr.SPLIT_COLUMNS:
+        n_t, n_y = int(nodes[0, tr.SPLIT_COUNTS]), int(nodes[1, tr.SPLIT_COUNTS])
+        ra, rb = tr._rolling_slip_zeros(a, kappa, s01, o2, on)
+        lo, area_lo = -1.0, -0.25 * math.pi
+        for hi in (ra, rb, 1.0):
+            if hi - lo <= 1e-9:
+                continue
+            ys = 0.5 * (lo + hi) + 0.5 * (hi - lo) * nodes[:n_y, tr.SPLIT_Y]
+            wy = nodes[:n_y, tr.SPLIT_Y_WEIGHT]
+            sy = np.sqrt(np.maximum(1.0 - ys * ys, 0.0))
+            area_hi = 0.5 * (hi * math.sqrt(max(1.0 - hi * hi, 0.0)) + math.asin(min(hi, 1.0)))
+            area_scale = (area_hi - area_lo) / np.sum(wy * sy)
+            load_scale = (
+                1.5 / math.pi * ((hi - hi**3 / 3.0) - (lo - lo**3 / 3.0)) / np.sum(wy * sy**2)
+            )
+            lo, area_lo = hi, area_hi
+            for j in range(n_y):
+                for i in range(n_t):
+                    points.append(
+                        (
+                            b * sy[j] * nodes[i, tr.SPLIT_T],
+                            ys[j],
+                            sy[j] * nodes[i, tr.SPLIT_T_PRESSURE],
+                            load_scale * sy[j] ** 2 * wy[j] * nodes[i, tr.SPLIT_T_LOAD],
+                            area_scale * sy[j] * wy[j] * nodes[i, tr.SPLIT_T_UNIFORM],
+                        )
+                    )
+    else:
+        for row in nodes:
+            points.append(
+                (
+                    b * row[tr.NODE_ROLLING],
+                    row[tr.NODE_TRANSVERSE],
+                    row[tr.NODE_PRESSURE],
+                    row[tr.NODE_LOAD],
+                    row[tr.NODE_UNIFORM],
+                )
+            )
+    f = np.zeros(3)  # (rolling, transverse, normal) components
+    m = np.zeros(3)
+    power = 0.0
+    for xi, y, ps, w_load, w_uniform in points:
+        eta = a * y
+        sphi = kappa * eta
+        cphi = math.sqrt(max(1.0 - sphi * sphi, 0.0))
+        z = -kappa * eta * eta / (1.0 + cphi)
+        v1 = s01 + o2 * z - on * eta
+        v2 = s02 + on * xi - o1 * z
+        u2 = v1 * v1 + v2 * v2
+        g = factor(u2, ps, w_load, w_uniform)
+        tau = np.array([g * v1, g * v2 * cphi, -g * v2 * sphi])
+        f += tau
+        m += np.cross([xi, eta, z], tau)
+        power -= g * u2
+    basis = np.array([t1, t2, n])
+    return f @ basis, m @ basis, power
+
+
+def _batch_cases():
+    """Random contacts around the general case: rolling, sliding and spin of random size."""
+    rng = np.random.default_rng(11)
+    cases = []
+    for seed in range(6):
+        contact, kin = _general_case(seed=seed + 3, kappa=KAPPA if seed % 2 else 0.0)
+        kin[tr.KIN_BALL_VELOCITY : tr.KIN_BALL_VELOCITY + 3] *= rng.uniform(0.01, 3.0)
+        kin[tr.KIN_BALL_OMEGA : tr.KIN_BALL_OMEGA + 3] += rng.normal(scale=300.0, size=3)
+        contact[tr.CT_LOAD] *= rng.uniform(0.2, 3.0)
+        cases.append((contact, kin))
+    return cases
+
+
+BATCH_LAWS = {
+    "slip curve": (tr.LAW_SLIP_CURVE, 0.3e-6, None),
+    "rheology": (tr.LAW_RHEOLOGY, 0.3e-6, None),
+    # a low pressure-viscosity coefficient: x = eta gamma_dot / tau_0 below 1e3 at many nodes,
+    # where the Eyring stress needs the full asinh (the nodes redone after the vectorised loop)
+    "rheology, small x": (tr.LAW_RHEOLOGY, 0.3e-6, 2.0e-9),
+    "rheology, no film": (tr.LAW_RHEOLOGY, 0.0, None),
+}
+BATCH_RULES = [
+    tr.ellipse_quadrature(2, 8),
+    tr.ellipse_quadrature(4, 8),
+    tr.split_ellipse_rule(3, 3),
+    tr.split_ellipse_rule(2, 3),
+]
+
+
+@pytest.mark.parametrize("law_name", list(BATCH_LAWS))
+@pytest.mark.parametrize("rule", range(len(BATCH_RULES)))
+def test_batched_kernel_matches_node_by_node_formulation(law_name, rule):
+    """The batched kernel (law in a vectorised loop, exp and log of solver.physics.lanes) equals
+    the node-by-node formulation with math.exp and math.log to rounding; and the batch's capacity
+    (1 node, a few, the default 64) does not change the result at all."""
+    law, film, alpha = BATCH_LAWS[law_name]
+    nodes = BATCH_RULES[rule]
+    curve = tr.traction_curve_parameters(**ADORE)
+    r = _rheology_params()
+    if alpha is not None:
+        r[RH_PRESSURE_VISCOSITY] = alpha
+    for contact, kin in _batch_cases():
+        outs = []
+        for capacity in (tr.NODE_BATCH, 1, 5):
+            out = np.full(tr.TRACTION_OUT_SIZE, np.nan)
+            tr.ellipse_traction_into(
+                contact,
+                kin,
+                law,
+                curve,
+                r,
+                film,
+                5.0e-6,
+                1e-3,
+                nodes,
+                out,
+                np.empty((tr.NODE_BATCH_ROWS, capacity)),
+            )
+            outs.append(out)
+        for out in outs[1:]:
+            np.testing.assert_array_equal(out, outs[0])
+        out = outs[0]
+        force, moment, power = _node_by_node(contact, kin, law, curve, r, film, 5.0e-6, 1e-3, nodes)
+        fs, ms = np.linalg.norm(force), np.linalg.norm(moment)
+        assert fs > 0.0
+        np.testing.assert_allclose(
+            out[tr.TR_FORCE : tr.TR_FORCE + 3], force, rtol=0, atol=1e-13 * fs
+        )
+        np.testing.assert_allclose(
+            out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3], moment, rtol=0, atol=1e-13 * ms
+        )
+        assert out[tr.TR_POWER] == pytest.approx(power, rel=1e-13)
