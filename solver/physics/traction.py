@@ -96,6 +96,18 @@ Split rule (:func:`split_ellipse_rule`)
     have not appeared yet, the pieces meet at the point where they will), so the integral has no
     jumps. The kernels tell the two tables apart by their column count (``NODE_COLUMNS`` or
     ``SPLIT_COLUMNS``).
+
+Node batches (:func:`ellipse_traction_into`)
+    The nodes are integrated a batch at a time (a scratch array of ``NODE_BATCH_ROWS`` rows, the
+    ``NB_*`` layout below): first the nodes' geometry and weights are put into the batch (strip
+    and piece terms once per strip and piece), then the local law is evaluated at every node of
+    the batch in one loop with no dependence between nodes and no call into the C maths library
+    (exp and log of :mod:`solver.physics.lanes`), which LLVM vectorises (8 nodes per instruction
+    with AVX-512), then the nodes' contributions are summed in node order. The rheology's Eyring
+    stress tau_0 asinh(x) is taken as tau_0 ln(2 x) in that loop, its form for x = eta gamma_dot
+    / tau_0 > 1e3, which holds at 60-70 % of the nodes on the catalogue's running states; the
+    other nodes are redone with the full law after it. The result does not depend on the
+    batch's capacity.
 """
 
 from __future__ import annotations
