@@ -761,7 +761,7 @@ FIELDS: list[Field] = [
         "float",
         "Integrator tolerance",
         "Local error tolerance of the adaptive integrator, relative to each state's scale.",
-        default=1e-4,
+        default=1e-3,
         minimum=0.0,
         minimum_inclusive=False,
         maximum=1e-2,
