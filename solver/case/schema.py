@@ -760,7 +760,8 @@ FIELDS: list[Field] = [
         "simulation.tolerance",
         "float",
         "Integrator tolerance",
-        "Local error tolerance of the adaptive integrator, relative to each state's scale.",
+        "Local error tolerance of the adaptive integrator, relative to each state's scale "
+        "(undamped runs: 1e-4; docs/numerics.md).",
         default=1e-3,
         minimum=0.0,
         minimum_inclusive=False,
