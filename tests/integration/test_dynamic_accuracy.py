@@ -64,3 +64,20 @@ def test_contract_comparison_flags_each_metric(key, change, metric):
         changed[key] = change(value)
     worst = A.deviations(changed, reference)
     assert worst[metric] > 1.0 and all(v == 0.0 for k, v in worst.items() if k != metric), worst
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("label", list(A.LONG_WINDOW_CASES))
+def test_default_method_meets_the_contract_over_a_long_window(label):
+    """A case whose short-run metrics are not reproducible (above): its long run against the
+    stored reference run over the same fixed window, on the metrics that two reference-quality
+    runs reproduce there (the 218 heavy case: per-ball mean contact angles and loads and the cage
+    speed over revolutions 10-30; its excursion and band thickness are not reproducible even
+    between tolerances 1e-6 and 3e-6, docs/numerics.md)."""
+    reference = A.load_reference()["long_window"][label]
+    revolutions, first, checked = A.LONG_WINDOW_CASES[label]
+    assert (reference["revolutions"], reference["window_start_revolution"]) == (revolutions, first)
+    got, ds = A.long_run(label)
+    assert ds.attrs["complete"] == 1
+    worst = A.deviations(got, reference)
+    assert max(worst[k] for k in checked) <= 1.0, worst
