@@ -4,7 +4,7 @@
                                  [--methods auto dopri5] [--memory-revolutions 100]
                                  [--compile-time] [--traction-model case|rheology|slip_curve]
                                  [--compare-traction [REPEATS]]
-                                 [--tolerance 1e-3]
+                                 [--tolerance 1e-4]
 
 - spindle: catalogue case ``spindle-combined-load`` (7008C-class hybrid, 18 balls, 20 000 rpm,
   500 N axial + 300 N radial, cage on);

@@ -29,29 +29,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from solver.models.dynamic import SimulationOptions, simulate
-from solver.results.summary import track_metrics
 from tests.helpers import accuracy as A
-
-
-def window_metrics(ds, start_time: float) -> dict:
-    """The contract's metrics over the samples at or after ``start_time`` [s]."""
-    w = ds.sel(time=ds["time"] >= start_time - 1e-12)
-    angle = w["contact_angle"].values
-    azimuth = w["raceway_azimuth"].values
-    load = w["contact_load"].values
-    excursion, band = [], []
-    for race in range(2):
-        loaded = load[:, race, :] > 0.0
-        e, b = track_metrics(azimuth[:, race, :][loaded], angle[:, race, :][loaded])
-        excursion.append(e)
-        band.append(b)
-    return {
-        "contact_angle_deg": w["contact_angle"].mean("time").values.tolist(),
-        "contact_load_N": w["contact_load"].mean("time").values.tolist(),
-        "cage_speed_rad_s": float(w["cage_speed"].mean("time")),
-        "excursion_deg": excursion,
-        "band_thickness_deg": band,
-    }
 
 
 def revolution_means(ds, period: float) -> np.ndarray:
@@ -103,7 +81,7 @@ def main(argv=None):
             change = f"   change {inner - means[k - 1, 0]:+.4f} {outer - means[k - 1, 1]:+.4f}"
         print(f"  revolution {k + 1:3d}: {inner:.4f} {outer:.4f}{change}")
     for first in args.window_starts:
-        ref = window_metrics(runs[tight], first * period)
+        ref = A.window_metrics(runs[tight], first * period)
         print(
             f"\nwindow from revolution {first:g}: reference excursion "
             f"{np.round(ref['excursion_deg'], 3).tolist()} deg, band thickness "
@@ -112,7 +90,7 @@ def main(argv=None):
         for tol, ds in runs.items():
             if tol == tight:
                 continue
-            dev = A.deviations(window_metrics(ds, first * period), ref)
+            dev = A.deviations(A.window_metrics(ds, first * period), ref)
             print(f"  tolerance {tol:g}: " + ", ".join(f"{k} {v:.2f}" for k, v in dev.items()))
     return 0
 

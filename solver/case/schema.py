@@ -760,8 +760,9 @@ FIELDS: list[Field] = [
         "simulation.tolerance",
         "float",
         "Integrator tolerance",
-        "Local error tolerance of the adaptive integrator, relative to each state's scale.",
-        default=1e-4,
+        "Local error tolerance of the adaptive integrator, relative to each state's scale "
+        "(undamped runs: 1e-4; docs/numerics.md).",
+        default=1e-3,
         minimum=0.0,
         minimum_inclusive=False,
         maximum=1e-2,

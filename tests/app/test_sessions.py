@@ -275,7 +275,7 @@ def test_a_preview_still_on_its_way_does_not_overwrite_a_run(two, monkeypatch):
 
 def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):
     a, _ = two
-    _set(a, fv_shaft_revolutions="3")
+    _set(a, fv_shaft_revolutions="100")
     a.runs.run()
     end = time.monotonic() + 300
     while a.state.progress <= 0:  # wait for the first steps
@@ -286,7 +286,7 @@ def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):
     assert not process.is_alive()
     (saved,) = a.store.list()
     assert saved.status == "cancelled" and saved.title.endswith("(server stopped)")
-    assert " of 3 rev" in saved.title  # the revolutions reached, not those asked for
+    assert " of 100 rev" in saved.title  # the revolutions reached, not those asked for
     ds, _ = a.store.load(saved.run_id)
     assert ds.attrs["complete"] == 0 and ds.sizes["time"] >= 2
 

@@ -9,6 +9,10 @@ them metric by metric. Regenerate the data (a few minutes) with
 Metrics of a run (over the analysed window of its stored summary): per (ball, race) time-mean
 contact angle [deg] and load [N], the mean cage speed [rad/s], and each race's trajectory excursion
 and band thickness [deg] in its own ring's frame.
+
+A case whose short-run metrics two reference-quality runs do not reproduce (the 218 heavy case)
+is also kept as a long run compared over a fixed window (``LONG_WINDOW_CASES``), on the metrics
+that such runs do reproduce there.
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ import numpy as np
 from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions, simulate
-from solver.results.summary import headline, summary
+from solver.results.summary import headline, summary, track_metrics
 
 REFERENCE_FILE = Path(__file__).resolve().parents[1] / "data" / "dynamic_reference.json"
 REFERENCE_TOLERANCE = 1e-6
@@ -48,6 +52,14 @@ CASES = {
         {"axial_load": 40.0, "inner_ring_speed": 40000.0 * math.pi / 30.0},
         3.0,
     ),
+}
+
+
+#: cases whose short-run metrics are not reproducible to the contract's precision (two reference-
+#: quality runs differ by more than the allowances, docs/numerics.md): label -> (shaft revolutions,
+#: first revolution of the window, the metrics that such runs do reproduce over that window)
+LONG_WINDOW_CASES = {
+    "heavy_218": (30.0, 10.0, ("contact_angle", "contact_load", "cage_speed")),
 }
 
 
@@ -87,6 +99,44 @@ def metrics(ds) -> dict:
     }
 
 
+def window_metrics(ds, start_time: float) -> dict:
+    """The contract's metrics over the samples at or after ``start_time`` [s] (a fixed window, the
+    same for every run of a case, instead of each run's own analysis window)."""
+    window = ds.sel(time=ds["time"] >= start_time - 1e-12)
+    angle = window["contact_angle"].values
+    azimuth = window["raceway_azimuth"].values
+    load = window["contact_load"].values
+    excursion, band = [], []
+    for race in range(2):
+        loaded = load[:, race, :] > 0.0
+        e, b = track_metrics(azimuth[:, race, :][loaded], angle[:, race, :][loaded])
+        excursion.append(e)
+        band.append(b)
+    return {
+        "contact_angle_deg": window["contact_angle"].mean("time").values.tolist(),
+        "contact_load_N": window["contact_load"].mean("time").values.tolist(),
+        "cage_speed_rad_s": float(window["cage_speed"].mean("time")),
+        "excursion_deg": excursion,
+        "band_thickness_deg": band,
+    }
+
+
+def shaft_period(label) -> float:
+    """Time of one shaft revolution [s] of a contract case."""
+    op = case_inputs(label).operating
+    return 2.0 * math.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
+
+
+def long_run(label, **option_changes):
+    """(metrics over the fixed window, Dataset) of a long-window case with the given options."""
+    revolutions, first, _ = LONG_WINDOW_CASES[label]
+    options = SimulationOptions(
+        shaft_revolutions=revolutions, samples_per_revolution=180, **option_changes
+    )
+    ds = simulate(case_inputs(label), options=options)
+    return window_metrics(ds, first * shaft_period(label)), ds
+
+
 def deviations(got: dict, ref: dict) -> dict:
     """Each metric's worst deviation as a fraction of its allowance (<= 1 meets the contract)."""
     angle = np.abs(np.subtract(got["contact_angle_deg"], ref["contact_angle_deg"])) / ANGLE_DEG
@@ -123,6 +173,13 @@ def main():  # pragma: no cover - regenerates the test data
         ds = run(label, method=REFERENCE_METHOD, tolerance=REFERENCE_TOLERANCE)
         data["cases"][label] = metrics(ds)
         print(label, "steps", ds.attrs["steps"], "wall", ds.attrs["wall_time_s"], flush=True)
+    data["long_window"] = {}
+    for label, (revolutions, first, _) in LONG_WINDOW_CASES.items():
+        got, ds = long_run(label, method=REFERENCE_METHOD, tolerance=REFERENCE_TOLERANCE)
+        data["long_window"][label] = dict(
+            got, revolutions=revolutions, window_start_revolution=first
+        )
+        print(label, revolutions, "revolutions: steps", ds.attrs["steps"], flush=True)
     REFERENCE_FILE.parent.mkdir(exist_ok=True)
     tmp = REFERENCE_FILE.with_suffix(".tmp")
     tmp.write_text(json.dumps(data, indent=1) + "\n")

@@ -18,8 +18,10 @@ CONTRACT_CASES = [
             "quality runs (tolerance 1e-6 and 3e-6) differ by up to 3x the angle allowance and "
             "3-15x the band and excursion allowances over windows up to 30 revolutions "
             "(benchmarks/reference_spread.py, docs/numerics.md; measured with the slip curve). "
-            "With the rheology, the case's traction model since, the default run misses the "
-            "contact-angle allowance by 37 % against its 1e-6 reference",
+            "With the rheology, the case's traction model since, its 3-revolution metrics miss "
+            "the contact-angle allowance at every tolerance (1.37x at 1e-4, 1.52x at the default "
+            "1e-3); over 30 revolutions its per-ball angles, loads and cage speed meet the "
+            "contract at 1e-3, its excursion is not reproducible even at 3e-6",
         ),
     ),
     "misalignment_ring",
@@ -62,3 +64,20 @@ def test_contract_comparison_flags_each_metric(key, change, metric):
         changed[key] = change(value)
     worst = A.deviations(changed, reference)
     assert worst[metric] > 1.0 and all(v == 0.0 for k, v in worst.items() if k != metric), worst
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("label", list(A.LONG_WINDOW_CASES))
+def test_default_method_meets_the_contract_over_a_long_window(label):
+    """A case whose short-run metrics are not reproducible (above): its long run against the
+    stored reference run over the same fixed window, on the metrics that two reference-quality
+    runs reproduce there (the 218 heavy case: per-ball mean contact angles and loads and the cage
+    speed over revolutions 10-30; its excursion and band thickness are not reproducible even
+    between tolerances 1e-6 and 3e-6, docs/numerics.md)."""
+    reference = A.load_reference()["long_window"][label]
+    revolutions, first, checked = A.LONG_WINDOW_CASES[label]
+    assert (reference["revolutions"], reference["window_start_revolution"]) == (revolutions, first)
+    got, ds = A.long_run(label)
+    assert ds.attrs["complete"] == 1
+    worst = A.deviations(got, reference)
+    assert max(worst[k] for k in checked) <= 1.0, worst
