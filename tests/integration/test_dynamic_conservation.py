@@ -18,7 +18,6 @@ from solver.models.dynamic.kernels import (
 from tests.helpers.dyn_bearings import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
-
 #: integrator tolerance of the conservation runs. Undamped (no traction, zero contact damping),
 #: the balls' normal-contact vibrations gain energy from the integration error at looser
 #: tolerances: the total energy drifts by 2e-6 (1e-4), 1.4e-2 (5e-4) and 7.5e-2 (1e-3, the
