@@ -118,7 +118,8 @@ def eyring_log_argument(ln_u, alpha_p, ln_c):
     """ln x of the Eyring law's argument x = eta gamma_dot / tau_0 at slip speed u (``ln_u`` = ln
     u [ln(m/s)]), Barus exponent ``alpha_p`` = alpha p (capped at ``BARUS_EXPONENT_CAP``) and the
     per-contact ``ln_c`` = ln(eta_0 / (tau_0 h_c)) of :func:`contact_constants`."""
-    return ln_c + ln_u + min(alpha_p, BARUS_EXPONENT_CAP)
+    # min(alpha_p, cap) written as a selection: numba's min() stops the loop vectoriser
+    return ln_c + ln_u + (BARUS_EXPONENT_CAP if BARUS_EXPONENT_CAP < alpha_p else alpha_p)
 
 
 @njit(cache=True)
@@ -159,7 +160,8 @@ def saturation_from_eyring(u, tau_v, tau_l, elastic):
     tau_0 asinh(x) [Pa], at slip speed u > 0 [m/s], limiting shear stress ``tau_l`` [Pa] and the
     per-contact ``elastic`` = G t / h_c [Pa s/m] (formula there)."""
     if elastic > 0.0:
-        eu = min(elastic * u, _ELASTIC_STRESS_CAP)
+        eu = elastic * u
+        eu = _ELASTIC_STRESS_CAP if _ELASTIC_STRESS_CAP < eu else eu  # min(), vectorisable
         ld = tau_l * (tau_v + eu)
         n = tau_v * eu
         ld2 = ld * ld
