@@ -116,7 +116,7 @@ def rhs_cost(inputs, options, y, repeats=400, batches=15):
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
     dydt = np.zeros_like(y)
-    scratch = rhs_work()
+    scratch = rhs_work(int(par.ball_count))
     _evaluations(1, y, par, quad, dydt, rec_i, rec_o, pocket, scratch)
     best = float("inf")
     for _ in range(batches):

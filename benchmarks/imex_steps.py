@@ -102,7 +102,7 @@ def run(label, traction_model, revolutions, tolerance, implicit, pair="ark4"):
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
-    work = rhs_work()
+    work = rhs_work(z)
     count = [0]
 
     def f(state, counted=True):

@@ -79,7 +79,7 @@ def run(label, traction_model, revolutions, tolerance):
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
-    work = rhs_work()
+    work = rhs_work(z)
     k = np.empty((7, n))
 
     def f(state, out):

@@ -37,6 +37,7 @@ import math
 from numba import njit
 
 from .ehl import W_FLOOR
+from .lanes import exp_lanes, log_lanes
 
 RH_VISCOSITY = 0
 RH_PRESSURE_VISCOSITY = 1
@@ -287,27 +288,69 @@ def film_and_rolling_from_factors(
     """:func:`film_and_rolling_force` with the ellipticity's two terms given:
     ``film_factor`` = :func:`film_ellipticity_factor` and ``rolling_log`` =
     :func:`rolling_ellipticity_log` of kappa (the dynamic model tabulates them per race against
-    the contact angle, solver.physics.hertz_race)."""
-    u = abs(entrainment)
+    the contact angle, solver.physics.hertz_race). One contact of :func:`film_and_rolling_lanes`."""
+    return film_and_rolling_lanes(
+        entrainment,
+        slide_to_roll,
+        load,
+        r_x,
+        film_factor,
+        rolling_log,
+        p_max,
+        eprime,
+        film_law_constants(rheology, eprime),
+    )
+
+
+@njit(cache=True, inline="always")
+def film_law_constants(rheology, eprime):
+    """The film and rolling-force laws' terms that are the same at every contact of a bearing:
+    (ln(alpha E'), ln(eta_0 / E'), ln(beta eta_0 / k), thermal reduction on, viscosity and
+    pressure-viscosity positive), for :func:`film_and_rolling_lanes` (``eprime`` E' [Pa])."""
     eta = rheology[RH_VISCOSITY]
     alpha = rheology[RH_PRESSURE_VISCOSITY]
-    if not (u > 0.0 and load > 0.0 and eta > 0.0 and alpha > 0.0 and r_x > 0.0):
-        return 0.0, 1.0, 0.0
-    ln_u = math.log(eta * u / (eprime * r_x))
-    ln_g = math.log(alpha * eprime)
-    ln_w = math.log(max(load / (eprime * r_x * r_x), W_FLOOR))
-    film = 2.69 * r_x * math.exp(0.67 * ln_u + 0.53 * ln_g - 0.067 * ln_w) * film_factor
-    rolling = (
-        2.86 * eprime * r_x * r_x * math.exp(rolling_log + 0.022 * ln_g + 0.66 * ln_u + 0.47 * ln_w)
-    )
-    phi = 1.0
     beta = rheology[RH_TEMPERATURE_VISCOSITY]
     k = rheology[RH_CONDUCTIVITY]
-    if beta > 0.0 and k > 0.0:
-        ln_l = math.log(beta * eta * u * u / k)
-        srr = abs(slide_to_roll)
-        s83 = math.exp(0.83 * math.log(srr)) if srr > 0.0 else 0.0
-        num = 1.0 - 13.2 * (p_max / eprime) * math.exp(0.42 * ln_l)
-        den = 1.0 + 0.213 * (1.0 + 2.23 * s83) * math.exp(0.64 * ln_l)
-        phi = min(1.0, max(0.05, num / den))
-    return film * phi, phi, rolling * phi
+    viscous = eta > 0.0 and alpha > 0.0
+    thermal = beta > 0.0 and k > 0.0
+    return (
+        math.log(alpha * eprime) if viscous else 0.0,
+        math.log(eta / eprime) if viscous else 0.0,
+        math.log(beta * eta / k) if thermal and viscous else 0.0,
+        thermal,
+        viscous,
+    )
+
+
+@njit(cache=True, inline="always")
+def film_and_rolling_lanes(
+    entrainment, slide_to_roll, load, r_x, film_factor, rolling_log, p_max, eprime, constants
+):
+    """(central film h_c [m], thermal factor phi_T, EHL rolling force [N]) of one contact, as
+    :func:`film_and_rolling_force` (``constants`` of :func:`film_law_constants`), in a form that
+    vectorises when a loop calls it for several contacts: exp and log of solver.physics.lanes (the
+    power laws through shared logarithms), selections instead of branches. No speed or load, or no
+    viscosity: (0, 1, 0)."""
+    ln_g, ln_eta_e, ln_thermal, thermal, viscous = constants
+    u = abs(entrainment)
+    ln_speed = log_lanes(u)
+    ln_rx = log_lanes(r_x)
+    ln_u = ln_eta_e + ln_speed - ln_rx  # ln U = ln(eta_0 u_e / (E' R_x))
+    w = load / (eprime * r_x * r_x)
+    ln_w = log_lanes(W_FLOOR if W_FLOOR > w else w)  # max(), vectorisable
+    film = 2.69 * r_x * exp_lanes(0.67 * ln_u + 0.53 * ln_g - 0.067 * ln_w) * film_factor
+    ln_rolling = rolling_log + 0.022 * ln_g + 0.66 * ln_u + 0.47 * ln_w
+    rolling = 2.86 * eprime * r_x * r_x * exp_lanes(ln_rolling)
+    # inlet shear heating (inlet_thermal_factor), thermal loading L = beta eta_0 u_e^2 / k
+    ln_l = ln_thermal + 2.0 * ln_speed
+    srr = abs(slide_to_roll)
+    s83 = exp_lanes(0.83 * log_lanes(srr))
+    s83 = s83 if srr > 0.0 else 0.0
+    num = 1.0 - 13.2 * (p_max / eprime) * exp_lanes(0.42 * ln_l)
+    den = 1.0 + 0.213 * (1.0 + 2.23 * s83) * exp_lanes(0.64 * ln_l)
+    phi = num / den
+    phi = 1.0 if phi > 1.0 else phi
+    phi = 0.05 if 0.05 > phi else phi
+    phi = phi if thermal else 1.0
+    live = viscous & (u > 0.0) & (load > 0.0) & (r_x > 0.0)
+    return (film * phi if live else 0.0), (phi if live else 1.0), (rolling * phi if live else 0.0)

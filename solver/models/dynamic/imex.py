@@ -248,7 +248,7 @@ def advance_imex(
     dd = np.empty(3)
     base = np.empty(3)
     moved = np.empty(3)
-    scratch = rhs_work()
+    scratch = rhs_work(int(par.ball_count))
     rhs_into(y, par, quad, k[0], rec_inner, rec_outer, pocket, scratch, False)
     counters[2] += 1
     dv = JACOBIAN_STEP * scale[k0]

@@ -165,7 +165,7 @@ def advance(
     k7 = np.empty(n)
     yt = np.empty(n)
     ynew = np.empty(n)
-    scratch = rhs_work()
+    scratch = rhs_work(int(par.ball_count))
     rhs_into(y, par, quad, k1, rec_inner, rec_outer, pocket, scratch, False)
     counters[2] += 1
     err_old = 1e-4

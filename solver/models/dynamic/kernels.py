@@ -45,7 +45,7 @@ from solver.physics.cage_contact import (
 from solver.physics.drag import cage_drag_moment_from
 from solver.physics.hertz_fast import equivalent_radii_fast
 from solver.physics.hertz_race import race_coefficients, race_coefficients_direct
-from solver.physics.rheology import film_and_rolling_from_factors
+from solver.physics.rheology import film_and_rolling_lanes, film_law_constants
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -234,7 +234,7 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
 
 # ---------------------------------------------------------------------------------------------
 # ball-race contact (physics.md §2.6.3-2.6.6): geometry, Hertz, kinematics, traction helpers,
-# inlined into ball_race_contact
+# inlined into contact_state
 # ---------------------------------------------------------------------------------------------
 
 #: scratch space of one traction, pocket or land evaluation: the input/output arrays of the
@@ -425,29 +425,37 @@ def _traction(par, quad, work, p, n, t1, a, b, q, curvature, film, transit, pb, 
     return tout
 
 
-@njit(cache=True, inline="always")
-def _film_and_rolling(par, entrain, slide, rx, q, film_k, rolling_k, b, pmax):
-    """(central film [m], rolling resistance force [N]) of a loaded contact: Hamrock-Dowson film
-    and hydrodynamic inlet force at the inlet viscosity, both reduced for inlet shear heating
-    (solver.physics.rheology.film_and_rolling_from_factors, with the ellipticity terms
-    ``film_k``, ``rolling_k`` of the race table), plus the elastic hysteresis force
-    F_h = 3/16 alpha_h Q b / R_x (physics.md §2.6.5)."""
-    film, _, f_ehl = film_and_rolling_from_factors(
-        entrain,
-        slide / entrain if entrain > 0.0 else 0.0,
-        q,
-        rx,
-        film_k,
-        rolling_k,
-        pmax,
-        par.eprime,
-        par.rheology,
-    )
-    return film, f_ehl + 0.1875 * par.hysteresis * q * b / rx
+# Per-contact values between the passes of the right-hand side (:func:`contact_state`,
+# :func:`contact_films`, :func:`contact_forces`): rows of the stash array (``CS_SIZE``, columns),
+# one column per ball-race contact (column ``race * Z + ball``, race 0 inner, 1 outer), the
+# columns padded to a multiple of ``CS_LANES`` (:func:`stash_columns`) so that the film pass runs
+# in whole vectors.
+CS_ENTRAIN = 0  # entrainment speed [m/s]
+CS_SLIDE_TO_ROLL = 1  # sliding / entrainment speed
+CS_LOAD = 2  # normal load Q [N]
+CS_RX = 3  # R_x [m]
+CS_FILM_FACTOR = 4  # the film's ellipticity factor (race table)
+CS_ROLLING_LOG = 5  # the rolling force's ellipticity logarithm (race table)
+CS_PMAX = 6  # peak pressure [Pa]
+CS_SEMI_MINOR = 7  # b [m]
+CS_FILM = 8  # central film h_c [m] (output of the film pass)
+CS_ROLLING_FORCE = 9  # rolling resistance force [N] (output of the film pass)
+CS_POINT = 10  # contact point P, inertial (3) [m]
+CS_ROLLING_DIR = 13  # rolling direction t1, inertial (3)
+CS_ROLL_AXIS = 16  # roll axis, inertial (3)
+CS_LOADED = 19  # 1.0 where the contact carries a load, else 0.0
+CS_SIZE = 20
+CS_LANES = 8
+
+
+@njit(cache=True)
+def stash_columns(ball_count):
+    """Columns of the stash array for ``ball_count`` balls: 2 Z rounded up to ``CS_LANES``."""
+    return (2 * ball_count + CS_LANES - 1) // CS_LANES * CS_LANES
 
 
 @njit(cache=True, inline="always")
-def ball_race_contact(
+def contact_state(
     y,
     jb,
     ring_rot,
@@ -457,19 +465,20 @@ def ball_race_contact(
     is_inner,
     par,
     table,
-    quad,
     rec,
-    work,
+    stash,
+    col,
     observed,
 ):
-    """Forces, moments and contact description of ball (state offset ``jb``) against one ring.
+    """First pass of a ball-race contact (ball at state offset ``jb``, one ring): geometry,
+    kinematics, Hertz load and ellipse into ``rec`` (layout K_*, forces zero), and what the film
+    pass and :func:`contact_forces` need into column ``col`` of ``stash`` (CS_* rows).
 
     ``table``: the race's Hertz table (``par.inner_hertz`` or ``par.outer_hertz``, of
-    solver.physics.hertz_race); ``quad``: node table of
-    :func:`solver.physics.traction.ellipse_quadrature`; ``work``: scratch
-    array of length ``TRACTION_WORK_SIZE``. Results go to ``rec`` (layout K_*). ``observed``
-    False (the integrator's evaluations): ``rec`` gets only what the forces and the integrator's
-    checks need; the contact angle, raceway azimuth and elastic load are NaN there.
+    solver.physics.hertz_race). ``observed`` False (the integrator's evaluations): ``rec`` gets
+    only what the forces and the integrator's checks need; the contact angle, raceway azimuth and
+    elastic load are NaN there. An unloaded contact's column holds neutral inputs for the film
+    pass (unit speed, load and radius) and ``CS_LOADED`` 0.
     """
     dball = par.ball_diameter
     xc, rc, rg, conf, sgn = _groove(par, is_inner)
@@ -502,6 +511,9 @@ def ball_race_contact(
     for i in range(3):
         rec[K_POINT + i] = pr[i]
         rec[K_NORMAL + i] = n[i]
+        stash[CS_POINT + i, col] = p[i]
+        stash[CS_ROLLING_DIR + i, col] = t1[i]
+        stash[CS_ROLL_AXIS + i, col] = axis[i]
     rec[K_SPIN] = spin
     rec[K_ROLL] = roll
     rec[K_SLIDE] = slide
@@ -517,6 +529,15 @@ def ball_race_contact(
     rec[K_SEMI_MAJOR] = 0.0
     rec[K_SEMI_MINOR] = 0.0
     rec[K_PMAX] = 0.0
+    stash[CS_LOADED, col] = 0.0
+    stash[CS_ENTRAIN, col] = 1.0
+    stash[CS_SLIDE_TO_ROLL, col] = 0.0
+    stash[CS_LOAD, col] = 1.0
+    stash[CS_RX, col] = 1.0
+    stash[CS_FILM_FACTOR, col] = 1.0
+    stash[CS_ROLLING_LOG, col] = 0.0
+    stash[CS_PMAX, col] = 0.0
+    stash[CS_SEMI_MINOR, col] = 0.0
     if delta <= 0.0:
         return
     # damped Hertz law of solver.physics.traction.damped_normal_force: c = 2 zeta sqrt(1.5 K
@@ -534,7 +555,82 @@ def ball_race_contact(
     rec[K_SEMI_MAJOR] = sa_
     rec[K_SEMI_MINOR] = sb_
     rec[K_PMAX] = pmax
-    film, fr = _film_and_rolling(par, entrain, slide, rx, q, film_k, rolling_k, sb_, pmax)
+    stash[CS_LOADED, col] = 1.0
+    stash[CS_ENTRAIN, col] = entrain
+    stash[CS_SLIDE_TO_ROLL, col] = slide / entrain if entrain > 0.0 else 0.0
+    stash[CS_LOAD, col] = q
+    stash[CS_RX, col] = rx
+    stash[CS_FILM_FACTOR, col] = film_k
+    stash[CS_ROLLING_LOG, col] = rolling_k
+    stash[CS_PMAX, col] = pmax
+    stash[CS_SEMI_MINOR, col] = sb_
+
+
+@njit(cache=True, inline="always")
+def contact_films(par, stash, columns):
+    """Film pass over the first ``columns`` columns of ``stash`` (a multiple of ``CS_LANES``; one
+    loop over the contacts that LLVM vectorises): central film and rolling resistance force of
+    each contact, CS_FILM and CS_ROLLING_FORCE. Hamrock-Dowson film and hydrodynamic inlet force
+    at the inlet viscosity, both reduced for inlet shear heating
+    (solver.physics.rheology.film_and_rolling_lanes, with the ellipticity terms of the race
+    table), plus the elastic hysteresis force F_h = 3/16 alpha_h Q b / R_x (physics.md
+    §2.6.5)."""
+    eprime = par.eprime
+    constants = film_law_constants(par.rheology, eprime)
+    hysteresis = 0.1875 * par.hysteresis
+    for col in range(columns):
+        load = stash[CS_LOAD, col]
+        rx = stash[CS_RX, col]
+        film, _, f_ehl = film_and_rolling_lanes(
+            stash[CS_ENTRAIN, col],
+            stash[CS_SLIDE_TO_ROLL, col],
+            load,
+            rx,
+            stash[CS_FILM_FACTOR, col],
+            stash[CS_ROLLING_LOG, col],
+            stash[CS_PMAX, col],
+            eprime,
+            constants,
+        )
+        stash[CS_FILM, col] = film
+        stash[CS_ROLLING_FORCE, col] = f_ehl + hysteresis * load * stash[CS_SEMI_MINOR, col] / rx
+
+
+@njit(cache=True, inline="always")
+def contact_forces(
+    y, jb, ring_origin, ring_vel, ring_omega, is_inner, par, quad, rec, work, stash, col
+):
+    """Last pass of a loaded ball-race contact (after :func:`contact_state` and
+    :func:`contact_films`): normal force, traction integrated over the ellipse, rolling
+    resistance; forces and moments on ball and ring, film and powers into ``rec``.
+
+    ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``:
+    scratch array of length ``TRACTION_WORK_SIZE``."""
+    if stash[CS_LOADED, col] == 0.0:
+        return
+    dball = par.ball_diameter
+    rg = par.inner_groove_radius if is_inner else par.outer_groove_radius
+    pb = (y[jb + B_POS], y[jb + B_POS + 1], y[jb + B_POS + 2])
+    vb = (y[jb + B_VEL], y[jb + B_VEL + 1], y[jb + B_VEL + 2])
+    wb = (y[jb + B_OMEGA], y[jb + B_OMEGA + 1], y[jb + B_OMEGA + 2])
+    o = (ring_origin[0], ring_origin[1], ring_origin[2])
+    vr = (ring_vel[0], ring_vel[1], ring_vel[2])
+    wr = (ring_omega[0], ring_omega[1], ring_omega[2])
+    n = (rec[K_NORMAL], rec[K_NORMAL + 1], rec[K_NORMAL + 2])
+    p = (stash[CS_POINT, col], stash[CS_POINT + 1, col], stash[CS_POINT + 2, col])
+    t1 = (
+        stash[CS_ROLLING_DIR, col],
+        stash[CS_ROLLING_DIR + 1, col],
+        stash[CS_ROLLING_DIR + 2, col],
+    )
+    axis = (stash[CS_ROLL_AXIS, col], stash[CS_ROLL_AXIS + 1, col], stash[CS_ROLL_AXIS + 2, col])
+    q = rec[K_LOAD]
+    sa_ = rec[K_SEMI_MAJOR]
+    sb_ = rec[K_SEMI_MINOR]
+    entrain = rec[K_ENTRAIN]
+    roll = rec[K_ROLL]
+    film = stash[CS_FILM, col]
+    fr = stash[CS_ROLLING_FORCE, col]
     rec[K_FILM] = film
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
     fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
@@ -818,11 +914,12 @@ class RhsWork(NamedTuple):
     pocket: np.ndarray  # (12,) output of cage_pocket
     land: np.ndarray  # (5,) output of cage_land
     contact: np.ndarray  # (TRACTION_WORK_SIZE,) scratch of the contact kernels
+    stash: np.ndarray  # (CS_SIZE, stash_columns(Z)) per-contact values between the passes
 
 
 @njit(cache=True)
-def rhs_work():
-    """A fresh :class:`RhsWork`."""
+def rhs_work(ball_count):
+    """A fresh :class:`RhsWork` for a bearing of ``ball_count`` balls."""
     return RhsWork(
         np.empty((3, 3)),
         np.empty(3),
@@ -836,6 +933,7 @@ def rhs_work():
         np.empty(12),
         np.empty(5),
         np.empty(TRACTION_WORK_SIZE),
+        np.ones((CS_SIZE, stash_columns(ball_count))),
     )
 
 
@@ -844,7 +942,7 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
     (Z,) receive the contact records and pocket normal forces of this evaluation.
     :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
-    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work(), True)
+    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work(int(par.ball_count)), True)
 
 
 @njit(cache=True)
@@ -853,7 +951,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
     evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
     and slices of them cost no atomic reference counts. ``observed`` False (integrators' stages,
     which pass it explicitly): the records hold only what the forces and ``post_step`` need
-    (contact angle, raceway azimuth and elastic load NaN; see :func:`ball_race_contact`)."""
+    (contact angle, raceway azimuth and elastic load NaN; see :func:`contact_state`)."""
     _rhs_borrowed(
         borrowed(y),
         borrowed_record(par),
@@ -876,6 +974,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
             borrowed(scratch.pocket),
             borrowed(scratch.land),
             borrowed(scratch.contact),
+            borrowed(scratch.stash),
         ),
     )
 
@@ -907,17 +1006,14 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
     cage_frame(y, cb, crot, come)
     hi = par.inner_hertz
     ho = par.outer_hertz
-    frx = fry = frz = 0.0
-    mrx = mry = mrz = 0.0
-    fcx = fcy = fcz = 0.0
-    mcx = mcy = mcz = 0.0
+    # the ball-race contacts in three passes, one inlined copy of each for both races: state and
+    # load of every contact, the film laws of all contacts in one vectorised loop, then forces
+    stash = scratch.stash
     for j in range(z):
         jb = BALL_STRIDE * j
-        ri = rec_inner[j]
-        ro = rec_outer[j]
-        for race in range(2):  # one inlined copy of the contact kernel for both races
+        for race in range(2):
             inner = race == 0
-            ball_race_contact(
+            contact_state(
                 y,
                 jb,
                 irot if inner else orot,
@@ -927,10 +1023,35 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
                 inner,
                 par,
                 hi if inner else ho,
+                rec_inner[j] if inner else rec_outer[j],
+                stash,
+                race * z + j,
+                observed,
+            )
+    contact_films(par, stash, stash_columns(z))
+    frx = fry = frz = 0.0
+    mrx = mry = mrz = 0.0
+    fcx = fcy = fcz = 0.0
+    mcx = mcy = mcz = 0.0
+    for j in range(z):
+        jb = BALL_STRIDE * j
+        ri = rec_inner[j]
+        ro = rec_outer[j]
+        for race in range(2):
+            inner = race == 0
+            contact_forces(
+                y,
+                jb,
+                iorg if inner else zero3,
+                ivel if inner else zero3,
+                iome if inner else oome,
+                inner,
+                par,
                 quad,
                 ri if inner else ro,
                 work,
-                observed,
+                stash,
+                race * z + j,
             )
         fx = ri[K_F_BALL] + ro[K_F_BALL]
         fy = ri[K_F_BALL + 1] + ro[K_F_BALL + 1]
@@ -1041,7 +1162,8 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
 
     Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the constant applied
     force, m g z for gravity along -z (balls, and the inner ring when it is free). The inner ring's
-    imposed spin is not included (it does no work on frictionless contacts).
+    imposed spin is not included (it does no work on frictionless contacts). ``rec_inner`` and
+    ``rec_outer`` receive each contact's state and load (:func:`contact_state`), not its forces.
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
@@ -1053,17 +1175,15 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     oome = np.empty(3)
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
-    work = np.empty(TRACTION_WORK_SIZE)
+    stash = np.ones((CS_SIZE, 1))
     mb = par.ball_mass
     e = 0.0
     for j in range(z):
         jb = BALL_STRIDE * j
         ri, ro = rec_inner[j], rec_outer[j]
-        ball_race_contact(
-            y, jb, irot, iorg, ivel, iome, True, par, par.inner_hertz, quad, ri, work, True
-        )
-        ball_race_contact(
-            y, jb, orot, zero3, zero3, oome, False, par, par.outer_hertz, quad, ro, work, True
+        contact_state(y, jb, irot, iorg, ivel, iome, True, par, par.inner_hertz, ri, stash, 0, True)
+        contact_state(
+            y, jb, orot, zero3, zero3, oome, False, par, par.outer_hertz, ro, stash, 0, True
         )
         for rec in (rec_inner[j], rec_outer[j]):
             d = rec[K_DEFLECTION]

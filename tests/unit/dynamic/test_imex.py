@@ -122,7 +122,7 @@ def test_cage_velocity_jacobian_matches_the_whole_right_hand_side():
     y[cb + L.C_VEL + 2] = -0.02
     scale = state_scales(par, y0)
     dv = 1e-4 * scale[cb + L.C_VEL]
-    scratch = rhs_work()
+    scratch = rhs_work(int(par.ball_count))
     f0 = np.empty_like(y)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
