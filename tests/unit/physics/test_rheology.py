@@ -7,8 +7,9 @@ import math
 
 import numpy as np
 import pytest
+from numba import njit
 
-from solver.physics.ehl import film_thickness_central
+from solver.physics.ehl import W_FLOOR, film_thickness_central
 from solver.physics.rheology import (
     BARUS_EXPONENT_CAP,
     RH_CONDUCTIVITY,
@@ -22,7 +23,11 @@ from solver.physics.rheology import (
     RHEOLOGY_SIZE,
     ehl_rolling_force,
     film_and_rolling_force,
+    film_and_rolling_lanes,
+    film_ellipticity_factor,
+    film_law_constants,
     inlet_thermal_factor,
+    rolling_ellipticity_log,
     shear_stress,
     viscosity_at_temperature,
 )
@@ -149,6 +154,65 @@ def test_film_and_rolling_force_pass_matches_the_separate_formulas():
     # the rolling force grows like U^0.66 W^0.47 (Houpert): doubling speed x 2^0.66 isothermally
     f2 = ehl_rolling_force(24.0, 0.02, 2e-8, 2.6e11, 4.0e-3, 300.0, 6.0)
     assert f2 / f == pytest.approx(2.0**0.66, rel=1e-12)
+
+
+@njit(cache=True)
+def _films_in_one_loop(u, srr, load, r_x, kappa, p_max, eprime, r, out):
+    """film_and_rolling_lanes over arrays in one loop (the dynamic model's film pass)."""
+    constants = film_law_constants(r, eprime)
+    for i in range(u.shape[0]):
+        film, phi, rolling = film_and_rolling_lanes(
+            u[i],
+            srr[i],
+            load[i],
+            r_x[i],
+            film_ellipticity_factor(kappa[i]),
+            rolling_ellipticity_log(kappa[i]),
+            p_max[i],
+            eprime,
+            constants,
+        )
+        out[0, i] = film
+        out[1, i] = phi
+        out[2, i] = rolling
+
+
+@pytest.mark.parametrize("thermal", [True, False])
+def test_film_pass_over_contacts_matches_the_separate_formulas(thermal):
+    """The vectorisable form, called for many contacts in one loop (with edge cases: no speed, no
+    load, no slide, a load below the W floor), gives the separate formulas' film, thermal factor
+    and rolling force, and (0, 1, 0) where there is no speed or load."""
+    r = rheology(eta=0.02)
+    if not thermal:
+        r[RH_CONDUCTIVITY] = 0.0
+    rng = np.random.default_rng(3)
+    m = 37  # not a multiple of the vector width: the loop's remainder is checked as well
+    u = rng.uniform(1.0, 40.0, m)
+    srr = rng.uniform(-0.2, 0.2, m)
+    load = rng.uniform(20.0, 5000.0, m)
+    r_x = rng.uniform(2e-3, 8e-3, m)
+    kappa = rng.uniform(4.0, 11.0, m)
+    p_max = rng.uniform(0.5e9, 2.5e9, m)
+    u[3], load[5], srr[7], load[11] = 0.0, 0.0, 0.0, 1e-12
+    eprime = 2.6e11
+    out = np.empty((3, m))
+    _films_in_one_loop(u, srr, load, r_x, kappa, p_max, eprime, r, out)
+    for i in range(m):
+        if u[i] == 0.0 or load[i] == 0.0:
+            assert tuple(out[:, i]) == (0.0, 1.0, 0.0)
+            continue
+        args = (u[i], 0.02, 2e-8, eprime, r_x[i], load[i], kappa[i])
+        # both laws use W at its floor below it (the rolling force's own formula does not)
+        floor_load = W_FLOOR * eprime * r_x[i] ** 2
+        rolling_args = (*args[:5], max(load[i], floor_load), kappa[i])
+        phi = (
+            inlet_thermal_factor(u[i], srr[i], 0.02, 0.03, 0.13, p_max[i], eprime)
+            if thermal
+            else 1.0
+        )
+        assert out[1, i] == pytest.approx(phi, rel=1e-12)
+        assert out[0, i] == pytest.approx(film_thickness_central(*args) * phi, rel=1e-12)
+        assert out[2, i] == pytest.approx(ehl_rolling_force(*rolling_args) * phi, rel=1e-12)
 
 
 def test_named_oils_are_valid_lubricant_sections():
