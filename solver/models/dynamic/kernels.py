@@ -125,6 +125,7 @@ from .layout import (
     TILT_FREE,
     TILT_TURNING_WITH_RING,
 )
+from .unliteral import runtime_bool
 
 # ---------------------------------------------------------------------------------------------
 # small vector helpers (tuples: no heap allocation inside the loops)
@@ -960,7 +961,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
         borrowed(rec_inner),
         borrowed(rec_outer),
         borrowed(pocket),
-        observed,
+        runtime_bool(observed),
         RhsWork(
             borrowed(scratch.inner_rot),
             borrowed(scratch.inner_origin),

@@ -442,3 +442,22 @@ def test_cage_drag_moment_acts_on_the_cage_spin():
     wetter = replace(inp, lubricant=replace(oil, oil_volume_fraction=0.05))
     par_wet, *_ = setup(wetter)
     assert cage_drag(y, cb, par_wet)[0] < moment
+
+
+def test_observed_and_stage_evaluations_share_one_compiled_body():
+    """The integrators' stage evaluations (``observed`` False) give the same derivatives as an
+    observed evaluation, leave the angles and the elastic load NaN, and run the same compiled body
+    of the right-hand side (``runtime_bool``: compiled once, not once per flag)."""
+    from solver.models.dynamic.kernels import _rhs_borrowed, rhs_into, rhs_work
+
+    par, quad, y0 = start(spindle_inputs(radial=300.0))
+    z = int(par.ball_count)
+    dydt, rec_i, rec_o, _ = evaluate(y0, par, quad)
+    stage = np.zeros_like(y0)
+    stage_i = np.zeros((z, L.N_CONTACT_RECORD))
+    stage_o = np.zeros((z, L.N_CONTACT_RECORD))
+    rhs_into(y0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(), False)
+    np.testing.assert_array_equal(stage, dydt)
+    assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
+    assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
+    assert len(_rhs_borrowed.signatures) == 1
