@@ -456,7 +456,7 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     stage = np.zeros_like(y0)
     stage_i = np.zeros((z, L.N_CONTACT_RECORD))
     stage_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(), False)
+    rhs_into(y0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
     np.testing.assert_array_equal(stage, dydt)
     assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
     assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
