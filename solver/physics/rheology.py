@@ -142,9 +142,11 @@ def saturation_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
     """s / u [s/m], s = tau / tau_L the saturation (in [0, 1)) of :func:`shear_stress` at slip
     speed u > 0 [m/s] (``ln_u`` = ln u), with the node's Barus exponent ``alpha_p`` = alpha p,
     limiting shear stress ``tau_l`` = tau_L0 + Lambda p [Pa], the per-contact constants of
-    :func:`contact_constants` and the Eyring stress ``tau_0`` [Pa]. The form evaluated at every
-    quadrature node: one logarithm, two square roots and one division (0 where that division
-    would be by zero: no limiting or viscous stress).
+    :func:`contact_constants` and the Eyring stress ``tau_0`` [Pa]: one logarithm, two square
+    roots and one division (0 where that division would be by zero: no limiting or viscous
+    stress). The traction kernel's vectorised node loop composes the same pieces
+    (:func:`eyring_log_argument`, :func:`eyring_asinh_large` or :func:`eyring_asinh`,
+    :func:`saturation_from_eyring`).
 
     With tau_v the Eyring stress and tau_e = E u (E = ``elastic``), the series combination
     tau_ve = N / D (N = tau_v E u, D = tau_v + E u) and the smooth limit tau = tau_ve tau_L /

@@ -66,9 +66,9 @@ def test_default_tolerance_tracks_the_energy_with_light_damping():
     mean elastic energy (measured 2.5e-5 over this revolution; undamped, 1.0e-2): the drift of
     the undamped runs is a marginal instability of exactly undamped vibrations, which any damping
     removes."""
-    from solver.case.schema import FIELDS
+    from solver.case.schema import field
 
-    default = next(f.default for f in FIELDS if f.key == "simulation.tolerance")
+    default = field("simulation.tolerance").default
     par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.01, cage=False
     )
