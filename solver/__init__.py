@@ -60,6 +60,8 @@ _LAZY = {
     "open_study": "solver.study",
     "contact_table": "solver.results.io",
     "RacetraceAccessor": "solver.results.accessor",
+    "RESULTS_VERSION": "solver.results.provenance",
+    "result_fingerprint": "solver.results.provenance",
 }
 
 # ``catalogue`` is both a submodule and the function it defines: import it eagerly (it is light), so
