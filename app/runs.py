@@ -120,13 +120,13 @@ class Recovery:
 
 
 def save_netcdf(ds: xr.Dataset, path: Path) -> None:
-    from solver.results.io import save_dataset
+    from solver import save_dataset
 
     save_dataset(ds, path)
 
 
 def load_netcdf(path: Path) -> xr.Dataset:
-    from solver.results.io import load_dataset
+    from solver import load_dataset
 
     return load_dataset(path)
 
@@ -136,7 +136,7 @@ def open_netcdf(path: Path) -> xr.Dataset:
     a view uses it (not kept: the views keep what they need in their own form). A session so
     holds none of the 140 MB of a 100-revolution run's variables, only the frames made of some.
     Saved runs are never rewritten, so the file stays what was opened."""
-    from solver.results.io import ENGINE
+    from solver import ENGINE
 
     return xr.open_dataset(path, engine=ENGINE, cache=False)
 
@@ -174,7 +174,7 @@ def _netcdf_problem(path: Path) -> str:
 
 
 def _clean_text(text: str, limit: int = 200) -> str:
-    from solver.errors import clip, printable
+    from solver import clip, printable
 
     return clip(printable(text), limit)
 
@@ -352,7 +352,7 @@ class RunStore:
         ValueError naming the run when it is broken, its result cannot be read, or the result does
         not describe itself (the views need its geometry and operating point coordinates,
         results-schema.md, which results of older versions lack)."""
-        from solver.results.dataset import geometry_from_result, ring_speeds
+        from solver import geometry_from_result, ring_speeds
 
         info = self.info(run_id)
         if run_id in self._memory:

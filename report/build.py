@@ -78,7 +78,7 @@ def _provenance(ds) -> str:
 
 # ---- one run --------------------------------------------------------------------------------
 def _operating_rows(ds):
-    from solver.results.variables import variable
+    from solver import variable
 
     rows = []
     for name in (
@@ -110,7 +110,7 @@ def _operating_rows(ds):
 
 
 def _summary_rows(ds):
-    from solver.study.metrics import POINT_METRICS, point_metrics
+    from solver import POINT_METRICS, point_metrics
 
     metrics = point_metrics(ds)
     rows = []
@@ -329,9 +329,7 @@ def study_sections(ds):
 # ---- the page -------------------------------------------------------------------------------
 def _load(source):
     """('run', Dataset, name) or ('study', Dataset, name) for a result file or study folder."""
-    from solver.errors import CaseError, Problem
-    from solver.results.io import load_dataset
-    from solver.study import open_study, study_dataset
+    from solver import CaseError, Problem, load_dataset, open_study, study_dataset
 
     path = Path(source)
     if path.is_dir():
@@ -358,7 +356,7 @@ def build_report(source, output) -> dict:
     from bokeh.resources import INLINE
 
     import solver  # noqa: F401  (registers ds.racetrace)
-    from solver.results.io import atomic_write
+    from solver import atomic_write
 
     from .offline import external_urls, inline_cdn_links
 

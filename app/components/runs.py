@@ -34,7 +34,7 @@ def _title(ds, run_info: dict) -> str:
     planned = run_info.get("revolutions")
     if "time" not in ds.dims or not planned:
         return title
-    from solver.results.dataset import ring_speeds
+    from solver import ring_speeds
 
     inner, outer = ring_speeds(ds)
     reached = float(ds["time"][-1]) * abs(inner - outer) / (2 * math.pi)
@@ -202,7 +202,7 @@ class Runs(Component):
                 f"(at most {cap} run{'s' * (cap != 1)} at once)"
             )
             return False
-        from solver.compiled import dynamic_model_compiled
+        from solver import dynamic_model_compiled
 
         self.runner.start(self.run_info["case_text"], self.run_info["out"], target=_job())
         self._compiling = not dynamic_model_compiled()

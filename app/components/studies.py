@@ -155,7 +155,7 @@ class Studies(Component):
         self._poll_task = None
 
     def init_state(self) -> None:
-        from solver.study import shipped_studies
+        from solver import shipped_studies
 
         s = self.state
         names = list(shipped_studies())
@@ -199,8 +199,7 @@ class Studies(Component):
 
     def run(self) -> None:
         """Start the chosen shipped study in the background."""
-        from solver.errors import CaseError
-        from solver.study import Study
+        from solver import CaseError, Study
 
         if self.busy or not self.state.study_name:
             return
@@ -221,7 +220,7 @@ class Studies(Component):
     def start(self, study, name: str, path: Path | None = None) -> None:
         """Run ``study`` (a :class:`solver.study.Study`) in the background, in the study folder
         ``path`` (default: a new one, :meth:`new_folder`)."""
-        from solver.study import StudyFolder
+        from solver import StudyFolder
 
         if self.busy:
             return
@@ -262,8 +261,7 @@ class Studies(Component):
         """Build a study from the case in the form (its base, written as ``<folder>.base.toml``
         beside the study folder) with the keys and values chosen and run it (the study runner
         writes its study file into the folder)."""
-        from solver.errors import CaseError
-        from solver.study import Study
+        from solver import CaseError, Study
 
         if self.busy:
             self.state.study_status = "a study is running: cancel it or wait for it to end"
@@ -351,7 +349,7 @@ class Studies(Component):
 
     # ---- showing --------------------------------------------------------------------------------
     def dataset(self):
-        from solver.study import study_dataset
+        from solver import study_dataset
 
         if self._shipped is not None:
             return self._shipped
@@ -407,7 +405,7 @@ class Studies(Component):
 
     def open_point(self, point: str, model: str) -> None:
         """Show one point's run in the 3-D view, the raceway map and the charts."""
-        from solver.errors import CaseError
+        from solver import CaseError
 
         if self._shipped is not None:
             self.state.study_status = (
@@ -453,8 +451,7 @@ class Studies(Component):
         """Show the results ``value`` of :meth:`list_results` in the table and the chart."""
         import xarray as xr
 
-        from solver.errors import CaseError
-        from solver.study import open_study
+        from solver import CaseError, open_study
 
         if self.busy:
             self.state.study_status = "a study is running: cancel it before opening other results"

@@ -87,7 +87,7 @@ def save_compressed(ds: xr.Dataset, path) -> Path:
     (floating-point data variables along ``time``) are stored in single precision, 7 significant
     digits: far finer than any figure a lesson quotes; coordinates and the stored summary metrics
     keep double precision."""
-    from solver.results.io import ENGINE, atomic_write
+    from solver import ENGINE, atomic_write
 
     encoding = {}
     for name, var in ds.variables.items():
@@ -100,7 +100,7 @@ def save_compressed(ds: xr.Dataset, path) -> Path:
 
 
 def _read_matching(path, wanted: str) -> xr.Dataset | None:
-    from solver.results.io import load_dataset
+    from solver import load_dataset
 
     try:
         if not path.is_file():
