@@ -1,7 +1,8 @@
 """The results a lesson shows: shipped with racetrace, else computed once and cached.
 
 Each :class:`~app.lessons.format.ResultSpec` has a fingerprint (a hash of its case's values, the
-model, the run length and the solver's results version: ``solver.result_fingerprint``). :func:`lesson_result` looks, in this order, for
+model, the run length and the solver's results version: ``solver.result_fingerprint``).
+:func:`lesson_result` looks, in this order, for
 
 1. the shipped file ``assets/lessons/results/<lesson>--<result>.nc`` (written by
    ``tools/make_lesson_results.py``) whose ``lesson_fingerprint`` attribute matches;
@@ -14,7 +15,6 @@ Files are compressed NetCDF (zlib; time histories in single precision), written 
 
 from __future__ import annotations
 
-import hashlib
 import os
 from pathlib import Path
 
