@@ -194,3 +194,99 @@ def test_a_study_that_cannot_be_built_is_said_in_words(app):
     s.flush()
     app.studies.build()
     assert "not valid" in s.study_status
+
+
+# ---- hostile state: a client's values never name a server file ----------------------------------
+def test_study_results_only_open_what_the_server_lists(app, tmp_path, monkeypatch):
+    """A client rewrites ``study_results_items`` to offer itself an absolute file and a folder
+    out of ``.studies``, then picks them: nothing outside the two roots is opened."""
+    import shutil
+
+    import xarray as xr
+
+    import solver.study
+    from app.components.studies import SHIPPED_RESULTS
+
+    secret = tmp_path / "outside.study.nc"  # a readable study Dataset outside the shipped root
+    shutil.copy(SHIPPED_RESULTS / "seed-spindle.study.nc", secret)
+    opened = []
+    real_open_dataset, real_open_study = xr.open_dataset, solver.study.open_study
+    monkeypatch.setattr(
+        xr, "open_dataset", lambda p, *a, **k: opened.append(p) or real_open_dataset(p, *a, **k)
+    )
+    monkeypatch.setattr(
+        solver.study, "open_study", lambda p: opened.append(p) or real_open_study(p)
+    )
+    s = app.state
+    for value in (
+        f"shipped:{secret}",
+        "shipped:../../../" + secret.name,
+        "folder:../..",
+        "folder:../../" + tmp_path.name,
+        "folder:/",
+        "folder:\x00",
+    ):
+        s.study_results_items = [*s.study_results_items, {"title": "mine", "value": value}]
+        s.study_results = value
+        s.flush()
+        assert s.study_status.startswith("error: no such study results"), (value, s.study_status)
+        assert s.study_rows == [] and app.studies.dataset() is None
+    assert opened == []
+
+
+def test_study_name_is_a_shipped_study_only(app, tmp_path, monkeypatch):
+    """``study_name`` naming a study file on the server (any path) runs nothing."""
+    study_file = tmp_path / "mine.toml"
+    study_file.write_text(SMALL)
+    started = []
+    monkeypatch.setattr(app.studies, "start", lambda *a, **k: started.append(a))
+    s = app.state
+    for name in (str(study_file), "../" * 8 + str(study_file), "/etc/passwd", ["seed-spindle"]):
+        s.study_name = name
+        s.flush()
+        app.studies.run()
+        assert s.study_status.startswith("error: no shipped study"), (name, s.study_status)
+    assert started == []
+    s.study_name = "seed-spindle"  # a shipped study still starts
+    s.flush()
+    app.studies.run()
+    assert len(started) == 1 and started[0][1] == "seed-spindle"
+
+
+def test_open_point_opens_only_a_point_of_the_study_on_show(app, tmp_path, qs_dataset):
+    """``study_open(point, model)`` with a point that climbs out of the study folder: the file
+    it names is not read and the result on show stays."""
+    import solver
+    from solver.study import StudyFolder
+
+    folder = tmp_path / "runs" / ".studies" / "s-1"
+    folder.mkdir(parents=True)
+    solver.save_dataset(qs_dataset, tmp_path / "secret.quasistatic.nc")
+    app.studies.folder = StudyFolder(folder)
+    s = app.state
+    serial = int(s.result_serial)
+    for point, model in (
+        ("../../../../secret", "quasistatic"),
+        (str(tmp_path / "secret"), "quasistatic"),
+        ("p0001", "../../../../../secret.quasistatic"),
+        (["p0001"], "quasistatic"),
+    ):
+        app.studies.open_point(point, model)
+        assert s.study_status.startswith("error: no point"), (point, s.study_status)
+    # the client's own table naming such a point changes nothing
+    s.study_rows = [{"point": "../../../../secret", "model": "quasistatic", "openable": True}]
+    s.flush()
+    app.studies.open_point("../../../../secret", "quasistatic")
+    assert s.study_status.startswith("error: no point")
+    assert int(s.result_serial) == serial
+
+
+def test_built_study_varies_only_the_forms_numeric_keys(app):
+    """A client adding a key to ``study_key_items`` does not make it a key to vary."""
+    s = app.state
+    s.study_key_items = [*s.study_key_items, {"title": "x", "value": "simulation.nothing"}]
+    s.study_key1, s.study_values1 = "simulation.nothing", "1, 2"
+    s.flush()
+    app.studies.build()
+    assert not s.study_running
+    assert "is not a numeric key of the case" in s.study_status
