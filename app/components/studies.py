@@ -16,9 +16,12 @@ keys), ``study_key1``/``study_values1`` and ``study_key2``/``study_values2`` (va
 (quasistatic | dynamic | both), ``study_revolutions`` (run length of the dynamic points).
 Controller: ``study_run``, ``study_build``, ``study_cancel``, ``study_open(point, model)``.
 
-The study runs in a thread of this process (a local Dask cluster of one single-threaded worker
-per core, closed at the end) and keeps its folder under the runs folder (``.studies/``); the page
-reads the folder as runs finish.
+The study runs in a thread of this process and keeps its folder under the runs folder
+(``.studies/``); the page reads the folder as runs finish. Its points take the solver slots the
+runs take (:class:`app.services.pool.SolverPool`, ``racetrace serve --max-runs``, across every
+session): the study waits in the same queue for one slot, takes as many more as are free then (up
+to ``workers``, default the cap), and runs a local Dask cluster of one single-threaded worker per
+slot held, closed at the end, when the slots are given back.
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ from ..paths import child_path
 from .base import Component, fig_json
 
 POLL_S = 1.0
+SLOT_WAIT_S = 0.5  # a study waiting for a solver slot asks again this often
 CHART_METRICS = (
     ("excursion", "excursion [deg]", 1.0),
     ("band_thickness", "band thickness [deg]", 1.0),
@@ -153,6 +157,7 @@ class Studies(Component):
         self._stop = threading.Event()
         self._progress = None
         self._error = ""
+        self._queued = 0  # place in the queue for a solver slot while waiting (0: not waiting)
         self._poll_task = None
         self._rows = []  # the table's rows as this server made them (study_rows is the page's)
 
@@ -247,7 +252,7 @@ class Studies(Component):
         self._rows = []
         self.state.study_results = None  # the panel now shows the study started here
         self._stop.clear()
-        self._progress, self._error = None, ""
+        self._progress, self._error, self._queued = None, "", 0
         self._thread = threading.Thread(target=self._work, name="racetrace-study", daemon=True)
         self._thread.start()
         with self.state:
@@ -260,16 +265,49 @@ class Studies(Component):
             return  # tests call poll() themselves
         self._poll_task = loop.create_task(self._poll_loop())
 
-    def _work(self) -> None:
+    def _take_slots(self) -> list:
+        """Solver slots (:class:`app.services.pool.SolverPool`, shared with the runs of every
+        session) for the study's workers: waits in the queue for one, then takes more that are
+        free now, without passing runs queued before, up to ``workers`` (default: the pool's
+        cap). Returns the held tickets ([] when cancelled while waiting)."""
+        pool = self.session.services.pool
+        first = pool.enqueue()
         try:
-            self.study.run(
-                self.folder.path,
-                workers=self.workers,
-                progress=self._on_progress,
-                cancel=self._stop,
-            )
+            while not pool.try_acquire(first):
+                self._queued = first.place + 1
+                if self._stop.wait(SLOT_WAIT_S):
+                    pool.drop(first)
+                    return []
+        except BaseException:
+            pool.drop(first)
+            raise
+        self._queued = 0
+        held = [first]
+        wanted = min(self.workers or pool.max_runs, pool.max_runs)
+        while len(held) < wanted:
+            ticket = pool.enqueue()
+            if not pool.try_acquire(ticket):
+                pool.drop(ticket)
+                break
+            held.append(ticket)
+        return held
+
+    def _work(self) -> None:
+        held = []
+        try:
+            held = self._take_slots()
+            if held:  # one single-threaded Dask worker per slot held
+                self.study.run(
+                    self.folder.path,
+                    workers=len(held),
+                    progress=self._on_progress,
+                    cancel=self._stop,
+                )
         except Exception as error:  # noqa: BLE001 - shown on the page, the session goes on
             self._error = f"{type(error).__name__}: {error}"
+        finally:
+            for ticket in held:
+                self.session.services.pool.drop(ticket)
 
     def _on_progress(self, progress) -> None:
         self._progress = progress
@@ -347,7 +385,13 @@ class Studies(Component):
         s = self.state
         p = self._progress
         if running:
-            if p is not None:
+            if self._queued:
+                cap = self.session.services.pool.max_runs
+                s.study_status = (
+                    f"queued: place {self._queued} in the queue for a solver (at most {cap} "
+                    f"run{'s' * (cap != 1)} at once, study points included)"
+                )
+            elif p is not None:
                 eta = f", about {p.eta_s:.0f} s left" if math.isfinite(p.eta_s) else ""
                 s.study_progress = round(100 * p.done / p.total) if p.total else 0
                 s.study_status = f"{p.done}/{p.total} runs done, {p.running} running{eta}" + (

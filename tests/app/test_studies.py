@@ -7,6 +7,7 @@ import time
 
 import pytest
 
+from app.components.studies import SLOT_WAIT_S
 from app.state import DEFAULT_CASE, RacetraceApp
 from solver.study import Study
 from tests.app.test_state import _server
@@ -290,3 +291,92 @@ def test_built_study_varies_only_the_forms_numeric_keys(app):
     app.studies.build()
     assert not s.study_running
     assert "is not a numeric key of the case" in s.study_status
+
+
+# ---- a study from the page takes solver slots, as runs do ---------------------------------------
+@pytest.fixture
+def capped(tmp_path):
+    """A session whose server runs at most one solver at once (``--max-runs 1``)."""
+    from app.services import Services
+
+    services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=1)
+    a = RacetraceApp(_server(), services=services, render=False)
+    a.start(DEFAULT_CASE, play=False)
+    yield a
+    a.shutdown()
+
+
+def _slot_free(pool) -> bool:
+    """Whether a run could take a solver slot now."""
+    probe = pool.enqueue()
+    try:
+        return pool.try_acquire(probe)
+    finally:
+        pool.drop(probe)
+
+
+def _watched(study, pool, seen, real=True):
+    """``study`` whose run records (workers, a slot free for a run) when its points start."""
+    run = study.run
+
+    def watched_run(output, **options):
+        seen.append((options.get("workers"), _slot_free(pool)))
+        return run(output, **options) if real else None
+
+    study.run = watched_run
+    return study
+
+
+def test_a_page_study_and_a_run_never_compute_at_once(capped):
+    """With ``--max-runs 1`` a study from the page waits while a run computes, and no run can
+    start while its points compute (the study's Dask cluster is covered by the tests above)."""
+    pool = capped.services.pool
+    run_slot = pool.enqueue()  # a run of another session is computing: it holds the one slot
+    assert pool.try_acquire(run_slot)
+    seen = []
+    capped.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+    time.sleep(2 * SLOT_WAIT_S + 0.5)
+    assert not capped.studies.poll()
+    assert seen == []  # no Dask cluster, no point computed while the run holds the slot
+    assert capped.state.study_status.startswith("queued: place 1 in the queue for a solver")
+    pool.drop(run_slot)  # the run ends
+    _wait(capped, 60)
+    assert capped.state.study_status == "done"
+    assert seen == [(1, False)]  # one worker, and no slot left for a run while it computed
+    assert _slot_free(pool)  # given back at the end
+
+
+def test_a_page_study_takes_the_free_slots_up_to_the_cap(tmp_path):
+    from app.services import Services
+
+    services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=2)
+    a = RacetraceApp(_server(), services=services, render=False)
+    try:
+        pool = services.pool
+        seen = []
+        a.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+        _wait(a, 60)
+        held = pool.enqueue()  # a run takes one of the two slots
+        assert pool.try_acquire(held)
+        a.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+        _wait(a, 60)
+        pool.drop(held)
+        a.studies.workers = 5  # more workers asked for than the cap: the cap wins
+        a.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+        _wait(a, 60)
+        assert seen == [(2, False), (1, False), (2, False)]
+    finally:
+        a.shutdown()
+
+
+def test_a_page_study_cancelled_in_the_queue_computes_nothing(capped):
+    pool = capped.services.pool
+    run_slot = pool.enqueue()
+    assert pool.try_acquire(run_slot)
+    seen = []
+    capped.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+    capped.studies.cancel()
+    _wait(capped, 60)
+    assert capped.state.study_status.startswith("cancelled") and seen == []
+    assert list((pool.dir / "queue").iterdir()) == []  # its ticket left the queue
+    pool.drop(run_slot)
