@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 #: Top-level modules of the ``report`` extra (checked before building).
-REPORT_MODULES = ("panel", "bokeh", "pyvista", "vtkmodules", "PIL")
+REPORT_MODULES = ("panel", "bokeh", "nh3", "pyvista", "vtkmodules", "PIL")
 
 PRINT_CSS = """
 body { font-family: sans-serif; }
