@@ -26,7 +26,8 @@ def _hostile_case(text: str) -> str:
 
 @pytest.fixture(scope="module")
 def hostile_result():
-    """A quasi-static result whose every text attribute (and its case title) is the payload."""
+    """A quasi-static result whose every text attribute, its case's title and provenance and its
+    text coordinate ``misalignment_frame`` are the payload."""
     import solver
 
     case = solver.catalogue().get("spindle-combined-load").load()
@@ -35,7 +36,7 @@ def hostile_result():
         if isinstance(value, str):
             ds.attrs[name] = _hostile_case(value) if name == "case" else PAYLOAD
     ds.attrs["title"] = PAYLOAD
-    return ds
+    return ds.assign_coords(misalignment_frame=PAYLOAD)  # a text coordinate the report shows
 
 
 def test_the_run_header_shows_every_attribute_as_text(hostile_result):
