@@ -91,13 +91,16 @@ class Runs(Component):
         self.state.runs = [{"title": r.label, "value": r.run_id} for r in self.store.list()]
 
     def is_listed(self, run_id) -> bool:
-        """Whether ``run_id`` (as a client sent it) names a run of the folder; only those are
-        ever opened (a client's text never becomes a path)."""
+        """Whether ``run_id`` (as a client sent it) names a run of the folder, as the server
+        lists it now (never as the page's ``runs`` says); only those are ever opened (a
+        client's text never becomes a path)."""
         if not isinstance(run_id, str):
             return False
-        if all(r["value"] != run_id for r in self.state.runs):
-            self.refresh()  # another session may have just saved it
-        return any(r["value"] == run_id for r in self.state.runs)
+        if not any(r.run_id == run_id for r in self.store.list()):
+            return False
+        if all(r.get("value") != run_id for r in self.state.runs or () if isinstance(r, dict)):
+            self.refresh()  # another session has just saved it: the page lists it too
+        return True
 
     def _folder_signature(self):
         """What changes when a run is saved or removed: the folder's visible entries."""
