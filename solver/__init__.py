@@ -15,7 +15,11 @@ Public API (everything else is internal):
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
-  ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
+  ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``);
+  ``.metrics()`` / ``.metric(name)``: the metrics table ``METRICS`` (name, dims, units, meaning of
+  every metric the views quote) and ``loaded_mask(load, angle)``, the one definition of a loaded
+  contact
+- ``RPM``: rad/s per rev/min (the unit constants are in ``solver.units``)
 - ``Study.from_file(path)`` / ``open_study(folder)``: parameter studies run on Dask
   (docs/study-format.md)
 - ``CaseError`` (invalid input), ``NoSolutionError`` (no solution for a valid case),
@@ -60,6 +64,9 @@ _LAZY = {
     "open_study": "solver.study",
     "contact_table": "solver.results.io",
     "RacetraceAccessor": "solver.results.accessor",
+    "METRICS": "solver.results.metrics",
+    "loaded_mask": "solver.results.loaded",
+    "RPM": "solver.units",
 }
 
 # ``catalogue`` is both a submodule and the function it defines: import it eagerly (it is light), so
