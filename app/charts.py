@@ -368,21 +368,22 @@ def current_contact_traces(source: FrameSource, current: int, balls=None) -> lis
     return traces
 
 
-def trajectory_metric_words(summary) -> str:
-    """Excursion and band thickness of each race in its own ring's frame, from
-    ``ds.racetrace.summary()`` (degree and micrometres)."""
+def trajectory_metric_words(ds: xr.Dataset) -> str:
+    """Excursion and band thickness of each race in its own ring's frame (the metrics
+    ``excursion``, ``excursion_arc``, ``band_thickness``, ``band_thickness_arc``), in degree and
+    micrometres."""
+    metric = ds.racetrace.metric
     parts = []
-    for race, frame in ((INNER, "inner_ring"), (OUTER, "outer_ring")):
-        pick = {"race": RACES[race], "frame": frame}
-        exc = float(summary["trajectory_excursion"].sel(pick))
-        exc_arc = float(summary["trajectory_excursion_arc"].sel(pick)) * 1e6
-        thick = float(summary["trajectory_band_thickness"].sel(pick))
+    for race in RACES:
+        exc = float(metric("excursion").sel(race=race))
+        exc_arc = float(metric("excursion_arc").sel(race=race)) * 1e6
+        thick = float(metric("band_thickness").sel(race=race))
         if np.isfinite(thick):
-            thick_arc = float(summary["trajectory_band_thickness_arc"].sel(pick)) * 1e6
+            thick_arc = float(metric("band_thickness_arc").sel(race=race)) * 1e6
             band = f"band thickness {thick:.3f}° ({thick_arc:.0f} µm)"
         else:
             band = "band thickness needs a dynamic run"
-        parts.append(f"{RACES[race]} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
+        parts.append(f"{race} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
     return "; ".join(parts)
 
 
