@@ -77,10 +77,11 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
         step = _stride(t.size, MAX_TIME_POINTS)
         fig = _figure(f"{label} against time", "time [ms]", label)
         for race in ("inner", "outer"):
-            contacts = ds.sel(race=race).transpose("time", "ball")
-            values = np.asarray(contacts[name].values, float)
-            loaded = loaded_mask(contacts["contact_load"], contacts["contact_angle"]).values
-            masked = np.where(loaded, values, np.nan) * scale
+            values, load, angle = (
+                np.asarray(ds[v].sel(race=race).transpose("time", "ball").values, float)
+                for v in (name, "contact_load", "contact_angle")
+            )
+            masked = np.where(loaded_mask(load, angle), values, np.nan) * scale
             with np.errstate(all="ignore"):
                 mean = np.nanmean(masked, axis=1)
             fig.line(

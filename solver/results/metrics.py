@@ -45,6 +45,10 @@ CONTACT_DIMS = ("ball", "time")
 RACES = ("inner", "outer")
 #: The ring frame in which each race's trajectory metrics are quoted: its own ring's.
 OWN_FRAME = {"inner": "inner_ring", "outer": "outer_ring"}
+#: Dimensions of one bearing's result; any other dimension stacks results (sweep, bearing, phase).
+RESULT_DIMS = frozenset(
+    {"ball", "race", "time", "axis", "tilt_axis", "quaternion", "body", "frame"}
+)
 
 
 @dataclass(frozen=True)
@@ -135,11 +139,10 @@ def _plain(value: xr.DataArray) -> xr.DataArray:
     """``value`` with its dimension coordinates (race, a stacking dimension) and the coordinates
     along stacking dimensions only (e.g. the speed of each element of a sweep): the describing
     coordinates of one result (speeds, loads, groove radii) stay with the result."""
-    own = {"ball", "race", "time", "axis", "tilt_axis", "quaternion", "body", "frame"}
     drop = [
         name
         for name, coord in value.coords.items()
-        if name not in value.dims and (not coord.dims or set(coord.dims) & own)
+        if name not in value.dims and (not coord.dims or set(coord.dims) & RESULT_DIMS)
     ]
     return value.drop_vars(drop)
 
@@ -147,7 +150,7 @@ def _plain(value: xr.DataArray) -> xr.DataArray:
 def _contact(w: Window, name: str, how: str, empty: float = math.nan) -> xr.DataArray:
     """A statistic of per-contact variable ``name`` over the loaded contacts in the window (NaN
     throughout when the result lacks the variable)."""
-    if name not in w.ds:
+    if name not in w.ds:  # the shape of the statistic, all NaN
         return xr.full_like(reduce(w.ds["contact_load"], w.loaded, "max"), math.nan)
     return reduce(w.ds[name], w.loaded, how, empty)
 
@@ -193,13 +196,13 @@ def _with_note(value: xr.DataArray, source: xr.DataArray) -> xr.DataArray:
     return out
 
 
-def _summary_value(name: str, quasistatic: float | None = None):
-    """Summary metric ``name`` as stored or computed (``quasistatic``: the value of a snapshot,
-    which has no such summary variable)."""
+def _summary_value(name: str) -> Callable[[Window], xr.DataArray]:
+    """Summary metric ``name`` as stored or computed (NaN for a result without it: the settling
+    of a quasi-static snapshot)."""
 
     def compute(w: Window) -> xr.DataArray:
         if name not in w.summary:
-            return xr.DataArray(quasistatic if quasistatic is not None else math.nan)
+            return xr.DataArray(math.nan)
         return _with_note(w.summary[name], w.summary[name])
 
     return compute
