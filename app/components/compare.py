@@ -93,9 +93,7 @@ class Compare(Component):
         shown = [(None, label, result.dataset, result.source)]
         shown += runs
         sources = [source for _, _, _, source in shown]
-        summaries = {
-            run_tag(i): charts.run_summary(source, ds) for i, (_, _, ds, source) in enumerate(shown)
-        }
+        summaries = {run_tag(i): charts.run_summary(ds) for i, (_, _, ds, _) in enumerate(shown)}
         legend = []
         for i, (_, label, _, _) in enumerate(shown):
             colours = run_colours(i)

@@ -196,9 +196,8 @@ class ResultView(Component):
         self._map_key = None
         self._shoulders = shoulder_angles(geometry_from_result(ds))
         try:
-            summary = ds.racetrace.summary()
-            self.state.raceway_metrics = charts.trajectory_metric_words(summary)
-            start = float(summary["analysis_start_time"]) if "time" in ds.dims else math.nan
+            self.state.raceway_metrics = charts.trajectory_metric_words(ds)
+            start = float(ds.racetrace.metric("analysis_start_time"))
             self._analysis_start = start if math.isfinite(start) else None
         except (KeyError, ValueError) as error:  # an older result: the map still shows
             log.warning("no trajectory metrics for the map: %s", error)
