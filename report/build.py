@@ -42,7 +42,7 @@ PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block
 
 def missing_report_modules() -> list[str]:
     """Modules of the ``report`` extra that are not installed."""
-    from racetrace.extras import missing_modules
+    from .extras import missing_modules
 
     return missing_modules(REPORT_MODULES)
 
