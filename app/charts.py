@@ -1,6 +1,6 @@
 """Plotly figures of a result, for the app's chart panels (no trame here).
 
-Every figure reads a :class:`app.frames.FrameSource` (the same per-frame data the 3-D view shows, so
+Every figure reads a :class:`viz.frames.FrameSource` (the same per-frame data the 3-D view shows, so
 a quasi-static result is charted through its steady kinematics) or the result Dataset itself.
 Axes are in display units: time in ms, angles in degrees, lengths in mm, pressures in GPa, speeds
 in rev/min. ``HELP`` holds a plain-language explanation of each chart, for teaching.
@@ -13,10 +13,9 @@ import plotly.graph_objects as go
 import xarray as xr
 
 from solver import RPM, loaded_mask
-
-from .frames import TWO_PI, FrameSource
-from .palette import MAX_COMPARED, ball_colours, run_colours, run_style, run_tag
-from .raceway import INNER, OUTER, RACES
+from viz.frames import TWO_PI, FrameSource
+from viz.palette import MAX_COMPARED, ball_colours, run_colours, run_style, run_tag
+from viz.raceway import INNER, OUTER, RACES
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
 
@@ -489,7 +488,7 @@ MAP_COLUMNS = 3  # raceway maps per row when several runs are compared
 def side_by_side_raceway_maps(*sources: FrameSource, max_points: int = 10000) -> go.Figure:
     """Runs compared: unrolled raceway maps of each run (A = the run on show, then B, C ...),
     side by side (at most :data:`MAP_COLUMNS` per row), same contact-angle axis, each run in its
-    own colour (:func:`app.palette.run_colours`; inner race its colour, outer race a darker shade).
+    own colour (:func:`viz.palette.run_colours`; inner race its colour, outer race a darker shade).
     The runs' full names are too long for the narrow column: the page lists them above the chart."""
     from plotly.subplots import make_subplots
 
@@ -554,7 +553,7 @@ HELP["compare_runs"] = (
 
 
 # Compared runs (A = the run on show, then B, C ...): each its own colour (the inner race in it,
-# the outer race in a darker shade), marker and line dash (app.palette).
+# the outer race in a darker shade), marker and line dash (viz.palette).
 RUN_STYLES = {run_tag(i): run_style(i) for i in range(MAX_COMPARED)}
 RUN_COLOURS = {run_tag(i): run_colours(i) for i in range(MAX_COMPARED)}
 

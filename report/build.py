@@ -52,7 +52,7 @@ MODELS = ("quasistatic", "dynamic")
 
 def missing_report_modules() -> list[str]:
     """Modules of the ``report`` extra that are not installed."""
-    from racetrace.extras import missing_modules
+    from .extras import missing_modules
 
     return missing_modules(REPORT_MODULES)
 

@@ -11,9 +11,10 @@ compared, "" when fine); the charts ``chart_compare_runs``, ``chart_compare_angl
 
 from __future__ import annotations
 
+from viz.frames import frame_source
+from viz.palette import MAX_COMPARED, run_colours, run_style, run_tag
+
 from .. import charts
-from ..frames import frame_source
-from ..palette import MAX_COMPARED, run_colours, run_style, run_tag
 from .base import Component, fig_json
 
 MAX_CACHED = MAX_COMPARED  # loaded runs kept for the next comparison

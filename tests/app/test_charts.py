@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from app import charts
-from app.frames import frame_source
-from app.palette import ball_colours
+from viz.frames import frame_source
+from viz.palette import ball_colours
 
 
 def test_contact_angle_chart(qs_dataset):
