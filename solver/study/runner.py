@@ -24,12 +24,18 @@ import time
 import uuid
 from dataclasses import dataclass
 
+from solver.errors import CaseError, Problem
+
 from .store import FAILED, StudyFolder
 
 #: Quasi-static runs per task: at least this many ...
 QS_BATCH_MIN = 4
 #: ... and at most this many, so that every worker gets several batches.
 QS_BATCH_MAX = 32
+#: The address the local cluster listens on.
+LOOPBACK = "127.0.0.1"
+#: Longest wait for an existing scheduler to answer (connection and handshake), in seconds.
+CONNECT_TIMEOUT_S = 30.0
 
 
 @dataclass(frozen=True)
@@ -60,7 +66,12 @@ def _tasks(todo: list, workers: int) -> list[list]:
 
 def start_local_cluster(workers: int | None = None):
     """A LocalCluster of ``workers`` single-threaded worker processes (default: one per core),
-    without dashboard, and its Client."""
+    and its Client.
+
+    Everything listens on the loopback address only, each on a port the system chooses: the
+    scheduler, the workers and the scheduler's HTTP dashboard (Dask always starts it; it is not
+    used here and is never on a fixed port such as 8787), so several studies run side by side on
+    one machine without a port clash or Dask's "port already in use" warning."""
     from dask.distributed import Client, LocalCluster
 
     n = workers or os.cpu_count() or 1
@@ -68,11 +79,93 @@ def start_local_cluster(workers: int | None = None):
         n_workers=n,
         threads_per_worker=1,
         processes=True,
-        dashboard_address=None,
+        host=LOOPBACK,
+        scheduler_port=0,
+        dashboard_address=f"{LOOPBACK}:0",
         memory_limit=0,
         silence_logs=40,
     )
     return cluster, Client(cluster)
+
+
+def scheduler_address(address: str) -> str:
+    """``tcp://HOST:PORT`` of a Dask scheduler address given as ``tcp://HOST:PORT`` or
+    ``HOST:PORT`` (an IPv6 host in brackets); CaseError (key ``scheduler``) naming the form
+    otherwise (another scheme such as ``http://``, no host, no port, a port out of range)."""
+    from urllib.parse import urlsplit
+
+    def wrong(why: str) -> CaseError:
+        return CaseError(
+            Problem(
+                "scheduler",
+                f"--scheduler {address!r}: {why}; give the scheduler's address as tcp://HOST:PORT, "
+                "e.g. tcp://head-node:8786",
+            )
+        )
+
+    text = str(address).strip()
+    if not text or any(c.isspace() or ord(c) < 32 for c in text):
+        raise wrong("not an address")
+    if "://" not in text:
+        text = f"tcp://{text}"
+    try:
+        parts = urlsplit(text)
+        port = parts.port
+    except ValueError as error:
+        raise wrong(str(error)) from None
+    if parts.scheme != "tcp":
+        raise wrong(f"{parts.scheme}:// is not a Dask scheduler protocol")
+    if parts.path not in ("", "/") or parts.query or parts.fragment or parts.username:
+        raise wrong("an address has only a host and a port")
+    if not parts.hostname:
+        raise wrong("no host")
+    if port is None or port == 0:
+        raise wrong("no port")
+    host = f"[{parts.hostname}]" if ":" in parts.hostname else parts.hostname
+    return f"tcp://{host}:{port}"
+
+
+def connect_scheduler(address: str, timeout_s: float = CONNECT_TIMEOUT_S):
+    """A ``dask.distributed.Client`` of the scheduler at ``address`` (see
+    :func:`scheduler_address`), or CaseError within about ``timeout_s`` seconds.
+
+    Connecting and Dask's handshake are first tried under one deadline (Dask's own timeout does
+    not cover the handshake, so a server that accepts the connection and stays silent, or a web
+    server, would hang forever); then the Client connects with the same timeout."""
+    import asyncio
+
+    from dask.distributed import Client
+    from distributed.comm import connect
+
+    address = scheduler_address(address)
+
+    def nobody(why: str) -> CaseError:
+        return CaseError(
+            Problem(
+                "scheduler",
+                f"no Dask scheduler answered at {address} within {timeout_s:g} s ({why}): check "
+                "the address and that `dask scheduler` runs there",
+            )
+        )
+
+    async def handshake() -> None:
+        comm = await asyncio.wait_for(connect(address, timeout=timeout_s), timeout_s)
+        try:
+            if not isinstance(getattr(comm, "remote_info", None), dict):
+                raise OSError("the server did not answer as Dask does")
+        finally:
+            comm.abort()
+
+    try:
+        asyncio.run(handshake())
+    except TimeoutError:
+        raise nobody("no answer") from None
+    except Exception as error:  # noqa: BLE001 - whatever a foreign server makes Dask raise
+        raise nobody(f"{type(error).__name__}: {error}") from None
+    try:
+        return Client(address, timeout=timeout_s)
+    except Exception as error:  # noqa: BLE001
+        raise nobody(f"{type(error).__name__}: {error}") from None
 
 
 def run_study(
@@ -87,6 +180,9 @@ def run_study(
     version: str = "",
     log=None,
     shared_folder: bool | None = None,
+    inputs: dict | None = None,
+    restart: bool = False,
+    accept_solver_change: bool = False,
 ) -> StudyFolder:
     """Run every unfinished (point, model) of ``points`` and save them in ``output``.
 
@@ -94,14 +190,24 @@ def run_study(
     the module docstring for the client, cancel and saving rules. ``log``: callable(str) for
     one-line notes (skipped runs, warm-up). ``shared_folder``: the workers write the runs into
     the study folder themselves (default: True with the local cluster this function starts, False
-    with a given client).
+    with a given client). ``inputs``, ``restart``, ``accept_solver_change``: what the folder
+    records and checks on resume (:meth:`~solver.study.store.StudyFolder.start`).
     """
     from dask.distributed import wait
 
     from .worker import WarmUp, run_batch
 
     folder = StudyFolder(output)
-    folder.start(spec, points, version, resume)
+    folder.start(
+        spec,
+        points,
+        version,
+        resume,
+        inputs=inputs,
+        restart=restart,
+        accept_solver_change=accept_solver_change,
+        log=log,
+    )
     finished = folder.finished()
     todo = [
         (p.name, model, p.case)
