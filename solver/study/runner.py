@@ -18,8 +18,11 @@ others go on; a worker that dies has its tasks run again by Dask on the other wo
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import os
+import threading
 import time
 import uuid
 from dataclasses import dataclass
@@ -233,7 +236,8 @@ def run_study(
         shared_folder = own_cluster is not None
     target = str(folder.path.resolve()) if shared_folder else None
     try:
-        client.register_plugin(WarmUp())
+        if not _warm_up(client, WarmUp(), cancel):
+            return folder
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
         tasks = _tasks(todo, n_workers)
         total = len(todo)
@@ -315,7 +319,49 @@ def run_study(
             report()
     finally:
         if own_cluster is not None:
-            client.close()
-            own_cluster.close()
+            # after a stop the workers may be busy: Dask's complaints about closing them are noise
+            with _quiet_dask(cancel is not None and cancel.is_set()):
+                client.close()
+                own_cluster.close()
         folder.save_dataset()
     return folder
+
+
+def _warm_up(client, plugin, cancel) -> bool:
+    """Register the warm-up ``plugin`` (each worker loads, or compiles, the kernels: up to a
+    minute) and wait for it, checking ``cancel`` twice a second; False when cancelled first.
+
+    Dask's registration waits for every worker's setup and cannot be interrupted, so it runs in a
+    thread; an error it raises is raised here."""
+    errors: list[BaseException] = []
+
+    def register() -> None:
+        try:
+            client.register_plugin(plugin)
+        except BaseException as error:  # noqa: BLE001 - also the cancellation when closing
+            errors.append(error)
+
+    thread = threading.Thread(target=register, name="racetrace-warm-up", daemon=True)
+    thread.start()
+    while thread.is_alive():
+        if cancel is not None and cancel.is_set():
+            return False
+        thread.join(0.5)
+    if errors:
+        raise errors[0]
+    return True
+
+
+@contextlib.contextmanager
+def _quiet_dask(quiet: bool):
+    """While active and ``quiet``: the ``distributed`` loggers of this process log nothing."""
+    if not quiet:
+        yield
+        return
+    logger = logging.getLogger("distributed")
+    level = logger.level
+    logger.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        logger.setLevel(level)
