@@ -13,7 +13,11 @@ this machine's file system (``shared_folder``; the default for the local cluster
 runs in parallel), otherwise by this process when the result comes back. A
 run that fails (no quasi-static solution, diverged, invalid) is recorded with its message and the
 others go on; a worker that dies has its tasks run again by Dask on the other workers. ``cancel``
-(a ``threading.Event``) stops the study: pending tasks are cancelled and what is done is kept.
+(a ``threading.Event``) stops the study, also while the workers warm up: pending tasks are
+cancelled, the local cluster is closed (quietly) and what is done is kept.
+
+:func:`connect_scheduler` connects to an existing scheduler under one deadline that also covers
+Dask's handshake, and refuses an address that is not ``tcp://HOST:PORT``.
 """
 
 from __future__ import annotations

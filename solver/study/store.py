@@ -559,7 +559,11 @@ def study_dataset(folder: StudyFolder) -> xr.Dataset:
     dotted key, holding each point's value of that key (the base case's where a sweep does not
     vary it). Variables: the :data:`~solver.study.metrics.POINT_METRICS` per (point, model[, race])
     (NaN where the run has not finished or failed), ``status`` ("done", "failed", "pending" or
-    "not run": the point does not run this model), ``message`` and ``wall_time`` [s].
+    "not run": the point does not run this model), ``message`` and ``wall_time`` [s]. Attributes:
+    ``title``, ``description``, ``base_case``, ``software_version``, ``varied_keys`` (JSON),
+    ``study_folder`` (the folder's name, never a path of the machine that ran it),
+    ``racetrace_kind`` = "study", and ``solver_changes`` (JSON) when a resume accepted a change
+    of the solver.
     """
     manifest = folder.manifest()
     entries = manifest["points"]
