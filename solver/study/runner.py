@@ -132,9 +132,10 @@ def scheduler_address(address: str) -> str:
     return f"tcp://{host}:{port}"
 
 
-def connect_scheduler(address: str, timeout_s: float = CONNECT_TIMEOUT_S):
+def connect_scheduler(address: str, timeout_s: float | None = None):
     """A ``dask.distributed.Client`` of the scheduler at ``address`` (see
-    :func:`scheduler_address`), or CaseError within about ``timeout_s`` seconds.
+    :func:`scheduler_address`), or CaseError within about ``timeout_s`` seconds (default
+    :data:`CONNECT_TIMEOUT_S`).
 
     Connecting and Dask's handshake are first tried under one deadline (Dask's own timeout does
     not cover the handshake, so a server that accepts the connection and stays silent, or a web
@@ -145,6 +146,7 @@ def connect_scheduler(address: str, timeout_s: float = CONNECT_TIMEOUT_S):
     from distributed.comm import connect
 
     address = scheduler_address(address)
+    timeout_s = CONNECT_TIMEOUT_S if timeout_s is None else timeout_s
 
     def nobody(why: str) -> CaseError:
         return CaseError(
