@@ -86,32 +86,37 @@ def _not_a_study(folder: Path, why: str) -> CaseError:
     )
 
 
-def _read_json(path: Path, limit: int, folder: Path):
+def _read_json(path: Path, limit: int, folder: Path, name: str, hint: str = ""):
     """The JSON value in the regular file ``path`` (at most ``limit`` bytes); CaseError naming
-    ``folder`` otherwise (a FIFO is never opened, deep nesting is refused)."""
+    ``folder``, the file's ``name`` and ``hint`` otherwise (a FIFO is never opened, deep nesting
+    is refused)."""
+
+    def wrong(why: str) -> CaseError:
+        return _not_a_study(folder, f"{name} {why}{hint}")
+
     try:
         info = os.stat(path)
         if not stat.S_ISREG(info.st_mode):
-            raise _not_a_study(folder, f"{path.name} is not a regular file")
+            raise wrong("is not a regular file")
         if info.st_size > limit:
-            raise _not_a_study(folder, f"{path.name} is larger than {limit // 1_000_000} MB")
+            raise wrong(f"is larger than {limit / 1e6:g} MB")
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as handle:
             if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
-                raise _not_a_study(folder, f"{path.name} is not a regular file")
+                raise wrong("is not a regular file")
             raw = handle.read(limit + 1)
     except OSError as error:
-        raise _not_a_study(folder, f"cannot read {path.name} ({error.strerror})") from None
+        raise wrong(f"cannot be read ({error.strerror})") from None
     if len(raw) > limit:
-        raise _not_a_study(folder, f"{path.name} is larger than {limit // 1_000_000} MB")
+        raise wrong(f"is larger than {limit / 1e6:g} MB")
     try:
         return json.loads(raw.decode("utf-8"))
     except UnicodeDecodeError:
-        raise _not_a_study(folder, f"{path.name} is not UTF-8 text") from None
+        raise wrong("is not UTF-8 text") from None
     except RecursionError:
-        raise _not_a_study(folder, f"{path.name} nests values hundreds of levels deep") from None
+        raise wrong("nests values hundreds of levels deep") from None
     except ValueError as error:
-        raise _not_a_study(folder, f"{path.name} is not JSON ({error})") from None
+        raise wrong(f"is not JSON ({error})") from None
 
 
 def _number(value) -> bool:
@@ -184,7 +189,8 @@ def _record_problem(record) -> str:
         return "'message' is not text"
     if not _number(record.get("wall_time_s")):
         return "'wall_time_s' is not a number"
-    metrics = record.get("metrics") or {}
+    metrics = record.get("metrics")
+    metrics = {} if metrics is None else metrics
     if not isinstance(metrics, dict):
         return "'metrics' is not a JSON object"
     for name, (dims, *_rest) in POINT_METRICS.items():
@@ -494,7 +500,7 @@ class StudyFolder:
         path = self.path / MANIFEST
         if not path.is_file():
             raise _not_a_study(self.path, f"it has no {MANIFEST}")
-        data = _read_json(path, MAX_MANIFEST_BYTES, self.path)
+        data = _read_json(path, MAX_MANIFEST_BYTES, self.path, MANIFEST)
         problem = _manifest_problem(data)
         if problem:
             raise _not_a_study(self.path, problem)
@@ -506,13 +512,12 @@ class StudyFolder:
         path = self.record_path(point, model)
         if not os.path.lexists(path):
             return None
-        record = _read_json(path, MAX_RECORD_BYTES, self.path)
+        name = f"{POINTS}/{path.name}"
+        hint = ": delete it to run that point again with --resume"
+        record = _read_json(path, MAX_RECORD_BYTES, self.path, name, hint)
         problem = _record_problem(record)
         if problem:
-            raise _not_a_study(
-                self.path,
-                f"{POINTS}/{path.name} {problem}: delete it to run that point again with --resume",
-            )
+            raise _not_a_study(self.path, f"{name} {problem}{hint}")
         return record
 
     def finished(self) -> dict[tuple[str, str], dict]:
