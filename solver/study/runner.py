@@ -43,6 +43,8 @@ QS_BATCH_MAX = 32
 LOOPBACK = "127.0.0.1"
 #: Longest wait for an existing scheduler to answer (connection and handshake), in seconds.
 CONNECT_TIMEOUT_S = 30.0
+#: Longest wait for the local workers to be told to log nothing before a stopped study closes them.
+QUIET_WAIT_S = 5.0
 
 
 @dataclass(frozen=True)
@@ -326,7 +328,10 @@ def run_study(
     finally:
         if own_cluster is not None:
             # after a stop the workers may be busy: Dask's complaints about closing them are noise
-            with _quiet_dask(cancel is not None and cancel.is_set()):
+            stopped = cancel is not None and cancel.is_set()
+            with _quiet_dask(stopped):
+                if stopped:
+                    _within(lambda: client.run(logging.disable, logging.CRITICAL), QUIET_WAIT_S)
                 client.close()
                 own_cluster.close()
         folder.save_dataset()
@@ -358,16 +363,31 @@ def _warm_up(client, plugin, cancel) -> bool:
     return True
 
 
+def _within(call, seconds: float) -> None:
+    """Call ``call()`` in a thread and wait at most ``seconds`` for it; its errors are ignored
+    (used for courtesies to workers that may be gone)."""
+
+    def run() -> None:
+        try:
+            call()
+        except BaseException:  # noqa: BLE001, S110 - a courtesy: nothing to do if it fails
+            pass
+
+    thread = threading.Thread(target=run, name="racetrace-quiet", daemon=True)
+    thread.start()
+    thread.join(seconds)
+
+
 @contextlib.contextmanager
 def _quiet_dask(quiet: bool):
-    """While active and ``quiet``: the ``distributed`` loggers of this process log nothing."""
+    """While active and ``quiet``: this process logs nothing (Dask's scheduler and nannies run in
+    it and complain about closing busy workers); the workers are silenced by the caller."""
     if not quiet:
         yield
         return
-    logger = logging.getLogger("distributed")
-    level = logger.level
-    logger.setLevel(logging.CRITICAL + 1)
+    previous = logging.root.manager.disable
+    logging.disable(logging.CRITICAL)
     try:
         yield
     finally:
-        logger.setLevel(level)
+        logging.disable(previous)

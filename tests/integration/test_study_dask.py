@@ -157,7 +157,16 @@ base = "spindle-axial-preload"
 """
 
 
-@pytest.mark.parametrize("name", ["SIGTERM", "SIGHUP", "SIGINT"])
+@pytest.mark.parametrize(
+    "name",
+    # each starts a cluster and warms a worker (a minute on a busy machine): SIGTERM in the
+    # normal suite, the others (the same handler) with -m slow
+    [
+        "SIGTERM",
+        pytest.param("SIGHUP", marks=pytest.mark.slow),
+        pytest.param("SIGINT", marks=pytest.mark.slow),
+    ],
+)
 def test_a_stop_signal_keeps_the_finished_runs_and_writes_the_study(tmp_path, name):
     """A real ``racetrace study`` process, sent the signal once runs have finished: it stops,
     shuts its cluster down without a traceback, writes study.nc, prints the resume command and
