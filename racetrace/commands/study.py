@@ -181,10 +181,13 @@ def run(args) -> int:
 
     if args.scheduler:
         scheduler_address(args.scheduler)  # CaseError naming the form before any other work
-    study = Study.from_file(args.study)
     stop = threading.Event()
     with StopSignals(stop) as signals:
         try:
+            study = Study.from_file(args.study)
+            if stop.is_set():  # a signal while the study was read: nothing started yet
+                print("racetrace: stopped before the study started", file=sys.stderr)
+                return signals.exit_code
             return _run_study(args, study, signals, connect_scheduler)
         except KeyboardInterrupt:  # a second signal: stopped at once
             print("racetrace: stopped at once; finished runs are kept", file=sys.stderr)
