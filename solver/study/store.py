@@ -351,7 +351,7 @@ class StudyFolder:
                     + ", ".join(removed[:5])
                     + (" ..." if len(removed) > 5 else "")
                 )
-        elif self.path.is_dir() and any(self.path.iterdir()) and not (resume or restart):
+        elif self.path.is_dir() and any(self.path.iterdir()) and not resume:
             raise CaseError(
                 Problem("output", f"{self.path} is not empty: give a new or empty --output folder")
             )

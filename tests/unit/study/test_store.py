@@ -174,3 +174,13 @@ def test_resume_removes_the_half_written_files_of_a_killed_run(study_dir):
 def test_the_study_dataset_names_its_folder_without_the_path(study_dir):
     folder = finished_folder(study_dir)
     assert study_dataset(folder).attrs["study_folder"] == "out"
+
+
+def test_restart_does_not_write_into_a_folder_that_is_not_a_study_folder(study_dir):
+    other = study_dir / "other"
+    other.mkdir()
+    (other / "thesis.tex").write_text("mine")
+    study = Study.from_file(study_dir / "study.toml")
+    with pytest.raises(CaseError, match="not empty"):
+        StudyFolder(other).start(study.spec, study.points(), "test", resume=False, restart=True)
+    assert sorted(p.name for p in other.iterdir()) == ["thesis.tex"]
