@@ -106,6 +106,8 @@ _LAZY = {
     "open_study": "solver.study",
     "study_dataset": "solver.study",
     "shipped_studies": "solver.study",
+    "scheduler_address": "solver.study.runner",
+    "connect_scheduler": "solver.study.runner",
     "POINT_METRICS": "solver.study.metrics",
     "point_metrics": "solver.study.metrics",
     # the compiled-kernel cache (racetrace cache)
