@@ -7,9 +7,8 @@ import time
 
 import pytest
 
-from app.state import DEFAULT_CASE, RacetraceApp
+from app.state import DEFAULT_CASE
 from solver.study import Study
-from tests.app.test_state import _server
 
 pytest.importorskip("distributed")
 
@@ -22,12 +21,10 @@ base = "spindle-axial-preload"
 
 
 @pytest.fixture
-def app(tmp_path):
-    a = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
-    a.start(DEFAULT_CASE, play=False)
-    a.studies.workers = 1
-    yield a
-    a.shutdown()
+def app(app):
+    """The session of tests/app/conftest.py, its studies on one worker."""
+    app.studies.workers = 1
+    return app
 
 
 def _wait(app, timeout_s=600):
