@@ -67,15 +67,6 @@ def viscosity_at_temperature(
     )
 
 
-@njit(cache=True)
-def barus_viscosity(viscosity, pressure_viscosity, pressure):
-    """eta_0 exp(alpha p) [Pa s], exponent capped at ``BARUS_EXPONENT_CAP``; p <= 0 gives eta_0."""
-    x = pressure_viscosity * pressure
-    if x <= 0.0:
-        return viscosity
-    return viscosity * math.exp(min(x, BARUS_EXPONENT_CAP))
-
-
 #: Above this x = eta gamma_dot / tau_0 the Eyring law uses asinh(x) = ln(2 x) (relative error
 #: below 4e-8), which needs no exponential of the Barus exponent.
 _ASINH_LOG_FROM = 1.0e3

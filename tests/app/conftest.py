@@ -1,4 +1,6 @@
-"""Fixtures for the app tests.
+"""Fixtures for the app tests: a session without a browser (``app``), the served app and a headless
+chromium for the browser tests (``server``, ``browser``; one of each per test module), and
+datasets.
 
 The datasets built here are TEST FIXTURES that follow results-schema.md with simple analytic
 distributions (contact angles and loads as cosines of the azimuth); never shipped as results.
@@ -19,7 +21,9 @@ import xarray as xr
 from solver.geometry import BearingGeometry
 from solver.materials import BUILTIN_MATERIALS
 from solver.results.dataset import describing_coordinates
-from tests.helpers.dyn_bearings import operating_point
+from tests.helpers.app_session import trame_server
+from tests.helpers.browser import CHROMIUM, LAUNCH_ARGS
+from tests.helpers.cases import operating_point
 
 SHAFT_RPM = 6000.0
 FIXTURE_CASE = f"""
@@ -206,3 +210,38 @@ def fixture_model():
     import sys
 
     return sys.modules[__name__]
+
+
+@pytest.fixture
+def app(tmp_path):
+    """A session (``RacetraceApp``) on the default case, not playing, without rendering; its runs
+    folder is ``tmp_path / "runs"``."""
+    from app.state import DEFAULT_CASE, RacetraceApp
+
+    session = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
+    session.start(DEFAULT_CASE, play=False)
+    yield session
+    session.shutdown()
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """``racetrace serve`` in a subprocess with an empty runs folder (a module that needs another
+    server defines its own ``server``)."""
+    from tests.helpers.serve import start_server, stop_server
+
+    runs = tmp_path_factory.mktemp("runs")
+    served = start_server(runs, tmp_path_factory.mktemp("log") / "serve.log")
+    yield served
+    stop_server(served)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """Headless Debian chromium driven by Playwright."""
+    import playwright.sync_api as playwright_api
+
+    with playwright_api.sync_playwright() as p:
+        launched = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        yield launched
+        launched.close()

@@ -12,46 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from tests.helpers.serve import start_server, stop_server
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE
 
-CHROMIUM = "/usr/bin/chromium"
-pytestmark = [
-    pytest.mark.browser,
-    pytest.mark.skipif(
-        not Path(CHROMIUM).exists(),
-        reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)",
-    ),
-]
-import playwright.sync_api as playwright_api  # noqa: E402
-
-LAUNCH_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-FIRST_IMAGE = "#view-3d img[src]:not([src=''])"  # the first drawn image, not an empty img
-ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
-
-
-@pytest.fixture(scope="module")
-def server(tmp_path_factory):
-    runs = tmp_path_factory.mktemp("runs")
-    served = start_server(runs, tmp_path_factory.mktemp("log") / "serve.log")
-    yield served
-    stop_server(served)
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        yield b
-        b.close()
+pytestmark = BROWSER_MARKS
 
 
 @pytest.fixture

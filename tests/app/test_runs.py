@@ -79,9 +79,9 @@ def test_a_run_id_the_page_adds_to_its_list_is_not_a_listed_run(tmp_path, qs_dat
     """A client writing its own entry into ``runs`` does not make it a run to open or compare:
     the run store's listing decides."""
     from app.state import DEFAULT_CASE, RacetraceApp
-    from tests.app.test_state import _server
+    from tests.helpers.app_session import trame_server
 
-    app = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
+    app = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
     try:
         app.start(DEFAULT_CASE, play=False)
         saved = app.store.save(qs_dataset, qs_dataset.attrs["case"], "saved")

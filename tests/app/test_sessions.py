@@ -5,7 +5,6 @@ from __future__ import annotations
 import asyncio
 import threading
 import time
-import uuid
 
 import pytest
 
@@ -14,14 +13,7 @@ from app.components import runs as runs_module
 from app.runner import QUASISTATIC_JOB
 from app.services import Services
 from app.state import DEFAULT_CASE, RacetraceApp
-
-
-def _server():
-    from trame.app import get_server
-
-    server = get_server(f"racetrace-test-{uuid.uuid4().hex}", client_type="vue3")
-    server.state.ready()
-    return server
+from tests.helpers.app_session import trame_server
 
 
 def _set(app, **values):
@@ -39,7 +31,7 @@ def services(tmp_path):
 
 @pytest.fixture
 def two(services):
-    apps = [RacetraceApp(_server(), render=False, services=services) for _ in range(2)]
+    apps = [RacetraceApp(trame_server(), render=False, services=services) for _ in range(2)]
     for a in apps:
         a.start(DEFAULT_CASE, play=False)
     yield apps
@@ -297,7 +289,7 @@ def test_a_read_only_runs_folder_still_gives_a_session(tmp_path, monkeypatch):
     from tests.helpers.faults import read_only_folder
 
     with read_only_folder(tmp_path / "ro") as runs:
-        app = RacetraceApp(_server(), runs_dir=runs, render=False)
+        app = RacetraceApp(trame_server(), runs_dir=runs, render=False)
         app.start(DEFAULT_CASE, play=False)
         path = app.exports.export("csv")
         assert path is not None and path.is_file() and runs not in path.parents

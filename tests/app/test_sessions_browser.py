@@ -18,21 +18,10 @@ from pathlib import Path
 
 import pytest
 
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE
 from tests.helpers.serve import free_port
 
-CHROMIUM = "/usr/bin/chromium"
-pytestmark = [
-    pytest.mark.browser,
-    pytest.mark.skipif(
-        not Path(CHROMIUM).exists(),
-        reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)",
-    ),
-]
-import playwright.sync_api as playwright_api  # noqa: E402
-
-LAUNCH_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run"]
-ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
-FIRST_IMAGE = "#view-3d img[src]:not([src=''])"
+pytestmark = BROWSER_MARKS
 START_S = 300  # a cold numba cache compiles the quasi-static kernels first; the machine is shared
 
 
@@ -109,14 +98,6 @@ def server(tmp_path_factory):
     s = _start(tmp_path_factory.mktemp("sessions"), "--max-runs", "1")
     yield s
     _stop(s)
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with playwright_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        yield b
-        b.close()
 
 
 def _open(browser, url: str, width: int, height: int):

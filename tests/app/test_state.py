@@ -5,7 +5,6 @@ from __future__ import annotations
 import base64
 import math
 import time
-import uuid
 
 import numpy as np
 import pytest
@@ -13,14 +12,7 @@ import pytest
 from app import runner as runner_module
 from app.runner import QUASISTATIC_JOB
 from app.state import DEFAULT_CASE, RacetraceApp
-
-
-def _server():
-    from trame.app import get_server
-
-    server = get_server(f"racetrace-test-{uuid.uuid4().hex}", client_type="vue3")
-    server.state.ready()  # change callbacks fire on flush, as in a running server
-    return server
+from tests.helpers.app_session import trame_server
 
 
 class CountingView:
@@ -29,14 +21,6 @@ class CountingView:
 
     def render(self):
         self.renders += 1
-
-
-@pytest.fixture
-def app(tmp_path):
-    a = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
-    a.start(DEFAULT_CASE, play=False)
-    yield a
-    a.shutdown()
 
 
 def _length(array) -> int:
@@ -112,7 +96,7 @@ def test_time_controls(app):
 
 
 def test_scene_follows_frames_and_options(tmp_path):
-    a = RacetraceApp(_server(), runs_dir=tmp_path, render=True, window_size=(200, 150))
+    a = RacetraceApp(trame_server(), runs_dir=tmp_path, render=True, window_size=(200, 150))
     view = CountingView()
     a.result.view = view
     a.start(DEFAULT_CASE, play=False)
@@ -167,7 +151,7 @@ def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):
     assert not app.state.busy and not app.state.run_disabled
     assert len(app.state.runs) == 1
     # a new app on the same runs folder (server restart or reload) lists the same run
-    again = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
+    again = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
     assert again.state.runs == app.state.runs
     again.start(DEFAULT_CASE, play=False)
     _set(again, run_id=app.state.runs[0]["value"])

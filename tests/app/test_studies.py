@@ -10,7 +10,7 @@ import pytest
 from app.components.studies import SLOT_WAIT_S
 from app.state import DEFAULT_CASE, RacetraceApp
 from solver.study import Study
-from tests.app.test_state import _server
+from tests.helpers.app_session import trame_server
 
 pytest.importorskip("distributed")
 
@@ -23,12 +23,10 @@ base = "spindle-axial-preload"
 
 
 @pytest.fixture
-def app(tmp_path):
-    a = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
-    a.start(DEFAULT_CASE, play=False)
-    a.studies.workers = 1
-    yield a
-    a.shutdown()
+def app(app):
+    """The session of tests/app/conftest.py, its studies on one worker."""
+    app.studies.workers = 1
+    return app
 
 
 def _wait(app, timeout_s=600):
@@ -300,7 +298,7 @@ def capped(tmp_path):
     from app.services import Services
 
     services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=1)
-    a = RacetraceApp(_server(), services=services, render=False)
+    a = RacetraceApp(trame_server(), services=services, render=False)
     a.start(DEFAULT_CASE, play=False)
     yield a
     a.shutdown()
@@ -350,7 +348,7 @@ def test_a_page_study_takes_the_free_slots_up_to_the_cap(tmp_path):
     from app.services import Services
 
     services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=2)
-    a = RacetraceApp(_server(), services=services, render=False)
+    a = RacetraceApp(trame_server(), services=services, render=False)
     try:
         pool = services.pool
         seen = []

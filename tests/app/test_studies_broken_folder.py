@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from app.state import DEFAULT_CASE, RacetraceApp
-from tests.app.test_state import _server
+from tests.helpers.app_session import trame_server
 
 pytest.importorskip("distributed")
 
@@ -15,7 +15,7 @@ pytest.importorskip("distributed")
     ["{not json", "[]", '{"title": "t", "base": "b", "varied_keys": [], "points": [[]]}'],
 )
 def test_a_broken_study_folder_is_named_not_a_study_folder(tmp_path, manifest):
-    app = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
+    app = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
     app.start(DEFAULT_CASE, play=False)
     try:
         folder = tmp_path / "runs" / ".studies" / "broken"

@@ -8,22 +8,12 @@ Screenshots go to ``test-artifacts/browser/ui/``.
 
 from __future__ import annotations
 
-import os
-
 import pytest
 
-from tests.app.test_browser import (  # noqa: F401 - the browser fixture is used by name
-    ARTIFACTS,
-    CHROMIUM,
-    FIRST_IMAGE,
-    browser,
-)
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE
 from tests.helpers.serve import start_server, stop_server
 
-pytestmark = [
-    pytest.mark.browser,
-    pytest.mark.skipif(not os.path.exists(CHROMIUM), reason=f"{CHROMIUM} is missing"),
-]
+pytestmark = BROWSER_MARKS
 pytest.importorskip("distributed")
 
 SHOTS = ARTIFACTS / "ui"
@@ -58,7 +48,7 @@ def server(tmp_path_factory):
 
 
 @pytest.fixture
-def page(browser, server):  # noqa: F811 - the imported browser fixture
+def page(browser, server):
     SHOTS.mkdir(parents=True, exist_ok=True)
     context = browser.new_context(viewport={"width": 1500, "height": 1000})
     pg = context.new_page()

@@ -17,15 +17,9 @@ from racetrace.cli import main
 from racetrace.commands import _output
 from racetrace.commands import simulate as command
 from solver.results.io import load_dataset
-from tests.helpers.dyn_bearings import spindle_inputs
 from tests.helpers.faults import read_only_folder, small_file_system
 
 SHORT = ["--revolutions", "0.1", "--samples-per-revolution", "40", "--quiet"]
-
-
-@pytest.fixture
-def fake_case(monkeypatch):
-    monkeypatch.setattr(command, "_load_case", lambda name: spindle_inputs(radial=300.0))
 
 
 @pytest.fixture

@@ -1,4 +1,15 @@
-"""Case texts shared by the tests (no catalogue needed)."""
+"""The test bearings, defined once: case texts (no catalogue needed) and the SI inputs that the
+dynamic-model tests build from them."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from functools import cache
+
+from solver.case import parse_case
+from solver.geometry import BearingGeometry
+from solver.inputs import Inputs, OperatingPoint, to_inputs
 
 SPINDLE = """
 title = "7008C-class hybrid spindle bearing, combined load"
@@ -95,3 +106,81 @@ misalignment_frame = "space"
 shaft_revolutions = 10.0
 samples_per_revolution = 180
 """
+
+# The spindle as the dynamic-model tests run it: explicit cage values and a short run at a tight
+# tolerance; no [lubricant], so the schema's default oil.
+SPINDLE_RUN = (
+    SPINDLE
+    + """
+[cage]
+guidance = "outer_ring"
+pocket_diametral_clearance_mm = 0.20
+guide_diametral_clearance_mm = 0.30
+mass_g = 6.0
+pocket_friction = 0.08
+guide_land_width_mm = 3.0
+land_flooding = 1.0
+[simulation]
+shaft_revolutions = 2.0
+samples_per_revolution = 90
+tolerance = 1e-4
+"""
+)
+
+
+@cache
+def _spindle_run_inputs() -> Inputs:
+    """:data:`SPINDLE_RUN` in SI, without its case text (the tests replace its operating point)."""
+    inputs = to_inputs(parse_case(SPINDLE_RUN, source="tests.helpers.cases.SPINDLE_RUN"))
+    return replace(inputs, case_text="")
+
+
+def spindle_geometry() -> BearingGeometry:
+    """The 7008C-class hybrid spindle bearing of :data:`SPINDLE` (SI)."""
+    return _spindle_run_inputs().geometry
+
+
+def spindle_inputs(rpm=20000.0, axial=500.0, radial=0.0, **operating_changes) -> Inputs:
+    """:data:`SPINDLE_RUN` at ``rpm`` under ``axial`` and ``radial`` loads [N]; other
+    ``operating_changes`` replace fields of the :class:`OperatingPoint` (SI)."""
+    operating = OperatingPoint(
+        inner_ring_speed=rpm * math.pi / 30.0,
+        outer_ring_speed=0.0,
+        axial_load=axial,
+        radial_load=radial,
+        radial_load_angle=0.0,
+        misalignment=0.0,
+        misalignment_axis=math.radians(90.0),
+        misalignment_frame="space",
+        tilting_moment=None,
+        moment_axis=math.radians(90.0),
+    )
+    return replace(_spindle_run_inputs(), operating=replace(operating, **operating_changes))
+
+
+def operating_point(
+    inner_ring_speed: float,
+    outer_ring_speed: float = 0.0,
+    axial_load: float = 0.0,
+    radial_load: float = 0.0,
+    radial_load_angle: float = 0.0,
+    misalignment: float = 0.0,
+    misalignment_axis: float = 0.5 * math.pi,
+    misalignment_frame: str = "space",
+    tilting_moment: float | None = None,
+    moment_axis: float = 0.5 * math.pi,
+) -> OperatingPoint:
+    """An SI :class:`OperatingPoint` with the fields not named set as a case leaves them (no tilt,
+    axes at 90 degrees); arguments in the field order."""
+    return OperatingPoint(
+        inner_ring_speed,
+        outer_ring_speed,
+        axial_load,
+        radial_load,
+        radial_load_angle,
+        misalignment,
+        misalignment_axis,
+        misalignment_frame,
+        tilting_moment,
+        moment_axis,
+    )

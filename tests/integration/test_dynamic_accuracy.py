@@ -12,7 +12,7 @@ from tests.helpers import accuracy as A
 #: long window instead (test_default_method_meets_the_contract_over_a_long_window): it does not
 #: settle (sustained irregular cage and ball motion), and over 3 revolutions two reference-quality
 #: runs (1e-6, 3e-6) differ by up to 3x the angle allowance and 3-15x the band and excursion
-#: allowances (benchmarks/reference_spread.py, docs/numerics.md), so no run can be checked there.
+#: allowances (tests/helpers/reference_spread.py, docs/numerics.md), so no run can be checked there.
 CONTRACT_CASES = [label for label in A.CASES if label not in A.LONG_WINDOW_CASES]
 
 

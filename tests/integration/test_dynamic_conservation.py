@@ -15,7 +15,7 @@ from solver.models.dynamic.kernels import (
     cage_land,
     mechanical_energy,
 )
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
 #: integrator tolerance of the conservation runs. Undamped (no traction, zero contact damping),

@@ -20,7 +20,7 @@ import pytest
 
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.quasistatic import solve_operating_point
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 
 SAMPLES = 60
 

@@ -16,7 +16,7 @@ from solver.geometry import BearingGeometry, free_contact_angle_from_clearance
 from solver.materials import BUILTIN_MATERIALS
 from solver.models.quasistatic import solve_operating_point
 from solver.physics.hertz import race_contact
-from tests.helpers.dyn_bearings import operating_point, spindle_geometry
+from tests.helpers.cases import operating_point, spindle_geometry
 
 STEEL = BUILTIN_MATERIALS["bearing_steel"]
 SI3N4 = BUILTIN_MATERIALS["silicon_nitride"]

@@ -10,38 +10,33 @@ import time
 import pytest
 
 from app.lessons.format import load_lessons
-from tests.app.test_browser import ARTIFACTS, CHROMIUM, LAUNCH_ARGS, playwright_api, server
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS
 
-pytestmark = [
-    pytest.mark.browser,
-    pytest.mark.skipif(not __import__("pathlib").Path(CHROMIUM).exists(), reason="no chromium"),
-]
+pytestmark = BROWSER_MARKS
+import playwright.sync_api as playwright_api  # noqa: E402
+
 LESSONS = load_lessons().lessons
 SHOTS = ARTIFACTS / "lessons"
 DRAWER_OPEN = (
     "document.querySelector('nav.v-navigation-drawer')"
     ".classList.contains('v-navigation-drawer--active')"
 )
-__all__ = ["server"]  # the served app (module fixture of tests/app/test_browser.py)
 
 
 @pytest.fixture(scope="module")
-def page(server):
+def page(browser, server):
     """One page for the whole module (the served app is one session: each new page costs the
     busy server a first frame); the tests resize its viewport."""
     SHOTS.mkdir(parents=True, exist_ok=True)
-    with playwright_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        context = browser.new_context(viewport={"width": 1280, "height": 720})
-        pg = context.new_page()
-        pg.goto(server["url"])
-        pg.wait_for_selector("#view-3d img", timeout=120_000)
-        pg.wait_for_selector("#chart-contact-angle .main-svg", timeout=120_000)
-        # paused: on this shared 2-core machine a playing view keeps the server rendering
-        pg.evaluate("window.trame.state.set('playing', false)")
-        yield pg
-        context.close()
-        browser.close()
+    context = browser.new_context(viewport={"width": 1280, "height": 720})
+    pg = context.new_page()
+    pg.goto(server["url"])
+    pg.wait_for_selector("#view-3d img", timeout=120_000)
+    pg.wait_for_selector("#chart-contact-angle .main-svg", timeout=120_000)
+    # paused: on this shared 2-core machine a playing view keeps the server rendering
+    pg.evaluate("window.trame.state.set('playing', false)")
+    yield pg
+    context.close()
 
 
 def _open_lesson(page, lesson):

@@ -4,29 +4,21 @@ result, camera and chart and fills the text; keys; broken lessons reported."""
 from __future__ import annotations
 
 import shutil
-import uuid
 
 import pytest
 
 from app.lessons.format import load_lessons, shipped_lessons_dir
 from app.lessons.panel import LessonController
 from app.state import DEFAULT_CASE, RacetraceApp
+from tests.helpers.app_session import trame_server
 
 IDS = [lesson.id for lesson in load_lessons().lessons]
-
-
-def _server():
-    from trame.app import get_server
-
-    server = get_server(f"racetrace-lessons-{uuid.uuid4().hex}", client_type="vue3")
-    server.state.ready()
-    return server
 
 
 @pytest.fixture(scope="module")
 def app(tmp_path_factory):
     root = tmp_path_factory.mktemp("lessons-app")
-    a = RacetraceApp(_server(), runs_dir=root / "runs", render=False)
+    a = RacetraceApp(trame_server(), runs_dir=root / "runs", render=False)
     a.lessons.cache_dir = root / "cache"
     a.start(DEFAULT_CASE, play=False)
     yield a

@@ -19,7 +19,7 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.imex import ark436l2sa, cage_velocity_jacobian
 from solver.models.dynamic.kernels import rhs_into, rhs_work
 from solver.models.dynamic.simulate import state_scales
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
 

@@ -14,7 +14,7 @@ from solver.models.dynamic.integrator import (
 )
 from solver.models.dynamic.kernels import post_step
 from solver.models.dynamic.simulate import state_scales
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import integrate_states, start
 
 

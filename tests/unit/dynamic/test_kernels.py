@@ -13,7 +13,7 @@ from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
 from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
 from solver.physics.hertz import race_contact
 from solver.physics.traction import LAW_SLIP_CURVE
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, setup, start
 
 

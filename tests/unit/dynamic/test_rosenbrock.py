@@ -20,7 +20,7 @@ from solver.models.dynamic.rosenbrock import (
     solve_blocks,
 )
 from solver.models.dynamic.simulate import state_scales
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, start
 
 

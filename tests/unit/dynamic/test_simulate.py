@@ -11,7 +11,7 @@ from solver.errors import CaseError, SimulationDiverged
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.results.io import load_dataset, save_dataset
 from solver.results.variables import VARIABLES
-from tests.helpers.dyn_bearings import spindle_inputs
+from tests.helpers.cases import spindle_inputs
 
 SHORT = dict(shaft_revolutions=0.3, samples_per_revolution=40)
 
@@ -49,7 +49,7 @@ def test_dataset_has_every_dynamic_variable_with_registry_dims_and_no_nan(short_
 
 
 def test_dataset_describes_its_operating_point_and_geometry(short_run):
-    """The coordinates hold the inputs (tests.helpers.dyn_bearings.spindle_inputs: 20 000 rpm,
+    """The coordinates hold the inputs (tests.helpers.cases.spindle_inputs: 20 000 rpm,
     500 N axial, 300 N radial, shoulders 49 and 59 mm), not a case text (these have none)."""
     from solver.results.variables import COORDINATES
 

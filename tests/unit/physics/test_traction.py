@@ -991,7 +991,7 @@ def test_split_rule_converges_to_the_independent_integral():
     rolling slip cross the ellipse): the split rule converges to the independent polar integral
     (max of the force and moment errors 0.2, 0.009, 0.002, 1.2e-4 with 2 x 2 ... 16 x 16). On the
     running contacts of the catalogue cases it beats the product rule at equal node counts
-    (benchmarks/traction_rules.py)."""
+    (benchmarks/experiments/traction_rules.py)."""
     contact, kin = _general_case(kappa=KAPPA)
     r = _rheology_params()
     film, transit = 0.3e-6, 5.0e-6

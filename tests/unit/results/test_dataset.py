@@ -135,7 +135,7 @@ def test_a_result_without_coordinates_is_refused_with_a_reason(combined):
 
 def test_builder_refuses_dimensions_that_differ_from_the_registry():
     geometry = resolve_case("spindle-combined-load").geometry()
-    from tests.helpers.dyn_bearings import operating_point
+    from tests.helpers.cases import operating_point
 
     with pytest.raises(RuntimeError, match="contact_load"):
         build_result(

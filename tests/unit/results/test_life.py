@@ -16,7 +16,7 @@ from solver.catalogue import resolve_case
 from solver.results import summary
 from solver.results.dataset import build_result
 from solver.results.life import LIFE_METRICS, rating_life
-from tests.helpers.dyn_bearings import operating_point
+from tests.helpers.cases import operating_point
 
 OMEGA = 2 * math.pi * 100.0  # inner ring, rad/s
 PERIOD = 2 * math.pi / OMEGA

@@ -14,7 +14,7 @@ import pytest
 from solver.catalogue import resolve_case
 from solver.results import summary
 from solver.results.dataset import build_result
-from tests.helpers.dyn_bearings import operating_point
+from tests.helpers.cases import operating_point
 
 OMEGA = 2 * math.pi * 100.0  # inner ring, rad/s: one shaft revolution = 10 ms
 PERIOD = 2 * math.pi / OMEGA

@@ -10,7 +10,6 @@ import pytest
 
 from racetrace.commands import simulate as command
 from solver.results.io import load_dataset
-from tests.helpers.dyn_bearings import spindle_inputs
 
 
 def _parse(argv):
@@ -18,11 +17,6 @@ def _parse(argv):
     sub = parser.add_subparsers()
     command.register(sub)
     return parser.parse_args(argv)
-
-
-@pytest.fixture
-def fake_case(monkeypatch):
-    monkeypatch.setattr(command, "_load_case", lambda name: spindle_inputs(radial=300.0))
 
 
 def test_simulate_writes_netcdf_and_reports_progress(fake_case, tmp_path, capsys):

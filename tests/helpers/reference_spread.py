@@ -1,14 +1,16 @@
 """How reproducible a case's accuracy-contract metrics are: one case run at several tolerances,
-each compared with the tightest over the same fixed window (docs/numerics.md).
+each compared with the tightest over the same fixed window (docs/numerics.md, "Accuracy
+contract"). Run from the repository root:
 
-    python benchmarks/reference_spread.py [--case heavy_218] [--revolutions 30]
-                                          [--tolerances 1e-6 3e-6 1e-4 1e-3]
-                                          [--window-starts 5 10 15 20]
+    python -m tests.helpers.reference_spread [--case heavy_218] [--revolutions 30]
+                                             [--tolerances 1e-6 3e-6 1e-4 1e-3]
+                                             [--window-starts 5 10 15 20]
 
-The cases and the contract are those of ``tests/helpers/accuracy.py``. For each window (from the
-given shaft revolution to the end of the run) the metrics are computed on the same samples for
-every run: per (ball, race) mean contact angle and load, mean cage speed, and each race's
-excursion and band thickness in its own ring's frame (``solver.results.summary.track_metrics``).
+The cases and the contract are those of ``tests/helpers/accuracy.py``, beside which this lives.
+For each window (from the given shaft revolution to the end of the run) the metrics are computed
+on the same samples for every run: per (ball, race) mean contact angle and load, mean cage speed,
+and each race's excursion and band thickness in its own ring's frame
+(``solver.results.summary.track_metrics``).
 Printed: each run's deviation as a fraction of the contract's allowance (<= 1 meets it). When two
 runs at reference-quality tolerances (1e-6, 3e-6) already differ by more than the allowance, the
 case's metrics are not reproducible to the contract's precision and no method can be checked on
@@ -20,13 +22,9 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from solver.models.dynamic import SimulationOptions, simulate
 from tests.helpers import accuracy as A

@@ -27,7 +27,7 @@ from dataclasses import replace
 
 import numpy as np
 
-sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[2]))
 
 from solver.catalogue import resolve_case
 from solver.inputs import to_inputs

@@ -1,0 +1,30 @@
+"""What the browser tests share: Debian's chromium, its launch flags, where screenshots go, the
+first drawn 3-D image and the marks that skip a module without chromium."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+CHROMIUM = "/usr/bin/chromium"
+LAUNCH_ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+FIRST_IMAGE = "#view-3d img[src]:not([src=''])"  # the first drawn image, not an empty img
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
+#: ``pytestmark`` of a browser test module
+BROWSER_MARKS = [
+    pytest.mark.browser,
+    pytest.mark.skipif(
+        not Path(CHROMIUM).exists(),
+        reason=f"{CHROMIUM} is missing (apt-get install --no-install-recommends chromium)",
+    ),
+]
