@@ -33,8 +33,8 @@ from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.imex import ark436l2sa
 from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
+from solver.models.dynamic.integrate.imex import ark436l2sa
 from solver.models.dynamic.kernels import post_step, rhs_into, rhs_work
 from solver.models.dynamic.params import build_params, build_quadrature
 from solver.models.dynamic.simulate import state_scales

@@ -11,7 +11,8 @@ Public API (everything else is internal):
 - ``solve_over_revolution(case, angles=36) -> xarray.Dataset``: the quasi-static steady state at
   inner-ring angles over one shaft revolution (dimension ``ring_angle``)
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
-  ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs)
+  ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs;
+  ``INTEGRATION_METHODS``: the names its option ``method`` takes)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
@@ -52,6 +53,7 @@ _LAZY = {
     "solve_quasistatic": "solver.models.quasistatic",
     "solve_over_revolution": "solver.models.quasistatic",
     "simulate": "solver.models.dynamic",
+    "INTEGRATION_METHODS": "solver.models.dynamic.options",
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
     "result_warnings": "solver.results.checks",

@@ -120,9 +120,11 @@ def test_simulate_prints_the_metrics_and_json_on_request(fake_case, tmp_path, ca
 
 
 def test_method_choices_are_the_solver_methods():
-    """The command line's --method choices, written out to keep numba out of its parser, are the
-    solver's methods; the default is the solver's."""
+    """The command line's --method choices are the steppers' registry, in its order, looked up
+    when used; the default is the solver's."""
+    from solver.models.dynamic.integrate.registry import REGISTRY
     from solver.models.dynamic.options import METHODS, SimulationOptions
 
-    assert set(command.METHODS) == set(METHODS)
+    assert tuple(command.METHODS) == tuple(REGISTRY) == METHODS
     assert SimulationOptions().method in command.METHODS
+    assert "rosenbrock" not in command.METHODS

@@ -16,7 +16,7 @@ from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.imex import ark436l2sa, cage_velocity_jacobian
+from solver.models.dynamic.integrate.imex import ark436l2sa, cage_velocity_jacobian
 from solver.models.dynamic.kernels import rhs_into, rhs_work
 from solver.models.dynamic.simulate import state_scales
 from tests.helpers.dyn_bearings import spindle_inputs
