@@ -76,7 +76,8 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--method",
         choices=METHODS,
-        help="integration method (default auto; docs/numerics.md)",
+        metavar="METHOD",  # argparse would list the choices when the parser is built
+        help="integration method: %(choices)s (default auto; docs/numerics.md)",
     )
     parser.add_argument(
         "--no-traction", action="store_true", help="frictionless ball-race contacts"
