@@ -9,14 +9,12 @@ the squeeze-film damping on the cage's radial velocity is an overdamped mode of 
 (docs/numerics.md). Here f = f_E + f_I with f_I(Y) = A (Y - y_n) on the cage's three velocity
 components, A their 3 x 3 block of the whole right-hand side's Jacobian (forward differences at the
 step's start, evaluations not counted; solver.models.dynamic.integrate.imex, the compiled method,
-differences the land kernel alone), and a pair of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003, 139–181):
-ARK4(3)6L[2]SA (default; order 4(3), six evaluations per step) or ARK3(2)4L[2]SA (order 3(2),
-four). ``--implicit none`` runs the pair's explicit part alone; ``--implicit cage+rotation``
-adds every ball's angular velocity to the implicit slots (the traction slope on the balls'
-rotation; A the dense block of those slots, the best case of a per-ball treatment). Same error
-norm as the solver's
-integrators, PI step control. Python loop: slow, use a revolution or less.
-"""
+differences the land kernel alone), and a pair of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003,
+139–181): ARK4(3)6L[2]SA (default; order 4(3), six evaluations per step) or ARK3(2)4L[2]SA (order
+3(2), four). ``--implicit none`` runs the pair's explicit part alone; ``--implicit cage+rotation``
+adds every ball's angular velocity to the implicit slots (the traction slope on the balls' rotation;
+A the dense block of those slots, the best case of a per-ball treatment). Same error norm as the
+solver's integrators, PI step control. Python loop: slow, use a revolution or less. """
 
 from __future__ import annotations
 

@@ -5,8 +5,8 @@ control sees, step by step.
                                      [--revolutions 1] [--tolerance 1e-4]
 
 The case runs from its quasi-static start with a Python copy of the Dormand–Prince 5(4) loop of
-``solver.models.dynamic.integrate.dopri5`` (same tableau, error norm and PI control; the
-right-hand side is the compiled model's). For every step the state component with the largest scaled error is
+``solver.models.dynamic.integrate.dopri5`` (same tableau, error norm and PI control; the right-hand
+side is the compiled model's). For every step the state component with the largest scaled error is
 attributed to a part of the state (ball centre position or velocity, ball quaternion, ball angular
 velocity, inner ring, cage speed and angle, rest of the cage); printed: steps per shaft revolution,
 rejected steps, and the share of accepted and rejected steps each part set, with the median step.

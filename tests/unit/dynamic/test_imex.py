@@ -1,7 +1,7 @@
-"""IMEX additive Runge–Kutta method (solver.models.dynamic.integrate.imex) and the outputs inside
-a step of both adaptive methods: tableau order against an independent reference solution, the
-order kept with any implicit matrix, the cage-velocity Jacobian against differences of the whole right-hand side,
-and short runs against the explicit method."""
+"""IMEX additive Runge–Kutta method (solver.models.dynamic.integrate.imex) and the outputs inside a
+step of both adaptive methods: tableau order against an independent reference solution, the order
+kept with any implicit matrix, the cage-velocity Jacobian against differences of the whole
+right-hand side, and short runs against the explicit method."""
 
 from __future__ import annotations
 
