@@ -14,7 +14,7 @@ differences the land kernel alone), and a pair of Kennedy & Carpenter (Appl. Num
 3(2), four). ``--implicit none`` runs the pair's explicit part alone; ``--implicit cage+rotation``
 adds every ball's angular velocity to the implicit slots (the traction slope on the balls' rotation;
 A the dense block of those slots, the best case of a per-ball treatment). Same error norm as the
-solver's integrators, PI step control. Python loop: slow, use a revolution or less. """
+solver's integrators, PI step control. Python loop: slow, use a revolution or less."""
 
 from __future__ import annotations
 
