@@ -42,7 +42,7 @@ def default_text(spec) -> str:
     "" for a required key or one with no default (an absent shoulder, the free contact angle).
     Every value is the schema's default (``spec.default``).
     """
-    from solver.case.schema import OPTIONAL, REQUIRED, Estimated, format_number
+    from solver import OPTIONAL, REQUIRED, Estimated, format_number
 
     if spec.default is REQUIRED or spec.default is OPTIONAL:
         return ""
@@ -59,8 +59,7 @@ def default_text(spec) -> str:
 
 def form_fields() -> list[FormField]:
     """Form fields for every case-file key, in the case module's order (``solver.case.FIELDS``)."""
-    from solver.case.schema import FIELDS, REQUIRED
-    from solver.materials import BUILTIN_MATERIALS
+    from solver import BUILTIN_MATERIALS, FIELDS, REQUIRED
 
     fields = []
     for spec in FIELDS:
@@ -93,7 +92,7 @@ def form_fields() -> list[FormField]:
 def estimated_default_texts(case, fields: list[FormField]) -> dict[str, str]:
     """{field name: text} for the estimated fields of ``case``: the value the solver estimates
     from its bearing, with its unit and rule, e.g. "0.2 mm (estimated: 0.028 D)"."""
-    from solver.case.schema import fields_by_key
+    from solver import fields_by_key
 
     specs = fields_by_key()
     out = {}

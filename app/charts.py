@@ -636,7 +636,7 @@ def run_summary(source: FrameSource, ds: xr.Dataset) -> dict:
     ``cage_speed_rpm`` is :func:`mean_cage_speed` (rev/min). A race without any loaded sample
     gets NaN values.
     """
-    from solver.results.summary import headline
+    from solver import headline
 
     metrics = headline(ds.racetrace.summary())
     samples = azimuth_samples(source)

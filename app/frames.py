@@ -294,7 +294,7 @@ def from_revolution(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
 # ---- helpers ------------------------------------------------------------------------------------
 def ring_speeds(ds: xr.Dataset) -> tuple[float, float]:
     """(inner, outer) ring speeds in rad/s from the result's coordinates (ValueError without)."""
-    from solver.results.dataset import ring_speeds as result_ring_speeds
+    from solver import ring_speeds as result_ring_speeds
 
     return result_ring_speeds(ds)
 

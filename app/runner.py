@@ -50,8 +50,13 @@ def _child_main(target: str, case_text: str, out_path: str, messages, cancel_eve
     # Ctrl-C in the server's terminal reaches this process too: the server stops the run itself
     # (cancel event), so that the part computed so far is saved
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    from solver import CaseError, NoSolutionError, ResultWriteError, SimulationDiverged
-    from solver.errors import clean_message
+    from solver import (
+        CaseError,
+        NoSolutionError,
+        ResultWriteError,
+        SimulationDiverged,
+        clean_message,
+    )
 
     try:
         module_name, func_name = target.split(":")
@@ -79,8 +84,7 @@ def _save(ds, out_path: str) -> str:
     import tempfile
     from pathlib import Path
 
-    from solver.errors import ResultWriteError
-    from solver.results.io import save_dataset
+    from solver import ResultWriteError, save_dataset
 
     try:
         return str(save_dataset(ds, out_path))

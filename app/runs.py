@@ -29,6 +29,8 @@ from pathlib import Path
 
 import xarray as xr
 
+from .paths import UnsafeNameError, child_path, name_problem
+
 ENV_VAR = "RACETRACE_RUNS_DIR"
 RESULT_FILE, CASE_FILE, META_FILE = "result.nc", "case.toml", "run.json"
 
@@ -120,13 +122,13 @@ class Recovery:
 
 
 def save_netcdf(ds: xr.Dataset, path: Path) -> None:
-    from solver.results.io import save_dataset
+    from solver import save_dataset
 
     save_dataset(ds, path)
 
 
 def load_netcdf(path: Path) -> xr.Dataset:
-    from solver.results.io import load_dataset
+    from solver import load_dataset
 
     return load_dataset(path)
 
@@ -136,7 +138,7 @@ def open_netcdf(path: Path) -> xr.Dataset:
     a view uses it (not kept: the views keep what they need in their own form). A session so
     holds none of the 140 MB of a 100-revolution run's variables, only the frames made of some.
     Saved runs are never rewritten, so the file stays what was opened."""
-    from solver.results.io import ENGINE
+    from solver import ENGINE
 
     return xr.open_dataset(path, engine=ENGINE, cache=False)
 
@@ -174,7 +176,7 @@ def _netcdf_problem(path: Path) -> str:
 
 
 def _clean_text(text: str, limit: int = 200) -> str:
-    from solver.errors import clip, printable
+    from solver import clip, printable
 
     return clip(printable(text), limit)
 
@@ -336,7 +338,7 @@ class RunStore:
         not text, names a path, or is not listed)."""
         if isinstance(run_id, str) and run_id in self._memory:
             return self._memory[run_id][0]
-        if not isinstance(run_id, str) or not _RUN_ID.match(run_id):
+        if not isinstance(run_id, str) or not _RUN_ID.match(run_id) or name_problem(run_id):
             shown = _clean_text(repr(run_id), 80)
             raise UnknownRunError(f"{shown} is not a run id: choose a run from the list")
         folder = self.root / run_id
@@ -352,7 +354,7 @@ class RunStore:
         ValueError naming the run when it is broken, its result cannot be read, or the result does
         not describe itself (the views need its geometry and operating point coordinates,
         results-schema.md, which results of older versions lack)."""
-        from solver.results.dataset import geometry_from_result, ring_speeds
+        from solver import geometry_from_result, ring_speeds
 
         info = self.info(run_id)
         if run_id in self._memory:
@@ -360,7 +362,7 @@ class RunStore:
             return ds, case_text
         if info.broken:
             raise ValueError(f"saved run {run_id} is broken: {info.problem}")
-        folder = self.root / run_id
+        folder = self._run_folder(run_id)
         try:
             ds = open_netcdf(folder / RESULT_FILE)  # runs are never rewritten: read on demand
             case_text = (folder / CASE_FILE).read_text(encoding="utf-8")
@@ -380,7 +382,15 @@ class RunStore:
         info = self.info(run_id)
         if not info.saved:
             raise UnknownRunError(f"run {run_id} is kept in memory only: {info.problem}")
-        return self.root / run_id
+        return self._run_folder(run_id)
+
+    def _run_folder(self, run_id: str) -> Path:
+        """The folder of listed run ``run_id``, checked to stay under the root
+        (:func:`app.paths.child_path`); UnknownRunError otherwise."""
+        try:
+            return child_path(self.root, run_id, "run")
+        except UnsafeNameError as error:
+            raise UnknownRunError(str(error)) from None
 
     # ---- start-up --------------------------------------------------------------------------------
     def recover(self, min_age_s: float = 60.0) -> Recovery:

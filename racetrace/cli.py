@@ -13,8 +13,7 @@ import importlib
 import json
 import sys
 
-from solver import CaseError, NoSolutionError, __version__
-from solver.errors import clean_message
+from solver import CaseError, NoSolutionError, __version__, clean_message
 
 # Sub-command modules, in the order they are listed by --help. Each defines
 # ``register(subparsers)``, which adds its parser and sets ``func`` to a callable(args) -> int.

@@ -10,8 +10,7 @@ from __future__ import annotations
 import math
 
 import solver  # noqa: F401  (registers the ds.racetrace accessor)
-from solver.results.dataset import ring_speeds
-from solver.results.summary import QUASISTATIC_THICKNESS_NOTE, headline, life_headline
+from solver import QUASISTATIC_THICKNESS_NOTE, headline, life_headline, ring_speeds
 
 
 def finite_or_none(value: float) -> float | None:

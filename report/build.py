@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 #: Top-level modules of the ``report`` extra (checked before building).
-REPORT_MODULES = ("panel", "bokeh", "pyvista", "vtkmodules", "PIL")
+REPORT_MODULES = ("panel", "bokeh", "nh3", "pyvista", "vtkmodules", "PIL")
 
 PRINT_CSS = """
 body { font-family: sans-serif; }
@@ -38,6 +38,16 @@ PAGE_PRINT_CSS = (
     "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } }"
 )
 PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
+
+
+#: What the report's HTML panes may hold after sanitising (:func:`_html`): the tags and the
+#: ``class`` attribute this module writes; anything else (scripts, event handlers, links) is
+#: dropped, a second guard behind escaping every value read from a result or a case.
+ALLOWED_TAGS = frozenset(
+    "div h1 h2 p strong em code ul li table thead tbody tr th td pre span br".split()
+)
+#: The result's ``model`` attribute as shown; any other value is shown as "unknown".
+MODELS = ("quasistatic", "dynamic")
 
 
 def missing_report_modules() -> list[str]:
@@ -59,6 +69,49 @@ def _table(headers, rows, text_columns=(0,)) -> str:
     return f'<table class="rt-table"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
+def sanitized(text: str) -> str:
+    """``text`` with only :data:`ALLOWED_TAGS` and their ``class`` attributes kept (nh3)."""
+    import nh3
+
+    return nh3.clean(text, tags=set(ALLOWED_TAGS), attributes={"*": {"class"}})
+
+
+def _html(body: str, **options):
+    """A Panel HTML pane of ``body`` (built with every outside value escaped), sanitised."""
+    import panel as pn
+
+    return pn.pane.HTML(
+        body,
+        sizing_mode="stretch_width",
+        sanitize_html=True,
+        sanitize_hook=sanitized,
+        **options,
+    )
+
+
+def _text(value, limit: int = 200) -> str:
+    """A value read from a result or a case as HTML text: printable, clipped, escaped."""
+    from solver import clip, printable
+
+    return html.escape(clip(printable(str(value)), limit))
+
+
+def _when(value) -> str:
+    """A result's ``created`` attribute as the report writes a time (UTC), or "an unknown
+    time" when it is not an ISO 8601 time."""
+    try:
+        when = _dt.datetime.fromisoformat(str(value).replace("Z", "+00:00"))
+    except ValueError:
+        return "an unknown time"
+    if when.tzinfo is not None:
+        when = when.astimezone(_dt.UTC)
+    return when.strftime("%Y-%m-%d %H:%M UTC")
+
+
+def _now() -> str:
+    return _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+
+
 def _fmt(value, digits: int = 4) -> str:
     try:
         value = float(value)
@@ -78,7 +131,7 @@ def _provenance(ds) -> str:
 
 # ---- one run --------------------------------------------------------------------------------
 def _operating_rows(ds):
-    from solver.results.variables import variable
+    from solver import variable
 
     rows = []
     for name in (
@@ -110,7 +163,7 @@ def _operating_rows(ds):
 
 
 def _summary_rows(ds):
-    from solver.study.metrics import POINT_METRICS, point_metrics
+    from solver import POINT_METRICS, point_metrics
 
     metrics = point_metrics(ds)
     rows = []
@@ -145,6 +198,21 @@ def _ellipse_rows(ds):
     return headers, rows
 
 
+def run_header(ds, source_name: str) -> str:
+    """The HTML header of a run report. A result file is outside input: every value taken from
+    it is escaped (:func:`_text`) or written by the report itself (the model, the times)."""
+    model = ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")
+    model = model if model in MODELS else "unknown"
+    title = ds.attrs.get("title") or _case_title(ds)
+    return (
+        f"<h1>racetrace review: {_text(title)}</h1>"
+        f"<p><strong>{model} result</strong> <code>{_text(source_name)}</code> · computed with "
+        f"{_text(ds.attrs.get('software', 'racetrace'), 80)} on "
+        f"{_when(ds.attrs.get('created'))} · report made {_now()} · bearing geometry: "
+        f"<strong>{_text(_provenance(ds), 80)}</strong></p>"
+    )
+
+
 def run_sections(ds, source_name: str):
     """The Panel objects of a run report and the decimation notes."""
     import panel as pn
@@ -153,16 +221,7 @@ def run_sections(ds, source_name: str):
     from .scene import bearing_plotter, screenshot_png
 
     notes = []
-    model = ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")
-    title = ds.attrs.get("title") or _case_title(ds)
-    header = (
-        f"# racetrace review: {html.escape(title)}\n\n"
-        f"**{model} result** `{html.escape(source_name)}` · computed with "
-        f"{html.escape(ds.attrs.get('software', 'racetrace'))} on {ds.attrs.get('created', '?')} · "
-        f"report made {_dt.datetime.now(_dt.UTC).strftime('%Y-%m-%d %H:%M UTC')} · bearing "
-        f"geometry: **{html.escape(_provenance(ds))}**"
-    )
-    sections = [pn.pane.Markdown(header, sizing_mode="stretch_width")]
+    sections = [_html(run_header(ds, source_name), stylesheets=[PRINT_CSS])]
     warnings = ds.racetrace.warnings()
     warn_html = (
         "<ul>" + "".join(f'<li class="rt-warn">{html.escape(w)}</li>' for w in warnings) + "</ul>"
@@ -198,7 +257,7 @@ def run_sections(ds, source_name: str):
     )
     sections.append(vtk)
     sections.append(
-        pn.pane.HTML(
+        pn.pane.HTML(  # only the report's own picture: not sanitised (that would drop data: URLs)
             f'<img src="data:image/png;base64,{png}" style="width:100%;max-width:900px" '
             'alt="3-D scene">',
             sizing_mode="stretch_width",
@@ -242,11 +301,8 @@ def _case_title(ds) -> str:
 
 
 def _section(title: str, body_html: str):
-    import panel as pn
-
-    return pn.pane.HTML(
+    return _html(
         f'<div class="rt-section"><h2>{html.escape(title)}</h2>{body_html}</div>',
-        sizing_mode="stretch_width",
         stylesheets=[PRINT_CSS],
     )
 
@@ -260,20 +316,24 @@ STUDY_CHART_METRICS = (
 )
 
 
+def study_header(ds) -> str:
+    """The HTML header of a study report, every value from the study escaped."""
+    return (
+        f"<h1>racetrace study review: {_text(ds.attrs.get('title', ''))}</h1>"
+        f"<p>Base case <code>{_text(ds.attrs.get('base_case', ''))}</code> · "
+        f"{ds.sizes['point']} points · {_text(ds.attrs.get('software_version', ''), 80)} · "
+        f"report made {_now()}</p>"
+        f"<p>{_text(ds.attrs.get('description', ''), 2000)}</p>"
+    )
+
+
 def study_sections(ds):
     import panel as pn
 
     from . import charts
 
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    header = (
-        f"# racetrace study review: {html.escape(ds.attrs.get('title', ''))}\n\n"
-        f"Base case `{html.escape(ds.attrs.get('base_case', ''))}` · "
-        f"{ds.sizes['point']} points · {html.escape(ds.attrs.get('software_version', ''))} · "
-        f"report made {_dt.datetime.now(_dt.UTC).strftime('%Y-%m-%d %H:%M UTC')}\n\n"
-        f"{html.escape(ds.attrs.get('description', ''))}"
-    )
-    sections = [pn.pane.Markdown(header, sizing_mode="stretch_width")]
+    sections = [_html(study_header(ds), stylesheets=[PRINT_CSS])]
     for sweep in dict.fromkeys(str(s) for s in ds["sweep"].values):
         select = np.asarray(ds["sweep"].values) == sweep
         varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
@@ -281,7 +341,7 @@ def study_sections(ds):
             continue
         figs = charts.study_metric_charts(ds, sweep, varied[0], STUDY_CHART_METRICS)
         if figs:
-            sections.append(pn.pane.Markdown(f"## {html.escape(sweep)}"))
+            sections.append(_html(f"<h2>{_text(sweep)}</h2>", stylesheets=[PRINT_CSS]))
             sections.append(
                 pn.GridBox(
                     *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
@@ -329,9 +389,7 @@ def study_sections(ds):
 # ---- the page -------------------------------------------------------------------------------
 def _load(source):
     """('run', Dataset, name) or ('study', Dataset, name) for a result file or study folder."""
-    from solver.errors import CaseError, Problem
-    from solver.results.io import load_dataset
-    from solver.study import open_study, study_dataset
+    from solver import CaseError, Problem, load_dataset, open_study, study_dataset
 
     path = Path(source)
     if path.is_dir():
@@ -358,7 +416,7 @@ def build_report(source, output) -> dict:
     from bokeh.resources import INLINE
 
     import solver  # noqa: F401  (registers ds.racetrace)
-    from solver.results.io import atomic_write
+    from solver import atomic_write
 
     from .offline import external_urls, inline_cdn_links
 

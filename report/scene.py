@@ -18,7 +18,7 @@ def bearing_plotter(ds, size=(900, 600)):
 
     from app.frames import FrameSource
     from app.scene import MAX_TRACE_SAMPLES, BearingScene
-    from solver.results.dataset import geometry_from_result
+    from solver import geometry_from_result
 
     pv.OFF_SCREEN = True
     plotter = pv.Plotter(off_screen=True, window_size=list(size))

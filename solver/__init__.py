@@ -23,45 +23,96 @@ Public API (everything else is internal):
   ``SimulationDiverged`` (the dynamic integration failed), ``ResultWriteError`` (a result file
   could not be written; an OSError naming the file)
 
+The app, the report and the command line import only from this package, never from its
+submodules (an import-linter contract in pyproject.toml, checked in CI). For them it also exports
+the case schema's table and helpers (``FIELDS``, ``fields_by_key``, ``format_number``, ...), the
+message helpers (``clean_message``, ``clip``, ``printable``), ``resolve_case`` (a Case from a
+path or a catalogue name: the models take a Case, the functions here resolve names first),
+``preload()`` (the imports a forking server shares) and the result and study helpers the views
+read (``ring_speeds``, ``geometry_from_result``, ``headline``, ``study_dataset``, ...).
+
 The numba kernels are imported on first use; registering the accessor imports xarray.
 """
 
 from importlib import import_module
-from importlib.metadata import PackageNotFoundError, version
 
 from ._numba_cache import SOLVER_DIR, configure_numba_cache
-from .errors import CaseError, NoSolutionError, Problem, ResultWriteError, SimulationDiverged
+from ._version import __version__
+from .errors import (
+    CaseError,
+    NoSolutionError,
+    Problem,
+    ResultWriteError,
+    SimulationDiverged,
+    clean_message,
+    clip,
+    printable,
+)
 
 # Before any kernel is defined: compiled kernels are cached per version of the solver sources.
 configure_numba_cache(SOLVER_DIR)
 
-try:
-    __version__ = version("racetrace")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    __version__ = "0+unknown"
-
-# public name -> module that defines it
+# public name -> module that defines it (imported on first use)
 _LAZY = {
+    # case files and their schema (docs/case-format.md)
     "Case": "solver.case",
     "load_case": "solver.case",
     "parse_case": "solver.case",
+    "decode_case_bytes": "solver.case.io",
     "dynamic_problems": "solver.case",
+    "run_length_problems": "solver.case.validate",
+    "dynamic_run_size": "solver.case.validate",
+    "FIELDS": "solver.case.schema",
+    "REQUIRED": "solver.case.schema",
+    "OPTIONAL": "solver.case.schema",
+    "Estimated": "solver.case.schema",
+    "fields_by_key": "solver.case.schema",
+    "format_number": "solver.case.schema",
+    "BUILTIN_MATERIALS": "solver.materials",
+    "resolve_case": "solver.catalogue",
+    # inputs and geometry
     "Inputs": "solver.inputs",
     "to_inputs": "solver.inputs",
-    "SimulationOptions": "solver.models.dynamic",
     "BearingGeometry": "solver.geometry",
-    "solve_quasistatic": "solver.models.quasistatic",
-    "solve_over_revolution": "solver.models.quasistatic",
-    "simulate": "solver.models.dynamic",
+    # the models, through the facade (a case by any name)
+    "solve_quasistatic": "solver.facade",
+    "solve_over_revolution": "solver.facade",
+    "quasistatic_speed_sweep": "solver.facade",
+    "simulate": "solver.facade",
+    "preload": "solver.facade",
+    "SimulationOptions": "solver.models.dynamic",
     "INTEGRATION_METHODS": "solver.models.dynamic.options",
+    "dynamic_model_compiled": "solver.compiled",
+    # results (docs/results-schema.md)
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
-    "result_warnings": "solver.results.checks",
-    "trajectory_summary": "solver.results.summary",
-    "Study": "solver.study",
-    "open_study": "solver.study",
+    "atomic_write": "solver.results.io",
+    "ENGINE": "solver.results.io",
     "contact_table": "solver.results.io",
+    "variable": "solver.results.variables",
+    "result_warnings": "solver.results.checks",
+    "STATIC_PRESSURE_LIMIT": "solver.results.checks",
+    "ring_speeds": "solver.results.dataset",
+    "geometry_from_result": "solver.results.dataset",
+    "trajectory_summary": "solver.results.summary",
+    "headline": "solver.results.summary",
+    "life_headline": "solver.results.summary",
+    "QUASISTATIC_THICKNESS_NOTE": "solver.results.summary",
     "RacetraceAccessor": "solver.results.accessor",
+    "RESULTS_VERSION": "solver.results.provenance",
+    "result_fingerprint": "solver.results.provenance",
+    # studies (docs/study-format.md)
+    "Study": "solver.study",
+    "StudyFolder": "solver.study",
+    "open_study": "solver.study",
+    "study_dataset": "solver.study",
+    "shipped_studies": "solver.study",
+    "POINT_METRICS": "solver.study.metrics",
+    "point_metrics": "solver.study.metrics",
+    # the compiled-kernel cache (racetrace cache)
+    "active_folder": "solver._numba_cache",
+    "cache_folders": "solver._numba_cache",
+    "remove_folders": "solver._numba_cache",
 }
 
 # ``catalogue`` is both a submodule and the function it defines: import it eagerly (it is light), so
@@ -77,6 +128,9 @@ __all__ = [
     "SimulationDiverged",
     "__version__",
     "catalogue",
+    "clean_message",
+    "clip",
+    "printable",
     *_LAZY,
 ]
 

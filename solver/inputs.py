@@ -131,6 +131,7 @@ class LubricantInputs:
     thermal_conductivity: float  # W/(m K)
     density: float  # kg/m^3
     oil_volume_fraction: float
+    oil: str = ""  # the named oil (lubricant.oil) the values come from, "" for none
 
     def rheology_array(self):
         """Parameter array of solver.physics.rheology (its RH_* slots, SI) of this lubricant."""
@@ -149,12 +150,14 @@ class LubricantInputs:
     def description(self) -> str:
         """Where the lubricant data come from, in words (results attribute ``lubricant``)."""
         if self.given:
+            if self.oil:
+                return f"from the case [lubricant], named oil {self.oil} (solver/data/oils.toml)"
             return "from the case [lubricant]"
         t = self.traction
         return (
             "no [lubricant] in the case: the default oil of the case schema was used (viscosity "
             f"{self.viscosity:g} Pa s at the inlet, traction model {self.traction_model}, "
-            "pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
+            f"pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
             f"/GPa, traction mu_zero {t.mu_zero:g}, mu_max {t.mu_max:g} at {t.slip_at_max:g} m/s, "
             f"mu_infinity {t.mu_infinity:g}; docs/case-format.md)"
         )
@@ -288,6 +291,7 @@ def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
         thermal_conductivity=float(lubricant.thermal_conductivity_W_mK),
         density=float(lubricant.density_kg_m3),
         oil_volume_fraction=float(lubricant.oil_volume_fraction),
+        oil=lubricant.oil or "",
     )
 
 

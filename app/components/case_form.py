@@ -44,9 +44,9 @@ class CaseForm(Component):
     # ---- set-up ---------------------------------------------------------------------------------
     def init_state(self) -> None:
         s = self.state
-        from solver.catalogue import catalogue
+        import solver
 
-        entries = list(catalogue())
+        entries = list(solver.catalogue())
         s.case_items = [{"title": f"{e.title} ({e.kind})", "value": e.name} for e in entries]
         self._catalogue = {e.name: e for e in entries}
         s.case_name = None
@@ -135,8 +135,7 @@ class CaseForm(Component):
     def _on_upload(self, uploaded_case=None, **_):
         if not uploaded_case:
             return
-        from solver import CaseError, parse_case
-        from solver.case.io import decode_case_bytes
+        from solver import CaseError, decode_case_bytes, parse_case
 
         item = uploaded_case[0] if isinstance(uploaded_case, list) else uploaded_case
         self.state.uploaded_case = None  # empty the file box, so the same file can be sent again

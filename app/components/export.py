@@ -13,6 +13,7 @@ import time
 import urllib.parse
 from pathlib import Path
 
+from ..paths import child_path
 from .base import Component
 
 EXPORT_URL = "racetrace-exports"  # the exports folder is served under /racetrace-exports/
@@ -64,7 +65,7 @@ class Export(Component):
             raise ValueError(f"unknown export {kind!r}; use netcdf, csv, png, gif or mp4")
         label = str(self.state.result_label)
         stem = "".join(c if c.isalnum() else "-" for c in label)[:60].strip("-") or "racetrace"
-        return self.exports_dir / f"{stem}.{ext}"
+        return child_path(self.exports_dir, f"{stem}.{ext}", "export")
 
     def _export_problem(self, kind: str) -> str:
         """Why ``kind`` cannot be exported now ("" if it can)."""

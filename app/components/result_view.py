@@ -141,8 +141,7 @@ class ResultView(Component):
 
     def show_result(self, ds, label: str) -> None:
         """Show a result Dataset: frame source, scene, charts and the time controls."""
-        from solver import parse_case
-        from solver.results.dataset import geometry_from_result
+        from solver import geometry_from_result, parse_case
 
         from ..teaching import facts_from_result
 
@@ -190,7 +189,7 @@ class ResultView(Component):
 
     def _describe_tracks(self, ds) -> None:
         """Shoulder limits, settling window and trajectory metrics of ``ds`` for the map."""
-        from solver.results.dataset import geometry_from_result
+        from solver import geometry_from_result
 
         from ..raceway import shoulder_angles
 

@@ -34,7 +34,7 @@ def _title(ds, run_info: dict) -> str:
     planned = run_info.get("revolutions")
     if "time" not in ds.dims or not planned:
         return title
-    from solver.results.dataset import ring_speeds
+    from solver import ring_speeds
 
     inner, outer = ring_speeds(ds)
     reached = float(ds["time"][-1]) * abs(inner - outer) / (2 * math.pi)
@@ -91,13 +91,16 @@ class Runs(Component):
         self.state.runs = [{"title": r.label, "value": r.run_id} for r in self.store.list()]
 
     def is_listed(self, run_id) -> bool:
-        """Whether ``run_id`` (as a client sent it) names a run of the folder; only those are
-        ever opened (a client's text never becomes a path)."""
+        """Whether ``run_id`` (as a client sent it) names a run of the folder, as the server
+        lists it now (never as the page's ``runs`` says); only those are ever opened (a
+        client's text never becomes a path)."""
         if not isinstance(run_id, str):
             return False
-        if all(r["value"] != run_id for r in self.state.runs):
-            self.refresh()  # another session may have just saved it
-        return any(r["value"] == run_id for r in self.state.runs)
+        if not any(r.run_id == run_id for r in self.store.list()):
+            return False
+        if all(r.get("value") != run_id for r in self.state.runs or () if isinstance(r, dict)):
+            self.refresh()  # another session has just saved it: the page lists it too
+        return True
 
     def _folder_signature(self):
         """What changes when a run is saved or removed: the folder's visible entries."""
@@ -202,7 +205,7 @@ class Runs(Component):
                 f"(at most {cap} run{'s' * (cap != 1)} at once)"
             )
             return False
-        from solver.compiled import dynamic_model_compiled
+        from solver import dynamic_model_compiled
 
         self.runner.start(self.run_info["case_text"], self.run_info["out"], target=_job())
         self._compiling = not dynamic_model_compiled()

@@ -16,9 +16,12 @@ keys), ``study_key1``/``study_values1`` and ``study_key2``/``study_values2`` (va
 (quasistatic | dynamic | both), ``study_revolutions`` (run length of the dynamic points).
 Controller: ``study_run``, ``study_build``, ``study_cancel``, ``study_open(point, model)``.
 
-The study runs in a thread of this process (a local Dask cluster of one single-threaded worker
-per core, closed at the end) and keeps its folder under the runs folder (``.studies/``); the page
-reads the folder as runs finish.
+The study runs in a thread of this process and keeps its folder under the runs folder
+(``.studies/``); the page reads the folder as runs finish. Its points take the solver slots the
+runs take (:class:`app.services.pool.SolverPool`, ``racetrace serve --max-runs``, across every
+session): the study waits in the same queue for one slot, takes as many more as are free then (up
+to ``workers``, default the cap), and runs a local Dask cluster of one single-threaded worker per
+slot held, closed at the end, when the slots are given back.
 """
 
 from __future__ import annotations
@@ -32,9 +35,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..paths import child_path
 from .base import Component, fig_json
 
 POLL_S = 1.0
+SLOT_WAIT_S = 0.5  # a study waiting for a solver slot asks again this often
 CHART_METRICS = (
     ("excursion", "excursion [deg]", 1.0),
     ("band_thickness", "band thickness [deg]", 1.0),
@@ -152,10 +157,12 @@ class Studies(Component):
         self._stop = threading.Event()
         self._progress = None
         self._error = ""
+        self._queued = 0  # place in the queue for a solver slot while waiting (0: not waiting)
         self._poll_task = None
+        self._rows = []  # the table's rows as this server made them (study_rows is the page's)
 
     def init_state(self) -> None:
-        from solver.study import shipped_studies
+        from solver import shipped_studies
 
         s = self.state
         names = list(shipped_studies())
@@ -174,7 +181,7 @@ class Studies(Component):
         s.study_results = None
         fields = [f for f in self.session.form.fields if f.kind in ("int", "float")]
         s.study_key_items = [{"title": f"{f.key} ({f.label})", "value": f.key} for f in fields]
-        keys = [f.key for f in fields]
+        keys = self.numeric_keys()
         s.study_key1 = "operating.radial_load_N" if "operating.radial_load_N" in keys else None
         s.study_values1 = "0, 500, 1000"
         s.study_key2 = None
@@ -183,6 +190,10 @@ class Studies(Component):
         s.study_model = "quasistatic"
         s.study_revolutions = "2"
         self.list_results()
+
+    def numeric_keys(self) -> list[str]:
+        """The case keys a study built in the page may vary: the form's numeric fields."""
+        return [f.key for f in self.session.form.fields if f.kind in ("int", "float")]
 
     def bind(self) -> None:
         self.ctrl.study_run = self.run
@@ -198,18 +209,26 @@ class Studies(Component):
         return self._thread is not None and self._thread.is_alive()
 
     def run(self) -> None:
-        """Start the chosen shipped study in the background."""
-        from solver.errors import CaseError
-        from solver.study import Study
+        """Start the chosen shipped study (``study_name``, one of :func:`shipped_studies`) in the
+        background."""
+        from solver import CaseError, Study, shipped_studies
 
         if self.busy or not self.state.study_name:
             return
+        name = self.state.study_name
+        shipped = shipped_studies()  # the names offered, listed again here: never a path
+        if not isinstance(name, str) or name not in shipped:
+            self.state.study_status = (
+                f"error: no shipped study {str(name)[:80]!r}: choose one from the list"
+            )
+            return
         try:
-            study = Study.from_file(self.state.study_name)
-        except CaseError as error:
+            text = shipped[name].read_text(encoding="utf-8")
+            study = Study.from_text(text, f"shipped study {name}")
+        except (CaseError, OSError) as error:
             self.state.study_status = f"error: {error}"
             return
-        self.start(study, self.state.study_name)
+        self.start(study, name)
 
     def new_folder(self, name: str) -> Path:
         """A new study folder ``.studies/<name>-<random>`` of the runs folder (not created)."""
@@ -221,7 +240,7 @@ class Studies(Component):
     def start(self, study, name: str, path: Path | None = None) -> None:
         """Run ``study`` (a :class:`solver.study.Study`) in the background, in the study folder
         ``path`` (default: a new one, :meth:`new_folder`)."""
-        from solver.study import StudyFolder
+        from solver import StudyFolder
 
         if self.busy:
             return
@@ -229,9 +248,10 @@ class Studies(Component):
         path = path if path is not None else self.new_folder(name)
         self.folder = StudyFolder(path)
         self._shipped = None
+        self._rows = []
         self.state.study_results = None  # the panel now shows the study started here
         self._stop.clear()
-        self._progress, self._error = None, ""
+        self._progress, self._error, self._queued = None, "", 0
         self._thread = threading.Thread(target=self._work, name="racetrace-study", daemon=True)
         self._thread.start()
         with self.state:
@@ -244,16 +264,49 @@ class Studies(Component):
             return  # tests call poll() themselves
         self._poll_task = loop.create_task(self._poll_loop())
 
-    def _work(self) -> None:
+    def _take_slots(self) -> list:
+        """Solver slots (:class:`app.services.pool.SolverPool`, shared with the runs of every
+        session) for the study's workers: waits in the queue for one, then takes more that are
+        free now, without passing runs queued before, up to ``workers`` (default: the pool's
+        cap). Returns the held tickets ([] when cancelled while waiting)."""
+        pool = self.session.services.pool
+        first = pool.enqueue()
         try:
-            self.study.run(
-                self.folder.path,
-                workers=self.workers,
-                progress=self._on_progress,
-                cancel=self._stop,
-            )
+            while not pool.try_acquire(first):
+                self._queued = first.place + 1
+                if self._stop.wait(SLOT_WAIT_S):
+                    pool.drop(first)
+                    return []
+        except BaseException:
+            pool.drop(first)
+            raise
+        self._queued = 0
+        held = [first]
+        wanted = min(self.workers or pool.max_runs, pool.max_runs)
+        while len(held) < wanted:
+            ticket = pool.enqueue()
+            if not pool.try_acquire(ticket):
+                pool.drop(ticket)
+                break
+            held.append(ticket)
+        return held
+
+    def _work(self) -> None:
+        held = []
+        try:
+            held = self._take_slots()
+            if held:  # one single-threaded Dask worker per slot held
+                self.study.run(
+                    self.folder.path,
+                    workers=len(held),
+                    progress=self._on_progress,
+                    cancel=self._stop,
+                )
         except Exception as error:  # noqa: BLE001 - shown on the page, the session goes on
             self._error = f"{type(error).__name__}: {error}"
+        finally:
+            for ticket in held:
+                self.session.services.pool.drop(ticket)
 
     def _on_progress(self, progress) -> None:
         self._progress = progress
@@ -262,8 +315,7 @@ class Studies(Component):
         """Build a study from the case in the form (its base, written as ``<folder>.base.toml``
         beside the study folder) with the keys and values chosen and run it (the study runner
         writes its study file into the folder)."""
-        from solver.errors import CaseError
-        from solver.study import Study
+        from solver import CaseError, Study
 
         if self.busy:
             self.state.study_status = "a study is running: cancel it or wait for it to end"
@@ -273,7 +325,7 @@ class Studies(Component):
         if case is None:
             s.study_status = "error: the case in the form is not valid: fix the fields in red first"
             return
-        keys = {item["value"] for item in s.study_key_items}
+        keys = set(self.numeric_keys())  # the keys offered, from the form: never the client's list
         varied = []
         try:
             for n in (1, 2):
@@ -331,7 +383,13 @@ class Studies(Component):
         s = self.state
         p = self._progress
         if running:
-            if p is not None:
+            if self._queued:
+                cap = self.session.services.pool.max_runs
+                s.study_status = (
+                    f"queued: place {self._queued} in the queue for a solver (at most {cap} "
+                    f"run{'s' * (cap != 1)} at once, study points included)"
+                )
+            elif p is not None:
                 eta = f", about {p.eta_s:.0f} s left" if math.isfinite(p.eta_s) else ""
                 s.study_progress = round(100 * p.done / p.total) if p.total else 0
                 s.study_status = f"{p.done}/{p.total} runs done, {p.running} running{eta}" + (
@@ -351,7 +409,7 @@ class Studies(Component):
 
     # ---- showing --------------------------------------------------------------------------------
     def dataset(self):
-        from solver.study import study_dataset
+        from solver import study_dataset
 
         if self._shipped is not None:
             return self._shipped
@@ -390,24 +448,31 @@ class Studies(Component):
                         row[f"{name}_{race}"] = _text(ds[name].values[i, j, k], 4)
                 rows.append(row)
         sweeps = list(dict.fromkeys(str(v) for v in ds["sweep"].values))
+        self._rows = rows
         s = self.state
         s.study_rows = rows
         if s.study_sweeps != sweeps:
             s.study_sweeps = sweeps
         if s.study_sweep not in sweeps:
             s.study_sweep = sweeps[0] if sweeps else None
-        s.chart_study = fig_json(study_figure(ds, s.study_sweep, s.study_metric))
+        s.chart_study = fig_json(study_figure(ds, s.study_sweep, self._metric()))
+
+    def _metric(self) -> str:
+        """The metric charted: ``study_metric`` when it is one of :data:`CHART_METRICS`."""
+        metric = self.state.study_metric
+        names = [name for name, _, _ in CHART_METRICS]
+        return metric if isinstance(metric, str) and metric in names else names[0]
 
     def _on_chart_choice(self, **_):
         ds = self.dataset()
         if ds is not None:
             self.state.chart_study = fig_json(
-                study_figure(ds, self.state.study_sweep, self.state.study_metric)
+                study_figure(ds, self.state.study_sweep, self._metric())
             )
 
     def open_point(self, point: str, model: str) -> None:
         """Show one point's run in the 3-D view, the raceway map and the charts."""
-        from solver.errors import CaseError
+        from solver import CaseError
 
         if self._shipped is not None:
             self.state.study_status = (
@@ -416,8 +481,15 @@ class Studies(Component):
             return
         if self.folder is None:
             return
+        shown = {(r["point"], r["model"]) for r in self._rows if r["openable"]}
+        if not (isinstance(point, str) and isinstance(model, str) and (point, model) in shown):
+            self.state.study_status = (
+                f"error: no point {str(point)[:40]!r} {str(model)[:40]!r} in the study on show"
+            )
+            return
         try:
-            ds = self.folder.load_point(str(point), str(model))
+            child_path(self.folder.points_dir, f"{point}.{model}.nc", "point")
+            ds = self.folder.load_point(point, model)
         except (CaseError, OSError, ValueError) as error:
             self.state.study_status = f"cannot open {point} {model}: {error}"
             return
@@ -425,23 +497,30 @@ class Studies(Component):
         self.session.result.shown_run_id = None
         title = self.study.title if self.study is not None else self.folder.path.name
         values = next(
-            (r["values"] for r in self.state.study_rows if r["point"] == point), ""
+            (r["values"] for r in self._rows if r["point"] == point), ""
         )  # what the point changes, e.g. "radial_load_N = 300"
         self.session.result.show_result(ds, f"{title}: {point} ({values}) {model}")
 
     # ---- results of studies run before ----------------------------------------------------------
-    def list_results(self) -> None:
-        """``study_results_items``: the shipped studies' results and the study folders of the
-        runs folder (newest first)."""
+    def results_items(self) -> list[dict]:
+        """The shipped studies' results and the study folders of the runs folder (newest
+        first), as offered in ``study_results_items``: listed again by the server at each use."""
         items = [
             {"title": f"shipped: {p.name.removesuffix('.study.nc')}", "value": f"shipped:{p.name}"}
             for p in sorted(SHIPPED_RESULTS.glob("*.study.nc"))
         ]
         root = self.session.store.root / STUDIES_DIR
         if root.is_dir():
-            folders = [p for p in root.iterdir() if (p / "study.json").is_file()]
+            folders = [
+                p for p in root.iterdir() if not p.is_symlink() and (p / "study.json").is_file()
+            ]
             for p in sorted(folders, key=lambda p: p.stat().st_mtime, reverse=True):
                 items.append({"title": f"run here: {p.name}", "value": f"folder:{p.name}"})
+        return items
+
+    def list_results(self) -> None:
+        """``study_results_items``: :meth:`results_items`."""
+        items = self.results_items()
         if items != self.state.study_results_items:
             self.state.study_results_items = items
 
@@ -453,13 +532,12 @@ class Studies(Component):
         """Show the results ``value`` of :meth:`list_results` in the table and the chart."""
         import xarray as xr
 
-        from solver.errors import CaseError
-        from solver.study import open_study
+        from solver import CaseError, open_study
 
         if self.busy:
             self.state.study_status = "a study is running: cancel it before opening other results"
             return
-        known = {item["value"] for item in self.state.study_results_items}
+        known = {item["value"] for item in self.results_items()}  # never the client's list
         if not isinstance(value, str) or value not in known:
             self.state.study_status = f"error: no such study results {str(value)[:80]!r}"
             self.state.study_results = None
@@ -467,13 +545,15 @@ class Studies(Component):
         kind, name = value.split(":", 1)
         try:
             if kind == "shipped":
-                with xr.open_dataset(SHIPPED_RESULTS / name) as ds:
+                path = child_path(SHIPPED_RESULTS, name, "study results")
+                with xr.open_dataset(path) as ds:
                     self._shipped = ds.load()
                 self.folder, self.study = None, None
                 title = self._shipped.attrs.get("title", name)
                 note = " (the study Dataset only: run the study to open its points)"
             else:
-                folder = open_study(self.session.store.root / STUDIES_DIR / name)
+                root = self.session.store.root / STUDIES_DIR
+                folder = open_study(child_path(root, name, "study folder"))
                 self.folder, self._shipped, self.study = folder, None, None
                 title = folder.manifest().get("title", name)
                 note = ""

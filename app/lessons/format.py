@@ -18,9 +18,8 @@ from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
 
-from solver.case import Case, dynamic_problems
-from solver.catalogue import catalogue
-from solver.errors import CaseError
+import solver
+from solver import Case, CaseError, dynamic_problems
 
 from .values import VALUE_NAMES
 
@@ -76,7 +75,7 @@ class ResultSpec:
 
     def case(self) -> Case:
         """The validated case this result solves (CaseError when the changes are invalid)."""
-        case = catalogue().get(self.case_name).load()
+        case = solver.catalogue().get(self.case_name).load()
         return case.with_values(dict(self.overrides)) if self.overrides else case
 
 
@@ -267,7 +266,7 @@ def _result_spec(index: int, table, problems: list[str]) -> ResultSpec | None:
 
 def _case_problems(where: str, spec: ResultSpec) -> list[str]:
     try:
-        catalogue().get(spec.case_name)
+        solver.catalogue().get(spec.case_name)
     except CaseError as error:
         return [f"{where}: case {spec.case_name!r}: {error}"]
     try:

@@ -1,7 +1,8 @@
 """The results a lesson shows: shipped with racetrace, else computed once and cached.
 
-Each :class:`~app.lessons.format.ResultSpec` has a fingerprint (a hash of its case as TOML, the
-model and the run length). :func:`lesson_result` looks, in this order, for
+Each :class:`~app.lessons.format.ResultSpec` has a fingerprint (a hash of its case's values, the
+model, the run length and the solver's results version: ``solver.result_fingerprint``).
+:func:`lesson_result` looks, in this order, for
 
 1. the shipped file ``assets/lessons/results/<lesson>--<result>.nc`` (written by
    ``tools/make_lesson_results.py``) whose ``lesson_fingerprint`` attribute matches;
@@ -14,7 +15,6 @@ Files are compressed NetCDF (zlib; time histories in single precision), written 
 
 from __future__ import annotations
 
-import hashlib
 import os
 from pathlib import Path
 
@@ -22,25 +22,25 @@ import xarray as xr
 
 from .format import Lesson, ResultSpec
 
-#: Bumped when the way lesson results are computed changes (invalidates shipped and cached files).
-RESULT_FORMAT = 1
 FINGERPRINT_ATTR = "lesson_fingerprint"
+RESULTS_VERSION_ATTR = "results_version"
 _COMPRESSION = {"zlib": True, "complevel": 6, "shuffle": True}
 
 
 def fingerprint(spec: ResultSpec) -> str:
-    """Hash of what the result depends on: the case (as TOML), model and run length."""
-    text = "\n".join(
-        [
-            f"format {RESULT_FORMAT}",
-            spec.model,
-            f"{spec.shaft_revolutions!r} {spec.samples_per_revolution!r}"
-            if spec.model == "dynamic"
-            else "",
-            spec.case().to_toml(),
-        ]
+    """Hash of what the result depends on (``solver.result_fingerprint``): the case's values, the
+    model, the run length of a dynamic run and the solver's results version."""
+    import solver
+
+    options = (
+        {
+            "shaft_revolutions": spec.shaft_revolutions,
+            "samples_per_revolution": spec.samples_per_revolution,
+        }
+        if spec.model == "dynamic"
+        else {}
     )
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
+    return solver.result_fingerprint(spec.case(), spec.model, options)
 
 
 def shipped_results_dir():
@@ -78,6 +78,7 @@ def compute(spec: ResultSpec) -> xr.Dataset:
         )
         ds = solver.simulate(case, options=options)
     ds.attrs[FINGERPRINT_ATTR] = fingerprint(spec)
+    ds.attrs[RESULTS_VERSION_ATTR] = solver.RESULTS_VERSION
     return ds
 
 
@@ -86,7 +87,7 @@ def save_compressed(ds: xr.Dataset, path) -> Path:
     (floating-point data variables along ``time``) are stored in single precision, 7 significant
     digits: far finer than any figure a lesson quotes; coordinates and the stored summary metrics
     keep double precision."""
-    from solver.results.io import ENGINE, atomic_write
+    from solver import ENGINE, atomic_write
 
     encoding = {}
     for name, var in ds.variables.items():
@@ -99,7 +100,7 @@ def save_compressed(ds: xr.Dataset, path) -> Path:
 
 
 def _read_matching(path, wanted: str) -> xr.Dataset | None:
-    from solver.results.io import load_dataset
+    from solver import load_dataset
 
     try:
         if not path.is_file():
@@ -134,6 +135,7 @@ def lesson_result(
 
 __all__ = [
     "FINGERPRINT_ATTR",
+    "RESULTS_VERSION_ATTR",
     "compute",
     "fingerprint",
     "lesson_cache_dir",

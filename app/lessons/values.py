@@ -145,7 +145,7 @@ def _min_margin(ds, race):
 
 
 def _pressure_limit(ds):
-    from solver.results.checks import STATIC_PRESSURE_LIMIT
+    from solver import STATIC_PRESSURE_LIMIT
 
     return STATIC_PRESSURE_LIMIT * 1e-9
 

@@ -4,7 +4,9 @@ At most ``max_runs`` solver processes run at once (default: the number of proces
 across every session of the server, even sessions in other processes: a slot is an exclusive
 lock (``fcntl.flock``) on one of ``max_runs`` files in the slots folder, released when the run
 ends or its process dies. A run that finds no free slot waits in a queue (a ticket file per
-waiting run, in order of arrival) and is told its place.
+waiting run, in order of arrival) and is told its place. A study started from the page takes
+slots in the same queue, one per Dask worker it runs (app.components.studies), so runs and study
+points together never exceed ``max_runs``.
 """
 
 from __future__ import annotations

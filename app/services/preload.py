@@ -29,13 +29,9 @@ import app.session_process  # noqa: E402, F401
 import app.state  # noqa: E402, F401
 import app.tracks  # noqa: E402, F401
 import app.ui  # noqa: E402, F401
-import solver  # noqa: E402, F401
-import solver.case  # noqa: E402, F401
-import solver.models.quasistatic  # noqa: E402, F401
-import solver.results.checks  # noqa: E402, F401
-import solver.results.dataset  # noqa: E402, F401
-import solver.results.io  # noqa: E402, F401
-import solver.results.summary  # noqa: E402, F401
+import solver  # noqa: E402
+
+solver.preload()
 
 
 def _warm() -> None:
@@ -45,9 +41,8 @@ def _warm() -> None:
 
     from app.state import DEFAULT_CASE
     from app.tracks import _paint
-    from solver.catalogue import catalogue
 
-    entries = {entry.name: entry for entry in catalogue()}
+    entries = {entry.name: entry for entry in solver.catalogue()}
     if DEFAULT_CASE in entries:
         solver.solve_quasistatic(entries[DEFAULT_CASE].load())
     i, f = np.zeros(1, np.int64), np.zeros(1)

@@ -133,8 +133,7 @@ def save_result(ds, path: Path, report=None) -> Path | None:
     """Write ``ds`` to ``path``; when that fails, to :func:`fallback_path` instead, saying where
     (``report(message)``, stderr by default). Returns the path written, None when neither could be
     written (both reasons said)."""
-    from solver.errors import ResultWriteError, clean_message
-    from solver.results.io import save_dataset
+    from solver import ResultWriteError, clean_message, save_dataset
 
     report = report or say
     try:

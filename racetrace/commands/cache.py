@@ -63,7 +63,7 @@ def describe(folders, active) -> str:
 
 
 def run(args) -> int:
-    from solver._numba_cache import active_folder, cache_folders, remove_folders
+    from solver import active_folder, cache_folders, remove_folders
 
     folders = cache_folders()
     active = active_folder()

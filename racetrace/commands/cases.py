@@ -32,9 +32,9 @@ def format_table(entries) -> str:
 
 
 def run(args) -> int:
-    from solver.catalogue import catalogue
+    import solver
 
-    cat = catalogue()
+    cat = solver.catalogue()
     if getattr(args, "cases_action", None) == "show":
         sys.stdout.write(cat.get(args.name).case_text())  # unknown name: CaseError -> exit 2
         return 0

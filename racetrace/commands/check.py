@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from solver.errors import printable
+from solver import printable
 
 
 def register(subparsers) -> None:
@@ -69,8 +69,7 @@ def summary(case) -> str:
 
 
 def run(args) -> int:
-    from solver.case import dynamic_problems
-    from solver.catalogue import resolve_case
+    from solver import dynamic_problems, resolve_case
 
     case = resolve_case(args.case)
     print(printable(summary(case), keep_newlines=True))  # the title is the user's text

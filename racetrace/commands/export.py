@@ -12,7 +12,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from solver.errors import clean_message
+from solver import clean_message
 
 from ._output import output_problem
 
@@ -38,7 +38,7 @@ def _fail(message: str) -> int:
 
 
 def run(args) -> int:
-    from solver.results.io import load_dataset
+    from solver import load_dataset
 
     if not args.csv:
         return _fail("name what to export: --csv OUT.csv (images and animations: use the app)")

@@ -57,7 +57,7 @@ def summary(ds) -> dict:
         return [float(v) for v in np.asarray(values).ravel()]
 
     from racetrace.metrics import finite_or_none, life_json, metrics_json
-    from solver.results.dataset import ring_speeds
+    from solver import ring_speeds
 
     load = ds.contact_load.values
     inner_speed, outer_speed = ring_speeds(ds)
@@ -123,7 +123,7 @@ def table(ds, case) -> str:
     """Readable table: header (bearing, speed, loads, ring displacement, cage speed, peak pressure)
     and one row per ball."""
     from racetrace.metrics import life_text, metrics_text
-    from solver.results.dataset import ring_speeds
+    from solver import ring_speeds
 
     op = case.operating
     b = case.bearing
@@ -194,16 +194,14 @@ def _clean(value: float) -> float:
 
 def print_result_warnings(ds, stream=None) -> None:
     """Print where the result leaves the model's validity, as ``warning: ...`` lines (stderr)."""
-    from solver.results.checks import result_warnings
+    from solver import result_warnings
 
     for message in result_warnings(ds):
         print(f"warning: {message}", file=stream or sys.stderr)
 
 
 def run(args) -> int:
-    from solver.catalogue import resolve_case
-    from solver.errors import CaseError, Problem, printable
-    from solver.models.quasistatic import solve_quasistatic
+    from solver import CaseError, Problem, printable, resolve_case, solve_quasistatic
 
     case = resolve_case(args.case)
     for warning in case.warnings():

@@ -25,7 +25,7 @@ import threading
 import time
 from pathlib import Path
 
-from solver.errors import clean_message
+from solver import clean_message
 
 from ._output import output_problem, save_result, size_problems
 from ._output import say as _say
@@ -93,7 +93,7 @@ def register(subparsers) -> None:
 
 
 def _load_case(name: str):
-    from solver.catalogue import resolve_case
+    from solver import resolve_case
 
     return resolve_case(name)
 
@@ -154,9 +154,7 @@ def _print_case_warnings(case) -> None:
 def _options(args, case):
     """SimulationOptions from the command line, checked with the case keys' bounds and the run
     length rules (CaseError naming the option otherwise), and the run's size estimate."""
-    from solver.case.validate import dynamic_run_size, run_length_problems
-    from solver.errors import CaseError
-    from solver.models.dynamic import SimulationOptions
+    from solver import CaseError, SimulationOptions, dynamic_run_size, run_length_problems
 
     changes = {}
     if args.revolutions is not None:
@@ -197,7 +195,7 @@ def _options(args, case):
 def _check_room(size, output: Path) -> None:
     """Refuse a run whose result would not fit in the memory, the disk or the file-size limit
     (CaseError); warn when it takes more than half of the memory or disk."""
-    from solver.errors import CaseError, Problem
+    from solver import CaseError, Problem
 
     errors, warnings = size_problems(size.memory_bytes, size.file_bytes, output.parent)
     for warning in warnings:
@@ -207,8 +205,7 @@ def _check_room(size, output: Path) -> None:
 
 
 def run(args) -> int:
-    from solver.errors import CaseError, Problem, SimulationDiverged
-    from solver.models.dynamic import simulate
+    from solver import CaseError, Problem, SimulationDiverged, simulate
 
     from .quasistatic import print_result_warnings
 
@@ -239,7 +236,7 @@ def run(args) -> int:
     previous = _install(on_signal)
     bar = None if args.quiet else ProgressBar()
     if bar is not None:
-        from solver.compiled import dynamic_model_compiled
+        from solver import dynamic_model_compiled
 
         if not dynamic_model_compiled():
             print("racetrace: compiling the dynamic model (first run only) ...", file=sys.stderr)

@@ -114,7 +114,7 @@ def run(args) -> int:
         import dask.distributed  # noqa: F401
     except ImportError:
         return _fail("the study runner needs dask.distributed: pip install 'dask[distributed]'")
-    from solver.study import Study
+    from solver import Study
 
     study = Study.from_file(args.study)
     stop = threading.Event()
@@ -229,7 +229,7 @@ def show_table(ds, model: str | None = None) -> str:
 
 
 def show(folder, model=None) -> int:
-    from solver.study import open_study, study_dataset
+    from solver import open_study, study_dataset
 
     ds = study_dataset(open_study(folder))
     print(f"study {ds.attrs['title']!r} (base case {ds.attrs['base_case']}), folder {folder}")

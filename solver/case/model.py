@@ -95,6 +95,7 @@ def case_from_values(checked: CaseValues) -> Case:
         estimated=checked.estimated,
         lubricant_given="lubricant" not in checked.absent_sections,
         traction_given=checked.traction_given,
+        from_oil=checked.from_oil,
         **sections,
     )
 
@@ -113,7 +114,9 @@ class Case:
     says that the default oil was used. ``traction_given`` is True when the file has a
     ``lubricant.traction`` table (the slip curve): otherwise ``lubricant.traction`` holds the
     schema's default curve, which :meth:`to_dict` leaves out and :meth:`to_toml` writes as a
-    comment.
+    comment. ``from_oil`` lists the ``[lubricant]`` keys whose values come from the named oil
+    ``lubricant.oil`` (not given in the file): :meth:`to_dict` leaves them out (the oil's name
+    brings them back) and :meth:`to_toml` writes them as comments.
     """
 
     title: str
@@ -126,6 +129,7 @@ class Case:
     estimated: frozenset = frozenset()
     lubricant_given: bool = True
     traction_given: bool = False
+    from_oil: frozenset = frozenset()
 
     # ---- materials -----------------------------------------------------------------------------
     def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
@@ -220,7 +224,7 @@ class Case:
             value = section_obj
             for part in f.path[1:]:
                 value = getattr(value, part)
-            if value is None or f.key in self.estimated:
+            if value is None or f.key in self.estimated or f.key in self.from_oil:
                 continue
             target = out
             for part in f.path[:-1]:

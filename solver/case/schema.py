@@ -17,6 +17,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from solver.lubricants import oil_names
+
 
 class Default(enum.Enum):
     """Default markers that are not plain values."""
@@ -378,6 +380,17 @@ FIELDS: list[Field] = [
         reason="a flooded fraction lies between 0 and 1",
     ),
     # ---- [lubricant] (optional section) -------------------------------------------------------
+    Field(
+        "lubricant.oil",
+        "choice",
+        "Named oil",
+        "A named oil of solver/data/oils.toml (docs/case-format.md, 'Named oils'): its values, "
+        "each with its source, fill the [lubricant] keys the case does not give; keys the case "
+        "gives override them. Absent: every key not given takes the schema default.",
+        default=OPTIONAL,
+        choices=oil_names(),
+        reason="the oil is one of the named oils",
+    ),
     Field(
         "lubricant.viscosity_Pas",
         "float",

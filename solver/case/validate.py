@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 
 from solver.errors import CaseError, Problem
+from solver.lubricants import lubricant_table
 from solver.materials import BUILTIN_MATERIALS
 
 from .schema import (
@@ -621,7 +622,8 @@ class CaseValues:
     None. ``materials`` holds the user material tables as written. ``estimated`` lists the dotted
     keys whose values were estimated from the bearing; ``absent_sections`` the optional sections the
     input did not have (their values are all defaults). ``traction_given`` says whether the input
-    had a ``lubricant.traction`` table (whole or partial).
+    had a ``lubricant.traction`` table (whole or partial). ``from_oil`` lists the dotted keys
+    whose values came from the named oil ``lubricant.oil`` (solver.lubricants).
     """
 
     title: str
@@ -630,6 +632,7 @@ class CaseValues:
     estimated: frozenset
     absent_sections: frozenset
     traction_given: bool = False
+    from_oil: frozenset = frozenset()
 
 
 def validate(data) -> CaseValues:
@@ -693,11 +696,17 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
     )
     sections: dict = {name: {} for name in SECTION_ORDER if name != "materials"}
     estimated = set()
+    oil_values = {}
+    if values.get("lubricant.oil") is not None:
+        named = lubricant_table(values["lubricant.oil"])
+        oil_values = {f"lubricant.{name}": value for name, value in named.items()}
     for f in FIELDS:
         if not f.section:
             continue
         if f.key in values:
             value = values[f.key]
+        elif f.key in oil_values:
+            value = oil_values[f.key]
         elif f.default is OPTIONAL:
             value = None
         elif isinstance(f.default, Estimated):
@@ -719,6 +728,7 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
         estimated=frozenset(estimated),
         absent_sections=absent,
         traction_given=isinstance(lubricant, dict) and "traction" in lubricant,
+        from_oil=frozenset(key for key in oil_values if key not in values),
     )
 
 

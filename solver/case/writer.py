@@ -58,6 +58,9 @@ def _section_lines(case, section: str, prefix: str = "") -> list[str]:
             lines.append(
                 _line(f"# {f.name} = {toml_value(value)}", f"estimated from the bearing: {rule}")
             )
+        elif f.key in case.from_oil:
+            oil = case.lubricant.oil
+            lines.append(_line(f"# {f.name} = {toml_value(value)}", f"from the named oil {oil}"))
         elif value is None:
             lines.append(_line(f"# {f.name} =", f"optional: {f.help}"))
         else:

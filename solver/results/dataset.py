@@ -42,7 +42,7 @@ _ANGLES = {"radial_load_angle", "misalignment", "misalignment_axis", "moment_axi
 
 def software() -> str:
     """``"racetrace <version>"`` for the ``software`` attribute."""
-    from solver import __version__
+    from solver._version import __version__
 
     return f"racetrace {__version__}"
 

@@ -73,3 +73,29 @@ def test_describe_case_names_the_values_run():
     assert "Fr" not in axial_only and "tilt" not in axial_only
     tilted = describe_case(catalogue().get("spindle-misalignment-ring").load())
     assert "tilt 0.05 deg (ring)" in tilted
+
+
+def test_a_run_id_the_page_adds_to_its_list_is_not_a_listed_run(tmp_path, qs_dataset):
+    """A client writing its own entry into ``runs`` does not make it a run to open or compare:
+    the run store's listing decides."""
+    from app.state import DEFAULT_CASE, RacetraceApp
+    from tests.app.test_state import _server
+
+    app = RacetraceApp(_server(), runs_dir=tmp_path / "runs", render=False)
+    try:
+        app.start(DEFAULT_CASE, play=False)
+        saved = app.store.save(qs_dataset, qs_dataset.attrs["case"], "saved")
+        s = app.state
+        fake = "20260101-000000-not-a-run-abcd"
+        s.runs = [*s.runs, {"title": "mine", "value": fake}]
+        s.flush()
+        assert not app.runs.is_listed(fake)
+        assert app.runs.is_listed(saved.run_id)  # saved after the page's list was made
+        s.run_id = fake
+        s.flush()
+        assert s.status == f"error: no run {fake!r} in the runs folder"
+        s.compare_ids = [fake]
+        s.flush()
+        assert s.compare_message == f"cannot compare with {fake}: not a saved run"
+    finally:
+        app.shutdown()

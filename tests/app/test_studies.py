@@ -7,6 +7,7 @@ import time
 
 import pytest
 
+from app.components.studies import SLOT_WAIT_S
 from app.state import DEFAULT_CASE, RacetraceApp
 from solver.study import Study
 from tests.app.test_state import _server
@@ -194,3 +195,188 @@ def test_a_study_that_cannot_be_built_is_said_in_words(app):
     s.flush()
     app.studies.build()
     assert "not valid" in s.study_status
+
+
+# ---- hostile state: a client's values never name a server file ----------------------------------
+def test_study_results_only_open_what_the_server_lists(app, tmp_path, monkeypatch):
+    """A client rewrites ``study_results_items`` to offer itself an absolute file and a folder
+    out of ``.studies``, then picks them: nothing outside the two roots is opened."""
+    import shutil
+
+    import xarray as xr
+
+    import solver.study
+    from app.components.studies import SHIPPED_RESULTS
+
+    secret = tmp_path / "outside.study.nc"  # a readable study Dataset outside the shipped root
+    shutil.copy(SHIPPED_RESULTS / "seed-spindle.study.nc", secret)
+    opened = []
+    real_open_dataset, real_open_study = xr.open_dataset, solver.study.open_study
+    monkeypatch.setattr(
+        xr, "open_dataset", lambda p, *a, **k: opened.append(p) or real_open_dataset(p, *a, **k)
+    )
+    monkeypatch.setattr(
+        solver.study, "open_study", lambda p: opened.append(p) or real_open_study(p)
+    )
+    s = app.state
+    for value in (
+        f"shipped:{secret}",
+        "shipped:../../../" + secret.name,
+        "folder:../..",
+        "folder:../../" + tmp_path.name,
+        "folder:/",
+        "folder:\x00",
+    ):
+        s.study_results_items = [*s.study_results_items, {"title": "mine", "value": value}]
+        s.study_results = value
+        s.flush()
+        assert s.study_status.startswith("error: no such study results"), (value, s.study_status)
+        assert s.study_rows == [] and app.studies.dataset() is None
+    assert opened == []
+
+
+def test_study_name_is_a_shipped_study_only(app, tmp_path, monkeypatch):
+    """``study_name`` naming a study file on the server (any path) runs nothing."""
+    study_file = tmp_path / "mine.toml"
+    study_file.write_text(SMALL)
+    started = []
+    monkeypatch.setattr(app.studies, "start", lambda *a, **k: started.append(a))
+    s = app.state
+    for name in (str(study_file), "../" * 8 + str(study_file), "/etc/passwd", ["seed-spindle"]):
+        s.study_name = name
+        s.flush()
+        app.studies.run()
+        assert s.study_status.startswith("error: no shipped study"), (name, s.study_status)
+    assert started == []
+    s.study_name = "seed-spindle"  # a shipped study still starts
+    s.flush()
+    app.studies.run()
+    assert len(started) == 1 and started[0][1] == "seed-spindle"
+
+
+def test_open_point_opens_only_a_point_of_the_study_on_show(app, tmp_path, qs_dataset):
+    """``study_open(point, model)`` with a point that climbs out of the study folder: the file
+    it names is not read and the result on show stays."""
+    import solver
+    from solver.study import StudyFolder
+
+    folder = tmp_path / "runs" / ".studies" / "s-1"
+    folder.mkdir(parents=True)
+    solver.save_dataset(qs_dataset, tmp_path / "secret.quasistatic.nc")
+    app.studies.folder = StudyFolder(folder)
+    s = app.state
+    serial = int(s.result_serial)
+    for point, model in (
+        ("../../../../secret", "quasistatic"),
+        (str(tmp_path / "secret"), "quasistatic"),
+        ("p0001", "../../../../../secret.quasistatic"),
+        (["p0001"], "quasistatic"),
+    ):
+        app.studies.open_point(point, model)
+        assert s.study_status.startswith("error: no point"), (point, s.study_status)
+    # the client's own table naming such a point changes nothing
+    s.study_rows = [{"point": "../../../../secret", "model": "quasistatic", "openable": True}]
+    s.flush()
+    app.studies.open_point("../../../../secret", "quasistatic")
+    assert s.study_status.startswith("error: no point")
+    assert int(s.result_serial) == serial
+
+
+def test_built_study_varies_only_the_forms_numeric_keys(app):
+    """A client adding a key to ``study_key_items`` does not make it a key to vary."""
+    s = app.state
+    s.study_key_items = [*s.study_key_items, {"title": "x", "value": "simulation.nothing"}]
+    s.study_key1, s.study_values1 = "simulation.nothing", "1, 2"
+    s.flush()
+    app.studies.build()
+    assert not s.study_running
+    assert "is not a numeric key of the case" in s.study_status
+
+
+# ---- a study from the page takes solver slots, as runs do ---------------------------------------
+@pytest.fixture
+def capped(tmp_path):
+    """A session whose server runs at most one solver at once (``--max-runs 1``)."""
+    from app.services import Services
+
+    services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=1)
+    a = RacetraceApp(_server(), services=services, render=False)
+    a.start(DEFAULT_CASE, play=False)
+    yield a
+    a.shutdown()
+
+
+def _slot_free(pool) -> bool:
+    """Whether a run could take a solver slot now."""
+    probe = pool.enqueue()
+    try:
+        return pool.try_acquire(probe)
+    finally:
+        pool.drop(probe)
+
+
+def _watched(study, pool, seen, real=True):
+    """``study`` whose run records (workers, a slot free for a run) when its points start."""
+    run = study.run
+
+    def watched_run(output, **options):
+        seen.append((options.get("workers"), _slot_free(pool)))
+        return run(output, **options) if real else None
+
+    study.run = watched_run
+    return study
+
+
+def test_a_page_study_and_a_run_never_compute_at_once(capped):
+    """With ``--max-runs 1`` a study from the page waits while a run computes, and no run can
+    start while its points compute (the study's Dask cluster is covered by the tests above)."""
+    pool = capped.services.pool
+    run_slot = pool.enqueue()  # a run of another session is computing: it holds the one slot
+    assert pool.try_acquire(run_slot)
+    seen = []
+    capped.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+    time.sleep(2 * SLOT_WAIT_S + 0.5)
+    assert not capped.studies.poll()
+    assert seen == []  # no Dask cluster, no point computed while the run holds the slot
+    assert capped.state.study_status.startswith("queued: place 1 in the queue for a solver")
+    pool.drop(run_slot)  # the run ends
+    _wait(capped, 60)
+    assert capped.state.study_status == "done"
+    assert seen == [(1, False)]  # one worker, and no slot left for a run while it computed
+    assert _slot_free(pool)  # given back at the end
+
+
+def test_a_page_study_takes_the_free_slots_up_to_the_cap(tmp_path):
+    from app.services import Services
+
+    services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=2)
+    a = RacetraceApp(_server(), services=services, render=False)
+    try:
+        pool = services.pool
+        seen = []
+        a.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+        _wait(a, 60)
+        held = pool.enqueue()  # a run takes one of the two slots
+        assert pool.try_acquire(held)
+        a.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+        _wait(a, 60)
+        pool.drop(held)
+        a.studies.workers = 5  # more workers asked for than the cap: the cap wins
+        a.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+        _wait(a, 60)
+        assert seen == [(2, False), (1, False), (2, False)]
+    finally:
+        a.shutdown()
+
+
+def test_a_page_study_cancelled_in_the_queue_computes_nothing(capped):
+    pool = capped.services.pool
+    run_slot = pool.enqueue()
+    assert pool.try_acquire(run_slot)
+    seen = []
+    capped.studies.start(_watched(Study.from_text(SMALL), pool, seen, real=False), "small")
+    capped.studies.cancel()
+    _wait(capped, 60)
+    assert capped.state.study_status.startswith("cancelled") and seen == []
+    assert list((pool.dir / "queue").iterdir()) == []  # its ticket left the queue
+    pool.drop(run_slot)

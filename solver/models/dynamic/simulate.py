@@ -22,7 +22,6 @@ import numpy as np
 
 from solver.case import dynamic_problems
 from solver.case.validate import run_length_problems
-from solver.catalogue import resolve_case
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
 from solver.physics.traction import NODE_COLUMNS
@@ -164,12 +163,16 @@ def _start(inputs, options, par, quad):
 
 
 def _inputs(case) -> Inputs:
-    """SI inputs of a Case, a case-file path or a catalogue name, after the dynamic model's own
-    rules (:func:`solver.case.dynamic_problems`, raised as CaseError); Inputs as given."""
+    """SI inputs of a Case (a path or a catalogue name is resolved by solver.facade), after the
+    dynamic model's own rules (:func:`solver.case.dynamic_problems`, raised as CaseError); Inputs
+    as given."""
     if isinstance(case, Inputs):
         return case
     if isinstance(case, str | os.PathLike):
-        case = resolve_case(case)
+        raise TypeError(
+            f"the model takes a Case or Inputs, not {case!r}: solver.simulate resolves a "
+            "case-file path or a catalogue name"
+        )
     problems = dynamic_problems(case)
     if problems:
         raise CaseError(problems)
@@ -190,11 +193,12 @@ def _length_names(options: SimulationOptions) -> tuple[str, str]:
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
     """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
 
-    ``case``: a :class:`solver.case.Case`, a case-file path or a catalogue name (CaseError when the
-    dynamic model cannot run it, :func:`solver.case.dynamic_problems`), or
-    :class:`solver.inputs.Inputs`. ``progress(fraction, simulated_time, message)`` is called
-    between chunks; ``cancel`` is a callable or an Event. ``options``: :class:`SimulationOptions`;
-    None = the case's ``[simulation]`` values and the default numerical knobs.
+    ``case``: a :class:`solver.case.Case` (``solver.simulate`` also takes a case-file path or a
+    catalogue name; CaseError when the dynamic model cannot run it,
+    :func:`solver.case.dynamic_problems`), or :class:`solver.inputs.Inputs`.
+    ``progress(fraction, simulated_time, message)`` is called between chunks; ``cancel`` is a
+    callable or an Event. ``options``: :class:`SimulationOptions`; None = the case's
+    ``[simulation]`` values and the default numerical knobs.
     """
     inputs = _inputs(case)
     given = (options or SimulationOptions()).validated()

@@ -3,8 +3,8 @@
 Public API:
 
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md, quasi-static variables); every
-  ``case`` argument may be a :class:`solver.case.Case`, its :class:`solver.inputs.Inputs`, a
-  case-file path or a catalogue name
+  ``case`` argument is a :class:`solver.case.Case` or its :class:`solver.inputs.Inputs` (the
+  public ``solver.solve_quasistatic`` etc. also take a case-file path or a catalogue name)
 - ``solve_quasistatic_state(case, initial=None) -> QuasiStaticSolution`` (SI arrays; the dynamic
   model starts from it)
 - ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked along the
@@ -38,7 +38,6 @@ import os
 
 import numpy as np
 
-from solver.catalogue import resolve_case
 from solver.errors import NoSolutionError
 from solver.inputs import Inputs, OperatingPoint, rpm_to_rad_s, to_inputs
 
@@ -67,12 +66,15 @@ _ELEMENT_ATTRS = (
 
 
 def _inputs(case) -> Inputs:
-    """SI inputs of a Case, a case-file path or a catalogue name (CaseError if invalid); Inputs
-    as given."""
+    """SI inputs of a Case (CaseError if invalid); Inputs as given. A path or a catalogue name is
+    a TypeError: the public door (solver.facade) resolves those."""
     if isinstance(case, Inputs):
         return case
     if isinstance(case, str | os.PathLike):
-        case = resolve_case(case)
+        raise TypeError(
+            f"the model takes a Case or Inputs, not {case!r}: solver.solve_quasistatic resolves "
+            "a case-file path or a catalogue name"
+        )
     return to_inputs(case)
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-import solver  # noqa: F401
+import solver
 from app.lessons import results as lesson_results
 from app.lessons.format import load_lessons, parse_lesson
 
@@ -84,3 +84,30 @@ def test_fingerprint_follows_case_model_and_length():
 def test_cache_dir_from_environment(tmp_path):
     assert lesson_results.lesson_cache_dir({"RACETRACE_LESSON_CACHE": str(tmp_path)}) == tmp_path
     assert lesson_results.lesson_cache_dir({}).name == "lessons"
+
+
+def test_fingerprint_follows_the_results_version_not_the_case_text(monkeypatch):
+    """A comment or help-text change leaves the fingerprint alone; a results-version bump (a
+    physics change that moves results) changes it, so shipped and cached results are redone."""
+    from solver.results import provenance
+
+    spec = parse_lesson(NEW, "a").results[0]
+    case = spec.case()
+    commented = solver.parse_case("# a comment\n" + case.to_toml().replace("\n", "  # note\n", 3))
+    assert solver.result_fingerprint(commented, "quasistatic") == solver.result_fingerprint(
+        case, "quasistatic"
+    )
+    before = lesson_results.fingerprint(spec)
+    monkeypatch.setattr(provenance, "RESULTS_VERSION", provenance.RESULTS_VERSION + 1)
+    assert lesson_results.fingerprint(spec) != before
+
+
+def test_fingerprint_covers_values_from_the_bearing_and_the_named_oil():
+    """Values the case does not write (estimated from the bearing, or from a named oil) still
+    determine the result and so the fingerprint."""
+    spec = parse_lesson(NEW, "a").results[0]
+    case = spec.case()
+    oiled = case.with_values({"lubricant.oil": "ester-vg22"})
+    other_oil = case.with_values({"lubricant.oil": "spindle-mineral-vg32"})
+    prints = {solver.result_fingerprint(c, "quasistatic") for c in (case, oiled, other_oil)}
+    assert len(prints) == 3

@@ -216,15 +216,16 @@ def test_film_pass_over_contacts_matches_the_separate_formulas(thermal):
 
 
 def test_named_oils_are_valid_lubricant_sections():
-    """Every named oil of solver.lubricants is a [lubricant] section the case validation accepts,
-    and its inlet viscosity at 40 degC is its ISO grade viscosity times its density."""
+    """Every named oil is a [lubricant] section the case validation accepts, and its inlet
+    viscosity at 40 degC is its ISO grade viscosity times its density."""
     import tomli_w
 
     from solver.case import parse_case
-    from solver.lubricants import OILS, lubricant_table
+    from solver.lubricants import lubricant_table, oil_names
     from tests.helpers.cases import SPINDLE
 
-    for name in OILS:
+    assert len(oil_names()) >= 3
+    for name in oil_names():
         text = SPINDLE + "\n[lubricant]\n" + tomli_w.dumps(lubricant_table(name))
         case = parse_case(text)
         assert case.lubricant.traction_model == "rheology"
@@ -234,29 +235,31 @@ def test_named_oils_are_valid_lubricant_sections():
 
 
 def test_every_named_oil_value_has_a_source_or_is_marked_an_estimate():
-    """Each key of each oil names its document (one of the module's references in brackets) or
+    """Each key of each oil names a document of the oils file's [documents] table in brackets or
     starts with ESTIMATE; the rheology numbers are estimates (no measured values were found)."""
-    from solver.lubricants import KEY_SOURCES, OILS, estimated_keys
+    from solver.lubricants import documents, oil, oil_names
 
-    for name, (keys, _) in OILS.items():
-        assert set(KEY_SOURCES[name]) == set(keys), name
-        for key, source in KEY_SOURCES[name].items():
-            cited = any(ref in source for ref in ("[ISO3448]", "[SB-T2.3]", "[MIL23699]"))
+    cited_refs = [f"[{ref}]" for ref in documents()]
+    for name in oil_names():
+        entry = oil(name)
+        assert set(entry.sources) == set(entry.values), name
+        for key, source in entry.sources.items():
+            cited = any(ref in source for ref in cited_refs)
             assert cited or source.startswith("ESTIMATE") or key == "traction_model", (name, key)
-        assert "eyring_stress_MPa" in estimated_keys(name)
-    assert "pressure_viscosity_per_GPa" not in estimated_keys("spindle-mineral-vg32")
+        assert "eyring_stress_MPa" in entry.estimated_keys()
+    assert "pressure_viscosity_per_GPa" not in oil("spindle-mineral-vg32").estimated_keys()
 
 
 def test_named_oil_film_shear_modulus_lies_in_the_measured_range_its_source_cites():
-    """KEY_SOURCES says each oil's film shear modulus G lies inside the 0.1-1.0 GPa measured for a
+    """Each oil's source says its film shear modulus G lies inside the 0.1-1.0 GPa measured for a
     high-viscosity mineral oil at 23 degC and 1.0-2.0 GPa contact pressure ([VEO]: abstract of
     "Observations of viscoelastic behaviour of an elastohydrodynamic lubricant film", scilit
     record c72484bb7d8f02b302ce42281110aa4a). The value stays an estimate (other oils, other
     temperatures); this keeps the stated bound true."""
-    from solver.lubricants import KEY_SOURCES, OILS, lubricant_table
+    from solver.lubricants import lubricant_table, oil, oil_names
 
-    for name in OILS:
-        assert "[VEO]" in KEY_SOURCES[name]["film_shear_modulus_GPa"], name
+    for name in oil_names():
+        assert "[VEO]" in oil(name).sources["film_shear_modulus_GPa"], name
         assert 0.1 <= lubricant_table(name)["film_shear_modulus_GPa"] <= 1.0, name
 
 

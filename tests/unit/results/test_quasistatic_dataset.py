@@ -208,9 +208,12 @@ def test_speed_sweep_elements_each_report_their_own_speed():
         quasistatic_speed_sweep(case, [5000.0, 5000.0])
 
 
-def test_case_may_be_given_by_catalogue_name():
+def test_public_door_resolves_a_catalogue_name_the_model_does_not():
+    import solver
     from solver.catalogue import resolve_case
 
-    by_name = solve_quasistatic("209-radial")
+    by_name = solver.solve_quasistatic("209-radial")
     by_case = solve_quasistatic(resolve_case("209-radial"))
     np.testing.assert_array_equal(by_name.contact_load.values, by_case.contact_load.values)
+    with pytest.raises(TypeError, match="solver.solve_quasistatic resolves"):
+        solve_quasistatic("209-radial")

@@ -198,7 +198,7 @@ def test_less_than_two_revolutions_cannot_settle():
 
 # ---- quasi-static results and stacked results ----------------------------------------------------
 def test_a_quasistatic_snapshot_gives_the_excursion_over_its_balls_and_no_thickness():
-    from solver.models.quasistatic import solve_quasistatic
+    from solver import solve_quasistatic
 
     ds = solve_quasistatic("spindle-combined-load")
     m = summary.trajectory_summary(ds)
@@ -213,7 +213,7 @@ def test_a_quasistatic_snapshot_gives_the_excursion_over_its_balls_and_no_thickn
 
 
 def test_a_sweep_gives_the_metrics_of_every_element():
-    from solver.models.quasistatic import quasistatic_speed_sweep, solve_quasistatic
+    from solver import quasistatic_speed_sweep, solve_quasistatic
 
     ds = quasistatic_speed_sweep("spindle-combined-load", [5000.0, 20000.0])
     m = summary.trajectory_summary(ds)

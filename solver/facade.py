@@ -1,0 +1,62 @@
+"""The public door's entry points that take a case by any name: a :class:`~solver.case.Case`, a
+path to a case file, or a catalogue name (the only place that resolves catalogue names; the models
+take a Case or SI Inputs).
+
+Each function resolves its ``case`` argument (:func:`solver.catalogue.resolve_case`, CaseError when
+it is neither a file nor a catalogue name) and calls the model of the same name.
+"""
+
+from __future__ import annotations
+
+import os
+
+from solver.catalogue import resolve_case
+
+
+def _resolved(case):
+    """A Case for a path or a catalogue name; a Case or SI Inputs as given."""
+    if isinstance(case, str | os.PathLike):
+        return resolve_case(case)
+    return case
+
+
+def solve_quasistatic(case):
+    """The quasi-static (Jones-Harris) solution of ``case`` as a results Dataset
+    (:func:`solver.models.quasistatic.solve_quasistatic`)."""
+    from solver.models.quasistatic import solve_quasistatic as model
+
+    return model(_resolved(case))
+
+
+def solve_over_revolution(case, angles: int = 36):
+    """The quasi-static steady state at ``angles`` inner-ring angles over one shaft revolution
+    (:func:`solver.models.quasistatic.solve_over_revolution`)."""
+    from solver.models.quasistatic import solve_over_revolution as model
+
+    return model(_resolved(case), angles=angles)
+
+
+def quasistatic_speed_sweep(case, speeds_rpm):
+    """Quasi-static solutions of ``case`` at each inner-ring speed in ``speeds_rpm`` (rpm)
+    (:func:`solver.models.quasistatic.quasistatic_speed_sweep`)."""
+    from solver.models.quasistatic import quasistatic_speed_sweep as model
+
+    return model(_resolved(case), speeds_rpm)
+
+
+def simulate(case, progress=None, cancel=None, options=None):
+    """The dynamic model's run of ``case`` (:func:`solver.models.dynamic.simulate`)."""
+    from solver.models.dynamic import simulate as model
+
+    return model(_resolved(case), progress=progress, cancel=cancel, options=options)
+
+
+def preload() -> None:
+    """Import the modules that a solve, a result view and a study read (no kernel is compiled):
+    for a process that forks workers or sessions after it, so that they share these imports."""
+    import solver.case  # noqa: F401
+    import solver.models.quasistatic  # noqa: F401
+    import solver.results.checks  # noqa: F401
+    import solver.results.dataset  # noqa: F401
+    import solver.results.io  # noqa: F401
+    import solver.results.summary  # noqa: F401

@@ -1,0 +1,52 @@
+"""What determines a result, as a fingerprint: the case's values, the model, its options and the
+results version.
+
+:data:`RESULTS_VERSION` is bumped by every change of the physics or the numerics that moves results
+beyond the tolerances at which shipped results are checked (the slow test
+tests/integration/test_shipped_results.py re-solves every shipped result and fails when one drifts
+while the version is unchanged); shipped results are then regenerated
+(``python tools/make_lesson_results.py``). A change that moves no result leaves it alone, so the
+shipped results stay current across refactoring, comments and help texts.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+from solver.case.schema import FIELDS
+
+#: Version of the results' physics and numerics (module docstring).
+RESULTS_VERSION = 1
+
+
+def case_values(case) -> dict:
+    """Every key's value of ``case`` as the models read it ({dotted key: value}: given, default,
+    estimated or from a named oil), and the user material tables; not the title or any comment."""
+    values = {}
+    for f in FIELDS:
+        if not f.section:
+            continue
+        value = case
+        for part in f.path:
+            value = getattr(value, part)
+        values[f.key] = value
+    values["materials"] = case.materials
+    return values
+
+
+def result_fingerprint(case, model: str, options: dict | None = None) -> str:
+    """A 20-hex-digit hash of what a result depends on: :data:`RESULTS_VERSION`, the model
+    (``"quasistatic"`` or ``"dynamic"``), its options (e.g. the run length) and the case's values
+    (:func:`case_values`). Equal for two cases that differ only in title or comments."""
+    text = json.dumps(
+        {
+            "results_version": RESULTS_VERSION,
+            "model": model,
+            "options": options or {},
+            "case": case_values(case),
+        },
+        sort_keys=True,
+        default=repr,
+    )
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
