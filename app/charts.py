@@ -1,6 +1,6 @@
 """Plotly figures of a result, for the app's chart panels (no trame here).
 
-Every figure reads a :class:`app.frames.FrameSource` (the same per-frame data the 3-D view shows, so
+Every figure reads a :class:`viz.frames.FrameSource` (the same per-frame data the 3-D view shows, so
 a quasi-static result is charted through its steady kinematics) or the result Dataset itself.
 Axes are in display units: time in ms, angles in degrees, lengths in mm, pressures in GPa, speeds
 in rev/min. ``HELP`` holds a plain-language explanation of each chart, for teaching.
@@ -12,9 +12,10 @@ import numpy as np
 import plotly.graph_objects as go
 import xarray as xr
 
-from .frames import RPM, TWO_PI, FrameSource
-from .palette import MAX_COMPARED, ball_colours, run_colours, run_style, run_tag
-from .raceway import INNER, OUTER, RACES
+from solver import RPM, loaded_mask
+from viz.frames import TWO_PI, FrameSource
+from viz.palette import MAX_COMPARED, ball_colours, run_colours, run_style, run_tag
+from viz.raceway import INNER, OUTER, RACES
 
 RACE_COLOURS = {INNER: "#1f77b4", OUTER: "#d62728"}
 
@@ -168,8 +169,8 @@ def contact_angle_figure(
     step = max(1, int(np.ceil(source.n_frames / max_points)))
     t_ms = source.times[::step] * 1e3
     alpha = np.degrees(source.contact["contact_angle"][::step])
-    load = np.nan_to_num(source.contact["contact_load"][::step])
-    angle = np.where(load > 0, alpha, np.nan)  # (frame, ball, race); open contacts: gaps
+    load = source.contact["contact_load"][::step]
+    angle = np.where(loaded_mask(load, alpha), alpha, np.nan)  # (frame, ball, race); gaps: open
     for race in (INNER, OUTER):
         if every_ball:
             gap = np.full((len(balls), 1), np.nan)
@@ -366,21 +367,22 @@ def current_contact_traces(source: FrameSource, current: int, balls=None) -> lis
     return traces
 
 
-def trajectory_metric_words(summary) -> str:
-    """Excursion and band thickness of each race in its own ring's frame, from
-    ``ds.racetrace.summary()`` (degree and micrometres)."""
+def trajectory_metric_words(ds: xr.Dataset) -> str:
+    """Excursion and band thickness of each race in its own ring's frame (the metrics
+    ``excursion``, ``excursion_arc``, ``band_thickness``, ``band_thickness_arc``), in degree and
+    micrometres."""
+    metric = ds.racetrace.metric
     parts = []
-    for race, frame in ((INNER, "inner_ring"), (OUTER, "outer_ring")):
-        pick = {"race": RACES[race], "frame": frame}
-        exc = float(summary["trajectory_excursion"].sel(pick))
-        exc_arc = float(summary["trajectory_excursion_arc"].sel(pick)) * 1e6
-        thick = float(summary["trajectory_band_thickness"].sel(pick))
+    for race in RACES:
+        exc = float(metric("excursion").sel(race=race))
+        exc_arc = float(metric("excursion_arc").sel(race=race)) * 1e6
+        thick = float(metric("band_thickness").sel(race=race))
         if np.isfinite(thick):
-            thick_arc = float(summary["trajectory_band_thickness_arc"].sel(pick)) * 1e6
+            thick_arc = float(metric("band_thickness_arc").sel(race=race)) * 1e6
             band = f"band thickness {thick:.3f}° ({thick_arc:.0f} µm)"
         else:
             band = "band thickness needs a dynamic run"
-        parts.append(f"{RACES[race]} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
+        parts.append(f"{race} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
     return "; ".join(parts)
 
 
@@ -486,7 +488,7 @@ MAP_COLUMNS = 3  # raceway maps per row when several runs are compared
 def side_by_side_raceway_maps(*sources: FrameSource, max_points: int = 10000) -> go.Figure:
     """Runs compared: unrolled raceway maps of each run (A = the run on show, then B, C ...),
     side by side (at most :data:`MAP_COLUMNS` per row), same contact-angle axis, each run in its
-    own colour (:func:`app.palette.run_colours`; inner race its colour, outer race a darker shade).
+    own colour (:func:`viz.palette.run_colours`; inner race its colour, outer race a darker shade).
     The runs' full names are too long for the narrow column: the page lists them above the chart."""
     from plotly.subplots import make_subplots
 
@@ -551,7 +553,7 @@ HELP["compare_runs"] = (
 
 
 # Compared runs (A = the run on show, then B, C ...): each its own colour (the inner race in it,
-# the outer race in a darker shade), marker and line dash (app.palette).
+# the outer race in a darker shade), marker and line dash (viz.palette).
 RUN_STYLES = {run_tag(i): run_style(i) for i in range(MAX_COMPARED)}
 RUN_COLOURS = {run_tag(i): run_colours(i) for i in range(MAX_COMPARED)}
 
@@ -570,20 +572,15 @@ HELP["compare_load"] = (
     "a load zone around the load direction and the balls opposite it carry less, or nothing."
 )
 HELP["compare_summary"] = (
-    "Summary per run and race. Contact angle min/max tell where the contact sits in the groove; "
-    "the excursion (how far the mean track wanders across the groove going round the raceway) "
-    "and the band thickness (the spread at one raceway azimuth, across passes and balls: 0 for a "
-    "thin line; '-' for a quasi-static result, which has one pass) are measured in each race's "
-    "own ring frame, after the run has settled (see docs/results-schema.md); the largest contact "
-    "load and "
-    "peak pressure tell how hard the most loaded ball is pressed (fatigue life); the cage speed "
-    "shows whether the ball set orbits as kinematics predicts."
+    "Summary per run and race, every number taken after a dynamic run has settled (its "
+    "analysed window; see docs/results-schema.md). Contact angle min/max tell where the contact "
+    "sits in the groove; the excursion (how far the mean track wanders across the groove going "
+    "round the raceway) and the band thickness (the spread at one raceway azimuth, across passes "
+    "and balls: 0 for a thin line; '-' for a quasi-static result, which has one pass) are "
+    "measured in each race's own ring frame; the largest contact load and peak pressure tell how "
+    "hard the most loaded ball is pressed (fatigue life); the cage speed shows whether the ball "
+    "set orbits as kinematics predicts."
 )
-
-
-def _loaded(alpha: np.ndarray, load: np.ndarray) -> np.ndarray:
-    """Whether a contact carries load (N, > 0) and has a finite contact angle (rad)."""
-    return np.isfinite(alpha) & (np.nan_to_num(load) > 0.0)
 
 
 def azimuth_samples(source: FrameSource) -> dict[str, np.ndarray]:
@@ -602,65 +599,35 @@ def azimuth_samples(source: FrameSource) -> dict[str, np.ndarray]:
     return samples
 
 
-def mean_cage_speed(source: FrameSource, ds: xr.Dataset) -> float:
-    """Mean cage speed (rev/min): the mean of the result's ``cage_speed`` samples (rad/s; one
-    value for a quasi-static result); without that variable, the cage angle advanced over the run
-    divided by its duration."""
-    if "cage_speed" in ds:
-        speed = np.asarray(ds["cage_speed"].values, float)
-        if np.isfinite(speed).any():
-            return float(np.nanmean(speed)) / RPM
-    duration = float(source.times[-1] - source.times[0])
-    if duration <= 0.0:
-        return float("nan")
-    return float(source.cage_angle[-1] - source.cage_angle[0]) / duration / RPM
+def run_summary(ds: xr.Dataset) -> dict:
+    """Summary numbers of one run for the run comparison, in display units: metrics of the
+    metrics table (``ds.racetrace.metric``; loaded contacts, over the analysed window of a dynamic
+    run), converted here only. Returns ``{"inner": {...}, "outer": {...}, "cage_speed_rpm":
+    float}``, each race holding
 
+    * ``contact_angle_min_deg``, ``contact_angle_max_deg``: ``min_contact_angle`` and
+      ``max_contact_angle`` (degree);
+    * ``excursion_deg``, ``band_thickness_deg``: ``excursion`` and ``band_thickness``, the race in
+      its own ring's frame (degree; NaN thickness for a quasi-static result);
+    * ``contact_load_max_N``: ``largest_load`` (N);
+    * ``max_pressure_max_GPa``: ``peak_pressure`` (GPa).
 
-def run_summary(source: FrameSource, ds: xr.Dataset) -> dict:
-    """Summary numbers of one run for the run comparison, in display units.
-
-    Samples are those of :func:`azimuth_samples` (per-ball values of a quasi-static result, every
-    time sample of every ball of a dynamic run); a sample is *loaded* when its contact load is
-    > 0 N and its contact angle finite. Returns ``{"inner": {...}, "outer": {...},
-    "cage_speed_rpm": float}``, each race holding
-
-    * ``contact_angle_min_deg``, ``contact_angle_max_deg``: smallest and largest contact angle of
-      the loaded samples (degree);
-    * ``excursion_deg``, ``band_thickness_deg``: the trajectory excursion and band thickness of
-      the race in its own ring's frame (degree), as the solver defines them
-      (:mod:`solver.results.summary`, ``ds.racetrace.summary()``; NaN thickness for a
-      quasi-static result);
-    * ``contact_load_max_N``: largest contact load (N);
-    * ``max_pressure_max_GPa``: largest Hertz peak pressure of the loaded samples (GPa).
-
-    ``cage_speed_rpm`` is :func:`mean_cage_speed` (rev/min). A race without any loaded sample
-    gets NaN values.
+    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min).
     """
-    from solver import headline
-
-    metrics = headline(ds.racetrace.summary())
-    samples = azimuth_samples(source)
-    summary = {}
-    for race in (INNER, OUTER):
-        alpha = samples["contact_angle"][:, race]
-        load = samples["contact_load"][:, race]
-        loaded = _loaded(alpha, load)
-        if loaded.any():
-            alpha_deg = np.degrees(alpha[loaded])
-            low, high = float(alpha_deg.min()), float(alpha_deg.max())
-            load_max = float(np.nanmax(load))
-            pressure_max = float(np.nanmax(samples["max_pressure"][loaded, race])) * 1e-9
-        else:
-            low = high = load_max = pressure_max = float("nan")
-        summary[RACES[race]] = {
-            "contact_angle_min_deg": low,
-            "contact_angle_max_deg": high,
-            "excursion_deg": metrics[RACES[race]]["excursion_deg"],
-            "band_thickness_deg": metrics[RACES[race]]["band_thickness_deg"],
-            "contact_load_max_N": load_max,
-            "max_pressure_max_GPa": pressure_max,
-        }
-    summary["cage_speed_rpm"] = mean_cage_speed(source, ds)
+    columns = (
+        ("contact_angle_min_deg", "min_contact_angle", 1.0),
+        ("contact_angle_max_deg", "max_contact_angle", 1.0),
+        ("excursion_deg", "excursion", 1.0),
+        ("band_thickness_deg", "band_thickness", 1.0),
+        ("contact_load_max_N", "largest_load", 1.0),
+        ("max_pressure_max_GPa", "peak_pressure", 1e-9),
+    )
+    metric = ds.racetrace.metric
+    summary = {
+        race: {key: float(metric(name).sel(race=race)) * scale for key, name, scale in columns}
+        for race in RACES
+    }
+    summary["cage_speed_rpm"] = float(metric("mean_cage_speed")) / RPM
     return summary
 
 
@@ -704,7 +671,7 @@ def _azimuth_trace(
     alpha = samples["contact_angle"][:, race]
     load = samples["contact_load"][:, race]
     if quantity == "contact_angle":
-        y = np.where(_loaded(alpha, load), np.degrees(alpha), np.nan)
+        y = np.where(loaded_mask(load, alpha), np.degrees(alpha), np.nan)
     else:
         y = np.nan_to_num(load)
     style = RUN_STYLES[tag]

@@ -106,14 +106,6 @@ def revolution_words(time: float, facts: Facts, total_time: float | None = None)
     return f"revolution {done:.1f} of {total_time / period:.3g}"
 
 
-def misalignment_words(facts: Facts) -> str:
-    """'tilt axis, fixed in space' / 'tilt axis, turning with the ring' ('' without a tilt)."""
-    if facts.misalignment == 0.0:
-        return ""
-    where = "turning with the ring" if facts.misalignment_turns else "fixed in space"
-    return f"tilt axis, {where}"
-
-
 def what_you_see(facts: Facts, exaggeration: float = 1.0, ellipse_scale: float = 1.0) -> str:
     """A short note on what the 3-D view shows for this operating point."""
     parts = [

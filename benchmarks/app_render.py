@@ -2,7 +2,7 @@
 
     python benchmarks/app_render.py [--run FILE.nc] [--size 820x670] [--frames 60]
 
-Builds the scene of the app (:class:`app.scene.BearingScene`, the default isometric camera, the
+Builds the scene of the app (:class:`viz.scene.BearingScene`, the default isometric camera, the
 painted tracks growing) for a dynamic result off screen, and times each step of a played frame as
 the app's view does it: the scene update (``set_frame``: actors, ellipses, painted tracks), the
 render, the capture of the image and its JPEG encoding (trame-rca's, at the quality it uses while
@@ -53,10 +53,10 @@ def main() -> int:
     from trame_rca.encoders import RcaImageEncoder
     from trame_rca.rca.vtk_rca import VtkRemoteControlledArea
 
-    from app.frames import frame_source
-    from app.scene import BearingScene, SceneOptions
     from solver import load_dataset
     from solver.results.dataset import geometry_from_result
+    from viz.frames import frame_source
+    from viz.scene import BearingScene, SceneOptions
 
     ds = load_dataset(run)
     t0 = time.perf_counter()

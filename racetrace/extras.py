@@ -1,18 +1,5 @@
-"""Which optional extras (``pip install -e ".[app]"``, ``".[report]"``) are installed."""
+"""Which optional extras are installed: the check of :mod:`report.extras`, for the commands."""
 
-from __future__ import annotations
+from report.extras import missing_modules
 
-import importlib.util
-
-
-def missing_modules(names) -> list[str]:
-    """The modules of ``names`` that cannot be found here (their extra is not installed)."""
-    missing = []
-    for name in names:
-        try:
-            found = importlib.util.find_spec(name) is not None
-        except (ImportError, ValueError):
-            found = False
-        if not found:
-            missing.append(name)
-    return missing
+__all__ = ["missing_modules"]

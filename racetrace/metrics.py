@@ -1,8 +1,9 @@
 """The trajectory metrics and rating lives of a result as text and as JSON, for the commands that
 print them.
 
-The numbers come from ``ds.racetrace.summary()`` (defined in :mod:`solver.results.summary` and
-:mod:`solver.results.life`); each race is reported in its own ring's frame, the headline value.
+The numbers are metrics of the metrics table, asked for by name (``ds.racetrace.metric``,
+solver.results.metrics); each race is reported in its own ring's frame, the headline value. Here
+they are only converted to the units printed.
 """
 
 from __future__ import annotations
@@ -10,17 +11,64 @@ from __future__ import annotations
 import math
 
 import solver  # noqa: F401  (registers the ds.racetrace accessor)
-from solver import QUASISTATIC_THICKNESS_NOTE, headline, life_headline, ring_speeds
+
+HOUR = 3600.0  # s
+#: (key printed per race, metric): each race's trajectory numbers, SI units and degree.
+RACE_METRICS = (
+    ("excursion_deg", "excursion"),
+    ("excursion_m", "excursion_arc"),
+    ("band_thickness_deg", "band_thickness"),
+    ("band_thickness_m", "band_thickness_arc"),
+    ("ellipse_semi_major_mean_m", "mean_semi_major"),
+    ("band_width_deg", "band_width"),
+)
+#: (key printed, metric, divisor): the rating lives (million revolutions, hours) and C_r, P_r.
+LIFE_VALUES = (
+    ("L10_million_revolutions", "basic_rating_life", 1e6),
+    ("L10_hours", "basic_rating_life_time", HOUR),
+    ("L10r_million_revolutions", "reference_rating_life", 1e6),
+    ("L10r_hours", "reference_rating_life_time", HOUR),
+    ("basic_load_rating_N", "basic_load_rating", 1.0),
+    ("equivalent_load_N", "equivalent_load", 1.0),
+)
 
 
 def finite_or_none(value: float) -> float | None:
     return float(value) if math.isfinite(value) else None
 
 
+def headline(ds) -> dict:
+    """Each race's trajectory numbers in its own ring's frame (:data:`RACE_METRICS`, plain floats)
+    plus ``settled`` / ``settling_time_s`` / ``analysis_start_time_s`` for a dynamic result."""
+    metric = ds.racetrace.metric
+    out = {
+        race: {key: float(metric(name).sel(race=race)) for key, name in RACE_METRICS}
+        for race in ("inner", "outer")
+    }
+    if "time" in ds.dims:
+        out["settled"] = bool(int(metric("settled")))
+        out["settling_time_s"] = float(metric("settling_time"))
+        out["analysis_start_time_s"] = float(metric("analysis_start_time"))
+    return out
+
+
+def life_headline(ds) -> dict:
+    """The rating lives as plain floats (:data:`LIFE_VALUES`: NaN where not available, inf for an
+    unloaded or non-rotating bearing) and ``notes`` (the metrics' notes, without repeats)."""
+    out, notes = {}, []
+    for key, name, divisor in LIFE_VALUES:
+        value = ds.racetrace.metric(name)
+        out[key] = float(value) / divisor
+        note = value.attrs.get("note")
+        if note and note not in notes:
+            notes.append(note)
+    out["notes"] = notes
+    return out
+
+
 def metrics_json(ds) -> dict:
     """JSON-ready metrics (SI units, angles in degree; NaN written as null)."""
-    metrics = ds.racetrace.summary()
-    values = headline(metrics)
+    values = headline(ds)
     out = {
         "frame": "each race in its own ring's frame",
         "units": {"angle": "degree", "length": "m", "time": "s"},
@@ -31,17 +79,16 @@ def metrics_json(ds) -> dict:
         out["settled"] = values["settled"]
         out["settling_time_s"] = finite_or_none(values["settling_time_s"])
         out["analysis_start_time_s"] = values["analysis_start_time_s"]
-        out["analysed_window"] = metrics.attrs.get("analysed_window", "")
+        out["analysed_window"] = ds.racetrace.summary().attrs.get("analysed_window", "")
     else:
-        out["band_thickness_note"] = QUASISTATIC_THICKNESS_NOTE
+        out["band_thickness_note"] = ds.racetrace.metric("band_thickness").attrs["note"]
     return out
 
 
 def metrics_text(ds) -> str:
     """Readable lines: excursion and band thickness per race (degree and um), the mean ellipse
     semi-major axis for scale, and where the analysed window starts (dynamic results)."""
-    metrics = ds.racetrace.summary()
-    values = headline(metrics)
+    values = headline(ds)
     lines = ["trajectory metrics (each race in its own ring's frame):"]
     for race in ("inner", "outer"):
         v = values[race]
@@ -63,8 +110,7 @@ def metrics_text(ds) -> str:
             f"{v['ellipse_semi_major_mean_m'] * 1e6:.1f} um (mean)"
         )
     if "settled" in values:
-        inner, outer = ring_speeds(ds)
-        period = 2.0 * math.pi / abs(inner - outer)
+        period = float(ds.racetrace.metric("shaft_period"))
         start = values["analysis_start_time_s"]
         if values["settled"]:
             settled = values["settling_time_s"]
@@ -83,7 +129,7 @@ def metrics_text(ds) -> str:
 def life_json(ds) -> dict:
     """JSON-ready rating lives: L10 (ISO 281) and L10r (ISO/TS 16281) in million revolutions and
     hours, C_r and P_r in N; a life that is not finite is null, with the reason in ``notes``."""
-    values = life_headline(ds.racetrace.summary())
+    values = life_headline(ds)
     notes = list(values.pop("notes"))
     if any(math.isinf(v) for v in values.values()):
         notes.append(
@@ -115,7 +161,7 @@ def _number(value: float) -> str:
 def life_text(ds) -> str:
     """Readable lines: L10 (ISO 281, applied loads) and L10r (ISO/TS 16281, computed contact
     loads) in million revolutions and hours, with C_r, P_r and the notes."""
-    values = life_headline(ds.racetrace.summary())
+    values = life_headline(ds)
     window = " over the analysed window" if "time" in ds.dims else ""
     rating = (
         f" (C_r {values['basic_load_rating_N']:.0f} N, P_r {values['equivalent_load_N']:.0f} N)"

@@ -52,7 +52,7 @@ MODELS = ("quasistatic", "dynamic")
 
 def missing_report_modules() -> list[str]:
     """Modules of the ``report`` extra that are not installed."""
-    from racetrace.extras import missing_modules
+    from .extras import missing_modules
 
     return missing_modules(REPORT_MODULES)
 
@@ -131,7 +131,7 @@ def _provenance(ds) -> str:
 
 # ---- one run --------------------------------------------------------------------------------
 def _operating_rows(ds):
-    from solver import variable
+    from solver import RPM, variable
 
     rows = []
     for name in (
@@ -154,7 +154,7 @@ def _operating_rows(ds):
         spec = variable(name)
         value = ds.coords[name].values
         if name.endswith("_speed"):
-            rows.append((spec.long_name, _fmt(float(value) * 30.0 / math.pi, 6), "rpm"))
+            rows.append((spec.long_name, _fmt(float(value) / RPM, 6), "rpm"))
         elif value.dtype.kind in "fiu":
             rows.append((spec.long_name, _fmt(value, 6), spec.units))
         else:
@@ -163,16 +163,19 @@ def _operating_rows(ds):
 
 
 def _summary_rows(ds):
-    from solver import POINT_METRICS, point_metrics
+    from solver import (
+        METRICS,
+        POINT_METRICS,  # the metrics a study keeps, rows of the table
+    )
 
-    metrics = point_metrics(ds)
     rows = []
-    for name, (dims, units, long_name, _d) in POINT_METRICS.items():
-        value = metrics.get(name)
-        if dims:
-            rows.append((long_name, _fmt(value["inner"]), _fmt(value["outer"]), units))
+    for name in POINT_METRICS:
+        row, value = METRICS[name], ds.racetrace.metric(name)
+        if row.dims:
+            inner, outer = (_fmt(float(value.sel(race=race))) for race in ("inner", "outer"))
+            rows.append((row.long_name, inner, outer, row.units))
         else:
-            rows.append((long_name, _fmt(value), "", units))
+            rows.append((row.long_name, _fmt(float(value)), "", row.units))
     return rows
 
 

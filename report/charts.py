@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from solver import loaded_mask
+
 MAX_MAP_POINTS = 20_000
 MAX_TIME_POINTS = 2_000
 RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
@@ -44,7 +46,7 @@ def raceway_map(ds, race: str):
     angle = np.asarray(ds["contact_angle"].sel(race=race).values, float).ravel()
     azimuth = np.asarray(ds["raceway_azimuth"].sel(race=race).values, float).ravel()
     load = np.asarray(ds["contact_load"].sel(race=race).values, float).ravel()
-    ok = np.isfinite(angle) & np.isfinite(azimuth) & (load > 0)
+    ok = loaded_mask(load, angle) & np.isfinite(azimuth)
     angle, azimuth = angle[ok], azimuth[ok]
     step = _stride(angle.size, MAX_MAP_POINTS)
     fig = _figure(
@@ -68,17 +70,18 @@ def raceway_map(ds, race: str):
 
 def contact_series(ds, name: str, label: str, scale: float = 1.0):
     """A contact variable per race: against time for a dynamic result (mean over the loaded
-    balls, and ball 1), against ball azimuth for a quasi-static one."""
+    balls, and ball 1; loaded as :func:`solver.loaded_mask` defines it), against ball azimuth for
+    a quasi-static one."""
     if "time" in ds.dims:
         t = np.asarray(ds["time"].values, float) * 1e3
         step = _stride(t.size, MAX_TIME_POINTS)
         fig = _figure(f"{label} against time", "time [ms]", label)
         for race in ("inner", "outer"):
-            values = np.asarray(ds[name].sel(race=race).transpose("time", "ball").values, float)
-            load = np.asarray(
-                ds["contact_load"].sel(race=race).transpose("time", "ball").values, float
+            values, load, angle = (
+                np.asarray(ds[v].sel(race=race).transpose("time", "ball").values, float)
+                for v in (name, "contact_load", "contact_angle")
             )
-            masked = np.where(load > 0, values, np.nan) * scale
+            masked = np.where(loaded_mask(load, angle), values, np.nan) * scale
             with np.errstate(all="ignore"):
                 mean = np.nanmean(masked, axis=1)
             fig.line(

@@ -1,9 +1,10 @@
-"""The report's 3-D scene: the app's bearing scene (app.scene) at the last sample of a result,
-with the contact trajectories of the whole run painted on both raceways.
+"""The report's 3-D scene: the bearing scene of the drawing package (viz.scene, shared with the
+app) at the last sample of a result, with the contact trajectories of the whole run painted on both
+raceways.
 
 Returns the pyvista Plotter; the page shows its render window through Panel's VTK pane (vtk.js,
 turn and zoom in the browser) and a PNG of it for printing. Traces hold at most
-``app.scene.MAX_TRACE_SAMPLES`` samples per ball and race (longer runs are decimated).
+``viz.marks.MAX_TRACE_SAMPLES`` samples per ball and race (longer runs are decimated).
 """
 
 from __future__ import annotations
@@ -16,9 +17,10 @@ def bearing_plotter(ds, size=(900, 600)):
     sample and the trajectories; ``note`` says what was decimated ("" when nothing was)."""
     import pyvista as pv
 
-    from app.frames import FrameSource
-    from app.scene import MAX_TRACE_SAMPLES, BearingScene
     from solver import geometry_from_result
+    from viz.frames import FrameSource
+    from viz.marks import MAX_TRACE_SAMPLES
+    from viz.scene import BearingScene
 
     pv.OFF_SCREEN = True
     plotter = pv.Plotter(off_screen=True, window_size=list(size))

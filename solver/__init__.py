@@ -29,7 +29,7 @@ the case schema's table and helpers (``FIELDS``, ``fields_by_key``, ``format_num
 message helpers (``clean_message``, ``clip``, ``printable``), ``resolve_case`` (a Case from a
 path or a catalogue name: the models take a Case, the functions here resolve names first),
 ``preload()`` (the imports a forking server shares) and the result and study helpers the views
-read (``ring_speeds``, ``geometry_from_result``, ``headline``, ``study_dataset``, ...).
+read (``ring_speeds``, ``geometry_from_result``, ``METRICS``, ``study_dataset``, ...).
 
 The numba kernels are imported on first use; registering the accessor imports xarray.
 """
@@ -95,10 +95,11 @@ _LAZY = {
     "ring_speeds": "solver.results.dataset",
     "geometry_from_result": "solver.results.dataset",
     "trajectory_summary": "solver.results.summary",
-    "headline": "solver.results.summary",
-    "life_headline": "solver.results.summary",
     "QUASISTATIC_THICKNESS_NOTE": "solver.results.summary",
     "RacetraceAccessor": "solver.results.accessor",
+    "METRICS": "solver.results.metrics",
+    "loaded_mask": "solver.results.loaded",
+    "RPM": "solver.units",
     "RESULTS_VERSION": "solver.results.provenance",
     "result_fingerprint": "solver.results.provenance",
     # studies (docs/study-format.md)
@@ -107,6 +108,8 @@ _LAZY = {
     "open_study": "solver.study",
     "study_dataset": "solver.study",
     "shipped_studies": "solver.study",
+    "scheduler_address": "solver.study.runner",
+    "connect_scheduler": "solver.study.runner",
     "POINT_METRICS": "solver.study.metrics",
     "point_metrics": "solver.study.metrics",
     # the compiled-kernel cache (racetrace cache)

@@ -17,13 +17,7 @@ from .geometry import BearingGeometry, free_contact_angle_from_clearance
 from .materials import Material
 from .physics import rheology as rh
 from .physics.rheology import viscosity_at_temperature
-
-#: SI value of one case unit.
-MM = 1e-3  # m
-GRAM = 1e-3  # kg
-RPM = math.pi / 30.0  # rad/s
-GPA = 1e9  # Pa
-PER_GPA = 1e-9  # 1/Pa
+from .units import GPA, GRAM, MM, PER_GPA, RPM  # SI value of one case unit
 
 
 def rpm_to_rad_s(rpm: float) -> float:

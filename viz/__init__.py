@@ -1,0 +1,11 @@
+"""Drawing of a bearing result, shared by the browser app and the report (pyvista/VTK, no trame).
+
+Modules without VTK: :mod:`viz.layers` (layer names), :mod:`viz.palette` (colours),
+:mod:`viz.raceway` (points on the grooves), :mod:`viz.frames` (per-frame data of a result),
+:mod:`viz.tracks` (painted-track fields). With pyvista: :mod:`viz.scene` (the bearing scene) and
+the parts it composes (:mod:`viz.meshes`, :mod:`viz.layout`, :mod:`viz.painted`, :mod:`viz.bodies`,
+:mod:`viz.marks`, :mod:`viz.closeup`, :mod:`viz.overlay`, :mod:`viz.camera`).
+
+Reads results Datasets (with the ``solver`` package's readers); never imports the app, the report or
+the command line.
+"""

@@ -11,9 +11,10 @@ compared, "" when fine); the charts ``chart_compare_runs``, ``chart_compare_angl
 
 from __future__ import annotations
 
+from viz.frames import frame_source
+from viz.palette import MAX_COMPARED, run_colours, run_style, run_tag
+
 from .. import charts
-from ..frames import frame_source
-from ..palette import MAX_COMPARED, run_colours, run_style, run_tag
 from .base import Component, fig_json
 
 MAX_CACHED = MAX_COMPARED  # loaded runs kept for the next comparison
@@ -93,9 +94,7 @@ class Compare(Component):
         shown = [(None, label, result.dataset, result.source)]
         shown += runs
         sources = [source for _, _, _, source in shown]
-        summaries = {
-            run_tag(i): charts.run_summary(source, ds) for i, (_, _, ds, source) in enumerate(shown)
-        }
+        summaries = {run_tag(i): charts.run_summary(ds) for i, (_, _, ds, _) in enumerate(shown)}
         legend = []
         for i, (_, label, _, _) in enumerate(shown):
             colours = run_colours(i)

@@ -20,10 +20,11 @@ import time
 
 import numpy as np
 
+from viz.frames import FrameSource, frame_source
+from viz.layers import LAYERS
+from viz.palette import ball_legend
+
 from .. import charts
-from ..frames import FrameSource, frame_source
-from ..layers import LAYERS
-from ..palette import ball_legend
 from ..runs import describe_case
 from .base import Component, as_float, as_int, fig_json
 from .case_form import solve_quasistatic
@@ -190,15 +191,13 @@ class ResultView(Component):
     def _describe_tracks(self, ds) -> None:
         """Shoulder limits, settling window and trajectory metrics of ``ds`` for the map."""
         from solver import geometry_from_result
-
-        from ..raceway import shoulder_angles
+        from viz.raceway import shoulder_angles
 
         self._map_key = None
         self._shoulders = shoulder_angles(geometry_from_result(ds))
         try:
-            summary = ds.racetrace.summary()
-            self.state.raceway_metrics = charts.trajectory_metric_words(summary)
-            start = float(summary["analysis_start_time"]) if "time" in ds.dims else math.nan
+            self.state.raceway_metrics = charts.trajectory_metric_words(ds)
+            start = float(ds.racetrace.metric("analysis_start_time"))
             self._analysis_start = start if math.isfinite(start) else None
         except (KeyError, ValueError) as error:  # an older result: the map still shows
             log.warning("no trajectory metrics for the map: %s", error)
@@ -207,7 +206,7 @@ class ResultView(Component):
 
     def _closeup_numbers(self, index: int) -> str:
         """The close-up ball's two contacts in numbers at frame ``index``."""
-        from ..raceway import RACES
+        from viz.raceway import RACES
 
         j = max(0, self._trace_ball(self.state.trace_ball, self.source.ball_count))
         f = self.source.frame(index)
@@ -273,7 +272,7 @@ class ResultView(Component):
         return math.radians(float(ds.coords["radial_load_angle"]))
 
     def _animation_options(self, ds) -> dict:
-        """Options of :func:`app.frames.frame_source`: a quasi-static result is animated for the
+        """Options of :func:`viz.frames.frame_source`: a quasi-static result is animated for the
         form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form)."""
         case = self.session.form.case
         if "time" in ds.dims or case is None:
@@ -299,7 +298,7 @@ class ResultView(Component):
             return
         import pyvista as pv
 
-        from ..scene import BearingScene, SceneOptions
+        from viz.scene import BearingScene, SceneOptions
 
         if self.plotter is None:
             pv.global_theme.multi_samples = 0

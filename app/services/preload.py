@@ -24,12 +24,12 @@ import xarray  # noqa: E402, F401
 from trame.app import get_server  # noqa: E402, F401
 
 import app.access  # noqa: E402, F401
-import app.scene  # noqa: E402, F401
 import app.session_process  # noqa: E402, F401
 import app.state  # noqa: E402, F401
-import app.tracks  # noqa: E402, F401
 import app.ui  # noqa: E402, F401
 import solver  # noqa: E402
+import viz.scene  # noqa: E402, F401
+import viz.tracks  # noqa: E402, F401
 
 solver.preload()
 
@@ -40,7 +40,7 @@ def _warm() -> None:
     import numpy as np
 
     from app.state import DEFAULT_CASE
-    from app.tracks import _paint
+    from viz.tracks import _paint
 
     entries = {entry.name: entry for entry in solver.catalogue()}
     if DEFAULT_CASE in entries:

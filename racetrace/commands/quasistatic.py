@@ -24,6 +24,7 @@ import numpy as np
 
 from ._output import output_problem, save_result
 
+RACES = ("inner", "outer")
 #: The result could not be written to --output: it went to the temporary folder, or nowhere.
 EXIT_NOT_WRITTEN = 5
 
@@ -57,10 +58,13 @@ def summary(ds) -> dict:
         return [float(v) for v in np.asarray(values).ravel()]
 
     from racetrace.metrics import finite_or_none, life_json, metrics_json
-    from solver import ring_speeds
+    from solver import RPM, ring_speeds
 
     load = ds.contact_load.values
     inner_speed, outer_speed = ring_speeds(ds)
+    largest_load, peak_pressure = (
+        ds.racetrace.metric(n) for n in ("largest_load", "peak_pressure")
+    )
     return {
         "model": "quasistatic",
         "units": {
@@ -71,8 +75,8 @@ def summary(ds) -> dict:
             "speed": "rad/s",
             "moment": "N m",
         },
-        "inner_ring_speed_rpm": inner_speed * 30.0 / math.pi,
-        "outer_ring_speed_rpm": outer_speed * 30.0 / math.pi,
+        "inner_ring_speed_rpm": inner_speed / RPM,
+        "outer_ring_speed_rpm": outer_speed / RPM,
         "inner_ring_offset_m": floats(ds.inner_ring_offset.values),
         "inner_ring_tilt_deg": floats(ds.inner_ring_tilt.values),
         "inner_ring_moment_Nm": floats(ds.inner_ring_moment.values),
@@ -80,11 +84,8 @@ def summary(ds) -> dict:
         "cage_to_shaft_speed_ratio": finite_or_none(
             float(ds.cage_speed.values) / inner_speed if inner_speed else math.nan
         ),  # null for a shaft at rest (or so slow that the ratio overflows)
-        "max_contact_load_N": {"inner": float(load[:, 0].max()), "outer": float(load[:, 1].max())},
-        "max_pressure_Pa": {
-            "inner": float(ds.max_pressure.values[:, 0].max()),
-            "outer": float(ds.max_pressure.values[:, 1].max()),
-        },
+        "max_contact_load_N": {r: float(largest_load.sel(race=r)) for r in RACES},
+        "max_pressure_Pa": {r: float(peak_pressure.sel(race=r)) for r in RACES},
         "solver": {
             "iterations": int(ds.attrs.get("solver_iterations", 0)),
             "residual": float(ds.attrs.get("solver_residual", 0.0)),
@@ -128,8 +129,8 @@ def table(ds, case) -> str:
     op = case.operating
     b = case.bearing
     inner_speed = ring_speeds(ds)[0]
-    p_max = float(ds.max_pressure.values.max())
-    unit, factor = _pressure_unit(p_max)
+    peak = ds.racetrace.metric("peak_pressure")
+    unit, factor = _pressure_unit(float(peak.max()))
     offset = ds.inner_ring_offset.values * 1e6
     tilt = ds.inner_ring_tilt.values
     moment = ds.inner_ring_moment.values
@@ -152,8 +153,8 @@ def table(ds, case) -> str:
             else " (what the shaft must apply to hold the imposed alignment)"
         ),
         f"cage speed: {float(ds.cage_speed):.2f} rad/s{ratio}",
-        f"max pressure: inner {ds.max_pressure.values[:, 0].max() * factor:.3f} {unit}, "
-        f"outer {ds.max_pressure.values[:, 1].max() * factor:.3f} {unit}",
+        f"max pressure: inner {float(peak.sel(race='inner')) * factor:.3f} {unit}, "
+        f"outer {float(peak.sel(race='outer')) * factor:.3f} {unit}",
     ]
     note = ds.attrs.get("race_control_note", "")
     if note and "settled" not in note:

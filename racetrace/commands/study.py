@@ -2,11 +2,16 @@
 prints its points and metrics.
 
 A study (docs/study-format.md) runs on a local Dask cluster of ``--workers`` single-threaded
-processes (default: one per core), or on an existing cluster with ``--scheduler ADDRESS``. Each
-run is saved in DIR as it finishes; ``--resume`` continues a stopped study, skipping the runs
-already finished. A progress bar (runs done, running, ETA) goes to stderr. Ctrl-C stops the study:
-what is done is kept, and the command exits with 130. Exit codes: 0 every run done, 1 some runs
-failed (their messages are in the table), 2 invalid input, 130 interrupted.
+processes (default: one per core), or on an existing cluster with ``--scheduler tcp://HOST:PORT``
+(a server that does not answer as a Dask scheduler within 30 s is invalid input). Each run is
+saved in DIR as it finishes; ``--resume`` continues a stopped study, skipping the runs already
+finished, after checking that the base case, the run options and the solver are those of the
+finished runs (``--restart`` runs every point again, ``--accept-solver-change`` keeps runs made by
+another solver and records it). A progress bar (runs done, running, ETA) goes to stderr. Ctrl-C,
+SIGTERM and SIGHUP stop the study: the cluster is shut down, what is done is kept (study.nc
+written), the resume command is printed, and the command exits with 128 + the signal's number
+(130, 143, 129); a second signal stops at once. Exit codes: 0 every run done, 1 some runs failed
+(their messages are in the table), 2 invalid input, 129/130/143 stopped by a signal.
 """
 
 from __future__ import annotations
@@ -20,6 +25,10 @@ from pathlib import Path
 
 EXIT_SOME_FAILED = 1
 EXIT_INTERRUPTED = 130
+#: The signals that stop a study cleanly; the exit code is 128 + the signal's number.
+STOP_SIGNALS = tuple(
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
 
 #: Columns of ``study show``: (variable, race or None, header, scale, format)
 SHOW_COLUMNS = (
@@ -45,8 +54,8 @@ def register(subparsers) -> None:
         description=(
             "Run the study file STUDY.toml (docs/study-format.md) on Dask and keep every run in "
             "the --output folder; or `racetrace study show DIR` to print a study folder's table. "
-            "Exit codes: 0 all runs done, 1 some runs failed, 2 invalid input, 130 interrupted "
-            "(finished runs kept: run again with --resume)."
+            "Exit codes: 0 all runs done, 1 some runs failed, 2 invalid input, 130/143/129 "
+            "stopped by SIGINT/SIGTERM/SIGHUP (finished runs kept: run again with --resume)."
         ),
     )
     parser.add_argument("study", metavar="STUDY.toml | show", help="study file, or 'show'")
@@ -60,6 +69,16 @@ def register(subparsers) -> None:
     )
     parser.add_argument(
         "--resume", action="store_true", help="continue the study in --output, skipping finished"
+    )
+    parser.add_argument(
+        "--restart",
+        action="store_true",
+        help="delete the runs of the study folder --output and run every point again",
+    )
+    parser.add_argument(
+        "--accept-solver-change",
+        action="store_true",
+        help="with --resume: keep runs made by another solver version (recorded in the study)",
     )
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress bar")
     parser.add_argument("--model", choices=("quasistatic", "dynamic"), help="show: only this model")
@@ -97,6 +116,42 @@ class StudyProgressBar:
         self.stream.flush()
 
 
+class StopSignals:
+    """While active (a ``with`` block): SIGINT, SIGTERM and SIGHUP set ``event`` (the study stops
+    after cancelling what is pending, keeping what is done) and are remembered in ``signum``; a
+    second one raises KeyboardInterrupt to stop at once. The previous handlers come back on exit."""
+
+    def __init__(self, event: threading.Event):
+        self.event = event
+        self.signum: int | None = None
+        self._previous: dict = {}
+
+    def _handle(self, signum, frame):  # noqa: ARG002 - the signal handler interface
+        if self.event.is_set():
+            raise KeyboardInterrupt
+        self.signum = signum
+        self.event.set()
+        print(
+            f"\nracetrace: {signal.Signals(signum).name} received: stopping, finished runs are "
+            "kept ...",
+            file=sys.stderr,
+        )
+
+    def __enter__(self):
+        for signum in STOP_SIGNALS:
+            self._previous[signum] = signal.signal(signum, self._handle)
+        return self
+
+    def __exit__(self, *exc):
+        for signum, previous in self._previous.items():
+            signal.signal(signum, previous)
+        return False
+
+    @property
+    def exit_code(self) -> int:
+        return 128 + (self.signum or signal.SIGINT)
+
+
 def run(args) -> int:
     if args.study == "show":
         if not args.folder:
@@ -110,32 +165,47 @@ def run(args) -> int:
         return _fail(f"--workers {args.workers}: give 1 or more worker processes")
     if args.workers is not None and args.scheduler:
         return _fail("--workers and --scheduler together: the cluster at --scheduler has its own")
+    if args.restart and args.resume:
+        return _fail(
+            "--resume and --restart together: --resume keeps the finished runs, "
+            "--restart deletes them; give one"
+        )
+    if args.accept_solver_change and not args.resume:
+        return _fail("--accept-solver-change goes with --resume (it keeps the finished runs)")
     try:
         import dask.distributed  # noqa: F401
     except ImportError:
         return _fail("the study runner needs dask.distributed: pip install 'dask[distributed]'")
-    from solver import Study
+    from solver import Study, connect_scheduler, scheduler_address
 
-    study = Study.from_file(args.study)
+    if args.scheduler:
+        scheduler_address(args.scheduler)  # CaseError naming the form before any other work
     stop = threading.Event()
+    with StopSignals(stop) as signals:
+        try:
+            study = Study.from_file(args.study)
+            if stop.is_set():  # a signal while the study was read: nothing started yet
+                print("racetrace: stopped before the study started", file=sys.stderr)
+                return signals.exit_code
+            return _run_study(args, study, signals, connect_scheduler)
+        except KeyboardInterrupt:  # a second signal: stopped at once
+            print("racetrace: stopped at once; finished runs are kept", file=sys.stderr)
+            print(_resume_hint(args), file=sys.stderr)
+            return signals.exit_code if signals.signum else EXIT_INTERRUPTED
 
-    def on_sigint(signum, frame):  # noqa: ARG001
-        if stop.is_set():
-            raise KeyboardInterrupt
-        stop.set()
-        print(
-            "\nracetrace: interrupt received: stopping, finished runs are kept ...",
-            file=sys.stderr,
-        )
 
+def _resume_hint(args) -> str:
+    return (
+        f"racetrace: interrupted: run `racetrace study {args.study} --output {args.output} "
+        "--resume` to finish"
+    )
+
+
+def _run_study(args, study, signals: StopSignals, connect_scheduler) -> int:
+    stop = signals.event
     client = None
     if args.scheduler:
-        from dask.distributed import Client
-
-        try:
-            client = Client(args.scheduler, timeout=30)
-        except OSError as error:
-            return _fail(f"--scheduler {args.scheduler}: cannot connect ({error})")
+        client = connect_scheduler(args.scheduler)
     points = study.points()
     runs = sum(len(p.models) for p in points)
     print(
@@ -143,7 +213,6 @@ def run(args) -> int:
         file=sys.stderr,
     )
     bar = None if args.quiet else StudyProgressBar()
-    previous = signal.signal(signal.SIGINT, on_sigint)
     started = time.perf_counter()
     try:
         ds = study.run(
@@ -154,9 +223,10 @@ def run(args) -> int:
             progress=bar,
             cancel=stop,
             log=lambda line: print(f"racetrace: {line}", file=sys.stderr),
+            restart=args.restart,
+            accept_solver_change=args.accept_solver_change,
         )
     finally:
-        signal.signal(signal.SIGINT, previous)
         if bar is not None:
             bar.close()
         if client is not None:
@@ -172,12 +242,8 @@ def run(args) -> int:
     )
     print(show_table(ds))
     if stop.is_set() or pending:
-        print(
-            f"racetrace: interrupted: run `racetrace study {args.study} --output {args.output} "
-            "--resume` to finish",
-            file=sys.stderr,
-        )
-        return EXIT_INTERRUPTED
+        print(_resume_hint(args), file=sys.stderr)
+        return signals.exit_code
     return EXIT_SOME_FAILED if failed else 0
 
 

@@ -4,6 +4,8 @@ app.
 ``import solver`` registers it, so every results Dataset offers (results-schema.md)::
 
     ds.racetrace.summary()    # trajectory metrics (solver.results.summary), with units
+    ds.racetrace.metrics()    # the metrics table (solver.results.metrics), with units
+    ds.racetrace.metric(name) # one metric of the table (a DataArray)
     ds.racetrace.warnings()   # list[str]: where the result leaves the model's validity
     ds.racetrace.save(path)   # NetCDF, written atomically
     ds.racetrace.to_csv(path) # per-contact table: one row per (time,) ball and race
@@ -18,6 +20,7 @@ from pathlib import Path
 import xarray as xr
 
 from . import checks, io, summary
+from .metrics import METRICS, Window, compute_metric
 
 ACCESSOR_NAME = "racetrace"
 
@@ -27,6 +30,23 @@ class RacetraceAccessor:
 
     def __init__(self, ds: xr.Dataset):
         self._ds = ds
+        self._window: Window | None = None
+        self._metrics: dict[str, xr.DataArray] = {}
+
+    def metric(self, name: str) -> xr.DataArray:
+        """Metric ``name`` of the metrics table (:data:`solver.results.metrics.METRICS`), with
+        ``units``, ``long_name`` and ``description``; computed once per Dataset (xarray keeps one
+        accessor per Dataset object: a Dataset changed in place after the first call keeps the
+        metrics of its earlier values). KeyError naming the known metrics for another name."""
+        if name not in self._metrics:
+            if self._window is None:
+                self._window = Window(self._ds)
+            self._metrics[name] = compute_metric(self._window, name)
+        return self._metrics[name]
+
+    def metrics(self) -> xr.Dataset:
+        """Every metric of the table as one Dataset (cached like :meth:`metric`)."""
+        return xr.Dataset({name: self.metric(name) for name in METRICS})
 
     def summary(self) -> xr.Dataset:
         """The trajectory metrics: those stored in the result (a dynamic run), otherwise computed

@@ -35,6 +35,7 @@ import math
 import numpy as np
 
 from . import summary
+from .loaded import loaded_mask
 
 #: ISO 76 reference contact stress for ball bearings (except self-aligning), Pa: the static limit.
 STATIC_PRESSURE_LIMIT = 4.2e9
@@ -81,8 +82,11 @@ def _race_values(ds, name: str, race: str) -> np.ndarray:
 
 
 def _loaded(ds, race: str) -> np.ndarray:
-    """True at contacts that carry load (open contacts have no ellipse to check)."""
-    return _race_values(ds, "contact_load", race) > 0.0
+    """True at loaded contacts (:func:`~solver.results.loaded.loaded_mask`; open contacts have no
+    ellipse to check)."""
+    return loaded_mask(
+        _race_values(ds, "contact_load", race), _race_values(ds, "contact_angle", race)
+    )
 
 
 def _groove_radii(ds) -> tuple[float, dict[str, float]] | None:

@@ -33,6 +33,7 @@ import xarray as xr
 from solver.physics import life
 
 from .dataset import geometry_from_result, ring_speeds
+from .loaded import loaded_mask
 from .variables import variable
 
 #: Names of the life metrics (results-schema.md, summary metrics).
@@ -127,9 +128,9 @@ def rating_life(ds: xr.Dataset, start: int = 0) -> xr.Dataset:
         angle = np.radians(_contacts(ds, "contact_angle", race, samples))
         rotating = speed != load_speed
         ratings = life.raceway_load_rating(d, dm, conformity, angle, z, k == 0)
-        raceway[k] = life.raceway_life(np.where(load > 0.0, load, 0.0), ratings, rotating) * 1e6
+        loaded = loaded_mask(load, angle)
+        raceway[k] = life.raceway_life(np.where(loaded, load, 0.0), ratings, rotating) * 1e6
         q_e[k] = life.equivalent_contact_load(load, rotating)
-        loaded = load > 0.0
         if loaded.any():
             q_c[k] = life.raceway_load_rating(
                 d, dm, conformity, float(angle[loaded].mean()), z, k == 0

@@ -60,6 +60,7 @@ import xarray as xr
 
 from .dataset import ring_speeds
 from .life import LIFE_METRICS, rating_life
+from .loaded import loaded_mask
 from .variables import dimension_coordinate, variable
 
 AZIMUTH_BINS = 36
@@ -163,9 +164,12 @@ class Settling:
 
 
 def _revolution_means(ds, name: str, race: str, revolution: np.ndarray, count: int) -> np.ndarray:
-    values = np.asarray(ds[name].sel(race=race).transpose("time", "ball").values, dtype=float)
-    load = np.asarray(ds["contact_load"].sel(race=race).transpose("time", "ball").values, float)
-    loaded = (load > 0.0) & np.isfinite(values)
+    def array(variable: str) -> np.ndarray:
+        da = ds[variable].sel(race=race).transpose("time", "ball")
+        return np.asarray(da.values, dtype=float)
+
+    values = array(name)
+    loaded = loaded_mask(array("contact_load"), array("contact_angle")) & np.isfinite(values)
     means = np.full(count, np.nan)
     for k in range(count):
         mask = loaded & (revolution == k)[:, None]
@@ -305,7 +309,7 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
     width, semi_major = np.full(len(RACES), np.nan), np.full(len(RACES), np.nan)
     for k, race in enumerate(RACES):
         angle = _race_array(ds, "contact_angle", race, first)
-        loaded = (_race_array(ds, "contact_load", race, first) > 0.0) & np.isfinite(angle)
+        loaded = loaded_mask(_race_array(ds, "contact_load", race, first), angle)
         if not loaded.any():
             continue
         width[k] = angle[loaded].max() - angle[loaded].min()
@@ -397,54 +401,6 @@ def summary(ds: xr.Dataset) -> xr.Dataset:
     return stored if stored is not None else trajectory_summary(ds)
 
 
-def headline(metrics: xr.Dataset) -> dict:
-    """Each race's metrics in its own ring's frame (plain floats, SI units and degree):
-    ``{race: {"excursion_deg", "excursion_m", "band_thickness_deg", "band_thickness_m",
-    "ellipse_semi_major_mean_m", "band_width_deg"}}`` plus ``settled`` / ``settling_time_s`` /
-    ``analysis_start_time_s`` for a dynamic result, and ``life`` (:func:`life_headline`) (for one
-    element: no extra dimensions)."""
-    out = {}
-    for race in RACES:
-        own = {"race": race, "frame": f"{race}_ring"}
-        out[race] = {
-            "excursion_deg": float(metrics["trajectory_excursion"].sel(own)),
-            "excursion_m": float(metrics["trajectory_excursion_arc"].sel(own)),
-            "band_thickness_deg": float(metrics["trajectory_band_thickness"].sel(own)),
-            "band_thickness_m": float(metrics["trajectory_band_thickness_arc"].sel(own)),
-            "ellipse_semi_major_mean_m": float(metrics["ellipse_semi_major_mean"].sel(race=race)),
-            "band_width_deg": float(metrics["trajectory_band_width"].sel(race=race)),
-        }
-    out["life"] = life_headline(metrics)
-    if "settled" in metrics:
-        out["settled"] = bool(int(metrics["settled"]))
-        out["settling_time_s"] = float(metrics["settling_time"])
-        out["analysis_start_time_s"] = float(metrics["analysis_start_time"])
-    return out
-
-
-def life_headline(metrics: xr.Dataset) -> dict:
-    """The rating lives of a summary as plain floats: ``{"L10_million_revolutions",
-    "L10_hours", "L10r_million_revolutions", "L10r_hours", "basic_load_rating_N",
-    "equivalent_load_N"}`` (NaN where not available, inf for an unloaded or non-rotating
-    bearing) and ``notes`` (the life variables' notes, without repeats)."""
-    hour = 3600.0
-    out = {
-        "L10_million_revolutions": float(metrics["basic_rating_life"]) / 1e6,
-        "L10_hours": float(metrics["basic_rating_life_time"]) / hour,
-        "L10r_million_revolutions": float(metrics["reference_rating_life"]) / 1e6,
-        "L10r_hours": float(metrics["reference_rating_life_time"]) / hour,
-        "basic_load_rating_N": float(metrics["basic_load_rating"]),
-        "equivalent_load_N": float(metrics["equivalent_load"]),
-    }
-    notes = []
-    for name in LIFE_METRICS:
-        note = metrics[name].attrs.get("note")
-        if note and note not in notes and name != "raceway_equivalent_load":
-            notes.append(note)
-    out["notes"] = notes
-    return out
-
-
 __all__ = [
     "AZIMUTH_BINS",
     "MIN_BIN_SAMPLES",
@@ -454,8 +410,6 @@ __all__ = [
     "SETTLING_SPIN_TO_ROLL_RELATIVE",
     "Settling",
     "analysis_start",
-    "headline",
-    "life_headline",
     "settling",
     "stored_summary",
     "summary",

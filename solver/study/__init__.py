@@ -15,7 +15,7 @@ from .metrics import POINT_METRICS, point_metrics
 from .points import StudyPoint, base_case, study_points
 from .runner import Progress, run_study
 from .spec import StudySpec, load_study, parse_study, resolve_study, shipped_studies
-from .store import StudyFolder, study_dataset
+from .store import StudyFolder, study_dataset, study_inputs
 
 
 class Study:
@@ -27,7 +27,8 @@ class Study:
 
     def __init__(self, spec: StudySpec):
         self.spec = spec
-        self._points = study_points(spec)
+        self.base = base_case(spec)
+        self._points = study_points(spec, self.base)
 
     @classmethod
     def from_file(cls, path) -> Study:
@@ -56,15 +57,22 @@ class Study:
         cancel=None,
         log=None,
         shared_folder: bool | None = None,
+        restart: bool = False,
+        accept_solver_change: bool = False,
     ):
         """Run the points not yet finished in the study folder ``output`` and return the study
         Dataset. ``client``: a ``dask.distributed.Client`` (default: a LocalCluster of
         ``workers`` single-threaded processes, closed at the end). ``progress``: callable with a
         :class:`Progress`; ``cancel``: a ``threading.Event`` that stops the study, keeping what is
-        done. ``resume``: allowed to continue a folder that holds this study. ``shared_folder``:
-        the workers write each run into ``output`` themselves (default: only with the local
-        cluster started here; give True for a ``client`` whose workers share this file system)."""
+        done. ``resume``: allowed to continue a folder that holds this study made from the same
+        inputs (base case, run options, solver sources; CaseError naming what changed otherwise).
+        ``restart``: delete the runs of the study folder ``output`` and run every point again.
+        ``accept_solver_change``: on resume, keep the runs made by another solver and record the
+        change in the study. ``shared_folder``: the workers write each run into ``output``
+        themselves (default: only with the local cluster started here; give True for a
+        ``client`` whose workers share this file system)."""
         import solver
+        from solver._numba_cache import SOLVER_DIR, source_fingerprint
 
         folder = run_study(
             self.spec,
@@ -78,6 +86,9 @@ class Study:
             version=solver.__version__,
             log=log,
             shared_folder=shared_folder,
+            inputs=study_inputs(self.spec, self.base, source_fingerprint(SOLVER_DIR)),
+            restart=restart,
+            accept_solver_change=accept_solver_change,
         )
         return study_dataset(folder)
 
@@ -86,7 +97,7 @@ def open_study(path) -> StudyFolder:
     """A study folder written by :meth:`Study.run`: ``.manifest()``, ``.load_point(name, model)``
     and :func:`study_dataset` of it."""
     folder = StudyFolder(path)
-    folder.manifest()  # CaseError when it is not a study folder
+    folder.finished()  # CaseError when the manifest or a run record is not one a study writes
     return folder
 
 

@@ -13,16 +13,25 @@ this machine's file system (``shared_folder``; the default for the local cluster
 runs in parallel), otherwise by this process when the result comes back. A
 run that fails (no quasi-static solution, diverged, invalid) is recorded with its message and the
 others go on; a worker that dies has its tasks run again by Dask on the other workers. ``cancel``
-(a ``threading.Event``) stops the study: pending tasks are cancelled and what is done is kept.
+(a ``threading.Event``) stops the study, also while the workers warm up: pending tasks are
+cancelled, the local cluster is closed (quietly) and what is done is kept.
+
+:func:`connect_scheduler` connects to an existing scheduler under one deadline that also covers
+Dask's handshake, and refuses an address that is not ``tcp://HOST:PORT``.
 """
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import os
+import threading
 import time
 import uuid
 from dataclasses import dataclass
+
+from solver.errors import CaseError, Problem
 
 from .store import FAILED, StudyFolder
 
@@ -30,6 +39,12 @@ from .store import FAILED, StudyFolder
 QS_BATCH_MIN = 4
 #: ... and at most this many, so that every worker gets several batches.
 QS_BATCH_MAX = 32
+#: The address the local cluster listens on.
+LOOPBACK = "127.0.0.1"
+#: Longest wait for an existing scheduler to answer (connection and handshake), in seconds.
+CONNECT_TIMEOUT_S = 30.0
+#: Longest wait for the local workers to be told to log nothing before a stopped study closes them.
+QUIET_WAIT_S = 5.0
 
 
 @dataclass(frozen=True)
@@ -60,7 +75,12 @@ def _tasks(todo: list, workers: int) -> list[list]:
 
 def start_local_cluster(workers: int | None = None):
     """A LocalCluster of ``workers`` single-threaded worker processes (default: one per core),
-    without dashboard, and its Client."""
+    and its Client.
+
+    Everything listens on the loopback address only, each on a port the system chooses: the
+    scheduler, the workers and the scheduler's HTTP dashboard (Dask always starts it; it is not
+    used here and is never on a fixed port such as 8787), so several studies run side by side on
+    one machine without a port clash or Dask's "port already in use" warning."""
     from dask.distributed import Client, LocalCluster
 
     n = workers or os.cpu_count() or 1
@@ -68,11 +88,95 @@ def start_local_cluster(workers: int | None = None):
         n_workers=n,
         threads_per_worker=1,
         processes=True,
-        dashboard_address=None,
+        host=LOOPBACK,
+        scheduler_port=0,
+        dashboard_address=f"{LOOPBACK}:0",
         memory_limit=0,
         silence_logs=40,
     )
     return cluster, Client(cluster)
+
+
+def scheduler_address(address: str) -> str:
+    """``tcp://HOST:PORT`` of a Dask scheduler address given as ``tcp://HOST:PORT`` or
+    ``HOST:PORT`` (an IPv6 host in brackets); CaseError (key ``scheduler``) naming the form
+    otherwise (another scheme such as ``http://``, no host, no port, a port out of range)."""
+    from urllib.parse import urlsplit
+
+    def wrong(why: str) -> CaseError:
+        return CaseError(
+            Problem(
+                "scheduler",
+                f"--scheduler {address!r}: {why}; give the scheduler's address as tcp://HOST:PORT, "
+                "e.g. tcp://head-node:8786",
+            )
+        )
+
+    text = str(address).strip()
+    if not text or any(c.isspace() or ord(c) < 32 for c in text):
+        raise wrong("not an address")
+    if "://" not in text:
+        text = f"tcp://{text}"
+    try:
+        parts = urlsplit(text)
+        port = parts.port
+    except ValueError as error:
+        raise wrong(str(error)) from None
+    if parts.scheme != "tcp":
+        raise wrong(f"{parts.scheme}:// is not a Dask scheduler protocol")
+    if parts.path not in ("", "/") or parts.query or parts.fragment or parts.username:
+        raise wrong("an address has only a host and a port")
+    if not parts.hostname:
+        raise wrong("no host")
+    if port is None or port == 0:
+        raise wrong("no port")
+    host = f"[{parts.hostname}]" if ":" in parts.hostname else parts.hostname
+    return f"tcp://{host}:{port}"
+
+
+def connect_scheduler(address: str, timeout_s: float | None = None):
+    """A ``dask.distributed.Client`` of the scheduler at ``address`` (see
+    :func:`scheduler_address`), or CaseError within about ``timeout_s`` seconds (default
+    :data:`CONNECT_TIMEOUT_S`).
+
+    Connecting and Dask's handshake are first tried under one deadline (Dask's own timeout does
+    not cover the handshake, so a server that accepts the connection and stays silent, or a web
+    server, would hang forever); then the Client connects with the same timeout."""
+    import asyncio
+
+    from dask.distributed import Client
+    from distributed.comm import connect
+
+    address = scheduler_address(address)
+    timeout_s = CONNECT_TIMEOUT_S if timeout_s is None else timeout_s
+
+    def nobody(why: str) -> CaseError:
+        return CaseError(
+            Problem(
+                "scheduler",
+                f"no Dask scheduler answered at {address} within {timeout_s:g} s ({why}): check "
+                "the address and that `dask scheduler` runs there",
+            )
+        )
+
+    async def handshake() -> None:
+        comm = await asyncio.wait_for(connect(address, timeout=timeout_s), timeout_s)
+        try:
+            if not isinstance(getattr(comm, "remote_info", None), dict):
+                raise OSError("the server did not answer as Dask does")
+        finally:
+            comm.abort()
+
+    try:
+        asyncio.run(handshake())
+    except TimeoutError:
+        raise nobody("no answer") from None
+    except Exception as error:  # noqa: BLE001 - whatever a foreign server makes Dask raise
+        raise nobody(f"{type(error).__name__}: {error}") from None
+    try:
+        return Client(address, timeout=timeout_s)
+    except Exception as error:  # noqa: BLE001
+        raise nobody(f"{type(error).__name__}: {error}") from None
 
 
 def run_study(
@@ -87,6 +191,9 @@ def run_study(
     version: str = "",
     log=None,
     shared_folder: bool | None = None,
+    inputs: dict | None = None,
+    restart: bool = False,
+    accept_solver_change: bool = False,
 ) -> StudyFolder:
     """Run every unfinished (point, model) of ``points`` and save them in ``output``.
 
@@ -94,14 +201,24 @@ def run_study(
     the module docstring for the client, cancel and saving rules. ``log``: callable(str) for
     one-line notes (skipped runs, warm-up). ``shared_folder``: the workers write the runs into
     the study folder themselves (default: True with the local cluster this function starts, False
-    with a given client).
+    with a given client). ``inputs``, ``restart``, ``accept_solver_change``: what the folder
+    records and checks on resume (:meth:`~solver.study.store.StudyFolder.start`).
     """
     from dask.distributed import wait
 
     from .worker import WarmUp, run_batch
 
     folder = StudyFolder(output)
-    folder.start(spec, points, version, resume)
+    folder.start(
+        spec,
+        points,
+        version,
+        resume,
+        inputs=inputs,
+        restart=restart,
+        accept_solver_change=accept_solver_change,
+        log=log,
+    )
     finished = folder.finished()
     todo = [
         (p.name, model, p.case)
@@ -127,7 +244,8 @@ def run_study(
         shared_folder = own_cluster is not None
     target = str(folder.path.resolve()) if shared_folder else None
     try:
-        client.register_plugin(WarmUp())
+        if not _warm_up(client, WarmUp(), cancel):
+            return folder
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
         tasks = _tasks(todo, n_workers)
         total = len(todo)
@@ -209,7 +327,67 @@ def run_study(
             report()
     finally:
         if own_cluster is not None:
-            client.close()
-            own_cluster.close()
+            # after a stop the workers may be busy: Dask's complaints about closing them are noise
+            stopped = cancel is not None and cancel.is_set()
+            with _quiet_dask(stopped):
+                if stopped:
+                    _within(lambda: client.run(logging.disable, logging.CRITICAL), QUIET_WAIT_S)
+                client.close()
+                own_cluster.close()
         folder.save_dataset()
     return folder
+
+
+def _warm_up(client, plugin, cancel) -> bool:
+    """Register the warm-up ``plugin`` (each worker loads, or compiles, the kernels: up to a
+    minute) and wait for it, checking ``cancel`` twice a second; False when cancelled first.
+
+    Dask's registration waits for every worker's setup and cannot be interrupted, so it runs in a
+    thread; an error it raises is raised here."""
+    errors: list[BaseException] = []
+
+    def register() -> None:
+        try:
+            client.register_plugin(plugin)
+        except BaseException as error:  # noqa: BLE001 - also the cancellation when closing
+            errors.append(error)
+
+    thread = threading.Thread(target=register, name="racetrace-warm-up", daemon=True)
+    thread.start()
+    while thread.is_alive():
+        if cancel is not None and cancel.is_set():
+            return False
+        thread.join(0.5)
+    if errors:
+        raise errors[0]
+    return True
+
+
+def _within(call, seconds: float) -> None:
+    """Call ``call()`` in a thread and wait at most ``seconds`` for it; its errors are ignored
+    (used for courtesies to workers that may be gone)."""
+
+    def run() -> None:
+        try:
+            call()
+        except BaseException:  # noqa: BLE001, S110 - a courtesy: nothing to do if it fails
+            pass
+
+    thread = threading.Thread(target=run, name="racetrace-quiet", daemon=True)
+    thread.start()
+    thread.join(seconds)
+
+
+@contextlib.contextmanager
+def _quiet_dask(quiet: bool):
+    """While active and ``quiet``: this process logs nothing (Dask's scheduler and nannies run in
+    it and complain about closing busy workers); the workers are silenced by the caller."""
+    if not quiet:
+        yield
+        return
+    previous = logging.root.manager.disable
+    logging.disable(logging.CRITICAL)
+    try:
+        yield
+    finally:
+        logging.disable(previous)

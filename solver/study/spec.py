@@ -28,6 +28,10 @@ SWEEP_KEYS = ("name", "model", "combine", "vary", "set")
 RUN_KEYS = ("shaft_revolutions", "samples_per_revolution")
 #: Most points a study may have (a typing error in a grid should not launch a million runs).
 MAX_POINTS = 5000
+#: Deepest nesting of tables and lists a study file may have: a study needs about eight levels
+#: (``[[sweep]]``, ``vary``, a dotted key's parts, a list of inline tables); deeper is refused
+#: before anything walks the values (which would otherwise exhaust Python's recursion limit).
+MAX_DEPTH = 32
 _CASE_KEYS = tuple(f.key for f in FIELDS)
 
 
@@ -76,6 +80,25 @@ class StudySpec:
             keys.update(dict.fromkeys(sweep.vary))
             keys.update(dict.fromkeys(sweep.set))
         return tuple(keys)
+
+
+def _depth(data) -> int:
+    """How many tables and lists deep ``data`` nests (without recursion)."""
+    deepest = 0
+    stack = [(data, 1)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, dict):
+            children = value.values()
+        elif isinstance(value, list):
+            children = value
+        else:
+            continue
+        deepest = max(deepest, depth)
+        if deepest > MAX_DEPTH:
+            break
+        stack.extend((child, depth + 1) for child in children)
+    return deepest
 
 
 def _flatten(table: dict, prefix: str = "") -> dict:
@@ -190,10 +213,25 @@ def parse_study(text: str, source: str = "study", folder: Path | None = None) ->
     """A :class:`StudySpec` from study-file text; CaseError naming every wrong key.
 
     ``folder``: where a relative base case file is looked for (the study file's folder)."""
+    too_deep = CaseError(
+        Problem(
+            "file",
+            f"{source} nests tables, lists or dotted keys more than {MAX_DEPTH} levels deep: a "
+            "study file has a few tables of key = [values] lines (docs/study-format.md)",
+        )
+    )
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise CaseError(Problem("file", f"{source} is not valid TOML: {error}")) from None
+    except RecursionError:
+        raise too_deep from None
+    except (ValueError, OverflowError) as error:  # e.g. an integer with thousands of digits
+        raise CaseError(
+            Problem("file", f"{source} holds a value that cannot be read ({error})")
+        ) from None
+    if _depth(data) > MAX_DEPTH:
+        raise too_deep
     problems: list[Problem] = []
     for key in data:
         if key not in TOP_KEYS:

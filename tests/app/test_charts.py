@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from app import charts
-from app.frames import frame_source
-from app.palette import ball_colours
+from viz.frames import frame_source
+from viz.palette import ball_colours
 
 
 def test_contact_angle_chart(qs_dataset):
@@ -98,7 +98,7 @@ def _loaded_values(ds, name, race):
 
 
 def test_run_summary_of_a_quasistatic_result(qs_dataset, fixture_model):
-    summary = charts.run_summary(frame_source(qs_dataset), qs_dataset)
+    summary = charts.run_summary(qs_dataset)
     for race in ("inner", "outer"):
         alpha = _loaded_values(qs_dataset, "contact_angle", race)  # degree, per ball
         assert len(alpha) == 9  # three balls opposite the load zone are unloaded
@@ -126,18 +126,23 @@ def test_run_summary_of_pure_axial_load_has_no_band(qs_dataset):
     axial = qs_dataset.copy(deep=True)
     axial["contact_angle"][:] = [[21.0, 18.0]] * axial.sizes["ball"]
     axial["contact_load"][:] = [[140.0, 150.0]] * axial.sizes["ball"]
-    summary = charts.run_summary(frame_source(axial), axial)
+    summary = charts.run_summary(axial)
     assert summary["inner"]["excursion_deg"] == pytest.approx(0.0, abs=1e-12)
     assert summary["outer"]["contact_angle_min_deg"] == pytest.approx(18.0)
     assert summary["outer"]["contact_load_max_N"] == pytest.approx(150.0)
 
 
-def test_run_summary_of_a_dynamic_run_uses_every_sample(dynamic_dataset, fixture_model):
-    summary = charts.run_summary(frame_source(dynamic_dataset), dynamic_dataset)
+def test_run_summary_of_a_dynamic_run_uses_the_analysed_window(dynamic_dataset, fixture_model):
+    """The same samples as the study table, the lessons and the CLI: the analysed window."""
+    summary = charts.run_summary(dynamic_dataset)
+    start = float(dynamic_dataset.racetrace.summary()["analysis_start_time"])
+    window = dynamic_dataset.sel(time=dynamic_dataset["time"] >= start)
+    assert 0 < window.sizes["time"] < dynamic_dataset.sizes["time"]
     for race in ("inner", "outer"):
-        alpha = _loaded_values(dynamic_dataset, "contact_angle", race)
+        alpha = _loaded_values(window, "contact_angle", race)
         assert alpha.size > dynamic_dataset.sizes["ball"] * 10
-        assert summary[race]["contact_angle_min_deg"] == pytest.approx(alpha.min())
+        assert summary[race]["contact_angle_min_deg"] == alpha.min()
+        assert summary[race]["contact_angle_max_deg"] == alpha.max()
         assert summary[race]["max_pressure_max_GPa"] == pytest.approx(1.0)
     expected_rpm = fixture_model.CAGE_RATIO * fixture_model.SHAFT_RPM
     assert summary["cage_speed_rpm"] == pytest.approx(expected_rpm)
@@ -147,7 +152,7 @@ def test_run_summary_takes_the_trajectory_metrics_from_the_solver(dynamic_datase
     """The table's excursion and thickness are the solver's own-frame values (one definition):
     the fixture's contact angle is fixed in space, so the outer race (stationary ring) draws a
     line and the inner race, seen on its turning ring, a band."""
-    summary = charts.run_summary(frame_source(dynamic_dataset), dynamic_dataset)
+    summary = charts.run_summary(dynamic_dataset)
     metrics = dynamic_dataset.racetrace.summary()
     for race in ("inner", "outer"):
         own = {"race": race, "frame": f"{race}_ring"}
@@ -159,7 +164,7 @@ def test_run_summary_takes_the_trajectory_metrics_from_the_solver(dynamic_datase
 
 
 def test_summary_rows_are_text_per_run_and_race(qs_dataset):
-    summary = charts.run_summary(frame_source(qs_dataset), qs_dataset)
+    summary = charts.run_summary(qs_dataset)
     empty = {race: dict.fromkeys(summary["inner"], float("nan")) for race in ("inner", "outer")}
     rows = charts.summary_rows({"A": summary, "B": {**empty, "cage_speed_rpm": float("nan")}})
     assert [r["key"] for r in rows] == ["A-inner", "A-outer", "B-inner", "B-outer"]

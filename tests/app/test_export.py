@@ -9,8 +9,8 @@ import pytest
 import xarray as xr
 
 from app.export import export_animation, export_csv, export_netcdf, export_png
-from app.frames import frame_source
 from solver.results.io import contact_table
+from viz.frames import frame_source
 
 
 def test_netcdf_and_csv(tmp_path, dynamic_dataset):
@@ -45,7 +45,7 @@ def test_png_and_animation(tmp_path, qs_dataset, geometry):
     import imageio.v2 as imageio
     import pyvista as pv
 
-    from app.scene import BearingScene
+    from viz.scene import BearingScene
 
     plotter = pv.Plotter(off_screen=True, window_size=(160, 120))
     scene = BearingScene(plotter, geometry)
@@ -77,7 +77,7 @@ def test_mp4_of_an_odd_sized_view_and_captions(tmp_path, qs_dataset, geometry):
     import pyvista as pv
 
     from app.export import captioned, even_sized
-    from app.scene import BearingScene
+    from viz.scene import BearingScene
 
     plotter = pv.Plotter(off_screen=True, window_size=(161, 121))
     scene = BearingScene(plotter, geometry)

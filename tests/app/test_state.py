@@ -121,7 +121,7 @@ def test_scene_follows_frames_and_options(tmp_path):
         assert a.result.scene.frame_index == 7
         assert view.renders >= 1
         _set(a, show_cage=False)
-        assert not a.result.scene._actors["cage"][0].visibility
+        assert not a.result.scene.actors["cage"][0].visibility
         _set(a, exaggeration=8)
         assert a.result.scene.options.exaggeration == 8
         # the view faces the load zone: a radial load towards +z (90 deg) turns it there
@@ -495,7 +495,7 @@ def _decode_custom(trace):
 
 
 def test_ball_legend_gives_each_ball_of_the_result_its_colour(app, dynamic_dataset):
-    from app.palette import ball_colours
+    from viz.palette import ball_colours
 
     s = app.state
     z = app.result.source.ball_count
@@ -506,7 +506,7 @@ def test_ball_legend_gives_each_ball_of_the_result_its_colour(app, dynamic_datas
 
 
 def test_compare_any_number_of_runs_each_in_its_own_colour(app):
-    from app.palette import run_colours
+    from viz.palette import run_colours
 
     s = app.state
     saved = []

@@ -9,12 +9,12 @@ import pytest
 from app.teaching import (
     Facts,
     facts_from_result,
-    misalignment_words,
     playback_rate,
     revolution_words,
     slow_motion_words,
     what_you_see,
 )
+from viz.overlay import misalignment_words
 
 
 def _facts(**kw):

@@ -234,3 +234,146 @@ def outcome(content: bytes) -> str:
             assert np.isfinite(values).all(), f"{name} is not finite in a solution"
     json.dumps(summary(ds), allow_nan=False)  # what --json prints
     return "solution"
+
+
+# ---- study files and study folders (tests/unit/study/test_fuzz.py) -----------------------------
+#: Study files the study mutations start from: small, so that a mutation that stays valid has few
+#: points to validate.
+STUDY_BASES = (
+    'title = "radial"\nbase = "spindle-axial-preload"\nmodel = "both"\n'
+    "[run]\nshaft_revolutions = 2.0\nsamples_per_revolution = 40\n"
+    '[vary]\n"operating.radial_load_N" = [0.0, 300.0, 600.0]\n',
+    'base = "218-heavy-combined"\n[[sweep]]\nname = "tilt"\ncombine = "zip"\n'
+    'vary."operating.misalignment_deg" = [0.05, 0.1]\nvary."operating.radial_load_N" = [0.0, 1.0]\n'
+    'set."operating.misalignment_frame" = "ring"\n'
+    '[[sweep]]\nmodel = "dynamic"\nvary.operating.inner_ring_speed_rpm = [5000.0, 10000.0]\n',
+)
+STUDY_KEYS = ("title", "description", "base", "model", "combine", "vary", "set", "run", "sweep")
+ODD_BASES = (
+    "/proc/self/environ",
+    "/dev/zero",
+    "../../../../etc/passwd.toml",
+    "nowhere.toml",
+    "spindle",
+    "\x1b[2J",
+    "a" * 5000,
+)
+
+
+def _deep_study_text(rng: random.Random) -> str:
+    """TOML nested thousands deep in one of the ways a study file can nest."""
+    depth = rng.choice([40, 400, 3000])
+    kind = rng.choice(["list", "dotted", "inline", "sweep"])
+    if kind == "list":
+        return '\n[vary]\n"operating.radial_load_N" = ' + "[" * depth + "1.0" + "]" * depth + "\n"
+    if kind == "dotted":
+        return "\nvary." + ".".join(["a"] * depth) + " = [1.0]\n"
+    if kind == "inline":
+        return "\n[set]\nx = " + "{a = " * depth + "1" + "}" * depth + "\n"
+    return "\n[[sweep]]\nvary = " + "{b = [" * depth + "1" + "]}" * depth + "\n"
+
+
+def _mutate_study(data: dict, rng: random.Random) -> str:
+    """Change the study ``data`` in place, or return TOML text to append."""
+    kind = rng.choice(
+        ["odd", "odd", "delete", "vary", "unknown", "base", "deep", "sweeps", "valid", "valid"]
+    )
+    sweeps = data.get("sweep", [])
+    tables = (
+        [data] + [s for s in sweeps if isinstance(s, dict)] if isinstance(sweeps, list) else [data]
+    )
+    table = rng.choice(tables)
+    if kind == "odd":
+        table[rng.choice(STUDY_KEYS)] = rng.choice(ODD_VALUES)
+    elif kind == "delete" and table:
+        table.pop(rng.choice(list(table)))
+    elif kind == "vary":
+        vary = table.setdefault("vary", {})
+        if not isinstance(vary, dict):
+            table["vary"] = vary = {}
+        key = rng.choice([f.key for f in FIELDS] + ["nowhere.x", "operating", ""])
+        vary[key] = rng.choice(
+            [[rng.choice(ODD_VALUES)], [], rng.choice(ODD_VALUES), [1.0] * rng.randint(2, 4)]
+        )
+    elif kind == "unknown":
+        name = rng.choice(["x", "swep", "\x1b[31mred", "a" * 300, "ünï", "run.x"])
+        table[name] = rng.choice(ODD_VALUES)
+    elif kind == "base":
+        data["base"] = rng.choice(ODD_BASES)
+    elif kind == "valid":  # a change that keeps the study valid
+        data["description"] = rng.choice(["", "ünïcode", "a" * 2000, "line\nbreak"])
+    elif kind == "deep":
+        return _deep_study_text(rng)
+    else:
+        data["sweep"] = rng.choice([[], [{}], ["x"], {"a": 1}, [{"vary": {}}]])
+    return ""
+
+
+def mutated_study_bytes(rng: random.Random) -> bytes:
+    """A study file's bytes: one of :data:`STUDY_BASES` with one to three mutations (wrong types,
+    missing and unknown keys, odd base cases, nesting thousands deep) in some encoding, or cut."""
+    data = tomllib.loads(rng.choice(STUDY_BASES))
+    extra = ""
+    for _ in range(rng.randint(1, 3)):
+        extra += _mutate_study(data, rng)
+    try:
+        text = tomli_w.dumps(data) + extra
+    except (TypeError, ValueError):  # a value TOML cannot hold: the text as it was instead
+        text = rng.choice(STUDY_BASES) + extra
+    return _encode(text, rng)
+
+
+def _json_odd(rng: random.Random):
+    """An odd value that JSON can hold (dates as text; NaN and infinities as Python writes them)."""
+    value = rng.choice(ODD_VALUES)
+    if isinstance(value, datetime.date | datetime.time):
+        return value.isoformat()
+    return value
+
+
+def _paths(value, prefix=()) -> list:
+    """The paths (keys and indices) to the values inside nested dicts and lists, down to eight
+    levels (and the first three items of each list)."""
+    out = [prefix]
+    if len(prefix) >= 8:
+        return out
+    if isinstance(value, dict):
+        for key, child in value.items():
+            out += _paths(child, (*prefix, key))
+    elif isinstance(value, list):
+        for i, child in enumerate(value[:3]):
+            out += _paths(child, (*prefix, i))
+    return out
+
+
+def mutated_json_bytes(data, rng: random.Random) -> bytes:
+    """The JSON of ``data`` (a study folder's manifest or run record) with one to three values
+    replaced, removed or nested thousands deep, or the whole replaced by a foreign value; in some
+    encoding, or cut."""
+    data = json.loads(json.dumps(data))
+    for _ in range(rng.randint(1, 3)):
+        path = rng.choice(_paths(data))
+        kind = rng.choice(["odd", "odd", "delete", "deep", "whole"])
+        if not path or kind == "whole":
+            data = rng.choice([[], [data], "study", 3, None, {"points": [[]]}, _json_odd(rng)])
+            continue
+        parent = data
+        try:
+            for part in path[:-1]:
+                parent = parent[part]
+            if kind == "delete" and isinstance(parent, dict):
+                parent.pop(path[-1], None)
+            elif kind == "deep":
+                depth = rng.choice([50, 900, 5000])
+                parent[path[-1]] = json.loads("[" * min(depth, 900) + "]" * min(depth, 900))
+            else:
+                parent[path[-1]] = _json_odd(rng)
+        except (TypeError, KeyError, IndexError):  # an earlier mutation changed the structure
+            continue
+    try:
+        text = json.dumps(data)
+    except (ValueError, RecursionError):
+        text = "[" * 5000 + "]" * 5000
+    if rng.random() < 0.2:
+        text = "[" * 100_000 + "]" * 100_000  # deeper than json.loads can go
+    return _encode(text, rng)

@@ -111,3 +111,99 @@ def test_cancel_keeps_what_is_done_and_resume_finishes(client, tmp_path):
     assert (ds["status"] == "pending").any()
     ds = study.run(tmp_path / "out", client=client, resume=True)
     assert not (ds["status"] == "pending").any()
+
+
+def test_connect_scheduler_reaches_a_real_scheduler(client):
+    from solver.study.runner import connect_scheduler
+
+    other = connect_scheduler(client.scheduler.address, timeout_s=20)
+    try:
+        assert other.scheduler_info()["workers"]
+    finally:
+        other.close()
+
+
+def test_two_local_clusters_at_once_listen_on_loopback_without_a_port_warning(caplog):
+    """The dashboard Dask always starts is on a free loopback port, never on 8787: a second
+    cluster on the machine gives no "port already in use" warning."""
+    import logging
+    import warnings
+
+    from solver.study.runner import start_local_cluster
+
+    started = []
+    with warnings.catch_warnings(record=True) as caught, caplog.at_level(logging.WARNING):
+        warnings.simplefilter("always")
+        try:
+            for _ in range(2):
+                started.append(start_local_cluster(1))
+        finally:
+            for cluster, client in started:
+                client.close()
+                cluster.close()
+    texts = [str(w.message) for w in caught] + [r.getMessage() for r in caplog.records]
+    assert not [t for t in texts if "already in use" in t or "8787" in t], texts
+    for cluster, _client in started:
+        assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
+        assert cluster.dashboard_link.startswith("http://127.0.0.1:")
+        assert ":8787/" not in cluster.dashboard_link
+
+
+SIGNAL_STUDY = """
+title = "signals"
+base = "spindle-axial-preload"
+[vary]
+"operating.radial_load_N" = [{loads}]
+"""
+
+
+@pytest.mark.parametrize(
+    "name",
+    # each starts a cluster and warms a worker (a minute on a busy machine): SIGTERM in the
+    # normal suite, the others (the same handler) with -m slow
+    [
+        "SIGTERM",
+        pytest.param("SIGHUP", marks=pytest.mark.slow),
+        pytest.param("SIGINT", marks=pytest.mark.slow),
+    ],
+)
+def test_a_stop_signal_keeps_the_finished_runs_and_writes_the_study(tmp_path, name):
+    """A real ``racetrace study`` process, sent the signal once runs have finished: it stops,
+    shuts its cluster down without a traceback, writes study.nc, prints the resume command and
+    exits with 128 + the signal's number."""
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    signum = getattr(signal, name)
+    study = tmp_path / "s.toml"
+    study.write_text(SIGNAL_STUDY.format(loads=", ".join(f"{x}.0" for x in range(0, 2000, 5))))
+    out = tmp_path / "out"
+    root = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    process = subprocess.Popen(
+        [sys.executable, "-m", "racetrace", "study", str(study), "-o", str(out), "--workers", "1"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=env,
+        text=True,
+    )
+    try:
+        deadline = time.monotonic() + 600  # the first run on a machine compiles the kernels
+        while not list(out.glob("points/*.json")) and process.poll() is None:
+            assert time.monotonic() < deadline, "no run finished"
+            time.sleep(0.2)
+        process.send_signal(signum)
+        stdout, stderr = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 128 + signum, stderr
+    assert "Traceback" not in stderr and "ERROR" not in stderr, stderr
+    assert f"{name} received" in stderr and "--resume" in stderr
+    ds = xr.load_dataset(out / "study.nc")
+    status = ds["status"].values
+    assert (status == "done").any() and (status == "pending").any()
+    assert "p0001" in stdout

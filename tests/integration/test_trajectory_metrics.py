@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import pytest
 
+from racetrace.metrics import headline
 from solver.catalogue import resolve_case
 from solver.models.dynamic import SimulationOptions, simulate
-from solver.results.summary import headline
 
 
 def _run(name: str, revolutions: float, samples: int = 60):
@@ -22,7 +22,7 @@ def _run(name: str, revolutions: float, samples: int = 60):
 
 def test_combined_load_inner_band_is_thicker_than_the_outer_line():
     ds = _run("spindle-combined-load", 3.0)
-    own = headline(ds.racetrace.summary())
+    own = headline(ds)
     inner, outer = own["inner"], own["outer"]
     assert inner["band_thickness_deg"] > 0.5  # measured 0.98 deg over 12 revolutions
     assert outer["band_thickness_deg"] < 0.05 * inner["band_thickness_deg"]
@@ -33,7 +33,7 @@ def test_combined_load_inner_band_is_thicker_than_the_outer_line():
 
 
 def test_ring_turning_misalignment_makes_the_inner_race_the_line():
-    own = headline(_run("spindle-misalignment-ring", 3.0).racetrace.summary())
+    own = headline(_run("spindle-misalignment-ring", 3.0))
     assert own["inner"]["band_thickness_deg"] < 0.05 * own["outer"]["band_thickness_deg"]
 
 

@@ -178,7 +178,7 @@ def test_shipped_lessons_all_load():
 
 def test_lesson_cameras_and_charts_are_the_apps():
     from app.charts import HELP
-    from app.scene import CAMERA_PRESETS
+    from viz.camera import CAMERA_PRESETS
 
     assert set(CAMERAS) <= set(CAMERA_PRESETS)  # every camera a lesson may name is a preset
     assert set(CHARTS) <= set(HELP)  # and every chart one of the page's chart panels

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import solver
+from racetrace.metrics import life_headline
 from solver.catalogue import resolve_case
 from solver.results import summary
 from solver.results.dataset import build_result
@@ -160,6 +161,6 @@ def test_quasistatic_dataset_carries_the_lives():
     assert float(ds.reference_rating_life) == pytest.approx(expected, rel=1e-9)
     # ceramic balls: the steel note is attached
     assert "bearing steel" in ds.reference_rating_life.attrs["note"]
-    head = summary.headline(ds.racetrace.summary())["life"]
+    head = life_headline(ds)
     assert head["L10r_million_revolutions"] == pytest.approx(expected / 1e6)
     assert head["L10_hours"] == pytest.approx(8491.87, rel=1e-5)

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import pytest
 
+from solver.results.metrics import METRICS
 from solver.results.variables import (
     COORDINATES,
     DIMENSION_COORDINATES,
@@ -80,6 +81,7 @@ SCHEMA_WORDS = {
     "note",
     "units",
     "long_name",
+    "description",
     "quasistatic",
     "dynamic",
     "time",
@@ -99,13 +101,13 @@ SCHEMA_WORDS = {
 
 def test_registry_covers_every_name_in_the_schema_document():
     """docs/results-schema.md is in the repository (never skipped): every name it puts in
-    backquotes is a registered variable or coordinate, a dimension or its label, or a listed
-    attribute."""
+    backquotes is a registered variable or coordinate, a dimension or its label, a metric of the
+    metrics table or a listed attribute."""
     text = SCHEMA.read_text(encoding="utf-8")
     names = set(re.findall(r"`([a-z_]+)`", text))
     labels = set(DIMENSION_VALUES) | {v for values in DIMENSION_VALUES.values() for v in values}
     known = set(VARIABLES) | set(COORDINATES) | set(DIMENSION_COORDINATES) | labels
-    known |= SCHEMA_WORDS | {"ball"}
+    known |= SCHEMA_WORDS | {"ball"} | set(METRICS)
     missing = sorted(names - known)
     assert not missing, missing
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from app.frames import (
+from viz.frames import (
     INNER,
     OUTER,
     FrameSource,
@@ -138,7 +138,7 @@ def test_missing_variable_is_named(qs_dataset):
 
 
 def test_quasistatic_animation_length_is_capped(qs_dataset):
-    from app.frames import QS_MAX_REVOLUTIONS, QS_SAMPLES_PER_REVOLUTION
+    from viz.frames import QS_MAX_REVOLUTIONS, QS_SAMPLES_PER_REVOLUTION
 
     src = frame_source(qs_dataset, revolutions=500.0)
     assert src.n_frames == int(QS_MAX_REVOLUTIONS * QS_SAMPLES_PER_REVOLUTION) + 1
@@ -148,7 +148,7 @@ def test_quasistatic_animation_length_is_capped(qs_dataset):
 
 def test_ring_speeds_come_from_the_coordinates_not_the_case_text(qs_dataset, fixture_model):
     """A result whose provenance case text says another speed is animated at its own speed."""
-    from app.frames import ring_speeds
+    from viz.frames import ring_speeds
 
     other = qs_dataset.assign_attrs(
         case=qs_dataset.attrs["case"].replace(f"{fixture_model.SHAFT_RPM}", "1.0")

@@ -6,7 +6,7 @@ import re
 
 import pytest
 
-from app import palette
+from viz import palette
 
 HEX = re.compile(r"^#[0-9a-f]{6}$")
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from app.raceway import INNER, OUTER, ellipse_outline, exaggerate, grooves
+from viz.raceway import INNER, OUTER, ellipse_outline, exaggerate, grooves
 
 
 def test_contacts_at_free_angle_touch_the_reference_ball(geometry):

@@ -1,5 +1,5 @@
-"""The app's colour palettes, defined once: per-ball colours (3-D balls and traces, the raceway map
-coloured by ball, the ball legend) and per-run colours (compared runs).
+"""The colour palettes, defined once: per-ball colours (3-D balls and traces, the raceway map
+coloured by ball, the ball legend) and per-run colours (compared runs in the app).
 
 Colours are CSS hex strings. No rendering, no trame.
 """

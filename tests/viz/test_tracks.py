@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from app.frames import FrameSource
-from app.raceway import INNER, OUTER, Groove
-from app.tracks import TrackGrid, TrackPainter, groove_surface_arrays, track_colours
+from viz.frames import FrameSource
+from viz.raceway import INNER, OUTER, Groove
+from viz.tracks import TrackGrid, TrackPainter, groove_surface_arrays, track_colours
 
 GROOVE = Groove(rho_c=0.025, x_c=0.0, r=0.004, sign=1.0)  # inner-like groove, m
 GRID = TrackGrid(-0.6, 0.6, n_phi=360, n_alpha=120)  # 0.01 rad per alpha cell

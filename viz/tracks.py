@@ -3,8 +3,8 @@
 Pure numpy/numba, no rendering. Each raceway is divided into a grid of cells in that ring's own
 frame: ``n_phi`` cells around (ring azimuth ``phi``, rad, from +y towards +z) by ``n_alpha`` cells
 across the groove (groove latitude ``alpha``, rad, the contact-angle coordinate of
-:mod:`app.raceway`) between the two shoulder edges. Every loaded contact sample of a
-:class:`app.frames.FrameSource` covers the cells its ellipse sweeps on the way to the next sample:
+:mod:`viz.raceway`) between the two shoulder edges. Every loaded contact sample of a
+:class:`viz.frames.FrameSource` covers the cells its ellipse sweeps on the way to the next sample:
 across the groove ``alpha +- a / r`` (semi-major axis ``a``, groove radius ``r``), around the ring
 from its centre to the next sample's centre, widened by the semi-minor axis ``b`` each way.
 
@@ -60,9 +60,6 @@ class TrackGrid:
     @property
     def d_alpha(self) -> float:
         return (self.alpha_hi - self.alpha_lo) / self.n_alpha
-
-    def alpha_edges(self) -> np.ndarray:
-        return np.linspace(self.alpha_lo, self.alpha_hi, self.n_alpha + 1)
 
     def phi_edges(self) -> np.ndarray:
         return np.linspace(0.0, 2.0 * math.pi, self.n_phi + 1)
@@ -246,10 +243,6 @@ class TrackPainter:
         if values.size == 0:
             return 0.0, 0.0
         return float(values.min()), float(values.max())
-
-    def across_profile(self, race: int, quantity: str = "dwell") -> np.ndarray:
-        """(n_alpha,) the field summed around the raceway: the track's across-groove profile."""
-        return self.field(race, quantity).sum(axis=0)
 
 
 def groove_surface_arrays(

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import pyvista as pv
 
-from app.frames import frame_source, rot_x
-from app.raceway import INNER, OUTER, grooves
-from app.scene import BearingScene
+from viz.frames import frame_source, rot_x
+from viz.raceway import INNER, OUTER, grooves
+from viz.scene import BearingScene
 
 
 @pytest.fixture
@@ -26,10 +26,10 @@ def test_actors_follow_the_frame(scene):
     scene.set_frame(23)
     f = scene.source.frame(23)
     for j in (0, 5):
-        m = np.asarray(scene._actors["balls"][j].user_matrix)
+        m = np.asarray(scene.actors["balls"][j].user_matrix)
         np.testing.assert_allclose(m[:3, 3], f.ball_center[j])
         np.testing.assert_allclose(m[:3, :3], f.ball_rotation[j])
-    ring = np.asarray(scene._actors["inner_ring"][0].user_matrix)
+    ring = np.asarray(scene.actors["inner_ring"][0].user_matrix)
     np.testing.assert_allclose(ring[:3, :3], rot_x(f.ring_angle[INNER]), atol=1e-12)
 
 
@@ -37,7 +37,7 @@ def test_traces_lie_on_their_raceways(scene, geometry):
     scene.set_frame(60)
     for race in (INNER, OUTER):
         groove = grooves(geometry)[race]
-        pts = scene._traces[race].points  # ring frame (the actor carries the ring rotation)
+        pts = scene.marks.traces[race].points  # ring frame (the actor carries the ring rotation)
         assert len(pts) > 10
         radius = np.hypot(pts[:, 1], pts[:, 2])
         dist = np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)
@@ -47,14 +47,14 @@ def test_traces_lie_on_their_raceways(scene, geometry):
     scene.set_frame(120)
     assert scene.trace_point_count(INNER) > n60
     scene.set_trace_ball(3)
-    assert set(np.unique(scene._traces[INNER].point_data["ball"])) == {3.0}
+    assert set(np.unique(scene.marks.traces[INNER].point_data["ball"])) == {3.0}
 
 
 def test_exaggeration_moves_traces_across_the_groove(scene):
     scene.set_frame(100)
-    x1 = scene._traces[INNER].points[:, 0].copy()
+    x1 = scene.marks.traces[INNER].points[:, 0].copy()
     scene.set_exaggeration(10.0)
-    x10 = scene._traces[INNER].points[:, 0]
+    x10 = scene.marks.traces[INNER].points[:, 0]
     assert np.ptp(x10) > 5 * np.ptp(x1)
 
 
@@ -76,18 +76,18 @@ def test_bad_options_are_named(scene):
     with pytest.raises(ValueError, match="isometric"):
         scene.set_camera("top")
     scene.set_layer("cage", False)
-    assert not scene._actors["cage"][0].visibility
+    assert not scene.actors["cage"][0].visibility
 
 
 def test_no_outer_marks_in_the_cut_away_sector(scene):
     scene.set_frame(100)
     lo, hi = scene.options.outer_cutaway
-    pts = scene._traces[OUTER].points
+    pts = scene.marks.traces[OUTER].points
     phi = np.arctan2(pts[:, 2], pts[:, 1])
     assert len(pts) > 10
     assert not np.any(np.mod(phi - lo, 2 * np.pi) < (hi - lo) - 1e-9)
     # the inner ring has no cut: its trace goes all the way round
-    inner = scene._traces[INNER].points
+    inner = scene.marks.traces[INNER].points
     assert np.ptp(np.mod(np.arctan2(inner[:, 2], inner[:, 1]) - lo, 2 * np.pi)) > 6.0
 
 
@@ -123,7 +123,7 @@ def test_presets_frame_the_whole_bearing_left_of_the_colour_bar(geometry, preset
     pv.global_theme.multi_samples = 0
     plotter = pv.Plotter(off_screen=True, window_size=(650, 480))
     try:
-        from app.scene import SceneOptions
+        from viz.scene import SceneOptions
 
         scene = BearingScene(plotter, geometry, SceneOptions(explode=0.0))  # drawn assembled
         scene.set_camera(preset)
@@ -154,13 +154,13 @@ def test_colour_bar_is_vertical_and_its_title_clear_of_the_labels(scene):
 
 
 def test_balls_are_see_through_by_default_with_an_opaque_option(qs_dataset, geometry):
-    from app.scene import SceneOptions
+    from viz.scene import SceneOptions
 
     pv.global_theme.multi_samples = 0
     for translucent in (True, False):
         plotter = pv.Plotter(off_screen=True, window_size=(160, 120))
         scene = BearingScene(plotter, geometry, SceneOptions(translucent_balls=translucent))
-        alpha = np.array(scene._actors["balls"][0].mapper.lookup_table.values)[:, 3]
+        alpha = np.array(scene.actors["balls"][0].mapper.lookup_table.values)[:, 3]
         if translucent:  # plain octants nearly clear, marked ones darker and denser
             assert alpha[0] < 80 and 80 < alpha[1] < 255
         else:
@@ -170,7 +170,7 @@ def test_balls_are_see_through_by_default_with_an_opaque_option(qs_dataset, geom
 
 def test_ellipses_are_outlined_to_scale(scene, geometry):
     scene.set_frame(5)
-    mesh = scene._ellipses[INNER]
+    mesh = scene.marks.ellipses[INNER]
     assert mesh.n_lines == geometry.ball_count  # one closed outline per ball
     f = scene.source.frame(5)
     j = int(np.argmax(f.semi_major[:, INNER]))
@@ -185,12 +185,12 @@ def test_close_up_shows_one_balls_pressure_domes_and_recent_paths(scene, geometr
     scene.set_closeup_ball(j)
     scene.set_frame(40)
     scene.set_camera("close-up")
-    assert scene._closeup_on and all(a.visibility for a in scene._closeup_actors[:2])
-    assert [a.visibility for a in scene._actors["balls"]] == [
+    assert scene.closeup.on and all(a.visibility for a in scene.closeup.actors[:2])
+    assert [a.visibility for a in scene.actors["balls"]] == [
         k == j for k in range(geometry.ball_count)
     ]
     for race in (INNER, OUTER):
-        dome = scene._closeup["domes"][race]
+        dome = scene.closeup.domes[race]
         p = dome.point_data["pressure_GPa"]
         assert p.max() == pytest.approx(f.max_pressure[j, race] * 1e-9, rel=1e-6)
         # the dome stands on the groove (ring frame): its rim on the raceway, its top lifted
@@ -203,13 +203,13 @@ def test_close_up_shows_one_balls_pressure_domes_and_recent_paths(scene, geometr
         assert top.min() == pytest.approx(
             0.6 * f.semi_major[j, race] + 2 * 0.004 * groove.r, rel=0.05
         )
-        assert scene._closeup["paths"][race].n_points > 10  # the recent path of its centre
+        assert scene.closeup.paths[race].n_points > 10  # the recent path of its centre
     # the camera looks at that ball
     focal = np.array(scene.plotter.camera_position.focal_point)
     assert np.linalg.norm(focal - f.ball_center[j]) < geometry.ball_diameter
     scene.set_camera("isometric")
-    assert not any(a.visibility for a in scene._closeup_actors)
-    assert all(a.visibility for a in scene._actors["balls"])
+    assert not any(a.visibility for a in scene.closeup.actors)
+    assert all(a.visibility for a in scene.actors["balls"])
 
 
 def test_tracks_coloured_by_peak_pressure_name_it_on_the_colour_bar(scene):
@@ -228,10 +228,10 @@ def _track_pixels(scene, race: int) -> int:
     p = scene.plotter
     p.render()
     shown = p.screenshot(return_img=True).astype(int)
-    scene._actors["tracks"][race].visibility = False
+    scene.actors["tracks"][race].visibility = False
     p.render()
     hidden = p.screenshot(return_img=True).astype(int)
-    scene._actors["tracks"][race].visibility = True
+    scene.actors["tracks"][race].visibility = True
     return int((np.abs(shown - hidden).sum(axis=2) > 60).sum())
 
 
@@ -259,7 +259,7 @@ def test_exaggerated_marks_stay_on_the_groove_between_the_shoulders(scene, geome
     scene.set_frame(150)
     for race in (INNER, OUTER):
         groove, grid = grooves(geometry)[race], scene.grids[race]
-        pts = scene._traces[race].points
+        pts = scene.marks.traces[race].points
         assert len(pts) > 10
         radius = np.hypot(pts[:, 1], pts[:, 2])
         distance = np.hypot(pts[:, 0] - groove.x_c, radius - groove.rho_c)  # marks are lifted
@@ -273,23 +273,23 @@ def test_exaggerated_marks_stay_on_the_groove_between_the_shoulders(scene, geome
 
 def test_scene_lighting_is_cheap_for_software_rendering(scene):
     """Few camera lights and no order-independent translucency: each costs every pixel a frame."""
-    from app.scene import LIGHTS
+    from viz.scene import LIGHTS
 
     renderer = scene.plotter.renderer
     assert renderer.GetLights().GetNumberOfItems() == len(LIGHTS) <= 3
     assert not renderer.GetUseOIT()
     # the painted tracks are drawn before the rings, so the groove under them is not shaded
     props = list(renderer.GetViewProps())
-    tracks = [props.index(a) for a in scene._actors["tracks"]]
-    rings = [props.index(a) for a in scene._actors["inner_ring"] + scene._actors["outer_ring"]]
+    tracks = [props.index(a) for a in scene.actors["tracks"]]
+    rings = [props.index(a) for a in scene.actors["inner_ring"] + scene.actors["outer_ring"]]
     assert max(tracks) < min(rings)
 
 
 def test_each_ball_is_marked_in_its_legend_colour(scene, geometry):
-    from app.palette import ball_colours
+    from viz.palette import ball_colours
 
     colours = ball_colours(geometry.ball_count)
-    for actor, colour in zip(scene._actors["balls"], colours, strict=True):
+    for actor, colour in zip(scene.actors["balls"], colours, strict=True):
         marked = np.array(actor.mapper.lookup_table.values)[-1, :3]
         expected = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
         assert np.allclose(marked, expected, atol=2), (marked, colour)

@@ -1,0 +1,614 @@
+"""The metrics table: every number the views quote about a result, each declared once.
+
+:data:`METRICS` holds one :class:`Metric` per metric — name, dimensions, units (UDUNITS), long name,
+a one-line meaning and the function that computes it from a result. The accessor serves them:
+``ds.racetrace.metrics()`` (a Dataset of every metric, with units) and ``ds.racetrace.metric(name)``
+(one DataArray); it computes each one once per Dataset. The CLI, the app's charts and comparison
+table, the lessons, the study runner and the report ask for metrics by name and only convert units
+for display. docs/results-schema.md ("Metrics") lists the table; a test keeps the two in step.
+
+**Loaded contact.** One definition, :func:`solver.results.loaded.loaded` (re-exported here): a
+ball-race contact whose ``contact_load`` is > 0 N and whose ``contact_angle`` is finite. Every
+statistic over contacts reads it.
+
+**Analysed window.** A quasi-static result is one snapshot: every ball once. A dynamic result is
+read from its ``analysis_start_time`` to the end (the settled part of the run,
+:mod:`solver.results.summary`). :class:`Window` holds the result, the window's time mask and what
+several metrics share (the summary metrics), each computed once.
+
+**Dimensions.** A metric's ``dims`` are those it keeps of one bearing's result (``race`` for a
+per-race metric, ``()`` for the bearing as a whole). The functions reduce over the contact
+dimensions ``ball`` and ``time`` only and keep every other dimension of the result: a stack of
+results (``xr.concat`` along a sweep, ``ring_angle`` of a solution over one revolution), a set of
+bearings (``bearing``) or a window per phase of time-varying operation (a ``phase`` dimension of
+the time mask) each give one value per element. Statistics take the contacts in the Dataset's own
+order (ball by ball, in time within a ball), so a mean is the sum numpy forms over the flattened
+selection.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import xarray as xr
+
+from . import summary as summary_module
+from .loaded import loaded, loaded_mask
+from .variables import variable
+
+#: Dimensions a statistic over contacts reduces (every other dimension is kept).
+CONTACT_DIMS = ("ball", "time")
+RACES = ("inner", "outer")
+#: The ring frame in which each race's trajectory metrics are quoted: its own ring's.
+OWN_FRAME = {"inner": "inner_ring", "outer": "outer_ring"}
+#: Dimensions of one bearing's result; any other dimension stacks results (sweep, bearing, phase).
+RESULT_DIMS = frozenset(
+    {"ball", "race", "time", "axis", "tilt_axis", "quaternion", "body", "frame"}
+)
+
+
+@dataclass(frozen=True)
+class Metric:
+    """One row of the metrics table. ``compute`` takes a :class:`Window` and returns a DataArray
+    with the metric's ``dims`` plus any stacking dimension of the result (bearing, sweep, phase)."""
+
+    name: str
+    dims: tuple[str, ...]
+    units: str
+    long_name: str
+    meaning: str
+    compute: Callable[[Window], xr.DataArray]
+
+    def attrs(self) -> dict[str, str]:
+        """NetCDF attributes: units, long_name, description (the meaning)."""
+        return {"units": self.units, "long_name": self.long_name, "description": self.meaning}
+
+
+# ---- the analysed window -------------------------------------------------------------------------
+class Window:
+    """A result and its analysed window; what several metrics share is computed once."""
+
+    def __init__(self, ds: xr.Dataset):
+        self.ds = ds
+
+    @property
+    def dynamic(self) -> bool:
+        return "time" in self.ds.dims
+
+    @cached_property
+    def summary(self) -> xr.Dataset:
+        """The summary metrics (:func:`solver.results.summary.summary`: stored or computed)."""
+        return summary_module.summary(self.ds)
+
+    @cached_property
+    def in_window(self) -> xr.DataArray | None:
+        """Time samples in the analysed window (``time`` >= ``analysis_start_time``, with any
+        stacking dimension of the start time); None for a quasi-static result (every sample)."""
+        if not self.dynamic:
+            return None
+        return self.ds["time"] >= self.summary["analysis_start_time"]
+
+    @cached_property
+    def loaded(self) -> xr.DataArray:
+        """Loaded contacts (:func:`loaded`) in the analysed window."""
+        return self.within(loaded(self.ds))
+
+    def within(self, mask: xr.DataArray) -> xr.DataArray:
+        """``mask`` restricted to the analysed window."""
+        return mask if self.in_window is None else mask & self.in_window
+
+    def samples(self, name: str) -> xr.DataArray:
+        """Every sample of variable ``name`` in the analysed window (a mask, True for all of a
+        quasi-static result)."""
+        return self.within(xr.ones_like(self.ds[name], dtype=bool))
+
+
+# ---- reductions over contacts --------------------------------------------------------------------
+def reduce(values: xr.DataArray, mask: xr.DataArray, how: str, empty: float = math.nan):
+    """``how`` ("mean", "min", "max", "median") of the finite ``values`` where ``mask`` holds, over
+    the :data:`CONTACT_DIMS` they have; every other dimension is kept. ``empty`` where nothing is
+    selected. Elements are taken in the order of ``values``' dimensions."""
+    over = [d for d in values.dims if d in CONTACT_DIMS]
+    values, mask = xr.broadcast(values, mask)
+    keep = [d for d in values.dims if d not in over]
+    values = values.transpose(*keep, *over)
+    mask = mask.transpose(*keep, *over)
+    size = int(np.prod([values.sizes[d] for d in over], dtype=int))
+    flat = np.asarray(values.values, dtype=float).reshape(-1, size)
+    chosen = np.asarray(mask.values, dtype=bool).reshape(-1, size) & np.isfinite(flat)
+    out = np.full(flat.shape[0], empty, dtype=float)
+    function = getattr(np, how)
+    for row in range(flat.shape[0]):
+        picked = flat[row][chosen[row]]
+        if picked.size:
+            out[row] = function(picked)
+    return _kept(out.reshape([values.sizes[d] for d in keep]), values, keep)
+
+
+def _kept(data: np.ndarray, like: xr.DataArray, dims) -> xr.DataArray:
+    """``data`` with the kept ``dims`` and the coordinates of ``like`` along them."""
+    coords = {name: c for name, c in like.coords.items() if set(c.dims) <= set(dims)}
+    return _plain(xr.DataArray(data, dims=tuple(dims), coords=coords))
+
+
+def _plain(value: xr.DataArray) -> xr.DataArray:
+    """``value`` with its dimension coordinates (race, a stacking dimension) and the coordinates
+    along stacking dimensions only (e.g. the speed of each element of a sweep): the describing
+    coordinates of one result (speeds, loads, groove radii) stay with the result."""
+    drop = [
+        name
+        for name, coord in value.coords.items()
+        if name not in value.dims and (not coord.dims or set(coord.dims) & RESULT_DIMS)
+    ]
+    return value.drop_vars(drop)
+
+
+def _contact(w: Window, name: str, how: str, empty: float = math.nan) -> xr.DataArray:
+    """A statistic of per-contact variable ``name`` over the loaded contacts in the window (NaN
+    throughout when the result lacks the variable)."""
+    if name not in w.ds:  # the shape of the statistic, all NaN
+        return xr.full_like(reduce(w.ds["contact_load"], w.loaded, "max"), math.nan)
+    return reduce(w.ds[name], w.loaded, how, empty)
+
+
+def _every_contact(w: Window, name: str, how: str) -> xr.DataArray:
+    """A statistic of ``name`` over every contact in the window, loaded or not."""
+    return reduce(w.ds[name], w.samples(name), how)
+
+
+def _scalar_coordinate(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """A describing coordinate as a DataArray without the other coordinates (scalar, or with the
+    stacking dimensions of a stacked result)."""
+    da = ds.coords[name]
+    return da.drop_vars([c for c in da.coords if c not in da.dims])
+
+
+def _elementwise(function, da: xr.DataArray) -> xr.DataArray:
+    """``function`` (a ``math`` function of one float) on every element: the same rounding as the
+    scalar code it replaces."""
+    return xr.apply_ufunc(np.vectorize(function, otypes=[float]), da)
+
+
+# ---- the metrics' functions ----------------------------------------------------------------------
+def _own_frame(name: str) -> Callable[[Window], xr.DataArray]:
+    """Summary metric ``name`` (race, frame) of each race in its own ring's frame (with its
+    ``note`` attribute, if any)."""
+
+    def compute(w: Window) -> xr.DataArray:
+        frames = xr.DataArray(
+            [OWN_FRAME[r] for r in RACES], dims="race", coords={"race": list(RACES)}
+        )
+        da = w.summary[name]
+        return _with_note(da.sel(frame=frames), da)
+
+    return compute
+
+
+def _with_note(value: xr.DataArray, source: xr.DataArray) -> xr.DataArray:
+    """``value`` without the result's coordinates, keeping the ``note`` attribute of ``source``."""
+    out = value.drop_vars([c for c in value.coords if c not in value.dims])
+    note = source.attrs.get("note")
+    out.attrs = {"note": note} if note else {}
+    return out
+
+
+def _summary_value(name: str) -> Callable[[Window], xr.DataArray]:
+    """Summary metric ``name`` as stored or computed (NaN for a result without it: the settling
+    of a quasi-static snapshot)."""
+
+    def compute(w: Window) -> xr.DataArray:
+        if name not in w.summary:
+            return xr.DataArray(math.nan)
+        return _with_note(w.summary[name], w.summary[name])
+
+    return compute
+
+
+def epicyclic_cage_speed(ds: xr.Dataset) -> xr.DataArray:
+    """Cage speed of pure rolling at the free contact angle alpha_0 (rad/s):
+    ((1 - gamma) omega_i + (1 + gamma) omega_o) / 2 with gamma = D cos(alpha_0) / d_m."""
+    alpha = _elementwise(math.radians, _scalar_coordinate(ds, "free_contact_angle"))
+    gamma = (
+        _scalar_coordinate(ds, "ball_diameter")
+        * _elementwise(math.cos, alpha)
+        / _scalar_coordinate(ds, "pitch_diameter")
+    )
+    inner = _scalar_coordinate(ds, "inner_ring_speed")
+    outer = _scalar_coordinate(ds, "outer_ring_speed")
+    return 0.5 * ((1.0 - gamma) * inner + (1.0 + gamma) * outer)
+
+
+def _mean_variable(w: Window, name: str) -> xr.DataArray:
+    """Mean of the finite samples of a per-ball or bearing variable in the window (NaN when the
+    result lacks it)."""
+    if name not in w.ds:
+        return xr.DataArray(math.nan)
+    return reduce(w.ds[name], w.samples(name), "mean")
+
+
+def _mean_cage_speed(w: Window) -> xr.DataArray:
+    return _mean_variable(w, "cage_speed")
+
+
+def _cage_slip(w: Window) -> xr.DataArray:
+    cage = _mean_cage_speed(w)
+    epicyclic = epicyclic_cage_speed(w.ds)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slip = 1.0 - cage / epicyclic
+    return slip.where(epicyclic != 0.0)
+
+
+def _centrifugal_force(w: Window) -> xr.DataArray:
+    """The quasi-static result's own mean centrifugal force, else m (d_m / 2) omega^2 with the
+    ball's mass from its density and diameter and the mean orbital speed in the window."""
+    if "centrifugal_force" in w.ds:
+        return _mean_variable(w, "centrifugal_force")
+    if "orbital_speed" not in w.ds:
+        return xr.DataArray(math.nan)
+    density = _scalar_coordinate(w.ds, "density").sel(body="ball", drop=True)
+    diameter = _scalar_coordinate(w.ds, "ball_diameter")
+    mass = density * math.pi * diameter**3 / 6.0
+    orbital = _mean_variable(w, "orbital_speed")
+    return mass * 0.5 * _scalar_coordinate(w.ds, "pitch_diameter") * orbital**2
+
+
+def _loaded_balls(w: Window) -> xr.DataArray:
+    """Balls carrying load on each race: the count of a snapshot, the median count over the
+    window's samples of a dynamic run (rounded to a whole ball)."""
+    counts = w.loaded.sum("ball")
+    if "time" not in counts.dims:
+        return counts.astype(float)
+    median = reduce(counts, w.in_window, "median")
+    return _elementwise(lambda x: float(round(x)) if math.isfinite(x) else math.nan, median)
+
+
+def _truncated_contacts(w: Window) -> xr.DataArray:
+    """Ball-race contacts whose ellipse runs over the shoulder (truncation_margin < 0 at a loaded
+    contact) at least once in the window."""
+    if "truncation_margin" not in w.ds:
+        return xr.DataArray(0.0)
+    over = (w.ds["truncation_margin"] < 0.0) & w.loaded
+    if "time" in over.dims:
+        over = over.any("time")
+    return over.sum(("ball", "race")).astype(float)
+
+
+def _relative_speed(ds: xr.Dataset) -> xr.DataArray:
+    """|omega_i - omega_o| (rad/s) from the coordinates."""
+    inner = _scalar_coordinate(ds, "inner_ring_speed")
+    return abs(inner - _scalar_coordinate(ds, "outer_ring_speed"))
+
+
+def _shaft_period(w: Window) -> xr.DataArray:
+    """One revolution of one ring relative to the other (s); inf when they do not turn."""
+    with np.errstate(divide="ignore"):
+        return 2.0 * math.pi / _relative_speed(w.ds)
+
+
+def _shaft_revolutions(w: Window) -> xr.DataArray:
+    """Revolutions of one ring relative to the other that a dynamic run covers (NaN: snapshot)."""
+    if not w.dynamic:
+        return xr.DataArray(math.nan)
+    return float(w.ds["time"].values[-1]) * _relative_speed(w.ds) / (2.0 * math.pi)
+
+
+def _stored_row(name: str, meaning: str) -> Metric:
+    """A row that is a summary variable of the results registry itself (its dims and units)."""
+    spec = variable(name)
+    return Metric(name, spec.dims, spec.units, spec.long_name, meaning, _summary_value(name))
+
+
+def _table() -> dict[str, Metric]:
+    per_race = ("race",)
+    rows = [
+        # ---- contacts, per race: loaded contacts in the analysed window ------------------------
+        Metric(
+            "mean_contact_angle",
+            per_race,
+            "degree",
+            "mean contact angle",
+            "mean contact angle of the loaded contacts",
+            lambda w: _contact(w, "contact_angle", "mean"),
+        ),
+        Metric(
+            "min_contact_angle",
+            per_race,
+            "degree",
+            "smallest contact angle",
+            "smallest contact angle of a loaded contact",
+            lambda w: _contact(w, "contact_angle", "min"),
+        ),
+        Metric(
+            "max_contact_angle",
+            per_race,
+            "degree",
+            "largest contact angle",
+            "largest contact angle of a loaded contact",
+            lambda w: _contact(w, "contact_angle", "max"),
+        ),
+        Metric(
+            "mean_load",
+            per_race,
+            "N",
+            "mean contact load",
+            "mean contact load of the loaded contacts",
+            lambda w: _contact(w, "contact_load", "mean"),
+        ),
+        Metric(
+            "largest_load",
+            per_race,
+            "N",
+            "largest contact load",
+            "largest ball-race contact load (0 when no contact is loaded)",
+            lambda w: _every_contact(w, "contact_load", "max"),
+        ),
+        Metric(
+            "smallest_load",
+            per_race,
+            "N",
+            "smallest contact load",
+            "smallest ball-race contact load (0 when a ball is unloaded)",
+            lambda w: _every_contact(w, "contact_load", "min"),
+        ),
+        Metric(
+            "peak_pressure",
+            per_race,
+            "Pa",
+            "peak contact pressure",
+            "largest Hertz peak pressure of a loaded contact (0 when none is loaded)",
+            lambda w: _contact(w, "max_pressure", "max", empty=0.0),
+        ),
+        Metric(
+            "mean_semi_major",
+            per_race,
+            "m",
+            "mean contact ellipse semi-major axis",
+            "mean ellipse semi-axis across the groove of the loaded contacts "
+            "(ellipse_semi_major_mean)",
+            _summary_value("ellipse_semi_major_mean"),
+        ),
+        Metric(
+            "mean_semi_minor",
+            per_race,
+            "m",
+            "mean contact ellipse semi-minor axis",
+            "mean ellipse semi-axis along the rolling direction of the loaded contacts",
+            lambda w: _contact(w, "ellipse_semi_minor", "mean"),
+        ),
+        Metric(
+            "mean_spin_to_roll",
+            per_race,
+            "1",
+            "mean spin-to-roll ratio",
+            "mean spin-to-roll ratio of the loaded contacts (NaN when the result has none)",
+            lambda w: _contact(w, "spin_to_roll", "mean"),
+        ),
+        Metric(
+            "min_truncation_margin",
+            per_race,
+            "degree",
+            "smallest truncation margin",
+            "smallest margin between a loaded ellipse and the shoulder (< 0: over it)",
+            lambda w: _contact(w, "truncation_margin", "min"),
+        ),
+        Metric(
+            "loaded_balls",
+            per_race,
+            "1",
+            "loaded balls",
+            "balls carrying load on the race (a dynamic run: median over the samples)",
+            _loaded_balls,
+        ),
+        # ---- trajectory metrics, per race in its own ring's frame (solver.results.summary) -----
+        Metric(
+            "excursion",
+            per_race,
+            "degree",
+            "trajectory excursion",
+            "trajectory_excursion of the race in its own ring's frame",
+            _own_frame("trajectory_excursion"),
+        ),
+        Metric(
+            "excursion_arc",
+            per_race,
+            "m",
+            "trajectory excursion (arc)",
+            "trajectory_excursion_arc of the race in its own ring's frame",
+            _own_frame("trajectory_excursion_arc"),
+        ),
+        Metric(
+            "band_thickness",
+            per_race,
+            "degree",
+            "trajectory band thickness",
+            "trajectory_band_thickness of the race in its own ring's frame (NaN: quasi-static)",
+            _own_frame("trajectory_band_thickness"),
+        ),
+        Metric(
+            "band_thickness_arc",
+            per_race,
+            "m",
+            "trajectory band thickness (arc)",
+            "trajectory_band_thickness_arc of the race in its own ring's frame",
+            _own_frame("trajectory_band_thickness_arc"),
+        ),
+        Metric(
+            "band_width",
+            per_race,
+            "degree",
+            "trajectory band width",
+            "trajectory_band_width: max - min contact angle of the loaded contacts",
+            _summary_value("trajectory_band_width"),
+        ),
+        Metric(
+            "band_width_arc",
+            per_race,
+            "m",
+            "trajectory band width (arc)",
+            "trajectory_band_width_arc: groove radius times the band width",
+            _summary_value("trajectory_band_width_arc"),
+        ),
+        # ---- the bearing as a whole ------------------------------------------------------------
+        Metric(
+            "mean_cage_speed",
+            (),
+            "rad/s",
+            "mean cage speed",
+            "mean cage speed (a quasi-static result: its cage speed)",
+            _mean_cage_speed,
+        ),
+        Metric(
+            "epicyclic_cage_speed",
+            (),
+            "rad/s",
+            "epicyclic cage speed",
+            "cage speed of pure rolling at the free contact angle",
+            lambda w: epicyclic_cage_speed(w.ds),
+        ),
+        Metric(
+            "cage_slip",
+            (),
+            "1",
+            "cage slip",
+            "1 - mean cage speed / epicyclic cage speed (free contact angle); > 0: the cage lags",
+            _cage_slip,
+        ),
+        Metric(
+            "mean_centrifugal_force",
+            (),
+            "N",
+            "mean ball centrifugal force",
+            "mean centrifugal force on one ball",
+            _centrifugal_force,
+        ),
+        Metric(
+            "mean_gyroscopic_moment",
+            (),
+            "N m",
+            "mean ball gyroscopic moment",
+            "mean gyroscopic moment on one ball (NaN when the result has none: dynamic)",
+            lambda w: _mean_variable(w, "gyroscopic_moment"),
+        ),
+        Metric(
+            "truncated_contacts",
+            (),
+            "1",
+            "truncated contacts",
+            "ball-race contacts whose ellipse runs over the shoulder at least once",
+            _truncated_contacts,
+        ),
+        Metric(
+            "shaft_period",
+            (),
+            "s",
+            "shaft period",
+            "one revolution of one ring relative to the other (inf: the rings do not turn)",
+            _shaft_period,
+        ),
+        Metric(
+            "shaft_revolutions",
+            (),
+            "1",
+            "shaft revolutions",
+            "revolutions of one ring relative to the other that a dynamic run covers "
+            "(NaN: quasi-static)",
+            _shaft_revolutions,
+        ),
+        # ---- the analysed window (dynamic) -----------------------------------------------------
+        Metric(
+            "settling_time",
+            (),
+            "s",
+            "settling time",
+            "settling_time of the dynamic run (NaN: not settled, or quasi-static)",
+            _summary_value("settling_time"),
+        ),
+        Metric(
+            "settled",
+            (),
+            "1",
+            "run settled",
+            "1 settled, 0 not settled, NaN quasi-static",
+            _summary_value("settled"),
+        ),
+        Metric(
+            "analysis_start_time",
+            (),
+            "s",
+            "start of the analysed window",
+            "analysis_start_time of the dynamic run (NaN: quasi-static)",
+            _summary_value("analysis_start_time"),
+        ),
+        # ---- rating life (solver.results.life) -------------------------------------------------
+        _stored_row("basic_load_rating", "ISO 281 basic dynamic radial load rating C_r"),
+        _stored_row("equivalent_load", "ISO 281 dynamic equivalent radial load P_r"),
+        _stored_row("basic_rating_life", "ISO 281 basic rating life L10, in revolutions"),
+        _stored_row("basic_rating_life_time", "ISO 281 basic rating life L10 as time"),
+        _stored_row(
+            "reference_rating_life",
+            "ISO/TS 16281 reference rating life L10r from the contact loads, in revolutions",
+        ),
+        _stored_row(
+            "reference_rating_life_time", "ISO/TS 16281 reference rating life L10r as time"
+        ),
+    ]
+    return {row.name: row for row in rows}
+
+
+#: name -> Metric: the metrics table, in the order docs/results-schema.md lists it.
+METRICS: dict[str, Metric] = _table()
+
+
+def metric_row(name: str) -> Metric:
+    """The table row of ``name``; KeyError naming the known metrics otherwise."""
+    try:
+        return METRICS[name]
+    except KeyError:
+        known = ", ".join(METRICS)
+        raise KeyError(f"unknown metric {name!r}; known metrics: {known}") from None
+
+
+def compute_metric(window: Window, name: str) -> xr.DataArray:
+    """Metric ``name`` of the result in ``window``, with its units, long name and meaning."""
+    row = metric_row(name)
+    value = row.compute(window)
+    if not isinstance(value, xr.DataArray):
+        value = xr.DataArray(value)
+    value = _plain(value).astype(float)
+    return value.assign_attrs({**value.attrs, **row.attrs()}).rename(name)
+
+
+def metrics_table(ds: xr.Dataset) -> xr.Dataset:
+    """Every metric of one result, computed directly (``ds.racetrace.metrics()`` caches them)."""
+    window = Window(ds)
+    return xr.Dataset({name: compute_metric(window, name) for name in METRICS})
+
+
+def markdown_table() -> str:
+    """The table as the Markdown rows of docs/results-schema.md ("Metrics"), which a test keeps
+    equal to it."""
+    lines = ["| name | dims | units | meaning |", "|---|---|---|---|"]
+    for row in METRICS.values():
+        dims = "(" + ", ".join(row.dims) + ")"
+        lines.append(f"| `{row.name}` | {dims} | {row.units} | {row.meaning} |")
+    return "\n".join(lines)
+
+
+__all__ = [
+    "CONTACT_DIMS",
+    "METRICS",
+    "Metric",
+    "Window",
+    "compute_metric",
+    "epicyclic_cage_speed",
+    "loaded",
+    "loaded_mask",
+    "markdown_table",
+    "metric_row",
+    "metrics_table",
+    "reduce",
+]
