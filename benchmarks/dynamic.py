@@ -56,9 +56,9 @@ from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import initial_state
-from solver.models.dynamic.integrator import advance
+from solver.models.dynamic.integrate import METHODS, run
+from solver.models.dynamic.integrate.control import step_control
 from solver.models.dynamic.kernels import rhs_into, rhs_work
-from solver.models.dynamic.options import METHODS
 from solver.models.dynamic.params import build_params, build_quadrature
 from solver.models.dynamic.simulate import state_scales
 
@@ -72,29 +72,14 @@ def running_state(inputs, options, revolutions=0.1):
     par = build_params(inputs, options)
     quad = build_quadrature(options, par)
     y = initial_state(par, quad)
-    z = int(par.ball_count)
     scale = state_scales(par, y)
     op = inputs.operating
     t_end = revolutions * 2.0 * np.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
     out = np.empty((1, y.shape[0]))
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
-    advance(
-        y,
-        0.0,
-        h,
-        np.array([t_end]),
-        out,
-        par,
-        quad,
-        scale,
-        options.resolved(inputs.simulation).tolerance,
-        1e-6 * h,
-        10_000_000,
-        np.zeros(3, dtype=np.int64),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros(z),
-    )
+    tolerance = options.resolved(inputs.simulation).tolerance
+    control = step_control(tolerance, scale, 1e-6 * h, 10_000_000)
+    run("dopri5", par, quad, y, np.array([t_end]), out, control, h)
     return y
 
 

@@ -11,7 +11,8 @@ Public API (everything else is internal):
 - ``solve_over_revolution(case, angles=36) -> xarray.Dataset``: the quasi-static steady state at
   inner-ring angles over one shaft revolution (dimension ``ring_angle``)
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
-  ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs)
+  ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs;
+  ``INTEGRATION_METHODS``: the names its option ``method`` takes)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
@@ -80,6 +81,7 @@ _LAZY = {
     "simulate": "solver.facade",
     "preload": "solver.facade",
     "SimulationOptions": "solver.models.dynamic",
+    "INTEGRATION_METHODS": "solver.models.dynamic.options",
     "dynamic_model_compiled": "solver.compiled",
     # results (docs/results-schema.md)
     "save_dataset": "solver.results.io",

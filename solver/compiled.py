@@ -7,8 +7,9 @@ import os
 import sys
 from pathlib import Path
 
-# (module file stem, function) of a kernel compiled only for the dynamic model
-DYNAMIC_KERNEL = ("integrator", "advance")
+# (module file stem, function) of a kernel compiled only for the dynamic model: the stepper of
+# the default method "auto" (solver.models.dynamic.integrate.imex)
+DYNAMIC_KERNEL = ("imex", "advance")
 
 
 def kernel_cached(module_stem: str, function: str) -> bool:

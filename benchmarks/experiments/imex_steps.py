@@ -8,15 +8,13 @@ The 218 heavy case's explicit step is limited by the cage running in its guiding
 the squeeze-film damping on the cage's radial velocity is an overdamped mode of about -1.5e6 1/s
 (docs/numerics.md). Here f = f_E + f_I with f_I(Y) = A (Y - y_n) on the cage's three velocity
 components, A their 3 x 3 block of the whole right-hand side's Jacobian (forward differences at the
-step's start, evaluations not counted; solver.models.dynamic.imex, the compiled method, differences
-the land kernel alone), and a pair of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003, 139–181):
-ARK4(3)6L[2]SA (default; order 4(3), six evaluations per step) or ARK3(2)4L[2]SA (order 3(2),
-four). ``--implicit none`` runs the pair's explicit part alone; ``--implicit cage+rotation``
-adds every ball's angular velocity to the implicit slots (the traction slope on the balls'
-rotation; A the dense block of those slots, the best case of a per-ball treatment). Same error
-norm as the solver's
-integrators, PI step control. Python loop: slow, use a revolution or less.
-"""
+step's start, evaluations not counted; solver.models.dynamic.integrate.imex, the compiled method,
+differences the land kernel alone), and a pair of Kennedy & Carpenter (Appl. Numer. Math. 44, 2003,
+139–181): ARK4(3)6L[2]SA (default; order 4(3), six evaluations per step) or ARK3(2)4L[2]SA (order
+3(2), four). ``--implicit none`` runs the pair's explicit part alone; ``--implicit cage+rotation``
+adds every ball's angular velocity to the implicit slots (the traction slope on the balls' rotation;
+A the dense block of those slots, the best case of a per-ball treatment). Same error norm as the
+solver's integrators, PI step control. Python loop: slow, use a revolution or less."""
 
 from __future__ import annotations
 
@@ -33,8 +31,8 @@ from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.imex import ark436l2sa
 from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
+from solver.models.dynamic.integrate.imex import ark436l2sa
 from solver.models.dynamic.kernels import post_step, rhs_into, rhs_work
 from solver.models.dynamic.params import build_params, build_quadrature
 from solver.models.dynamic.simulate import state_scales

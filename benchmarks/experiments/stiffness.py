@@ -187,28 +187,14 @@ def report(label, revolutions, traction_model=None):
 
 def _final_state(inputs, options, t_end, y0, par, quad, scale):
     """The state at time ``t_end`` of a run from ``y0`` (explicit Dormand–Prince)."""
-    from solver.models.dynamic.integrator import advance
+    from solver.models.dynamic.integrate import run
+    from solver.models.dynamic.integrate.control import step_control
 
     y = y0.copy()
-    z = int(par.ball_count)
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
-    advance(
-        y,
-        0.0,
-        h,
-        np.array([t_end]),
-        np.empty((1, y.shape[0])),
-        par,
-        quad,
-        scale,
-        options.resolved(inputs.simulation).tolerance,
-        1e-6 * h,
-        50_000_000,
-        np.zeros(3, dtype=np.int64),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros(z),
-    )
+    tolerance = options.resolved(inputs.simulation).tolerance
+    control = step_control(tolerance, scale, 1e-6 * h, 50_000_000)
+    run("dopri5", par, quad, y, np.array([t_end]), np.empty((1, y.shape[0])), control, h)
     return y
 
 

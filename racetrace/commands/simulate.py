@@ -35,9 +35,23 @@ EXIT_DIVERGED = 4
 #: (named on stderr), or nowhere.
 EXIT_NOT_WRITTEN = 5
 EXIT_INTERRUPTED = 130
-#: solver.models.dynamic.options.METHODS, written out so that the command line does not import the
-#: numba kernels to build its parser (a test keeps the two equal)
-METHODS = ("auto", "dopri5", "imex", "rosenbrock")
+
+
+class _IntegrationMethods:
+    """The dynamic model's integration methods (``solver.INTEGRATION_METHODS``), looked up only
+    when argparse checks or lists the ``--method`` choices, so that building the parser imports
+    no model."""
+
+    def __iter__(self):
+        import solver
+
+        return iter(solver.INTEGRATION_METHODS)
+
+    def __contains__(self, name) -> bool:
+        return name in tuple(self)
+
+
+METHODS = _IntegrationMethods()
 
 
 def register(subparsers) -> None:
@@ -62,7 +76,8 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--method",
         choices=METHODS,
-        help="integration method (default auto; docs/numerics.md)",
+        metavar="METHOD",  # argparse would list the choices when the parser is built
+        help="integration method: %(choices)s (default auto; docs/numerics.md)",
     )
     parser.add_argument(
         "--no-traction", action="store_true", help="frictionless ball-race contacts"

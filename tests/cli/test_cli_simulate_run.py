@@ -114,9 +114,31 @@ def test_simulate_prints_the_metrics_and_json_on_request(fake_case, tmp_path, ca
 
 
 def test_method_choices_are_the_solver_methods():
-    """The command line's --method choices, written out to keep numba out of its parser, are the
-    solver's methods; the default is the solver's."""
+    """The command line's --method choices are the steppers' registry, in its order, looked up
+    when used; the default is the solver's."""
+    from solver.models.dynamic.integrate.registry import REGISTRY
     from solver.models.dynamic.options import METHODS, SimulationOptions
 
-    assert set(command.METHODS) == set(METHODS)
+    assert tuple(command.METHODS) == tuple(REGISTRY) == METHODS
     assert SimulationOptions().method in command.METHODS
+    assert "rosenbrock" not in command.METHODS
+
+
+def test_building_the_parser_does_not_import_the_dynamic_model():
+    """The --method choices are looked up when used: building the parser leaves the dynamic
+    model (and its numba kernels) unimported, and a wrong method is refused with the list."""
+    import subprocess
+    import sys
+
+    script = (
+        "import sys\n"
+        "from racetrace.cli import build_parser\n"
+        "parser = build_parser()\n"
+        "assert 'solver.models.dynamic' not in sys.modules, 'imported by the parser'\n"
+        "parser.parse_args(['simulate', 'x', '--method', 'rosenbrock'])\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert "imported by the parser" not in done.stderr, done.stderr
+    assert done.returncode == 2, done.stderr  # argparse's usage error
+    assert "invalid choice: 'rosenbrock'" in done.stderr
+    assert "'auto', 'dopri5', 'imex'" in done.stderr

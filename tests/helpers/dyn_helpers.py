@@ -34,36 +34,32 @@ def start(inputs, **option_changes):
     return par, quad, initial_state(par, quad)
 
 
-def integrate_states(par, quad, y0, times, tolerance=1e-3):
-    """States at ``times`` (times[0] = 0 is y0) integrated with the model's integrator."""
-    from solver.models.dynamic.integrator import STATUS_OK, advance
+def advance(
+    method, par, quad, y, times, outputs, tolerance, h, h_min, max_steps, scale=None, events=()
+):
+    """Run the stepper of ``method`` once from t = 0 with first step ``h`` (``y`` updated in place,
+    ``outputs`` filled); returns its progress record (solver.models.dynamic.integrate.control)."""
+    from solver.models.dynamic.integrate import run
+    from solver.models.dynamic.integrate.control import step_control
     from solver.models.dynamic.simulate import state_scales
 
-    z = int(par.ball_count)
+    if scale is None:
+        scale = state_scales(par, y)
+    control = step_control(tolerance, scale, h_min, max_steps, events)
+    return run(method, par, quad, y, np.asarray(times, float), outputs, control, h)
+
+
+def integrate_states(par, quad, y0, times, tolerance=1e-3, method="dopri5"):
+    """(States at ``times`` (times[0] = 0 is y0) integrated with the stepper of ``method``, its
+    progress record)."""
+    from solver.models.dynamic.integrate.control import STATUS_OK
+    from solver.models.dynamic.simulate import state_scales
+
     scale = state_scales(par, y0)
     y = y0.copy()
     states = np.empty((len(times), y.shape[0]))
     states[0] = y
-    counters = np.zeros(3, dtype=np.int64)
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
-    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
-    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    status, t, h, n = advance(
-        y,
-        0.0,
-        h,
-        np.asarray(times[1:], float),
-        states[1:],
-        par,
-        quad,
-        scale,
-        tolerance,
-        1e-6 * h,
-        10_000_000,
-        counters,
-        rec_i,
-        rec_o,
-        np.zeros(z),
-    )
-    assert status == STATUS_OK, status
-    return states, counters
+    progress = advance(method, par, quad, y, times[1:], states[1:], tolerance, h, 1e-6 * h, 10**7)
+    assert progress["status"] == STATUS_OK, progress
+    return states, progress

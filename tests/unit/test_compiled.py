@@ -13,9 +13,19 @@ def test_kernel_found_only_in_the_cache_in_use(tmp_path, monkeypatch):
     version = f"py{sys.version_info.major}{sys.version_info.minor}"
     folder = tmp_path / "dynamic_0123"
     folder.mkdir()
-    (folder / "integrator.advance-85.py27.nbi").touch()  # another Python's index: not ours
+    stem, function = compiled.DYNAMIC_KERNEL
+    (folder / f"{stem}.{function}-85.py27.nbi").touch()  # another Python's index: not ours
     assert not compiled.kernel_cached(*compiled.DYNAMIC_KERNEL)
-    (folder / f"integrator.advance-85.{version}.nbi").touch()
+    (folder / f"{stem}.{function}-85.{version}.nbi").touch()
     assert compiled.kernel_cached(*compiled.DYNAMIC_KERNEL)
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "missing"))
     assert not compiled.kernel_cached(*compiled.DYNAMIC_KERNEL)
+
+
+def test_the_dynamic_kernel_is_the_default_methods_stepper():
+    """The kernel looked for is the ``advance`` of the default method's stepper module."""
+    from solver.models.dynamic.integrate.registry import REGISTRY
+    from solver.models.dynamic.options import SimulationOptions
+
+    module, _ = REGISTRY[SimulationOptions().method]
+    assert compiled.DYNAMIC_KERNEL == (module, "advance")

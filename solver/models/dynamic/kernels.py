@@ -902,7 +902,7 @@ def post_step(y, par, rec_inner, rec_outer):
 
 class RhsWork(NamedTuple):
     """Scratch arrays of one right-hand-side evaluation (:func:`rhs_into`), made once per
-    integration chunk by :func:`rhs_work` so that the evaluations allocate nothing."""
+    run by :func:`rhs_work` (the stepper's workspace) so that the evaluations allocate nothing."""
 
     inner_rot: np.ndarray  # (3, 3) inner-ring axes, inertial components
     inner_origin: np.ndarray  # (3,) [m]

@@ -16,6 +16,8 @@ from solver.errors import CaseError, Problem
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.summary import UNSETTLED_SKIP_FRACTION
 
+from .integrate import registry as integrate_registry
+
 #: Options that override a ``[simulation]`` case key: option -> (SimulationInputs field, case key).
 CASE_OVERRIDES = {
     "traction": ("traction", "simulation.ball_race_traction"),
@@ -50,8 +52,10 @@ DEFAULT_ELLIPSE_RULE = {LAW_SLIP_CURVE: "product", LAW_RHEOLOGY: "split"}
 #: Default (points along the rolling direction, strips per piece) of the split rule.
 DEFAULT_SPLIT_COUNTS = (3, 3)
 
-#: Integration methods of the dynamic model (option ``method``).
-METHODS = ("dopri5", "auto", "imex", "rosenbrock")
+#: Integration methods of the dynamic model (option ``method``): the keys of the steppers'
+#: registry, solver.models.dynamic.integrate.registry.
+METHODS = integrate_registry.METHODS
+INTEGRATION_METHODS = METHODS
 
 
 @dataclass(frozen=True)
@@ -89,16 +93,12 @@ class SimulationOptions:
     - ``heathcote``: evaluate the slip on the curved deformed surface (differential slip).
     - ``inner_ring_mass`` [kg]: None = estimated from the ring cross-section (width 2 D).
     - ``max_steps_per_chunk``: safety bound on the integrator steps in one chunk.
-    - ``method``: integration method. "dopri5": explicit Dormand–Prince 5(4)
-      (solver.models.dynamic.integrator); "rosenbrock": the linearly implicit Rosenbrock-W method
-      ROS34PW2 with an arrow-structured Jacobian (solver.models.dynamic.rosenbrock), whose step is
-      not limited by the stiff traction and pocket-friction modes; "imex": additive Runge–Kutta
-      ARK4(3)6L[2]SA with the cage's guiding-land film implicit (solver.models.dynamic.imex),
-      whose step is not limited by the film's squeeze damping on a cage running near its land;
-      "auto" (default): Dormand–Prince steps, and the additive steps only where that film would
-      limit the explicit step. docs/numerics.md compares them.
-    - ``jacobian_every``: accepted steps between two evaluations of the block Jacobian of the
-      Rosenbrock method (it is also re-formed when a step fails with an older Jacobian).
+    - ``method``: integration method (:data:`METHODS`). "dopri5": explicit Dormand–Prince 5(4)
+      (solver.models.dynamic.integrate.dopri5); "imex": additive Runge–Kutta ARK4(3)6L[2]SA with
+      the cage's guiding-land film implicit (solver.models.dynamic.integrate.imex), whose step is
+      not limited by the film's squeeze damping on a cage running near its land; "auto"
+      (default): Dormand–Prince steps, and the additive steps only where that film would limit
+      the explicit step. docs/numerics.md compares them.
     - ``start``: "quasistatic" (the project's Jones–Harris solution, solver.models.quasistatic;
       falls back to "equilibrium" if it finds no solution) or "equilibrium" (the model's own
       force balance without gyroscopic moment, see ``initial.initial_state``).
@@ -124,7 +124,6 @@ class SimulationOptions:
     inner_ring_mass: float | None = None
     max_steps_per_chunk: int = 2_000_000
     method: str = "auto"
-    jacobian_every: int = 10
     start: str = "quasistatic"
 
     def resolved(self, simulation) -> SimulationOptions:
@@ -191,13 +190,6 @@ class SimulationOptions:
                     "ellipse_rule",
                     f"simulation option ellipse_rule = {self.ellipse_rule!r}: must be one of "
                     + ", ".join(repr(m) for m in ELLIPSE_RULES),
-                )
-            )
-        if self.jacobian_every < 1:
-            problems.append(
-                Problem(
-                    "jacobian_every",
-                    f"simulation option jacobian_every = {self.jacobian_every}: must be >= 1",
                 )
             )
         if self.start not in ("quasistatic", "equilibrium"):

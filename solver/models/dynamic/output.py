@@ -10,6 +10,7 @@ from solver.results.dataset import build_result
 from solver.results.summary import trajectory_summary
 
 from . import layout as L
+from .integrate import stepper
 from .observe import observe
 
 _TWO_PI = 2.0 * np.pi
@@ -203,20 +204,4 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
 
 def _integrator_note(options) -> str:
     """Method, step control and tolerance of the run, for the Dataset attrs."""
-    if options.method == "rosenbrock":
-        return (
-            "Rosenbrock-W ROS34PW2 (order 3(2)) with per-body block Jacobians re-formed every "
-            f"{options.jacobian_every} steps, tolerance {options.tolerance:g}"
-        )
-    if options.method == "auto":
-        return (
-            "Dormand-Prince 5(4), with additive Runge-Kutta ARK4(3)6L[2]SA steps (the cage's "
-            "guiding-land film implicit) where the film limits the explicit step; PI step "
-            f"control, tolerance {options.tolerance:g}"
-        )
-    if options.method == "imex":
-        return (
-            "additive Runge-Kutta ARK4(3)6L[2]SA, the cage's guiding-land film implicit, PI step "
-            f"control, tolerance {options.tolerance:g}"
-        )
-    return f"Dormand-Prince 5(4), PI step control, tolerance {options.tolerance:g}"
+    return f"{stepper(options.method).note}, tolerance {options.tolerance:g}"

@@ -26,21 +26,21 @@ from solver.errors import CaseError, NoSolutionError, SimulationDiverged
 from solver.inputs import Inputs, to_inputs
 from solver.physics.traction import NODE_COLUMNS
 
-from . import imex
 from . import layout as L
 from .initial import initial_state, initial_state_from_quasistatic, quasistatic_solution
-from .integrator import (
+from .integrate import stepper
+from .integrate.control import (
     STATUS_BALL_ESCAPED,
     STATUS_NOT_FINITE,
     STATUS_OK,
     STATUS_STEP_COLLAPSE,
     STATUS_TOO_MANY_STEPS,
-    advance,
+    step_control,
 )
+from .integrate.model import bearing_model
 from .options import CASE_OVERRIDES, SimulationOptions
 from .output import build_dataset
 from .params import build_params, build_quadrature
-from .rosenbrock import advance_rosenbrock, block_structure, ros34pw2, rosenbrock_work
 
 _DIVERGENCE_CAUSES = MappingProxyType(
     {
@@ -122,24 +122,25 @@ def state_scales(par, y0: np.ndarray) -> np.ndarray:
 
 
 class RunStatistics:
-    """Counters of one run (steps, rejected steps, right-hand-side evaluations, wall time)."""
+    """Counters of one run (steps, rejected steps, right-hand-side evaluations: the stepper's
+    progress record, integrate.control.PROGRESS), wall time and first step [s]."""
 
-    def __init__(self):
-        self.counters = np.zeros(3, dtype=np.int64)
+    def __init__(self, progress: np.ndarray):
+        self.progress = progress
         self.wall_time = 0.0
         self.initial_step = 0.0
 
     @property
     def steps(self) -> int:
-        return int(self.counters[0])
+        return int(self.progress[0]["accepted"])
 
     @property
     def rejected(self) -> int:
-        return int(self.counters[1])
+        return int(self.progress[0]["rejected"])
 
     @property
     def rhs_evaluations(self) -> int:
-        return int(self.counters[2])
+        return int(self.progress[0]["rhs_evaluations"])
 
 
 def _start(inputs, options, par, quad):
@@ -176,35 +177,6 @@ def _inputs(case) -> Inputs:
     if problems:
         raise CaseError(problems)
     return to_inputs(case)
-
-
-def _stepper(options, par):
-    """The integrator of ``options.method`` as a function with the arguments of
-    ``integrator.advance``."""
-    if options.method == "dopri5":
-        return advance
-    if options.method in ("imex", "auto"):
-        ark = imex.ark436l2sa()
-        switch = (imex.SWITCH_BOUND, imex.SWITCH_BACK) if options.method == "auto" else (0.0, 0.0)
-
-        def step_imex(*args):
-            return imex.advance_imex(
-                *args, ark.explicit, ark.implicit, ark.b, ark.e, ark.order, *switch
-            )
-
-        return step_imex
-    tab = ros34pw2()
-    starts, sizes = block_structure(par.ball_count)
-    work = rosenbrock_work(par.ball_count, tab.m.shape[0])
-    every = options.jacobian_every
-
-    def step(*args):
-        return advance_rosenbrock(
-            *args, tab.gamma, tab.a, tab.c, tab.m, tab.e, tab.order,
-            starts, sizes, every, work,
-        )  # fmt: skip
-
-    return step
 
 
 def _length_names(options: SimulationOptions) -> tuple[str, str]:
@@ -254,48 +226,32 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     states = np.empty((n_samples + 1, y.shape[0]))
     states[0] = y
     scale = state_scales(par, y)
-    z = int(par.ball_count)
-    rec_i = np.zeros((z, L.N_CONTACT_RECORD))
-    rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    pocket = np.zeros(z)
-    stats = RunStatistics()
     # first step: a fraction of the shortest contact period
     omega_n = scale[L.B_VEL] / scale[L.B_POS]
     h = 0.05 / omega_n
+    method = stepper(options.method)
+    model = bearing_model(par, quad)
+    work = method.workspace(model, y.shape[0], 0.0, h)
+    reached = work.progress  # the stepper's progress record (1,)
+    control = step_control(options.tolerance, scale, 1e-6 * h, options.max_steps_per_chunk)
+    stats = RunStatistics(work.progress)
     stats.initial_step = h
-    h_min = 1e-6 * h
     done = 1
-    t = 0.0
     stop_reason = "finished"
     diverged_message = None
-    step = _stepper(options, par)
     start = _time.perf_counter()
     while done <= n_samples:
         if _is_cancelled(cancel):
             stop_reason = "cancelled"
             break
         stop = min(done + options.chunk_samples, n_samples + 1)
-        status, t, h, n_done = step(
-            y,
-            t,
-            h,
-            times[done:stop],
-            states[done:stop],
-            par,
-            quad,
-            scale,
-            options.tolerance,
-            h_min,
-            options.max_steps_per_chunk,
-            stats.counters,
-            rec_i,
-            rec_o,
-            pocket,
-        )
-        done += n_done
+        method.advance(y, times[done:stop], states[done:stop], control, work, model)
+        done += int(reached["written"][0])
+        status = int(reached["status"][0])
         if status != STATUS_OK:
+            t = float(reached["t"][0])
             cause = _DIVERGENCE_CAUSES[status].format(
-                h_min=h_min, max_steps=options.max_steps_per_chunk
+                h_min=control.h_min, max_steps=options.max_steps_per_chunk
             )
             diverged_message = (
                 f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): "

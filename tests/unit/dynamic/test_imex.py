@@ -1,7 +1,7 @@
-"""IMEX additive Runge–Kutta method (solver.models.dynamic.imex) and the outputs inside a step of
-both adaptive methods: tableau order against an independent reference solution, the order kept with
-any implicit matrix, the cage-velocity Jacobian against differences of the whole right-hand side,
-and short runs against the explicit method."""
+"""IMEX additive Runge–Kutta method (solver.models.dynamic.integrate.imex) and the outputs inside a
+step of both adaptive methods: tableau order against an independent reference solution, the order
+kept with any implicit matrix, the cage-velocity Jacobian against differences of the whole
+right-hand side, and short runs against the explicit method."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.imex import ark436l2sa, cage_velocity_jacobian
+from solver.models.dynamic.integrate.imex import ark436l2sa, cage_velocity_jacobian
 from solver.models.dynamic.kernels import rhs_into, rhs_work
 from solver.models.dynamic.simulate import state_scales
 from tests.helpers.cases import spindle_inputs

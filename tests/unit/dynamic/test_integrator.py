@@ -5,17 +5,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 from solver.models.dynamic import layout as L
-from solver.models.dynamic.integrator import (
-    STATUS_BALL_ESCAPED,
-    STATUS_NOT_FINITE,
-    advance,
-)
+from solver.models.dynamic.integrate import METHODS
+from solver.models.dynamic.integrate.control import STATUS_BALL_ESCAPED, STATUS_NOT_FINITE
 from solver.models.dynamic.kernels import post_step
 from solver.models.dynamic.simulate import state_scales
 from tests.helpers.cases import spindle_inputs
-from tests.helpers.dyn_helpers import integrate_states, start
+from tests.helpers.dyn_helpers import advance, integrate_states, start
 
 
 def test_local_error_control_converges():
@@ -51,27 +49,11 @@ def test_non_finite_state_stops_with_status():
     par, quad, y0 = start(spindle_inputs())
     y = y0.copy()
     y[L.ball_base(2) + L.B_VEL] = np.nan
-    z = 18
     scale = state_scales(par, y0)
     out = np.empty((1, y.shape[0]))
-    status, t, h, n = advance(
-        y,
-        0.0,
-        1e-7,
-        np.array([1e-5]),
-        out,
-        par,
-        quad,
-        scale,
-        1e-4,
-        1e-12,
-        1000,
-        np.zeros(3, dtype=np.int64),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros(z),
-    )
-    assert status == STATUS_NOT_FINITE and n == 0
+    for method in METHODS:
+        progress = advance(method, par, quad, y.copy(), [1e-5], out, 1e-4, 1e-7, 1e-12, 1000, scale)
+        assert progress["status"] == STATUS_NOT_FINITE and progress["written"] == 0, method
 
 
 def test_escape_status_from_advance():
@@ -83,24 +65,57 @@ def test_escape_status_from_advance():
     b = L.ball_base(0)
     par = par._replace(eprime=par.eprime * 1e-6)  # a soft race lets the ball through
     y[b + L.B_VEL + 1] += 50.0
-    z = 18
     scale = state_scales(par, y0)
     out = np.empty((1, y.shape[0]))
-    status, *_ = advance(
-        y,
-        0.0,
-        1e-8,
-        np.array([1e-3]),
-        out,
-        par,
-        quad,
-        scale,
-        1e-4,
-        1e-16,
-        10_000_000,
-        np.zeros(3, dtype=np.int64),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros((z, L.N_CONTACT_RECORD)),
-        np.zeros(z),
-    )
-    assert status == STATUS_BALL_ESCAPED
+    for method in METHODS:
+        progress = advance(
+            method, par, quad, y.copy(), [1e-3], out, 1e-4, 1e-8, 1e-16, 10**7, scale
+        )
+        assert progress["status"] == STATUS_BALL_ESCAPED, method
+
+
+def test_steps_end_on_event_times_and_never_pass_them():
+    """Every method lands exactly on each time of ``StepControl.event_times`` and no accepted step
+    passes one (one step per call, the time reached recorded after each); without events the
+    steps pass them."""
+    from solver.models.dynamic.integrate import stepper
+    from solver.models.dynamic.integrate.control import STATUS_OK, step_control
+    from solver.models.dynamic.integrate.model import bearing_model
+
+    par, quad, y0 = start(spindle_inputs())
+    scale = state_scales(par, y0)
+    h0 = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
+    t_end = 60.0 * h0
+    events = t_end * np.array([0.3141, 0.6789])
+
+    def reached_times(method, event_times):
+        method = stepper(method)
+        model = bearing_model(par, quad)
+        y = y0.copy()
+        work = method.workspace(model, y.shape[0], 0.0, h0)
+        control = step_control(1e-4, scale, 1e-6 * h0, 1, event_times)
+        out = np.empty((1, y.shape[0]))
+        reached = [0.0]
+        for _ in range(1000):
+            method.advance(y, np.array([t_end]), out, control, work, model)
+            if work.progress[0]["t"] != reached[-1]:
+                reached.append(float(work.progress[0]["t"]))
+            if work.progress[0]["status"] == STATUS_OK:
+                return np.array(reached)
+        raise AssertionError("did not reach the end")
+
+    for method in METHODS:
+        with_events = reached_times(method, events)
+        assert with_events[-1] == t_end
+        for event in events:
+            assert event in with_events, method  # a step ends exactly on it
+            assert not np.any((with_events[:-1] < event) & (with_events[1:] > event)), method
+        free = reached_times(method, ())
+        assert not any(event in free for event in events), method
+
+
+def test_event_times_must_increase():
+    from solver.models.dynamic.integrate.control import step_control
+
+    with pytest.raises(ValueError, match="strictly increasing"):
+        step_control(1e-4, np.ones(3), 1e-9, 10, [2.0, 1.0])
