@@ -114,7 +114,17 @@ class Front:
         if self.fork:  # forked from the pre-imported fork server: shares its memory
             from .services import forkserver
 
-            process = await asyncio.to_thread(forkserver.start_session, argv, secret)
+            forking = asyncio.ensure_future(
+                asyncio.to_thread(forkserver.start_session, argv, secret)
+            )
+            try:
+                process = await asyncio.shield(forking)
+            except asyncio.CancelledError:
+                # the front stops while this session is forked: stop it too, or the front's exit
+                # (which waits for its children) would wait for it forever
+                with contextlib.suppress(Exception):
+                    (await forking).terminate()
+                raise
         else:
             process = await asyncio.create_subprocess_exec(
                 sys.executable,
@@ -147,7 +157,7 @@ class Front:
         )
         log.warning("racetrace: %s", error)  # once, even when no browser is waiting for it
         session.ready.set_exception(error)
-        session.ready.exception()  # said above: asyncio need not report it again
+        session.ready.exception()  # logged above: asyncio need not report it again
 
     async def start_spare(self) -> None:
         """Start the session the next browser gets (the shared one with ``shared``)."""
@@ -241,7 +251,11 @@ class Front:
         if "Origin" in request.headers:  # checked here; a session accepts only the front's origin
             headers["Origin"] = f"http://127.0.0.1:{session.port}"
         headers[SECRET_HEADER] = session.secret
-        body = await request.read()
+        try:
+            body = await request.read()
+        except ConnectionResetError:  # the client left while sending: nobody to answer
+            log.debug("a client left before its request body arrived")
+            return web.Response(status=400, text="racetrace: request cut off\n")
         url = f"http://127.0.0.1:{session.port}{request.rel_url}"
         try:
             async with self._http.request(
@@ -287,7 +301,11 @@ class Front:
     async def _on_startup(self, _app) -> None:
         quiet_closed_connections()
         self._http = ClientSession(auto_decompress=True)
-        await self.start_spare()
+        try:
+            await self.start_spare()  # the first start waits for the fork server's imports
+        except asyncio.CancelledError:  # stopped meanwhile: aiohttp cleans up after start only
+            await self._http.close()
+            raise
         self._reaper = asyncio.get_running_loop().create_task(self._reap())
 
     async def _on_shutdown(self, _app) -> None:
@@ -303,11 +321,14 @@ async def _pump(source, target) -> None:
     async for message in source:
         if target.closed:
             break
-        if message.type == WSMsgType.TEXT:
-            await target.send_str(message.data)
-        elif message.type == WSMsgType.BINARY:
-            await target.send_bytes(message.data)
-        else:
+        try:
+            if message.type == WSMsgType.TEXT:
+                await target.send_str(message.data)
+            elif message.type == WSMsgType.BINARY:
+                await target.send_bytes(message.data)
+            else:
+                break
+        except ConnectionResetError:  # the target went while this message was on its way
             break
     if not target.closed:
         await target.close()
