@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
 
 HOST = "127.0.0.1"  # whatever address the front serves on
@@ -30,10 +29,6 @@ def main(argv=None, secret: str | None = None) -> int:
     from .services.session_guard import SECRET_ENV
 
     secret = secret or os.environ.pop(SECRET_ENV, "")  # the solver processes do not need it
-    # The front stops its sessions (SIGTERM); Ctrl-C in a terminal reaches every process of the
-    # group, and would stop a session still starting with a traceback. Once the session serves,
-    # its server takes SIGINT and SIGTERM and stops quietly.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
     p = argparse.ArgumentParser(prog="python -m app.session_process")
     p.add_argument("--port", type=int, required=True)
     p.add_argument("--runs-dir", default=None)

@@ -123,8 +123,12 @@ def _assert_all_gone(group: int) -> None:
         time.sleep(0.5)
 
 
-def test_a_stop_while_the_first_session_starts_is_quiet(tmp_path):
-    """SIGTERM while the fork server still imports what the sessions use (before the banner)."""
+@pytest.mark.parametrize(
+    "moment", ["SIGTERM while the fork server imports", "Ctrl-C while the first session starts"]
+)
+def test_a_stop_during_start_up_is_quiet(tmp_path, moment):
+    """Stopped before the server is ready: while its fork server still imports what the sessions
+    use (before the banner), or while the first session process starts (after it)."""
     log_path = tmp_path / "serve.log"
     with open(log_path, "w+") as log:
         proc = subprocess.Popen(
@@ -136,19 +140,27 @@ def test_a_stop_while_the_first_session_starts_is_quiet(tmp_path):
         )
         try:
             deadline = time.monotonic() + START_S
-            while not any("forkserver" in _command_line(pid) for pid in descendants(proc.pid)):
+            while not _reached(moment, proc.pid, log_path):
                 assert proc.poll() is None and time.monotonic() < deadline, log_path.read_text()
                 time.sleep(0.1)
-            proc.send_signal(signal.SIGTERM)
+            if moment.startswith("SIGTERM"):
+                proc.send_signal(signal.SIGTERM)
+            else:
+                os.killpg(proc.pid, signal.SIGINT)
             assert proc.wait(timeout=START_S) == 0
         finally:
             if proc.poll() is None:
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
     text = log_path.read_text()
-    assert "serving on" not in text  # stopped before it served, as meant
     _assert_quiet(text)
     _assert_all_gone(proc.pid)
+
+
+def _reached(moment: str, pid: int, log_path: Path) -> bool:
+    if moment.startswith("SIGTERM"):  # the fork server runs, the banner is not out yet
+        return any("forkserver" in _command_line(child) for child in descendants(pid))
+    return "serving on" in log_path.read_text()  # the first session is forked and starts
 
 
 def _command_line(pid: int) -> str:
