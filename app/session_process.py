@@ -38,7 +38,7 @@ def main(argv=None, secret: str | None = None) -> int:
     args = p.parse_args(argv)
     if not secret:
         p.error(f"no session secret in ${SECRET_ENV}: sessions are started by racetrace serve")
-    _trame_options_only(["--host", HOST, "--port", str(args.port)])
+    _trame_options_only(trame_options(args.port))
     from .services.process import die_with_parent
 
     die_with_parent()
@@ -83,6 +83,13 @@ def main(argv=None, secret: str | None = None) -> int:
     finally:
         app.shutdown()
     return 0
+
+
+def trame_options(port: int) -> list[str]:
+    """The session's trame server options: listen on 127.0.0.1:``port``, and never stop on its
+    own (wslink stops a server after 300 s without a websocket by default; the front decides
+    when a session ends, :data:`app.front.IDLE_S`)."""
+    return ["--host", HOST, "--port", str(port), "--timeout", "0"]
 
 
 def _trame_options_only(options: list[str]) -> None:
