@@ -3,9 +3,10 @@
 The front listens on ``--host``/``--port`` and checks every request (:mod:`app.access`). It gives
 each browser a session cookie and its own session process (:mod:`app.session_process`: a trame
 server on a loopback port with its own case, run, camera and render size), and relays that
-browser's HTTP requests and websocket to it. With ``shared=True`` every browser gets the same
-session (a design review on a shared screen). All sessions use the same runs folder and the same
-solver slots (:class:`app.services.pool.SolverPool`).
+browser's HTTP requests and websocket to it, with the secret that session answers
+(:mod:`app.services.session_guard`): nothing but the front can use a session. With
+``shared=True`` every browser gets the same session (a design review on a shared screen). All
+sessions use the same runs folder and the same solver slots (:class:`app.services.pool.SolverPool`).
 
 Session processes are forked from a fork server that has imported what they all use
 (:mod:`app.services.forkserver`), so they share that memory instead of each holding a copy; with
@@ -32,6 +33,8 @@ from pathlib import Path
 from aiohttp import ClientSession, WSMsgType, web
 
 from .access import Access
+from .services.quiet_log import quiet_closed_connections
+from .services.session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 
 log = logging.getLogger("racetrace.front")
 
@@ -48,6 +51,7 @@ _HOP_HEADERS = {
     "content-length",
     "upgrade",
     "host",
+    SECRET_HEADER.lower(),  # the front's to give, never the browser's
 }
 
 
@@ -69,6 +73,7 @@ class Session:
 
     sid: str
     port: int
+    secret: str = field(repr=False)  # the session answers requests that carry it, only
     process: asyncio.subprocess.Process  # or a forkserver.ForkedProcess, which behaves alike
     ready: asyncio.Future
     sockets: int = 0
@@ -104,16 +109,31 @@ class Front:
     async def _spawn(self) -> Session:
         port = free_port()
         sid = secrets.token_urlsafe(16)
+        secret = new_secret()
         argv = ["--port", str(port), *self.session_args]
         if self.fork:  # forked from the pre-imported fork server: shares its memory
             from .services import forkserver
 
-            process = await asyncio.to_thread(forkserver.start_session, argv)
+            forking = asyncio.ensure_future(
+                asyncio.to_thread(forkserver.start_session, argv, secret)
+            )
+            try:
+                process = await asyncio.shield(forking)
+            except asyncio.CancelledError:
+                # the front stops while this session is forked: stop it too, or the front's exit
+                # (which waits for its children) would wait for it forever
+                with contextlib.suppress(Exception):
+                    (await forking).terminate()
+                raise
         else:
             process = await asyncio.create_subprocess_exec(
-                sys.executable, "-m", "app.session_process", *argv
+                sys.executable,
+                "-m",
+                "app.session_process",
+                *argv,
+                env={**os.environ, SECRET_ENV: secret},
             )
-        session = Session(sid, port, process, asyncio.get_running_loop().create_future())
+        session = Session(sid, port, secret, process, asyncio.get_running_loop().create_future())
         asyncio.get_running_loop().create_task(self._wait_ready(session))
         return session
 
@@ -121,7 +141,9 @@ class Front:
         deadline = time.monotonic() + START_TIMEOUT_S
         while time.monotonic() < deadline and session.alive:
             try:
-                async with self._http.get(f"http://127.0.0.1:{session.port}/") as response:
+                async with self._http.get(
+                    f"http://127.0.0.1:{session.port}/", headers={SECRET_HEADER: session.secret}
+                ) as response:
                     if response.status == 200:
                         session.ready.set_result(True)
                         return
@@ -129,12 +151,13 @@ class Front:
                 pass
             await asyncio.sleep(0.2)
         code = session.process.returncode
-        session.ready.set_exception(
-            RuntimeError(
-                "the session did not start"
-                + (f" (exit code {code})" if code is not None else " in time")
-            )
+        error = RuntimeError(
+            "the session did not start"
+            + (f" (exit code {code})" if code is not None else " in time")
         )
+        log.warning("racetrace: %s", error)  # once, even when no browser is waiting for it
+        session.ready.set_exception(error)
+        session.ready.exception()  # logged above: asyncio need not report it again
 
     async def start_spare(self) -> None:
         """Start the session the next browser gets (the shared one with ``shared``)."""
@@ -227,7 +250,12 @@ class Front:
         }
         if "Origin" in request.headers:  # checked here; a session accepts only the front's origin
             headers["Origin"] = f"http://127.0.0.1:{session.port}"
-        body = await request.read()
+        headers[SECRET_HEADER] = session.secret
+        try:
+            body = await request.read()
+        except ConnectionResetError:  # the client left while sending: nobody to answer
+            log.debug("a client left before its request body arrived")
+            return web.Response(status=400, text="racetrace: request cut off\n")
         url = f"http://127.0.0.1:{session.port}{request.rel_url}"
         try:
             async with self._http.request(
@@ -248,7 +276,10 @@ class Front:
         session.sockets += 1
         try:
             async with self._http.ws_connect(
-                url, max_msg_size=0, origin=f"http://127.0.0.1:{session.port}"
+                url,
+                max_msg_size=0,
+                origin=f"http://127.0.0.1:{session.port}",
+                headers={SECRET_HEADER: session.secret},
             ) as upstream:
                 await asyncio.gather(_pump(browser, upstream), _pump(upstream, browser))
         except OSError as error:
@@ -268,8 +299,13 @@ class Front:
         return app
 
     async def _on_startup(self, _app) -> None:
+        quiet_closed_connections()
         self._http = ClientSession(auto_decompress=True)
-        await self.start_spare()
+        try:
+            await self.start_spare()  # the first start waits for the fork server's imports
+        except asyncio.CancelledError:  # stopped meanwhile: aiohttp cleans up after start only
+            await self._http.close()
+            raise
         self._reaper = asyncio.get_running_loop().create_task(self._reap())
 
     async def _on_shutdown(self, _app) -> None:
@@ -285,11 +321,14 @@ async def _pump(source, target) -> None:
     async for message in source:
         if target.closed:
             break
-        if message.type == WSMsgType.TEXT:
-            await target.send_str(message.data)
-        elif message.type == WSMsgType.BINARY:
-            await target.send_bytes(message.data)
-        else:
+        try:
+            if message.type == WSMsgType.TEXT:
+                await target.send_str(message.data)
+            elif message.type == WSMsgType.BINARY:
+                await target.send_bytes(message.data)
+            else:
+                break
+        except ConnectionResetError:  # the target went while this message was on its way
             break
     if not target.closed:
         await target.close()

@@ -85,49 +85,6 @@ def serve(
     return 0
 
 
-def quiet_closed_connections(**_) -> None:
-    """Drop the 'Cannot write to closing transport' task errors of a browser that just left.
-
-    Frames already queued for a closing websocket fail harmlessly; asyncio would log each failed
-    send with a traceback. Every other loop error keeps the default handling.
-    """
-    import asyncio
-    import logging
-
-    loop = asyncio.get_event_loop()
-
-    def handler(loop, context):
-        if isinstance(context.get("exception"), ConnectionResetError):
-            return
-        loop.default_exception_handler(context)
-
-    loop.set_exception_handler(handler)
-    # aiohttp logs the same failed sends itself, as "Error handling request" with a traceback
-    logging.getLogger("aiohttp.server").addFilter(_not_a_closed_connection)
-    # and wslink logs a failed reply to a closed browser as three error lines without exc_info
-    logging.getLogger("wslink.protocol").addFilter(_not_a_closed_connection_text)
-
-
-def _not_a_closed_connection_text(record) -> bool:
-    """Logging filter for wslink: False for its lines about a reply to a closed websocket.
-
-    wslink writes "Exception raised", the exception's repr and the traceback as three records; the
-    header alone says nothing, so it is dropped too (a real error still shows its repr and trace).
-    """
-    text = record.getMessage()
-    return not ("closing transport" in text or text == "Exception raised")
-
-
-def _not_a_closed_connection(record) -> bool:
-    """Logging filter: False for records about a write to a websocket that is already closing."""
-    error = record.exc_info[1] if record.exc_info else None
-    while error is not None:
-        if isinstance(error, ConnectionResetError):
-            return False
-        error = error.__context__
-    return True
-
-
 def _port_problem(host: str, port: int) -> str:
     """A message when ``host:port`` cannot be bound (in use, bad address), else ""."""
     import socket

@@ -6,17 +6,29 @@ every browser) to it: forked from the front's pre-imported fork server
 ends with its parent: when the front ends, even killed, the session saves a run in progress
 (marked incomplete) and stops its solver process.
 
-``python -m app.session_process --port P [--runs-dir D] [--case NAME] [--slots-dir S]
-[--max-runs N]``
+A session listens on 127.0.0.1 only, and answers only requests that carry the secret the front
+gave it (:mod:`app.services.session_guard`): the front is its only client.
+
+``RACETRACE_SESSION_SECRET=... python -m app.session_process --port P [--runs-dir D]
+[--case NAME] [--slots-dir S] [--max-runs N]``
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
+HOST = "127.0.0.1"  # whatever address the front serves on
 
-def main(argv=None) -> int:
+
+def main(argv=None, secret: str | None = None) -> int:
+    """Run one session until SIGTERM. ``argv``: the options above; ``secret``: the front's
+    secret for this session (default: taken out of the environment variable
+    :data:`app.services.session_guard.SECRET_ENV`)."""
+    from .services.session_guard import SECRET_ENV
+
+    secret = secret or os.environ.pop(SECRET_ENV, "")  # the solver processes do not need it
     p = argparse.ArgumentParser(prog="python -m app.session_process")
     p.add_argument("--port", type=int, required=True)
     p.add_argument("--runs-dir", default=None)
@@ -24,6 +36,9 @@ def main(argv=None) -> int:
     p.add_argument("--slots-dir", default=None)
     p.add_argument("--max-runs", type=int, default=None)
     args = p.parse_args(argv)
+    if not secret:
+        p.error(f"no session secret in ${SECRET_ENV}: sessions are started by racetrace serve")
+    _trame_options_only(trame_options(args.port))
     from .services.process import die_with_parent
 
     die_with_parent()
@@ -33,8 +48,10 @@ def main(argv=None) -> int:
     import pyvista as pv
     from trame.app import get_server
 
-    from .access import Access, middleware
+    from .access import Access
     from .services import Services
+    from .services.quiet_log import quiet_closed_connections
+    from .services.session_guard import front_only
     from .state import DEFAULT_CASE, RacetraceApp
     from .ui import build_ui
 
@@ -46,19 +63,18 @@ def main(argv=None) -> int:
     app.exports_dir.mkdir(parents=True, exist_ok=True)
     server.enable_module({"serve": {app.EXPORT_URL: str(app.exports_dir)}})
     build_ui(app)
-    access = Access("127.0.0.1")
 
     def guard(ws_server, **_):
+        if ws_server.host != HOST:  # a trame option read from elsewhere would be a hole
+            raise RuntimeError(f"the session would listen on {ws_server.host}, not {HOST}")
         # only the front's relay (which checked the browser) may use this session
-        ws_server.app.middlewares.append(middleware(access))
+        ws_server.app.middlewares.append(front_only(secret, Access(HOST)))
 
     server.controller.on_server_bind.add(guard)
-    from .main import quiet_closed_connections
-
     server.controller.on_server_ready.add(quiet_closed_connections)
     try:
         server.start(
-            host="127.0.0.1",
+            host=HOST,
             port=args.port,
             open_browser=False,
             show_connection_info=False,
@@ -67,6 +83,26 @@ def main(argv=None) -> int:
     finally:
         app.shutdown()
     return 0
+
+
+def trame_options(port: int) -> list[str]:
+    """The session's trame server options: listen on 127.0.0.1:``port``, and never stop on its
+    own (wslink stops a server after 300 s without a websocket by default; the front decides
+    when a session ends, :data:`app.front.IDLE_S`)."""
+    return ["--host", HOST, "--port", str(port), "--timeout", "0"]
+
+
+def _trame_options_only(options: list[str]) -> None:
+    """Make trame's server read ``options``, and only them, as its command line.
+
+    trame parses ``sys.argv`` (or ``--trame-args``, or ``$TRAME_ARGS``) when it starts, and an
+    option found there wins over the arguments of ``server.start``. A forked session still holds
+    the front's ``sys.argv`` (``racetrace serve --host 0.0.0.0 ...``), so trame would listen on
+    the front's address; a new process holds this module's own options. Both are this process's
+    to replace: its options are parsed already.
+    """
+    del sys.argv[1:]
+    os.environ["TRAME_ARGS"] = " ".join(options)
 
 
 if __name__ == "__main__":

@@ -38,12 +38,13 @@ def _context():
     return context
 
 
-def _run_session(argv: list[str]) -> None:
-    """The forked process: run one session with ``argv`` (app.session_process options)."""
+def _run_session(argv: list[str], secret: str) -> None:
+    """The forked process: run one session with ``argv`` (app.session_process options) that
+    answers requests carrying ``secret`` only."""
     _let_go_of_the_fork_server()
     from app.session_process import main
 
-    sys.exit(main(argv))
+    sys.exit(main(argv, secret=secret))
 
 
 def _let_go_of_the_fork_server() -> None:
@@ -92,13 +93,16 @@ class ForkedProcess:
         return self._process.exitcode
 
 
-def start_session(argv: list[str]) -> ForkedProcess:
-    """Fork a session process running ``app.session_process`` with ``argv``.
+def start_session(argv: list[str], secret: str) -> ForkedProcess:
+    """Fork a session process running ``app.session_process`` with ``argv`` and ``secret`` (sent
+    to the fork server over its private socket, never on a command line).
 
     Blocks until the fork server has forked it (the first call waits for the fork server to
     import :data:`PRELOAD`, a few seconds): call it in a thread from an event loop.
     """
-    process = _context().Process(target=_run_session, args=(list(argv),), name="racetrace-session")
+    process = _context().Process(
+        target=_run_session, args=(list(argv), secret), name="racetrace-session"
+    )
     process.start()
     return ForkedProcess(process)
 

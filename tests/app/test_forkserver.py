@@ -71,3 +71,22 @@ def test_front_forks_sessions_where_it_can():
 
     assert Front(Access("127.0.0.1"), []).fork
     assert not Front(Access("127.0.0.1"), [], fork=False).fork
+
+
+def test_a_forked_session_gives_trame_its_own_options_not_the_fronts():
+    """A forked session holds the front's sys.argv; trame must read the session's options only
+    (on 127.0.0.1, its port, no idle stop), whatever that command line or $TRAME_ARGS say."""
+    code = (
+        "import os, sys\n"
+        "sys.argv = ['racetrace', 'serve', '--host', '0.0.0.0', '--port', '80', '--timeout', '9']\n"
+        "os.environ['TRAME_ARGS'] = '--host 0.0.0.0'\n"
+        "from app.session_process import _trame_options_only, trame_options\n"
+        "_trame_options_only(trame_options(4321))\n"
+        "from trame.app import get_server\n"
+        "options = get_server('session').cli.parse_known_args()[0]\n"
+        "print(options.host, options.port, options.timeout)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+    assert out.stdout.split() == ["127.0.0.1", "4321", "0"], out.stderr[-2000:]

@@ -25,7 +25,7 @@ def _front(monkeypatch, shared=False) -> Front:
         ready = asyncio.get_running_loop().create_future()
         ready.set_result(True)
         port = next(ports)
-        return Session(f"s{port}", port, FakeProcess(), ready)
+        return Session(f"s{port}", port, f"secret{port}", FakeProcess(), ready)
 
     monkeypatch.setattr(front, "_spawn", spawn)
     return front
@@ -80,3 +80,32 @@ def test_shared_mode_gives_everyone_one_session(monkeypatch):
         assert len(sids) == 1
 
     asyncio.run(scenario())
+
+
+def test_a_session_answers_only_requests_carrying_its_secret():
+    from aiohttp import web
+
+    from app.services.session_guard import SECRET_HEADER, front_only
+
+    check = front_only("the-secret", Access("127.0.0.1"))
+
+    async def handler(_request):
+        return web.Response(text="served")
+
+    def status(**headers) -> int:
+        headers = {"Host": "127.0.0.1:5000", **headers}
+        request = make_mocked_request("GET", "/ws", headers=headers)
+        return asyncio.run(check(request, handler)).status
+
+    secret = {SECRET_HEADER: "the-secret"}
+    assert status(**secret) == 200
+    assert status() == 403
+    assert status(**{SECRET_HEADER: "the-secreT"}) == 403
+    assert status(**{SECRET_HEADER: ""}) == 403
+    # the secret does not lift the Host and Origin rules
+    assert status(**secret, Host="rebind.example") == 403
+    assert status(**secret, Origin="http://evil.example") == 403
+    # a session without a secret answers nobody
+    open_session = front_only("", Access("127.0.0.1"))
+    request = make_mocked_request("GET", "/", headers={"Host": "127.0.0.1", SECRET_HEADER: ""})
+    assert asyncio.run(open_session(request, handler)).status == 403

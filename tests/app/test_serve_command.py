@@ -43,7 +43,7 @@ def test_closed_connection_errors_are_kept_out_of_the_log():
     import logging
     import sys
 
-    from app.main import _not_a_closed_connection
+    from app.services.quiet_log import not_a_closed_connection
 
     def record_of(error):
         try:
@@ -59,26 +59,26 @@ def test_closed_connection_errors_are_kept_out_of_the_log():
         except ConnectionResetError:
             raise RuntimeError("while sending an error reply")  # noqa: B904 - chained as aiohttp
 
-    assert not _not_a_closed_connection(record_of(ConnectionResetError("closing transport")))
+    assert not not_a_closed_connection(record_of(ConnectionResetError("closing transport")))
     try:
         send_after_close()
     except RuntimeError as chained:
-        assert not _not_a_closed_connection(record_of(chained))
-    assert _not_a_closed_connection(record_of(ValueError("a real problem")))
+        assert not not_a_closed_connection(record_of(chained))
+    assert not_a_closed_connection(record_of(ValueError("a real problem")))
     plain = logging.LogRecord("aiohttp.server", 20, "", 0, "no exception", (), None)
-    assert _not_a_closed_connection(plain)
+    assert not_a_closed_connection(plain)
 
 
 def test_wslink_lines_about_a_closed_browser_are_dropped():
     import logging
 
-    from app.main import _not_a_closed_connection_text
+    from app.services.quiet_log import not_a_closed_connection_text
 
     def record(text):
         return logging.LogRecord("wslink.protocol", 40, "", 0, text, (), None)
 
-    assert not _not_a_closed_connection_text(record("Exception raised"))
-    assert not _not_a_closed_connection_text(
+    assert not not_a_closed_connection_text(record("Exception raised"))
+    assert not not_a_closed_connection_text(
         record("ClientConnectionResetError('Cannot write to closing transport')")
     )
-    assert _not_a_closed_connection_text(record("KeyError('frame')"))
+    assert not_a_closed_connection_text(record("KeyError('frame')"))

@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE
-from tests.helpers.serve import free_port
+from tests.helpers.serve import descendants, free_port
 
 pytestmark = BROWSER_MARKS
 START_S = 300  # a cold numba cache compiles the quasi-static kernels first; the machine is shared
@@ -60,25 +60,6 @@ def _stop(server: dict) -> None:
         except subprocess.TimeoutExpired:
             proc.kill()
     server["log"].close()
-
-
-def _descendants(pid: int) -> set[int]:
-    """Processes below ``pid`` (from /proc)."""
-    children: dict[int, list[int]] = {}
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        children.setdefault(int(fields[1]), []).append(int(entry.name))
-    found, todo = set(), [pid]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.add(child)
-            todo.append(child)
-    return found
 
 
 def _alive(pids) -> set[int]:
@@ -256,7 +237,7 @@ def test_killed_server_saves_the_run_and_leaves_no_solver(browser, tmp_path):
             assert time.monotonic() < deadline, _status(page)
             time.sleep(0.5)
         page.screenshot(path=str(ARTIFACTS / "sessions-before-kill.png"))
-        below = _descendants(s["proc"].pid)
+        below = descendants(s["proc"].pid)
         assert len(below) >= 3  # the spare session, this browser's session, its solver
         os.kill(s["proc"].pid, signal.SIGKILL)  # no chance to clean up: the children must
         s["proc"].wait()

@@ -22,9 +22,11 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def start_server(runs: Path, log_path: Path, *options: str) -> dict:
+def start_server(runs: Path, log_path: Path, *options: str, new_group: bool = False) -> dict:
     """Start ``racetrace serve`` on ``runs`` and return once its page answers: a dict with the
-    ``url``, ``runs`` folder, ``proc`` and open ``log`` file (for :func:`stop_server`)."""
+    ``url`` (with the access token the server printed, if any), ``port``, ``runs`` folder,
+    ``proc`` and open ``log`` file (for :func:`stop_server`). ``new_group``: the server leads its
+    own process group (so a test can signal the group, as Ctrl-C in a terminal does)."""
     port = free_port()
     log = open(log_path, "w+")  # noqa: SIM115 - closed in stop_server
     proc = subprocess.Popen(
@@ -33,20 +35,34 @@ def start_server(runs: Path, log_path: Path, *options: str) -> dict:
         stdout=log,
         stderr=subprocess.STDOUT,
         env=dict(os.environ),
+        process_group=0 if new_group else None,
     )
-    url = f"http://127.0.0.1:{port}/"
     deadline = time.monotonic() + START_S
-    while True:
+
+    def failed() -> None:
+        log.seek(0)
+        proc.kill()
+        pytest.fail(f"racetrace serve did not start:\n{log.read()[-3000:]}")
+
+    while True:  # the banner says the front listens and names its token
+        log.seek(0)
+        text = log.read()
+        if "serving on" in text:
+            break
+        if proc.poll() is not None or time.monotonic() > deadline:
+            failed()
+        time.sleep(0.2)
+    token = text.split("?token=", 1)[1].split()[0] if "?token=" in text else ""
+    url = f"http://127.0.0.1:{port}/" + (f"?token={token}" if token else "")
+    while True:  # and the first session answers through it
         try:
             urllib.request.urlopen(url, timeout=2)
             break
         except OSError:
             if proc.poll() is not None or time.monotonic() > deadline:
-                log.seek(0)
-                proc.kill()
-                pytest.fail(f"racetrace serve did not start:\n{log.read()[-3000:]}")
+                failed()
             time.sleep(0.5)
-    return {"url": url, "runs": runs, "proc": proc, "log": log}
+    return {"url": url, "port": port, "token": token, "runs": runs, "proc": proc, "log": log}
 
 
 def stop_server(server: dict) -> None:
@@ -57,3 +73,22 @@ def stop_server(server: dict) -> None:
     except subprocess.TimeoutExpired:
         proc.kill()
     server["log"].close()
+
+
+def descendants(pid: int) -> set[int]:
+    """Processes below ``pid`` (from /proc)."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        children.setdefault(int(fields[1]), []).append(int(entry.name))
+    found, todo = set(), [pid]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            found.add(child)
+            todo.append(child)
+    return found
