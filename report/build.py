@@ -330,7 +330,7 @@ def study_sections(ds):
 def _load(source):
     """('run', Dataset, name) or ('study', Dataset, name) for a result file or study folder."""
     from solver.errors import CaseError, Problem
-    from solver.results.io import load_dataset
+    from solver.results.io import load_result
     from solver.study import open_study, study_dataset
 
     path = Path(source)
@@ -338,12 +338,7 @@ def _load(source):
         return "study", study_dataset(open_study(path)), path.name
     if not path.is_file():
         raise CaseError(Problem("report", f"{source}: no such result file or study folder"))
-    try:
-        ds = load_dataset(path)
-    except (OSError, ValueError) as error:
-        raise CaseError(
-            Problem("report", f"{source}: not a readable results NetCDF file ({error})")
-        ) from None
+    ds = load_result(path, str(source))  # CaseError naming what the file lacks
     if ds.attrs.get("racetrace_kind") == "study":
         return "study", ds, path.name
     return "run", ds, path.name

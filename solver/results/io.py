@@ -33,6 +33,69 @@ def load_dataset(path) -> xr.Dataset:
         return ds.load()
 
 
+#: Errors netCDF4 and xarray raise for a file that is not NetCDF, is cut short, or holds
+#: attributes they cannot decode (a units or fill-value attribute of the wrong type, say).
+_READ_ERRORS = (
+    OSError,
+    RuntimeError,
+    ValueError,
+    TypeError,
+    KeyError,
+    IndexError,
+    AttributeError,
+    OverflowError,
+    RecursionError,
+    MemoryError,
+)
+
+
+def load_result(path, source: str | None = None) -> xr.Dataset:
+    """Read the racetrace result (or study Dataset) at ``path`` fully into memory, after checking
+    that it is one (:func:`solver.results.validate.check_result`) and that it fits in the free
+    memory. Anything else, a file that cannot be read included, is a
+    :class:`solver.errors.CaseError` naming ``source`` (default: the path) and what is wrong."""
+    from solver.errors import CaseError, Problem, clean_message
+
+    from .validate import check_result
+
+    source = str(path) if source is None else source
+
+    def unreadable(error: BaseException) -> CaseError:
+        reason = clean_message(getattr(error, "strerror", None) or error or type(error).__name__)
+        return CaseError(
+            Problem("result", f"{source}: not a readable results NetCDF file ({reason[:300]})")
+        )
+
+    try:
+        ds = xr.open_dataset(path, engine=ENGINE)
+    except _READ_ERRORS as error:
+        raise unreadable(error) from None
+    with ds:
+        check_result(ds, source)
+        need = sum(int(v.nbytes) for v in ds.variables.values())
+        free = _available_memory_bytes()
+        if free is not None and need > free:
+            raise CaseError(
+                Problem(
+                    "result",
+                    f"{source} needs about {need / 1e6:,.0f} MB of memory to read and "
+                    f"{free / 1e6:,.0f} MB are free",
+                )
+            )
+        try:
+            return ds.load()
+        except _READ_ERRORS as error:
+            raise unreadable(error) from None
+
+
+def _available_memory_bytes() -> int | None:
+    """Physical memory free for a new allocation, None where the system does not say."""
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
 def contact_table(ds: xr.Dataset):
     """The per-contact variables of a result as a flat table (pandas DataFrame).
 
