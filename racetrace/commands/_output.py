@@ -55,14 +55,9 @@ def output_problem(path: Path, option: str = "--output", example: str = "run.nc"
 
 def free_memory_bytes() -> int | None:
     """Memory available to a new allocation (Linux MemAvailable), None where unknown."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as handle:
-            for line in handle:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
+    from solver.results.io import available_memory_bytes
+
+    return available_memory_bytes()
 
 
 def _mb(n: float) -> str:

@@ -52,8 +52,9 @@ _READ_ERRORS = (
 def load_result(path, source: str | None = None) -> xr.Dataset:
     """Read the racetrace result (or study Dataset) at ``path`` fully into memory, after checking
     that it is one (:func:`solver.results.validate.check_result`) and that it fits in the free
-    memory. Anything else, a file that cannot be read included, is a
-    :class:`solver.errors.CaseError` naming ``source`` (default: the path) and what is wrong."""
+    memory; the values the views draw are checked too (finite positions). Anything else, a file
+    that cannot be read included, is a :class:`solver.errors.CaseError` naming ``source``
+    (default: the path) and what is wrong."""
     from solver.errors import CaseError, Problem, clean_message
 
     from .validate import check_result
@@ -73,7 +74,7 @@ def load_result(path, source: str | None = None) -> xr.Dataset:
     with ds:
         check_result(ds, source)
         need = sum(int(v.nbytes) for v in ds.variables.values())
-        free = _available_memory_bytes()
+        free = available_memory_bytes()
         if free is not None and need > free:
             raise CaseError(
                 Problem(
@@ -83,17 +84,23 @@ def load_result(path, source: str | None = None) -> xr.Dataset:
                 )
             )
         try:
-            return ds.load()
+            loaded = ds.load()
         except _READ_ERRORS as error:
             raise unreadable(error) from None
+    return check_result(loaded, source, values=True)
 
 
-def _available_memory_bytes() -> int | None:
-    """Physical memory free for a new allocation, None where the system does not say."""
+def available_memory_bytes() -> int | None:
+    """Memory available to a new allocation (Linux MemAvailable: free memory and the caches the
+    system can drop), None where unknown."""
     try:
-        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (ValueError, OSError, AttributeError):
+        with open("/proc/meminfo", encoding="ascii") as handle:
+            for line in handle:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
         return None
+    return None
 
 
 def contact_table(ds: xr.Dataset):

@@ -23,28 +23,34 @@ import xarray as xr
 
 from .variables import COORDINATES, DIMENSION_VALUES, VARIABLES
 
-#: Data variables every result of either model carries and the readers rely on.
+#: Data variables the readers cannot do without (the views, the summary metrics, the report's
+#: tables and charts); the others a model writes are optional to them, and checked when present.
 REQUIRED_VARIABLES = (
     "contact_load",
     "contact_angle",
-    "contact_deflection",
     "ellipse_semi_major",
     "ellipse_semi_minor",
     "max_pressure",
     "raceway_azimuth",
-    "raceway_contact_point",
-    "ball_latitude",
-    "ball_longitude",
-    "spin_to_roll",
-    "truncation_margin",
     "ball_azimuth",
-    "orbital_speed",
     "ball_center",
+    "cage_speed",
+)
+#: Variables that place the bodies (the 3-D view draws them, the report's scene too): a model
+#: writes them finite, and a view cannot draw a ball at NaN.
+FINITE_VARIABLES = (
+    "ball_center",
+    "ball_orientation",
     "ball_angular_velocity",
-    "attitude_angle",
+    "ball_azimuth",
     "inner_ring_offset",
     "inner_ring_tilt",
-    "cage_speed",
+    "cage_center",
+    "contact_angle",
+    "raceway_azimuth",
+    "raceway_contact_point",
+    "ellipse_semi_major",
+    "ellipse_semi_minor",
 )
 #: Registered variables and coordinates that hold text rather than numbers.
 TEXT_VALUES = ("race_control", "material", "misalignment_frame")
@@ -98,9 +104,10 @@ def _numeric(values: xr.DataArray) -> bool:
     return values.dtype.kind in "fiub"
 
 
-def result_problems(ds: xr.Dataset) -> list[str]:
+def result_problems(ds: xr.Dataset, values: bool = False) -> list[str]:
     """What ``ds`` lacks to be read as a racetrace result or study Dataset, in words ([] when
-    nothing). Reads names, dimensions, data types, attributes and the describing coordinates."""
+    nothing). Reads names, dimensions, data types, attributes and the describing coordinates;
+    with ``values``, also the data of :data:`FINITE_VARIABLES` (a Dataset in memory)."""
     if not isinstance(ds, xr.Dataset):
         return [f"a {type(ds).__name__}, not a Dataset"]
     kind = ds.attrs.get("racetrace_kind")
@@ -123,6 +130,19 @@ def result_problems(ds: xr.Dataset) -> list[str]:
         return problems  # the variables' dimensions cannot be judged against odd dimensions
     problems += _variable_problems(ds, model)
     problems += _coordinate_problems(ds)
+    if values and not problems:
+        problems += _value_problems(ds)
+    return problems
+
+
+def _value_problems(ds: xr.Dataset) -> list[str]:
+    problems = []
+    for name in FINITE_VARIABLES:
+        if name in ds.variables and not np.all(np.isfinite(ds[name].values)):
+            problems.append(
+                f"its '{name}' variable holds NaN or infinite values (a racetrace model writes "
+                "it finite)"
+            )
     return problems
 
 
@@ -339,13 +359,13 @@ def _varied_key_problems(ds: xr.Dataset) -> list[str]:
     return problems
 
 
-def check_result(ds: xr.Dataset, source: str = "the result") -> xr.Dataset:
-    """``ds`` when :func:`result_problems` finds nothing; otherwise
+def check_result(ds: xr.Dataset, source: str = "the result", values: bool = False) -> xr.Dataset:
+    """``ds`` when :func:`result_problems` (with ``values``) finds nothing; otherwise
     :class:`solver.errors.CaseError` naming ``source`` and the problems (the first few, and how
     many more), and saying what a racetrace result is."""
     from solver.errors import CaseError, Problem
 
-    problems = result_problems(ds)
+    problems = result_problems(ds, values)
     if not problems:
         return ds
     shown = problems[:_MAX_PROBLEMS_SHOWN]
@@ -354,7 +374,7 @@ def check_result(ds: xr.Dataset, source: str = "the result") -> xr.Dataset:
     raise CaseError(
         Problem(
             "result",
-            f"{source} cannot be read as a racetrace result: {text} (a result file is written by "
+            f"{source}: not readable as a racetrace result: {text} (a result file is written by "
             "racetrace simulate or quasistatic --output, or the app; see docs/results-schema.md)",
         )
     )

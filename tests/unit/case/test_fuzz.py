@@ -20,7 +20,7 @@ def test_every_mutated_case_ends_cleanly(rng):
 
 @pytest.mark.slow
 @settings(max_examples=5000, derandomize=True, **_COMMON)  # the same 5000 every run: CI repeatable;
-# benchmarks/robustness.py --seed explores new mutations
+# python -m tests.explore_fuzz --surface case --seeds A-B explores new mutations
 @given(st.randoms(use_true_random=False))
 def test_every_mutated_case_ends_cleanly_many(rng):
     assert outcome(mutated_case_bytes(rng)) in OUTCOMES
@@ -28,6 +28,21 @@ def test_every_mutated_case_ends_cleanly_many(rng):
 
 #: Inputs the fuzzing found that once ended in a traceback.
 FOUND = {
+    # a subnormal ball diameter passed the checks and divided by zero in the quasi-static solver
+    "subnormal ball diameter": """[bearing]
+ball_count = 18
+ball_diameter_mm = 5e-324
+pitch_diameter_mm = 54.0
+inner_groove_radius_ratio = 0.54
+outer_groove_radius_ratio = 0.53
+free_contact_angle_deg = 15.0
+ball_material = "silicon_nitride"
+ring_material = "bearing_steel"
+
+[operating]
+inner_ring_speed_rpm = 20000.0
+axial_load_N = 500.0
+""",
     # the traction balance's cage-speed bracket lost its sign change when brentq re-evaluated it
     "cage speed bracket": """title = "deep groove, radial load"
 
