@@ -7,6 +7,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from tests.helpers.cases import LUBRICANT, SPINDLE
 from tests.helpers.fuzz import OUTCOMES, mutated_case_bytes, outcome
 
 _COMMON = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow], database=None)
@@ -29,20 +30,10 @@ def test_every_mutated_case_ends_cleanly_many(rng):
 #: Inputs the fuzzing found that once ended in a traceback.
 FOUND = {
     # a subnormal ball diameter passed the checks and divided by zero in the quasi-static solver
-    "subnormal ball diameter": """[bearing]
-ball_count = 18
-ball_diameter_mm = 5e-324
-pitch_diameter_mm = 54.0
-inner_groove_radius_ratio = 0.54
-outer_groove_radius_ratio = 0.53
-free_contact_angle_deg = 15.0
-ball_material = "silicon_nitride"
-ring_material = "bearing_steel"
-
-[operating]
-inner_ring_speed_rpm = 20000.0
-axial_load_N = 500.0
-""",
+    "subnormal ball diameter": SPINDLE.replace(
+        "ball_diameter_mm = 7.144", "ball_diameter_mm = 5e-324"
+    )
+    + LUBRICANT,
     # the traction balance's cage-speed bracket lost its sign change when brentq re-evaluated it
     "cage speed bracket": """title = "deep groove, radial load"
 
