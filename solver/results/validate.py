@@ -36,6 +36,9 @@ REQUIRED_VARIABLES = (
     "ball_center",
     "cage_speed",
 )
+#: What the 3-D view needs besides, per model: a quasi-static result's balls turn at their
+#: angular velocity (a dynamic one carries its orientations, or the view estimates them).
+REQUIRED_BY_MODEL = {"quasistatic": ("ball_angular_velocity",), "dynamic": ()}
 #: Variables that place the bodies (the 3-D view draws them, the report's scene too): a model
 #: writes them finite, and a view cannot draw a ball at NaN.
 FINITE_VARIABLES = (
@@ -43,6 +46,8 @@ FINITE_VARIABLES = (
     "ball_orientation",
     "ball_angular_velocity",
     "ball_azimuth",
+    "orbital_speed",
+    "cage_speed",
     "inner_ring_offset",
     "inner_ring_tilt",
     "cage_center",
@@ -231,7 +236,7 @@ def _dimension_problems(ds: xr.Dataset, model: str) -> list[str]:
 
 def _variable_problems(ds: xr.Dataset, model: str) -> list[str]:
     problems = []
-    for name in REQUIRED_VARIABLES:
+    for name in REQUIRED_VARIABLES + REQUIRED_BY_MODEL[model]:
         if name not in ds.variables:
             problems.append(f"it has no '{name}' variable")
     for name, spec in VARIABLES.items():
