@@ -78,6 +78,18 @@ STUDY_TEXT_ATTRIBUTES = ("title", "description", "base_case", "software_version"
 #: Dimensions a result has besides the labelled ones: balls and samples.
 _OPEN_DIMENSIONS = ("ball", "time")
 _MAX_PROBLEMS_SHOWN = 6
+#: Errors xarray and netCDF4 raise when a value of a lazily opened file is decoded (a scale factor
+#: that is text, a fill value of the wrong type, a time unit that is not one).
+_DECODE_ERRORS = (
+    TypeError,
+    ValueError,
+    OverflowError,
+    KeyError,
+    IndexError,
+    AttributeError,
+    RuntimeError,
+    OSError,
+)
 _MODELS = ("quasistatic", "dynamic")
 
 
@@ -368,9 +380,13 @@ def check_result(ds: xr.Dataset, source: str = "the result", values: bool = Fals
     """``ds`` when :func:`result_problems` (with ``values``) finds nothing; otherwise
     :class:`solver.errors.CaseError` naming ``source`` and the problems (the first few, and how
     many more), and saying what a racetrace result is."""
-    from solver.errors import CaseError, Problem
+    from solver.errors import CaseError, Problem, clip, printable
 
-    problems = result_problems(ds, values)
+    try:
+        problems = result_problems(ds, values)
+    except _DECODE_ERRORS as error:  # a lazily opened file decodes a value as it is read
+        reason = clip(printable(f"{type(error).__name__}: {error}"), 300)
+        problems = [f"its values cannot be decoded ({reason})"]
     if not problems:
         return ds
     shown = problems[:_MAX_PROBLEMS_SHOWN]

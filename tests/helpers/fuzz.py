@@ -430,8 +430,8 @@ def mutated_result_bytes(rng: random.Random) -> bytes:
     for _ in range(rng.randint(1, 3)):
         try:
             ds = _mutate_result(ds, rng)
-        except (ValueError, TypeError, KeyError, IndexError):
-            continue  # a change xarray cannot make to this Dataset
+        except (ValueError, TypeError, KeyError, IndexError, OverflowError):
+            continue  # a change xarray or numpy cannot make to this Dataset
     try:
         data = _netcdf_bytes(ds)
     except (ValueError, TypeError, RuntimeError, OverflowError, AttributeError):
