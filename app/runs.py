@@ -351,10 +351,11 @@ class RunStore:
         """(result Dataset, case TOML text) of a listed run.
 
         :class:`UnknownRunError` (a FileNotFoundError) for an id that is not a listed run;
-        ValueError naming the run when it is broken, its result cannot be read, or the result does
-        not describe itself (the views need its geometry and operating point coordinates,
-        results-schema.md, which results of older versions lack)."""
-        from solver import geometry_from_result, ring_speeds
+        ValueError naming the run when it is broken, its result cannot be read, or the result is
+        not a racetrace result with what the views read (solver.results.validate: its variables,
+        its geometry and operating point coordinates, results-schema.md, which results of older
+        versions lack)."""
+        from solver import CaseError, check_result, geometry_from_result, ring_speeds
 
         info = self.info(run_id)
         if run_id in self._memory:
@@ -370,9 +371,14 @@ class RunStore:
             reason = _clean_text(getattr(error, "strerror", None) or str(error))
             raise ValueError(f"saved run {run_id} cannot be read ({reason})") from None
         try:
+            check_result(ds, f"saved run {run_id}")  # CaseError (a ValueError) naming what it lacks
             ring_speeds(ds)
             geometry_from_result(ds)
+        except CaseError as error:
+            ds.close()
+            raise ValueError(str(error)) from None
         except ValueError as error:
+            ds.close()
             raise ValueError(f"saved run {run_id}: {error}") from None
         return ds, case_text
 

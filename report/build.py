@@ -392,19 +392,14 @@ def study_sections(ds):
 # ---- the page -------------------------------------------------------------------------------
 def _load(source):
     """('run', Dataset, name) or ('study', Dataset, name) for a result file or study folder."""
-    from solver import CaseError, Problem, load_dataset, open_study, study_dataset
+    from solver import CaseError, Problem, load_result, open_study, study_dataset
 
     path = Path(source)
     if path.is_dir():
         return "study", study_dataset(open_study(path)), path.name
     if not path.is_file():
         raise CaseError(Problem("report", f"{source}: no such result file or study folder"))
-    try:
-        ds = load_dataset(path)
-    except (OSError, ValueError) as error:
-        raise CaseError(
-            Problem("report", f"{source}: not a readable results NetCDF file ({error})")
-        ) from None
+    ds = load_result(path, str(source))  # CaseError naming what the file lacks
     if ds.attrs.get("racetrace_kind") == "study":
         return "study", ds, path.name
     return "run", ds, path.name

@@ -86,6 +86,9 @@ _LAZY = {
     # results (docs/results-schema.md)
     "save_dataset": "solver.results.io",
     "load_dataset": "solver.results.io",
+    "load_result": "solver.results.io",
+    "check_result": "solver.results.validate",
+    "available_memory_bytes": "solver.results.io",
     "atomic_write": "solver.results.io",
     "ENGINE": "solver.results.io",
     "contact_table": "solver.results.io",

@@ -21,10 +21,11 @@ from pathlib import Path
 WARN_FRACTION = 0.5
 
 
-def output_problem(path: Path, option: str = "--output") -> str:
+def output_problem(path: Path, option: str = "--output", example: str = "run.nc") -> str:
     """Why a result cannot be written to ``path`` ("" when it can): the folder is missing, not a
-    folder or not writable, or ``path`` is a folder or a special file. The check writes and
-    removes a small temporary file in the folder."""
+    folder or not writable, or ``path`` is a folder or a special file (the message then suggests
+    the file name ``example`` in it). The check writes and removes a small temporary file in the
+    folder."""
     folder = path.parent if str(path.parent) else Path(".")
     try:
         info = os.stat(path)
@@ -33,7 +34,7 @@ def output_problem(path: Path, option: str = "--output") -> str:
     except OSError as error:
         return f"{option} {path}: cannot be used ({error.strerror})"
     if info is not None and stat.S_ISDIR(info.st_mode):
-        return f"{option} {path} is a folder: give a file name, such as {path / 'run.nc'}"
+        return f"{option} {path} is a folder: give a file name, such as {path / example}"
     if info is not None and not stat.S_ISREG(info.st_mode):
         return f"{option} {path} exists and is not a regular file: give a file name to write"
     if not folder.exists():
@@ -54,14 +55,9 @@ def output_problem(path: Path, option: str = "--output") -> str:
 
 def free_memory_bytes() -> int | None:
     """Memory available to a new allocation (Linux MemAvailable), None where unknown."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as handle:
-            for line in handle:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
+    from solver import available_memory_bytes
+
+    return available_memory_bytes()
 
 
 def _mb(n: float) -> str:

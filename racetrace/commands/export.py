@@ -4,7 +4,8 @@ accessor.
 ``--csv`` writes the per-contact table (one row per time, ball and race; columns named
 ``<variable> [<units>]``, solver.results.io.contact_table), atomically. Images and animations of
 the 3-D view need the app's renderer: export them from the app. Exit codes: 0 written, 2 invalid
-input (a missing or unreadable result, no export named, an output that cannot be written).
+input (a missing or unreadable result, a file that is not a racetrace result, named with what it
+lacks, no export named, an output that cannot be written).
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ def _fail(message: str) -> int:
 
 
 def run(args) -> int:
-    from solver import load_dataset
+    from solver import CaseError, load_result
 
     if not args.csv:
         return _fail("name what to export: --csv OUT.csv (images and animations: use the app)")
@@ -46,13 +47,13 @@ def run(args) -> int:
     if not source.is_file():
         return _fail(f"{args.result}: no such results file")
     target = Path(args.csv)
-    problem = output_problem(target, "--csv")
+    problem = output_problem(target, "--csv", "table.csv")
     if problem:
         return _fail(problem)
     try:
-        ds = load_dataset(source)
-    except (OSError, ValueError, RuntimeError) as error:
-        return _fail(f"{args.result}: not a readable results NetCDF file ({clean_message(error)})")
+        ds = load_result(source, args.result)
+    except CaseError as error:
+        return _fail(clean_message(error))
     try:
         ds.racetrace.to_csv(target)
     except ValueError as error:

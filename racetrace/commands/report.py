@@ -3,12 +3,18 @@
 RUN_OR_STUDY is a result NetCDF file (racetrace simulate / quasistatic --output, the app's runs
 folder) or a study folder (racetrace study --output). The page is one HTML file with everything
 embedded: it opens from disk with no server and no network, and prints to PDF from the browser.
-Needs the ``report`` extra; without it the command says how to install it (exit 2).
+Needs the ``report`` extra; without it the command says how to install it (exit 2). The output
+path is checked before the page is built, and the source is checked to be a racetrace result
+(:func:`solver.results.validate.check_result`): either problem is an invalid input (exit 2) naming
+what is wrong.
 """
 
 from __future__ import annotations
 
 import sys
+from pathlib import Path
+
+from ._output import output_problem
 
 
 def register(subparsers) -> None:
@@ -29,7 +35,12 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from racetrace.cli import EXIT_INVALID_INPUT
     from report.build import missing_report_modules
+    from solver import CaseError, Problem
 
+    # the page takes a minute to build: check where it goes first
+    problem = output_problem(Path(args.output), "--output", "review.html")
+    if problem:
+        raise CaseError(Problem("output", problem))
     missing = missing_report_modules()
     if missing:
         print(

@@ -7,7 +7,10 @@ SIGTERM or SIGHUP stop the run at the next chunk boundary: the partial result (a
 ``complete = 0``) is written atomically and the command exits with 128 + the signal number (130 for
 Ctrl-C). A diverged run also writes what it had and exits with 4, printing the likely cause. When
 the result cannot be written where asked (disk full, file-size limit), it is written to a file in
-the temporary folder instead, named on stderr, and the command exits with 5.
+the temporary folder instead, named on stderr, and the command exits with 5. A signal while the run
+starts (loading, compiling, finding the quasi-static start) stops it at once, with nothing written
+(exit 128 + the signal number); while the result is being written, signals wait until it is written
+(a second Ctrl-C cannot lose it), and the command then exits with 128 + the first one.
 Case warnings and result warnings (the result leaves the model's validity, the run stopped early or
 is too short to settle) are printed on stderr as ``warning: ...`` lines; they do not change the exit
 code. The trajectory metrics (excursion, band thickness, settling) and the rating lives (L10,
@@ -204,7 +207,81 @@ def _check_room(size, output: Path) -> None:
         raise CaseError([Problem("output", e) for e in errors])
 
 
+class _StoppedBeforeTheRun(BaseException):
+    """A stop signal arrived while the run was starting (loading, checking, compiling, finding
+    the quasi-static start): nothing computed is worth keeping. A BaseException, so that no
+    ``except Exception`` on the way swallows it."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+class StopSignals:
+    """The handler of :data:`STOP_SIGNALS` for one run, by phase (``phase``):
+
+    - ``"starting"`` (until the first chunk is integrated): stop at once, raising
+      :class:`_StoppedBeforeTheRun`; nothing has been written;
+    - ``"running"``: the first signal sets ``stop`` (the run ends at the next chunk and keeps its
+      partial result); later ones are deferred;
+    - ``"saving"``: every signal is deferred until the result is written, so that a second Ctrl-C
+      cannot lose it.
+
+    ``received`` lists the signals in order; the command exits with 128 + the first."""
+
+    def __init__(self):
+        self.phase = "starting"
+        self.stop = threading.Event()
+        self.received: list[int] = []
+
+    def __call__(self, signum, frame) -> None:  # noqa: ARG002 - signal handler signature
+        self.received.append(signum)
+        name = signal.Signals(signum).name
+        if self.phase == "starting":
+            raise _StoppedBeforeTheRun(signum)
+        if self.phase == "running" and len(self.received) == 1:
+            self.stop.set()
+            _say(
+                f"\nracetrace: {name} received, stopping at the next chunk (the partial result "
+                "is kept) ..."
+            )
+            return
+        _say(
+            f"\nracetrace: {name} received: saving the result first, then stopping (kill -9 "
+            "abandons it)"
+        )
+
+    def progress(self, bar):
+        """The progress callback for the model: marks the run as running, then draws ``bar``
+        (None: no bar)."""
+
+        def report(fraction: float, simulated_time: float, message: str = "") -> None:
+            if self.phase == "starting":
+                self.phase = "running"
+            if bar is not None:
+                bar(fraction, simulated_time, message)
+
+        return report
+
+
 def run(args) -> int:
+    """Run the command with :class:`StopSignals` handling SIGINT, SIGTERM and SIGHUP from its
+    first line to its last (exit 128 + the signal when one stopped it)."""
+    signals = StopSignals()
+    previous = _install(signals)
+    try:
+        return _run(args, signals)
+    except _StoppedBeforeTheRun as stopped:
+        _say(
+            f"\nracetrace: {signal.Signals(stopped.signum).name} received before the run "
+            "started: stopped, nothing computed or written"
+        )
+        return 128 + stopped.signum
+    finally:
+        _restore(previous)
+
+
+def _run(args, signals: StopSignals) -> int:
     from solver import CaseError, Problem, SimulationDiverged, simulate
 
     from .quasistatic import print_result_warnings
@@ -219,21 +296,7 @@ def run(args) -> int:
     options, size = _options(args, case)
     _check_room(size, output)
 
-    stop = threading.Event()
-    received: list[int] = []
-
-    def on_signal(signum, frame):  # noqa: ARG001 - signal handler signature
-        if stop.is_set():  # a second signal: give up at once
-            raise KeyboardInterrupt
-        received.append(signum)
-        stop.set()
-        _say(
-            f"\nracetrace: {signal.Signals(signum).name} received, stopping at the next chunk "
-            "(the partial result is kept) ..."
-        )
-
-    # the handlers stay until the result is written: a signal during the write is deferred
-    previous = _install(on_signal)
+    received = signals.received
     bar = None if args.quiet else ProgressBar()
     if bar is not None:
         from solver import dynamic_model_compiled
@@ -241,24 +304,22 @@ def run(args) -> int:
         if not dynamic_model_compiled():
             print("racetrace: compiling the dynamic model (first run only) ...", file=sys.stderr)
     try:
-        try:
-            ds = simulate(case, progress=bar, cancel=stop, options=options)
-            code = 0
-        except SimulationDiverged as error:
-            ds = getattr(error, "dataset", None)
-            if bar is not None:
-                bar.close()
-                bar = None
-            _say(f"racetrace: {clean_message(error)}")
-            if ds is None:
-                return EXIT_DIVERGED
-            code = EXIT_DIVERGED
-        finally:
-            if bar is not None:
-                bar.close()
-        written = save_result(ds, output, _say)
+        ds = simulate(case, progress=signals.progress(bar), cancel=signals.stop, options=options)
+        code = 0
+    except SimulationDiverged as error:
+        ds = getattr(error, "dataset", None)
+        if bar is not None:
+            bar.close()
+            bar = None
+        _say(f"racetrace: {clean_message(error)}")
+        if ds is None:
+            return EXIT_DIVERGED
+        code = EXIT_DIVERGED
     finally:
-        _restore(previous)
+        signals.phase = "saving"  # from here every signal waits for the result to be written
+        if bar is not None:
+            bar.close()
+    written = save_result(ds, output, _say)
     with contextlib.suppress(OSError, ValueError):  # a closed terminal: the file is what matters
         print_result_warnings(ds)
     print_metrics(ds, args.json, written)
@@ -278,7 +339,12 @@ def run(args) -> int:
     _say(
         f"racetrace: wrote {written} ({ds.sizes['time']} samples, {ds.attrs['wall_time_s']:.1f} s)"
     )
-    return EXIT_NOT_WRITTEN if moved else 0
+    if moved:
+        return EXIT_NOT_WRITTEN
+    if received:  # the run had finished: its complete result was written, then the stop obeyed
+        _say(f"racetrace: stopped by {signal.Signals(received[0]).name} after the write")
+        return 128 + received[0]
+    return 0
 
 
 #: Signals that stop a run and keep its partial result (SIGHUP: the terminal was closed).

@@ -185,10 +185,10 @@ FIELDS: list[Field] = [
         "Ball diameter",
         "Ball diameter D.",
         unit="mm",
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.1,
         maximum=500.0,
-        reason="a ball has a positive size",
+        reason="no ball bearing has smaller balls; smaller values only underflow the contact "
+        "mechanics",
         reason_high="half a metre is beyond the balls of any ball bearing",
     ),
     Field(
@@ -197,10 +197,9 @@ FIELDS: list[Field] = [
         "Pitch diameter",
         "Diameter d_m of the circle through the ball centres.",
         unit="mm",
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.5,
         maximum=20000.0,
-        reason="the pitch circle has a positive size",
+        reason="no ball bearing has a smaller pitch circle",
         reason_high="20 m is beyond the largest slewing ball bearings",
     ),
     Field(
@@ -208,11 +207,11 @@ FIELDS: list[Field] = [
         "float",
         "Inner groove radius ratio",
         "Inner groove radius over ball diameter, f_i = r_i / D (typically 0.51-0.57).",
-        minimum=0.5,
-        minimum_inclusive=False,
+        minimum=0.501,
         maximum=1.0,
         maximum_inclusive=False,
-        reason="a groove tighter than the ball cannot hold it",
+        reason="a groove tighter than the ball cannot hold it, and a closer fit than 0.501 is "
+        "no longer a Hertz point contact; grooves are made from about 0.505",
         reason_high="a groove radius larger than the ball diameter is not a ball groove",
     ),
     Field(
@@ -220,11 +219,11 @@ FIELDS: list[Field] = [
         "float",
         "Outer groove radius ratio",
         "Outer groove radius over ball diameter, f_o = r_o / D (typically 0.51-0.57).",
-        minimum=0.5,
-        minimum_inclusive=False,
+        minimum=0.501,
         maximum=1.0,
         maximum_inclusive=False,
-        reason="a groove tighter than the ball cannot hold it",
+        reason="a groove tighter than the ball cannot hold it, and a closer fit than 0.501 is "
+        "no longer a Hertz point contact; grooves are made from about 0.505",
         reason_high="a groove radius larger than the ball diameter is not a ball groove",
     ),
     Field(
@@ -261,10 +260,9 @@ FIELDS: list[Field] = [
         "Optional inner-ring land diameter, for the contact-ellipse truncation check.",
         unit="mm",
         default=OPTIONAL,
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.1,
         maximum=21000.0,
-        reason="a diameter is positive",
+        reason="a land lies beyond the bore, at least a tenth of a millimetre across",
         reason_high="a land lies next to the pitch circle, which is at most 20 m across",
     ),
     Field(
@@ -274,10 +272,9 @@ FIELDS: list[Field] = [
         "Optional outer-ring land diameter, for the contact-ellipse truncation check.",
         unit="mm",
         default=OPTIONAL,
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.1,
         maximum=21000.0,
-        reason="a diameter is positive",
+        reason="a land lies beyond the bore, at least a tenth of a millimetre across",
         reason_high="a land lies next to the pitch circle, which is at most 20 m across",
     ),
     Field(
@@ -308,10 +305,10 @@ FIELDS: list[Field] = [
         "Diametral clearance between a ball and its cage pocket.",
         unit="mm",
         default=Estimated("0.028 D", lambda b: 0.028 * b.ball_diameter_mm),
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.001,
         maximum=100.0,
-        reason="a ball must fit in its pocket",
+        reason="a ball must fit in its pocket with some play: at least a micrometre; the "
+        "estimate for the smallest ball accepted is 2.8 um",
         reason_high="a pocket 100 mm wider than its ball no longer guides it",
     ),
     Field(
@@ -321,10 +318,10 @@ FIELDS: list[Field] = [
         "Diametral clearance between the cage and its guiding land.",
         unit="mm",
         default=Estimated("0.0055 d_m", lambda b: 0.0055 * b.pitch_diameter_mm),
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.001,
         maximum=500.0,
-        reason="the cage must fit on its land",
+        reason="the cage must fit on its land with some play: at least a micrometre; the "
+        "estimate for the smallest pitch circle accepted is 2.75 um",
         reason_high="a cage half a metre loose on its land is not guided by it",
     ),
     Field(
@@ -338,10 +335,10 @@ FIELDS: list[Field] = [
             "on the pitch circle: 1400 pi d_m 0.3 D^2",
             _cage_mass_g,
         ),
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=1.0e-9,
         maximum=1.0e6,
-        reason="a cage has mass",
+        reason="a cage has mass: at least a nanogram, below the estimate for the smallest "
+        "bearing accepted, about 7 ng",
         reason_high="a tonne is beyond the cage of any ball bearing",
     ),
     Field(
@@ -362,10 +359,10 @@ FIELDS: list[Field] = [
         "Axial width of the cage-guiding land.",
         unit="mm",
         default=Estimated("0.5 D", lambda b: 0.5 * b.ball_diameter_mm),
-        minimum=0.0,
-        minimum_inclusive=False,
+        minimum=0.01,
         maximum=1000.0,
-        reason="a land has a positive width",
+        reason="a land guides the cage over some width: at least 10 um; the estimate for the "
+        "smallest ball accepted is 50 um",
         reason_high="a guiding land a metre wide is beyond any ball bearing",
     ),
     Field(

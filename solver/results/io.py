@@ -33,6 +33,76 @@ def load_dataset(path) -> xr.Dataset:
         return ds.load()
 
 
+#: Errors netCDF4 and xarray raise for a file that is not NetCDF, is cut short, or holds
+#: attributes they cannot decode (a units or fill-value attribute of the wrong type, say).
+_READ_ERRORS = (
+    OSError,
+    RuntimeError,
+    ValueError,
+    TypeError,
+    KeyError,
+    IndexError,
+    AttributeError,
+    OverflowError,
+    RecursionError,
+    MemoryError,
+)
+
+
+def load_result(path, source: str | None = None) -> xr.Dataset:
+    """Read the racetrace result (or study Dataset) at ``path`` fully into memory, after checking
+    that it is one (:func:`solver.results.validate.check_result`) and that it fits in the free
+    memory; the values the views draw are checked too (finite positions). Anything else, a file
+    that cannot be read included, is a :class:`solver.errors.CaseError` naming ``source``
+    (default: the path) and what is wrong."""
+    from solver.errors import CaseError, Problem, clean_message
+
+    from .validate import check_result
+
+    source = str(path) if source is None else source
+
+    def unreadable(error: BaseException) -> CaseError:
+        reason = clean_message(getattr(error, "strerror", None) or error or type(error).__name__)
+        return CaseError(
+            Problem("result", f"{source}: not a readable results NetCDF file ({reason[:300]})")
+        )
+
+    try:
+        ds = xr.open_dataset(path, engine=ENGINE)
+    except _READ_ERRORS as error:
+        raise unreadable(error) from None
+    with ds:
+        check_result(ds, source)
+        need = sum(int(v.nbytes) for v in ds.variables.values())
+        free = available_memory_bytes()
+        if free is not None and need > free:
+            raise CaseError(
+                Problem(
+                    "result",
+                    f"{source} needs about {need / 1e6:,.0f} MB of memory to read and "
+                    f"{free / 1e6:,.0f} MB are free",
+                )
+            )
+        try:
+            loaded = ds.load()
+        except _READ_ERRORS as error:
+            raise unreadable(error) from None
+    return check_result(loaded, source, values=True)
+
+
+def available_memory_bytes() -> int | None:
+    """Memory available to a new allocation (Linux MemAvailable: free memory and the caches the
+    system can drop), None where unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as handle:
+            for line in handle:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
 def contact_table(ds: xr.Dataset):
     """The per-contact variables of a result as a flat table (pandas DataFrame).
 

@@ -1,6 +1,7 @@
 """``racetrace simulate`` loses no result: the output is checked before the run, the run length and
-size are bounded before it starts, SIGTERM and SIGHUP keep the partial result like Ctrl-C, and a
-result that cannot be written where asked goes to the temporary folder."""
+size are bounded before it starts, SIGTERM and SIGHUP keep the partial result like Ctrl-C (a signal
+while the run starts stops it with nothing written; signals while the result is written wait for
+it), and a result that cannot be written where asked goes to the temporary folder."""
 
 from __future__ import annotations
 
@@ -166,6 +167,95 @@ def test_hangup_with_the_terminal_gone_still_saves(tmp_path):
             process.kill()
     assert process.returncode == 128 + signal.SIGHUP
     assert load_dataset(out).attrs["complete"] == 0
+
+
+def _handles(pid: int, signum: int) -> bool:
+    """Whether process ``pid`` has installed a handler for ``signum`` (Linux: SigCgt in
+    /proc/PID/status)."""
+    try:
+        with open(f"/proc/{pid}/status", encoding="ascii") as handle:
+            for line in handle:
+                if line.startswith("SigCgt:"):
+                    return bool(int(line.split()[1], 16) >> (signum - 1) & 1)
+    except OSError:
+        return False
+    return False
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_signal_while_the_run_starts_stops_it_with_nothing_written(tmp_path, signum):
+    """Sent as soon as the command handles SIGTERM (it then loads the case, loads or compiles the
+    model and finds the quasi-static start): the command stops at once, exits 128 + the signal
+    and writes nothing."""
+    process = _start(tmp_path, "--output", "run.nc", "--revolutions", "200")
+    try:
+        deadline = time.monotonic() + 120
+        while not _handles(process.pid, signal.SIGTERM) and process.poll() is None:
+            assert time.monotonic() < deadline, "the command never handled SIGTERM"
+            time.sleep(0.005)
+        process.send_signal(signum)
+        _, err = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    err = err.decode(errors="replace")
+    assert process.returncode == 128 + signum, err
+    assert "before the run started" in err and "Traceback" not in err, err
+    assert "%" not in err  # stopped before the first chunk
+    assert list(tmp_path.iterdir()) == []  # nothing written, no temporary file
+
+
+#: ``racetrace simulate`` in a process whose result writer first says SAVING on stderr and takes
+#: two seconds, so that signals can be sent while it writes.
+_SLOW_WRITER = """
+import sys, time
+import solver.results.io as io
+original = io.atomic_write
+def slow(path, write):
+    def slow_write(tmp):
+        sys.stderr.write("SAVING\\n")
+        sys.stderr.flush()
+        time.sleep(2.0)
+        return write(tmp)
+    return original(path, slow_write)
+io.atomic_write = slow
+from racetrace.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def test_signals_during_the_save_wait_for_the_partial_result(tmp_path):
+    """Ctrl-C stops the run; a second Ctrl-C and a SIGTERM while the partial result is written
+    must not lose it: they wait, and the command exits with the first signal's code."""
+    process = subprocess.Popen(
+        [sys.executable, "-c", _SLOW_WRITER, "simulate", "spindle-combined-load"]
+        + ["--output", "run.nc", "--revolutions", "200"],
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env={**os.environ, "PYTHONUNBUFFERED": "1"},
+    )
+    try:
+        seen = _wait_for_progress(process)
+        assert b"%" in seen, seen.decode(errors="replace")
+        process.send_signal(signal.SIGINT)
+        deadline = time.monotonic() + 120
+        while b"SAVING" not in seen and process.poll() is None:
+            assert time.monotonic() < deadline, seen.decode(errors="replace")
+            seen += os.read(process.stderr.fileno(), 256)
+        process.send_signal(signal.SIGINT)
+        time.sleep(0.2)
+        process.send_signal(signal.SIGTERM)
+        _, rest = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    err = (seen + rest).decode(errors="replace")
+    assert process.returncode == 128 + signal.SIGINT, err
+    assert "saving the result first" in err and "Traceback" not in err, err
+    ds = load_dataset(tmp_path / "run.nc")
+    assert ds.attrs["complete"] == 0 and ds.sizes["time"] > 1
+    assert [p.name for p in tmp_path.iterdir()] == ["run.nc"]  # no temporary file left
 
 
 # ---- write failures ------------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""Mutated case files for the fuzz tests and ``benchmarks/robustness.py``.
+"""Mutated case files and result files for the fuzz tests and ``tests/explore_fuzz.py``.
 
 :func:`mutated_case_bytes` starts from a valid case and changes it the ways a careless user or an
 attacker would: values of the wrong type, non-finite, huge, tiny or just past a bound; missing and
@@ -8,15 +8,23 @@ everything a case meets (decoding, parsing, validation, the dynamic model's rule
 the quasi-static solver and its JSON summary) and says how it ended; anything but a clean
 :class:`~solver.errors.CaseError`, :class:`~solver.errors.NoSolutionError` or a finite solution
 propagates as the exception it is.
+
+:func:`mutated_result_bytes` does the same to result files (a shipped quasi-static, dynamic or study
+result with variables, coordinates or attributes dropped, retyped, transposed, stacked or given odd
+values; a case attribute nested thousands deep; another program's NetCDF; cut or non-NetCDF bytes),
+and :func:`result_outcome` gives one to ``racetrace report`` or ``export`` in this process: it ends
+written or refused as invalid input (exit 2), or the exception propagates.
 """
 
 from __future__ import annotations
 
 import datetime
+import functools
 import json
 import math
 import random
 import tomllib
+from pathlib import Path
 
 import numpy as np
 import tomli_w
@@ -25,6 +33,8 @@ from solver.case.schema import FIELDS
 
 from .cases import CONTRACT_EXAMPLE, DEEP_GROOVE_RADIAL, LUBRICANT, SPINDLE
 
+#: The project's root folder (shipped results are read from it).
+ROOT = Path(__file__).resolve().parents[2]
 BASES = (SPINDLE, SPINDLE + LUBRICANT, DEEP_GROOVE_RADIAL, CONTRACT_EXAMPLE)
 OUTCOMES = ("solution", "case error", "no solution")
 #: Result variables that may be NaN or inf by definition (docs/results-schema.md): no shoulder
@@ -203,6 +213,277 @@ def mutated_case_bytes(rng: random.Random) -> bytes:
     except (TypeError, ValueError):  # a value TOML cannot hold: write it as text instead
         text = tomli_w.dumps({"title": repr(data)[:200]}) + extra
     return _encode(text, rng)
+
+
+# ---- result files given to `racetrace report` and `export` --------------------------------------
+#: Saved results the result-file mutations start from: a quasi-static and a dynamic run (cut to a
+#: few samples) and a study Dataset, all shipped with racetrace.
+RESULT_BASES = (
+    "assets/lessons/results/02-speed--rest.nc",
+    "assets/lessons/results/01-axial-load--axial.nc",
+    "assets/studies/results/218-radial-load.study.nc",
+)
+#: Samples of the dynamic base kept: enough for every view, few enough for a quick report.
+_BASE_SAMPLES = 12
+RESULT_SURFACES = ("report", "export")
+RESULT_OUTCOMES = ("written", "invalid input")
+#: Attribute values a hostile or careless file may hold.
+ODD_ATTRIBUTES = (
+    "",
+    "<img src=x onerror=alert(1)>",
+    "\x1b[2J\x1b]0;title\x07",
+    "\u202e" + "x" * 50,
+    "x" * 100_000,
+    0,
+    -1,
+    2**62,
+    1.5,
+    math.nan,
+    math.inf,
+    [1, 2, 3],
+    [1.0, math.nan],
+)
+#: Case texts for the ``case`` attribute: nested deep, not TOML, numbers too long to read.
+ODD_CASE_TEXTS = (
+    "v = " + "[" * 5000 + "1" + "]" * 5000,
+    "[bearing]\nprovenance = " + "{a = " * 3000 + "1" + "}" * 3000,
+    "a = " + "9" * 10_000,
+    "title = 'unterminated",
+    "[[[",
+    "title = 5\n[bearing]\nprovenance = []\n",
+    "\x00\x01binary",
+)
+
+
+@functools.cache
+def _read_base(name: str):
+    from solver.results.io import load_dataset
+
+    ds = load_dataset(ROOT / name)
+    return ds.isel(time=slice(-_BASE_SAMPLES, None)) if "time" in ds.dims else ds
+
+
+def _base_dataset(rng: random.Random):
+    """A fresh copy of one of :data:`RESULT_BASES` (each is read once per process)."""
+    return _read_base(rng.choice(RESULT_BASES)).copy(deep=True)
+
+
+def _mutate_result(ds, rng: random.Random):
+    """One change to a result Dataset, the ways a foreign tool, an old version, a careless edit or
+    an attacker would: variables, coordinates and attributes dropped, renamed, retyped,
+    transposed, stacked or given odd values and labels. Returns the changed Dataset."""
+    import numpy as np
+    import xarray as xr
+
+    names = list(ds.data_vars)
+    coords = [c for c in ds.coords if c not in ds.dims]
+    kind = rng.choice(
+        [
+            "drop variable",
+            "drop coordinate",
+            "drop attribute",
+            "odd attribute",
+            "odd attribute",
+            "case text",
+            "variable attribute",
+            "retype",
+            "transpose",
+            "stack",
+            "labels",
+            "values",
+            "values",
+            "resize",
+            "rename dimension",
+        ]
+    )
+    if kind == "drop variable" and names:
+        return ds.drop_vars(rng.sample(names, rng.randint(1, min(3, len(names)))))
+    if kind == "drop coordinate" and coords:
+        return ds.drop_vars(rng.choice(coords))
+    if kind == "drop attribute" and ds.attrs:
+        ds = ds.copy()
+        del ds.attrs[rng.choice(list(ds.attrs))]
+        return ds
+    if kind == "odd attribute":
+        ds = ds.copy()
+        name = rng.choice([*ds.attrs, "model", "case", "created", "racetrace_kind", "title"])
+        ds.attrs[name] = rng.choice(ODD_ATTRIBUTES)
+        return ds
+    if kind == "case text":
+        ds = ds.copy()
+        ds.attrs["case"] = rng.choice(ODD_CASE_TEXTS)
+        return ds
+    if kind == "variable attribute" and names:
+        ds = ds.copy()
+        name = rng.choice([*names, *ds.coords])
+        attribute, value = rng.choice(
+            [
+                ("units", rng.choice(ODD_ATTRIBUTES)),
+                ("units", "seconds since 2000-01-01"),
+                ("units", "days since garbage"),
+                ("calendar", "no_such_calendar"),
+                ("scale_factor", "x"),
+                ("add_offset", [1.0, 2.0]),
+                ("long_name", rng.choice(ODD_ATTRIBUTES)),
+            ]
+        )
+        ds[name].attrs[attribute] = value
+        return ds
+    if kind == "retype" and names:
+        name = rng.choice(names + coords)
+        values = ds[name].values
+        new = rng.choice(
+            [
+                lambda: values.astype(str),
+                lambda: np.zeros(values.shape, dtype=bool),
+                lambda: np.full(values.shape, 7, dtype=np.int8),
+            ]
+        )()
+        return (
+            ds.assign({name: (ds[name].dims, new)})
+            if name in names
+            else ds.assign_coords({name: (ds[name].dims, new)})
+        )
+    if kind == "transpose" and names:
+        name = rng.choice(names)
+        return ds.assign({name: ds[name].transpose(*reversed(ds[name].dims))})
+    if kind == "stack":
+        return xr.concat(
+            [ds, ds], dim=rng.choice(["case", "inner_ring_speed", "time"]), data_vars="all"
+        )
+    if kind == "labels":
+        dim = rng.choice([d for d in ("race", "axis", "body", "frame", "model") if d in ds.dims])
+        labels = list(ds[dim].values)
+        labels = rng.choice([labels[::-1], [f"x{i}" for i in range(len(labels))]])
+        return ds.assign_coords({dim: labels})
+    if kind == "values" and names:
+        ds = ds.copy()
+        name = rng.choice(names + [c for c in coords if ds[c].dtype.kind == "f"])
+        values = np.array(ds[name].values, copy=True)
+        if values.dtype.kind == "f" and values.size:
+            values = values.astype(np.float64)  # float32 variables hold the odd values too
+            flat = values.reshape(-1)
+            for _ in range(rng.randint(1, 5)):
+                flat[rng.randrange(flat.size)] = rng.choice(
+                    [math.nan, math.inf, -math.inf, 1e308, -1e308, 0.0, -1.0, 5e-324]
+                )
+            if rng.random() < 0.3:
+                flat[:] = rng.choice([math.nan, 0.0, -1.0, 1e300])
+            values = flat.reshape(values.shape)
+        elif values.dtype.kind in "iu":
+            values = values * 0 + rng.choice([0, -1, 1000, 2**31 - 1])
+        if name in names:
+            return ds.assign({name: (ds[name].dims, values, ds[name].attrs)})
+        return ds.assign_coords({name: (ds[name].dims, values, ds[name].attrs)})
+    if kind == "resize":
+        dim = rng.choice([d for d in ("ball", "time", "point", "race") if d in ds.dims])
+        return ds.isel({dim: slice(0, rng.choice([0, 1, 2]))})
+    if kind == "rename dimension":
+        dim = rng.choice(list(ds.dims))
+        return ds.rename_dims({dim: rng.choice(["x", f"{dim}_", "sample"])})
+    return ds
+
+
+def _foreign_dataset(rng: random.Random):
+    """Another program's NetCDF: random names, sometimes one of a result's names."""
+    import numpy as np
+    import xarray as xr
+
+    data = {}
+    for _ in range(rng.randint(0, 4)):
+        name = rng.choice(["x", "temperature", "contact_load", "ball_azimuth", "time", "ü"])
+        dims = tuple(rng.sample(["a", "b", "ball", "race", "time"], rng.randint(0, 2)))
+        data[name] = (dims, np.random.default_rng(rng.randrange(2**32)).random((3,) * len(dims)))
+    attrs = {}
+    if rng.random() < 0.5:
+        attrs["model"] = rng.choice(["dynamic", "quasistatic", "other"])
+    if rng.random() < 0.3:
+        attrs["racetrace_kind"] = rng.choice(["study", "run"])
+    try:
+        return xr.Dataset(data, attrs=attrs)
+    except ValueError:  # conflicting sizes of one dimension
+        return xr.Dataset(attrs=attrs)
+
+
+def _netcdf_bytes(ds) -> bytes:
+    import os
+    import tempfile
+
+    fd, path = tempfile.mkstemp(suffix=".nc")
+    os.close(fd)
+    try:
+        ds.to_netcdf(path, engine="netcdf4")
+        with open(path, "rb") as handle:
+            return handle.read()
+    finally:
+        os.remove(path)
+
+
+def mutated_result_bytes(rng: random.Random) -> bytes:
+    """A result file's bytes: a shipped result (quasi-static, dynamic or a study) with one to three
+    changes (:func:`_mutate_result`), another program's NetCDF, or bytes that are not NetCDF at all
+    or cut short. Changes that xarray itself refuses to write are skipped."""
+    choice = rng.random()
+    if choice < 0.1:
+        return _netcdf_bytes(_foreign_dataset(rng))
+    ds = _base_dataset(rng)
+    for _ in range(rng.randint(1, 3)):
+        try:
+            ds = _mutate_result(ds, rng)
+        except (ValueError, TypeError, KeyError, IndexError, OverflowError):
+            continue  # a change xarray or numpy cannot make to this Dataset
+    try:
+        data = _netcdf_bytes(ds)
+    except (ValueError, TypeError, RuntimeError, OverflowError, AttributeError):
+        data = _netcdf_bytes(_base_dataset(rng))  # a change NetCDF cannot hold
+    if choice < 0.25:
+        kind = rng.choice(["cut", "flip", "empty", "text", "header"])
+        if kind == "cut":
+            return data[: rng.randrange(len(data))]
+        if kind == "flip":
+            at = rng.randrange(len(data))
+            return data[:at] + bytes([rng.randrange(256)]) + data[at + 1 :]
+        if kind == "empty":
+            return b""
+        if kind == "text":
+            return b"title = 'a case file, not a result'\n"
+        return data[:8]
+    return data
+
+
+def result_outcome(content: bytes, surface: str, folder) -> str:
+    """How ``racetrace SURFACE`` (``report`` or ``export``) ends on a result file of ``content``
+    (written in ``folder``): one of :data:`RESULT_OUTCOMES`. The command runs in this process, so
+    any exception propagates; an exit code other than 0 or 2, or a message that is empty, fails an
+    assertion."""
+    import contextlib
+    import io
+    from pathlib import Path
+
+    from racetrace.cli import main
+
+    folder = Path(folder)
+    source = folder / "fuzz.nc"
+    source.write_bytes(content)
+    target = folder / ("review.html" if surface == "report" else "table.csv")
+    target.unlink(missing_ok=True)
+    args = (
+        ["report", str(source), "--output", str(target)]
+        if surface == "report"
+        else ["export", str(source), "--csv", str(target)]
+    )
+    stderr = io.StringIO()
+    with contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+        code = main(args)
+    text = stderr.getvalue()
+    assert "Traceback" not in text, text[-2000:]
+    if code == 0:
+        assert target.is_file() and target.stat().st_size > 0, "exit 0 without the output"
+        return "written"
+    assert code == 2, f"exit {code}: {text[-500:]}"
+    assert "invalid input" in text and len(text.strip()) > 30, text
+    assert not target.exists(), "a failed command left its output"
+    return "invalid input"
 
 
 def outcome(content: bytes) -> str:

@@ -134,6 +134,60 @@ def test_estimates_satisfy_their_own_rules(valid):
             assert math.isfinite(value) and check_value(f, f.key, value, []) == value, f.key
 
 
+#: The geometry keys with a physical lower bound: a subnormal or tiny value is refused by the
+#: validator, never passed on to the solvers (a 5e-324 mm ball divided by zero there).
+GEOMETRY_MINIMA = (
+    "bearing.ball_diameter_mm",
+    "bearing.pitch_diameter_mm",
+    "bearing.inner_groove_radius_ratio",
+    "bearing.outer_groove_radius_ratio",
+    "bearing.inner_shoulder_diameter_mm",
+    "bearing.outer_shoulder_diameter_mm",
+    "cage.pocket_diametral_clearance_mm",
+    "cage.guide_diametral_clearance_mm",
+    "cage.mass_g",
+    "cage.guide_land_width_mm",
+)
+
+
+@pytest.mark.parametrize("key", GEOMETRY_MINIMA)
+@pytest.mark.parametrize("below", ["subnormal", "tiny", "a thousandth of the minimum"])
+def test_geometry_refuses_values_below_its_physical_minimum(valid, problems, key, below):
+    from solver.case.schema import field
+
+    minimum = field(key).minimum
+    assert minimum is not None and minimum > 0 and field(key).minimum_inclusive, key
+    value = {"subnormal": 5e-324, "tiny": 1e-300}.get(below, minimum * 1e-3)
+    edited = copy.deepcopy(valid)
+    *path, last = key.split(".")
+    node = edited
+    for part in path:
+        node = node.setdefault(part, {})
+    node[last] = 0.5 + value if "ratio" in key else value
+    (message,) = problems(edited)[key]
+    assert "must be at least" in message, message
+
+
+def test_estimates_satisfy_their_rules_for_the_smallest_bearing_accepted(valid):
+    """The estimated cage values stay within their bounds down to the geometry's minima."""
+    from solver.case.schema import field
+
+    smallest = copy.deepcopy(valid)
+    smallest["bearing"].update(
+        ball_count=3,
+        ball_diameter_mm=field("bearing.ball_diameter_mm").minimum,
+        pitch_diameter_mm=field("bearing.pitch_diameter_mm").minimum,
+    )
+    case = parse_case(tomli_w.dumps(smallest))
+    checked = 0
+    for f in FIELDS:
+        if isinstance(f.default, Estimated):
+            value = _get(case, f.path)
+            assert check_value(f, f.key, value, []) == value, (f.key, value)
+            checked += 1
+    assert checked >= 4
+
+
 def test_field_metadata_is_complete():
     for f in FIELDS:
         assert f.type in ("float", "int", "str", "choice", "bool", "material"), f.key

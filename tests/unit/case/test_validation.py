@@ -35,12 +35,12 @@ CASES = [
     (
         {"bearing.inner_groove_radius_ratio": 0.49},
         "bearing.inner_groove_radius_ratio",
-        ["= 0.49", "greater than 0.5", "cannot hold it"],
+        ["= 0.49", "at least 0.501", "cannot hold it"],
     ),
     (
         {"bearing.outer_groove_radius_ratio": 0.5},
         "bearing.outer_groove_radius_ratio",
-        ["= 0.5:", "greater than 0.5"],
+        ["= 0.5:", "at least 0.501"],
     ),
     ({"bearing.ball_diameter_mm": DELETE}, "bearing.ball_diameter_mm", ["is missing", "mm"]),
     ({"operating.inner_ring_speed_rpm": DELETE}, "operating.inner_ring_speed_rpm", ["is missing"]),
@@ -218,14 +218,14 @@ CASES = [
     (
         {"cage.pocket_diametral_clearance_mm": 0.0},
         "cage.pocket_diametral_clearance_mm",
-        ["= 0:", "greater than 0"],
+        ["= 0:", "at least 0.001"],
     ),
     (
         {"cage.guide_diametral_clearance_mm": -0.1},
         "cage.guide_diametral_clearance_mm",
-        ["= -0.1", "greater than 0"],
+        ["= -0.1", "at least 0.001"],
     ),
-    ({"cage.mass_g": 0.0}, "cage.mass_g", ["= 0:", "greater than 0"]),
+    ({"cage.mass_g": 0.0}, "cage.mass_g", ["= 0:", "at least 1e-09"]),
     ({"lubricant.viscosity_Pas": 0.0}, "lubricant.viscosity_Pas", ["= 0:", "greater than 0"]),
     (
         {"lubricant.pressure_viscosity_per_GPa": -5.0},
@@ -272,8 +272,9 @@ def test_example_message_from_the_contract(valid, problems):
     """The exact wording given in case-format.md."""
     found = problems(edit(valid, {"bearing.inner_groove_radius_ratio": 0.49}))
     assert found["bearing.inner_groove_radius_ratio"] == [
-        "bearing.inner_groove_radius_ratio = 0.49: must be greater than 0.5 "
-        "(a groove tighter than the ball cannot hold it)"
+        "bearing.inner_groove_radius_ratio = 0.49: must be at least 0.501 (a groove tighter "
+        "than the ball cannot hold it, and a closer fit than 0.501 is no longer a Hertz point "
+        "contact; grooves are made from about 0.505)"
     ]
 
 
