@@ -1,5 +1,5 @@
 """Entry point of the browser app: check the address and off-screen rendering, then run the front
-server (one session process per browser, :mod:`app.front`)."""
+server (one session process per browser, :mod:`app.serve.front`)."""
 
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ def serve(
 ) -> int:
     """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here.
 
-    Each browser gets its own session process (:mod:`app.front`); ``shared``: one session for
+    Each browser gets its own session process (:mod:`app.serve.front`); ``shared``: one session for
     every browser. ``max_runs``: solver processes at once (default: the number of cores).
     """
     problem = _port_problem(host, port)
@@ -38,8 +38,8 @@ def serve(
         print(check.message, file=sys.stderr)
         return EXIT_NO_RENDERING
     from .access import Access, is_loopback, new_token
-    from .front import Front, pool_dir, run_front
     from .runs import RunStore, default_runs_dir
+    from .serve.front import Front, pool_dir, run_front
     from .services.pool import default_max_runs
 
     runs = str(runs_dir if runs_dir is not None else default_runs_dir())

@@ -44,7 +44,7 @@ def _child_main(target: str, case_text: str, out_path: str, messages, cancel_eve
     """Entry point of the child process: never raises, always ends with a done/error message."""
     import signal
 
-    from app.services.process import die_with_parent
+    from app.process import die_with_parent
 
     die_with_parent(signal.SIGKILL)  # a solver never runs on without the server
     # Ctrl-C in the server's terminal reaches this process too: the server stops the run itself

@@ -142,7 +142,7 @@ def _role(pid: int, front: int) -> str:
         return "resource tracker"
     if "forkserver" in cmd:
         return "fork server" if ppid == front else "session (forked)"
-    if "app.session_process" in cmd:
+    if "app.serve.session_process" in cmd:
         return "session"
     return "solver or other"
 

@@ -1,4 +1,4 @@
-"""Session processes forked from the pre-imported fork server (app.services.forkserver)."""
+"""Session processes forked from the pre-imported fork server (app.serve.forkserver)."""
 
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ def test_preload_imports_without_threads_or_render_window():
     a VTK render window (each session makes its own after the fork)."""
     code = (
         "import threading, sys\n"
-        "import app.services.preload\n"
+        "import app.serve.preload\n"
         "import vtkmodules.vtkRenderingCore as rc\n"
         "print(threading.active_count(), 'pyvista' in sys.modules, 'app.state' in sys.modules)\n"
     )
@@ -67,7 +67,7 @@ def test_the_session_lets_go_of_the_fork_servers_alive_pipe(monkeypatch):
 @pytest.mark.skipif(not forkserver.available(), reason="no fork server on this platform")
 def test_front_forks_sessions_where_it_can():
     from app.access import Access
-    from app.front import Front
+    from app.serve.front import Front
 
     assert Front(Access("127.0.0.1"), []).fork
     assert not Front(Access("127.0.0.1"), [], fork=False).fork
@@ -80,7 +80,7 @@ def test_a_forked_session_gives_trame_its_own_options_not_the_fronts():
         "import os, sys\n"
         "sys.argv = ['racetrace', 'serve', '--host', '0.0.0.0', '--port', '80', '--timeout', '9']\n"
         "os.environ['TRAME_ARGS'] = '--host 0.0.0.0'\n"
-        "from app.session_process import _trame_options_only, trame_options\n"
+        "from app.serve.session_process import _trame_options_only, trame_options\n"
         "_trame_options_only(trame_options(4321))\n"
         "from trame.app import get_server\n"
         "options = get_server('session').cli.parse_known_args()[0]\n"

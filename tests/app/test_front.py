@@ -1,4 +1,4 @@
-"""The front server's choice of session per request (app.front), without processes."""
+"""The front server's choice of session per request (app.serve.front), without processes."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from aiohttp.test_utils import make_mocked_request
 
 from app import front as front_module
 from app.access import Access
-from app.front import COOKIE, Front, NoSession, Session
+from app.serve.front import COOKIE, Front, NoSession, Session
 
 
 class FakeProcess:
@@ -85,7 +85,7 @@ def test_shared_mode_gives_everyone_one_session(monkeypatch):
 def test_a_session_answers_only_requests_carrying_its_secret():
     from aiohttp import web
 
-    from app.services.session_guard import SECRET_HEADER, front_only
+    from app.serve.session_guard import SECRET_HEADER, front_only
 
     check = front_only("the-secret", Access("127.0.0.1"))
 

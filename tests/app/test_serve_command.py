@@ -43,7 +43,7 @@ def test_closed_connection_errors_are_kept_out_of_the_log():
     import logging
     import sys
 
-    from app.services.quiet_log import not_a_closed_connection
+    from app.serve.quiet_log import not_a_closed_connection
 
     def record_of(error):
         try:
@@ -72,7 +72,7 @@ def test_closed_connection_errors_are_kept_out_of_the_log():
 def test_wslink_lines_about_a_closed_browser_are_dropped():
     import logging
 
-    from app.services.quiet_log import not_a_closed_connection_text
+    from app.serve.quiet_log import not_a_closed_connection_text
 
     def record(text):
         return logging.LogRecord("wslink.protocol", 40, "", 0, text, (), None)

@@ -17,7 +17,7 @@ from pathlib import Path
 import aiohttp
 import pytest
 
-from app.services.session_guard import SECRET_HEADER
+from app.serve.session_guard import SECRET_HEADER
 from tests.helpers.serve import START_S, descendants, start_server, stop_server
 
 pytestmark = pytest.mark.skipif(

@@ -1,4 +1,4 @@
-"""Imported once by the session fork server (:mod:`app.services.forkserver`) before it forks.
+"""Imported once by the session fork server (:mod:`app.serve.forkserver`) before it forks.
 
 Imports what every session process imports, so that the forked sessions share it. Importing only:
 no render window, no OpenGL context and no thread is created here (VTK's context is made in each
@@ -24,7 +24,7 @@ import xarray  # noqa: E402, F401
 from trame.app import get_server  # noqa: E402, F401
 
 import app.access  # noqa: E402, F401
-import app.session_process  # noqa: E402, F401
+import app.serve.session_process  # noqa: E402, F401
 import app.state  # noqa: E402, F401
 import app.ui  # noqa: E402, F401
 import solver  # noqa: E402

@@ -1,15 +1,15 @@
 """One session of ``racetrace serve`` in its own process: a trame server on a loopback port.
 
-Started by the front server (:mod:`app.front`), which relays one browser (or, with ``--shared``,
-every browser) to it: forked from the front's pre-imported fork server
-(:mod:`app.services.forkserver`), or as a new Python process with the command below. The process
+Started by the front server (:mod:`app.serve.front`), which relays one browser (or, with
+``--shared``, every browser) to it: forked from the front's pre-imported fork server
+(:mod:`app.serve.forkserver`), or as a new Python process with the command below. The process
 ends with its parent: when the front ends, even killed, the session saves a run in progress
 (marked incomplete) and stops its solver process.
 
 A session listens on 127.0.0.1 only, and answers only requests that carry the secret the front
-gave it (:mod:`app.services.session_guard`): the front is its only client.
+gave it (:mod:`app.serve.session_guard`): the front is its only client.
 
-``RACETRACE_SESSION_SECRET=... python -m app.session_process --port P [--runs-dir D]
+``RACETRACE_SESSION_SECRET=... python -m app.serve.session_process --port P [--runs-dir D]
 [--case NAME] [--slots-dir S] [--max-runs N]``
 """
 
@@ -25,11 +25,11 @@ HOST = "127.0.0.1"  # whatever address the front serves on
 def main(argv=None, secret: str | None = None) -> int:
     """Run one session until SIGTERM. ``argv``: the options above; ``secret``: the front's
     secret for this session (default: taken out of the environment variable
-    :data:`app.services.session_guard.SECRET_ENV`)."""
-    from .services.session_guard import SECRET_ENV
+    :data:`app.serve.session_guard.SECRET_ENV`)."""
+    from .session_guard import SECRET_ENV
 
     secret = secret or os.environ.pop(SECRET_ENV, "")  # the solver processes do not need it
-    p = argparse.ArgumentParser(prog="python -m app.session_process")
+    p = argparse.ArgumentParser(prog="python -m app.serve.session_process")
     p.add_argument("--port", type=int, required=True)
     p.add_argument("--runs-dir", default=None)
     p.add_argument("--case", default=None)
@@ -39,21 +39,21 @@ def main(argv=None, secret: str | None = None) -> int:
     if not secret:
         p.error(f"no session secret in ${SECRET_ENV}: sessions are started by racetrace serve")
     _trame_options_only(trame_options(args.port))
-    from .services.process import die_with_parent
+    from ..process import die_with_parent
 
     die_with_parent()
-    from .offscreen import configure_environment
+    from ..offscreen import configure_environment
 
     configure_environment()
     import pyvista as pv
     from trame.app import get_server
 
-    from .access import Access
-    from .services import Services
-    from .services.quiet_log import quiet_closed_connections
-    from .services.session_guard import front_only
-    from .state import DEFAULT_CASE, RacetraceApp
-    from .ui import build_ui
+    from ..access import Access
+    from ..services import Services
+    from ..state import DEFAULT_CASE, RacetraceApp
+    from ..ui import build_ui
+    from .quiet_log import quiet_closed_connections
+    from .session_guard import front_only
 
     pv.global_theme.multi_samples = 0
     server = get_server("racetrace", client_type="vue3")
@@ -88,7 +88,7 @@ def main(argv=None, secret: str | None = None) -> int:
 def trame_options(port: int) -> list[str]:
     """The session's trame server options: listen on 127.0.0.1:``port``, and never stop on its
     own (wslink stops a server after 300 s without a websocket by default; the front decides
-    when a session ends, :data:`app.front.IDLE_S`)."""
+    when a session ends, :data:`app.serve.front.IDLE_S`)."""
     return ["--host", HOST, "--port", str(port), "--timeout", "0"]
 
 

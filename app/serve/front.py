@@ -1,15 +1,15 @@
 """The front server of ``racetrace serve``: one session process per browser, behind one address.
 
 The front listens on ``--host``/``--port`` and checks every request (:mod:`app.access`). It gives
-each browser a session cookie and its own session process (:mod:`app.session_process`: a trame
+each browser a session cookie and its own session process (:mod:`app.serve.session_process`: a trame
 server on a loopback port with its own case, run, camera and render size), and relays that
 browser's HTTP requests and websocket to it, with the secret that session answers
-(:mod:`app.services.session_guard`): nothing but the front can use a session. With
+(:mod:`app.serve.session_guard`): nothing but the front can use a session. With
 ``shared=True`` every browser gets the same session (a design review on a shared screen). All
 sessions use the same runs folder and the same solver slots (:class:`app.services.pool.SolverPool`).
 
 Session processes are forked from a fork server that has imported what they all use
-(:mod:`app.services.forkserver`), so they share that memory instead of each holding a copy; with
+(:mod:`app.serve.forkserver`), so they share that memory instead of each holding a copy; with
 ``fork=False`` (or where there is no fork server) each is a new Python process.
 A spare session is started ahead, so that a new browser does not wait for one to start. A session
 whose browsers have all left is stopped after :data:`IDLE_S`. Session processes stop when the
@@ -32,9 +32,9 @@ from pathlib import Path
 
 from aiohttp import ClientSession, WSMsgType, web
 
-from .access import Access
-from .services.quiet_log import quiet_closed_connections
-from .services.session_guard import SECRET_ENV, SECRET_HEADER, new_secret
+from ..access import Access
+from .quiet_log import quiet_closed_connections
+from .session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 
 log = logging.getLogger("racetrace.front")
 
@@ -94,7 +94,7 @@ class Front:
     def __init__(
         self, access: Access, session_args: list[str], shared: bool = False, fork: bool = True
     ):
-        from .services import forkserver
+        from . import forkserver
 
         self.access = access
         self.fork = fork and forkserver.available()
@@ -112,7 +112,7 @@ class Front:
         secret = new_secret()
         argv = ["--port", str(port), *self.session_args]
         if self.fork:  # forked from the pre-imported fork server: shares its memory
-            from .services import forkserver
+            from . import forkserver
 
             forking = asyncio.ensure_future(
                 asyncio.to_thread(forkserver.start_session, argv, secret)
@@ -129,7 +129,7 @@ class Front:
             process = await asyncio.create_subprocess_exec(
                 sys.executable,
                 "-m",
-                "app.session_process",
+                "app.serve.session_process",
                 *argv,
                 env={**os.environ, SECRET_ENV: secret},
             )

@@ -1,10 +1,10 @@
 """A session process answers the front only: a random secret per session, shared by the two.
 
-The front (:mod:`app.front`) makes a secret for each session process it starts and hands it over
-outside the command line (an argument of the forked function, or an environment variable of a
-new process); the session (:mod:`app.session_process`) refuses every HTTP request, the websocket
-handshake included, that does not carry it in :data:`SECRET_HEADER`. The front adds the header to
-what it relays, after its own checks of the browser (:mod:`app.access`). So a client that reaches
+The front (:mod:`app.serve.front`) makes a secret for each session process it starts and hands it
+over outside the command line (an argument of the forked function, or an environment variable of
+a new process); the session (:mod:`app.serve.session_process`) refuses every HTTP request, the
+websocket handshake included, that does not carry it in :data:`SECRET_HEADER`. The front adds the
+header to what it relays, after its own checks of the browser (:mod:`app.access`). So a client that reaches
 a session's port directly (another user of the machine, or the network if the port were ever
 exposed) cannot drive it, whatever ``Host`` or ``Origin`` it writes.
 """

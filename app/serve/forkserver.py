@@ -1,19 +1,19 @@
 """Session processes forked from one pre-imported process, so that they share its memory.
 
-A session process (:mod:`app.session_process`) imports VTK, pyvista, trame, plotly, xarray, numba
-and the solver: about 300 MB of memory that is the same in every session. Started from
+A session process (:mod:`app.serve.session_process`) imports VTK, pyvista, trame, plotly,
+xarray, numba and the solver: about 300 MB of memory that is the same in every session. Started from
 :mod:`multiprocessing`'s fork server, whose process has imported all that once
-(:data:`PRELOAD`, :mod:`app.services.preload`), every session is a fork of it and shares those
+(:data:`PRELOAD`, :mod:`app.serve.preload`), every session is a fork of it and shares those
 pages with it and with the other sessions (copy on write) instead of holding its own copy.
 
 The fork server is a child of the front, started with the first session; it imports the modules
 and loads the numba kernels a session uses first, and nothing more (no render window, no OpenGL
 context, no thread): each session creates its own render window after the fork. When the front
 ends, the fork server ends, and so do the sessions (they watch their parent,
-:func:`app.services.process.die_with_parent`).
+:func:`app.process.die_with_parent`).
 
 :class:`ForkedProcess` gives a forked session the interface of ``asyncio.subprocess.Process`` that
-:class:`app.front.Front` uses (``pid``, ``returncode``, ``send_signal``, ``kill``, ``wait``).
+:class:`app.serve.front.Front` uses (``pid``, ``returncode``, ``send_signal``, ``kill``, ``wait``).
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import os
 import signal
 import sys
 
-PRELOAD = ["app.services.preload"]  # imported once by the fork server, before any fork
+PRELOAD = ["app.serve.preload"]  # imported once by the fork server, before any fork
 
 
 def available() -> bool:
@@ -39,10 +39,10 @@ def _context():
 
 
 def _run_session(argv: list[str], secret: str) -> None:
-    """The forked process: run one session with ``argv`` (app.session_process options) that
+    """The forked process: run one session with ``argv`` (app.serve.session_process options) that
     answers requests carrying ``secret`` only."""
     _let_go_of_the_fork_server()
-    from app.session_process import main
+    from app.serve.session_process import main
 
     sys.exit(main(argv, secret=secret))
 
@@ -94,8 +94,8 @@ class ForkedProcess:
 
 
 def start_session(argv: list[str], secret: str) -> ForkedProcess:
-    """Fork a session process running ``app.session_process`` with ``argv`` and ``secret`` (sent
-    to the fork server over its private socket, never on a command line).
+    """Fork a session process running ``app.serve.session_process`` with ``argv`` and ``secret``
+    (sent to the fork server over its private socket, never on a command line).
 
     Blocks until the fork server has forked it (the first call waits for the fork server to
     import :data:`PRELOAD`, a few seconds): call it in a thread from an event loop.
