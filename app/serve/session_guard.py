@@ -4,9 +4,9 @@ The front (:mod:`app.serve.front`) makes a secret for each session process it st
 over outside the command line (an argument of the forked function, or an environment variable of
 a new process); the session (:mod:`app.serve.session_process`) refuses every HTTP request, the
 websocket handshake included, that does not carry it in :data:`SECRET_HEADER`. The front adds the
-header to what it relays, after its own checks of the browser (:mod:`app.access`). So a client that reaches
-a session's port directly (another user of the machine, or the network if the port were ever
-exposed) cannot drive it, whatever ``Host`` or ``Origin`` it writes.
+header to what it relays, after its own checks of the browser (:mod:`app.access`). So a client
+that reaches a session's port directly (another user of the machine, or the network if the port
+were ever exposed) cannot drive it, whatever ``Host`` or ``Origin`` it writes.
 """
 
 from __future__ import annotations
