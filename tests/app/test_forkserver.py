@@ -11,7 +11,7 @@ import time
 
 import pytest
 
-from app.services import forkserver
+from app.serve import forkserver
 
 
 def _sleep() -> None:

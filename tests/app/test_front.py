@@ -8,8 +8,8 @@ import itertools
 import pytest
 from aiohttp.test_utils import make_mocked_request
 
-from app import front as front_module
 from app.access import Access
+from app.serve import front as front_module
 from app.serve.front import COOKIE, Front, NoSession, Session
 
 
