@@ -46,7 +46,10 @@ def test_one_cage_speed_and_pocket_forces_in_balance(combined):
     """Every ball orbits at the cage speed, and the traction balance's pocket forces sum to zero
     (the cage is in equilibrium) while each ball's is not zero under the radial load."""
     inputs, sol = combined
-    np.testing.assert_allclose(sol.orbital_speed, sol.cage_speed, rtol=0, atol=0)
+    assert np.ptp(sol.orbital_speed) == 0.0  # one orbital speed for every ball
+    # the cage speed is their mean: equal but for the rounding of the mean (the host's vector
+    # width decides the order of the sum)
+    np.testing.assert_allclose(sol.orbital_speed, sol.cage_speed, rtol=4 * np.finfo(float).eps)
     problem = _Problem(inputs.geometry, inputs.operating)
     model = problem.model(1.0)
     q = np.concatenate([sol.inner_ring_offset, sol.inner_ring_tilt])

@@ -124,7 +124,13 @@ def test_a_hostile_result_report_runs_no_script(hostile_result, tmp_path):
     from report import build_report
 
     source = tmp_path / f"{IMG}.nc"  # the file name too
-    solver.save_dataset(hostile_result, source)
     out = tmp_path / "review.html"
+    # a 'model' that is not a model makes the file no racetrace result: refused, no page built
+    solver.save_dataset(hostile_result, source)
+    with pytest.raises(solver.CaseError, match="'model' attribute"):
+        build_report(source, out)
+    assert not out.exists()
+    # every other attribute hostile: the page shows them as text and runs nothing
+    solver.save_dataset(hostile_result.assign_attrs(model="quasistatic"), source)
     build_report(source, out)
     _open_and_check(out, [f"racetrace review: {PAYLOAD}", f"{IMG}.nc"])
