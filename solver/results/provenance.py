@@ -2,10 +2,11 @@
 results version.
 
 :data:`RESULTS_VERSION` is bumped by every change of the physics or the numerics that moves results
-beyond the tolerances at which shipped results are checked (the slow test
-tests/integration/test_shipped_results.py re-solves every shipped result and fails when one drifts
-while the version is unchanged); shipped results are then regenerated
-(``python tools/make_lesson_results.py``). A change that moves no result leaves it alone, so the
+beyond the tolerances at which shipped results are checked (the slow tests
+tests/integration/test_shipped_results.py and test_shipped_studies.py re-solve every shipped lesson
+result and study point and fail when one drifts while the version is unchanged); shipped results
+are then regenerated (``python tools/make_lesson_results.py`` and
+``python tools/make_study_results.py``). A change that moves no result leaves it alone, so the
 shipped results stay current across refactoring, comments and help texts.
 """
 
@@ -49,4 +50,16 @@ def result_fingerprint(case, model: str, options: dict | None = None) -> str:
         sort_keys=True,
         default=repr,
     )
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
+
+
+def study_fingerprint(runs) -> str:
+    """A 20-hex-digit hash of what a study's results depend on: ``runs`` is an iterable of
+    ``(point name, model, case)``, one per run of the study; each contributes its
+    :func:`result_fingerprint`. Equal for two studies whose points solve the same cases with the
+    same models under the same :data:`RESULTS_VERSION`, whatever their titles and comments."""
+    prints = sorted(
+        (str(name), str(model), result_fingerprint(case, model)) for name, model, case in runs
+    )
+    text = json.dumps({"results_version": RESULTS_VERSION, "runs": prints})
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]

@@ -15,7 +15,7 @@ from .metrics import POINT_METRICS, point_metrics
 from .points import StudyPoint, base_case, study_points
 from .runner import Progress, run_study
 from .spec import StudySpec, load_study, parse_study, resolve_study, shipped_studies
-from .store import StudyFolder, study_dataset, study_inputs
+from .store import StudyFolder, points_fingerprint, study_dataset, study_inputs
 
 
 class Study:
@@ -46,6 +46,11 @@ class Study:
 
     def points(self) -> list[StudyPoint]:
         return list(self._points)
+
+    def fingerprint(self) -> str:
+        """What the study's results depend on (the points' cases and models and the results
+        version); its study Dataset carries it as ``results_fingerprint``."""
+        return points_fingerprint(self._points)
 
     def run(
         self,
@@ -113,6 +118,7 @@ __all__ = [
     "open_study",
     "parse_study",
     "point_metrics",
+    "points_fingerprint",
     "resolve_study",
     "run_study",
     "shipped_studies",

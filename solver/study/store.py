@@ -36,6 +36,7 @@ import xarray as xr
 
 from solver.errors import CaseError, Problem
 from solver.results.io import atomic_write, load_dataset, save_dataset
+from solver.results.provenance import RESULTS_VERSION, study_fingerprint
 from solver.results.summary import RACES
 
 from .metrics import POINT_METRICS
@@ -173,6 +174,11 @@ def _manifest_problem(data) -> str:
             return (
                 f"{where}: 'coordinates' is missing or holds a value that is not a number or text"
             )
+    if not isinstance(data.get("results_fingerprint", ""), str):
+        return "study.json: 'results_fingerprint' is not text"
+    version = data.get("results_version", 0)
+    if isinstance(version, bool) or not isinstance(version, int):
+        return "study.json: 'results_version' is not a whole number"
     changes = data.get("solver_changes", [])
     if not isinstance(changes, list) or not all(isinstance(c, dict) for c in changes):
         return "study.json: 'solver_changes' is not a list of JSON objects"
@@ -263,6 +269,12 @@ def study_inputs(spec, base, solver_sources: str) -> dict:
             )
         )
     )
+
+
+def points_fingerprint(points) -> str:
+    """The :func:`~solver.results.provenance.study_fingerprint` of a study's points (every model
+    each point runs)."""
+    return study_fingerprint((p.name, model, p.case) for p in points for model in p.models)
 
 
 class StudyFolder:
@@ -379,6 +391,8 @@ class StudyFolder:
                 for p in points
             ],
         }
+        manifest["results_version"] = RESULTS_VERSION
+        manifest["results_fingerprint"] = points_fingerprint(points)
         if inputs is not None:
             manifest["inputs"] = inputs
         if solver_changes:
@@ -567,8 +581,9 @@ def study_dataset(folder: StudyFolder) -> xr.Dataset:
     "not run": the point does not run this model), ``message`` and ``wall_time`` [s]. Attributes:
     ``title``, ``description``, ``base_case``, ``software_version``, ``varied_keys`` (JSON),
     ``study_folder`` (the folder's name, never a path of the machine that ran it),
-    ``racetrace_kind`` = "study", and ``solver_changes`` (JSON) when a resume accepted a change
-    of the solver.
+    ``racetrace_kind`` = "study", ``results_fingerprint`` and ``results_version`` (what the
+    points' results depend on: :func:`points_fingerprint`), and ``solver_changes`` (JSON) when a
+    resume accepted a change of the solver.
     """
     manifest = folder.manifest()
     entries = manifest["points"]
@@ -635,6 +650,9 @@ def study_dataset(folder: StudyFolder) -> xr.Dataset:
         "study_folder": folder.path.resolve().name,
         "racetrace_kind": "study",
     }
+    if manifest.get("results_fingerprint"):
+        attrs["results_fingerprint"] = manifest["results_fingerprint"]
+        attrs["results_version"] = manifest.get("results_version", 0)
     if manifest.get("solver_changes"):
         attrs["solver_changes"] = json.dumps(manifest["solver_changes"])
     return xr.Dataset(variables, coords=coords, attrs=attrs)

@@ -8,6 +8,7 @@ import json
 
 import pytest
 
+import solver
 from solver.errors import CaseError
 from solver.study import Study, StudyFolder, open_study, study_dataset
 
@@ -174,6 +175,28 @@ def test_resume_removes_the_half_written_files_of_a_killed_run(study_dir):
 def test_the_study_dataset_names_its_folder_without_the_path(study_dir):
     folder = finished_folder(study_dir)
     assert study_dataset(folder).attrs["study_folder"] == "out"
+
+
+def test_the_study_dataset_carries_the_fingerprint_of_what_its_points_depend_on(
+    study_dir, monkeypatch
+):
+    ds = study_dataset(finished_folder(study_dir))
+    study = Study.from_file(study_dir / "study.toml")
+    before = study.fingerprint()
+    assert ds.attrs["results_fingerprint"] == before
+    assert ds.attrs["results_version"] == solver.RESULTS_VERSION
+    # a title or a comment leaves it; a value, another model or another results version moves it
+    (study_dir / "study.toml").write_text("# note\n" + STUDY.replace('"store"', '"other"'))
+    assert Study.from_file(study_dir / "study.toml").fingerprint() == study.fingerprint()
+    (study_dir / "study.toml").write_text(STUDY.replace("300.0", "301.0"))
+    assert Study.from_file(study_dir / "study.toml").fingerprint() != study.fingerprint()
+    (study_dir / "study.toml").write_text('model = "both"\n' + STUDY)
+    assert Study.from_file(study_dir / "study.toml").fingerprint() != study.fingerprint()
+    (study_dir / "study.toml").write_text(STUDY)
+    from solver.results import provenance
+
+    monkeypatch.setattr(provenance, "RESULTS_VERSION", solver.RESULTS_VERSION + 1)
+    assert Study.from_file(study_dir / "study.toml").fingerprint() != before
 
 
 def test_restart_does_not_write_into_a_folder_that_is_not_a_study_folder(study_dir):
