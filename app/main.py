@@ -6,7 +6,7 @@ from __future__ import annotations
 import shutil
 import sys
 
-from .offscreen import check_offscreen_rendering, configure_environment
+from viz.offscreen import check_offscreen_rendering, configure_environment
 
 EXIT_NO_RENDERING = 2  # also used for an unusable --host/--port (invalid input)
 
@@ -35,7 +35,7 @@ def serve(
     configure_environment()
     check = check_offscreen_rendering()
     if not check.ok:
-        print(check.message, file=sys.stderr)
+        print(f"racetrace serve: {check.message}", file=sys.stderr)
         return EXIT_NO_RENDERING
     from .access import Access, is_loopback, new_token
     from .runs import RunStore, default_runs_dir

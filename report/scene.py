@@ -15,6 +15,9 @@ import numpy as np
 def bearing_plotter(ds, size=(900, 600)):
     """(plotter, note) for result ``ds``: rings, balls, cage, contact ellipses at the last
     sample and the trajectories; ``note`` says what was decimated ("" when nothing was)."""
+    from viz.offscreen import configure_environment
+
+    configure_environment()  # before VTK opens a render window: EGL when there is no display
     import pyvista as pv
 
     from solver import geometry_from_result

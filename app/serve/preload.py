@@ -12,7 +12,7 @@ from __future__ import annotations
 import gc
 import logging
 
-from app.offscreen import configure_environment
+from viz.offscreen import configure_environment
 
 configure_environment()  # before VTK is imported: the off-screen window type
 

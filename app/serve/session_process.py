@@ -42,7 +42,7 @@ def main(argv=None, secret: str | None = None) -> int:
     from ..process import die_with_parent
 
     die_with_parent()
-    from ..offscreen import configure_environment
+    from viz.offscreen import configure_environment
 
     configure_environment()
     import pyvista as pv

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import app.main as app_main
-from app.offscreen import INSTALL_COMMAND, OffscreenCheck
+from viz.offscreen import INSTALL_COMMAND, OffscreenCheck
 from racetrace import cli
 
 
@@ -18,7 +18,7 @@ def test_serve_is_registered_with_its_options():
 
 def test_no_offscreen_rendering_exits_2_with_the_install_command(monkeypatch, capsys):
     message = app_main.check_offscreen_rendering.__module__  # keep the real function importable
-    assert message == "app.offscreen"
+    assert message == "viz.offscreen"
     failed = OffscreenCheck(False, f"racetrace serve: ... \n    {INSTALL_COMMAND}")
     monkeypatch.setattr(app_main, "check_offscreen_rendering", lambda: failed)
     assert cli.main(["serve", "--port", "9002"]) == 2

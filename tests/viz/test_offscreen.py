@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import app.offscreen as offscreen
+import viz.offscreen as offscreen
 
 
 def test_offscreen_rendering_works_here():

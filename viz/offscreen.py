@@ -1,4 +1,6 @@
-"""Start-up check that off-screen VTK rendering works on this machine.
+"""Off-screen VTK rendering: the environment it needs, and a start-up check that it works here.
+
+Used by the app's server and the report (both render without a display).
 
 VTK picks its OpenGL back end at run time; without a display it uses EGL on Mesa's software driver,
 which needs the Debian packages ``libegl1`` and ``libgl1-mesa-dri``. When they are missing VTK dies
@@ -86,7 +88,7 @@ def check_offscreen_rendering(timeout: float = 120.0) -> OffscreenCheck:
 
 def _failure_message(reason: str) -> str:
     return (
-        f"racetrace serve: off-screen 3-D rendering does not work: {reason}.\n"
+        f"off-screen 3-D rendering does not work: {reason}.\n"
         "The 3-D view renders on the server with VTK, which needs the system OpenGL libraries "
         "(EGL and Mesa). On Debian/Ubuntu install them with:\n"
         f"    {INSTALL_COMMAND}"
