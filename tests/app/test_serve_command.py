@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import app.main as app_main
-from viz.offscreen import INSTALL_COMMAND, OffscreenCheck
 from racetrace import cli
+from viz.offscreen import INSTALL_COMMAND, OffscreenCheck
 
 
 def test_serve_is_registered_with_its_options():
