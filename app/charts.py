@@ -579,7 +579,10 @@ HELP["compare_summary"] = (
     "and balls: 0 for a thin line; '-' for a quasi-static result, which has one pass) are "
     "measured in each race's own ring frame; the largest contact load and peak pressure tell how "
     "hard the most loaded ball is pressed (fatigue life); the cage speed shows whether the ball "
-    "set orbits as kinematics predicts."
+    "set orbits as kinematics predicts. The friction torque of a dynamic run stands beside two "
+    "empirical estimates of the same bearing (Palmgren, SKF model: catalogue formulas, oil-air "
+    "lubrication); '-' where a run has no torque of its own (quasi-static) or an estimate cannot "
+    "be made (the CLI summary and the report say why)."
 )
 
 
@@ -612,7 +615,9 @@ def run_summary(ds: xr.Dataset) -> dict:
     * ``contact_load_max_N``: ``largest_load`` (N);
     * ``max_pressure_max_GPa``: ``peak_pressure`` (GPa).
 
-    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min).
+    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min); ``friction_torque_Nmm``,
+    ``palmgren_torque_Nmm`` and ``skf_torque_Nmm`` are ``mean_friction_torque`` and the empirical
+    estimates ``friction_torque_palmgren`` / ``friction_torque_skf`` (N mm; NaN when not available).
     """
     columns = (
         ("contact_angle_min_deg", "min_contact_angle", 1.0),
@@ -628,7 +633,17 @@ def run_summary(ds: xr.Dataset) -> dict:
         for race in RACES
     }
     summary["cage_speed_rpm"] = float(metric("mean_cage_speed")) / RPM
+    for key, name in TORQUE_COLUMNS:
+        summary[key] = float(metric(name)) * 1e3
     return summary
+
+
+#: Bearing-level friction torques of the comparison table: (row key, metric), in N mm.
+TORQUE_COLUMNS = (
+    ("friction_torque_Nmm", "mean_friction_torque"),
+    ("palmgren_torque_Nmm", "friction_torque_palmgren"),
+    ("skf_torque_Nmm", "friction_torque_skf"),
+)
 
 
 # Columns of the comparison table: (row key, header, number format); the first two are text.
@@ -642,6 +657,9 @@ SUMMARY_COLUMNS = (
     ("contact_load_max_N", "contact load max, N", ".1f"),
     ("max_pressure_max_GPa", "peak pressure max, GPa", ".3f"),
     ("cage_speed_rpm", "mean cage speed, rev/min", ".0f"),
+    ("friction_torque_Nmm", "friction torque (model), N mm", ".4g"),
+    ("palmgren_torque_Nmm", "Palmgren estimate, N mm", ".4g"),
+    ("skf_torque_Nmm", "SKF-model estimate, N mm", ".4g"),
 )
 
 
@@ -653,7 +671,8 @@ def summary_rows(runs: dict[str, dict]) -> list[dict]:
     rows = []
     for tag, summary in runs.items():
         for race in RACES:
-            values = {**summary[race], "cage_speed_rpm": summary["cage_speed_rpm"]}
+            bearing = ("cage_speed_rpm", *(key for key, _ in TORQUE_COLUMNS))
+            values = {**summary[race], **{key: summary.get(key, np.nan) for key in bearing}}
             row = {"key": f"{tag}-{race}", "run": tag, "race": race}
             for key, _, fmt in SUMMARY_COLUMNS[2:]:
                 value = values[key]

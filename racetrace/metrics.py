@@ -181,4 +181,45 @@ def life_text(ds) -> str:
     return "\n".join(lines)
 
 
-__all__ = ["life_json", "life_text", "metrics_json", "metrics_text"]
+#: (key printed, metric, label): the model's friction torque and the empirical estimates.
+TORQUE_VALUES = (
+    ("model_N_m", "mean_friction_torque", "model (mean over the analysed window)"),
+    ("palmgren_N_m", "friction_torque_palmgren", "Palmgren M0 + M1"),
+    ("skf_N_m", "friction_torque_skf", "SKF friction model"),
+)
+
+
+def torque_json(ds) -> dict:
+    """JSON-ready friction torques (N m): the model's mean (dynamic results) and the empirical
+    estimates; one not available is null, with the reason in ``notes``."""
+    out: dict = {}
+    notes = {}
+    for key, name, _label in TORQUE_VALUES:
+        value = ds.racetrace.metric(name)
+        out[key] = finite_or_none(float(value))
+        if out[key] is None and value.attrs.get("note"):
+            notes[key] = value.attrs["note"]
+    out["notes"] = notes
+    return out
+
+
+def torque_text(ds) -> str:
+    """Readable lines: the model's mean friction torque (dynamic results) beside the Palmgren and
+    SKF estimates, in N mm; an estimate not available says why."""
+    lines = ["friction torque:"]
+    for key, name, label in TORQUE_VALUES:
+        value = ds.racetrace.metric(name)
+        number = float(value)
+        if key == "model_N_m" and "time" not in ds.dims:
+            continue  # a quasi-static result has no friction torque of its own
+        if math.isfinite(number):
+            text = f"{number * 1e3:.4g} N mm"
+            if key != "model_N_m" and value.attrs.get("note"):
+                text += f" ({value.attrs['note']})"
+        else:
+            text = value.attrs.get("note") or "not available"
+        lines.append(f"  {label}: {text}")
+    return "\n".join(lines)
+
+
+__all__ = ["life_json", "life_text", "metrics_json", "metrics_text", "torque_json", "torque_text"]

@@ -176,7 +176,18 @@ def _summary_rows(ds):
             rows.append((row.long_name, inner, outer, row.units))
         else:
             rows.append((row.long_name, _fmt(float(value)), "", row.units))
+    for name in TORQUE_ROWS:  # the model's friction torque beside the empirical estimates
+        row, value = METRICS[name], ds.racetrace.metric(name)
+        if name == "mean_friction_torque" and "time" not in ds.dims:
+            continue  # a quasi-static result has no friction torque of its own
+        number = float(value)
+        text = _fmt(number) if math.isfinite(number) else value.attrs.get("note", "-")
+        rows.append((row.long_name, text, "", row.units))
     return rows
+
+
+#: Metrics of the friction-torque rows of a run's summary table.
+TORQUE_ROWS = ("mean_friction_torque", "friction_torque_palmgren", "friction_torque_skf")
 
 
 def _ellipse_rows(ds):

@@ -182,6 +182,7 @@ class Inputs:
     lubricant: LubricantInputs
     simulation: SimulationInputs
     case_text: str = ""
+    designation: str = ""  # bearing.designation as written ("" when not given)
 
 
 # ---- from a validated case ----------------------------------------------------------------------
@@ -312,4 +313,5 @@ def to_inputs(case) -> Inputs:
         lubricant=lubricant_inputs(case.lubricant, case.lubricant_given),
         simulation=simulation_inputs(case.simulation),
         case_text=case.to_toml(),
+        designation=str(case.bearing.designation or ""),
     )

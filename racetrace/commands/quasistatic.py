@@ -57,7 +57,7 @@ def summary(ds) -> dict:
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
 
-    from racetrace.metrics import finite_or_none, life_json, metrics_json
+    from racetrace.metrics import finite_or_none, life_json, metrics_json, torque_json
     from solver import RPM, ring_speeds
 
     load = ds.contact_load.values
@@ -93,6 +93,7 @@ def summary(ds) -> dict:
         },
         "trajectory": metrics_json(ds),
         "life": life_json(ds),
+        "friction_torque": torque_json(ds),
         "balls": [
             {
                 "azimuth_deg": float(ds.ball_azimuth.values[j]),
@@ -123,7 +124,7 @@ def summary(ds) -> dict:
 def table(ds, case) -> str:
     """Readable table: header (bearing, speed, loads, ring displacement, cage speed, peak pressure)
     and one row per ball."""
-    from racetrace.metrics import life_text, metrics_text
+    from racetrace.metrics import life_text, metrics_text, torque_text
     from solver import ring_speeds
 
     op = case.operating
@@ -184,7 +185,7 @@ def table(ds, case) -> str:
         "alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the"
     )
     lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
-    lines += ["", metrics_text(ds), life_text(ds)]
+    lines += ["", metrics_text(ds), life_text(ds), torque_text(ds)]
     return "\n".join(lines)
 
 

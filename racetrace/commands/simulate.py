@@ -372,7 +372,14 @@ def _restore(previous: dict) -> None:
 def print_metrics(ds, as_json: bool, output: Path | None) -> None:
     """The trajectory metrics, the settling window and the rating lives on stdout (text or JSON;
     ``output`` is the file written, None when the result could not be written)."""
-    from racetrace.metrics import life_json, life_text, metrics_json, metrics_text
+    from racetrace.metrics import (
+        life_json,
+        life_text,
+        metrics_json,
+        metrics_text,
+        torque_json,
+        torque_text,
+    )
 
     try:
         if as_json:
@@ -380,11 +387,13 @@ def print_metrics(ds, as_json: bool, output: Path | None) -> None:
                 "output": None if output is None else str(output),
                 "trajectory": metrics_json(ds),
                 "life": life_json(ds),
+                "friction_torque": torque_json(ds),
             }
             print(json.dumps(out, indent=2, allow_nan=False))
         else:
             print(metrics_text(ds))
             print(life_text(ds))
+            print(torque_text(ds))
         sys.stdout.flush()
     except BrokenPipeError:  # output piped into e.g. `head`: not an error
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

@@ -158,7 +158,9 @@ FIELDS: list[Field] = [
         "bearing.designation",
         "str",
         "Designation",
-        "Free text naming the bearing (e.g. 7008C-class hybrid).",
+        "Free text naming the bearing (e.g. 7008C-class hybrid). A bearing number in it (6209, "
+        "7218 B, or 209 with the words deep groove / angular contact) tells the friction-torque "
+        "estimates the bearing type, series and bore (docs/results-schema.md).",
         default="",
     ),
     Field(

@@ -25,7 +25,9 @@ the quasi-static **ball speeds fell back to race control** (attribute ``kinemati
 traction balance asked for by the case found no steady ball speeds), and, for a dynamic result,
 **stopped early**: ``complete`` == 0, and **run too short to settle**:
 ``settled`` == 0 (the stored flag; computed by :func:`solver.results.summary.settling` for a result
-that does not store it but has the spin-to-roll ratios).
+that does not store it but has the spin-to-roll ratios), and **friction torque far from the
+estimates**: the mean ``friction_torque`` over the analysed window lies outside a factor 3 of every
+empirical estimate the result stores (``friction_torque_palmgren``, ``friction_torque_skf``).
 """
 
 from __future__ import annotations
@@ -62,6 +64,7 @@ def result_warnings(ds) -> list[str]:
         found.append(_incomplete_message(ds))
     if "time" in ds.dims:
         found += _settling_check(ds)
+        found += _torque_estimate_check(ds)
     grooves = _groove_radii(ds)
     for race in [str(r) for r in ds["race"].values]:
         too_large = _hertz_size_check(ds, race, *grooves) if grooves is not None else ""
@@ -69,6 +72,50 @@ def result_warnings(ds) -> list[str]:
         truncated = "" if too_large else _truncation_check(ds, race)
         found += [m for m in (too_large, truncated, _pressure_check(ds, race)) if m]
     return found
+
+
+# ---- the friction torque against the empirical estimates ----------------------------------------
+#: The model's friction torque is flagged when it lies outside this factor of every estimate.
+TORQUE_ESTIMATE_FACTOR = 3.0
+_ESTIMATE_NAMES = {"friction_torque_palmgren": "Palmgren", "friction_torque_skf": "SKF model"}
+
+
+def _torque_estimate_check(ds) -> list[str]:
+    """The mean friction torque of the analysed window outside a factor 3 of every empirical
+    estimate stored in the result (solver.results.estimates); nothing when none is stored."""
+    estimates = {
+        label: float(ds[name])
+        for name, label in _ESTIMATE_NAMES.items()
+        if name in ds and ds[name].ndim == 0 and math.isfinite(float(ds[name]))
+    }
+    if not estimates or "friction_torque" not in ds:
+        return []
+    times = np.asarray(ds["time"].values, dtype=float)
+    start = float(ds["analysis_start_time"]) if "analysis_start_time" in ds else times[0]
+    torque = np.asarray(ds["friction_torque"].values, dtype=float)[times >= start]
+    torque = torque[np.isfinite(torque)]
+    if torque.size == 0:
+        return []
+    model = float(torque.mean())
+    slack = 1.0 + 1.0e-12  # the factor itself counts as inside (rounding of the product)
+    inside = [
+        1.0 / (TORQUE_ESTIMATE_FACTOR * slack) <= model / value <= TORQUE_ESTIMATE_FACTOR * slack
+        for value in estimates.values()
+        if value > 0.0
+    ]
+    if any(inside):
+        return []
+    quoted = ", ".join(f"{label} {value * 1e3:.4g} N mm" for label, value in estimates.items())
+    ratio = ", ".join(f"{model / value:.3g} x {label}" for label, value in estimates.items())
+    return [
+        f"friction torque: the model's mean friction torque over the analysed window, "
+        f"{model * 1e3:.4g} N mm, lies outside a factor {TORQUE_ESTIMATE_FACTOR:g} of every "
+        f"empirical estimate ({quoted}; the model gives {ratio}). The estimates are catalogue "
+        "formulas for oil-air lubrication and may not fit this bearing, but a gap this large "
+        "also arises from an unconverged run (tighten simulation.tolerance), gross sliding, an "
+        "oil far from the application, or drag and cage losses that the case overstates: compare "
+        "power_loss by source before trusting the torque."
+    ]
 
 
 # ---- reading the Dataset -----------------------------------------------------------------------

@@ -296,6 +296,22 @@ def _shaft_revolutions(w: Window) -> xr.DataArray:
     return float(w.ds["time"].values[-1]) * _relative_speed(w.ds) / (2.0 * math.pi)
 
 
+def _estimate(name: str) -> Callable[[Window], xr.DataArray]:
+    """A friction-torque estimate of the result (solver.results.estimates) with its ``note``;
+    NaN with the reason as ``note`` when the result has none."""
+
+    def compute(w: Window) -> xr.DataArray:
+        if name in w.ds:
+            return _with_note(w.ds[name], w.ds[name])
+        reason = w.ds.attrs.get(f"{name}_note") or (
+            "not available: this result was not given the estimates (only a single quasi-static "
+            "solve and a dynamic run compute them)"
+        )
+        return xr.DataArray(math.nan, attrs={"note": reason})
+
+    return compute
+
+
 def _stored_row(name: str, meaning: str) -> Metric:
     """A row that is a summary variable of the results registry itself (its dims and units)."""
     spec = variable(name)
@@ -517,6 +533,32 @@ def _table() -> dict[str, Metric]:
             "revolutions of one ring relative to the other that a dynamic run covers "
             "(NaN: quasi-static)",
             _shaft_revolutions,
+        ),
+        # ---- friction torque: the model's and the empirical estimates -------------------------
+        Metric(
+            "mean_friction_torque",
+            (),
+            "N m",
+            "mean friction torque",
+            "mean friction_torque on the inner ring over the analysed window (NaN: quasi-static)",
+            lambda w: _mean_variable(w, "friction_torque"),
+        ),
+        Metric(
+            "friction_torque_palmgren",
+            (),
+            "N m",
+            "Palmgren friction torque estimate",
+            "Palmgren's M0 + M1 of the case (NaN when it cannot be made: the note says why)",
+            _estimate("friction_torque_palmgren"),
+        ),
+        Metric(
+            "friction_torque_skf",
+            (),
+            "N m",
+            "SKF-model friction torque estimate",
+            "the SKF friction model's torque of the case (NaN when it cannot be made: the note "
+            "says why)",
+            _estimate("friction_torque_skf"),
         ),
         # ---- the analysed window (dynamic) -----------------------------------------------------
         Metric(

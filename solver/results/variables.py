@@ -296,6 +296,28 @@ VARIABLES: dict[str, Variable] = {
         "mean total_power_loss (power balance)",
         _DYN,
     ),
+    # ---- empirical friction-torque estimates (solver.results.estimates; both models) ----------
+    "friction_torque_palmgren": Variable(
+        (),
+        "N m",
+        "Palmgren friction torque estimate",
+        "Palmgren's M0 + M1 of the case (applied loads, relative ring speed, oil viscosity at the "
+        "inlet temperature, oil-air lubrication): an empirical estimate independent of the "
+        "model's contact mechanics. Present only when it can be made; the ``note`` attribute "
+        "says what it assumed, and the Dataset attribute friction_torque_palmgren_note why it "
+        "is missing",
+        time_dependent=False,
+    ),
+    "friction_torque_skf": Variable(
+        (),
+        "N m",
+        "SKF-model friction torque estimate",
+        "the SKF friction model's rolling + sliding torque of the case (open bearing, oil-air "
+        "lubrication, no drag term), with the published constants of its bearing series. "
+        "Present only when it can be made; the ``note`` attribute says what it assumed, and the "
+        "Dataset attribute friction_torque_skf_note why it is missing",
+        time_dependent=False,
+    ),
     # ---- summary metrics (solver.results.summary; stored in dynamic results) ------------------
     "trajectory_excursion": Variable(
         ("race", "frame"),

@@ -347,3 +347,21 @@ def test_many_runs_compared_each_in_its_colour(qs_dataset, dynamic_dataset):
         assert len(colours) == 2 and not colours & seen  # two shades, no run shares one
         seen |= colours
     assert charts.compare_chart_px(5) > charts.compare_chart_px(2)
+
+
+def test_run_summary_sets_the_model_torque_beside_the_estimates(dynamic_dataset):
+    """The comparison table's torque columns are the metrics (N mm); an estimate the run does not
+    have is '-' (the CLI and the report say why)."""
+    torque = np.full(dynamic_dataset.sizes["time"], 0.25)  # N m, constant over the run
+    ds = dynamic_dataset.assign(
+        friction_torque=("time", torque), friction_torque_palmgren=((), 0.125)
+    )
+    summary = charts.run_summary(ds)
+    assert summary["friction_torque_Nmm"] == pytest.approx(250.0)
+    assert summary["palmgren_torque_Nmm"] == pytest.approx(125.0)
+    assert np.isnan(summary["skf_torque_Nmm"])
+    (row, _) = charts.summary_rows({"A": summary})
+    assert (row["friction_torque_Nmm"], row["palmgren_torque_Nmm"]) == ("250", "125")
+    assert row["skf_torque_Nmm"] == "-"
+    headers = [header for _, header, _ in charts.SUMMARY_COLUMNS]
+    assert "friction torque (model), N mm" in headers and "Palmgren estimate, N mm" in headers

@@ -7,6 +7,7 @@ import numpy as np
 from solver.physics.hertz import truncation_margin
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
+from solver.results.estimates import with_estimates
 from solver.results.summary import trajectory_summary
 
 from . import layout as L
@@ -199,7 +200,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     metrics = trajectory_summary(ds, options.analysis_skip_fraction)
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
-    return ds
+    return with_estimates(ds, inputs)
 
 
 def _integrator_note(options) -> str:

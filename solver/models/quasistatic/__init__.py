@@ -106,13 +106,15 @@ def solve_quasistatic_state(
 
 def solve_quasistatic(case):
     """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
+    from solver.results.estimates import with_estimates
     from solver.results.quasistatic import solution_to_dataset
 
     inputs = _inputs(case)
     solution = solve_operating_point(
         inputs.geometry, inputs.operating, traction_lubricant=_traction_lubricant(inputs)
     )
-    return solution_to_dataset(solution, inputs.geometry, inputs.case_text, _film_lubricant(inputs))
+    ds = solution_to_dataset(solution, inputs.geometry, inputs.case_text, _film_lubricant(inputs))
+    return with_estimates(ds, inputs)
 
 
 def quasistatic_speed_sweep(case, speeds_rpm):

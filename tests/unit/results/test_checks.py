@@ -196,3 +196,30 @@ def test_shipped_catalogue_cases_give_no_warning(name):
     from solver.catalogue import resolve_case
 
     assert result_warnings(solve_quasistatic(resolve_case(name))) == []
+
+
+# ---- friction torque against the empirical estimates --------------------------------------------
+def _with_torque(model_torque: float, **estimates: float) -> xr.Dataset:
+    """A dynamic-shaped benign result whose friction torque is ``model_torque`` [N m] after the
+    first of 4 samples (the analysed window starts at the second) with the given estimates."""
+    calm = dataset()
+    ds = dynamic(calm, [calm, calm, calm, calm])
+    torque = np.array([100.0, model_torque, model_torque, model_torque])  # first: start-up
+    ds = ds.assign(friction_torque=("time", torque), analysis_start_time=0.001)
+    return ds.assign({name: value for name, value in estimates.items()})
+
+
+def test_torque_check_fires_outside_a_factor_3_of_every_estimate_only():
+    # estimates 0.1 and 0.3 N m: inside a factor 3 of one of them up to 0.9 N m and down to 1/30
+    for inside in (0.9, 0.1 / 3.0, 0.2):
+        ds = _with_torque(inside, friction_torque_palmgren=0.1, friction_torque_skf=0.3)
+        assert result_warnings(ds) == [], inside
+    (message,) = result_warnings(
+        _with_torque(0.91, friction_torque_palmgren=0.1, friction_torque_skf=0.3)
+    )
+    assert message.startswith("friction torque:") and "910 N mm" in message
+    assert "Palmgren 100 N mm" in message and "SKF model 300 N mm" in message
+    assert "factor 3" in message and "simulation.tolerance" in message
+    (low,) = result_warnings(_with_torque(0.03, friction_torque_palmgren=0.1))
+    assert "30 N mm" in low and "0.3 x Palmgren" in low
+    assert result_warnings(_with_torque(100.0)) == []  # no estimate: nothing to compare with

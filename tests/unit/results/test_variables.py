@@ -70,6 +70,8 @@ def test_dynamic_dims_append_time_except_summary_metrics():
 
 #: Attributes and words in backquotes in the schema document that are not registry names.
 SCHEMA_WORDS = {
+    "friction_torque_palmgren_note",
+    "friction_torque_skf_note",
     "model",
     "case",
     "software",
