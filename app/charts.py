@@ -612,7 +612,9 @@ def run_summary(ds: xr.Dataset) -> dict:
     * ``contact_load_max_N``: ``largest_load`` (N);
     * ``max_pressure_max_GPa``: ``peak_pressure`` (GPa).
 
-    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min).
+    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min); ``model`` names the model whose metrics
+    they are ("quasi-static", "quasi-static, over one revolution" or "dynamic"): the table puts
+    both models' excursions in one column.
     """
     columns = (
         ("contact_angle_min_deg", "min_contact_angle", 1.0),
@@ -628,6 +630,12 @@ def run_summary(ds: xr.Dataset) -> dict:
         for race in RACES
     }
     summary["cage_speed_rpm"] = float(metric("mean_cage_speed")) / RPM
+    if "time" in ds.dims:
+        summary["model"] = "dynamic"
+    elif "ring_angle" in ds.dims:
+        summary["model"] = "quasi-static, over one revolution"
+    else:
+        summary["model"] = "quasi-static"
     return summary
 
 
@@ -635,6 +643,7 @@ def run_summary(ds: xr.Dataset) -> dict:
 SUMMARY_COLUMNS = (
     ("run", "run", None),
     ("race", "race", None),
+    ("model", "model", None),
     ("contact_angle_min_deg", "contact angle min, degree", ".2f"),
     ("contact_angle_max_deg", "contact angle max, degree", ".2f"),
     ("excursion_deg", "excursion (own ring frame), degree", ".3f"),
@@ -655,7 +664,8 @@ def summary_rows(runs: dict[str, dict]) -> list[dict]:
         for race in RACES:
             values = {**summary[race], "cage_speed_rpm": summary["cage_speed_rpm"]}
             row = {"key": f"{tag}-{race}", "run": tag, "race": race}
-            for key, _, fmt in SUMMARY_COLUMNS[2:]:
+            row["model"] = summary.get("model", "-")
+            for key, _, fmt in SUMMARY_COLUMNS[3:]:
                 value = values[key]
                 row[key] = "-" if not np.isfinite(value) else format(value, fmt)
             rows.append(row)
