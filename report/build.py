@@ -226,13 +226,10 @@ def run_sections(ds, source_name: str):
     notes = []
     sections = [_html(run_header(ds, source_name), stylesheets=[PRINT_CSS])]
     answer = ds  # the metrics of a solution over one revolution span its ring angles
+    shown_at = ""
     if "ring_angle" in ds.dims:  # the scene, charts and tables show ring angle 0
         ds = ds.isel(ring_angle=0, drop=True)
-        notes.append(
-            f"a tilt turning with the inner ring: solved at {answer.sizes['ring_angle']} "
-            "inner-ring angles over one revolution; the summary spans them, the scene, charts and "
-            "ellipse table show ring angle 0"
-        )
+        shown_at = " The scene, the charts and the ellipse table below show ring angle 0."
     warnings = answer.racetrace.warnings()
     warn_html = (
         "<ul>" + "".join(f'<li class="rt-warn">{html.escape(w)}</li>' for w in warnings) + "</ul>"
@@ -251,7 +248,7 @@ def run_sections(ds, source_name: str):
         _section(
             "Summary (each race in its own ring's frame)",
             _table(("metric", "inner", "outer", "units"), _summary_rows(answer))
-            + f"<p>Analysed window: {html.escape(window)}.</p>",
+            + f"<p>Analysed window: {html.escape(window)}.{shown_at}</p>",
         )
     )
     plotter, note = bearing_plotter(ds)

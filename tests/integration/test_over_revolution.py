@@ -170,3 +170,10 @@ def test_a_revolution_with_bad_ring_angles_is_refused(study_points):
     assert any("ring_angle" in p for p in result_problems(reversed_angles, True))
     dynamic = ds.assign_attrs(model="dynamic")
     assert any("ring_angle" in p for p in result_problems(dynamic, False))
+
+
+def test_the_contact_table_of_a_revolution_has_a_row_per_ring_angle(study_points):
+    _, ds = study_points[RING]
+    table = solver.contact_table(ds)
+    assert list(table.columns[:3]) == ["ring_angle", "ball", "race"]
+    assert len(table) == ds.sizes["ring_angle"] * ds.sizes["ball"] * 2
