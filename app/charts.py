@@ -618,6 +618,8 @@ def run_summary(ds: xr.Dataset) -> dict:
     ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min); ``friction_torque_Nmm``,
     ``palmgren_torque_Nmm`` and ``skf_torque_Nmm`` are ``mean_friction_torque`` and the empirical
     estimates ``friction_torque_palmgren`` / ``friction_torque_skf`` (N mm; NaN when not available).
+    ``model`` names the model whose metrics they are ("quasi-static", "quasi-static, over one
+    revolution" or "dynamic"): the table puts both models' excursions in one column.
     """
     columns = (
         ("contact_angle_min_deg", "min_contact_angle", 1.0),
@@ -635,6 +637,12 @@ def run_summary(ds: xr.Dataset) -> dict:
     summary["cage_speed_rpm"] = float(metric("mean_cage_speed")) / RPM
     for key, name in TORQUE_COLUMNS:
         summary[key] = float(metric(name)) * 1e3
+    if "time" in ds.dims:
+        summary["model"] = "dynamic"
+    elif "ring_angle" in ds.dims:
+        summary["model"] = "quasi-static, over one revolution"
+    else:
+        summary["model"] = "quasi-static"
     return summary
 
 
@@ -650,6 +658,7 @@ TORQUE_COLUMNS = (
 SUMMARY_COLUMNS = (
     ("run", "run", None),
     ("race", "race", None),
+    ("model", "model", None),
     ("contact_angle_min_deg", "contact angle min, degree", ".2f"),
     ("contact_angle_max_deg", "contact angle max, degree", ".2f"),
     ("excursion_deg", "excursion (own ring frame), degree", ".3f"),
@@ -674,7 +683,8 @@ def summary_rows(runs: dict[str, dict]) -> list[dict]:
             bearing = ("cage_speed_rpm", *(key for key, _ in TORQUE_COLUMNS))
             values = {**summary[race], **{key: summary.get(key, np.nan) for key in bearing}}
             row = {"key": f"{tag}-{race}", "run": tag, "race": race}
-            for key, _, fmt in SUMMARY_COLUMNS[2:]:
+            row["model"] = summary.get("model", "-")
+            for key, _, fmt in SUMMARY_COLUMNS[3:]:
                 value = values[key]
                 row[key] = "-" if not np.isfinite(value) else format(value, fmt)
             rows.append(row)

@@ -34,10 +34,11 @@ def dynamic_job(case_text: str, progress, cancel):
 
 
 def quasistatic_job(case_text: str, progress, cancel):
-    """The quasi-static model on a case given as TOML text (no progress, not cancellable)."""
+    """The quasi-static answer (``solver.quasistatic_answer``: over one revolution for a tilt
+    turning with the inner ring) on a case given as TOML text (no progress, not cancellable)."""
     import solver
 
-    return solver.solve_quasistatic(solver.parse_case(case_text))
+    return solver.quasistatic_answer(solver.parse_case(case_text))
 
 
 def _child_main(target: str, case_text: str, out_path: str, messages, cancel_event) -> None:

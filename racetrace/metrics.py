@@ -81,7 +81,11 @@ def metrics_json(ds) -> dict:
         out["analysis_start_time_s"] = values["analysis_start_time_s"]
         out["analysed_window"] = ds.racetrace.summary().attrs.get("analysed_window", "")
     else:
-        out["band_thickness_note"] = ds.racetrace.metric("band_thickness").attrs["note"]
+        note = ds.racetrace.metric("band_thickness").attrs.get("note")
+        if note:  # a snapshot; a solution over one revolution has band thicknesses
+            out["band_thickness_note"] = note
+        else:
+            out["analysed_window"] = ds.racetrace.summary().attrs.get("analysed_window", "")
     return out
 
 
@@ -109,6 +113,9 @@ def metrics_text(ds) -> str:
             f"({v['excursion_m'] * 1e6:.2f} um), {thickness}; contact ellipse semi-major axis "
             f"{v['ellipse_semi_major_mean_m'] * 1e6:.1f} um (mean)"
         )
+    if "ring_angle" in ds.dims:
+        window = ds.racetrace.summary().attrs.get("analysed_window", "")
+        lines.append(f"analysed: {window}")
     if "settled" in values:
         period = float(ds.racetrace.metric("shaft_period"))
         start = values["analysis_start_time_s"]

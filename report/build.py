@@ -236,7 +236,12 @@ def run_sections(ds, source_name: str):
 
     notes = []
     sections = [_html(run_header(ds, source_name), stylesheets=[PRINT_CSS])]
-    warnings = ds.racetrace.warnings()
+    answer = ds  # the metrics of a solution over one revolution span its ring angles
+    shown_at = ""
+    if "ring_angle" in ds.dims:  # the scene, charts and tables show ring angle 0
+        ds = ds.isel(ring_angle=0, drop=True)
+        shown_at = " The scene, the charts and the ellipse table below show ring angle 0."
+    warnings = answer.racetrace.warnings()
     warn_html = (
         "<ul>" + "".join(f'<li class="rt-warn">{html.escape(w)}</li>' for w in warnings) + "</ul>"
         if warnings
@@ -249,12 +254,12 @@ def run_sections(ds, source_name: str):
             _table(("quantity", "value", "units"), _operating_rows(ds)),
         )
     )
-    window = ds.racetrace.summary().attrs.get("analysed_window", "the quasi-static snapshot")
+    window = answer.racetrace.summary().attrs.get("analysed_window", "the quasi-static snapshot")
     sections.append(
         _section(
             "Summary (each race in its own ring's frame)",
-            _table(("metric", "inner", "outer", "units"), _summary_rows(ds))
-            + f"<p>Analysed window: {html.escape(window)}.</p>",
+            _table(("metric", "inner", "outer", "units"), _summary_rows(answer))
+            + f"<p>Analysed window: {html.escape(window)}.{shown_at}</p>",
         )
     )
     plotter, note = bearing_plotter(ds)

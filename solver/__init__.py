@@ -8,8 +8,11 @@ Public API (everything else is internal):
 - ``dynamic_problems(case) -> list[Problem]``: why the dynamic model cannot run a valid case
 - ``to_inputs(case) -> Inputs``: the SI inputs both models read
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
-- ``solve_over_revolution(case, angles=36) -> xarray.Dataset``: the quasi-static steady state at
-  inner-ring angles over one shaft revolution (dimension ``ring_angle``)
+- ``solve_over_revolution(case, angles=None) -> xarray.Dataset``: the quasi-static steady state at
+  inner-ring angles over one shaft revolution (dimension ``ring_angle``; None: 36 angles)
+- ``quasistatic_answer(case) -> xarray.Dataset``: the quasi-static answer the CLI, studies, app and
+  report quote: ``solve_over_revolution`` for a misalignment turning with the inner ring (its
+  metrics are taken over the ring angles), else ``solve_quasistatic``
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
   ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs;
   ``INTEGRATION_METHODS``: the names its option ``method`` takes)
@@ -77,6 +80,7 @@ _LAZY = {
     # the models, through the facade (a case by any name)
     "solve_quasistatic": "solver.facade",
     "solve_over_revolution": "solver.facade",
+    "quasistatic_answer": "solver.facade",
     "quasistatic_speed_sweep": "solver.facade",
     "simulate": "solver.facade",
     "preload": "solver.facade",

@@ -28,12 +28,23 @@ def solve_quasistatic(case):
     return model(_resolved(case))
 
 
-def solve_over_revolution(case, angles: int = 36):
+def solve_over_revolution(case, angles: int | None = None):
     """The quasi-static steady state at ``angles`` inner-ring angles over one shaft revolution
-    (:func:`solver.models.quasistatic.solve_over_revolution`)."""
+    (:func:`solver.models.quasistatic.solve_over_revolution`; None: its default,
+    ``REVOLUTION_RING_ANGLES``)."""
+    from solver.models.quasistatic import REVOLUTION_RING_ANGLES
     from solver.models.quasistatic import solve_over_revolution as model
 
-    return model(_resolved(case), angles=angles)
+    return model(_resolved(case), angles=REVOLUTION_RING_ANGLES if angles is None else angles)
+
+
+def quasistatic_answer(case):
+    """The quasi-static answer the CLI, studies, app and report quote: the solutions over one
+    revolution for a misalignment turning with the inner ring, else the snapshot
+    (:func:`solver.models.quasistatic.quasistatic_answer`)."""
+    from solver.models.quasistatic import quasistatic_answer as model
+
+    return model(_resolved(case))
 
 
 def quasistatic_speed_sweep(case, speeds_rpm):

@@ -306,17 +306,11 @@ def _file_name(text: str) -> str:
     return stem.strip("-")[:80] or "case"
 
 
-PREVIEW_RING_ANGLES = 12  # ring angles solved to preview a misalignment turning with the ring
-
-
 def solve_preview(case):
-    """The preview of ``case``: its quasi-static solution, or, for a misalignment turning with the
-    inner ring, the solutions over one revolution (``solver.solve_over_revolution``): a t = 0
-    snapshot would show a band where the run draws a line and the reverse."""
+    """The preview of ``case``: the quasi-static answer (``solver.quasistatic_answer``): the
+    snapshot, or, for a misalignment turning with the inner ring, the solutions over one
+    revolution, since a t = 0 snapshot would show a band where the run draws a line and the
+    reverse."""
     import solver
 
-    op = getattr(case, "operating", None)
-    turning = getattr(op, "misalignment_frame", "space") == "ring"
-    if turning and (getattr(op, "misalignment_deg", None) or 0.0) != 0.0:
-        return solver.solve_over_revolution(case, angles=PREVIEW_RING_ANGLES)
-    return solver.solve_quasistatic(case)
+    return solver.quasistatic_answer(case)

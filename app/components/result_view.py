@@ -147,12 +147,13 @@ class ResultView(Component):
         from ..teaching import facts_from_result
 
         source = frame_source(ds, **self._animation_options(ds))
+        answer = ds  # the metrics of a solution over one revolution span its ring angles
         if "ring_angle" in ds.dims:  # a preview over one revolution: the views read its start
             ds = ds.isel(ring_angle=0).drop_vars("ring_angle")
         self.dataset = ds
         self.source = source
         self.facts = facts_from_result(ds)
-        self._describe_tracks(ds)
+        self._describe_tracks(answer)
         # the run's own case (provenance): its case warnings, whether the form already shows it, and
         # the quasi-static comparison solved for it; the views read the result's coordinates
         form_case = self.session.form.case

@@ -1,6 +1,10 @@
 """``racetrace quasistatic CASE [--output result.nc] [--json]`` (also ``racetrace solve``): the
 Jones–Harris quasi-static solution.
 
+The answer is :func:`solver.quasistatic_answer`: for a misalignment turning with the inner ring,
+the solutions over one revolution (a ``ring_angle`` dimension), whose metrics span every ring
+angle and ball; the per-ball rows are then those at ring angle 0.
+
 Default output is a readable table with units, followed by the trajectory metrics
 (:mod:`racetrace.metrics`); ``--json`` prints a machine-parseable summary instead (the metrics
 under ``trajectory``); ``--output`` writes the full results Dataset (NetCDF, results-schema.md).
@@ -51,8 +55,31 @@ def _pressure_unit(p_max: float) -> tuple[str, float]:
     return ("GPa", 1e-9) if p_max >= 1e9 else ("MPa", 1e-6)
 
 
+def _ring_angles(ds) -> int:
+    """Ring angles of a solution over one revolution; 0 for a snapshot."""
+    return int(ds.sizes.get("ring_angle", 0))
+
+
+def _at_start(ds):
+    """The snapshot at ring angle 0 of a solution over one revolution; a snapshot as it is."""
+    return ds.isel(ring_angle=0, drop=True) if "ring_angle" in ds.dims else ds
+
+
+def _revolution_text(ds) -> str:
+    """The line saying that the answer spans one revolution ('' for a snapshot)."""
+    count = _ring_angles(ds)
+    if not count:
+        return ""
+    return (
+        f"misalignment turning with the inner ring: solved at {count} inner-ring angles over one "
+        "revolution; the metrics span them all, the rows below are at ring angle 0"
+    )
+
+
 def summary(ds) -> dict:
-    """JSON-serialisable summary of a quasi-static Dataset (SI units, angles in degree)."""
+    """JSON-serialisable summary of a quasi-static answer (SI units, angles in degree): metrics
+    over the whole answer (every ring angle of a solution over one revolution), the state and the
+    balls at ring angle 0 (``ring_angles``: how many were solved, 0 for a snapshot)."""
 
     def floats(values):
         return [float(v) for v in np.asarray(values).ravel()]
@@ -60,13 +87,15 @@ def summary(ds) -> dict:
     from racetrace.metrics import finite_or_none, life_json, metrics_json, torque_json
     from solver import RPM, ring_speeds
 
+    answer, ds = ds, _at_start(ds)
     load = ds.contact_load.values
     inner_speed, outer_speed = ring_speeds(ds)
     largest_load, peak_pressure = (
-        ds.racetrace.metric(n) for n in ("largest_load", "peak_pressure")
+        answer.racetrace.metric(n) for n in ("largest_load", "peak_pressure")
     )
     return {
         "model": "quasistatic",
+        "ring_angles": _ring_angles(answer),
         "units": {
             "angle": "degree",
             "load": "N",
@@ -91,9 +120,9 @@ def summary(ds) -> dict:
             "residual": float(ds.attrs.get("solver_residual", 0.0)),
             "race_control_note": ds.attrs.get("race_control_note", ""),
         },
-        "trajectory": metrics_json(ds),
-        "life": life_json(ds),
-        "friction_torque": torque_json(ds),
+        "trajectory": metrics_json(answer),
+        "life": life_json(answer),
+        "friction_torque": torque_json(answer),
         "balls": [
             {
                 "azimuth_deg": float(ds.ball_azimuth.values[j]),
@@ -127,10 +156,11 @@ def table(ds, case) -> str:
     from racetrace.metrics import life_text, metrics_text, torque_text
     from solver import ring_speeds
 
+    answer, ds = ds, _at_start(ds)
     op = case.operating
     b = case.bearing
     inner_speed = ring_speeds(ds)[0]
-    peak = ds.racetrace.metric("peak_pressure")
+    peak = answer.racetrace.metric("peak_pressure")
     unit, factor = _pressure_unit(float(peak.max()))
     offset = ds.inner_ring_offset.values * 1e6
     tilt = ds.inner_ring_tilt.values
@@ -160,6 +190,8 @@ def table(ds, case) -> str:
     note = ds.attrs.get("race_control_note", "")
     if note and "settled" not in note:
         lines.append(f"note: {note}")
+    if _revolution_text(answer):
+        lines.append(f"note: {_revolution_text(answer)}")
     lines.append("")
     head = (
         f"{'ball':>4} {'psi':>7} {'alpha_i':>7} {'alpha_o':>7} {'Q_i':>9} {'Q_o':>9} {'a_i':>7} "
@@ -185,7 +217,7 @@ def table(ds, case) -> str:
         "alpha: contact angle; Q: contact load; a, b: contact-ellipse semi-axes (across the"
     )
     lines.append("groove, rolling direction); p: peak Hertz pressure; control: controlling race")
-    lines += ["", metrics_text(ds), life_text(ds), torque_text(ds)]
+    lines += ["", metrics_text(answer), life_text(answer), torque_text(answer)]
     return "\n".join(lines)
 
 
@@ -203,7 +235,7 @@ def print_result_warnings(ds, stream=None) -> None:
 
 
 def run(args) -> int:
-    from solver import CaseError, Problem, printable, resolve_case, solve_quasistatic
+    from solver import CaseError, Problem, printable, quasistatic_answer, resolve_case
 
     case = resolve_case(args.case)
     for warning in case.warnings():
@@ -212,7 +244,7 @@ def run(args) -> int:
         problem = output_problem(Path(args.output))
         if problem:
             raise CaseError(Problem("output", problem))
-    ds = solve_quasistatic(case)
+    ds = quasistatic_answer(case)
     print_result_warnings(ds)
     written = save_result(ds, Path(args.output)) if args.output else None
     if args.json:

@@ -289,7 +289,10 @@ def show_table(ds, model: str | None = None) -> str:
         lines += ["", "failed runs:", *messages]
     lines.append(
         "exc = trajectory excursion, band = band thickness (each race in its own ring's frame), "
-        "alpha = mean contact angle, p = peak pressure, Q = largest contact load"
+        "alpha = mean contact angle, p = peak pressure, Q = largest contact load; each row's "
+        "metrics are its model's: dynamic over the analysed window; quasistatic over one "
+        "revolution for a misalignment turning with the inner ring, else one snapshot (every ball "
+        "once, both ring frames coincide: exc = the band width across the balls, band -)"
     )
     return "\n".join(lines)
 

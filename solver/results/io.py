@@ -12,7 +12,7 @@ from pathlib import Path
 import xarray as xr
 
 ENGINE = "netcdf4"
-_PER_CONTACT_DIMS = {"ball", "race", "time"}
+_PER_CONTACT_DIMS = {"ball", "race", "time", "ring_angle"}  # ring_angle: over one revolution
 _COMPONENT_DIMS = {"axis", "tilt_axis", "quaternion", "frame", "body"}  # not one value per contact
 
 
@@ -106,8 +106,9 @@ def available_memory_bytes() -> int | None:
 def contact_table(ds: xr.Dataset):
     """The per-contact variables of a result as a flat table (pandas DataFrame).
 
-    One row per (time,) ball and race, with the index columns ``time`` (dynamic results), ``ball``
-    and ``race`` first; one column per numeric variable with dims (ball, race[, time]), named
+    One row per (time or ring angle,) ball and race, with the index columns ``time`` (dynamic
+    results) or ``ring_angle`` (a quasi-static solution over one revolution), ``ball`` and ``race``
+    first; one column per numeric variable with dims (ball, race[, time]), named
     ``<variable> [<units>]``, in the Dataset's units (angles in degree). ValueError when the result
     has no per-contact variable (or holds several results: select one element first).
     """
@@ -127,7 +128,7 @@ def contact_table(ds: xr.Dataset):
             "first (e.g. ds.isel(" + extra[0] + "=0))"
         )
     sub = ds[names].reset_coords(drop=True)
-    order = [d for d in ("time", "ball", "race") if d in sub.dims]
+    order = [d for d in ("time", "ring_angle", "ball", "race") if d in sub.dims]
     frame = sub.to_dataframe(dim_order=order).reset_index()
     return frame.rename(columns={n: f"{n} [{ds[n].attrs.get('units', '1')}]" for n in names})
 

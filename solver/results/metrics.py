@@ -11,15 +11,18 @@ for display. docs/results-schema.md ("Metrics") lists the table; a test keeps th
 ball-race contact whose ``contact_load`` is > 0 N and whose ``contact_angle`` is finite. Every
 statistic over contacts reads it.
 
-**Analysed window.** A quasi-static result is one snapshot: every ball once. A dynamic result is
-read from its ``analysis_start_time`` to the end (the settled part of the run,
-:mod:`solver.results.summary`). :class:`Window` holds the result, the window's time mask and what
-several metrics share (the summary metrics), each computed once.
+**Analysed window.** A quasi-static result is one snapshot: every ball once; or, for a
+misalignment turning with the inner ring (:func:`solver.quasistatic_answer`), its solutions over
+one revolution: every ball at every ``ring_angle``. A dynamic result is read from its
+``analysis_start_time`` to the end (the settled part of the run, :mod:`solver.results.summary`).
+:class:`Window` holds the result, the window's time mask and what several metrics share (the
+summary metrics), each computed once.
 
 **Dimensions.** A metric's ``dims`` are those it keeps of one bearing's result (``race`` for a
 per-race metric, ``()`` for the bearing as a whole). The functions reduce over the contact
-dimensions ``ball`` and ``time`` only and keep every other dimension of the result: a stack of
-results (``xr.concat`` along a sweep, ``ring_angle`` of a solution over one revolution), a set of
+dimensions ``ball``, ``time`` and ``ring_angle`` (the samples of one result: a quasi-static
+solution over one revolution is one answer, its metrics span the revolution) and keep every other
+dimension of the result: a stack of results (``xr.concat`` along a sweep), a set of
 bearings (``bearing``) or a window per phase of time-varying operation (a ``phase`` dimension of
 the time mask) each give one value per element. Statistics take the contacts in the Dataset's own
 order (ball by ball, in time within a ball), so a mean is the sum numpy forms over the flattened
@@ -40,14 +43,15 @@ from . import summary as summary_module
 from .loaded import loaded, loaded_mask
 from .variables import variable
 
-#: Dimensions a statistic over contacts reduces (every other dimension is kept).
-CONTACT_DIMS = ("ball", "time")
+#: Dimensions a statistic over contacts reduces (every other dimension is kept): the balls, the
+#: time of a dynamic run and the ring angles of a quasi-static solution over one revolution.
+CONTACT_DIMS = ("ball", "time", "ring_angle")
 RACES = ("inner", "outer")
 #: The ring frame in which each race's trajectory metrics are quoted: its own ring's.
 OWN_FRAME = {"inner": "inner_ring", "outer": "outer_ring"}
 #: Dimensions of one bearing's result; any other dimension stacks results (sweep, bearing, phase).
 RESULT_DIMS = frozenset(
-    {"ball", "race", "time", "axis", "tilt_axis", "quaternion", "body", "frame"}
+    {"ball", "race", "time", "ring_angle", "axis", "tilt_axis", "quaternion", "body", "frame"}
 )
 
 
@@ -260,9 +264,11 @@ def _loaded_balls(w: Window) -> xr.DataArray:
     """Balls carrying load on each race: the count of a snapshot, the median count over the
     window's samples of a dynamic run (rounded to a whole ball)."""
     counts = w.loaded.sum("ball")
-    if "time" not in counts.dims:
+    samples = [d for d in ("time", "ring_angle") if d in counts.dims]
+    if not samples:
         return counts.astype(float)
-    median = reduce(counts, w.in_window, "median")
+    window = w.in_window if w.in_window is not None else xr.ones_like(counts, dtype=bool)
+    median = reduce(counts, window, "median")
     return _elementwise(lambda x: float(round(x)) if math.isfinite(x) else math.nan, median)
 
 
@@ -272,8 +278,9 @@ def _truncated_contacts(w: Window) -> xr.DataArray:
     if "truncation_margin" not in w.ds:
         return xr.DataArray(0.0)
     over = (w.ds["truncation_margin"] < 0.0) & w.loaded
-    if "time" in over.dims:
-        over = over.any("time")
+    samples = [d for d in ("time", "ring_angle") if d in over.dims]
+    if samples:
+        over = over.any(samples)
     return over.sum(("ball", "race")).astype(float)
 
 
@@ -416,7 +423,8 @@ def _table() -> dict[str, Metric]:
             per_race,
             "1",
             "loaded balls",
-            "balls carrying load on the race (a dynamic run: median over the samples)",
+            "balls carrying load on the race (a dynamic run or a solution over one revolution: "
+            "median over the samples)",
             _loaded_balls,
         ),
         # ---- trajectory metrics, per race in its own ring's frame (solver.results.summary) -----
@@ -441,7 +449,8 @@ def _table() -> dict[str, Metric]:
             per_race,
             "degree",
             "trajectory band thickness",
-            "trajectory_band_thickness of the race in its own ring's frame (NaN: quasi-static)",
+            "trajectory_band_thickness of the race in its own ring's frame (NaN: a quasi-static "
+            "snapshot)",
             _own_frame("trajectory_band_thickness"),
         ),
         Metric(

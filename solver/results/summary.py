@@ -31,6 +31,17 @@ stationary outer ring; a misalignment turning with the inner ring) makes the tra
 that ring's frame and bands in the other's: each race's headline value is the one in its own
 ring's frame.
 
+**Over one revolution** (a quasi-static solution with a ``ring_angle`` dimension,
+:func:`solver.quasistatic_answer` for a misalignment turning with the inner ring): every loaded
+contact at every ring angle is one sample. Ring angle theta (inner ring relative to outer) is the
+time t = theta / (omega_i - omega_o); a contact's azimuth in ring f's frame is its
+``raceway_azimuth`` plus the angle its own ring has turned relative to ring f by then, as for a
+dynamic run, and the mean track, excursion and band thickness follow from those samples with the
+same bins. The band width is max - min over every ring angle and ball. So a tilt turning with the
+inner ring draws a line on the inner raceway (excursion about the snapshot's band width, thickness
+near 0) and a band on the outer one, as the dynamic model does. A snapshot (no ``ring_angle``)
+has both frames coincide: its excursion is its band width and its band thickness NaN.
+
 **Settling** (dynamic results, :func:`settling`): per shaft revolution (period 2 pi / |omega_i -
 omega_o|, counted from t = 0), the mean over balls and samples of the contact angle and of the
 spin-to-roll ratio of each race (loaded contacts). The run has settled at the first revolution
@@ -89,6 +100,9 @@ QUASISTATIC_THICKNESS_NOTE = (
     "a quasi-static result is one snapshot (one pass of each ball): the band thickness needs the "
     "passes of a dynamic run (racetrace simulate)"
 )
+#: The dimension of a quasi-static solution over one revolution (solver.solve_over_revolution):
+#: one result whose samples are its ring angles, not a stack of results.
+REVOLUTION_DIM = "ring_angle"
 #: Dimensions of one result; any other dimension stacks several results (xr.concat, a sweep).
 _RESULT_DIMS = ("ball", "race", "time", "axis", "tilt_axis", "quaternion", "body")
 
@@ -357,14 +371,16 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
 def trajectory_summary(ds: xr.Dataset, skip_fraction: float = UNSETTLED_SKIP_FRACTION):
     """The trajectory metrics of a result, computed from its data (module docstring).
 
-    A quasi-static result gives the excursion over its loaded balls (the same in both frames) and
-    NaN band thicknesses (with a ``note`` attribute); a dynamic one all metrics over its analysed
+    A quasi-static snapshot gives the excursion over its loaded balls (the same in both frames) and
+    NaN band thicknesses (with a ``note`` attribute); a quasi-static solution over one revolution
+    (a ``ring_angle`` dimension) all track metrics over its ring angles and balls, its window in
+    ``attrs["analysed_window"]``; a dynamic one all metrics over its analysed
     window plus ``settling_time``, ``analysis_start_time`` and ``settled``, and the window in
     ``attrs["analysed_window"]``. ``skip_fraction``: start of the window of an unsettled run, as
     a fraction of the run. A result stacked along further dimensions (``xr.concat`` of several
     results, a speed sweep) gives the metrics of every element along those dimensions.
     """
-    extra = [d for d in ds["contact_angle"].dims if d not in _RESULT_DIMS]
+    extra = [d for d in ds["contact_angle"].dims if d not in (*_RESULT_DIMS, REVOLUTION_DIM)]
     if extra:
         dim = extra[0]
         parts = [trajectory_summary(ds.isel({dim: i}), skip_fraction) for i in range(ds.sizes[dim])]
@@ -372,7 +388,65 @@ def trajectory_summary(ds: xr.Dataset, skip_fraction: float = UNSETTLED_SKIP_FRA
             parts, dim=dim, coords="different", compat="equals", combine_attrs="drop_conflicts"
         )
         return stacked.assign_coords({dim: ds[dim]}) if dim in ds.coords else stacked
+    if REVOLUTION_DIM in ds["contact_angle"].dims and "time" not in ds.dims:
+        return _revolution_summary(ds)
     return _element_summary(ds, skip_fraction)
+
+
+def _revolution_summary(ds: xr.Dataset) -> xr.Dataset:
+    """The trajectory metrics of a quasi-static solution over one revolution (a ``ring_angle``
+    dimension): every loaded contact at every ring angle is one sample, placed in each ring frame
+    by the angle its own ring has turned relative to that ring's at that ring angle (module
+    docstring, "Over one revolution"). Life metrics: those of ring angle 0."""
+    ring_angles = np.radians(np.asarray(ds[REVOLUTION_DIM].values, dtype=float))
+    inner_speed, outer_speed = ring_speeds(ds)
+    relative = inner_speed - outer_speed
+    outer_turn = outer_speed * ring_angles / relative if relative != 0.0 else 0.0 * ring_angles
+    turned = {
+        "inner_ring": np.degrees(ring_angles + outer_turn),
+        "outer_ring": np.degrees(outer_turn),
+    }
+    groove = np.asarray(ds.coords["groove_radius"].sel(race=list(RACES)).values, dtype=float)
+    shape = (len(RACES), len(FRAMES))
+    excursion, thickness = np.full(shape, np.nan), np.full(shape, np.nan)
+    width, semi_major = np.full(len(RACES), np.nan), np.full(len(RACES), np.nan)
+
+    def array(name: str, race: str) -> np.ndarray:
+        values = ds[name].sel(race=race).transpose(REVOLUTION_DIM, "ball").values
+        return np.asarray(values, dtype=float)
+
+    for k, race in enumerate(RACES):
+        angle = array("contact_angle", race)
+        loaded = loaded_mask(array("contact_load", race), angle)
+        if not loaded.any():
+            continue
+        width[k] = angle[loaded].max() - angle[loaded].min()
+        semi_major[k] = array("ellipse_semi_major", race)[loaded].mean()
+        own = array("raceway_azimuth", race)
+        for f, frame in enumerate(FRAMES):
+            shift = (turned[f"{race}_ring"] - turned[frame])[:, None]
+            excursion[k, f], thickness[k, f] = track_metrics((own + shift)[loaded], angle[loaded])
+    arc = np.radians(1.0) * groove
+    values = {
+        "trajectory_excursion": excursion,
+        "trajectory_excursion_arc": excursion * arc[:, None],
+        "trajectory_band_thickness": thickness,
+        "trajectory_band_thickness_arc": thickness * arc[:, None],
+        "ellipse_semi_major_mean": semi_major,
+        "trajectory_band_width": width,
+        "trajectory_band_width_arc": width * arc,
+    }
+    text = (
+        f"the quasi-static solutions at {ring_angles.size} inner-ring angles over one revolution: "
+        "every loaded ball at every angle"
+    )
+    out = {}
+    for name, value in values.items():
+        spec = variable(name)
+        out[name] = (spec.dims, value, {**spec.attrs(), "analysed_window": text})
+    coords = {"race": dimension_coordinate("race"), "frame": dimension_coordinate("frame")}
+    metrics = xr.Dataset(out, coords=coords, attrs={"analysed_window": text})
+    return metrics.assign(rating_life(ds.isel({REVOLUTION_DIM: 0}, drop=True)).data_vars)
 
 
 def stored_summary(ds: xr.Dataset) -> xr.Dataset | None:

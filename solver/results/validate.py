@@ -77,6 +77,11 @@ TEXT_ATTRIBUTES = (
 STUDY_TEXT_ATTRIBUTES = ("title", "description", "base_case", "software_version", "varied_keys")
 #: Dimensions a result has besides the labelled ones: balls and samples.
 _OPEN_DIMENSIONS = ("ball", "time")
+#: The ring angles of a quasi-static solution over one revolution (solver.quasistatic_answer): a
+#: leading dimension of its per-element variables and of the coordinates that turn with the ring.
+_REVOLUTION_DIM = "ring_angle"
+#: Most ring angles a solution over one revolution may have (one per degree).
+_MAX_RING_ANGLES = 360
 _MAX_PROBLEMS_SHOWN = 6
 #: Errors xarray and netCDF4 raise when a value of a lazily opened file is decoded (a scale factor
 #: that is text, a fill value of the wrong type, a time unit that is not one).
@@ -221,6 +226,8 @@ def _dimension_problems(ds: xr.Dataset, model: str) -> list[str]:
                 problems.append(
                     f"its '{dim}' dimension must be labelled {', '.join(labels)} (found {shown})"
                 )
+        elif dim == _REVOLUTION_DIM and model == "quasistatic":
+            problems += _ring_angle_problems(ds)
         elif dim in _OPEN_DIMENSIONS:
             if dim == "time" and model != "dynamic":
                 problems.append("it has a 'time' dimension but its model is not \"dynamic\"")
@@ -246,6 +253,22 @@ def _dimension_problems(ds: xr.Dataset, model: str) -> list[str]:
     return problems
 
 
+def _ring_angle_problems(ds: xr.Dataset) -> list[str]:
+    """What is wrong with the ``ring_angle`` dimension of a solution over one revolution."""
+    size = ds.sizes[_REVOLUTION_DIM]
+    angles = ds[_REVOLUTION_DIM] if _REVOLUTION_DIM in ds.coords else None
+    if size < 2 or size > _MAX_RING_ANGLES:
+        return [f"its 'ring_angle' dimension has {size} elements (2 to {_MAX_RING_ANGLES})"]
+    if angles is None or angles.dims != (_REVOLUTION_DIM,) or not _numeric(angles):
+        return ["its 'ring_angle' coordinate is missing or not a number of degrees"]
+    values = np.asarray(angles.values, dtype=float)
+    if not (np.all(np.isfinite(values)) and np.all(np.diff(values) > 0)):
+        return ["its 'ring_angle' coordinate is not finite and increasing"]
+    if values[0] < 0.0 or values[-1] >= 360.0:
+        return ["its 'ring_angle' coordinate leaves 0 to 360 degree"]
+    return []
+
+
 def _variable_problems(ds: xr.Dataset, model: str) -> list[str]:
     problems = []
     for name in REQUIRED_VARIABLES + REQUIRED_BY_MODEL[model]:
@@ -256,7 +279,7 @@ def _variable_problems(ds: xr.Dataset, model: str) -> list[str]:
             continue
         expected = spec.dims_for(model)
         found = ds[name].dims
-        if found != expected:
+        if found != expected and found != (_REVOLUTION_DIM, *expected):
             problems.append(
                 f"its '{name}' variable has dimensions {_dims_text(found)}, not "
                 f"{_dims_text(expected)}"
@@ -285,7 +308,7 @@ def _coordinate_problems(ds: xr.Dataset) -> list[str]:
             problems.append(f"it has no '{name}' coordinate")
             continue
         values = ds.coords[name]
-        if values.dims != spec.dims:
+        if values.dims != spec.dims and values.dims != (_REVOLUTION_DIM, *spec.dims):
             problems.append(
                 f"its '{name}' coordinate has dimensions {_dims_text(values.dims)}, not "
                 f"{_dims_text(spec.dims)}"

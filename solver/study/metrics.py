@@ -3,7 +3,8 @@
 :data:`POINT_METRICS` names them; their dimensions, units, long names and meanings are those of
 :data:`solver.results.metrics.METRICS`, and :func:`point_metrics` reads their values from
 ``ds.racetrace.metric(name)`` (each race in its own ring's frame; over the analysed window of a
-dynamic result, the whole snapshot of a quasi-static one).
+dynamic result, the whole snapshot of a quasi-static one, or its solutions over one revolution for
+a misalignment turning with the inner ring: :func:`solver.quasistatic_answer`).
 """
 
 from __future__ import annotations

@@ -173,6 +173,9 @@ def test_summary_rows_are_text_per_run_and_race(qs_dataset):
     assert rows[3]["excursion_deg"] == "-"
     assert rows[0]["band_thickness_deg"] == "-"  # a quasi-static result has no thickness
     assert set(rows[0]) == {"key"} | {key for key, _, _ in charts.SUMMARY_COLUMNS}
+    # both models' excursions share a column: each row names its model
+    assert rows[0]["model"] == "quasi-static"
+    assert rows[3]["model"] == "-"
 
 
 def test_compare_overlays_have_both_runs_and_races(qs_dataset, dynamic_dataset, fixture_model):

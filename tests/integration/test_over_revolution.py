@@ -56,3 +56,124 @@ def test_fixed_misalignment_is_a_line_outside_and_a_band_inside(fixed):
 def test_too_few_angles_is_named():
     with pytest.raises(ValueError, match="at least 2"):
         solver.solve_over_revolution("spindle-misalignment-ring", angles=1)
+
+
+# ---- the quasi-static answer of a tilt turning with the ring -------------------------------------
+RING, SPACE = "spindle-misalignment-ring", "spindle-misalignment-space"
+
+
+@pytest.fixture(scope="module")
+def study_points():
+    """The quasi-static records of a study's runs of the turning and the fixed tilt."""
+    from solver.study.worker import run_one
+
+    records = {}
+    for name in (RING, SPACE):
+        record, ds = run_one(solver.resolve_case(name), "quasistatic")
+        assert record["status"] == "done", record["message"]
+        records[name] = (record["metrics"], ds)
+    return records
+
+
+def test_the_answer_of_a_turning_tilt_spans_one_revolution(study_points):
+    from solver.models.quasistatic import REVOLUTION_RING_ANGLES
+
+    _, ring = study_points[RING]
+    _, space = study_points[SPACE]
+    assert ring.sizes["ring_angle"] == REVOLUTION_RING_ANGLES
+    assert "ring_angle" not in space.dims  # what is fixed in space is the same at every angle
+
+
+def test_study_point_of_a_turning_tilt_differs_from_the_fixed_one(study_points):
+    """Turning with the inner ring, the tilt draws a line on the inner raceway (in the inner
+    ring's frame: excursion about the band width, thickness near 0) and a band on the outer one
+    (thickness about the band width, small excursion); the fixed tilt's snapshot cannot tell the
+    frames apart."""
+    ring, _ = study_points[RING]
+    space, _ = study_points[SPACE]
+    width = ring["band_width"]
+    assert ring["excursion"]["inner"] == pytest.approx(width["inner"], rel=0.02)
+    assert ring["band_thickness"]["inner"] < 0.02 * width["inner"]
+    assert ring["band_thickness"]["outer"] == pytest.approx(width["outer"], rel=0.05)
+    assert ring["excursion"]["outer"] < 0.2 * width["outer"]
+    assert ring["excursion"]["outer"] < 0.2 * space["excursion"]["outer"]
+    assert np.isnan(space["band_thickness"]["outer"])
+
+
+def test_study_point_agrees_with_solve_over_revolution(study_points):
+    ring, _ = study_points[RING]
+    direct = solver.solve_over_revolution(RING)
+    for name, value in ring.items():
+        expected = direct.racetrace.metric(name)
+        if isinstance(value, dict):
+            for race, v in value.items():
+                np.testing.assert_allclose(v, float(expected.sel(race=race)), rtol=1e-9)
+        else:
+            np.testing.assert_allclose(value, float(expected), rtol=1e-9)
+
+
+def test_contact_metrics_span_every_ring_angle(study_points):
+    """Largest load and peak pressure: the largest at any ring angle; mean contact angle: over
+    every ring angle and ball."""
+    _, ds = study_points[RING]
+    for name in ("largest_load", "peak_pressure"):
+        value = ds.racetrace.metric(name)
+        assert value.dims == ("race",)
+        per_angle = [
+            ds.isel(ring_angle=k).racetrace.metric(name) for k in range(ds.sizes["ring_angle"])
+        ]
+        np.testing.assert_allclose(value.values, np.max(per_angle, axis=0))
+    mean = ds.racetrace.metric("mean_contact_angle")
+    np.testing.assert_allclose(
+        mean.values, ds["contact_angle"].mean(("ring_angle", "ball")).values, rtol=1e-12
+    )
+
+
+def test_cli_gives_the_study_answer(study_points, capsys):
+    """``racetrace quasistatic`` quotes the same answer (metrics over the revolution) as a study."""
+    import json
+
+    from racetrace.cli import main
+
+    assert main(["quasistatic", RING, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    ring, _ = study_points[RING]
+    assert out["ring_angles"] == study_points[RING][1].sizes["ring_angle"]
+    for race in ("inner", "outer"):
+        trajectory = out["trajectory"][race]
+        assert trajectory["excursion_deg"] == pytest.approx(ring["excursion"][race], rel=1e-12)
+        assert trajectory["band_thickness_deg"] == pytest.approx(
+            ring["band_thickness"][race], rel=1e-12
+        )
+        assert out["max_contact_load_N"][race] == pytest.approx(
+            ring["largest_load"][race], rel=1e-12
+        )
+
+
+def test_a_saved_revolution_is_a_valid_result(study_points, tmp_path):
+    _, ds = study_points[RING]
+    path = solver.save_dataset(ds, tmp_path / "ring.nc")
+    back = solver.load_result(path, "ring.nc")
+    assert back.sizes["ring_angle"] == ds.sizes["ring_angle"]
+    np.testing.assert_allclose(
+        back.racetrace.metric("excursion").values, ds.racetrace.metric("excursion").values
+    )
+    assert "over one revolution" in back.attrs["misalignment_note"]
+
+
+def test_a_revolution_with_bad_ring_angles_is_refused(study_points):
+    from solver.results.validate import result_problems
+
+    _, ds = study_points[RING]
+    assert result_problems(ds, True) == []
+    reversed_angles = ds.assign_coords(ring_angle=ds["ring_angle"].values[::-1])
+    assert any("ring_angle" in p for p in result_problems(reversed_angles, True))
+    dynamic = ds.assign_attrs(model="dynamic")
+    assert any("ring_angle" in p for p in result_problems(dynamic, False))
+
+
+def test_the_contact_table_of_a_revolution_has_a_row_per_ring_angle(study_points):
+    _, ds = study_points[RING]
+    table = solver.contact_table(ds)
+    assert list(table.columns[:3]) == ["ring_angle", "ball", "race"]
+    assert len(table) == ds.sizes["ring_angle"] * ds.sizes["ball"] * 2

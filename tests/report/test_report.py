@@ -153,3 +153,21 @@ def test_study_report_has_points_and_metric_charts(tmp_path):
         assert rows.count(3) >= 4, rows  # excursion, angle, pressure lines over 3 points
 
     _open_offline(tmp_path / "study.html", check)
+
+
+def test_run_report_of_a_tilt_turning_with_the_ring(tmp_path):
+    """A quasi-static answer over one revolution: the summary spans the revolution (the turning
+    tilt's band thickness on the outer race), the scene and tables show ring angle 0."""
+    import solver
+    from report import build_report
+
+    ds = solver.solve_over_revolution("spindle-misalignment-ring", angles=8)
+    path = solver.save_dataset(ds, tmp_path / "ring.nc")
+    info = build_report(path, tmp_path / "ring.html")
+    assert info["kind"] == "run"
+    text = (tmp_path / "ring.html").read_text()
+    assert "show ring angle 0" in text
+    assert "8 inner-ring angles over one revolution" in text
+    thickness = float(ds.racetrace.metric("band_thickness").sel(race="outer"))
+    assert np.isfinite(thickness)
+    assert f"{thickness:.4g}" in text

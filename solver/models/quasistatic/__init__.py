@@ -9,9 +9,13 @@ Public API:
   model starts from it)
 - ``quasistatic_speed_sweep(case, speeds_rpm) -> xarray.Dataset`` stacked along the
   ``inner_ring_speed`` dimension, each speed started from the previous solution (continuation)
-- ``solve_over_revolution(case, angles=36) -> xarray.Dataset`` stacked along the ``ring_angle``
-  dimension: the steady state at a set of inner-ring angles over one shaft revolution, so that a
-  misalignment turning with the inner ring is seen over a whole revolution, not at t = 0 only
+- ``solve_over_revolution(case, angles=REVOLUTION_RING_ANGLES) -> xarray.Dataset`` stacked along
+  the ``ring_angle`` dimension: the steady state at a set of inner-ring angles over one shaft
+  revolution, so that a misalignment turning with the inner ring is seen over a whole revolution,
+  not at t = 0 only
+- ``quasistatic_answer(case) -> xarray.Dataset``: the quasi-static answer every view, study and
+  command quotes: ``solve_over_revolution`` at :data:`REVOLUTION_RING_ANGLES` angles when the case's
+  misalignment turns with the inner ring (:func:`turns_with_ring`), ``solve_quasistatic`` otherwise
 - ``solve_operating_point(geometry, operating, initial=None)`` for callers that build a
   :class:`solver.geometry.BearingGeometry` and an :class:`solver.inputs.OperatingPoint` directly
 
@@ -45,14 +49,23 @@ from .solution import QuasiStaticSolution
 from .solver import solve_operating_point
 
 __all__ = [
+    "REVOLUTION_RING_ANGLES",
     "OperatingPoint",
     "QuasiStaticSolution",
+    "quasistatic_answer",
     "quasistatic_speed_sweep",
     "solve_operating_point",
     "solve_over_revolution",
     "solve_quasistatic",
     "solve_quasistatic_state",
+    "turns_with_ring",
 ]
+
+#: Inner-ring angles over one revolution at which a case whose misalignment turns with the inner
+#: ring is solved (:func:`quasistatic_answer`): 10 degree apart, the azimuth bins of the trajectory
+#: metrics (solver.results.summary), so that every bin of the ring frame in which the track is a
+#: line holds one sample per ball.
+REVOLUTION_RING_ANGLES = 36
 
 
 #: Attributes of one sweep element that a stacked sweep drops (they describe one solve).
@@ -172,7 +185,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     return ds
 
 
-def solve_over_revolution(case, angles: int = 36):
+def solve_over_revolution(case, angles: int = REVOLUTION_RING_ANGLES):
     """Quasi-static solutions of ``case`` at ``angles`` equally spaced inner-ring angles over one
     shaft revolution, stacked along the ``ring_angle`` dimension (degree, 0 <= angle < 360).
 
@@ -212,7 +225,7 @@ def solve_over_revolution(case, angles: int = 36):
         if turning:
             op = dataclasses.replace(base, misalignment_axis=base.misalignment_axis + theta)
         try:
-            previous = solve_operating_point(geometry, op, previous)
+            previous = solve_operating_point(geometry, op, previous, _traction_lubricant(inputs))
         except NoSolutionError as error:
             raise NoSolutionError(
                 f"solution over a revolution stopped at ring angle {math.degrees(theta):g} "
@@ -238,4 +251,34 @@ def solve_over_revolution(case, angles: int = 36):
     spec = DIMENSION_COORDINATES["ring_angle"]
     result = result.assign_coords(ring_angle=("ring_angle", np.degrees(ring_angles), spec.attrs()))
     result.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
+    if "misalignment_note" in result.attrs:  # the elements' note speaks of one snapshot
+        result.attrs["misalignment_note"] = (
+            f"misalignment_frame = ring: solved at {count} inner-ring angles over one revolution "
+            "(ring_angle); the metrics are taken over every ring angle and ball"
+        )
     return result
+
+
+def turns_with_ring(case) -> bool:
+    """True when ``case`` (a Case or Inputs) imposes a misalignment that turns with the inner ring
+    (``misalignment_frame = "ring"``, a non-zero ``misalignment`` and no ``tilting_moment``): its
+    load pattern turns with the inner ring, so a snapshot at t = 0 does not show what either ring
+    sees over a revolution."""
+    operating = _inputs(case).operating
+    return (
+        operating.misalignment_frame == "ring"
+        and operating.misalignment != 0.0
+        and operating.tilting_moment is None
+    )
+
+
+def quasistatic_answer(case):
+    """The quasi-static answer for ``case`` that the CLI, the studies, the app and the report
+    quote: for a misalignment turning with the inner ring (:func:`turns_with_ring`) the solutions
+    over one revolution (:func:`solve_over_revolution` at :data:`REVOLUTION_RING_ANGLES` angles,
+    dimension ``ring_angle``), whose metrics are taken over the ring angles and balls
+    (solver.results.metrics); otherwise the snapshot of :func:`solve_quasistatic`."""
+    inputs = _inputs(case)
+    if turns_with_ring(inputs):
+        return solve_over_revolution(inputs, angles=REVOLUTION_RING_ANGLES)
+    return solve_quasistatic(inputs)
