@@ -370,7 +370,7 @@ def current_contact_traces(source: FrameSource, current: int, balls=None) -> lis
 def trajectory_metric_words(ds: xr.Dataset) -> str:
     """Excursion and band thickness of each race in its own ring's frame (the metrics
     ``excursion``, ``excursion_arc``, ``band_thickness``, ``band_thickness_arc``), in degree and
-    micrometres."""
+    micrometres, and the ``energy_balance_residual`` of a dynamic run with losses, in %."""
     metric = ds.racetrace.metric
     parts = []
     for race in RACES:
@@ -383,6 +383,9 @@ def trajectory_metric_words(ds: xr.Dataset) -> str:
         else:
             band = "band thickness needs a dynamic run"
         parts.append(f"{race} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
+    residual = float(metric("energy_balance_residual"))
+    if np.isfinite(residual):  # a dynamic run with losses checks its energy balance
+        parts.append(f"energy balance residual {100.0 * residual:+.2f} % of the losses")
     return "; ".join(parts)
 
 
@@ -579,7 +582,9 @@ HELP["compare_summary"] = (
     "and balls: 0 for a thin line; '-' for a quasi-static result, which has one pass) are "
     "measured in each race's own ring frame; the largest contact load and peak pressure tell how "
     "hard the most loaded ball is pressed (fatigue life); the cage speed shows whether the ball "
-    "set orbits as kinematics predicts."
+    "set orbits as kinematics predicts; the energy balance residual (drive power minus losses "
+    "minus the change of kinetic energy, as a share of the losses) checks a dynamic run's "
+    "integration: beyond 1 % its torque and losses are not to be trusted."
 )
 
 
@@ -612,7 +617,8 @@ def run_summary(ds: xr.Dataset) -> dict:
     * ``contact_load_max_N``: ``largest_load`` (N);
     * ``max_pressure_max_GPa``: ``peak_pressure`` (GPa).
 
-    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min).
+    ``cage_speed_rpm`` is ``mean_cage_speed`` (rev/min), ``energy_residual_pct`` the
+    ``energy_balance_residual`` (%, NaN for a quasi-static result).
     """
     columns = (
         ("contact_angle_min_deg", "min_contact_angle", 1.0),
@@ -628,6 +634,7 @@ def run_summary(ds: xr.Dataset) -> dict:
         for race in RACES
     }
     summary["cage_speed_rpm"] = float(metric("mean_cage_speed")) / RPM
+    summary["energy_residual_pct"] = 100.0 * float(metric("energy_balance_residual"))
     return summary
 
 
@@ -642,6 +649,7 @@ SUMMARY_COLUMNS = (
     ("contact_load_max_N", "contact load max, N", ".1f"),
     ("max_pressure_max_GPa", "peak pressure max, GPa", ".3f"),
     ("cage_speed_rpm", "mean cage speed, rev/min", ".0f"),
+    ("energy_residual_pct", "energy balance residual, %", "+.2f"),
 )
 
 
@@ -653,7 +661,8 @@ def summary_rows(runs: dict[str, dict]) -> list[dict]:
     rows = []
     for tag, summary in runs.items():
         for race in RACES:
-            values = {**summary[race], "cage_speed_rpm": summary["cage_speed_rpm"]}
+            bearing = ("cage_speed_rpm", "energy_residual_pct")
+            values = {**summary[race], **{key: summary[key] for key in bearing}}
             row = {"key": f"{tag}-{race}", "run": tag, "race": race}
             for key, _, fmt in SUMMARY_COLUMNS[2:]:
                 value = values[key]
