@@ -312,7 +312,8 @@ VARIABLES: dict[str, Variable] = {
         "1",
         "energy balance residual",
         "(mean drive_power - mean total_power_loss - change of kinetic_energy / window length) "
-        "/ mean total_power_loss over the analysed window (time means by the trapezoidal rule); "
+        "/ mean total_power_loss over the analysed window, after the first shaft revolution of a "
+        "run of two or more (time means by the trapezoidal rule); "
         f"NaN without losses. Beyond {RESIDUAL_LIMIT:g} the result warns: the tolerance is too "
         "loose for the torque, drive power and losses (solver.results.energy)",
         _DYN,

@@ -71,6 +71,19 @@ def test_the_residual_is_the_unbalanced_power_over_the_losses():
     assert energy_balance(ds, WINDOW_START).residual == pytest.approx(10.0 / 90.0)
 
 
+def test_the_first_shaft_revolution_is_left_out_of_a_longer_run():
+    ds = dynamic_result(kinetic_rate=10.0)
+    ds["kinetic_energy"][TIMES < 0.3] = -100.0  # a start-up the balance does not hold for
+    ds.attrs["shaft_period_s"] = 0.3  # 3.3 revolutions: balanced from 0.3 s (7 ripple periods)
+    balance = energy_balance(ds, 0.0)
+    assert balance.start == pytest.approx(0.3)
+    assert balance.kinetic_rate == pytest.approx(10.0)
+    assert balance.residual == pytest.approx(0.0, abs=1e-9)
+    assert energy_balance(ds, WINDOW_START).start == pytest.approx(WINDOW_START)  # later: kept
+    ds.attrs["shaft_period_s"] = 0.6  # fewer than two revolutions: the window as given
+    assert energy_balance(ds, 0.0).start == 0.0
+
+
 def test_the_metric_reads_the_stored_value_else_computes_it():
     assert float(dynamic_result(0.0).racetrace.metric("energy_balance_residual")) == (
         pytest.approx(10.0 / 90.0)
