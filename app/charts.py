@@ -662,7 +662,7 @@ def summary_rows(runs: dict[str, dict]) -> list[dict]:
     for tag, summary in runs.items():
         for race in RACES:
             bearing = ("cage_speed_rpm", "energy_residual_pct")
-            values = {**summary[race], **{key: summary[key] for key in bearing}}
+            values = {**summary[race], **{key: summary.get(key, np.nan) for key in bearing}}
             row = {"key": f"{tag}-{race}", "run": tag, "race": race}
             for key, _, fmt in SUMMARY_COLUMNS[2:]:
                 value = values[key]
