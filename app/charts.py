@@ -370,7 +370,7 @@ def current_contact_traces(source: FrameSource, current: int, balls=None) -> lis
 def trajectory_metric_words(ds: xr.Dataset) -> str:
     """Excursion and band thickness of each race in its own ring's frame (the metrics
     ``excursion``, ``excursion_arc``, ``band_thickness``, ``band_thickness_arc``), in degree and
-    micrometres."""
+    micrometres, and the ``energy_balance_residual`` of a dynamic run with losses, in %."""
     metric = ds.racetrace.metric
     parts = []
     for race in RACES:
@@ -383,6 +383,9 @@ def trajectory_metric_words(ds: xr.Dataset) -> str:
         else:
             band = "band thickness needs a dynamic run"
         parts.append(f"{race} raceway: excursion {exc:.3f}° ({exc_arc:.0f} µm), {band}")
+    residual = float(metric("energy_balance_residual"))
+    if np.isfinite(residual):  # a dynamic run with losses checks its energy balance
+        parts.append(f"energy balance residual {100.0 * residual:+.2f} % of the losses")
     return "; ".join(parts)
 
 
@@ -582,7 +585,9 @@ HELP["compare_summary"] = (
     "set orbits as kinematics predicts. The friction torque of a dynamic run stands beside two "
     "empirical estimates of the same bearing (Palmgren, SKF model: catalogue formulas, oil-air "
     "lubrication); '-' where a run has no torque of its own (quasi-static) or an estimate cannot "
-    "be made (the CLI summary and the report say why)."
+    "be made (the CLI summary and the report say why); the energy balance residual (drive "
+    "power minus losses minus the change of kinetic energy, as a share of the losses) checks a "
+    "dynamic run's integration: beyond 1 % its torque and losses are not to be trusted."
 )
 
 
@@ -620,6 +625,7 @@ def run_summary(ds: xr.Dataset) -> dict:
     estimates ``friction_torque_palmgren`` / ``friction_torque_skf`` (N mm; NaN when not available).
     ``model`` names the model whose metrics they are ("quasi-static", "quasi-static, over one
     revolution" or "dynamic"): the table puts both models' excursions in one column.
+    ``energy_residual_pct`` is the ``energy_balance_residual`` (%, NaN for a quasi-static result).
     """
     columns = (
         ("contact_angle_min_deg", "min_contact_angle", 1.0),
@@ -643,6 +649,7 @@ def run_summary(ds: xr.Dataset) -> dict:
         summary["model"] = "quasi-static, over one revolution"
     else:
         summary["model"] = "quasi-static"
+    summary["energy_residual_pct"] = 100.0 * float(metric("energy_balance_residual"))
     return summary
 
 
@@ -669,6 +676,7 @@ SUMMARY_COLUMNS = (
     ("friction_torque_Nmm", "friction torque (model), N mm", ".4g"),
     ("palmgren_torque_Nmm", "Palmgren estimate, N mm", ".4g"),
     ("skf_torque_Nmm", "SKF-model estimate, N mm", ".4g"),
+    ("energy_residual_pct", "energy balance residual, %", "+.2f"),
 )
 
 
@@ -680,7 +688,7 @@ def summary_rows(runs: dict[str, dict]) -> list[dict]:
     rows = []
     for tag, summary in runs.items():
         for race in RACES:
-            bearing = ("cage_speed_rpm", *(key for key, _ in TORQUE_COLUMNS))
+            bearing = ("cage_speed_rpm", "energy_residual_pct", *(key for key, _ in TORQUE_COLUMNS))
             values = {**summary[race], **{key: summary.get(key, np.nan) for key in bearing}}
             row = {"key": f"{tag}-{race}", "run": tag, "race": race}
             row["model"] = summary.get("model", "-")

@@ -39,7 +39,8 @@ def finite_or_none(value: float) -> float | None:
 
 def headline(ds) -> dict:
     """Each race's trajectory numbers in its own ring's frame (:data:`RACE_METRICS`, plain floats)
-    plus ``settled`` / ``settling_time_s`` / ``analysis_start_time_s`` for a dynamic result."""
+    plus ``settled`` / ``settling_time_s`` / ``analysis_start_time_s`` /
+    ``energy_balance_residual`` for a dynamic result."""
     metric = ds.racetrace.metric
     out = {
         race: {key: float(metric(name).sel(race=race)) for key, name in RACE_METRICS}
@@ -49,6 +50,7 @@ def headline(ds) -> dict:
         out["settled"] = bool(int(metric("settled")))
         out["settling_time_s"] = float(metric("settling_time"))
         out["analysis_start_time_s"] = float(metric("analysis_start_time"))
+        out["energy_balance_residual"] = float(metric("energy_balance_residual"))
     return out
 
 
@@ -80,6 +82,7 @@ def metrics_json(ds) -> dict:
         out["settling_time_s"] = finite_or_none(values["settling_time_s"])
         out["analysis_start_time_s"] = values["analysis_start_time_s"]
         out["analysed_window"] = ds.racetrace.summary().attrs.get("analysed_window", "")
+        out["energy_balance_residual"] = finite_or_none(values["energy_balance_residual"])
     else:
         note = ds.racetrace.metric("band_thickness").attrs.get("note")
         if note:  # a snapshot; a solution over one revolution has band thicknesses
@@ -91,7 +94,8 @@ def metrics_json(ds) -> dict:
 
 def metrics_text(ds) -> str:
     """Readable lines: excursion and band thickness per race (degree and um), the mean ellipse
-    semi-major axis for scale, and where the analysed window starts (dynamic results)."""
+    semi-major axis for scale, and where the analysed window starts and the energy-balance
+    residual over it (dynamic results)."""
     values = headline(ds)
     lines = ["trajectory metrics (each race in its own ring's frame):"]
     for race in ("inner", "outer"):
@@ -130,7 +134,18 @@ def metrics_text(ds) -> str:
                 f"settling: NOT settled (see the warning); metrics from t = {start:.4g} s "
                 f"({start / period:.3g} shaft revolutions) to the end"
             )
+        lines.append(energy_text(values["energy_balance_residual"]))
     return "\n".join(lines)
+
+
+def energy_text(residual: float) -> str:
+    """The energy-balance line of a dynamic result (``residual``: the metric, a fraction)."""
+    if not math.isfinite(residual):
+        return "energy balance: n/a (no losses in the analysed window)"
+    return (
+        f"energy balance: residual {100.0 * residual:+.2f} % of the losses over the analysed "
+        "window (drive power - losses - change of kinetic energy)"
+    )
 
 
 def life_json(ds) -> dict:

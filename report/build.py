@@ -169,7 +169,9 @@ def _summary_rows(ds):
     )
 
     rows = []
-    for name in POINT_METRICS:
+    # a dynamic run also shows the check of its own integration
+    checks = ("energy_balance_residual",) if "time" in ds.dims else ()
+    for name in (*POINT_METRICS, *checks):
         row, value = METRICS[name], ds.racetrace.metric(name)
         if row.dims:
             inner, outer = (_fmt(float(value.sel(race=race))) for race in ("inner", "outer"))

@@ -773,8 +773,9 @@ FIELDS: list[Field] = [
         "float",
         "Integrator tolerance",
         "Local error tolerance of the adaptive integrator, relative to each state's scale "
-        "(undamped runs: 1e-4; docs/numerics.md).",
-        default=1e-3,
+        "(the default keeps the friction torque within 2 % and the energy balance within 1 %; "
+        "docs/numerics.md).",
+        default=1e-4,
         minimum=0.0,
         minimum_inclusive=False,
         maximum=1e-2,

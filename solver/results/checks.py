@@ -27,7 +27,10 @@ traction balance asked for by the case found no steady ball speeds), and, for a 
 ``settled`` == 0 (the stored flag; computed by :func:`solver.results.summary.settling` for a result
 that does not store it but has the spin-to-roll ratios), and **friction torque far from the
 estimates**: the mean ``friction_torque`` over the analysed window lies outside a factor 3 of every
-empirical estimate the result stores (``friction_torque_palmgren``, ``friction_torque_skf``).
+empirical estimate the result stores (``friction_torque_palmgren``, ``friction_torque_skf``),
+and **the energy balance does not close**: the residual of
+:func:`solver.results.energy.energy_balance` over the analysed window exceeds
+:data:`solver.results.energy.RESIDUAL_LIMIT` (1 % of the losses) in magnitude.
 """
 
 from __future__ import annotations
@@ -36,7 +39,7 @@ import math
 
 import numpy as np
 
-from . import summary
+from . import energy, summary
 from .loaded import loaded_mask
 
 #: ISO 76 reference contact stress for ball bearings (except self-aligning), Pa: the static limit.
@@ -65,6 +68,7 @@ def result_warnings(ds) -> list[str]:
     if "time" in ds.dims:
         found += _settling_check(ds)
         found += _torque_estimate_check(ds)
+        found += _energy_check(ds)
     grooves = _groove_radii(ds)
     for race in [str(r) for r in ds["race"].values]:
         too_large = _hertz_size_check(ds, race, *grooves) if grooves is not None else ""
@@ -289,6 +293,25 @@ def _settling_check(ds) -> list[str]:
         first, _ = summary.analysis_start(ds)
         start = float(ds["time"].values[first])
     return [summary.unsettled_message(ds, state, start)]
+
+
+def _energy_check(ds) -> list[str]:
+    """'the energy balance does not close' for a dynamic result whose residual over the analysed
+    window exceeds :data:`~solver.results.energy.RESIDUAL_LIMIT` (see solver.results.energy)."""
+    if not all(name in ds for name in energy.BALANCE_VARIABLES):
+        return []  # a result without the balance's variables: nothing to check
+    if "analysis_start_time" in ds:
+        start = float(ds["analysis_start_time"])
+    elif {"contact_angle", "contact_load"} <= set(ds.data_vars):
+        first, _ = summary.analysis_start(ds)
+        start = float(ds["time"].values[first])
+    else:
+        return []
+    balance = energy.energy_balance(ds, start)
+    if balance is None or not abs(balance.residual) > energy.RESIDUAL_LIMIT:
+        return []
+    note = str(ds.attrs.get("integrator", ""))
+    return [energy.residual_message(balance, note)]
 
 
 def _incomplete_message(ds) -> str:

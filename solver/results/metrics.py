@@ -39,6 +39,7 @@ from functools import cached_property
 import numpy as np
 import xarray as xr
 
+from . import energy
 from . import summary as summary_module
 from .loaded import loaded, loaded_mask
 from .variables import variable
@@ -258,6 +259,19 @@ def _centrifugal_force(w: Window) -> xr.DataArray:
     mass = density * math.pi * diameter**3 / 6.0
     orbital = _mean_variable(w, "orbital_speed")
     return mass * 0.5 * _scalar_coordinate(w.ds, "pitch_diameter") * orbital**2
+
+
+def _energy_balance_residual(w: Window) -> xr.DataArray:
+    """The stored ``energy_balance_residual``, else computed over the analysed window when the
+    result has the variables of the balance; NaN otherwise (a quasi-static result)."""
+    if "energy_balance_residual" in w.ds:
+        value = w.ds["energy_balance_residual"]
+        return value.drop_vars([c for c in value.coords if c not in value.dims])
+    if not w.dynamic:
+        return xr.DataArray(math.nan)
+    source = w.ds if "analysis_start_time" in w.ds else w.summary
+    balance = energy.energy_balance(w.ds, float(source["analysis_start_time"]))
+    return xr.DataArray(math.nan if balance is None else balance.residual)
 
 
 def _loaded_balls(w: Window) -> xr.DataArray:
@@ -593,6 +607,15 @@ def _table() -> dict[str, Metric]:
             "start of the analysed window",
             "analysis_start_time of the dynamic run (NaN: quasi-static)",
             _summary_value("analysis_start_time"),
+        ),
+        Metric(
+            "energy_balance_residual",
+            (),
+            "1",
+            "energy balance residual",
+            "(drive power - losses - change of kinetic energy) / losses over the analysed window "
+            f"(NaN: quasi-static); beyond {energy.RESIDUAL_LIMIT:g} the result warns",
+            _energy_balance_residual,
         ),
         # ---- rating life (solver.results.life) -------------------------------------------------
         _stored_row("basic_load_rating", "ISO 281 basic dynamic radial load rating C_r"),

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .energy import RESIDUAL_LIMIT
+
 DIMENSION_VALUES = {
     "race": ["inner", "outer"],
     "axis": ["x", "y", "z"],
@@ -317,6 +319,27 @@ VARIABLES: dict[str, Variable] = {
         "Present only when it can be made; the ``note`` attribute says what it assumed, and the "
         "Dataset attribute friction_torque_skf_note why it is missing",
         time_dependent=False,
+    ),
+    "kinetic_energy": Variable(
+        (),
+        "J",
+        "kinetic energy",
+        "kinetic energy of every moving body of the model: the balls' translation and rotation, "
+        "the cage's translation, rotation and tilts, the inner ring's translations and tilts "
+        "where they are free (the rings' imposed rotations at constant speed are left out)",
+        _DYN,
+    ),
+    "energy_balance_residual": Variable(
+        (),
+        "1",
+        "energy balance residual",
+        "(mean drive_power - mean total_power_loss - change of kinetic_energy / window length) "
+        "/ mean total_power_loss over the analysed window, after the first shaft revolution of a "
+        "run of two or more (time means by the trapezoidal rule); "
+        f"NaN without losses. Beyond {RESIDUAL_LIMIT:g} the result warns: the tolerance is too "
+        "loose for the torque, drive power and losses (solver.results.energy)",
+        _DYN,
+        False,
     ),
     # ---- summary metrics (solver.results.summary; stored in dynamic results) ------------------
     "trajectory_excursion": Variable(

@@ -172,6 +172,7 @@ def test_summary_rows_are_text_per_run_and_race(qs_dataset):
     assert rows[0]["contact_angle_max_deg"] == "23.00"
     assert rows[3]["excursion_deg"] == "-"
     assert rows[0]["band_thickness_deg"] == "-"  # a quasi-static result has no thickness
+    assert rows[0]["energy_residual_pct"] == "-"  # nor an energy balance
     assert set(rows[0]) == {"key"} | {key for key, _, _ in charts.SUMMARY_COLUMNS}
     # both models' excursions share a column: each row names its model
     assert rows[0]["model"] == "quasi-static"

@@ -99,6 +99,7 @@ def test_simulate_prints_the_metrics_and_json_on_request(fake_case, tmp_path, ca
     text = capsys.readouterr().out
     assert "inner race: excursion" in text and "band thickness" in text
     assert "settling: NOT settled" in text
+    assert "energy balance: residual " in text and "% of the losses" in text
     args = _parse([*common, "--samples-per-revolution", "40", "--json"])
     assert args.func(args) == 0
     report = json.loads(capsys.readouterr().out)
@@ -111,6 +112,7 @@ def test_simulate_prints_the_metrics_and_json_on_request(fake_case, tmp_path, ca
         float(stored.trajectory_band_thickness.sel(race="inner", frame="inner_ring"))
     )
     assert trajectory["analysis_start_time_s"] == pytest.approx(float(stored.analysis_start_time))
+    assert trajectory["energy_balance_residual"] == float(stored.energy_balance_residual)
 
 
 def test_method_choices_are_the_solver_methods():

@@ -81,6 +81,18 @@ def _canvas_pixels(page) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
 
 
+def test_run_report_summary_shows_the_energy_balance(run_file):
+    """A dynamic run's summary table carries its energy-balance residual (the metric)."""
+    import solver
+    from report.build import _fmt, _summary_rows
+
+    ds = solver.load_dataset(run_file)
+    rows = {row[0]: row for row in _summary_rows(ds)}
+    value = float(ds.racetrace.metric("energy_balance_residual"))
+    assert np.isfinite(value)
+    assert rows["energy balance residual"] == ("energy balance residual", _fmt(value), "", "1")
+
+
 @pytest.mark.browser
 def test_run_report_is_standalone_and_draws(run_file, tmp_path):
     from report import build_report

@@ -7,8 +7,10 @@ import numpy as np
 from solver.physics.hertz import truncation_margin
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
+from solver.results.energy import energy_balance
 from solver.results.estimates import with_estimates
 from solver.results.summary import trajectory_summary
+from solver.results.variables import variable
 
 from . import layout as L
 from .integrate import stepper
@@ -100,6 +102,40 @@ def loss_outputs(records: np.ndarray, balls: np.ndarray, bearing: np.ndarray) ->
     }
 
 
+def kinetic_energy(states: np.ndarray, par) -> np.ndarray:
+    """Kinetic energy [J] of every moving body of the model at each stored state (S, n) -> (S,).
+
+    Balls: translation and rotation (a sphere: one inertia about every axis). Cage (when
+    modelled): translation, rotation about its axis and tilts (polar and diametral inertia).
+    Inner ring: translations when they are degrees of freedom, tilts when they are free. The
+    rings' rotations are imposed at constant speed: their kinetic energy does not change and is
+    left out. Inertial frame, velocities in m/s and rad/s.
+    """
+    z = int(par.ball_count)
+    energy = np.zeros(states.shape[0])
+    for j in range(z):
+        base = L.ball_base(j)
+        vel = states[:, base + L.B_VEL : base + L.B_VEL + 3]
+        omega = states[:, base + L.B_OMEGA : base + L.B_OMEGA + 3]
+        energy += 0.5 * par.ball_mass * np.sum(vel**2, axis=1)
+        energy += 0.5 * par.ball_inertia * np.sum(omega**2, axis=1)
+    if par.cage:
+        cb = L.cage_base(z)
+        vel = states[:, cb + L.C_VEL : cb + L.C_VEL + 3]
+        tilt_rate = states[:, cb + L.C_TILT_RATE : cb + L.C_TILT_RATE + 2]
+        energy += 0.5 * par.cage_mass * np.sum(vel**2, axis=1)
+        energy += 0.5 * par.cage_polar_inertia * states[:, cb + L.C_SPEED] ** 2
+        energy += 0.5 * par.cage_diametral_inertia * np.sum(tilt_rate**2, axis=1)
+    rb = L.ring_base(z)
+    if par.ring_free:
+        vel = states[:, rb + L.R_VEL : rb + L.R_VEL + 3]
+        energy += 0.5 * par.ring_mass * np.sum(vel**2, axis=1)
+    if par.tilt_mode == L.TILT_FREE:
+        tilt_rate = states[:, rb + L.R_TILT_RATE : rb + L.R_TILT_RATE + 2]
+        energy += 0.5 * par.ring_diametral_inertia * np.sum(tilt_rate**2, axis=1)
+    return energy
+
+
 def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> np.ndarray:
     """Margin [degree] between the ellipse edge and the loaded shoulder, per race
     (solver.physics.hertz.truncation_margin); NaN where the case gives no shoulder
@@ -167,6 +203,7 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "inner_ring_tilt": (("time", "tilt_axis"), np.degrees(tilt)),
         "cage_speed": (("time",), states[:, cb + L.C_SPEED]),
         "cage_center": (("time", "axis"), states[:, cb + L.C_POS : cb + L.C_POS + 3]),
+        "kinetic_energy": (("time",), kinetic_energy(states, par)),
     }
     attrs = {
         "stop_reason": stop_reason,
@@ -200,6 +237,9 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
     metrics = trajectory_summary(ds, options.analysis_skip_fraction)
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
+    balance = energy_balance(ds, float(metrics["analysis_start_time"]))
+    spec = variable("energy_balance_residual")
+    ds["energy_balance_residual"] = ((), np.float64(balance.residual), spec.attrs())
     return with_estimates(ds, inputs)
 
 

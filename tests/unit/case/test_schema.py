@@ -236,7 +236,7 @@ def test_every_simulation_switch_has_its_default_in_the_schema(valid):
         "ball_race_traction": True,
         "contact_damping_ratio": 0.05,
         "gravity_m_s2": 9.81,
-        "tolerance": 1e-3,
+        "tolerance": 1e-4,
         "model_cage": True,
         "quasistatic_ball_speeds": "traction",
     }

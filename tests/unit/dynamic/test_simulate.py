@@ -182,9 +182,9 @@ def test_simulation_keys_of_a_case_set_the_switches_and_options_override_them():
     assert sim.traction is False and sim.gravity == 0.0
     resolved = SimulationOptions().resolved(sim)
     assert resolved.traction is False and resolved.gravity == 0.0
-    assert resolved.tolerance == sim.tolerance == 1e-3  # not given: the schema default
-    overridden = SimulationOptions(traction=True, tolerance=1e-4).resolved(sim)
-    assert overridden.traction is True and overridden.tolerance == 1e-4
+    assert resolved.tolerance == sim.tolerance == 1e-4  # not given: the schema default
+    overridden = SimulationOptions(traction=True, tolerance=1e-3).resolved(sim)
+    assert overridden.traction is True and overridden.tolerance == 1e-3
     assert overridden.gravity == 0.0
 
 

@@ -15,7 +15,7 @@ from solver.results.variables import (
 )
 
 SCHEMA = Path(__file__).resolve().parents[3] / "docs" / "results-schema.md"
-ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3", "W"}
+ALLOWED_UNITS = {"m", "N", "N m", "Pa", "rad/s", "s", "degree", "1", "m/s", "kg m-3", "W", "J"}
 
 
 def test_every_variable_has_units_names_and_known_dims():
