@@ -149,7 +149,7 @@ def contact_records(geometry, states, position, q, azimuth):
     """Contact records (Z, 2, RECORD_SIZE; films left 0) [inner, outer] and inner-ring centres
     (Z, 3) in each ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at
     the outer ring centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate
-    ``states`` (kernels.BallStates of kernels.evaluate_balls), ball ``position`` (Z, 2) relative to the outer groove
+    ``states`` (kernels.BallStates), ball ``position`` (Z, 2) relative to the outer groove
     curvature centre and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points
     lie on the ball surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
     z = azimuth.size
