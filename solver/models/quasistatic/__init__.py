@@ -106,7 +106,7 @@ def solve_quasistatic_state(
 
 def solve_quasistatic(case):
     """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
-    from solver.results.quasistatic import solution_to_dataset
+    from .result import solution_to_dataset
 
     inputs = _inputs(case)
     solution = solve_operating_point(
@@ -131,7 +131,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
 
     import xarray as xr
 
-    from solver.results.quasistatic import solution_to_dataset
+    from .result import solution_to_dataset
 
     inputs = _inputs(case)
     geometry = inputs.geometry
@@ -190,8 +190,9 @@ def solve_over_revolution(case, angles: int = 36):
 
     import xarray as xr
 
-    from solver.results.quasistatic import solution_to_dataset
     from solver.results.variables import DIMENSION_COORDINATES
+
+    from .result import solution_to_dataset
 
     count = int(angles)
     if count < 2:

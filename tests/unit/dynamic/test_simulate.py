@@ -131,10 +131,10 @@ def test_netcdf_round_trip(short_run, tmp_path):
 
 def test_first_sample_reproduces_the_quasistatic_dataset():
     """At t = 0 the run sits at the project's quasi-static solution, so its outputs must equal the
-    quasi-static Dataset (solver.results.quasistatic, written independently of this model's output
-    code) for every geometric and kinematic variable both define."""
+    quasi-static Dataset (solver.models.quasistatic.result, written independently of this model's
+    output code) for every geometric and kinematic variable both define."""
     from solver.models.dynamic.initial import quasistatic_solution
-    from solver.results.quasistatic import solution_to_dataset
+    from solver.models.quasistatic.result import solution_to_dataset
 
     inp = spindle_inputs(radial=300.0)
     qs = solution_to_dataset(quasistatic_solution(inp), inp.geometry, None, None)

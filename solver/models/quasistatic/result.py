@@ -1,4 +1,5 @@
-"""QuasiStaticSolution + case → xarray.Dataset following results-schema.md.
+"""The quasi-static model's Dataset: QuasiStaticSolution + case → xarray.Dataset following
+results-schema.md.
 
 Hertz results (ellipse, peak pressure) come from :mod:`solver.physics.hertz_fast` (the same
 load-deflection law the model was solved with). The sliding speed at the contact centre is reported
@@ -23,10 +24,9 @@ from solver.physics.hertz_fast import (
     hertz_coefficients_fast,
 )
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
-
-from .dataset import build_result, case_text
-from .life import rating_life
-from .variables import VARIABLES
+from solver.results.dataset import build_result, case_text
+from solver.results.life import rating_life
+from solver.results.variables import VARIABLES
 
 MODEL = "quasistatic"
 
