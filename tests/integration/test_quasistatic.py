@@ -493,7 +493,7 @@ def test_race_control_cycle_is_reported(monkeypatch):
 
     def flipping(states, model):
         calls["n"] += 1
-        return np.full(states.shape[0], calls["n"] % 2 == 1)
+        return np.full(states.orbital_speed.size, calls["n"] % 2 == 1)
 
     monkeypatch.setattr(driver, "_race_control", flipping)
     geometry, op = spindle(), operating_point(0.0, 0.0, 300.0, 100.0)
