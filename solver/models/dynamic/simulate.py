@@ -226,7 +226,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     per_rev = options.samples_per_revolution
     par = build_params(inputs, options)
     quad = build_quadrature(options, par)
-    y, start_note, start = _start(inputs, options, par, quad)
+    y, start_note, quasistatic = _start(inputs, options, par, quad)
     period = 2.0 * math.pi / speed
     n_samples = int(round(revolutions * per_rev))
     times = np.arange(n_samples + 1) * (period / per_rev)
@@ -286,7 +286,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
         complete,
         stop_reason,
         stats,
-        start,
+        quasistatic,
     )
     ds.attrs["initial_state"] = start_note
     if diverged_message is not None:
