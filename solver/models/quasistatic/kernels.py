@@ -163,6 +163,19 @@ class BallStates(NamedTuple):
     gyroscopic_moment: np.ndarray  # (Z) [N m]
 
 
+class RingLoad(NamedTuple):
+    """What the inner-ring equilibrium is solved for (:func:`solve_ring`): the applied loads
+    ``applied`` (Fx, Fy, Fz [N], My, Mz [N m]), the balls' azimuths [rad] and kinematics records
+    ``control`` (Z, CONTROL_SIZE), the :class:`BallModel` and the force scale [N] of the
+    residuals."""
+
+    applied: np.ndarray
+    azimuth: np.ndarray
+    control: np.ndarray
+    model: BallModel
+    force_scale: float
+
+
 def race_control_rows(inner_control) -> np.ndarray:
     """``control`` array (Z, CONTROL_SIZE) of a race-control decision (bool per ball: True =
     inner control)."""
@@ -446,25 +459,17 @@ def _generalised(fx, fr, moment, psi, out):
 
 
 @njit(cache=True)
-def ring_residual_and_jacobian(
-    q,
-    applied,
-    azimuth,
-    position,
-    control,
-    model,
-    force_scale,
-    want_jacobian,
-    residual,
-    jacobian,
-):
+def ring_residual_and_jacobian(q, position, ring, want_jacobian, residual, jacobian):
     """Solve every ball for the ring displacement q and sum their forces on the inner ring.
 
-    ``position`` (Z, 2) holds the ball positions (warm start in, solution out). Fills ``residual``
-    (5) = applied + sum of the balls' generalised forces on the ring (Fx, Fy, Fz [N], My, Mz [N m])
-    and, if ``want_jacobian``, ``jacobian`` (5, 5) = d residual / d q by the implicit-function
-    theorem on each ball's equilibrium. Returns False if a ball could not be solved.
+    ``position`` (Z, 2) holds the ball positions (warm start in, solution out); ``ring`` is the
+    :class:`RingLoad`. Fills ``residual`` (5) = applied + sum of the balls' generalised forces on
+    the ring (Fx, Fy, Fz [N], My, Mz [N m]) and, if ``want_jacobian``, ``jacobian`` (5, 5) =
+    d residual / d q by the implicit-function theorem on each ball's equilibrium. Returns False if
+    a ball could not be solved.
     """
+    applied, azimuth, control, model = ring.applied, ring.azimuth, ring.control, ring.model
+    force_scale = ring.force_scale
     z = azimuth.shape[0]
     for k in range(5):
         residual[k] = applied[k]
@@ -558,26 +563,16 @@ def _merit(residual, free, scale):
 
 
 @njit(cache=True)
-def solve_ring(
-    q,
-    free,
-    applied,
-    azimuth,
-    position,
-    control,
-    model,
-    force_scale,
-    length_scale,
-    tolerance,
-    max_iterations,
-):
-    """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium for the free components of
-    q = (dx, dy, dz, theta_y, theta_z); the others stay as given. ``q`` and ``position`` are updated
-    in place. Residuals are scaled by ``force_scale`` [N] (moments by force_scale * d_m / 2),
-    unknowns by ``length_scale`` [m] (tilts by length_scale / (d_m / 2)).
+def solve_ring(q, position, ring, free, length_scale, tolerance, max_iterations):
+    """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium (the :class:`RingLoad`
+    ``ring``) for the free components of q = (dx, dy, dz, theta_y, theta_z); the others stay as
+    given. ``q`` and ``position`` are updated in place. Residuals are scaled by
+    ``ring.force_scale`` [N] (moments by force_scale * d_m / 2), unknowns by ``length_scale`` [m]
+    (tilts by length_scale / (d_m / 2)).
 
     Returns (converged, iterations, scaled residual norm).
     """
+    model, force_scale = ring.model, ring.force_scale
     half_pitch = 0.5 * model.pitch_diameter
     rscale = np.empty(5)
     qscale = np.empty(5)
@@ -600,9 +595,7 @@ def solve_ring(
     dummy = np.empty((5, 5))
     trial_pos = position.copy()
     trial_q = q.copy()
-    ok = ring_residual_and_jacobian(
-        q, applied, azimuth, position, control, model, force_scale, True, residual, jacobian
-    )
+    ok = ring_residual_and_jacobian(q, position, ring, True, residual, jacobian)
     merit = _merit(residual, free, rscale)
     mu = 0.0
     iterations = 0
@@ -692,18 +685,7 @@ def solve_ring(
                 for a in range(n):
                     trial_q[idx[a]] = q[idx[a]] + t * step[a] * qscale[idx[a]]
                 trial_pos[:, :] = position
-                tok = ring_residual_and_jacobian(
-                    trial_q,
-                    applied,
-                    azimuth,
-                    trial_pos,
-                    control,
-                    model,
-                    force_scale,
-                    False,
-                    trial_res,
-                    dummy,
-                )
+                tok = ring_residual_and_jacobian(trial_q, trial_pos, ring, False, trial_res, dummy)
                 tmerit = _merit(trial_res, free, rscale)
                 if tok and tmerit < (1.0 - 1e-4 * t) * merit:
                     accepted = True
@@ -722,18 +704,7 @@ def solve_ring(
         mu = 0.0 if t == 1.0 else mu * 0.1
         if mu < 1e-9:
             mu = 0.0
-        ok = ring_residual_and_jacobian(
-            q,
-            applied,
-            azimuth,
-            position,
-            control,
-            model,
-            force_scale,
-            True,
-            residual,
-            jacobian,
-        )
+        ok = ring_residual_and_jacobian(q, position, ring, True, residual, jacobian)
         merit = _merit(residual, free, rscale)
     return ok and merit <= tolerance, iterations, merit
 

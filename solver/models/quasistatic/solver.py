@@ -159,15 +159,14 @@ class _State:
 def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fraction: float):
     model = problem.model(speed_fraction)
     force_scale, length_scale = problem.scales(speed_fraction)
+    ring = kernels.RingLoad(
+        problem.applied * load_fraction, problem.azimuth, state.control, model, force_scale
+    )
     converged, iterations, merit = kernels.solve_ring(
         state.q,
-        problem.free,
-        problem.applied * load_fraction,
-        problem.azimuth,
         state.position,
-        state.control,
-        model,
-        force_scale,
+        ring,
+        problem.free,
         length_scale,
         RING_TOLERANCE,
         MAX_RING_ITERATIONS,
