@@ -449,9 +449,13 @@ def cage_speed_figure(source: FrameSource, ds: xr.Dataset, current: int | None =
     return fig
 
 
-def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go.Figure:
-    """Contact angle versus ball azimuth: quasi-static (lines) and dynamic samples (dots)."""
+def comparison_figure(quasistatic: xr.Dataset | None, dynamic: xr.Dataset | None) -> go.Figure:
+    """Contact angle versus ball azimuth: quasi-static (lines) and dynamic samples (dots). Without
+    a quasi-static solution (``solver.quasistatic_start`` found none) the chart says so."""
     fig = go.Figure()
+    if quasistatic is None:
+        _layout(fig, COMPARISON_UNAVAILABLE, "ball azimuth, degree", "contact angle, degree")
+        return fig
     psi = np.mod(quasistatic["ball_azimuth"].values, 360.0)
     order = np.argsort(psi)
     for race in (INNER, OUTER):
@@ -485,6 +489,10 @@ def comparison_figure(quasistatic: xr.Dataset, dynamic: xr.Dataset | None) -> go
     return fig
 
 
+COMPARISON_UNAVAILABLE = (
+    "Quasi-static versus dynamic: not available (no quasi-static equilibrium at this operating "
+    "point)"
+)
 MAP_COLUMNS = 3  # raceway maps per row when several runs are compared
 
 

@@ -14,7 +14,6 @@ import datetime as _dt
 import html
 import json
 import math
-import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -121,12 +120,10 @@ def _fmt(value, digits: int = 4) -> str:
 
 
 def _provenance(ds) -> str:
-    """The bearing's geometry provenance from the run's case text (kept for provenance)."""
-    try:
-        case = tomllib.loads(ds.attrs.get("case", ""))
-    except tomllib.TOMLDecodeError:
-        return "unknown"
-    return str(case.get("bearing", {}).get("provenance", "estimated"))
+    """Where the bearing's geometry comes from (the result's ``bearing_provenance``)."""
+    from solver import result_description
+
+    return result_description(ds).get("bearing_provenance", "unknown")
 
 
 # ---- one run --------------------------------------------------------------------------------
@@ -219,7 +216,7 @@ def run_header(ds, source_name: str) -> str:
     it is escaped (:func:`_text`) or written by the report itself (the model, the times)."""
     model = ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")
     model = model if model in MODELS else "unknown"
-    title = ds.attrs.get("title") or _case_title(ds)
+    title = _case_title(ds)
     return (
         f"<h1>racetrace review: {_text(title)}</h1>"
         f"<p><strong>{model} result</strong> <code>{_text(source_name)}</code> · computed with "
@@ -315,10 +312,10 @@ def run_sections(ds, source_name: str):
 
 
 def _case_title(ds) -> str:
-    try:
-        return str(tomllib.loads(ds.attrs.get("case", "")).get("title", "result"))
-    except tomllib.TOMLDecodeError:
-        return "result"
+    """The title of the result's case (its ``title``), "result" when it has none."""
+    from solver import result_description
+
+    return result_description(ds).get("title") or "result"
 
 
 def _section(title: str, body_html: str):

@@ -17,6 +17,9 @@ Public API (everything else is internal):
   ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs;
   ``INTEGRATION_METHODS``: the names its option ``method`` takes)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
+- ``quasistatic_start(ds) -> xarray.Dataset | None``: the quasi-static solution a dynamic result
+  started from (its ``quasistatic_*`` variables), for the views' comparison
+- ``result_description(ds) -> dict``: a result's ``title`` and ``bearing_provenance``
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
   ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
@@ -101,6 +104,8 @@ _LAZY = {
     "STATIC_PRESSURE_LIMIT": "solver.results.checks",
     "ring_speeds": "solver.results.dataset",
     "geometry_from_result": "solver.results.dataset",
+    "quasistatic_start": "solver.models.quasistatic.result",
+    "result_description": "solver.results.dataset",
     "trajectory_summary": "solver.results.summary",
     "QUASISTATIC_THICKNESS_NOTE": "solver.results.summary",
     "RacetraceAccessor": "solver.results.accessor",

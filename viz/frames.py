@@ -30,10 +30,11 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from solver import loaded_mask
+
 from .raceway import INNER, OUTER
 
 TWO_PI = 2.0 * math.pi
-RPM = TWO_PI / 60.0  # rad/s per rev/min
 
 QS_SAMPLES_PER_REVOLUTION = 72  # animation frames per shaft revolution for a quasi-static result
 QS_DEFAULT_REVOLUTIONS = 10.0  # shaft revolutions animated when the caller names none
@@ -72,8 +73,9 @@ class Frame:
 
     @property
     def loaded(self) -> np.ndarray:
-        """(Z, 2) bool: contact carries load and has a finite contact angle."""
-        return np.isfinite(self.contact_angle) & (np.nan_to_num(self.contact_load) > 0.0)
+        """(Z, 2) bool: contact carries load and has a finite contact angle
+        (``solver.loaded_mask``)."""
+        return loaded_mask(self.contact_load, self.contact_angle)
 
 
 @dataclass(frozen=True)
@@ -128,8 +130,7 @@ class FrameSource:
         phi = self.raceway_azimuth[:stop, :, race].T
         alpha = self.contact["contact_angle"][:stop, :, race].T
         load = self.contact["contact_load"][:stop, :, race].T
-        loaded = np.isfinite(alpha) & (np.nan_to_num(load) > 0.0)
-        return phi, alpha, loaded
+        return phi, alpha, loaded_mask(load, alpha)
 
     def reference_contact_angle(self, race: int) -> float:
         """Mean contact angle of the loaded contacts on ``race`` over all frames (rad).
@@ -137,8 +138,7 @@ class FrameSource:
         The exaggeration of the across-groove deviation is taken about this value.
         """
         alpha = self.contact["contact_angle"][:, :, race]
-        load = np.nan_to_num(self.contact["contact_load"][:, :, race])
-        ok = np.isfinite(alpha) & (load > 0.0)
+        ok = loaded_mask(self.contact["contact_load"][:, :, race], alpha)
         if not ok.any():
             ok = np.isfinite(alpha)
         return float(alpha[ok].mean()) if ok.any() else 0.0

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-import solver  # noqa: F401  (configures numba's cache folder before the kernel is defined)
+from solver import loaded_mask  # importing solver configures numba's cache folder first
 
 from .frames import FrameSource
 from .raceway import INNER, OUTER, Groove
@@ -110,8 +110,7 @@ def footprints(
     """
     c = source.contact
     alpha = c["contact_angle"][:, :, race]  # (N, Z)
-    load = np.nan_to_num(c["contact_load"][:, :, race])
-    loaded = np.isfinite(alpha) & (load > 0.0)
+    loaded = loaded_mask(c["contact_load"][:, :, race], alpha)
     alpha = np.where(loaded, alpha, reference)
     a = np.where(loaded, np.nan_to_num(c["ellipse_semi_major"][:, :, race]), 0.0) * ellipse_scale
     b = np.where(loaded, np.nan_to_num(c["ellipse_semi_minor"][:, :, race]), 0.0) * ellipse_scale

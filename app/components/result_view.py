@@ -27,7 +27,6 @@ from viz.palette import ball_legend
 from .. import charts
 from ..runs import describe_case
 from .base import Component, as_float, as_int, fig_json
-from .case_form import solve_quasistatic
 
 log = logging.getLogger("racetrace.app")
 
@@ -142,7 +141,7 @@ class ResultView(Component):
 
     def show_result(self, ds, label: str) -> None:
         """Show a result Dataset: frame source, scene, charts and the time controls."""
-        from solver import geometry_from_result, parse_case
+        from solver import geometry_from_result, parse_case, quasistatic_start
 
         from ..teaching import facts_from_result
 
@@ -154,8 +153,8 @@ class ResultView(Component):
         self.source = source
         self.facts = facts_from_result(ds)
         self._describe_tracks(answer)
-        # the run's own case (provenance): its case warnings, whether the form already shows it, and
-        # the quasi-static comparison solved for it; the views read the result's coordinates
+        # the run's own case (provenance): its case warnings and whether the form already shows it;
+        # the views read the result's coordinates and variables
         form_case = self.session.form.case
         case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
         self.shown_case_text = case.to_toml() if case is not None else None
@@ -163,14 +162,9 @@ class ResultView(Component):
         self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
         self.session.form.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
-        if "time" not in ds.dims:
-            self.quasistatic = ds
-        else:  # the quasi-static solution of the same case, for the comparison chart
-            try:
-                self.quasistatic = solve_quasistatic(case)
-            except Exception as error:  # the comparison is then left out, with the reason logged
-                log.warning("no quasi-static comparison for this run: %s", error)
-                self.quasistatic = None
+        # the comparison chart's quasi-static solution: the result itself, or the quasi-static
+        # start a dynamic result carries (None: the chart says the comparison is not available)
+        self.quasistatic = quasistatic_start(ds)
         if self.render_enabled:
             self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
             self.scene.show_source(source, 0)
@@ -466,9 +460,8 @@ class ResultView(Component):
             s.chart_cage_speed = fig_json(charts.cage_speed_figure(src, self.dataset, current=i))
         serial = int(s.result_serial)
         if "comparison" in open_panels and self._comparison_serial != serial:
-            if self.quasistatic is not None:  # does not follow time: once per result
-                dyn = self.dataset if "time" in self.dataset.dims else None
-                s.chart_comparison = fig_json(charts.comparison_figure(self.quasistatic, dyn))
+            dyn = self.dataset if "time" in self.dataset.dims else None  # once per result
+            s.chart_comparison = fig_json(charts.comparison_figure(self.quasistatic, dyn))
             self._comparison_serial = serial
         if "compare" in open_panels and not self.session.compare.is_current():
             self.session.compare.update_comparison()

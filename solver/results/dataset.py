@@ -55,6 +55,45 @@ def case_text(case) -> str:
     return to_toml() if callable(to_toml) else str(case)
 
 
+#: Attributes that name what a result is in words, from its case (build_result writes them).
+DESCRIPTION_ATTRIBUTES = ("title", "bearing_provenance")
+
+
+def case_description(text: str) -> dict[str, str]:
+    """The :data:`DESCRIPTION_ATTRIBUTES` of a case text: its ``title`` and
+    ``bearing.provenance`` (the schema's defaults where the text leaves them out); {} for no text
+    or text that is not TOML."""
+    from solver.case.io import parse_toml
+    from solver.case.schema import field
+    from solver.errors import CaseError
+
+    if not text:
+        return {}
+    try:
+        data = parse_toml(text, "the result's case")
+    except CaseError:
+        return {}
+    bearing = data.get("bearing")
+    provenance = bearing.get("provenance") if isinstance(bearing, dict) else None
+    title = data.get("title")
+    return {
+        "title": str(field("title").default if title is None else title),
+        "bearing_provenance": str(
+            field("bearing.provenance").default if provenance is None else provenance
+        ),
+    }
+
+
+def result_description(ds: xr.Dataset) -> dict[str, str]:
+    """``title`` and ``bearing_provenance`` of a result: its attributes, or, for a result written
+    before it carried them, read from its case text here (views never parse the case text).
+    A name is missing when neither says it."""
+    stored = {name: str(ds.attrs[name]) for name in DESCRIPTION_ATTRIBUTES if name in ds.attrs}
+    if len(stored) == len(DESCRIPTION_ATTRIBUTES):
+        return stored
+    return {**case_description(str(ds.attrs.get("case", ""))), **stored}
+
+
 def describing_coordinates(geometry, operating) -> dict:
     """Coordinates that say what a result is: ``{name: (dims, values, attrs)}``.
 
@@ -121,7 +160,9 @@ def build_result(
     ``data``: ``{name: (dims, values)}`` for registered variables; ``dims`` name the axes of
     ``values`` in any order and must be the registry's dimensions for ``model`` (else
     RuntimeError: a programming error). ``times`` (s) is the dynamic model's ``time`` coordinate.
-    ``case`` (a Case or its TOML text) goes to ``attrs["case"]`` for provenance only.
+    ``case`` (a Case or its TOML text) goes to ``attrs["case"]`` for provenance only; its title
+    and bearing provenance to ``attrs["title"]`` and ``attrs["bearing_provenance"]``
+    (:func:`case_description`).
     ``attrs`` adds model-specific attributes; ``variable_attrs`` ``{name: {key: value}}`` adds or
     extends per-variable attributes (a ``description`` there is appended to the registry's).
     """
@@ -149,9 +190,11 @@ def build_result(
         losses="power_loss" in data,
     )
     coords.update(describing_coordinates(geometry, operating))
+    text = case if isinstance(case, str) else case_text(case)
     base = {
         "model": model,
-        "case": case if isinstance(case, str) else case_text(case),
+        "case": text,
+        **case_description(text),
         "software": software(),
         "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "complete": int(bool(complete)),
@@ -219,6 +262,22 @@ def geometry_from_result(ds: xr.Dataset):
     )
 
 
+def operating_from_result(ds: xr.Dataset):
+    """The :class:`solver.inputs.OperatingPoint` (SI, rad) a result was computed for, from its
+    coordinates (no case text is read). ValueError when the result lacks them."""
+    from solver.inputs import OperatingPoint
+
+    values = {name: _scalar(ds, name) for name in OPERATING_FIELDS}
+    for name in _ANGLES:
+        values[name] = math.radians(float(values[name]))
+    moment = float(values["tilting_moment"])
+    values["tilting_moment"] = None if math.isnan(moment) else moment
+    values["misalignment_frame"] = str(values["misalignment_frame"])
+    for name in ("inner_ring_speed", "outer_ring_speed", "axial_load", "radial_load"):
+        values[name] = float(values[name])
+    return OperatingPoint(**values)
+
+
 def _present(ds: xr.Dataset, name: str) -> None:
     if name not in ds.coords:
         raise ValueError(
@@ -233,7 +292,10 @@ __all__ = [
     "build_result",
     "case_text",
     "describing_coordinates",
+    "case_description",
     "geometry_from_result",
+    "operating_from_result",
+    "result_description",
     "ring_speeds",
     "software",
 ]

@@ -66,6 +66,7 @@ TEXT_ATTRIBUTES = (
     "software",
     "created",
     "title",
+    "bearing_provenance",
     "stop_reason",
     "analysed_window",
     "kinematics",

@@ -251,6 +251,43 @@ VARIABLES: dict[str, Variable] = {
         "cage angular speed about +x (quasi-static: mean of the balls' orbital speeds)",
     ),
     "cage_center": Variable(("axis",), "m", "cage centre", "cage centre, inertial", _DYN),
+    # ---- the quasi-static start of a dynamic run (solver.models.quasistatic.result) ------------
+    "quasistatic_ball_azimuth": Variable(
+        _B,
+        "degree",
+        "quasi-static ball azimuth",
+        "ball_azimuth of the quasi-static solution (race control) of the run's operating point, "
+        "the dynamic model's start",
+        _DYN,
+        time_dependent=False,
+    ),
+    "quasistatic_contact_angle": Variable(
+        _C,
+        "degree",
+        "quasi-static contact angle",
+        "contact_angle of the quasi-static solution (race control) of the run's operating point, "
+        "the dynamic model's start",
+        _DYN,
+        time_dependent=False,
+    ),
+    "quasistatic_contact_load": Variable(
+        _C,
+        "N",
+        "quasi-static contact load",
+        "contact_load of the quasi-static solution (race control) of the run's operating point, "
+        "the dynamic model's start",
+        _DYN,
+        time_dependent=False,
+    ),
+    "quasistatic_cage_speed": Variable(
+        (),
+        "rad/s",
+        "quasi-static cage speed",
+        "cage_speed of the quasi-static solution (race control) of the run's operating point, "
+        "the dynamic model's start",
+        _DYN,
+        time_dependent=False,
+    ),
     # ---- losses, torque and heat (dynamic model; 0 with traction off) -------------------------
     "contact_heat": Variable(
         _C,

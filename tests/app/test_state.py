@@ -320,8 +320,54 @@ def test_dynamic_run_reports_progress_and_shows_its_result(app):
     # quasi-static versus dynamic: both models of the same case
     names = [t["name"] for t in app.state.chart_comparison["data"]]
     assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
-    assert app.result.quasistatic.attrs["case"] == app.result.dataset.attrs["case"]
+    # ... the quasi-static one being the start the run carries
+    start = app.result.dataset["quasistatic_contact_angle"]
+    np.testing.assert_array_equal(app.result.quasistatic["contact_angle"], start)
     assert app.state.frame_max == app.result.dataset.sizes["time"] - 1
+
+
+def _with_start(ds):
+    """The fixture run carrying a quasi-static start that differs from every solution of a case
+    (so that a re-solved comparison cannot pass for it)."""
+    z = ds.sizes["ball"]
+    azimuth = 360.0 * np.arange(z) / z
+    angle = np.stack([30.0 + 0.1 * np.arange(z), 20.0 - 0.1 * np.arange(z)], axis=1)
+    return ds.assign(
+        quasistatic_ball_azimuth=("ball", azimuth),
+        quasistatic_contact_angle=(("ball", "race"), angle),
+        quasistatic_contact_load=(("ball", "race"), np.full((z, 2), 100.0)),
+        quasistatic_cage_speed=((), 1000.0),
+    )
+
+
+def test_comparison_chart_reads_the_quasistatic_start_without_the_case(app, dynamic_dataset):
+    """The quasi-static versus dynamic chart shows the start the dynamic result carries; the case
+    text is neither parsed nor solved (a result without attrs["case"] gives the same chart)."""
+    ds = _with_start(dynamic_dataset)
+    del ds.attrs["case"]
+    _set(app, open_panels=["comparison"])
+    app.result.show_result(ds, "fixture without its case")
+    traces = app.state.chart_comparison["data"]
+    names = [t["name"] for t in traces]
+    assert names == ["quasi-static inner", "dynamic inner", "quasi-static outer", "dynamic outer"]
+    for trace, race in ((traces[0], 0), (traces[2], 1)):
+        np.testing.assert_array_equal(
+            _decode(trace["y"]), ds["quasistatic_contact_angle"].isel(race=race).values
+        )
+        np.testing.assert_array_equal(_decode(trace["x"]), ds["quasistatic_ball_azimuth"].values)
+
+
+def test_comparison_chart_says_when_a_result_has_no_quasistatic_start(app, dynamic_dataset):
+    """A dynamic result without its start and without the operating point to solve one for (its
+    moment_axis coordinate is missing): the chart says the comparison is not available (no
+    traceback, no stale chart)."""
+    from app.charts import COMPARISON_UNAVAILABLE
+
+    ds = dynamic_dataset.drop_vars("moment_axis")
+    _set(app, open_panels=["comparison"])
+    app.result.show_result(ds, "fixture without a start")
+    assert app.state.chart_comparison["data"] == []
+    assert app.state.chart_comparison["layout"]["title"]["text"] == COMPARISON_UNAVAILABLE
 
 
 def test_panel_charts_are_computed_only_while_their_panel_is_open(app):

@@ -449,16 +449,13 @@ def test_friction_moment_about_the_ball_centre_is_the_gyroscopic_rate(inner_cont
     a = x + (g_i + 9e-6) * np.array([math.sin(alpha_i), math.cos(alpha_i)])
     control = kernels.race_control_rows([inner_control])[0]
     st = kernels.ball_state(x[0], x[1], a[0], a[1], control, model)
-    res = np.array(st[:2])
-    q_i, q_o, a_i, a_o, beta, omega_c, omega_r, f_c = (
-        st[5],
-        st[6],
-        st[9],
-        st[10],
-        st[11],
-        st[12],
-        st[13],
-        st[14],
+    res = np.array([st.residual_axial, st.residual_radial])
+    q_i, q_o, a_i, a_o = st.inner_load, st.outer_load, st.inner_angle, st.outer_angle
+    beta, omega_c, omega_r, f_c = (
+        st.attitude_angle,
+        st.orbital_speed,
+        st.spin_speed,
+        st.centrifugal_force,
     )
     assert a_i == pytest.approx(alpha_i) and a_o == pytest.approx(alpha_o)
 
@@ -496,7 +493,7 @@ def test_race_control_cycle_is_reported(monkeypatch):
 
     def flipping(states, model):
         calls["n"] += 1
-        return np.full(states.shape[0], calls["n"] % 2 == 1)
+        return np.full(states.orbital_speed.size, calls["n"] % 2 == 1)
 
     monkeypatch.setattr(driver, "_race_control", flipping)
     geometry, op = spindle(), operating_point(0.0, 0.0, 300.0, 100.0)

@@ -14,7 +14,7 @@ import solver
 from solver.catalogue import resolve_case
 from solver.inputs import rpm_to_rad_s, to_inputs
 from solver.models.quasistatic import kernels, solve_operating_point, solve_quasistatic_state
-from solver.models.quasistatic.solver import _STATE_FIELDS, _Problem
+from solver.models.quasistatic.solver import _Problem
 from solver.models.quasistatic.traction_balance import traction_balance, traction_setup
 
 
@@ -54,8 +54,7 @@ def test_one_cage_speed_and_pocket_forces_in_balance(combined):
     model = problem.model(1.0)
     q = np.concatenate([sol.inner_ring_offset, sol.inner_ring_tilt])
     control = kernels.race_control_rows(np.zeros(problem.azimuth.size, dtype=bool))
-    states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-    kernels.evaluate_balls(q, problem.azimuth, sol.ball_position, control, model, states)
+    states = kernels.evaluate_balls(q, problem.azimuth, sol.ball_position, control, model)
     curve, nodes = traction_setup(inputs.lubricant)
     out, pocket = traction_balance(
         inputs.geometry, model, states, sol.ball_position, q, problem.azimuth, control, curve, nodes

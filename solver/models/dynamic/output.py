@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from solver.models.quasistatic.result import start_variables
 from solver.physics.hertz import truncation_margin
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
@@ -150,9 +151,13 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
     return out
 
 
-def build_dataset(inputs, options, par, quad, times, states, period, complete, stop_reason, stats):
+def build_dataset(
+    inputs, options, par, quad, times, states, period, complete, stop_reason, stats, start=None
+):
     """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,), with the
-    trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it."""
+    trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it, and
+    the quasi-static solution ``start`` (a :class:`QuasiStaticSolution`, None when there is none)
+    as its ``quasistatic_*`` variables."""
     z = int(par.ball_count)
     s_count = states.shape[0]
     records = np.zeros((s_count, z, 2, L.N_CONTACT_RECORD))
@@ -224,6 +229,8 @@ def build_dataset(inputs, options, par, quad, times, states, period, complete, s
         "wall_time_s": float(stats.wall_time),
         "shaft_period_s": float(period),
     }
+    if start is not None:
+        data.update(start_variables(start))
     ds = build_result(
         "dynamic",
         data,

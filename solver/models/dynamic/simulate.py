@@ -144,22 +144,29 @@ class RunStatistics:
 
 
 def _start(inputs, options, par, quad):
-    """(initial state, description of the start for the Dataset attrs)."""
+    """(initial state, description of the start for the Dataset attrs, the quasi-static solution
+    started from or None)."""
     if options.start == "quasistatic":
         try:
             qs = quasistatic_solution(inputs)
         except NoSolutionError as error:
-            return initial_state(par, quad), (
+            return (
+                initial_state(par, quad),
                 f"quasi-static solver found no solution ({error}); started from the model's own "
-                "force balance (no gyroscopic moment)"
+                "force balance (no gyroscopic moment)",
+                None,
             )
-        return initial_state_from_quasistatic(par, qs), (
+        return (
+            initial_state_from_quasistatic(par, qs),
             "quasi-static Jones-Harris solution (solver.models.quasistatic): ball positions, "
-            "orbital and spin speeds, attitude, ring offset and tilt, cage speed"
+            "orbital and spin speeds, attitude, ring offset and tilt, cage speed",
+            qs,
         )
-    return initial_state(
-        par, quad
-    ), "the model's own quasi-static force balance (no gyroscopic moment)"
+    return (
+        initial_state(par, quad),
+        "the model's own quasi-static force balance (no gyroscopic moment)",
+        None,
+    )
 
 
 def _inputs(case) -> Inputs:
@@ -219,7 +226,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     per_rev = options.samples_per_revolution
     par = build_params(inputs, options)
     quad = build_quadrature(options, par)
-    y, start_note = _start(inputs, options, par, quad)
+    y, start_note, quasistatic = _start(inputs, options, par, quad)
     period = 2.0 * math.pi / speed
     n_samples = int(round(revolutions * per_rev))
     times = np.arange(n_samples + 1) * (period / per_rev)
@@ -279,6 +286,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
         complete,
         stop_reason,
         stats,
+        quasistatic,
     )
     ds.attrs["initial_state"] = start_note
     if diverged_message is not None:

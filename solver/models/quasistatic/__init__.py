@@ -105,6 +105,39 @@ def _traction_lubricant(inputs: Inputs):
     return None
 
 
+def _continued(geometry, points, traction_lubricant=None):
+    """The solutions at each ``(operating point, where)`` of ``points`` in turn, each started from
+    the one before: yields ``(operating point, QuasiStaticSolution)``. NoSolutionError for the
+    first point without a solution, its message starting with that point's ``where``."""
+    previous = None
+    for operating, where in points:
+        try:
+            previous = solve_operating_point(geometry, operating, previous, traction_lubricant)
+        except NoSolutionError as error:
+            raise NoSolutionError(f"{where}: {error}") from None
+        yield operating, previous
+
+
+def _stacked(datasets, dim: str):
+    """The element Datasets stacked along ``dim``: a coordinate that differs between them gains
+    ``dim``, an attribute that differs is dropped; ``created`` is now."""
+    from datetime import UTC, datetime
+
+    import xarray as xr
+
+    stacked = xr.concat(
+        datasets,
+        dim=dim,
+        data_vars="all",
+        coords="different",
+        compat="equals",
+        join="outer",
+        combine_attrs="drop_conflicts",
+    )
+    stacked.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
+    return stacked
+
+
 def solve_quasistatic_state(
     case, initial: QuasiStaticSolution | None = None
 ) -> QuasiStaticSolution:
@@ -120,7 +153,8 @@ def solve_quasistatic_state(
 def solve_quasistatic(case):
     """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
     from solver.results.estimates import with_estimates
-    from solver.results.quasistatic import solution_to_dataset
+
+    from .result import solution_to_dataset
 
     inputs = _inputs(case)
     solution = solve_operating_point(
@@ -142,11 +176,7 @@ def quasistatic_speed_sweep(case, speeds_rpm):
     ``operating.inner_ring_speed_rpm`` varies along the sweep (provenance only: the speed of an
     element is its ``inner_ring_speed`` coordinate).
     """
-    from datetime import UTC, datetime
-
-    import xarray as xr
-
-    from solver.results.quasistatic import solution_to_dataset
+    from .result import solution_to_dataset
 
     inputs = _inputs(case)
     geometry = inputs.geometry
@@ -161,27 +191,20 @@ def quasistatic_speed_sweep(case, speeds_rpm):
         f"({', '.join(f'{rpm:g}' for rpm in speeds)} rpm); each element's speed is its "
         "inner_ring_speed coordinate\n" + inputs.case_text
     )
-    datasets = []
-    previous = None
-    for rpm in speeds:
-        op = dataclasses.replace(inputs.operating, inner_ring_speed=rpm_to_rad_s(rpm))
-        try:
-            previous = solve_operating_point(geometry, op, previous, _traction_lubricant(inputs))
-        except NoSolutionError as error:
-            raise NoSolutionError(f"speed sweep stopped at {rpm:g} rpm: {error}") from None
-        datasets.append(solution_to_dataset(previous, geometry, text, lubricant, op))
-    ds = xr.concat(
-        datasets,
-        dim="inner_ring_speed",
-        data_vars="all",
-        coords="different",
-        compat="equals",
-        join="outer",
-        combine_attrs="drop_conflicts",
+    points = [
+        (
+            dataclasses.replace(inputs.operating, inner_ring_speed=rpm_to_rad_s(rpm)),
+            f"speed sweep stopped at {rpm:g} rpm",
+        )
+        for rpm in speeds
+    ]
+    solutions = _continued(geometry, points, _traction_lubricant(inputs))
+    ds = _stacked(
+        [solution_to_dataset(sol, geometry, text, lubricant, op) for op, sol in solutions],
+        "inner_ring_speed",
     )
     for key in _ELEMENT_ATTRS:  # one element's statistics and notes, even where they agree
         ds.attrs.pop(key, None)
-    ds.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
     return ds
 
 
@@ -201,12 +224,12 @@ def solve_over_revolution(case, angles: int = REVOLUTION_RING_ANGLES):
     solution.
     """
     import math
-    from datetime import UTC, datetime
 
     import xarray as xr
 
-    from solver.results.quasistatic import solution_to_dataset
     from solver.results.variables import DIMENSION_COORDINATES
+
+    from .result import solution_to_dataset
 
     count = int(angles)
     if count < 2:
@@ -218,20 +241,19 @@ def solve_over_revolution(case, angles: int = REVOLUTION_RING_ANGLES):
     w_in, w_out = base.inner_ring_speed, base.outer_ring_speed
     w_rel = w_in - w_out
     ring_angles = np.arange(count) * 2.0 * math.pi / count
+    points = [
+        (
+            dataclasses.replace(base, misalignment_axis=base.misalignment_axis + theta)
+            if turning
+            else base,
+            f"solution over a revolution stopped at ring angle {math.degrees(theta):g} degree",
+        )
+        for theta in ring_angles
+    ]
     datasets = []
-    previous = None
-    for theta in ring_angles:
-        op = base
-        if turning:
-            op = dataclasses.replace(base, misalignment_axis=base.misalignment_axis + theta)
-        try:
-            previous = solve_operating_point(geometry, op, previous, _traction_lubricant(inputs))
-        except NoSolutionError as error:
-            raise NoSolutionError(
-                f"solution over a revolution stopped at ring angle {math.degrees(theta):g} "
-                f"degree: {error}"
-            ) from None
-        ds = solution_to_dataset(previous, geometry, inputs.case_text, lubricant, op)
+    points_solved = _continued(geometry, points, _traction_lubricant(inputs))
+    for theta, (op, solution) in zip(ring_angles, points_solved, strict=True):
+        ds = solution_to_dataset(solution, geometry, inputs.case_text, lubricant, op)
         # each ring's own frame at this angle: the inner ring turned by theta relative to the
         # outer ring, the outer ring by w_out * t with t = theta / (w_in - w_out)
         outer_turn = w_out * theta / w_rel if w_rel != 0.0 else 0.0
@@ -239,18 +261,9 @@ def solve_over_revolution(case, angles: int = REVOLUTION_RING_ANGLES):
         azimuth = (ds["raceway_azimuth"] - xr.DataArray(turn, dims="race")) % 360.0
         ds["raceway_azimuth"] = azimuth.assign_attrs(ds["raceway_azimuth"].attrs)
         datasets.append(ds)
-    result = xr.concat(
-        datasets,
-        dim="ring_angle",
-        data_vars="all",
-        coords="different",
-        compat="equals",
-        join="outer",
-        combine_attrs="drop_conflicts",
-    )
+    result = _stacked(datasets, "ring_angle")
     spec = DIMENSION_COORDINATES["ring_angle"]
     result = result.assign_coords(ring_angle=("ring_angle", np.degrees(ring_angles), spec.attrs()))
-    result.attrs["created"] = datetime.now(UTC).isoformat(timespec="seconds")
     if "misalignment_note" in result.attrs:  # the elements' note speaks of one snapshot
         result.attrs["misalignment_note"] = (
             f"misalignment_frame = ring: solved at {count} inner-ring angles over one revolution "

@@ -126,6 +126,56 @@ INNER_CONTROL = 1
 TRACTION_BALANCE = 2
 
 
+class BallState(NamedTuple):
+    """One ball at a trial position (:func:`ball_state`). SI units, angles in rad; forces and
+    moments in the ball's meridian plane (axial e_x, radial e_r, moments along e_theta)."""
+
+    residual_axial: float  # net force on the ball [N] (zero in equilibrium), axial
+    residual_radial: float  # the same, radial
+    ring_force_axial: float  # force the ball exerts on the inner ring [N], axial
+    ring_force_radial: float  # the same, radial
+    ring_moment: float  # its moment about the ring centre along e_theta [N m]
+    inner_load: float  # contact loads [N]
+    outer_load: float
+    inner_deflection: float  # contact deflections [m] (negative = gap)
+    outer_deflection: float
+    inner_angle: float  # contact angles [rad]
+    outer_angle: float
+    attitude_angle: float  # beta [rad]
+    orbital_speed: float  # omega_c [rad/s]
+    spin_speed: float  # omega_R relative to the cage [rad/s]
+    centrifugal_force: float  # F_c [N]
+    gyroscopic_moment: float  # M_g along e_theta [N m]
+
+
+class BallStates(NamedTuple):
+    """Every ball's :class:`BallState` at its current position (:func:`evaluate_balls`): per ball
+    (Z) or per contact (Z, 2) with columns [inner, outer]. Units as in :class:`BallState`."""
+
+    ring_moment: np.ndarray  # (Z) [N m]
+    contact_load: np.ndarray  # (Z, 2) [N]
+    contact_deflection: np.ndarray  # (Z, 2) [m], negative = gap
+    contact_angle: np.ndarray  # (Z, 2) [rad]
+    attitude_angle: np.ndarray  # (Z) [rad]
+    orbital_speed: np.ndarray  # (Z) [rad/s]
+    spin_speed: np.ndarray  # (Z) [rad/s]
+    centrifugal_force: np.ndarray  # (Z) [N]
+    gyroscopic_moment: np.ndarray  # (Z) [N m]
+
+
+class RingLoad(NamedTuple):
+    """What the inner-ring equilibrium is solved for (:func:`solve_ring`): the applied loads
+    ``applied`` (Fx, Fy, Fz [N], My, Mz [N m]), the balls' azimuths [rad] and kinematics records
+    ``control`` (Z, CONTROL_SIZE), the :class:`BallModel` and the force scale [N] of the
+    residuals."""
+
+    applied: np.ndarray
+    azimuth: np.ndarray
+    control: np.ndarray
+    model: BallModel
+    force_scale: float
+
+
 def race_control_rows(inner_control) -> np.ndarray:
     """``control`` array (Z, CONTROL_SIZE) of a race-control decision (bool per ball: True =
     inner control)."""
@@ -146,14 +196,7 @@ def ball_state(x1, x2, a1, a2, control, model):
     speed, attitude, gyroscopic moment and the transverse tractions of both contacts from the
     traction balance, :mod:`.traction_balance`).
 
-    Returns a tuple:
-    (res_x, res_r,            net force on the ball [N] (zero in equilibrium), axial and radial
-     ring_fx, ring_fr,        force the ball exerts on the inner ring [N]
-     ring_moment,             its moment about the ring centre along e_theta [N m]
-     q_i, q_o, d_i, d_o,      contact loads [N] and deflections [m] (negative deflection = gap)
-     alpha_i, alpha_o,        contact angles [rad]
-     beta, omega_c, omega_r,  attitude [rad], orbital and spin speed [rad/s]
-     f_c, m_g)                centrifugal force [N], gyroscopic moment [N m]
+    Returns a :class:`BallState`.
     """
     D = model.ball_diameter
     l_o = math.sqrt(x1 * x1 + x2 * x2)
@@ -220,23 +263,23 @@ def ball_state(x1, x2, a1, a2, control, model):
     ring_fr = -(q_i * c_i - t_i * s_i)
     lever = model.inner_groove_radius + (0.5 * d_i if q_i > 0.0 else 0.0)
     ring_moment = -model.inner_center_radius * ring_fx - lever * t_i
-    return (
-        res_x,
-        res_r,
-        ring_fx,
-        ring_fr,
-        ring_moment,
-        q_i,
-        q_o,
-        d_i,
-        d_o,
-        alpha_i,
-        alpha_o,
-        beta,
-        omega_c,
-        omega_r,
-        f_c,
-        m_g,
+    return BallState(
+        residual_axial=res_x,
+        residual_radial=res_r,
+        ring_force_axial=ring_fx,
+        ring_force_radial=ring_fr,
+        ring_moment=ring_moment,
+        inner_load=q_i,
+        outer_load=q_o,
+        inner_deflection=d_i,
+        outer_deflection=d_o,
+        inner_angle=alpha_i,
+        outer_angle=alpha_o,
+        attitude_angle=beta,
+        orbital_speed=omega_c,
+        spin_speed=omega_r,
+        centrifugal_force=f_c,
+        gyroscopic_moment=m_g,
     )
 
 
@@ -255,7 +298,7 @@ def inner_center(q, psi, model):
 @njit(cache=True)
 def _residual_norm(x1, x2, a1, a2, control, model):
     st = ball_state(x1, x2, a1, a2, control, model)
-    return st[0], st[1]
+    return st.residual_axial, st.residual_radial
 
 
 @njit(cache=True)
@@ -281,12 +324,15 @@ def _ball_tolerance(x1, x2, a1, a2, control, model, force_scale):
     (contact stiffness times a few ulp of the coordinates) nor 1e-16 of the bearing's force
     scale."""
     st = ball_state(x1, x2, a1, a2, control, model)
-    own = max(max(st[5], st[6]), max(abs(st[14]), 2.0 * abs(st[15]) / model.ball_diameter))
+    own = max(
+        max(st.inner_load, st.outer_load),
+        max(abs(st.centrifugal_force), 2.0 * abs(st.gyroscopic_moment) / model.ball_diameter),
+    )
     stiffness = 0.0
-    if st[7] > 0.0:
-        stiffness += 1.5 * st[5] / st[7]
-    if st[8] > 0.0:
-        stiffness += 1.5 * st[6] / st[8]
+    if st.inner_deflection > 0.0:
+        stiffness += 1.5 * st.inner_load / st.inner_deflection
+    if st.outer_deflection > 0.0:
+        stiffness += 1.5 * st.outer_load / st.outer_deflection
     coordinates = abs(x1) + abs(x2) + abs(a1) + abs(a2)
     round_off = 8.0 * 2.220446049250313e-16 * coordinates * stiffness
     return max(max(1e-12 * own, 1e-16 * force_scale), round_off)
@@ -335,7 +381,7 @@ def solve_ball(a1, a2, x1, x2, control, model, force_scale):
         else:
             n1, n2 = x1 / l_o, x2 / l_o
         k_o = contact_stiffness(model, math.atan2(n1, n2), False)
-        d_guess = (max(st[14], 1e-12 * force_scale) / k_o) ** (2.0 / 3.0)
+        d_guess = (max(st.centrifugal_force, 1e-12 * force_scale) / k_o) ** (2.0 / 3.0)
         x1 = n1 * (model.outer_center_offset + d_guess)
         x2 = n2 * (model.outer_center_offset + d_guess)
     # Newton in polar coordinates about the outer groove centre (rho = |X|, phi = alpha_o): a ball
@@ -413,25 +459,17 @@ def _generalised(fx, fr, moment, psi, out):
 
 
 @njit(cache=True)
-def ring_residual_and_jacobian(
-    q,
-    applied,
-    azimuth,
-    position,
-    control,
-    model,
-    force_scale,
-    want_jacobian,
-    residual,
-    jacobian,
-):
+def ring_residual_and_jacobian(q, position, ring, want_jacobian, residual, jacobian):
     """Solve every ball for the ring displacement q and sum their forces on the inner ring.
 
-    ``position`` (Z, 2) holds the ball positions (warm start in, solution out). Fills ``residual``
-    (5) = applied + sum of the balls' generalised forces on the ring (Fx, Fy, Fz [N], My, Mz [N m])
-    and, if ``want_jacobian``, ``jacobian`` (5, 5) = d residual / d q by the implicit-function
-    theorem on each ball's equilibrium. Returns False if a ball could not be solved.
+    ``position`` (Z, 2) holds the ball positions (warm start in, solution out); ``ring`` is the
+    :class:`RingLoad`. Fills ``residual`` (5) = applied + sum of the balls' generalised forces on
+    the ring (Fx, Fy, Fz [N], My, Mz [N m]) and, if ``want_jacobian``, ``jacobian`` (5, 5) =
+    d residual / d q by the implicit-function theorem on each ball's equilibrium. Returns False if
+    a ball could not be solved.
     """
+    applied, azimuth, control, model = ring.applied, ring.azimuth, ring.control, ring.model
+    force_scale = ring.force_scale
     z = azimuth.shape[0]
     for k in range(5):
         residual[k] = applied[k]
@@ -451,10 +489,10 @@ def ring_residual_and_jacobian(
         position[j, 0] = x1
         position[j, 1] = x2
         st = ball_state(x1, x2, a1, a2, control[j], model)
-        _generalised(st[2], st[3], st[4], psi, gen)
+        _generalised(st.ring_force_axial, st.ring_force_radial, st.ring_moment, psi, gen)
         for k in range(5):
             residual[k] += gen[k]
-        if not want_jacobian or st[5] <= 0.0:
+        if not want_jacobian or st.inner_load <= 0.0:
             continue  # a ball without inner contact exerts no force on the ring
         h = _fd_step(x1, x2, a1, a2, model)
         # finite-difference partial derivatives w.r.t. (x1, x2, a1, a2)
@@ -470,8 +508,11 @@ def ring_residual_and_jacobian(
             else:
                 b2 += h
             sp = ball_state(y1, y2, b1, b2, control[j], model)
-            for row in range(5):
-                d[row, col] = (sp[row] - st[row]) / h
+            d[0, col] = (sp.residual_axial - st.residual_axial) / h
+            d[1, col] = (sp.residual_radial - st.residual_radial) / h
+            d[2, col] = (sp.ring_force_axial - st.ring_force_axial) / h
+            d[3, col] = (sp.ring_force_radial - st.ring_force_radial) / h
+            d[4, col] = (sp.ring_moment - st.ring_moment) / h
         det = d[0, 0] * d[1, 1] - d[0, 1] * d[1, 0]
         scale = abs(d[0, 0] * d[1, 1]) + abs(d[0, 1] * d[1, 0])
         if scale == 0.0 or abs(det) <= 1e-14 * scale:
@@ -522,26 +563,16 @@ def _merit(residual, free, scale):
 
 
 @njit(cache=True)
-def solve_ring(
-    q,
-    free,
-    applied,
-    azimuth,
-    position,
-    control,
-    model,
-    force_scale,
-    length_scale,
-    tolerance,
-    max_iterations,
-):
-    """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium for the free components of
-    q = (dx, dy, dz, theta_y, theta_z); the others stay as given. ``q`` and ``position`` are updated
-    in place. Residuals are scaled by ``force_scale`` [N] (moments by force_scale * d_m / 2),
-    unknowns by ``length_scale`` [m] (tilts by length_scale / (d_m / 2)).
+def solve_ring(q, position, ring, free, length_scale, tolerance, max_iterations):
+    """Newton / Levenberg–Marquardt solve of the inner-ring equilibrium (the :class:`RingLoad`
+    ``ring``) for the free components of q = (dx, dy, dz, theta_y, theta_z); the others stay as
+    given. ``q`` and ``position`` are updated in place. Residuals are scaled by
+    ``ring.force_scale`` [N] (moments by force_scale * d_m / 2), unknowns by ``length_scale`` [m]
+    (tilts by length_scale / (d_m / 2)).
 
     Returns (converged, iterations, scaled residual norm).
     """
+    model, force_scale = ring.model, ring.force_scale
     half_pitch = 0.5 * model.pitch_diameter
     rscale = np.empty(5)
     qscale = np.empty(5)
@@ -564,9 +595,7 @@ def solve_ring(
     dummy = np.empty((5, 5))
     trial_pos = position.copy()
     trial_q = q.copy()
-    ok = ring_residual_and_jacobian(
-        q, applied, azimuth, position, control, model, force_scale, True, residual, jacobian
-    )
+    ok = ring_residual_and_jacobian(q, position, ring, True, residual, jacobian)
     merit = _merit(residual, free, rscale)
     mu = 0.0
     iterations = 0
@@ -656,18 +685,7 @@ def solve_ring(
                 for a in range(n):
                     trial_q[idx[a]] = q[idx[a]] + t * step[a] * qscale[idx[a]]
                 trial_pos[:, :] = position
-                tok = ring_residual_and_jacobian(
-                    trial_q,
-                    applied,
-                    azimuth,
-                    trial_pos,
-                    control,
-                    model,
-                    force_scale,
-                    False,
-                    trial_res,
-                    dummy,
-                )
+                tok = ring_residual_and_jacobian(trial_q, trial_pos, ring, False, trial_res, dummy)
                 tmerit = _merit(trial_res, free, rscale)
                 if tok and tmerit < (1.0 - 1e-4 * t) * merit:
                     accepted = True
@@ -686,30 +704,43 @@ def solve_ring(
         mu = 0.0 if t == 1.0 else mu * 0.1
         if mu < 1e-9:
             mu = 0.0
-        ok = ring_residual_and_jacobian(
-            q,
-            applied,
-            azimuth,
-            position,
-            control,
-            model,
-            force_scale,
-            True,
-            residual,
-            jacobian,
-        )
+        ok = ring_residual_and_jacobian(q, position, ring, True, residual, jacobian)
         merit = _merit(residual, free, rscale)
     return ok and merit <= tolerance, iterations, merit
 
 
 @njit(cache=True)
-def evaluate_balls(q, azimuth, position, control, model, out):
-    """Fill ``out`` (Z, 16) with :func:`ball_state` of every ball at its current position."""
-    for j in range(azimuth.shape[0]):
+def evaluate_balls(q, azimuth, position, control, model):
+    """:class:`BallStates`: :func:`ball_state` of every ball at its current ``position`` (Z, 2)
+    for the ring displacement ``q`` and the kinematics records ``control``."""
+    z = azimuth.shape[0]
+    out = BallStates(
+        ring_moment=np.empty(z),
+        contact_load=np.empty((z, 2)),
+        contact_deflection=np.empty((z, 2)),
+        contact_angle=np.empty((z, 2)),
+        attitude_angle=np.empty(z),
+        orbital_speed=np.empty(z),
+        spin_speed=np.empty(z),
+        centrifugal_force=np.empty(z),
+        gyroscopic_moment=np.empty(z),
+    )
+    for j in range(z):
         a1, a2 = inner_center(q, azimuth[j], model)
         st = ball_state(position[j, 0], position[j, 1], a1, a2, control[j], model)
-        for k in range(16):
-            out[j, k] = st[k]
+        out.ring_moment[j] = st.ring_moment
+        out.contact_load[j, 0] = st.inner_load
+        out.contact_load[j, 1] = st.outer_load
+        out.contact_deflection[j, 0] = st.inner_deflection
+        out.contact_deflection[j, 1] = st.outer_deflection
+        out.contact_angle[j, 0] = st.inner_angle
+        out.contact_angle[j, 1] = st.outer_angle
+        out.attitude_angle[j] = st.attitude_angle
+        out.orbital_speed[j] = st.orbital_speed
+        out.spin_speed[j] = st.spin_speed
+        out.centrifugal_force[j] = st.centrifugal_force
+        out.gyroscopic_moment[j] = st.gyroscopic_moment
+    return out
 
 
 @njit(cache=True)
@@ -726,14 +757,14 @@ def _static_excess(q, k, applied, azimuth, model, direction):
         a1, a2 = inner_center(q, psi, model)
         x1, x2 = _static_ball(a1, a2, model)
         st = ball_state(x1, x2, a1, a2, outer_control, model)
-        _generalised(st[2], st[3], st[4], psi, gen)
+        _generalised(st.ring_force_axial, st.ring_force_radial, st.ring_moment, psi, gen)
         if k == 0:
             total += gen[0]
         elif k == 1:
             total += gen[1] * direction[0] + gen[2] * direction[1]
         else:
             total += gen[3] * direction[0] + gen[4] * direction[1]
-        if st[5] > 0.0:
+        if st.inner_load > 0.0:
             loaded += 1
     if k == 0:
         total += applied[0]

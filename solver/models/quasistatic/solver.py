@@ -8,6 +8,7 @@ per-ball race control decision to a fixed point, and packs a :class:`QuasiStatic
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -30,20 +31,20 @@ MAX_RING_ITERATIONS = 60
 MAX_RACE_CONTROL_ITERATIONS = 12
 MAX_TRACTION_ITERATIONS = 30
 TRACTION_SPEED_TOLERANCE = 1e-9  # fixed point: ball speeds relative to the ring speed, angles rad
-_STATE_FIELDS = 16  # columns of kernels.evaluate_balls
 
 
 @njit(cache=True)
 def _race_control(states, model):
-    """Jones criterion for every ball from its current state (Z, 16): True = inner control."""
-    z = states.shape[0]
+    """Jones criterion for every ball from its current state (kernels.BallStates): True = inner
+    control."""
+    z = states.contact_load.shape[0]
     out = np.zeros(z, dtype=np.bool_)
     e_mod = model.effective_modulus
     for j in range(z):
-        q_i = states[j, 5]
-        q_o = states[j, 6]
-        a_i = states[j, 9]
-        a_o = states[j, 10]
+        q_i = states.contact_load[j, 0]
+        q_o = states.contact_load[j, 1]
+        a_i = states.contact_angle[j, 0]
+        a_o = states.contact_angle[j, 1]
         semi = np.zeros(2)
         ell = np.zeros(2)
         for k in range(2):
@@ -59,6 +60,14 @@ def _race_control(states, model):
             ell[k] = hertz_coefficients_fast(f)[2]
         out[j] = race_control_is_inner(q_i, q_o, semi[0], semi[1], ell[0], ell[1], a_i, a_o)
     return out
+
+
+class Scales(NamedTuple):
+    """Scales of the ring solve: its residuals are relative to ``force`` [N], its unknowns to
+    ``length`` [m]."""
+
+    force: float
+    length: float
 
 
 class _Problem:
@@ -86,13 +95,13 @@ class _Problem:
         self.ball_stiffness = (k_i ** (-2.0 / 3.0) + k_o ** (-2.0 / 3.0)) ** -1.5
         self.force_scale, self.length_scale = self.scales(1.0)
 
-    def scales(self, speed_fraction: float):
-        """(force scale [N], length scale [m]) at a fraction of the full speed: the larger of the
-        applied loads and the centrifugal force, and the deflection of a ball carrying a share."""
+    def scales(self, speed_fraction: float) -> Scales:
+        """The scales at a fraction of the full speed: the force, the larger of the applied loads
+        and the centrifugal force, and the length, the deflection of a ball carrying a share."""
         force = max(self.loads, self.centrifugal * speed_fraction**2)
         share = force / max(1.0, 0.25 * self.azimuth.size)
         length = max((share / self.ball_stiffness) ** (2.0 / 3.0), 1e-12)
-        return force, length
+        return Scales(force, length)
 
     def model(self, speed_fraction: float):
         op = self.operating
@@ -122,7 +131,7 @@ def _static_start(problem: _Problem, load_fraction: float):
         problem.operating.tilt_is_free,
         problem.azimuth,
         model,
-        problem.scales(0.0)[1],
+        problem.scales(0.0).length,
         3,
     )
     return q, problem.initial_positions(q, model)
@@ -150,15 +159,14 @@ class _State:
 def _ring_solve(problem: _Problem, state: _State, speed_fraction: float, load_fraction: float):
     model = problem.model(speed_fraction)
     force_scale, length_scale = problem.scales(speed_fraction)
+    ring = kernels.RingLoad(
+        problem.applied * load_fraction, problem.azimuth, state.control, model, force_scale
+    )
     converged, iterations, merit = kernels.solve_ring(
         state.q,
-        problem.free,
-        problem.applied * load_fraction,
-        problem.azimuth,
         state.position,
-        state.control,
-        model,
-        force_scale,
+        ring,
+        problem.free,
         length_scale,
         RING_TOLERANCE,
         MAX_RING_ITERATIONS,
@@ -179,9 +187,8 @@ def _solve_with_race_control(problem, state, speed_fraction, load_fraction):
         total += iterations
         if not converged:
             return False, total, merit, note
-        states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-        kernels.evaluate_balls(
-            state.q, problem.azimuth, state.position, state.control, model, states
+        states = kernels.evaluate_balls(
+            state.q, problem.azimuth, state.position, state.control, model
         )
         decision = _race_control(states, model)
         if np.array_equal(decision, state.inner_control):
@@ -228,14 +235,12 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
     found."""
     curve, nodes = traction_setup(lubricant)
     model = problem.model(1.0)
-    z = problem.azimuth.size
     relative = abs(problem.operating.inner_ring_speed - problem.operating.outer_ring_speed)
     total = 0
     merit = math.nan
     for iteration in range(1, MAX_TRACTION_ITERATIONS + 1):
-        states = np.empty((z, _STATE_FIELDS))
-        kernels.evaluate_balls(
-            state.q, problem.azimuth, state.position, state.control, model, states
+        states = kernels.evaluate_balls(
+            state.q, problem.azimuth, state.position, state.control, model
         )
         control, _ = traction_balance(
             problem.geometry,
@@ -409,9 +414,8 @@ def _no_static_message(problem: _Problem) -> str:
 def _no_speed_message(problem: _Problem, state: _State, reached: float) -> str:
     op = problem.operating
     model = problem.model(reached)
-    states = np.empty((problem.azimuth.size, _STATE_FIELDS))
-    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
-    alpha_o = math.degrees(float(np.min(states[:, 10])))
+    states = kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model)
+    alpha_o = math.degrees(float(np.min(states.contact_angle[:, 1])))
     speed = rad_s_to_rpm(reached * op.inner_ring_speed)
     target = rad_s_to_rpm(op.inner_ring_speed)
     return (
@@ -426,20 +430,18 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     g = problem.geometry
     op = problem.operating
     model = problem.model(1.0)
-    z = g.ball_count
-    states = np.empty((z, _STATE_FIELDS))
-    kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model, states)
+    states = kernels.evaluate_balls(state.q, problem.azimuth, state.position, state.control, model)
     psi = problem.azimuth
-    alpha = states[:, [9, 10]].copy()
-    load = states[:, [5, 6]].copy()
-    deflection = np.where(load > 0.0, np.maximum(states[:, [7, 8]], 0.0), 0.0)
+    alpha = states.contact_angle
+    load = states.contact_load
+    deflection = np.where(load > 0.0, np.maximum(states.contact_deflection, 0.0), 0.0)
     # An open contact reports the angle of the line between the groove curvature centres: where the
     # ball would touch if the gap closed (a ball with no contact at all sits on that line).
     line = np.array([math.atan2(*kernels.inner_center(state.q, p, model)) for p in psi])
     alpha = np.where(load > 0.0, alpha, line[:, None])
-    beta = states[:, 11].copy()
-    omega_c = states[:, 12].copy()
-    omega_r = states[:, 13].copy()
+    beta = states.attitude_angle
+    omega_c = states.orbital_speed
+    omega_r = states.spin_speed
     # ball centre (inertial, meridian plane): outer groove centre + X
     center = np.column_stack(
         [
@@ -458,7 +460,7 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     )
     # friction taking the gyroscopic moment (kernels.ball_state): lambda M_g / D under race
     # control, the integrated transverse tractions under the traction balance
-    m_g = states[:, 15]
+    m_g = states.gyroscopic_moment
     inner = state.inner_control
     race_traction = (
         np.column_stack([np.where(inner, m_g, 0.0), np.where(inner, m_g, 2.0 * m_g)])
@@ -467,7 +469,7 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     race_traction[traction, 0] = state.control[traction, kernels.CONTROL_TAU_INNER]
     race_traction[traction, 1] = state.control[traction, kernels.CONTROL_TAU_OUTER]
     # moment on the inner ring: balls' moment sum (about y, z) must be balanced by the applied one
-    m_theta = states[:, 4]
+    m_theta = states.ring_moment
     ball_moment = np.array([np.sum(-m_theta * np.sin(psi)), np.sum(m_theta * np.cos(psi))])
     applied_moment = op.applied_loads()[3:] if op.tilt_is_free else -ball_moment
     return QuasiStaticSolution(
@@ -486,8 +488,8 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
         inner_ring_offset=state.q[:3].copy(),
         inner_ring_tilt=state.q[3:].copy(),
         cage_speed=float(np.mean(omega_c)),
-        centrifugal_force=states[:, 14].copy(),
-        gyroscopic_moment=states[:, 15].copy(),
+        centrifugal_force=states.centrifugal_force,
+        gyroscopic_moment=states.gyroscopic_moment,
         applied_moment=np.asarray(applied_moment, dtype=float),
         inner_ring_speed=op.inner_ring_speed,
         outer_ring_speed=op.outer_ring_speed,

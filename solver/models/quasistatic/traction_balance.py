@@ -128,14 +128,14 @@ def _contact_films(geometry, contacts, states, omega_inner, omega_outer, rheolog
     / 2, ellipticity a / b, transit b / u_e."""
     D = geometry.ball_diameter
     for j in range(contacts.shape[0]):
-        omega_c = states[j, 12]
+        omega_c = states.orbital_speed[j]
         for k, omega_ring in ((0, omega_inner), (1, omega_outer)):
             rec = contacts[j, k]
             load, a, b = rec[CT_LOAD], rec[CT_SEMI_MAJOR], rec[CT_SEMI_MINOR]
             entrainment = abs(rec[CT_POINT + 1]) * abs(omega_ring - omega_c)
             if not (load > 0.0 and a > 0.0 and b > 0.0 and entrainment > 0.0):
                 continue
-            gamma = D * math.cos(states[j, 9 + k]) / geometry.pitch_diameter
+            gamma = D * math.cos(states.contact_angle[j, k]) / geometry.pitch_diameter
             r_x = 0.5 * D * (1.0 - gamma if k == 0 else 1.0 + gamma)
             p_max = 1.5 * load / (math.pi * a * b)
             film, _, _ = film_and_rolling_force(
@@ -149,7 +149,7 @@ def contact_records(geometry, states, position, q, azimuth):
     """Contact records (Z, 2, RECORD_SIZE; films left 0) [inner, outer] and inner-ring centres
     (Z, 3) in each ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at
     the outer ring centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate
-    ``states`` (kernels.evaluate_balls), ball ``position`` (Z, 2) relative to the outer groove
+    ``states`` (kernels.BallStates), ball ``position`` (Z, 2) relative to the outer groove
     curvature centre and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points
     lie on the ball surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
     z = azimuth.size
@@ -168,9 +168,9 @@ def contact_records(geometry, states, position, q, azimuth):
         ring_centre[j] = (q[0], q[1] * math.cos(psi) + q[2] * math.sin(psi), 0.0)
         ring_centre[j, 2] = -q[1] * math.sin(psi) + q[2] * math.cos(psi)
         for k, is_inner in ((0, True), (1, False)):
-            load = states[j, 5 + k]
-            alpha = states[j, 9 + k]
-            deflection = max(states[j, 7 + k], 0.0)
+            load = states.contact_load[j, k]
+            alpha = states.contact_angle[j, k]
+            deflection = max(states.contact_deflection[j, k], 0.0)
             sign = -1.0 if is_inner else 1.0  # inner contact on the -u(alpha) side
             n = (sign * math.sin(alpha), sign * math.cos(alpha), 0.0)
             reach = 0.5 * D - 0.5 * deflection
@@ -481,20 +481,20 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, tra
     centres = np.zeros((z, 3))
     centres[:, 0] = geometry.outer_curvature_center_axial + position[:, 0]
     centres[:, 1] = geometry.outer_curvature_center_radius + position[:, 1]
-    loads = states[:, 5:7]
+    loads = states.contact_load
     active = (loads > 0.0).any(axis=1)
     if not active.any():
         return control.copy(), np.zeros(z)
     inertia = geometry.ball_inertia
     moment_scales = np.maximum(loads.max(axis=1), 1e-12) * 0.5 * geometry.ball_diameter
     # warm start: the kinematics the iterate was solved with (relative to the cage)
-    omega_c0 = float(np.mean(states[active, 12]))
+    omega_c0 = float(np.mean(states.orbital_speed[active]))
     w = np.zeros((z, 3))
     if control[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE:
         for j in range(z):
             w[j] = _stored_w(control[j])
     else:
-        beta, omega_r = states[:, 11], states[:, 13]
+        beta, omega_r = states.attitude_angle, states.spin_speed
         w[:, 0] = omega_r * np.cos(beta)
         w[:, 1] = -omega_r * np.sin(beta)
     forces = np.zeros((z, 2, 3))
@@ -552,7 +552,7 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, tra
     for j in range(z):
         if not active[j]:
             continue
-        alpha_i, alpha_o = states[j, 9], states[j, 10]
+        alpha_i, alpha_o = states.contact_angle[j]
         fi, fo = forces[j, 0], forces[j, 1]
         pocket[j] = -(fi[2] + fo[2])
         wx, wr, wt = w[j]
@@ -572,11 +572,11 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, tra
         if not active[j]:
             out[j, kernels.CONTROL_MODE] = kernels.TRACTION_BALANCE
             out[j, kernels.CONTROL_ORBITAL] = omega_c
-            out[j, kernels.CONTROL_SPIN] = states[j, 13]
-            out[j, kernels.CONTROL_ATTITUDE] = states[j, 11]
+            out[j, kernels.CONTROL_SPIN] = states.spin_speed[j]
+            out[j, kernels.CONTROL_ATTITUDE] = states.attitude_angle[j]
             out[j, kernels.CONTROL_YAW] = 0.0
             out[j, kernels.CONTROL_GYRO] = (
-                -inertia * omega_c * states[j, 13] * math.sin(states[j, 11])
+                -inertia * omega_c * states.spin_speed[j] * math.sin(states.attitude_angle[j])
             )
             out[j, kernels.CONTROL_TAU_INNER] = 0.0
             out[j, kernels.CONTROL_TAU_OUTER] = 0.0

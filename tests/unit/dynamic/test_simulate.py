@@ -131,10 +131,10 @@ def test_netcdf_round_trip(short_run, tmp_path):
 
 def test_first_sample_reproduces_the_quasistatic_dataset():
     """At t = 0 the run sits at the project's quasi-static solution, so its outputs must equal the
-    quasi-static Dataset (solver.results.quasistatic, written independently of this model's output
-    code) for every geometric and kinematic variable both define."""
+    quasi-static Dataset (solver.models.quasistatic.result, written independently of this model's
+    output code) for every geometric and kinematic variable both define."""
     from solver.models.dynamic.initial import quasistatic_solution
-    from solver.results.quasistatic import solution_to_dataset
+    from solver.models.quasistatic.result import solution_to_dataset
 
     inp = spindle_inputs(radial=300.0)
     qs = solution_to_dataset(quasistatic_solution(inp), inp.geometry, None, None)
@@ -165,6 +165,30 @@ def test_first_sample_reproduces_the_quasistatic_dataset():
     # the offset inner ring tilts the inner normal out of the ball's meridian plane by ~offset /
     # radius (0.003 deg here), which the exact dynamic geometry keeps
     assert float(np.abs(lon).max()) < 1e-2
+
+
+def test_dynamic_result_carries_its_quasistatic_start(short_run):
+    """The run stores the quasi-static solution it started from (quasistatic_* variables, the
+    values a quasi-static Dataset holds); solver.quasistatic_start serves them under the
+    quasi-static names, and derives them from the coordinates for a result without them."""
+    from solver import quasistatic_start
+    from solver.models.dynamic.initial import quasistatic_solution
+
+    ds, _ = short_run
+    qs = quasistatic_solution(spindle_inputs(radial=300.0))
+    np.testing.assert_array_equal(ds.quasistatic_ball_azimuth, np.degrees(qs.ball_azimuth))
+    np.testing.assert_array_equal(ds.quasistatic_contact_angle, np.degrees(qs.contact_angle))
+    np.testing.assert_array_equal(ds.quasistatic_contact_load, qs.contact_load)
+    assert float(ds.quasistatic_cage_speed) == qs.cage_speed
+    start = quasistatic_start(ds)
+    assert set(start.data_vars) == {"ball_azimuth", "contact_angle", "contact_load", "cage_speed"}
+    np.testing.assert_array_equal(start.contact_angle, ds.quasistatic_contact_angle)
+    older = ds.drop_vars([name for name in ds.data_vars if name.startswith("quasistatic_")])
+    older.attrs["case"] = "not a case: never read"
+    derived = quasistatic_start(older)
+    for name in start.data_vars:
+        np.testing.assert_allclose(derived[name], start[name], rtol=1e-9, atol=1e-9)
+        assert derived[name].attrs["units"] == VARIABLES[name].units
 
 
 def xr_align(a, b):

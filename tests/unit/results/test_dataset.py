@@ -11,7 +11,13 @@ import xarray as xr
 
 from solver.catalogue import resolve_case
 from solver.models.quasistatic import solve_quasistatic
-from solver.results.dataset import build_result, geometry_from_result, ring_speeds
+from solver.results.dataset import (
+    build_result,
+    geometry_from_result,
+    operating_from_result,
+    result_description,
+    ring_speeds,
+)
 from solver.results.io import load_dataset, save_dataset
 from solver.results.variables import COORDINATES
 
@@ -123,6 +129,46 @@ def test_geometry_is_rebuilt_from_the_coordinates(combined):
     ):
         assert getattr(got, name) == pytest.approx(getattr(expected, name), rel=1e-12), name
     assert got.ball_material == expected.ball_material
+
+
+def test_operating_point_is_rebuilt_from_the_coordinates(tilted):
+    case = resolve_case("spindle-combined-load").with_values(
+        {
+            "operating.inner_ring_speed_rpm": 12000.0,
+            "operating.radial_load_angle_deg": 90.0,
+            "operating.tilting_moment_Nm": 0.5,
+            "operating.moment_axis_deg": 45.0,
+        }
+    )
+    from solver.inputs import to_inputs
+
+    expected = to_inputs(case).operating
+    got = operating_from_result(tilted.assign_attrs(case=""))
+    for name, value in vars(expected).items():
+        if isinstance(value, str):
+            assert getattr(got, name) == value, name
+        else:
+            assert getattr(got, name) == pytest.approx(value, rel=1e-12, abs=1e-15), name
+    imposed = operating_from_result(resolve_result_without_tilting_moment())
+    assert imposed.tilting_moment is None and not imposed.tilt_is_free
+
+
+def resolve_result_without_tilting_moment():
+    return solve_quasistatic(resolve_case("spindle-misalignment-space"))
+
+
+def test_result_names_its_title_and_provenance_without_its_case_text(combined):
+    """The title and the geometry's provenance are attributes of the result (the views never parse
+    the case text); a result written before they were stored has them read from its case here."""
+    case = resolve_case("spindle-combined-load")
+    named = {"title": case.title, "bearing_provenance": case.bearing.provenance}
+    assert {k: combined.attrs[k] for k in named} == named
+    assert result_description(combined.assign_attrs(case="")) == named
+    older = combined.copy()
+    for name in named:
+        del older.attrs[name]
+    assert result_description(older) == named
+    assert result_description(older.assign_attrs(case="[bearing")) == {}  # not TOML: unknown
 
 
 def test_a_result_without_coordinates_is_refused_with_a_reason(combined):

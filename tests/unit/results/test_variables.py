@@ -41,6 +41,8 @@ def test_angles_are_in_degree():
         "trajectory_band_width",
         "trajectory_excursion",
         "trajectory_band_thickness",
+        "quasistatic_ball_azimuth",
+        "quasistatic_contact_angle",
     ):
         assert VARIABLES[name].units == "degree", name
     for name in (
@@ -98,6 +100,8 @@ SCHEMA_WORDS = {
     "result_warnings",
     "kinematics",
     "kinematics_note",
+    "title",
+    "bearing_provenance",
 }
 
 

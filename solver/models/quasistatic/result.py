@@ -1,4 +1,5 @@
-"""QuasiStaticSolution + case → xarray.Dataset following results-schema.md.
+"""The quasi-static model's Dataset: QuasiStaticSolution + case → xarray.Dataset following
+results-schema.md.
 
 Hertz results (ellipse, peak pressure) come from :mod:`solver.physics.hertz_fast` (the same
 load-deflection law the model was solved with). The sliding speed at the contact centre is reported
@@ -23,10 +24,9 @@ from solver.physics.hertz_fast import (
     hertz_coefficients_fast,
 )
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
-
-from .dataset import build_result, case_text
-from .life import rating_life
-from .variables import VARIABLES
+from solver.results.dataset import build_result, case_text
+from solver.results.life import rating_life
+from solver.results.variables import VARIABLES
 
 MODEL = "quasistatic"
 
@@ -226,3 +226,54 @@ def solution_to_dataset(
         variable_attrs=descriptions,
     )
     return ds.assign(rating_life(ds).data_vars)
+
+
+#: The dynamic result's variables holding its quasi-static start, and the quasi-static result's
+#: variable each one copies.
+START_VARIABLES = {
+    "quasistatic_ball_azimuth": "ball_azimuth",
+    "quasistatic_contact_angle": "contact_angle",
+    "quasistatic_contact_load": "contact_load",
+    "quasistatic_cage_speed": "cage_speed",
+}
+
+
+def start_variables(solution) -> dict:
+    """The quasi-static ``solution`` a dynamic run starts from as the dynamic result's
+    ``quasistatic_*`` variables (:data:`START_VARIABLES`): ``{name: (dims, values)}`` with the
+    values the quasi-static Dataset holds (angles in degree)."""
+    return {
+        "quasistatic_ball_azimuth": (("ball",), np.degrees(solution.ball_azimuth)),
+        "quasistatic_contact_angle": (("ball", "race"), np.degrees(solution.contact_angle)),
+        "quasistatic_contact_load": (("ball", "race"), solution.contact_load),
+        "quasistatic_cage_speed": ((), np.float64(solution.cage_speed)),
+    }
+
+
+def quasistatic_start(ds: xr.Dataset) -> xr.Dataset | None:
+    """The quasi-static start of the dynamic result ``ds`` as a Dataset with the quasi-static
+    result's names (``ball_azimuth``, ``contact_angle``, ``contact_load``, ``cage_speed``): the
+    ``quasistatic_*`` variables it carries, or, for a result written before it carried them, the
+    quasi-static solution (race control) of the operating point and geometry in its coordinates.
+    A quasi-static result is its own start. None when there is none (no equilibrium at that
+    operating point, or a result without its coordinates); the case text is never read."""
+    from solver.errors import NoSolutionError
+    from solver.results.dataset import geometry_from_result, operating_from_result
+
+    from .solver import solve_operating_point
+
+    if "time" not in ds.dims:
+        return ds
+    if all(name in ds for name in START_VARIABLES):
+        return xr.Dataset({own: ds[name] for name, own in START_VARIABLES.items()})
+    try:
+        solution = solve_operating_point(geometry_from_result(ds), operating_from_result(ds))
+    except (NoSolutionError, ValueError, KeyError):
+        return None
+    start = start_variables(solution)
+    return xr.Dataset(
+        {
+            own: (start[name][0], start[name][1], VARIABLES[own].attrs())
+            for name, own in START_VARIABLES.items()
+        }
+    )
