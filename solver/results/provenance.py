@@ -17,7 +17,7 @@ import json
 from solver.case.schema import FIELDS
 
 #: Version of the results' physics and numerics (module docstring).
-RESULTS_VERSION = 1
+RESULTS_VERSION = 2
 
 
 def case_values(case) -> dict:
