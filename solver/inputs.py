@@ -16,7 +16,7 @@ import numpy as np
 from .geometry import BearingGeometry, free_contact_angle_from_clearance
 from .materials import Material
 from .physics import rheology as rh
-from .physics.rheology import viscosity_at_temperature
+from .physics.rheology import rheology_at_temperature
 from .units import GPA, GRAM, MM, PER_GPA, RPM  # SI value of one case unit
 
 
@@ -109,7 +109,9 @@ class TractionCurve:
 @dataclass(frozen=True)
 class LubricantInputs:
     """The lubricant, SI units. ``given`` is False when the case has no ``[lubricant]`` section
-    and these are the schema's default oil."""
+    and these are the schema's default oil. The rheology values (viscosity, pressure-viscosity,
+    Eyring stress, limiting shear stress, film shear modulus) are those of the inlet temperature
+    (solver.physics.rheology.rheology_at_temperature)."""
 
     viscosity: float  # Pa s, at the inlet temperature
     pressure_viscosity: float  # 1/Pa
@@ -123,6 +125,7 @@ class LubricantInputs:
     limiting_shear_coefficient: float  # Lambda
     film_shear_modulus: float  # Pa
     thermal_conductivity: float  # W/(m K)
+    thermal_softening: float  # c [1/K] of the film's shear heating, 0 = isothermal film
     density: float  # kg/m^3
     oil_volume_fraction: float
     oil: str = ""  # the named oil (lubricant.oil) the values come from, "" for none
@@ -138,6 +141,7 @@ class LubricantInputs:
         r[rh.RH_SHEAR_MODULUS] = self.film_shear_modulus
         r[rh.RH_TEMPERATURE_VISCOSITY] = self.temperature_viscosity
         r[rh.RH_CONDUCTIVITY] = self.thermal_conductivity
+        r[rh.RH_SOFTENING] = self.thermal_softening
         return r
 
     @property
@@ -257,18 +261,28 @@ def cage_inputs(cage) -> CageInputs:
 
 def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
     """SI lubricant of a case's ``[lubricant]`` section (Pa s, 1/GPa, m/s, MPa, GPa); the
-    viscosity is taken to the inlet temperature (solver.physics.rheology.viscosity_at_temperature).
-    """
+    rheology values are taken from the reference to the inlet temperature
+    (solver.physics.rheology.rheology_at_temperature). The thermal softening coefficient is the
+    limiting shear stress's temperature coefficient, 0 when ``thermal_softening`` is false."""
     t = lubricant.traction
-    viscosity = viscosity_at_temperature(
-        float(lubricant.viscosity_Pas),
+    inlet = rheology_at_temperature(
         float(lubricant.reference_temperature_C),
-        float(lubricant.temperature_viscosity_per_K),
         float(lubricant.inlet_temperature_C),
-    )
-    return LubricantInputs(
-        viscosity=viscosity,
+        viscosity=float(lubricant.viscosity_Pas),
+        temperature_viscosity=float(lubricant.temperature_viscosity_per_K),
         pressure_viscosity=float(lubricant.pressure_viscosity_per_GPa) * PER_GPA,
+        pressure_viscosity_temperature=float(lubricant.pressure_viscosity_temperature_per_K),
+        eyring_stress=float(lubricant.eyring_stress_MPa) * 1.0e6,
+        limiting_stress=float(lubricant.limiting_shear_stress_MPa) * 1.0e6,
+        limiting_slope=float(lubricant.limiting_shear_coefficient),
+        limiting_temperature=float(lubricant.limiting_shear_temperature_per_K),
+        shear_modulus=float(lubricant.film_shear_modulus_GPa) * GPA,
+        shear_modulus_temperature=float(lubricant.film_shear_modulus_temperature_per_K),
+    )
+    softening = float(lubricant.limiting_shear_temperature_per_K)
+    return LubricantInputs(
+        viscosity=inlet["viscosity"],
+        pressure_viscosity=inlet["pressure_viscosity"],
         traction=TractionCurve(
             mu_zero=float(t.mu_zero),
             mu_max=float(t.mu_max),
@@ -279,11 +293,12 @@ def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
         traction_model=str(lubricant.traction_model),
         inlet_temperature=float(lubricant.inlet_temperature_C),
         temperature_viscosity=float(lubricant.temperature_viscosity_per_K),
-        eyring_stress=float(lubricant.eyring_stress_MPa) * 1.0e6,
-        limiting_shear_stress=float(lubricant.limiting_shear_stress_MPa) * 1.0e6,
-        limiting_shear_coefficient=float(lubricant.limiting_shear_coefficient),
-        film_shear_modulus=float(lubricant.film_shear_modulus_GPa) * GPA,
+        eyring_stress=inlet["eyring_stress"],
+        limiting_shear_stress=inlet["limiting_stress"],
+        limiting_shear_coefficient=inlet["limiting_slope"],
+        film_shear_modulus=inlet["shear_modulus"],
         thermal_conductivity=float(lubricant.thermal_conductivity_W_mK),
+        thermal_softening=softening if bool(lubricant.thermal_softening) else 0.0,
         density=float(lubricant.density_kg_m3),
         oil_volume_fraction=float(lubricant.oil_volume_fraction),
         oil=lubricant.oil or "",

@@ -407,7 +407,7 @@ FIELDS: list[Field] = [
         "lubricant.pressure_viscosity_per_GPa",
         "float",
         "Pressure-viscosity coefficient",
-        "Barus pressure-viscosity coefficient alpha.",
+        "Barus pressure-viscosity coefficient alpha at the reference temperature.",
         unit="1/GPa",
         default=20.0,
         minimum=0.0,
@@ -415,6 +415,20 @@ FIELDS: list[Field] = [
         maximum=100.0,
         reason="oil viscosity rises with pressure; the coefficient is positive",
         reason_high="lubricants lie between about 5 and 50 /GPa",
+    ),
+    Field(
+        "lubricant.pressure_viscosity_temperature_per_K",
+        "float",
+        "Pressure-viscosity temperature coefficient",
+        "c_alpha of alpha(T) = alpha exp(-c_alpha (T - T_ref)): the fraction by which the "
+        "pressure-viscosity coefficient falls per kelvin. The default is that of two spindle "
+        "oils (Stachowiak & Batchelor, Table 2.3: 0.74 and 0.79 %/K between 30 and 60 degC).",
+        unit="1/K",
+        default=0.0077,
+        minimum=0.0,
+        maximum=0.05,
+        reason="the pressure-viscosity coefficient falls, or stays, as temperature rises",
+        reason_high="published oils lie below about 0.01 /K",
     ),
     Field(
         "lubricant.traction_model",
@@ -433,7 +447,9 @@ FIELDS: list[Field] = [
         "lubricant.reference_temperature_C",
         "float",
         "Viscosity reference temperature",
-        "Temperature at which viscosity_Pas is given.",
+        "Temperature at which the oil's viscosity, pressure-viscosity coefficient, Eyring "
+        "stress, limiting shear stress and film shear modulus are given; each is taken to the "
+        "inlet temperature by its temperature law (docs/traction.md).",
         unit="degC",
         default=40.0,
         minimum=-60.0,
@@ -444,8 +460,9 @@ FIELDS: list[Field] = [
         "lubricant.inlet_temperature_C",
         "float",
         "Inlet temperature",
-        "Oil temperature at the contact inlets; the viscosity there follows from viscosity_Pas "
-        "and the temperature-viscosity coefficient.",
+        "Oil temperature at the contact inlets; the viscosity and the other rheology values "
+        "there follow from their values at the reference temperature and their temperature "
+        "coefficients.",
         unit="degC",
         default=40.0,
         minimum=-60.0,
@@ -502,6 +519,21 @@ FIELDS: list[Field] = [
         reason_high="measured values lie between about 0.03 and 0.15",
     ),
     Field(
+        "lubricant.limiting_shear_temperature_per_K",
+        "float",
+        "Limiting-shear-stress temperature coefficient",
+        "c_L of tau_L(T) = (tau_L0 + Lambda p) exp(-c_L (T - T_ref)): the fraction by which the "
+        "limiting shear stress falls per kelvin, at the inlet and in the film heated by sliding "
+        "(thermal softening). The default is an estimate: 0.52 %/K of the Santotrac 50 "
+        "correlation in docs/sources.md.",
+        unit="1/K",
+        default=0.005,
+        minimum=0.0,
+        maximum=0.05,
+        reason="the limiting shear stress falls, or stays, as temperature rises",
+        reason_high="a limiting shear stress halving in less than 14 K is beyond measured oils",
+    ),
+    Field(
         "lubricant.film_shear_modulus_GPa",
         "float",
         "Film shear modulus",
@@ -516,10 +548,36 @@ FIELDS: list[Field] = [
         reason_high="EHL films have shear moduli of about 0.1 to 3 GPa",
     ),
     Field(
+        "lubricant.film_shear_modulus_temperature_per_K",
+        "float",
+        "Film shear modulus temperature coefficient",
+        "c_G of G(T) = G exp(-c_G (T - T_ref)): the fraction by which the film's shear modulus "
+        "falls per kelvin. The default is an estimate (no measured value found): that of the "
+        "central film, 0.67 beta + 0.53 c_alpha of the default oil, so that the elastic slope "
+        "G b / h_c of the traction curve at small slip does not rise as the film thins "
+        "(docs/traction.md).",
+        unit="1/K",
+        default=0.024,
+        minimum=0.0,
+        maximum=0.05,
+        reason="the film's shear modulus falls, or stays, as temperature rises",
+        reason_high="a shear modulus halving in less than 14 K is beyond measured oils",
+    ),
+    Field(
+        "lubricant.thermal_softening",
+        "bool",
+        "Thermal softening",
+        "Shear heating of the film lowers the traction at large slip (rheology model only): the "
+        "mid-film temperature rise tau u h / (8 k) softens the stress with the limiting shear "
+        "stress's temperature coefficient, so the traction curve has a maximum "
+        "(docs/traction.md). false: the isothermal film.",
+        default=True,
+    ),
+    Field(
         "lubricant.thermal_conductivity_W_mK",
         "float",
         "Thermal conductivity",
-        "Thermal conductivity of the oil (inlet shear heating of the film).",
+        "Thermal conductivity of the oil (inlet shear heating and thermal softening of the film).",
         unit="W/m/K",
         default=0.13,
         minimum=0.0,

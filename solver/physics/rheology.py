@@ -19,15 +19,32 @@ Hertz ellipse with local pressure p and sliding speed u:
    251], approached smoothly: tau = tau_ve / (1 + (tau_ve / tau_L)^4)^(1/4) [E: a smooth minimum,
    within 1 % of tau_L once tau_ve > 2.2 tau_L, never above it].
 
-So tau is linear in u at small slip (slope eta_eff / h_c with eta_eff = eta G t / (eta + G t)),
-grows like a logarithm in the Eyring range, and levels off at tau_L. Dividing by p gives the
-local traction coefficient. The law is odd in u and vanishes at u = 0 (no regularisation needed).
+6. thermal softening (shear heating of the film): the stress of steps 1-5, tau_iso, is taken at
+   the inlet temperature. Sliding heats the film: with the dissipation tau u / h_c spread evenly
+   across the film and conducted to both surfaces, held at the inlet temperature, the mid-film
+   temperature rises by dT = tau u h_c / (8 k) (steady one-dimensional conduction, k the oil's
+   conductivity) [D; the mid-film temperature is the one that governs the traction of an Eyring
+   film: Johnson & Greenwood, Wear 61 (1980) 353]. The film's stress falls with temperature as
+   its limiting shear stress does, linearly about the inlet, tau(T_in + dT) = tau_iso (1 - c dT)
+   (c = ``RH_SOFTENING``, the temperature coefficient of tau_L). Solving both together gives
+   tau = tau_iso / (1 + c tau_iso u h_c / (8 k)) (:func:`thermal_softening`): 1 at c = 0 (the
+   isothermal law exactly), and tau ~ 8 k / (c u h_c) at large slip, so the traction curve
+   peaks and falls. The surfaces' own flash temperature is not added (it would soften more).
 
-Rheology parameter array ``rheology`` (float64, length ``RHEOLOGY_SIZE``):
-``RH_VISCOSITY`` eta_0 [Pa s] at the inlet temperature; ``RH_PRESSURE_VISCOSITY`` alpha [1/Pa];
+So tau is linear in u at small slip (slope eta_eff / h_c with eta_eff = eta G t / (eta + G t)),
+grows like a logarithm in the Eyring range, and levels off at tau_L, then falls as the film heats
+(step 6). Dividing by p gives the local traction coefficient. The law is odd in u and vanishes at
+u = 0 (no regularisation needed).
+
+The parameters are those of the inlet temperature: :func:`rheology_at_temperature` takes the
+values a case gives at its reference temperature to the inlet (docs/traction.md).
+
+Rheology parameter array ``rheology`` (float64, length ``RHEOLOGY_SIZE``), values at the inlet
+temperature: ``RH_VISCOSITY`` eta_0 [Pa s]; ``RH_PRESSURE_VISCOSITY`` alpha [1/Pa];
 ``RH_EYRING_STRESS`` tau_0 [Pa]; ``RH_LIMITING_STRESS`` tau_L0 [Pa]; ``RH_LIMITING_SLOPE`` Lambda
 [-]; ``RH_SHEAR_MODULUS`` G [Pa]; ``RH_TEMPERATURE_VISCOSITY`` beta [1/K] (for the thermal film
-reduction); ``RH_CONDUCTIVITY`` k [W/(m K)].
+reduction); ``RH_CONDUCTIVITY`` k [W/(m K)]; ``RH_SOFTENING`` c [1/K], the thermal softening
+coefficient of step 6 (0: no softening, the isothermal law).
 """
 
 from __future__ import annotations
@@ -47,7 +64,11 @@ RH_LIMITING_SLOPE = 4
 RH_SHEAR_MODULUS = 5
 RH_TEMPERATURE_VISCOSITY = 6
 RH_CONDUCTIVITY = 7
-RHEOLOGY_SIZE = 8
+RH_SOFTENING = 8
+RHEOLOGY_SIZE = 9
+
+#: Zero of the Celsius scale [K] (the Eyring stress is proportional to the absolute temperature).
+CELSIUS_ZERO = 273.15
 
 #: Largest Barus exponent alpha p used (e^60 ~ 1e26): keeps eta finite at any pressure.
 BARUS_EXPONENT_CAP = 60.0
@@ -65,6 +86,65 @@ def viscosity_at_temperature(
     return reference_viscosity * math.exp(
         -temperature_viscosity * (temperature - reference_temperature)
     )
+
+
+def exponential_temperature_law(
+    reference_value: float, reference_temperature: float, coefficient: float, temperature: float
+) -> float:
+    """reference_value exp(-coefficient (T - T_ref)): a property that falls by the fraction
+    ``coefficient`` [1/K] per kelvin (temperatures in degC)."""
+    return reference_value * math.exp(-coefficient * (temperature - reference_temperature))
+
+
+def rheology_at_temperature(
+    reference_temperature: float,
+    temperature: float,
+    *,
+    viscosity: float,
+    temperature_viscosity: float,
+    pressure_viscosity: float,
+    pressure_viscosity_temperature: float,
+    eyring_stress: float,
+    limiting_stress: float,
+    limiting_slope: float,
+    limiting_temperature: float,
+    shear_modulus: float,
+    shear_modulus_temperature: float,
+) -> dict:
+    """The rheology's parameters at ``temperature`` [degC] from their values at
+    ``reference_temperature`` [degC] (SI; keys as the arguments):
+
+    - viscosity eta_0 exp(-beta dT) (:func:`viscosity_at_temperature`, Reynolds);
+    - pressure-viscosity alpha exp(-c_alpha dT) (the coefficient falls with temperature, e.g. by
+      0.74-0.79 %/K for the spindle oils of Stachowiak & Batchelor's Table 2.3);
+    - Eyring stress tau_0 T / T_ref in absolute temperature (Eyring's theory: tau_0 = k_B T / V,
+      V the activation volume; Eyring, J. Chem. Phys. 4 (1936) 283);
+    - limiting shear stress (tau_L0 and Lambda) exp(-c_L dT) (Lambda depends on temperature:
+      Wikstrom & Hoglund, J. Tribol. 116 (1994) 612; it falls by 0.52 %/K for Santotrac 50 in the
+      linear correlation of Delkhosh et al. quoted in docs/sources.md);
+    - film shear modulus G exp(-c_G dT) (G and tau_L rise together with pressure, their ratio
+      nearly constant: "The elastic properties of films in e.h.l. contacts", Proc. R. Soc. Lond.
+      A 372 (1980) 155; the named oils take c_G = c_L, an estimate).
+
+    With ``temperature`` = ``reference_temperature`` every value is returned unchanged."""
+    dt = temperature - reference_temperature
+    limiting = math.exp(-limiting_temperature * dt)
+    return {
+        "viscosity": viscosity_at_temperature(
+            viscosity, reference_temperature, temperature_viscosity, temperature
+        ),
+        "pressure_viscosity": exponential_temperature_law(
+            pressure_viscosity, reference_temperature, pressure_viscosity_temperature, temperature
+        ),
+        "eyring_stress": eyring_stress
+        * (temperature + CELSIUS_ZERO)
+        / (reference_temperature + CELSIUS_ZERO),
+        "limiting_stress": limiting_stress * limiting,
+        "limiting_slope": limiting_slope * limiting,
+        "shear_modulus": exponential_temperature_law(
+            shear_modulus, reference_temperature, shear_modulus_temperature, temperature
+        ),
+    }
 
 
 #: Above this x = eta gamma_dot / tau_0 the Eyring law uses asinh(x) = ln(2 x) (relative error
@@ -176,11 +256,31 @@ def stress_over_slip(u, ln_u, alpha_p, tau_l, ln_c, elastic, tau_0):
 
 
 @njit(cache=True, inline="always")
-def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
+def softening_constant(film, rheology):
+    """c h_c / (8 k) [m^2/W] of :func:`thermal_softening` for the central film ``film`` [m]: the
+    softening coefficient times the film's mid-plane thermal resistance (0 without softening,
+    conductivity or film)."""
+    c = rheology[RH_SOFTENING]
+    k = rheology[RH_CONDUCTIVITY]
+    return c * film / (8.0 * k) if (c > 0.0 and k > 0.0 and film > 0.0) else 0.0
+
+
+@njit(cache=True, inline="always")
+def thermal_softening(heating, stress_power):
+    """Factor 1 / (1 + c dT_iso) <= 1 of the film's stress for shear heating (module docstring,
+    step 6): ``heating`` = c h_c / (8 k) [m^2/W] (:func:`softening_constant`) times
+    ``stress_power`` = tau_iso u [W/m^2], the isothermal stress times the slip speed. 1 for
+    ``heating`` = 0."""
+    return 1.0 / (1.0 + heating * stress_power)
+
+
+@njit(cache=True, inline="always")
+def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology, heating=0.0):
     """:func:`shear_stress` for u > 0 with the per-contact constants of
-    :func:`contact_constants` (through :func:`stress_over_slip`)."""
+    :func:`contact_constants` (through :func:`stress_over_slip`) and ``heating`` of
+    :func:`softening_constant` (0: isothermal)."""
     p = max(pressure, 0.0)
-    return u * stress_over_slip(
+    tau = u * stress_over_slip(
         u,
         math.log(u),
         rheology[RH_PRESSURE_VISCOSITY] * p,
@@ -189,13 +289,15 @@ def shear_stress_from_constants(u, pressure, ln_c, elastic, rheology):
         elastic,
         rheology[RH_EYRING_STRESS],
     )
+    return tau * thermal_softening(heating, tau * u)
 
 
 @njit(cache=True)
 def shear_stress(slip_speed, pressure, film, transit_time, rheology):
     """Magnitude of the film's shear stress [Pa] (>= 0) at sliding speed |u| [m/s], local pressure
-    p [Pa], central film h_c [m] and transit time t = b / u_e [s] (module docstring). ``film`` <= 0
-    (no film: no entrainment) gives the limiting shear stress for any slip above 1e-9 m/s."""
+    p [Pa], central film h_c [m] and transit time t = b / u_e [s] (module docstring, steps 1-6).
+    ``film`` <= 0 (no film: no entrainment) gives the limiting shear stress for any slip above
+    1e-9 m/s (no film to heat)."""
     u = abs(slip_speed)
     if u <= 0.0:
         return 0.0
@@ -204,7 +306,9 @@ def shear_stress(slip_speed, pressure, film, transit_time, rheology):
         tau_l = rheology[RH_LIMITING_STRESS] + rheology[RH_LIMITING_SLOPE] * p
         return tau_l if u > 1e-9 else 0.0
     ln_c, elastic = contact_constants(film, transit_time, rheology)
-    return shear_stress_from_constants(u, p, ln_c, elastic, rheology)
+    return shear_stress_from_constants(
+        u, p, ln_c, elastic, rheology, softening_constant(film, rheology)
+    )
 
 
 @njit(cache=True)

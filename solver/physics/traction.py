@@ -78,9 +78,12 @@ Rheology on the ellipse
     + Lambda p and the saturation s = tau / tau_L in [0, 1). So tau dA = s (tau_L0 dA + Lambda p
     dA): the first part is integrated with ``NODE_UNIFORM`` and the second with the pressure
     weight ``NODE_LOAD``. Where the film is saturated (s = 1, reached within a few mm/s of slip)
-    both parts are then exact for any node count; pressure-weighting the tau_L0 dA part instead
-    (tau_L0 / p times the pressure) integrates an edge singularity and loses up to 9 % of the
-    area with two points along the rolling direction.
+    and not yet softened by shear heating, both parts are then exact for any node count;
+    pressure-weighting the tau_L0 dA part instead (tau_L0 / p times the pressure) integrates an
+    edge singularity and loses up to 9 % of the area with two points along the rolling direction.
+    The thermal softening of solver.physics.rheology (step 6) divides each node's isothermal
+    saturation s_iso by 1 + (c h_c / (8 k)) tau_L s_iso u (tau_L s_iso u: the node's isothermal
+    shear power per area), in the same vectorised loop.
 
 Split rule (:func:`split_ellipse_rule`)
     Because the rheological stress saturates within a few mm/s of slip, its rolling component
@@ -130,6 +133,7 @@ from .rheology import (
     eyring_asinh_large,
     eyring_log_argument,
     saturation_from_eyring,
+    softening_constant,
 )
 
 # ---- traction-curve parameter array ------------------------------------------------------------
@@ -562,7 +566,7 @@ def _batch_sums(sums, batch, count, slip, law_data):
     ``slip`` = (s01, s02, o1, o2, on) [m/s, rad/s] in the contact basis; ``law_data`` = (law,
     filmed, Q [N], the curve's A, B [s/m], C [s/m], D, u_reg^2 [m^2/s^2], alpha p_max, tau_L0
     [Pa], Lambda p_max [Pa], tau_0 [Pa], tau_L0 a b [N], Lambda Q [N], ln(eta_0 / (tau_0 h_c)),
-    G t / h_c [Pa s/m]).
+    G t / h_c [Pa s/m], c h_c / (8 k) [m^2/W] of the thermal softening).
 
     First the local law at every node, g [N s/m] with tau dA = g dv, in a loop with no dependence
     between nodes and no library call (exp and log of solver.physics.lanes), which LLVM
@@ -570,7 +574,7 @@ def _batch_sums(sums, batch, count, slip, law_data):
     model: no test and branch before each division (a division by zero is never selected)."""
     s01, s02, o1, o2, on = slip
     (law, filmed, q, c0, c1, c2, c3, ur2) = law_data[:8]
-    (alpha_pmax, tl0, lam_pmax, tau_0, tl0_area, lam_q, ln_c, elastic) = law_data[8:]
+    (alpha_pmax, tl0, lam_pmax, tau_0, tl0_area, lam_q, ln_c, elastic, heating) = law_data[8:]
     if law == LAW_RHEOLOGY and filmed:
         # Eyring stress as tau_0 ln(2 x) (x = eta gamma_dot / tau_0), as it is at nearly every
         # node: no library call, the loop vectorises; the few nodes with a smaller x are redone
@@ -581,9 +585,12 @@ def _batch_sums(sums, batch, count, slip, law_data):
             # tau dA = s (tau_L0 dA + Lambda p dA): plain-area and load weights (module docstring)
             weight = tl0_area * batch[NB_UNIFORM, k] + lam_q * batch[NB_LOAD, k]
             ln_x = eyring_log_argument(0.5 * log_lanes(u2), alpha_pmax * ps, ln_c)
-            g = -weight * saturation_from_eyring(
-                math.sqrt(u2), tau_0 * eyring_asinh_large(ln_x), tl0 + lam_pmax * ps, elastic
+            tau_l = tl0 + lam_pmax * ps
+            s_u = saturation_from_eyring(
+                math.sqrt(u2), tau_0 * eyring_asinh_large(ln_x), tau_l, elastic
             )
+            # thermal softening 1 / (1 + c h_c tau_iso u / (8 k)), tau_iso u = tau_L (s / u) u^2
+            g = -weight * s_u / (1.0 + heating * tau_l * s_u * u2)
             batch[NB_FACTOR, k] = g if u2 > 0.0 else 0.0
             batch[NB_LOG_ARGUMENT, k] = ln_x
             batch[NB_V1, k] = v1
@@ -594,12 +601,12 @@ def _batch_sums(sums, batch, count, slip, law_data):
             if ln_x <= EYRING_LARGE_FROM and batch[NB_U2, k] > 0.0:
                 ps = batch[NB_PRESSURE, k]
                 weight = tl0_area * batch[NB_UNIFORM, k] + lam_q * batch[NB_LOAD, k]
-                batch[NB_FACTOR, k] = -weight * saturation_from_eyring(
-                    math.sqrt(batch[NB_U2, k]),
-                    tau_0 * eyring_asinh(ln_x),
-                    tl0 + lam_pmax * ps,
-                    elastic,
+                u2 = batch[NB_U2, k]
+                tau_l = tl0 + lam_pmax * ps
+                s_u = saturation_from_eyring(
+                    math.sqrt(u2), tau_0 * eyring_asinh(ln_x), tau_l, elastic
                 )
+                batch[NB_FACTOR, k] = -weight * s_u / (1.0 + heating * tau_l * s_u * u2)
     elif law == LAW_RHEOLOGY:
         # no film (no entrainment): the limiting shear stress tau_L0 + Lambda p for any slip above
         # 1e-9 m/s (solver.physics.rheology.shear_stress without a film), integrated as above
@@ -732,6 +739,7 @@ def ellipse_traction_into(
     filmed = film > 0.0
     ln_c = 0.0
     elastic = 0.0
+    heating = 0.0
     ab = a * b
     # rheology: Hertz p_max = 1.5 Q / (pi a b); per node p = p_max (p / p_max), so the Barus
     # exponent and the limiting shear stress are p_max-scaled node constants
@@ -746,6 +754,7 @@ def ellipse_traction_into(
         ur2 = 0.0
         if filmed:
             ln_c, elastic = contact_constants(film, transit_time, rheology)
+            heating = softening_constant(film, rheology)
     slip = (s01, s02, o1, o2, on)
     law_data = (
         law,
@@ -764,6 +773,7 @@ def ellipse_traction_into(
         lam_q,
         ln_c,
         elastic,
+        heating,
     )
     cap = batch.shape[1]
     count = 0

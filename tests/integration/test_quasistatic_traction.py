@@ -96,17 +96,32 @@ def test_without_a_steady_balance_race_control_is_used_and_said():
     assert any(w.startswith("quasi-static ball speeds: the traction balance") for w in warnings)
 
 
-def test_the_rheology_balances_the_heavy_case():
-    """The shipped 218 heavy case (the default oil's rheology, the default traction balance): the
-    oil film's traction holds the most loaded balls, the balance has a steady solution and no
+def test_the_isothermal_rheology_balances_the_heavy_case():
+    """The shipped 218 heavy case (the default oil's rheology, the default traction balance) with
+    an isothermal film (lubricant.thermal_softening = false): the film's traction stays at its
+    limiting shear stress, holds the most loaded balls, the balance has a steady solution and no
     result warning is given."""
     case = resolve_case("218-heavy-combined")
     assert case.lubricant.traction_model == "rheology"
     assert case.simulation.quasistatic_ball_speeds == "traction"
-    ds = solver.solve_quasistatic(case)
+    ds = solver.solve_quasistatic(case.with_values({"lubricant.thermal_softening": False}))
     assert ds.attrs["kinematics"] == "traction"
     assert ds.racetrace.warnings() == []
     assert 0.4 < float(ds.cage_speed) / rpm_to_rad_s(10000.0) < 0.5
+
+
+def test_thermal_softening_leaves_the_heavy_case_spin_without_a_steady_balance():
+    """With the film's thermal softening (the default, docs/traction.md) the spin tractions of the
+    218 heavy case's most loaded ball reach the falling branch of the softened traction law: the
+    balance finds no steady ball speeds, says why, and the result uses race control with a
+    warning (docs/quasistatic-traction.md)."""
+    case = resolve_case("218-heavy-combined")
+    assert case.lubricant.thermal_softening
+    ds = solver.solve_quasistatic(case)
+    assert ds.attrs["kinematics"] == "race_control"
+    assert "falling branch of the traction law" in ds.attrs["kinematics_note"]
+    warnings = ds.racetrace.warnings()
+    assert any(w.startswith("quasi-static ball speeds: the traction balance") for w in warnings)
 
 
 def test_the_case_switch_selects_race_control():

@@ -382,7 +382,8 @@ def test_jet_oil_traction_against_the_mil_l_23699_data_set():
     temperature). With the named jet oil at a typical 100 degC inlet, p_max 1.5 GPa and 10 m/s
     entrainment, the rheology gives the same order: within a factor 2 of both values (measured
     0.028 against 0.050 and 0.033 against 0.036), rising with slip like the data up to the peak.
-    The falling branch of the data (shear heating in the film) is not modelled."""
+    The falling branch of the data (shear heating in the film) is left out here: the rheology
+    arrays of this file have no thermal softening (docs/traction.md)."""
     mu = {
         u: _contact_traction_coefficient(u, "jet-oil-mil-prf-23699", 100.0, 1.5e9)
         for u in (0.05, 0.2, 1.0, 5.0)

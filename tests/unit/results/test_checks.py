@@ -190,12 +190,23 @@ def _catalogue_names():
     return [entry.name for entry in catalogue()]
 
 
+#: The one warning a shipped case is expected to give: the 218 heavy case's most loaded ball spins
+#: on the falling branch of the thermally softened traction, so its quasi-static ball speeds come
+#: from race control (docs/quasistatic-traction.md, docs/traction.md).
+EXPECTED_WARNINGS = {"218-heavy-combined": "quasi-static ball speeds: the traction balance"}
+
+
 @pytest.mark.parametrize("name", _catalogue_names())
 def test_shipped_catalogue_cases_give_no_warning(name):
+    """No shipped case gives a result warning, but for the one expected above."""
     from solver import solve_quasistatic
     from solver.catalogue import resolve_case
 
-    assert result_warnings(solve_quasistatic(resolve_case(name))) == []
+    found = result_warnings(solve_quasistatic(resolve_case(name)))
+    if name in EXPECTED_WARNINGS:
+        assert len(found) == 1 and found[0].startswith(EXPECTED_WARNINGS[name]), found
+    else:
+        assert found == []
 
 
 # ---- friction torque against the empirical estimates --------------------------------------------
