@@ -19,9 +19,18 @@ surface) and the dynamic model's local law (``lubricant.traction_model``): the c
 curve, or the rheology of the oil with each contact's central film (Hamrock-Dowson with the inlet
 thermal reduction, at the entrainment speed of rolling at the iterate's cage speed) and transit
 time, evaluated in the cage frame (ball centre at rest, rings turning at
-omega_ring - omega_c about the bearing axis, the inner ring about its displaced centre). For each
-trial cage speed every ball's w is found by Newton's method (finite-difference 3x3 Jacobian); the
-cage speed is the root of sum P_j.
+omega_ring - omega_c about the bearing axis, the inner ring about its displaced centre).
+
+Every ball's w and omega_c are solved together by Newton's method on the bordered system
+(:func:`solve_balance`, in numba): 3 moment equations per ball in its own w and omega_c, and
+sum P_j = 0. Its Jacobian is block diagonal with one bordering row and column: per ball a
+finite-difference 3x3 block dR/dw, a column dR/d omega_c, a row dF_theta/dw and a corner
+dF_theta/d omega_c, solved by eliminating each ball's block (Schur complement on the cage speed).
+The blocks are kept from one iteration, and one balance of the quasi-static fixed point, to the next
+while the residual falls fast, and recomputed otherwise. Where this does not converge, the previous
+method is the fall-back: the cage speed bracketed and found by Brent's method as the root of
+sum P_j, every ball's w solved on its own by Newton's method at each trial cage speed
+(SciPy's hybrid method where that stalls).
 
 The result per ball is written into the quasi-static model's kinematics record
 (:data:`kernels.TRACTION_BALANCE`): omega_c, spin speed and attitude (the meridian-plane part of w;
