@@ -162,8 +162,14 @@ def _contact_films(contacts, states, model, rheology):
 def _fill_contact_records(
     states, position, q, azimuth, model, inner_curvature, outer_curvature, contacts, ring_centre
 ):
-    """The work of :func:`contact_records` (``model``: kernels.BallModel; curvatures of the
-    deformed contact surfaces [1/m]) into ``contacts`` (zeros in) and ``ring_centre``."""
+    """Contact records [inner, outer] into ``contacts`` (Z, 2, RECORD_SIZE; zeros in, films left 0)
+    and inner-ring centres into ``ring_centre`` (Z, 3), in each ball's azimuth frame: components
+    (x, r, theta) of the inertial frame (origin at the outer ring centre) along (e_x, e_r, e_theta)
+    at the ball's azimuth. For the iterate ``states`` (kernels.evaluate_balls), ball ``position``
+    (Z, 2) relative to the outer groove curvature centre and ring displacement ``q`` (dx, dy, dz,
+    theta_y, theta_z); ``model``: kernels.BallModel; curvatures of the deformed contact surfaces
+    [1/m]. The contact points lie on the ball surface at D/2 - delta/2 from its centre, the
+    ellipses come from hertz_fast."""
     D = model.ball_diameter
     e_mod = model.effective_modulus
     for j in range(azimuth.shape[0]):
@@ -201,31 +207,6 @@ def _fill_contact_records(
                 a, b, _, _ = contact_ellipse_fast(load, s, f, e_mod)
                 rec[CT_SEMI_MAJOR] = a
                 rec[CT_SEMI_MINOR] = b
-
-
-def contact_records(geometry, states, position, q, azimuth):
-    """Contact records (Z, 2, RECORD_SIZE; films left 0) [inner, outer] and inner-ring centres
-    (Z, 3) in each ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at
-    the outer ring centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate
-    ``states`` (kernels.evaluate_balls), ball ``position`` (Z, 2) relative to the outer groove
-    curvature centre and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points
-    lie on the ball surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
-    z = azimuth.size
-    contacts = np.zeros((z, 2, RECORD_SIZE))
-    ring_centre = np.zeros((z, 3))
-    D = geometry.ball_diameter
-    _fill_contact_records(
-        states,
-        position,
-        np.asarray(q, dtype=float),
-        azimuth,
-        kernels.ball_model(geometry, 0.0, 0.0),
-        deformed_surface_curvature(geometry.inner_groove_radius, D),
-        deformed_surface_curvature(geometry.outer_groove_radius, D),
-        contacts,
-        ring_centre,
-    )
-    return contacts, ring_centre
 
 
 @njit(cache=True)
