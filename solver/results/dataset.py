@@ -182,7 +182,7 @@ def build_result(
         var_attrs = spec.attrs()
         for key, value in extra.get(name, {}).items():
             var_attrs[key] = var_attrs[key] + value if key == "description" else value
-        variables[name] = (target, values, var_attrs)
+        variables[name] = xr.Variable(target, values, var_attrs)
     coords = coordinates(
         int(geometry.ball_count),
         times,
@@ -199,6 +199,9 @@ def build_result(
         "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "complete": int(bool(complete)),
     }
+    # xarray Variables and one Coordinates object: the same Dataset as from (dims, values, attrs)
+    # tuples, built in about half the time
+    coords = xr.Coordinates({name: xr.Variable(*spec) for name, spec in coords.items()})
     return xr.Dataset(variables, coords=coords, attrs={**base, **(attrs or {})})
 
 

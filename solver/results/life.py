@@ -1,6 +1,7 @@
 """Rating life of a result (ISO 281 and ISO/TS 16281, :mod:`solver.physics.life`), read from its
 Dataset: the geometry and operating point from the coordinates, the contact loads and angles from
-``contact_load`` / ``contact_angle``.
+``contact_load`` / ``contact_angle`` (:func:`rating_life`); or, while a quasi-static Dataset is
+built, from the same arrays before they are stored (:func:`snapshot_life_metrics`).
 
 - **ISO 281** ``basic_rating_life`` from the applied axial and radial loads and the nominal (free)
   contact angle. Moments and misalignment do not enter it.
@@ -58,9 +59,20 @@ def _coord(ds: xr.Dataset, name: str) -> float:
     return float(np.asarray(ds.coords[name].values, dtype=float))
 
 
+def load_direction_speed(operating) -> float:
+    """Angular speed [rad/s] of the load direction of an operating point (SI, rad; the attributes
+    of :data:`solver.results.dataset.OPERATING_FIELDS`): 0 (fixed in space), or the inner ring's
+    for a ring-fixed misalignment without radial load."""
+    frame = str(operating.misalignment_frame)
+    misaligned = abs(float(operating.misalignment)) > 0.0
+    radial = abs(float(operating.radial_load)) > 0.0
+    if frame == "ring" and misaligned and not radial:
+        return float(operating.inner_ring_speed)
+    return 0.0
+
+
 def _load_direction_speed(ds: xr.Dataset) -> float:
-    """Angular speed [rad/s] of the load direction: 0 (fixed in space), or the inner ring's for a
-    ring-fixed misalignment without radial load."""
+    """:func:`load_direction_speed` of a result, from its coordinates."""
     frame = str(np.asarray(ds.coords["misalignment_frame"].values).item())
     misaligned = abs(_coord(ds, "misalignment")) > 0.0
     radial = abs(_coord(ds, "radial_load")) > 0.0
@@ -96,19 +108,70 @@ def _contacts(ds: xr.Dataset, name: str, race: str, samples: slice | None) -> np
 def rating_life(ds: xr.Dataset, start: int = 0) -> xr.Dataset:
     """Life metrics (:data:`LIFE_METRICS`) of one result element (no stacking dimensions).
     ``start``: first time sample of the analysed window of a dynamic result."""
-    geometry = geometry_from_result(ds)
+    samples = _window(ds, start) if "time" in ds.dims else None
+    loads = [_contacts(ds, "contact_load", race, samples) for race in ("inner", "outer")]
+    angles = [
+        np.radians(_contacts(ds, "contact_angle", race, samples)) for race in ("inner", "outer")
+    ]
+    inner_speed, outer_speed = ring_speeds(ds)
+    return xr.Dataset(
+        life_metrics(
+            geometry_from_result(ds),
+            inner_speed,
+            outer_speed,
+            _coord(ds, "axial_load"),
+            _coord(ds, "radial_load"),
+            _load_direction_speed(ds),
+            loads,
+            angles,
+        )
+    )
+
+
+def snapshot_life_metrics(geometry, operating, contact_load, contact_angle) -> dict[str, tuple]:
+    """:func:`life_metrics` of one quasi-static snapshot: ``operating`` (SI, rad; the attributes of
+    :data:`solver.results.dataset.OPERATING_FIELDS`), ``contact_load`` [N] and ``contact_angle``
+    [rad] (Z, 2) [inner, outer]. The same figures as :func:`rating_life` of its Dataset, without
+    reading them back from it."""
+    load = np.asarray(contact_load, dtype=float)
+    angle = np.asarray(contact_angle, dtype=float)
+    return life_metrics(
+        geometry,
+        float(operating.inner_ring_speed),
+        float(operating.outer_ring_speed),
+        float(operating.axial_load),
+        float(operating.radial_load),
+        load_direction_speed(operating),
+        [load[None, :, 0], load[None, :, 1]],
+        [angle[None, :, 0], angle[None, :, 1]],
+    )
+
+
+def life_metrics(
+    geometry,
+    inner_speed: float,
+    outer_speed: float,
+    axial_load: float,
+    radial_load: float,
+    load_speed: float,
+    loads,
+    angles,
+) -> dict[str, tuple]:
+    """Life metrics (:data:`LIFE_METRICS`) as ``{name: (dims, values, attrs)}`` from arrays:
+    the :class:`solver.geometry.BearingGeometry`, the ring speeds [rad/s], the applied axial and
+    radial loads [N], the load direction's speed [rad/s] (:func:`load_direction_speed`), and per
+    race (inner, outer) the contact loads [N] and contact angles [rad] of every sample and ball
+    (samples, Z): one sample for a quasi-static result, the analysed window of a dynamic one."""
     z = geometry.ball_count
     d, dm = geometry.ball_diameter, geometry.pitch_diameter
-    inner_speed, outer_speed = ring_speeds(ds)
     relative = inner_speed - outer_speed
     attrs: dict[str, dict] = {name: {} for name in LIFE_METRICS}
 
     # ISO 281
     alpha0 = geometry.free_contact_angle
-    axial, radial = _coord(ds, "axial_load"), _coord(ds, "radial_load")
     try:
         c = life.basic_dynamic_load_rating(d, dm, alpha0, z)
-        p = life.equivalent_dynamic_load(axial, radial, alpha0, d, z)
+        p = life.equivalent_dynamic_load(axial_load, radial_load, alpha0, d, z)
         l10 = life.basic_rating_life(c, p) * 1e6
     except life.LifeRangeError as error:
         c = p = l10 = math.nan
@@ -117,15 +180,14 @@ def rating_life(ds: xr.Dataset, start: int = 0) -> xr.Dataset:
         attrs["basic_rating_life_time"]["note"] = attrs["basic_rating_life"]["note"]
 
     # ISO/TS 16281
-    samples = _window(ds, start) if "time" in ds.dims else None
-    load_speed = _load_direction_speed(ds)
     q_c = np.full(2, math.nan)
     q_e = np.full(2, math.nan)
     raceway = np.full(2, math.inf)
+    means = {}
     for k, (race, speed) in enumerate((("inner", inner_speed), ("outer", outer_speed))):
         conformity = geometry.inner_conformity if k == 0 else geometry.outer_conformity
-        load = _contacts(ds, "contact_load", race, samples)
-        angle = np.radians(_contacts(ds, "contact_angle", race, samples))
+        load = np.asarray(loads[k], dtype=float)
+        angle = np.asarray(angles[k], dtype=float)
         rotating = speed != load_speed
         ratings = life.raceway_load_rating(d, dm, conformity, angle, z, k == 0)
         loaded = loaded_mask(load, angle)
@@ -135,11 +197,8 @@ def rating_life(ds: xr.Dataset, start: int = 0) -> xr.Dataset:
             q_c[k] = life.raceway_load_rating(
                 d, dm, conformity, float(angle[loaded].mean()), z, k == 0
             )
-        attrs["raceway_equivalent_load"].setdefault("mean", {})[race] = (
-            "cubic" if rotating else "10/3"
-        )
+        means[race] = "cubic" if rotating else "10/3"
     l10r = life.combined_life(raceway[0] / 1e6, raceway[1] / 1e6) * 1e6
-    means = attrs["raceway_equivalent_load"].pop("mean")
     attrs["raceway_equivalent_load"]["note"] = (
         f"inner race: {means['inner']} mean, outer race: {means['outer']} mean (ring rotating / "
         "stationary relative to the load)"
@@ -170,7 +229,14 @@ def rating_life(ds: xr.Dataset, start: int = 0) -> xr.Dataset:
     for name, value in values.items():
         spec = variable(name)
         out[name] = (spec.dims, value, {**spec.attrs(), **attrs[name]})
-    return xr.Dataset(out)
+    return out
 
 
-__all__ = ["LIFE_METRICS", "STEEL_NOTE", "rating_life"]
+__all__ = [
+    "LIFE_METRICS",
+    "STEEL_NOTE",
+    "life_metrics",
+    "load_direction_speed",
+    "rating_life",
+    "snapshot_life_metrics",
+]

@@ -14,7 +14,8 @@ import solver
 from solver.catalogue import resolve_case
 from solver.inputs import rpm_to_rad_s, to_inputs
 from solver.models.quasistatic import kernels, solve_operating_point, solve_quasistatic_state
-from solver.models.quasistatic.solver import _Problem
+from solver.models.quasistatic import traction_balance as balance_module
+from solver.models.quasistatic.solver import _fixed_point_settled, _Problem
 from solver.models.quasistatic.traction_balance import traction_balance, traction_setup
 
 
@@ -129,6 +130,58 @@ def test_the_case_switch_selects_race_control():
     race = case.with_values({"simulation.quasistatic_ball_speeds": "race_control"})
     assert set(solve_quasistatic_state(race).race_control) == {"outer"}
     assert set(solve_quasistatic_state(case).race_control) == {"traction"}
+
+
+@pytest.mark.parametrize("name", ["spindle-combined-load", "218-heavy-combined"])
+def test_joint_newton_lands_on_the_bracketed_balance(name, monkeypatch):
+    """The first traction balance (from the race-control solution, the farthest start) is solved
+    by the joint Newton on the balls' spins and the cage speed without its fall-back, and gives
+    the balance that the fall-back (cage speed bracketed and found by Brent's method, each ball
+    solved on its own) gives: the same cage speed, spins, attitudes and pocket forces within the
+    solvers' tolerances."""
+    inputs = to_inputs(resolve_case(name))
+    problem = _Problem(inputs.geometry, inputs.operating)
+    model = problem.model(1.0)
+    race = solve_operating_point(inputs.geometry, inputs.operating)
+    q = np.concatenate([race.inner_ring_offset, race.inner_ring_tilt])
+    control = kernels.race_control_rows(np.asarray(race.race_control) == "inner")
+    states = kernels.evaluate_balls(q, problem.azimuth, race.ball_position, control, model)
+    curve, nodes = traction_setup(inputs.lubricant)
+    args = (inputs.geometry, model, states, race.ball_position, q, problem.azimuth, control)
+    fallbacks = []
+    pocket_force_sum = balance_module.pocket_force_sum
+
+    def counted(*a):
+        fallbacks.append(a[0])
+        return pocket_force_sum(*a)
+
+    monkeypatch.setattr(balance_module, "pocket_force_sum", counted)
+    joint, joint_pocket = traction_balance(*args, curve, nodes)
+    assert fallbacks == []
+    monkeypatch.setattr(balance_module, "solve_balance", lambda w, omega_c, *a: (omega_c, False))
+    bracketed, bracketed_pocket = traction_balance(*args, curve, nodes)
+    assert len(fallbacks) > 2  # the bracket and Brent's method ran
+    ring = abs(inputs.operating.inner_ring_speed - inputs.operating.outer_ring_speed)
+    cage = kernels.CONTROL_ORBITAL
+    assert joint[0, cage] == pytest.approx(bracketed[0, cage], rel=1e-9)
+    assert joint[0, cage] != pytest.approx(race.cage_speed, rel=1e-4)  # it moved from the start
+    spin, attitude = kernels.CONTROL_SPIN, kernels.CONTROL_ATTITUDE
+    np.testing.assert_allclose(joint[:, spin], bracketed[:, spin], rtol=0, atol=1e-8 * ring)
+    np.testing.assert_allclose(joint[:, attitude], bracketed[:, attitude], rtol=0, atol=1e-8)
+    scale = np.max(np.abs(bracketed_pocket))
+    np.testing.assert_allclose(joint_pocket, bracketed_pocket, rtol=0, atol=1e-6 * scale)
+
+
+def test_fixed_point_stops_on_its_distance_to_the_limit():
+    """The traction fixed point stops when its last change (in tolerances) is within the
+    tolerance, or when the contraction of the last changes puts the limit within it."""
+    assert _fixed_point_settled([1e3, 10.0, 0.9])  # the last change is within the tolerance
+    # contracting by 1/100: the limit is 0.5 tolerances beyond the last change of 50
+    assert _fixed_point_settled([1e6, 1e4, 50.0])
+    assert not _fixed_point_settled([1e3, 1e2, 10.0])  # by 1/10: still 1.1 tolerances to go
+    assert not _fixed_point_settled([1e2, 90.0, 2.0])  # one slow ratio: no estimate
+    assert not _fixed_point_settled([1e10, 1e7, 500.0])  # too large a change to extrapolate
+    assert not _fixed_point_settled([5.0, 2.0])  # two changes: one ratio only
 
 
 def _dynamic_track(ds, race):

@@ -25,7 +25,7 @@ from solver.physics.hertz_fast import (
 )
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
 from solver.results.dataset import build_result, case_text
-from solver.results.life import rating_life
+from solver.results.life import snapshot_life_metrics
 from solver.results.variables import VARIABLES
 
 MODEL = "quasistatic"
@@ -216,7 +216,13 @@ def solution_to_dataset(
             "misalignment_frame = ring: the quasi-static solution is the snapshot at t = 0, when "
             "the ring-fixed tilt axis coincides with the given azimuth"
         )
-    ds = build_result(
+    # the rating lives (solver.results.life) from the arrays, not read back from the Dataset
+    lives = snapshot_life_metrics(geometry, operating, sol.contact_load, alpha)
+    for name, (_, values, life_attrs) in lives.items():
+        data[name] = values
+        if "note" in life_attrs:
+            descriptions[name] = {"note": life_attrs["note"]}
+    return build_result(
         MODEL,
         {name: (VARIABLES[name].dims_for(MODEL), values) for name, values in data.items()},
         geometry,
@@ -225,7 +231,6 @@ def solution_to_dataset(
         attrs=attrs,
         variable_attrs=descriptions,
     )
-    return ds.assign(rating_life(ds).data_vars)
 
 
 #: The dynamic result's variables holding its quasi-static start, and the quasi-static result's

@@ -24,13 +24,14 @@ from solver.physics.kinematics import race_control_is_inner
 
 from . import kernels
 from .solution import QuasiStaticSolution
-from .traction_balance import BalanceFailed, traction_balance, traction_setup
+from .traction_balance import JACOBIAN_SIZE, BalanceFailed, traction_balance, traction_setup
 
 RING_TOLERANCE = 1e-11  # scaled residual norm at which the ring equilibrium is accepted
 MAX_RING_ITERATIONS = 60
 MAX_RACE_CONTROL_ITERATIONS = 12
 MAX_TRACTION_ITERATIONS = 30
 TRACTION_SPEED_TOLERANCE = 1e-9  # fixed point: ball speeds relative to the ring speed, angles rad
+SETTLE_CHANGE_LIMIT = 100.0  # largest last change (in tolerances) a contraction estimate may accept
 
 
 @njit(cache=True)
@@ -228,6 +229,22 @@ def _continuation(solve, start: float, target: float, min_step: float):
     return current
 
 
+def _fixed_point_settled(changes) -> bool:
+    """True when the traction fixed point is within TRACTION_SPEED_TOLERANCE of its limit, from
+    ``changes``, the largest change of the ball speeds (relative to the ring speed) and attitudes
+    [rad] in each iteration so far, in units of the tolerance: the last change is within the
+    tolerance, or the iteration contracts by a ratio r < 1/2 (the larger of the last two ratios of
+    successive changes) so that the distance still to go, about r / (1 - r) times the last change,
+    is within it (for a last change of at most SETTLE_CHANGE_LIMIT tolerances)."""
+    last = changes[-1]
+    if last <= 1.0:
+        return True
+    if len(changes) < 3 or last > SETTLE_CHANGE_LIMIT:
+        return False
+    ratio = max(changes[-1] / changes[-2], changes[-2] / changes[-3])
+    return ratio < 0.5 and last * ratio / (1.0 - ratio) <= 1.0
+
+
 def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
     """From a race-control solution at full speed: ball speeds and transverse tractions from the
     traction balance (:mod:`.traction_balance`), iterated with the ring solve to a fixed point.
@@ -238,6 +255,8 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
     relative = abs(problem.operating.inner_ring_speed - problem.operating.outer_ring_speed)
     total = 0
     merit = math.nan
+    jacobian = np.full((problem.azimuth.size, JACOBIAN_SIZE), np.nan)  # kept between balances
+    changes = []  # change of the ball speeds in each iteration, in tolerances
     for iteration in range(1, MAX_TRACTION_ITERATIONS + 1):
         states = kernels.evaluate_balls(
             state.q, problem.azimuth, state.position, state.control, model
@@ -252,6 +271,7 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
             state.control,
             curve,
             nodes,
+            jacobian,
         )
         previous = state.control
         state.control = control
@@ -259,14 +279,18 @@ def _solve_with_traction_balance(problem: _Problem, state: _State, lubricant):
         total += iterations
         if not converged:
             raise BalanceFailed("no ring equilibrium with the ball speeds of the traction balance")
+        if previous[0, kernels.CONTROL_MODE] != kernels.TRACTION_BALANCE:
+            continue  # the first balance: from race control
         change = np.abs(control - previous)
-        settled = (
-            previous[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE
-            and change[:, kernels.CONTROL_ORBITAL].max() <= TRACTION_SPEED_TOLERANCE * relative
-            and change[:, kernels.CONTROL_SPIN].max() <= TRACTION_SPEED_TOLERANCE * relative
-            and change[:, kernels.CONTROL_ATTITUDE].max() <= TRACTION_SPEED_TOLERANCE
+        changes.append(
+            max(
+                change[:, kernels.CONTROL_ORBITAL].max() / relative,
+                change[:, kernels.CONTROL_SPIN].max() / relative,
+                change[:, kernels.CONTROL_ATTITUDE].max(),
+            )
+            / TRACTION_SPEED_TOLERANCE
         )
-        if settled:
+        if _fixed_point_settled(changes):
             cage = control[0, kernels.CONTROL_ORBITAL] / (2 * math.pi) * 60.0
             return (
                 total,

@@ -19,9 +19,18 @@ surface) and the dynamic model's local law (``lubricant.traction_model``): the c
 curve, or the rheology of the oil with each contact's central film (Hamrock-Dowson with the inlet
 thermal reduction, at the entrainment speed of rolling at the iterate's cage speed) and transit
 time, evaluated in the cage frame (ball centre at rest, rings turning at
-omega_ring - omega_c about the bearing axis, the inner ring about its displaced centre). For each
-trial cage speed every ball's w is found by Newton's method (finite-difference 3x3 Jacobian); the
-cage speed is the root of sum P_j.
+omega_ring - omega_c about the bearing axis, the inner ring about its displaced centre).
+
+Every ball's w and omega_c are solved together by Newton's method on the bordered system
+(:func:`solve_balance`, in numba): 3 moment equations per ball in its own w and omega_c, and
+sum P_j = 0. Its Jacobian is block diagonal with one bordering row and column: per ball a
+finite-difference 3x3 block dR/dw, a column dR/d omega_c, a row dF_theta/dw and a corner
+dF_theta/d omega_c, solved by eliminating each ball's block (Schur complement on the cage speed).
+The blocks are kept from one iteration, and one balance of the quasi-static fixed point, to the next
+while the residual falls fast, and recomputed otherwise. Where this does not converge, the previous
+method is the fall-back: the cage speed bracketed and found by Brent's method as the root of
+sum P_j, every ball's w solved on its own by Newton's method at each trial cage speed
+(SciPy's hybrid method where that stalls).
 
 The result per ball is written into the quasi-static model's kinematics record
 (:data:`kernels.TRACTION_BALANCE`): omega_c, spin speed and attitude (the meridian-plane part of w;
@@ -60,12 +69,14 @@ from solver.physics.traction import (
     KIN_SIZE,
     LAW_RHEOLOGY,
     LAW_SLIP_CURVE,
+    NODE_BATCH,
+    NODE_BATCH_ROWS,
     TR_FORCE,
     TR_MOMENT_BALL,
     TRACTION_OUT_SIZE,
     deformed_surface_curvature,
     ellipse_quadrature,
-    ellipse_traction_law,
+    ellipse_traction_into,
     split_ellipse_rule,
     traction_curve_parameters,
 )
@@ -120,92 +131,114 @@ def traction_setup(lubricant):
     return traction, nodes
 
 
-def _contact_films(geometry, contacts, states, omega_inner, omega_outer, rheology):
+@njit(cache=True)
+def _contact_films(contacts, states, model, rheology):
     """Central film and transit time of each loaded contact into ``contacts`` (CT_FILM,
     CT_TRANSIT): entrainment u_e = r |omega_ring - omega_c| of rolling at the contact radius r
     about the bearing axis (omega_c: the iterate's orbital speed), Hamrock-Dowson film with the
     inlet thermal reduction (solver.physics.rheology.film_and_rolling_force), R_x = D (1 -+ gamma)
-    / 2, ellipticity a / b, transit b / u_e."""
-    D = geometry.ball_diameter
+    / 2, ellipticity a / b, transit b / u_e. ``model``: kernels.BallModel at full speed."""
+    D = model.ball_diameter
     for j in range(contacts.shape[0]):
         omega_c = states.orbital_speed[j]
-        for k, omega_ring in ((0, omega_inner), (1, omega_outer)):
+        for k in range(2):
+            omega_ring = model.inner_ring_speed if k == 0 else model.outer_ring_speed
             rec = contacts[j, k]
             load, a, b = rec[CT_LOAD], rec[CT_SEMI_MAJOR], rec[CT_SEMI_MINOR]
             entrainment = abs(rec[CT_POINT + 1]) * abs(omega_ring - omega_c)
             if not (load > 0.0 and a > 0.0 and b > 0.0 and entrainment > 0.0):
                 continue
-            gamma = D * math.cos(states.contact_angle[j, k]) / geometry.pitch_diameter
+            gamma = D * math.cos(states.contact_angle[j, k]) / model.pitch_diameter
             r_x = 0.5 * D * (1.0 - gamma if k == 0 else 1.0 + gamma)
             p_max = 1.5 * load / (math.pi * a * b)
             film, _, _ = film_and_rolling_force(
-                entrainment, 0.0, load, r_x, a / b, p_max, geometry.effective_modulus, rheology
+                entrainment, 0.0, load, r_x, a / b, p_max, model.effective_modulus, rheology
             )
             rec[CT_FILM] = film
             rec[CT_TRANSIT] = b / entrainment
 
 
-def contact_records(geometry, states, position, q, azimuth):
-    """Contact records (Z, 2, RECORD_SIZE; films left 0) [inner, outer] and inner-ring centres
-    (Z, 3) in each ball's azimuth frame: components (x, r, theta) of the inertial frame (origin at
-    the outer ring centre) along (e_x, e_r, e_theta) at the ball's azimuth. For the iterate
-    ``states`` (kernels.BallStates), ball ``position`` (Z, 2) relative to the outer groove
-    curvature centre and ring displacement ``q`` (dx, dy, dz, theta_y, theta_z); the contact points
-    lie on the ball surface at D/2 - delta/2 from its centre, the ellipses come from hertz_fast."""
-    z = azimuth.size
-    D = geometry.ball_diameter
-    contacts = np.zeros((z, 2, RECORD_SIZE))
-    ring_centre = np.zeros((z, 3))
-    e_mod = geometry.effective_modulus
-    curvature = (
-        deformed_surface_curvature(geometry.inner_groove_radius, D),
-        deformed_surface_curvature(geometry.outer_groove_radius, D),
-    )
-    for j in range(z):
-        centre_x = geometry.outer_curvature_center_axial + position[j, 0]
-        centre_r = geometry.outer_curvature_center_radius + position[j, 1]
+@njit(cache=True)
+def _fill_contact_records(
+    states, position, q, azimuth, model, inner_curvature, outer_curvature, contacts, ring_centre
+):
+    """Contact records [inner, outer] into ``contacts`` (Z, 2, RECORD_SIZE; zeros in, films left 0)
+    and inner-ring centres into ``ring_centre`` (Z, 3), in each ball's azimuth frame: components
+    (x, r, theta) of the inertial frame (origin at the outer ring centre) along (e_x, e_r, e_theta)
+    at the ball's azimuth. For the iterate ``states`` (kernels.evaluate_balls), ball ``position``
+    (Z, 2) relative to the outer groove curvature centre and ring displacement ``q`` (dx, dy, dz,
+    theta_y, theta_z); ``model``: kernels.BallModel; curvatures of the deformed contact surfaces
+    [1/m]. The contact points lie on the ball surface at D/2 - delta/2 from its centre, the
+    ellipses come from hertz_fast."""
+    D = model.ball_diameter
+    e_mod = model.effective_modulus
+    for j in range(azimuth.shape[0]):
+        centre_x = model.outer_center_axial + position[j, 0]
+        centre_r = model.outer_center_radius + position[j, 1]
         psi = azimuth[j]
-        ring_centre[j] = (q[0], q[1] * math.cos(psi) + q[2] * math.sin(psi), 0.0)
+        ring_centre[j, 0] = q[0]
+        ring_centre[j, 1] = q[1] * math.cos(psi) + q[2] * math.sin(psi)
         ring_centre[j, 2] = -q[1] * math.sin(psi) + q[2] * math.cos(psi)
-        for k, is_inner in ((0, True), (1, False)):
+        for k in range(2):
+            is_inner = k == 0
             load = states.contact_load[j, k]
             alpha = states.contact_angle[j, k]
             deflection = max(states.contact_deflection[j, k], 0.0)
             sign = -1.0 if is_inner else 1.0  # inner contact on the -u(alpha) side
-            n = (sign * math.sin(alpha), sign * math.cos(alpha), 0.0)
+            n0 = sign * math.sin(alpha)
+            n1 = sign * math.cos(alpha)
             reach = 0.5 * D - 0.5 * deflection
             rec = contacts[j, k]
-            rec[CT_POINT] = centre_x + reach * n[0]
-            rec[CT_POINT + 1] = centre_r + reach * n[1]
+            rec[CT_POINT] = centre_x + reach * n0
+            rec[CT_POINT + 1] = centre_r + reach * n1
             rec[CT_POINT + 2] = 0.0
-            rec[CT_NORMAL : CT_NORMAL + 3] = n
-            rec[CT_ROLLING : CT_ROLLING + 3] = (0.0, 0.0, 1.0)
+            rec[CT_NORMAL] = n0
+            rec[CT_NORMAL + 1] = n1
+            rec[CT_NORMAL + 2] = 0.0
+            rec[CT_ROLLING] = 0.0
+            rec[CT_ROLLING + 1] = 0.0
+            rec[CT_ROLLING + 2] = 1.0
             rec[CT_LOAD] = load
-            rec[CT_CURVATURE] = curvature[k]
+            rec[CT_CURVATURE] = inner_curvature if is_inner else outer_curvature
             if load > 0.0:
-                conformity = geometry.inner_conformity if is_inner else geometry.outer_conformity
-                gamma = D * math.cos(alpha) / geometry.pitch_diameter
+                conformity = model.inner_conformity if is_inner else model.outer_conformity
+                gamma = D * math.cos(alpha) / model.pitch_diameter
                 s, f = curvature_sum_and_difference_fast(D, conformity, gamma, is_inner)
                 a, b, _, _ = contact_ellipse_fast(load, s, f, e_mod)
                 rec[CT_SEMI_MAJOR] = a
                 rec[CT_SEMI_MINOR] = b
-    return contacts, ring_centre
 
 
 @njit(cache=True)
-def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia):
-    """Moment residual [N m] (3) of one ball spinning at w relative to the cage, and its
-    circumferential traction force [N] (sum of both contacts), plus both traction forces (2, 3)."""
-    out = np.empty(TRACTION_OUT_SIZE)
-    res = np.zeros(3)
-    forces = np.zeros((2, 3))
+def _ball_moments(
+    w,
+    omega_c,
+    contact_i,
+    contact_o,
+    kin_i,
+    kin_o,
+    traction,
+    u_reg,
+    nodes,
+    inertia,
+    batch,
+    out,
+    res,
+    forces,
+):
+    """Moment residual [N m] into ``res`` (3) of one ball spinning at w relative to the cage, both
+    traction forces [N] into ``forces`` (2, 3); returns its circumferential traction force [N]
+    (sum of both contacts). ``batch`` and ``out``: scratch of ellipse_traction_into."""
+    res[0] = 0.0
+    res[1] = 0.0
+    res[2] = 0.0
     for k in range(2):
         kin = kin_i if k == 0 else kin_o
         contact = contact_i if k == 0 else contact_o
         kin[KIN_BALL_OMEGA] = w[0]
         kin[KIN_BALL_OMEGA + 1] = w[1]
         kin[KIN_BALL_OMEGA + 2] = w[2]
-        ellipse_traction_law(
+        ellipse_traction_into(
             contact,
             kin,
             int(traction[TL_LAW]),
@@ -216,6 +249,7 @@ def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_r
             u_reg,
             nodes,
             out,
+            batch,
         )
         for m in range(3):
             res[m] += out[TR_MOMENT_BALL + m]
@@ -223,7 +257,32 @@ def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_r
     # minus d(J w_abs)/dt = omega_c e_x x J w, components (x, r, theta) = J omega_c (0, -w_t, w_r)
     res[1] += inertia * omega_c * w[2]
     res[2] -= inertia * omega_c * w[1]
-    return res, forces[0, 2] + forces[1, 2], forces
+    return forces[0, 2] + forces[1, 2]
+
+
+@njit(cache=True)
+def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia):
+    """Moment residual [N m] (3) of one ball spinning at w relative to the cage, and its
+    circumferential traction force [N] (sum of both contacts), plus both traction forces (2, 3)."""
+    res = np.zeros(3)
+    forces = np.zeros((2, 3))
+    f_theta = _ball_moments(
+        w,
+        omega_c,
+        contact_i,
+        contact_o,
+        kin_i,
+        kin_o,
+        traction,
+        u_reg,
+        nodes,
+        inertia,
+        np.empty((NODE_BATCH_ROWS, NODE_BATCH)),
+        np.empty(TRACTION_OUT_SIZE),
+        res,
+        forces,
+    )
+    return res, f_theta, forces
 
 
 @njit(cache=True)
@@ -330,6 +389,368 @@ def solve_ball_spin(
             return w, f_theta, forces, norm <= 1e3 * tol
         w, res, f_theta, forces, norm = wn, rn, fn, forces_n, nn
     return w, f_theta, forces, norm <= 1e3 * tol
+
+
+#: Columns of the bordered Jacobian kept per ball by :func:`solve_balance` (``JACOBIAN_SIZE``):
+#: A^-1 (3 x 3, row-major) with A = dR/dw the ball's moment Jacobian, A^-1 c with c = dR/d omega_c,
+#: r = dF/dw and s = dF/d omega_c, F the ball's circumferential traction.
+JB_INVERSE = 0
+JB_CAGE = 9
+JB_ROW = 12
+JB_CORNER = 15
+JACOBIAN_SIZE = 16
+MAX_BALANCE_ITERATIONS = 40
+SLOW_CONTRACTION = 0.25  # a reused Jacobian is refreshed when the merit falls by less
+BALL_STEP_LIMIT = 0.05  # largest change of a ball's spin in one step, relative to its speed
+CAGE_STEP_LIMIT = 0.05  # largest change of the cage speed in one step, relative to the ring's
+
+
+@njit(cache=True)
+def _cage_frame(kin_i, kin_o, omega_c, omega_inner, omega_outer, ring_centre, centre):
+    """Kinematics records (inner, outer) of one ball in the cage frame at cage speed omega_c (the
+    module docstring; the ball's angular velocity is set per evaluation). Slots not written here
+    stay as given (zeros)."""
+    for m in range(3):
+        kin_i[KIN_BALL_CENTRE + m] = centre[m]
+        kin_o[KIN_BALL_CENTRE + m] = centre[m]
+        kin_i[KIN_RING_POINT + m] = ring_centre[m]
+    kin_i[KIN_RING_VELOCITY + 1] = omega_c * ring_centre[2]
+    kin_i[KIN_RING_VELOCITY + 2] = -omega_c * ring_centre[1]
+    kin_i[KIN_RING_OMEGA] = omega_inner - omega_c
+    kin_o[KIN_RING_OMEGA] = omega_outer - omega_c
+
+
+@njit(cache=True)
+def _balance_residuals(
+    w,
+    omega_c,
+    omega_inner,
+    omega_outer,
+    contacts,
+    ring_centres,
+    centres,
+    traction,
+    u_reg,
+    nodes,
+    inertia,
+    active,
+    kin,
+    batch,
+    out,
+    res,
+    f_theta,
+    forces,
+):
+    """Moment residuals ``res`` (Z, 3), circumferential tractions ``f_theta`` (Z) and traction
+    forces ``forces`` (Z, 2, 3) of every active ball at spins ``w`` (Z, 3) and cage speed
+    omega_c; ``kin`` (Z, 2, KIN_SIZE) is left in the cage frame at omega_c."""
+    for j in range(w.shape[0]):
+        if not active[j]:
+            continue
+        _cage_frame(
+            kin[j, 0], kin[j, 1], omega_c, omega_inner, omega_outer, ring_centres[j], centres[j]
+        )
+        f_theta[j] = _ball_moments(
+            w[j],
+            omega_c,
+            contacts[j, 0],
+            contacts[j, 1],
+            kin[j, 0],
+            kin[j, 1],
+            traction,
+            u_reg,
+            nodes,
+            inertia,
+            batch,
+            out,
+            res[j],
+            forces[j],
+        )
+
+
+@njit(cache=True)
+def _balance_merit(res, f_theta, moment_scales, force_scale, active):
+    """Sum of squares of the scaled residuals: ball moments over their moment scales, the sum of
+    the circumferential tractions over ``force_scale``."""
+    total = 0.0
+    excess = 0.0
+    for j in range(res.shape[0]):
+        if active[j]:
+            for m in range(3):
+                total += (res[j, m] / moment_scales[j]) ** 2
+            excess += f_theta[j]
+    return total + (excess / force_scale) ** 2
+
+
+@njit(cache=True)
+def _balls_settled(res, moment_scales, active):
+    """True when every active ball's moment residual is within BALL_TOLERANCE of its scale."""
+    for j in range(res.shape[0]):
+        if active[j]:
+            norm = math.sqrt(res[j, 0] ** 2 + res[j, 1] ** 2 + res[j, 2] ** 2)
+            if not norm <= BALL_TOLERANCE * moment_scales[j]:
+                return False
+    return True
+
+
+@njit(cache=True)
+def _balance_jacobian(
+    w,
+    omega_c,
+    omega_inner,
+    omega_outer,
+    contacts,
+    ring_centres,
+    centres,
+    traction,
+    u_reg,
+    nodes,
+    inertia,
+    active,
+    kin,
+    batch,
+    out,
+    res,
+    f_theta,
+    jacobian,
+):
+    """Finite-difference blocks of the bordered Jacobian at (w, omega_c) into ``jacobian``
+    (Z, JACOBIAN_SIZE), from the residuals ``res`` and ``f_theta`` there (steps as in
+    :func:`solve_ball_spin`). ``kin`` must hold the cage frame at omega_c and is left so.
+    Returns False when a ball's moment Jacobian is singular."""
+    a = np.empty((3, 3))
+    c = np.empty(3)
+    rp = np.empty(3)
+    fp = np.empty((2, 3))
+    wp = np.empty(3)
+    kin_i = np.zeros(KIN_SIZE)
+    kin_o = np.zeros(KIN_SIZE)
+    for j in range(w.shape[0]):
+        if not active[j]:
+            continue
+        wj = w[j]
+        speed = math.sqrt(wj[0] ** 2 + wj[1] ** 2 + wj[2] ** 2)
+        h = 1e-7 * max(speed, abs(omega_c), 1.0)
+        for m in range(3):
+            wp[:] = wj
+            wp[m] += h
+            f_p = _ball_moments(
+                wp,
+                omega_c,
+                contacts[j, 0],
+                contacts[j, 1],
+                kin[j, 0],
+                kin[j, 1],
+                traction,
+                u_reg,
+                nodes,
+                inertia,
+                batch,
+                out,
+                rp,
+                fp,
+            )
+            for r in range(3):
+                a[r, m] = (rp[r] - res[j, r]) / h
+            jacobian[j, JB_ROW + m] = (f_p - f_theta[j]) / h
+        h_c = 1e-7 * max(abs(omega_c), 1.0)
+        kin_i[:] = kin[j, 0]
+        kin_o[:] = kin[j, 1]
+        _cage_frame(
+            kin_i, kin_o, omega_c + h_c, omega_inner, omega_outer, ring_centres[j], centres[j]
+        )
+        f_p = _ball_moments(
+            wj,
+            omega_c + h_c,
+            contacts[j, 0],
+            contacts[j, 1],
+            kin_i,
+            kin_o,
+            traction,
+            u_reg,
+            nodes,
+            inertia,
+            batch,
+            out,
+            rp,
+            fp,
+        )
+        for r in range(3):
+            c[r] = (rp[r] - res[j, r]) / h_c
+        jacobian[j, JB_CORNER] = (f_p - f_theta[j]) / h_c
+        # A^-1 by cofactors; _solve3 gives -A^-1 r, so solve for the unit vectors
+        for m in range(3):
+            unit = np.zeros(3)
+            unit[m] = -1.0
+            col, solvable = _solve3(a, unit)
+            if not solvable:
+                return False
+            for r in range(3):
+                jacobian[j, JB_INVERSE + 3 * r + m] = col[r]
+        for r in range(3):
+            jacobian[j, JB_CAGE + r] = (
+                jacobian[j, JB_INVERSE + 3 * r] * c[0]
+                + jacobian[j, JB_INVERSE + 3 * r + 1] * c[1]
+                + jacobian[j, JB_INVERSE + 3 * r + 2] * c[2]
+            )
+    return True
+
+
+@njit(cache=True)
+def _balance_step(res, f_theta, jacobian, active, step):
+    """Newton step of the bordered system: the balls' spin changes into ``step`` (Z, 3); returns
+    the cage-speed change (NaN when the system is singular)."""
+    numerator = 0.0
+    denominator = 0.0
+    for j in range(res.shape[0]):
+        if not active[j]:
+            continue
+        numerator += f_theta[j]
+        denominator += jacobian[j, JB_CORNER]
+        for r in range(3):
+            x = (
+                jacobian[j, JB_INVERSE + 3 * r] * res[j, 0]
+                + jacobian[j, JB_INVERSE + 3 * r + 1] * res[j, 1]
+                + jacobian[j, JB_INVERSE + 3 * r + 2] * res[j, 2]
+            )
+            step[j, r] = x
+            numerator -= jacobian[j, JB_ROW + r] * x
+            denominator -= jacobian[j, JB_ROW + r] * jacobian[j, JB_CAGE + r]
+    if not (denominator != 0.0 and math.isfinite(numerator) and math.isfinite(denominator)):
+        return math.nan
+    d_cage = -numerator / denominator
+    for j in range(res.shape[0]):
+        if active[j]:
+            for r in range(3):
+                step[j, r] = -(step[j, r] + jacobian[j, JB_CAGE + r] * d_cage)
+    return d_cage
+
+
+@njit(cache=True)
+def solve_balance(
+    w,
+    omega_c,
+    omega_inner,
+    omega_outer,
+    contacts,
+    ring_centres,
+    centres,
+    traction,
+    u_reg,
+    nodes,
+    inertia,
+    moment_scales,
+    force_scale,
+    active,
+    jacobian,
+    refresh,
+    forces,
+):
+    """Every active ball's spin w (Z, 3) relative to the cage and the cage speed omega_c [rad/s]
+    solved together by Newton's method on the bordered system: each ball's moment balance
+    (3 equations in its own w and omega_c) and the cage's, sum of the circumferential tractions
+    = 0. The Jacobian's blocks (:func:`_balance_jacobian`) are kept in ``jacobian`` between
+    iterations and calls while the merit falls by at least a factor SLOW_CONTRACTION per step, and
+    refreshed otherwise (``refresh`` True: start with a fresh one). Steps are limited to
+    BALL_STEP_LIMIT of a ball's speed and CAGE_STEP_LIMIT of the ring speed for the cage, then
+    halved until the merit falls.
+
+    Converged when every ball's moment residual is within BALL_TOLERANCE of its scale and the
+    cage-speed step is within CAGE_SPEED_TOLERANCE of omega_c. ``w`` in: the start, out: the
+    solution; ``forces`` (Z, 2, 3) out: the traction forces there. Returns (omega_c, converged);
+    not converged leaves ``w`` at the last iterate."""
+    z = w.shape[0]
+    kin = np.zeros((z, 2, KIN_SIZE))
+    batch = np.empty((NODE_BATCH_ROWS, NODE_BATCH))
+    out = np.empty(TRACTION_OUT_SIZE)
+    res = np.zeros((z, 3))
+    f_theta = np.zeros(z)
+    trial_w = w.copy()
+    trial_res = np.zeros((z, 3))
+    trial_f = np.zeros(z)
+    trial_forces = np.zeros((z, 2, 3))
+    step = np.zeros((z, 3))
+    ring = abs(omega_inner - omega_outer)
+    args = (
+        omega_inner,
+        omega_outer,
+        contacts,
+        ring_centres,
+        centres,
+        traction,
+        u_reg,
+        nodes,
+        inertia,
+        active,
+        kin,
+        batch,
+        out,
+    )
+    _balance_residuals(w, omega_c, *args, res, f_theta, forces)
+    merit = _balance_merit(res, f_theta, moment_scales, force_scale, active)
+    if not math.isfinite(merit):
+        return omega_c, False
+    fresh = False
+    for _ in range(MAX_BALANCE_ITERATIONS):
+        if refresh:
+            if not _balance_jacobian(w, omega_c, *args, res, f_theta, jacobian):
+                return omega_c, False
+            refresh = False
+            fresh = True
+        d_cage = _balance_step(res, f_theta, jacobian, active, step)
+        if not math.isfinite(d_cage):
+            if fresh:
+                return omega_c, False
+            refresh = True
+            continue
+        settled = _balls_settled(res, moment_scales, active)
+        if settled and abs(d_cage) <= CAGE_SPEED_TOLERANCE * abs(omega_c) + 1e-12:
+            return omega_c, True
+        scale = 1.0
+        if abs(d_cage) > CAGE_STEP_LIMIT * ring:
+            scale = CAGE_STEP_LIMIT * ring / abs(d_cage)
+        for j in range(z):
+            if active[j]:
+                speed = math.sqrt(w[j, 0] ** 2 + w[j, 1] ** 2 + w[j, 2] ** 2)
+                size = math.sqrt(step[j, 0] ** 2 + step[j, 1] ** 2 + step[j, 2] ** 2)
+                limit = BALL_STEP_LIMIT * max(speed, 1.0)
+                if size * scale > limit:
+                    scale = limit / size
+        t = scale
+        accepted = False
+        trial_merit = merit
+        for _ls in range(30):
+            for j in range(z):
+                for r in range(3):
+                    trial_w[j, r] = w[j, r] + t * step[j, r]
+            _balance_residuals(
+                trial_w, omega_c + t * d_cage, *args, trial_res, trial_f, trial_forces
+            )
+            trial_merit = _balance_merit(trial_res, trial_f, moment_scales, force_scale, active)
+            if trial_merit < (1.0 - 1e-4 * t) * merit or (
+                _balls_settled(trial_res, moment_scales, active)
+                and abs(t * d_cage) <= CAGE_SPEED_TOLERANCE * abs(omega_c) + 1e-12
+            ):
+                accepted = True
+                break
+            t *= 0.5
+        if not accepted:
+            # the kinematics records in kin are those of the last trial: back to omega_c
+            _balance_residuals(w, omega_c, *args, res, f_theta, forces)
+            if fresh:
+                return omega_c, False
+            refresh = True
+            continue
+        omega_c += t * d_cage
+        w[:] = trial_w
+        res[:] = trial_res
+        f_theta[:] = trial_f
+        forces[:] = trial_forces
+        if trial_merit > SLOW_CONTRACTION * merit:
+            refresh = True
+        merit = trial_merit
+        fresh = False
+    return omega_c, False
 
 
 def _kinematics(omega_c, omega_inner, omega_outer, ring_centre, centre):
@@ -463,21 +884,36 @@ class BalanceFailed(RuntimeError):
     """The traction balance found no cage speed or ball spin (message: why)."""
 
 
-def traction_balance(geometry, model, states, position, q, azimuth, control, traction, nodes):
+def traction_balance(
+    geometry, model, states, position, q, azimuth, control, traction, nodes, jacobian=None
+):
     """New kinematics records (Z, CONTROL_SIZE) from the traction balance of the iterate
-    (``states`` from kernels.evaluate_balls with the records ``control`` it was solved with).
-    Also returns the pocket forces P_j [N] (Z). Raises BalanceFailed when no balance is found."""
+    (``states`` from kernels.evaluate_balls with the records ``control`` it was solved with;
+    ``model``: kernels.BallModel at full speed). Also returns the pocket forces P_j [N] (Z).
+    Raises BalanceFailed when no balance is found.
+
+    The balls' spins and the cage speed are solved together (:func:`solve_balance`); where that
+    does not converge, the cage speed is bracketed and found by Brent's method, each trial cage
+    speed solving every ball on its own (:func:`pocket_force_sum`). ``jacobian`` (Z,
+    JACOBIAN_SIZE), optional: the bordered Jacobian of a previous call for the same bearing
+    (a nearby iterate), reused and updated in place; None or all NaN: computed afresh."""
     z = azimuth.size
-    contacts, ring_centres = contact_records(geometry, states, position, q, azimuth)
+    contacts = np.zeros((z, 2, RECORD_SIZE))
+    ring_centres = np.zeros((z, 3))
+    D = geometry.ball_diameter
+    _fill_contact_records(
+        states,
+        position,
+        np.asarray(q, dtype=float),
+        azimuth,
+        model,
+        deformed_surface_curvature(geometry.inner_groove_radius, D),
+        deformed_surface_curvature(geometry.outer_groove_radius, D),
+        contacts,
+        ring_centres,
+    )
     if int(traction[TL_LAW]) == LAW_RHEOLOGY:
-        _contact_films(
-            geometry,
-            contacts,
-            states,
-            model.inner_ring_speed,
-            model.outer_ring_speed,
-            traction[TL_RHEOLOGY:],
-        )
+        _contact_films(contacts, states, model, traction[TL_RHEOLOGY:])
     centres = np.zeros((z, 3))
     centres[:, 0] = geometry.outer_curvature_center_axial + position[:, 0]
     centres[:, 1] = geometry.outer_curvature_center_radius + position[:, 1]
@@ -491,14 +927,42 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, tra
     omega_c0 = float(np.mean(states.orbital_speed[active]))
     w = np.zeros((z, 3))
     if control[0, kernels.CONTROL_MODE] == kernels.TRACTION_BALANCE:
-        for j in range(z):
-            w[j] = _stored_w(control[j])
+        omega_r = control[:, kernels.CONTROL_SPIN]
+        beta = control[:, kernels.CONTROL_ATTITUDE]
+        w[:, 2] = control[:, kernels.CONTROL_YAW]
     else:
         beta, omega_r = states.attitude_angle, states.spin_speed
-        w[:, 0] = omega_r * np.cos(beta)
-        w[:, 1] = -omega_r * np.sin(beta)
+    w[:, 0] = omega_r * np.cos(beta)
+    w[:, 1] = -omega_r * np.sin(beta)
     forces = np.zeros((z, 2, 3))
     omega_i, omega_o = model.inner_ring_speed, model.outer_ring_speed
+    if jacobian is None:
+        jacobian = np.full((z, JACOBIAN_SIZE), np.nan)
+    newton_w = w.copy()
+    omega_c, converged = solve_balance(
+        newton_w,
+        omega_c0,
+        omega_i,
+        omega_o,
+        contacts,
+        ring_centres,
+        centres,
+        traction,
+        SLIP_REGULARISATION,
+        nodes,
+        inertia,
+        moment_scales,
+        float(loads.max()),
+        active,
+        jacobian,
+        bool(np.isnan(jacobian[active]).any()),
+        forces,
+    )
+    if converged:
+        return _balance_records(
+            control, states, active, newton_w, forces, omega_c, omega_i, omega_o, inertia
+        )
+    jacobian[:] = np.nan
 
     def excess(omega_c):
         return pocket_force_sum(
@@ -547,46 +1011,37 @@ def traction_balance(geometry, model, states, position, q, azimuth, control, tra
         # can lose its sign change when brentq evaluates its ends again
         raise BalanceFailed(f"the cage speed could not be bracketed ({error})") from None
     excess(omega_c)  # leaves w and forces at the root
-    pocket = np.zeros(z)
+    return _balance_records(control, states, active, w, forces, omega_c, omega_i, omega_o, inertia)
+
+
+def _balance_records(control, states, active, w, forces, omega_c, omega_i, omega_o, inertia):
+    """(kinematics records (Z, CONTROL_SIZE), pocket forces (Z)) of a solved balance: spins ``w``
+    (Z, 3) relative to the cage, traction forces ``forces`` (Z, 2, 3), cage speed omega_c. Balls
+    without a loaded contact orbit with the cage and keep their race-control spin."""
     out = control.copy()
-    for j in range(z):
-        if not active[j]:
-            continue
-        alpha_i, alpha_o = states.contact_angle[j]
-        fi, fo = forces[j, 0], forces[j, 1]
-        pocket[j] = -(fi[2] + fo[2])
-        wx, wr, wt = w[j]
-        sign = -1.0 if omega_i - omega_o >= 0.0 else 1.0  # omega_R < 0 for a faster inner ring
-        omega_r = sign * math.hypot(wx, wr)
-        beta = math.atan2(-wr / omega_r, wx / omega_r) if omega_r != 0.0 else 0.0
-        out[j, kernels.CONTROL_MODE] = kernels.TRACTION_BALANCE
-        out[j, kernels.CONTROL_ORBITAL] = omega_c
-        out[j, kernels.CONTROL_SPIN] = omega_r
-        out[j, kernels.CONTROL_ATTITUDE] = beta
-        out[j, kernels.CONTROL_YAW] = wt
-        out[j, kernels.CONTROL_GYRO] = inertia * omega_c * wr
-        out[j, kernels.CONTROL_TAU_INNER] = fi[0] * math.cos(alpha_i) - fi[1] * math.sin(alpha_i)
-        out[j, kernels.CONTROL_TAU_OUTER] = -fo[0] * math.cos(alpha_o) + fo[1] * math.sin(alpha_o)
-    # balls without contact: orbit with the cage, keep their race-control spin
-    for j in range(z):
-        if not active[j]:
-            out[j, kernels.CONTROL_MODE] = kernels.TRACTION_BALANCE
-            out[j, kernels.CONTROL_ORBITAL] = omega_c
-            out[j, kernels.CONTROL_SPIN] = states.spin_speed[j]
-            out[j, kernels.CONTROL_ATTITUDE] = states.attitude_angle[j]
-            out[j, kernels.CONTROL_YAW] = 0.0
-            out[j, kernels.CONTROL_GYRO] = (
-                -inertia * omega_c * states.spin_speed[j] * math.sin(states.attitude_angle[j])
-            )
-            out[j, kernels.CONTROL_TAU_INNER] = 0.0
-            out[j, kernels.CONTROL_TAU_OUTER] = 0.0
+    out[:, kernels.CONTROL_MODE] = kernels.TRACTION_BALANCE
+    out[:, kernels.CONTROL_ORBITAL] = omega_c
+    pocket = np.where(active, -(forces[:, 0, 2] + forces[:, 1, 2]), 0.0)
+    wx, wr, wt = w[:, 0], w[:, 1], w[:, 2]
+    sign = -1.0 if omega_i - omega_o >= 0.0 else 1.0  # omega_R < 0 for a faster inner ring
+    omega_r = sign * np.hypot(wx, wr)
+    spinning = omega_r != 0.0
+    safe = np.where(spinning, omega_r, 1.0)
+    beta = np.where(spinning, np.arctan2(-wr / safe, wx / safe), 0.0)
+    alpha_i, alpha_o = states.contact_angle[:, 0], states.contact_angle[:, 1]
+    fi, fo = forces[:, 0], forces[:, 1]
+    tau_i = fi[:, 0] * np.cos(alpha_i) - fi[:, 1] * np.sin(alpha_i)
+    tau_o = -fo[:, 0] * np.cos(alpha_o) + fo[:, 1] * np.sin(alpha_o)
+    free_spin, free_beta = states.spin_speed, states.attitude_angle
+    out[:, kernels.CONTROL_SPIN] = np.where(active, omega_r, free_spin)
+    out[:, kernels.CONTROL_ATTITUDE] = np.where(active, beta, free_beta)
+    out[:, kernels.CONTROL_YAW] = np.where(active, wt, 0.0)
+    out[:, kernels.CONTROL_GYRO] = np.where(
+        active, inertia * omega_c * wr, -inertia * omega_c * free_spin * np.sin(free_beta)
+    )
+    out[:, kernels.CONTROL_TAU_INNER] = np.where(active, tau_i, 0.0)
+    out[:, kernels.CONTROL_TAU_OUTER] = np.where(active, tau_o, 0.0)
     return out, pocket
-
-
-def _stored_w(row) -> np.ndarray:
-    """w (relative to the cage, azimuth frame) of a TRACTION_BALANCE record."""
-    omega_r, beta = row[kernels.CONTROL_SPIN], row[kernels.CONTROL_ATTITUDE]
-    return np.array([omega_r * math.cos(beta), -omega_r * math.sin(beta), row[kernels.CONTROL_YAW]])
 
 
 __all__ = ["BalanceFailed", "traction_balance", "traction_setup"]

@@ -13,9 +13,10 @@ import pytest
 import solver
 from racetrace.metrics import life_headline
 from solver.catalogue import resolve_case
+from solver.inputs import to_inputs
 from solver.results import summary
 from solver.results.dataset import build_result
-from solver.results.life import LIFE_METRICS, rating_life
+from solver.results.life import LIFE_METRICS, rating_life, snapshot_life_metrics
 from tests.helpers.cases import operating_point
 
 OMEGA = 2 * math.pi * 100.0  # inner ring, rad/s
@@ -164,3 +165,30 @@ def test_quasistatic_dataset_carries_the_lives():
     head = life_headline(ds)
     assert head["L10r_million_revolutions"] == pytest.approx(expected / 1e6)
     assert head["L10_hours"] == pytest.approx(8491.87, rel=1e-5)
+
+
+@pytest.mark.parametrize("name", ["spindle-misalignment-ring", "218-heavy-combined"])
+def test_snapshot_lives_from_arrays_equal_the_dataset_reading(name):
+    """The quasi-static builder computes the lives from its arrays (snapshot_life_metrics) instead
+    of reading them back from the Dataset: the same values and attributes as rating_life of the
+    Dataset, for a ring-fixed misalignment without radial load (its load zone turns with the inner
+    ring: cubic / 10/3 means swap) on a hybrid (the steel note) and for the 218 under a combined
+    load."""
+    case = resolve_case(name)
+    inputs = to_inputs(case)
+    ds = solver.solve_quasistatic(case)
+    load = ds.contact_load.transpose("ball", "race").values
+    angle = np.radians(ds.contact_angle.transpose("ball", "race").values)
+    arrays = snapshot_life_metrics(inputs.geometry, inputs.operating, load, angle)
+    read = rating_life(ds)
+    assert list(arrays) == list(LIFE_METRICS)
+    for metric, (dims, values, attrs) in arrays.items():
+        assert dims == read[metric].dims
+        np.testing.assert_allclose(values, read[metric].values, rtol=1e-13, err_msg=metric)
+        assert attrs == read[metric].attrs, metric
+    note = arrays["raceway_equivalent_load"][2]["note"]
+    if name == "spindle-misalignment-ring":
+        assert note.startswith("inner race: 10/3 mean, outer race: cubic mean")
+        assert arrays["reference_rating_life"][2]["note"].startswith("ISO 281 and ISO/TS 16281")
+    else:
+        assert note.startswith("inner race: cubic mean, outer race: 10/3 mean")
