@@ -96,6 +96,7 @@ _LAZY = {
     "result_warnings": "solver.results.checks",
     "STATIC_PRESSURE_LIMIT": "solver.results.checks",
     "ring_speeds": "solver.results.dataset",
+    "OPERATING_FIELDS": "solver.results.dataset",
     "geometry_from_result": "solver.results.dataset",
     "trajectory_summary": "solver.results.summary",
     "QUASISTATIC_THICKNESS_NOTE": "solver.results.summary",
