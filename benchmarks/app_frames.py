@@ -26,16 +26,9 @@ import time
 import urllib.request
 from pathlib import Path
 
-ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
+# run as a script, sys.path[0] is benchmarks/: put the repository first for ``tools``
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools.chromium import CHROMIUM, LAUNCH_ARGS  # noqa: E402
 
 
 def real_run(runs_dir: Path, run_file: Path | None, revolutions: int = 100):
@@ -160,6 +153,17 @@ def memory_by_process(pid: int) -> str:
     return "\n".join(rows)
 
 
+def open_first_run(page, title: str) -> None:
+    """Open the first saved run of the runs list in ``page``, wait until the app shows the run
+    titled ``title``, then 2 s more for its first frames."""
+    page.locator("#runs-select .v-field").click()
+    page.locator(".v-overlay--active .v-list-item").first.click()
+    page.wait_for_function(
+        f"(window.trame.state.get('result_label') || '').includes('{title}')", timeout=120_000
+    )
+    time.sleep(2)
+
+
 def frames_per_s(page, seconds: float = 8.0) -> float:
     """Distinct images received by #view-3d per second over ``seconds``."""
     page.evaluate("""() => { window.__srcs = new Set(); window.__ticks = 0;
@@ -203,7 +207,7 @@ def main() -> int:
     print(f"server start to first HTTP answer: {time.monotonic() - t_start:.1f} s")
     try:
         with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path="/usr/bin/chromium", args=ARGS)
+            browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
             firsts = []
             # the first load is a new browser (it gets the spare session, started ahead); the
             # others load the page again in the same browser (its own session)
@@ -246,13 +250,7 @@ def main() -> int:
                 f"max {max(times):.2f} s (all: " + ", ".join(f"{x:.2f}" for x in times) + ")"
             )
             before = rss_mb(proc.pid)
-            page.locator("#runs-select .v-field").click()
-            page.locator(".v-overlay--active .v-list-item").first.click()
-            page.wait_for_function(
-                f"(window.trame.state.get('result_label') || '').includes('{info.title}')",
-                timeout=120_000,
-            )
-            time.sleep(2)
+            open_first_run(page, info.title)
             loaded = rss_mb(proc.pid)
             page.locator("#play-button").click()  # play the run
             fps_run = frames_per_s(page)
@@ -272,13 +270,7 @@ def main() -> int:
             other = browser.new_page(viewport={"width": 1200, "height": 900})  # a second session
             other.goto(url, timeout=300_000)
             other.wait_for_function(CHARTS_READY, timeout=300_000)
-            other.locator("#runs-select .v-field").click()
-            other.locator(".v-overlay--active .v-list-item").first.click()
-            other.wait_for_function(
-                f"(window.trame.state.get('result_label') || '').includes('{info.title}')",
-                timeout=120_000,
-            )
-            time.sleep(2)
+            open_first_run(other, info.title)
             print(
                 f"server memory with two sessions, each with the 100-revolution run loaded: "
                 f"{rss_mb(proc.pid):.0f} MB (front, {len(_tree(proc.pid)) - 1} processes below it)"

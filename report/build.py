@@ -128,19 +128,11 @@ def _provenance(ds) -> str:
 
 # ---- one run --------------------------------------------------------------------------------
 def _operating_rows(ds):
-    from solver import RPM, variable
+    from solver import OPERATING_FIELDS, RPM, variable
 
     rows = []
     for name in (
-        "inner_ring_speed",
-        "outer_ring_speed",
-        "axial_load",
-        "radial_load",
-        "radial_load_angle",
-        "misalignment",
-        "misalignment_axis",
-        "misalignment_frame",
-        "tilting_moment",
+        *OPERATING_FIELDS,
         "ball_count",
         "ball_diameter",
         "pitch_diameter",

@@ -103,6 +103,7 @@ _LAZY = {
     "result_warnings": "solver.results.checks",
     "STATIC_PRESSURE_LIMIT": "solver.results.checks",
     "ring_speeds": "solver.results.dataset",
+    "OPERATING_FIELDS": "solver.results.dataset",
     "geometry_from_result": "solver.results.dataset",
     "quasistatic_start": "solver.models.quasistatic.result",
     "result_description": "solver.results.dataset",

@@ -43,6 +43,12 @@ def modest_operating_point(ball_count: int, ball_diameter_mm: float, pitch_diame
     return speed, load
 
 
+def did_you_mean(name: str, names: list[str]) -> str:
+    """ "did you mean A, B? " with up to three of ``names`` close to ``name``, or ""."""
+    close = difflib.get_close_matches(name, names, n=3, cutoff=0.5)
+    return f"did you mean {', '.join(close)}? " if close else ""
+
+
 @dataclass(frozen=True)
 class CatalogueEntry:
     """One shipped bearing or case. ``path`` is an importlib.resources Traversable (a file)."""
@@ -108,12 +114,10 @@ class Catalogue:
         for entry in self.entries:
             if entry.name == name:
                 return entry
-        close = difflib.get_close_matches(name, self.names, n=3, cutoff=0.5)
-        hint = f"did you mean {', '.join(close)}? " if close else ""
         raise CaseError(
             Problem(
                 "catalogue",
-                f"no catalogue entry named {name!r}: {hint}"
+                f"no catalogue entry named {name!r}: {did_you_mean(name, self.names)}"
                 f"known names: {', '.join(self.names)} "
                 "(list them with `racetrace cases`)",
             )
@@ -191,12 +195,10 @@ def resolve_case(path_or_name) -> Case:
         return cat.get(text).load()
     if os.path.lexists(path) or path.suffix == ".toml" or "/" in text or "\\" in text:
         return load_case(path)  # a folder, a FIFO, a device, a missing file: load_case says which
-    close = difflib.get_close_matches(text, cat.names, n=3, cutoff=0.5)
-    hint = f"did you mean {', '.join(close)}? " if close else ""
     raise CaseError(
         Problem(
             "catalogue",
             f"{text!r} is neither a case file nor a catalogue name: "
-            f"{hint}catalogue names: {', '.join(cat.names)}",
+            f"{did_you_mean(text, cat.names)}catalogue names: {', '.join(cat.names)}",
         )
     )

@@ -179,17 +179,18 @@ class BearingScene:
 
     def set_exaggeration(self, factor: float) -> None:
         """Across-groove exaggeration factor (>= 1) for tracks, traces and ellipse centres."""
-        factor = max(1.0, float(factor))
-        if factor != self.options.exaggeration:
-            self.options.exaggeration = factor
-            self._use_source()
-        self.set_frame(self.frame_index)
+        self._set_drawing_factor("exaggeration", factor)
 
     def set_ellipse_scale(self, factor: float) -> None:
         """Drawn size of the contact ellipses (and their painted footprints) / true size, >= 1."""
+        self._set_drawing_factor("ellipse_scale", factor)
+
+    def _set_drawing_factor(self, option: str, factor: float) -> None:
+        """Set the drawing option ``option`` to ``factor`` (at least 1), redraw from the source if
+        it changed, and show the current frame again."""
         factor = max(1.0, float(factor))
-        if factor != self.options.ellipse_scale:
-            self.options.ellipse_scale = factor
+        if factor != getattr(self.options, option):
+            setattr(self.options, option, factor)
             self._use_source()
         self.set_frame(self.frame_index)
 

@@ -64,6 +64,28 @@ def _mb(n: float) -> str:
     return f"{n / 1e6:,.0f} MB" if n >= 1e6 else f"{n / 1e3:,.0f} kB"
 
 
+def _room(
+    need: int,
+    available: int | None,
+    over: str,
+    most: str,
+    errors: list[str],
+    warnings: list[str],
+    **words,
+) -> None:
+    """Append ``over`` to ``errors`` when ``need`` bytes exceed ``available``, or ``most`` to
+    ``warnings`` when they take more than :data:`WARN_FRACTION` of it (nothing when ``available``
+    is None: unknown). In the messages ``{need}`` and ``{available}`` become sizes in words, and
+    the other fields the ``words`` of those names."""
+    if available is None:
+        return
+    fields = {"need": _mb(need), "available": _mb(available), **words}
+    if need > available:
+        errors.append(over.format(**fields))
+    elif need > WARN_FRACTION * available:
+        warnings.append(most.format(**fields))
+
+
 def size_problems(
     memory_bytes: int,
     file_bytes: int,
@@ -88,28 +110,27 @@ def size_problems(
         file_limit = None if soft == resource.RLIM_INFINITY else soft
     errors, warnings = [], []
     fix = "give fewer revolutions or samples per revolution, or split the run"
-    if free_memory is not None:
-        if memory_bytes > free_memory:
-            errors.append(
-                f"the run needs about {_mb(memory_bytes)} of memory and {_mb(free_memory)} are "
-                f"available: {fix}"
-            )
-        elif memory_bytes > WARN_FRACTION * free_memory:
-            warnings.append(
-                f"the run needs about {_mb(memory_bytes)} of memory, more than half of the "
-                f"{_mb(free_memory)} available"
-            )
-    if free_disk is not None:
-        if file_bytes > free_disk:
-            errors.append(
-                f"the result file will take about {_mb(file_bytes)} and '{folder}' has "
-                f"{_mb(free_disk)} free: free some space, choose another --output, or {fix}"
-            )
-        elif file_bytes > WARN_FRACTION * free_disk:
-            warnings.append(
-                f"the result file will take about {_mb(file_bytes)}, more than half of the "
-                f"{_mb(free_disk)} free in '{folder}'"
-            )
+    _room(
+        memory_bytes,
+        free_memory,
+        "the run needs about {need} of memory and {available} are available: {fix}",
+        "the run needs about {need} of memory, more than half of the {available} available",
+        errors,
+        warnings,
+        fix=fix,
+    )
+    _room(
+        file_bytes,
+        free_disk,
+        "the result file will take about {need} and '{folder}' has {available} free: free some "
+        "space, choose another --output, or {fix}",
+        "the result file will take about {need}, more than half of the {available} free in "
+        "'{folder}'",
+        errors,
+        warnings,
+        fix=fix,
+        folder=folder,
+    )
     if file_limit is not None and file_bytes > file_limit:
         errors.append(
             f"the result file will take about {_mb(file_bytes)}, more than this shell's file-size "

@@ -150,6 +150,30 @@ def _cage_mass_g(bearing) -> float:
 
 _PROVENANCES = ("estimated", "manufacturer", "literature", "measured")
 
+# What the inner and outer versions of a key share: bounds and the reasons for them.
+_GROOVE_RATIO_BOUNDS = dict(
+    minimum=0.501,
+    maximum=1.0,
+    maximum_inclusive=False,
+    reason="a groove tighter than the ball cannot hold it, and a closer fit than 0.501 is "
+    "no longer a Hertz point contact; grooves are made from about 0.505",
+    reason_high="a groove radius larger than the ball diameter is not a ball groove",
+)
+_LAND_DIAMETER = dict(
+    unit="mm",
+    default=OPTIONAL,
+    minimum=0.1,
+    maximum=21000.0,
+    reason="a land lies beyond the bore, at least a tenth of a millimetre across",
+    reason_high="a land lies next to the pitch circle, which is at most 20 m across",
+)
+_SPEED_BOUNDS = dict(
+    minimum=-500000.0,
+    maximum=500000.0,
+    reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
+    "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
+)
+
 #: Every case key, in the order of case-format.md (sections, then keys).
 FIELDS: list[Field] = [
     Field("title", "str", "Title", "A short title for this case.", default=""),
@@ -209,24 +233,14 @@ FIELDS: list[Field] = [
         "float",
         "Inner groove radius ratio",
         "Inner groove radius over ball diameter, f_i = r_i / D (typically 0.51-0.57).",
-        minimum=0.501,
-        maximum=1.0,
-        maximum_inclusive=False,
-        reason="a groove tighter than the ball cannot hold it, and a closer fit than 0.501 is "
-        "no longer a Hertz point contact; grooves are made from about 0.505",
-        reason_high="a groove radius larger than the ball diameter is not a ball groove",
+        **_GROOVE_RATIO_BOUNDS,
     ),
     Field(
         "bearing.outer_groove_radius_ratio",
         "float",
         "Outer groove radius ratio",
         "Outer groove radius over ball diameter, f_o = r_o / D (typically 0.51-0.57).",
-        minimum=0.501,
-        maximum=1.0,
-        maximum_inclusive=False,
-        reason="a groove tighter than the ball cannot hold it, and a closer fit than 0.501 is "
-        "no longer a Hertz point contact; grooves are made from about 0.505",
-        reason_high="a groove radius larger than the ball diameter is not a ball groove",
+        **_GROOVE_RATIO_BOUNDS,
     ),
     Field(
         "bearing.free_contact_angle_deg",
@@ -260,24 +274,14 @@ FIELDS: list[Field] = [
         "float",
         "Inner shoulder diameter",
         "Optional inner-ring land diameter, for the contact-ellipse truncation check.",
-        unit="mm",
-        default=OPTIONAL,
-        minimum=0.1,
-        maximum=21000.0,
-        reason="a land lies beyond the bore, at least a tenth of a millimetre across",
-        reason_high="a land lies next to the pitch circle, which is at most 20 m across",
+        **_LAND_DIAMETER,
     ),
     Field(
         "bearing.outer_shoulder_diameter_mm",
         "float",
         "Outer shoulder diameter",
         "Optional outer-ring land diameter, for the contact-ellipse truncation check.",
-        unit="mm",
-        default=OPTIONAL,
-        minimum=0.1,
-        maximum=21000.0,
-        reason="a land lies beyond the bore, at least a tenth of a millimetre across",
-        reason_high="a land lies next to the pitch circle, which is at most 20 m across",
+        **_LAND_DIAMETER,
     ),
     Field(
         "bearing.ball_material",
@@ -665,10 +669,7 @@ FIELDS: list[Field] = [
         "Inner ring speed",
         "Inner ring (shaft) speed, positive about +x.",
         unit="rpm",
-        maximum=500000.0,
-        minimum=-500000.0,
-        reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
-        "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
+        **_SPEED_BOUNDS,
     ),
     Field(
         "operating.outer_ring_speed_rpm",
@@ -677,10 +678,7 @@ FIELDS: list[Field] = [
         "Outer ring speed, positive about +x.",
         unit="rpm",
         default=0.0,
-        maximum=500000.0,
-        minimum=-500000.0,
-        reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
-        "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
+        **_SPEED_BOUNDS,
     ),
     Field(
         "operating.axial_load_N",

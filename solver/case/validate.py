@@ -93,6 +93,18 @@ def _known_names(prefix: tuple[str, ...]) -> list[str]:
     return names
 
 
+def _unknown_in_table(problems: list[Problem], table: str, name: str, value, allowed) -> None:
+    """Record the unknown key ``name`` of the inline table ``table`` (a dotted key), with the
+    closest of the ``allowed`` names as a suggestion."""
+    suggestion = _suggest(name, allowed)
+    key = f"{table}.{name}"
+    _problem(
+        problems,
+        key,
+        _unknown_key_message(key, value, suggestion and f"{table}.{suggestion}", allowed),
+    )
+
+
 def _unknown_key_message(key: str, value, suggestion: str | None, allowed: list[str]) -> str:
     head = f"unknown key {key} = {show(value)}"
     if suggestion:
@@ -168,14 +180,7 @@ def _check_structure(data: dict, problems: list[Problem]) -> None:
                 if sub_allowed and isinstance(value, dict):
                     for sub, sub_value in value.items():
                         if sub not in sub_allowed:
-                            s = _suggest(sub, sub_allowed)
-                            _problem(
-                                problems,
-                                f"{key}.{sub}",
-                                _unknown_key_message(
-                                    f"{key}.{sub}", sub_value, s and f"{key}.{s}", sub_allowed
-                                ),
-                            )
+                            _unknown_in_table(problems, key, sub, sub_value, sub_allowed)
                 continue
             suggestion = _suggest(name, allowed)
             if suggestion:
@@ -323,12 +328,7 @@ def _check_material_table(prefix: str, table: dict, problems: list[Problem]):
     ok = True
     for name, value in table.items():
         if name not in names:
-            s = _suggest(name, names)
-            _problem(
-                problems,
-                f"{prefix}.{name}",
-                _unknown_key_message(f"{prefix}.{name}", value, s and f"{prefix}.{s}", names),
-            )
+            _unknown_in_table(problems, prefix, name, value, names)
             ok = False
     out = {}
     for m in MATERIAL_FIELDS:

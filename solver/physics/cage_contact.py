@@ -431,6 +431,22 @@ def _positive(problems: list[str], name: str, value, allow_zero=False):
     return x
 
 
+def _exponent(problems: list[str], name: str, value):
+    """A contact law's exponent, validated (in [1, 3]); None when it is not (the problem noted)."""
+    n = _positive(problems, name, value)
+    if n is not None and not 1.0 <= n <= 3.0:
+        problems.append(f"{name} = {n:g}: must be in [1, 3]")
+    return n
+
+
+def _damping_depth(problems: list[str], damping_depth, exponent):
+    """The validated damping depth [m]; None: DEFAULT_DAMPING_DEPTH for a law of exponent below
+    1.5, else 0 (no damping ramp)."""
+    if damping_depth is None:
+        damping_depth = DEFAULT_DAMPING_DEPTH if (exponent is not None and exponent < 1.5) else 0.0
+    return _positive(problems, "damping_depth", damping_depth, allow_zero=True)
+
+
 def _raise(function: str, problems: list[str]) -> None:
     """ValueError listing every problem of the arguments of ``function`` (a programming error: the
     case validation keeps case values within these limits)."""
@@ -502,18 +518,14 @@ def pocket_parameters(
     """
     problems: list[str] = []
     k = _positive(problems, "stiffness", stiffness)
-    n = _positive(problems, "exponent", exponent)
-    if n is not None and not 1.0 <= n <= 3.0:
-        problems.append(f"exponent = {n:g}: must be in [1, 3]")
+    n = _exponent(problems, "exponent", exponent)
     z = _positive(problems, "damping_ratio", damping_ratio, allow_zero=True)
     m = _positive(problems, "effective_mass", effective_mass)
     mu = _positive(problems, "friction", friction, allow_zero=True)
     cp = _positive(problems, "clearance", clearance)
     d = _positive(problems, "ball_diameter", ball_diameter)
     ur = _positive(problems, "slip_regularisation", slip_regularisation, allow_zero=True)
-    if damping_depth is None:
-        damping_depth = DEFAULT_DAMPING_DEPTH if (n is not None and n < 1.5) else 0.0
-    dd = _positive(problems, "damping_depth", damping_depth, allow_zero=True)
+    dd = _damping_depth(problems, damping_depth, n)
     _raise("pocket_parameters", problems)
     p = np.zeros(POCKET_PARAM_SIZE)
     p[PP_STIFFNESS] = k
@@ -557,9 +569,7 @@ def land_parameters(
     eta = _positive(problems, "viscosity", viscosity, allow_zero=True)
     k = _positive(problems, "metal_stiffness", metal_stiffness)
     m = _positive(problems, "cage_mass", cage_mass)
-    n = _positive(problems, "metal_exponent", metal_exponent)
-    if n is not None and not 1.0 <= n <= 3.0:
-        problems.append(f"metal_exponent = {n:g}: must be in [1, 3]")
+    n = _exponent(problems, "metal_exponent", metal_exponent)
     z = _positive(problems, "metal_damping_ratio", metal_damping_ratio, allow_zero=True)
     mu = _positive(problems, "metal_friction", metal_friction, allow_zero=True)
     ur = _positive(problems, "slip_regularisation", slip_regularisation, allow_zero=True)
@@ -570,9 +580,7 @@ def land_parameters(
             f"contact_eccentricity = {ec:g} and max_eccentricity = {em:g}: "
             "need 0 < contact < max < 1"
         )
-    if damping_depth is None:
-        damping_depth = DEFAULT_DAMPING_DEPTH if (n is not None and n < 1.5) else 0.0
-    dd = _positive(problems, "damping_depth", damping_depth, allow_zero=True)
+    dd = _damping_depth(problems, damping_depth, n)
     _raise("land_parameters", problems)
     p = np.zeros(LAND_PARAM_SIZE)
     p[LP_RADIUS] = r

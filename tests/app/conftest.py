@@ -19,32 +19,18 @@ import pytest
 import xarray as xr
 
 from solver.geometry import BearingGeometry
-from solver.materials import BUILTIN_MATERIALS
 from solver.results.dataset import describing_coordinates
 from tests.helpers.app_session import trame_server
-from tests.helpers.browser import CHROMIUM, LAUNCH_ARGS
-from tests.helpers.cases import operating_point
+from tests.helpers.cases import SPINDLE_BEARING, case_text, operating_point, spindle_bearing
+from tools.chromium import CHROMIUM, LAUNCH_ARGS
 
 SHAFT_RPM = 6000.0
-FIXTURE_CASE = f"""
-title = "app test fixture"
-[bearing]
-ball_count = 12
-ball_diameter_mm = 7.144
-pitch_diameter_mm = 54.0
-inner_groove_radius_ratio = 0.54
-outer_groove_radius_ratio = 0.53
-free_contact_angle_deg = 15.0
-ball_material = "silicon_nitride"
-ring_material = "bearing_steel"
-[operating]
-inner_ring_speed_rpm = {SHAFT_RPM}
-axial_load_N = 500.0
-radial_load_N = 300.0
-[simulation]
-shaft_revolutions = 2.0
-samples_per_revolution = 36
-"""
+FIXTURE_CASE = case_text(
+    "app test fixture",
+    SPINDLE_BEARING | {"ball_count": 12},
+    {"inner_ring_speed_rpm": SHAFT_RPM, "axial_load_N": 500.0, "radial_load_N": 300.0},
+    "[simulation]\nshaft_revolutions = 2.0\nsamples_per_revolution = 36\n",
+)
 
 # Analytic distributions sampled by the fixture (degrees, newtons), also used as test references.
 ALPHA_MEAN = {"inner": 20.0, "outer": 17.0}
@@ -63,16 +49,7 @@ def load_of_psi(psi_rad):
 
 
 def fixture_geometry() -> BearingGeometry:
-    return BearingGeometry(
-        ball_count=12,
-        ball_diameter=7.144e-3,
-        pitch_diameter=54e-3,
-        inner_conformity=0.54,
-        outer_conformity=0.53,
-        free_contact_angle=math.radians(15.0),
-        ball_material=BUILTIN_MATERIALS["silicon_nitride"],
-        ring_material=BUILTIN_MATERIALS["bearing_steel"],
-    )
+    return spindle_bearing(ball_count=12)
 
 
 def fixture_coordinates() -> dict:

@@ -34,6 +34,13 @@ def test_forked_process_behaves_like_an_asyncio_subprocess():
         process.join()
 
 
+def _fresh_python(code: str) -> subprocess.CompletedProcess:
+    """Run ``code`` in a new Python interpreter (it must succeed); its output as text."""
+    return subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
+    )
+
+
 def test_preload_imports_without_threads_or_render_window():
     """The fork server imports PRELOAD before forking: it must not start Python threads or make
     a VTK render window (each session makes its own after the fork)."""
@@ -43,9 +50,7 @@ def test_preload_imports_without_threads_or_render_window():
         "import vtkmodules.vtkRenderingCore as rc\n"
         "print(threading.active_count(), 'pyvista' in sys.modules, 'app.state' in sys.modules)\n"
     )
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
-    )
+    out = _fresh_python(code)
     assert out.stdout.split() == ["1", "True", "True"], out.stderr[-2000:]
 
 
@@ -86,7 +91,5 @@ def test_a_forked_session_gives_trame_its_own_options_not_the_fronts():
         "options = get_server('session').cli.parse_known_args()[0]\n"
         "print(options.host, options.port, options.timeout)\n"
     )
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True
-    )
+    out = _fresh_python(code)
     assert out.stdout.split() == ["127.0.0.1", "4321", "0"], out.stderr[-2000:]

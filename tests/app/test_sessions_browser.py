@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE
-from tests.helpers.serve import descendants, free_port
+from tests.helpers.serve import descendants, free_port, stop_server
 
 pytestmark = BROWSER_MARKS
 START_S = 300  # a cold numba cache compiles the quasi-static kernels first; the machine is shared
@@ -52,14 +52,7 @@ def _start(tmp_path: Path, *options: str) -> dict:
 
 
 def _stop(server: dict) -> None:
-    proc = server["proc"]
-    if proc.poll() is None:
-        proc.terminate()
-        try:
-            proc.wait(timeout=60)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-    server["log"].close()
+    stop_server(server, timeout_s=60)
 
 
 def _alive(pids) -> set[int]:

@@ -13,6 +13,7 @@ from app import runner as runner_module
 from app.runner import QUASISTATIC_JOB
 from app.state import DEFAULT_CASE, RacetraceApp
 from tests.helpers.app_session import trame_server
+from tests.helpers.processes import wait_until
 
 
 class CountingView:
@@ -132,12 +133,12 @@ def test_scene_follows_frames_and_options(tmp_path):
 
 
 def _wait_run(app, timeout=180.0):
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        if app.runs.poll_runner():
-            return
-        time.sleep(0.1)
-    raise AssertionError(f"run did not finish in {timeout} s; status {app.state.status!r}")
+    wait_until(
+        app.runs.poll_runner,
+        timeout,
+        0.1,
+        lambda: f"run did not finish in {timeout} s; status {app.state.status!r}",
+    )
 
 
 def test_run_saves_and_reload_keeps_the_run_list(app, tmp_path, monkeypatch):

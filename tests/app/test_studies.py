@@ -11,6 +11,7 @@ from app.components.studies import SLOT_WAIT_S
 from app.state import DEFAULT_CASE, RacetraceApp
 from solver.study import Study
 from tests.helpers.app_session import trame_server
+from tests.helpers.processes import wait_until
 
 pytest.importorskip("distributed")
 
@@ -30,12 +31,9 @@ def app(app):
 
 
 def _wait(app, timeout_s=600):
-    end = time.monotonic() + timeout_s
-    while time.monotonic() < end:
-        if app.studies.poll():
-            return
-        time.sleep(0.5)
-    raise AssertionError(f"the study did not end: {app.state.study_status}")
+    wait_until(
+        app.studies.poll, timeout_s, 0.5, lambda: f"the study did not end: {app.state.study_status}"
+    )
 
 
 def test_shipped_studies_are_offered(app):

@@ -7,20 +7,11 @@ import sys
 
 import pytest
 
-GOOD = """title = "cli test"
-[bearing]
-ball_count = 18
-ball_diameter_mm = 7.144
-pitch_diameter_mm = 54.0
-inner_groove_radius_ratio = 0.54
-outer_groove_radius_ratio = 0.53
-free_contact_angle_deg = 15.0
-ball_material = "silicon_nitride"
-ring_material = "bearing_steel"
-[operating]
-inner_ring_speed_rpm = 20000.0
-axial_load_N = 500.0
-"""
+from tests.helpers.cases import SPINDLE_BEARING, case_text
+
+GOOD = case_text(
+    "cli test", SPINDLE_BEARING, {"inner_ring_speed_rpm": 20000.0, "axial_load_N": 500.0}
+)
 
 
 def racetrace(*args):

@@ -7,25 +7,24 @@ import sys
 
 import pytest
 
-from tests.helpers.cases import CONTRACT_EXAMPLE
+from tests.helpers.cases import CONTRACT_EXAMPLE, case_text
 
-NO_SOLUTION_CASE = """
-title = "218 at an absurd speed with 1 N preload"
-[bearing]
-designation = "218"
-provenance = "literature"
-ball_count = 16
-ball_diameter_mm = 22.225
-pitch_diameter_mm = 125.26
-inner_groove_radius_ratio = 0.5232
-outer_groove_radius_ratio = 0.5232
-free_contact_angle_deg = 40.0
-ball_material = "bearing_steel"
-ring_material = "bearing_steel"
-[operating]
-inner_ring_speed_rpm = 200000.0
-axial_load_N = 1.0
-"""
+NO_SOLUTION_CASE = case_text(
+    "218 at an absurd speed with 1 N preload",
+    {
+        "designation": "218",
+        "provenance": "literature",
+        "ball_count": 16,
+        "ball_diameter_mm": 22.225,
+        "pitch_diameter_mm": 125.26,
+        "inner_groove_radius_ratio": 0.5232,
+        "outer_groove_radius_ratio": 0.5232,
+        "free_contact_angle_deg": 40.0,
+        "ball_material": "bearing_steel",
+        "ring_material": "bearing_steel",
+    },
+    {"inner_ring_speed_rpm": 200000.0, "axial_load_N": 1.0},
+)
 
 
 def run(*args):

@@ -19,6 +19,7 @@ from racetrace.commands import _output
 from racetrace.commands import simulate as command
 from solver.results.io import load_dataset
 from tests.helpers.faults import read_only_folder, small_file_system
+from tests.helpers.processes import signal_when
 
 SHORT = ["--revolutions", "0.1", "--samples-per-revolution", "40", "--quiet"]
 
@@ -188,16 +189,14 @@ def test_a_signal_while_the_run_starts_stops_it_with_nothing_written(tmp_path, s
     model and finds the quasi-static start): the command stops at once, exits 128 + the signal
     and writes nothing."""
     process = _start(tmp_path, "--output", "run.nc", "--revolutions", "200")
-    try:
-        deadline = time.monotonic() + 120
-        while not _handles(process.pid, signal.SIGTERM) and process.poll() is None:
-            assert time.monotonic() < deadline, "the command never handled SIGTERM"
-            time.sleep(0.005)
-        process.send_signal(signum)
-        _, err = process.communicate(timeout=120)
-    finally:
-        if process.poll() is None:
-            process.kill()
+    _, err = signal_when(
+        process,
+        lambda: _handles(process.pid, signal.SIGTERM),
+        signum,
+        120,
+        "the command never handled SIGTERM",
+        0.005,
+    )
     err = err.decode(errors="replace")
     assert process.returncode == 128 + signum, err
     assert "before the run started" in err and "Traceback" not in err, err
@@ -289,23 +288,28 @@ def test_a_full_disk_after_the_run_saves_to_the_temp_folder(
     assert load_dataset(saved).attrs["complete"] == 1
 
 
-def test_a_netcdf_runtime_error_names_the_file_and_falls_back(
-    fake_case, tmp_path, capsys, monkeypatch
-):
+def _netcdf_fails_in(folder, monkeypatch):
+    """Make ``folder`` and let every NetCDF write into it fail as a full disk's HDF error does."""
     import xarray as xr
 
-    monkeypatch.setattr(_output.tempfile, "tempdir", str(tmp_path / "tmp"))
-    (tmp_path / "tmp").mkdir()
     real = xr.Dataset.to_netcdf
-    target = tmp_path / "out" / "run.nc"
-    target.parent.mkdir()
+    folder.mkdir()
 
     def failing(self, path, *args, **kwargs):
-        if str(path).startswith(str(target.parent)):
+        if str(path).startswith(str(folder)):
             raise RuntimeError("NetCDF: HDF error")
         return real(self, path, *args, **kwargs)
 
     monkeypatch.setattr(xr.Dataset, "to_netcdf", failing)
+
+
+def test_a_netcdf_runtime_error_names_the_file_and_falls_back(
+    fake_case, tmp_path, capsys, monkeypatch
+):
+    monkeypatch.setattr(_output.tempfile, "tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
+    target = tmp_path / "out" / "run.nc"
+    _netcdf_fails_in(target.parent, monkeypatch)
     assert _simulate(target, *SHORT) == command.EXIT_NOT_WRITTEN
     err = capsys.readouterr().err
     assert f"could not write {target}: NetCDF: HDF error" in err
@@ -329,20 +333,10 @@ def test_nothing_writable_says_the_result_is_lost(fake_case, tmp_path, capsys, m
 
 
 def test_quasistatic_output_is_checked_first_and_falls_back(tmp_path, capsys, monkeypatch):
-    import xarray as xr
-
     assert main(["quasistatic", "spindle-combined-load", "--output", str(tmp_path)]) == 2
     assert "is a folder" in capsys.readouterr().err
-    real = xr.Dataset.to_netcdf
     target = tmp_path / "out" / "qs.nc"
-    target.parent.mkdir()
-
-    def failing(self, path, *args, **kwargs):
-        if str(path).startswith(str(target.parent)):
-            raise RuntimeError("NetCDF: HDF error")
-        return real(self, path, *args, **kwargs)
-
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", failing)
+    _netcdf_fails_in(target.parent, monkeypatch)
     monkeypatch.setattr(_output.tempfile, "tempdir", str(tmp_path))
     code = main(["quasistatic", "spindle-combined-load", "--output", str(target), "--json"])
     captured = capsys.readouterr()

@@ -7,6 +7,7 @@ import json
 import pytest
 
 from racetrace import cli
+from tests.helpers.studies import two_run_study_folder
 
 
 def test_invalid_study_names_the_key_and_exits_2(tmp_path, capsys):
@@ -35,22 +36,13 @@ def test_show_needs_a_study_folder(tmp_path, capsys):
 
 
 def test_show_prints_the_points_of_a_folder(tmp_path, capsys):
-    from solver.study import Study, StudyFolder
-
-    study = Study.from_text(
+    two_run_study_folder(
+        tmp_path / "s",
         'title = "shown"\nbase = "spindle-axial-preload"\n'
-        '[vary]\n"operating.radial_load_N" = [0.0, 300.0]\n'
+        '[vary]\n"operating.radial_load_N" = [0.0, 300.0]\n',
+        "quasistatic",
+        "no solution",
     )
-    folder = StudyFolder(tmp_path / "s")
-    folder.start(study.spec, study.points(), "test", resume=False)
-    record = {
-        "status": "done",
-        "message": "",
-        "metrics": {"excursion": {"inner": 1.25, "outer": 2.5}, "cage_slip": 0.01},
-        "wall_time_s": 0.1,
-    }
-    folder.save_run("p0001", "quasistatic", record, None)
-    folder.save_run("p0002", "quasistatic", {"status": "failed", "message": "no solution"}, None)
     assert cli.main(["study", "show", str(tmp_path / "s")]) == 0
     out = capsys.readouterr().out
     lines = out.splitlines()

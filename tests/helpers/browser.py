@@ -1,5 +1,5 @@
-"""What the browser tests share: Debian's chromium, its launch flags, where screenshots go, the
-first drawn 3-D image and the marks that skip a module without chromium."""
+"""What the browser tests share: Debian's chromium and its launch flags (tools/chromium.py), where
+screenshots go, the first drawn 3-D image and the marks that skip a module without chromium."""
 
 from __future__ import annotations
 
@@ -7,17 +7,8 @@ from pathlib import Path
 
 import pytest
 
-CHROMIUM = "/usr/bin/chromium"
-LAUNCH_ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
+from tools.chromium import CHROMIUM
+
 FIRST_IMAGE = "#view-3d img[src]:not([src=''])"  # the first drawn image, not an empty img
 ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts" / "browser"
 #: ``pytestmark`` of a browser test module

@@ -1,4 +1,5 @@
-"""Faults for the reliability tests: a read-only folder and a small (full) file system.
+"""Faults for the reliability tests: a read-only folder, a small (full) file system and a NetCDF
+write that fails half-way.
 
 Both work for any user: an ordinary user gets a folder without write permission; root, whom
 permissions do not stop, gets a read-only or a tiny tmpfs mounted on the folder (skipped where
@@ -56,3 +57,22 @@ def small_file_system(path: Path, size: str = "64k"):
         yield path
     finally:
         _umount(path)
+
+
+def check_failed_write_keeps_the_old_file(target: Path, write, monkeypatch) -> None:
+    """``write()`` saves over the existing NetCDF file ``target``; let xarray's writer leave a
+    partial file and fail as a full disk does: ``write`` raises that OSError, ``target`` keeps its
+    old bytes and no temporary file is left beside it."""
+    import xarray as xr
+
+    before = target.read_bytes()
+
+    def broken(self, *args, **kwargs):
+        Path(args[0]).write_bytes(b"partial")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    with pytest.raises(OSError, match="disk full"):
+        write()
+    assert target.read_bytes() == before
+    assert sorted(p.name for p in target.parent.iterdir()) == [target.name]

@@ -65,11 +65,12 @@ def start_server(runs: Path, log_path: Path, *options: str, new_group: bool = Fa
     return {"url": url, "port": port, "token": token, "runs": runs, "proc": proc, "log": log}
 
 
-def stop_server(server: dict) -> None:
+def stop_server(server: dict, timeout_s: float = 10.0) -> None:
+    """Stop a served app (SIGTERM; killed after ``timeout_s``) and close its log."""
     proc = server["proc"]
-    proc.terminate()
+    proc.terminate()  # nothing when it has ended
     try:
-        proc.wait(timeout=10)
+        proc.wait(timeout=timeout_s)
     except subprocess.TimeoutExpired:
         proc.kill()
     server["log"].close()

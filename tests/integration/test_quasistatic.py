@@ -16,23 +16,15 @@ from solver.geometry import BearingGeometry, free_contact_angle_from_clearance
 from solver.materials import BUILTIN_MATERIALS
 from solver.models.quasistatic import solve_operating_point
 from solver.physics.hertz import race_contact
-from tests.helpers.cases import operating_point, spindle_geometry
+from tests.helpers.cases import bearing_218, operating_point, spindle_bearing, spindle_geometry
 
 STEEL = BUILTIN_MATERIALS["bearing_steel"]
 SI3N4 = BUILTIN_MATERIALS["silicon_nitride"]
 RPM = math.pi / 30.0
 
 
-def bearing_218(**kw):
-    return BearingGeometry(
-        16, 22.225e-3, 125.26e-3, 0.5232, 0.5232, math.radians(40), STEEL, STEEL, **kw
-    )
-
-
 def spindle(ball_count=18):
-    return BearingGeometry(
-        ball_count, 7.144e-3, 54.0e-3, 0.54, 0.53, math.radians(15), SI3N4, STEEL
-    )
+    return spindle_bearing(ball_count=ball_count)
 
 
 def deep_groove(clearance, ball_count=9):

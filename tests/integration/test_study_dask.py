@@ -13,6 +13,7 @@ import xarray as xr
 
 from solver.errors import CaseError
 from solver.study import Study, open_study, study_dataset
+from tests.helpers.processes import signal_when
 
 pytest.importorskip("distributed")
 
@@ -173,7 +174,6 @@ def test_a_stop_signal_keeps_the_finished_runs_and_writes_the_study(tmp_path, na
     exits with 128 + the signal's number."""
     import subprocess
     import sys
-    import time
     from pathlib import Path
 
     signum = getattr(signal, name)
@@ -189,17 +189,10 @@ def test_a_stop_signal_keeps_the_finished_runs_and_writes_the_study(tmp_path, na
         env=env,
         text=True,
     )
-    try:
-        deadline = time.monotonic() + 600  # the first run on a machine compiles the kernels
-        while not list(out.glob("points/*.json")) and process.poll() is None:
-            assert time.monotonic() < deadline, "no run finished"
-            time.sleep(0.2)
-        process.send_signal(signum)
-        stdout, stderr = process.communicate(timeout=120)
-    finally:
-        if process.poll() is None:
-            process.kill()
-            process.communicate()
+    # the first run on a machine compiles the kernels: up to 600 s
+    stdout, stderr = signal_when(
+        process, lambda: bool(list(out.glob("points/*.json"))), signum, 600, "no run finished", 0.2
+    )
     assert process.returncode == 128 + signum, stderr
     assert "Traceback" not in stderr and "ERROR" not in stderr, stderr
     assert f"{name} received" in stderr and "--resume" in stderr

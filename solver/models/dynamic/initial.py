@@ -185,19 +185,23 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
             )
         return res
 
-    u = u0
-    for _ in range(passes):
-        sol = least_squares(
+    def balanced(u, omega_c, tolerance):
+        """The unknowns that balance the forces at cage speed ``omega_c``, from ``u`` (least
+        squares, ``tolerance`` on the step, the cost and the gradient)."""
+        return least_squares(
             residual,
             u,
             args=(omega_c,),
             x_scale="jac",
-            xtol=1e-13,
-            ftol=1e-13,
-            gtol=1e-13,
+            xtol=tolerance,
+            ftol=tolerance,
+            gtol=tolerance,
             max_nfev=4000,
-        )
-        u = sol.x
+        ).x
+
+    u = u0
+    for _ in range(passes):
+        u = balanced(u, omega_c, 1e-13)
         y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
         rec_i, rec_o = _contact_angles(y, par, quad)
         loaded = (rec_i[:, L.K_LOAD] > 0) & (rec_o[:, L.K_LOAD] > 0)
@@ -210,17 +214,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
         ao = float(np.mean(rec_o[loaded, L.K_ANGLE]))
         ratio_c, _, _ = outer_control_kinematics(ai, ao, gamma_prime)
         omega_c = par.outer_speed + wrel * ratio_c
-    sol = least_squares(
-        residual,
-        u,
-        args=(omega_c,),
-        x_scale="jac",
-        xtol=1e-14,
-        ftol=1e-14,
-        gtol=1e-14,
-        max_nfev=4000,
-    )
-    u = sol.x
+    u = balanced(u, omega_c, 1e-14)
     if np.max(np.abs(residual(u, omega_c))) > 1e-4:
         raise NoSolutionError(
             "dynamic model initialisation: the quasi-static force balance did not converge "

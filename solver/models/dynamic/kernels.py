@@ -197,6 +197,20 @@ def _about_x_then(rot, c, s):
 
 
 @njit(cache=True)
+def ring_frame_arrays():
+    """New arrays for :func:`ring_frames` to fill: (inner rotation (3, 3), inner origin, inner
+    velocity, inner angular velocity, outer rotation (3, 3), outer angular velocity)."""
+    return (
+        np.empty((3, 3)),
+        np.empty(3),
+        np.empty(3),
+        np.empty(3),
+        np.empty((3, 3)),
+        np.empty(3),
+    )
+
+
+@njit(cache=True)
 def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_rot, outer_omega):
     """Orientation, origin, velocity and angular velocity of both rings at state ``y``.
 
@@ -1169,12 +1183,7 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
-    irot = np.empty((3, 3))
-    iorg = np.empty(3)
-    ivel = np.empty(3)
-    iome = np.empty(3)
-    orot = np.empty((3, 3))
-    oome = np.empty(3)
+    irot, iorg, ivel, iome, orot, oome = ring_frame_arrays()
     ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
     stash = np.ones((CS_SIZE, 1))

@@ -28,6 +28,7 @@ from .kernels import (
     cage_pocket,
     quaternion_to_matrix,
     rhs,
+    ring_frame_arrays,
     ring_frames,
 )
 
@@ -42,12 +43,7 @@ def observe(states, par, quad, records, balls, bearing):
     rec = np.empty((2, z, L.N_CONTACT_RECORD))
     pocket = np.empty(z)
     rot = np.empty((3, 3))
-    irot = np.empty((3, 3))
-    iorg = np.empty(3)
-    ivel = np.empty(3)
-    iome = np.empty(3)
-    orot = np.empty((3, 3))
-    oome = np.empty(3)
+    irot, iorg, ivel, iome, orot, oome = ring_frame_arrays()
     crot = np.empty((3, 3))
     come = np.empty(3)
     pk = np.empty(12)

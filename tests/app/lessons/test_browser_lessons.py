@@ -39,14 +39,20 @@ def page(browser, server):
     context.close()
 
 
+def _until(page, script: str, arg=None) -> None:
+    """Wait until the JavaScript function ``script`` of ``arg`` is true in ``page`` (120 s at the
+    most: a busy 2-core machine renders slowly)."""
+    page.wait_for_function(script, arg=arg, timeout=120_000)
+
+
+#: True when the lesson title shown is ``t``.
+TITLE_IS = "t => (document.querySelector('#lesson-title') || {}).innerText === t"
+
+
 def _open_lesson(page, lesson):
     page.locator(f"#lesson-{lesson.id}").click()
     try:
-        page.wait_for_function(
-            "t => (document.querySelector('#lesson-title') || {}).innerText === t",
-            arg=lesson.title,
-            timeout=120_000,
-        )
+        _until(page, TITLE_IS, lesson.title)
     except playwright_api.TimeoutError:
         page.screenshot(path=str(SHOTS / f"failed-{lesson.id}.png"))
         raise
@@ -68,19 +74,17 @@ def test_every_lesson_opens_from_its_button(page):
         chart.wait_for(state="visible", timeout=120_000)
         assert "rt-lesson-chart" in chart.get_attribute("class")
         assert page.locator(".rt-lesson-chart").count() == 1
-        page.wait_for_function(
-            "l => document.body.innerText.includes(l)",
-            arg=f"lesson: {lesson.results[0].label}",
-            timeout=120_000,
+        _until(
+            page, "l => document.body.innerText.includes(l)", f"lesson: {lesson.results[0].label}"
         )
         page.screenshot(path=str(SHOTS / f"{lesson.id}-1280x720.png"))
     # a lesson's other result is one click away
     _open_lesson(page, next(ls for ls in LESSONS if ls.id == "04-misalignment"))
     page.locator("#lesson-result-ring").click()
-    page.wait_for_function(
+    _until(
+        page,
         "() => document.body.innerText.includes('turning with the inner ring (dynamic run)')"
         " && document.querySelector('#field-misalignment_frame').innerText.includes('ring')",
-        timeout=120_000,
     )
 
 
@@ -93,7 +97,7 @@ def test_presenter_mode(page, width, height):
         assert page.locator("#field-axial_load_N").is_visible()
         page.locator("#presenter-button").click()
         page.wait_for_selector("#content.rt-presenter", timeout=120_000)
-        page.wait_for_function(f"() => !{DRAWER_OPEN}", timeout=120_000)
+        _until(page, f"() => !{DRAWER_OPEN}")
         for hidden in ("#run-button", "#export", "#camera-axial"):
             assert not page.locator(hidden).is_visible(), hidden
         time.sleep(1.5)  # the drawer slides away, the chart redraws at its new size
@@ -117,52 +121,34 @@ def test_presenter_mode(page, width, height):
         )
         assert colours == ["rgb(0, 0, 0)", "rgb(255, 255, 255)"]
         # the rendered 3-D image follows the larger view
-        page.wait_for_function(
-            "h => document.querySelector('#view-3d img').naturalHeight > 0.6 * h",
-            arg=height,
-            timeout=120_000,
-        )
+        _until(page, "h => document.querySelector('#view-3d img').naturalHeight > 0.6 * h", height)
         page.screenshot(path=str(SHOTS / f"presenter-{width}x{height}.png"))
         # keys: N and P move between lessons, space plays and pauses, arrows step
         page.keyboard.press("n")
-        page.wait_for_function(
-            "t => document.querySelector('#lesson-title').innerText === t",
-            arg=LESSONS[3].title,
-            timeout=120_000,
-        )
+        _until(page, TITLE_IS, LESSONS[3].title)
         page.keyboard.press("p")
-        page.wait_for_function(
-            "t => document.querySelector('#lesson-title').innerText === t",
-            arg=lesson.title,
-            timeout=120_000,
-        )
+        _until(page, TITLE_IS, lesson.title)
         icon = page.locator("#play-button i")
         playing = "mdi-pause" in icon.get_attribute("class")
         page.keyboard.press(" ")
         expected = "mdi-play" if playing else "mdi-pause"
-        page.wait_for_function(
-            "c => document.querySelector('#play-button i').className.includes(c)",
-            arg=expected,
-            timeout=120_000,
+        _until(
+            page, "c => document.querySelector('#play-button i').className.includes(c)", expected
         )
         if expected == "mdi-pause":
             page.keyboard.press(" ")
-            page.wait_for_function(
+            _until(
+                page,
                 "() => document.querySelector('#play-button i').className.includes('mdi-play')",
-                timeout=120_000,
             )
         time.sleep(0.5)
         before = page.locator(".rt-frame-time").inner_text()
         page.keyboard.press("ArrowRight")
-        page.wait_for_function(
-            "b => document.querySelector('.rt-frame-time').innerText !== b",
-            arg=before,
-            timeout=120_000,
-        )
+        _until(page, "b => document.querySelector('.rt-frame-time').innerText !== b", before)
         page.screenshot(path=str(SHOTS / f"presenter-{width}x{height}-stepped.png"))
         page.keyboard.press("Escape")
         page.wait_for_selector("#content:not(.rt-presenter)", timeout=120_000)
-        page.wait_for_function(f"() => {DRAWER_OPEN}", timeout=120_000)
+        _until(page, f"() => {DRAWER_OPEN}")
     finally:
         if page.evaluate("window.trame.state.get('presenter')"):
             page.locator("#presenter-button").click()

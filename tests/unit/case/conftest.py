@@ -9,21 +9,11 @@ import pytest
 
 from solver.case.validate import validate
 from solver.errors import CaseError
+from tests.helpers.cases import SPINDLE_BEARING
 
 VALID = {
     "title": "test spindle",
-    "bearing": {
-        "designation": "test 7008C",
-        "provenance": "estimated",
-        "ball_count": 18,
-        "ball_diameter_mm": 7.144,
-        "pitch_diameter_mm": 54.0,
-        "inner_groove_radius_ratio": 0.54,
-        "outer_groove_radius_ratio": 0.53,
-        "free_contact_angle_deg": 15.0,
-        "ball_material": "silicon_nitride",
-        "ring_material": "bearing_steel",
-    },
+    "bearing": {"designation": "test 7008C", "provenance": "estimated"} | SPINDLE_BEARING,
     "operating": {
         "inner_ring_speed_rpm": 20000.0,
         "axial_load_N": 500.0,

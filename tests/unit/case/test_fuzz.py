@@ -7,7 +7,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.helpers.cases import LUBRICANT, SPINDLE
+from tests.helpers.cases import DEEP_GROOVE_BEARING, LUBRICANT, SPINDLE, case_text
 from tests.helpers.fuzz import OUTCOMES, mutated_case_bytes, outcome
 
 _COMMON = dict(deadline=None, suppress_health_check=[HealthCheck.too_slow], database=None)
@@ -35,30 +35,18 @@ FOUND = {
     )
     + LUBRICANT,
     # the traction balance's cage-speed bracket lost its sign change when brentq re-evaluated it
-    "cage speed bracket": """title = "deep groove, radial load"
-
-[bearing]
-designation = "209-class"
-provenance = "estimated"
-ball_count = 9
-ball_diameter_mm = 12.7
-pitch_diameter_mm = 65.0
-inner_groove_radius_ratio = 0.52
-outer_groove_radius_ratio = 0.52
-diametral_clearance_mm = 0.015
-ball_material = "bearing_steel"
-ring_material = "bearing_steel"
-
-[operating]
-inner_ring_speed_rpm = 6000.0
-radial_load_N = 2000.0
-radial_load_angle_deg = 360.0
-misalignment_deg = -5.0
-outer_ring_speed_rpm = 500000.0
-
-[lubricant.traction]
-mu_max = 1.0
-""",
+    "cage speed bracket": case_text(
+        "deep groove, radial load",
+        DEEP_GROOVE_BEARING,
+        {
+            "inner_ring_speed_rpm": 6000.0,
+            "radial_load_N": 2000.0,
+            "radial_load_angle_deg": 360.0,
+            "misalignment_deg": -5.0,
+            "outer_ring_speed_rpm": 500000.0,
+        },
+        "[lubricant.traction]\nmu_max = 1.0\n",
+    ),
 }
 
 

@@ -251,25 +251,21 @@ def _numerical_short_bearing(offset, vel, wc, wr):
         optimize.brentq(G, ths[i], ths[i + 1], xtol=1e-15)
         for i in np.nonzero(np.diff(np.sign(g)))[0]
     ]
-    fy = integrate.quad(
-        lambda t: -R_LAND * P(t) * math.cos(t),
-        0,
-        2 * math.pi,
-        points=roots,
-        limit=400,
-        epsabs=1e-13,
-        epsrel=1e-11,
-    )[0]
-    fz = integrate.quad(
-        lambda t: -R_LAND * P(t) * math.sin(t),
-        0,
-        2 * math.pi,
-        points=roots,
-        limit=400,
-        epsabs=1e-13,
-        epsrel=1e-11,
-    )[0]
-    return np.array([fy, fz])
+    return np.array(
+        [
+            integrate.quad(
+                lambda t, direction: -R_LAND * P(t) * direction(t),
+                0,
+                2 * math.pi,
+                args=(direction,),
+                points=roots,
+                limit=400,
+                epsabs=1e-13,
+                epsrel=1e-11,
+            )[0]
+            for direction in (math.cos, math.sin)  # y, z
+        ]
+    )
 
 
 @pytest.mark.parametrize(

@@ -14,7 +14,6 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from solver.geometry import BearingGeometry
 from solver.materials import BUILTIN_MATERIALS, effective_modulus
 from solver.physics import hertz
 from solver.physics.hertz import (
@@ -30,6 +29,7 @@ from solver.physics.hertz import (
     shoulder_angle,
     truncation_margin,
 )
+from tests.helpers.cases import bearing_218, spindle_bearing
 
 STEEL = BUILTIN_MATERIALS["bearing_steel"]
 SI3N4 = BUILTIN_MATERIALS["silicon_nitride"]
@@ -47,22 +47,6 @@ def _quad_k_e(m):
 
     opts = dict(epsabs=0.0, epsrel=1e-13, limit=200)
     return quad(first, 0.0, math.pi / 2, **opts)[0], quad(second, 0.0, math.pi / 2, **opts)[0]
-
-
-def _geometry_218(**changes):
-    """Textbook 218 angular-contact bearing (Harris): D = 22.225 mm, d_m = 125.26 mm, f = 0.5232."""
-    values = dict(
-        ball_count=16,
-        ball_diameter=22.225e-3,
-        pitch_diameter=125.26e-3,
-        inner_conformity=0.5232,
-        outer_conformity=0.5232,
-        free_contact_angle=math.radians(40.0),
-        ball_material=STEEL,
-        ring_material=STEEL,
-    )
-    values.update(changes)
-    return BearingGeometry(**values)
 
 
 # ---- ellipticity and elliptic integrals ---------------------------------------------------------
@@ -190,7 +174,7 @@ def test_curvature_closed_forms(race, d, f, gamma):
 
 def test_curvature_218_bearing_and_trends():
     """218 bearing at 40°: inner contact is more conformal in F and has the larger Σρ."""
-    g = _geometry_218()
+    g = bearing_218()
     gamma = g.gamma(math.radians(40.0))
     assert gamma == pytest.approx(22.225 * math.cos(math.radians(40.0)) / 125.26, rel=1e-12)
     s_i, f_i = curvature_sum_and_difference(g.ball_diameter, 0.5232, gamma, "inner")
@@ -328,8 +312,8 @@ def test_series_stiffness():
 def test_hybrid_pair_is_stiffer_with_smaller_contact():
     e_hybrid = effective_modulus(SI3N4, STEEL)
     assert e_hybrid > E_STEEL
-    g_steel = _geometry_218()
-    g_hybrid = _geometry_218(ball_material=SI3N4)
+    g_steel = bearing_218()
+    g_hybrid = bearing_218(ball_material=SI3N4)
     assert g_hybrid.effective_modulus == pytest.approx(e_hybrid)
     alpha = math.radians(40.0)
     for race in ("inner", "outer"):
@@ -344,7 +328,7 @@ def test_hybrid_pair_is_stiffer_with_smaller_contact():
 
 
 def test_race_contact_matches_manual_chain():
-    g = _geometry_218()
+    g = bearing_218()
     alpha = math.radians(37.0)
     gamma = g.ball_diameter * math.cos(alpha) / g.pitch_diameter
     for race, f in (("inner", g.inner_conformity), ("outer", g.outer_conformity)):
@@ -401,7 +385,7 @@ def _edge_point(g, alpha, semi_major, race):
 
 @pytest.mark.parametrize("race", ["inner", "outer"])
 def test_truncation_drawing_level(race):
-    g0 = _geometry_218()
+    g0 = bearing_218()
     alpha = math.radians(40.0)
     c = race_contact(g0, alpha, 15000.0, race)
     # the contact point itself sits on the race contact diameter d_m ∓ D cos α (drawing check)
@@ -415,11 +399,11 @@ def test_truncation_drawing_level(race):
     assert sign * (x_e - x_p) > 0.0  # the edge moves further out axially, towards the shoulder
     assert sign * (r_e - r_p) < 0.0  # ... and up the groove wall (away from the groove bottom)
     key = f"{race}_shoulder_diameter"
-    just = _geometry_218(**{key: 2.0 * r_e})
+    just = bearing_218(**{key: 2.0 * r_e})
     assert truncation_margin(just, alpha, c.semi_major, race) == pytest.approx(0.0, abs=1e-9)
     # shoulder lower than the ellipse edge (closer to the groove bottom): truncated, negative margin
-    low = _geometry_218(**{key: 2.0 * (r_e + sign * 0.3e-3)})
-    high = _geometry_218(**{key: 2.0 * (r_e - sign * 0.3e-3)})
+    low = bearing_218(**{key: 2.0 * (r_e + sign * 0.3e-3)})
+    high = bearing_218(**{key: 2.0 * (r_e - sign * 0.3e-3)})
     assert truncation_margin(low, alpha, c.semi_major, race) < 0.0
     assert truncation_margin(high, alpha, c.semi_major, race) > 0.0
     # at zero load the margin is the shoulder angle minus the contact angle
@@ -435,10 +419,10 @@ def test_truncation_drawing_level(race):
 
 
 def test_truncation_nan_without_shoulder_and_vectorised():
-    g = _geometry_218()
+    g = bearing_218()
     assert math.isnan(truncation_margin(g, math.radians(40), 1e-3, "inner"))
     assert math.isnan(truncation_margin(g, math.radians(40), 1e-3, "outer"))
-    g2 = _geometry_218(inner_shoulder_diameter=0.115)
+    g2 = bearing_218(inner_shoulder_diameter=0.115)
     m = truncation_margin(g2, np.radians([30.0, 40.0]), np.array([1e-3, 2e-3]), "inner")
     assert m.shape == (2,) and m[0] > m[1]
 
@@ -449,32 +433,21 @@ def test_module_exports():
 
 
 def test_shoulder_limits_and_off_groove_shoulders_clamped():
-    g = _geometry_218()
+    g = bearing_218()
     low_i, high_i = hertz.shoulder_diameter_limits(g, "inner")
     low_o, high_o = hertz.shoulder_diameter_limits(g, "outer")
     assert low_i == pytest.approx(g.inner_groove_bottom_diameter) and high_i > g.pitch_diameter
     assert high_o == pytest.approx(g.outer_groove_bottom_diameter) and low_o < g.pitch_diameter
     # groove bottom → θ_sh = 0; curvature-centre height → θ_sh = 90°
-    assert shoulder_angle(_geometry_218(inner_shoulder_diameter=low_i), "inner") < 1e-7
-    assert shoulder_angle(_geometry_218(outer_shoulder_diameter=high_o), "outer") < 1e-7
+    assert shoulder_angle(bearing_218(inner_shoulder_diameter=low_i), "inner") < 1e-7
+    assert shoulder_angle(bearing_218(outer_shoulder_diameter=high_o), "outer") < 1e-7
     assert math.degrees(
-        shoulder_angle(_geometry_218(inner_shoulder_diameter=high_i), "inner")
+        shoulder_angle(bearing_218(inner_shoulder_diameter=high_i), "inner")
     ) == pytest.approx(90.0)
     # a land that does not rise above the groove bottom offers no shoulder: θ_sh = 0, so the
     # margin is -(α + a/r) (truncated), finite and never an exception inside a solver run.
     # This is the 7008C example of case-format.md (lands below the inner / above the outer groove).
-    spindle = BearingGeometry(
-        ball_count=18,
-        ball_diameter=7.144e-3,
-        pitch_diameter=54.0e-3,
-        inner_conformity=0.54,
-        outer_conformity=0.53,
-        free_contact_angle=math.radians(15.0),
-        ball_material=SI3N4,
-        ring_material=STEEL,
-        inner_shoulder_diameter=45.9e-3,
-        outer_shoulder_diameter=62.2e-3,
-    )
+    spindle = spindle_bearing(inner_shoulder_diameter=45.9e-3, outer_shoulder_diameter=62.2e-3)
     assert spindle.inner_groove_bottom_diameter > 45.9e-3
     assert spindle.outer_groove_bottom_diameter < 62.2e-3
     alpha, a = math.radians(15.0), 0.5e-3

@@ -486,25 +486,26 @@ def test_rheology_law_matches_independent_integration(kappa):
     against the polar integration of the law written out in numpy, on a contact with rolling,
     sliding and spin: a stress that saturates at a few mm/s of slip, around the spin pole too."""
     contact, kin = _general_case(kappa=kappa)
-    r = np.zeros(RHEOLOGY_SIZE)
-    r[RH_VISCOSITY], r[RH_PRESSURE_VISCOSITY] = 0.01, 2.0e-8
-    r[RH_EYRING_STRESS], r[RH_LIMITING_STRESS], r[RH_LIMITING_SLOPE] = 5e6, 2e6, 0.075
-    r[RH_SHEAR_MODULUS] = 0.5e9
+    r = _rheology_params()
     film, transit = 0.3e-6, 5.0e-6
     out = np.full(tr.TRACTION_OUT_SIZE, np.nan)
     curve = np.zeros(tr.CURVE_SIZE)
-    tr.ellipse_traction_law(
-        contact,
-        kin,
-        tr.LAW_RHEOLOGY,
-        curve,
-        r,
-        film,
-        transit,
-        0.0,
-        tr.ellipse_quadrature(16, 32),
-        out,
-    )
+
+    def integrate_law(points, strips):
+        tr.ellipse_traction_law(
+            contact,
+            kin,
+            tr.LAW_RHEOLOGY,
+            curve,
+            r,
+            film,
+            transit,
+            0.0,
+            tr.ellipse_quadrature(points, strips),
+            out,
+        )
+
+    integrate_law(16, 32)
     F, MP, MB, pw = _reference(
         contact,
         kin,
@@ -519,18 +520,7 @@ def test_rheology_law_matches_independent_integration(kappa):
     np.testing.assert_allclose(out[tr.TR_FORCE : tr.TR_FORCE + 3], F, atol=5e-4 * fs)
     np.testing.assert_allclose(out[tr.TR_MOMENT_POINT : tr.TR_MOMENT_POINT + 3], MP, atol=5e-4 * ms)
     assert out[tr.TR_POWER] == pytest.approx(pw, rel=5e-4)
-    tr.ellipse_traction_law(
-        contact,
-        kin,
-        tr.LAW_RHEOLOGY,
-        curve,
-        r,
-        film,
-        transit,
-        0.0,
-        tr.ellipse_quadrature(4, 8),
-        out,
-    )
+    integrate_law(4, 8)
     np.testing.assert_allclose(out[tr.TR_FORCE : tr.TR_FORCE + 3], F, atol=2e-2 * fs)
     # the traction is near its limit: |F| between 0.5 and 1 of the load-weighted tau_L
     pmean_tl = 2e6 * math.pi * A_ * B_ + 0.075 * Q_

@@ -6,7 +6,6 @@ from __future__ import annotations
 import csv
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,6 +13,7 @@ import xarray as xr
 
 import solver
 from solver.results.io import contact_table
+from tests.helpers.faults import check_failed_write_keeps_the_old_file
 
 
 @pytest.fixture(scope="module")
@@ -59,17 +59,7 @@ def test_save_round_trips_and_leaves_no_temporary_file_on_failure(qs, tmp_path, 
     target = qs.racetrace.save(tmp_path / "qs.nc")
     xr.testing.assert_identical(solver.load_dataset(target), qs)
     assert solver.load_dataset(target).racetrace.summary() is not None
-    before = target.read_bytes()
-
-    def broken(self, *args, **kwargs):
-        Path(args[0]).write_bytes(b"partial")
-        raise OSError("disk full")
-
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
-    with pytest.raises(OSError, match="disk full"):
-        qs.racetrace.save(target)
-    assert target.read_bytes() == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["qs.nc"]
+    check_failed_write_keeps_the_old_file(target, lambda: qs.racetrace.save(target), monkeypatch)
 
 
 def test_csv_has_one_row_per_ball_and_race_with_units_in_the_headers(qs, tmp_path):

@@ -8,6 +8,7 @@ import xarray as xr
 
 from solver.results.io import load_dataset, save_dataset
 from tests.helpers.cases import DEEP_GROOVE_RADIAL
+from tests.helpers.faults import check_failed_write_keeps_the_old_file
 
 
 def small_dataset():
@@ -42,17 +43,9 @@ def test_round_trip_of_a_model_dataset(tmp_path):
 def test_failed_write_leaves_no_temporary_file_and_keeps_the_old_one(tmp_path, monkeypatch):
     target = tmp_path / "r.nc"
     save_dataset(small_dataset(), target)
-    before = target.read_bytes()
-
-    def broken(self, *args, **kwargs):
-        Path(args[0]).write_bytes(b"partial")
-        raise OSError("disk full")
-
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
-    with pytest.raises(OSError, match="disk full"):
-        save_dataset(small_dataset(), target)
-    assert target.read_bytes() == before
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+    check_failed_write_keeps_the_old_file(
+        target, lambda: save_dataset(small_dataset(), target), monkeypatch
+    )
 
 
 def test_saved_file_has_the_usual_permissions(tmp_path):

@@ -13,6 +13,7 @@ import pytest
 
 from racetrace import cli
 from tests.helpers.fuzz import STUDY_BASES, mutated_json_bytes, mutated_study_bytes
+from tests.helpers.studies import two_run_study_folder
 
 #: Inputs per test: the same every run (seeds 0 ... N-1).
 SEEDS = 200
@@ -52,20 +53,9 @@ def test_every_mutated_study_file_ends_cleanly(tmp_path, capsys, no_cluster):
 @pytest.fixture(scope="module")
 def study_folder(tmp_path_factory):
     """A study folder with one finished and one failed run (written without Dask)."""
-    from solver.study import Study, StudyFolder
-
-    study = Study.from_text(STUDY_BASES[0])
-    folder = StudyFolder(tmp_path_factory.mktemp("fuzz") / "study")
-    folder.start(study.spec, study.points(), "test", resume=False)
-    record = {
-        "status": "done",
-        "message": "",
-        "metrics": {"excursion": {"inner": 1.25, "outer": 2.5}, "cage_slip": 0.01},
-        "wall_time_s": 0.1,
-    }
-    folder.save_run("p0001", "quasistatic", record, None)
-    folder.save_run("p0002", "dynamic", {"status": "failed", "message": "diverged"}, None)
-    return folder
+    return two_run_study_folder(
+        tmp_path_factory.mktemp("fuzz") / "study", STUDY_BASES[0], "dynamic", "diverged"
+    )
 
 
 def test_every_mutated_study_folder_ends_cleanly(tmp_path, capsys, study_folder):

@@ -29,6 +29,8 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from .model import evaluate
+
 # Status codes of the progress record.
 STATUS_OK = 0
 STATUS_NOT_FINITE = 1
@@ -167,3 +169,64 @@ def next_step(h, hs, fac, clipped):
     if not clipped or hs * fac > h:
         return hs * fac
     return h
+
+
+# ---- the bookkeeping of a call of ``advance``, the same in every method -------------------------
+@njit(cache=True)
+def start(y, times, control, work, model):
+    """Begin a call of ``advance``: f(y) into ``work.stages[0]`` (counted). Returns (t, h, the last
+    output time, the index of the next event, the error the PI controller remembers, done);
+    ``done`` when ``times`` is empty: the outcome (nothing written) is then stored."""
+    progress = work.progress[0]
+    t = progress.t
+    h = progress.h
+    evaluate(y, model, work.stages[0], work.rhs)
+    progress.rhs_evaluations += 1
+    n_out = times.shape[0]
+    if n_out == 0:
+        finish(progress, STATUS_OK, t, h, 0)
+        return t, h, t, first_event(control, t), control.error_floor, True
+    return t, h, times[n_out - 1], first_event(control, t), control.error_floor, False
+
+
+@njit(cache=True)
+def clip_step(control, event, t, h, t_end):
+    """(where the step from ``t`` must end at the latest, whether step ``h`` is cut there, the step
+    to attempt) [s]."""
+    stop = boundary(control, event, t_end)
+    clipped = t + h >= stop
+    return stop, clipped, stop - t if clipped else h
+
+
+@njit(cache=True)
+def rejected(progress, status, t, h, written):
+    """Count a rejected step; True when the run stops on it (``status`` is not STATUS_OK: the
+    outcome is then stored with the step ``h`` it asked for)."""
+    progress.rejected += 1
+    if status != STATUS_OK:
+        finish(progress, status, t, h, written)
+        return True
+    return False
+
+
+@njit(cache=True)
+def passed(y, model, work, control, h, hs, fac, clipped, stop, t, t_end, event):
+    """Count an accepted step ``hs`` that ended at ``t`` inside the model's domain. Returns (the
+    next step size, the index of the next event); on an event before ``t_end`` the inputs may
+    change, so f(y) is evaluated afresh into ``work.stages[0]`` (counted)."""
+    progress = work.progress[0]
+    progress.accepted += 1
+    h = next_step(h, hs, fac, clipped)
+    if clipped and stop < t_end:
+        event = past_events(control, event, t)
+        evaluate(y, model, work.stages[0], work.rhs)
+        progress.rhs_evaluations += 1
+    return h, event
+
+
+@njit(cache=True)
+def reached_end(y, outputs, n_out, progress, t, h):
+    """The last output is the state where the integration stops exactly; store the outcome."""
+    for i in range(y.shape[0]):
+        outputs[n_out - 1, i] = y[i]
+    finish(progress, STATUS_OK, t, h, n_out)

@@ -15,15 +15,15 @@ from numba import njit
 
 from .control import (
     STATUS_BALL_ESCAPED,
-    STATUS_OK,
     STATUS_TOO_MANY_STEPS,
-    boundary,
+    clip_step,
     finish,
-    first_event,
     growth,
     judge,
-    next_step,
-    past_events,
+    passed,
+    reached_end,
+    rejected,
+    start,
     workspace,
     worse,
 )
@@ -174,35 +174,22 @@ def advance(y, times, outputs, control, work, model):
     """Integrate through every time in ``times`` (see :mod:`.control`); the last output is the
     state where the integration stops exactly."""
     progress = work.progress[0]
-    t = progress.t
-    h = progress.h
-    k = work.stages
-    evaluate(y, model, k[0], work.rhs)
-    progress.rhs_evaluations += 1
-    err_old = control.error_floor
+    t, h, t_end, event, err_old, done = start(y, times, control, work, model)
+    if done:
+        return
     steps = 0
     written = 0
-    n_out = times.shape[0]
-    if n_out == 0:
-        finish(progress, STATUS_OK, t, h, 0)
-        return
-    t_end = times[n_out - 1]
-    event = first_event(control, t)
     while t < t_end:
         if steps >= control.max_steps:
             finish(progress, STATUS_TOO_MANY_STEPS, t, h, written)
             return
-        stop = boundary(control, event, t_end)
-        clipped = t + h >= stop
-        hs = stop - t if clipped else h
+        stop, clipped, hs = clip_step(control, event, t, h, t_end)
         err = dp5_attempt(y, hs, work, model, control)
         steps += 1
         accepted, status, h_next = judge(err, hs, control, REJECT_EXPONENT)
         if not accepted:
             h = h_next
-            progress.rejected += 1
-            if status != STATUS_OK:
-                finish(progress, status, t, h, written)
+            if rejected(progress, status, t, h, written):
                 return
             continue
         fac, err_old = growth(err, err_old, control, ALPHA, BETA)
@@ -212,15 +199,8 @@ def advance(y, times, outputs, control, work, model):
         if not inside:
             finish(progress, STATUS_BALL_ESCAPED, t, h, written)
             return
-        progress.accepted += 1
-        h = next_step(h, hs, fac, clipped)
-        if clipped and stop < t_end:  # on an event: the inputs may change here
-            event = past_events(control, event, t)
-            evaluate(y, model, k[0], work.rhs)
-            progress.rhs_evaluations += 1
-    for i in range(y.shape[0]):
-        outputs[n_out - 1, i] = y[i]
-    finish(progress, STATUS_OK, t, h, n_out)
+        h, event = passed(y, model, work, control, h, hs, fac, clipped, stop, t, t_end, event)
+    reached_end(y, outputs, times.shape[0], progress, t, h)
 
 
 class Dopri5(NamedTuple):

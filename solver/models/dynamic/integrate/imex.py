@@ -41,15 +41,15 @@ from ..kernels import cage_land, cage_pocket
 from ..layout import BALL_STRIDE, C_VEL, cage_base
 from .control import (
     STATUS_BALL_ESCAPED,
-    STATUS_OK,
     STATUS_TOO_MANY_STEPS,
-    boundary,
+    clip_step,
     finish,
-    first_event,
     growth,
     judge,
-    next_step,
-    past_events,
+    passed,
+    reached_end,
+    rejected,
+    start,
     workspace,
     worse,
 )
@@ -378,30 +378,19 @@ def advance(y, times, outputs, control, work, model):
     land blocks allow them."""
     m = work.method
     progress = work.progress[0]
-    t = progress.t
-    h = progress.h
-    k = work.stages
-    evaluate(y, model, k[0], work.rhs)
-    progress.rhs_evaluations += 1
-    err_old = control.error_floor
+    t, h, t_end, event, err_old, done = start(y, times, control, work, model)
+    if done:
+        return
     additive = False  # the method of the last step (switching: with hysteresis)
     steps = 0
     written = 0
     exponent = 0.7 / m.order
     memory = 0.4 / m.order
-    n_out = times.shape[0]
-    if n_out == 0:
-        finish(progress, STATUS_OK, t, h, 0)
-        return
-    t_end = times[n_out - 1]
-    event = first_event(control, t)
     while t < t_end:
         if steps >= control.max_steps:
             finish(progress, STATUS_TOO_MANY_STEPS, t, h, written)
             return
-        stop = boundary(control, event, t_end)
-        clipped = t + h >= stop
-        hs = stop - t if clipped else h
+        stop, clipped, hs = clip_step(control, event, t, h, t_end)
         land_jacobians(y, model, work, control)
         if m.switch > 0.0:
             additive = hs * spectral_bound(m) > (m.switch_back if additive else m.switch)
@@ -416,9 +405,7 @@ def advance(y, times, outputs, control, work, model):
         steps += 1
         if not accepted:
             h = h_next
-            progress.rejected += 1
-            if status != STATUS_OK:
-                finish(progress, status, t, h, written)
+            if rejected(progress, status, t, h, written):
                 return
             continue
         t_new = stop if clipped else t + hs
@@ -432,15 +419,8 @@ def advance(y, times, outputs, control, work, model):
         if not inside:
             finish(progress, STATUS_BALL_ESCAPED, t, h, written)
             return
-        progress.accepted += 1
-        h = next_step(h, hs, fac, clipped)
-        if clipped and stop < t_end:  # on an event: the inputs may change here
-            event = past_events(control, event, t)
-            evaluate(y, model, k[0], work.rhs)
-            progress.rhs_evaluations += 1
-    for i in range(y.shape[0]):
-        outputs[n_out - 1, i] = y[i]
-    finish(progress, STATUS_OK, t, h, n_out)
+        h, event = passed(y, model, work, control, h, hs, fac, clipped, stop, t, t_end, event)
+    reached_end(y, outputs, times.shape[0], progress, t, h)
 
 
 _NOTES = {
