@@ -108,6 +108,24 @@ _RESULT_DIMS = ("ball", "race", "time", "axis", "tilt_axis", "quaternion", "body
 
 
 # ---- the track metrics on plain arrays -----------------------------------------------------------
+
+
+def _track_values(excursion, thickness, width, semi_major, groove) -> dict[str, np.ndarray]:
+    """The trajectory metrics by name from per (race, frame) ``excursion`` and ``thickness`` and
+    per race ``width`` [degree] and ``semi_major`` [m]; the ``_arc`` forms [m] along the groove of
+    radius ``groove`` (per race) [m]."""
+    arc = np.radians(1.0) * groove
+    return {
+        "trajectory_excursion": excursion,
+        "trajectory_excursion_arc": excursion * arc[:, None],
+        "trajectory_band_thickness": thickness,
+        "trajectory_band_thickness_arc": thickness * arc[:, None],
+        "ellipse_semi_major_mean": semi_major,
+        "trajectory_band_width": width,
+        "trajectory_band_width_arc": width * arc,
+    }
+
+
 def track_metrics(
     azimuth, angle, bins: int = AZIMUTH_BINS, min_samples: int = MIN_BIN_SAMPLES
 ) -> tuple[float, float]:
@@ -335,16 +353,7 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
                 continue
             turned = np.degrees((speeds[f"{race}_ring"] - speeds[frame]) * times)[:, None]
             excursion[k, f], thickness[k, f] = track_metrics((own + turned)[loaded], angle[loaded])
-    arc = np.radians(1.0) * groove
-    values = {
-        "trajectory_excursion": excursion,
-        "trajectory_excursion_arc": excursion * arc[:, None],
-        "trajectory_band_thickness": thickness,
-        "trajectory_band_thickness_arc": thickness * arc[:, None],
-        "ellipse_semi_major_mean": semi_major,
-        "trajectory_band_width": width,
-        "trajectory_band_width_arc": width * arc,
-    }
+    values = _track_values(excursion, thickness, width, semi_major, groove)
     attrs = {}
     if dynamic:
         text = window_text(ds, first, state, skip_fraction)
@@ -426,16 +435,7 @@ def _revolution_summary(ds: xr.Dataset) -> xr.Dataset:
         for f, frame in enumerate(FRAMES):
             shift = (turned[f"{race}_ring"] - turned[frame])[:, None]
             excursion[k, f], thickness[k, f] = track_metrics((own + shift)[loaded], angle[loaded])
-    arc = np.radians(1.0) * groove
-    values = {
-        "trajectory_excursion": excursion,
-        "trajectory_excursion_arc": excursion * arc[:, None],
-        "trajectory_band_thickness": thickness,
-        "trajectory_band_thickness_arc": thickness * arc[:, None],
-        "ellipse_semi_major_mean": semi_major,
-        "trajectory_band_width": width,
-        "trajectory_band_width_arc": width * arc,
-    }
+    values = _track_values(excursion, thickness, width, semi_major, groove)
     text = (
         f"the quasi-static solutions at {ring_angles.size} inner-ring angles over one revolution: "
         "every loaded ball at every angle"

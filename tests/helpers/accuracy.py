@@ -161,6 +161,14 @@ def load_reference() -> dict:
     return json.loads(REFERENCE_FILE.read_text())
 
 
+def write_reference(path: Path, data: dict) -> None:
+    """Write reference test data as indented JSON, atomically (a temporary file replaced)."""
+    path.parent.mkdir(exist_ok=True)
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(json.dumps(data, indent=1) + "\n")
+    tmp.replace(path)
+
+
 def main():  # pragma: no cover - regenerates the test data
     data = {
         "method": REFERENCE_METHOD,
@@ -179,10 +187,7 @@ def main():  # pragma: no cover - regenerates the test data
             got, revolutions=revolutions, window_start_revolution=first
         )
         print(label, revolutions, "revolutions: steps", ds.attrs["steps"], flush=True)
-    REFERENCE_FILE.parent.mkdir(exist_ok=True)
-    tmp = REFERENCE_FILE.with_suffix(".tmp")
-    tmp.write_text(json.dumps(data, indent=1) + "\n")
-    tmp.replace(REFERENCE_FILE)
+    write_reference(REFERENCE_FILE, data)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -20,6 +20,8 @@ from solver.catalogue import resolve_case
 from solver.inputs import to_inputs
 from solver.models.dynamic import SimulationOptions, simulate
 
+from .accuracy import write_reference
+
 REFERENCE_FILE = Path(__file__).resolve().parents[1] / "data" / "accuracy_reference.json"
 REFERENCE_TOLERANCE = 1e-5
 #: shipped cases checked, each at its own [simulation] settings (10 shaft revolutions)
@@ -96,10 +98,7 @@ def main():  # pragma: no cover - regenerates the test data
             raise SystemExit(f"{name}: no finite friction torque")
         data["cases"][name] = got
         print(name, json.dumps(got), flush=True)
-    REFERENCE_FILE.parent.mkdir(exist_ok=True)
-    tmp = REFERENCE_FILE.with_suffix(".tmp")
-    tmp.write_text(json.dumps(data, indent=1) + "\n")
-    tmp.replace(REFERENCE_FILE)
+    write_reference(REFERENCE_FILE, data)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -758,21 +758,21 @@ def _static_excess(q, k, applied, azimuth, model, direction):
         x1, x2 = _static_ball(a1, a2, model)
         st = ball_state(x1, x2, a1, a2, outer_control, model)
         _generalised(st.ring_force_axial, st.ring_force_radial, st.ring_moment, psi, gen)
-        if k == 0:
-            total += gen[0]
-        elif k == 1:
-            total += gen[1] * direction[0] + gen[2] * direction[1]
-        else:
-            total += gen[3] * direction[0] + gen[4] * direction[1]
+        total += _along(gen, k, direction)
         if st.inner_load > 0.0:
             loaded += 1
+    return total + _along(applied, k, direction), loaded
+
+
+@njit(cache=True, inline="always")
+def _along(generalised, k, direction):
+    """Component ``k`` of a generalised force (Fx, Fy, Fz, My, Mz): 0 the axial force, 1 the radial
+    force along ``direction`` (y, z), 2 the moment about it."""
     if k == 0:
-        total += applied[0]
-    elif k == 1:
-        total += applied[1] * direction[0] + applied[2] * direction[1]
-    else:
-        total += applied[3] * direction[0] + applied[4] * direction[1]
-    return total, loaded
+        return generalised[0]
+    if k == 1:
+        return generalised[1] * direction[0] + generalised[2] * direction[1]
+    return generalised[3] * direction[0] + generalised[4] * direction[1]
 
 
 @njit(cache=True)
