@@ -44,6 +44,7 @@ race-control kinematics and carry no pocket force.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -209,79 +210,98 @@ def _fill_contact_records(
                 rec[CT_SEMI_MINOR] = b
 
 
+class Balance(NamedTuple):
+    """Fixed data of one traction balance (:func:`traction_balance`), read by the compiled
+    kernels; Z balls, each in its own azimuth frame (module docstring)."""
+
+    contacts: np.ndarray  # (Z, 2, RECORD_SIZE) contact records [inner, outer]
+    ring_centres: np.ndarray  # (Z, 3) inner-ring centre [m]
+    centres: np.ndarray  # (Z, 3) ball centre [m]
+    traction: np.ndarray  # (TRACTION_SIZE) traction-law array (traction_setup)
+    nodes: np.ndarray  # ellipse quadrature nodes (traction_setup)
+    active: np.ndarray  # (Z) bool: the ball has a loaded contact
+    moment_scales: np.ndarray  # (Z) larger contact load times D / 2 [N m]
+    omega_inner: float  # inner-ring speed [rad/s] about +x
+    omega_outer: float  # outer-ring speed [rad/s] about +x
+    inertia: float  # ball moment of inertia [kg m^2]
+    u_reg: float  # slip regularisation [m/s]
+    force_scale: float  # scale of the sum of circumferential tractions [N]
+
+
+class BalanceWork(NamedTuple):
+    """Workspace of the balance kernels for Z balls (:func:`_balance_work`): the cage-frame
+    kinematics records, the scratch of ellipse_traction_into and the residuals written by
+    :func:`_balance_residuals`."""
+
+    kin: np.ndarray  # (Z, 2, KIN_SIZE) kinematics records [inner, outer] in the cage frame
+    batch: np.ndarray  # (NODE_BATCH_ROWS, NODE_BATCH) scratch of ellipse_traction_into
+    out: np.ndarray  # (TRACTION_OUT_SIZE) scratch of ellipse_traction_into
+    res: np.ndarray  # (Z, 3) moment residuals [N m]
+    f_theta: np.ndarray  # (Z) circumferential tractions [N]
+    forces: np.ndarray  # (Z, 2, 3) traction forces [N]
+
+
 @njit(cache=True)
-def _ball_moments(
-    w,
-    omega_c,
-    contact_i,
-    contact_o,
-    kin_i,
-    kin_o,
-    traction,
-    u_reg,
-    nodes,
-    inertia,
-    batch,
-    out,
-    res,
-    forces,
-):
-    """Moment residual [N m] into ``res`` (3) of one ball spinning at w relative to the cage, both
+def _balance_work(z):
+    """BalanceWork for ``z`` balls (kinematics records and residuals zero)."""
+    return BalanceWork(
+        np.zeros((z, 2, KIN_SIZE)),
+        np.empty((NODE_BATCH_ROWS, NODE_BATCH)),
+        np.empty(TRACTION_OUT_SIZE),
+        np.zeros((z, 3)),
+        np.zeros(z),
+        np.zeros((z, 2, 3)),
+    )
+
+
+@njit(cache=True)
+def _ball_moments(w, omega_c, j, balance, kin, work, res, forces):
+    """Moment residual [N m] into ``res`` (3) of ball j spinning at w relative to the cage, both
     traction forces [N] into ``forces`` (2, 3); returns its circumferential traction force [N]
-    (sum of both contacts). ``batch`` and ``out``: scratch of ellipse_traction_into."""
+    (sum of both contacts). ``kin`` (2, KIN_SIZE): the ball's kinematics records [inner, outer]
+    in the cage frame at omega_c; ``work``: its ``batch`` and ``out`` are the scratch of
+    ellipse_traction_into."""
+    traction = balance.traction
     res[0] = 0.0
     res[1] = 0.0
     res[2] = 0.0
     for k in range(2):
-        kin = kin_i if k == 0 else kin_o
-        contact = contact_i if k == 0 else contact_o
-        kin[KIN_BALL_OMEGA] = w[0]
-        kin[KIN_BALL_OMEGA + 1] = w[1]
-        kin[KIN_BALL_OMEGA + 2] = w[2]
+        record = kin[k]
+        contact = balance.contacts[j, k]
+        record[KIN_BALL_OMEGA] = w[0]
+        record[KIN_BALL_OMEGA + 1] = w[1]
+        record[KIN_BALL_OMEGA + 2] = w[2]
         ellipse_traction_into(
             contact,
-            kin,
+            record,
             int(traction[TL_LAW]),
             traction[TL_CURVE : TL_CURVE + CURVE_SIZE],
             traction[TL_RHEOLOGY:],
             contact[CT_FILM],
             contact[CT_TRANSIT],
-            u_reg,
-            nodes,
-            out,
-            batch,
+            balance.u_reg,
+            balance.nodes,
+            work.out,
+            work.batch,
         )
         for m in range(3):
-            res[m] += out[TR_MOMENT_BALL + m]
-            forces[k, m] = out[TR_FORCE + m]
+            res[m] += work.out[TR_MOMENT_BALL + m]
+            forces[k, m] = work.out[TR_FORCE + m]
     # minus d(J w_abs)/dt = omega_c e_x x J w, components (x, r, theta) = J omega_c (0, -w_t, w_r)
-    res[1] += inertia * omega_c * w[2]
-    res[2] -= inertia * omega_c * w[1]
+    res[1] += balance.inertia * omega_c * w[2]
+    res[2] -= balance.inertia * omega_c * w[1]
     return forces[0, 2] + forces[1, 2]
 
 
 @njit(cache=True)
-def _ball_residual(w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia):
-    """Moment residual [N m] (3) of one ball spinning at w relative to the cage, and its
-    circumferential traction force [N] (sum of both contacts), plus both traction forces (2, 3)."""
+def _ball_residual(w, omega_c, j, balance, work):
+    """Moment residual [N m] (3) of ball j spinning at w relative to the cage, and its
+    circumferential traction force [N] (sum of both contacts), plus both traction forces (2, 3),
+    as new arrays. ``work``: a one-ball BalanceWork whose ``kin[0]`` holds ball j's cage frame at
+    omega_c (:func:`_cage_frame`)."""
     res = np.zeros(3)
     forces = np.zeros((2, 3))
-    f_theta = _ball_moments(
-        w,
-        omega_c,
-        contact_i,
-        contact_o,
-        kin_i,
-        kin_o,
-        traction,
-        u_reg,
-        nodes,
-        inertia,
-        np.empty((NODE_BATCH_ROWS, NODE_BATCH)),
-        np.empty(TRACTION_OUT_SIZE),
-        res,
-        forces,
-    )
+    f_theta = _ball_moments(w, omega_c, j, balance, work.kin[0], work, res, forces)
     return res, f_theta, forces
 
 
@@ -312,45 +332,16 @@ def _solve3(a, r):
 
 
 @njit(cache=True)
-def solve_ball_spin(
-    w0,
-    omega_c,
-    omega_inner,
-    omega_outer,
-    contact_i,
-    contact_o,
-    ring_centre,
-    centre,
-    traction,
-    u_reg,
-    nodes,
-    inertia,
-    moment_scale,
-):
-    """Angular velocity w (3) of one ball relative to the cage at cage speed omega_c [rad/s] from
-    its moment balance, starting from w0. Returns (w, circumferential traction [N], traction
-    forces (2, 3) [N], ok)."""
-    kin_i = np.zeros(KIN_SIZE)
-    kin_o = np.zeros(KIN_SIZE)
-    for kin in (kin_i, kin_o):
-        kin[KIN_BALL_CENTRE] = centre[0]
-        kin[KIN_BALL_CENTRE + 1] = centre[1]
-        kin[KIN_BALL_CENTRE + 2] = centre[2]
-    # inner ring: turns at omega_i - omega_c about its own (displaced) centre c; in the cage frame
-    # that centre moves at -omega_c e_x x c
-    kin_i[KIN_RING_POINT] = ring_centre[0]
-    kin_i[KIN_RING_POINT + 1] = ring_centre[1]
-    kin_i[KIN_RING_POINT + 2] = ring_centre[2]
-    kin_i[KIN_RING_VELOCITY + 1] = omega_c * ring_centre[2]
-    kin_i[KIN_RING_VELOCITY + 2] = -omega_c * ring_centre[1]
-    kin_i[KIN_RING_OMEGA] = omega_inner - omega_c
-    kin_o[KIN_RING_OMEGA] = omega_outer - omega_c
+def solve_ball_spin(w0, omega_c, j, balance):
+    """Angular velocity w (3) of ball j of ``balance`` relative to the cage at cage speed omega_c
+    [rad/s] from its moment balance, starting from w0. Returns (w, circumferential traction [N],
+    traction forces (2, 3) [N], ok)."""
+    work = _balance_work(1)
+    _cage_frame(work.kin[0], omega_c, j, balance)
     w = w0.copy()
-    res, f_theta, forces = _ball_residual(
-        w, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia
-    )
+    res, f_theta, forces = _ball_residual(w, omega_c, j, balance, work)
     norm = math.sqrt(res[0] ** 2 + res[1] ** 2 + res[2] ** 2)
-    tol = BALL_TOLERANCE * moment_scale
+    tol = BALL_TOLERANCE * balance.moment_scales[j]
     jac = np.empty((3, 3))
     for _ in range(MAX_BALL_ITERATIONS):
         if norm <= tol:
@@ -360,9 +351,7 @@ def solve_ball_spin(
         for m in range(3):
             wp = w.copy()
             wp[m] += h
-            rp, _, _ = _ball_residual(
-                wp, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia
-            )
+            rp, _, _ = _ball_residual(wp, omega_c, j, balance, work)
             for r in range(3):
                 jac[r, m] = (rp[r] - res[r]) / h
         step, solvable = _solve3(jac, res)
@@ -377,9 +366,7 @@ def solve_ball_spin(
         accepted = False
         for _ls in range(30):
             wn = w + t * step
-            rn, fn, forces_n = _ball_residual(
-                wn, omega_c, contact_i, contact_o, kin_i, kin_o, traction, u_reg, nodes, inertia
-            )
+            rn, fn, forces_n = _ball_residual(wn, omega_c, j, balance, work)
             nn = math.sqrt(rn[0] ** 2 + rn[1] ** 2 + rn[2] ** 2)
             if nn < (1.0 - 1e-4 * t) * norm or nn <= tol:
                 accepted = True
@@ -406,127 +393,81 @@ CAGE_STEP_LIMIT = 0.05  # largest change of the cage speed in one step, relative
 
 
 @njit(cache=True)
-def _cage_frame(kin_i, kin_o, omega_c, omega_inner, omega_outer, ring_centre, centre):
-    """Kinematics records (inner, outer) of one ball in the cage frame at cage speed omega_c (the
-    module docstring; the ball's angular velocity is set per evaluation). Slots not written here
-    stay as given (zeros)."""
+def _cage_frame(kin, omega_c, j, balance):
+    """Kinematics records ``kin`` (2, KIN_SIZE) [inner, outer] of ball j in the cage frame at cage
+    speed omega_c (the module docstring; the ball's angular velocity is set per evaluation).
+    Slots not written here stay as given (zeros)."""
+    ring_centre = balance.ring_centres[j]
+    centre = balance.centres[j]
+    kin_i = kin[0]
+    kin_o = kin[1]
     for m in range(3):
         kin_i[KIN_BALL_CENTRE + m] = centre[m]
         kin_o[KIN_BALL_CENTRE + m] = centre[m]
         kin_i[KIN_RING_POINT + m] = ring_centre[m]
     kin_i[KIN_RING_VELOCITY + 1] = omega_c * ring_centre[2]
     kin_i[KIN_RING_VELOCITY + 2] = -omega_c * ring_centre[1]
-    kin_i[KIN_RING_OMEGA] = omega_inner - omega_c
-    kin_o[KIN_RING_OMEGA] = omega_outer - omega_c
+    kin_i[KIN_RING_OMEGA] = balance.omega_inner - omega_c
+    kin_o[KIN_RING_OMEGA] = balance.omega_outer - omega_c
 
 
 @njit(cache=True)
-def _balance_residuals(
-    w,
-    omega_c,
-    omega_inner,
-    omega_outer,
-    contacts,
-    ring_centres,
-    centres,
-    traction,
-    u_reg,
-    nodes,
-    inertia,
-    active,
-    kin,
-    batch,
-    out,
-    res,
-    f_theta,
-    forces,
-):
-    """Moment residuals ``res`` (Z, 3), circumferential tractions ``f_theta`` (Z) and traction
-    forces ``forces`` (Z, 2, 3) of every active ball at spins ``w`` (Z, 3) and cage speed
-    omega_c; ``kin`` (Z, 2, KIN_SIZE) is left in the cage frame at omega_c."""
+def _balance_residuals(w, omega_c, balance, work):
+    """Moment residuals ``work.res`` (Z, 3), circumferential tractions ``work.f_theta`` (Z) and
+    traction forces ``work.forces`` (Z, 2, 3) of every active ball at spins ``w`` (Z, 3) and
+    cage speed omega_c; ``work.kin`` is left in the cage frame at omega_c."""
     for j in range(w.shape[0]):
-        if not active[j]:
+        if not balance.active[j]:
             continue
-        _cage_frame(
-            kin[j, 0], kin[j, 1], omega_c, omega_inner, omega_outer, ring_centres[j], centres[j]
-        )
-        f_theta[j] = _ball_moments(
-            w[j],
-            omega_c,
-            contacts[j, 0],
-            contacts[j, 1],
-            kin[j, 0],
-            kin[j, 1],
-            traction,
-            u_reg,
-            nodes,
-            inertia,
-            batch,
-            out,
-            res[j],
-            forces[j],
+        _cage_frame(work.kin[j], omega_c, j, balance)
+        work.f_theta[j] = _ball_moments(
+            w[j], omega_c, j, balance, work.kin[j], work, work.res[j], work.forces[j]
         )
 
 
 @njit(cache=True)
-def _balance_merit(res, f_theta, moment_scales, force_scale, active):
-    """Sum of squares of the scaled residuals: ball moments over their moment scales, the sum of
-    the circumferential tractions over ``force_scale``."""
+def _balance_merit(work, balance):
+    """Sum of squares of the scaled residuals of ``work``: ball moments over their moment scales,
+    the sum of the circumferential tractions over ``balance.force_scale``."""
     total = 0.0
     excess = 0.0
-    for j in range(res.shape[0]):
-        if active[j]:
+    for j in range(work.res.shape[0]):
+        if balance.active[j]:
             for m in range(3):
-                total += (res[j, m] / moment_scales[j]) ** 2
-            excess += f_theta[j]
-    return total + (excess / force_scale) ** 2
+                total += (work.res[j, m] / balance.moment_scales[j]) ** 2
+            excess += work.f_theta[j]
+    return total + (excess / balance.force_scale) ** 2
 
 
 @njit(cache=True)
-def _balls_settled(res, moment_scales, active):
-    """True when every active ball's moment residual is within BALL_TOLERANCE of its scale."""
-    for j in range(res.shape[0]):
-        if active[j]:
-            norm = math.sqrt(res[j, 0] ** 2 + res[j, 1] ** 2 + res[j, 2] ** 2)
-            if not norm <= BALL_TOLERANCE * moment_scales[j]:
+def _balls_settled(work, balance):
+    """True when every active ball's moment residual in ``work`` is within BALL_TOLERANCE of its
+    scale."""
+    for j in range(work.res.shape[0]):
+        if balance.active[j]:
+            res = work.res[j]
+            norm = math.sqrt(res[0] ** 2 + res[1] ** 2 + res[2] ** 2)
+            if not norm <= BALL_TOLERANCE * balance.moment_scales[j]:
                 return False
     return True
 
 
 @njit(cache=True)
-def _balance_jacobian(
-    w,
-    omega_c,
-    omega_inner,
-    omega_outer,
-    contacts,
-    ring_centres,
-    centres,
-    traction,
-    u_reg,
-    nodes,
-    inertia,
-    active,
-    kin,
-    batch,
-    out,
-    res,
-    f_theta,
-    jacobian,
-):
+def _balance_jacobian(w, omega_c, balance, work, jacobian):
     """Finite-difference blocks of the bordered Jacobian at (w, omega_c) into ``jacobian``
-    (Z, JACOBIAN_SIZE), from the residuals ``res`` and ``f_theta`` there (steps as in
-    :func:`solve_ball_spin`). ``kin`` must hold the cage frame at omega_c and is left so.
+    (Z, JACOBIAN_SIZE), from the residuals ``work.res`` and ``work.f_theta`` there (steps as in
+    :func:`solve_ball_spin`). ``work.kin`` must hold the cage frame at omega_c and is left so.
     Returns False when a ball's moment Jacobian is singular."""
     a = np.empty((3, 3))
     c = np.empty(3)
     rp = np.empty(3)
     fp = np.empty((2, 3))
     wp = np.empty(3)
-    kin_i = np.zeros(KIN_SIZE)
-    kin_o = np.zeros(KIN_SIZE)
+    shifted = np.zeros((2, KIN_SIZE))
+    res = work.res
+    f_theta = work.f_theta
     for j in range(w.shape[0]):
-        if not active[j]:
+        if not balance.active[j]:
             continue
         wj = w[j]
         speed = math.sqrt(wj[0] ** 2 + wj[1] ** 2 + wj[2] ** 2)
@@ -534,47 +475,14 @@ def _balance_jacobian(
         for m in range(3):
             wp[:] = wj
             wp[m] += h
-            f_p = _ball_moments(
-                wp,
-                omega_c,
-                contacts[j, 0],
-                contacts[j, 1],
-                kin[j, 0],
-                kin[j, 1],
-                traction,
-                u_reg,
-                nodes,
-                inertia,
-                batch,
-                out,
-                rp,
-                fp,
-            )
+            f_p = _ball_moments(wp, omega_c, j, balance, work.kin[j], work, rp, fp)
             for r in range(3):
                 a[r, m] = (rp[r] - res[j, r]) / h
             jacobian[j, JB_ROW + m] = (f_p - f_theta[j]) / h
         h_c = 1e-7 * max(abs(omega_c), 1.0)
-        kin_i[:] = kin[j, 0]
-        kin_o[:] = kin[j, 1]
-        _cage_frame(
-            kin_i, kin_o, omega_c + h_c, omega_inner, omega_outer, ring_centres[j], centres[j]
-        )
-        f_p = _ball_moments(
-            wj,
-            omega_c + h_c,
-            contacts[j, 0],
-            contacts[j, 1],
-            kin_i,
-            kin_o,
-            traction,
-            u_reg,
-            nodes,
-            inertia,
-            batch,
-            out,
-            rp,
-            fp,
-        )
+        shifted[:] = work.kin[j]
+        _cage_frame(shifted, omega_c + h_c, j, balance)
+        f_p = _ball_moments(wj, omega_c + h_c, j, balance, shifted, work, rp, fp)
         for r in range(3):
             c[r] = (rp[r] - res[j, r]) / h_c
         jacobian[j, JB_CORNER] = (f_p - f_theta[j]) / h_c
@@ -597,9 +505,12 @@ def _balance_jacobian(
 
 
 @njit(cache=True)
-def _balance_step(res, f_theta, jacobian, active, step):
-    """Newton step of the bordered system: the balls' spin changes into ``step`` (Z, 3); returns
-    the cage-speed change (NaN when the system is singular)."""
+def _balance_step(work, balance, jacobian, step):
+    """Newton step of the bordered system at the residuals of ``work``: the balls' spin changes
+    into ``step`` (Z, 3); returns the cage-speed change (NaN when the system is singular)."""
+    res = work.res
+    f_theta = work.f_theta
+    active = balance.active
     numerator = 0.0
     denominator = 0.0
     for j in range(res.shape[0]):
@@ -627,31 +538,13 @@ def _balance_step(res, f_theta, jacobian, active, step):
 
 
 @njit(cache=True)
-def solve_balance(
-    w,
-    omega_c,
-    omega_inner,
-    omega_outer,
-    contacts,
-    ring_centres,
-    centres,
-    traction,
-    u_reg,
-    nodes,
-    inertia,
-    moment_scales,
-    force_scale,
-    active,
-    jacobian,
-    refresh,
-    forces,
-):
+def solve_balance(w, omega_c, balance, jacobian, refresh, forces):
     """Every active ball's spin w (Z, 3) relative to the cage and the cage speed omega_c [rad/s]
-    solved together by Newton's method on the bordered system: each ball's moment balance
-    (3 equations in its own w and omega_c) and the cage's, sum of the circumferential tractions
-    = 0. The Jacobian's blocks (:func:`_balance_jacobian`) are kept in ``jacobian`` between
-    iterations and calls while the merit falls by at least a factor SLOW_CONTRACTION per step, and
-    refreshed otherwise (``refresh`` True: start with a fresh one). Steps are limited to
+    of ``balance`` solved together by Newton's method on the bordered system: each ball's moment
+    balance (3 equations in its own w and omega_c) and the cage's, sum of the circumferential
+    tractions = 0. The Jacobian's blocks (:func:`_balance_jacobian`) are kept in ``jacobian``
+    between iterations and calls while the merit falls by at least a factor SLOW_CONTRACTION per
+    step, and refreshed otherwise (``refresh`` True: start with a fresh one). Steps are limited to
     BALL_STEP_LIMIT of a ball's speed and CAGE_STEP_LIMIT of the ring speed for the cage, then
     halved until the merit falls.
 
@@ -660,50 +553,40 @@ def solve_balance(
     solution; ``forces`` (Z, 2, 3) out: the traction forces there. Returns (omega_c, converged);
     not converged leaves ``w`` at the last iterate."""
     z = w.shape[0]
-    kin = np.zeros((z, 2, KIN_SIZE))
-    batch = np.empty((NODE_BATCH_ROWS, NODE_BATCH))
-    out = np.empty(TRACTION_OUT_SIZE)
-    res = np.zeros((z, 3))
-    f_theta = np.zeros(z)
-    trial_w = w.copy()
-    trial_res = np.zeros((z, 3))
-    trial_f = np.zeros(z)
-    trial_forces = np.zeros((z, 2, 3))
-    step = np.zeros((z, 3))
-    ring = abs(omega_inner - omega_outer)
-    args = (
-        omega_inner,
-        omega_outer,
-        contacts,
-        ring_centres,
-        centres,
-        traction,
-        u_reg,
-        nodes,
-        inertia,
-        active,
-        kin,
-        batch,
-        out,
+    work = BalanceWork(
+        np.zeros((z, 2, KIN_SIZE)),
+        np.empty((NODE_BATCH_ROWS, NODE_BATCH)),
+        np.empty(TRACTION_OUT_SIZE),
+        np.zeros((z, 3)),
+        np.zeros(z),
+        forces,
     )
-    _balance_residuals(w, omega_c, *args, res, f_theta, forces)
-    merit = _balance_merit(res, f_theta, moment_scales, force_scale, active)
+    # the trial point shares the kinematics records and the traction scratch
+    trial = BalanceWork(
+        work.kin, work.batch, work.out, np.zeros((z, 3)), np.zeros(z), np.zeros((z, 2, 3))
+    )
+    trial_w = w.copy()
+    step = np.zeros((z, 3))
+    active = balance.active
+    ring = abs(balance.omega_inner - balance.omega_outer)
+    _balance_residuals(w, omega_c, balance, work)
+    merit = _balance_merit(work, balance)
     if not math.isfinite(merit):
         return omega_c, False
     fresh = False
     for _ in range(MAX_BALANCE_ITERATIONS):
         if refresh:
-            if not _balance_jacobian(w, omega_c, *args, res, f_theta, jacobian):
+            if not _balance_jacobian(w, omega_c, balance, work, jacobian):
                 return omega_c, False
             refresh = False
             fresh = True
-        d_cage = _balance_step(res, f_theta, jacobian, active, step)
+        d_cage = _balance_step(work, balance, jacobian, step)
         if not math.isfinite(d_cage):
             if fresh:
                 return omega_c, False
             refresh = True
             continue
-        settled = _balls_settled(res, moment_scales, active)
+        settled = _balls_settled(work, balance)
         if settled and abs(d_cage) <= CAGE_SPEED_TOLERANCE * abs(omega_c) + 1e-12:
             return omega_c, True
         scale = 1.0
@@ -723,12 +606,10 @@ def solve_balance(
             for j in range(z):
                 for r in range(3):
                     trial_w[j, r] = w[j, r] + t * step[j, r]
-            _balance_residuals(
-                trial_w, omega_c + t * d_cage, *args, trial_res, trial_f, trial_forces
-            )
-            trial_merit = _balance_merit(trial_res, trial_f, moment_scales, force_scale, active)
+            _balance_residuals(trial_w, omega_c + t * d_cage, balance, trial)
+            trial_merit = _balance_merit(trial, balance)
             if trial_merit < (1.0 - 1e-4 * t) * merit or (
-                _balls_settled(trial_res, moment_scales, active)
+                _balls_settled(trial, balance)
                 and abs(t * d_cage) <= CAGE_SPEED_TOLERANCE * abs(omega_c) + 1e-12
             ):
                 accepted = True
@@ -736,16 +617,16 @@ def solve_balance(
             t *= 0.5
         if not accepted:
             # the kinematics records in kin are those of the last trial: back to omega_c
-            _balance_residuals(w, omega_c, *args, res, f_theta, forces)
+            _balance_residuals(w, omega_c, balance, work)
             if fresh:
                 return omega_c, False
             refresh = True
             continue
         omega_c += t * d_cage
         w[:] = trial_w
-        res[:] = trial_res
-        f_theta[:] = trial_f
-        forces[:] = trial_forces
+        work.res[:] = trial.res
+        work.f_theta[:] = trial.f_theta
+        work.forces[:] = trial.forces
         if trial_merit > SLOW_CONTRACTION * merit:
             refresh = True
         merit = trial_merit
@@ -753,86 +634,23 @@ def solve_balance(
     return omega_c, False
 
 
-def _kinematics(omega_c, omega_inner, omega_outer, ring_centre, centre):
-    """Kinematics records (inner, outer) of one ball in the cage frame (module docstring); the
-    ball's angular velocity is filled in per evaluation."""
-    kin_i = np.zeros(KIN_SIZE)
-    kin_o = np.zeros(KIN_SIZE)
-    for kin in (kin_i, kin_o):
-        kin[KIN_BALL_CENTRE : KIN_BALL_CENTRE + 3] = centre
-    kin_i[KIN_RING_POINT : KIN_RING_POINT + 3] = ring_centre
-    kin_i[KIN_RING_VELOCITY + 1] = omega_c * ring_centre[2]
-    kin_i[KIN_RING_VELOCITY + 2] = -omega_c * ring_centre[1]
-    kin_i[KIN_RING_OMEGA] = omega_inner - omega_c
-    kin_o[KIN_RING_OMEGA] = omega_outer - omega_c
-    return kin_i, kin_o
-
-
-def _ball_spin(
-    j,
-    omega_c,
-    w,
-    omega_inner,
-    omega_outer,
-    contacts,
-    ring_centres,
-    centres,
-    traction,
-    nodes,
-    inertia,
-    moment_scales,
-):
-    """(w, circumferential traction, forces) of ball j: the jitted Newton solve, and where it
-    stalls (near a fold of the traction curve's falling branch) SciPy's hybrid method from its
-    last iterate. BalanceFailed when neither converges."""
-    args = (
-        omega_c,
-        omega_inner,
-        omega_outer,
-        contacts[j, 0],
-        contacts[j, 1],
-        ring_centres[j],
-        centres[j],
-        traction,
-        SLIP_REGULARISATION,
-        nodes,
-        inertia,
-        moment_scales[j],
-    )
-    wj, f_theta, forces, ok = solve_ball_spin(w[j], *args)
+def _ball_spin(j, omega_c, w, balance):
+    """(w, circumferential traction, forces) of ball j of ``balance``: the jitted Newton solve,
+    and where it stalls (near a fold of the traction curve's falling branch) SciPy's hybrid
+    method from its last iterate. BalanceFailed when neither converges."""
+    wj, f_theta, forces, ok = solve_ball_spin(w[j], omega_c, j, balance)
     if ok:
         return wj, f_theta, forces
-    kin_i, kin_o = _kinematics(omega_c, omega_inner, omega_outer, ring_centres[j], centres[j])
+    work = _balance_work(1)
+    _cage_frame(work.kin[0], omega_c, j, balance)
 
     def residual(x):
-        return _ball_residual(
-            np.asarray(x, dtype=float),
-            omega_c,
-            contacts[j, 0],
-            contacts[j, 1],
-            kin_i,
-            kin_o,
-            traction,
-            SLIP_REGULARISATION,
-            nodes,
-            inertia,
-        )[0]
+        return _ball_residual(np.asarray(x, dtype=float), omega_c, j, balance, work)[0]
 
     for start in (wj, w[j]):
         sol = optimize.root(residual, start, method="hybr", options={"xtol": 1e-13})
-        if np.max(np.abs(residual(sol.x))) <= 1e3 * BALL_TOLERANCE * moment_scales[j]:
-            _, f_theta, forces = _ball_residual(
-                sol.x,
-                omega_c,
-                contacts[j, 0],
-                contacts[j, 1],
-                kin_i,
-                kin_o,
-                traction,
-                SLIP_REGULARISATION,
-                nodes,
-                inertia,
-            )
+        if np.max(np.abs(residual(sol.x))) <= 1e3 * BALL_TOLERANCE * balance.moment_scales[j]:
+            _, f_theta, forces = _ball_residual(sol.x, omega_c, j, balance, work)
             return sol.x, f_theta, forces
     raise BalanceFailed(
         f"at cage speed {omega_c:.6g} rad/s the spin of ball {j} has no steady balance: its "
@@ -840,42 +658,15 @@ def _ball_spin(
     )
 
 
-def pocket_force_sum(
-    omega_c,
-    w,
-    omega_inner,
-    omega_outer,
-    contacts,
-    ring_centres,
-    centres,
-    traction,
-    nodes,
-    inertia,
-    moment_scales,
-    active,
-    forces_out,
-):
-    """Sum over the balls of the pocket forces P_j = -(circumferential traction) [N] at cage speed
-    omega_c; ``w`` (Z, 3) warm start in, solution out; ``forces_out`` (Z, 2, 3) the traction
-    forces."""
+def pocket_force_sum(omega_c, w, balance, forces_out):
+    """Sum over the balls of ``balance`` of the pocket forces P_j = -(circumferential traction)
+    [N] at cage speed omega_c; ``w`` (Z, 3) warm start in, solution out; ``forces_out``
+    (Z, 2, 3) the traction forces."""
     total = 0.0
     for j in range(w.shape[0]):
-        if not active[j]:
+        if not balance.active[j]:
             continue
-        w[j], f_theta, forces_out[j] = _ball_spin(
-            j,
-            omega_c,
-            w,
-            omega_inner,
-            omega_outer,
-            contacts,
-            ring_centres,
-            centres,
-            traction,
-            nodes,
-            inertia,
-            moment_scales,
-        )
+        w[j], f_theta, forces_out[j] = _ball_spin(j, omega_c, w, balance)
         total -= f_theta
     return total
 
@@ -938,25 +729,23 @@ def traction_balance(
     omega_i, omega_o = model.inner_ring_speed, model.outer_ring_speed
     if jacobian is None:
         jacobian = np.full((z, JACOBIAN_SIZE), np.nan)
-    newton_w = w.copy()
-    omega_c, converged = solve_balance(
-        newton_w,
-        omega_c0,
-        omega_i,
-        omega_o,
+    balance = Balance(
         contacts,
         ring_centres,
         centres,
         traction,
-        SLIP_REGULARISATION,
         nodes,
-        inertia,
-        moment_scales,
-        float(loads.max()),
         active,
-        jacobian,
-        bool(np.isnan(jacobian[active]).any()),
-        forces,
+        moment_scales,
+        omega_i,
+        omega_o,
+        inertia,
+        SLIP_REGULARISATION,
+        float(loads.max()),
+    )
+    newton_w = w.copy()
+    omega_c, converged = solve_balance(
+        newton_w, omega_c0, balance, jacobian, bool(np.isnan(jacobian[active]).any()), forces
     )
     if converged:
         return _balance_records(
@@ -965,21 +754,7 @@ def traction_balance(
     jacobian[:] = np.nan
 
     def excess(omega_c):
-        return pocket_force_sum(
-            omega_c,
-            w,
-            omega_i,
-            omega_o,
-            contacts,
-            ring_centres,
-            centres,
-            traction,
-            nodes,
-            inertia,
-            moment_scales,
-            active,
-            forces,
-        )
+        return pocket_force_sum(omega_c, w, balance, forces)
 
     span = 0.002 * max(abs(omega_i - omega_o), 1e-9)
     lo, hi = omega_c0 - span, omega_c0 + span
