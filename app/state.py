@@ -28,7 +28,7 @@ class RacetraceApp:
     """State and handlers of one racetrace page.
 
     ``server``: a trame server (``trame.app.get_server``); ``runs_dir``: runs folder (default
-    :func:`app.runs.default_runs_dir`), used when no ``services`` are given; ``render``: build
+    :func:`app.run_store.default_runs_dir`), used when no ``services`` are given; ``render``: build
     the pyvista scene (False in pure state tests); ``window_size``: 3-D view size in pixels.
     """
 
@@ -74,7 +74,7 @@ class RacetraceApp:
 
     @property
     def store(self):
-        """The runs folder (:class:`app.runs.RunStore`), shared by every session."""
+        """The runs folder (:class:`app.run_store.RunStore`), shared by every session."""
         return self.services.store
 
     @property

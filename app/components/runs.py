@@ -18,10 +18,13 @@ import time
 from pathlib import Path
 
 import numpy as np
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
 
 from .. import runner as runner_module
-from ..runs import describe_case, load_netcdf
+from ..run_store import describe_case, load_netcdf
 from .base import Component
+from .widgets import alert_list, select
 
 POLL_S = 0.2  # runner polling period
 STOP_TIMEOUT_S = 20.0  # a stopping server waits this long for the run's partial result
@@ -335,3 +338,94 @@ class Runs(Component):
         self.pool.release(self.runner)
         self.pool.drop(self.ticket)
         self.ticket = None
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_ui(self) -> None:
+        """The run card: Run and Cancel with the status, what stops or questions a run, the
+        warnings of the result on show, the progress bar and the saved runs."""
+        ctrl = self.ctrl
+        with v3.VCard(variant="outlined", classes="mb-2 pa-2"):
+            _run_buttons(ctrl)
+            html.Div(
+                "{{ run_blocked }}",
+                id="run-blocked",
+                v_show="run_blocked",
+                classes="text-caption text-error",
+            )
+            html.Div(
+                "{{ run_note }}",
+                id="run-note",
+                v_show="run_note",
+                classes="text-caption text-warning",
+            )
+            _run_confirm(ctrl)
+            html.Div(
+                "{{ run_reason }}",
+                id="run-reason",
+                v_show="run_reason",
+                classes="text-caption text-error",
+                style="white-space: pre-line",
+            )
+            alert_list("result_warnings", "warning", "result-warnings")
+            v3.VProgressLinear(
+                id="progress", model_value=("progress",), height=8, color="primary", classes="my-1"
+            )
+            with html.Div(id="runs-select"):
+                select("Saved runs", "run_id", "runs", no_data_text="no saved runs yet")
+
+
+def _run_buttons(ctrl) -> None:
+    """``#run-button``, ``#cancel-button`` and the status with the time left."""
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols="auto"):
+            v3.VBtn(
+                "Run",
+                id="run-button",
+                color="primary",
+                click=ctrl.run,
+                disabled=("run_disabled",),
+                prepend_icon="mdi-play-circle",
+            )
+            v3.VBtn(
+                "Cancel",
+                id="cancel-button",
+                click=ctrl.cancel,
+                disabled=("!busy",),
+                classes="ml-2",
+                prepend_icon="mdi-stop-circle",
+            )
+        with v3.VCol():
+            html.Div("{{ status }}", id="status", classes="text-body-2")
+            html.Div("{{ eta }}", classes="text-caption")
+
+
+def _run_confirm(ctrl) -> None:
+    """``#run-confirm``: Run asks first when the result on show leaves the model's validity."""
+    with v3.VAlert(
+        id="run-confirm",
+        v_if="run_confirm",
+        type="warning",
+        density="compact",
+        variant="tonal",
+        classes="my-1 text-caption",
+    ):
+        html.Div(
+            "The result of this case leaves the model's validity (see the warnings below). "
+            "Run the dynamic model anyway?"
+        )
+        v3.VBtn(
+            "Run anyway",
+            id="run-anyway",
+            click=ctrl.run_anyway,
+            size="small",
+            color="warning",
+            classes="mt-1 mr-2",
+        )
+        v3.VBtn(
+            "Back",
+            id="run-back",
+            click="run_confirm = false",
+            size="small",
+            variant="text",
+            classes="mt-1",
+        )

@@ -34,8 +34,12 @@ import threading
 from pathlib import Path
 
 import numpy as np
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
 
+from .. import lazy_charts
 from ..paths import child_path
+from . import widgets
 from .base import Component, fig_json
 
 POLL_S = 1.0
@@ -565,6 +569,173 @@ class Studies(Component):
 
     def shutdown(self) -> None:
         self._stop.set()
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_ui(self) -> None:
+        """The collapsible panel "Studies" (value ``studies``, ``#studies``): open earlier
+        results, run a shipped study or one built from the current case, chart a metric and
+        open any point."""
+        ctrl = self.ctrl
+        with v3.VExpansionPanel(title="Studies", value="studies"):
+            with v3.VExpansionPanelText(), html.Div(id="studies", classes="mb-2"):
+                with html.Div(id="study-results"):
+                    widgets.select(
+                        "Open study results",
+                        "study_results",
+                        "study_results_items",
+                        disabled=("study_running",),
+                        no_data_text="no study results yet",
+                        classes="mb-2",
+                    )
+                _shipped_study(ctrl)
+                _study_builder(ctrl)
+                v3.VProgressLinear(
+                    id="study-progress",
+                    model_value=("study_progress",),
+                    v_show="study_running",
+                    height=6,
+                    color="primary",
+                    classes="mt-2",
+                )
+                html.Div(
+                    "{{ study_status }}",
+                    id="study-status",
+                    classes=(
+                        "study_status.startsWith('error') ? 'text-caption my-1 text-error' : "
+                        "'text-caption my-1'",
+                    ),
+                )
+                _study_chart(ctrl)
+                _study_table(ctrl)
+
+
+def _shipped_study(ctrl) -> None:
+    """A shipped study to run (``#study-run``) and ``#study-cancel``."""
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=6):
+            widgets.select(
+                "Shipped study", "study_name", "study_names", disabled=("study_running",)
+            )
+        with v3.VCol(cols="auto"):
+            v3.VBtn(
+                "Run study",
+                id="study-run",
+                click=ctrl.study_run,
+                disabled=("study_running",),
+                color="primary",
+                size="small",
+            )
+        with v3.VCol(cols="auto"):
+            v3.VBtn(
+                "Cancel",
+                id="study-cancel",
+                click=ctrl.study_cancel,
+                disabled=("!study_running",),
+                size="small",
+            )
+
+
+def _study_builder(ctrl) -> None:
+    """``#study-build``: a study built from the case in the form (:meth:`Studies.build`)."""
+    with html.Div(id="study-build", classes="mt-2 pa-2", style="border: 1px solid #ddd;"):
+        html.Div("Build a study from the current case", classes="text-subtitle-2")
+        for n in (1, 2):
+            with v3.VRow(dense=True, align="center"):
+                with v3.VCol(cols=7), html.Div(id=f"study-key{n}"):
+                    v3.VAutocomplete(
+                        label="key to vary" if n == 1 else "second key (optional)",
+                        v_model=(f"study_key{n}",),
+                        items=("study_key_items",),
+                        density="compact",
+                        hide_details=True,
+                        clearable=n == 2,
+                        disabled=("study_running",),
+                    )
+                with v3.VCol(cols=5), html.Div(id=f"study-values{n}"):
+                    v3.VTextField(
+                        label="values",
+                        v_model=(f"study_values{n}",),
+                        placeholder="0, 300, 600 or 0:1500:6",
+                        persistent_placeholder=True,
+                        density="compact",
+                        hide_details=True,
+                        title="A list (0, 300, 600) or start:stop:count (0:1500:6)",
+                        disabled=("study_running",),
+                    )
+        _study_options()
+        v3.VBtn(
+            "Build and run",
+            id="study-build-run",
+            click=ctrl.study_build,
+            disabled=("study_running || !case_valid",),
+            color="primary",
+            size="small",
+            classes="mt-1",
+            title="Write a study file with the case in the form as its base and run it",
+        )
+
+
+def _study_options() -> None:
+    """How two keys combine, the model and the dynamic run length of a built study."""
+    combine = (("grid", "grid (every pair)"), ("zip", "zipped (side by side)"))
+    models = (("quasistatic", "quasi-static"), ("dynamic", "dynamic"), ("both", "both"))
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=4), html.Div(id="study-combine"):
+            widgets.select("two keys", "study_combine", widgets.choices(combine))
+        with v3.VCol(cols=4), html.Div(id="study-model"):
+            widgets.select("model", "study_model", widgets.choices(models))
+        with v3.VCol(cols=4), html.Div(id="study-revolutions"):
+            v3.VTextField(
+                label="revolutions (dynamic)",
+                v_model=("study_revolutions",),
+                density="compact",
+                hide_details=True,
+                disabled=("study_model === 'quasistatic'",),
+            )
+
+
+def _study_chart(ctrl) -> None:
+    """The sweep and metric to chart, and ``#chart-study`` (a click on a point opens its run:
+    its (point, model) is the customdata)."""
+    with v3.VRow(dense=True):
+        with v3.VCol(cols=6):
+            widgets.select("Sweep", "study_sweep", "study_sweeps")
+        with v3.VCol(cols=6):
+            widgets.select("Metric", "study_metric", "study_metric_items")
+    with html.Div(id="chart-study", classes="mb-2"):
+        lazy_charts.ChartFigure(
+            "chart_study",
+            display_mode_bar=False,
+            style="height: 280px; width: 100%;",
+            click=(
+                ctrl.study_open,
+                "[$event.points[0].customdata[0], $event.points[0].customdata[1]]",
+            ),
+        )
+
+
+STUDY_TABLE_HEADS = ("point", "model", "values", "status", "exc i/o deg", "band i/o deg", "")
+
+
+def _study_table(ctrl) -> None:
+    """``#study-table``: a row per point and model (state ``study_rows``) with its **open**."""
+    with v3.VTable(density="compact", id="study-table"):
+        with html.Thead(), html.Tr():
+            for head in STUDY_TABLE_HEADS:
+                html.Th(head)
+        with html.Tbody(), html.Tr(v_for="row in study_rows", key="row.key"):
+            for cell in ("point", "model", "values", "status"):
+                html.Td(f"{{{{ row.{cell} }}}}")
+            html.Td("{{ row.excursion_inner }} / {{ row.excursion_outer }}")
+            html.Td("{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}")
+            with html.Td():
+                v3.VBtn(
+                    "open",
+                    size="x-small",
+                    variant="text",
+                    disabled=("!row.openable",),
+                    click=(ctrl.study_open, "[row.point, row.model]"),
+                )
 
 
 def _keys_by_sweep(ds, keys) -> dict:

@@ -22,6 +22,7 @@ from __future__ import annotations
 import logging
 
 from ..components.base import Component
+from . import widgets
 from .format import LessonSet, load_lessons
 from .results import lesson_result
 from .text import lesson_text
@@ -178,6 +179,19 @@ class LessonController(Component):
             self.previous_lesson()
         elif key == "Escape":
             self.state.presenter = False
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_page_assets(self) -> None:
+        """Presenter mode's style sheet and key handler (once per page)."""
+        widgets.page_assets()
+
+    def build_toolbar(self) -> None:
+        """``#presenter-button`` in the toolbar."""
+        widgets.presenter_button()
+
+    def build_ui(self) -> None:
+        """``#lessons-panel``: the lessons and the open lesson's text (app/lessons/widgets.py)."""
+        widgets.lessons_panel(self.ctrl)
 
 
 __all__ = ["ALWAYS_SHOWN", "LessonController"]
