@@ -46,6 +46,14 @@ class Component:
 
         return run_guarded
 
+    def provide(self, **functions) -> None:
+        """Offer ``functions`` to the other components as controller functions, called as
+        ``self.ctrl.<name>(...)``: components reach each other only through the controller and the
+        state. A failure goes to the caller; the page cannot call them (no widget is bound to
+        them)."""
+        for name, function in functions.items():
+            setattr(self.ctrl, name, function)
+
     def init_state(self) -> None:
         """Set this component's state keys to their starting values."""
 

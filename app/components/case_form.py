@@ -94,6 +94,13 @@ class CaseForm(Component):
         self.on_change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
         self.on_change("uploaded_case")(self._on_upload)
         self.action("reset_case", self.reset_case)
+        self.provide(
+            drop_pending_preview=self.drop_pending_preview,
+            update_staleness=self.update_staleness,
+            take_case=self.take_case,
+            edited_case=lambda: self.case,
+            validate_case=self.validate,
+        )
 
     def first_case_name(self, case_name: str) -> str:
         """``case_name`` if it is a shipped case, else the first shipped case."""
@@ -236,7 +243,7 @@ class CaseForm(Component):
     def update_staleness(self) -> None:
         """``result_stale``: the result on show is not of the case in the form (edited, or the
         form is invalid)."""
-        shown = self.session.result.shown_case_text
+        shown = self.ctrl.shown_case_text()
         self.state.result_stale = shown is not None and self.case_text != shown
 
     @staticmethod
@@ -250,7 +257,7 @@ class CaseForm(Component):
         if self._filling:
             return
         if self.validate() is not None and self.case is not None:
-            if self.case_text == self.session.result.shown_case_text:
+            if self.case_text == self.ctrl.shown_case_text():
                 return  # the result on show is already this case (e.g. a reopened run)
             self.schedule_preview()
 
@@ -286,7 +293,7 @@ class CaseForm(Component):
             return
         if generation == self._preview_generation:
             with self.state:
-                self.session.result.show_preview(ds)
+                self.ctrl.show_preview(ds)
                 if not self.state.busy:  # a run's status stays until it ends
                     self.state.status = "preview done"
 
@@ -299,7 +306,7 @@ class CaseForm(Component):
         except Exception as error:
             self.state.status = f"error: {error}"
             return
-        self.session.result.show_preview(ds)
+        self.ctrl.show_preview(ds)
         self.state.status = "preview done"
 
     # ---- page -----------------------------------------------------------------------------------

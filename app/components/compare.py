@@ -40,6 +40,7 @@ class Compare(Component):
 
     def bind(self) -> None:
         self.on_change("compare_ids")(self._on_compare_ids)
+        self.provide(refresh_comparison=self.refresh_comparison)
 
     def chosen(self) -> list:
         """The run ids chosen for comparison (``compare_ids``, as a client sent it), in order,
@@ -53,6 +54,12 @@ class Compare(Component):
         """Whether the comparison shown is of the result on show and the chosen runs."""
         return self._compare_key == (int(self.state.result_serial), tuple(self.chosen()))
 
+    def refresh_comparison(self) -> None:
+        """Compare again unless the comparison shown is of the result on show and the runs
+        chosen (the panel was opened, or the result changed)."""
+        if not self.is_current():
+            self.update_comparison()
+
     def _on_compare_ids(self, **_):
         self.update_comparison()
 
@@ -64,7 +71,7 @@ class Compare(Component):
         :func:`app.charts.run_summary`) and ``compare_legend``; all are emptied when nothing is
         chosen, and ``compare_message`` says in words why a chosen run is left out (not a saved
         run, cannot be loaded, more than the page can tell apart)."""
-        result = self.session.result
+        result = self.ctrl.shown_result()
         ids = self.chosen()
         if not ids or result.source is None:
             self._clear_comparison("")
@@ -78,7 +85,7 @@ class Compare(Component):
             ids = ids[: MAX_COMPARED - 1]
         runs = []  # (run id, label, Dataset, FrameSource)
         for run_id in ids:
-            if not self.session.runs.is_listed(run_id):
+            if not self.ctrl.is_listed(run_id):
                 problems.append(f"cannot compare with {run_id[:80]}: not a saved run")
                 continue
             try:
@@ -93,8 +100,8 @@ class Compare(Component):
             return
         self._compare_key = (int(self.state.result_serial), tuple(self.chosen()))
         label = self.state.result_label or "run on show"
-        if result.shown_title and result.shown_title not in label:
-            label = f"{label}: {result.shown_title}"  # e.g. a preview: its case and loads
+        if result.title and result.title not in label:
+            label = f"{label}: {result.title}"  # e.g. a preview: its case and loads
         shown = [(None, label, result.dataset, result.source)]
         shown += runs
         sources = [source for _, _, _, source in shown]

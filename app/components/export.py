@@ -40,6 +40,7 @@ class Export(Component):
 
     def bind(self) -> None:
         self.action("export", self.request_export)
+        self.provide(forget_download=self.forget_download)
 
     @property
     def exports_dir(self) -> Path:

@@ -17,6 +17,7 @@ import asyncio
 import logging
 import math
 import time
+from typing import NamedTuple
 
 import numpy as np
 from trame.widgets import html
@@ -53,6 +54,15 @@ CHARTS = (
     "compare_angle",
     "compare_load",
 )
+
+
+class ShownResult(NamedTuple):
+    """The result on show as other components read it: its Dataset, its frames and its title
+    (the case and loads; None until a result is shown)."""
+
+    dataset: object
+    source: FrameSource | None
+    title: str | None
 
 
 class ResultView(Component):
@@ -128,17 +138,35 @@ class ResultView(Component):
         self.on_change("open_panels")(self._on_open_panels)
         self.action("step", self.step)
         self.action("set_camera", self.set_camera)
+        self.provide(
+            show_preview=self.show_preview,
+            show_unsaved=self.show_unsaved,
+            show_saved_run=self.show_saved_run,
+            shown_case_text=lambda: self.shown_case_text,
+            shown_run_id=lambda: self.shown_run_id,
+            shown_result=self.shown_result,
+            update_charts=self.update_charts,
+        )
 
     # ---- what is shown --------------------------------------------------------------------------
     def show_preview(self, ds) -> None:
         """Show a quasi-static preview; the runs list then names no run."""
+        self.show_unsaved(ds, "quasi-static preview")
+
+    def show_unsaved(self, ds, label: str) -> None:
+        """Show a result that is not a saved run (a preview, a lesson's, a study point's); the
+        runs list then names no run."""
         self.state.run_id = None
         self.shown_run_id = None
-        self.show_result(ds, "quasi-static preview")
+        self.show_result(ds, label)
+
+    def shown_result(self) -> ShownResult:
+        """The result on show, for the views of other components (the comparison)."""
+        return ShownResult(self.dataset, self.source, self.shown_title)
 
     def show_saved_run(self, ds, run_id: str, label: str) -> None:
         """Show saved run ``run_id``, named in the runs list; a pending preview is dropped."""
-        self.session.form.drop_pending_preview()
+        self.ctrl.drop_pending_preview()
         self.show_result(ds, label)
         self.shown_run_id = run_id
         self.state.run_id = run_id
@@ -182,7 +210,7 @@ class ResultView(Component):
         s.frame_max = source.n_frames - 1
         s.result_label = label
         s.result_serial = int(s.result_serial) + 1
-        self.session.exports.forget_download()
+        self.ctrl.forget_download()
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
@@ -277,7 +305,7 @@ class ResultView(Component):
     def _animation_options(self, ds) -> dict:
         """Options of :func:`viz.frames.frame_source`: a quasi-static result is animated for the
         form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form)."""
-        case = self.session.form.case
+        case = self.ctrl.edited_case()
         if "time" in ds.dims or case is None:
             return {}
         revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
@@ -472,8 +500,8 @@ class ResultView(Component):
                 dyn = self.dataset if "time" in self.dataset.dims else None
                 s.chart_comparison = fig_json(charts.comparison_figure(self.quasistatic, dyn))
             self._comparison_serial = serial
-        if "compare" in open_panels and not self.session.compare.is_current():
-            self.session.compare.update_comparison()
+        if "compare" in open_panels:
+            self.ctrl.refresh_comparison()
         self._last_chart_update = time.monotonic()
 
     def _on_open_panels(self, **_):

@@ -86,6 +86,7 @@ class Runs(Component):
         self.action("run_anyway", self.run_anyway)
         self.action("cancel", self.cancel)
         self.action("refresh_runs", self.refresh)
+        self.provide(is_listed=self.is_listed)
 
     # ---- saved runs -----------------------------------------------------------------------------
     def refresh(self) -> None:
@@ -125,7 +126,7 @@ class Runs(Component):
                     self.refresh()
 
     def _on_run_id(self, run_id=None, **_):
-        if not run_id or run_id == self.session.result.shown_run_id:
+        if not run_id or run_id == self.ctrl.shown_run_id():
             return
         if not self.is_listed(run_id):
             self.state.status = f"error: no run {str(run_id)[:80]!r} in the runs folder"
@@ -137,10 +138,10 @@ class Runs(Component):
             return
         from solver import parse_case
 
-        self.session.form.take_case(parse_case(case_text, "the saved run's case"))
+        self.ctrl.take_case(parse_case(case_text, "the saved run's case"))
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         with self.state:
-            self.session.result.show_saved_run(ds, run_id, label)
+            self.ctrl.show_saved_run(ds, run_id, label)
             if not self.state.busy:
                 self.state.progress = 0  # the bar belongs to a run going, not to this one
                 self.state.eta = ""
@@ -151,12 +152,11 @@ class Runs(Component):
         """Start the dynamic model on the current case in the background (or queue it for a
         solver slot, with its place shown in ``status``). When the result on show, of this very
         case, leaves the model's validity, ask first (``run_confirm``) unless ``confirmed``."""
-        form = self.session.form
         self.state.run_confirm = False
         if self.ticket is not None:
             self.state.run_note = "a run is already going: wait for it to end, or press Cancel"
             return
-        if form.validate() is None or form.case is None:
+        if self.ctrl.validate_case() is None or self.ctrl.edited_case() is None:
             self.state.run_note = self.state.run_blocked
             return
         if self.state.run_reason:  # the form says why
@@ -169,9 +169,10 @@ class Runs(Component):
         # or to the temporary folder when the runs folder cannot take files
         folder = Path(tempfile.gettempdir()) if self.store.folder_problem() else self.store.root
         out = folder / f".job-{secrets.token_hex(4)}.nc"
-        case_text = form.case.to_toml()
-        title = describe_case(form.case)
-        revolutions = getattr(getattr(form.case, "simulation", None), "shaft_revolutions", None)
+        case = self.ctrl.edited_case()
+        case_text = case.to_toml()
+        title = describe_case(case)
+        revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
         self.run_info = {
             "case_text": case_text,
             "title": title,
@@ -179,7 +180,7 @@ class Runs(Component):
             "revolutions": revolutions,
         }
         self._cancel_requested = False
-        form.drop_pending_preview()  # the run's result, not a preview still on its way, is next
+        self.ctrl.drop_pending_preview()  # the run's result, not a preview on its way, is next
         self.ticket = self.pool.enqueue()
         with self.state:
             # the animation would take processor time from the solver (2 cores here): pause it
@@ -287,7 +288,7 @@ class Runs(Component):
             self._end_run(f"stopped with the server: saved as {info.run_id} (incomplete)")
             return
         self.refresh()
-        self.session.result.show_saved_run(ds, info.run_id, info.label)
+        self.ctrl.show_saved_run(ds, info.run_id, info.label)
         self._end_run("cancelled" if info.status == "cancelled" else "done")
         if not info.saved:  # kept in memory: the page says so, and offers the download
             self.state.run_note = info.problem

@@ -38,6 +38,7 @@ from trame.widgets import html
 from trame.widgets import vuetify3 as v3
 
 from .. import lazy_charts
+from ..case_fields import form_fields
 from ..paths import child_path
 from . import widgets
 from .base import Component, fig_json
@@ -183,7 +184,7 @@ class Studies(Component):
         s.chart_study = {"data": [], "layout": {}}
         s.study_results_items = []
         s.study_results = None
-        fields = [f for f in self.session.form.fields if f.kind in ("int", "float")]
+        fields = [f for f in form_fields() if f.kind in ("int", "float")]
         s.study_key_items = [{"title": f"{f.key} ({f.label})", "value": f.key} for f in fields]
         keys = self.numeric_keys()
         s.study_key1 = "operating.radial_load_N" if "operating.radial_load_N" in keys else None
@@ -197,7 +198,7 @@ class Studies(Component):
 
     def numeric_keys(self) -> list[str]:
         """The case keys a study built in the page may vary: the form's numeric fields."""
-        return [f.key for f in self.session.form.fields if f.kind in ("int", "float")]
+        return [f.key for f in form_fields() if f.kind in ("int", "float")]
 
     def bind(self) -> None:
         self.ctrl.study_run = self.run
@@ -325,7 +326,7 @@ class Studies(Component):
             self.state.study_status = "a study is running: cancel it or wait for it to end"
             return
         s = self.state
-        case = self.session.form.case
+        case = self.ctrl.edited_case()
         if case is None:
             s.study_status = "error: the case in the form is not valid: fix the fields in red first"
             return
@@ -497,13 +498,11 @@ class Studies(Component):
         except (CaseError, OSError, ValueError) as error:
             self.state.study_status = f"cannot open {point} {model}: {error}"
             return
-        self.state.run_id = None
-        self.session.result.shown_run_id = None
         title = self.study.title if self.study is not None else self.folder.path.name
         values = next(
             (r["values"] for r in self._rows if r["point"] == point), ""
         )  # what the point changes, e.g. "radial_load_N = 300"
-        self.session.result.show_result(ds, f"{title}: {point} ({values}) {model}")
+        self.ctrl.show_unsaved(ds, f"{title}: {point} ({values}) {model}")
 
     # ---- results of studies run before ----------------------------------------------------------
     def results_items(self) -> list[dict]:
