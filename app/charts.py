@@ -209,11 +209,17 @@ def contact_angle_figure(
     return fig
 
 
-def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
-    """Contact load (N) of every ball versus its azimuth (degree) at frame ``current``."""
+def _frame_by_azimuth(source: FrameSource, current: int):
+    """Frame ``current`` of ``source``, its balls' azimuths (degree, in [0, 360)) and the order
+    that sorts the balls by azimuth."""
     f = source.frame(current)
     psi = np.mod(np.degrees(f.ball_azimuth), 360.0)
-    order = np.argsort(psi)
+    return f, psi, np.argsort(psi)
+
+
+def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
+    """Contact load (N) of every ball versus its azimuth (degree) at frame ``current``."""
+    f, psi, order = _frame_by_azimuth(source, current)
     fig = go.Figure()
     for race in (INNER, OUTER):
         fig.add_trace(
@@ -388,9 +394,7 @@ def trajectory_metric_words(ds: xr.Dataset) -> str:
 
 def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
     """Ellipse semi-axes a, b (mm) and peak pressure (GPa, right axis) versus ball azimuth."""
-    f = source.frame(current)
-    psi = np.mod(np.degrees(f.ball_azimuth), 360.0)
-    order = np.argsort(psi)
+    f, psi, order = _frame_by_azimuth(source, current)
     fig = go.Figure()
     for race in (INNER, OUTER):
         ok = f.loaded[order, race]

@@ -67,6 +67,7 @@ class RacetraceApp:
         for component in self.components:
             component.init_state()
         for component in self.components:
+            component.provide()
             component.bind()
         # Count browser connections at the websocket level: the page's own "exited" signal is not
         # sent when a browser is killed, and a play loop without viewers floods the log.

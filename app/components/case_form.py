@@ -20,8 +20,8 @@ from trame.widgets import vuetify3 as v3
 
 from ..case_fields import apply_form, case_form_values, form_fields, form_text
 from ..run_store import describe_case
-from .base import Component
-from .widgets import icon_button
+from .base import Component, running_loop
+from .widgets import icon_button, select
 
 log = logging.getLogger("racetrace.app")
 
@@ -41,6 +41,14 @@ SECTION_TITLES = {
 class CaseForm(Component):
     """The case being edited: ``base_case`` (picked, uploaded or opened) and ``case`` (the valid
     edited case, or None while the form is invalid)."""
+
+    PROVIDES = (
+        "drop_pending_preview",
+        "update_staleness",
+        "take_case",
+        "edited_case",
+        "validate_case",
+    )
 
     def __init__(self, session):
         super().__init__(session)
@@ -94,13 +102,6 @@ class CaseForm(Component):
         self.on_change(*[f"fv_{f.name}" for f in self.fields])(self._on_field)
         self.on_change("uploaded_case")(self._on_upload)
         self.action("reset_case", self.reset_case)
-        self.provide(
-            drop_pending_preview=self.drop_pending_preview,
-            update_staleness=self.update_staleness,
-            take_case=self.take_case,
-            edited_case=lambda: self.case,
-            validate_case=self.validate,
-        )
 
     def first_case_name(self, case_name: str) -> str:
         """``case_name`` if it is a shipped case, else the first shipped case."""
@@ -240,10 +241,18 @@ class CaseForm(Component):
             return f"Run is off until the form is fixed: {shown}"
         return "Run is off until the case is fixed (see the message above the form)"
 
+    def edited_case(self):
+        """The valid edited case, or None while the form is invalid."""
+        return self.case
+
+    def validate_case(self):
+        """:meth:`validate` (for the other components)."""
+        return self.validate()
+
     def update_staleness(self) -> None:
         """``result_stale``: the result on show is not of the case in the form (edited, or the
         form is invalid)."""
-        shown = self.ctrl.shown_case_text()
+        shown = self.ctrl.shown_result().case_text
         self.state.result_stale = shown is not None and self.case_text != shown
 
     @staticmethod
@@ -257,7 +266,7 @@ class CaseForm(Component):
         if self._filling:
             return
         if self.validate() is not None and self.case is not None:
-            if self.case_text == self.ctrl.shown_case_text():
+            if self.case_text == self.ctrl.shown_result().case_text:
                 return  # the result on show is already this case (e.g. a reopened run)
             self.schedule_preview()
 
@@ -270,9 +279,8 @@ class CaseForm(Component):
         """Recompute the quasi-static preview soon (debounced) without blocking the page."""
         self._preview_generation += 1
         generation = self._preview_generation
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
+        loop = running_loop()
+        if loop is None:
             self.preview_now()
             return
         if not self.state.busy:
@@ -344,13 +352,7 @@ def _case_choice(ctrl) -> None:
     """``#case-select`` (shipped cases and catalogue bearings) and ``#case-reset``."""
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(), html.Div(id="case-select"):
-            v3.VSelect(
-                label="Shipped case or catalogue bearing",
-                v_model=("case_name",),
-                items=("case_items",),
-                density="compact",
-                hide_details=True,
-            )
+            select("Shipped case or catalogue bearing", "case_name", "case_items")
         with v3.VCol(cols="auto"):
             icon_button(
                 "mdi-restore",

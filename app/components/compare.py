@@ -19,12 +19,14 @@ from viz.palette import MAX_COMPARED, run_colours, run_style, run_tag
 
 from .. import charts
 from .base import Component, fig_json
-from .widgets import HIDE, caption, chart, swatch
+from .widgets import HIDE, caption, chart, select, swatch
 
 MAX_CACHED = MAX_COMPARED  # loaded runs kept for the next comparison
 
 
 class Compare(Component):
+    PROVIDES = ("refresh_comparison",)
+
     def __init__(self, session):
         super().__init__(session)
         self._compare_key = None  # (result_serial, run ids) of the comparison shown
@@ -40,7 +42,6 @@ class Compare(Component):
 
     def bind(self) -> None:
         self.on_change("compare_ids")(self._on_compare_ids)
-        self.provide(refresh_comparison=self.refresh_comparison)
 
     def chosen(self) -> list:
         """The run ids chosen for comparison (``compare_ids``, as a client sent it), in order,
@@ -162,16 +163,14 @@ class Compare(Component):
         with v3.VExpansionPanel(title="Compare runs side by side", value="compare", classes=HIDE):
             with v3.VExpansionPanelText():
                 with html.Div(id="compare-select"):
-                    v3.VSelect(
-                        label="Compare with saved runs (any number)",
-                        v_model=("compare_ids",),
-                        items=("runs",),
-                        density="compact",
+                    select(
+                        "Compare with saved runs (any number)",
+                        "compare_ids",
+                        "runs",
                         multiple=True,
                         chips=True,
                         closable_chips=True,
                         clearable=True,
-                        hide_details=True,
                     )
                 _legend()
                 html.Div(

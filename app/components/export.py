@@ -17,7 +17,7 @@ from trame.widgets import html
 from trame.widgets import vuetify3 as v3
 
 from ..paths import child_path
-from .base import Component
+from .base import Component, running_loop
 
 EXPORT_URL = "racetrace-exports"  # the exports folder is served under /racetrace-exports/
 MAX_ANIMATION_FRAMES = 120
@@ -26,6 +26,8 @@ EXPORT_LABELS = {"netcdf": "NetCDF", "csv": "CSV", "png": "PNG", "gif": "GIF", "
 
 
 class Export(Component):
+    PROVIDES = ("forget_download",)
+
     def __init__(self, session):
         super().__init__(session)
         self.task = None  # the export running in the background, if any
@@ -40,7 +42,6 @@ class Export(Component):
 
     def bind(self) -> None:
         self.action("export", self.request_export)
-        self.provide(forget_download=self.forget_download)
 
     @property
     def exports_dir(self) -> Path:
@@ -113,9 +114,8 @@ class Export(Component):
         """
         if self.state.exporting:
             return
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
+        loop = running_loop()
+        if loop is None:
             self.export(kind)
             return
         self.task = loop.create_task(self._export_async(kind))

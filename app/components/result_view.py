@@ -29,9 +29,9 @@ from viz.palette import ball_legend
 
 from .. import charts
 from ..run_store import describe_case
-from .base import Component, as_float, as_int, fig_json
+from .base import Component, as_float, as_int, fig_json, running_loop
 from .case_form import solve_quasistatic
-from .widgets import chart, choices, icon_button, select
+from .widgets import chart, checkbox, choices, icon_button, select
 
 log = logging.getLogger("racetrace.app")
 
@@ -57,18 +57,23 @@ CHARTS = (
 
 
 class ShownResult(NamedTuple):
-    """The result on show as other components read it: its Dataset, its frames and its title
-    (the case and loads; None until a result is shown)."""
+    """The result on show as other components read it: its Dataset, its frames, its title (the
+    case and loads), its case as TOML and the id of the saved run (None for a result that is not
+    a saved run; all None until a result is shown)."""
 
     dataset: object
     source: FrameSource | None
     title: str | None
+    case_text: str | None
+    run_id: str | None
 
 
 class ResultView(Component):
     """The result on show: ``dataset``, its ``source`` of frames, the quasi-static solution of
     the same case (``quasistatic``, for the comparison chart), the pyvista ``plotter``/``scene``
     (when ``render_enabled``) and the page's ``view`` (set by the UI: an object with render())."""
+
+    PROVIDES = ("show_preview", "show_unsaved", "show_saved_run", "shown_result", "update_charts")
 
     def __init__(self, session, render: bool = True, window_size=(650, 480)):
         super().__init__(session)
@@ -138,15 +143,6 @@ class ResultView(Component):
         self.on_change("open_panels")(self._on_open_panels)
         self.action("step", self.step)
         self.action("set_camera", self.set_camera)
-        self.provide(
-            show_preview=self.show_preview,
-            show_unsaved=self.show_unsaved,
-            show_saved_run=self.show_saved_run,
-            shown_case_text=lambda: self.shown_case_text,
-            shown_run_id=lambda: self.shown_run_id,
-            shown_result=self.shown_result,
-            update_charts=self.update_charts,
-        )
 
     # ---- what is shown --------------------------------------------------------------------------
     def show_preview(self, ds) -> None:
@@ -162,7 +158,9 @@ class ResultView(Component):
 
     def shown_result(self) -> ShownResult:
         """The result on show, for the views of other components (the comparison)."""
-        return ShownResult(self.dataset, self.source, self.shown_title)
+        return ShownResult(
+            self.dataset, self.source, self.shown_title, self.shown_case_text, self.shown_run_id
+        )
 
     def show_saved_run(self, ds, run_id: str, label: str) -> None:
         """Show saved run ``run_id``, named in the runs list; a pending preview is dropped."""
@@ -522,9 +520,8 @@ class ResultView(Component):
 
     def _on_playing(self, playing=False, **_):
         if playing and (self._play_task is None or self._play_task.done()):
-            try:
-                loop = asyncio.get_running_loop()
-            except RuntimeError:
+            loop = running_loop()
+            if loop is None:
                 return  # started when a browser connects (see RacetraceApp)
             self._play_task = loop.create_task(self._play_loop())
         if not playing:
@@ -586,12 +583,7 @@ class ResultView(Component):
         with v3.VRow(dense=True):
             for layer, label in LAYER_LABELS.items():
                 with v3.VCol(cols="auto"):
-                    v3.VCheckbox(
-                        label=label,
-                        v_model=(f"show_{layer}",),
-                        density="compact",
-                        hide_details=True,
-                    )
+                    checkbox(label, f"show_{layer}")
 
     def build_charts(self) -> None:
         """The charts always on the page: contact angle, then the raceway map with its options
@@ -606,11 +598,9 @@ class ResultView(Component):
                     id="map-colour",
                 )
             with v3.VCol():
-                v3.VCheckbox(
-                    label="skip start-up",
-                    v_model=("map_skip_startup",),
-                    density="compact",
-                    hide_details=True,
+                checkbox(
+                    "skip start-up",
+                    "map_skip_startup",
                     id="map-skip-startup",
                     title="Leave out the samples before the solver's analysed window (settling)",
                 )
@@ -776,11 +766,9 @@ def _track_options() -> None:
         with v3.VCol(cols=4):
             select("tracks coloured by", "track_quantity", choices(quantities), id="track-quantity")
         with v3.VCol(cols="auto"):
-            v3.VCheckbox(
-                label="whole run",
-                v_model=("track_whole_run",),
-                density="compact",
-                hide_details=True,
+            checkbox(
+                "whole run",
+                "track_whole_run",
                 id="track-whole-run",
                 title="Paint the tracks of the whole run, not only up to the current time",
             )

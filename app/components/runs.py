@@ -23,8 +23,8 @@ from trame.widgets import vuetify3 as v3
 
 from .. import runner as runner_module
 from ..run_store import describe_case, load_netcdf
-from .base import Component
-from .widgets import alert_list, select
+from .base import Component, running_loop
+from .widgets import alert, alert_list, select
 
 POLL_S = 0.2  # runner polling period
 STOP_TIMEOUT_S = 20.0  # a stopping server waits this long for the run's partial result
@@ -52,6 +52,8 @@ def _job() -> str:
 
 
 class Runs(Component):
+    PROVIDES = ("is_listed",)
+
     def __init__(self, session):
         super().__init__(session)
         self.pool = session.services.pool
@@ -86,7 +88,6 @@ class Runs(Component):
         self.action("run_anyway", self.run_anyway)
         self.action("cancel", self.cancel)
         self.action("refresh_runs", self.refresh)
-        self.provide(is_listed=self.is_listed)
 
     # ---- saved runs -----------------------------------------------------------------------------
     def refresh(self) -> None:
@@ -126,7 +127,7 @@ class Runs(Component):
                     self.refresh()
 
     def _on_run_id(self, run_id=None, **_):
-        if not run_id or run_id == self.ctrl.shown_run_id():
+        if not run_id or run_id == self.ctrl.shown_result().run_id:
             return
         if not self.is_listed(run_id):
             self.state.status = f"error: no run {str(run_id)[:80]!r} in the runs folder"
@@ -190,11 +191,9 @@ class Runs(Component):
             self.state.progress = 0
             self.state.eta = ""
             self._start_when_free()
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
-            return  # tests drive poll_runner() themselves
-        self._poll_task = loop.create_task(self._poll_loop())
+        loop = running_loop()
+        if loop is not None:  # without one, tests drive poll_runner() themselves
+            self._poll_task = loop.create_task(self.poll_until_done(self.poll_runner, POLL_S))
 
     def run_anyway(self) -> None:
         """Run although the result on show leaves the model's validity (the user confirmed)."""
@@ -228,14 +227,6 @@ class Runs(Component):
             return
         self.state.status = "cancelling"
         self.runner.cancel()
-
-    async def _poll_loop(self) -> None:
-        while self.ticket is not None:
-            with self.state:
-                finished = self.poll_runner()
-            if finished:
-                return
-            await asyncio.sleep(POLL_S)
 
     def poll_runner(self) -> bool:
         """Apply runner events to the state; True once the run has finished."""
@@ -402,14 +393,7 @@ def _run_buttons(ctrl) -> None:
 
 def _run_confirm(ctrl) -> None:
     """``#run-confirm``: Run asks first when the result on show leaves the model's validity."""
-    with v3.VAlert(
-        id="run-confirm",
-        v_if="run_confirm",
-        type="warning",
-        density="compact",
-        variant="tonal",
-        classes="my-1 text-caption",
-    ):
+    with alert("warning", id="run-confirm", v_if="run_confirm"):
         html.Div(
             "The result of this case leaves the model's validity (see the warnings below). "
             "Run the dynamic model anyway?"

@@ -26,7 +26,6 @@ slot held, closed at the end, when the slots are given back.
 
 from __future__ import annotations
 
-import asyncio
 import json
 import math
 import secrets
@@ -41,7 +40,7 @@ from .. import lazy_charts
 from ..case_fields import form_fields
 from ..paths import child_path
 from . import widgets
-from .base import Component, fig_json
+from .base import Component, fig_json, running_loop
 
 POLL_S = 1.0
 SLOT_WAIT_S = 0.5  # a study waiting for a solver slot asks again this often
@@ -263,11 +262,9 @@ class Studies(Component):
             self.state.study_running = True
             self.state.study_progress = 0
             self.state.study_status = f"starting {self.study.title} ..."
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
-            return  # tests call poll() themselves
-        self._poll_task = loop.create_task(self._poll_loop())
+        loop = running_loop()
+        if loop is not None:  # without one, tests call poll() themselves
+            self._poll_task = loop.create_task(self.poll_until_done(self.poll, POLL_S))
 
     def _take_slots(self) -> list:
         """Solver slots (:class:`app.services.pool.SolverPool`, shared with the runs of every
@@ -372,14 +369,6 @@ class Studies(Component):
         if self.busy:
             self._stop.set()
             self.state.study_status = "cancelling (finished runs are kept) ..."
-
-    async def _poll_loop(self) -> None:
-        while True:
-            with self.state:
-                finished = self.poll()
-            if finished:
-                return
-            await asyncio.sleep(POLL_S)
 
     def poll(self) -> bool:
         """Read the study folder into the table and chart; True once the study has ended."""
@@ -616,22 +605,11 @@ def _shipped_study(ctrl) -> None:
                 "Shipped study", "study_name", "study_names", disabled=("study_running",)
             )
         with v3.VCol(cols="auto"):
-            v3.VBtn(
-                "Run study",
-                id="study-run",
-                click=ctrl.study_run,
-                disabled=("study_running",),
-                color="primary",
-                size="small",
+            widgets.button(
+                "Run study", "study-run", ctrl.study_run, "study_running", color="primary"
             )
         with v3.VCol(cols="auto"):
-            v3.VBtn(
-                "Cancel",
-                id="study-cancel",
-                click=ctrl.study_cancel,
-                disabled=("!study_running",),
-                size="small",
-            )
+            widgets.button("Cancel", "study-cancel", ctrl.study_cancel, "!study_running")
 
 
 def _study_builder(ctrl) -> None:
@@ -662,13 +640,12 @@ def _study_builder(ctrl) -> None:
                         disabled=("study_running",),
                     )
         _study_options()
-        v3.VBtn(
+        widgets.button(
             "Build and run",
-            id="study-build-run",
-            click=ctrl.study_build,
-            disabled=("study_running || !case_valid",),
+            "study-build-run",
+            ctrl.study_build,
+            "study_running || !case_valid",
             color="primary",
-            size="small",
             classes="mt-1",
             title="Write a study file with the case in the form as its base and run it",
         )

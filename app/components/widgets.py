@@ -46,24 +46,33 @@ def choices(pairs) -> str:
     )
 
 
+def button(label: str, element_id: str, click, disabled: str, **extra) -> None:
+    """A small button, off while the JS condition ``disabled`` holds."""
+    v3.VBtn(label, id=element_id, click=click, disabled=(disabled,), size="small", **extra)
+
+
 def icon_button(icon: str, click, element_id: str, size: str = "small", **extra) -> None:
     """A flat icon button (``click``: a controller action or a JS statement)."""
     v3.VBtn(icon=icon, click=click, size=size, variant="text", id=element_id, **extra)
+
+
+def alert(alert_type: str, *children, classes: str = "my-1 text-caption", **extra):
+    """A compact tonal alert of ``alert_type`` (warning, error, info); a context for its content."""
+    return v3.VAlert(
+        *children, type=alert_type, density="compact", variant="tonal", classes=classes, **extra
+    )
 
 
 def alert_list(items: str, alert_type: str, element_id: str, **extra) -> None:
     """``div#<element_id>`` with one compact alert per entry of the state list ``items`` (shown
     only while the list is not empty)."""
     with html.Div(v_if=f"{items}.length", id=element_id, **extra):
-        v3.VAlert(
-            "{{ entry }}",
-            v_for=f"entry in {items}",
-            key="entry",
-            type=alert_type,
-            density="compact",
-            variant="tonal",
-            classes="my-1 text-caption",
-        )
+        alert(alert_type, "{{ entry }}", v_for=f"entry in {items}", key="entry")
+
+
+def checkbox(label: str, model: str, **extra) -> None:
+    """A compact checkbox bound to the state flag ``model``."""
+    v3.VCheckbox(label=label, v_model=(model,), density="compact", hide_details=True, **extra)
 
 
 def button_list(items: str, item: str, id_prefix: str, click, selected: str, **extra) -> None:

@@ -20,7 +20,7 @@ from __future__ import annotations
 from trame.widgets import client, html
 from trame.widgets import vuetify3 as v3
 
-from ..components.widgets import HIDE, alert_list, button_list, icon_button
+from ..components.widgets import HIDE, alert, alert_list, button_list, icon_button
 
 PRESENTER_CSS = """
 .rt-lesson-chart { outline: 3px solid #ffb300; outline-offset: 2px; border-radius: 4px; }
@@ -121,23 +121,11 @@ def _open_lesson(ctrl) -> None:
     """The open lesson: its title between previous/next, its results, text and warnings."""
     with v3.VRow(dense=True, align="center", classes="mt-1"):
         with v3.VCol(cols="auto"):
-            icon_button(
-                "mdi-chevron-left",
-                ctrl.previous_lesson,
-                "lesson-previous",
-                title="previous lesson (P)",
-                size="x-small",
-            )
+            _lesson_step(ctrl, forward=False)
         with v3.VCol():
             html.Div("{{ lesson_title }}", id="lesson-title", classes="text-subtitle-1")
         with v3.VCol(cols="auto"):
-            icon_button(
-                "mdi-chevron-right",
-                ctrl.next_lesson,
-                "lesson-next",
-                title="next lesson (N)",
-                size="x-small",
-            )
+            _lesson_step(ctrl, forward=True)
     with html.Div(v_if="lesson_results.length > 1", classes="my-1"):
         button_list(
             "lesson_results",
@@ -160,16 +148,25 @@ def _open_lesson(ctrl) -> None:
         classes="text-body-2 my-1",
         style="white-space: pre-line;",
     )
-    v3.VAlert(
+    alert(
+        "info",
         "{{ lesson_try }}",
         id="lesson-try",
         title="Try this",
-        type="info",
-        density="compact",
-        variant="tonal",
         classes=f"my-1 text-body-2 {HIDE}",
     )
     alert_list("lesson_warnings", "warning", "lesson-warnings")
+
+
+def _lesson_step(ctrl, forward: bool) -> None:
+    """``#lesson-next`` (N) or ``#lesson-previous`` (P)."""
+    icon_button(
+        "mdi-chevron-right" if forward else "mdi-chevron-left",
+        ctrl.next_lesson if forward else ctrl.previous_lesson,
+        "lesson-next" if forward else "lesson-previous",
+        size="x-small",
+        title="next lesson (N)" if forward else "previous lesson (P)",
+    )
 
 
 __all__ = [
