@@ -14,7 +14,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.run_store import CASE_FILE, META_FILE, RESULT_FILE, RunNotSavedError, RunStore, UnknownRunError
+from app.run_store import (
+    CASE_FILE,
+    META_FILE,
+    RESULT_FILE,
+    RunNotSavedError,
+    RunStore,
+    UnknownRunError,
+)
 from tests.helpers.faults import read_only_folder, small_file_system
 
 
