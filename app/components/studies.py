@@ -38,115 +38,17 @@ from trame.widgets import vuetify3 as v3
 
 from .. import lazy_charts
 from ..case_fields import form_fields
+from ..charts import STUDY_CHART_METRICS, study_figure
 from ..paths import child_path
+from ..study_building import StudyInputError, build_study_text, parse_values
 from . import widgets
 from .base import Component, fig_json, running_loop
 
 POLL_S = 1.0
 SLOT_WAIT_S = 0.5  # a study waiting for a solver slot asks again this often
-CHART_METRICS = (
-    ("excursion", "excursion [deg]", 1.0),
-    ("band_thickness", "band thickness [deg]", 1.0),
-    ("band_width", "track width across the groove [deg]", 1.0),
-    ("mean_contact_angle", "mean contact angle [deg]", 1.0),
-    ("peak_pressure", "peak pressure [GPa]", 1e-9),
-    ("largest_load", "largest contact load [N]", 1.0),
-)
-RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
 # Study Datasets of the shipped studies' runs (docs/studies.md); their full runs are not shipped.
 SHIPPED_RESULTS = Path(__file__).resolve().parents[2] / "assets" / "studies" / "results"
 STUDIES_DIR = ".studies"  # study folders under the runs folder
-MAX_BUILT_POINTS = 200  # points of a study built in the page
-BUILD_MODELS = ("quasistatic", "dynamic", "both")
-
-
-class StudyInputError(ValueError):
-    """A study built in the page cannot be made: the message says what to change."""
-
-
-def parse_values(text, what: str) -> list[float]:
-    """Values typed for a varied key: ``0, 300, 600`` (a list) or ``start:stop:count`` (count
-    values from start to stop, both included). StudyInputError naming ``what`` when unreadable."""
-    text = str(text or "").strip()
-    if not text:
-        raise StudyInputError(f"{what}: give values, e.g. 0, 300, 600 or 0:1500:6")
-    try:
-        if ":" in text:
-            parts = [p.strip() for p in text.split(":")]
-            if len(parts) != 3:
-                raise ValueError
-            start, stop, count = float(parts[0]), float(parts[1]), float(parts[2])
-            if count != int(count) or not 2 <= count <= MAX_BUILT_POINTS:
-                raise StudyInputError(
-                    f"{what}: the count in start:stop:count must be a whole number from 2 to "
-                    f"{MAX_BUILT_POINTS} (got {parts[2]})"
-                )
-            values = np.linspace(start, stop, int(count)).tolist()
-        else:
-            values = [float(v) for v in text.replace(";", ",").split(",") if v.strip()]
-    except StudyInputError:
-        raise
-    except ValueError:
-        raise StudyInputError(
-            f"{what}: {text!r} is not a list of numbers (0, 300, 600) nor start:stop:count "
-            "(0:1500:6)"
-        ) from None
-    if not all(math.isfinite(v) for v in values):
-        raise StudyInputError(f"{what}: values must be finite numbers")
-    if len(values) > MAX_BUILT_POINTS:
-        raise StudyInputError(f"{what}: at most {MAX_BUILT_POINTS} values")
-    return [round(v, 12) for v in values]
-
-
-def build_study_text(
-    title: str,
-    varied: list[tuple[str, list[float]]],
-    combine: str,
-    model: str,
-    revolutions,
-    base: str = "base.toml",
-) -> str:
-    """The study file (docs/study-format.md) of a study around the case file ``base``: the keys
-    of ``varied`` take their lists of values, ``combine``d; ``model`` runs at each point; the
-    dynamic points run ``revolutions`` shaft revolutions. StudyInputError says what is wrong."""
-    if combine not in ("grid", "zip"):
-        raise StudyInputError(f"combine: {combine!r} is not grid or zip")
-    if model not in BUILD_MODELS:
-        raise StudyInputError(f"model: {model!r} is not one of {', '.join(BUILD_MODELS)}")
-    keys = [k for k, _ in varied]
-    if len(set(keys)) != len(keys):
-        raise StudyInputError("the two varied keys are the same: choose another second key")
-    if combine == "zip" and len({len(v) for _, v in varied}) > 1:
-        lengths = " and ".join(str(len(v)) for _, v in varied)
-        raise StudyInputError(
-            f"zipped keys need as many values each (got {lengths}): give equal lists or use grid"
-        )
-    points = math.prod(len(v) for _, v in varied) if combine == "grid" else len(varied[0][1])
-    if points > MAX_BUILT_POINTS:
-        raise StudyInputError(
-            f"{points} points: at most {MAX_BUILT_POINTS} from the page (use racetrace study for "
-            "more)"
-        )
-    lines = [
-        f"title = {json.dumps(title)}",
-        f"base = {json.dumps(base)}",
-        f'model = "{model}"',
-        f'combine = "{combine}"',
-    ]
-    if model != "quasistatic":
-        try:
-            revs = float(revolutions)
-        except (TypeError, ValueError):
-            raise StudyInputError(
-                f"run length: {revolutions!r} is not a number of shaft revolutions"
-            ) from None
-        if not (math.isfinite(revs) and revs > 0):
-            raise StudyInputError("run length: give a number of shaft revolutions above 0")
-        lines += ["", "[run]", f"shaft_revolutions = {revs!r}"]
-    lines += ["", "[vary]"]
-    for key, values in varied:
-        lines.append(f'"{key}" = [{", ".join(repr(float(v)) for v in values)}]')
-    return "\n".join(lines) + "\n"
 
 
 class Studies(Component):
@@ -179,7 +81,9 @@ class Studies(Component):
         s.study_sweeps = []
         s.study_sweep = None
         s.study_metric = "excursion"
-        s.study_metric_items = [{"title": label, "value": name} for name, label, _ in CHART_METRICS]
+        s.study_metric_items = [
+            {"title": label, "value": name} for name, label, _ in STUDY_CHART_METRICS
+        ]
         s.chart_study = {"data": [], "layout": {}}
         s.study_results_items = []
         s.study_results = None
@@ -452,9 +356,9 @@ class Studies(Component):
         s.chart_study = fig_json(study_figure(ds, s.study_sweep, self._metric()))
 
     def _metric(self) -> str:
-        """The metric charted: ``study_metric`` when it is one of :data:`CHART_METRICS`."""
+        """The metric charted: ``study_metric`` when it is one of :data:`STUDY_CHART_METRICS`."""
         metric = self.state.study_metric
-        names = [name for name, _, _ in CHART_METRICS]
+        names = [name for name, _, _ in STUDY_CHART_METRICS]
         return metric if isinstance(metric, str) and metric in names else names[0]
 
     def _on_chart_choice(self, **_):
@@ -734,51 +638,3 @@ def _text(value, digits: int = 5) -> str:
             return "-"
         return "0" if abs(value) < 1e-9 else f"{float(value):.{digits}g}"
     return str(value)
-
-
-def study_figure(ds, sweep: str | None, metric: str):
-    """Plotly figure: ``metric`` against the first key ``sweep`` varies, inner and outer race side
-    by side, a line per model."""
-    import plotly.graph_objects as go
-    from plotly.subplots import make_subplots
-
-    label, scale = next(((lab, sc) for n, lab, sc in CHART_METRICS if n == metric), (metric, 1.0))
-    fig = make_subplots(
-        rows=1, cols=2, subplot_titles=("inner race", "outer race"), shared_yaxes=True
-    )
-    select = np.asarray(ds["sweep"].values) == sweep
-    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
-    if select.any() and varied and np.asarray(ds[varied[0]].values).dtype.kind in "fi":
-        key = varied[0]
-        x = np.asarray(ds[key].values, float)[select]
-        order = np.argsort(x)
-        for col, race in enumerate(("inner", "outer"), start=1):
-            for model in ds["model"].values:
-                y = np.asarray(ds[metric].sel(model=model, race=race).values, float)[select]
-                fig.add_trace(
-                    go.Scatter(
-                        x=x[order].tolist(),
-                        y=(y[order] * scale).tolist(),
-                        mode="lines+markers",
-                        name=f"{race}, {model}",
-                        line={
-                            "color": RACE_COLOURS[race],
-                            "dash": "dash" if model == "quasistatic" else "solid",
-                        },
-                        # (point, model) of each marker: a click opens that run
-                        customdata=[
-                            [str(pt), str(model)]
-                            for pt in np.asarray(ds["point"].values)[select][order]
-                        ],
-                    ),
-                    row=1,
-                    col=col,
-                )
-        fig.update_xaxes(title_text=key.rsplit(".", 1)[-1])
-    fig.update_yaxes(title_text=label, col=1)
-    fig.update_layout(
-        margin={"l": 50, "r": 10, "t": 30, "b": 90},
-        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
-    )
-    return fig
