@@ -6,10 +6,10 @@ browser).
 runs and the background run (``runs``), the comparison with a saved run (``compare``), the
 exports (``exports``), the studies (``studies``) and the Lessons panel with presenter mode
 (``lessons``, :mod:`app.lessons.panel`). Process-wide services (the run store and the solver
-pool, :mod:`app.services`) are shared with the other sessions. The page layout (:mod:`app.ui`)
-only binds widgets to the state keys and controller actions the components define; each
-component's module lists its keys. The session itself keeps ``status`` (ends in ``done``,
-``cancelled`` or ``error: ...``) and counts the connected browsers.
+pool, :mod:`app.services`) are shared with the other sessions. Each component builds its own
+section of the page, bound to its own state keys and controller actions, and :mod:`app.ui`
+arranges the sections; each component's module lists its keys. The session itself keeps
+``status`` (ends in ``done``, ``cancelled`` or ``error: ...``) and counts the connected browsers.
 """
 
 from __future__ import annotations
