@@ -41,8 +41,8 @@ from ..case_fields import form_fields
 from ..charts import STUDY_CHART_METRICS, study_figure
 from ..paths import child_path
 from ..study_building import StudyInputError, build_study_text, parse_values
-from . import widgets
 from .base import Component, fig_json, running_loop
+from .widgets import button, choices, select
 
 POLL_S = 1.0
 SLOT_WAIT_S = 0.5  # a study waiting for a solver slot asks again this often
@@ -471,7 +471,7 @@ class Studies(Component):
         with v3.VExpansionPanel(title="Studies", value="studies"):
             with v3.VExpansionPanelText(), html.Div(id="studies", classes="mb-2"):
                 with html.Div(id="study-results"):
-                    widgets.select(
+                    select(
                         "Open study results",
                         "study_results",
                         "study_results_items",
@@ -505,15 +505,11 @@ def _shipped_study(ctrl) -> None:
     """A shipped study to run (``#study-run``) and ``#study-cancel``."""
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols=6):
-            widgets.select(
-                "Shipped study", "study_name", "study_names", disabled=("study_running",)
-            )
+            select("Shipped study", "study_name", "study_names", disabled=("study_running",))
         with v3.VCol(cols="auto"):
-            widgets.button(
-                "Run study", "study-run", ctrl.study_run, "study_running", color="primary"
-            )
+            button("Run study", "study-run", ctrl.study_run, "study_running", color="primary")
         with v3.VCol(cols="auto"):
-            widgets.button("Cancel", "study-cancel", ctrl.study_cancel, "!study_running")
+            button("Cancel", "study-cancel", ctrl.study_cancel, "!study_running")
 
 
 def _study_builder(ctrl) -> None:
@@ -544,7 +540,7 @@ def _study_builder(ctrl) -> None:
                         disabled=("study_running",),
                     )
         _study_options()
-        widgets.button(
+        button(
             "Build and run",
             "study-build-run",
             ctrl.study_build,
@@ -561,9 +557,9 @@ def _study_options() -> None:
     models = (("quasistatic", "quasi-static"), ("dynamic", "dynamic"), ("both", "both"))
     with v3.VRow(dense=True, align="center"):
         with v3.VCol(cols=4), html.Div(id="study-combine"):
-            widgets.select("two keys", "study_combine", widgets.choices(combine))
+            select("two keys", "study_combine", choices(combine))
         with v3.VCol(cols=4), html.Div(id="study-model"):
-            widgets.select("model", "study_model", widgets.choices(models))
+            select("model", "study_model", choices(models))
         with v3.VCol(cols=4), html.Div(id="study-revolutions"):
             v3.VTextField(
                 label="revolutions (dynamic)",
@@ -579,9 +575,9 @@ def _study_chart(ctrl) -> None:
     its (point, model) is the customdata)."""
     with v3.VRow(dense=True):
         with v3.VCol(cols=6):
-            widgets.select("Sweep", "study_sweep", "study_sweeps")
+            select("Sweep", "study_sweep", "study_sweeps")
         with v3.VCol(cols=6):
-            widgets.select("Metric", "study_metric", "study_metric_items")
+            select("Metric", "study_metric", "study_metric_items")
     with html.Div(id="chart-study", classes="mb-2"):
         lazy_charts.ChartFigure(
             "chart_study",
