@@ -8,6 +8,8 @@ in rev/min. ``HELP`` holds a plain-language explanation of each chart, for teach
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import plotly.graph_objects as go
 import xarray as xr
@@ -209,11 +211,17 @@ def contact_angle_figure(
     return fig
 
 
-def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
-    """Contact load (N) of every ball versus its azimuth (degree) at frame ``current``."""
+def _frame_by_azimuth(source: FrameSource, current: int):
+    """Frame ``current`` of ``source``, its balls' azimuths (degree, in [0, 360)) and the order
+    that sorts the balls by azimuth."""
     f = source.frame(current)
     psi = np.mod(np.degrees(f.ball_azimuth), 360.0)
-    order = np.argsort(psi)
+    return f, psi, np.argsort(psi)
+
+
+def load_azimuth_figure(source: FrameSource, current: int = 0) -> go.Figure:
+    """Contact load (N) of every ball versus its azimuth (degree) at frame ``current``."""
+    f, psi, order = _frame_by_azimuth(source, current)
     fig = go.Figure()
     for race in (INNER, OUTER):
         fig.add_trace(
@@ -391,9 +399,7 @@ def trajectory_metric_words(ds: xr.Dataset) -> str:
 
 def ellipse_figure(source: FrameSource, current: int = 0) -> go.Figure:
     """Ellipse semi-axes a, b (mm) and peak pressure (GPa, right axis) versus ball azimuth."""
-    f = source.frame(current)
-    psi = np.mod(np.degrees(f.ball_azimuth), 360.0)
-    order = np.argsort(psi)
+    f, psi, order = _frame_by_azimuth(source, current)
     fig = go.Figure()
     for race in (INNER, OUTER):
         ok = f.loaded[order, race]
@@ -789,3 +795,64 @@ def compare_load_figure(*sources: FrameSource, max_points: int = 5000) -> go.Fig
         "contact load, N",
         max_points,
     )
+
+
+# ---- studies ----------------------------------------------------------------------------------
+#: Metrics of a study Dataset the page charts: (name, axis title, scale to the axis unit).
+STUDY_CHART_METRICS = (
+    ("excursion", "excursion [deg]", 1.0),
+    ("band_thickness", "band thickness [deg]", 1.0),
+    ("band_width", "track width across the groove [deg]", 1.0),
+    ("mean_contact_angle", "mean contact angle [deg]", 1.0),
+    ("peak_pressure", "peak pressure [GPa]", 1e-9),
+    ("largest_load", "largest contact load [N]", 1.0),
+)
+
+
+def study_figure(ds, sweep: str | None, metric: str):
+    """Plotly figure: ``metric`` against the first key ``sweep`` varies, inner and outer race side
+    by side, a line per model."""
+    from plotly.subplots import make_subplots
+
+    label, scale = next(
+        ((lab, sc) for n, lab, sc in STUDY_CHART_METRICS if n == metric), (metric, 1.0)
+    )
+    fig = make_subplots(
+        rows=1, cols=2, subplot_titles=("inner race", "outer race"), shared_yaxes=True
+    )
+    select = np.asarray(ds["sweep"].values) == sweep
+    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
+    varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
+    if select.any() and varied and np.asarray(ds[varied[0]].values).dtype.kind in "fi":
+        key = varied[0]
+        x = np.asarray(ds[key].values, float)[select]
+        order = np.argsort(x)
+        for col, (race, index) in enumerate((("inner", INNER), ("outer", OUTER)), start=1):
+            for model in ds["model"].values:
+                y = np.asarray(ds[metric].sel(model=model, race=race).values, float)[select]
+                fig.add_trace(
+                    go.Scatter(
+                        x=x[order].tolist(),
+                        y=(y[order] * scale).tolist(),
+                        mode="lines+markers",
+                        name=f"{race}, {model}",
+                        line={
+                            "color": RACE_COLOURS[index],
+                            "dash": "dash" if model == "quasistatic" else "solid",
+                        },
+                        # (point, model) of each marker: a click opens that run
+                        customdata=[
+                            [str(pt), str(model)]
+                            for pt in np.asarray(ds["point"].values)[select][order]
+                        ],
+                    ),
+                    row=1,
+                    col=col,
+                )
+        fig.update_xaxes(title_text=key.rsplit(".", 1)[-1])
+    fig.update_yaxes(title_text=label, col=1)
+    fig.update_layout(
+        margin={"l": 50, "r": 10, "t": 30, "b": 90},
+        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
+    )
+    return fig

@@ -38,7 +38,7 @@ def serve(
         print(f"racetrace serve: {check.message}", file=sys.stderr)
         return EXIT_NO_RENDERING
     from .access import Access, is_loopback, new_token
-    from .runs import RunStore, default_runs_dir
+    from .run_store import RunStore, default_runs_dir
     from .serve.front import Front, pool_dir, run_front
     from .services.pool import default_max_runs
 

@@ -119,7 +119,7 @@ class SolverRunner:
         self._process = None
         self._messages = None
         self._cancel = None
-        self._first_progress = None  # (monotonic time, fraction) of the first progress message
+        self._time_left = None  # solver.TimeLeft of the run going: its rate is timed from there
         self._finished = True
 
     @property
@@ -138,7 +138,9 @@ class SolverRunner:
             daemon=True,
             name="racetrace-solver",
         )
-        self._first_progress = None
+        from solver import TimeLeft
+
+        self._time_left = TimeLeft()
         self._finished = False
         self._process.start()
 
@@ -179,28 +181,13 @@ class SolverRunner:
     def _event(self, msg) -> RunEvent:
         if msg[0] == "progress":
             _, fraction, sim_t, text = msg
-            eta = self._eta(time.monotonic(), fraction)
+            eta = self._time_left(time.monotonic(), fraction)
             return RunEvent(
                 "progress", fraction=fraction, simulated_time=sim_t, text=text, eta_s=eta
             )
         if msg[0] == "done":
             return RunEvent("done", fraction=1.0, path=msg[1], complete=int(msg[2]))
         return RunEvent("error", text=str(msg[1]))
-
-    def _eta(self, now: float, fraction: float) -> float:
-        """Seconds left, from the progress rate since the first progress message (NaN until known).
-
-        The child's start-up (process spawn, imports, the quasi-static starting point) comes before
-        the first message and says nothing about the integration speed, so it is left out; the
-        estimate waits for at least 1 s and 0.5 % of progress after that first message.
-        """
-        if self._first_progress is None:
-            self._first_progress = (now, fraction)
-            return float("nan")
-        t0, f0 = self._first_progress
-        if now - t0 < 1.0 or fraction - f0 < 0.005:
-            return float("nan")
-        return (now - t0) / (fraction - f0) * (1.0 - fraction)
 
     def _finish(self) -> None:
         self._finished = True

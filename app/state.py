@@ -6,10 +6,10 @@ browser).
 runs and the background run (``runs``), the comparison with a saved run (``compare``), the
 exports (``exports``), the studies (``studies``) and the Lessons panel with presenter mode
 (``lessons``, :mod:`app.lessons.panel`). Process-wide services (the run store and the solver
-pool, :mod:`app.services`) are shared with the other sessions. The page layout (:mod:`app.ui`)
-only binds widgets to the state keys and controller actions the components define; each
-component's module lists its keys. The session itself keeps ``status`` (ends in ``done``,
-``cancelled`` or ``error: ...``) and counts the connected browsers.
+pool, :mod:`app.services`) are shared with the other sessions. Each component builds its own
+section of the page, bound to its own state keys and controller actions, and :mod:`app.ui`
+arranges the sections; each component's module lists its keys. The session itself keeps
+``status`` (ends in ``done``, ``cancelled`` or ``error: ...``) and counts the connected browsers.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ class RacetraceApp:
     """State and handlers of one racetrace page.
 
     ``server``: a trame server (``trame.app.get_server``); ``runs_dir``: runs folder (default
-    :func:`app.runs.default_runs_dir`), used when no ``services`` are given; ``render``: build
+    :func:`app.run_store.default_runs_dir`), used when no ``services`` are given; ``render``: build
     the pyvista scene (False in pure state tests); ``window_size``: 3-D view size in pixels.
     """
 
@@ -67,6 +67,7 @@ class RacetraceApp:
         for component in self.components:
             component.init_state()
         for component in self.components:
+            component.provide()
             component.bind()
         # Count browser connections at the websocket level: the page's own "exited" signal is not
         # sent when a browser is killed, and a play loop without viewers floods the log.
@@ -74,7 +75,7 @@ class RacetraceApp:
 
     @property
     def store(self):
-        """The runs folder (:class:`app.runs.RunStore`), shared by every session."""
+        """The runs folder (:class:`app.run_store.RunStore`), shared by every session."""
         return self.services.store
 
     @property

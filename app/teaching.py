@@ -7,7 +7,7 @@ rendering. Angles in rad, speeds in rad/s, times in s, loads in N.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 TWO_PI = 2.0 * math.pi
 
@@ -37,19 +37,14 @@ class Facts:
         return self.misalignment_frame == "ring"
 
 
+#: Fields of :class:`Facts` whose coordinates are in degree (results-schema.md).
+_DEGREE_FIELDS = frozenset({"radial_load_angle", "misalignment", "misalignment_axis"})
+
+
 def facts_from_result(ds) -> Facts:
-    """:class:`Facts` from a results Dataset's describing coordinates (ValueError naming what is
-    missing)."""
-    names = (
-        "inner_ring_speed",
-        "outer_ring_speed",
-        "axial_load",
-        "radial_load",
-        "radial_load_angle",
-        "misalignment",
-        "misalignment_axis",
-        "misalignment_frame",
-    )
+    """:class:`Facts` from a results Dataset's describing coordinates, one per field of the same
+    name (ValueError naming what is missing)."""
+    names = [f.name for f in fields(Facts) if f.name != "model"]
     missing = [n for n in names if n not in ds.coords]
     if missing:
         raise ValueError(
@@ -57,21 +52,15 @@ def facts_from_result(ds) -> Facts:
             "run the case again with this version"
         )
 
-    def scalar(name):
+    def value(name):
         values = ds.coords[name].values
-        return values.flat[0] if values.ndim else values.item()
+        scalar = values.flat[0] if values.ndim else values.item()
+        if name == "misalignment_frame":
+            return str(scalar)
+        return math.radians(float(scalar)) if name in _DEGREE_FIELDS else float(scalar)
 
-    return Facts(
-        model=str(ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")),
-        inner_ring_speed=float(scalar("inner_ring_speed")),
-        outer_ring_speed=float(scalar("outer_ring_speed")),
-        axial_load=float(scalar("axial_load")),
-        radial_load=float(scalar("radial_load")),
-        radial_load_angle=math.radians(float(scalar("radial_load_angle"))),
-        misalignment=math.radians(float(scalar("misalignment"))),
-        misalignment_axis=math.radians(float(scalar("misalignment_axis"))),
-        misalignment_frame=str(scalar("misalignment_frame")),
-    )
+    model = str(ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic"))
+    return Facts(model=model, **{name: value(name) for name in names})
 
 
 def _duration_words(seconds: float) -> str:

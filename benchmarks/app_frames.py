@@ -37,7 +37,7 @@ def real_run(runs_dir: Path, run_file: Path | None, revolutions: int = 100):
     ``run_file``: an existing NetCDF result (from ``racetrace simulate``); otherwise one is computed
     now with ``racetrace simulate spindle-combined-load --revolutions 100`` (about a minute).
     """
-    from app.runs import RunStore
+    from app.run_store import RunStore
     from solver import load_dataset
 
     if run_file is None:

@@ -136,7 +136,7 @@ def fault_disk_fills(work: Path) -> tuple[str, bool | None]:
 
 
 def fault_store(work: Path, options: str) -> tuple[str, bool | None]:
-    from app.runs import RunStore
+    from app.run_store import RunStore
     from solver import parse_case, solve_quasistatic
 
     text = _case_text()
@@ -156,7 +156,7 @@ def fault_store(work: Path, options: str) -> tuple[str, bool | None]:
 
 
 def fault_leftover_job(work: Path) -> tuple[str, bool | None]:
-    from app.runs import RunStore
+    from app.run_store import RunStore
     from solver import parse_case, solve_quasistatic
     from solver.results.io import save_dataset
 

@@ -60,6 +60,8 @@ configure_numba_cache(SOLVER_DIR)
 
 # public name -> module that defines it (imported on first use)
 _LAZY = {
+    # the time left of a run, from its progress reports
+    "TimeLeft": "solver.progress",
     # case files and their schema (docs/case-format.md)
     "Case": "solver.case",
     "load_case": "solver.case",
@@ -97,6 +99,7 @@ _LAZY = {
     "check_result": "solver.results.validate",
     "available_memory_bytes": "solver.results.io",
     "atomic_write": "solver.results.io",
+    "probe_write": "solver.results.io",
     "ENGINE": "solver.results.io",
     "contact_table": "solver.results.io",
     "variable": "solver.results.variables",

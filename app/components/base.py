@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 import functools
 import json
 import logging
@@ -46,6 +47,27 @@ class Component:
 
         return run_guarded
 
+    #: Names of the methods this component offers the others as controller functions.
+    PROVIDES: tuple[str, ...] = ()
+
+    def provide(self) -> None:
+        """Offer the methods named in :attr:`PROVIDES` to the other components as controller
+        functions, called as ``self.ctrl.<name>(...)``: components reach each other only through
+        the controller and the state. A failure goes to the caller; the page cannot call them (no
+        widget is bound to them)."""
+        for name in self.PROVIDES:
+            setattr(self.ctrl, name, getattr(self, name))
+
+    async def poll_until_done(self, poll, period_s: float) -> None:
+        """Call ``poll()`` (under the state lock, so its changes go out together) every
+        ``period_s`` seconds until it returns True."""
+        while True:
+            with self.state:
+                finished = poll()
+            if finished:
+                return
+            await asyncio.sleep(period_s)
+
     def init_state(self) -> None:
         """Set this component's state keys to their starting values."""
 
@@ -56,6 +78,15 @@ class Component:
         """Stop whatever this component runs in the background."""
 
 
+def running_loop():
+    """The event loop running now, or None (outside the server, where scripts and tests drive a
+    component's background work themselves)."""
+    try:
+        return asyncio.get_running_loop()
+    except RuntimeError:
+        return None
+
+
 def fig_json(fig) -> dict:
     """A plotly figure as plain JSON (what the page's chart widgets take)."""
     return json.loads(fig.to_json())
@@ -63,28 +94,27 @@ def fig_json(fig) -> dict:
 
 def as_int(value, default: int, lo: int | None = None, hi: int | None = None) -> int:
     """``value`` (as a client sent it) as an int within [lo, hi]; ``default`` if not a number."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        return default
-    if not math.isfinite(number):
-        return default
-    number = int(number)
-    if lo is not None:
-        number = max(lo, number)
-    if hi is not None:
-        number = min(hi, number)
-    return number
+    number = _finite(value)
+    return default if number is None else _clamp(int(number), lo, hi)
 
 
 def as_float(value, default: float, lo: float | None = None, hi: float | None = None) -> float:
     """``value`` (as a client sent it) as a finite float within [lo, hi]; else ``default``."""
+    number = _finite(value)
+    return default if number is None else _clamp(number, lo, hi)
+
+
+def _finite(value) -> float | None:
+    """``value`` as a finite float, or None (not a number, NaN or infinite)."""
     try:
         number = float(value)
     except (TypeError, ValueError):
-        return default
-    if not math.isfinite(number):
-        return default
+        return None
+    return number if math.isfinite(number) else None
+
+
+def _clamp(number, lo, hi):
+    """``number`` within [lo, hi] (a bound of None is no bound)."""
     if lo is not None:
         number = max(lo, number)
     if hi is not None:

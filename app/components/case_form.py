@@ -15,20 +15,40 @@ import asyncio
 import logging
 import urllib.parse
 
-from ..caseform import apply_form, case_form_values, form_fields, form_text
-from ..runs import describe_case
-from .base import Component
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
+
+from ..case_fields import apply_form, case_form_values, form_fields, form_text
+from ..run_store import describe_case
+from .base import Component, running_loop
+from .widgets import icon_button, select
 
 log = logging.getLogger("racetrace.app")
 
 PREVIEW_DEBOUNCE_S = 0.1
 MAX_UPLOAD_BYTES = 1024 * 1024  # an uploaded case file is at most 1 MB
 _SELECT_KINDS = ("choice", "bool", "material")  # form fields shown as selects (empty = None)
+SECTION_TITLES = {
+    "bearing": "Bearing",
+    "operating": "Speed and loads",
+    "lubricant": "Lubricant",
+    "cage": "Cage",
+    "simulation": "Run length",
+    "": "Case",
+}
 
 
 class CaseForm(Component):
     """The case being edited: ``base_case`` (picked, uploaded or opened) and ``case`` (the valid
     edited case, or None while the form is invalid)."""
+
+    PROVIDES = (
+        "drop_pending_preview",
+        "update_staleness",
+        "take_case",
+        "edited_case",
+        "validate_case",
+    )
 
     def __init__(self, session):
         super().__init__(session)
@@ -123,7 +143,7 @@ class CaseForm(Component):
             self._filling = False
 
     def _update_placeholders(self, case) -> None:
-        from ..caseform import estimated_default_texts
+        from ..case_fields import estimated_default_texts
 
         placeholders = {f.name: f.default_text for f in self.fields}
         try:
@@ -221,10 +241,18 @@ class CaseForm(Component):
             return f"Run is off until the form is fixed: {shown}"
         return "Run is off until the case is fixed (see the message above the form)"
 
+    def edited_case(self):
+        """The valid edited case, or None while the form is invalid."""
+        return self.case
+
+    def validate_case(self):
+        """:meth:`validate` (for the other components)."""
+        return self.validate()
+
     def update_staleness(self) -> None:
         """``result_stale``: the result on show is not of the case in the form (edited, or the
         form is invalid)."""
-        shown = self.session.result.shown_case_text
+        shown = self.ctrl.shown_result().case_text
         self.state.result_stale = shown is not None and self.case_text != shown
 
     @staticmethod
@@ -238,7 +266,7 @@ class CaseForm(Component):
         if self._filling:
             return
         if self.validate() is not None and self.case is not None:
-            if self.case_text == self.session.result.shown_case_text:
+            if self.case_text == self.ctrl.shown_result().case_text:
                 return  # the result on show is already this case (e.g. a reopened run)
             self.schedule_preview()
 
@@ -251,9 +279,8 @@ class CaseForm(Component):
         """Recompute the quasi-static preview soon (debounced) without blocking the page."""
         self._preview_generation += 1
         generation = self._preview_generation
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
+        loop = running_loop()
+        if loop is None:
             self.preview_now()
             return
         if not self.state.busy:
@@ -274,7 +301,7 @@ class CaseForm(Component):
             return
         if generation == self._preview_generation:
             with self.state:
-                self.session.result.show_preview(ds)
+                self.ctrl.show_preview(ds)
                 if not self.state.busy:  # a run's status stays until it ends
                     self.state.status = "preview done"
 
@@ -287,8 +314,112 @@ class CaseForm(Component):
         except Exception as error:
             self.state.status = f"error: {error}"
             return
-        self.session.result.show_preview(ds)
+        self.ctrl.show_preview(ds)
         self.state.status = "preview done"
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_toolbar(self) -> None:
+        """Toolbar chip ``#result-stale``: the result on show is not of the case in the form."""
+        v3.VChip(
+            "out of date: the form has changed",
+            id="result-stale",
+            v_show="result_stale",
+            color="warning",
+            size="small",
+            classes="mr-2",
+            title="The result on show is not of the case in the form",
+        )
+
+    def build_ui(self) -> None:
+        """The drawer: the case picker, upload and download, then one field per case input under
+        its section's title."""
+        with html.Div(classes="pa-3"):
+            _case_choice(self.ctrl)
+            _case_files()
+            html.Div("{{ case_message }}", classes="text-error text-caption", id="case-message")
+            section = None
+            for f in self.fields:
+                if f.section != section:
+                    section = f.section
+                    html.Div(
+                        SECTION_TITLES.get(section, section.title()),
+                        classes="text-subtitle-2 mt-3 mb-1",
+                    )
+                _field(f)
+
+
+def _case_choice(ctrl) -> None:
+    """``#case-select`` (shipped cases and catalogue bearings) and ``#case-reset``."""
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(), html.Div(id="case-select"):
+            select("Shipped case or catalogue bearing", "case_name", "case_items")
+        with v3.VCol(cols="auto"):
+            icon_button(
+                "mdi-restore",
+                ctrl.reset_case,
+                "case-reset",
+                title="Undo the edits: back to the values of the chosen case",
+            )
+
+
+def _case_files() -> None:
+    """``#case-upload`` (a case file from the computer) and ``#case-download`` (the edited case)."""
+    with v3.VRow(classes="my-1", dense=True):
+        with v3.VCol():
+            v3.VFileInput(
+                label="Upload a case (.toml)",
+                v_model=("uploaded_case",),
+                accept=".toml",
+                density="compact",
+                hide_details=True,
+                id="case-upload",
+            )
+        with v3.VCol(cols="auto"):
+            # a plain link: Vuetify's button drops the download attribute
+            with html.A(
+                href=("case_valid ? case_toml_href : undefined",),
+                download=("case_file_name",),
+                id="case-download",
+                title="Download the case as a TOML case file",
+                classes=(
+                    "case_valid ? 'v-btn v-btn--size-small v-btn--variant-tonal pa-2'"
+                    " : 'v-btn v-btn--size-small v-btn--disabled pa-2'",
+                ),
+                style="text-decoration: none;",
+            ):
+                v3.VIcon("mdi-download", size="small")
+                html.Span("TOML")
+
+
+def _field(f) -> None:
+    """One case input wrapped in ``div#field-<name>`` with its message inside."""
+    tooltip = f.help.replace('"', "'")  # the help text is shown as a tooltip
+    with html.Div(id=f"field-{f.name}", classes="mb-1", title=tooltip):
+        common = dict(
+            label=f.label,
+            v_model=(f"fv_{f.name}",),
+            density="compact",
+            placeholder=(f"placeholders.{f.name}",),  # the default used when left empty
+            persistent_placeholder=bool(f.default_text),
+        )
+        if f.kind in _SELECT_KINDS:
+            # Vuetify's select fails on error-messages here: the message goes in a div below.
+            items = ["true", "false"] if f.kind == "bool" else list(f.choices)
+            widget = v3.VCombobox if f.kind == "material" else v3.VSelect
+            # a plain list would be read by trame as (state name, default): pass a JS literal
+            literal = "[" + ", ".join("'" + str(c).replace("'", "\\'") + "'" for c in items) + "]"
+            widget(items=(literal,), hide_details=True, error=(f"!!fe_{f.name}",), **common)
+            html.Div(
+                f"{{{{ fe_{f.name} }}}}",
+                v_if=f"fe_{f.name}",
+                classes="text-error text-caption px-3",
+            )
+        else:
+            v3.VTextField(
+                error_messages=(f"fe_{f.name} ? [fe_{f.name}] : []",),
+                hide_details="auto",
+                **common,
+            )
 
 
 def solve_quasistatic(case):

@@ -11,16 +11,22 @@ compared, "" when fine); the charts ``chart_compare_runs``, ``chart_compare_angl
 
 from __future__ import annotations
 
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
+
 from viz.frames import frame_source
 from viz.palette import MAX_COMPARED, run_colours, run_style, run_tag
 
 from .. import charts
 from .base import Component, fig_json
+from .widgets import HIDE, caption, chart, select, swatch
 
 MAX_CACHED = MAX_COMPARED  # loaded runs kept for the next comparison
 
 
 class Compare(Component):
+    PROVIDES = ("refresh_comparison",)
+
     def __init__(self, session):
         super().__init__(session)
         self._compare_key = None  # (result_serial, run ids) of the comparison shown
@@ -49,6 +55,12 @@ class Compare(Component):
         """Whether the comparison shown is of the result on show and the chosen runs."""
         return self._compare_key == (int(self.state.result_serial), tuple(self.chosen()))
 
+    def refresh_comparison(self) -> None:
+        """Compare again unless the comparison shown is of the result on show and the runs
+        chosen (the panel was opened, or the result changed)."""
+        if not self.is_current():
+            self.update_comparison()
+
     def _on_compare_ids(self, **_):
         self.update_comparison()
 
@@ -60,7 +72,7 @@ class Compare(Component):
         :func:`app.charts.run_summary`) and ``compare_legend``; all are emptied when nothing is
         chosen, and ``compare_message`` says in words why a chosen run is left out (not a saved
         run, cannot be loaded, more than the page can tell apart)."""
-        result = self.session.result
+        result = self.ctrl.shown_result()
         ids = self.chosen()
         if not ids or result.source is None:
             self._clear_comparison("")
@@ -74,7 +86,7 @@ class Compare(Component):
             ids = ids[: MAX_COMPARED - 1]
         runs = []  # (run id, label, Dataset, FrameSource)
         for run_id in ids:
-            if not self.session.runs.is_listed(run_id):
+            if not self.ctrl.is_listed(run_id):
                 problems.append(f"cannot compare with {run_id[:80]}: not a saved run")
                 continue
             try:
@@ -89,8 +101,8 @@ class Compare(Component):
             return
         self._compare_key = (int(self.state.result_serial), tuple(self.chosen()))
         label = self.state.result_label or "run on show"
-        if result.shown_title and result.shown_title not in label:
-            label = f"{label}: {result.shown_title}"  # e.g. a preview: its case and loads
+        if result.title and result.title not in label:
+            label = f"{label}: {result.title}"  # e.g. a preview: its case and loads
         shown = [(None, label, result.dataset, result.source)]
         shown += runs
         sources = [source for _, _, _, source in shown]
@@ -143,3 +155,107 @@ class Compare(Component):
             s.compare_legend = []
             s.compare_message = message
         self._compare_key = None
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_ui(self) -> None:
+        """The collapsible panel "Compare runs side by side" (value ``compare``): the saved runs
+        to compare with (``#compare-select``), the legend, the three charts and the table."""
+        with v3.VExpansionPanel(title="Compare runs side by side", value="compare", classes=HIDE):
+            with v3.VExpansionPanelText():
+                with html.Div(id="compare-select"):
+                    select(
+                        "Compare with saved runs (any number)",
+                        "compare_ids",
+                        "runs",
+                        multiple=True,
+                        chips=True,
+                        closable_chips=True,
+                        clearable=True,
+                    )
+                _legend()
+                html.Div(
+                    "{{ compare_message }}",
+                    v_if="compare_message",
+                    id="compare-message",
+                    classes="text-error text-caption my-1",
+                )
+                with html.Div(v_if="compare_legend.length"):  # no empty axes before a choice
+                    _charts()
+                _summary_table()
+
+
+def _legend() -> None:
+    """``#compare-legend``: the run on show (A) and the runs chosen (B, C ...), each in its
+    colours, named in full (wrapped, never cut: it says what differs between the runs)."""
+    with html.Div(id="compare-legend", v_if="compare_legend.length", classes="my-1"):
+        with html.Div(
+            v_for="entry in compare_legend",
+            key="entry.tag",
+            classes="rt-compare-entry text-caption d-flex align-start mb-1",
+            title=("entry.label",),
+        ):
+            with html.Span(classes="mr-1 mt-1", style="white-space: nowrap;"):
+                swatch("entry.colour")
+                swatch("entry.outer_colour")
+            html.B("{{ entry.tag }}", classes="mr-1")
+            html.Span("{{ entry.label }}", style="overflow-wrap: anywhere;")
+        html.Div(
+            "Each run in its colour: the inner race in the lighter shade, the outer race in the "
+            "darker one.",
+            classes="text-caption text-medium-emphasis",
+        )
+
+
+def _charts() -> None:
+    """The raceway maps (three a row: taller with more runs), contact angle and load."""
+    rows = "20 + 220 * (Math.ceil(compare_legend.length / 3) - 1)"
+    chart(
+        "chart-compare-runs",
+        "chart_compare_runs",
+        charts.HELP["compare_runs"],
+        (f"compare_chart_px + {rows}",),
+    )
+    chart(
+        "chart-compare-angle",
+        "chart_compare_angle",
+        charts.HELP["compare_angle"],
+        ("compare_chart_px",),
+    )
+    chart(
+        "chart-compare-load",
+        "chart_compare_load",
+        charts.HELP["compare_load"],
+        ("compare_chart_px",),
+    )
+
+
+def _summary_table() -> None:
+    """``#compare-summary``: the table of :func:`app.charts.run_summary`, one row per run and
+    race (state ``compare_summary``)."""
+    columns = charts.SUMMARY_COLUMNS
+    with html.Div(id="compare-summary", classes="mb-2"):
+        with v3.VTable(density="compact", classes="text-caption"):
+            with html.Thead(), html.Tr():
+                for _, header, _ in columns:
+                    html.Th(header, classes="text-caption px-1")
+            with html.Tbody():
+                with html.Tr(v_for="row in compare_summary", key="row.key"):
+                    for key, _, fmt in columns:
+                        if key == "run":  # the run's colour and tag; its full name on hover
+                            with html.Td(
+                                classes="px-1", title=("row.label",), style="white-space: nowrap;"
+                            ):
+                                swatch("row.colour")
+                                html.Span(" {{ row.run }}")
+                            continue
+                        html.Td(
+                            f"{{{{ row.{key} }}}}",
+                            classes="px-1" + (" text-right" if fmt else ""),
+                        )
+                with html.Tr(v_if="!compare_summary.length"):
+                    html.Td(
+                        "choose a saved run to compare with",
+                        colspan=len(columns),
+                        classes="text-medium-emphasis px-1",
+                    )
+        caption(charts.HELP["compare_summary"])

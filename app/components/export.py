@@ -13,15 +13,21 @@ import time
 import urllib.parse
 from pathlib import Path
 
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
+
 from ..paths import child_path
-from .base import Component
+from .base import Component, running_loop
 
 EXPORT_URL = "racetrace-exports"  # the exports folder is served under /racetrace-exports/
 MAX_ANIMATION_FRAMES = 120
 EXPORT_EXTENSIONS = {"netcdf": "nc", "csv": "csv", "png": "png", "gif": "gif", "mp4": "mp4"}
+EXPORT_LABELS = {"netcdf": "NetCDF", "csv": "CSV", "png": "PNG", "gif": "GIF", "mp4": "MP4"}
 
 
 class Export(Component):
+    PROVIDES = ("forget_download",)
+
     def __init__(self, session):
         super().__init__(session)
         self.task = None  # the export running in the background, if any
@@ -108,16 +114,15 @@ class Export(Component):
         """
         if self.state.exporting:
             return
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
+        loop = running_loop()
+        if loop is None:
             self.export(kind)
             return
         self.task = loop.create_task(self._export_async(kind))
 
     async def _export_async(self, kind: str) -> Path | None:
         """The export itself (see :meth:`request_export`); returns the file or None."""
-        from .. import export as ex
+        from .. import export_files as ex
 
         result = self.session.result
         path = self._export_path(kind)
@@ -169,3 +174,31 @@ class Export(Component):
             with self.state:
                 self.state.export_message = f"writing {path.name}: {100 * fraction:.0f} %"
             await asyncio.sleep(0)
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_ui(self) -> None:
+        """``#export``: a button per kind (``#export-<kind>``), then the link to the file written
+        (``#export-link``) or why it failed."""
+        with v3.VRow(dense=True, align="center", id="export"):
+            with v3.VCol(cols="auto"):
+                html.Span("Export:", classes="text-body-2 mr-1")
+                for kind, label in EXPORT_LABELS.items():
+                    v3.VBtn(
+                        label,
+                        click=(self.ctrl.export, f"['{kind}']"),
+                        size="small",
+                        variant="tonal",
+                        disabled=("exporting",),
+                        classes="mr-1",
+                        id=f"export-{kind}",
+                    )
+            with v3.VCol():
+                html.A(
+                    "download {{ export_name }}",
+                    href=("export_href",),
+                    download=("export_name",),
+                    v_show="export_href",
+                    id="export-link",
+                    target="_blank",
+                )
+                html.Span("{{ export_message }}", classes="text-error text-caption")

@@ -17,16 +17,20 @@ import asyncio
 import logging
 import math
 import time
+from typing import NamedTuple
 
 import numpy as np
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
 
 from viz.frames import FrameSource, frame_source
 from viz.layers import LAYERS
 from viz.palette import ball_legend
 
 from .. import charts
-from ..runs import describe_case
-from .base import Component, as_float, as_int, fig_json
+from ..run_store import describe_case
+from .base import Component, as_float, as_int, fig_json, running_loop
+from .widgets import chart, checkbox, choices, icon_button, select
 
 log = logging.getLogger("racetrace.app")
 
@@ -51,10 +55,24 @@ CHARTS = (
 )
 
 
+class ShownResult(NamedTuple):
+    """The result on show as other components read it: its Dataset, its frames, its title (the
+    case and loads), its case as TOML and the id of the saved run (None for a result that is not
+    a saved run; all None until a result is shown)."""
+
+    dataset: object
+    source: FrameSource | None
+    title: str | None
+    case_text: str | None
+    run_id: str | None
+
+
 class ResultView(Component):
     """The result on show: ``dataset``, its ``source`` of frames, the quasi-static solution of
     the same case (``quasistatic``, for the comparison chart), the pyvista ``plotter``/``scene``
     (when ``render_enabled``) and the page's ``view`` (set by the UI: an object with render())."""
+
+    PROVIDES = ("show_preview", "show_unsaved", "show_saved_run", "shown_result", "update_charts")
 
     def __init__(self, session, render: bool = True, window_size=(650, 480)):
         super().__init__(session)
@@ -128,20 +146,31 @@ class ResultView(Component):
     # ---- what is shown --------------------------------------------------------------------------
     def show_preview(self, ds) -> None:
         """Show a quasi-static preview; the runs list then names no run."""
+        self.show_unsaved(ds, "quasi-static preview")
+
+    def show_unsaved(self, ds, label: str) -> None:
+        """Show a result that is not a saved run (a preview, a lesson's, a study point's); the
+        runs list then names no run."""
         self.state.run_id = None
         self.shown_run_id = None
-        self.show_result(ds, "quasi-static preview")
+        self.show_result(ds, label)
+
+    def shown_result(self) -> ShownResult:
+        """The result on show, for the views of other components (the comparison)."""
+        return ShownResult(
+            self.dataset, self.source, self.shown_title, self.shown_case_text, self.shown_run_id
+        )
 
     def show_saved_run(self, ds, run_id: str, label: str) -> None:
         """Show saved run ``run_id``, named in the runs list; a pending preview is dropped."""
-        self.session.form.drop_pending_preview()
+        self.ctrl.drop_pending_preview()
         self.show_result(ds, label)
         self.shown_run_id = run_id
         self.state.run_id = run_id
 
     def show_result(self, ds, label: str) -> None:
         """Show a result Dataset: frame source, scene, charts and the time controls."""
-        from solver import geometry_from_result, parse_case, quasistatic_start
+        from solver import geometry_from_result, quasistatic_start
 
         from ..teaching import facts_from_result
 
@@ -153,14 +182,13 @@ class ResultView(Component):
         self.source = source
         self.facts = facts_from_result(ds)
         self._describe_tracks(answer)
-        # the run's own case (provenance): its case warnings and whether the form already shows it;
-        # the views read the result's coordinates and variables
-        form_case = self.session.form.case
-        case = parse_case(ds.attrs["case"], "the run's case") if ds.attrs.get("case") else form_case
+        # the run's own case (its provenance, parsed by the accessor): its case warnings and whether
+        # the form already shows it; what the result is, the views read from its Dataset
+        case = ds.racetrace.case() if ds.attrs.get("case") else self.ctrl.edited_case()
         self.shown_case_text = case.to_toml() if case is not None else None
         model = "dynamic" if "time" in ds.dims else "quasi-static"
         self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
-        self.session.form.update_staleness()
+        self.ctrl.update_staleness()
         self.state.result_warnings = self._warnings_of(ds, case)
         # the comparison chart's quasi-static solution: the result itself, or the quasi-static
         # start a dynamic result carries (None: the chart says the comparison is not available)
@@ -174,7 +202,7 @@ class ResultView(Component):
         s.frame_max = source.n_frames - 1
         s.result_label = label
         s.result_serial = int(s.result_serial) + 1
-        self.session.exports.forget_download()
+        self.ctrl.forget_download()
         s.ball_items = [{"title": "all balls", "value": -1}] + [
             {"title": f"ball {j}", "value": j} for j in range(source.ball_count)
         ]
@@ -269,7 +297,7 @@ class ResultView(Component):
     def _animation_options(self, ds) -> dict:
         """Options of :func:`viz.frames.frame_source`: a quasi-static result is animated for the
         form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form)."""
-        case = self.session.form.case
+        case = self.ctrl.edited_case()
         if "time" in ds.dims or case is None:
             return {}
         revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
@@ -463,8 +491,8 @@ class ResultView(Component):
             dyn = self.dataset if "time" in self.dataset.dims else None  # once per result
             s.chart_comparison = fig_json(charts.comparison_figure(self.quasistatic, dyn))
             self._comparison_serial = serial
-        if "compare" in open_panels and not self.session.compare.is_current():
-            self.session.compare.update_comparison()
+        if "compare" in open_panels:
+            self.ctrl.refresh_comparison()
         self._last_chart_update = time.monotonic()
 
     def _on_open_panels(self, **_):
@@ -485,9 +513,8 @@ class ResultView(Component):
 
     def _on_playing(self, playing=False, **_):
         if playing and (self._play_task is None or self._play_task.done()):
-            try:
-                loop = asyncio.get_running_loop()
-            except RuntimeError:
+            loop = running_loop()
+            if loop is None:
                 return  # started when a browser connects (see RacetraceApp)
             self._play_task = loop.create_task(self._play_loop())
         if not playing:
@@ -508,3 +535,233 @@ class ResultView(Component):
 
     def shutdown(self) -> None:
         self.state.playing = False
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_toolbar(self) -> None:
+        """``#result-label``: what the result on show is."""
+        html.Div("{{ result_label }}", id="result-label", classes="text-body-2 mr-4")
+
+    def build_view(self) -> None:
+        """``#view-3d`` (the server-rendered scene, with the ball legend over it), the close-up's
+        numbers, the "what you see" note and the time controls."""
+        from trame_pyvista.rca_view import PyVistaRCAView
+
+        # fills the height the window leaves; the render follows its size, so the picture
+        # keeps its aspect ratio at any window size
+        with html.Div(
+            id="view-3d",
+            style="height: calc(100vh - 330px); min-height: 320px; position: relative;",
+        ):
+            self.view = PyVistaRCAView(self.plotter, style="width: 100%; height: 100%;")
+            _ball_legend()
+        html.Div(
+            "{{ closeup_numbers }}",
+            id="closeup-numbers",
+            v_show="closeup_numbers",
+            classes="text-caption px-1",
+        )
+        html.Div(
+            "{{ scene_note }}",
+            id="scene-note",
+            classes="text-caption text-medium-emphasis px-1",
+            title="What you see",
+        )
+        _time_controls()
+
+    def build_scene_controls(self) -> None:
+        """Camera presets, drawing scales, the ball followed, the tracks' colouring and the
+        layers shown."""
+        _camera_and_scales(self.ctrl)
+        _track_options()
+        with v3.VRow(dense=True):
+            for layer, label in LAYER_LABELS.items():
+                with v3.VCol(cols="auto"):
+                    checkbox(label, f"show_{layer}")
+
+    def build_charts(self) -> None:
+        """The charts always on the page: contact angle, then the raceway map with its options
+        and the excursion and band thickness of each raceway (``#raceway-metrics``)."""
+        chart("chart-contact-angle", "chart_contact_angle", charts.HELP["contact_angle"])
+        with v3.VRow(dense=True, align="center", classes="mt-1"):
+            with v3.VCol(cols=6):
+                select(
+                    "raceway map coloured by",
+                    "map_colour",
+                    choices((("race", "raceway"), ("ball", "ball"), ("load", "contact load"))),
+                    id="map-colour",
+                )
+            with v3.VCol():
+                checkbox(
+                    "skip start-up",
+                    "map_skip_startup",
+                    id="map-skip-startup",
+                    title="Leave out the samples before the solver's analysed window (settling)",
+                )
+        chart("chart-raceway-map", "chart_raceway_map", charts.HELP["raceway_map"])
+        html.Div("{{ raceway_metrics }}", id="raceway-metrics", classes="text-caption px-2 mb-2")
+
+    def build_chart_panels(self) -> None:
+        """The collapsible chart panels (values in ``open_panels``; drawn only while open)."""
+        for title, key in CHART_PANELS:
+            with v3.VExpansionPanel(title=title, value=key), v3.VExpansionPanelText():
+                chart(f"chart-{key.replace('_', '-')}", f"chart_{key}", charts.HELP[key])
+
+
+LAYER_LABELS = {
+    "outer_ring": "outer ring",
+    "inner_ring": "inner ring",
+    "balls": "balls",
+    "cage": "cage",
+    "tracks": "painted tracks",
+    "edges": "shoulders",
+    "ellipses": "ellipses",
+    "traces": "traces",
+    "labels": "labels",
+}
+CHART_PANELS = (
+    ("Load versus azimuth", "load_azimuth"),
+    ("Contact ellipses", "ellipse"),
+    ("Cage speed", "cage_speed"),
+    ("Quasi-static versus dynamic", "comparison"),
+)
+CAMERA_BUTTONS = ("isometric", "axial", "radial", "inner track", "outer track", "close-up")
+
+
+def _ball_legend() -> None:
+    """``div#ball-legend`` over the top of the 3-D view: each ball's number in the colour of its
+    marking (and of its trace and its raceway-map samples), state ``ball_legend``."""
+    with html.Div(
+        id="ball-legend",
+        v_show="ball_legend.length && (show_balls || show_traces)",
+        title="Ball colours: the marking on each ball, its trace and its samples in the raceway "
+        "map coloured by ball",
+        style="position: absolute; top: 4px; left: 4px; right: 18%; display: flex; "
+        "flex-wrap: wrap; align-items: center; gap: 2px 6px; padding: 2px 6px; "
+        "background: rgba(255, 255, 255, 0.8); border-radius: 4px; font-size: 12px; "
+        "line-height: 16px; pointer-events: none; z-index: 2;",
+    ):
+        html.Span("balls", classes="font-weight-medium mr-1")
+        with html.Span(
+            v_for="item in ball_legend",
+            key="item.ball",
+            classes="rt-ball-entry",
+            style="white-space: nowrap;",
+        ):
+            html.Span(
+                style=(
+                    "{display: 'inline-block', width: '10px', height: '10px', "
+                    "borderRadius: '50%', marginRight: '2px', verticalAlign: 'middle', "
+                    "background: item.colour}",
+                ),
+            )
+            html.Span("{{ item.ball }}")
+
+
+def _time_controls() -> None:
+    """Play/pause (``#play-button``), frame steps, ``#time-slider``, the time and revolution
+    counter (``#frame-time``), the slow-motion factor and the playback speed."""
+    with v3.VRow(dense=True, align="center", classes="mt-1"):
+        with v3.VCol(cols="auto"):
+            v3.VBtn(
+                icon=("playing ? 'mdi-pause' : 'mdi-play'",),
+                id="play-button",
+                click="playing = !playing",
+                size="small",
+            )
+            icon_button(
+                "mdi-step-backward", "frame = frame > 0 ? frame - 1 : frame_max", "step-back"
+            )
+            icon_button(
+                "mdi-step-forward", "frame = frame < frame_max ? frame + 1 : 0", "step-forward"
+            )
+        with v3.VCol(), html.Div(id="time-slider"):
+            v3.VSlider(
+                v_model=("frame",),
+                min=0,
+                max=("frame_max",),
+                step=1,
+                hide_details=True,
+                density="compact",
+            )
+        with v3.VCol(cols="auto"):
+            html.Span(
+                "{{ frame_time }}",
+                classes="text-caption rt-frame-time",
+                style="font-family: monospace;",
+                id="frame-time",
+            )
+            html.Div("{{ slow_motion }}", classes="text-caption", id="slow-motion")
+        with v3.VCol(cols=2):
+            select("speed", "speed", "[1, 2, 5, 10, 20]", id="speed-select")
+
+
+def _camera_and_scales(ctrl) -> None:
+    """Camera presets (``#camera-<preset>``), ``#exaggeration``, ``#ellipse-scale`` and the ball
+    followed by the traces, the raceway map and the close-up."""
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols="auto"):
+            # plain buttons, not a toggle: pressing the current preset again restores it
+            for preset in CAMERA_BUTTONS:
+                v3.VBtn(
+                    preset,
+                    click=(ctrl.set_camera, f"['{preset}']"),
+                    size="small",
+                    variant=(f"camera === '{preset}' ? 'flat' : 'outlined'",),
+                    classes="mr-1",
+                    id=f"camera-{preset.replace(' ', '-')}",
+                )
+        with v3.VCol():
+            _slider(
+                "exaggeration",
+                "exaggeration",
+                30,
+                "Draw the across-groove deviation of the tracks, traces and ellipse centres "
+                "from the run's mean contact angle this many times larger (clipped at the "
+                "shoulders)",
+            )
+            html.Span("deviation × {{ exaggeration }}", classes="text-caption")
+        with v3.VCol(cols=2):
+            _slider(
+                "ellipses ×",
+                "ellipse_scale",
+                10,
+                "Draw the contact ellipses this many times their true size",
+            )
+        with v3.VCol(cols=3):
+            select("ball (traces, map, close-up)", "trace_ball", "ball_items")
+
+
+def _slider(label: str, model: str, largest: int, title: str) -> None:
+    """A whole-number slider from 1 to ``largest`` bound to ``model`` (id: ``model`` with
+    dashes)."""
+    v3.VSlider(
+        label=label,
+        v_model=(model,),
+        min=1,
+        max=largest,
+        step=1,
+        thumb_label=True,
+        hide_details=True,
+        density="compact",
+        title=title,
+        id=model.replace("_", "-"),
+    )
+
+
+def _track_options() -> None:
+    """What the painted tracks show (``#track-quantity``) and over which time
+    (``#track-whole-run``)."""
+    quantities = (
+        ("dwell", "dwell (time under a ball)"),
+        ("peak_pressure", "highest peak pressure"),
+    )
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=4):
+            select("tracks coloured by", "track_quantity", choices(quantities), id="track-quantity")
+        with v3.VCol(cols="auto"):
+            checkbox(
+                "whole run",
+                "track_whole_run",
+                id="track-whole-run",
+                title="Paint the tracks of the whole run, not only up to the current time",
+            )

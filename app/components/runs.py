@@ -18,10 +18,13 @@ import time
 from pathlib import Path
 
 import numpy as np
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
 
 from .. import runner as runner_module
-from ..runs import describe_case, load_netcdf
-from .base import Component
+from ..run_store import describe_case, load_netcdf
+from .base import Component, running_loop
+from .widgets import alert, alert_list, select
 
 POLL_S = 0.2  # runner polling period
 STOP_TIMEOUT_S = 20.0  # a stopping server waits this long for the run's partial result
@@ -49,6 +52,8 @@ def _job() -> str:
 
 
 class Runs(Component):
+    PROVIDES = ("is_listed",)
+
     def __init__(self, session):
         super().__init__(session)
         self.pool = session.services.pool
@@ -122,7 +127,7 @@ class Runs(Component):
                     self.refresh()
 
     def _on_run_id(self, run_id=None, **_):
-        if not run_id or run_id == self.session.result.shown_run_id:
+        if not run_id or run_id == self.ctrl.shown_result().run_id:
             return
         if not self.is_listed(run_id):
             self.state.status = f"error: no run {str(run_id)[:80]!r} in the runs folder"
@@ -134,10 +139,10 @@ class Runs(Component):
             return
         from solver import parse_case
 
-        self.session.form.take_case(parse_case(case_text, "the saved run's case"))
+        self.ctrl.take_case(parse_case(case_text, "the saved run's case"))
         label = next((r["title"] for r in self.state.runs if r["value"] == run_id), run_id)
         with self.state:
-            self.session.result.show_saved_run(ds, run_id, label)
+            self.ctrl.show_saved_run(ds, run_id, label)
             if not self.state.busy:
                 self.state.progress = 0  # the bar belongs to a run going, not to this one
                 self.state.eta = ""
@@ -148,12 +153,11 @@ class Runs(Component):
         """Start the dynamic model on the current case in the background (or queue it for a
         solver slot, with its place shown in ``status``). When the result on show, of this very
         case, leaves the model's validity, ask first (``run_confirm``) unless ``confirmed``."""
-        form = self.session.form
         self.state.run_confirm = False
         if self.ticket is not None:
             self.state.run_note = "a run is already going: wait for it to end, or press Cancel"
             return
-        if form.validate() is None or form.case is None:
+        if self.ctrl.validate_case() is None or self.ctrl.edited_case() is None:
             self.state.run_note = self.state.run_blocked
             return
         if self.state.run_reason:  # the form says why
@@ -166,9 +170,10 @@ class Runs(Component):
         # or to the temporary folder when the runs folder cannot take files
         folder = Path(tempfile.gettempdir()) if self.store.folder_problem() else self.store.root
         out = folder / f".job-{secrets.token_hex(4)}.nc"
-        case_text = form.case.to_toml()
-        title = describe_case(form.case)
-        revolutions = getattr(getattr(form.case, "simulation", None), "shaft_revolutions", None)
+        case = self.ctrl.edited_case()
+        case_text = case.to_toml()
+        title = describe_case(case)
+        revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
         self.run_info = {
             "case_text": case_text,
             "title": title,
@@ -176,7 +181,7 @@ class Runs(Component):
             "revolutions": revolutions,
         }
         self._cancel_requested = False
-        form.drop_pending_preview()  # the run's result, not a preview still on its way, is next
+        self.ctrl.drop_pending_preview()  # the run's result, not a preview on its way, is next
         self.ticket = self.pool.enqueue()
         with self.state:
             # the animation would take processor time from the solver (2 cores here): pause it
@@ -186,11 +191,9 @@ class Runs(Component):
             self.state.progress = 0
             self.state.eta = ""
             self._start_when_free()
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
-            return  # tests drive poll_runner() themselves
-        self._poll_task = loop.create_task(self._poll_loop())
+        loop = running_loop()
+        if loop is not None:  # without one, tests drive poll_runner() themselves
+            self._poll_task = loop.create_task(self.poll_until_done(self.poll_runner, POLL_S))
 
     def run_anyway(self) -> None:
         """Run although the result on show leaves the model's validity (the user confirmed)."""
@@ -224,14 +227,6 @@ class Runs(Component):
             return
         self.state.status = "cancelling"
         self.runner.cancel()
-
-    async def _poll_loop(self) -> None:
-        while self.ticket is not None:
-            with self.state:
-                finished = self.poll_runner()
-            if finished:
-                return
-            await asyncio.sleep(POLL_S)
 
     def poll_runner(self) -> bool:
         """Apply runner events to the state; True once the run has finished."""
@@ -284,7 +279,7 @@ class Runs(Component):
             self._end_run(f"stopped with the server: saved as {info.run_id} (incomplete)")
             return
         self.refresh()
-        self.session.result.show_saved_run(ds, info.run_id, info.label)
+        self.ctrl.show_saved_run(ds, info.run_id, info.label)
         self._end_run("cancelled" if info.status == "cancelled" else "done")
         if not info.saved:  # kept in memory: the page says so, and offers the download
             self.state.run_note = info.problem
@@ -335,3 +330,87 @@ class Runs(Component):
         self.pool.release(self.runner)
         self.pool.drop(self.ticket)
         self.ticket = None
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_ui(self) -> None:
+        """The run card: Run and Cancel with the status, what stops or questions a run, the
+        warnings of the result on show, the progress bar and the saved runs."""
+        ctrl = self.ctrl
+        with v3.VCard(variant="outlined", classes="mb-2 pa-2"):
+            _run_buttons(ctrl)
+            html.Div(
+                "{{ run_blocked }}",
+                id="run-blocked",
+                v_show="run_blocked",
+                classes="text-caption text-error",
+            )
+            html.Div(
+                "{{ run_note }}",
+                id="run-note",
+                v_show="run_note",
+                classes="text-caption text-warning",
+            )
+            _run_confirm(ctrl)
+            html.Div(
+                "{{ run_reason }}",
+                id="run-reason",
+                v_show="run_reason",
+                classes="text-caption text-error",
+                style="white-space: pre-line",
+            )
+            alert_list("result_warnings", "warning", "result-warnings")
+            v3.VProgressLinear(
+                id="progress", model_value=("progress",), height=8, color="primary", classes="my-1"
+            )
+            with html.Div(id="runs-select"):
+                select("Saved runs", "run_id", "runs", no_data_text="no saved runs yet")
+
+
+def _run_buttons(ctrl) -> None:
+    """``#run-button``, ``#cancel-button`` and the status with the time left."""
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols="auto"):
+            v3.VBtn(
+                "Run",
+                id="run-button",
+                color="primary",
+                click=ctrl.run,
+                disabled=("run_disabled",),
+                prepend_icon="mdi-play-circle",
+            )
+            v3.VBtn(
+                "Cancel",
+                id="cancel-button",
+                click=ctrl.cancel,
+                disabled=("!busy",),
+                classes="ml-2",
+                prepend_icon="mdi-stop-circle",
+            )
+        with v3.VCol():
+            html.Div("{{ status }}", id="status", classes="text-body-2")
+            html.Div("{{ eta }}", classes="text-caption")
+
+
+def _run_confirm(ctrl) -> None:
+    """``#run-confirm``: Run asks first when the result on show leaves the model's validity."""
+    with alert("warning", id="run-confirm", v_if="run_confirm"):
+        html.Div(
+            "The result of this case leaves the model's validity (see the warnings below). "
+            "Run the dynamic model anyway?"
+        )
+        v3.VBtn(
+            "Run anyway",
+            id="run-anyway",
+            click=ctrl.run_anyway,
+            size="small",
+            color="warning",
+            classes="mt-1 mr-2",
+        )
+        v3.VBtn(
+            "Back",
+            id="run-back",
+            click="run_confirm = false",
+            size="small",
+            variant="text",
+            classes="mt-1",
+        )

@@ -26,7 +26,6 @@ slot held, closed at the end, when the slots are given back.
 
 from __future__ import annotations
 
-import asyncio
 import json
 import math
 import secrets
@@ -34,115 +33,22 @@ import threading
 from pathlib import Path
 
 import numpy as np
+from trame.widgets import html
+from trame.widgets import vuetify3 as v3
 
+from .. import lazy_charts
+from ..case_fields import form_fields
+from ..charts import STUDY_CHART_METRICS, study_figure
 from ..paths import child_path
-from .base import Component, fig_json
+from ..study_building import StudyInputError, build_study_text, parse_values
+from .base import Component, fig_json, running_loop
+from .widgets import button, choices, select
 
 POLL_S = 1.0
 SLOT_WAIT_S = 0.5  # a study waiting for a solver slot asks again this often
-CHART_METRICS = (
-    ("excursion", "excursion [deg]", 1.0),
-    ("band_thickness", "band thickness [deg]", 1.0),
-    ("band_width", "track width across the groove [deg]", 1.0),
-    ("mean_contact_angle", "mean contact angle [deg]", 1.0),
-    ("peak_pressure", "peak pressure [GPa]", 1e-9),
-    ("largest_load", "largest contact load [N]", 1.0),
-)
-RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
 # Study Datasets of the shipped studies' runs (docs/studies.md); their full runs are not shipped.
 SHIPPED_RESULTS = Path(__file__).resolve().parents[2] / "assets" / "studies" / "results"
 STUDIES_DIR = ".studies"  # study folders under the runs folder
-MAX_BUILT_POINTS = 200  # points of a study built in the page
-BUILD_MODELS = ("quasistatic", "dynamic", "both")
-
-
-class StudyInputError(ValueError):
-    """A study built in the page cannot be made: the message says what to change."""
-
-
-def parse_values(text, what: str) -> list[float]:
-    """Values typed for a varied key: ``0, 300, 600`` (a list) or ``start:stop:count`` (count
-    values from start to stop, both included). StudyInputError naming ``what`` when unreadable."""
-    text = str(text or "").strip()
-    if not text:
-        raise StudyInputError(f"{what}: give values, e.g. 0, 300, 600 or 0:1500:6")
-    try:
-        if ":" in text:
-            parts = [p.strip() for p in text.split(":")]
-            if len(parts) != 3:
-                raise ValueError
-            start, stop, count = float(parts[0]), float(parts[1]), float(parts[2])
-            if count != int(count) or not 2 <= count <= MAX_BUILT_POINTS:
-                raise StudyInputError(
-                    f"{what}: the count in start:stop:count must be a whole number from 2 to "
-                    f"{MAX_BUILT_POINTS} (got {parts[2]})"
-                )
-            values = np.linspace(start, stop, int(count)).tolist()
-        else:
-            values = [float(v) for v in text.replace(";", ",").split(",") if v.strip()]
-    except StudyInputError:
-        raise
-    except ValueError:
-        raise StudyInputError(
-            f"{what}: {text!r} is not a list of numbers (0, 300, 600) nor start:stop:count "
-            "(0:1500:6)"
-        ) from None
-    if not all(math.isfinite(v) for v in values):
-        raise StudyInputError(f"{what}: values must be finite numbers")
-    if len(values) > MAX_BUILT_POINTS:
-        raise StudyInputError(f"{what}: at most {MAX_BUILT_POINTS} values")
-    return [round(v, 12) for v in values]
-
-
-def build_study_text(
-    title: str,
-    varied: list[tuple[str, list[float]]],
-    combine: str,
-    model: str,
-    revolutions,
-    base: str = "base.toml",
-) -> str:
-    """The study file (docs/study-format.md) of a study around the case file ``base``: the keys
-    of ``varied`` take their lists of values, ``combine``d; ``model`` runs at each point; the
-    dynamic points run ``revolutions`` shaft revolutions. StudyInputError says what is wrong."""
-    if combine not in ("grid", "zip"):
-        raise StudyInputError(f"combine: {combine!r} is not grid or zip")
-    if model not in BUILD_MODELS:
-        raise StudyInputError(f"model: {model!r} is not one of {', '.join(BUILD_MODELS)}")
-    keys = [k for k, _ in varied]
-    if len(set(keys)) != len(keys):
-        raise StudyInputError("the two varied keys are the same: choose another second key")
-    if combine == "zip" and len({len(v) for _, v in varied}) > 1:
-        lengths = " and ".join(str(len(v)) for _, v in varied)
-        raise StudyInputError(
-            f"zipped keys need as many values each (got {lengths}): give equal lists or use grid"
-        )
-    points = math.prod(len(v) for _, v in varied) if combine == "grid" else len(varied[0][1])
-    if points > MAX_BUILT_POINTS:
-        raise StudyInputError(
-            f"{points} points: at most {MAX_BUILT_POINTS} from the page (use racetrace study for "
-            "more)"
-        )
-    lines = [
-        f"title = {json.dumps(title)}",
-        f"base = {json.dumps(base)}",
-        f'model = "{model}"',
-        f'combine = "{combine}"',
-    ]
-    if model != "quasistatic":
-        try:
-            revs = float(revolutions)
-        except (TypeError, ValueError):
-            raise StudyInputError(
-                f"run length: {revolutions!r} is not a number of shaft revolutions"
-            ) from None
-        if not (math.isfinite(revs) and revs > 0):
-            raise StudyInputError("run length: give a number of shaft revolutions above 0")
-        lines += ["", "[run]", f"shaft_revolutions = {revs!r}"]
-    lines += ["", "[vary]"]
-    for key, values in varied:
-        lines.append(f'"{key}" = [{", ".join(repr(float(v)) for v in values)}]')
-    return "\n".join(lines) + "\n"
 
 
 class Studies(Component):
@@ -175,11 +81,13 @@ class Studies(Component):
         s.study_sweeps = []
         s.study_sweep = None
         s.study_metric = "excursion"
-        s.study_metric_items = [{"title": label, "value": name} for name, label, _ in CHART_METRICS]
+        s.study_metric_items = [
+            {"title": label, "value": name} for name, label, _ in STUDY_CHART_METRICS
+        ]
         s.chart_study = {"data": [], "layout": {}}
         s.study_results_items = []
         s.study_results = None
-        fields = [f for f in self.session.form.fields if f.kind in ("int", "float")]
+        fields = [f for f in form_fields() if f.kind in ("int", "float")]
         s.study_key_items = [{"title": f"{f.key} ({f.label})", "value": f.key} for f in fields]
         keys = self.numeric_keys()
         s.study_key1 = "operating.radial_load_N" if "operating.radial_load_N" in keys else None
@@ -193,7 +101,7 @@ class Studies(Component):
 
     def numeric_keys(self) -> list[str]:
         """The case keys a study built in the page may vary: the form's numeric fields."""
-        return [f.key for f in self.session.form.fields if f.kind in ("int", "float")]
+        return [f.key for f in form_fields() if f.kind in ("int", "float")]
 
     def bind(self) -> None:
         self.ctrl.study_run = self.run
@@ -258,11 +166,9 @@ class Studies(Component):
             self.state.study_running = True
             self.state.study_progress = 0
             self.state.study_status = f"starting {self.study.title} ..."
-        try:
-            loop = asyncio.get_running_loop()
-        except RuntimeError:
-            return  # tests call poll() themselves
-        self._poll_task = loop.create_task(self._poll_loop())
+        loop = running_loop()
+        if loop is not None:  # without one, tests call poll() themselves
+            self._poll_task = loop.create_task(self.poll_until_done(self.poll, POLL_S))
 
     def _take_slots(self) -> list:
         """Solver slots (:class:`app.services.pool.SolverPool`, shared with the runs of every
@@ -321,7 +227,7 @@ class Studies(Component):
             self.state.study_status = "a study is running: cancel it or wait for it to end"
             return
         s = self.state
-        case = self.session.form.case
+        case = self.ctrl.edited_case()
         if case is None:
             s.study_status = "error: the case in the form is not valid: fix the fields in red first"
             return
@@ -367,14 +273,6 @@ class Studies(Component):
         if self.busy:
             self._stop.set()
             self.state.study_status = "cancelling (finished runs are kept) ..."
-
-    async def _poll_loop(self) -> None:
-        while True:
-            with self.state:
-                finished = self.poll()
-            if finished:
-                return
-            await asyncio.sleep(POLL_S)
 
     def poll(self) -> bool:
         """Read the study folder into the table and chart; True once the study has ended."""
@@ -458,9 +356,9 @@ class Studies(Component):
         s.chart_study = fig_json(study_figure(ds, s.study_sweep, self._metric()))
 
     def _metric(self) -> str:
-        """The metric charted: ``study_metric`` when it is one of :data:`CHART_METRICS`."""
+        """The metric charted: ``study_metric`` when it is one of :data:`STUDY_CHART_METRICS`."""
         metric = self.state.study_metric
-        names = [name for name, _, _ in CHART_METRICS]
+        names = [name for name, _, _ in STUDY_CHART_METRICS]
         return metric if isinstance(metric, str) and metric in names else names[0]
 
     def _on_chart_choice(self, **_):
@@ -493,13 +391,11 @@ class Studies(Component):
         except (CaseError, OSError, ValueError) as error:
             self.state.study_status = f"cannot open {point} {model}: {error}"
             return
-        self.state.run_id = None
-        self.session.result.shown_run_id = None
         title = self.study.title if self.study is not None else self.folder.path.name
         values = next(
             (r["values"] for r in self._rows if r["point"] == point), ""
         )  # what the point changes, e.g. "radial_load_N = 300"
-        self.session.result.show_result(ds, f"{title}: {point} ({values}) {model}")
+        self.ctrl.show_unsaved(ds, f"{title}: {point} ({values}) {model}")
 
     # ---- results of studies run before ----------------------------------------------------------
     def results_items(self) -> list[dict]:
@@ -566,6 +462,157 @@ class Studies(Component):
     def shutdown(self) -> None:
         self._stop.set()
 
+    # ---- page -----------------------------------------------------------------------------------
+    def build_ui(self) -> None:
+        """The collapsible panel "Studies" (value ``studies``, ``#studies``): open earlier
+        results, run a shipped study or one built from the current case, chart a metric and
+        open any point."""
+        ctrl = self.ctrl
+        with v3.VExpansionPanel(title="Studies", value="studies"):
+            with v3.VExpansionPanelText(), html.Div(id="studies", classes="mb-2"):
+                with html.Div(id="study-results"):
+                    select(
+                        "Open study results",
+                        "study_results",
+                        "study_results_items",
+                        disabled=("study_running",),
+                        no_data_text="no study results yet",
+                        classes="mb-2",
+                    )
+                _shipped_study(ctrl)
+                _study_builder(ctrl)
+                v3.VProgressLinear(
+                    id="study-progress",
+                    model_value=("study_progress",),
+                    v_show="study_running",
+                    height=6,
+                    color="primary",
+                    classes="mt-2",
+                )
+                html.Div(
+                    "{{ study_status }}",
+                    id="study-status",
+                    classes=(
+                        "study_status.startsWith('error') ? 'text-caption my-1 text-error' : "
+                        "'text-caption my-1'",
+                    ),
+                )
+                _study_chart(ctrl)
+                _study_table(ctrl)
+
+
+def _shipped_study(ctrl) -> None:
+    """A shipped study to run (``#study-run``) and ``#study-cancel``."""
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=6):
+            select("Shipped study", "study_name", "study_names", disabled=("study_running",))
+        with v3.VCol(cols="auto"):
+            button("Run study", "study-run", ctrl.study_run, "study_running", color="primary")
+        with v3.VCol(cols="auto"):
+            button("Cancel", "study-cancel", ctrl.study_cancel, "!study_running")
+
+
+def _study_builder(ctrl) -> None:
+    """``#study-build``: a study built from the case in the form (:meth:`Studies.build`)."""
+    with html.Div(id="study-build", classes="mt-2 pa-2", style="border: 1px solid #ddd;"):
+        html.Div("Build a study from the current case", classes="text-subtitle-2")
+        for n in (1, 2):
+            with v3.VRow(dense=True, align="center"):
+                with v3.VCol(cols=7), html.Div(id=f"study-key{n}"):
+                    v3.VAutocomplete(
+                        label="key to vary" if n == 1 else "second key (optional)",
+                        v_model=(f"study_key{n}",),
+                        items=("study_key_items",),
+                        density="compact",
+                        hide_details=True,
+                        clearable=n == 2,
+                        disabled=("study_running",),
+                    )
+                with v3.VCol(cols=5), html.Div(id=f"study-values{n}"):
+                    v3.VTextField(
+                        label="values",
+                        v_model=(f"study_values{n}",),
+                        placeholder="0, 300, 600 or 0:1500:6",
+                        persistent_placeholder=True,
+                        density="compact",
+                        hide_details=True,
+                        title="A list (0, 300, 600) or start:stop:count (0:1500:6)",
+                        disabled=("study_running",),
+                    )
+        _study_options()
+        button(
+            "Build and run",
+            "study-build-run",
+            ctrl.study_build,
+            "study_running || !case_valid",
+            color="primary",
+            classes="mt-1",
+            title="Write a study file with the case in the form as its base and run it",
+        )
+
+
+def _study_options() -> None:
+    """How two keys combine, the model and the dynamic run length of a built study."""
+    combine = (("grid", "grid (every pair)"), ("zip", "zipped (side by side)"))
+    models = (("quasistatic", "quasi-static"), ("dynamic", "dynamic"), ("both", "both"))
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=4), html.Div(id="study-combine"):
+            select("two keys", "study_combine", choices(combine))
+        with v3.VCol(cols=4), html.Div(id="study-model"):
+            select("model", "study_model", choices(models))
+        with v3.VCol(cols=4), html.Div(id="study-revolutions"):
+            v3.VTextField(
+                label="revolutions (dynamic)",
+                v_model=("study_revolutions",),
+                density="compact",
+                hide_details=True,
+                disabled=("study_model === 'quasistatic'",),
+            )
+
+
+def _study_chart(ctrl) -> None:
+    """The sweep and metric to chart, and ``#chart-study`` (a click on a point opens its run:
+    its (point, model) is the customdata)."""
+    with v3.VRow(dense=True):
+        with v3.VCol(cols=6):
+            select("Sweep", "study_sweep", "study_sweeps")
+        with v3.VCol(cols=6):
+            select("Metric", "study_metric", "study_metric_items")
+    with html.Div(id="chart-study", classes="mb-2"):
+        lazy_charts.ChartFigure(
+            "chart_study",
+            display_mode_bar=False,
+            style="height: 280px; width: 100%;",
+            click=(
+                ctrl.study_open,
+                "[$event.points[0].customdata[0], $event.points[0].customdata[1]]",
+            ),
+        )
+
+
+STUDY_TABLE_HEADS = ("point", "model", "values", "status", "exc i/o deg", "band i/o deg", "")
+
+
+def _study_table(ctrl) -> None:
+    """``#study-table``: a row per point and model (state ``study_rows``) with its **open**."""
+    with v3.VTable(density="compact", id="study-table"):
+        with html.Thead(), html.Tr():
+            for head in STUDY_TABLE_HEADS:
+                html.Th(head)
+        with html.Tbody(), html.Tr(v_for="row in study_rows", key="row.key"):
+            for cell in ("point", "model", "values", "status"):
+                html.Td(f"{{{{ row.{cell} }}}}")
+            html.Td("{{ row.excursion_inner }} / {{ row.excursion_outer }}")
+            html.Td("{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}")
+            with html.Td():
+                v3.VBtn(
+                    "open",
+                    size="x-small",
+                    variant="text",
+                    disabled=("!row.openable",),
+                    click=(ctrl.study_open, "[row.point, row.model]"),
+                )
+
 
 def _keys_by_sweep(ds, keys) -> dict:
     """{sweep: the keys whose values differ between that sweep's points} (all ``keys`` for a
@@ -587,51 +634,3 @@ def _text(value, digits: int = 5) -> str:
             return "-"
         return "0" if abs(value) < 1e-9 else f"{float(value):.{digits}g}"
     return str(value)
-
-
-def study_figure(ds, sweep: str | None, metric: str):
-    """Plotly figure: ``metric`` against the first key ``sweep`` varies, inner and outer race side
-    by side, a line per model."""
-    import plotly.graph_objects as go
-    from plotly.subplots import make_subplots
-
-    label, scale = next(((lab, sc) for n, lab, sc in CHART_METRICS if n == metric), (metric, 1.0))
-    fig = make_subplots(
-        rows=1, cols=2, subplot_titles=("inner race", "outer race"), shared_yaxes=True
-    )
-    select = np.asarray(ds["sweep"].values) == sweep
-    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
-    if select.any() and varied and np.asarray(ds[varied[0]].values).dtype.kind in "fi":
-        key = varied[0]
-        x = np.asarray(ds[key].values, float)[select]
-        order = np.argsort(x)
-        for col, race in enumerate(("inner", "outer"), start=1):
-            for model in ds["model"].values:
-                y = np.asarray(ds[metric].sel(model=model, race=race).values, float)[select]
-                fig.add_trace(
-                    go.Scatter(
-                        x=x[order].tolist(),
-                        y=(y[order] * scale).tolist(),
-                        mode="lines+markers",
-                        name=f"{race}, {model}",
-                        line={
-                            "color": RACE_COLOURS[race],
-                            "dash": "dash" if model == "quasistatic" else "solid",
-                        },
-                        # (point, model) of each marker: a click opens that run
-                        customdata=[
-                            [str(pt), str(model)]
-                            for pt in np.asarray(ds["point"].values)[select][order]
-                        ],
-                    ),
-                    row=1,
-                    col=col,
-                )
-        fig.update_xaxes(title_text=key.rsplit(".", 1)[-1])
-    fig.update_yaxes(title_text=label, col=1)
-    fig.update_layout(
-        margin={"l": 50, "r": 10, "t": 30, "b": 90},
-        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
-    )
-    return fig

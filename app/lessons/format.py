@@ -170,6 +170,17 @@ def _template_problems(where: str, template: str, result_names: list[str]) -> li
 
 
 # ---- reading one file ----------------------------------------------------------------------------
+def _table(data: dict, name: str, allowed, problems: list[str]) -> dict:
+    """Table ``[name]`` of a lesson file, its unknown keys added to ``problems`` ({} when it is
+    absent, or when it is not a table, which is said too)."""
+    table = data.get(name, {})
+    if not isinstance(table, dict):
+        problems.append(f"[{name}] must be a table")
+        return {}
+    problems.extend(_unknown_keys(f"[{name}]", table, allowed))
+    return table
+
+
 def _unknown_keys(where: str, table: dict, allowed: set[str]) -> list[str]:
     extra = sorted(set(table) - allowed)
     if not extra:
@@ -305,22 +316,14 @@ def parse_lesson(text: str, lesson_id: str) -> Lesson:
     names = [r.name for r in results]
     if len(set(names)) != len(names):
         problems.append(f"result names must differ: {', '.join(names)}")
-    view = data.get("view", {})
-    if not isinstance(view, dict):
-        problems.append("[view] must be a table")
-        view = {}
-    problems += _unknown_keys("[view]", view, _VIEW_KEYS)
+    view = _table(data, "view", _VIEW_KEYS, problems)
     camera = view.get("camera", "isometric")
     if camera not in CAMERAS:
         problems.append(f"[view] camera must be one of {', '.join(CAMERAS)}, not {camera!r}")
     chart = view.get("chart", "contact_angle")
     if chart not in CHARTS:
         problems.append(f"[view] chart must be one of {', '.join(CHARTS)}, not {chart!r}")
-    text = data.get("text", {})
-    if not isinstance(text, dict):
-        problems.append("[text] must be a table")
-        text = {}
-    problems += _unknown_keys("[text]", text, _TEXT_KEYS)
+    text = _table(data, "text", _TEXT_KEYS, problems)
     explain = _text("[text]", text, "explain", problems)
     try_this = _text("[text]", text, "try_this", problems)
     for key, template in (("explain", explain), ("try_this", try_this)):

@@ -1,10 +1,11 @@
 """The Lessons panel's state and handlers, and presenter mode: a component of the session.
 
-:class:`LessonController` reaches the other components through the session: the case form
-(``session.form``: the lesson's case goes in the form, no preview is solved) and the result view
-(``session.result``: the result, camera, time and charts). One click on a lesson
-(``open_lesson``) shows its first result, places the camera, opens and highlights its chart and
-fills its text from the results; its other results are one click away (``show_lesson_result``).
+:class:`LessonController` reaches the other components through the controller: the case form's
+(``take_case``, ``drop_pending_preview``: the lesson's case goes in the form, no preview is
+solved) and the result view's (``show_unsaved``, ``set_camera``, ``step``, ``update_charts``).
+One click on a lesson (``open_lesson``) shows its first result, places the camera, opens and
+highlights its chart and fills its text from the results; its other results are one click away
+(``show_lesson_result``).
 Presenter mode (``presenter``) is a state flag the page styles (app/lessons/widgets.py); its keys
 come here as ``lesson_key``.
 
@@ -22,6 +23,7 @@ from __future__ import annotations
 import logging
 
 from ..components.base import Component
+from . import widgets
 from .format import LessonSet, load_lessons
 from .results import lesson_result
 from .text import lesson_text
@@ -85,7 +87,7 @@ class LessonController(Component):
     def _on_presenter(self, presenter=False, **_):
         """Presenter mode hides the form (the drawer); the charts are redrawn at their new size."""
         self.state.main_drawer = not presenter
-        self.session.result.update_charts()
+        self.ctrl.update_charts()
 
     # ---- results ---------------------------------------------------------------------------------
     def _dataset(self, lesson, spec):
@@ -122,7 +124,7 @@ class LessonController(Component):
             if lesson.chart not in ALWAYS_SHOWN:
                 s.open_panels = sorted(set(s.open_panels or ()) | {lesson.chart})
         self.show_result(result_name or lesson.results[0].name)
-        self.session.result.set_camera(lesson.camera)
+        self.ctrl.set_camera(lesson.camera)
 
     def show_result(self, name: str) -> None:
         """Show result ``name`` of the open lesson: its case in the form, the result in the view."""
@@ -131,15 +133,12 @@ class LessonController(Component):
         lesson = self.set.get(self.state.lesson_id)
         spec = lesson.result(name)
         ds = self._dataset(lesson, spec)
-        form, view = self.session.form, self.session.result
-        form.drop_pending_preview()  # a preview on its way must not replace the lesson's result
+        self.ctrl.drop_pending_preview()  # a preview on its way must not replace this result
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         # the form holds the lesson's case under a title naming what the lesson changed; the result
         # on show was solved from spec.case(), which differs only in this title
-        form.take_case(spec.case().with_values({"title": f"{lesson.title}: {spec.label}"}))
-        self.state.run_id = None  # the runs list names no run
-        view.shown_run_id = None
-        view.show_result(ds, f"lesson: {spec.label}")
+        self.ctrl.take_case(spec.case().with_values({"title": f"{lesson.title}: {spec.label}"}))
+        self.ctrl.show_unsaved(ds, f"lesson: {spec.label}")  # the runs list names no run
         self._shown_serial = self.state.result_serial
         with self.state:
             self.state.lesson_stale = False
@@ -168,16 +167,29 @@ class LessonController(Component):
             self.state.playing = not self.state.playing
         elif key == "ArrowRight":
             self.state.playing = False
-            self.session.result.step(1)
+            self.ctrl.step(1)
         elif key == "ArrowLeft":
             self.state.playing = False
-            self.session.result.step(-1)
+            self.ctrl.step(-1)
         elif key in ("n", "N"):
             self.next_lesson()
         elif key in ("p", "P"):
             self.previous_lesson()
         elif key == "Escape":
             self.state.presenter = False
+
+    # ---- page -----------------------------------------------------------------------------------
+    def build_page_assets(self) -> None:
+        """Presenter mode's style sheet and key handler (once per page)."""
+        widgets.page_assets()
+
+    def build_toolbar(self) -> None:
+        """``#presenter-button`` in the toolbar."""
+        widgets.presenter_button()
+
+    def build_ui(self) -> None:
+        """``#lessons-panel``: the lessons and the open lesson's text (app/lessons/widgets.py)."""
+        widgets.lessons_panel(self.ctrl)
 
 
 __all__ = ["ALWAYS_SHOWN", "LessonController"]

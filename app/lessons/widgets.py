@@ -20,8 +20,7 @@ from __future__ import annotations
 from trame.widgets import client, html
 from trame.widgets import vuetify3 as v3
 
-#: Class of the blocks that presenter mode hides.
-HIDE = "rt-hide-in-presenter"
+from ..components.widgets import HIDE, alert, alert_list, button_list, icon_button
 
 PRESENTER_CSS = """
 .rt-lesson-chart { outline: 3px solid #ffb300; outline-offset: 2px; border-radius: 4px; }
@@ -74,15 +73,6 @@ def page_assets() -> None:
     client.Script(KEYS_SCRIPT)
 
 
-def chart_classes(chart: str) -> tuple[str]:
-    """The ``classes`` binding of a chart's wrapper: highlighted when it is the lesson's chart
-    (in presenter mode without a lesson, the contact-angle chart is the one shown)."""
-    return (
-        f"(lesson_chart || (presenter ? 'contact_angle' : '')) === '{chart}' "
-        "? 'mb-2 rt-chart rt-lesson-chart' : 'mb-2 rt-chart'",
-    )
-
-
 def presenter_button() -> None:
     """Toolbar button: presenter mode on and off."""
     v3.VBtn(
@@ -105,17 +95,16 @@ def lessons_panel(ctrl) -> None:
             with v3.VCol(cols="auto"):
                 html.Span("Lessons", classes="text-subtitle-1")
             with v3.VCol():
-                v3.VBtn(
-                    "{{ lesson.title }}",
-                    v_for="lesson in lessons",
+                button_list(
+                    "lessons",
+                    "lesson",
+                    "lesson-",
+                    (ctrl.open_lesson, "[lesson.id]"),
+                    "lesson_id === lesson.id",
+                    label="{{ lesson.title }}",
                     key="lesson.id",
-                    id=("'lesson-' + lesson.id",),
+                    idle="tonal",
                     title=("lesson.summary",),
-                    click=(ctrl.open_lesson, "[lesson.id]"),
-                    size="x-small",
-                    variant=("lesson_id === lesson.id ? 'flat' : 'tonal'",),
-                    color="primary",
-                    classes="ma-1 text-none",
                 )
         html.Div(
             "{{ lesson_message }}",
@@ -123,90 +112,66 @@ def lessons_panel(ctrl) -> None:
             id="lesson-message",
             classes="text-error text-caption",
         )
-        with html.Div(v_if="lesson_problems.length", id="lesson-problems", classes=HIDE):
-            v3.VAlert(
-                "{{ problem }}",
-                v_for="problem in lesson_problems",
-                key="problem",
-                type="error",
-                density="compact",
-                variant="tonal",
-                classes="my-1 text-caption",
-            )
+        alert_list("lesson_problems", "error", "lesson-problems", classes=HIDE)
         with html.Div(v_if="lesson_id"):
-            with v3.VRow(dense=True, align="center", classes="mt-1"):
-                with v3.VCol(cols="auto"):
-                    v3.VBtn(
-                        icon="mdi-chevron-left",
-                        click=ctrl.previous_lesson,
-                        size="x-small",
-                        variant="text",
-                        id="lesson-previous",
-                        title="previous lesson (P)",
-                    )
-                with v3.VCol():
-                    html.Div("{{ lesson_title }}", id="lesson-title", classes="text-subtitle-1")
-                with v3.VCol(cols="auto"):
-                    v3.VBtn(
-                        icon="mdi-chevron-right",
-                        click=ctrl.next_lesson,
-                        size="x-small",
-                        variant="text",
-                        id="lesson-next",
-                        title="next lesson (N)",
-                    )
-            with html.Div(v_if="lesson_results.length > 1", classes="my-1"):
-                v3.VBtn(
-                    "{{ result.label }}",
-                    v_for="result in lesson_results",
-                    key="result.name",
-                    id=("'lesson-result-' + result.name",),
-                    click=(ctrl.show_lesson_result, "[result.name]"),
-                    size="x-small",
-                    variant=("lesson_result === result.name ? 'flat' : 'outlined'",),
-                    color="primary",
-                    classes="ma-1 text-none",
-                )
-            html.Div(
-                "The result on show is no longer this lesson's, so the numbers below describe "
-                "the lesson's result ({{ lesson_results.find(r => r.name === lesson_result)"
-                "?.label }}). Open the lesson again to return to it.",
-                v_if="lesson_stale",
-                id="lesson-stale",
-                classes="text-caption text-warning my-1",
-            )
-            html.Div(
-                "{{ lesson_explain }}",
-                id="lesson-text",
-                classes="text-body-2 my-1",
-                style="white-space: pre-line;",
-            )
-            v3.VAlert(
-                "{{ lesson_try }}",
-                id="lesson-try",
-                title="Try this",
-                type="info",
-                density="compact",
-                variant="tonal",
-                classes=f"my-1 text-body-2 {HIDE}",
-            )
-            with html.Div(v_if="lesson_warnings.length", id="lesson-warnings"):
-                v3.VAlert(
-                    "{{ warning }}",
-                    v_for="warning in lesson_warnings",
-                    key="warning",
-                    type="warning",
-                    density="compact",
-                    variant="tonal",
-                    classes="my-1 text-caption",
-                )
+            _open_lesson(ctrl)
+
+
+def _open_lesson(ctrl) -> None:
+    """The open lesson: its title between previous/next, its results, text and warnings."""
+    with v3.VRow(dense=True, align="center", classes="mt-1"):
+        with v3.VCol(cols="auto"):
+            _lesson_step(ctrl, forward=False)
+        with v3.VCol():
+            html.Div("{{ lesson_title }}", id="lesson-title", classes="text-subtitle-1")
+        with v3.VCol(cols="auto"):
+            _lesson_step(ctrl, forward=True)
+    with html.Div(v_if="lesson_results.length > 1", classes="my-1"):
+        button_list(
+            "lesson_results",
+            "result",
+            "lesson-result-",
+            (ctrl.show_lesson_result, "[result.name]"),
+            "lesson_result === result.name",
+        )
+    html.Div(
+        "The result on show is no longer this lesson's, so the numbers below describe "
+        "the lesson's result ({{ lesson_results.find(r => r.name === lesson_result)"
+        "?.label }}). Open the lesson again to return to it.",
+        v_if="lesson_stale",
+        id="lesson-stale",
+        classes="text-caption text-warning my-1",
+    )
+    html.Div(
+        "{{ lesson_explain }}",
+        id="lesson-text",
+        classes="text-body-2 my-1",
+        style="white-space: pre-line;",
+    )
+    alert(
+        "info",
+        "{{ lesson_try }}",
+        id="lesson-try",
+        title="Try this",
+        classes=f"my-1 text-body-2 {HIDE}",
+    )
+    alert_list("lesson_warnings", "warning", "lesson-warnings")
+
+
+def _lesson_step(ctrl, forward: bool) -> None:
+    """``#lesson-next`` (N) or ``#lesson-previous`` (P)."""
+    icon_button(
+        "mdi-chevron-right" if forward else "mdi-chevron-left",
+        ctrl.next_lesson if forward else ctrl.previous_lesson,
+        "lesson-next" if forward else "lesson-previous",
+        size="x-small",
+        title="next lesson (N)" if forward else "previous lesson (P)",
+    )
 
 
 __all__ = [
-    "HIDE",
     "KEYS_SCRIPT",
     "PRESENTER_CSS",
-    "chart_classes",
     "lessons_panel",
     "page_assets",
     "presenter_button",

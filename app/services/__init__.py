@@ -8,13 +8,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..runs import RunStore, default_runs_dir
+from ..run_store import RunStore, default_runs_dir
 from .pool import SolverPool
 
 
 class Services:
-    """The run store on ``runs_dir`` (default :func:`app.runs.default_runs_dir`) and the pool of
-    solver processes (``slots_dir``, ``max_runs``: see :class:`SolverPool`)."""
+    """The run store on ``runs_dir`` (default :func:`app.run_store.default_runs_dir`) and the
+    pool of solver processes (``slots_dir``, ``max_runs``: see :class:`SolverPool`)."""
 
     def __init__(
         self,

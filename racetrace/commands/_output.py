@@ -42,12 +42,9 @@ def output_problem(path: Path, option: str = "--output", example: str = "run.nc"
     if not folder.is_dir():
         return f"{option} {path}: '{folder}' is not a folder"
     try:
-        fd, probe = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
-        try:
-            os.write(fd, b"racetrace")
-        finally:
-            os.close(fd)
-            os.remove(probe)
+        from solver import probe_write
+
+        probe_write(folder, f".{path.name}.", ".tmp")
     except OSError as error:
         return f"{option} {path}: cannot write in folder '{folder}' ({error.strerror})"
     return ""

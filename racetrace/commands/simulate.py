@@ -28,7 +28,7 @@ import threading
 import time
 from pathlib import Path
 
-from solver import clean_message
+from solver import TimeLeft, clean_message
 
 from ._output import output_problem, save_result, size_problems
 from ._output import say as _say
@@ -108,18 +108,7 @@ class ProgressBar:
         self.stream = stream if stream is not None else sys.stderr
         self.width = width
         self.start = time.perf_counter()
-        self._first = None  # (wall time, fraction) of the first report: the rate is timed from it
-
-    def eta(self, now: float, fraction: float) -> float:
-        """Seconds left from the rate since the first report (NaN until at least 1 s and 0.5 % of
-        progress after it: start-up and compiling say nothing about the rate)."""
-        if self._first is None:
-            self._first = (now, fraction)
-            return float("nan")
-        t0, f0 = self._first
-        if now - t0 < 1.0 or fraction - f0 < 0.005:
-            return float("nan")
-        return (now - t0) / (fraction - f0) * (1.0 - fraction)
+        self.eta = TimeLeft()  # seconds left, from the rate since the first report
 
     def __call__(self, fraction: float, simulated_time: float, message: str = "") -> None:
         now = time.perf_counter()

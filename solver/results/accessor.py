@@ -25,6 +25,10 @@ from .metrics import METRICS, Window, compute_metric
 ACCESSOR_NAME = "racetrace"
 
 
+#: The case of a result not parsed yet (None is a result without a readable case).
+_UNREAD = object()
+
+
 class RacetraceAccessor:
     """Methods of ``ds.racetrace`` (see the module docstring)."""
 
@@ -32,6 +36,7 @@ class RacetraceAccessor:
         self._ds = ds
         self._window: Window | None = None
         self._metrics: dict[str, xr.DataArray] = {}
+        self._case = _UNREAD
 
     def metric(self, name: str) -> xr.DataArray:
         """Metric ``name`` of the metrics table (:data:`solver.results.metrics.METRICS`), with
@@ -57,6 +62,22 @@ class RacetraceAccessor:
     def warnings(self) -> list[str]:
         """:func:`solver.results.checks.result_warnings` of the result (plain-text messages)."""
         return checks.result_warnings(self._ds)
+
+    def case(self):
+        """The case the result was solved from (its provenance attribute ``case``, parsed once and
+        kept), or None when the result holds no case text or one that no longer parses (a case
+        file format of another version). For re-opening a run's case in an editor and for its
+        case warnings; what the result *is* is read from its coordinates and variables."""
+        if self._case is _UNREAD:
+            from solver.case import parse_case
+            from solver.errors import CaseError
+
+            text = str(self._ds.attrs.get("case", ""))
+            try:
+                self._case = parse_case(text, "the result's case") if text else None
+            except CaseError:
+                self._case = None
+        return self._case
 
     def save(self, path) -> Path:
         """Write the result as NetCDF to ``path`` atomically (the temporary file is removed if

@@ -139,6 +139,17 @@ def save_csv(ds: xr.Dataset, path) -> Path:
     return atomic_write(path, lambda tmp: table.to_csv(tmp, index=False))
 
 
+def probe_write(folder, prefix: str, suffix: str = "") -> None:
+    """Write a small temporary file named ``<prefix>...<suffix>`` in ``folder`` and remove it:
+    OSError when the folder cannot take a new file now (missing, not a folder, read-only, full)."""
+    fd, probe = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=folder)
+    try:
+        os.write(fd, b"racetrace")
+    finally:
+        os.close(fd)
+        os.remove(probe)
+
+
 def atomic_write(path, write: Callable[[str], object]) -> Path:
     """Call ``write(temporary_path)`` for a temporary file next to ``path``, then move it onto
     ``path``. On any failure, an interruption (KeyboardInterrupt, SystemExit) included, the

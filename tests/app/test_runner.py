@@ -71,17 +71,6 @@ def test_run_reports_progress_and_result(jobs, tmp_path):
     assert not r.busy
 
 
-def test_eta_from_the_progress_rate_after_the_first_message():
-    r = SolverRunner()
-    r._first_progress = None
-    # the first message only starts the clock (the child's start-up time is not integration)
-    assert math.isnan(r._eta(100.0, 0.10))
-    assert math.isnan(r._eta(100.5, 0.20))  # less than 1 s since the first message
-    # 0.2 of the run in 2 s since the first message: 0.7 left takes 7 s
-    assert r._eta(102.0, 0.30) == pytest.approx(7.0)
-    assert r._eta(110.0, 1.0) == pytest.approx(0.0)
-
-
 def test_cancel_keeps_partial_result(jobs, tmp_path):
     r = SolverRunner()
     r.start("x", tmp_path / "out.nc", target=f"{jobs}:slow")

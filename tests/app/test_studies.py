@@ -100,7 +100,7 @@ def test_a_shipped_studys_results_open_without_running(app):
 
 # ---- a study built from the case in the form -----------------------------------------------------
 def test_values_are_a_list_or_start_stop_count():
-    from app.components.studies import StudyInputError, parse_values
+    from app.study_building import StudyInputError, parse_values
 
     assert parse_values("0, 300, 600", "v") == [0.0, 300.0, 600.0]
     assert parse_values("0:1500:4", "v") == [0.0, 500.0, 1000.0, 1500.0]
@@ -116,7 +116,7 @@ def test_values_are_a_list_or_start_stop_count():
 
 
 def test_a_built_study_file_is_valid_and_says_what_is_wrong(tmp_path):
-    from app.components.studies import StudyInputError, build_study_text
+    from app.study_building import StudyInputError, build_study_text
     from solver.catalogue import catalogue
 
     (tmp_path / "base.toml").write_text(catalogue().get(DEFAULT_CASE).load().to_toml())

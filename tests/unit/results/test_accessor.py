@@ -103,3 +103,12 @@ def test_csv_refuses_a_stack_of_results_and_a_result_without_contacts(qs, tmp_pa
     with pytest.raises(ValueError, match="no per-contact variables"):
         qs[["cage_speed"]].racetrace.to_csv(tmp_path / "c.csv")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_case_is_the_one_the_result_was_solved_from_or_none(qs):
+    case = qs.racetrace.case()
+    assert case is not None and case.to_toml() == qs.attrs["case"]
+    assert qs.racetrace.case() is case  # parsed once
+    assert qs.copy().assign_attrs(case="").racetrace.case() is None
+    broken = qs.copy().assign_attrs(case="[bearing]\nball_count = 'many'\n")
+    assert broken.racetrace.case() is None

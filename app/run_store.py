@@ -249,12 +249,9 @@ class RunStore:
         a folder that cannot be created, is not a folder, is read-only or is full."""
         try:
             self.root.mkdir(parents=True, exist_ok=True)
-            fd, probe = tempfile.mkstemp(prefix=".tmp-probe-", dir=self.root)
-            try:
-                os.write(fd, b"racetrace")
-            finally:
-                os.close(fd)
-                os.remove(probe)
+            from solver import probe_write
+
+            probe_write(self.root, ".tmp-probe-")
         except OSError as error:
             reason = error.strerror or str(error)
             return (

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from app.caseform import FormField, apply_form, form_fields, parse_value
+from app.case_fields import FormField, apply_form, form_fields, parse_value
 
 
 def test_fields_follow_the_schema():
@@ -77,7 +77,7 @@ def test_rule_between_two_keys_reaches_both_fields(fixture_model):
 
 
 def test_route_problems_does_not_repeat_a_message():
-    from app.caseform import route_problems
+    from app.case_fields import route_problems
     from solver.errors import Problem
 
     fields = form_fields()
@@ -147,7 +147,7 @@ def test_default_text_of_lubricant_is_the_oil_a_run_uses():
 
 
 def test_estimated_default_texts_give_the_value_for_the_case(fixture_model):
-    from app.caseform import estimated_default_texts
+    from app.case_fields import estimated_default_texts
     from solver import parse_case
 
     case = parse_case(fixture_model.FIXTURE_CASE)

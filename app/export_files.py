@@ -100,20 +100,11 @@ def export_png(plotter, path: str | Path, caption: str | None = None) -> Path:
     return _atomic(Path(path), lambda tmp: imageio.imwrite(str(tmp), image, format="PNG"))
 
 
-def export_animation(
-    scene,
-    path: str | Path,
-    start: int = 0,
-    stop: int | None = None,
-    step: int = 1,
-    fps: float = 12.0,
-    caption=None,
-) -> Path:
-    """Frames ``start:stop:step`` of the scene's current source as GIF or MP4 (by suffix).
-
-    The scene is left at its previous frame afterwards. See :func:`iter_export_animation`.
-    """
-    for _ in iter_export_animation(scene, path, start, stop, step, fps, caption):
+def export_animation(scene, path: str | Path, **options) -> Path:
+    """Frames ``start:stop:step`` of the scene's current source as GIF or MP4 (by suffix), in one
+    call: the options (``start``, ``stop``, ``step``, ``fps``, ``caption``) and what is written
+    are those of :func:`iter_export_animation`. The scene is left at its previous frame."""
+    for _ in iter_export_animation(scene, path, **options):
         pass
     return Path(path)
 

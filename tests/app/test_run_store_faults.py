@@ -14,7 +14,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from app.runs import CASE_FILE, META_FILE, RESULT_FILE, RunNotSavedError, RunStore, UnknownRunError
+from app.run_store import (
+    CASE_FILE,
+    META_FILE,
+    RESULT_FILE,
+    RunNotSavedError,
+    RunStore,
+    UnknownRunError,
+)
 from tests.helpers.faults import read_only_folder, small_file_system
 
 
@@ -242,13 +249,13 @@ def test_job_path_is_in_the_runs_folder_or_else_in_the_temp_folder(tmp_path, mon
 
 
 def test_netcdf_runtime_error_keeps_the_run_and_leaves_no_files(tmp_path, qs_dataset, monkeypatch):
-    import app.runs
+    import app.run_store
 
     def disk_full(ds, path):
         path.write_bytes(b"\x89HDF\r\n\x1a\n")
         raise RuntimeError("NetCDF: HDF error")
 
-    monkeypatch.setattr(app.runs, "save_netcdf", disk_full)
+    monkeypatch.setattr(app.run_store, "save_netcdf", disk_full)
     store = RunStore(tmp_path)
     info = store.save(qs_dataset, "", "full disk")
     assert not info.saved and "NetCDF: HDF error" in info.problem and str(tmp_path) in info.problem

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.runs import ENV_VAR, RunStore, default_runs_dir
+from app.run_store import ENV_VAR, RunStore, default_runs_dir
 
 
 def test_round_trip(tmp_path, qs_dataset, dynamic_dataset):
@@ -60,7 +60,7 @@ def test_default_dir(tmp_path):
 
 
 def test_describe_case_names_the_values_run():
-    from app.runs import describe_case
+    from app.run_store import describe_case
     from solver.catalogue import catalogue
 
     case = catalogue().get("spindle-combined-load").load()

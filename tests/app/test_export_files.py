@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from app.export import export_animation, export_csv, export_netcdf, export_png
+from app.export_files import export_animation, export_csv, export_netcdf, export_png
 from solver.results.io import contact_table
 from viz.frames import frame_source
 
@@ -76,7 +76,7 @@ def test_mp4_of_an_odd_sized_view_and_captions(tmp_path, qs_dataset, geometry):
     import imageio.v2 as imageio
     import pyvista as pv
 
-    from app.export import captioned, even_sized
+    from app.export_files import captioned, even_sized
     from viz.scene import BearingScene
 
     plotter = pv.Plotter(off_screen=True, window_size=(161, 121))
