@@ -340,6 +340,8 @@ def study_header(ds) -> str:
 def study_sections(ds):
     import panel as pn
 
+    from solver import study_runs
+
     from . import charts
 
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
@@ -371,22 +373,16 @@ def study_sections(ds):
         headers += [f"{short}_i {unit}", f"{short}_o {unit}"]
     headers += ["cage slip", "message"]
     rows = []
-    for i, point in enumerate(ds["point"].values):
-        for j, model in enumerate(ds["model"].values):
-            status = str(ds["status"].values[i, j])
-            if status == "not run":
-                continue
-            row = [str(point), str(ds["sweep"].values[i]), str(model)]
-            row += [_fmt(ds[k].values[i], 5) for k in keys]
-            row.append(status)
-            for var, _short, _unit, scale in columns:
-                for race in ("inner", "outer"):
-                    row.append(
-                        _fmt(float(ds[var].values[i, j, 0 if race == "inner" else 1]) * scale)
-                    )
-            row.append(_fmt(float(ds["cage_slip"].values[i, j])))
-            row.append(str(ds["message"].values[i, j])[:200])
-            rows.append(row)
+    for i, j, status in study_runs(ds):
+        row = [str(ds["point"].values[i]), str(ds["sweep"].values[i]), str(ds["model"].values[j])]
+        row += [_fmt(ds[k].values[i], 5) for k in keys]
+        row.append(status)
+        for var, _short, _unit, scale in columns:
+            for k in range(2):  # inner, outer
+                row.append(_fmt(float(ds[var].values[i, j, k]) * scale))
+        row.append(_fmt(float(ds["cage_slip"].values[i, j])))
+        row.append(str(ds["message"].values[i, j])[:200])
+        rows.append(row)
     sections.append(
         _section(
             "Points (each race in its own ring's frame)",

@@ -123,6 +123,7 @@ _LAZY = {
     "StudyFolder": "solver.study",
     "open_study": "solver.study",
     "study_dataset": "solver.study",
+    "study_runs": "solver.study",
     "shipped_studies": "solver.study",
     "scheduler_address": "solver.study.runner",
     "connect_scheduler": "solver.study.runner",

@@ -317,34 +317,33 @@ class Studies(Component):
 
     def refresh(self) -> None:
         """Table rows and chart from the study folder."""
+        from solver import study_runs
+
         ds = self.dataset()
         if ds is None:
             return
         keys = json.loads(ds.attrs.get("varied_keys", "[]"))
         shown = _keys_by_sweep(ds, keys)
         rows = []
-        for i, point in enumerate(ds["point"].values):
-            for j, model in enumerate(ds["model"].values):
-                status = str(ds["status"].values[i, j])
-                if status == "not run":
-                    continue
-                values = ", ".join(
-                    f"{k.rsplit('.', 1)[-1]} = {_text(ds[k].values[i])}"
-                    for k in shown[str(ds["sweep"].values[i])]
-                )
-                row = {
-                    "key": f"{point}-{model}",
-                    "point": str(point),
-                    "model": str(model),
-                    "sweep": str(ds["sweep"].values[i]),
-                    "values": values,
-                    "status": status,
-                    "openable": status == "done" and self._shipped is None,
-                }
-                for name in ("excursion", "band_thickness"):
-                    for k, race in enumerate(("inner", "outer")):
-                        row[f"{name}_{race}"] = _text(ds[name].values[i, j, k], 4)
-                rows.append(row)
+        for i, j, status in study_runs(ds):
+            point, model = str(ds["point"].values[i]), str(ds["model"].values[j])
+            values = ", ".join(
+                f"{k.rsplit('.', 1)[-1]} = {_text(ds[k].values[i])}"
+                for k in shown[str(ds["sweep"].values[i])]
+            )
+            row = {
+                "key": f"{point}-{model}",
+                "point": point,
+                "model": model,
+                "sweep": str(ds["sweep"].values[i]),
+                "values": values,
+                "status": status,
+                "openable": status == "done" and self._shipped is None,
+            }
+            for name in ("excursion", "band_thickness"):
+                for k, race in enumerate(("inner", "outer")):
+                    row[f"{name}_{race}"] = _text(ds[name].values[i, j, k], 4)
+            rows.append(row)
         sweeps = list(dict.fromkeys(str(v) for v in ds["sweep"].values))
         self._rows = rows
         s = self.state

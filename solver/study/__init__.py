@@ -15,7 +15,7 @@ from .metrics import POINT_METRICS, point_metrics
 from .points import StudyPoint, base_case, study_points
 from .runner import Progress, run_study
 from .spec import StudySpec, load_study, parse_study, resolve_study, shipped_studies
-from .store import StudyFolder, points_fingerprint, study_dataset, study_inputs
+from .store import StudyFolder, points_fingerprint, study_dataset, study_inputs, study_runs
 
 
 class Study:
@@ -124,4 +124,5 @@ __all__ = [
     "shipped_studies",
     "study_dataset",
     "study_points",
+    "study_runs",
 ]

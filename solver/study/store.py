@@ -571,6 +571,17 @@ def _coordinate(values: list):
     return np.array(["" if v is None else str(v) for v in values])
 
 
+def study_runs(ds: xr.Dataset):
+    """The runs a study Dataset holds, in table order (point, then model), leaving out the models a
+    point does not run: yields ``(point index, model index, status)`` with status "done",
+    "failed" or "pending"."""
+    for i in range(ds.sizes["point"]):
+        for j in range(ds.sizes["model"]):
+            status = str(ds["status"].values[i, j])
+            if status != "not run":
+                yield i, j, status
+
+
 def study_dataset(folder: StudyFolder) -> xr.Dataset:
     """The study Dataset of a study folder: dimensions ``point``, ``model`` and ``race``.
 

@@ -207,3 +207,13 @@ def test_restart_does_not_write_into_a_folder_that_is_not_a_study_folder(study_d
     with pytest.raises(CaseError, match="not empty"):
         StudyFolder(other).start(study.spec, study.points(), "test", resume=False, restart=True)
     assert sorted(p.name for p in other.iterdir()) == ["thesis.tex"]
+
+
+def test_study_runs_lists_the_runs_a_point_makes_in_table_order():
+    import xarray as xr
+
+    from solver.study import study_runs
+
+    status = [["done", "not run"], ["failed", "pending"]]
+    ds = xr.Dataset({"status": (("point", "model"), status)})
+    assert list(study_runs(ds)) == [(0, 0, "done"), (1, 0, "failed"), (1, 1, "pending")]
