@@ -13,19 +13,10 @@ import pytest
 
 from solver.case import parse_case
 from solver.inputs import to_inputs
+from solver.physics import rheology as rh
 from solver.physics import traction as tr
 from solver.physics.rheology import (
     CELSIUS_ZERO,
-    RH_CONDUCTIVITY,
-    RH_EYRING_STRESS,
-    RH_LIMITING_SLOPE,
-    RH_LIMITING_STRESS,
-    RH_PRESSURE_VISCOSITY,
-    RH_SHEAR_MODULUS,
-    RH_SOFTENING,
-    RH_TEMPERATURE_VISCOSITY,
-    RH_VISCOSITY,
-    RHEOLOGY_SIZE,
     film_and_rolling_force,
     rheology_at_temperature,
     shear_stress,
@@ -37,16 +28,16 @@ H, T = 0.3e-6, 2.0e-5  # film [m], transit time b / u_e [s]
 
 
 def rheology(softening=0.005, k=0.13):
-    r = np.zeros(RHEOLOGY_SIZE)
-    r[RH_VISCOSITY] = 0.01
-    r[RH_PRESSURE_VISCOSITY] = 2.0e-8
-    r[RH_EYRING_STRESS] = 5.0e6
-    r[RH_LIMITING_STRESS] = 2.0e6
-    r[RH_LIMITING_SLOPE] = 0.075
-    r[RH_SHEAR_MODULUS] = 0.5e9
-    r[RH_TEMPERATURE_VISCOSITY] = 0.03
-    r[RH_CONDUCTIVITY] = k
-    r[RH_SOFTENING] = softening
+    r = np.zeros(rh.RHEOLOGY_SIZE)
+    r[rh.RH_VISCOSITY] = 0.01
+    r[rh.RH_PRESSURE_VISCOSITY] = 2.0e-8
+    r[rh.RH_EYRING_STRESS] = 5.0e6
+    r[rh.RH_LIMITING_STRESS] = 2.0e6
+    r[rh.RH_LIMITING_SLOPE] = 0.075
+    r[rh.RH_SHEAR_MODULUS] = 0.5e9
+    r[rh.RH_TEMPERATURE_VISCOSITY] = 0.03
+    r[rh.RH_CONDUCTIVITY] = k
+    r[rh.RH_SOFTENING] = softening
     return r
 
 
@@ -155,14 +146,14 @@ def test_case_keys_reach_the_rheology_at_the_inlet_temperature():
         "limiting_shear_temperature_per_K = 0.006\nfilm_shear_modulus_temperature_per_K = 0.004\n"
     )
     r = lubricant(100.0, extra).rheology_array()
-    assert r[RH_PRESSURE_VISCOSITY] == pytest.approx(20e-9 * math.exp(-0.008 * 60), rel=1e-12)
-    assert r[RH_LIMITING_SLOPE] == pytest.approx(0.075 * math.exp(-0.006 * 60), rel=1e-12)
-    assert r[RH_LIMITING_STRESS] == pytest.approx(2e6 * math.exp(-0.006 * 60), rel=1e-12)
-    assert r[RH_SHEAR_MODULUS] == pytest.approx(0.5e9 * math.exp(-0.004 * 60), rel=1e-12)
-    assert r[RH_EYRING_STRESS] == pytest.approx(5e6 * 373.15 / 313.15, rel=1e-12)
-    assert r[RH_SOFTENING] == 0.006
+    assert r[rh.RH_PRESSURE_VISCOSITY] == pytest.approx(20e-9 * math.exp(-0.008 * 60), rel=1e-12)
+    assert r[rh.RH_LIMITING_SLOPE] == pytest.approx(0.075 * math.exp(-0.006 * 60), rel=1e-12)
+    assert r[rh.RH_LIMITING_STRESS] == pytest.approx(2e6 * math.exp(-0.006 * 60), rel=1e-12)
+    assert r[rh.RH_SHEAR_MODULUS] == pytest.approx(0.5e9 * math.exp(-0.004 * 60), rel=1e-12)
+    assert r[rh.RH_EYRING_STRESS] == pytest.approx(5e6 * 373.15 / 313.15, rel=1e-12)
+    assert r[rh.RH_SOFTENING] == 0.006
     off = lubricant(100.0, extra + "thermal_softening = false\n").rheology_array()
-    assert off[RH_SOFTENING] == 0.0
+    assert off[rh.RH_SOFTENING] == 0.0
 
 
 def test_kernel_softening_matches_the_scalar_law_over_the_ellipse():
@@ -172,7 +163,7 @@ def test_kernel_softening_matches_the_scalar_law_over_the_ellipse():
     p_max, ue = 1.5e9, 10.0
     lub = lubricant(80.0)
     r = lub.rheology_array()
-    assert r[RH_SOFTENING] > 0.0
+    assert r[rh.RH_SOFTENING] > 0.0
     b = 2.0 * p_max * R_X / E_PRIME * math.pi
     a = KAPPA * b
     q = 2.0 / 3.0 * math.pi * a * b * p_max
@@ -183,11 +174,11 @@ def test_kernel_softening_matches_the_scalar_law_over_the_ellipse():
         for k in range(len(nodes)):
             p = p_max * nodes[k, tr.NODE_PRESSURE]
             # tau dA = s (tau_L0 dA + Lambda p dA) with the uniform and load weights (traction.py)
-            tau_l = r[RH_LIMITING_STRESS] + r[RH_LIMITING_SLOPE] * p
+            tau_l = r[rh.RH_LIMITING_STRESS] + r[rh.RH_LIMITING_SLOPE] * p
             s = shear_stress(srr * ue, p, film, b / ue, r) / tau_l
             force += s * (
-                r[RH_LIMITING_STRESS] * a * b * nodes[k, tr.NODE_UNIFORM]
-                + r[RH_LIMITING_SLOPE] * q * nodes[k, tr.NODE_LOAD]
+                r[rh.RH_LIMITING_STRESS] * a * b * nodes[k, tr.NODE_UNIFORM]
+                + r[rh.RH_LIMITING_SLOPE] * q * nodes[k, tr.NODE_LOAD]
             )
         assert contact_mu(srr, lub, p_max, ue) == pytest.approx(force / q, rel=1e-9)
 
