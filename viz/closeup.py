@@ -9,6 +9,8 @@ import math
 import numpy as np
 import pyvista as pv
 
+from solver import loaded_mask
+
 from .frames import rot_x
 from .layout import ELLIPSE_POINTS, MARK_LIFT, RacewayLayout
 from .meshes import empty_line, placement, set_polyline
@@ -110,9 +112,7 @@ class CloseUp:
             # recent path of the ellipse centre on the raceway (ring frame)
             c = source.contact
             al = c["contact_angle"][start : f.index + 1, j, race]
-            ok = np.isfinite(al) & (
-                np.nan_to_num(c["contact_load"][start : f.index + 1, j, race]) > 0
-            )
+            ok = loaded_mask(c["contact_load"][start : f.index + 1, j, race], al)
             ph = source.raceway_azimuth[start : f.index + 1, j, race]
             set_polyline(
                 self.paths[race],
