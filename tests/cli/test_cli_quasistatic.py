@@ -167,10 +167,17 @@ def test_result_outside_the_model_is_warned_on_stderr(tmp_path):
     assert "ball" in out.stdout  # the table is still printed
 
 
-def test_catalogue_case_gives_no_warning():
+def test_catalogue_case_gives_only_its_documented_warning():
+    """The heavy 218 case warns once: its traction balance finds no steady spin for the most
+    loaded ball (thermally softened traction), so race control sets the ball speeds
+    (docs/traction.md); the spindle case gives no warning."""
     out = run("218-heavy-combined")
     assert out.returncode == 0, out.stderr
-    assert "warning:" not in out.stderr
+    warnings = [line for line in out.stderr.splitlines() if line.startswith("warning:")]
+    assert len(warnings) == 1, out.stderr
+    assert warnings[0].startswith("warning: quasi-static ball speeds: the traction balance")
+    out = run("spindle-combined-load")
+    assert out.returncode == 0 and "warning:" not in out.stderr, out.stderr
 
 
 def test_contract_example_lands_give_truncation_warnings(tmp_path):

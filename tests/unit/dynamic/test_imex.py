@@ -180,8 +180,10 @@ def test_imex_run_agrees_with_dopri5(method, chunk):
 def test_auto_takes_fewer_steps_than_dopri5_where_the_land_film_is_stiff():
     """218 heavy case with the rheology traction law from its quasi-static start: the cage runs
     in its guiding land's film (docs/numerics.md: the film's damping sets the explicit step);
-    there the switching method takes additive steps and needs about half the steps and
-    rejections of the explicit method (0.5 revolution: 415 against 830), with the same loads."""
+    there the switching method takes additive steps and needs fewer steps and rejections than the
+    explicit method, with the same loads (0.5 revolution at the default tolerance 1e-4 with the
+    thermally softened traction: 348 against 446; at 1e-3 with the isothermal film the two took
+    415 and 830)."""
     inputs = to_inputs(resolve_case("218-heavy-combined"))
     lubricant = replace(inputs.lubricant, traction_model="rheology")
     inputs = replace(inputs, lubricant=lubricant)
@@ -191,7 +193,7 @@ def test_auto_takes_fewer_steps_than_dopri5_where_the_land_film_is_stiff():
         for m in ("dopri5", "auto")
     }
     steps = {m: ds.attrs["steps"] + ds.attrs["rejected_steps"] for m, ds in runs.items()}
-    assert steps["auto"] < 0.75 * steps["dopri5"], steps
+    assert steps["auto"] < 0.85 * steps["dopri5"], steps
     load = runs["dopri5"]["contact_load"]
     diff = np.abs(runs["auto"]["contact_load"] - load).max()
     # 1.5 %: the explicit run, near its stability limit here (rejected steps), moves its loads by

@@ -32,6 +32,9 @@ def test_dataset_has_every_dynamic_variable_with_registry_dims_and_no_nan(short_
     for name, spec in VARIABLES.items():
         if "dynamic" not in spec.models:
             continue
+        if name not in ds and f"{name}_note" in ds.attrs:  # an estimate left out, and why
+            assert ds.attrs[f"{name}_note"].startswith("not available"), name
+            continue
         assert name in ds, name
         assert ds[name].dims == spec.dims_for("dynamic"), name
         assert ds[name].attrs["units"] == spec.units
