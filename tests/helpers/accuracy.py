@@ -61,6 +61,12 @@ CASES = {
 LONG_WINDOW_CASES = {
     "heavy_218": (30.0, 10.0, ("contact_angle", "contact_load", "cage_speed")),
 }
+#: Allowances of a long-window case, as multiples of the contract's, where two reference-quality
+#: runs disagree by more than the contract allows. The 218 heavy case with the thermally softened
+#: traction (its most loaded ball slides): per-ball mean contact angles over revolutions 10-30 at
+#: tolerance 3e-6 against 1e-6 differ by 1.16 x ANGLE_DEG (0.0058 deg), at the default 1e-4 by
+#: 1.33 x; the allowance is twice the reference runs' own spread.
+LONG_WINDOW_ALLOWANCE = {"heavy_218": {"contact_angle": 2.0}}
 
 
 def case_inputs(label):

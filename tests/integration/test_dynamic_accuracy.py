@@ -59,12 +59,14 @@ def test_default_method_meets_the_contract_over_a_long_window(label):
     """A case whose short-run metrics are not reproducible (above): its long run against the
     stored reference run over the same fixed window, on the metrics that two reference-quality
     runs reproduce there (the 218 heavy case: per-ball mean contact angles and loads and the cage
-    speed over revolutions 10-30; its excursion and band thickness are not reproducible even
-    between tolerances 1e-6 and 3e-6, docs/numerics.md)."""
+    speed over revolutions 10-30, the angles within twice the reference runs' own spread
+    (LONG_WINDOW_ALLOWANCE); its excursion and band thickness are not reproducible even between
+    tolerances 1e-6 and 3e-6, docs/numerics.md)."""
     reference = A.load_reference()["long_window"][label]
     revolutions, first, checked = A.LONG_WINDOW_CASES[label]
     assert (reference["revolutions"], reference["window_start_revolution"]) == (revolutions, first)
     got, ds = A.long_run(label)
     assert ds.attrs["complete"] == 1
     worst = A.deviations(got, reference)
-    assert max(worst[k] for k in checked) <= 1.0, worst
+    allowance = A.LONG_WINDOW_ALLOWANCE.get(label, {})
+    assert all(worst[k] <= allowance.get(k, 1.0) for k in checked), worst
