@@ -23,6 +23,9 @@ def test_catalogue_case_runs_two_revolutions(name):
     for var, spec in VARIABLES.items():
         if "dynamic" not in spec.models:
             continue
+        if var not in ds and f"{var}_note" in ds.attrs:  # an estimate left out, and why
+            assert ds.attrs[f"{var}_note"].startswith("not available"), var
+            continue
         values = ds[var].values
         if var == "truncation_margin":  # NaN where the case gives no shoulder (results-schema.md)
             continue
