@@ -422,13 +422,6 @@ def _field(f) -> None:
             )
 
 
-def solve_quasistatic(case):
-    """The quasi-static result of ``case`` (a Dataset)."""
-    import solver
-
-    return solver.solve_quasistatic(case)
-
-
 def _file_name(text: str) -> str:
     """``text`` as a file name stem: letters and digits, runs of anything else as one dash."""
     stem = "".join(c if c.isalnum() else "-" for c in text)

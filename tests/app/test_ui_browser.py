@@ -23,9 +23,9 @@ TITLE = "7008C-class hybrid spindle, 20 000 rpm, 500 N axial, {:.0f} N radial, a
 
 def _save_runs(root) -> list[str]:
     """Three saved quasi-static runs of the default case, radial load 0, 600 and 1200 N."""
-    from app.components.case_form import solve_quasistatic
     from app.run_store import RunStore
     from app.state import DEFAULT_CASE
+    from solver import solve_quasistatic
     from solver.catalogue import catalogue
 
     store = RunStore(root)
