@@ -209,12 +209,14 @@ def run_header(ds, source_name: str) -> str:
     model = ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")
     model = model if model in MODELS else "unknown"
     title = _case_title(ds)
+    description = _case_note(ds)
     return (
         f"<h1>racetrace review: {_text(title)}</h1>"
         f"<p><strong>{model} result</strong> <code>{_text(source_name)}</code> · computed with "
         f"{_text(ds.attrs.get('software', 'racetrace'), 80)} on "
         f"{_when(ds.attrs.get('created'))} · report made {_now()} · bearing geometry: "
         f"<strong>{_text(_provenance(ds), 80)}</strong></p>"
+        + (f'<p class="rt-case-note">{_text(description, 2000)}</p>' if description else "")
     )
 
 
@@ -308,6 +310,13 @@ def _case_title(ds) -> str:
     from solver import result_description
 
     return result_description(ds).get("title") or "result"
+
+
+def _case_note(ds) -> str:
+    """The case's note of what is known about it (its ``description``), "" when it has none."""
+    from solver import result_description
+
+    return result_description(ds).get("description", "")
 
 
 def _section(title: str, body_html: str):

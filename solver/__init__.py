@@ -19,7 +19,8 @@ Public API (everything else is internal):
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - ``quasistatic_start(ds) -> xarray.Dataset | None``: the quasi-static solution a dynamic result
   started from (its ``quasistatic_*`` variables), for the views' comparison
-- ``result_description(ds) -> dict``: a result's ``title`` and ``bearing_provenance``
+- ``result_description(ds) -> dict``: a result's ``title``, ``bearing_provenance`` and
+  ``description`` (the case's note of what is known about it)
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
   ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)

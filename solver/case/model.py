@@ -91,6 +91,7 @@ def case_from_values(checked: CaseValues) -> Case:
     sections = {name: _section((name,), values) for name, values in checked.sections.items()}
     return Case(
         title=checked.title,
+        description=checked.description,
         materials=checked.materials,
         estimated=checked.estimated,
         lubricant_given="lubricant" not in checked.absent_sections,
@@ -116,7 +117,8 @@ class Case:
     schema's default curve, which :meth:`to_dict` leaves out and :meth:`to_toml` writes as a
     comment. ``from_oil`` lists the ``[lubricant]`` keys whose values come from the named oil
     ``lubricant.oil`` (not given in the file): :meth:`to_dict` leaves them out (the oil's name
-    brings them back) and :meth:`to_toml` writes them as comments.
+    brings them back) and :meth:`to_toml` writes them as comments. ``description`` is the case's
+    free-text note of what is known about it (read by no model).
     """
 
     title: str
@@ -130,6 +132,7 @@ class Case:
     lubricant_given: bool = True
     traction_given: bool = False
     from_oil: frozenset = frozenset()
+    description: str = ""
 
     # ---- materials -----------------------------------------------------------------------------
     def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
@@ -215,6 +218,8 @@ class Case:
         ``Case.from_dict(case.to_dict()) == case``.
         """
         out: dict = {"title": self.title}
+        if self.description:
+            out["description"] = self.description
         for f in FIELDS:
             if f.section == "" or (f.section == "lubricant" and not self.lubricant_given):
                 continue

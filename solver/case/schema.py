@@ -177,6 +177,15 @@ _SPEED_BOUNDS = dict(
 #: Every case key, in the order of case-format.md (sections, then keys).
 FIELDS: list[Field] = [
     Field("title", "str", "Title", "A short title for this case.", default=""),
+    Field(
+        "description",
+        "str",
+        "Description",
+        "What is known about this case, in a few sentences of facts with numbers (what it "
+        "checks, how its results compare with published data). The models do not read it; "
+        "results keep it (the description attribute) and the report shows it under the title.",
+        default="",
+    ),
     # ---- [bearing] ----------------------------------------------------------------------------
     Field(
         "bearing.designation",

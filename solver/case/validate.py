@@ -633,6 +633,7 @@ class CaseValues:
     absent_sections: frozenset
     traction_given: bool = False
     from_oil: frozenset = frozenset()
+    description: str = ""
 
 
 def validate(data) -> CaseValues:
@@ -723,6 +724,7 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
     lubricant = data.get("lubricant")
     return CaseValues(
         title=values.get("title", ""),
+        description=values.get("description", ""),
         sections=sections,
         materials=users,
         estimated=frozenset(estimated),

@@ -86,6 +86,8 @@ def case_to_toml(case) -> str:
     oil the models use, so that loading the text gives an equal case.
     """
     lines = [f"title = {toml_value(case.title)}"]
+    if case.description:
+        lines.append(f"description = {toml_value(case.description)}")
     for section in SECTION_ORDER:
         if section == "materials":
             for name, table in case.materials.items():

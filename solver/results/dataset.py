@@ -56,12 +56,12 @@ def case_text(case) -> str:
 
 
 #: Attributes that name what a result is in words, from its case (build_result writes them).
-DESCRIPTION_ATTRIBUTES = ("title", "bearing_provenance")
+DESCRIPTION_ATTRIBUTES = ("title", "bearing_provenance", "description")
 
 
 def case_description(text: str) -> dict[str, str]:
-    """The :data:`DESCRIPTION_ATTRIBUTES` of a case text: its ``title`` and
-    ``bearing.provenance`` (the schema's defaults where the text leaves them out); {} for no text
+    """The :data:`DESCRIPTION_ATTRIBUTES` of a case text: its ``title``, ``bearing.provenance``
+    and ``description`` (the schema's defaults where the text leaves them out); {} for no text
     or text that is not TOML."""
     from solver.case.io import parse_toml
     from solver.case.schema import field
@@ -76,8 +76,10 @@ def case_description(text: str) -> dict[str, str]:
     bearing = data.get("bearing")
     provenance = bearing.get("provenance") if isinstance(bearing, dict) else None
     title = data.get("title")
+    description = data.get("description")
     return {
         "title": str(field("title").default if title is None else title),
+        "description": str(field("description").default if description is None else description),
         "bearing_provenance": str(
             field("bearing.provenance").default if provenance is None else provenance
         ),
@@ -85,9 +87,9 @@ def case_description(text: str) -> dict[str, str]:
 
 
 def result_description(ds: xr.Dataset) -> dict[str, str]:
-    """``title`` and ``bearing_provenance`` of a result: its attributes, or, for a result written
-    before it carried them, read from its case text here (views never parse the case text).
-    A name is missing when neither says it."""
+    """``title``, ``bearing_provenance`` and ``description`` of a result: its attributes, or, for
+    a result written before it carried them, read from its case text here (views never parse the
+    case text). A name is missing when neither says it."""
     stored = {name: str(ds.attrs[name]) for name in DESCRIPTION_ATTRIBUTES if name in ds.attrs}
     if len(stored) == len(DESCRIPTION_ATTRIBUTES):
         return stored
@@ -161,7 +163,8 @@ def build_result(
     ``values`` in any order and must be the registry's dimensions for ``model`` (else
     RuntimeError: a programming error). ``times`` (s) is the dynamic model's ``time`` coordinate.
     ``case`` (a Case or its TOML text) goes to ``attrs["case"]`` for provenance only; its title
-    and bearing provenance to ``attrs["title"]`` and ``attrs["bearing_provenance"]``
+    bearing provenance and description to ``attrs["title"]``, ``attrs["bearing_provenance"]``
+    and ``attrs["description"]``
     (:func:`case_description`).
     ``attrs`` adds model-specific attributes; ``variable_attrs`` ``{name: {key: value}}`` adds or
     extends per-variable attributes (a ``description`` there is appended to the registry's).

@@ -67,6 +67,7 @@ TEXT_ATTRIBUTES = (
     "created",
     "title",
     "bearing_provenance",
+    "description",
     "stop_reason",
     "analysed_window",
     "kinematics",

@@ -158,10 +158,15 @@ def resolve_result_without_tilting_moment():
 
 
 def test_result_names_its_title_and_provenance_without_its_case_text(combined):
-    """The title and the geometry's provenance are attributes of the result (the views never parse
-    the case text); a result written before they were stored has them read from its case here."""
+    """The title, the geometry's provenance and the case's description are attributes of the
+    result (the views never parse the case text); a result written before they were stored has
+    them read from its case here."""
     case = resolve_case("spindle-combined-load")
-    named = {"title": case.title, "bearing_provenance": case.bearing.provenance}
+    named = {
+        "title": case.title,
+        "bearing_provenance": case.bearing.provenance,
+        "description": case.description,
+    }
     assert {k: combined.attrs[k] for k in named} == named
     assert result_description(combined.assign_attrs(case="")) == named
     older = combined.copy()
