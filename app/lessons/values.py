@@ -132,6 +132,12 @@ def _registry() -> dict[str, Value]:
             lambda ds: _metric(ds, "shaft_revolutions"),
         ),
         Value(
+            "settled",
+            "",
+            "1 when the dynamic run settled, 0 when it is too short to settle (a transient)",
+            lambda ds: _count(ds, "settled"),
+        ),
+        Value(
             "centrifugal_force",
             "N",
             "mean centrifugal force on one ball",
