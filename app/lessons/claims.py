@@ -291,7 +291,7 @@ def check_claims(lesson, values: dict[str, dict[str, object]]) -> list[Outcome]:
     return out
 
 
-def binding_problems(sentences, results: list[str]) -> list[str]:
+def binding_problems(sentences) -> list[str]:
     """What keeps ``sentences`` from binding every finding to a condition: a claim whose quoted
     words are not in its sentence, a sentence with neither claims nor ``descriptive``, a
     descriptive sentence using a word of a finding (:data:`QUALITATIVE_WORDS`)."""

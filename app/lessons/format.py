@@ -398,7 +398,7 @@ def parse_lesson_data(data: dict, lesson_id: str) -> Lesson:
         problems += _template_problems(
             f"[[text.explain]] sentence {number}", sentence.template, names
         )
-    problems += binding_problems(sentences, names)
+    problems += binding_problems(sentences)
     try_this = _text("[text]", text, "try_this", problems)
     problems += _template_problems("[text] try_this", try_this, names)
     if problems:

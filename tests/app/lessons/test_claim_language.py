@@ -92,15 +92,15 @@ def _sentence(text, claims=(), descriptive=False):
 def test_binding_a_claim_to_its_sentence():
     claim = [("the inner track is a band", "inner_band_thickness > 5 * outer_band_thickness")]
     good = _sentence("So the inner track is a band {inner_band_thickness:.1f}° thick.", claim)
-    assert binding_problems([good], RESULTS) == []
+    assert binding_problems([good]) == []
     swapped = _sentence("So the inner track is a thin line {inner_band_thickness:.1f}°.", claim)
-    (problem,) = binding_problems([swapped], RESULTS)
+    (problem,) = binding_problems([swapped])
     assert "sentence 1" in problem and "quotes words the sentence does not say" in problem
     bare = _sentence("So the inner track is a band.")
-    assert "neither a claim nor descriptive" in binding_problems([bare], RESULTS)[0]
+    assert "neither a claim nor descriptive" in binding_problems([bare])[0]
     hidden = _sentence("The balls do not skid.", descriptive=True)
-    assert "says not, skid" in binding_problems([hidden], RESULTS)[0]
-    assert binding_problems([_sentence("The cage holds the balls.", descriptive=True)], []) == []
+    assert "says not, skid" in binding_problems([hidden])[0]
+    assert binding_problems([_sentence("The cage holds the balls.", descriptive=True)]) == []
 
 
 def test_qualitative_words_leave_placeholders_out():
