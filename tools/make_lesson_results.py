@@ -1,8 +1,8 @@
 """Regenerate the shipped lesson results: assets/lessons/results/<lesson>--<result>.nc.
 
 Solves every result of every shipped lesson (assets/lessons/*.toml) whose shipped file is missing
-or out of date (its fingerprint differs), writes it as compressed NetCDF and removes files no
-lesson uses. Prints each file's size and the time its solve took.
+or out of date (its fingerprint or its case title differs), writes it as compressed NetCDF and
+removes files no lesson uses. Prints each file's size and the time its solve took.
 
     python tools/make_lesson_results.py            # only what is missing or out of date
     python tools/make_lesson_results.py --all      # solve everything again
@@ -31,12 +31,15 @@ LESSONS = ROOT / "assets" / "lessons"
 RESULTS = LESSONS / "results"
 
 
-def _current(path: Path, wanted: str) -> bool:
+def _current(path: Path, wanted: str, title: str) -> bool:
+    """The file holds the result of this fingerprint, solved under the result's title (the title
+    the app's form shows with it)."""
     if not path.is_file():
         return False
     from solver.results.io import load_dataset
 
-    return load_dataset(path).attrs.get(FINGERPRINT_ATTR) == wanted
+    ds = load_dataset(path)
+    return ds.attrs.get(FINGERPRINT_ATTR) == wanted and ds.attrs.get("title") == title
 
 
 def main(argv=None) -> int:
@@ -52,7 +55,7 @@ def main(argv=None) -> int:
         for spec in lesson.results:
             path = RESULTS / shipped_name(lesson, spec)
             used.add(path.name)
-            if not args.all and _current(path, fingerprint(spec)):
+            if not args.all and _current(path, fingerprint(spec), spec.title):
                 print(f"{path.name}: up to date ({path.stat().st_size / 1e6:.2f} MB)")
                 continue
             start = time.perf_counter()

@@ -1,10 +1,12 @@
 """Lesson files: one TOML file per lesson (docs/lessons.md), read into :class:`Lesson` records.
 
 A lesson names one or more results (a shipped case with optional changes, solved by the
-quasi-static or the dynamic model), the camera preset and the chart to open, and two text
-templates (the explanation and a "try this" prompt) whose placeholders are filled from the results
-(:mod:`app.lessons.values`). Nothing here solves or draws anything: :func:`parse_lesson` checks a
-file completely (keys, types, case names and changes, model rules, placeholders) and raises
+quasi-static or the dynamic model), the camera preset and the chart to open, its explanation (a
+list of sentences, each with the claims that bind what it says to a condition over the results:
+:mod:`app.lessons.claims`) and a "try this" prompt; the placeholders of the texts are filled from
+the results (:mod:`app.lessons.values`). Nothing here solves or draws anything:
+:func:`parse_lesson` checks a file completely (keys, types, case names and changes, model rules,
+placeholders, claims and their binding to their sentences) and raises
 :class:`LessonError` naming every problem; :func:`load_lessons` reads a folder, keeps every lesson
 that is right and reports the others in words.
 """
@@ -21,6 +23,7 @@ from pathlib import Path
 import solver
 from solver import Case, CaseError, dynamic_problems
 
+from .claims import Claim, Sentence, binding_problems, parse_condition
 from .values import VALUE_NAMES
 
 #: Camera presets a lesson may ask for (the 3-D view's presets).
@@ -48,6 +51,8 @@ _RESULT_KEYS = {
 }
 _VIEW_KEYS = {"camera", "chart"}
 _TEXT_KEYS = {"explain", "try_this"}
+_SENTENCE_KEYS = {"say", "claim", "descriptive"}
+MAX_SENTENCES = 30
 
 
 class LessonError(ValueError):
@@ -63,7 +68,8 @@ class LessonError(ValueError):
 class ResultSpec:
     """One result a lesson shows: ``case`` (a catalogue name) with ``overrides`` (dotted case keys,
     case units) solved by ``model``; a dynamic run covers ``shaft_revolutions`` revolutions sampled
-    ``samples_per_revolution`` times each."""
+    ``samples_per_revolution`` times each. ``title`` is the solved case's title ("<lesson
+    title>: <label>"): the catalogue case's own title would not name what the lesson changed."""
 
     name: str
     label: str
@@ -72,11 +78,15 @@ class ResultSpec:
     model: str
     shaft_revolutions: float
     samples_per_revolution: int
+    title: str = ""
 
     def case(self) -> Case:
-        """The validated case this result solves (CaseError when the changes are invalid)."""
+        """The validated case this result solves, under :attr:`title` (CaseError when the changes
+        are invalid)."""
         case = solver.catalogue().get(self.case_name).load()
-        return case.with_values(dict(self.overrides)) if self.overrides else case
+        values = {"title": self.title} if self.title else {}
+        values.update(self.overrides)  # a title among the changes is the lesson's own choice
+        return case.with_values(values) if values else case
 
 
 @dataclass(frozen=True)
@@ -90,8 +100,13 @@ class Lesson:
     results: tuple[ResultSpec, ...]
     camera: str
     chart: str
-    explain: str
+    sentences: tuple[Sentence, ...]
     try_this: str
+
+    @property
+    def explain(self) -> str:
+        """The explanation's template: its sentences in order, as one paragraph."""
+        return " ".join(sentence.template for sentence in self.sentences)
 
     def result(self, name: str) -> ResultSpec:
         for spec in self.results:
@@ -216,7 +231,7 @@ def _number(where, table, key, default, low, high, problems, integer=False):
     return value
 
 
-def _result_spec(index: int, table, problems: list[str]) -> ResultSpec | None:
+def _result_spec(index: int, table, problems: list[str], lesson_title: str) -> ResultSpec | None:
     where = f"[[results]] #{index + 1}"
     if not isinstance(table, dict):
         problems.append(f"{where} must be a table")
@@ -267,6 +282,7 @@ def _result_spec(index: int, table, problems: list[str]) -> ResultSpec | None:
         model=model,
         shaft_revolutions=float(revolutions),
         samples_per_revolution=int(samples),
+        title=f"{lesson_title}: {label}" if lesson_title else label,
     )
     if not isinstance(case_name, str):
         problems.append(f"{where}: case is missing (a shipped case name, see racetrace cases)")
@@ -289,6 +305,52 @@ def _case_problems(where: str, spec: ResultSpec) -> list[str]:
     return []
 
 
+def _sentences(raw, results: list[str], problems: list[str]) -> list[Sentence]:
+    """The explanation's ``[[text.explain]]`` entries read into sentences with parsed claims."""
+    if raw is None:
+        problems.append(
+            "[[text.explain]] is missing: the explanation is a list of sentences, each with its "
+            "claims or descriptive = true (docs/lessons.md)"
+        )
+        return []
+    if not isinstance(raw, list) or not raw or not all(isinstance(e, dict) for e in raw):
+        problems.append(
+            "[text] explain must be a list of [[text.explain]] tables (say = the sentence, "
+            'claim."its words" = "a condition", or descriptive = true), see docs/lessons.md'
+        )
+        return []
+    if len(raw) > MAX_SENTENCES:
+        problems.append(f"{len(raw)} [[text.explain]] sentences: at most {MAX_SENTENCES}")
+        return []
+    sentences = []
+    for number, entry in enumerate(raw, start=1):
+        where = f"[[text.explain]] sentence {number}"
+        problems += _unknown_keys(where, entry, _SENTENCE_KEYS)
+        template = _text(where, entry, "say", problems)
+        descriptive = entry.get("descriptive", False)
+        if not isinstance(descriptive, bool):
+            problems.append(f"{where}: descriptive must be true or false, not {descriptive!r}")
+            descriptive = False
+        raw_claims = entry.get("claim", {})
+        if not isinstance(raw_claims, dict) or not all(
+            isinstance(v, str) for v in raw_claims.values()
+        ):
+            problems.append(
+                f'{where}: claim must be a table of quoted words = "a condition", e.g. '
+                'claim."the outer track is a thin line" = '
+                '"outer_band_thickness < 0.2 * inner_band_thickness"'
+            )
+            raw_claims = {}
+        claims = []
+        for says, condition in raw_claims.items():
+            try:
+                claims.append(Claim(says, parse_condition(condition, results)))
+            except ValueError as error:
+                problems.append(f"{where}: claim {says!r}: condition {condition!r}: {error}")
+        sentences.append(Sentence(template, tuple(claims), descriptive))
+    return sentences
+
+
 def parse_lesson(text: str, lesson_id: str) -> Lesson:
     """Check a lesson file's text completely; :class:`LessonError` lists every problem."""
     source = f"{lesson_id}.toml"
@@ -296,6 +358,13 @@ def parse_lesson(text: str, lesson_id: str) -> Lesson:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise LessonError(source, [f"not valid TOML: {error}"]) from None
+    return parse_lesson_data(data, lesson_id)
+
+
+def parse_lesson_data(data: dict, lesson_id: str) -> Lesson:
+    """Check a lesson file's contents (its TOML read into a dict) completely; :class:`LessonError`
+    lists every problem."""
+    source = f"{lesson_id}.toml"
     problems = _unknown_keys("top level", data, _TOP_KEYS)
     title = _text("top level", data, "title", problems)
     summary = _text("top level", data, "summary", problems, required=False)
@@ -310,7 +379,7 @@ def parse_lesson(text: str, lesson_id: str) -> Lesson:
         problems.append(f"{len(raw_results)} [[results]]: at most {MAX_RESULTS}")
     else:
         for i, table in enumerate(raw_results):
-            spec = _result_spec(i, table, problems)
+            spec = _result_spec(i, table, problems, title)
             if spec is not None:
                 results.append(spec)
     names = [r.name for r in results]
@@ -324,10 +393,14 @@ def parse_lesson(text: str, lesson_id: str) -> Lesson:
     if chart not in CHARTS:
         problems.append(f"[view] chart must be one of {', '.join(CHARTS)}, not {chart!r}")
     text = _table(data, "text", _TEXT_KEYS, problems)
-    explain = _text("[text]", text, "explain", problems)
+    sentences = _sentences(text.get("explain"), names, problems)
+    for number, sentence in enumerate(sentences, start=1):
+        problems += _template_problems(
+            f"[[text.explain]] sentence {number}", sentence.template, names
+        )
+    problems += binding_problems(sentences)
     try_this = _text("[text]", text, "try_this", problems)
-    for key, template in (("explain", explain), ("try_this", try_this)):
-        problems += _template_problems(f"[text] {key}", template, names)
+    problems += _template_problems("[text] try_this", try_this, names)
     if problems:
         raise LessonError(source, problems)
     return Lesson(
@@ -337,7 +410,7 @@ def parse_lesson(text: str, lesson_id: str) -> Lesson:
         results=tuple(results),
         camera=camera,
         chart=chart,
-        explain=explain,
+        sentences=tuple(sentences),
         try_this=try_this,
     )
 
@@ -387,6 +460,7 @@ __all__ = [
     "ResultSpec",
     "load_lessons",
     "parse_lesson",
+    "parse_lesson_data",
     "placeholders",
     "read_lesson",
     "shipped_lessons_dir",

@@ -12,8 +12,9 @@ come here as ``lesson_key``.
 State (all plain JSON): ``lessons`` (id, title, summary per lesson), ``lesson_problems`` (broken
 lesson files, in words), ``lesson_id``, ``lesson_title``, ``lesson_explain``, ``lesson_try``,
 ``lesson_result`` (name of the result on show), ``lesson_results`` (name and label per result),
-``lesson_warnings`` (the warnings of the result on show), ``lesson_chart`` (the chart
-highlighted), ``lesson_message`` (why a lesson could not open), ``lesson_stale`` (true once
+``lesson_warnings`` (the warnings of the result on show), ``lesson_unsupported`` (the claims of
+the lesson its results do not bear out, in words: app/lessons/claims.py), ``lesson_chart`` (the
+chart highlighted), ``lesson_message`` (why a lesson could not open), ``lesson_stale`` (true once
 another result is on show than the lesson's: its text then no longer describes the view),
 ``presenter``.
 """
@@ -24,6 +25,7 @@ import logging
 
 from ..components.base import Component
 from . import widgets
+from .claims import ClaimError, check_claims
 from .format import LessonSet, load_lessons
 from .results import lesson_result
 from .text import lesson_text
@@ -62,6 +64,7 @@ class LessonController(Component):
         s.lesson_result = None
         s.lesson_results = []
         s.lesson_warnings = []
+        s.lesson_unsupported = []
         s.lesson_chart = None
         s.lesson_message = ""
         s.lesson_stale = False
@@ -112,6 +115,14 @@ class LessonController(Component):
             return
         values = {spec.name: self._values[(lesson.id, spec.name)] for spec in lesson.results}
         explain, try_this = lesson_text(lesson, values)
+        try:
+            unsupported = [
+                f"The results do not bear out {o.claim.says!r} ({o.claim.holds.text})."
+                for o in check_claims(lesson, values)
+                if not o.holds
+            ]
+        except ClaimError as error:
+            unsupported = [str(error)]
         with self.state:
             s = self.state
             s.lesson_message = ""
@@ -119,6 +130,7 @@ class LessonController(Component):
             s.lesson_title = lesson.title
             s.lesson_explain = explain
             s.lesson_try = try_this
+            s.lesson_unsupported = unsupported
             s.lesson_results = [{"name": r.name, "label": r.label} for r in lesson.results]
             s.lesson_chart = lesson.chart
             if lesson.chart not in ALWAYS_SHOWN:
@@ -135,9 +147,10 @@ class LessonController(Component):
         ds = self._dataset(lesson, spec)
         self.ctrl.drop_pending_preview()  # a preview on its way must not replace this result
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
-        # the form holds the lesson's case under a title naming what the lesson changed; the result
-        # on show was solved from spec.case(), which differs only in this title
-        self.ctrl.take_case(spec.case().with_values({"title": f"{lesson.title}: {spec.label}"}))
+        # the form holds the case the result on show was solved from (spec.case(): the lesson's
+        # case under a title naming what the lesson changed), so nothing is out of date until an
+        # edit; a result without a readable case of its own gets the spec's
+        self.ctrl.take_case(ds.racetrace.case() or spec.case())
         self.ctrl.show_unsaved(ds, f"lesson: {spec.label}")  # the runs list names no run
         self._shown_serial = self.state.result_serial
         with self.state:

@@ -70,6 +70,14 @@ def _race_control(ds):
     return f"inner for {inner} balls, outer for {len(words) - inner}"
 
 
+def _ellipse_arc(ds, race: str):
+    """The mean semi-axis across the groove as the groove arc it spans, degree."""
+    semi_major = _metric(ds, "mean_semi_major", race)
+    if semi_major is None:
+        return None
+    return math.degrees(semi_major / float(ds.coords["groove_radius"].sel(race=race)))
+
+
 def _pressure_limit(ds):
     from solver import STATIC_PRESSURE_LIMIT
 
@@ -122,6 +130,12 @@ def _registry() -> dict[str, Value]:
             "",
             "shaft revolutions the dynamic run covers",
             lambda ds: _metric(ds, "shaft_revolutions"),
+        ),
+        Value(
+            "settled",
+            "",
+            "1 when the dynamic run settled, 0 when it is too short to settle (a transient)",
+            lambda ds: _count(ds, "settled"),
         ),
         Value(
             "centrifugal_force",
@@ -259,6 +273,14 @@ def _registry() -> dict[str, Value]:
             )
             for suffix, unit, meaning, metric, scale in per_race
         ]
+        entries.append(
+            Value(
+                f"{race}_ellipse_arc",
+                "deg",
+                f"mean {race} ellipse semi-axis across the groove as groove arc",
+                lambda ds, r=race: _ellipse_arc(ds, r),
+            )
+        )
     return {v.name: v for v in entries}
 
 

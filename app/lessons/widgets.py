@@ -148,6 +148,7 @@ def _open_lesson(ctrl) -> None:
         classes="text-body-2 my-1",
         style="white-space: pre-line;",
     )
+    alert_list("lesson_unsupported", "error", "lesson-unsupported")
     alert(
         "info",
         "{{ lesson_try }}",

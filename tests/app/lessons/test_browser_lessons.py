@@ -88,6 +88,46 @@ def test_every_lesson_opens_from_its_button(page):
     )
 
 
+#: True when the toolbar's "out of date: the form has changed" chip is shown.
+STALE_SHOWN = (
+    "() => { const c = document.querySelector('#result-stale');"
+    " return !!c && c.offsetParent !== null && getComputedStyle(c).display !== 'none'; }"
+)
+
+
+@pytest.mark.parametrize("presenter", [False, True], ids=["normal", "presenter"])
+def test_no_lesson_opens_out_of_date(page, presenter):
+    """Opening a lesson puts its result on show and its case in the form: the two agree, so the
+    "out of date" chip stays hidden, for every result of every lesson; in presenter mode too, in
+    front of a class, where the lecturer moves on with the N key."""
+    page.set_viewport_size({"width": 1280, "height": 720})
+    _open_lesson(page, LESSONS[0])
+    if presenter:
+        page.locator("#presenter-button").click()
+        page.wait_for_selector("#content.rt-presenter", timeout=120_000)
+    try:
+        for index, lesson in enumerate(LESSONS):
+            if index and presenter:
+                page.evaluate("document.activeElement && document.activeElement.blur()")
+                page.keyboard.press("n")
+                _until(page, TITLE_IS, lesson.title)
+            elif index:
+                _open_lesson(page, lesson)
+            for spec in lesson.results:
+                if len(lesson.results) > 1:
+                    page.locator(f"#lesson-result-{spec.name}").click()
+                _until(page, "l => document.body.innerText.includes(l)", f"lesson: {spec.label}")
+                time.sleep(0.5)  # a staleness the server would compute has reached the page
+                assert page.locator("#result-stale").count() == 1  # the chip is on the page ...
+                assert not page.evaluate(STALE_SHOWN), (lesson.id, spec.name)  # ... and hidden
+                assert "out of date" not in page.locator("body").inner_text()
+            if presenter:
+                page.screenshot(path=str(SHOTS / f"presenter-{lesson.id}-1280x720.png"))
+    finally:
+        if page.evaluate("window.trame.state.get('presenter')"):
+            page.locator("#presenter-button").click()
+
+
 @pytest.mark.parametrize(("width", "height"), [(1280, 720), (1920, 1080)])
 def test_presenter_mode(page, width, height):
     page.set_viewport_size({"width": width, "height": height})

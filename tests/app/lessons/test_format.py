@@ -37,8 +37,15 @@ camera = "axial"
 chart = "ellipse"
 
 [text]
-explain = "At {axial_load:.0f} N the angle is {inner_contact_angle:.2f} deg, {run.speed_rpm} rpm."
 try_this = "Raise the load."
+
+[[text.explain]]
+say = "The inner ring carries {axial_load:.0f} N at {run.speed_rpm} rpm."
+descriptive = true
+
+[[text.explain]]
+say = "The angle is {inner_contact_angle:.2f} deg, above the free angle."
+claim."above the free angle" = "inner_contact_angle > free_contact_angle"
 """
 
 
@@ -62,6 +69,13 @@ def test_good_lesson_reads_completely():
     assert lesson.result("run") is run
     with pytest.raises(KeyError):
         lesson.result("nope")
+    assert [bool(s.descriptive) for s in lesson.sentences] == [True, False]
+    (claim,) = lesson.sentences[1].claims
+    assert claim.says == "above the free angle"
+    assert claim.holds.names == (("", "inner_contact_angle"), ("", "free_contact_angle"))
+    assert lesson.explain.startswith("The inner ring carries {axial_load:.0f} N at")
+    # the solved case carries a title naming the lesson and the result, not the catalogue's
+    assert main.case().title == "Axial load: 500 N" and run.case().title == "Axial load: run"
 
 
 def test_defaults_for_view_and_run_length():
@@ -103,6 +117,18 @@ def test_defaults_for_view_and_run_length():
         (('name = "run"', 'name = "main"'), "result names must differ"),
         (('summary = "one line"', 'sumary = "one line"'), "unknown key sumary"),
         (('try_this = "Raise the load."', ""), "try_this is missing"),
+        (("above the free angle.", "below the free angle."), "quotes words the sentence does not"),
+        (('free_contact_angle"', 'free_angle"'), "unknown value 'free_angle'"),
+        (("> free_contact_angle", "> > free_contact_angle"), "not a condition"),
+        (("> free_contact_angle", "> nope.free_contact_angle"), "names the result 'nope'"),
+        (("inner_contact_angle > free_contact_angle", "2 > 1"), "names no value"),
+        (("descriptive = true", "descriptive = 1"), "descriptive must be true or false"),
+        (("descriptive = true\n", ""), "neither a claim nor descriptive = true"),
+        (("{axial_load:.0f} N at", "{axial_load:.0f} N, more than"), "marked descriptive"),
+        (
+            ('[[text.explain]]\nsay = "The inner', '[[text.explain]]\nsai = "The inner'),
+            "unknown key sai",
+        ),
         (
             ('overrides = { "operating.axial_load_N" = 300.0 }', 'overrides = "more load"'),
             "overrides must be a table of dotted case keys",

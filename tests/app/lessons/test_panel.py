@@ -57,6 +57,14 @@ def test_one_click_opens_a_lesson(app, lesson_id):
     assert s.lesson_warnings == app.result.dataset.racetrace.warnings()
     s.flush()  # no preview replaces the lesson's result
     assert s.result_label == f"lesson: {spec.label}"
+    # the form holds the very case the result on show was solved from: nothing is out of date
+    assert app.result.dataset.racetrace.case().title == s.fv_title
+    assert s.result_stale is False
+    assert s.lesson_unsupported == []  # every claim of the text holds in the result on show
+    for other in lesson.results[1:]:
+        app.lessons.show_result(other.name)
+        s.flush()
+        assert s.result_stale is False and s.fv_title == f"{lesson.title}: {other.label}"
 
 
 def test_other_result_of_a_lesson(app):
@@ -152,3 +160,19 @@ def test_text_is_marked_once_another_result_is_on_show(app):
     app.lessons.show_result("rest")  # back to a result of the lesson
     s.flush()
     assert s.lesson_stale is False
+
+
+def test_a_claim_the_results_do_not_bear_out_is_shown(tmp_path, app):
+    folder = tmp_path / "lessons"
+    folder.mkdir()
+    text = (shipped_lessons_dir() / "02-speed.toml").read_text("utf-8")
+    wrong = text.replace("outer_contact_angle < free_contact_angle", "outer_contact_angle > 20")
+    assert wrong != text
+    (folder / "02-speed.toml").write_text(wrong, "utf-8")
+    controller = LessonController(app, lessons=load_lessons(folder), cache_dir=tmp_path / "c")
+    try:
+        controller.open_lesson("02-speed")
+        (message,) = app.state.lesson_unsupported
+        assert "'below the free contact angle' (outer_contact_angle > 20)" in message
+    finally:
+        app.lessons.init_state()

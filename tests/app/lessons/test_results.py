@@ -18,8 +18,10 @@ name = "main"
 case = "spindle-axial-preload"
 overrides = { "operating.axial_load_N" = 321.0 }
 [text]
-explain = "{axial_load:.0f} N"
 try_this = "more"
+[[text.explain]]
+say = "{axial_load:.0f} N"
+descriptive = true
 """
 
 
