@@ -14,13 +14,15 @@ Dataset, everything else SI.
 
 from __future__ import annotations
 
+import functools
 import math
 from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
+from xarray.indexes import PandasIndex
 
-from .variables import COORDINATES, coordinates, dimension_coordinate, variable
+from .variables import COORDINATES, DIMENSION_VALUES, coordinates, dimension_coordinate, variable
 
 MODELS = ("quasistatic", "dynamic")
 
@@ -63,27 +65,38 @@ def case_description(text: str) -> dict[str, str]:
     """The :data:`DESCRIPTION_ATTRIBUTES` of a case text: its ``title``, ``bearing.provenance``
     and ``description`` (the schema's defaults where the text leaves them out); {} for no text
     or text that is not TOML."""
+    return dict(_parsed_description(text))
+
+
+@functools.lru_cache(maxsize=64)
+def _parsed_description(text: str) -> tuple[tuple[str, str], ...]:
+    """:func:`case_description` as ``(name, value)`` pairs; kept per text, since the results of
+    one case (a study's points, the app's edits of the operating point) carry the same title."""
     from solver.case.io import parse_toml
     from solver.case.schema import field
     from solver.errors import CaseError
 
     if not text:
-        return {}
+        return ()
     try:
         data = parse_toml(text, "the result's case")
     except CaseError:
-        return {}
+        return ()
     bearing = data.get("bearing")
     provenance = bearing.get("provenance") if isinstance(bearing, dict) else None
     title = data.get("title")
     description = data.get("description")
-    return {
-        "title": str(field("title").default if title is None else title),
-        "description": str(field("description").default if description is None else description),
-        "bearing_provenance": str(
-            field("bearing.provenance").default if provenance is None else provenance
+    return (
+        ("title", str(field("title").default if title is None else title)),
+        (
+            "description",
+            str(field("description").default if description is None else description),
         ),
-    }
+        (
+            "bearing_provenance",
+            str(field("bearing.provenance").default if provenance is None else provenance),
+        ),
+    )
 
 
 def result_description(ds: xr.Dataset) -> dict[str, str]:
@@ -185,7 +198,7 @@ def build_result(
         var_attrs = spec.attrs()
         for key, value in extra.get(name, {}).items():
             var_attrs[key] = var_attrs[key] + value if key == "description" else value
-        variables[name] = xr.Variable(target, values, var_attrs)
+        variables[name] = _variable(target, values, var_attrs)
     coords = coordinates(
         int(geometry.ball_count),
         times,
@@ -202,10 +215,52 @@ def build_result(
         "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "complete": int(bool(complete)),
     }
-    # xarray Variables and one Coordinates object: the same Dataset as from (dims, values, attrs)
-    # tuples, built in about half the time
-    coords = xr.Coordinates({name: xr.Variable(*spec) for name, spec in coords.items()})
-    return xr.Dataset(variables, coords=coords, attrs={**base, **(attrs or {})})
+    coord_variables, indexes = _coordinates(coords)
+    # One Coordinates object of every variable (data first, as xr.Dataset orders them), then the
+    # data variables reset from coordinates to data: the Dataset xr.Dataset(variables,
+    # coords=...) gives, without its merge and alignment, which one result never needs (its
+    # variables share one set of dimensions; their sizes are still checked).
+    ds = (
+        xr.Coordinates({**variables, **coord_variables}, indexes=indexes)
+        .to_dataset()
+        .reset_coords(list(variables))
+    )
+    ds.attrs = {**base, **(attrs or {})}
+    return ds
+
+
+def _variable(dims, values, attrs) -> xr.Variable:
+    """An xarray Variable of ``values`` as they are: a numpy array (or a Python scalar, made one)
+    whose dtype is final. xarray's own conversion is skipped; for an object array of strings it
+    would hand the array to pandas and back unchanged, the dearest step of building a result."""
+    return xr.Variable(dims, np.asarray(values), attrs, fastpath=True)
+
+
+@functools.lru_cache(maxsize=32)
+def _label_index(dim: str, labels: tuple, dtype: str) -> PandasIndex:
+    """The index of a labelled dimension (``ball`` or one of DIMENSION_VALUES) with these labels
+    of this dtype; xarray's indexes are immutable, so every result with them shares one."""
+    labels_array = np.array(labels, dtype=dtype)
+    return PandasIndex.from_variables({dim: xr.Variable(dim, labels_array)}, options={})
+
+
+def _coordinates(coords: dict) -> tuple[dict, dict]:
+    """({name: Variable}, {name: index}) of ``{name: (dims, values, attrs)}`` with an index for
+    each dimension coordinate, as xarray would make it (the labelled dimensions' ones shared)."""
+    variables = {}
+    indexes = {}
+    for name, (dims, values, attrs) in coords.items():
+        var = _variable(dims, values, attrs)
+        if var.dims != (name,):
+            variables[name] = var
+            continue
+        if name == "ball" or name in DIMENSION_VALUES:
+            index = _label_index(name, tuple(var.values.tolist()), var.dtype.str)
+        else:
+            index = PandasIndex.from_variables({name: var}, options={})
+        indexes[name] = index
+        variables.update(index.create_variables({name: var}))
+    return variables, indexes
 
 
 # ---- reading what a result is --------------------------------------------------------------------

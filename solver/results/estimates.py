@@ -26,6 +26,7 @@ the result; the attribute ``<name>_note`` of the Dataset says why. An estimate m
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -97,8 +98,11 @@ def identify(designation: str, pitch_diameter: float, free_contact_angle: float)
     return BearingIdentity(kind, series, bore, outside), ""
 
 
+@functools.lru_cache(maxsize=32)
 def _static_rating(geometry, kind: str) -> float:
-    """C0 [N] of an all-steel bearing of this geometry at the nominal angle (0 for deep groove)."""
+    """C0 [N] of an all-steel bearing of this geometry at the nominal angle (0 for deep groove).
+    Kept per geometry (a frozen dataclass, compared by value): the exact Hertz solution it takes
+    costs more than the rest of a quasi-static result."""
     from solver.materials import BUILTIN_MATERIALS
 
     steel = BUILTIN_MATERIALS[STEEL]
@@ -193,16 +197,37 @@ def estimate(inputs, operating=None) -> tuple[dict[str, float], dict[str, str]]:
     return values, notes
 
 
+@dataclass(frozen=True)
+class EstimateFields:
+    """What the estimates add to a result: ``values`` {name: torque N m} of the estimates made,
+    ``notes`` {name: {"note": what it assumed}} their variable attributes, and ``attrs``
+    {"<name>_note": why} a Dataset attribute for each one left out."""
+
+    values: dict[str, float]
+    notes: dict[str, dict[str, str]]
+    attrs: dict[str, str]
+
+
+def estimate_fields(inputs, operating=None) -> EstimateFields:
+    """The estimates of :func:`estimate` as the fields of a result (:class:`EstimateFields`),
+    for a Dataset builder that adds them with its other variables."""
+    values, notes = estimate(inputs, operating)
+    return EstimateFields(
+        values,
+        {name: {"note": notes[name]} for name in values},
+        {f"{name}_note": notes[name] for name in ESTIMATES if name not in values},
+    )
+
+
 def friction_estimates(inputs, operating=None) -> xr.Dataset:
     """The estimates as a Dataset: a scalar variable per estimate made (with its ``note``) and,
     for each one left out, the attribute ``<name>_note`` saying why."""
-    values, notes = estimate(inputs, operating)
+    fields = estimate_fields(inputs, operating)
     data = {}
-    for name, value in values.items():
+    for name, value in fields.values.items():
         spec = variable(name)
-        data[name] = (spec.dims, value, {**spec.attrs(), "note": notes[name]})
-    attrs = {f"{name}_note": notes[name] for name in ESTIMATES if name not in values}
-    return xr.Dataset(data, attrs=attrs)
+        data[name] = (spec.dims, value, {**spec.attrs(), **fields.notes[name]})
+    return xr.Dataset(data, attrs=fields.attrs)
 
 
 def with_estimates(ds: xr.Dataset, inputs, operating=None) -> xr.Dataset:
@@ -213,5 +238,5 @@ def with_estimates(ds: xr.Dataset, inputs, operating=None) -> xr.Dataset:
     return out
 
 
-__all__ = ["ESTIMATES", "BearingIdentity", "estimate", "friction_estimates", "identify"]
-__all__ += ["with_estimates"]
+__all__ = ["ESTIMATES", "BearingIdentity", "EstimateFields", "estimate", "estimate_fields"]
+__all__ += ["friction_estimates", "identify", "with_estimates"]

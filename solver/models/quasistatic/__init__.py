@@ -152,7 +152,7 @@ def solve_quasistatic_state(
 
 def solve_quasistatic(case):
     """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
-    from solver.results.estimates import with_estimates
+    from solver.results.estimates import estimate_fields
 
     from .result import solution_to_dataset
 
@@ -160,8 +160,13 @@ def solve_quasistatic(case):
     solution = solve_operating_point(
         inputs.geometry, inputs.operating, traction_lubricant=_traction_lubricant(inputs)
     )
-    ds = solution_to_dataset(solution, inputs.geometry, inputs.case_text, _film_lubricant(inputs))
-    return with_estimates(ds, inputs)
+    return solution_to_dataset(
+        solution,
+        inputs.geometry,
+        inputs.case_text,
+        _film_lubricant(inputs),
+        estimates=estimate_fields(inputs),
+    )
 
 
 def quasistatic_speed_sweep(case, speeds_rpm):

@@ -62,7 +62,7 @@ def contact_quantities(geometry, solution):
 
 
 def solution_to_dataset(
-    solution, geometry, case=None, lubricant=None, operating=None
+    solution, geometry, case=None, lubricant=None, operating=None, estimates=None
 ) -> xr.Dataset:
     """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
@@ -70,7 +70,9 @@ def solution_to_dataset(
     The rating lives (ISO 281, ISO/TS 16281: :mod:`solver.results.life`) are added.
     ``operating`` (SI operating point, see :func:`solver.results.dataset.describing_coordinates`)
     defaults to the one the solution was solved for; ``case`` (a Case or TOML text) is kept in
-    ``attrs["case"]`` for provenance.
+    ``attrs["case"]`` for provenance. ``estimates`` (the
+    :class:`solver.results.estimates.EstimateFields` of the case, or None) adds the friction-torque
+    estimates, as :func:`solver.results.estimates.with_estimates` would, in the same build.
     """
     sol = solution
     operating = operating if operating is not None else sol.operating
@@ -222,6 +224,10 @@ def solution_to_dataset(
         data[name] = values
         if "note" in life_attrs:
             descriptions[name] = {"note": life_attrs["note"]}
+    if estimates is not None:
+        data.update(estimates.values)
+        descriptions.update(estimates.notes)
+        attrs.update(estimates.attrs)
     return build_result(
         MODEL,
         {name: (VARIABLES[name].dims_for(MODEL), values) for name, values in data.items()},

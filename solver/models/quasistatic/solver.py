@@ -95,6 +95,7 @@ class _Problem:
         k_o = kernels.contact_stiffness(static, alpha0, False)
         self.ball_stiffness = (k_i ** (-2.0 / 3.0) + k_o ** (-2.0 / 3.0)) ** -1.5
         self.force_scale, self.length_scale = self.scales(1.0)
+        self._models = {}  # BallModel (immutable) per speed fraction, see model()
 
     def scales(self, speed_fraction: float) -> Scales:
         """The scales at a fraction of the full speed: the force, the larger of the applied loads
@@ -105,12 +106,18 @@ class _Problem:
         return Scales(force, length)
 
     def model(self, speed_fraction: float):
-        op = self.operating
-        return kernels.ball_model(
-            self.geometry,
-            speed_fraction * op.inner_ring_speed,
-            speed_fraction * op.outer_ring_speed,
-        )
+        """The kernels' BallModel at ``speed_fraction`` of the ring speeds (made once per
+        fraction: the solve asks for it at every ring solve and ball evaluation)."""
+        model = self._models.get(speed_fraction)
+        if model is None:
+            op = self.operating
+            model = kernels.ball_model(
+                self.geometry,
+                speed_fraction * op.inner_ring_speed,
+                speed_fraction * op.outer_ring_speed,
+            )
+            self._models[speed_fraction] = model
+        return model
 
     def initial_positions(self, q, model) -> np.ndarray:
         pos = np.empty((self.azimuth.size, 2))
