@@ -11,8 +11,9 @@ reference rating life from computed contact loads. Pure functions, SI units (m, 
   holds for groove radii up to 0.52 D_w on the inner ring and 0.53 D_w on the outer ring (the
   conformities its f_c values were computed with, ISO/TR 1281-1); a larger groove radius lowers
   the rating and the standard asks for a correspondingly reduced f_c, a smaller one does not raise
-  it. The reduction here is the one of the Lundberg–Palmgren theory behind Table 1 (ISO/TR
-  1281-1): f_c scales as the bearing's rating from its two raceway ratings (below),
+  it (the condition that goes with clause 6.1.1; the standard's text was not available here to
+  quote it). The reduction here is the one of the Lundberg–Palmgren theory behind Table 1
+  (ISO/TR 1281-1): f_c scales as the bearing's rating from its two raceway ratings (below),
   ``Q_c = (Q_ci^(-10/3) + Q_ce^(-10/3))^(-3/10)``, so it is multiplied by ``Q_c(max(f_i, 0.52),
   max(f_o, 0.53)) / Q_c(0.52, 0.53)`` at the same gamma (:func:`groove_radius_factor`; 0.807 for
   the 7008C-class spindle bearing with f_i = 0.54, f_o = 0.53, whose life is then 0.525 of the
