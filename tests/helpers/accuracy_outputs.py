@@ -11,7 +11,7 @@ settings (10 shaft revolutions).
 Every figure is a mean over the window of the run's energy balance
 (:func:`solver.results.energy.balance_start_time`: the analysed window, and never the first shaft
 revolution, where the run rings down from its quasi-static start). Regenerate the data (every
-case in one go, about 3 min of CPU once the kernels are compiled) with
+case in one go; 3.2 min of CPU with compiling the kernels, each case but the 209 3-5 s) with
 
     python -m tests.helpers.accuracy_outputs
 """
