@@ -32,6 +32,18 @@ class BearingGeometry:
     ring_material: Material
     inner_shoulder_diameter: float = math.nan  # m, NaN when not given
     outer_shoulder_diameter: float = math.nan  # m, NaN when not given
+    #: nominal contact angle alpha, rad, the angle ISO 281 rates the bearing at: 0 for a radial
+    #: deep-groove bearing (a case that gives the diametral clearance), NaN for the free contact
+    #: angle (an angular contact bearing)
+    nominal_contact_angle: float = math.nan
+
+    @property
+    def rating_contact_angle(self) -> float:
+        """The nominal contact angle ISO 281 rates the bearing at, rad: ``nominal_contact_angle``,
+        or the free contact angle when that is NaN."""
+        if math.isnan(self.nominal_contact_angle):
+            return self.free_contact_angle
+        return self.nominal_contact_angle
 
     # ---- groove geometry ----------------------------------------------------------------------
     @property

@@ -207,8 +207,10 @@ def bearing_geometry(case) -> BearingGeometry:
     f_i, f_o = b.inner_groove_radius_ratio, b.outer_groove_radius_ratio
     if b.free_contact_angle_deg is not None:
         alpha0 = math.radians(b.free_contact_angle_deg)
+        nominal = math.nan  # an angular contact bearing: rated at its free contact angle
     else:
         alpha0 = free_contact_angle_from_clearance(D, f_i, f_o, b.diametral_clearance_mm * MM)
+        nominal = 0.0  # a radial deep-groove bearing: rated at 0 (ISO 281)
 
     def mm(value):
         return math.nan if value is None else value * MM
@@ -224,6 +226,7 @@ def bearing_geometry(case) -> BearingGeometry:
         ring_material=case.ring_material,
         inner_shoulder_diameter=mm(b.inner_shoulder_diameter_mm),
         outer_shoulder_diameter=mm(b.outer_shoulder_diameter_mm),
+        nominal_contact_angle=nominal,
     )
 
 

@@ -134,6 +134,7 @@ def describing_coordinates(geometry, operating) -> dict:
         ball_diameter=float(g.ball_diameter),
         pitch_diameter=float(g.pitch_diameter),
         free_contact_angle=math.degrees(float(g.free_contact_angle)),
+        nominal_contact_angle=math.degrees(float(g.rating_contact_angle)),
         groove_radius=np.array([g.inner_groove_radius, g.outer_groove_radius], dtype=float),
         shoulder_diameter=np.array(
             [g.inner_shoulder_diameter, g.outer_shoulder_diameter], dtype=float
@@ -320,6 +321,11 @@ def geometry_from_result(ds: xr.Dataset):
         ring_material=material("ring"),
         inner_shoulder_diameter=float(shoulder.sel(race="inner")),
         outer_shoulder_diameter=float(shoulder.sel(race="outer")),
+        nominal_contact_angle=(
+            math.radians(float(_scalar(ds, "nominal_contact_angle")))
+            if "nominal_contact_angle" in ds.coords
+            else math.nan
+        ),
     )
 
 

@@ -63,17 +63,27 @@ def _integral(values: np.ndarray, times: np.ndarray) -> float:
     return float(0.5 * np.sum((values[1:] + values[:-1]) * np.diff(times)))
 
 
-def energy_balance(ds: xr.Dataset, start_time: float) -> EnergyBalance | None:
-    """The balance of a dynamic result over the samples at or after ``start_time`` [s] (and after
-    the first shaft revolution, module docstring); None when
-    the result lacks a variable of :data:`BALANCE_VARIABLES` (a quasi-static result, or one written
-    before the kinetic energy was stored)."""
-    if "time" not in ds.dims or not all(name in ds for name in BALANCE_VARIABLES):
-        return None
+def balance_start_time(ds: xr.Dataset, start_time: float) -> float:
+    """Start [s] of the balance's window of a dynamic result whose analysed window starts at
+    ``start_time`` [s]: ``start_time``, or the end of the first shaft revolution when that is
+    later and the run is at least two revolutions long (module docstring). Outputs compared with
+    the balance (drive power, losses, friction torque) are means over the same window."""
     times = np.asarray(ds["time"].values, dtype=float)
     period = float(ds.attrs.get("shaft_period_s", math.nan))
     if math.isfinite(period) and times.size and times[-1] >= 2.0 * period:
-        start_time = max(start_time, period)  # the ring-down from the quasi-static start
+        return max(start_time, period)  # the ring-down from the quasi-static start
+    return start_time
+
+
+def energy_balance(ds: xr.Dataset, start_time: float) -> EnergyBalance | None:
+    """The balance of a dynamic result over the samples at or after
+    :func:`balance_start_time` (``start_time`` [s], or the end of the first shaft revolution);
+    None when the result lacks a variable of :data:`BALANCE_VARIABLES` (a quasi-static result, or
+    one written before the kinetic energy was stored)."""
+    if "time" not in ds.dims or not all(name in ds for name in BALANCE_VARIABLES):
+        return None
+    times = np.asarray(ds["time"].values, dtype=float)
+    start_time = balance_start_time(ds, start_time)
     first = int(np.searchsorted(times, start_time - 1e-12 * max(abs(start_time), 1.0)))
     t = times[first:]
     nan = math.nan
@@ -115,6 +125,7 @@ __all__ = [
     "BALANCE_VARIABLES",
     "RESIDUAL_LIMIT",
     "EnergyBalance",
+    "balance_start_time",
     "balance_words",
     "energy_balance",
     "residual_message",

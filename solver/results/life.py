@@ -3,8 +3,11 @@ Dataset: the geometry and operating point from the coordinates, the contact load
 ``contact_load`` / ``contact_angle`` (:func:`rating_life`); or, while a quasi-static Dataset is
 built, from the same arrays before they are stored (:func:`snapshot_life_metrics`).
 
-- **ISO 281** ``basic_rating_life`` from the applied axial and radial loads and the nominal (free)
-  contact angle. Moments and misalignment do not enter it.
+- **ISO 281** ``basic_rating_life`` from the applied axial and radial loads and the nominal
+  contact angle (``nominal_contact_angle``: 0 for a radial deep-groove bearing, whose case gives
+  its diametral clearance; the free contact angle of an angular contact bearing), with f_c reduced
+  for groove radii above 0.52 D_w (inner) / 0.53 D_w (outer). Moments and misalignment do not
+  enter it.
 - **ISO/TS 16281** ``reference_rating_life`` from the computed normal load of every ball–race
   contact at its own contact angle: clearance, misalignment, speed effects (centrifugal force,
   gyroscopic moments) and the load distribution enter through those loads. A quasi-static result
@@ -168,9 +171,11 @@ def life_metrics(
     attrs: dict[str, dict] = {name: {} for name in LIFE_METRICS}
 
     # ISO 281
-    alpha0 = geometry.free_contact_angle
+    alpha0 = geometry.rating_contact_angle
     try:
-        c = life.basic_dynamic_load_rating(d, dm, alpha0, z)
+        c = life.basic_dynamic_load_rating(
+            d, dm, alpha0, z, 1, geometry.inner_conformity, geometry.outer_conformity
+        )
         p = life.equivalent_dynamic_load(axial_load, radial_load, alpha0, d, z)
         l10 = life.basic_rating_life(c, p) * 1e6
     except life.LifeRangeError as error:

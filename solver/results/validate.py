@@ -297,6 +297,9 @@ def _variable_problems(ds: xr.Dataset, model: str) -> list[str]:
     return problems
 
 
+#: Describing coordinates a result may lack: a result without ``nominal_contact_angle`` is rated
+#: at its free contact angle (solver.results.dataset.geometry_from_result).
+_OPTIONAL = ("nominal_contact_angle",)
 #: Describing coordinates that may be NaN (results-schema.md); every other number is finite.
 _MAY_BE_NAN = ("tilting_moment", "shoulder_diameter")
 #: Describing coordinates that are lengths or material constants: positive.
@@ -307,7 +310,8 @@ def _coordinate_problems(ds: xr.Dataset) -> list[str]:
     problems = []
     for name, spec in COORDINATES.items():
         if name not in ds.coords:
-            problems.append(f"it has no '{name}' coordinate")
+            if name not in _OPTIONAL:
+                problems.append(f"it has no '{name}' coordinate")
             continue
         values = ds.coords[name]
         if values.dims != spec.dims and values.dims != (_REVOLUTION_DIM, *spec.dims):

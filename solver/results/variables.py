@@ -623,6 +623,13 @@ COORDINATES: dict[str, Variable] = {
         "free contact angle",
         "contact angle alpha_0 of the unloaded bearing with the rings concentric",
     ),
+    "nominal_contact_angle": Variable(
+        (),
+        "degree",
+        "nominal contact angle",
+        "contact angle the ISO 281 basic rating life is rated at: 0 for a radial deep-groove "
+        "bearing (a case giving the diametral clearance), else the free contact angle",
+    ),
     "groove_radius": Variable(
         ("race",), "m", "groove radius", "raceway groove curvature radius r = f D"
     ),

@@ -40,6 +40,42 @@ def test_basic_dynamic_load_rating_7008c():
     assert life.basic_dynamic_load_rating(D, DM, ALPHA, Z) == pytest.approx(17410.9, rel=2e-5)
 
 
+def test_basic_dynamic_load_rating_reduced_for_groove_radii_above_the_table():
+    # ISO 281 Table 1 holds for f_i <= 0.52, f_o <= 0.53 (ISO/TR 1281-1); the 7008C-class bearing
+    # has f_i = 0.54, so f_c is reduced by the ratio of the Lundberg-Palmgren bearing ratings
+    # Q_c = (Q_ci^(-10/3) + Q_co^(-10/3))^(-3/10) with its own and with the table's conformities
+    # (the factor b_m 98.1 (gamma / cos a)^0.3 D^1.8 Z^(-1/3) common to both raceways cancels):
+    #   gamma = 0.127788 (above); (2f/(2f-1))^0.41: 0.52 -> 3.803112, 0.53 -> 3.245887,
+    #   0.54 -> 2.906945; inner (1-g)^1.39/(1+g)^(1/3) = 0.794429, outer (1+g)^1.39/(1-g)^(1/3)
+    #   = 1.237055
+    #   own:   inner 2.906945 * 0.794429 = 2.309361, outer 3.245887 * 1.237055 = 4.015341
+    #          (2.309361^(-10/3) + 4.015341^(-10/3))^(-0.3) = 2.209814
+    #   table: inner 3.803112 * 0.794429 = 3.021302, outer 4.015341
+    #          (3.021302^(-10/3) + 4.015341^(-10/3))^(-0.3) = 2.738590
+    #   factor = 2.209814 / 2.738590 = 0.806917; C_r = 17 410.9 * 0.806917 = 14 049.2 N
+    ratio = life.groove_radius_factor(D, DM, 0.54, 0.53, ALPHA, Z)
+    assert ratio == pytest.approx(0.806917, rel=1e-5)
+    rated = life.basic_dynamic_load_rating(D, DM, ALPHA, Z, 1, 0.54, 0.53)
+    assert rated == pytest.approx(14049.2, rel=2e-5)
+    # radii at or below the table's do not raise the rating (the 209: f_i = f_o = 0.52)
+    assert life.groove_radius_factor(D, DM, 0.52, 0.52, ALPHA, Z) == 1.0
+    assert life.basic_dynamic_load_rating(D, DM, ALPHA, Z, 1, 0.51, 0.515) == pytest.approx(
+        17410.9, rel=2e-5
+    )
+
+
+def test_iso281_and_reference_life_agree_for_a_pure_axial_load_on_the_spindle_bearing():
+    """Both standards describe a pure axial load alike (every ball loaded equally), so with the
+    bearing's own conformities (f_i = 0.54) in both they agree: L_10 of the reduced C_r (14 049.2
+    N, above) at P = Y F_a = 1.342165 * 500 = 671.08 N is (14 049.2 / 671.08)^3 = 9 175.3 million
+    revolutions; L_10r at 17 deg = 9 646.2 (test_reference_life_uniform_axial_load): 1.05 times
+    it. Table 1's f_c alone (that of f_i = 0.52) gives L_10 = 17 463.7, 45 % above L_10r."""
+    c = life.basic_dynamic_load_rating(D, DM, ALPHA, Z, 1, 0.54, 0.53)
+    l10 = life.basic_rating_life(c, life.equivalent_dynamic_load(500.0, 0.0, ALPHA, D, Z))
+    assert l10 == pytest.approx(9175.35, rel=1e-4)
+    assert 9646.18 / l10 == pytest.approx(1.0, abs=0.06)
+
+
 def test_basic_dynamic_load_rating_large_ball_uses_eq_3():
     # D_w = 30 mm > 25.4 mm: C_r = 3.647 b_m f_c (cos alpha)^0.7 Z^(2/3) D_w^1.4
     #   alpha = 40 deg, D_pw = 30 cos40 / 0.1 = 229.81 mm -> gamma = 0.10, f_c = 55.5
