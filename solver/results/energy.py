@@ -16,13 +16,13 @@ is dimensionless. It is small when the integrator resolves the forces the losses
 power come from; a residual above :data:`RESIDUAL_LIMIT` means the tolerance is too loose for
 them (or the window too short to average out the ball passages).
 
-**The first shaft revolution is left out** of the balance of a run at least two revolutions long
-(shaft period: the ``shaft_period_s`` attribute), even when the analysed window starts earlier (a
-run whose contact angles and spin settle at once, such as the 209 under radial load): the run
-starts from the quasi-static state and rings down in its first revolution, and the energy its
-normal-contact damping takes and the contacts' elastic energy are not terms of the balance (the
-209-radial case at tolerance 1e-5: drive power - losses 19 W in the first revolution, within
-0.3 W of zero in each later one; losses 59 W).
+**The first shaft revolution is left out** of a run at least two revolutions long
+(:func:`ring_down_end`; shaft period: the ``shaft_period_s`` attribute), as from every mean over
+the analysed window (:func:`solver.results.summary.analysis_start`): the run starts from the
+quasi-static state and rings down in its first revolution, and the energy its normal-contact
+damping takes and the contacts' elastic energy are not terms of the balance (the 209-radial case
+at tolerance 1e-5: drive power - losses 19 W in the first revolution, within 0.3 W of zero in
+each later one; losses 59 W).
 """
 
 from __future__ import annotations
@@ -63,6 +63,17 @@ def _integral(values: np.ndarray, times: np.ndarray) -> float:
     return float(0.5 * np.sum((values[1:] + values[:-1]) * np.diff(times)))
 
 
+def ring_down_end(times: np.ndarray, period: float) -> float:
+    """End [s] of the ring-down of a dynamic run: the end of its first shaft revolution
+    (``period`` [s]) when the run is at least two revolutions long, else 0. A run starts from the
+    quasi-static state and rings down into its contact damping in that revolution (the 209-radial
+    case at tolerance 1e-5: drive power - losses 19 W in the first revolution, within 0.3 W of
+    zero in each later one, losses 59 W), so no mean over the run includes it."""
+    if math.isfinite(period) and times.size and times[-1] >= 2.0 * period:
+        return period
+    return 0.0
+
+
 def balance_start_time(ds: xr.Dataset, start_time: float) -> float:
     """Start [s] of the balance's window of a dynamic result whose analysed window starts at
     ``start_time`` [s]: ``start_time``, or the end of the first shaft revolution when that is
@@ -70,9 +81,7 @@ def balance_start_time(ds: xr.Dataset, start_time: float) -> float:
     the balance (drive power, losses, friction torque) are means over the same window."""
     times = np.asarray(ds["time"].values, dtype=float)
     period = float(ds.attrs.get("shaft_period_s", math.nan))
-    if math.isfinite(period) and times.size and times[-1] >= 2.0 * period:
-        return max(start_time, period)  # the ring-down from the quasi-static start
-    return start_time
+    return max(start_time, ring_down_end(times, period))
 
 
 def energy_balance(ds: xr.Dataset, start_time: float) -> EnergyBalance | None:

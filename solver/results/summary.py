@@ -70,6 +70,7 @@ import numpy as np
 import xarray as xr
 
 from .dataset import ring_speeds
+from .energy import ring_down_end
 from .life import LIFE_METRICS, rating_life
 from .loaded import loaded_mask
 from .variables import dimension_coordinate, variable
@@ -265,13 +266,17 @@ def settling(ds: xr.Dataset) -> Settling:
 
 def analysis_start(ds: xr.Dataset, skip_fraction: float = UNSETTLED_SKIP_FRACTION):
     """(index of the first analysed time sample, Settling) of a dynamic result: the settling time
-    when the run settled, else the sample at ``skip_fraction`` of the run."""
+    when the run settled, else the sample at ``skip_fraction`` of the run; never before
+    :func:`ring_down_end`."""
     times = np.asarray(ds["time"].values, dtype=float)
     state = settling(ds)
     if state.settled:
         first = int(np.searchsorted(times, state.settling_time - 1e-9 * state.period))
     else:
         first = int(math.floor(skip_fraction * (times.size - 1)))
+    ring_down = ring_down_end(times, state.period)
+    if ring_down > 0.0:
+        first = max(first, int(np.searchsorted(times, ring_down - 1e-9 * state.period)))
     return min(first, times.size - 1), state
 
 
@@ -286,7 +291,9 @@ def window_text(ds: xr.Dataset, first: int, state: Settling, skip_fraction: floa
         if math.isfinite(period)
         else f"t from {start:.6g} s to {end:.6g} s"
     )
-    if state.settled:
+    if state.settled and start > state.settling_time + 1e-9 * period:
+        why = "from the end of the first shaft revolution on (the ring-down from the start)"
+    elif state.settled:
         why = "from the settling time on"
     else:
         why = f"the run did not settle: the first {skip_fraction:.0%} of the run is skipped"

@@ -111,7 +111,7 @@ def dynamic_result(revolutions: float, spin_to_roll=None, angle_offset=None, mis
 
 
 def test_a_track_fixed_in_space_is_a_line_on_the_outer_and_a_band_on_the_inner_ring():
-    ds = dynamic_result(4.0)
+    ds = dynamic_result(5.0)  # 4 revolutions after the ring-down
     m = summary.trajectory_summary(ds)
     line = 2 * AMPLITUDE * math.cos(math.radians(5.0))
     for race in ("inner", "outer"):
