@@ -649,7 +649,7 @@ FIELDS: list[Field] = [
         default=OPTIONAL,
         minimum=0.0,
         maximum=1.0e8,
-        reason="a flow of oil into the bearing is not negative (0: air only)",
+        reason="a flow of oil into the bearing is not negative; 0 is air only",
         reason_high="100 litres an hour is a jet, not oil-air: use method oil_jet",
     ),
     Field(
@@ -661,7 +661,7 @@ FIELDS: list[Field] = [
         default=OPTIONAL,
         minimum=0.0,
         maximum=1000.0,
-        reason="a flow of oil into the bearing is not negative (0: air only)",
+        reason="a flow of oil into the bearing is not negative; 0 is air only",
         reason_high="a cubic metre a minute is beyond the jets of any ball bearing",
     ),
     Field(

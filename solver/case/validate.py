@@ -620,7 +620,7 @@ def _check_lubrication_method(v: dict, given: set, problems: list[Problem]) -> N
     p = "lubricant."
     for name in sorted({k for keys in METHOD_KEYS.values() for k in keys}):
         key = p + name
-        if key not in given or name in METHOD_KEYS.get(method, ()):
+        if key not in v or name in METHOD_KEYS.get(method, ()):
             continue
         readers = " or ".join(f'"{m}"' for m, keys in METHOD_KEYS.items() if name in keys)
         now = f'lubricant.method = "{method}"' if method else "the case names no lubricant.method"
