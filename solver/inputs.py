@@ -127,8 +127,18 @@ class LubricantInputs:
     thermal_conductivity: float  # W/(m K)
     thermal_softening: float  # c [1/K] of the film's shear heating, 0 = isothermal film
     density: float  # kg/m^3
-    oil_volume_fraction: float
+    oil_volume_fraction: float  # of the oil-air mixture around the balls and cage (drag)
     oil: str = ""  # the named oil (lubricant.oil) the values come from, "" for none
+    method: str = "oil_jet"  # lubricant.method, or the one assumed (docs/lubrication.md)
+    method_assumed: bool = False  # True: the case names no method, ``method`` was assumed
+    supply_viscosity: float = 0.0  # Pa s of the oil in the mixture and on the cage land; 0: inlet
+    mixture_basis: str = ""  # how oil_volume_fraction and the land flooding follow, in words
+
+    @property
+    def mixture_viscosity_of_oil(self) -> float:
+        """Viscosity [Pa s] of the oil in the drag mixture and on the cage land: that of the
+        supply (jet temperature) when given, else the inlet viscosity."""
+        return self.supply_viscosity if self.supply_viscosity > 0.0 else self.viscosity
 
     def rheology_array(self):
         """Parameter array of solver.physics.rheology (its RH_* slots, SI) of this lubricant."""
@@ -145,20 +155,30 @@ class LubricantInputs:
         return r
 
     @property
+    def lubrication_text(self) -> str:
+        """The lubrication method and what follows from it, in words."""
+        named = "assumed (the case names no lubricant.method)" if self.method_assumed else "given"
+        return f"lubrication {self.method}, {named}: {self.mixture_basis}"
+
+    @property
     def description(self) -> str:
-        """Where the lubricant data come from, in words (results attribute ``lubricant``)."""
+        """Where the lubricant data come from and how the bearing is lubricated, in words
+        (results attribute ``lubricant``)."""
         if self.given:
             if self.oil:
-                return f"from the case [lubricant], named oil {self.oil} (solver/data/oils.toml)"
-            return "from the case [lubricant]"
-        t = self.traction
-        return (
-            "no [lubricant] in the case: the default oil of the case schema was used (viscosity "
-            f"{self.viscosity:g} Pa s at the inlet, traction model {self.traction_model}, "
-            f"pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
-            f"/GPa, traction mu_zero {t.mu_zero:g}, mu_max {t.mu_max:g} at {t.slip_at_max:g} m/s, "
-            f"mu_infinity {t.mu_infinity:g}; docs/case-format.md)"
-        )
+                source = f"from the case [lubricant], named oil {self.oil} (solver/data/oils.toml)"
+            else:
+                source = "from the case [lubricant]"
+        else:
+            t = self.traction
+            source = (
+                "no [lubricant] in the case: the default oil of the case schema was used "
+                f"(viscosity {self.viscosity:g} Pa s at the inlet, traction model "
+                f"{self.traction_model}, pressure-viscosity {self.pressure_viscosity / PER_GPA:g} "
+                f"/GPa, traction mu_zero {t.mu_zero:g}, mu_max {t.mu_max:g} at "
+                f"{t.slip_at_max:g} m/s, mu_infinity {t.mu_infinity:g}; docs/case-format.md)"
+            )
+        return f"{source}; {self.lubrication_text}"
 
 
 @dataclass(frozen=True)
@@ -249,8 +269,14 @@ def operating_point(operating) -> OperatingPoint:
     )
 
 
-def cage_inputs(cage) -> CageInputs:
-    """SI cage of a case's ``[cage]`` section (mm and g)."""
+def cage_inputs(cage, land_flooding: float | None = None) -> CageInputs:
+    """SI cage of a case's ``[cage]`` section (mm and g). ``land_flooding``: the flooded fraction
+    of the guiding land that the lubrication method gives (:func:`lubrication`), used when the
+    case does not give ``cage.land_flooding``."""
+    if cage.land_flooding is not None:
+        land_flooding = cage.land_flooding
+    if land_flooding is None:
+        raise ValueError("cage.land_flooding is not given: pass the lubrication method's value")
     return CageInputs(
         guidance=str(cage.guidance),
         pocket_clearance=float(cage.pocket_diametral_clearance_mm) * MM,
@@ -258,15 +284,109 @@ def cage_inputs(cage) -> CageInputs:
         mass=float(cage.mass_g) * GRAM,
         pocket_friction=float(cage.pocket_friction),
         guide_land_width=float(cage.guide_land_width_mm) * MM,
-        land_flooding=float(cage.land_flooding),
+        land_flooding=float(land_flooding),
     )
 
 
-def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
+@dataclass(frozen=True)
+class Lubrication:
+    """What the lubrication method gives (docs/lubrication.md): the oil volume fraction of the
+    mixture the balls and cage move through, the flooded fraction of the cage's guiding land, the
+    viscosity [Pa s] of the supplied oil (0: the inlet viscosity) and the basis of each, in
+    words."""
+
+    method: str
+    assumed: bool
+    oil_volume_fraction: float
+    land_flooding: float
+    supply_viscosity: float
+    basis: str
+
+
+def lubrication(case) -> Lubrication:
+    """The :class:`Lubrication` of a validated case: ``lubricant.method`` (or the schema's
+    assumed method) with its supply keys, the case's ``oil_volume_fraction`` and
+    ``cage.land_flooding`` overriding what the method gives."""
+    from solver.case import schema  # here: solver.case imports this module
+    from solver.physics import lubrication as lub
+    from solver.physics.rheology import viscosity_at_temperature
+
+    oil, bearing, op = case.lubricant, case.bearing, case.operating
+    assumed = oil.method is None
+    method = schema.ASSUMED_METHOD if assumed else str(oil.method)
+    supply_viscosity = 0.0
+    D = float(bearing.ball_diameter_mm) * MM
+    dm = float(bearing.pitch_diameter_mm) * MM
+    if assumed:
+        fraction = schema.ASSUMED_OIL_VOLUME_FRACTION
+        basis = f"oil volume fraction {fraction:g} assumed"
+    elif method in ("oil_air", "oil_mist", "oil_jet"):
+        if method == "oil_jet":
+            flow_text = f"{oil.jet_flow_l_min:g} L/min" if oil.jet_flow_l_min is not None else ""
+            flow = None if oil.jet_flow_l_min is None else oil.jet_flow_l_min * 1e-3 / 60.0
+            if oil.jet_temperature_C is not None:
+                supply_viscosity = viscosity_at_temperature(
+                    float(oil.viscosity_Pas),
+                    float(oil.reference_temperature_C),
+                    float(oil.temperature_viscosity_per_K),
+                    float(oil.jet_temperature_C),
+                )
+        else:
+            flow_text = f"{oil.oil_flow_mm3_h:g} mm^3/h" if oil.oil_flow_mm3_h is not None else ""
+            flow = None if oil.oil_flow_mm3_h is None else oil.oil_flow_mm3_h * 1e-9 / 3600.0
+        if flow is None and oil.oil_volume_fraction is None:
+            raise ValueError(f"lubricant.method = {method!r} needs its oil flow (validation)")
+        if flow is None:
+            fraction, basis = float(oil.oil_volume_fraction), ""
+        else:
+            geometry = bearing_geometry(case)
+            cage_speed = lub.epicyclic_cage_speed(
+                rpm_to_rad_s(op.inner_ring_speed_rpm),
+                rpm_to_rad_s(op.outer_ring_speed_rpm),
+                dm,
+                D,
+                geometry.free_contact_angle,
+            )
+            cavity = lub.cavity_volume(dm, D, int(bearing.ball_count))
+            fraction = lub.supply_oil_fraction(flow, cage_speed, cavity)
+            basis = (
+                f"oil flow {flow_text} held for one cage revolution in the free cavity of "
+                f"{cavity * 1e6:.4g} cm^3: oil volume fraction {fraction:.3g}"
+            )
+    elif method == "oil_bath":
+        level = float(oil.oil_level_mm) * MM if oil.oil_level_mm is not None else None
+        if level is None and oil.oil_volume_fraction is None:
+            raise ValueError("lubricant.method = 'oil_bath' needs its oil level (validation)")
+        fraction = 0.0 if level is None else lub.bath_oil_fraction(level, dm, D)
+        basis = (
+            ""
+            if level is None
+            else f"bath level {oil.oil_level_mm:g} mm: orbit-averaged immersed ball volume "
+            f"fraction {fraction:.3g}"
+        )
+    else:  # grease
+        fraction = schema.GREASE_OIL_VOLUME_FRACTION
+        basis = f"oil volume fraction {fraction:g} of a run-in grease fill (an estimate)"
+    if oil.oil_volume_fraction is not None:
+        fraction = float(oil.oil_volume_fraction)
+        basis = f"oil volume fraction {fraction:g} given (lubricant.oil_volume_fraction)"
+    flooded = method in ("oil_jet", "oil_bath")
+    flooding = schema.FLOODED_LAND_FLOODING if flooded else schema.STARVED_LAND_FLOODING
+    if case.cage.land_flooding is not None:
+        flooding = float(case.cage.land_flooding)
+        basis += f"; cage land flooding {flooding:g} given (cage.land_flooding)"
+    else:
+        state = "flooded" if flooded else "starved (an estimate)"
+        basis += f"; cage land {state}, flooding {flooding:g}"
+    return Lubrication(method, assumed, fraction, flooding, supply_viscosity, basis)
+
+
+def lubricant_inputs(lubricant, given: bool, method: Lubrication) -> LubricantInputs:
     """SI lubricant of a case's ``[lubricant]`` section (Pa s, 1/GPa, m/s, MPa, GPa); the
     rheology values are taken from the reference to the inlet temperature
     (solver.physics.rheology.rheology_at_temperature). The thermal softening coefficient is the
-    limiting shear stress's temperature coefficient, 0 when ``thermal_softening`` is false."""
+    limiting shear stress's temperature coefficient, 0 when ``thermal_softening`` is false.
+    ``method``: the case's :class:`Lubrication` (:func:`lubrication`)."""
     t = lubricant.traction
     inlet = rheology_at_temperature(
         float(lubricant.reference_temperature_C),
@@ -303,8 +423,12 @@ def lubricant_inputs(lubricant, given: bool) -> LubricantInputs:
         thermal_conductivity=float(lubricant.thermal_conductivity_W_mK),
         thermal_softening=softening if bool(lubricant.thermal_softening) else 0.0,
         density=float(lubricant.density_kg_m3),
-        oil_volume_fraction=float(lubricant.oil_volume_fraction),
+        oil_volume_fraction=float(method.oil_volume_fraction),
         oil=lubricant.oil or "",
+        method=method.method,
+        method_assumed=method.assumed,
+        supply_viscosity=method.supply_viscosity,
+        mixture_basis=method.basis,
     )
 
 
@@ -324,11 +448,12 @@ def simulation_inputs(simulation) -> SimulationInputs:
 
 def to_inputs(case) -> Inputs:
     """SI :class:`Inputs` of a validated :class:`solver.case.Case`."""
+    lubricated = lubrication(case)
     return Inputs(
         geometry=bearing_geometry(case),
         operating=operating_point(case.operating),
-        cage=cage_inputs(case.cage),
-        lubricant=lubricant_inputs(case.lubricant, case.lubricant_given),
+        cage=cage_inputs(case.cage, lubricated.land_flooding),
+        lubricant=lubricant_inputs(case.lubricant, case.lubricant_given, lubricated),
         simulation=simulation_inputs(case.simulation),
         case_text=case.to_toml(),
         designation=str(case.bearing.designation or ""),

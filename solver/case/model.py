@@ -19,7 +19,14 @@ from solver.errors import Problem
 from solver.inputs import bearing_geometry, material_from_table
 from solver.materials import BUILTIN_MATERIALS, Material
 
-from .schema import FIELDS, MATERIAL_FIELDS, OPTIONAL
+from .schema import (
+    ASSUMED_METHOD,
+    ASSUMED_OIL_VOLUME_FRACTION,
+    FIELDS,
+    LUBRICATION_METHODS,
+    MATERIAL_FIELDS,
+    OPTIONAL,
+)
 from .validate import CaseValues, validate
 from .writer import case_to_toml
 
@@ -165,7 +172,7 @@ class Case:
         shoulder, so the truncation check reports every contact of that race as truncated. (A land
         at or beyond the pitch diameter is not a warning but a validation error.) A
         ``lubricant.traction`` table given while the traction model is the rheology, which does not
-        read it.
+        read it. No ``lubricant.method``: the method assumed (and its mixture) is named.
         """
         g = self.geometry()
         found: list[Problem] = []
@@ -178,6 +185,18 @@ class Case:
                     "not read it (the traction comes from the oil's rheology); set "
                     'lubricant.traction_model = "slip_curve" to use the table, or remove the table',
                     ("lubricant.traction_model",),
+                )
+            )
+        if self.lubricant.method is None:
+            found.append(
+                Problem(
+                    "lubricant.method",
+                    "lubricant.method is not given: the drag and the cage land are those of "
+                    f'"{ASSUMED_METHOD}" lubrication with an oil-air mixture of '
+                    f"{ASSUMED_OIL_VOLUME_FRACTION:g} oil by volume and a flooded cage land "
+                    "(docs/lubrication.md); name the method ("
+                    + ", ".join(LUBRICATION_METHODS)
+                    + ") and its supply so that they follow it",
                 )
             )
         checks = (

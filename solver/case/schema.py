@@ -148,6 +148,37 @@ def _cage_mass_g(bearing) -> float:
     return CAGE_DENSITY_ESTIMATE * math.pi * dm * d * 0.3 * d * 1e3
 
 
+# ---- lubrication method (docs/lubrication.md) --------------------------------------------------
+#: The lubrication methods of lubricant.method; oil_mist is read as oil_air (the same law).
+LUBRICATION_METHODS = ("oil_air", "oil_mist", "oil_jet", "oil_bath", "grease")
+#: The method assumed when a case names none: oil jet with a fixed oil fraction of the mixture
+#: and a flooded cage land, the model of cases written before the method was an input.
+ASSUMED_METHOD = "oil_jet"
+ASSUMED_OIL_VOLUME_FRACTION = 0.01
+#: Oil volume fraction of the mixture in a grease-lubricated bearing [E]: after running in, the
+#: grease lies beside the balls' path and the balls and cage move through air that carries bled
+#: base oil; a tenth of the 1 % assumed for jet lubrication (docs/lubrication.md).
+GREASE_OIL_VOLUME_FRACTION = 0.001
+#: Flooded fraction of the cage's guiding land with oil-air, oil mist or grease [E]: a starved
+#: film (docs/lubrication.md); jets and baths flood the land (1).
+STARVED_LAND_FLOODING = 0.3
+FLOODED_LAND_FLOODING = 1.0
+#: The keys each method reads (lubricant.*), and those it needs unless oil_volume_fraction is given.
+METHOD_KEYS = {
+    "oil_air": ("oil_flow_mm3_h",),
+    "oil_mist": ("oil_flow_mm3_h",),
+    "oil_jet": ("jet_flow_l_min", "jet_temperature_C"),
+    "oil_bath": ("oil_level_mm",),
+    "grease": (),
+}
+METHOD_NEEDS = {
+    "oil_air": "oil_flow_mm3_h",
+    "oil_mist": "oil_flow_mm3_h",
+    "oil_jet": "jet_flow_l_min",
+    "oil_bath": "oil_level_mm",
+}
+
+
 _PROVENANCES = ("estimated", "manufacturer", "literature", "measured")
 
 # What the inner and outer versions of a key share: bounds and the reasons for them.
@@ -385,8 +416,11 @@ FIELDS: list[Field] = [
         "float",
         "Land flooding",
         "Fraction of the guiding land's width that runs in oil (1 = fully flooded, 0 = dry); "
-        "the land's hydrodynamic force and friction scale with it.",
-        default=1.0,
+        "the land's hydrodynamic force and friction scale with it. Absent: it follows "
+        "lubricant.method (docs/lubrication.md): 1 for oil_jet and oil_bath, "
+        f"{STARVED_LAND_FLOODING:g} (a starved land, an estimate) for oil_air, oil_mist and "
+        "grease; a value given overrides it.",
+        default=OPTIONAL,
         minimum=0.0,
         maximum=1.0,
         reason="a flooded fraction lies between 0 and 1",
@@ -600,6 +634,72 @@ FIELDS: list[Field] = [
         reason_high="oils conduct about 0.1 to 0.2 W/m/K",
     ),
     Field(
+        "lubricant.method",
+        "choice",
+        "Lubrication method",
+        "How oil reaches the bearing; the drag of the oil-air mixture on the balls and the cage, "
+        "the cage land's flooding and the SKF friction estimate follow it (docs/lubrication.md). "
+        "oil_air and oil_mist: a small oil flow carried by air (oil_flow_mm3_h); oil_jet: "
+        "jets through the bearing (jet_flow_l_min, jet_temperature_C); oil_bath: the lowest "
+        "balls dip into a bath (oil_level_mm); grease. Absent: "
+        f'"{ASSUMED_METHOD}" is assumed with a mixture of {ASSUMED_OIL_VOLUME_FRACTION:g} oil by '
+        "volume and a flooded cage land, and the case warns.",
+        default=OPTIONAL,
+        choices=LUBRICATION_METHODS,
+        reason="the lubrication method is one of the listed names",
+    ),
+    Field(
+        "lubricant.oil_flow_mm3_h",
+        "float",
+        "Oil flow (oil-air, oil mist)",
+        "Oil supplied to this bearing by oil-air or oil-mist lubrication (method oil_air or "
+        "oil_mist only).",
+        unit="mm3/h",
+        default=OPTIONAL,
+        minimum=0.0,
+        maximum=1.0e8,
+        reason="a flow of oil into the bearing is not negative; 0 is air only",
+        reason_high="100 litres an hour is a jet, not oil-air: use method oil_jet",
+    ),
+    Field(
+        "lubricant.jet_flow_l_min",
+        "float",
+        "Jet oil flow",
+        "Oil flow of the jets into this bearing (method oil_jet only).",
+        unit="L/min",
+        default=OPTIONAL,
+        minimum=0.0,
+        maximum=1000.0,
+        reason="a flow of oil into the bearing is not negative; 0 is air only",
+        reason_high="a cubic metre a minute is beyond the jets of any ball bearing",
+    ),
+    Field(
+        "lubricant.jet_temperature_C",
+        "float",
+        "Jet oil temperature",
+        "Temperature of the jets' oil (method oil_jet only): the oil in the mixture around the "
+        "balls and cage and on the cage land has its viscosity there. Absent: the inlet "
+        "temperature.",
+        unit="degC",
+        default=OPTIONAL,
+        minimum=-60.0,
+        maximum=300.0,
+        reason="bearing oils run between about -60 and 300 degC",
+    ),
+    Field(
+        "lubricant.oil_level_mm",
+        "float",
+        "Oil bath level",
+        "Height of the bath's surface above the lowest point of the outer raceway, horizontal "
+        "shaft (method oil_bath only); e.g. half a ball diameter: the centre of the lowest ball.",
+        unit="mm",
+        default=OPTIONAL,
+        minimum=0.0,
+        maximum=21000.0,
+        reason="the level is measured up from the lowest point of the outer raceway",
+        reason_high="a level above a 21 m bearing submerges any ball bearing",
+    ),
+    Field(
         "lubricant.density_kg_m3",
         "float",
         "Oil density",
@@ -616,9 +716,10 @@ FIELDS: list[Field] = [
         "lubricant.oil_volume_fraction",
         "float",
         "Oil volume fraction",
-        "Volume fraction of oil in the oil-air mixture around the balls and cage (drag); jet and "
-        "mist lubrication run at about 1 percent or less.",
-        default=0.01,
+        "Volume fraction of oil in the oil-air mixture around the balls and cage (drag). Absent: "
+        "it follows lubricant.method and its supply (docs/lubrication.md); a value given "
+        "overrides it.",
+        default=OPTIONAL,
         minimum=0.0,
         maximum=1.0,
         reason="a volume fraction lies between 0 and 1",

@@ -29,6 +29,8 @@ from solver.materials import BUILTIN_MATERIALS
 from .schema import (
     FIELDS,
     MATERIAL_FIELDS,
+    METHOD_KEYS,
+    METHOD_NEEDS,
     OPTIONAL,
     OPTIONAL_SECTIONS,
     REQUIRED,
@@ -607,6 +609,41 @@ def _check_traction(v: dict, given: set, problems: list[Problem]) -> None:
         )
 
 
+def _check_lubrication_method(v: dict, given: set, problems: list[Problem]) -> None:
+    """Each method's own keys only with that method, and the key a method needs to size its oil
+    supply (unless ``oil_volume_fraction`` gives the mixture directly). A method given with an
+    invalid value was reported already: its keys are not checked against it."""
+    method_key = "lubricant.method"
+    if method_key in given and method_key not in v:
+        return
+    method = v.get(method_key)
+    p = "lubricant."
+    for name in sorted({k for keys in METHOD_KEYS.values() for k in keys}):
+        key = p + name
+        if key not in v or name in METHOD_KEYS.get(method, ()):
+            continue
+        readers = " or ".join(f'"{m}"' for m, keys in METHOD_KEYS.items() if name in keys)
+        now = f'lubricant.method = "{method}"' if method else "the case names no lubricant.method"
+        _problem(
+            problems,
+            key,
+            f"{key} = {show(v.get(key, '?'))} is read only with lubricant.method = {readers}, "
+            f"and {now}; set the method that supplies it or remove the key",
+            related=(method_key,),
+        )
+    need = METHOD_NEEDS.get(method)
+    fraction = p + "oil_volume_fraction"
+    if need and p + need not in given and fraction not in given:
+        f = next(f for f in FIELDS if f.key == p + need)
+        _problem(
+            problems,
+            p + need,
+            f'{p}{need} is missing: lubricant.method = "{method}" needs it to size the oil in the '
+            f"bearing ({f.allowed_text()}: {f.help}); or give {fraction} directly",
+            related=(method_key,),
+        )
+
+
 def _default(key: str):
     """Schema default of a key with a plain default value."""
     return next(f.default for f in FIELDS if f.key == key)
@@ -685,6 +722,7 @@ def validate(data) -> CaseValues:
     _check_bearing_rules(values, given, problems)
     _check_operating_rules(data, values, given, problems)
     _check_traction(values, given, problems)
+    _check_lubrication_method(values, given, problems)
     if problems:
         raise CaseError(problems)
     return _fill(data, values, users)

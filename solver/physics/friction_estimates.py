@@ -26,9 +26,11 @@ Roller Bearing Engineering*):
   ``phi_bl = exp(-2.6e-8 (n nu)^1.4 d_m)``;
 - ``G_rr``, ``G_sl`` of deep groove and angular contact ball bearings from the series constants
   R1..R3, S1..S3 (:data:`SKF_SERIES`);
-- open bearings (``M_seal = 0``); the drag term is the catalogue's for an oil bath or oil jet and
-  is not defined for the oil-air lubrication racetrace's drag model assumes, so no drag term is
-  added (the result's note says so).
+- ``K_rs`` by lubrication method: 3e-8 for a low oil bath or oil jet, 6e-8 for grease or
+  oil-air (:data:`SKF_K_RS`);
+- open bearings (``M_seal = 0``); the drag term is the catalogue's for an oil bath (or jets):
+  the values of its diagram were not among the sources found, and none is defined for oil-air or
+  grease, so no drag term is added (the result's note says so).
 """
 
 from __future__ import annotations
@@ -189,6 +191,16 @@ SKF_SERIES: dict[str, SkfSeries] = {
 }
 #: K_rs of the replenishment factor for oil-air (and grease) lubrication.
 SKF_K_RS_OIL_AIR = 6.0e-8
+#: K_rs of the replenishment factor for a low oil bath or oil jet.
+SKF_K_RS_OIL_BATH_JET = 3.0e-8
+#: K_rs by lubrication method (lubricant.method; oil mist is oil-air lubrication).
+SKF_K_RS = {
+    "oil_air": SKF_K_RS_OIL_AIR,
+    "oil_mist": SKF_K_RS_OIL_AIR,
+    "grease": SKF_K_RS_OIL_AIR,
+    "oil_jet": SKF_K_RS_OIL_BATH_JET,
+    "oil_bath": SKF_K_RS_OIL_BATH_JET,
+}
 #: Boundary-film friction coefficient (catalogue: about 0.15, depends on the additive package).
 SKF_MU_BL = 0.15
 #: Full-film friction coefficient of ball bearings with mineral and with synthetic oils.
@@ -288,7 +300,8 @@ def skf_torque(
     k_rs: float = SKF_K_RS_OIL_AIR,
     mu_bl: float = SKF_MU_BL,
 ) -> SkfTorque:
-    """The SKF model's friction torque of an open bearing, oil-air lubricated (no drag term).
+    """The SKF model's friction torque of an open bearing, without the drag term; ``k_rs`` of the
+    lubrication method (:data:`SKF_K_RS`).
 
     Lengths [m] (d_m = (d + D) / 2 as the catalogue defines it), ``kinematic_viscosity`` [m^2/s]
     at the operating temperature, ``speed`` [rad/s] of one ring relative to the other, loads [N],
@@ -321,7 +334,9 @@ __all__ = [
     "DEEP_GROOVE",
     "PALMGREN_F0_OIL_MIST",
     "PALMGREN_F1",
+    "SKF_K_RS",
     "SKF_K_RS_OIL_AIR",
+    "SKF_K_RS_OIL_BATH_JET",
     "SKF_MU_BL",
     "SKF_MU_EHL",
     "SKF_SERIES",

@@ -2,9 +2,11 @@
 in its results beside the model's own friction torque.
 
 Both estimates take the applied loads, the speed of one ring relative to the other and the oil's
-kinematic viscosity at the inlet temperature (dynamic viscosity / density); they assume an open
-bearing lubricated by oil-air or oil mist, as racetrace's drag model does. What bearing it is comes
-from ``bearing.designation``:
+kinematic viscosity at the inlet temperature (dynamic viscosity / density) of an open bearing;
+the SKF model's replenishment constant K_rs follows the case's lubrication method
+(``lubricant.method``, docs/lubrication.md), and Palmgren's f0 is that of oil mist whatever the
+method (the only f0 values transcribed, docs/sources.md). What bearing it is comes from
+``bearing.designation``:
 
 - a deep groove ball bearing: a designation ``60xx``, ``62xx``, ``63xx``, ``64xx``, or a basic
   number ``2xx`` / ``3xx`` with the words "deep groove" (series 62 / 63);
@@ -149,8 +151,8 @@ def estimate(inputs, operating=None) -> tuple[dict[str, float], dict[str, str]]:
     values["friction_torque_palmgren"] = m0 + m1
     kind_text = {fe.DEEP_GROOVE: "a deep groove", fe.ANGULAR_CONTACT: "an angular contact"}
     notes["friction_torque_palmgren"] = (
-        f"Palmgren M0 + M1 for {kind_text[identity.kind]} ball bearing, oil mist / oil-air "
-        f"(f0 = {f0:g}): "
+        f"Palmgren M0 + M1 for {kind_text[identity.kind]} ball bearing, f0 = {f0:g} of oil "
+        f"mist / oil-air{_f0_method_text(lubricant.method)}: "
         f"M0 = {m0 * 1e3:.4g} N mm, M1 = {m1 * 1e3:.4g} N mm (f1 = {f1:.3g}, P1 = {p1:.4g} N, "
         f"P0/C0 = {p0:.4g}/{c0:.4g} N with C0 from the ISO 76 4.2 GPa stress); {viscosity_text}"
         + (
@@ -176,8 +178,9 @@ def estimate(inputs, operating=None) -> tuple[dict[str, float], dict[str, str]]:
     else:
         oil = "synthetic" if lubricant.oil in SYNTHETIC_OILS else "mineral"
         mu_ehl = fe.SKF_MU_EHL[oil]
+        k_rs = fe.SKF_K_RS[lubricant.method]
         skf = fe.skf_torque(
-            series, identity.bore, identity.outside_diameter, nu, speed, fr, fa, c0, mu_ehl
+            series, identity.bore, identity.outside_diameter, nu, speed, fr, fa, c0, mu_ehl, k_rs
         )
         values["friction_torque_skf"] = skf.total
         oil_text = (
@@ -189,10 +192,11 @@ def estimate(inputs, operating=None) -> tuple[dict[str, float], dict[str, str]]:
             f"SKF model, series {identity.series} ({series.source}), d = "
             f"{identity.bore * 1e3:g} mm, D = {identity.outside_diameter * 1e3:.4g} mm: M_rr = "
             f"{skf.rolling * 1e3:.4g} N mm (phi_ish = {skf.inlet_shear_factor:.3g}, phi_rs = "
-            f"{skf.replenishment_factor:.3g}, K_rs = {fe.SKF_K_RS_OIL_AIR:g} oil-air), M_sl = "
+            f"{skf.replenishment_factor:.3g}, K_rs = {k_rs:g} for {lubricant.method}"
+            f"{' (assumed)' if lubricant.method_assumed else ''}), M_sl = "
             f"{skf.sliding * 1e3:.4g} N mm (mu_sl = {skf.sliding_friction:.3g}, phi_bl = "
-            f"{skf.boundary_weighting:.3g}, {oil_text}), no drag term (the catalogue's drag is "
-            f"for an oil bath or jet), open bearing; {viscosity_text}"
+            f"{skf.boundary_weighting:.3g}, {oil_text}), {_skf_drag_text(lubricant.method)}, "
+            f"open bearing; {viscosity_text}"
         )
     return values, notes
 
@@ -217,6 +221,23 @@ def estimate_fields(inputs, operating=None) -> EstimateFields:
         {name: {"note": notes[name]} for name in values},
         {f"{name}_note": notes[name] for name in ESTIMATES if name not in values},
     )
+
+
+def _f0_method_text(method: str) -> str:
+    """What Palmgren's f0 assumes, for a method other than oil-air / oil mist."""
+    if method in ("oil_air", "oil_mist"):
+        return ""
+    return f" (the case's method is {method}: its f0 was not transcribed, docs/sources.md)"
+
+
+def _skf_drag_text(method: str) -> str:
+    """Why the SKF estimate has no drag term, for the case's lubrication method."""
+    if method in ("oil_bath", "oil_jet"):
+        return (
+            f"no drag term (the catalogue's drag loss for {method} reads a diagram whose values "
+            "were not among the sources found, docs/lubrication.md)"
+        )
+    return f"no drag term (the catalogue's drag loss is for an oil bath or jet, not {method})"
 
 
 def friction_estimates(inputs, operating=None) -> xr.Dataset:

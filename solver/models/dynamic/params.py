@@ -208,9 +208,11 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         land_k = land_contact_stiffness_estimate(
             cage.guide_land_width, effective_modulus(CAGE_MATERIAL, g.ring_material)
         )
+    # the mixture's oil fraction follows the lubrication method (solver.inputs.lubrication); its
+    # oil has the supply's viscosity (jet temperature) when the case gives one
     mix = lubricant.oil_volume_fraction
     rho_mix = mix * lubricant.density + (1.0 - mix) * AIR_DENSITY
-    eta_mix = mix * lubricant.viscosity + (1.0 - mix) * AIR_VISCOSITY
+    eta_mix = mix * lubricant.mixture_viscosity_of_oil + (1.0 - mix) * AIR_VISCOSITY
     # the case gives no cage section: its side faces are taken to span d_m/2 +- 0.35 D, the band
     # between the estimated shoulders of the rings
     cage_drag = cage_drag_coefficients(
@@ -287,7 +289,7 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
                 cage.guide_land_width,
                 0.5 * cage.guide_clearance,
                 # a partly flooded land: the hydrodynamic force scales with the wetted width
-                lubricant.viscosity * cage.land_flooding,
+                lubricant.mixture_viscosity_of_oil * cage.land_flooding,
                 land_k,
                 cage.mass,
                 guide != L.GUIDE_INNER_RING,

@@ -11,7 +11,7 @@ import pytest
 import tomli_w
 
 from solver.case import FIELDS, MATERIAL_FIELDS, OPTIONAL, REQUIRED, Estimated, parse_case
-from solver.case.schema import Field
+from solver.case.schema import METHOD_NEEDS, Field
 from solver.case.validate import _MISSING, check_value
 from solver.case.writer import toml_value
 
@@ -113,7 +113,10 @@ def test_numbers_reject_text_and_non_finite(f):
 def test_every_choice_is_accepted_and_others_rejected(valid, f):
     case = parse_case(tomli_w.dumps(valid))
     for choice in f.choices:
-        assert _get(case.with_values({f.key: choice}), f.path) == choice
+        # a lubrication method comes with the supply key it needs (docs/lubrication.md)
+        need = METHOD_NEEDS.get(choice) if f.key == "lubricant.method" else None
+        supply = {f"lubricant.{need}": 1.0} if need else {}
+        assert _get(case.with_values({f.key: choice} | supply), f.path) == choice
     problems = []
     assert check_value(f, f.key, "not-a-choice", problems) is _MISSING
 

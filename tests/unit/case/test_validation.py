@@ -480,6 +480,7 @@ def test_lands_off_their_groove_still_load(valid):
             {
                 "bearing.inner_shoulder_diameter_mm": 45.9,
                 "bearing.outer_shoulder_diameter_mm": 62.2,
+                "lubricant.method": "grease",  # named: no warning of an assumed method
             },
         )
     )

@@ -82,7 +82,8 @@ def test_quasistatic_result_stores_the_estimates_and_the_views_show_them():
         assert ds[name].attrs["units"] == "N m" and ds[name].attrs["note"]
         assert float(ds.racetrace.metric(name)) == values[name]
     text = torque_text(ds)
-    assert "Palmgren M0 + M1: 103.8 N mm" in text and "SKF friction model: 143.5 N mm" in text
+    # the 209 case is oil-bath lubricated: K_rs = 3e-8 (143.5 N mm with oil-air's 6e-8)
+    assert "Palmgren M0 + M1: 103.8 N mm" in text and "SKF friction model: 147 N mm" in text
     assert "model" not in text.splitlines()[1]  # a quasi-static result has no torque of its own
     out = torque_json(ds)
     assert out["palmgren_N_m"] == pytest.approx(values["friction_torque_palmgren"])
@@ -102,3 +103,26 @@ def test_an_estimate_left_out_shows_its_reason_not_nan():
     assert "nan" not in text.lower() and "SKF friction model: not available:" in text
     assert torque_json(ds)["skf_N_m"] is None
     assert "hybrid" in torque_json(ds)["notes"]["skf_N_m"]
+
+
+def test_skf_replenishment_constant_follows_the_lubrication_method():
+    """K_rs = 3e-8 for an oil bath or jet, 6e-8 for oil-air or grease (SKF catalogue): the jet-fed
+    218 keeps more of its rolling torque (phi_rs closer to 1) than the same bearing on oil-air,
+    and each note names the constant and the method; no drag term, with the reason."""
+    jet_case = resolve_case("218-heavy-combined")
+    air_case = jet_case.with_values(
+        {
+            "lubricant.method": "oil_air",
+            "lubricant.jet_flow_l_min": None,
+            "lubricant.oil_flow_mm3_h": 500.0,
+        }
+    )
+    jet_values, jet_notes = estimate(to_inputs(jet_case))
+    air_values, air_notes = estimate(to_inputs(air_case))
+    assert jet_values["friction_torque_skf"] > air_values["friction_torque_skf"]
+    assert "K_rs = 3e-08 for oil_jet" in jet_notes["friction_torque_skf"]
+    assert "K_rs = 6e-08 for oil_air" in air_notes["friction_torque_skf"]
+    assert "no drag term" in jet_notes["friction_torque_skf"]
+    assert "were not among the sources found" in jet_notes["friction_torque_skf"]
+    assert "its f0 was not transcribed" in jet_notes["friction_torque_palmgren"]
+    assert "not transcribed" not in air_notes["friction_torque_palmgren"]
