@@ -72,6 +72,7 @@ import xarray as xr
 from .dataset import ring_speeds
 from .life import LIFE_METRICS, rating_life
 from .loaded import loaded_mask
+from .steady_track import field_frame_speed, steady_samples, steady_window_text
 from .variables import dimension_coordinate, variable
 
 AZIMUTH_BINS = 36
@@ -334,6 +335,8 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         times = np.asarray(ds["time"].values, dtype=float)[first:]
     else:
         first, state, times = 0, None, np.zeros(1)
+    # a snapshot whose load field is stationary in one frame: the steady-state tracks
+    field_speed = None if dynamic else field_frame_speed(ds)
     speeds = dict(zip(FRAMES, ring_speeds(ds), strict=True))
     groove = np.asarray(ds.coords["groove_radius"].sel(race=list(RACES)).values, dtype=float)
     shape = (len(RACES), len(FRAMES))
@@ -348,7 +351,11 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         semi_major[k] = _race_array(ds, "ellipse_semi_major", race, first)[loaded].mean()
         own = _race_array(ds, "raceway_azimuth", race, first)
         for f, frame in enumerate(FRAMES):
-            if not dynamic:  # one snapshot at t = 0: both ring frames coincide
+            if not dynamic and field_speed is not None:
+                samples = steady_samples(ds, race, speeds[frame], field_speed)
+                excursion[k, f], thickness[k, f] = track_metrics(*samples)
+                continue
+            if not dynamic:  # no frame holds the field still: the snapshot alone
                 excursion[k, f] = width[k]
                 continue
             turned = np.degrees((speeds[f"{race}_ring"] - speeds[frame]) * times)[:, None]
@@ -361,6 +368,8 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         values["analysis_start_time"] = np.float64(times[0])
         values["settled"] = np.int8(1 if state.settled else 0)
         attrs["analysed_window"] = text
+    elif field_speed is not None:
+        text = steady_window_text(field_speed != 0.0)
     else:
         text = "the quasi-static snapshot: every loaded ball once"
     out = {}
@@ -369,7 +378,7 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         var_attrs = spec.attrs()
         if name.startswith("trajectory_") or name == "ellipse_semi_major_mean":
             var_attrs["analysed_window"] = text
-        if not dynamic and name.startswith("trajectory_band_thickness"):
+        if field_speed is None and not dynamic and name.startswith("trajectory_band_thickness"):
             var_attrs["note"] = QUASISTATIC_THICKNESS_NOTE
         out[name] = (spec.dims, value, var_attrs)
     coords = {"race": dimension_coordinate("race"), "frame": dimension_coordinate("frame")}
