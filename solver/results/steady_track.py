@@ -31,16 +31,19 @@ ring has turned relative to ring f). So:
   spread at one azimuth is the distribution of alpha(psi) over a uniform psi. (When the balls do
   not move through the field, omega_c = omega_F, the ring meets only the balls' own positions.)
 
-The steady-state samples :func:`steady_samples` returns are these tracks on a regular lattice: the
-field at :data:`LINE_FIELD_POSITIONS` equally spaced positions for a line; for a band, the field
-at :data:`BAND_FIELD_POSITIONS` positions (or the balls' positions), each at the middle of every one of the summary's azimuth bins (:data:`BAND_AZIMUTH_STEPS`
-bins), so that every bin holds the same samples, as the uniform meetings give over an unending
-run (where in the bin a sample sits does not matter to a band, whose spread is the same at every
-azimuth). The
-field between two balls is interpolated in psi (contact angle and the small offset s(psi) - psi): by a periodic
-cubic spline through the balls when every ball is loaded, else linearly, a position then being
-loaded when its nearer ball is, so that a load zone ends half-way between its last loaded ball and
-the first open one, where the loaded ball's contact angle holds.
+The steady-state samples :func:`steady_samples` returns are these tracks on a regular lattice. A
+line: the field at :data:`LINE_FIELD_POSITIONS` equally spaced positions. A band: the field at
+:data:`BAND_FIELD_POSITIONS` positions (or at the balls' own positions), each placed at the middle
+of every one of the summary's :data:`BAND_AZIMUTH_STEPS` azimuth bins, so that every bin holds the
+same samples, as the uniform meetings give over an unending run (where a sample sits in its bin
+does not matter to a band, whose spread is the same at every azimuth). Its excursion is then 0: a
+dynamic run's band shows a small excursion, the scatter of its bin medians, which shrinks as its
+analysed window grows.
+
+The field between two balls is interpolated in psi (contact angle and the small offset
+s(psi) - psi): by a periodic cubic spline through the balls when every ball is loaded, else
+linearly, a position then being loaded when its nearer ball is, so that a load zone ends half-way
+between its last loaded ball and the first open one, where the loaded ball's contact angle holds.
 """
 
 from __future__ import annotations

@@ -39,8 +39,14 @@ time t = theta / (omega_i - omega_o); a contact's azimuth in ring f's frame is i
 dynamic run, and the mean track, excursion and band thickness follow from those samples with the
 same bins. The band width is max - min over every ring angle and ball. So a tilt turning with the
 inner ring draws a line on the inner raceway (excursion about the snapshot's band width, thickness
-near 0) and a band on the outer one, as the dynamic model does. A snapshot (no ``ring_angle``)
-has both frames coincide: its excursion is its band width and its band thickness NaN.
+near 0) and a band on the outer one, as the dynamic model does.
+
+**One quasi-static solution** (no ``ring_angle``) whose load field is stationary in space, or in
+the inner ring for a tilt turning with it alone: each ring's track in steady running, from the
+balls' kinematics (:mod:`solver.results.steady_track`): a line in the ring that holds the field
+still, a band (excursion 0) in a ring turning through it. A snapshot that no frame holds still (a
+tilt turning with the ring beside a radial load) or in which nothing turns has both frames
+coincide: its excursion is its band width and its band thickness NaN.
 
 **Settling** (dynamic results, :func:`settling`): per shaft revolution (period 2 pi / |omega_i -
 omega_o|, counted from t = 0), the mean over balls and samples of the contact angle and of the
@@ -98,7 +104,9 @@ TRACK_METRICS = (
 #: Names it adds for a dynamic result.
 WINDOW_METRICS = ("settling_time", "analysis_start_time", "settled")
 QUASISTATIC_THICKNESS_NOTE = (
-    "a quasi-static result is one snapshot (one pass of each ball): the band thickness needs the "
+    "this quasi-static result is one snapshot (one pass of each ball): nothing turns, or no frame "
+    "holds its load field still (a tilt turning with the inner ring beside a load fixed in space); "
+    "the band thickness needs the solutions over one revolution (solver.quasistatic_answer) or the "
     "passes of a dynamic run (racetrace simulate)"
 )
 #: The dimension of a quasi-static solution over one revolution (solver.solve_over_revolution):
@@ -370,6 +378,7 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         attrs["analysed_window"] = text
     elif field_speed is not None:
         text = steady_window_text(field_speed != 0.0)
+        attrs["analysed_window"] = text
     else:
         text = "the quasi-static snapshot: every loaded ball once"
     out = {}
