@@ -436,7 +436,7 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     assert float(rows["A-outer"]["excursion_deg"]) > 0.1
     assert float(rows["A-inner"]["band_thickness_deg"]) > 0.1
     assert float(rows["A-inner"]["excursion_deg"]) == pytest.approx(0.0, abs=1e-3)
-    assert {rows[key]["model"] for key in rows} == {"quasistatic"}
+    assert {rows[key]["model"] for key in rows} == {"quasi-static"}  # each row names its model
     assert float(rows["A-inner"]["contact_load_max_N"]) == pytest.approx(
         combined_load.max(), abs=0.05
     )
