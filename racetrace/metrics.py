@@ -117,9 +117,10 @@ def metrics_text(ds) -> str:
             f"({v['excursion_m'] * 1e6:.2f} um), {thickness}; contact ellipse semi-major axis "
             f"{v['ellipse_semi_major_mean_m'] * 1e6:.1f} um (mean)"
         )
-    if "ring_angle" in ds.dims:
-        window = ds.racetrace.summary().attrs.get("analysed_window", "")
-        lines.append(f"analysed: {window}")
+    if "time" not in ds.dims:  # over one revolution, or steady running from one solution
+        window = ds.racetrace.summary()["trajectory_excursion"].attrs.get("analysed_window", "")
+        if window and "snapshot" not in window:
+            lines.append(f"analysed: {window}")
     if "settled" in values:
         period = float(ds.racetrace.metric("shaft_period"))
         start = values["analysis_start_time_s"]

@@ -290,9 +290,11 @@ def show_table(ds, model: str | None = None) -> str:
     lines.append(
         "exc = trajectory excursion, band = band thickness (each race in its own ring's frame), "
         "alpha = mean contact angle, p = peak pressure, Q = largest contact load; each row's "
-        "metrics are its model's: dynamic over the analysed window; quasistatic over one "
-        "revolution for a misalignment turning with the inner ring, else one snapshot (every ball "
-        "once, both ring frames coincide: exc = the band width across the balls, band -)"
+        "metrics are its model's (the model column): dynamic over the analysed window; "
+        "quasistatic in steady running from its solution, the balls moving through a load field "
+        "fixed in space (or turning with the inner ring), so a ring turning through the field "
+        "draws a band (exc 0) and one holding it still a line; over one revolution for a "
+        "misalignment turning with the inner ring"
     )
     return "\n".join(lines)
 

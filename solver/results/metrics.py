@@ -11,7 +11,8 @@ for display. docs/results-schema.md ("Metrics") lists the table; a test keeps th
 ball-race contact whose ``contact_load`` is > 0 N and whose ``contact_angle`` is finite. Every
 statistic over contacts reads it.
 
-**Analysed window.** A quasi-static result is one snapshot: every ball once; or, for a
+**Analysed window.** A quasi-static result is one solution: every ball once (its trajectory
+metrics those of steady running, :mod:`solver.results.steady_track`); or, for a
 misalignment turning with the inner ring (:func:`solver.quasistatic_answer`), its solutions over
 one revolution: every ball at every ``ring_angle``. A dynamic result is read from its
 ``analysis_start_time`` to the end (the settled part of the run, :mod:`solver.results.summary`).
@@ -464,7 +465,7 @@ def _table() -> dict[str, Metric]:
             "degree",
             "trajectory band thickness",
             "trajectory_band_thickness of the race in its own ring's frame (NaN: a quasi-static "
-            "snapshot)",
+            "snapshot that no frame holds still)",
             _own_frame("trajectory_band_thickness"),
         ),
         Metric(

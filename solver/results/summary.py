@@ -39,8 +39,14 @@ time t = theta / (omega_i - omega_o); a contact's azimuth in ring f's frame is i
 dynamic run, and the mean track, excursion and band thickness follow from those samples with the
 same bins. The band width is max - min over every ring angle and ball. So a tilt turning with the
 inner ring draws a line on the inner raceway (excursion about the snapshot's band width, thickness
-near 0) and a band on the outer one, as the dynamic model does. A snapshot (no ``ring_angle``)
-has both frames coincide: its excursion is its band width and its band thickness NaN.
+near 0) and a band on the outer one, as the dynamic model does.
+
+**One quasi-static solution** (no ``ring_angle``) whose load field is stationary in space, or in
+the inner ring for a tilt turning with it alone: each ring's track in steady running, from the
+balls' kinematics (:mod:`solver.results.steady_track`): a line in the ring that holds the field
+still, a band (excursion 0) in a ring turning through it. A snapshot that no frame holds still (a
+tilt turning with the ring beside a radial load) or in which nothing turns has both frames
+coincide: its excursion is its band width and its band thickness NaN.
 
 **Settling** (dynamic results, :func:`settling`): per shaft revolution (period 2 pi / |omega_i -
 omega_o|, counted from t = 0), the mean over balls and samples of the contact angle and of the
@@ -73,6 +79,7 @@ from .dataset import ring_speeds
 from .energy import ring_down_end
 from .life import LIFE_METRICS, rating_life
 from .loaded import loaded_mask
+from .steady_track import field_frame_speed, steady_samples, steady_window_text
 from .variables import dimension_coordinate, variable
 
 AZIMUTH_BINS = 36
@@ -98,7 +105,9 @@ TRACK_METRICS = (
 #: Names it adds for a dynamic result.
 WINDOW_METRICS = ("settling_time", "analysis_start_time", "settled")
 QUASISTATIC_THICKNESS_NOTE = (
-    "a quasi-static result is one snapshot (one pass of each ball): the band thickness needs the "
+    "this quasi-static result is one snapshot (one pass of each ball): nothing turns, or no frame "
+    "holds its load field still (a tilt turning with the inner ring beside a load fixed in space); "
+    "the band thickness needs the solutions over one revolution (solver.quasistatic_answer) or the "
     "passes of a dynamic run (racetrace simulate)"
 )
 #: The dimension of a quasi-static solution over one revolution (solver.solve_over_revolution):
@@ -341,6 +350,8 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         times = np.asarray(ds["time"].values, dtype=float)[first:]
     else:
         first, state, times = 0, None, np.zeros(1)
+    # a snapshot whose load field is stationary in one frame: the steady-state tracks
+    field_speed = None if dynamic else field_frame_speed(ds)
     speeds = dict(zip(FRAMES, ring_speeds(ds), strict=True))
     groove = np.asarray(ds.coords["groove_radius"].sel(race=list(RACES)).values, dtype=float)
     shape = (len(RACES), len(FRAMES))
@@ -355,7 +366,11 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         semi_major[k] = _race_array(ds, "ellipse_semi_major", race, first)[loaded].mean()
         own = _race_array(ds, "raceway_azimuth", race, first)
         for f, frame in enumerate(FRAMES):
-            if not dynamic:  # one snapshot at t = 0: both ring frames coincide
+            if not dynamic and field_speed is not None:
+                samples = steady_samples(ds, race, speeds[frame], field_speed)
+                excursion[k, f], thickness[k, f] = track_metrics(*samples)
+                continue
+            if not dynamic:  # no frame holds the field still: the snapshot alone
                 excursion[k, f] = width[k]
                 continue
             turned = np.degrees((speeds[f"{race}_ring"] - speeds[frame]) * times)[:, None]
@@ -368,6 +383,9 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         values["analysis_start_time"] = np.float64(times[0])
         values["settled"] = np.int8(1 if state.settled else 0)
         attrs["analysed_window"] = text
+    elif field_speed is not None:
+        text = steady_window_text(field_speed != 0.0)
+        attrs["analysed_window"] = text
     else:
         text = "the quasi-static snapshot: every loaded ball once"
     out = {}
@@ -376,7 +394,7 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         var_attrs = spec.attrs()
         if name.startswith("trajectory_") or name == "ellipse_semi_major_mean":
             var_attrs["analysed_window"] = text
-        if not dynamic and name.startswith("trajectory_band_thickness"):
+        if field_speed is None and not dynamic and name.startswith("trajectory_band_thickness"):
             var_attrs["note"] = QUASISTATIC_THICKNESS_NOTE
         out[name] = (spec.dims, value, var_attrs)
     coords = {"race": dimension_coordinate("race"), "frame": dimension_coordinate("frame")}

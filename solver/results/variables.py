@@ -404,8 +404,9 @@ VARIABLES: dict[str, Variable] = {
         "contact trajectory band thickness",
         "spread of the contact angle at one raceway azimuth of the ring frame named by ``frame``, "
         "across passes and balls: 97.5th minus 2.5th percentile of the residuals from the mean "
-        "track (bin medians interpolated between bin centres); 0 for a thin line. NaN for a "
-        "quasi-static result (one snapshot: needs a dynamic run)",
+        "track (bin medians interpolated between bin centres); 0 for a thin line. A quasi-static "
+        "result gives it in steady running (solver.results.steady_track); NaN for a quasi-static "
+        "snapshot that no frame holds still",
         _DYN,
         False,
     ),

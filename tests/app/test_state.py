@@ -427,11 +427,16 @@ def test_compare_with_a_saved_run_fills_charts_and_summary(app):
     assert len(axial_load) == len(combined_load) == balls
     assert np.ptp(axial_load) < 1e-6 * axial_load.max()
     assert np.ptp(combined_load) > 0.2 * combined_load.max()
-    # the table: A then B, inner then outer; the axial run's contact angles form no band
+    # the table: A then B, inner then outer; the axial run's contact angles form no band; the
+    # combined load (fixed in space) draws the outer line and the inner band
     rows = {r["key"]: r for r in s.compare_summary}
     assert list(rows) == ["A-inner", "A-outer", "B-inner", "B-outer"]
     assert float(rows["B-inner"]["excursion_deg"]) == pytest.approx(0.0, abs=1e-3)
-    assert float(rows["A-inner"]["excursion_deg"]) > 0.1
+    assert float(rows["B-inner"]["band_thickness_deg"]) == pytest.approx(0.0, abs=1e-3)
+    assert float(rows["A-outer"]["excursion_deg"]) > 0.1
+    assert float(rows["A-inner"]["band_thickness_deg"]) > 0.1
+    assert float(rows["A-inner"]["excursion_deg"]) == pytest.approx(0.0, abs=1e-3)
+    assert {rows[key]["model"] for key in rows} == {"quasi-static"}  # each row names its model
     assert float(rows["A-inner"]["contact_load_max_N"]) == pytest.approx(
         combined_load.max(), abs=0.05
     )
@@ -511,7 +516,8 @@ def test_raceway_map_follows_the_ball_and_its_options(app):
     data = s.chart_raceway_map["data"]
     assert [t["name"] for t in data[:3]] == ["inner raceway", "outer raceway", "contacts now"]
     assert "shoulders at" in s.chart_raceway_map["layout"]["title"]["text"]
-    assert "excursion" in s.raceway_metrics and "needs a dynamic run" in s.raceway_metrics
+    assert "excursion" in s.raceway_metrics and "band thickness" in s.raceway_metrics
+    assert "needs a dynamic run" not in s.raceway_metrics  # steady running from one solution
     _set(app, trace_ball=2)
     balls = {int(b) for b in _decode_custom(s.chart_raceway_map["data"][0])}
     assert balls == {2}

@@ -3,6 +3,7 @@
 
 import csv
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -69,7 +70,11 @@ def test_quasistatic_prints_the_trajectory_metrics(result):
     lines = [line for line in stdout.splitlines() if "race: excursion" in line]
     assert len(lines) == 2
     assert "deg" in lines[0] and "um" in lines[0]
-    assert "band thickness n/a (one snapshot: needs a dynamic run)" in lines[0]
+    # a load fixed in space: the inner track a band, the outer a line, in steady running
+    assert "band thickness n/a" not in stdout
+    assert re.search(r"inner race: excursion 0\.0000 deg .*band thickness 0\.9\d+ deg", lines[0])
+    assert re.search(r"outer race: excursion 1\.\d+ deg .*band thickness 0\.00\d+ deg", lines[1])
+    assert "analysed: steady running" in stdout
 
 
 def _refuse(constant):
@@ -80,9 +85,11 @@ def test_quasistatic_json_includes_the_metrics():
     out = racetrace("quasistatic", "spindle-combined-load", "--json")
     assert out.returncode == 0, out.stderr
     trajectory = json.loads(out.stdout, parse_constant=_refuse)["trajectory"]
-    assert trajectory["inner"]["excursion_deg"] > 0.5
-    assert trajectory["inner"]["band_thickness_deg"] is None
-    assert "dynamic run" in trajectory["band_thickness_note"]
+    assert trajectory["outer"]["excursion_deg"] > 0.5
+    inner = trajectory["inner"]
+    assert inner["band_thickness_deg"] == pytest.approx(inner["band_width_deg"], rel=0.03)
+    assert "band_thickness_note" not in trajectory
+    assert "steady running" in trajectory["analysed_window"]
     assert trajectory["outer"]["excursion_m"] == pytest.approx(
         trajectory["outer"]["excursion_deg"] * 3.14159265 / 180 * 0.53 * 7.144e-3, rel=1e-6
     )

@@ -197,10 +197,65 @@ def test_less_than_two_revolutions_cannot_settle():
 
 
 # ---- quasi-static results and stacked results ----------------------------------------------------
-def test_a_quasistatic_snapshot_gives_the_excursion_over_its_balls_and_no_thickness():
+def test_a_radial_load_fixed_in_space_gives_a_band_inside_and_a_line_outside():
+    """A quasi-static solution of a load fixed in space: the stationary outer ring meets the field
+    at the same place (a line: excursion about the band width, thickness near 0); the turning inner
+    ring meets the whole field at every azimuth (a band: thickness about the band width, no mean
+    variation), as the dynamic model draws them."""
     from solver import solve_quasistatic
 
     ds = solve_quasistatic("spindle-combined-load")
+    m = summary.trajectory_summary(ds)
+    for race in ("inner", "outer"):
+        alpha = ds.contact_angle.sel(race=race).values[ds.contact_load.sel(race=race).values > 0]
+        width = np.ptp(alpha)
+        assert float(m.trajectory_band_width.sel(race=race)) == pytest.approx(width, rel=1e-12)
+        in_outer = "outer_ring"
+        excursion = float(m.trajectory_excursion.sel(race=race, frame=in_outer))
+        thickness = float(m.trajectory_band_thickness.sel(race=race, frame=in_outer))
+        assert excursion == pytest.approx(width, rel=0.02)  # the line
+        assert thickness < 0.02 * width
+        excursion = float(m.trajectory_excursion.sel(race=race, frame="inner_ring"))
+        thickness = float(m.trajectory_band_thickness.sel(race=race, frame="inner_ring"))
+        assert thickness == pytest.approx(width, rel=0.03)  # the band
+        assert excursion < 0.02 * width
+    assert "note" not in m.trajectory_band_thickness.attrs
+    assert "steady running" in m.trajectory_excursion.attrs["analysed_window"]
+    assert "settled" not in m
+
+
+def test_a_tilt_turning_with_the_ring_alone_gives_the_lines_and_bands_of_its_revolution():
+    """The field of a tilt turning with the inner ring (no radial load) is stationary in the inner
+    ring's frame: one solution gives the tracks the solutions over one revolution give."""
+    from solver import solve_over_revolution, solve_quasistatic
+
+    case = "spindle-misalignment-ring"
+    snapshot = summary.trajectory_summary(solve_quasistatic(case))
+    revolution = summary.trajectory_summary(solve_over_revolution(case, angles=12))
+    for race in ("inner", "outer"):
+        width = float(revolution.trajectory_band_width.sel(race=race))
+        line = snapshot.trajectory_excursion.sel(race=race, frame="inner_ring")
+        band = snapshot.trajectory_band_thickness.sel(race=race, frame="outer_ring")
+        expected_line = revolution.trajectory_excursion.sel(race=race, frame="inner_ring")
+        expected_band = revolution.trajectory_band_thickness.sel(race=race, frame="outer_ring")
+        assert float(line) == pytest.approx(float(expected_line), rel=0.01)
+        assert float(band) == pytest.approx(width, rel=0.01)
+        assert float(expected_band) > 0.9 * width  # the revolution's band, from fewer samples
+        assert float(snapshot.trajectory_band_thickness.sel(race=race, frame="inner_ring")) < (
+            0.01 * width
+        )
+        assert float(snapshot.trajectory_excursion.sel(race=race, frame="outer_ring")) < (
+            0.01 * width
+        )
+
+
+def test_a_snapshot_no_frame_holds_still_is_the_snapshot_alone():
+    """A tilt turning with the ring and a radial load fixed in space: no frame holds the field
+    still, so the snapshot gives its spread over the balls in both frames and no thickness."""
+    from solver import resolve_case, solve_quasistatic
+
+    case = resolve_case("spindle-misalignment-ring").with_values({"operating.radial_load_N": 300.0})
+    ds = solve_quasistatic(case)
     m = summary.trajectory_summary(ds)
     for race in ("inner", "outer"):
         alpha = ds.contact_angle.sel(race=race).values[ds.contact_load.sel(race=race).values > 0]
@@ -208,8 +263,7 @@ def test_a_quasistatic_snapshot_gives_the_excursion_over_its_balls_and_no_thickn
             m.trajectory_excursion.sel(race=race).values, np.ptp(alpha), rtol=1e-12
         )
     assert np.isnan(m.trajectory_band_thickness.values).all()
-    assert "dynamic run" in m.trajectory_band_thickness.attrs["note"]
-    assert "settled" not in m
+    assert "over one revolution" in m.trajectory_band_thickness.attrs["note"]
 
 
 def test_a_sweep_gives_the_metrics_of_every_element():
