@@ -18,7 +18,7 @@ import json
 from solver.case.schema import FIELDS
 
 #: Version of the results' physics and numerics (module docstring).
-RESULTS_VERSION = 2
+RESULTS_VERSION = 3
 
 
 def case_values(case) -> dict:
