@@ -14,7 +14,9 @@ in that ring's own frame and share the ring's transform, so inner-raceway marks 
 ring. The painted tracks (:mod:`viz.tracks`) colour the groove where the contact ellipses ran, by
 dwell or by peak pressure. Across-groove positions of marks can be exaggerated about the run's mean
 contact angle (``exaggeration``), clipped at the shoulders so that marks never leave the groove;
-ellipse sizes are to scale unless ``ellipse_scale`` enlarges them.
+the contact ellipses of the frame on show are to scale unless ``ellipse_scale`` enlarges them
+(the legend names the scale); the painted tracks are their footprints at true size, so that a
+line stays a line and a band a band at any ellipse scale.
 
 Both raceways are in view at once: by default the outer ring is drawn apart from the inner one
 along the bearing axis (``explode``, in ball diameters, away from the camera side) and opened as a
@@ -127,7 +129,8 @@ class BearingScene:
         self.set_frame(frame_index)
 
     def _use_source(self) -> None:
-        self.tracks.use_source(self.source, self.options.exaggeration, self.options.ellipse_scale)
+        # footprints at their true size: the ellipse scale enlarges the marks of the frame only
+        self.tracks.use_source(self.source, self.options.exaggeration, ellipse_scale=1.0)
 
     def set_frame(self, frame_index: int) -> None:
         """Move everything to frame ``frame_index`` of the current source (no render)."""
@@ -162,8 +165,14 @@ class BearingScene:
     def show_facts(self, facts) -> None:
         """Labels and arrows for the operating point ``facts`` (see :mod:`viz.overlay`): names of
         the raceways, the shaft's rotation, the radial load direction and the tilt axis ("fixed in
-        space" or "turning with the ring"), and a legend of the marks."""
-        self.overlay.show(facts, self.options.view_azimuth, self.options.visible("labels"))
+        space" or "turning with the ring"), which ring is fixed, and a legend of the marks (naming
+        the contact ellipses' drawing scale)."""
+        self.overlay.show(
+            facts,
+            self.options.view_azimuth,
+            self.options.visible("labels"),
+            self.options.ellipse_scale,
+        )
 
     # ---- options --------------------------------------------------------------------------------
     def set_layer(self, name: str, visible: bool) -> None:
@@ -182,8 +191,11 @@ class BearingScene:
         self._set_drawing_factor("exaggeration", factor)
 
     def set_ellipse_scale(self, factor: float) -> None:
-        """Drawn size of the contact ellipses (and their painted footprints) / true size, >= 1."""
-        self._set_drawing_factor("ellipse_scale", factor)
+        """Drawn size of the contact ellipses of the frame on show / true size (at least 1; the
+        painted tracks stay at true size), named in the legend."""
+        self.options.ellipse_scale = max(1.0, float(factor))
+        self.overlay.set_ellipse_scale(self.options.ellipse_scale)
+        self.set_frame(self.frame_index)
 
     def _set_drawing_factor(self, option: str, factor: float) -> None:
         """Set the drawing option ``option`` to ``factor`` (at least 1), redraw from the source if

@@ -293,3 +293,52 @@ def test_each_ball_is_marked_in_its_legend_colour(scene, geometry):
         marked = np.array(actor.mapper.lookup_table.values)[-1, :3]
         expected = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
         assert np.allclose(marked, expected, atol=2), (marked, colour)
+
+
+def _facts(outer_ring_speed: float = 0.0):
+    """The operating point the teaching overlay reads (as the app's ``Facts``)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(
+        inner_ring_speed=2000.0,
+        outer_ring_speed=outer_ring_speed,
+        radial_load=300.0,
+        radial_load_angle=0.0,
+        misalignment=0.0,
+        misalignment_axis=0.0,
+        misalignment_turns=False,
+    )
+
+
+def test_legend_names_the_ellipse_scale_and_follows_it(qs_dataset, geometry):
+    from viz.scene import SceneOptions
+
+    plotter = pv.Plotter(off_screen=True, window_size=(320, 240))
+    try:
+        scene = BearingScene(plotter, geometry, SceneOptions(ellipse_scale=5.0))
+        scene.show_source(frame_source(qs_dataset))
+        scene.show_facts(_facts())
+        assert scene.overlay.legend_words()[0] == "contact ellipses now ×5"
+        scene.set_ellipse_scale(3.0)
+        assert scene.overlay.legend_words()[0] == "contact ellipses now ×3"
+        scene.set_ellipse_scale(1.0)
+        assert scene.overlay.legend_words()[0] == "contact ellipses now (to scale)"
+    finally:
+        plotter.close()
+
+
+def test_painted_tracks_stay_at_true_size_when_the_ellipses_are_enlarged(scene):
+    scene.set_track_options(whole_run=True)
+    true_size = [scene.tracks.painter.painted(race).sum() for race in (INNER, OUTER)]
+    scene.set_ellipse_scale(5.0)
+    assert scene.options.ellipse_scale == 5.0
+    assert [scene.tracks.painter.painted(race).sum() for race in (INNER, OUTER)] == true_size
+
+
+def test_raceway_labels_say_which_ring_is_fixed():
+    from viz.overlay import ring_words
+
+    inner, outer = ring_words(_facts(outer_ring_speed=0.0))
+    assert "turning" in inner and "shaft" in inner
+    assert "fixed" in outer and "housing" in outer
+    assert "turning" in ring_words(_facts(outer_ring_speed=100.0))[1]
