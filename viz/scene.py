@@ -46,6 +46,9 @@ from .raceway import INNER, OUTER
 # light at every pixel: three cost about 10 ms a frame less than pyvista's five-light kit at
 # 820 x 670, with much the same shading.
 LIGHTS = (((0.0, 0.0, 1.0), 0.5), ((-0.5, 1.0, 0.8), 0.5), ((0.5, -1.0, 0.5), 0.4))
+# the camera preset that shows the inner raceway past where the balls and the cage stand: they are
+# not drawn while it is on (whatever the layer switches say)
+INNER_TRACK_CLEAR = "inner track"
 
 
 class BearingScene:
@@ -65,6 +68,7 @@ class BearingScene:
         self.options = options or SceneOptions()
         self.source: FrameSource | None = None
         self.frame_index = 0
+        self._track_clear = False  # balls and cage hidden: the "inner track" preset
         g, p = geometry, plotter
         p.set_background("white")
         p.remove_all_lights()
@@ -152,7 +156,7 @@ class BearingScene:
         on = self.closeup.on
         self.closeup.show(on)
         ball = int(min(max(self.options.closeup_ball, 0), self.geometry.ball_count - 1))
-        self.bodies.show_alone(ball if on else None, self.options)
+        self.bodies.show_alone(ball if on else None, self.options, self._track_clear)
         if on:
             self.closeup.update(f, ball, rings, self.source, self.options.ellipse_scale)
             self.camera.follow_ball(f, ball, self.geometry.ball_diameter)
@@ -237,8 +241,9 @@ class BearingScene:
         where the inner-raceway contacts face, :data:`viz.camera.ISOMETRIC_TILT_DEG` off the axis:
         the inner raceway in front, the outer raceway behind it from inside; ``axial`` looks along
         +x; ``radial`` looks into the opened side, the bearing axis across the view. ``inner
-        track`` frames the inner raceway's load-side half and ``outer track`` the outer raceway's
-        far half, both :data:`viz.camera.TRACK_VIEW_TILT_DEG` off the axis. ``close-up`` follows
+        track`` frames the inner raceway's load-side half, without the balls and the cage that
+        would hide it, and ``outer track`` the outer ring's far half with its raceway in the
+        middle, both :data:`viz.camera.TRACK_VIEW_TILT_DEG` off the axis. ``close-up`` follows
         ball :attr:`SceneOptions.closeup_ball` alone with its contacts (:mod:`viz.closeup`).
         """
         if preset not in CAMERA_PRESETS:
@@ -246,6 +251,7 @@ class BearingScene:
                 f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}"
             )
         self.closeup.on = preset == "close-up"
+        self._track_clear = preset == INNER_TRACK_CLEAR
         self.camera.reset_view_angle()
         if self.closeup.on:
             self.camera.mark_framed()
@@ -253,7 +259,8 @@ class BearingScene:
                 self.set_frame(self.frame_index)
             return
         self.closeup.show(False)
-        self.bodies.show_alone(None, self.options)  # the close-up showed one ball alone
+        # the close-up showed one ball alone; the inner track is seen without balls and cage
+        self.bodies.show_alone(None, self.options, self._track_clear)
         self.camera.frame_preset(preset, self.options.view_azimuth)
 
     def framed_for_window(self) -> bool:

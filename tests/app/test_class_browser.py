@@ -123,3 +123,23 @@ def test_screenshots_at_projector_and_full_hd_sizes(page):
         slider = page.locator("#time-slider .v-slider").bounding_box()
         assert slider["width"] >= MIN_SLIDER_PX
         page.screenshot(path=str(SHOTS / f"page-{width}x{height}.png"))
+
+
+def test_studies_table_keeps_to_the_side_column_at_1600_px(page):
+    page.set_viewport_size({"width": 1600, "height": 900})
+    page.evaluate("window.trame.state.set('presenter', false)")
+    page.evaluate("window.trame.state.set('open_panels', ['studies'])")
+    page.wait_for_selector("#study-build-run", timeout=30_000)
+    page.evaluate("window.trame.state.set('study_results', 'shipped:seed-spindle.study.nc')")
+    _until(page, "() => document.querySelectorAll('#study-table tbody tr').length === 30")
+    _settle(page)
+    overflow = page.evaluate(
+        "() => { const w = document.querySelector('#study-table .v-table__wrapper'); "
+        "return w.scrollWidth - w.clientWidth; }"
+    )
+    assert overflow <= 1, f"the study table is {overflow} px wider than its column"
+    table = page.locator("#study-table").bounding_box()
+    side = page.locator(".rt-side").bounding_box()
+    assert table["x"] + table["width"] <= side["x"] + side["width"] + 1
+    page.locator("#studies").scroll_into_view_if_needed()
+    page.screenshot(path=str(SHOTS / "studies-1600x900.png"))

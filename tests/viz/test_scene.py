@@ -342,3 +342,48 @@ def test_raceway_labels_say_which_ring_is_fixed():
     assert "turning" in inner and "shaft" in inner
     assert "fixed" in outer and "housing" in outer
     assert "turning" in ring_words(_facts(outer_ring_speed=100.0))[1]
+
+
+def test_inner_track_preset_shows_the_track_without_balls_and_cage(scene):
+    scene.set_camera("inner track")
+    scene.set_frame(3)
+    assert not any(a.visibility for a in scene.actors["balls"] + scene.actors["cage"])
+    scene.set_camera("isometric")
+    scene.set_frame(4)
+    assert all(a.visibility for a in scene.actors["balls"] + scene.actors["cage"])
+
+
+def test_outer_track_preset_shows_the_opened_outer_ring_whole(geometry):
+    """The far half of the outer ring, both faces at its largest radius, is in the view (left of
+    the colour bar), its raceway in the middle."""
+    import math
+
+    from viz.camera import track_points
+    from viz.raceway import OUTER
+
+    pv.global_theme.multi_samples = 0
+    plotter = pv.Plotter(off_screen=True, window_size=(650, 480))
+    try:
+        scene = BearingScene(plotter, geometry)
+        scene.set_camera("outer track")
+        plotter.render()
+        layout = scene.layout
+        x, radius = layout.profiles[OUTER]
+        phi = math.pi + np.linspace(-0.5 * math.pi, 0.5 * math.pi, 19)
+        r = float(np.max(radius))
+        ring = np.concatenate(
+            [
+                np.column_stack([np.full(19, face + layout.outer_shift), r * np.cos(phi),
+                                 r * np.sin(phi)])
+                for face in (float(np.min(x)), float(np.max(x)))
+            ]
+        )  # fmt: skip
+        xy = _display_xy(plotter, ring)
+        bar_left = plotter.scalar_bar.GetPositionCoordinate().GetValue()[0] * 650
+        assert xy[:, 0].min() > 0 and xy[:, 0].max() < bar_left
+        assert xy[:, 1].min() > 0 and xy[:, 1].max() < 480
+        track = _display_xy(plotter, track_points(layout, OUTER, 0.0)[:74])  # the shoulder edges
+        middle = 0.5 * (track[:, 1].min() + track[:, 1].max())
+        assert 0.25 * 480 < middle < 0.75 * 480
+    finally:
+        plotter.close()
