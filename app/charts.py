@@ -357,7 +357,7 @@ def _shoulder_lines(fig: go.Figure, shoulders) -> None:
         lo = min(lo, edge - SHOULDER_MARGIN_DEG)
         hi = max(hi, edge + SHOULDER_MARGIN_DEG)
     fig.update_layout(
-        title_text="Unrolled raceways; shoulders (dashed) at " + ", ".join(words),
+        title_text="Unrolled raceways; shoulders at " + ", ".join(words) + " (dashed)",
         yaxis={"range": [lo, hi]},
     )
 

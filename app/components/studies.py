@@ -598,7 +598,11 @@ def _study_table(ctrl) -> None:
     keeps to the side column's width (about 500 px on a 1600 px window): the values and the status
     wrap anywhere rather than widen the table."""
     wrap = "overflow-wrap: anywhere; white-space: normal;"
-    with v3.VTable(density="compact", id="study-table", style="table-layout: fixed; width: 100%;"):
+    with v3.VTable(
+        density="compact",
+        id="study-table",
+        style="table-layout: fixed; width: 100%; font-size: 12px;",
+    ):
         with html.Thead(), html.Tr():
             for head, width in zip(STUDY_TABLE_HEADS, STUDY_TABLE_WIDTHS, strict=True):
                 html.Th(head, style=f"width: {width}; {wrap} padding: 0 4px;")

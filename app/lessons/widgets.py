@@ -8,7 +8,8 @@ lesson-next, presenter-button.
 
 Presenter mode adds the class ``rt-presenter`` around the page content (:data:`PRESENTER_CSS`):
 the form drawer, the scene and export controls, the runs card and every chart but the lesson's
-(or the contact-angle chart) are hidden; the 3-D view and the side column share the screen in
+(or the contact-angle chart) and the note under the view (the lesson says what is seen) are
+hidden; the 3-D view with its time controls and the side column share the screen in
 large, high-contrast type: the lesson on top, whole, and its chart below in the height left
 (:data:`PANEL_HEIGHT_SCRIPT`). :data:`KEYS_SCRIPT` sends space, the arrows, N, P and Escape to the
 server (``lesson_key``) wherever the focus is, unless on a text field; Escape leaves presenter
@@ -33,7 +34,8 @@ PRESENTER_CSS = """
 .rt-presenter .v-expansion-panel,
 .rt-presenter .v-expansion-panel-text__wrapper { background: transparent; padding: 0; }
 .rt-presenter .v-expansion-panel::after { border: none; }
-.rt-presenter #view-3d { height: calc(100vh - 215px) !important; }
+.rt-presenter #view-3d { height: calc(100vh - 175px) !important; }
+.rt-presenter #scene-note { display: none; }
 @media (min-width: 960px) {
   .rt-presenter .rt-view-col, .rt-presenter .rt-side { flex: 0 0 50%; max-width: 50%; }
 }
@@ -43,7 +45,7 @@ PRESENTER_CSS = """
 .rt-presenter .rt-lesson-chart > div:first-child {
   height: max(140px, calc(100vh - 100px - var(--rt-lesson-panel-height, 45vh))) !important; }
 .rt-presenter #lessons-panel { background: #111; color: #fff; border-color: #fff; }
-.rt-presenter #lesson-title { font-size: 1.4rem !important; line-height: 1.3 !important; }
+.rt-presenter #lesson-title { font-size: 1.6rem !important; line-height: 1.3 !important; }
 .rt-presenter #lesson-text { font-size: 1.1rem !important; line-height: 1.4 !important; }
 .rt-presenter .rt-frame-time { font-size: 1.1rem !important; color: #fff; }
 """

@@ -100,6 +100,9 @@ def test_presenter_mode_shows_the_whole_lesson_text_and_keys_work_from_anywhere(
         assert fits, f"lesson {lesson.id}: its text scrolls in presenter mode"
         assert box["y"] >= 0 and box["y"] + box["height"] <= 720, (lesson.id, box)
         assert page.evaluate("document.scrollingElement.scrollTop") == 0
+        # and the time slider under the view, in the window too
+        slider = page.locator("#time-slider .v-slider").bounding_box()
+        assert slider["y"] + slider["height"] <= 720 and slider["width"] >= MIN_SLIDER_PX
         page.screenshot(path=str(SHOTS / f"presenter-{lesson.id}-1280x720.png"))
         # the focus on the 3-D view (it takes keys for its own camera) or on a plain block
         target = "#view-3d [tabindex]" if lesson is LESSONS[0] else "#lesson-text"
