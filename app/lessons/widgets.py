@@ -37,7 +37,8 @@ PRESENTER_CSS = """
 .rt-presenter #view-3d { height: calc(100vh - 175px) !important; }
 .rt-presenter #scene-note { display: none; }
 @media (min-width: 960px) {
-  .rt-presenter .rt-view-col, .rt-presenter .rt-side { flex: 0 0 50%; max-width: 50%; }
+  .rt-presenter .rt-view-col { flex: 0 0 55%; max-width: 55%; }
+  .rt-presenter .rt-side { flex: 0 0 45%; max-width: 45%; }
 }
 .rt-presenter .rt-side { display: flex; flex-direction: column; }
 .rt-presenter .rt-side > * { order: 2; }
