@@ -335,16 +335,31 @@ def raceway_map_figure(
     )
     _pad_y(fig, ANGLE_MIN_SPAN_DEG)
     if shoulders is not None:
-        # dashed lines at the shoulder edges; the axis keeps to the track, so a shoulder far from
-        # it is named in the title instead of squeezing the track into a line
-        words = []
-        for race, theta in zip((INNER, OUTER), shoulders, strict=True):
-            edge = float(np.degrees(theta))
-            words.append(f"{RACES[race]} ±{edge:.0f}°")
-            for y in (-edge, edge):
-                fig.add_hline(y=y, line={"dash": "dash", "color": RACE_COLOURS[race], "width": 1})
-        fig.update_layout(title_text="Unrolled raceways; shoulders at " + ", ".join(words))
+        _shoulder_lines(fig, shoulders)
     return fig
+
+
+SHOULDER_MARGIN_DEG = 2.0  # the raceway map's axis reaches this far past a shoulder line
+
+
+def _shoulder_lines(fig: go.Figure, shoulders) -> None:
+    """Dashed lines at the shoulder edge of each raceway on the side of its track (the sign of its
+    mean contact angle; the land the contact runs towards), named in the title; the axis is
+    widened to hold them (``shoulders``: (inner, outer) groove latitude of the edges, rad)."""
+    lo, hi = fig.layout.yaxis.range or (0.0, 0.0)
+    words = []
+    for race, theta in zip((INNER, OUTER), shoulders, strict=True):
+        samples = np.asarray(fig.data[race].y, float)  # the first two traces: inner, outer
+        mean = np.nanmean(samples) if samples.size else 1.0
+        edge = float(np.degrees(theta)) * (1.0 if not mean < 0 else -1.0)
+        words.append(f"{RACES[race]} {edge:+.0f}°")
+        fig.add_hline(y=edge, line={"dash": "dash", "color": RACE_COLOURS[race], "width": 1})
+        lo = min(lo, edge - SHOULDER_MARGIN_DEG)
+        hi = max(hi, edge + SHOULDER_MARGIN_DEG)
+    fig.update_layout(
+        title_text="Unrolled raceways; shoulders at " + ", ".join(words) + " (dashed)",
+        yaxis={"range": [lo, hi]},
+    )
 
 
 def current_contact_traces(source: FrameSource, current: int, balls=None) -> list:

@@ -3,6 +3,7 @@ server (one session process per browser, :mod:`app.serve.front`)."""
 
 from __future__ import annotations
 
+import os
 import shutil
 import sys
 
@@ -39,6 +40,7 @@ def serve(
         return EXIT_NO_RENDERING
     from .access import Access, is_loopback, new_token
     from .run_store import RunStore, default_runs_dir
+    from .serve import preparing
     from .serve.front import Front, pool_dir, run_front
     from .services.pool import default_max_runs
 
@@ -48,6 +50,8 @@ def serve(
     max_runs = max_runs or default_max_runs()
     token = "" if is_loopback(host) else new_token()
     slots = pool_dir()
+    # the fork server (started with the first session) says there what it is preparing
+    os.environ[preparing.ENV] = str(slots / "preparing.txt")
     session_args = ["--runs-dir", runs, "--slots-dir", str(slots), "--max-runs", str(max_runs)]
     if case_name:
         session_args += ["--case", case_name]

@@ -8,8 +8,8 @@ of the child (even a segfault) only ends that run: :meth:`SolverRunner.poll` rep
 error.
 
 Messages from the child, as tuples:
-``("progress", fraction, simulated_time_s, text)``, ``("done", path, complete)``,
-``("error", text)``.
+``("progress", fraction, simulated_time_s, text)`` (a text starting with :data:`PREPARING`: what
+the run does before its first step), ``("done", path, complete)``, ``("error", text)``.
 """
 
 from __future__ import annotations
@@ -23,14 +23,24 @@ from dataclasses import dataclass
 
 DYNAMIC_JOB = "app.runner:dynamic_job"
 QUASISTATIC_JOB = "app.runner:quasistatic_job"
+#: Text of the progress messages (fraction 0) that say what a run does before its first step:
+#: loading the compiled kernels, or compiling them (``app.compile_watch``).
+PREPARING = "preparing: "
 
 
 # ---- jobs (run in the child) ---------------------------------------------------------------------
 def dynamic_job(case_text: str, progress, cancel):
-    """The dynamic model on a case given as TOML text."""
+    """The dynamic model on a case given as TOML text. Before the first step it reports
+    (:data:`PREPARING`) whether numba loads the compiled kernels or compiles them."""
     import solver
 
-    return solver.simulate(solver.parse_case(case_text), progress=progress, cancel=cancel)
+    from .compile_watch import LOADING, compiling_words, watching_compiles
+
+    case = solver.parse_case(case_text)
+    nan = float("nan")
+    progress(0.0, nan, PREPARING + LOADING)
+    with watching_compiles(lambda count: progress(0.0, nan, PREPARING + compiling_words(count))):
+        return solver.simulate(case, progress=progress, cancel=cancel)
 
 
 def quasistatic_job(case_text: str, progress, cancel):
@@ -148,6 +158,13 @@ class SolverRunner:
         """Ask the run to stop at its next check; it then reports ``done`` with ``complete = 0``."""
         if self._cancel is not None:
             self._cancel.set()
+
+    def stop_now(self) -> None:
+        """End the run's process at once, without waiting for a check of the cancel event (a
+        process that is still compiling the kernels checks none); nothing of it is saved."""
+        if self._process is not None and self._process.is_alive():
+            self._process.kill()
+        self._finish()
 
     def poll(self) -> list[RunEvent]:
         """Events since the last call (non-blocking); the last one is done/error when finished."""

@@ -46,7 +46,10 @@ def _content(app) -> None:
     ):
         with v3.VRow(dense=True):
             with v3.VCol(
-                cols=12, md=7, style="position: sticky; top: 64px; align-self: flex-start;"
+                cols=12,
+                md=7,
+                classes="rt-view-col",
+                style="position: sticky; top: 64px; align-self: flex-start;",
             ):
                 app.result.build_view()
                 with html.Div(classes=HIDE):

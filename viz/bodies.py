@@ -101,11 +101,15 @@ class BearingBodies:
             actor.user_matrix = placement(f.ball_rotation[j], f.ball_center[j])
         self.cage.user_matrix = placement(rot_x(f.cage_angle))
 
-    def show_alone(self, ball: int | None, options) -> None:
+    def show_alone(self, ball: int | None, options, without_balls: bool = False) -> None:
         """Show ball ``ball`` alone, without cage and outer ring (the close-up), or (None) every
-        part whose layer ``options`` shows."""
+        part whose layer ``options`` shows; ``without_balls``: no ball and no cage either (the
+        inner track seen past them)."""
         for k, actor in enumerate(self.balls):
-            actor.visibility = options.visible("balls") and (ball is None or k == ball)
+            shown = options.visible("balls") and (ball is None or k == ball)
+            actor.visibility = shown and not without_balls
         for name in ("cage", "outer_ring"):
             for actor in self.actors[name]:
                 actor.visibility = options.visible(name) and ball is None
+        for actor in self.actors["cage"]:
+            actor.visibility = actor.visibility and not without_balls

@@ -132,11 +132,19 @@ def frame_points(
 def track_points(layout: RacewayLayout, race: int, view_azimuth: float) -> np.ndarray:
     """Points (m, drawn position) of the shoulder edges of ``race`` on the half of the raceway
     that the track presets look at (load side ``view_azimuth`` for the inner, the opposite side
-    for the outer)."""
+    for the outer); for the outer raceway also the outer ring's half round it (its faces at its
+    largest radius), so that the preset shows the opened ring whole with its raceway in the
+    middle."""
     grid, groove = layout.grids[race], layout.grooves[race]
     side = view_azimuth + (0.0 if race == INNER else math.pi)
     phi = side + np.linspace(-0.5 * math.pi, 0.5 * math.pi, 37)
-    pts = np.concatenate([groove.point(phi, a) for a in (grid.alpha_lo, grid.alpha_hi)])
+    pts = [groove.point(phi, a) for a in (grid.alpha_lo, grid.alpha_hi)]
+    if race == OUTER:
+        x, radius = layout.profiles[OUTER]
+        for face in (float(np.min(x)), float(np.max(x))):
+            r = float(np.max(radius))
+            pts.append(np.column_stack([np.full(phi.size, face), r * np.cos(phi), r * np.sin(phi)]))
+    pts = np.concatenate(pts)
     if race == OUTER:
         pts[:, 0] += layout.outer_shift
     return pts

@@ -20,11 +20,34 @@ from .raceway import INNER, OUTER
 
 LABEL_FONT_PX = 14
 ARROW_COLOURS = {"rotation": "#1f6f3f", "load": "#b01c1c", "tilt": "#6a3d9a"}
-LEGEND = (  # (text, colour) of the marks the view draws
+LEGEND = (  # (text, colour) of the marks the view draws; the ellipses' entry names their scale
     ("contact ellipses now", "#0096c7"),
     ("shoulder edges", "#1b1b1b"),
     ("groove bottom", "#2f5597"),
 )
+ELLIPSE_ENTRY = 0  # the legend's entry of the contact ellipses
+
+
+def ellipse_legend_words(ellipse_scale: float) -> str:
+    """The legend's entry of the contact ellipses drawn ``ellipse_scale`` times their size:
+    'contact ellipses now ×5', or '... (to scale)' at 1."""
+    if ellipse_scale == 1.0:
+        return f"{LEGEND[ELLIPSE_ENTRY][0]} (to scale)"
+    return f"{LEGEND[ELLIPSE_ENTRY][0]} ×{ellipse_scale:g}"
+
+
+def ring_words(facts) -> tuple[str, str]:
+    """Labels of the (inner, outer) raceway that say which ring turns and which is held: the
+    inner ring is on the shaft, the outer in the housing; either is said 'fixed' when its speed
+    is zero."""
+    held = "fixed" if facts.inner_ring_speed == 0.0 else "turning"
+    inner = f"inner raceway ({held}, shaft)"
+    outer = (
+        "outer raceway (fixed, housing)"
+        if facts.outer_ring_speed == 0.0
+        else "outer raceway (turning)"
+    )
+    return inner, outer
 
 
 def misalignment_words(facts) -> str:
@@ -42,17 +65,20 @@ class TeachingOverlay:
         self.plotter = plotter
         self.geometry = geometry
         self.layout = layout
+        self._legend = None  # the legend's actor (its ellipses' entry names their scale)
         self.actors: list = []
         self._tilt_actor = None
 
-    def show(self, facts, view_azimuth: float, visible: bool) -> None:
+    def show(self, facts, view_azimuth: float, visible: bool, ellipse_scale: float = 1.0) -> None:
         """Replace the overlay by that of the operating point ``facts``, facing ``view_azimuth``
-        (rad); shown when ``visible``."""
+        (rad), with the contact ellipses drawn ``ellipse_scale`` times their size; shown when
+        ``visible``."""
         p, g = self.plotter, self.geometry
         for actor in self.actors:
             p.remove_actor(actor)
         self.actors.clear()
         self._tilt_actor = None
+        self._legend = None
         grooves = self.layout.grooves
         D = g.ball_diameter
         face = max(float(np.max(ring_profile(grooves[INNER], D, np.nan)[0])), 0.95 * D)
@@ -62,7 +88,8 @@ class TeachingOverlay:
         inner_pt = grooves[INNER].point(side + 0.35, 0.0)
         shift = self.layout.outer_shift
         outer_pt = grooves[OUTER].point(side + math.pi - 0.35, 0.0) + [shift, 0, 0]
-        labels = [("inner raceway", inner_pt), ("outer raceway", outer_pt)]
+        inner_words, outer_words = ring_words(facts)
+        labels = [(inner_words, inner_pt), (outer_words, outer_pt)]
         # shaft rotation: an arc round +x on the inner ring's face, arrow head in the turning sense
         sense = 1.0 if facts.inner_ring_speed >= 0 else -1.0
         if facts.inner_ring_speed != facts.outer_ring_speed:
@@ -132,17 +159,31 @@ class TeachingOverlay:
                 name="labels",
             )
         )
+        entries = [[text, colour] for text, colour in LEGEND]
+        entries[ELLIPSE_ENTRY][0] = ellipse_legend_words(ellipse_scale)
         legend = p.add_legend(
-            [[text, colour] for text, colour in LEGEND],
+            entries,
             bcolor="white",
             border=False,
-            size=(0.24, 0.08),
+            size=(0.3, 0.1),  # legible in a laptop's view (about 500 px wide)
             loc="lower left",
             face="rectangle",
         )
         self.actors.append(legend)
+        self._legend = legend
         for actor in self.actors:
             actor.visibility = visible
+
+    def set_ellipse_scale(self, ellipse_scale: float) -> None:
+        """Name the contact ellipses' drawing scale in the legend (:func:`ellipse_legend_words`)."""
+        if self._legend is not None:
+            self._legend.SetEntryString(ELLIPSE_ENTRY, ellipse_legend_words(ellipse_scale))
+
+    def legend_words(self) -> list[str]:
+        """The legend's entries as drawn (empty before :meth:`show`)."""
+        if self._legend is None:
+            return []
+        return [self._legend.GetEntryString(i) for i in range(self._legend.GetNumberOfEntries())]
 
     def _add_mesh(self, mesh, colour: str):
         actor = self.plotter.add_mesh(mesh, color=colour, lighting=True, reset_camera=False)

@@ -14,7 +14,9 @@ in that ring's own frame and share the ring's transform, so inner-raceway marks 
 ring. The painted tracks (:mod:`viz.tracks`) colour the groove where the contact ellipses ran, by
 dwell or by peak pressure. Across-groove positions of marks can be exaggerated about the run's mean
 contact angle (``exaggeration``), clipped at the shoulders so that marks never leave the groove;
-ellipse sizes are to scale unless ``ellipse_scale`` enlarges them.
+the contact ellipses of the frame on show are to scale unless ``ellipse_scale`` enlarges them
+(the legend names the scale); the painted tracks are their footprints at true size, so that a
+line stays a line and a band a band at any ellipse scale.
 
 Both raceways are in view at once: by default the outer ring is drawn apart from the inner one
 along the bearing axis (``explode``, in ball diameters, away from the camera side) and opened as a
@@ -44,6 +46,9 @@ from .raceway import INNER, OUTER
 # light at every pixel: three cost about 10 ms a frame less than pyvista's five-light kit at
 # 820 x 670, with much the same shading.
 LIGHTS = (((0.0, 0.0, 1.0), 0.5), ((-0.5, 1.0, 0.8), 0.5), ((0.5, -1.0, 0.5), 0.4))
+# the camera preset that shows the inner raceway past where the balls and the cage stand: they are
+# not drawn while it is on (whatever the layer switches say)
+INNER_TRACK_CLEAR = "inner track"
 
 
 class BearingScene:
@@ -63,6 +68,7 @@ class BearingScene:
         self.options = options or SceneOptions()
         self.source: FrameSource | None = None
         self.frame_index = 0
+        self._track_clear = False  # balls and cage hidden: the "inner track" preset
         g, p = geometry, plotter
         p.set_background("white")
         p.remove_all_lights()
@@ -127,7 +133,8 @@ class BearingScene:
         self.set_frame(frame_index)
 
     def _use_source(self) -> None:
-        self.tracks.use_source(self.source, self.options.exaggeration, self.options.ellipse_scale)
+        # footprints at their true size: the ellipse scale enlarges the marks of the frame only
+        self.tracks.use_source(self.source, self.options.exaggeration, ellipse_scale=1.0)
 
     def set_frame(self, frame_index: int) -> None:
         """Move everything to frame ``frame_index`` of the current source (no render)."""
@@ -149,7 +156,7 @@ class BearingScene:
         on = self.closeup.on
         self.closeup.show(on)
         ball = int(min(max(self.options.closeup_ball, 0), self.geometry.ball_count - 1))
-        self.bodies.show_alone(ball if on else None, self.options)
+        self.bodies.show_alone(ball if on else None, self.options, self._track_clear)
         if on:
             self.closeup.update(f, ball, rings, self.source, self.options.ellipse_scale)
             self.camera.follow_ball(f, ball, self.geometry.ball_diameter)
@@ -162,8 +169,14 @@ class BearingScene:
     def show_facts(self, facts) -> None:
         """Labels and arrows for the operating point ``facts`` (see :mod:`viz.overlay`): names of
         the raceways, the shaft's rotation, the radial load direction and the tilt axis ("fixed in
-        space" or "turning with the ring"), and a legend of the marks."""
-        self.overlay.show(facts, self.options.view_azimuth, self.options.visible("labels"))
+        space" or "turning with the ring"), which ring is fixed, and a legend of the marks (naming
+        the contact ellipses' drawing scale)."""
+        self.overlay.show(
+            facts,
+            self.options.view_azimuth,
+            self.options.visible("labels"),
+            self.options.ellipse_scale,
+        )
 
     # ---- options --------------------------------------------------------------------------------
     def set_layer(self, name: str, visible: bool) -> None:
@@ -182,8 +195,11 @@ class BearingScene:
         self._set_drawing_factor("exaggeration", factor)
 
     def set_ellipse_scale(self, factor: float) -> None:
-        """Drawn size of the contact ellipses (and their painted footprints) / true size, >= 1."""
-        self._set_drawing_factor("ellipse_scale", factor)
+        """Drawn size of the contact ellipses of the frame on show / true size (at least 1; the
+        painted tracks stay at true size), named in the legend."""
+        self.options.ellipse_scale = max(1.0, float(factor))
+        self.overlay.set_ellipse_scale(self.options.ellipse_scale)
+        self.set_frame(self.frame_index)
 
     def _set_drawing_factor(self, option: str, factor: float) -> None:
         """Set the drawing option ``option`` to ``factor`` (at least 1), redraw from the source if
@@ -225,8 +241,9 @@ class BearingScene:
         where the inner-raceway contacts face, :data:`viz.camera.ISOMETRIC_TILT_DEG` off the axis:
         the inner raceway in front, the outer raceway behind it from inside; ``axial`` looks along
         +x; ``radial`` looks into the opened side, the bearing axis across the view. ``inner
-        track`` frames the inner raceway's load-side half and ``outer track`` the outer raceway's
-        far half, both :data:`viz.camera.TRACK_VIEW_TILT_DEG` off the axis. ``close-up`` follows
+        track`` frames the inner raceway's load-side half, without the balls and the cage that
+        would hide it, and ``outer track`` the outer ring's far half with its raceway in the
+        middle, both :data:`viz.camera.TRACK_VIEW_TILT_DEG` off the axis. ``close-up`` follows
         ball :attr:`SceneOptions.closeup_ball` alone with its contacts (:mod:`viz.closeup`).
         """
         if preset not in CAMERA_PRESETS:
@@ -234,6 +251,7 @@ class BearingScene:
                 f"unknown camera preset {preset!r}; use one of {', '.join(CAMERA_PRESETS)}"
             )
         self.closeup.on = preset == "close-up"
+        self._track_clear = preset == INNER_TRACK_CLEAR
         self.camera.reset_view_angle()
         if self.closeup.on:
             self.camera.mark_framed()
@@ -241,7 +259,8 @@ class BearingScene:
                 self.set_frame(self.frame_index)
             return
         self.closeup.show(False)
-        self.bodies.show_alone(None, self.options)  # the close-up showed one ball alone
+        # the close-up showed one ball alone; the inner track is seen without balls and cage
+        self.bodies.show_alone(None, self.options, self._track_clear)
         self.camera.frame_preset(preset, self.options.view_azimuth)
 
     def framed_for_window(self) -> bool:

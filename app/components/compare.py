@@ -101,8 +101,9 @@ class Compare(Component):
             return
         self._compare_key = (int(self.state.result_serial), tuple(self.chosen()))
         label = self.state.result_label or "run on show"
-        if result.title and result.title not in label:
-            label = f"{label}: {result.title}"  # e.g. a preview: its case and loads
+        if result.run_id is None and result.title and result.title not in label:
+            # a preview or a lesson's result: its case and loads (a saved run's label has its title)
+            label = f"{label}: {result.title}"
         shown = [(None, label, result.dataset, result.source)]
         shown += runs
         sources = [source for _, _, _, source in shown]

@@ -39,7 +39,11 @@ CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most thi
 CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half shell on the load side
 MAX_EXAGGERATION = 1000.0
 MAX_SPEED = 1000  # frames per animation tick
-MAX_ELLIPSE_SCALE = 100.0
+MAX_ELLIPSE_SCALE = 100.0  # largest drawing scale of the contact ellipses the view accepts
+MAX_SHOWN_ELLIPSE_SCALE = 10.0  # the slider's end
+# Contact ellipses drawn 5x their size: about 4 x 0.8 mm on the default bearing, seen at a glance
+# in the whole-bearing views (to scale, 0.8 x 0.15 mm on a 54 mm pitch circle, they are not)
+DEFAULT_ELLIPSE_SCALE = 5.0
 HIDDEN_LAYERS = ("traces",)  # off until asked for: the painted tracks show where the balls ran
 DEFAULT_EXAGGERATION = 5.0  # across-groove deviations drawn 5x: lines and bands tell apart
 CHARTS = (
@@ -113,7 +117,7 @@ class ResultView(Component):
         for layer in LAYERS:
             s[f"show_{layer}"] = layer not in HIDDEN_LAYERS
         s.exaggeration = DEFAULT_EXAGGERATION
-        s.ellipse_scale = 1.0  # drawn size of the contact ellipses / true size
+        s.ellipse_scale = DEFAULT_ELLIPSE_SCALE  # drawn size of the contact ellipses / true size
         s.track_quantity = "dwell"  # painted tracks coloured by "dwell" or "peak_pressure"
         s.track_whole_run = False  # paint the whole run, not only up to the current frame
         s.slow_motion = ""  # "1 s on screen = ... of bearing time"
@@ -380,7 +384,7 @@ class ResultView(Component):
 
     @staticmethod
     def _ellipse_scale(value) -> float:
-        return as_float(value, 1.0, 1.0, MAX_ELLIPSE_SCALE)
+        return as_float(value, DEFAULT_ELLIPSE_SCALE, 1.0, MAX_ELLIPSE_SCALE)
 
     @staticmethod
     def _track_quantity(value) -> str:
@@ -637,7 +641,7 @@ def _ball_legend() -> None:
         "map coloured by ball",
         style="position: absolute; top: 4px; left: 4px; right: 18%; display: flex; "
         "flex-wrap: wrap; align-items: center; gap: 2px 6px; padding: 2px 6px; "
-        "background: rgba(255, 255, 255, 0.8); border-radius: 4px; font-size: 12px; "
+        "background: rgba(255, 255, 255, 0.8); color: #000; border-radius: 4px; font-size: 12px; "
         "line-height: 16px; pointer-events: none; z-index: 2;",
     ):
         html.Span("balls", classes="font-weight-medium mr-1")
@@ -658,10 +662,21 @@ def _ball_legend() -> None:
 
 
 def _time_controls() -> None:
-    """Play/pause (``#play-button``), frame steps, ``#time-slider``, the time and revolution
-    counter (``#frame-time``), the slow-motion factor and the playback speed."""
+    """``#time-slider`` on a line of its own (it keeps the width of the view at any window size),
+    then play/pause (``#play-button``), frame steps, the time and revolution counter
+    (``#frame-time``), the slow-motion factor and the playback speed."""
     with v3.VRow(dense=True, align="center", classes="mt-1"):
-        with v3.VCol(cols="auto"):
+        with v3.VCol(cols=12), html.Div(id="time-slider"):
+            v3.VSlider(
+                v_model=("frame",),
+                min=0,
+                max=("frame_max",),
+                step=1,
+                hide_details=True,
+                density="compact",
+            )
+    with v3.VRow(dense=True, align="center", classes="flex-nowrap"):
+        with v3.VCol(cols="auto", style="white-space: nowrap;"):
             v3.VBtn(
                 icon=("playing ? 'mdi-pause' : 'mdi-play'",),
                 id="play-button",
@@ -674,16 +689,7 @@ def _time_controls() -> None:
             icon_button(
                 "mdi-step-forward", "frame = frame < frame_max ? frame + 1 : 0", "step-forward"
             )
-        with v3.VCol(), html.Div(id="time-slider"):
-            v3.VSlider(
-                v_model=("frame",),
-                min=0,
-                max=("frame_max",),
-                step=1,
-                hide_details=True,
-                density="compact",
-            )
-        with v3.VCol(cols="auto"):
+        with v3.VCol(style="min-width: 0;"):
             html.Span(
                 "{{ frame_time }}",
                 classes="text-caption rt-frame-time",
@@ -691,51 +697,56 @@ def _time_controls() -> None:
                 id="frame-time",
             )
             html.Div("{{ slow_motion }}", classes="text-caption", id="slow-motion")
-        with v3.VCol(cols=2):
+        with v3.VCol(cols="auto", style="width: 110px;"):
             select("speed", "speed", "[1, 2, 5, 10, 20]", id="speed-select")
 
 
 def _camera_and_scales(ctrl) -> None:
-    """Camera presets (``#camera-<preset>``), ``#exaggeration``, ``#ellipse-scale`` and the ball
-    followed by the traces, the raceway map and the close-up."""
+    """Camera presets (``#camera-<preset>``, on one line), then ``#exaggeration``,
+    ``#ellipse-scale`` (each with its value in words) and the ball followed by the traces, the
+    raceway map and the close-up."""
     with v3.VRow(dense=True, align="center"):
-        with v3.VCol(cols="auto"):
+        with v3.VCol(cols=12, style="white-space: nowrap; overflow-x: auto;"):
             # plain buttons, not a toggle: pressing the current preset again restores it
             for preset in CAMERA_BUTTONS:
                 v3.VBtn(
                     preset,
                     click=(ctrl.set_camera, f"['{preset}']"),
-                    size="small",
+                    size="x-small",
                     variant=(f"camera === '{preset}' ? 'flat' : 'outlined'",),
                     classes="mr-1",
                     id=f"camera-{preset.replace(' ', '-')}",
                 )
-        with v3.VCol():
+    with v3.VRow(dense=True, align="center"):
+        with v3.VCol(cols=4):
             _slider(
-                "exaggeration",
                 "exaggeration",
                 30,
                 "Draw the across-groove deviation of the tracks, traces and ellipse centres "
                 "from the run's mean contact angle this many times larger (clipped at the "
                 "shoulders)",
             )
-            html.Span("deviation × {{ exaggeration }}", classes="text-caption")
-        with v3.VCol(cols=2):
-            _slider(
-                "ellipses ×",
-                "ellipse_scale",
-                10,
-                "Draw the contact ellipses this many times their true size",
+            html.Span(
+                "deviation × {{ exaggeration }}", classes="text-caption", id="exaggeration-label"
             )
-        with v3.VCol(cols=3):
+        with v3.VCol(cols=4):
+            _slider(
+                "ellipse_scale",
+                int(MAX_SHOWN_ELLIPSE_SCALE),
+                "Draw the contact ellipses this many times their true size (the legend in the "
+                "view names the scale)",
+            )
+            html.Span(
+                "ellipses × {{ ellipse_scale }}", classes="text-caption", id="ellipse-scale-label"
+            )
+        with v3.VCol(cols=4):
             select("ball (traces, map, close-up)", "trace_ball", "ball_items")
 
 
-def _slider(label: str, model: str, largest: int, title: str) -> None:
+def _slider(model: str, largest: int, title: str) -> None:
     """A whole-number slider from 1 to ``largest`` bound to ``model`` (id: ``model`` with
-    dashes)."""
+    dashes); its value is written beside it by the caller."""
     v3.VSlider(
-        label=label,
         v_model=(model,),
         min=1,
         max=largest,

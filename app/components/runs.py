@@ -46,6 +46,9 @@ def _title(ds, run_info: dict) -> str:
     return title.replace(f"{planned:g} rev", f"{reached:.3g} of {planned:g} rev")
 
 
+NOTHING_COMPUTED = "nothing computed yet, so nothing saved: cancelled"  # a run cancelled early
+
+
 def _job() -> str:
     """The solver job of a run (looked up at each run, so that tests can swap it)."""
     return runner_module.DYNAMIC_JOB
@@ -64,7 +67,7 @@ class Runs(Component):
         self._poll_task = None
         self._watch_task = None
         self._folder_key = ()
-        self._compiling = False  # the run's first step waits for numba to compile
+        self._preparing = False  # before the run's first step: kernels loaded or compiled
 
     @property
     def store(self):
@@ -208,13 +211,9 @@ class Runs(Component):
                 f"(at most {cap} run{'s' * (cap != 1)} at once)"
             )
             return False
-        from solver import dynamic_model_compiled
-
         self.runner.start(self.run_info["case_text"], self.run_info["out"], target=_job())
-        self._compiling = not dynamic_model_compiled()
-        self.state.status = (
-            "running dynamic: compiling (first run only)" if self._compiling else "running dynamic"
-        )
+        self._preparing = True  # until the first step: the solver process says what it does
+        self.state.status = "running dynamic: starting the solver process"
         return True
 
     def cancel(self) -> None:
@@ -224,6 +223,10 @@ class Runs(Component):
         self._cancel_requested = True
         if not self.ticket.held:
             self._end_run("cancelled")
+            return
+        if self._preparing:  # no step computed, and a compiling process checks no cancel event
+            self.runner.stop_now()
+            self._end_run(NOTHING_COMPUTED)
             return
         self.state.status = "cancelling"
         self.runner.cancel()
@@ -241,8 +244,16 @@ class Runs(Component):
             return True
         for event in events:
             if event.kind == "progress":
-                if self._compiling and event.fraction > 0:
-                    self._compiling = False  # the first step is done: compiled
+                if event.text.startswith(
+                    runner_module.PREPARING
+                ):  # loading or compiling the kernels
+                    if self._preparing:
+                        self.state.status = (
+                            "running dynamic: " + event.text[len(runner_module.PREPARING) :]
+                        )
+                    continue
+                if self._preparing and event.fraction > 0:
+                    self._preparing = False  # the first step is done
                     self.state.status = "running dynamic"
                 self.state.progress = round(100 * event.fraction, 1)
                 if np.isfinite(event.eta_s):
@@ -266,7 +277,7 @@ class Runs(Component):
             samples = int(ds.sizes.get("time", 1))
             if samples < 2 and int(ds.attrs.get("complete", 1)) != 1:
                 # stopped before a step was computed: nothing worth a run in the list
-                self._end_run("nothing computed yet, so nothing saved: cancelled")
+                self._end_run(NOTHING_COMPUTED)
                 return
             title = _title(ds, self.run_info) + (" (server stopped)" if stopping else "")
             info = self.store.save(ds, self.run_info["case_text"], title)

@@ -590,20 +590,34 @@ def _study_chart(ctrl) -> None:
 
 
 STUDY_TABLE_HEADS = ("point", "model", "values", "status", "exc i/o deg", "band i/o deg", "")
+STUDY_TABLE_WIDTHS = ("12%", "14%", "20%", "18%", "13%", "13%", "10%")  # of the side column
 
 
 def _study_table(ctrl) -> None:
-    """``#study-table``: a row per point and model (state ``study_rows``) with its **open**."""
-    with v3.VTable(density="compact", id="study-table"):
+    """``#study-table``: a row per point and model (state ``study_rows``) with its **open**. It
+    keeps to the side column's width (about 500 px on a 1600 px window): the values and the status
+    wrap anywhere rather than widen the table."""
+    wrap = "overflow-wrap: anywhere; white-space: normal;"
+    with v3.VTable(
+        density="compact",
+        id="study-table",
+        style="table-layout: fixed; width: 100%; font-size: 12px;",
+    ):
         with html.Thead(), html.Tr():
-            for head in STUDY_TABLE_HEADS:
-                html.Th(head)
+            for head, width in zip(STUDY_TABLE_HEADS, STUDY_TABLE_WIDTHS, strict=True):
+                html.Th(head, style=f"width: {width}; {wrap} padding: 0 4px;")
         with html.Tbody(), html.Tr(v_for="row in study_rows", key="row.key"):
             for cell in ("point", "model", "values", "status"):
-                html.Td(f"{{{{ row.{cell} }}}}")
-            html.Td("{{ row.excursion_inner }} / {{ row.excursion_outer }}")
-            html.Td("{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}")
-            with html.Td():
+                html.Td(f"{{{{ row.{cell} }}}}", style=f"{wrap} padding: 0 4px;")
+            html.Td(
+                "{{ row.excursion_inner }} / {{ row.excursion_outer }}",
+                style=f"{wrap} padding: 0 4px;",
+            )
+            html.Td(
+                "{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}",
+                style=f"{wrap} padding: 0 4px;",
+            )
+            with html.Td(style="padding: 0 2px;"):
                 v3.VBtn(
                     "open",
                     size="x-small",

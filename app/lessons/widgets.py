@@ -8,11 +8,13 @@ lesson-next, presenter-button.
 
 Presenter mode adds the class ``rt-presenter`` around the page content (:data:`PRESENTER_CSS`):
 the form drawer, the scene and export controls, the runs card and every chart but the lesson's
-(or the contact-angle chart) are hidden; the 3-D view and that chart fill the screen in large,
-high-contrast type. :data:`KEYS_SCRIPT` sends space, the arrows, N, P and Escape to the server
-(``lesson_key``) unless a text field has the focus; Escape leaves presenter mode in the page
-itself. The drawer (``main_drawer``) is closed and opened by the page as presenter mode is
-switched, and by the server when it switches it.
+(or the contact-angle chart) and the note under the view (the lesson says what is seen) are
+hidden; the 3-D view with its time controls and the side column share the screen in
+large, high-contrast type: the lesson on top, whole, and its chart below in the height left
+(:data:`PANEL_HEIGHT_SCRIPT`). :data:`KEYS_SCRIPT` sends space, the arrows, N, P and Escape to the
+server (``lesson_key``) wherever the focus is, unless on a text field; Escape leaves presenter
+mode in the page itself. The drawer (``main_drawer``) is closed and opened by the page as
+presenter mode is switched, and by the server when it switches it.
 """
 
 from __future__ import annotations
@@ -32,16 +34,38 @@ PRESENTER_CSS = """
 .rt-presenter .v-expansion-panel,
 .rt-presenter .v-expansion-panel-text__wrapper { background: transparent; padding: 0; }
 .rt-presenter .v-expansion-panel::after { border: none; }
-.rt-presenter #view-3d { height: calc(100vh - 150px) !important; }
+.rt-presenter #view-3d { height: calc(100vh - 175px) !important; }
+.rt-presenter #scene-note { display: none; }
+@media (min-width: 960px) {
+  .rt-presenter .rt-view-col { flex: 0 0 55%; max-width: 55%; }
+  .rt-presenter .rt-side { flex: 0 0 45%; max-width: 45%; }
+}
 .rt-presenter .rt-side { display: flex; flex-direction: column; }
-.rt-presenter .rt-side > * { order: 1; }
-.rt-presenter .rt-side > #lessons-panel { order: 2; }
-.rt-presenter .rt-lesson-chart > div:first-child { height: 55vh !important; min-height: 240px; }
+.rt-presenter .rt-side > * { order: 2; }
+.rt-presenter .rt-side > #lessons-panel { order: 1; }
+.rt-presenter .rt-lesson-chart > div:first-child {
+  height: max(140px, calc(100vh - 100px - var(--rt-lesson-panel-height, 45vh))) !important; }
 .rt-presenter #lessons-panel { background: #111; color: #fff; border-color: #fff; }
 .rt-presenter #lesson-title { font-size: 1.6rem !important; line-height: 1.3 !important; }
-.rt-presenter #lesson-text { font-size: 1.25rem !important; line-height: 1.45 !important;
-  max-height: calc(45vh - 190px); min-height: 4em; overflow-y: auto; }
+.rt-presenter #lesson-text { font-size: 1.1rem !important; line-height: 1.4 !important; }
 .rt-presenter .rt-frame-time { font-size: 1.1rem !important; color: #fff; }
+"""
+
+# Presenter mode: the lesson panel on top of the side column, whole; the lesson's chart below it
+# takes the height left (``--rt-lesson-panel-height``, kept up to date here).
+PANEL_HEIGHT_SCRIPT = """
+(function () {
+  if (window.racetraceLessonPanelHeight) return;
+  window.racetraceLessonPanelHeight = true;
+  const observer = new ResizeObserver(function (entries) {
+    const height = entries[0].target.getBoundingClientRect().height;
+    document.documentElement.style.setProperty('--rt-lesson-panel-height', height + 'px');
+  });
+  (function watch() {
+    const panel = document.querySelector('#lessons-panel');
+    if (panel) observer.observe(panel); else setTimeout(watch, 200);
+  })();
+})();
 """
 
 KEYS_SCRIPT = """
@@ -49,7 +73,9 @@ KEYS_SCRIPT = """
   if (window.racetraceLessonKeys) return;
   window.racetraceLessonKeys = true;
   const KEYS = [' ', 'ArrowLeft', 'ArrowRight', 'n', 'N', 'p', 'P', 'Escape'];
-  document.addEventListener('keydown', function (event) {
+  // on the window, before any element sees the key (capture): the 3-D view and other widgets
+  // that take keys for themselves do not keep them from the lessons, wherever the focus is
+  window.addEventListener('keydown', function (event) {
     const target = event.target;
     const tag = target && target.tagName;
     if (event.ctrlKey || event.metaKey || event.altKey) return;
@@ -57,12 +83,13 @@ KEYS_SCRIPT = """
         tag === 'SELECT')) return;
     if (KEYS.indexOf(event.key) < 0 || !window.trame) return;
     event.preventDefault();
+    event.stopPropagation();
     if (event.key === 'Escape') {  // leave presenter mode here: the drawer comes back at once
       window.trame.state.update({ presenter: false, main_drawer: true });
       return;
     }
     window.trame.trigger('lesson_key', [event.key]);
-  });
+  }, true);
 })();
 """
 
@@ -70,6 +97,7 @@ KEYS_SCRIPT = """
 def page_assets() -> None:
     """The presenter-mode style sheet and the key handler (once per page)."""
     client.Style(PRESENTER_CSS)
+    client.Script(PANEL_HEIGHT_SCRIPT)
     client.Script(KEYS_SCRIPT)
 
 

@@ -11,7 +11,10 @@ sessions use the same runs folder and the same solver slots (:class:`app.service
 Session processes are forked from a fork server that has imported what they all use
 (:mod:`app.serve.forkserver`), so they share that memory instead of each holding a copy; with
 ``fork=False`` (or where there is no fork server) each is a new Python process.
-A spare session is started ahead, so that a new browser does not wait for one to start. A session
+A spare session is started ahead, so that a new browser does not wait for one to start. The
+front listens at once: while the first session is prepared (the fork server imports and loads or
+compiles the kernels, minutes on an empty numba cache), a browser gets a page that says what is
+being prepared (:mod:`app.serve.preparing`) and opens the app when its session is ready. A session
 whose browsers have all left is stopped after :data:`IDLE_S`. Session processes stop when the
 front ends, even when it is killed (they watch their parent).
 """
@@ -33,6 +36,7 @@ from pathlib import Path
 from aiohttp import ClientSession, WSMsgType, web
 
 from ..access import Access
+from . import preparing
 from .quiet_log import quiet_closed_connections
 from .session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 
@@ -41,7 +45,10 @@ log = logging.getLogger("racetrace.front")
 COOKIE = "racetrace_session"
 IDLE_S = 120.0  # a session without browsers is stopped after this
 MAX_SESSIONS = 8  # sessions (browsers) at once; each is a process of about 0.5 GB
-START_TIMEOUT_S = 300.0  # a cold numba cache compiles the quasi-static kernels first
+# a cold numba cache compiles the quasi-static kernels first: minutes on a busy machine (the page
+# says what is being prepared meanwhile, :data:`PREPARING_PATH`)
+START_TIMEOUT_S = 1800.0
+PREPARING_PATH = "/__racetrace_preparing"  # what the first session waits for, as JSON
 STOP_TIMEOUT_S = 40.0  # a session stopping saves its run first (it waits up to 20 s for it)
 _HOP_HEADERS = {
     "connection",
@@ -104,6 +111,10 @@ class Front:
         self._spare: Session | None = None
         self._http: ClientSession | None = None
         self._reaper = None
+        self._spare_lock: asyncio.Lock | None = None  # one spare started at a time
+        self._starting = None  # the first spare's start (the front listens meanwhile)
+        self._started_at = time.monotonic()
+        self._said_ready = False
 
     # ---- session processes ----------------------------------------------------------------------
     async def _spawn(self) -> Session:
@@ -146,6 +157,10 @@ class Front:
                 ) as response:
                     if response.status == 200:
                         session.ready.set_result(True)
+                        if not self._said_ready:
+                            self._said_ready = True
+                            took = time.monotonic() - self._started_at
+                            print(f"racetrace: ready (the first session took {took:.0f} s)")
                         return
             except OSError:
                 pass
@@ -161,8 +176,11 @@ class Front:
 
     async def start_spare(self) -> None:
         """Start the session the next browser gets (the shared one with ``shared``)."""
-        if self._spare is None or not self._spare.alive:
-            self._spare = await self._spawn()
+        if self._spare_lock is None:
+            self._spare_lock = asyncio.Lock()
+        async with self._spare_lock:
+            if self._spare is None or not self._spare.alive:
+                self._spare = await self._spawn()
 
     async def _session_for(self, request: web.Request) -> tuple[Session, bool]:
         """The browser's session (a new one, from the spare, if it has none); and whether it is
@@ -222,13 +240,44 @@ class Front:
             sessions.append(self._spare)
         await asyncio.gather(*(self._stop(s) for s in sessions))
 
+    def _preparing_status(self, request: web.Request) -> web.Response:
+        """``{"ready": bool, "failed": str, "text": str}``: whether the browser's session (or the
+        spare) answers, and what is being prepared meanwhile."""
+        session = self.sessions.get(request.cookies.get(COOKIE, "")) or self._spare
+        ready = session is not None and session.ready.done()
+        failed = ""
+        if ready and session.ready.exception() is not None:
+            failed = f"{session.ready.exception()}; see the terminal of racetrace serve"
+        if session is None or not ready:
+            text = preparing.read(os.environ.get(preparing.ENV)) or "starting"
+        else:
+            text = ""
+        return web.json_response(
+            {"ready": ready and not failed, "failed": failed, "text": text},
+            headers={"Cache-Control": "no-store"},
+        )
+
     # ---- relaying -------------------------------------------------------------------------------
     async def handle(self, request: web.Request) -> web.StreamResponse:
         problem = self.access.problem(request)
         if problem:
             return web.Response(status=403, text=f"racetrace: {problem}\n")
+        if request.path == PREPARING_PATH:
+            return self._preparing_status(request)
         try:
             session, new = await self._session_for(request)
+            if not session.ready.done() and _is_page(request):
+                response = web.Response(
+                    text=PREPARING_PAGE,
+                    content_type="text/html",
+                    headers={"Cache-Control": "no-store"},
+                )
+                if new:
+                    response.set_cookie(
+                        COOKIE, session.sid, httponly=True, samesite="Strict", path="/"
+                    )
+                self.access.grant(request, response)
+                return response
             await asyncio.shield(session.ready)
         except NoSession as error:
             return web.Response(status=403, text=f"racetrace: {error}\n")
@@ -301,19 +350,61 @@ class Front:
     async def _on_startup(self, _app) -> None:
         quiet_closed_connections()
         self._http = ClientSession(auto_decompress=True)
-        try:
-            await self.start_spare()  # the first start waits for the fork server's imports
-        except asyncio.CancelledError:  # stopped meanwhile: aiohttp cleans up after start only
-            await self._http.close()
-            raise
+        self._started_at = time.monotonic()
+        # started in the background: the port listens at once, and a browser is shown what the
+        # first session (the fork server's imports and kernels) waits for
+        self._starting = asyncio.get_running_loop().create_task(self.start_spare())
         self._reaper = asyncio.get_running_loop().create_task(self._reap())
 
     async def _on_shutdown(self, _app) -> None:
         if self._reaper is not None:
             self._reaper.cancel()
+        if self._starting is not None and not self._starting.done():
+            self._starting.cancel()
+            with contextlib.suppress(asyncio.CancelledError, Exception):
+                await self._starting
         await self.stop_all()
         if self._http is not None:
             await self._http.close()
+
+
+def _is_page(request: web.Request) -> bool:
+    """Whether ``request`` opens a page (a browser's GET for HTML)."""
+    return request.method == "GET" and "text/html" in request.headers.get("Accept", "")
+
+
+# Shown while the browser's session is prepared: what is being done (polled every second from
+# PREPARING_PATH), then the app itself once the session answers.
+PREPARING_PAGE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>racetrace: preparing</title>
+<style>
+body { font-family: Roboto, Arial, sans-serif; margin: 15vh auto; max-width: 40em; color: #222; }
+#preparing-text { font-size: 1.2rem; margin: 1em 0; }
+#preparing-failed { color: #b00020; }
+.bar { height: 6px; background: #e0e0e0; overflow: hidden; border-radius: 3px; }
+.bar > div { height: 100%; width: 30%; background: #1976d2; animation: move 1.5s infinite linear; }
+@keyframes move { from { margin-left: -30%; } to { margin-left: 100%; } }
+</style></head>
+<body><h1>racetrace is getting ready</h1>
+<div class="bar"><div></div></div>
+<p id="preparing-text">starting</p>
+<p id="preparing-failed"></p>
+<p>The first start after installing (or after a solver update) compiles the solver: a few minutes.
+Later starts load the compiled kernels in seconds. This page opens the app by itself.</p>
+<script>
+(function poll() {
+  fetch('__PATH__' + window.location.search, { cache: 'no-store', credentials: 'same-origin' })
+    .then(function (r) { return r.json(); })
+    .then(function (s) {
+      if (s.ready) { window.location.reload(); return; }
+      document.getElementById('preparing-text').textContent = s.text;
+      document.getElementById('preparing-failed').textContent = s.failed;
+      if (!s.failed) setTimeout(poll, 1000);
+    })
+    .catch(function () { setTimeout(poll, 2000); });
+})();
+</script></body></html>
+""".replace("__PATH__", PREPARING_PATH)
 
 
 async def _pump(source, target) -> None:

@@ -304,11 +304,18 @@ def test_raceway_map_marks_now_follows_balls_and_names_samples_on_hover(dynamic_
         charts.raceway_map_figure(src, colour="rainbow")
 
 
-def test_raceway_map_draws_the_shoulders(qs_dataset):
+def test_raceway_map_draws_the_shoulders_it_names_inside_its_range(qs_dataset):
     fig = charts.raceway_map_figure(frame_source(qs_dataset), shoulders=(0.9, 0.8))
+    # the shoulder on the side of each track (positive contact angles here)
     lines = sorted(round(shape.y0, 3) for shape in fig.layout.shapes)
-    assert lines == sorted(round(v, 3) for v in np.degrees([-0.9, 0.9, -0.8, 0.8]))
-    assert "±52°" in fig.layout.title.text and "±46°" in fig.layout.title.text
+    assert lines == sorted(round(v, 3) for v in np.degrees([0.9, 0.8]))
+    assert "inner +52°" in fig.layout.title.text and "outer +46°" in fig.layout.title.text
+    lo, hi = fig.layout.yaxis.range
+    assert all(lo < y < hi for y in lines)
+    # and the tracks too
+    for trace in fig.data[:2]:
+        y = np.asarray(trace.y, float)
+        assert lo <= np.nanmin(y) and np.nanmax(y) <= hi
 
 
 def test_contact_angle_of_all_balls(dynamic_dataset):

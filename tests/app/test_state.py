@@ -544,6 +544,20 @@ def test_ball_legend_gives_each_ball_of_the_result_its_colour(app, dynamic_datas
     assert len(s.ball_legend) == 12
 
 
+def test_compare_legend_names_a_saved_run_on_show_once(app):
+    s = app.state
+    saved = []
+    for radial in ("0", "600"):
+        _set(app, fv_radial_load_N=radial)
+        app.form.preview_now()
+        saved.append(app.store.save(app.result.dataset, app.form.case.to_toml(), f"r{radial}"))
+    app.runs.refresh()
+    _set(app, run_id=saved[0].run_id)
+    _set(app, open_panels=["compare"], compare_ids=[saved[1].run_id])
+    assert s.compare_legend[0]["label"] == f"{saved[0].label} (on show)"
+    assert s.compare_legend[1]["label"] == saved[1].label
+
+
 def test_compare_any_number_of_runs_each_in_its_own_colour(app):
     from viz.palette import run_colours
 

@@ -3,6 +3,7 @@ runs folder, waited for until it answers HTTP, and stopped again."""
 
 from __future__ import annotations
 
+import json
 import os
 import socket
 import subprocess
@@ -12,6 +13,8 @@ import urllib.request
 from pathlib import Path
 
 import pytest
+
+from app.serve.front import PREPARING_PATH
 
 START_S = 300  # a cold numba cache compiles the quasi-static kernels first; the machine is shared
 
@@ -54,10 +57,13 @@ def start_server(runs: Path, log_path: Path, *options: str, new_group: bool = Fa
         time.sleep(0.2)
     token = text.split("?token=", 1)[1].split()[0] if "?token=" in text else ""
     url = f"http://127.0.0.1:{port}/" + (f"?token={token}" if token else "")
-    while True:  # and the first session answers through it
+    status = f"http://127.0.0.1:{port}{PREPARING_PATH}" + (f"?token={token}" if token else "")
+    while True:  # and the first session answers through it (the front says when it is ready)
         try:
-            urllib.request.urlopen(url, timeout=2)
-            break
+            with urllib.request.urlopen(status, timeout=2) as answer:
+                if json.loads(answer.read())["ready"]:
+                    break
+            time.sleep(0.5)
         except OSError:
             if proc.poll() is not None or time.monotonic() > deadline:
                 failed()

@@ -293,3 +293,97 @@ def test_each_ball_is_marked_in_its_legend_colour(scene, geometry):
         marked = np.array(actor.mapper.lookup_table.values)[-1, :3]
         expected = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
         assert np.allclose(marked, expected, atol=2), (marked, colour)
+
+
+def _facts(outer_ring_speed: float = 0.0):
+    """The operating point the teaching overlay reads (as the app's ``Facts``)."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(
+        inner_ring_speed=2000.0,
+        outer_ring_speed=outer_ring_speed,
+        radial_load=300.0,
+        radial_load_angle=0.0,
+        misalignment=0.0,
+        misalignment_axis=0.0,
+        misalignment_turns=False,
+    )
+
+
+def test_legend_names_the_ellipse_scale_and_follows_it(qs_dataset, geometry):
+    from viz.scene import SceneOptions
+
+    plotter = pv.Plotter(off_screen=True, window_size=(320, 240))
+    try:
+        scene = BearingScene(plotter, geometry, SceneOptions(ellipse_scale=5.0))
+        scene.show_source(frame_source(qs_dataset))
+        scene.show_facts(_facts())
+        assert scene.overlay.legend_words()[0] == "contact ellipses now ×5"
+        scene.set_ellipse_scale(3.0)
+        assert scene.overlay.legend_words()[0] == "contact ellipses now ×3"
+        scene.set_ellipse_scale(1.0)
+        assert scene.overlay.legend_words()[0] == "contact ellipses now (to scale)"
+    finally:
+        plotter.close()
+
+
+def test_painted_tracks_stay_at_true_size_when_the_ellipses_are_enlarged(scene):
+    scene.set_track_options(whole_run=True)
+    true_size = [scene.tracks.painter.painted(race).sum() for race in (INNER, OUTER)]
+    scene.set_ellipse_scale(5.0)
+    assert scene.options.ellipse_scale == 5.0
+    assert [scene.tracks.painter.painted(race).sum() for race in (INNER, OUTER)] == true_size
+
+
+def test_raceway_labels_say_which_ring_is_fixed():
+    from viz.overlay import ring_words
+
+    inner, outer = ring_words(_facts(outer_ring_speed=0.0))
+    assert "turning" in inner and "shaft" in inner
+    assert "fixed" in outer and "housing" in outer
+    assert "turning" in ring_words(_facts(outer_ring_speed=100.0))[1]
+
+
+def test_inner_track_preset_shows_the_track_without_balls_and_cage(scene):
+    scene.set_camera("inner track")
+    scene.set_frame(3)
+    assert not any(a.visibility for a in scene.actors["balls"] + scene.actors["cage"])
+    scene.set_camera("isometric")
+    scene.set_frame(4)
+    assert all(a.visibility for a in scene.actors["balls"] + scene.actors["cage"])
+
+
+def test_outer_track_preset_shows_the_opened_outer_ring_whole(geometry):
+    """The far half of the outer ring, both faces at its largest radius, is in the view (left of
+    the colour bar), its raceway in the middle."""
+    import math
+
+    from viz.camera import track_points
+    from viz.raceway import OUTER
+
+    pv.global_theme.multi_samples = 0
+    plotter = pv.Plotter(off_screen=True, window_size=(650, 480))
+    try:
+        scene = BearingScene(plotter, geometry)
+        scene.set_camera("outer track")
+        plotter.render()
+        layout = scene.layout
+        x, radius = layout.profiles[OUTER]
+        phi = math.pi + np.linspace(-0.5 * math.pi, 0.5 * math.pi, 19)
+        r = float(np.max(radius))
+        ring = np.concatenate(
+            [
+                np.column_stack([np.full(19, face + layout.outer_shift), r * np.cos(phi),
+                                 r * np.sin(phi)])
+                for face in (float(np.min(x)), float(np.max(x)))
+            ]
+        )  # fmt: skip
+        xy = _display_xy(plotter, ring)
+        bar_left = plotter.scalar_bar.GetPositionCoordinate().GetValue()[0] * 650
+        assert xy[:, 0].min() > 0 and xy[:, 0].max() < bar_left
+        assert xy[:, 1].min() > 0 and xy[:, 1].max() < 480
+        track = _display_xy(plotter, track_points(layout, OUTER, 0.0)[:74])  # the shoulder edges
+        middle = 0.5 * (track[:, 1].min() + track[:, 1].max())
+        assert 0.25 * 480 < middle < 0.75 * 480
+    finally:
+        plotter.close()

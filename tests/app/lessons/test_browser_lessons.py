@@ -145,7 +145,10 @@ def test_presenter_mode(page, width, height):
         chart = page.locator(f"#{_chart_id(lesson.chart)}").bounding_box()
         assert view["height"] > 0.75 * height
         assert view["width"] > 0.5 * width
-        assert chart["height"] > 0.3 * height and chart["x"] >= view["x"] + view["width"] - 1
+        # the chart beside the view; on a 720-px projector it yields to the whole lesson text
+        # (tests/app/test_class_browser.py), down to its smallest height
+        assert chart["height"] >= (140 if height <= 720 else 0.3 * height)
+        assert chart["x"] >= view["x"] + view["width"] - 1
         assert view["width"] + chart["width"] > 0.9 * width
         # the only chart on screen is the lesson's
         visible = [c for c in page.locator(".rt-chart").all() if c.is_visible()]
