@@ -31,7 +31,8 @@ body { font-family: sans-serif; }
 .rt-table td.text, .rt-table th.text { text-align: left; }
 .rt-points { font-size: 11px; }
 .rt-points th, .rt-points td { padding: 1px 3px; white-space: nowrap; }
-.rt-points td.text:nth-child(2) { white-space: normal; min-width: 90px; max-width: 130px; }
+.rt-points th { white-space: normal; vertical-align: bottom; }
+.rt-points tr.rt-sweep td { background: #f7f7f7; font-weight: bold; }
 .rt-notes { font-size: 12px; }
 .rt-warn { color: #8a4b00; }
 pre.rt-case { font-size: 11px; background: #f7f7f7; padding: 6px; white-space: pre-wrap; }
@@ -496,7 +497,8 @@ def _vtk_pane(plotter):
         height=520,
         min_width=300,
         sizing_mode="stretch_width",
-        stylesheets=[":host { min-height: 520px; min-width: 300px; }"],
+        # vtk.js's own camera-info toggle ("...") is hidden: the page is not a live view
+        stylesheets=[":host { min-height: 520px; min-width: 300px; } .vtk_info { display: none; }"],
     )
 
 
@@ -527,7 +529,7 @@ def run_sections(ds, source_name: str):
             _table(("quantity", "value"), _operating_rows(ds)),
         )
     )
-    sections.append(_section("Inputs", _table(("input", "value"), _input_rows(answer))))
+    sections.append(_section("Inputs", _table(("input", "value"), _input_rows(answer), (0, 1))))
     window = answer.racetrace.summary().attrs.get("analysed_window", "the quasi-static snapshot")
     life, life_notes = _life_rows(answer)
     sections.append(
@@ -692,29 +694,42 @@ def _message_kind(message: str) -> str:
     return first if len(first) <= 40 else first[:39] + "…"
 
 
+TEXT_CLASS = ' class="text"'
+#: How the points table writes a model (its legend is below the table).
+MODEL_SHORT = {"quasistatic": "qs", "dynamic": "dyn"}
+
+
 def _study_table(ds, links: dict):
-    """(table HTML, notes HTML) of a study's points: one row per run, a short flag per message
-    and each message's full text once below the table. ``links``: {(point, model): relative URL}
-    of the point reports that exist."""
+    """(table HTML, notes HTML) of a study's points, laid out to fit a 1300-px page: one row per
+    run under a row naming its sweep, a note number per kind of message (its first clause) and
+    each message's full text once below the table. ``links``: {(point, model): relative URL} of
+    the point reports that exist."""
     from solver import study_runs
 
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    headers = ["point", "sweep", "model", *(k.rsplit(".", 1)[-1] for k in keys), "status"]
+    headers = ["point", "model", *(k.rsplit(".", 1)[-1].replace("_", " ") for k in keys)]
+    headers.append("status")
     for _var, short, _scale, unit in STUDY_TABLE_METRICS:
         headers += [f"{short}_i {unit}", f"{short}_o {unit}"]
     headers += ["cage slip", "note"]
-    notes: dict[str, list[str]] = {}  # full message -> runs
-    flags: dict[str, int] = {}  # full message -> note number
-    rows = []
+    kinds: dict[str, int] = {}  # kind of message -> note number
+    notes: dict[str, dict[str, list[str]]] = {}  # kind -> full message -> runs
+    body, sweep = [], None
     for i, j, status in study_runs(ds):
         point, model = str(ds["point"].values[i]), str(ds["model"].values[j])
+        if str(ds["sweep"].values[i]) != sweep:
+            sweep = str(ds["sweep"].values[i])
+            body.append(
+                f'<tr class="rt-sweep"><td class="text" colspan="{len(headers)}">'
+                f"{_text(sweep, 120)}</td></tr>"
+            )
         url = links.get((point, model))
-        cell = (
+        name = (
             f'<a href="{html.escape(url, quote=True)}">{html.escape(point)}</a>'
             if url
             else html.escape(point)
         )
-        row = [cell, _text(ds["sweep"].values[i], 60), html.escape(model)]
+        row = [name, html.escape(MODEL_SHORT.get(model, model))]
         row += [html.escape(number(ds[k].values[i], 5)) for k in keys]
         row.append(html.escape(status))
         for var, _short, scale, _unit in STUDY_TABLE_METRICS:
@@ -722,31 +737,30 @@ def _study_table(ds, links: dict):
                 row.append(html.escape(number(float(ds[var].values[i, j, k]) * scale)))
         row.append(html.escape(number(float(ds["cage_slip"].values[i, j]))))
         message = str(ds["message"].values[i, j])
+        flag = ""
         if message:
-            number_ = flags.setdefault(message, len(flags) + 1)
-            notes.setdefault(message, []).append(f"{point} {model}")
-            row.append(f"[{number_}] {html.escape(_message_kind(message))}")
-        else:
-            row.append("")
-        rows.append(row)
-
-    def cell(tag, k, value):
-        cls = ' class="text"' if k in (0, 1, 2, len(headers) - 1) else ""
-        return f"<{tag}{cls}>{value}</{tag}>"
-
-    head = "".join(cell("th", k, html.escape(h)) for k, h in enumerate(headers))
-    body = "".join(
-        "<tr>" + "".join(cell("td", k, v) for k, v in enumerate(row)) + "</tr>" for row in rows
-    )
+            kind = _message_kind(message)
+            flag = f"[{kinds.setdefault(kind, len(kinds) + 1)}]"
+            notes.setdefault(kind, {}).setdefault(message, []).append(f"{point} {model}")
+        row.append(flag)
+        text = (0, 1, len(headers) - 1)
+        cells = (f"<td{TEXT_CLASS if k in text else ''}>{v}</td>" for k, v in enumerate(row))
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
     table = (
         f'<table class="rt-table rt-points"><thead><tr>{head}</tr></thead>'
-        f"<tbody>{body}</tbody></table>"
+        f"<tbody>{''.join(body)}</tbody></table>"
     )
     listed = "".join(
-        f"<li>[{flags[m]}] <strong>{html.escape(', '.join(runs))}</strong>: {_text(m, 2000)}</li>"
-        for m, runs in notes.items()
+        f"<li>[{kinds[kind]}] <strong>{html.escape(kind)}</strong><ul>"
+        + "".join(
+            f"<li>{html.escape(', '.join(runs))}: {_text(message, 2000)}</li>"
+            for message, runs in messages.items()
+        )
+        + "</ul></li>"
+        for kind, messages in notes.items()
     )
-    notes_html = f'<ol class="rt-notes">{listed}</ol>' if listed else ""
+    notes_html = f'<ul class="rt-notes">{listed}</ul>' if listed else ""
     return table, notes_html
 
 

@@ -13,7 +13,7 @@ import math
 #: SI units (as the results registry writes them) -> (scale, unit shown) candidates, in the order
 #: tried: the first whose scaled magnitude is at least its threshold is used, else the last.
 _ENGINEERING = {
-    "Pa": ((1e-9, "GPa", 0.1), (1e-6, "MPa", 0.0)),
+    "Pa": ((1e-9, "GPa", 1.0), (1e-6, "MPa", 0.0)),
     "m": ((1e3, "mm", 1.0), (1e6, "µm", 0.0)),
     "N m": ((1e3, "N·mm", 0.0),),
     "N/m": ((1e-6, "N/µm", 0.0),),
