@@ -89,7 +89,7 @@ def sanitized(text: str) -> str:
     return nh3.clean(
         text,
         tags=set(ALLOWED_TAGS),
-        attributes={"*": {"class"}, "a": {"href"}},
+        attributes={"*": {"class"}, "a": {"href"}, "td": {"colspan"}},
         url_schemes=set(),  # relative links only: the point reports beside a study report
         link_rel=None,
     )
