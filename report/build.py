@@ -48,8 +48,8 @@ PAGE_PRINT_CSS = (
     "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } "
     ":host { max-width: none !important; } }"
 )
-#: Rows of charts side by side on screen, one column on paper.
-CHART_ROW_CSS = "@media print { :host { flex-direction: column !important; } }"
+#: Charts two abreast on screen, one column on paper.
+CHART_GRID_CSS = "@media print { :host { grid-template-columns: 1fr !important; } }"
 PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
 
 
@@ -608,10 +608,11 @@ def run_sections(ds, source_name: str):
             notes.append(note)
     sections.append(pn.pane.Markdown("## Raceway maps", stylesheets=[PRINT_CSS]))
     sections.append(
-        pn.FlexBox(
-            *(pn.pane.Bokeh(f, sizing_mode="stretch_width", min_width=420) for f in figs),
+        pn.GridBox(
+            *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
+            ncols=2,
             sizing_mode="stretch_width",
-            stylesheets=[CHART_ROW_CSS],
+            stylesheets=[CHART_GRID_CSS],
         )
     )
     angle, note_a = charts.contact_series(ds, "contact_angle", "contact angle [deg]")
@@ -780,10 +781,11 @@ def study_sections(ds, links=None):
         if figs:
             sections.append(_html(f"<h2>{_text(sweep)}</h2>", stylesheets=[PRINT_CSS]))
             sections.append(
-                pn.FlexBox(
-                    *(pn.pane.Bokeh(f, sizing_mode="stretch_width", min_width=420) for f in figs),
+                pn.GridBox(
+                    *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
+                    ncols=2,
                     sizing_mode="stretch_width",
-                    stylesheets=[CHART_ROW_CSS],
+                    stylesheets=[CHART_GRID_CSS],
                 )
             )
     table, notes_html = _study_table(ds, links or {})
@@ -857,6 +859,7 @@ def build_report(source, output, point_reports: bool = False, log=None) -> dict:
     import solver  # noqa: F401  (registers ds.racetrace)
     from solver import atomic_write
 
+    from .deferred_render import with_deferred_render
     from .offline import external_urls, inline_cdn_links
 
     kind, ds, name = _load(source)
@@ -887,6 +890,8 @@ def build_report(source, output, point_reports: bool = False, log=None) -> dict:
         try:
             page.save(str(raw), embed=True, resources=INLINE, title=f"racetrace review: {name}")
             text, _missing = inline_cdn_links(raw.read_text(encoding="utf-8"))
+            if kind == "run":  # the 3-D scene: no drawing into a canvas without a size
+                text = with_deferred_render(text)
         finally:
             raw.unlink(missing_ok=True)
         Path(tmp).write_text(text, encoding="utf-8")

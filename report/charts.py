@@ -159,7 +159,7 @@ def study_metric_charts(ds, sweep: str, key: str, metrics):
     order = np.argsort(x)
     figures = []
     for var, label, scale in metrics:
-        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=260)
+        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=320)
         drawn = False
         for model in ds["model"].values:
             for race in ("inner", "outer"):
