@@ -487,19 +487,25 @@ SCENE_CAPTION = (
 )
 
 
-def _vtk_pane(plotter):
-    """The vtk.js scene, drawn only once its pane has a size: a canvas of zero size (a pane not
-    laid out yet) makes WebGL warn that its framebuffer is incomplete at every frame."""
-    import panel as pn
+#: The scene's pane: a size from the start; vtk.js's camera-info toggle ("...", a live view's)
+#: hidden.
+VTK_PANE_CSS = (
+    ":host { min-height: 520px; min-width: 300px; } .vtk_info { display: none !important; }"
+)
 
-    return pn.pane.VTK(
-        plotter.ren_win,
-        height=520,
-        min_width=300,
-        sizing_mode="stretch_width",
-        # vtk.js's own camera-info toggle ("...") is hidden: the page is not a live view
-        stylesheets=[":host { min-height: 520px; min-width: 300px; } .vtk_info { display: none; }"],
-    )
+
+def _vtk_pane(plotter):
+    """The vtk.js scene with :data:`VTK_PANE_CSS` in its own shadow root (Panel's VTK pane does
+    not pass a pane's ``stylesheets`` on to its model, so they are added to the model here)."""
+    from panel.pane.vtk.vtk import VTKRenderWindowSynchronized
+
+    class ReportScene(VTKRenderWindowSynchronized):
+        def _get_model(self, doc, root=None, parent=None, comm=None):
+            model = super()._get_model(doc, root, parent, comm)
+            model.stylesheets = [*model.stylesheets, VTK_PANE_CSS]
+            return model
+
+    return ReportScene(plotter.ren_win, height=520, min_width=300, sizing_mode="stretch_width")
 
 
 def run_sections(ds, source_name: str):

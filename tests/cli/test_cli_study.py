@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from racetrace import cli
+from tests.helpers.studies import two_run_study_folder
 
 STUDY_RESULTS = Path(__file__).resolve().parents[2] / "assets" / "studies" / "results"
-from tests.helpers.studies import two_run_study_folder
 
 
 def test_invalid_study_names_the_key_and_exits_2(tmp_path, capsys):
