@@ -804,9 +804,11 @@ def study_sections(ds, links=None):
     sections.append(
         _section(
             "Points (each race in its own ring's frame)",
-            table + "<p>exc = trajectory excursion, band = band thickness, width = band width, α = "
-            "mean contact angle, p = peak pressure, Q = largest contact load; note: the run's "
-            "message, in full below.</p>" + notes_html + point_note,
+            table + "<p>qs = quasi-static, dyn = dynamic; exc = trajectory excursion, band = band "
+            "thickness, width = band width, α = mean contact angle, p = peak pressure, Q = largest "
+            "contact load; note [n]: the run's message, in full below.</p>"
+            + notes_html
+            + point_note,
         )
     )
     return sections, []
