@@ -333,8 +333,8 @@ def to_inputs(case) -> Inputs:
 
 
 def _grouped(value: float) -> str:
-    """``value`` rounded to a whole number with thin-space thousands (``20 000``), or with up to
-    three significant decimals below 10."""
+    """``value`` rounded to a whole number, thousands grouped with a space (``20 000``), or to
+    three significant digits below 10."""
     if abs(value) < 10 and value != round(value):
         return f"{value:.3g}"
     return f"{round(value):,}".replace(",", " ")
