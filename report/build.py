@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .units import hours, number, shown
+
 #: Top-level modules of the ``report`` extra (checked before building).
 REPORT_MODULES = ("panel", "bokeh", "nh3", "pyvista", "vtkmodules", "PIL")
 
@@ -27,15 +29,27 @@ body { font-family: sans-serif; }
 .rt-table th, .rt-table td { border: 1px solid #ccc; padding: 2px 6px; text-align: right; }
 .rt-table th { background: #f2f2f2; }
 .rt-table td.text, .rt-table th.text { text-align: left; }
+.rt-points { font-size: 11px; }
+.rt-points th, .rt-points td { padding: 1px 3px; white-space: nowrap; }
+.rt-points th { white-space: normal; vertical-align: bottom; }
+.rt-points tr.rt-sweep td { background: #f7f7f7; font-weight: bold; }
+.rt-notes { font-size: 12px; }
 .rt-warn { color: #8a4b00; }
 pre.rt-case { font-size: 11px; background: #f7f7f7; padding: 6px; white-space: pre-wrap; }
-@media print { .rt-section { break-inside: avoid; page-break-inside: avoid; } }
+@media print {
+  .rt-section { break-inside: avoid; page-break-inside: avoid; }
+  h2 { break-before: page; page-break-before: always; }
+  .rt-table { font-size: 10px; }
+}
 """
 #: Panel components live in shadow roots: each gets its own stylesheet for screen and print.
 #: The page column hides the vtk.js scene when printing (a still image stands in for it).
 PAGE_PRINT_CSS = (
-    "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } }"
+    "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } "
+    ":host { max-width: none !important; } }"
 )
+#: Charts two abreast on screen, one column on paper.
+CHART_GRID_CSS = "@media print { :host { grid-template-columns: 1fr !important; } }"
 PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
 
 
@@ -43,7 +57,7 @@ PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block
 #: ``class`` attribute this module writes; anything else (scripts, event handlers, links) is
 #: dropped, a second guard behind escaping every value read from a result or a case.
 ALLOWED_TAGS = frozenset(
-    "div h1 h2 p strong em code ul li table thead tbody tr th td pre span br".split()
+    "div h1 h2 p strong em code ul ol li table thead tbody tr th td pre span br a".split()
 )
 #: The result's ``model`` attribute as shown; any other value is shown as "unknown".
 MODELS = ("quasistatic", "dynamic")
@@ -72,7 +86,13 @@ def sanitized(text: str) -> str:
     """``text`` with only :data:`ALLOWED_TAGS` and their ``class`` attributes kept (nh3)."""
     import nh3
 
-    return nh3.clean(text, tags=set(ALLOWED_TAGS), attributes={"*": {"class"}})
+    return nh3.clean(
+        text,
+        tags=set(ALLOWED_TAGS),
+        attributes={"*": {"class"}, "a": {"href"}, "td": {"colspan"}},
+        url_schemes=set(),  # relative links only: the point reports beside a study report
+        link_rel=None,
+    )
 
 
 def _html(body: str, **options):
@@ -111,14 +131,6 @@ def _now() -> str:
     return _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
 
 
-def _fmt(value, digits: int = 4) -> str:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        return str(value)
-    return f"{value:.{digits}g}" if math.isfinite(value) else "-"
-
-
 def _provenance(ds) -> str:
     """Where the bearing's geometry comes from (the result's ``bearing_provenance``)."""
     from solver import result_description
@@ -127,8 +139,13 @@ def _provenance(ds) -> str:
 
 
 # ---- one run --------------------------------------------------------------------------------
+def _cell(value, units: str) -> str:
+    """A table cell: SI ``value`` in ``units`` shown in engineering units (:mod:`report.units`)."""
+    return shown(value, units)
+
+
 def _operating_rows(ds):
-    from solver import OPERATING_FIELDS, RPM, variable
+    from solver import OPERATING_FIELDS, variable
 
     rows = []
     for name in (
@@ -143,81 +160,354 @@ def _operating_rows(ds):
         spec = variable(name)
         value = ds.coords[name].values
         if name.endswith("_speed"):
-            rows.append((spec.long_name, _fmt(float(value) / RPM, 6), "rpm"))
+            rows.append((spec.long_name, _cell(value, "rad/s")))
         elif value.dtype.kind in "fiu":
-            rows.append((spec.long_name, _fmt(value, 6), spec.units))
+            rows.append((spec.long_name, _cell(value, spec.units)))
         else:
-            rows.append((spec.long_name, str(value), spec.units))
+            rows.append((spec.long_name, str(value)))
     return rows
+
+
+def _metric_cells(ds, name: str):
+    """(long name, inner cell, outer cell) of a per-race metric, or (long name, value, "")."""
+    from solver import METRICS
+
+    row, value = METRICS[name], ds.racetrace.metric(name)
+    if row.dims:
+        inner, outer = (_cell(float(value.sel(race=race)), row.units) for race in RACES)
+        return row.long_name, inner, outer
+    number_ = float(value)
+    text = _cell(number_, row.units) if math.isfinite(number_) else value.attrs.get("note", "-")
+    return row.long_name, text, ""
 
 
 def _summary_rows(ds):
-    from solver import (
-        METRICS,
-        POINT_METRICS,  # the metrics a study keeps, rows of the table
-    )
+    from solver import POINT_METRICS  # the metrics a study keeps, rows of the table
 
-    rows = []
     # a dynamic run also shows the check of its own integration
     checks = ("energy_balance_residual",) if "time" in ds.dims else ()
-    for name in (*POINT_METRICS, *checks):
+    return [_metric_cells(ds, name) for name in (*POINT_METRICS, *checks)]
+
+
+#: Metrics of the friction-torque rows of a run's life-and-friction table.
+TORQUE_ROWS = ("mean_friction_torque", "friction_torque_palmgren", "friction_torque_skf")
+#: (metric, shown as time): the rating lives and their loads, as ``racetrace simulate`` prints
+#: them (million revolutions and hours).
+LIFE_ROWS = (
+    ("basic_rating_life", "revolutions"),
+    ("basic_rating_life_time", "hours"),
+    ("reference_rating_life", "revolutions"),
+    ("reference_rating_life_time", "hours"),
+    ("basic_load_rating", ""),
+    ("equivalent_load", ""),
+)
+
+
+def _life_rows(ds):
+    """Rating lives (L10, L10r), their loads and the friction torques (the model's beside the
+    empirical estimates; a left-out estimate with its note) and the energy-balance residual."""
+    from solver import METRICS
+
+    rows, notes = [], []
+    for name, kind in LIFE_ROWS:
         row, value = METRICS[name], ds.racetrace.metric(name)
-        if row.dims:
-            inner, outer = (_fmt(float(value.sel(race=race))) for race in ("inner", "outer"))
-            rows.append((row.long_name, inner, outer, row.units))
+        number_ = float(value)
+        if kind == "revolutions":
+            text = f"{number(number_ / 1e6)} million revolutions"
+        elif kind == "hours":
+            text = hours(number_)
         else:
-            rows.append((row.long_name, _fmt(float(value)), "", row.units))
-    for name in TORQUE_ROWS:  # the model's friction torque beside the empirical estimates
-        row, value = METRICS[name], ds.racetrace.metric(name)
+            text = _cell(number_, row.units)
+        rows.append((row.long_name, text))
+        note = value.attrs.get("note")
+        if note and note not in notes:
+            notes.append(note)
+    for name in TORQUE_ROWS:
         if name == "mean_friction_torque" and "time" not in ds.dims:
             continue  # a quasi-static result has no friction torque of its own
-        number = float(value)
-        text = _fmt(number) if math.isfinite(number) else value.attrs.get("note", "-")
-        rows.append((row.long_name, text, "", row.units))
+        rows.append(_metric_cells(ds, name)[:2])
+    if "time" in ds.dims:
+        rows.append(_metric_cells(ds, "energy_balance_residual")[:2])
+    return rows, notes
+
+
+def _window_mean(ds, name: str):
+    """Variable ``name`` averaged over time in the analysed window (``analysis_start_time``)."""
+    start = float(ds.racetrace.metric("analysis_start_time"))
+    return ds[name].where(ds["time"] >= start).mean("time")
+
+
+def _loss_rows(ds):
+    """Power loss by source (mean over the analysed window), the total and each race's contact
+    heat; None for a quasi-static result (no losses of its own)."""
+    if "time" not in ds.dims or "power_loss" not in ds:
+        return None
+    by_source = _window_mean(ds, "power_loss")
+    rows = [
+        (f"power loss: {source.replace('_', ' ')}", _cell(float(value), "W"))
+        for source, value in zip(by_source["loss_source"].values, by_source.values, strict=True)
+    ]
+    rows.append(_metric_cells(ds, "mean_total_power_loss")[:2])
+    heat = _metric_cells(ds, "mean_contact_heat")
+    rows.append((f"{heat[0]}: inner race", heat[1]))
+    rows.append((f"{heat[0]}: outer race", heat[2]))
     return rows
 
 
-#: Metrics of the friction-torque rows of a run's summary table.
-TORQUE_ROWS = ("mean_friction_torque", "friction_torque_palmgren", "friction_torque_skf")
+#: Why the report gives no specific film thickness λ (h / composite roughness).
+LAMBDA_NOTE = (
+    "λ (film thickness over the composite surface roughness) is not given: the case format has no "
+    "surface roughness. With roughnesses Rq of ball and raceway, λ = h_min / √(Rq_ball² + "
+    "Rq_race²)."
+)
+
+
+def _margin_rows(ds):
+    """(quantity, inner, outer, limit, margin or ratio) of each check against a limit."""
+    from solver import STATIC_PRESSURE_LIMIT
+
+    peak = ds.racetrace.metric("peak_pressure")
+    rows = [
+        (
+            "peak contact pressure",
+            *(_cell(float(peak.sel(race=r)), "Pa") for r in RACES),
+            f"{_cell(STATIC_PRESSURE_LIMIT, 'Pa')} (ISO 76)",
+            "; ".join(
+                f"{r} {_cell(STATIC_PRESSURE_LIMIT - float(peak.sel(race=r)), 'Pa')} below"
+                for r in RACES
+            ),
+        )
+    ]
+    margin = ds.racetrace.metric("min_truncation_margin")
+    rows.append(
+        (
+            "smallest truncation margin (ellipse to shoulder)",
+            *(_cell(float(margin.sel(race=r)), "degree") for r in RACES),
+            "> 0 deg",
+            "; ".join(
+                f"{r} {'clear' if float(margin.sel(race=r)) > 0 else 'over the shoulder'}"
+                if math.isfinite(float(margin.sel(race=r)))
+                else f"{r}: no shoulder given"
+                for r in RACES
+            ),
+        )
+    )
+    spin = ds.racetrace.metric("mean_spin_to_roll")
+    rows.append(
+        ("mean spin-to-roll ratio", *(number(float(spin.sel(race=r))) for r in RACES), "", "")
+    )
+    slip = float(ds.racetrace.metric("cage_slip"))
+    rows.append(("cage slip (1 - cage speed / epicyclic)", number(slip), "", "", ""))
+    if "time" in ds.dims:
+        residual = float(ds.racetrace.metric("energy_balance_residual"))
+        rows.append(("energy-balance residual", number(residual), "", "", ""))
+        model = float(ds.racetrace.metric("mean_friction_torque"))
+        for name in ("friction_torque_palmgren", "friction_torque_skf"):
+            estimate = ds.racetrace.metric(name)
+            value = float(estimate)
+            ratio = (
+                f"model / estimate = {number(model / value, 3)}"
+                if math.isfinite(value) and value
+                else estimate.attrs.get("note", "-")
+            )
+            rows.append((estimate.attrs["long_name"], _cell(value, "N m"), "", "", ratio))
+    return rows
+
+
+def _stiffness_rows(ds):
+    return [_metric_cells(ds, name)[:2] for name in STIFFNESS_ROWS]
+
+
+#: Metrics of the ring displacement and stiffness table.
+STIFFNESS_ROWS = (
+    "axial_displacement",
+    "radial_displacement",
+    "axial_stiffness",
+    "radial_stiffness",
+)
+
+
+def _input_rows(ds):
+    """The inputs a reviewer checks: materials, groove curvatures, shoulder diameters (the
+    result's coordinates), clearance or preload and the lubricant (its case, parsed by the solver:
+    ``ds.racetrace.case()``)."""
+    from solver import variable
+
+    rows = []
+    for k, body in enumerate(ds["body"].values):
+        rows.append(
+            (
+                f"{body} material",
+                f"{ds['material'].values[k]}: E {_cell(ds['youngs_modulus'].values[k], 'Pa')}, "
+                f"ν {number(ds['poisson_ratio'].values[k])}, "
+                f"ρ {_cell(ds['density'].values[k], 'kg m-3')}",
+            )
+        )
+    diameter = float(ds["ball_diameter"])
+    for k, race in enumerate(RACES):
+        radius = float(ds["groove_radius"].values[k])
+        rows.append(
+            (
+                f"{race} groove curvature f = r / D",
+                f"{number(radius / diameter)} (r = {_cell(radius, 'm')})",
+            )
+        )
+    for k, race in enumerate(RACES):
+        shoulder = float(ds["shoulder_diameter"].values[k])
+        rows.append(
+            (
+                f"{race} shoulder diameter",
+                _cell(shoulder, "m") if math.isfinite(shoulder) else "not given",
+            )
+        )
+    case = ds.racetrace.case()
+    clearance = None if case is None else case.bearing.diametral_clearance_mm
+    free_angle = _cell(float(ds["free_contact_angle"]), "degree")
+    if clearance is not None:
+        rows.append(("diametral clearance", f"{_cell(clearance * 1e-3, 'm')} (α0 {free_angle})"))
+    else:
+        rows.append(
+            (
+                "clearance or preload",
+                f"free contact angle α0 {free_angle} given; preload: the axial load "
+                f"{_cell(float(ds['axial_load']), variable('axial_load').units)}",
+            )
+        )
+    lubricant = None if case is None else case.lubricant
+    if lubricant is None:
+        rows.append(("lubricant", "none (or the result holds no readable case)"))
+    else:
+        name = lubricant.oil or "given in the case"
+        rows.append(
+            (
+                "lubricant",
+                f"{name}: viscosity {_cell(lubricant.viscosity_Pas, 'Pa s')}, pressure-viscosity "
+                f"{number(lubricant.pressure_viscosity_per_GPa)} 1/GPa, inlet "
+                f"{number(lubricant.inlet_temperature_C)} °C, traction model "
+                f"{lubricant.traction_model}",
+            )
+        )
+    return rows
+
+
+#: (variable, units, statistics, column) of the per-ball ranges over the analysed window.
+BALL_RANGES = (
+    ("contact_load", "N", ("min", "max"), "Q"),
+    ("contact_angle", "degree", ("min", "max"), "α"),
+    ("max_pressure", "Pa", ("max",), "p"),
+    ("truncation_margin", "degree", ("min",), "margin"),
+)
+
+
+def _ball_range_rows(ds):
+    """Each ball's min and max of the contact variables over the analysed window (dynamic) or
+    the ring angles (a solution over one revolution); the values of a snapshot otherwise."""
+    headers, columns = ["ball"], []
+    spans = "time" in ds.dims
+    window = ds
+    if spans:
+        start = float(ds.racetrace.metric("analysis_start_time"))
+        window = ds.where(ds["time"] >= start)
+    over = [d for d in ("time", "ring_angle") if d in ds.dims]
+    for race in RACES:
+        for name, units, stats, short in BALL_RANGES:
+            if name not in ds:
+                continue
+            values = window[name].sel(race=race)
+            for how in stats:
+                reduced = getattr(values, how)(over) if over else values
+                columns.append((reduced, units))
+                label = f"{short} {race} {how}" if over else f"{short} {race}"
+                headers.append(label)
+    rows = []
+    for j in range(ds.sizes["ball"]):
+        rows.append(
+            [str(j + 1)] + [_cell(float(values.isel(ball=j)), units) for values, units in columns]
+        )
+    return headers, rows
+
+
+RACES = ("inner", "outer")
 
 
 def _ellipse_rows(ds):
     last = ds.isel(time=-1) if "time" in ds.dims else ds
     rows = []
     for j in range(ds.sizes["ball"]):
-        row = [str(j + 1), _fmt(float(last["ball_azimuth"].isel(ball=j)), 4)]
-        for race in ("inner", "outer"):
+        row = [str(j + 1), _cell(float(last["ball_azimuth"].isel(ball=j)), "degree")]
+        for race in RACES:
             c = last.isel(ball=j).sel(race=race)
             row += [
-                _fmt(float(c["contact_load"]), 4),
-                _fmt(float(c["contact_angle"]), 4),
-                _fmt(float(c["ellipse_semi_major"]) * 1e3, 4),
-                _fmt(float(c["ellipse_semi_minor"]) * 1e3, 4),
-                _fmt(float(c["max_pressure"]) * 1e-9, 4),
+                _cell(float(c["contact_load"]), "N"),
+                _cell(float(c["contact_angle"]), "degree"),
+                _cell(float(c["ellipse_semi_major"]), "m"),
+                _cell(float(c["ellipse_semi_minor"]), "m"),
+                _cell(float(c["max_pressure"]), "Pa"),
             ]
         rows.append(row)
-    headers = ["ball", "azimuth deg"]
-    for race in ("inner", "outer"):
+    headers = ["ball", "azimuth"]
+    for race in RACES:
         r = race[0]
-        headers += [f"Q_{r} N", f"alpha_{r} deg", f"a_{r} mm", f"b_{r} mm", f"p_{r} GPa"]
+        headers += [f"Q_{r}", f"α_{r}", f"a_{r}", f"b_{r}", f"p_{r}"]
     return headers, rows
 
 
+def operating_heading(ds) -> str:
+    """The result's own operating point as the page heads it (from its coordinates)."""
+    from solver import describe_operating_point, operating_from_result
+
+    try:
+        return describe_operating_point(operating_from_result(ds))
+    except ValueError:  # a result without its operating coordinates: its case title only
+        return _case_title(ds)
+
+
 def run_header(ds, source_name: str) -> str:
-    """The HTML header of a run report. A result file is outside input: every value taken from
+    """The HTML header of a run report, headed by the result's own operating point (its
+    coordinates), then its case title. A result file is outside input: every value taken from
     it is escaped (:func:`_text`) or written by the report itself (the model, the times)."""
     model = ds.attrs.get("model", "dynamic" if "time" in ds.dims else "quasistatic")
     model = model if model in MODELS else "unknown"
-    title = _case_title(ds)
     description = _case_note(ds)
     return (
-        f"<h1>racetrace review: {_text(title)}</h1>"
+        f"<h1>racetrace review: {_text(operating_heading(ds))}</h1>"
+        f"<p>case: <strong>{_text(_case_title(ds))}</strong></p>"
         f"<p><strong>{model} result</strong> <code>{_text(source_name)}</code> · computed with "
         f"{_text(ds.attrs.get('software', 'racetrace'), 80)} on "
         f"{_when(ds.attrs.get('created'))} · report made {_now()} · bearing geometry: "
         f"<strong>{_text(_provenance(ds), 80)}</strong></p>"
         + (f'<p class="rt-case-note">{_text(description, 2000)}</p>' if description else "")
     )
+
+
+#: The 3-D scene's caption: what is drawn and how the outer ring is drawn apart.
+SCENE_CAPTION = (
+    "## 3-D scene (drag to turn, wheel to zoom)\n\nThe bearing at the last sample, with the "
+    "contact trajectories of the run on both raceways; ellipses coloured by peak pressure. The "
+    "outer ring is drawn apart from the balls and opened (a sector cut away) so that its raceway "
+    "and the outer track can be seen: the bearing is not exploded."
+)
+
+
+#: The scene's pane: a size from the start; vtk.js's camera-info toggle ("...", a live view's)
+#: hidden.
+VTK_PANE_CSS = (
+    ":host { min-height: 520px; min-width: 300px; } .vtk_info { display: none !important; }"
+)
+
+
+def _vtk_pane(plotter):
+    """The vtk.js scene with :data:`VTK_PANE_CSS` in its own shadow root (Panel's VTK pane does
+    not pass a pane's ``stylesheets`` on to its model, so they are added to the model here)."""
+    from panel.pane.vtk.vtk import VTKRenderWindowSynchronized
+
+    class ReportScene(VTKRenderWindowSynchronized):
+        def _get_model(self, doc, root=None, parent=None, comm=None):
+            model = super()._get_model(doc, root, parent, comm)
+            model.stylesheets = [*model.stylesheets, VTK_PANE_CSS]
+            return model
+
+    return ReportScene(plotter.ren_win, height=520, min_width=300, sizing_mode="stretch_width")
 
 
 def run_sections(ds, source_name: str):
@@ -244,30 +534,72 @@ def run_sections(ds, source_name: str):
     sections.append(
         _section(
             "Operating point and bearing",
-            _table(("quantity", "value", "units"), _operating_rows(ds)),
+            _table(("quantity", "value"), _operating_rows(ds)),
         )
     )
+    sections.append(_section("Inputs", _table(("input", "value"), _input_rows(answer), (0, 1))))
     window = answer.racetrace.summary().attrs.get("analysed_window", "the quasi-static snapshot")
+    life, life_notes = _life_rows(answer)
+    sections.append(
+        _section(
+            "Rating life and friction torque",
+            _table(("quantity", "value"), life)
+            + "".join(f"<p>{html.escape(n)}</p>" for n in life_notes),
+        )
+    )
+    losses = _loss_rows(answer)
+    sections.append(
+        _section(
+            "Power loss and heat (mean over the analysed window)",
+            _table(("source", "power"), losses)
+            if losses
+            else "<p>A quasi-static result has no power loss of its own: run the dynamic model "
+            "(racetrace simulate) for the losses by source and the contact heat.</p>",
+        )
+    )
+    film = _metric_cells(answer, "min_film_thickness")
+    sections.append(
+        _section(
+            "Film thickness and λ",
+            _table(("quantity", "inner", "outer"), [film]) + f"<p>{html.escape(LAMBDA_NOTE)}</p>",
+        )
+    )
+    sections.append(
+        _section(
+            "Margins against limits",
+            _table(("check", "inner", "outer", "limit", "margin"), _margin_rows(answer)),
+        )
+    )
+    sections.append(
+        _section(
+            "Ring displacement and stiffness",
+            _table(("quantity", "value"), _stiffness_rows(answer))
+            + "<p>Inner ring relative to the outer ring from the just-touching position, mean "
+            "over the analysed window; stiffness = applied load / displacement (secant).</p>",
+        )
+    )
     sections.append(
         _section(
             "Summary (each race in its own ring's frame)",
-            _table(("metric", "inner", "outer", "units"), _summary_rows(answer))
+            _table(("metric", "inner", "outer"), _summary_rows(answer))
             + f"<p>Analysed window: {html.escape(window)}.{shown_at}</p>",
         )
     )
+    headers, rows = _ball_range_rows(answer)
+    where = (
+        "over the analysed window"
+        if "time" in answer.dims
+        else "over the ring angles"
+        if "ring_angle" in answer.dims
+        else "(one snapshot)"
+    )
+    sections.append(_section(f"Per ball {where}", _table(headers, rows, text_columns=())))
     plotter, note = bearing_plotter(ds)
     if note:
         notes.append(note)
     png = base64.b64encode(screenshot_png(plotter)).decode("ascii")
-    vtk = pn.pane.VTK(plotter.ren_win, height=520, sizing_mode="stretch_width")
-    sections.append(
-        pn.pane.Markdown(
-            "## 3-D scene (drag to turn, wheel to zoom)\n\nThe bearing at the last sample, with "
-            "the contact trajectories of the run on both raceways; ellipses coloured by peak "
-            "pressure."
-        )
-    )
-    sections.append(vtk)
+    sections.append(pn.pane.Markdown(SCENE_CAPTION, stylesheets=[PRINT_CSS]))
+    sections.append(_vtk_pane(plotter))
     sections.append(
         pn.pane.HTML(  # only the report's own picture: not sanitised (that would drop data: URLs)
             f'<img src="data:image/png;base64,{png}" style="width:100%;max-width:900px" '
@@ -277,18 +609,25 @@ def run_sections(ds, source_name: str):
         )
     )
     figs = []
-    for race in ("inner", "outer"):
+    for race in RACES:
         fig, note = charts.raceway_map(ds, race)
         figs.append(fig)
         if note:
             notes.append(note)
-    sections.append(pn.pane.Markdown("## Raceway maps"))
-    sections.append(pn.Row(*(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs)))
+    sections.append(pn.pane.Markdown("## Raceway maps", stylesheets=[PRINT_CSS]))
+    sections.append(
+        pn.GridBox(
+            *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
+            ncols=2,
+            sizing_mode="stretch_width",
+            stylesheets=[CHART_GRID_CSS],
+        )
+    )
     angle, note_a = charts.contact_series(ds, "contact_angle", "contact angle [deg]")
     load, _ = charts.contact_series(ds, "contact_load", "contact load [N]")
     if note_a:
         notes.append(note_a.replace("contact angle [deg]", "contact-angle and load charts"))
-    sections.append(pn.pane.Markdown("## Contact angle and load"))
+    sections.append(pn.pane.Markdown("## Contact angle and load", stylesheets=[PRINT_CSS]))
     sections.append(pn.pane.Bokeh(angle, sizing_mode="stretch_width"))
     sections.append(pn.pane.Bokeh(load, sizing_mode="stretch_width"))
     headers, rows = _ellipse_rows(ds)
@@ -330,9 +669,28 @@ def _section(title: str, body_html: str):
 STUDY_CHART_METRICS = (
     ("excursion", "excursion [deg]", 1.0),
     ("band_thickness", "band thickness [deg]", 1.0),
+    ("band_width", "band width [deg]", 1.0),
     ("mean_contact_angle", "mean contact angle [deg]", 1.0),
     ("peak_pressure", "peak pressure [GPa]", 1e-9),
 )
+#: Columns of the study's points table: (variable, short header, scale from SI, unit shown),
+#: inner and outer; one unit per column (in the header), so that the column reads down.
+STUDY_TABLE_METRICS = (
+    ("excursion", "exc", 1.0, "deg"),
+    ("band_thickness", "band", 1.0, "deg"),
+    ("band_width", "width", 1.0, "deg"),
+    ("mean_contact_angle", "α", 1.0, "deg"),
+    ("peak_pressure", "p", 1e-9, "GPa"),
+    ("largest_load", "Q", 1.0, "N"),
+)
+#: Where a study report's per-point run reports go: ``<report stem>.points/<point>.<model>.html``.
+POINT_REPORTS_SUFFIX = ".points"
+
+
+def point_report_path(output, point: str, model: str) -> Path:
+    """The run report of one study point, next to the study report ``output``."""
+    output = Path(output)
+    return output.with_name(output.stem + POINT_REPORTS_SUFFIX) / f"{point}.{model}.html"
 
 
 def study_header(ds) -> str:
@@ -346,10 +704,84 @@ def study_header(ds) -> str:
     )
 
 
-def study_sections(ds):
-    import panel as pn
+def _message_kind(message: str) -> str:
+    """The short flag of a run's message: its first clause (before the first colon), clipped."""
+    first = message.split(" | ")[0].split(":")[0].strip()
+    return first if len(first) <= 40 else first[:39] + "…"
 
+
+TEXT_CLASS = ' class="text"'
+#: How the points table writes a model (its legend is below the table).
+MODEL_SHORT = {"quasistatic": "qs", "dynamic": "dyn"}
+
+
+def _study_table(ds, links: dict):
+    """(table HTML, notes HTML) of a study's points, laid out to fit a 1300-px page: one row per
+    run under a row naming its sweep, a note number per kind of message (its first clause) and
+    each message's full text once below the table. ``links``: {(point, model): relative URL} of
+    the point reports that exist."""
     from solver import study_runs
+
+    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
+    headers = ["point", "model", *(k.rsplit(".", 1)[-1].replace("_", " ") for k in keys)]
+    headers.append("status")
+    for _var, short, _scale, unit in STUDY_TABLE_METRICS:
+        headers += [f"{short}_i {unit}", f"{short}_o {unit}"]
+    headers += ["cage slip", "note"]
+    kinds: dict[str, int] = {}  # kind of message -> note number
+    notes: dict[str, dict[str, list[str]]] = {}  # kind -> full message -> runs
+    body, sweep = [], None
+    for i, j, status in study_runs(ds):
+        point, model = str(ds["point"].values[i]), str(ds["model"].values[j])
+        if str(ds["sweep"].values[i]) != sweep:
+            sweep = str(ds["sweep"].values[i])
+            body.append(
+                f'<tr class="rt-sweep"><td class="text" colspan="{len(headers)}">'
+                f"{_text(sweep, 120)}</td></tr>"
+            )
+        url = links.get((point, model))
+        name = (
+            f'<a href="{html.escape(url, quote=True)}">{html.escape(point)}</a>'
+            if url
+            else html.escape(point)
+        )
+        row = [name, html.escape(MODEL_SHORT.get(model, model))]
+        row += [html.escape(number(ds[k].values[i], 5)) for k in keys]
+        row.append(html.escape(status))
+        for var, _short, scale, _unit in STUDY_TABLE_METRICS:
+            for k in range(2):  # inner, outer
+                row.append(html.escape(number(float(ds[var].values[i, j, k]) * scale)))
+        row.append(html.escape(number(float(ds["cage_slip"].values[i, j]))))
+        message = str(ds["message"].values[i, j])
+        flag = ""
+        if message:
+            kind = _message_kind(message)
+            flag = f"[{kinds.setdefault(kind, len(kinds) + 1)}]"
+            notes.setdefault(kind, {}).setdefault(message, []).append(f"{point} {model}")
+        row.append(flag)
+        text = (0, 1, len(headers) - 1)
+        cells = (f"<td{TEXT_CLASS if k in text else ''}>{v}</td>" for k, v in enumerate(row))
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in headers)
+    table = (
+        f'<table class="rt-table rt-points"><thead><tr>{head}</tr></thead>'
+        f"<tbody>{''.join(body)}</tbody></table>"
+    )
+    listed = "".join(
+        f"<li>[{kinds[kind]}] <strong>{html.escape(kind)}</strong><ul>"
+        + "".join(
+            f"<li>{html.escape(', '.join(runs))}: {_text(message, 2000)}</li>"
+            for message, runs in messages.items()
+        )
+        + "</ul></li>"
+        for kind, messages in notes.items()
+    )
+    notes_html = f'<ul class="rt-notes">{listed}</ul>' if listed else ""
+    return table, notes_html
+
+
+def study_sections(ds, links=None):
+    import panel as pn
 
     from . import charts
 
@@ -368,34 +800,24 @@ def study_sections(ds):
                     *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
                     ncols=2,
                     sizing_mode="stretch_width",
+                    stylesheets=[CHART_GRID_CSS],
                 )
             )
-    headers = ["point", "sweep", "model", *(k.rsplit(".", 1)[-1] for k in keys), "status"]
-    columns = (
-        ("excursion", "exc", "deg", 1.0),
-        ("band_thickness", "band", "deg", 1.0),
-        ("mean_contact_angle", "alpha", "deg", 1.0),
-        ("peak_pressure", "p", "GPa", 1e-9),
-        ("largest_load", "Q", "N", 1.0),
+    table, notes_html = _study_table(ds, links or {})
+    point_note = (
+        "<p>Each point name links to its own run report.</p>"
+        if links
+        else "<p>Run reports of the points: <code>racetrace report STUDY_DIR --points</code> "
+        "writes them beside this page and links them here.</p>"
     )
-    for _v, short, unit, _s in columns:
-        headers += [f"{short}_i {unit}", f"{short}_o {unit}"]
-    headers += ["cage slip", "message"]
-    rows = []
-    for i, j, status in study_runs(ds):
-        row = [str(ds["point"].values[i]), str(ds["sweep"].values[i]), str(ds["model"].values[j])]
-        row += [_fmt(ds[k].values[i], 5) for k in keys]
-        row.append(status)
-        for var, _short, _unit, scale in columns:
-            for k in range(2):  # inner, outer
-                row.append(_fmt(float(ds[var].values[i, j, k]) * scale))
-        row.append(_fmt(float(ds["cage_slip"].values[i, j])))
-        row.append(str(ds["message"].values[i, j])[:200])
-        rows.append(row)
     sections.append(
         _section(
             "Points (each race in its own ring's frame)",
-            _table(headers, rows, text_columns=(0, 1, 2, len(headers) - 1)),
+            table + "<p>qs = quasi-static, dyn = dynamic; exc = trajectory excursion, band = band "
+            "thickness, width = band width, α = mean contact angle, p = peak pressure, Q = largest "
+            "contact load; note [n]: the run's message, in full below.</p>"
+            + notes_html
+            + point_note,
         )
     )
     return sections, []
@@ -417,8 +839,34 @@ def _load(source):
     return "run", ds, path.name
 
 
-def build_report(source, output) -> dict:
+def _point_links(source, ds, output, point_reports: bool, log=None) -> dict:
+    """{(point, model): URL relative to ``output``} of the study's point reports that exist
+    beside it (:func:`point_report_path`); with ``point_reports`` those missing are built first
+    from the study folder's point results."""
+    from solver import StudyFolder, study_runs
+
+    folder = Path(source) if Path(source).is_dir() else Path(ds.attrs.get("study_folder", ""))
+    links = {}
+    for i, j, status in study_runs(ds):
+        point, model = str(ds["point"].values[i]), str(ds["model"].values[j])
+        target = point_report_path(output, point, model)
+        result = StudyFolder(folder).result_path(point, model)
+        if point_reports and status == "done" and result.is_file() and not target.exists():
+            target.parent.mkdir(parents=True, exist_ok=True)
+            if log is not None:
+                log(f"point report {target.name}")
+            build_report(result, target)
+        if target.is_file():
+            links[(point, model)] = f"{target.parent.name}/{target.name}"
+    return links
+
+
+def build_report(source, output, point_reports: bool = False, log=None) -> dict:
     """Write the report of ``source`` (a result NetCDF file or a study folder) to ``output``.
+
+    For a study, each point name links to the point's run report when it exists beside the page
+    (``<output stem>.points/<point>.<model>.html``); ``point_reports`` builds those missing from
+    the study folder's results first (``log``: callable(str) told of each).
 
     Returns ``{"path", "bytes", "kind", "notes", "unresolved"}``: the decimation notes shown on the
     page and any external URL that could not be inlined (empty when the page is standalone)."""
@@ -428,6 +876,7 @@ def build_report(source, output) -> dict:
     import solver  # noqa: F401  (registers ds.racetrace)
     from solver import atomic_write
 
+    from .deferred_render import with_deferred_render
     from .offline import external_urls, inline_cdn_links
 
     kind, ds, name = _load(source)
@@ -435,7 +884,8 @@ def build_report(source, output) -> dict:
     if kind == "run":
         sections, notes = run_sections(ds, name)
     else:
-        sections, notes = study_sections(ds)
+        links = _point_links(source, ds, output, point_reports, log)
+        sections, notes = study_sections(ds, links)
     if notes:
         sections.append(
             _section(
@@ -457,6 +907,8 @@ def build_report(source, output) -> dict:
         try:
             page.save(str(raw), embed=True, resources=INLINE, title=f"racetrace review: {name}")
             text, _missing = inline_cdn_links(raw.read_text(encoding="utf-8"))
+            if kind == "run":  # the 3-D scene: no drawing into a canvas without a size
+                text = with_deferred_render(text)
         finally:
             raw.unlink(missing_ok=True)
         Path(tmp).write_text(text, encoding="utf-8")

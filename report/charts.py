@@ -13,6 +13,8 @@ import numpy as np
 
 from solver import loaded_mask
 
+from .units import ordinal
+
 MAX_MAP_POINTS = 20_000
 MAX_TIME_POINTS = 2_000
 RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
@@ -42,30 +44,68 @@ def _stride(n: int, limit: int) -> int:
 
 def raceway_map(ds, race: str):
     """Contact angle against raceway azimuth in the race's own ring frame (every loaded contact
-    sample of the run, decimated), and a note on decimation."""
+    sample of the run, decimated), with the ellipse's edges across the groove (contact angle
+    ± the ellipse's angular half-width a / r) and the shoulder's groove angle, so that how close
+    the track runs to the land can be read off; and a note on decimation."""
+    from solver import geometry_from_result, shoulder_angle
+
     angle = np.asarray(ds["contact_angle"].sel(race=race).values, float).ravel()
     azimuth = np.asarray(ds["raceway_azimuth"].sel(race=race).values, float).ravel()
     load = np.asarray(ds["contact_load"].sel(race=race).values, float).ravel()
+    semi_major = np.asarray(ds["ellipse_semi_major"].sel(race=race).values, float).ravel()
+    groove_radius = float(ds["groove_radius"].sel(race=race))
     ok = loaded_mask(load, angle) & np.isfinite(azimuth)
-    angle, azimuth = angle[ok], azimuth[ok]
+    angle, azimuth, semi_major = angle[ok], azimuth[ok], semi_major[ok]
+    half_width = np.degrees(semi_major / groove_radius)
     step = _stride(angle.size, MAX_MAP_POINTS)
-    fig = _figure(
-        f"{race} raceway map (own ring frame)", "raceway azimuth [deg]", "contact angle [deg]"
-    )
+    shoulder = math.degrees(shoulder_angle(geometry_from_result(ds), race))
+    title = f"{race} raceway map (own ring frame)"
+    if math.isfinite(shoulder):
+        title += f": shoulder at {shoulder:.1f} deg"
+    fig = _figure(title, f"{race} raceway azimuth, own ring frame [deg]", "contact angle [deg]")
+    for sign, label in ((1.0, "ellipse edges (α ± a/r)"), (-1.0, "ellipse edges (α ± a/r)")):
+        fig.scatter(
+            azimuth[::step],
+            angle[::step] + sign * half_width[::step],
+            size=1,
+            alpha=0.25,
+            color="#7f7f7f",
+            legend_label=label,
+        )
     fig.scatter(
         azimuth[::step],
         angle[::step],
         size=2,
         alpha=0.4,
         color=RACE_COLOURS[race],
-        legend_label=f"{race} contacts",
+        legend_label=f"{race} contacts (ellipse centre)",
     )
+    if math.isfinite(shoulder):  # a line (not a span): the axis range takes it in
+        fig.line(
+            [0.0, 360.0],
+            [shoulder, shoulder],
+            color="black",
+            line_dash="dashed",
+            legend_label=f"shoulder ({shoulder:.1f} deg)",
+        )
+    fig.x_range.start, fig.x_range.end = 0.0, 360.0
+    _legend_outside(fig)
     note = (
-        f"{race} raceway map: {angle.size} loaded contact samples, every {step}th shown"
+        f"{race} raceway map: {angle.size} loaded contact samples, every {ordinal(step)} shown"
         if step > 1
         else ""
     )
     return fig, note
+
+
+def _legend_outside(fig) -> None:
+    """Move the figure's legend below the plot area, so that it covers no data."""
+    legend = fig.legend[0]
+    fig.legend.location = "center"
+    fig.legend.orientation = "horizontal"
+    fig.legend.click_policy = "hide"
+    fig.legend.label_text_font_size = "10px"
+    fig.add_layout(legend, "below")
 
 
 def contact_series(ds, name: str, label: str, scale: float = 1.0):
@@ -95,7 +135,7 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
                 line_dash="dotted",
                 legend_label=f"{race}, ball 1",
             )
-        note = f"{label}: {t.size} time samples, every {step}th shown" if step > 1 else ""
+        note = f"{label}: {t.size} time samples, every {ordinal(step)} shown" if step > 1 else ""
     else:
         psi = np.asarray(ds["ball_azimuth"].values, float)
         order = np.argsort(psi)
@@ -105,7 +145,7 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
             fig.line(psi[order], values[order], color=RACE_COLOURS[race], legend_label=race)
             fig.scatter(psi[order], values[order], color=RACE_COLOURS[race], size=6)
         note = ""
-    fig.legend.click_policy = "hide"
+    _legend_outside(fig)
     return fig, note
 
 
@@ -119,7 +159,7 @@ def study_metric_charts(ds, sweep: str, key: str, metrics):
     order = np.argsort(x)
     figures = []
     for var, label, scale in metrics:
-        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=260)
+        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=320)
         drawn = False
         for model in ds["model"].values:
             for race in ("inner", "outer"):
@@ -136,7 +176,6 @@ def study_metric_charts(ds, sweep: str, key: str, metrics):
                 )
                 fig.scatter(x[order], y[order], color=RACE_COLOURS[race], size=6)
         if drawn:
-            fig.legend.click_policy = "hide"
-            fig.legend.location = "top_left"
+            _legend_outside(fig)
             figures.append(fig)
     return figures

@@ -21,6 +21,8 @@ Public API (everything else is internal):
   started from (its ``quasistatic_*`` variables), for the views' comparison
 - ``result_description(ds) -> dict``: a result's ``title``, ``bearing_provenance`` and
   ``description`` (the case's note of what is known about it)
+- ``operating_from_result(ds)`` (its operating point, SI) and ``describe_operating_point(op)``
+  (that point as a title names it: ``10 000 rpm, 400 N axial + 0 N radial``)
 - the ``racetrace`` accessor on every xarray Dataset, registered by ``import solver``:
   ``ds.racetrace.summary()`` (trajectory metrics, ``trajectory_summary``), ``.warnings()``,
   ``.save(path)`` (NetCDF) and ``.to_csv(path)`` (per-contact table, ``contact_table``)
@@ -82,6 +84,7 @@ _LAZY = {
     # inputs and geometry
     "Inputs": "solver.inputs",
     "to_inputs": "solver.inputs",
+    "describe_operating_point": "solver.inputs",
     "BearingGeometry": "solver.geometry",
     # the models, through the facade (a case by any name)
     "solve_quasistatic": "solver.facade",
@@ -109,6 +112,8 @@ _LAZY = {
     "ring_speeds": "solver.results.dataset",
     "OPERATING_FIELDS": "solver.results.dataset",
     "geometry_from_result": "solver.results.dataset",
+    "operating_from_result": "solver.results.dataset",
+    "shoulder_angle": "solver.physics.hertz",
     "quasistatic_start": "solver.models.quasistatic.result",
     "result_description": "solver.results.dataset",
     "trajectory_summary": "solver.results.summary",

@@ -458,3 +458,32 @@ def to_inputs(case) -> Inputs:
         case_text=case.to_toml(),
         designation=str(case.bearing.designation or ""),
     )
+
+
+def _grouped(value: float) -> str:
+    """``value`` rounded to a whole number, thousands grouped with a space (``20 000``), or to
+    three significant digits below 10."""
+    if abs(value) < 10 and value != round(value):
+        return f"{value:.3g}"
+    return f"{round(value):,}".replace(",", " ")
+
+
+def describe_operating_point(op: OperatingPoint) -> str:
+    """The operating point as a title names it: ``10 000 rpm, 400 N axial + 0 N radial`` and,
+    when present, the outer ring's speed, the radial load's angle, the misalignment and the
+    tilting moment (``op`` in SI units and rad)."""
+    rpm = 60.0 / (2.0 * math.pi)
+    parts = [f"{_grouped(op.inner_ring_speed * rpm)} rpm"]
+    if op.outer_ring_speed:
+        parts[0] += f" (outer ring {_grouped(op.outer_ring_speed * rpm)} rpm)"
+    loads = f"{_grouped(op.axial_load)} N axial + {_grouped(op.radial_load)} N radial"
+    if op.radial_load and op.radial_load_angle:
+        loads += f" at {_grouped(math.degrees(op.radial_load_angle))} deg"
+    parts.append(loads)
+    if op.misalignment:
+        parts.append(
+            f"{_grouped(math.degrees(op.misalignment))} deg misalignment ({op.misalignment_frame})"
+        )
+    if op.tilting_moment:
+        parts.append(f"{_grouped(op.tilting_moment)} N m tilting moment")
+    return ", ".join(parts)

@@ -3,6 +3,8 @@
 RUN_OR_STUDY is a result NetCDF file (racetrace simulate / quasistatic --output, the app's runs
 folder) or a study folder (racetrace study --output). The page is one HTML file with everything
 embedded: it opens from disk with no server and no network, and prints to PDF from the browser.
+With ``--points`` a study's report also writes the run report of each finished point beside it
+(``OUTPUT_STEM.points/``) and links each point of its table to it.
 Needs the ``report`` extra; without it the command says how to install it (exit 2). The output
 path is checked before the page is built, and the source is checked to be a racetrace result
 (:func:`solver.results.validate.check_result`): either problem is an invalid input (exit 2) naming
@@ -29,6 +31,14 @@ def register(subparsers) -> None:
     )
     parser.add_argument("source", metavar="RUN_OR_STUDY", help="result .nc file or study folder")
     parser.add_argument("--output", "-o", default="review.html", help="HTML file to write")
+    parser.add_argument(
+        "--points",
+        action="store_true",
+        help=(
+            "with a study folder: also write each finished point's run report beside the page "
+            "(OUTPUT_STEM.points/POINT.MODEL.html), linked from the points table"
+        ),
+    )
     parser.set_defaults(func=run)
 
 
@@ -51,7 +61,12 @@ def run(args) -> int:
         return EXIT_INVALID_INPUT
     from report import build_report
 
-    info = build_report(args.source, args.output)
+    info = build_report(
+        args.source,
+        args.output,
+        point_reports=args.points,
+        log=lambda line: print(f"racetrace: writing {line}", file=sys.stderr),
+    )
     size = info["bytes"] / 1e6
     print(
         f"racetrace: wrote {info['path']} ({size:.1f} MB, {info['kind']} report)", file=sys.stderr

@@ -36,6 +36,8 @@ SHOW_COLUMNS = (
     ("excursion", "outer", "exc_o deg", 1.0, "{:.4f}"),
     ("band_thickness", "inner", "band_i deg", 1.0, "{:.4f}"),
     ("band_thickness", "outer", "band_o deg", 1.0, "{:.4f}"),
+    ("band_width", "inner", "width_i deg", 1.0, "{:.4f}"),
+    ("band_width", "outer", "width_o deg", 1.0, "{:.4f}"),
     ("mean_contact_angle", "inner", "alpha_i deg", 1.0, "{:.2f}"),
     ("mean_contact_angle", "outer", "alpha_o deg", 1.0, "{:.2f}"),
     ("peak_pressure", "inner", "p_i GPa", 1e-9, "{:.3f}"),
@@ -44,6 +46,21 @@ SHOW_COLUMNS = (
     ("largest_load", "outer", "Q_o N", 1.0, "{:.0f}"),
     ("cage_slip", None, "cage slip", 1.0, "{:.4f}"),
     ("settling_time", None, "settle ms", 1e3, "{:.2f}"),
+)
+#: The columns of the narrow table (the default: it fits :data:`TERMINAL_WIDTH` columns).
+NARROW_COLUMNS = ("band_i deg", "band_o deg", "width_i deg", "width_o deg", "p_i GPa", "p_o GPa")
+#: How the narrow table writes a model.
+MODEL_SHORT = {"quasistatic": "qs", "dynamic": "dyn"}
+#: Width of the terminal the default table fits, in characters.
+TERMINAL_WIDTH = 120
+#: The legend of the metric columns.
+LEGEND = (
+    "exc = trajectory excursion, band = band thickness, width = band width (each race in its "
+    "own ring's frame), alpha = mean contact angle, p = peak pressure, Q = largest contact load; "
+    "each row's metrics are its model's: dynamic over the analysed window; quasistatic in steady "
+    "running from its solution, the balls moving through a load field fixed in space (or turning "
+    "with the inner ring), so a ring turning through the field draws a band (exc 0) and one "
+    "holding it still a line; over one revolution for a misalignment turning with the inner ring"
 )
 
 
@@ -82,6 +99,11 @@ def register(subparsers) -> None:
     )
     parser.add_argument("--quiet", "-q", action="store_true", help="no progress bar")
     parser.add_argument("--model", choices=("quasistatic", "dynamic"), help="show: only this model")
+    parser.add_argument(
+        "--wide",
+        action="store_true",
+        help=f"show: every metric column (wider than {TERMINAL_WIDTH} characters)",
+    )
     parser.set_defaults(func=run)
 
 
@@ -155,8 +177,11 @@ class StopSignals:
 def run(args) -> int:
     if args.study == "show":
         if not args.folder:
-            return _fail("study show DIR: name the study folder (the --output of a study run)")
-        return show(args.folder, args.model)
+            return _fail(
+                "study show DIR: name the study folder (the --output of a study run) or a "
+                "study file (*.study.nc)"
+            )
+        return show(args.folder, args.model, args.wide)
     if args.folder:
         return _fail(f"unexpected argument {args.folder!r}: give the folder with --output")
     if not args.output:
@@ -247,17 +272,29 @@ def _run_study(args, study, signals: StopSignals, connect_scheduler) -> int:
     return EXIT_SOME_FAILED if failed else 0
 
 
-def show_table(ds, model: str | None = None) -> str:
-    """The points and their metrics as a text table (one row per point and model)."""
+def show_table(ds, model: str | None = None, wide: bool = False) -> str:
+    """The points and their metrics as a text table (one row per point and model). ``wide``:
+    every column of :data:`SHOW_COLUMNS` and each varied key in its own column; else the varied
+    values a point's sweep changes in one column and the :data:`NARROW_COLUMNS`, to fit
+    :data:`TERMINAL_WIDTH` characters."""
     import json
+    import textwrap
 
     import numpy as np
 
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    headers = ["point", "model", *(k.rsplit(".", 1)[-1] for k in keys), "status"]
-    headers += [c[2] for c in SHOW_COLUMNS]
+    columns = [c for c in SHOW_COLUMNS if wide or c[2] in NARROW_COLUMNS]
+    varied_headers = [k.rsplit(".", 1)[-1] for k in keys] if wide else ["varied"]
+    headers = ["point", "model", *varied_headers, "status", *(c[2] for c in columns)]
+    sweep_keys = _sweep_varied_keys(ds, keys)
     rows = []
     messages = []
+
+    def shown(value) -> str:
+        if isinstance(value, float | int | np.floating):
+            return f"{value:g}" if math.isfinite(value) else "-"
+        return str(value)
+
     for i, point in enumerate(ds["point"].values):
         for j, name in enumerate(ds["model"].values):
             if model and name != model:
@@ -265,15 +302,16 @@ def show_table(ds, model: str | None = None) -> str:
             status = str(ds["status"].values[i, j])
             if status == "not run":
                 continue
-            row = [str(point), str(name)]
-            for key in keys:
-                value = ds[key].values[i]
-                if isinstance(value, float | int | np.floating):
-                    row.append(f"{value:g}" if math.isfinite(value) else "-")
-                else:
-                    row.append(str(value))
+            row = [str(point), str(name) if wide else MODEL_SHORT.get(str(name), str(name))]
+            if wide:
+                row += [shown(ds[key].values[i]) for key in keys]
+            else:
+                changed = sweep_keys.get(str(ds["sweep"].values[i]), keys)
+                row.append(
+                    ", ".join(f"{k.rsplit('.', 1)[-1]}={shown(ds[k].values[i])}" for k in changed)
+                )
             row.append(status)
-            for var, race, _h, scale, fmt in SHOW_COLUMNS:
+            for var, race, _h, scale, fmt in columns:
                 da = ds[var].isel(point=i, model=j)
                 value = float(da.sel(race=race)) if race else float(da)
                 row.append(fmt.format(value * scale) if math.isfinite(value) else "-")
@@ -286,23 +324,52 @@ def show_table(ds, model: str | None = None) -> str:
     lines = ["  ".join(h.rjust(w) for h, w in zip(headers, widths, strict=True))]
     lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)) for r in rows]
     if messages:
-        lines += ["", "failed runs:", *messages]
-    lines.append(
-        "exc = trajectory excursion, band = band thickness (each race in its own ring's frame), "
-        "alpha = mean contact angle, p = peak pressure, Q = largest contact load; each row's "
-        "metrics are its model's (the model column): dynamic over the analysed window; "
-        "quasistatic in steady running from its solution, the balls moving through a load field "
-        "fixed in space (or turning with the inner ring), so a ring turning through the field "
-        "draws a band (exc 0) and one holding it still a line; over one revolution for a "
-        "misalignment turning with the inner ring"
-    )
+        lines += ["", "failed runs:"]
+        lines += [textwrap.fill(m, TERMINAL_WIDTH, subsequent_indent="  ") for m in messages]
+    legend = LEGEND if wide else "qs = quasistatic, dyn = dynamic, " + LEGEND
+    lines.append(textwrap.fill(legend, TERMINAL_WIDTH))
+    if not wide:
+        lines.append(
+            "every metric (excursion, contact angle, load, cage slip, settling time) and each "
+            "varied key in its own column:"
+        )
+        lines.append("  racetrace study show DIR --wide")
     return "\n".join(lines)
 
 
-def show(folder, model=None) -> int:
-    from solver import open_study, study_dataset
+def _sweep_varied_keys(ds, keys) -> dict[str, list[str]]:
+    """{sweep: the varied keys whose value changes within it} (every key of a one-point sweep)."""
+    out = {}
+    sweeps = [str(s) for s in ds["sweep"].values]
+    for sweep in dict.fromkeys(sweeps):
+        select = [k for k, s in enumerate(sweeps) if s == sweep]
+        changed = [key for key in keys if len({str(ds[key].values[k]) for k in select}) > 1]
+        out[sweep] = changed or list(keys)
+    return out
 
-    ds = study_dataset(open_study(folder))
-    print(f"study {ds.attrs['title']!r} (base case {ds.attrs['base_case']}), folder {folder}")
-    print(show_table(ds, model))
+
+def show(folder, model=None, wide: bool = False) -> int:
+    """Print a study's table: a study folder, or a study Dataset file (``*.study.nc``, as shipped
+    in assets/studies/results/) read as ``racetrace report`` reads it."""
+    from solver import CaseError, Problem, load_result, open_study, study_dataset
+
+    path = Path(folder)
+    if path.is_file():
+        ds = load_result(path, str(folder))
+        if ds.attrs.get("racetrace_kind") != "study":
+            raise CaseError(
+                Problem(
+                    "study show",
+                    f"{folder}: a run result, not a study (racetrace report or export reads it)",
+                )
+            )
+        where = f"file {folder}"
+    else:
+        ds = study_dataset(open_study(folder))
+        where = f"folder {folder}"
+    import textwrap
+
+    heading = f"study {ds.attrs['title']!r} (base case {ds.attrs['base_case']}), {where}"
+    print(textwrap.fill(heading, TERMINAL_WIDTH, subsequent_indent="  "))
+    print(show_table(ds, model, wide))
     return 0

@@ -275,6 +275,34 @@ def _energy_balance_residual(w: Window) -> xr.DataArray:
     return xr.DataArray(math.nan if balance is None else balance.residual)
 
 
+def _race_heat(w: Window) -> xr.DataArray:
+    """Heat generated in the contacts of each race (summed over the balls), mean over the window
+    (NaN per race when the result lacks ``contact_heat``: quasi-static)."""
+    if "contact_heat" not in w.ds:
+        return _contact(w, "contact_heat", "mean")
+    heat = w.ds["contact_heat"].where(np.isfinite(w.ds["contact_heat"]), 0.0).sum("ball")
+    return reduce(heat, w.within(xr.ones_like(heat, dtype=bool)), "mean")
+
+
+def _ring_displacement(w: Window, axes: tuple[str, ...]) -> xr.DataArray:
+    """Mean inner-ring displacement over the window along ``axes`` (its length when several)."""
+    if "inner_ring_offset" not in w.ds:
+        return xr.DataArray(math.nan)
+    offset = w.ds["inner_ring_offset"].sel(axis=list(axes))
+    mean = reduce(offset, w.samples("inner_ring_offset").sel(axis=list(axes)), "mean")
+    return np.sqrt((mean**2).sum("axis")) if len(axes) > 1 else mean.sel(axis=axes[0], drop=True)
+
+
+def _secant_stiffness(w: Window, load: str, axes: tuple[str, ...]) -> xr.DataArray:
+    """Applied load over the mean ring displacement it causes (NaN without load or
+    displacement)."""
+    force = _scalar_coordinate(w.ds, load)
+    displacement = _ring_displacement(w, axes)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        stiffness = force / displacement
+    return stiffness.where((force != 0.0) & (displacement > 0.0))
+
+
 def _loaded_balls(w: Window) -> xr.DataArray:
     """Balls carrying load on each race: the count of a snapshot, the median count over the
     window's samples of a dynamic run (rounded to a whole ball)."""
@@ -583,6 +611,65 @@ def _table() -> dict[str, Metric]:
             "the SKF friction model's torque of the case (NaN when it cannot be made: the note "
             "says why)",
             _estimate("friction_torque_skf"),
+        ),
+        # ---- losses, film and ring displacement --------------------------------------------------
+        Metric(
+            "mean_total_power_loss",
+            (),
+            "W",
+            "mean total power loss",
+            "mean total_power_loss over the analysed window (NaN: quasi-static)",
+            lambda w: _mean_variable(w, "total_power_loss"),
+        ),
+        Metric(
+            "mean_contact_heat",
+            per_race,
+            "W",
+            "mean contact heat",
+            "heat generated in the race's ball contacts (summed over the balls), mean over the "
+            "analysed window (NaN: quasi-static)",
+            _race_heat,
+        ),
+        Metric(
+            "min_film_thickness",
+            per_race,
+            "m",
+            "smallest film thickness",
+            "smallest central EHL film thickness of a loaded contact (NaN without a lubricant)",
+            lambda w: _contact(w, "film_thickness", "min"),
+        ),
+        Metric(
+            "axial_displacement",
+            (),
+            "m",
+            "axial ring displacement",
+            "mean inner_ring_offset along the bearing axis (x) from the just-touching position",
+            lambda w: _ring_displacement(w, ("x",)),
+        ),
+        Metric(
+            "radial_displacement",
+            (),
+            "m",
+            "radial ring displacement",
+            "length of the mean radial (y, z) inner_ring_offset",
+            lambda w: _ring_displacement(w, ("y", "z")),
+        ),
+        Metric(
+            "axial_stiffness",
+            (),
+            "N/m",
+            "axial secant stiffness",
+            "axial_load over axial_displacement (secant, from the just-touching position; NaN "
+            "without an axial load)",
+            lambda w: _secant_stiffness(w, "axial_load", ("x",)),
+        ),
+        Metric(
+            "radial_stiffness",
+            (),
+            "N/m",
+            "radial secant stiffness",
+            "radial_load over radial_displacement (secant; NaN without a radial load)",
+            lambda w: _secant_stiffness(w, "radial_load", ("y", "z")),
         ),
         # ---- the analysed window (dynamic) -----------------------------------------------------
         Metric(

@@ -3,7 +3,8 @@
 :func:`study_points` expands every sweep of a :class:`~solver.study.spec.StudySpec` (``grid``:
 every combination, the last key changing fastest; ``zip``: the lists taken together) into
 :class:`StudyPoint` objects, each holding its case (the base case with the sweep's ``set`` values,
-the point's varied values and the ``[run]`` length applied) and validated as a case file would be.
+the point's varied values and the ``[run]`` length applied, titled by :func:`point_title`) and
+validated as a case file would be.
 An invalid point raises CaseError naming the point, its values and the study key.
 """
 
@@ -48,6 +49,16 @@ def point_name(index: int) -> str:
     return f"p{index + 1:04d}"
 
 
+def point_title(case: Case, name: str) -> str:
+    """The title of a point's case: its bearing and its own operating point, and the point's name
+    (``7008C-class hybrid, 10 000 rpm, 400 N axial + 0 N radial (study point p0003)``), so that
+    a point's result and report never carry the base case's operating point."""
+    from solver.inputs import describe_operating_point, operating_point
+
+    operating = describe_operating_point(operating_point(case.operating))
+    return f"{case.bearing.designation}, {operating} (study point {name})"
+
+
 def base_case(spec: StudySpec) -> Case:
     """The study's base case; CaseError with key ``base`` when it cannot be read."""
     try:
@@ -85,6 +96,7 @@ def study_points(spec: StudySpec, base: Case | None = None) -> list[StudyPoint]:
             changes = {**run, **sweep.set, **values}
             try:
                 case = base.with_values(changes)
+                case = case.with_values({"title": point_title(case, point_name(index))})
             except CaseError as error:
                 shown = ", ".join(f"{k} = {v!r}" for k, v in values.items())
                 for p in error.problems:

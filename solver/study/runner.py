@@ -206,7 +206,7 @@ def run_study(
     """
     from dask.distributed import wait
 
-    from .worker import WarmUp, run_batch
+    from .worker import WarmUp, run_batch, warm_up_cases
 
     folder = StudyFolder(output)
     folder.start(
@@ -244,7 +244,10 @@ def run_study(
         shared_folder = own_cluster is not None
     target = str(folder.path.resolve()) if shared_folder else None
     try:
-        if not _warm_up(client, WarmUp(), cancel):
+        cases = warm_up_cases([p for p in points if any(t[0] == p.name for t in todo)])
+        if log is not None:
+            log(_warm_up_note(own_cluster is not None))
+        if not _warm_up(client, WarmUp(cases), cancel):
             return folder
         n_workers = max(len(client.scheduler_info().get("workers", {})), 1)
         tasks = _tasks(todo, n_workers)
@@ -338,16 +341,35 @@ def run_study(
     return folder
 
 
-def _warm_up(client, plugin, cancel) -> bool:
-    """Register the warm-up ``plugin`` (each worker loads, or compiles, the kernels: up to a
-    minute) and wait for it, checking ``cancel`` twice a second; False when cancelled first.
+def _warm_up_note(local: bool) -> str:
+    """What the warm-up before the points does, as the log says it."""
+    from solver.compiled import dynamic_model_compiled
 
-    Dask's registration waits for every worker's setup and cannot be interrupted, so it runs in a
-    thread; an error it raises is raised here."""
+    if local and dynamic_model_compiled():
+        return "loading the compiled solver kernels on each worker before the points start"
+    return (
+        "compiling the solver kernels the study uses (first run only): one worker compiles, "
+        "then the others load them, before the points start (not counted in the ETA)"
+    )
+
+
+def _warm_up(client, plugin, cancel) -> bool:
+    """Warm the workers before the points start, checking ``cancel`` twice a second; False when
+    cancelled first. One worker runs the warm-up of ``plugin`` (compiling the kernels into the
+    shared cache on a first run: up to minutes), then the plugin is registered on every worker
+    (which then loads the kernels from the cache, also a worker started later).
+
+    Dask's calls wait for the workers and cannot be interrupted, so they run in a thread; an error
+    they raise is raised here."""
+    from .worker import warm_up
+
     errors: list[BaseException] = []
 
     def register() -> None:
         try:
+            workers = sorted(client.scheduler_info().get("workers", {}))
+            if len(workers) > 1:  # one compiles; the others would compile the same kernels
+                client.run(warm_up, plugin.cases, workers=workers[:1])
             client.register_plugin(plugin)
         except BaseException as error:  # noqa: BLE001 - also the cancellation when closing
             errors.append(error)

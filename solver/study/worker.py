@@ -13,27 +13,57 @@ from distributed import WorkerPlugin
 from .store import DONE, FAILED
 
 
-def warm_up() -> str:
-    """Load (or compile, the first time on a machine) the numba kernels of both models by solving
-    a catalogue case and integrating a few hundredths of a revolution."""
+def warm_up(cases=None) -> str:
+    """Load (or compile, the first time on a machine) the numba kernels the runs will use: for
+    each ``(model, case)`` of ``cases`` (:func:`warm_up_cases`) solve the case quasi-statically or
+    integrate a few hundredths of a revolution of it (so that the traction path of its lubricant,
+    slip curve or rheology, is compiled too). Without ``cases``: a catalogue case, both models.
+    A case that fails here is left to its run, which reports it."""
     import solver
+    from solver.errors import CaseError, NoSolutionError, SimulationDiverged
     from solver.models.dynamic import SimulationOptions
 
-    case = solver.catalogue().get("spindle-combined-load").load()
-    solver.solve_quasistatic(case)
-    solver.simulate(case, options=SimulationOptions(shaft_revolutions=0.02))
+    if cases is None:
+        case = solver.catalogue().get("spindle-combined-load").load()
+        cases = [("quasistatic", case), ("dynamic", case)]
+    for model, case in cases:
+        try:
+            if model == "quasistatic":
+                solver.quasistatic_answer(case)
+            else:
+                solver.simulate(case, options=SimulationOptions(shaft_revolutions=0.02))
+        except (CaseError, NoSolutionError, SimulationDiverged, ValueError, FloatingPointError):
+            continue
     return "warm"
+
+
+def _traction_path(case) -> str:
+    lubricant = getattr(case, "lubricant", None)
+    return "dry" if lubricant is None else str(lubricant.traction_model)
+
+
+def warm_up_cases(points) -> list:
+    """``[(model, case)]``: one point's case for each model and lubricant traction path the
+    study's points use (the kernels a study compiles are those of its own runs)."""
+    chosen: dict[tuple[str, str], object] = {}
+    for point in points:
+        for model in point.models:
+            chosen.setdefault((model, _traction_path(point.case)), point.case)
+    return [(model, case) for (model, _path), case in chosen.items()]
 
 
 class WarmUp(WorkerPlugin):
     """Warms the kernels once when a worker starts, also a worker that Dask restarts after a
-    crash, so that no task pays for loading them."""
+    crash, so that no task pays for loading them. ``cases``: as :func:`warm_up` takes them."""
 
     name = "racetrace-warm-up"
     idempotent = True  # registering again (each study on the same cluster) keeps the warm workers
 
+    def __init__(self, cases=None):
+        self.cases = cases
+
     def setup(self, worker):  # noqa: ARG002 - the plugin interface
-        warm_up()
+        warm_up(self.cases)
 
 
 def run_one(case, model: str) -> tuple[dict, object]:

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
 from racetrace import cli
 from tests.helpers.studies import two_run_study_folder
+
+STUDY_RESULTS = Path(__file__).resolve().parents[2] / "assets" / "studies" / "results"
 
 
 def test_invalid_study_names_the_key_and_exits_2(tmp_path, capsys):
@@ -43,7 +46,7 @@ def test_show_prints_the_points_of_a_folder(tmp_path, capsys):
         "quasistatic",
         "no solution",
     )
-    assert cli.main(["study", "show", str(tmp_path / "s")]) == 0
+    assert cli.main(["study", "show", str(tmp_path / "s"), "--wide"]) == 0
     out = capsys.readouterr().out
     lines = out.splitlines()
     p1 = next(line for line in lines if line.startswith("p0001"))
@@ -51,6 +54,34 @@ def test_show_prints_the_points_of_a_folder(tmp_path, capsys):
     assert "p0002 quasistatic: no solution" in out
     manifest = json.loads((tmp_path / "s" / "study.json").read_text())
     assert [p["name"] for p in manifest["points"]] == ["p0001", "p0002"]
+
+
+@pytest.mark.parametrize("name", ["seed-spindle", "218-radial-load"])
+def test_show_reads_a_shipped_study_file_and_fits_120_columns(capsys, name):
+    """A shipped ``*.study.nc`` is read as ``racetrace report`` reads it; the default table fits a
+    120-column terminal, shows band width and says how to get every column."""
+    import solver
+
+    path = STUDY_RESULTS / f"{name}.study.nc"
+    assert cli.main(["study", "show", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert max(len(line) for line in out.splitlines()) <= 120
+    header = next(line for line in out.splitlines() if line.startswith("point"))
+    assert "width_i deg" in header and "width_o deg" in header
+    assert "racetrace study show DIR --wide" in out
+    ds = solver.load_dataset(path)
+    width = float(ds["band_width"].sel(model="dynamic", race="outer").values[-1])
+    last = [line for line in out.splitlines() if line.startswith(str(ds["point"].values[-1]))]
+    assert any(f"{width:.4f}" in line for line in last), last
+    assert cli.main(["study", "show", str(path), "--wide"]) == 0
+    wide = capsys.readouterr().out
+    assert "exc_i deg" in wide and "settle ms" in wide and "width_o deg" in wide
+
+
+def test_show_of_a_run_result_says_it_is_not_a_study(capsys):
+    run = STUDY_RESULTS.parents[1] / "lessons" / "results" / "06-overload--heavy.nc"
+    assert cli.main(["study", "show", str(run)]) == 2
+    assert "a run result, not a study" in capsys.readouterr().err
 
 
 # ---- robustness: exit 2 with a message, never a traceback or a hang --------------------------

@@ -84,13 +84,14 @@ def _canvas_pixels(page) -> np.ndarray:
 def test_run_report_summary_shows_the_energy_balance(run_file):
     """A dynamic run's summary table carries its energy-balance residual (the metric)."""
     import solver
-    from report.build import _fmt, _summary_rows
+    from report.build import _summary_rows
+    from report.units import number
 
     ds = solver.load_dataset(run_file)
     rows = {row[0]: row for row in _summary_rows(ds)}
     value = float(ds.racetrace.metric("energy_balance_residual"))
     assert np.isfinite(value)
-    assert rows["energy balance residual"] == ("energy balance residual", _fmt(value), "", "1")
+    assert rows["energy balance residual"] == ("energy balance residual", number(value), "")
 
 
 @pytest.mark.browser

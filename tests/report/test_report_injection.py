@@ -133,4 +133,5 @@ def test_a_hostile_result_report_runs_no_script(hostile_result, tmp_path):
     # every other attribute hostile: the page shows them as text and runs nothing
     solver.save_dataset(hostile_result.assign_attrs(model="quasistatic"), source)
     build_report(source, out)
-    _open_and_check(out, [f"racetrace review: {PAYLOAD}", f"{IMG}.nc"])
+    # the title is shown as the case's title (the heading is the result's operating point)
+    _open_and_check(out, [PAYLOAD, f"{IMG}.nc"])

@@ -1,5 +1,5 @@
-"""A run report's summary table sets the model's friction torque beside the empirical estimates,
-and an estimate the run does not have shows its reason, not a bare '-' or NaN."""
+"""A run report's life-and-friction table sets the model's friction torque beside the empirical
+estimates, and an estimate the run does not have shows its reason, not a bare '-' or NaN."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ import pytest
 pytest.importorskip("panel")
 
 
-def test_summary_rows_give_the_torques_and_the_reason_for_a_missing_estimate():
-    from report.build import _summary_rows
+def test_life_rows_give_the_torques_and_the_reason_for_a_missing_estimate():
+    from report.build import _life_rows
     from tests.app.conftest import make_dynamic_dataset
 
     ds = make_dynamic_dataset()
@@ -19,9 +19,9 @@ def test_summary_rows_give_the_torques_and_the_reason_for_a_missing_estimate():
         friction_torque_palmgren=((), 0.125),
     )
     ds.attrs["friction_torque_skf_note"] = "not available: no constants for this series"
-    rows = {name: (inner, units) for name, inner, _, units in _summary_rows(ds)}
-    assert rows["mean friction torque"] == ("0.25", "N m")
-    assert rows["Palmgren friction torque estimate"] == ("0.125", "N m")
-    assert rows["SKF-model friction torque estimate"][0] == (
+    rows = dict(_life_rows(ds)[0])
+    assert rows["mean friction torque"] == "250 N·mm"
+    assert rows["Palmgren friction torque estimate"] == "125 N·mm"
+    assert rows["SKF-model friction torque estimate"] == (
         "not available: no constants for this series"
     )

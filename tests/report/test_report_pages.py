@@ -1,0 +1,147 @@
+"""The review pages in headless Chromium: the run report of a shipped lesson result draws its 3-D
+scene without WebGL framebuffer warnings and shows no stray "..." under it; the study report's
+points table fits a 1300-px page; a study report links each point to its own run report, headed
+with the point's own operating point. Screenshots of the three pages go to
+``test-artifacts/browser/report/`` (gitignored) for inspection."""
+
+from __future__ import annotations
+
+import io
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS
+
+pytest.importorskip("panel")
+pytest.importorskip("pyvista")
+playwright = pytest.importorskip("playwright.sync_api")
+
+pytestmark = BROWSER_MARKS
+
+from tests.report.test_report import CHART_ROWS, CHROMIUM, LAUNCH_ARGS  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+LESSON = ROOT / "assets" / "lessons" / "results" / "03-radial-load--radial.nc"
+SEED_STUDY = ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc"
+SHOTS = ARTIFACTS / "report"
+PAGE_WIDTH = 1300  # px: the page a review is read and printed on
+FRAMEBUFFER = re.compile(r"framebuffer", re.IGNORECASE)
+
+
+def _visit(path: Path, check, screenshot: str):
+    """Open ``path`` offline at PAGE_WIDTH, wait for its charts, run ``check(page, console)``
+    and save a full-page screenshot as ``screenshot``."""
+    with playwright.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+        try:
+            context = browser.new_context(
+                offline=True, viewport={"width": PAGE_WIDTH, "height": 900}
+            )
+            page = context.new_page()
+            console: list[str] = []
+            page.on("console", lambda message: console.append(message.text))
+            page.goto(path.as_uri(), timeout=180_000)
+            page.wait_for_function(f"({CHART_ROWS})().some((r) => r > 0)", timeout=180_000)
+            page.wait_for_timeout(3000)
+            check(page, console)
+            SHOTS.mkdir(parents=True, exist_ok=True)
+            page.screenshot(path=str(SHOTS / screenshot), full_page=True, timeout=120_000)
+        finally:
+            browser.close()
+
+
+def test_run_report_draws_without_framebuffer_warnings(tmp_path):
+    from PIL import Image
+
+    from report import build_report
+
+    build_report(LESSON, tmp_path / "run.html")
+
+    def check(page, console):
+        canvas = page.locator("canvas").first  # the vtk.js scene comes first on a run report
+        canvas.wait_for(timeout=60_000)
+        page.wait_for_timeout(2000)
+        pixels = np.asarray(Image.open(io.BytesIO(canvas.screenshot())).convert("RGB"))
+        assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 50, "the 3-D canvas is blank"
+        warnings = [m for m in console if FRAMEBUFFER.search(m)]
+        assert warnings == [], f"{len(warnings)} WebGL warnings, e.g. {warnings[:2]}"
+        # vtk.js's camera-info toggle ("...") is not shown under the scene
+        dots = page.locator(".vtk_info")
+        assert all(not dots.nth(k).is_visible() for k in range(dots.count()))
+        heading = page.locator("h1").first.inner_text()
+        assert heading == "racetrace review: 20 000 rpm, 200 N axial + 550 N radial"
+
+    _visit(tmp_path / "run.html", check, "run-report.png")
+
+
+def test_study_report_table_fits_the_page(tmp_path):
+    from report import build_report
+
+    build_report(SEED_STUDY, tmp_path / "study.html")
+
+    def check(page, console):  # noqa: ARG001 - the check's interface
+        table = page.locator("table.rt-points")
+        assert table.count() == 1
+        box = table.bounding_box()
+        assert box is not None and box["x"] >= 0
+        assert box["x"] + box["width"] <= PAGE_WIDTH, box
+        width = page.evaluate("document.documentElement.scrollWidth")
+        assert width <= PAGE_WIDTH, f"the page scrolls sideways: {width} px"
+        rows = table.locator("tbody tr:not(.rt-sweep)").count()
+        assert rows == 30
+
+    _visit(tmp_path / "study.html", check, "study-report.png")
+
+
+@pytest.fixture(scope="module")
+def point_study(tmp_path_factory):
+    """A study folder of two quasi-static points solved as a worker solves them (no Dask)."""
+    import solver
+    from solver.study import Study, StudyFolder
+    from solver.study.worker import run_one
+
+    study = Study.from_text(
+        'title = "point reports"\nbase = "spindle-combined-load"\nmodel = "quasistatic"\n'
+        '[vary]\n"operating.radial_load_N" = [0.0, 400.0]\n'
+        '[set]\n"operating.inner_ring_speed_rpm" = 10000.0\n'
+    )
+    path = tmp_path_factory.mktemp("points") / "study"
+    folder = StudyFolder(path)
+    points = study.points()
+    folder.start(study.spec, points, solver.__version__, resume=False)
+    for point in points:
+        record, ds = run_one(point.case, "quasistatic")
+        folder.save_run(point.name, "quasistatic", record, ds)
+    folder.save_dataset()
+    return path
+
+
+def test_study_report_links_each_point_to_its_own_report(point_study, tmp_path):
+    from report import build_report
+    from report.build import point_report_path
+
+    output = tmp_path / "study.html"
+    build_report(point_study, output, point_reports=True)
+    text = output.read_text(encoding="utf-8")
+    for point in ("p0001", "p0002"):
+        report = point_report_path(output, point, "quasistatic")
+        assert report.is_file()
+        assert f"study.points/{point}.quasistatic.html" in text
+    second = point_report_path(output, "p0002", "quasistatic")
+
+    def check(page, console):  # noqa: ARG001 - the check's interface
+        heading = page.locator("h1").first.inner_text()
+        assert heading == "racetrace review: 10 000 rpm, 500 N axial + 400 N radial"
+        case = page.get_by_text("(study point p0002)").first.inner_text()
+        assert "10 000 rpm, 500 N axial + 400 N radial" in case
+
+    _visit(second, check, "point-report.png")
+
+    def links(page, console):  # noqa: ARG001 - the check's interface
+        link = page.locator("table.rt-points a", has_text="p0002")
+        assert link.get_attribute("href") == "study.points/p0002.quasistatic.html"
+
+    _visit(output, links, "point-study-report.png")
