@@ -3,10 +3,11 @@ the outputs"): every output of a run at the default settings against a tight run
 (tolerance :data:`REFERENCE_TOLERANCE`) kept as test data (``tests/data/accuracy_reference.json``),
 and the energy-balance residual of each run.
 
-The cases (:data:`CASES`): the three shipped cases of the done-when list, the shipped spindle with
-a misalignment turning with the ring, and a light-load high-speed hybrid that is not shipped (the
-7008C-class hybrid spindle at 60 N axial preload and 40 000 rpm), each at its own ``[simulation]``
-settings (10 shaft revolutions).
+The cases (:data:`CASES`): every shipped case (assets/cases: the 209 radial, the 218 heavy
+combined, the hybrid spindle under axial preload, combined load and a misalignment fixed in space
+and turning with the ring), and a light-load high-speed hybrid that is not shipped (the
+7008C-class hybrid spindle at 60 N axial preload and 40 000 rpm), each at its own
+``[simulation]`` settings.
 
 Every figure is a mean over the window of the run's energy balance
 (:func:`solver.results.energy.balance_start_time`: the analysed window, and never the first shaft
@@ -48,6 +49,12 @@ CASES = {
         {},
         "hybrid spindle, 0.05 deg misalignment turning with the ring",
     ),
+    "spindle-misalignment-space": (
+        "spindle-misalignment-space",
+        {},
+        "hybrid spindle, 0.05 deg misalignment fixed in space",
+    ),
+    "spindle-axial-preload": ("spindle-axial-preload", {}, "hybrid spindle, axial preload"),
     # not shipped: the light preload at the top of the speed range, where the outer contact angle
     # falls to about 2 deg under the centrifugal force
     "spindle-light-high-speed": (
