@@ -612,8 +612,8 @@ class ResultView(Component):
 
 
 LAYER_LABELS = {
-    "outer_ring": "outer ring",
-    "inner_ring": "inner ring",
+    "outer_ring": "outer ring (housing)",
+    "inner_ring": "inner ring (shaft)",
     "balls": "balls",
     "cage": "cage",
     "tracks": "painted tracks",
