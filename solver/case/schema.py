@@ -201,8 +201,8 @@ _LAND_DIAMETER = dict(
     reason="a land lies beyond the bore, at least a tenth of a millimetre across",
     reason_high="a land lies next to the pitch circle, which is at most 20 m across",
 )
-#: Default RMS roughness Rq of a ball, um [E]: a grade G10-G16 ball (ISO 3290-1 Ra about
-#: 0.02 um) with Rq about 1.25 Ra (a Gaussian profile).
+#: Default RMS roughness Rq of a ball, um [E]: a grade G16-G20 ball (Ra about 0.02 um by the ball
+#: grade tables, docs/sources.md) with Rq about 1.25 Ra (a Gaussian profile).
 BALL_ROUGHNESS_UM = 0.025
 #: Default RMS roughness Rq of a raceway, um [E]: superfinished raceways lie at about 0.05-0.1 um.
 RACEWAY_ROUGHNESS_UM = 0.08
@@ -358,7 +358,7 @@ FIELDS: list[Field] = [
         "Ball roughness",
         "RMS surface roughness Rq of the balls; with the raceway roughness it gives the film "
         "parameter lambda = h_min / sqrt(Rq_ball^2 + Rq_raceway^2) of the results (no model "
-        "reads it). The default is an estimate for a grade G10-G16 ball (Ra about 0.02 um, "
+        "reads it). The default is an estimate for a grade G16-G20 ball (Ra about 0.02 um, "
         "Rq about 1.25 Ra; docs/sources.md).",
         unit="um",
         default=BALL_ROUGHNESS_UM,
