@@ -37,8 +37,8 @@ body { font-family: sans-serif; }
 .rt-warn { color: #8a4b00; }
 pre.rt-case { font-size: 11px; background: #f7f7f7; padding: 6px; white-space: pre-wrap; }
 @media print {
-  .rt-section { break-inside: avoid; page-break-inside: avoid; }
-  h2 { break-before: page; page-break-before: always; }
+  .rt-section, .rt-table, figure, img { break-inside: avoid; page-break-inside: avoid; }
+  h2 { break-after: avoid; page-break-after: avoid; }
   .rt-table { font-size: 10px; }
 }
 """
@@ -48,9 +48,13 @@ PAGE_PRINT_CSS = (
     "@media print { .bk-panel-models-vtk-VTKSynchronizedPlot { display: none !important; } "
     ":host { max-width: none !important; } }"
 )
+#: A chart is not split across two printed pages.
+CHART_PRINT_CSS = "@media print { :host { break-inside: avoid; page-break-inside: avoid; } }"
 #: Charts two abreast on screen, one column on paper.
 CHART_GRID_CSS = "@media print { :host { grid-template-columns: 1fr !important; } }"
 PRINT_ONLY_CSS = ":host { display: none; } @media print { :host { display: block; } }"
+#: The live scene's companions, hidden on paper (the printed still carries the scene's own bar).
+SCREEN_ONLY_CSS = "@media print { :host { display: none !important; } }"
 
 
 #: What the report's HTML panes may hold after sanitising (:func:`_html`): the tags and the
@@ -254,12 +258,57 @@ def _loss_rows(ds):
     return rows
 
 
-#: Why the report gives no specific film thickness λ (h / composite roughness).
-LAMBDA_NOTE = (
-    "λ (film thickness over the composite surface roughness) is not given: the case format has no "
-    "surface roughness. With roughnesses Rq of ball and raceway, λ = h_min / √(Rq_ball² + "
-    "Rq_race²)."
-)
+#: (upper bound of λ, regime) of the lubrication regimes, in order; above the last: full film.
+LAMBDA_REGIMES = ((1.0, "boundary"), (3.0, "mixed"))
+
+
+def lambda_regime(value: float) -> str:
+    """The lubrication regime of film parameter λ: boundary (< 1), mixed (1-3), full film (> 3);
+    "-" when λ is not known (NaN)."""
+    if not math.isfinite(value):
+        return "-"
+    for bound, regime in LAMBDA_REGIMES:
+        if value < bound:
+            return regime
+    return "full film"
+
+
+def _film_rows(ds):
+    """(quantity, inner, outer) of the smallest film thickness, λ and its regime."""
+    lam = ds.racetrace.metric("min_film_parameter")
+    values = [float(lam.sel(race=r)) for r in RACES]
+    return [
+        _metric_cells(ds, "min_film_thickness"),
+        (lam.attrs["long_name"], *(number(v, 3) for v in values)),
+        ("lubrication regime", *(lambda_regime(v) for v in values)),
+    ]
+
+
+def _film_note(ds) -> str:
+    """What λ is computed from: the roughnesses of the case (or why λ is not known)."""
+    case = ds.racetrace.case()
+    if case is None:
+        return str(ds.racetrace.metric("min_film_parameter").attrs.get("note", ""))
+    return (
+        "λ = h / √(Rq_ball² + Rq_raceway²): the smallest central film thickness of a loaded "
+        f"contact over the composite roughness, with Rq_ball = "
+        f"{_cell(case.bearing.ball_roughness_um * 1e-6, 'm')} and Rq_raceway = "
+        f"{_cell(case.bearing.raceway_roughness_um * 1e-6, 'm')} (bearing.ball_roughness_um and "
+        "bearing.raceway_roughness_um; when the case does not give them, estimates of typical "
+        "finishes). λ < 1: boundary lubrication, 1-3: mixed, > 3: full film."
+    )
+
+
+def _lambda_margin_row(ds):
+    """The margin row of λ against the full-film limit 3."""
+    lam = ds.racetrace.metric("min_film_parameter")
+    values = [float(lam.sel(race=r)) for r in RACES]
+    return (
+        "smallest film parameter λ",
+        *(number(v, 3) for v in values),
+        f"> {number(LAMBDA_REGIMES[-1][0])} full film",
+        "; ".join(f"{r} {lambda_regime(v)}" for r, v in zip(RACES, values, strict=True)),
+    )
 
 
 def _margin_rows(ds):
@@ -292,6 +341,7 @@ def _margin_rows(ds):
             ),
         )
     )
+    rows.append(_lambda_margin_row(ds))
     spin = ds.racetrace.metric("mean_spin_to_roll")
     rows.append(
         ("mean spin-to-roll ratio", *(number(float(spin.sel(race=r))) for r in RACES), "", "")
@@ -480,13 +530,15 @@ def run_header(ds, source_name: str) -> str:
     )
 
 
-#: The 3-D scene's caption: what is drawn and how the outer ring is drawn apart.
-SCENE_CAPTION = (
-    "## 3-D scene (drag to turn, wheel to zoom)\n\nThe bearing at the last sample, with the "
-    "contact trajectories of the run on both raceways; ellipses coloured by peak pressure. The "
-    "outer ring is drawn apart from the balls and opened (a sector cut away) so that its raceway "
-    "and the outer track can be seen: the bearing is not exploded."
+#: What the 3-D scene shows (on screen under its heading, on paper beside the still).
+SCENE_TEXT = (
+    "The bearing at the last sample, with its contact ellipses and the contact trajectories of "
+    "the run; each raceway is painted where the ellipses ran, by the peak contact pressure there "
+    "(the colour scale with the view). The outer ring is drawn apart from the balls and opened "
+    "(a sector cut away) so that its raceway and the outer track can be seen: the bearing is not "
+    "exploded."
 )
+SCENE_CAPTION = f"## 3-D scene (drag to turn, wheel to zoom)\n\n{SCENE_TEXT}"
 
 
 #: The scene's pane: a size from the start; vtk.js's camera-info toggle ("...", a live view's)
@@ -515,7 +567,7 @@ def run_sections(ds, source_name: str):
     import panel as pn
 
     from . import charts
-    from .scene import bearing_plotter, screenshot_png
+    from .scene import bearing_plotter, pressure_scale_html, screenshot_png
 
     notes = []
     sections = [_html(run_header(ds, source_name), stylesheets=[PRINT_CSS])]
@@ -557,11 +609,11 @@ def run_sections(ds, source_name: str):
             "(racetrace simulate) for the losses by source and the contact heat.</p>",
         )
     )
-    film = _metric_cells(answer, "min_film_thickness")
     sections.append(
         _section(
             "Film thickness and λ",
-            _table(("quantity", "inner", "outer"), [film]) + f"<p>{html.escape(LAMBDA_NOTE)}</p>",
+            _table(("quantity", "inner", "outer"), _film_rows(answer))
+            + f"<p>{html.escape(_film_note(answer))}</p>",
         )
     )
     sections.append(
@@ -594,18 +646,25 @@ def run_sections(ds, source_name: str):
         else "(one snapshot)"
     )
     sections.append(_section(f"Per ball {where}", _table(headers, rows, text_columns=())))
-    plotter, note = bearing_plotter(ds)
+    plotter, note, scale = bearing_plotter(ds)
     if note:
         notes.append(note)
     png = base64.b64encode(screenshot_png(plotter)).decode("ascii")
-    sections.append(pn.pane.Markdown(SCENE_CAPTION, stylesheets=[PRINT_CSS]))
+    # on screen: the live view and its colour scale; on paper: a still of it (with the scene's
+    # own colour bar) under one heading, kept on one page
+    sections.append(pn.pane.Markdown(SCENE_CAPTION, stylesheets=[PRINT_CSS, SCREEN_ONLY_CSS]))
     sections.append(_vtk_pane(plotter))
+    sections.append(  # the report's own markup (numbers and fixed text): not sanitised
+        pn.pane.HTML(pressure_scale_html(scale), stylesheets=[SCREEN_ONLY_CSS])
+    )
     sections.append(
         pn.pane.HTML(  # only the report's own picture: not sanitised (that would drop data: URLs)
+            '<div class="rt-section rt-still"><h2>3-D scene (a still of the interactive view)</h2>'
+            f"<p>{html.escape(SCENE_TEXT)}</p>"
             f'<img src="data:image/png;base64,{png}" style="width:100%;max-width:900px" '
-            'alt="3-D scene">',
+            'alt="3-D scene"></div>',
             sizing_mode="stretch_width",
-            stylesheets=[PRINT_ONLY_CSS],
+            stylesheets=[PRINT_CSS, PRINT_ONLY_CSS],
         )
     )
     figs = []
@@ -617,7 +676,10 @@ def run_sections(ds, source_name: str):
     sections.append(pn.pane.Markdown("## Raceway maps", stylesheets=[PRINT_CSS]))
     sections.append(
         pn.GridBox(
-            *(pn.pane.Bokeh(f, sizing_mode="stretch_width") for f in figs),
+            *(
+                pn.pane.Bokeh(f, sizing_mode="stretch_width", stylesheets=[CHART_PRINT_CSS])
+                for f in figs
+            ),
             ncols=2,
             sizing_mode="stretch_width",
             stylesheets=[CHART_GRID_CSS],
@@ -628,8 +690,10 @@ def run_sections(ds, source_name: str):
     if note_a:
         notes.append(note_a.replace("contact angle [deg]", "contact-angle and load charts"))
     sections.append(pn.pane.Markdown("## Contact angle and load", stylesheets=[PRINT_CSS]))
-    sections.append(pn.pane.Bokeh(angle, sizing_mode="stretch_width"))
-    sections.append(pn.pane.Bokeh(load, sizing_mode="stretch_width"))
+    for chart in (angle, load):
+        sections.append(
+            pn.pane.Bokeh(chart, sizing_mode="stretch_width", stylesheets=[CHART_PRINT_CSS])
+        )
     headers, rows = _ellipse_rows(ds)
     when = "at the last sample" if "time" in ds.dims else ""
     sections.append(

@@ -69,6 +69,9 @@ class Field:
     choices: tuple[str, ...] = ()
     reason: str = ""
     reason_high: str = ""
+    #: False for a key that no model reads (only the metrics of a result do): it does not enter a
+    #: result's fingerprint (solver.results.provenance), so changing it keeps a result current.
+    solved: bool = True
 
     @property
     def path(self) -> tuple[str, ...]:
@@ -197,6 +200,20 @@ _LAND_DIAMETER = dict(
     maximum=21000.0,
     reason="a land lies beyond the bore, at least a tenth of a millimetre across",
     reason_high="a land lies next to the pitch circle, which is at most 20 m across",
+)
+#: Default RMS roughness Rq of a ball, um [E]: a grade G16-G20 ball (Ra about 0.02 um by the ball
+#: grade tables, docs/sources.md) with Rq about 1.25 Ra (a Gaussian profile).
+BALL_ROUGHNESS_UM = 0.025
+#: Default RMS roughness Rq of a raceway, um [E]: superfinished raceways lie at about 0.05-0.1 um.
+RACEWAY_ROUGHNESS_UM = 0.08
+_ROUGHNESS_BOUNDS = dict(
+    minimum=0.001,
+    maximum=10.0,
+    reason="a surface is never smoother than about a nanometre RMS, and a polished ball has "
+    "about 0.01 um; give the roughness in micrometres",
+    reason_high="a rolling surface rougher than 10 um RMS is a turned, not a ground, surface; "
+    "give the roughness in micrometres",
+    solved=False,
 )
 _SPEED_BOUNDS = dict(
     minimum=-500000.0,
@@ -334,6 +351,28 @@ FIELDS: list[Field] = [
         "material",
         "Ring material",
         "bearing_steel, silicon_nitride, a name defined under [materials], or an inline table.",
+    ),
+    Field(
+        "bearing.ball_roughness_um",
+        "float",
+        "Ball roughness",
+        "RMS surface roughness Rq of the balls; with the raceway roughness it gives the film "
+        "parameter lambda = h_min / sqrt(Rq_ball^2 + Rq_raceway^2) of the results (no model "
+        "reads it). The default is an estimate for a grade G16-G20 ball (Ra about 0.02 um, "
+        "Rq about 1.25 Ra; docs/sources.md).",
+        unit="um",
+        default=BALL_ROUGHNESS_UM,
+        **_ROUGHNESS_BOUNDS,
+    ),
+    Field(
+        "bearing.raceway_roughness_um",
+        "float",
+        "Raceway roughness",
+        "RMS surface roughness Rq of both raceways (lambda as for the ball roughness). The "
+        "default is an estimate for superfinished raceways (Rq 0.05-0.1 um; docs/sources.md).",
+        unit="um",
+        default=RACEWAY_ROUGHNESS_UM,
+        **_ROUGHNESS_BOUNDS,
     ),
     # ---- [cage] (optional section) ------------------------------------------------------------
     Field(

@@ -284,6 +284,30 @@ def _race_heat(w: Window) -> xr.DataArray:
     return reduce(heat, w.within(xr.ones_like(heat, dtype=bool)), "mean")
 
 
+def composite_roughness(ds: xr.Dataset) -> xr.DataArray:
+    """sqrt(Rq_ball^2 + Rq_raceway^2) (m) of the bearing a result was solved for, from the
+    roughness keys of its case (``attrs["case"]``, given or the schema defaults); NaN with a
+    ``note`` saying why when the result holds no case that parses."""
+    case = ds.racetrace.case()
+    if case is None:
+        return xr.DataArray(
+            math.nan,
+            attrs={
+                "note": "no film parameter: the result holds no readable case, so the surface "
+                "roughness of its balls and raceways is unknown"
+            },
+        )
+    ball = case.bearing.ball_roughness_um * 1e-6
+    raceway = case.bearing.raceway_roughness_um * 1e-6
+    return xr.DataArray(math.hypot(ball, raceway))
+
+
+def _film_parameter(w: Window) -> xr.DataArray:
+    """Smallest film thickness over the composite roughness, per race."""
+    roughness = composite_roughness(w.ds)
+    return _with_note(_contact(w, "film_thickness", "min") / roughness, roughness)
+
+
 def _ring_displacement(w: Window, axes: tuple[str, ...]) -> xr.DataArray:
     """Mean inner-ring displacement over the window along ``axes`` (its length when several)."""
     if "inner_ring_offset" not in w.ds:
@@ -639,6 +663,17 @@ def _table() -> dict[str, Metric]:
             lambda w: _contact(w, "film_thickness", "min"),
         ),
         Metric(
+            "min_film_parameter",
+            per_race,
+            "1",
+            "smallest film parameter λ",
+            "min_film_thickness over the composite roughness sqrt(Rq_ball^2 + Rq_raceway^2) of "
+            "the case's bearing.ball_roughness_um and bearing.raceway_roughness_um: below 1 "
+            "boundary, 1 to 3 mixed, above 3 full-film lubrication (NaN without a lubricant or a "
+            "readable case)",
+            _film_parameter,
+        ),
+        Metric(
             "axial_displacement",
             (),
             "m",
@@ -765,6 +800,7 @@ __all__ = [
     "METRICS",
     "Metric",
     "Window",
+    "composite_roughness",
     "compute_metric",
     "epicyclic_cage_speed",
     "loaded",

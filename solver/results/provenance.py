@@ -23,10 +23,11 @@ RESULTS_VERSION = 3
 
 def case_values(case) -> dict:
     """Every key's value of ``case`` as the models read it ({dotted key: value}: given, default,
-    estimated or from a named oil), and the user material tables; not the title or any comment."""
+    estimated or from a named oil), and the user material tables; not the title, any comment or a
+    key that no model reads (``Field.solved`` False: the surface roughnesses)."""
     values = {}
     for f in FIELDS:
-        if not f.section:
+        if not f.section or not f.solved:
             continue
         value = case
         for part in f.path:

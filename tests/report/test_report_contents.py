@@ -244,3 +244,56 @@ def test_scientific_numbers_are_not_in_engineering_cells():
 
     assert number(np.float64(12345.6)) == "12\u2009346"
     assert number(0.01123) == "0.01123"
+
+
+def test_film_table_and_margins_show_lambda_per_race_with_its_regime(heavy):
+    from report.build import _film_rows, _margin_rows, lambda_regime
+    from report.units import number
+
+    lam = heavy.racetrace.metric("min_film_parameter")
+    values = [float(lam.sel(race=r)) for r in ("inner", "outer")]
+    rows = {row[0]: row for row in _film_rows(heavy)}
+    assert rows["smallest film parameter λ"][1:] == tuple(number(v, 3) for v in values)
+    assert rows["lubrication regime"][1:] == tuple(lambda_regime(v) for v in values)
+    margin = {row[0]: row for row in _margin_rows(heavy)}["smallest film parameter λ"]
+    assert margin[3] == "> 3 full film"
+    assert margin[4] == "; ".join(
+        f"{r} {lambda_regime(v)}" for r, v in zip(("inner", "outer"), values, strict=True)
+    )
+    assert [lambda_regime(v) for v in (0.5, 1.0, 2.9, 3.0, 7.0)] == [
+        "boundary",
+        "mixed",
+        "mixed",
+        "full film",
+        "full film",
+    ]
+    assert lambda_regime(math.nan) == "-"
+
+
+def test_the_pressure_scale_spans_the_scenes_painted_range(radial):
+    """The HTML scale beside the 3-D view carries the range and colours of the scene's painted
+    raceways (peak pressure, GPa), which reach the result's largest contact pressure."""
+    import pyvista as pv
+
+    from report.scene import bearing_plotter, pressure_scale_html
+    from solver import geometry_from_result
+    from viz.frames import FrameSource
+    from viz.options import SceneOptions
+    from viz.scene import BearingScene
+
+    _, _, scale = bearing_plotter(radial)
+    plotter = pv.Plotter(off_screen=True)
+    scene = BearingScene(
+        plotter, geometry_from_result(radial), SceneOptions(track_quantity="peak_pressure")
+    )
+    source = FrameSource.from_dynamic(radial)
+    scene.show_source(source, source.n_frames - 1)
+    assert (scale.lo, scale.hi) == scene.track_range
+    loaded = radial["max_pressure"].where(radial["contact_load"] > 0)
+    assert scale.hi == pytest.approx(float(loaded.max()) * 1e-9, rel=1e-3)
+    assert 0.0 <= scale.lo < scale.hi
+    assert scale.colours[0] != scale.colours[-1]
+    page = pressure_scale_html(scale)
+    assert f'data-lo-gpa="{scale.lo!r}"' in page and f'data-hi-gpa="{scale.hi!r}"' in page
+    assert "peak contact pressure [GPa]" in page
+    assert f"{scale.hi:.3g}</span>" in page

@@ -145,3 +145,52 @@ def test_study_report_links_each_point_to_its_own_report(point_study, tmp_path):
         assert link.get_attribute("href") == "study.points/p0002.quasistatic.html"
 
     _visit(output, links, "point-study-report.png")
+
+
+#: Most pages a printed run report of a lesson result may take (A4): five on a 1300-px page
+#: today; a break before every section made sixteen, most of them near empty.
+MAX_PRINTED_PAGES = 7
+
+
+def _pdf_pages(data: bytes) -> int:
+    """Pages of a PDF written by Chromium (its page objects)."""
+    return len(re.findall(rb"/Type\s*/Page\b", data))
+
+
+def test_run_report_shows_a_pressure_scale_and_prints_in_few_pages(tmp_path):
+    """On screen a colour scale in GPa sits with the 3-D view, spanning the scene's painted
+    pressures, and the "..." stays hidden; printed (A4 PDF, kept as an artefact) the report takes
+    few pages, the live view replaced by its still."""
+    import solver
+    from report import build_report
+
+    build_report(LESSON, tmp_path / "run.html")
+    ds = solver.load_dataset(LESSON)
+    loaded = ds["max_pressure"].where(ds["contact_load"] > 0)
+    largest = float(loaded.max()) * 1e-9  # GPa
+
+    def check(page, console):  # noqa: ARG001 - the check's interface
+        scale = page.locator(".rt-colour-scale")
+        scale.wait_for(timeout=60_000)
+        assert scale.count() == 1 and scale.is_visible()
+        box = scale.bounding_box()
+        assert box["width"] > 200 and box["height"] > 20
+        lo = float(scale.get_attribute("data-lo-gpa"))
+        hi = float(scale.get_attribute("data-hi-gpa"))
+        assert 0.0 <= lo < hi and hi == pytest.approx(largest, rel=1e-3)
+        text = scale.inner_text()
+        assert "[GPa]" in text and f"{hi:.3g}" in text and f"{lo:.3g}" in text
+        dots = page.locator(".vtk_info")
+        assert all(not dots.nth(k).is_visible() for k in range(dots.count()))
+        still = page.locator(".rt-still")
+        assert still.count() == 1 and not still.is_visible()  # on paper only
+        SHOTS.mkdir(parents=True, exist_ok=True)
+        pdf = page.pdf(path=str(SHOTS / "run-report.pdf"), format="A4", print_background=True)
+        pages = _pdf_pages(pdf)
+        assert 2 <= pages <= MAX_PRINTED_PAGES, f"{pages} printed pages"
+        page.emulate_media(media="print")
+        assert still.is_visible() and not scale.is_visible()
+        assert not page.locator("canvas").first.is_visible()  # the live view is not printed
+        page.emulate_media(media="screen")
+
+    _visit(tmp_path / "run.html", check, "run-report-scale.png")
