@@ -958,12 +958,14 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
     """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
     (Z,) receive the contact records and pocket normal forces of this evaluation.
     :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
-    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, rhs_work(int(par.ball_count)), True)
+    scratch = rhs_work(int(par.ball_count))
+    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, runtime_bool(True))
 
 
 @njit(cache=True)
 def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed=True):
-    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
+    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. Callers
+    pass ``observed`` as ``runtime_bool(...)``, so that numba compiles one variant of it. The
     evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
     and slices of them cost no atomic reference counts. ``observed`` False (integrators' stages,
     which pass it explicitly): the records hold only what the forces and ``post_step`` need

@@ -595,7 +595,9 @@ def solve_ring(q, position, ring, free, length_scale, tolerance, max_iterations)
     dummy = np.empty((5, 5))
     trial_pos = position.copy()
     trial_q = q.copy()
-    ok = ring_residual_and_jacobian(q, position, ring, True, residual, jacobian)
+    # plain bools, not literals: numba compiles one variant of ring_residual_and_jacobian
+    with_jacobian, without_jacobian = np.bool_(True), np.bool_(False)
+    ok = ring_residual_and_jacobian(q, position, ring, with_jacobian, residual, jacobian)
     merit = _merit(residual, free, rscale)
     mu = 0.0
     iterations = 0
@@ -685,7 +687,9 @@ def solve_ring(q, position, ring, free, length_scale, tolerance, max_iterations)
                 for a in range(n):
                     trial_q[idx[a]] = q[idx[a]] + t * step[a] * qscale[idx[a]]
                 trial_pos[:, :] = position
-                tok = ring_residual_and_jacobian(trial_q, trial_pos, ring, False, trial_res, dummy)
+                tok = ring_residual_and_jacobian(
+                    trial_q, trial_pos, ring, without_jacobian, trial_res, dummy
+                )
                 tmerit = _merit(trial_res, free, rscale)
                 if tok and tmerit < (1.0 - 1e-4 * t) * merit:
                     accepted = True
@@ -704,7 +708,7 @@ def solve_ring(q, position, ring, free, length_scale, tolerance, max_iterations)
         mu = 0.0 if t == 1.0 else mu * 0.1
         if mu < 1e-9:
             mu = 0.0
-        ok = ring_residual_and_jacobian(q, position, ring, True, residual, jacobian)
+        ok = ring_residual_and_jacobian(q, position, ring, with_jacobian, residual, jacobian)
         merit = _merit(residual, free, rscale)
     return ok and merit <= tolerance, iterations, merit
 
@@ -855,16 +859,19 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
     tilt_span = span / model.inner_center_radius
     dummy = np.zeros(2)
     resolution = 1e-3 * length_scale  # a starting point; Newton takes it from there
+    # the component index as an int64 variable, not a literal: numba compiles one variant of
+    # _bisect_component (and _static_excess, _set_component) for the three components
+    radial_k, axial_k, tilt_k = np.int64(1), np.int64(0), np.int64(2)
     for _ in range(passes):
         if fr > 0.0:
-            _bisect_component(q, 1, applied, azimuth, model, radial, -span, span, resolution)
+            _bisect_component(q, radial_k, applied, azimuth, model, radial, -span, span, resolution)
         _bisect_component(
-            q, 0, applied, azimuth, model, dummy, -shift - span, -shift + span, resolution
+            q, axial_k, applied, azimuth, model, dummy, -shift - span, -shift + span, resolution
         )
         if free_tilt and mm > 0.0:
             _bisect_component(
                 q,
-                2,
+                tilt_k,
                 applied,
                 azimuth,
                 model,

@@ -128,6 +128,12 @@ def traction_setup(lubricant):
     return traction, _nodes(rheological).copy()
 
 
+def _floats(values) -> tuple:
+    """Parameters as a tuple of floats, as the dynamic model passes them to
+    ellipse_traction_into (numba then compiles one variant of it for both models)."""
+    return tuple(float(v) for v in values)
+
+
 @functools.lru_cache(maxsize=16)
 def _curve_parameters(properties: tuple[float, float, float, float]) -> np.ndarray:
     """traction_curve_parameters of the curve properties, solved once per curve (read-only)."""
@@ -231,7 +237,9 @@ class Balance(NamedTuple):
     contacts: np.ndarray  # (Z, 2, RECORD_SIZE) contact records [inner, outer]
     ring_centres: np.ndarray  # (Z, 3) inner-ring centre [m]
     centres: np.ndarray  # (Z, 3) ball centre [m]
-    traction: np.ndarray  # (TRACTION_SIZE) traction-law array (traction_setup)
+    law: int  # local traction law (solver.physics.traction.LAW_*)
+    curve: tuple  # (CURVE_SIZE) slip-curve parameters, floats
+    rheology: tuple  # (RHEOLOGY_SIZE) rheology parameters (solver.physics.rheology), floats
     nodes: np.ndarray  # ellipse quadrature nodes (traction_setup)
     active: np.ndarray  # (Z) bool: the ball has a loaded contact
     moment_scales: np.ndarray  # (Z) larger contact load times D / 2 [N m]
@@ -275,7 +283,6 @@ def _ball_moments(w, omega_c, j, balance, kin, work, res, forces):
     (sum of both contacts). ``kin`` (2, KIN_SIZE): the ball's kinematics records [inner, outer]
     in the cage frame at omega_c; ``work``: its ``batch`` and ``out`` are the scratch of
     ellipse_traction_into."""
-    traction = balance.traction
     res[0] = 0.0
     res[1] = 0.0
     res[2] = 0.0
@@ -288,9 +295,9 @@ def _ball_moments(w, omega_c, j, balance, kin, work, res, forces):
         ellipse_traction_into(
             contact,
             record,
-            int(traction[TL_LAW]),
-            traction[TL_CURVE : TL_CURVE + CURVE_SIZE],
-            traction[TL_RHEOLOGY:],
+            balance.law,
+            balance.curve,
+            balance.rheology,
             contact[CT_FILM],
             contact[CT_TRANSIT],
             balance.u_reg,
@@ -769,7 +776,9 @@ def traction_balance(
         contacts,
         ring_centres,
         centres,
-        traction,
+        int(traction[TL_LAW]),
+        _floats(traction[TL_CURVE : TL_CURVE + CURVE_SIZE]),
+        _floats(traction[TL_RHEOLOGY:]),
         nodes,
         active,
         moment_scales,

@@ -447,7 +447,9 @@ def test_cage_drag_moment_acts_on_the_cage_spin():
 def test_observed_and_stage_evaluations_share_one_compiled_body():
     """The integrators' stage evaluations (``observed`` False) give the same derivatives as an
     observed evaluation, leave the angles and the elastic load NaN, and run the same compiled body
-    of the right-hand side (``runtime_bool``: compiled once, not once per flag)."""
+    of the right-hand side (``runtime_bool``: compiled once, not once per flag; numba lists a
+    kernel's signatures only where this process compiled or loaded it by itself, not where a cached
+    caller brought it along, hence at most one)."""
     from solver.models.dynamic.kernels import _rhs_borrowed, rhs_into, rhs_work
 
     par, quad, y0 = start(spindle_inputs(radial=300.0))
@@ -460,4 +462,4 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     np.testing.assert_array_equal(stage, dydt)
     assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
     assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
-    assert len(_rhs_borrowed.signatures) == 1
+    assert len(_rhs_borrowed.signatures) <= 1 and len(rhs_into.signatures) == 1

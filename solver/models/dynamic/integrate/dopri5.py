@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import numpy as np
 from numba import njit
 
 from .control import (
@@ -178,7 +179,7 @@ def advance(y, times, outputs, control, work, model):
     if done:
         return
     steps = 0
-    written = 0
+    written = np.int64(0)  # not a literal: one compiled variant of the kernels it is passed to
     while t < t_end:
         if steps >= control.max_steps:
             finish(progress, STATUS_TOO_MANY_STEPS, t, h, written)

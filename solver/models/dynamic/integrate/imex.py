@@ -383,7 +383,7 @@ def advance(y, times, outputs, control, work, model):
         return
     additive = False  # the method of the last step (switching: with hysteresis)
     steps = 0
-    written = 0
+    written = np.int64(0)  # not a literal: one compiled variant of the kernels it is passed to
     exponent = 0.7 / m.order
     memory = 0.4 / m.order
     while t < t_end:

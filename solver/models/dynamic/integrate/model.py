@@ -16,6 +16,7 @@ from numba import njit
 
 from .. import layout as L
 from ..kernels import post_step, rhs_into, rhs_work
+from ..unliteral import runtime_bool
 
 
 class BearingModel(NamedTuple):
@@ -49,7 +50,15 @@ def scratch(model: BearingModel):
 def evaluate(y, model, out, rhs):
     """``out`` <- dy/dt at ``y``, with the scratch record ``rhs`` (:func:`scratch`)."""
     rhs_into(
-        y, model.par, model.quad, out, model.rec_inner, model.rec_outer, model.pocket, rhs, False
+        y,
+        model.par,
+        model.quad,
+        out,
+        model.rec_inner,
+        model.rec_outer,
+        model.pocket,
+        rhs,
+        runtime_bool(False),
     )
 
 
