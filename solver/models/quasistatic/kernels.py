@@ -790,9 +790,11 @@ def _set_component(q, k, value, direction):
 @njit(cache=True)
 def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resolution):
     """Set component k of q (see :func:`_static_excess`) in [lo, hi] (widened if needed) so that the
-    static residual along ``direction`` vanishes; it decreases as the component grows. Left
-    unchanged when no ball is loaded anywhere in the bracket (the residual carries no information
-    there)."""
+    static residual along ``direction`` vanishes; it decreases as the component grows. The root is
+    bracketed and then found by the Illinois variant of regula falsi (a secant step inside the
+    bracket, the retained end's residual halved when the same end is kept twice), stopped when the
+    bracket or the last step is within ``resolution``. Left unchanged when no ball is loaded
+    anywhere in the bracket (the residual carries no information there)."""
     if k == 0:
         start = q[0]
     elif k == 1:
@@ -818,18 +820,31 @@ def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resoluti
     if not (f_lo > 0.0 and f_hi < 0.0):
         _set_component(q, k, start, direction)
         return False
+    kept = 0  # +1: lo kept in a row, -1: hi kept in a row
+    previous = lo
     for _ in range(100):
-        mid = 0.5 * (lo + hi)
-        if mid == lo or mid == hi or hi - lo <= resolution:
+        if hi - lo <= resolution:
             break
-        _set_component(q, k, mid, direction)
-        f_mid, _n = _static_excess(q, k, applied, azimuth, model, direction)
-        if f_mid > 0.0:
-            lo = mid
-        elif f_mid < 0.0:
-            hi = mid
-        else:
+        x = lo + (hi - lo) * f_lo / (f_lo - f_hi)
+        # keep the trial strictly inside the bracket (rounding at a nearly flat end)
+        x = min(max(x, lo + 0.25 * resolution), hi - 0.25 * resolution)
+        _set_component(q, k, x, direction)
+        f_x, _n = _static_excess(q, k, applied, azimuth, model, direction)
+        if f_x == 0.0:
             return True
+        if f_x > 0.0:
+            lo, f_lo = x, f_x
+            if kept == -1:
+                f_hi *= 0.5
+            kept = -1
+        else:
+            hi, f_hi = x, f_x
+            if kept == 1:
+                f_lo *= 0.5
+            kept = 1
+        if abs(x - previous) <= resolution:
+            return True
+        previous = x
     _set_component(q, k, 0.5 * (lo + hi), direction)
     return True
 
