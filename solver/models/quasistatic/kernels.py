@@ -849,11 +849,19 @@ def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resoluti
     return True
 
 
+#: Half-width of the bracket of the static start's later passes, relative to the first pass's
+#: (the coupling of the radial, axial and tilt balances moves each root by far less)
+STATIC_REFINE_WIDTH = 1.0 / 32.0
+
+
 @njit(cache=True)
 def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
-    """Starting ring displacement without speed: bisect in turn the radial shift (along the radial
-    load), the axial shift and, when the tilt is free, the tilt along the applied moment, each so
-    that its static force (moment) balances. ``q`` is updated in place."""
+    """Starting ring displacement without speed: find in turn (:func:`_bisect_component`) the
+    radial shift (along the radial load), the axial shift and, when the tilt is free, the tilt along
+    the applied moment, each so that its static force (moment) balances, ``passes`` times. The
+    first pass brackets each component over the whole range of the groove clearance; the later
+    ones start from a bracket of STATIC_REFINE_WIDTH of that range about the previous pass's value
+    (widened when it does not hold the root). ``q`` is updated in place."""
     radial = np.array([1.0, 0.0])
     fr = math.hypot(applied[1], applied[2])
     if fr > 0.0:
@@ -870,11 +878,33 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
     tilt_span = span / model.inner_center_radius
     dummy = np.zeros(2)
     resolution = 1e-3 * length_scale  # a starting point; Newton takes it from there
+    radial_centre = 0.0
+    axial_centre = -shift
+    tilt_centre = 0.0
+    width = 1.0
     for _ in range(passes):
         if fr > 0.0:
-            _bisect_component(q, 1, applied, azimuth, model, radial, -span, span, resolution)
+            _bisect_component(
+                q,
+                1,
+                applied,
+                azimuth,
+                model,
+                radial,
+                radial_centre - width * span,
+                radial_centre + width * span,
+                resolution,
+            )
         _bisect_component(
-            q, 0, applied, azimuth, model, dummy, -shift - span, -shift + span, resolution
+            q,
+            0,
+            applied,
+            azimuth,
+            model,
+            dummy,
+            axial_centre - width * span,
+            axial_centre + width * span,
+            resolution,
         )
         if free_tilt and mm > 0.0:
             _bisect_component(
@@ -884,7 +914,11 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
                 azimuth,
                 model,
                 moment_dir,
-                -tilt_span,
-                tilt_span,
+                tilt_centre - width * tilt_span,
+                tilt_centre + width * tilt_span,
                 resolution / model.inner_center_radius,
             )
+        radial_centre = q[1] * radial[0] + q[2] * radial[1]
+        axial_centre = q[0]
+        tilt_centre = q[3] * moment_dir[0] + q[4] * moment_dir[1]
+        width = STATIC_REFINE_WIDTH
