@@ -794,9 +794,11 @@ def _set_component(q, k, value, direction):
 @njit(cache=True)
 def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resolution):
     """Set component k of q (see :func:`_static_excess`) in [lo, hi] (widened if needed) so that the
-    static residual along ``direction`` vanishes; it decreases as the component grows. Left
-    unchanged when no ball is loaded anywhere in the bracket (the residual carries no information
-    there)."""
+    static residual along ``direction`` vanishes; it decreases as the component grows. The root is
+    bracketed and then found by the Illinois variant of regula falsi (a secant step inside the
+    bracket, the retained end's residual halved when the same end is kept twice), stopped when the
+    bracket or the last step is within ``resolution``. Left unchanged when no ball is loaded
+    anywhere in the bracket (the residual carries no information there)."""
     if k == 0:
         start = q[0]
     elif k == 1:
@@ -822,27 +824,48 @@ def _bisect_component(q, k, applied, azimuth, model, direction, lo, hi, resoluti
     if not (f_lo > 0.0 and f_hi < 0.0):
         _set_component(q, k, start, direction)
         return False
+    kept = 0  # +1: lo kept in a row, -1: hi kept in a row
+    previous = lo
     for _ in range(100):
-        mid = 0.5 * (lo + hi)
-        if mid == lo or mid == hi or hi - lo <= resolution:
+        if hi - lo <= resolution:
             break
-        _set_component(q, k, mid, direction)
-        f_mid, _n = _static_excess(q, k, applied, azimuth, model, direction)
-        if f_mid > 0.0:
-            lo = mid
-        elif f_mid < 0.0:
-            hi = mid
-        else:
+        x = lo + (hi - lo) * f_lo / (f_lo - f_hi)
+        # keep the trial strictly inside the bracket (rounding at a nearly flat end)
+        x = min(max(x, lo + 0.25 * resolution), hi - 0.25 * resolution)
+        _set_component(q, k, x, direction)
+        f_x, _n = _static_excess(q, k, applied, azimuth, model, direction)
+        if f_x == 0.0:
             return True
+        if f_x > 0.0:
+            lo, f_lo = x, f_x
+            if kept == -1:
+                f_hi *= 0.5
+            kept = -1
+        else:
+            hi, f_hi = x, f_x
+            if kept == 1:
+                f_lo *= 0.5
+            kept = 1
+        if abs(x - previous) <= resolution:
+            return True
+        previous = x
     _set_component(q, k, 0.5 * (lo + hi), direction)
     return True
 
 
+#: Half-width of the bracket of the static start's later passes, relative to the first pass's
+#: (the coupling of the radial, axial and tilt balances moves each root by far less)
+STATIC_REFINE_WIDTH = 1.0 / 32.0
+
+
 @njit(cache=True)
 def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
-    """Starting ring displacement without speed: bisect in turn the radial shift (along the radial
-    load), the axial shift and, when the tilt is free, the tilt along the applied moment, each so
-    that its static force (moment) balances. ``q`` is updated in place."""
+    """Starting ring displacement without speed: find in turn (:func:`_bisect_component`) the
+    radial shift (along the radial load), the axial shift and, when the tilt is free, the tilt along
+    the applied moment, each so that its static force (moment) balances, ``passes`` times. The
+    first pass brackets each component over the whole range of the groove clearance; the later
+    ones start from a bracket of STATIC_REFINE_WIDTH of that range about the previous pass's value
+    (widened when it does not hold the root). ``q`` is updated in place."""
     radial = np.array([1.0, 0.0])
     fr = math.hypot(applied[1], applied[2])
     if fr > 0.0:
@@ -862,11 +885,33 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
     # the component index as an int64 variable, not a literal: numba compiles one variant of
     # _bisect_component (and _static_excess, _set_component) for the three components
     radial_k, axial_k, tilt_k = np.int64(1), np.int64(0), np.int64(2)
+    radial_centre = 0.0
+    axial_centre = -shift
+    tilt_centre = 0.0
+    width = 1.0
     for _ in range(passes):
         if fr > 0.0:
-            _bisect_component(q, radial_k, applied, azimuth, model, radial, -span, span, resolution)
+            _bisect_component(
+                q,
+                radial_k,
+                applied,
+                azimuth,
+                model,
+                radial,
+                radial_centre - width * span,
+                radial_centre + width * span,
+                resolution,
+            )
         _bisect_component(
-            q, axial_k, applied, azimuth, model, dummy, -shift - span, -shift + span, resolution
+            q,
+            axial_k,
+            applied,
+            azimuth,
+            model,
+            dummy,
+            axial_centre - width * span,
+            axial_centre + width * span,
+            resolution,
         )
         if free_tilt and mm > 0.0:
             _bisect_component(
@@ -876,7 +921,11 @@ def static_start(q, applied, free_tilt, azimuth, model, length_scale, passes):
                 azimuth,
                 model,
                 moment_dir,
-                -tilt_span,
-                tilt_span,
+                tilt_centre - width * tilt_span,
+                tilt_centre + width * tilt_span,
                 resolution / model.inner_center_radius,
             )
+        radial_centre = q[1] * radial[0] + q[2] * radial[1]
+        axial_centre = q[0]
+        tilt_centre = q[3] * moment_dir[0] + q[4] * moment_dir[1]
+        width = STATIC_REFINE_WIDTH
