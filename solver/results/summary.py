@@ -54,7 +54,10 @@ spin-to-roll ratio of each race (loaded contacts). The run has settled at the fi
 after which every per-revolution mean stays within the tolerances of the last revolution's:
 :data:`SETTLING_ANGLE_TOLERANCE` (0.01 degree) for the contact angle, and for the spin-to-roll
 ratio :data:`SETTLING_SPIN_TO_ROLL_RELATIVE` (1 %) of its last value or
-:data:`SETTLING_SPIN_TO_ROLL_ABSOLUTE` (0.0005), whichever is larger. At least
+:data:`SETTLING_SPIN_TO_ROLL_ABSOLUTE` (0.0005), whichever is larger; and the per-revolution
+mean cage speed within :data:`SETTLING_CAGE_SPEED_RELATIVE` (0.1 %, the accuracy contract's
+allowance for the cage speed) of the last revolution's, so that a cage still skidding down (a
+light, fast bearing) is not called settled. At least
 :data:`MIN_SETTLED_REVOLUTIONS` (2) full revolutions must follow the settling time. The analysed
 window then starts at the settling time; a run that does not settle is analysed after its first
 ``analysis_skip_fraction`` (:data:`UNSETTLED_SKIP_FRACTION` = 30 % by default) and
@@ -87,6 +90,7 @@ MIN_BIN_SAMPLES = 5
 SETTLING_ANGLE_TOLERANCE = 0.01  # degree
 SETTLING_SPIN_TO_ROLL_RELATIVE = 0.01
 SETTLING_SPIN_TO_ROLL_ABSOLUTE = 0.0005
+SETTLING_CAGE_SPEED_RELATIVE = 0.001  # of the last revolution's mean cage speed
 MIN_SETTLED_REVOLUTIONS = 2
 UNSETTLED_SKIP_FRACTION = 0.3
 
@@ -222,7 +226,7 @@ def _revolution_means(ds, name: str, race: str, revolution: np.ndarray, count: i
 
 def settling(ds: xr.Dataset) -> Settling:
     """Settling of a dynamic result (``time`` dimension; reads ``contact_angle`` and
-    ``contact_load``, and ``spin_to_roll`` when the result has it)."""
+    ``contact_load``, and ``spin_to_roll`` and ``cage_speed`` when the result has them)."""
     inner, outer = ring_speeds(ds)
     relative = abs(inner - outer)
     times = np.asarray(ds["time"].values, dtype=float)
@@ -262,6 +266,29 @@ def settling(ds: xr.Dataset) -> Settling:
                         f"the mean {label} of the {race} race in revolution {k + 1} differs "
                         f"from the last revolution's by {departure[k]:.3g}{unit} "
                         f"(tolerance {tolerance:.2g}{unit})",
+                    )
+    if "cage_speed" in ds and ds["cage_speed"].dims == ("time",):
+        speed = np.asarray(ds["cage_speed"].values, dtype=float)
+        means = np.array(
+            [
+                speed[revolution == k].mean() if np.any(revolution == k) else np.nan
+                for k in range(count)
+            ]
+        )
+        final = means[-1]
+        if np.isfinite(final) and final != 0.0:
+            tolerance = SETTLING_CAGE_SPEED_RELATIVE * abs(final)
+            departure = np.abs(means - final)
+            ok = np.isfinite(departure) & (departure <= tolerance)
+            within &= ok
+            for k in np.flatnonzero(~ok):
+                ratio = departure[k] / tolerance if np.isfinite(departure[k]) else math.inf
+                if k not in worst or ratio > worst[k][0]:
+                    worst[k] = (
+                        ratio,
+                        f"the mean cage speed in revolution {k + 1} differs from the last "
+                        f"revolution's by {100.0 * departure[k] / abs(final):.3g} % (tolerance "
+                        f"{100.0 * SETTLING_CAGE_SPEED_RELATIVE:.2g} %)",
                     )
     # first revolution after which every later one is within tolerance
     first = count - 1

@@ -87,7 +87,7 @@ def test_dynamic_values_use_the_analysed_window(run):
         )
     )
     assert v["gyroscopic_moment"] is None and v["race_control"] is None
-    assert v["shaft_revolutions"] == pytest.approx(8.0, rel=1e-3)
+    assert v["shaft_revolutions"] == pytest.approx(12.0, rel=1e-3)
     # centrifugal force from the ball's mass and the mean orbital speed
     density = float(run.coords["density"].sel(body="ball"))
     mass = density * math.pi * 7.144e-3**3 / 6
