@@ -100,6 +100,17 @@ def start_session(argv: list[str], secret: str) -> ForkedProcess:
     Blocks until the fork server has forked it (the first call waits for the fork server to
     import :data:`PRELOAD`, a few seconds): call it in a thread from an event loop.
     """
+    # Ctrl-C in a terminal reaches the whole process group; the front stops its sessions itself.
+    # The first call starts the fork server, a new interpreter that a SIGINT during its start-up
+    # would kill with a traceback: it (and the sessions it forks) inherit this thread's blocked
+    # SIGINT. Only the main thread handles Python's signals, so nothing else is held back.
+    # (multiprocessing's resource tracker, started first, unblocks SIGINT in the calling thread
+    # after starting itself with it blocked: start it before blocking.)
+    if hasattr(signal, "pthread_sigmask"):
+        from multiprocessing import resource_tracker
+
+        resource_tracker.ensure_running()
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
     process = _context().Process(
         target=_run_session, args=(list(argv), secret), name="racetrace-session"
     )

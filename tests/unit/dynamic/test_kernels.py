@@ -449,7 +449,7 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     observed evaluation, leave the angles and the elastic load NaN, and run the same compiled body
     of the right-hand side (``runtime_bool``: compiled once, not once per flag; numba lists a
     kernel's signatures only where this process compiled or loaded it by itself, not where a cached
-    caller brought it along, hence at most one)."""
+    caller brought it along, hence at most one per signature of its caller)."""
     from solver.models.dynamic.kernels import _rhs_borrowed, rhs_into, rhs_work
 
     par, quad, y0 = start(spindle_inputs(radial=300.0))
@@ -462,4 +462,9 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     np.testing.assert_array_equal(stage, dydt)
     assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
     assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
-    assert len(_rhs_borrowed.signatures) <= 1 and len(rhs_into.signatures) == 1
+    # one compiled body per model record: other tests of this process may have compiled rhs_into
+    # for other records (another traction law's parameter tuples), never twice for one record
+    # with the flag typed apart (the flag is its last argument)
+    signatures = rhs_into.signatures
+    assert signatures and len({sig[:-1] for sig in signatures}) == len(signatures)
+    assert len(_rhs_borrowed.signatures) <= len(signatures)

@@ -26,8 +26,13 @@ def result():
 
 
 def _with_roughness(ds, ball_um: float, raceway_um: float):
-    """``ds`` with its case text given the two roughness keys."""
-    text = str(ds.attrs["case"]).replace(
+    """``ds`` with its case text given the two roughness keys (in place of any it has)."""
+    kept = [
+        line
+        for line in str(ds.attrs["case"]).splitlines(keepends=True)
+        if not line.lstrip().startswith(("ball_roughness_um", "raceway_roughness_um"))
+    ]
+    text = "".join(kept).replace(
         "[bearing]\n",
         f"[bearing]\nball_roughness_um = {ball_um}\nraceway_roughness_um = {raceway_um}\n",
         1,
@@ -68,8 +73,8 @@ def test_no_readable_case_gives_nan_with_the_reason(result):
     [(0.0, "at least 0.001 um"), (50.0, "at most 10 um"), ('"smooth"', "number")],
 )
 def test_bad_roughness_is_a_clear_case_error(result, value, words):
-    text = str(result.attrs["case"]).replace(
-        "[bearing]\n", f"[bearing]\nraceway_roughness_um = {value}\n", 1
+    text = str(_with_roughness(result, 0.025, 0.08).attrs["case"]).replace(
+        "raceway_roughness_um = 0.08\n", f"raceway_roughness_um = {value}\n", 1
     )
     with pytest.raises(CaseError) as info:
         parse_case(text, "test case")
