@@ -102,10 +102,14 @@ def run(label: str, **option_changes):
     return simulate(case_inputs(label), options=SimulationOptions(**option_changes))
 
 
-def outputs(ds) -> dict:
-    """The contract's outputs of a run over its energy-balance window (plain floats and lists,
-    JSON-ready; per-(ball, race) lists are [ball][race])."""
+def outputs(ds, start_time: float | None = None) -> dict:
+    """The contract's outputs of a run over its energy-balance window, or from ``start_time`` [s]
+    (a reference's window: runs at two tolerances may settle a revolution apart, and per-ball
+    means over a load zone depend on the window) (plain floats and lists, JSON-ready;
+    per-(ball, race) lists are [ball][race])."""
     start = balance_start_time(ds, float(ds.racetrace.metric("analysis_start_time")))
+    if start_time is not None:
+        start = start_time
     window = ds.sel(time=ds["time"] >= start - 1e-12 * max(abs(start), 1.0))
     sources = [str(s) for s in window["loss_source"].values]
     by_source = window["power_loss"].mean("time").values
