@@ -224,6 +224,20 @@ def _revolution_means(ds, name: str, race: str, revolution: np.ndarray, count: i
     return means
 
 
+def _compare_with_last(means, tolerance, within, worst, describe) -> None:
+    """Mark in ``within`` (bool per revolution) the revolutions whose mean in ``means`` departs
+    from the last revolution's by more than ``tolerance``, and keep in ``worst`` {revolution:
+    (departure / tolerance, text)} the largest such departure, in words from
+    ``describe(revolution, departure)``."""
+    departure = np.abs(means - means[-1])
+    ok = np.isfinite(departure) & (departure <= tolerance)
+    within &= ok
+    for k in np.flatnonzero(~ok):
+        ratio = departure[k] / tolerance if np.isfinite(departure[k]) else math.inf
+        if k not in worst or ratio > worst[k][0]:
+            worst[k] = (ratio, describe(k, departure[k]))
+
+
 def settling(ds: xr.Dataset) -> Settling:
     """Settling of a dynamic result (``time`` dimension; reads ``contact_angle`` and
     ``contact_load``, and ``spin_to_roll`` and ``cage_speed`` when the result has them)."""
@@ -254,19 +268,17 @@ def settling(ds: xr.Dataset) -> Settling:
                 tolerance = max(
                     SETTLING_SPIN_TO_ROLL_RELATIVE * abs(final), SETTLING_SPIN_TO_ROLL_ABSOLUTE
                 )
-            departure = np.abs(means - final)
-            ok = np.isfinite(departure) & (departure <= tolerance)
-            within &= ok
-            for k in np.flatnonzero(~ok):
-                ratio = departure[k] / tolerance if np.isfinite(departure[k]) else math.inf
-                if k not in worst or ratio > worst[k][0]:
-                    label = name.replace("_", "-") if name == "spin_to_roll" else "contact angle"
-                    worst[k] = (
-                        ratio,
-                        f"the mean {label} of the {race} race in revolution {k + 1} differs "
-                        f"from the last revolution's by {departure[k]:.3g}{unit} "
-                        f"(tolerance {tolerance:.2g}{unit})",
-                    )
+            label = name.replace("_", "-") if name == "spin_to_roll" else "contact angle"
+            _compare_with_last(
+                means,
+                tolerance,
+                within,
+                worst,
+                lambda k, d, label=label, race=race, unit=unit, tol=tolerance: (
+                    f"the mean {label} of the {race} race in revolution {k + 1} differs "
+                    f"from the last revolution's by {d:.3g}{unit} (tolerance {tol:.2g}{unit})"
+                ),
+            )
     if "cage_speed" in ds and ds["cage_speed"].dims == ("time",):
         speed = np.asarray(ds["cage_speed"].values, dtype=float)
         means = np.array(
@@ -277,19 +289,17 @@ def settling(ds: xr.Dataset) -> Settling:
         )
         final = means[-1]
         if np.isfinite(final) and final != 0.0:
-            tolerance = SETTLING_CAGE_SPEED_RELATIVE * abs(final)
-            departure = np.abs(means - final)
-            ok = np.isfinite(departure) & (departure <= tolerance)
-            within &= ok
-            for k in np.flatnonzero(~ok):
-                ratio = departure[k] / tolerance if np.isfinite(departure[k]) else math.inf
-                if k not in worst or ratio > worst[k][0]:
-                    worst[k] = (
-                        ratio,
-                        f"the mean cage speed in revolution {k + 1} differs from the last "
-                        f"revolution's by {100.0 * departure[k] / abs(final):.3g} % (tolerance "
-                        f"{100.0 * SETTLING_CAGE_SPEED_RELATIVE:.2g} %)",
-                    )
+            _compare_with_last(
+                means,
+                SETTLING_CAGE_SPEED_RELATIVE * abs(final),
+                within,
+                worst,
+                lambda k, d: (
+                    f"the mean cage speed in revolution {k + 1} differs from the last "
+                    f"revolution's by {100.0 * d / abs(final):.3g} % (tolerance "
+                    f"{100.0 * SETTLING_CAGE_SPEED_RELATIVE:.2g} %)"
+                ),
+            )
     # first revolution after which every later one is within tolerance
     first = count - 1
     while first > 0 and within[first - 1]:
