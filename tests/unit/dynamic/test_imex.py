@@ -126,7 +126,7 @@ def test_cage_velocity_jacobian_matches_the_whole_right_hand_side():
     f0 = np.empty_like(y)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y, par, quad, f0, rec_i, rec_o, np.zeros(z), scratch)
+    rhs_into(y, par, quad, f0, rec_i, rec_o, np.zeros(z), scratch, True)
     jac = np.zeros((3, 3))
     cage_velocity_jacobian(y, cb, par, scratch, dv, True, np.empty(3), np.empty(3), jac)
     reference = np.zeros((3, 3))
