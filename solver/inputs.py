@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import BearingGeometry, free_contact_angle_from_clearance
+from .history import HistoryRecord
 from .materials import Material
 from .physics import rheology as rh
 from .physics.rheology import rheology_at_temperature
@@ -194,6 +195,9 @@ class SimulationInputs:
     tolerance: float  # local error tolerance of the integrator (relative to the state scales)
     cage: bool  # model the cage (False: balls free to bunch)
     quasistatic_ball_speeds: str = "traction"  # or "race_control" (quasi-static model)
+    # a case with time histories (Inputs.history) runs for a duration, sampled per second
+    duration: float | None = None  # s; None: a steady case (shaft_revolutions)
+    samples_per_second: float | None = None  # 1/s; None: a steady case (samples_per_revolution)
 
 
 @dataclass(frozen=True)
@@ -207,6 +211,9 @@ class Inputs:
     simulation: SimulationInputs
     case_text: str = ""
     designation: str = ""  # bearing.designation as written ("" when not given)
+    # the operating inputs as functions of time (solver.history); None: steady (``operating`` holds
+    # at every time). ``operating`` is then the history's value at t = 0.
+    history: HistoryRecord | None = None
 
 
 # ---- from a validated case ----------------------------------------------------------------------
