@@ -80,8 +80,8 @@ class CatalogueEntry:
         """The validated case; for a bearing, the bearing at a modest operating point
         (:func:`modest_operating_point`) with every other value from the case schema."""
         source = f"catalogue {self.kind} {self.name}"
-        if self.kind == "case":
-            return parse_case(self.text(), source)
+        if self.kind == "case":  # a history file of a shipped case lies beside it
+            return parse_case(self.text(), source, Path(str(self.path)).parent)
         data = parse_toml(self.text(), source)
         b = data["bearing"]
         speed, load = modest_operating_point(

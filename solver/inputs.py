@@ -14,7 +14,23 @@ from dataclasses import dataclass
 import numpy as np
 
 from .geometry import BearingGeometry, free_contact_angle_from_clearance
-from .history import HistoryRecord
+from .history import (
+    CH_AXIAL_LOAD,
+    CH_INNER_SPEED,
+    CH_MISALIGNMENT,
+    CH_MISALIGNMENT_AXIS,
+    CH_MOMENT_AXIS,
+    CH_OUTER_SPEED,
+    CH_RADIAL_LOAD,
+    CH_RADIAL_LOAD_ANGLE,
+    CH_TILTING_MOMENT,
+    FRAME_INNER_RING,
+    FRAME_SPACE,
+    HistoryRecord,
+    channel_value,
+    history_record,
+)
+from .history.integral import channel_integral
 from .materials import Material
 from .physics import rheology as rh
 from .physics.rheology import rheology_at_temperature
@@ -187,8 +203,8 @@ class SimulationInputs:
     """Length, sampling and physics switches of a dynamic run, and the quasi-static model's
     source of the ball speeds."""
 
-    shaft_revolutions: float
-    samples_per_revolution: int
+    shaft_revolutions: float | None  # None: a history case (it runs for ``duration``)
+    samples_per_revolution: int | None  # None: a history case (``samples_per_second``)
     traction: bool  # EHL traction at the ball-race contacts (False: frictionless)
     damping_ratio: float  # critical-damping ratio of the ball-race normal contacts
     gravity: float  # m/s^2, along -z
@@ -310,6 +326,29 @@ class Lubrication:
     basis: str
 
 
+def supply_speeds_rpm(case) -> tuple[float, float, str]:
+    """(inner, outer) ring speeds [rpm] at which an oil flow is held in the bearing, and where
+    along the history they are, in words: the case's speeds; for a case whose speeds are time
+    histories, those at the knot time of the highest relative ring speed (the running speed the
+    supply is set for, not a start from rest)."""
+    from solver.case.validate import history_times, key_value_at
+
+    op = case.operating
+    histories = getattr(case, "histories", {})
+    inner, outer = "operating.inner_ring_speed_rpm", "operating.outer_ring_speed_rpm"
+    if inner not in histories and outer not in histories:
+        return float(op.inner_ring_speed_rpm), float(op.outer_ring_speed_rpm), ""
+    values = {inner: op.inner_ring_speed_rpm, outer: op.outer_ring_speed_rpm}
+
+    def speeds(t):
+        return key_value_at(values, histories, inner, t), key_value_at(values, histories, outer, t)
+
+    top = max(history_times(histories), key=lambda t: abs(speeds(t)[0] - speeds(t)[1]))
+    wi, wo = speeds(top)
+    where = f" at the history's top speed ({wi:g} rpm inner, {wo:g} rpm outer, t = {top:g} s)"
+    return wi, wo, where
+
+
 def lubrication(case) -> Lubrication:
     """The :class:`Lubrication` of a validated case: ``lubricant.method`` (or the schema's
     assumed method) with its supply keys, the case's ``oil_volume_fraction`` and
@@ -318,7 +357,7 @@ def lubrication(case) -> Lubrication:
     from solver.physics import lubrication as lub
     from solver.physics.rheology import viscosity_at_temperature
 
-    oil, bearing, op = case.lubricant, case.bearing, case.operating
+    oil, bearing = case.lubricant, case.bearing
     assumed = oil.method is None
     method = schema.ASSUMED_METHOD if assumed else str(oil.method)
     supply_viscosity = 0.0
@@ -347,9 +386,10 @@ def lubrication(case) -> Lubrication:
             fraction, basis = float(oil.oil_volume_fraction), ""
         else:
             geometry = bearing_geometry(case)
+            inner_rpm, outer_rpm, when = supply_speeds_rpm(case)
             cage_speed = lub.epicyclic_cage_speed(
-                rpm_to_rad_s(op.inner_ring_speed_rpm),
-                rpm_to_rad_s(op.outer_ring_speed_rpm),
+                rpm_to_rad_s(inner_rpm),
+                rpm_to_rad_s(outer_rpm),
                 dm,
                 D,
                 geometry.free_contact_angle,
@@ -357,7 +397,7 @@ def lubrication(case) -> Lubrication:
             cavity = lub.cavity_volume(dm, D, int(bearing.ball_count))
             fraction = lub.supply_oil_fraction(flow, cage_speed, cavity)
             basis = (
-                f"oil flow {flow_text} held for one cage revolution in the free cavity of "
+                f"oil flow {flow_text} held for one cage revolution{when} in the free cavity of "
                 f"{cavity * 1e6:.4g} cm^3: oil volume fraction {fraction:.3g}"
             )
     elif method == "oil_bath":
@@ -440,10 +480,18 @@ def lubricant_inputs(lubricant, given: bool, method: Lubrication) -> LubricantIn
 
 
 def simulation_inputs(simulation) -> SimulationInputs:
-    """Run length and switches of a case's ``[simulation]`` section."""
+    """Run length and switches of a case's ``[simulation]`` section: shaft revolutions and
+    samples per revolution for a steady case, a duration [s] and samples per second for a case
+    with a time history (the other pair None)."""
+
+    def number(value, kind):
+        return None if value is None else kind(value)
+
     return SimulationInputs(
-        shaft_revolutions=float(simulation.shaft_revolutions),
-        samples_per_revolution=int(simulation.samples_per_revolution),
+        shaft_revolutions=number(simulation.shaft_revolutions, float),
+        samples_per_revolution=number(simulation.samples_per_revolution, int),
+        duration=number(simulation.duration_s, float),
+        samples_per_second=number(simulation.samples_per_second, float),
         traction=bool(simulation.ball_race_traction),
         damping_ratio=float(simulation.contact_damping_ratio),
         gravity=float(simulation.gravity_m_s2),
@@ -453,17 +501,98 @@ def simulation_inputs(simulation) -> SimulationInputs:
     )
 
 
+#: Channel of each operating key that may be a time history, and the SI value of one unit of it.
+HISTORY_CHANNELS = {
+    "operating.inner_ring_speed_rpm": (CH_INNER_SPEED, RPM),
+    "operating.outer_ring_speed_rpm": (CH_OUTER_SPEED, RPM),
+    "operating.axial_load_N": (CH_AXIAL_LOAD, 1.0),
+    "operating.radial_load_N": (CH_RADIAL_LOAD, 1.0),
+    "operating.radial_load_angle_deg": (CH_RADIAL_LOAD_ANGLE, math.pi / 180.0),
+    "operating.misalignment_deg": (CH_MISALIGNMENT, math.pi / 180.0),
+    "operating.misalignment_axis_deg": (CH_MISALIGNMENT_AXIS, math.pi / 180.0),
+    "operating.tilting_moment_Nm": (CH_TILTING_MOMENT, 1.0),
+    "operating.moment_axis_deg": (CH_MOMENT_AXIS, math.pi / 180.0),
+}
+
+
+def operating_history(histories: dict, operating: OperatingPoint) -> HistoryRecord | None:
+    """The :class:`solver.history.HistoryRecord` of a case's time histories (``Case.histories``,
+    case units) around its operating point at t = 0 (SI); None for a steady case."""
+    if not histories:
+        return None
+    channels = {}
+    frame = FRAME_SPACE
+    for key, history in histories.items():
+        channel, scale = HISTORY_CHANNELS[key]
+        channels[channel] = history.channel(scale)
+        if history.with_shaft:
+            frame = FRAME_INNER_RING
+    op = operating
+    base = {
+        CH_INNER_SPEED: op.inner_ring_speed,
+        CH_OUTER_SPEED: op.outer_ring_speed,
+        CH_AXIAL_LOAD: op.axial_load,
+        CH_RADIAL_LOAD: op.radial_load,
+        CH_RADIAL_LOAD_ANGLE: op.radial_load_angle,
+        CH_MISALIGNMENT: op.misalignment,
+        CH_MISALIGNMENT_AXIS: op.misalignment_axis,
+        CH_TILTING_MOMENT: op.tilting_moment if op.tilting_moment is not None else 0.0,
+        CH_MOMENT_AXIS: op.moment_axis,
+    }
+    return history_record(channels, base, frame, op.tilting_moment is not None)
+
+
+def operating_at(inputs: Inputs, t: float) -> OperatingPoint:
+    """The operating point of ``inputs`` at time ``t`` [s] (SI): every channel of its history at
+    ``t``; a steady case's operating point at any time. A radial load that turns (with the shaft, or
+    in space at a speed) has its azimuth in space at ``t``, within [0, 360) degree. ValueError for
+    a time that is not a finite number >= 0."""
+    t = float(t)
+    if not math.isfinite(t) or t < 0.0:
+        raise ValueError(f"a time along the history must be a finite number >= 0 s, not {t!r}")
+    record, op = inputs.history, inputs.operating
+    if record is None:
+        return op
+
+    def value(channel):
+        return float(channel_value(record, channel, t))
+
+    angle = value(CH_RADIAL_LOAD_ANGLE)
+    turning = record.rate[CH_RADIAL_LOAD_ANGLE] != 0.0
+    if record.radial_load_frame == FRAME_INNER_RING:
+        angle += channel_integral(record, CH_INNER_SPEED, t)  # the inner ring's angle at t
+        turning = True
+    if turning:
+        angle %= 2.0 * math.pi
+    return OperatingPoint(
+        inner_ring_speed=value(CH_INNER_SPEED),
+        outer_ring_speed=value(CH_OUTER_SPEED),
+        axial_load=value(CH_AXIAL_LOAD),
+        radial_load=value(CH_RADIAL_LOAD),
+        radial_load_angle=angle,
+        misalignment=value(CH_MISALIGNMENT),
+        misalignment_axis=value(CH_MISALIGNMENT_AXIS),
+        misalignment_frame=op.misalignment_frame,
+        tilting_moment=None if op.tilting_moment is None else value(CH_TILTING_MOMENT),
+        moment_axis=value(CH_MOMENT_AXIS),
+    )
+
+
 def to_inputs(case) -> Inputs:
-    """SI :class:`Inputs` of a validated :class:`solver.case.Case`."""
+    """SI :class:`Inputs` of a validated :class:`solver.case.Case`: a case with time histories
+    gets their record in ``history`` (``operating`` is then its value at t = 0) and its run
+    length as a duration."""
     lubricated = lubrication(case)
+    operating = operating_point(case.operating)
     return Inputs(
         geometry=bearing_geometry(case),
-        operating=operating_point(case.operating),
+        operating=operating,
         cage=cage_inputs(case.cage, lubricated.land_flooding),
         lubricant=lubricant_inputs(case.lubricant, case.lubricant_given, lubricated),
         simulation=simulation_inputs(case.simulation),
-        case_text=case.to_toml(),
+        case_text=case.to_toml(inline_files=True),
         designation=str(case.bearing.designation or ""),
+        history=operating_history(getattr(case, "histories", {}), operating),
     )
 
 

@@ -147,14 +147,16 @@ def parse_toml(text: str, source: str = "case text") -> dict:
         ) from None
 
 
-def parse_case(text: str, source: str = "case text") -> Case:
+def parse_case(text: str, source: str = "case text", base_dir=None) -> Case:
     """Validated case from TOML ``text`` (never read as a path). ``source`` names the text in
-    messages (e.g. an uploaded file's name). Raises :class:`CaseError` listing every problem."""
+    messages (e.g. an uploaded file's name); ``base_dir`` is the folder a history file
+    (``{ file = ... }``) is read from (None: the text has no folder, and a history file is an
+    error). Raises :class:`CaseError` listing every problem."""
     if not isinstance(text, str):
         raise TypeError(f"parse_case needs TOML text (str), not {type(text).__name__}")
     data = parse_toml(text, source)
     try:
-        return Case.from_dict(data)
+        return Case.from_dict(data, base_dir)
     except RecursionError:
         raise _file_problem(
             f"{source} nests values too deeply to be a case: a case file has sections of "
@@ -172,4 +174,5 @@ def load_case(path: str | os.PathLike) -> Case:
     if not isinstance(path, str | os.PathLike):
         raise TypeError(f"load_case needs a path (str or pathlib.Path), not {type(path).__name__}")
     path = Path(path)
-    return parse_case(decode_case_bytes(read_case_bytes(path), str(path)), str(path))
+    text = decode_case_bytes(read_case_bytes(path), str(path))
+    return parse_case(text, str(path), path.resolve().parent)

@@ -93,8 +93,9 @@ def _section(prefix: tuple[str, ...], values: dict):
     return cls(**kwargs)
 
 
-def case_from_values(checked: CaseValues) -> Case:
-    """The :class:`Case` of validated values (:func:`solver.case.validate.validate`)."""
+def case_from_values(checked: CaseValues, source_dir: str = "") -> Case:
+    """The :class:`Case` of validated values (:func:`solver.case.validate.validate`);
+    ``source_dir``: the folder of the case file they were read from ("" for none)."""
     sections = {name: _section((name,), values) for name, values in checked.sections.items()}
     return Case(
         title=checked.title,
@@ -104,6 +105,8 @@ def case_from_values(checked: CaseValues) -> Case:
         lubricant_given="lubricant" not in checked.absent_sections,
         traction_given=checked.traction_given,
         from_oil=checked.from_oil,
+        histories=dict(checked.histories),
+        source_dir=str(source_dir or ""),
         **sections,
     )
 
@@ -125,7 +128,10 @@ class Case:
     comment. ``from_oil`` lists the ``[lubricant]`` keys whose values come from the named oil
     ``lubricant.oil`` (not given in the file): :meth:`to_dict` leaves them out (the oil's name
     brings them back) and :meth:`to_toml` writes them as comments. ``description`` is the case's
-    free-text note of what is known about it (read by no model).
+    free-text note of what is known about it (read by no model). ``histories`` maps each
+    ``[operating]`` key given as a time history to its :class:`solver.case.history.KeyHistory`
+    (the section's attribute then holds its value at t = 0); ``source_dir`` is the folder of the
+    case file (where a history file is read from; "" when the case was not read from a file).
     """
 
     title: str
@@ -140,6 +146,14 @@ class Case:
     traction_given: bool = False
     from_oil: frozenset = frozenset()
     description: str = ""
+    histories: dict = field(default_factory=dict)
+    source_dir: str = field(default="", compare=False)
+
+    @property
+    def has_history(self) -> bool:
+        """True when an operating key is a time history (the run is then a duration in
+        seconds)."""
+        return bool(self.histories)
 
     # ---- materials -----------------------------------------------------------------------------
     def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
@@ -248,6 +262,8 @@ class Case:
             value = section_obj
             for part in f.path[1:]:
                 value = getattr(value, part)
+            if f.key in self.histories:
+                value = self.histories[f.key].spec
             if value is None or f.key in self.estimated or f.key in self.from_oil:
                 continue
             target = out
@@ -264,13 +280,16 @@ class Case:
         return out
 
     @classmethod
-    def from_dict(cls, data: dict) -> Case:
-        """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError."""
-        return case_from_values(validate(data))
+    def from_dict(cls, data: dict, base_dir=None) -> Case:
+        """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError.
+        ``base_dir``: the case file's folder, where history files are read from."""
+        return case_from_values(validate(data, base_dir), base_dir or "")
 
-    def to_toml(self) -> str:
-        """Readable case-file text; loading it gives an equal case."""
-        return case_to_toml(self)
+    def to_toml(self, inline_files: bool = False) -> str:
+        """Readable case-file text; loading it gives an equal case. ``inline_files``: a history
+        read from a file is written as its inline table of points instead (text that needs no
+        other file, as a result keeps it)."""
+        return case_to_toml(self, inline_files)
 
     def with_values(self, values: dict) -> Case:
         """Validated copy with some keys changed: ``{"operating.axial_load_N": 300.0, ...}``.
@@ -297,7 +316,7 @@ class Case:
                     target.pop(parts[-1], None)
                 else:
                     target[parts[-1]] = value
-        return Case.from_dict(data)
+        return Case.from_dict(data, self.source_dir or None)
 
 
 MATERIAL_KEYS = tuple(f.key for f in MATERIAL_FIELDS)

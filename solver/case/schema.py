@@ -42,6 +42,10 @@ class Estimated:
 
     description: str
     function: Callable
+    #: what ``function`` receives: ``"bearing"`` (the validated bearing) or ``"history"`` (a
+    #: namespace with ``top_relative_speed_rpm``, the highest |inner - outer| ring speed along the
+    #: case's time histories; a key estimated from the history has no value in a steady case)
+    reads: str = "bearing"
 
 
 @dataclass(frozen=True)
@@ -72,6 +76,12 @@ class Field:
     #: False for a key that no model reads (only the metrics of a result do): it does not enter a
     #: result's fingerprint (solver.results.provenance), so changing it keeps a result current.
     solved: bool = True
+    #: True for an operating key that may be a time history instead of a number
+    #: (solver.case.history; docs/case-format.md, "Time histories").
+    history: bool = False
+    #: ``"steady"``: read only by a case without time histories; ``"history"``: only by a case with
+    #: one; "": by every case. A key given where it is not read is an error.
+    applies: str = ""
 
     @property
     def path(self) -> tuple[str, ...]:
@@ -221,6 +231,22 @@ _SPEED_BOUNDS = dict(
     reason="500 000 rpm either way is beyond any ball bearing, even the air-driven dental "
     "turbines that reach about 400 000 rpm, and keeps the solvers' time scales finite",
 )
+
+#: Output samples per shaft revolution: the default of simulation.samples_per_revolution and the
+#: rate a history case's estimated sampling gives at its top speed; and the fewest samples per
+#: second that estimate gives (a history at
+#: rest or at a crawl still draws its loads' changes).
+DEFAULT_SAMPLES_PER_REVOLUTION = 180
+MIN_HISTORY_SAMPLES_PER_SECOND = 1000.0
+
+
+def history_samples_per_second(top_relative_speed_rpm: float) -> float:
+    """Estimated samples per second of a history case: :data:`DEFAULT_SAMPLES_PER_REVOLUTION` per
+    revolution at ``top_relative_speed_rpm``, at least :data:`MIN_HISTORY_SAMPLES_PER_SECOND`,
+    rounded up to a whole number."""
+    per_second = DEFAULT_SAMPLES_PER_REVOLUTION * abs(top_relative_speed_rpm) / 60.0
+    return float(math.ceil(max(per_second, MIN_HISTORY_SAMPLES_PER_SECOND)))
+
 
 #: Every case key, in the order of case-format.md (sections, then keys).
 FIELDS: list[Field] = [
@@ -819,6 +845,7 @@ FIELDS: list[Field] = [
         "Inner ring (shaft) speed, positive about +x.",
         unit="rpm",
         **_SPEED_BOUNDS,
+        history=True,
     ),
     Field(
         "operating.outer_ring_speed_rpm",
@@ -828,6 +855,7 @@ FIELDS: list[Field] = [
         unit="rpm",
         default=0.0,
         **_SPEED_BOUNDS,
+        history=True,
     ),
     Field(
         "operating.axial_load_N",
@@ -841,6 +869,7 @@ FIELDS: list[Field] = [
         reason="a single angular contact bearing carries thrust only in +x; "
         "a negative load would lift the inner ring off the balls",
         reason_high="1 GN is beyond the capacity of any ball bearing",
+        history=True,
     ),
     Field(
         "operating.radial_load_N",
@@ -853,6 +882,7 @@ FIELDS: list[Field] = [
         maximum=1.0e9,
         reason="give the direction with radial_load_angle_deg, not a negative magnitude",
         reason_high="1 GN is beyond the capacity of any ball bearing",
+        history=True,
     ),
     Field(
         "operating.radial_load_angle_deg",
@@ -864,6 +894,7 @@ FIELDS: list[Field] = [
         minimum=-360.0,
         maximum=360.0,
         reason="an azimuth is given within one turn either way",
+        history=True,
     ),
     Field(
         "operating.misalignment_deg",
@@ -875,6 +906,7 @@ FIELDS: list[Field] = [
         minimum=-5.0,
         maximum=5.0,
         reason="the model assumes small tilts, a few tenths of a degree in practice",
+        history=True,
     ),
     Field(
         "operating.misalignment_axis_deg",
@@ -886,6 +918,7 @@ FIELDS: list[Field] = [
         minimum=-360.0,
         maximum=360.0,
         reason="an azimuth is given within one turn either way",
+        history=True,
     ),
     Field(
         "operating.misalignment_frame",
@@ -905,6 +938,7 @@ FIELDS: list[Field] = [
         minimum=-1.0e9,
         maximum=1.0e9,
         reason="a moment of 1 GN m either way is beyond the capacity of any ball bearing",
+        history=True,
     ),
     Field(
         "operating.moment_axis_deg",
@@ -916,6 +950,7 @@ FIELDS: list[Field] = [
         minimum=-360.0,
         maximum=360.0,
         reason="an azimuth is given within one turn either way",
+        history=True,
     ),
     # ---- [simulation] -------------------------------------------------------------------------
     Field(
@@ -929,17 +964,53 @@ FIELDS: list[Field] = [
         maximum=1000.0,
         reason="a simulation must run for some time",
         reason_high="longer runs take hours; split them",
+        applies="steady",
     ),
     Field(
         "simulation.samples_per_revolution",
         "int",
         "Samples per revolution",
         "Output samples per shaft revolution.",
-        default=180,
+        default=DEFAULT_SAMPLES_PER_REVOLUTION,
         minimum=8,
         maximum=3600,
         reason="fewer samples cannot draw a trajectory",
         reason_high="more samples only make the result file larger",
+        applies="steady",
+    ),
+    Field(
+        "simulation.duration_s",
+        "float",
+        "Duration",
+        "Length of the dynamic simulation of a case with a time history, in seconds (required "
+        "then; a steady case gives shaft_revolutions instead). Beyond a history's last point its "
+        "value holds.",
+        unit="s",
+        default=OPTIONAL,
+        minimum=0.0,
+        minimum_inclusive=False,
+        maximum=100.0,
+        reason="a simulation must run for some time",
+        reason_high="longer runs take hours; split them",
+        applies="history",
+    ),
+    Field(
+        "simulation.samples_per_second",
+        "float",
+        "Samples per second",
+        "Output samples per second of a case with a time history.",
+        unit="1/s",
+        default=Estimated(
+            f"{DEFAULT_SAMPLES_PER_REVOLUTION} samples per revolution at the history's highest "
+            f"relative ring speed, at least {MIN_HISTORY_SAMPLES_PER_SECOND:g} per second",
+            lambda run: history_samples_per_second(run.top_relative_speed_rpm),
+            reads="history",
+        ),
+        minimum=10.0,
+        maximum=1.0e7,
+        reason="fewer samples cannot draw a trajectory",
+        reason_high="more samples only make the result file larger",
+        applies="history",
     ),
     # Dynamic-model switches; the defaults are the full model.
     Field(

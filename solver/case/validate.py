@@ -16,7 +16,7 @@ cannot run a valid case (the quasi-static model can).
 
 from __future__ import annotations
 
-import difflib
+import dataclasses
 import math
 import re
 from dataclasses import dataclass
@@ -26,6 +26,8 @@ from solver.errors import CaseError, Problem
 from solver.lubricants import lubricant_table
 from solver.materials import BUILTIN_MATERIALS
 
+from .history import parse_history
+from .messages import _suggest, _unknown_in_table, _unknown_key_message, show
 from .schema import (
     FIELDS,
     MATERIAL_FIELDS,
@@ -42,31 +44,6 @@ from .schema import (
 
 _MATERIAL_NAME = re.compile(r"^[A-Za-z0-9_-]+$")
 _MISSING = object()
-#: Longest value text quoted in a message; longer values are cut (a message stays readable).
-_SHOWN_LENGTH = 80
-
-
-def show(value) -> str:
-    """A value as it would appear in a case file (strings quoted, numbers short), cut to at most
-    about 80 characters."""
-    if isinstance(value, str):
-        text = '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    elif isinstance(value, bool | int | float):
-        text = format_number(value)
-    elif isinstance(value, dict):
-        text = "{ " + ", ".join(f"{k} = {show(v)}" for k, v in value.items()) + " }"
-    elif isinstance(value, list):
-        text = "[" + ", ".join(show(v) for v in value) + "]"
-    else:
-        text = str(value)
-    if len(text) > _SHOWN_LENGTH:
-        text = text[: _SHOWN_LENGTH - 5] + " ..." + text[-1]
-    return text
-
-
-def _suggest(name: str, candidates) -> str | None:
-    matches = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
-    return matches[0] if matches else None
 
 
 def _problem(
@@ -93,28 +70,6 @@ def _known_names(prefix: tuple[str, ...]) -> list[str]:
         ):
             names.append(path[len(prefix)])
     return names
-
-
-def _unknown_in_table(problems: list[Problem], table: str, name: str, value, allowed) -> None:
-    """Record the unknown key ``name`` of the inline table ``table`` (a dotted key), with the
-    closest of the ``allowed`` names as a suggestion."""
-    suggestion = _suggest(name, allowed)
-    key = f"{table}.{name}"
-    _problem(
-        problems,
-        key,
-        _unknown_key_message(key, value, suggestion and f"{table}.{suggestion}", allowed),
-    )
-
-
-def _unknown_key_message(key: str, value, suggestion: str | None, allowed: list[str]) -> str:
-    head = f"unknown key {key} = {show(value)}"
-    if suggestion:
-        return (
-            f"{head}: did you mean {suggestion}? "
-            "(unknown keys are rejected so that a typo is not ignored)"
-        )
-    return f"{head}: not a case key; valid keys here: {', '.join(allowed)}"
 
 
 def _elsewhere(name: str) -> str | None:
@@ -576,6 +531,117 @@ def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Probl
             )
 
 
+def history_times(histories: dict) -> list[float]:
+    """Every knot time of the ``histories`` ({key: KeyHistory}) and 0, sorted, distinct [s]."""
+    return sorted({0.0, *(t for h in histories.values() for t in h.times)})
+
+
+def key_value_at(values: dict, histories: dict, key: str, t: float, default: float = 0.0):
+    """The value of ``key`` at time ``t`` [s]: its history's, else its (steady) value, else
+    ``default``."""
+    if key in histories:
+        return histories[key].value_at(t)
+    return values.get(key, default)
+
+
+def top_relative_speed_rpm(values: dict, histories: dict) -> float:
+    """The highest |inner - outer| ring speed [rpm] along the histories: at every knot time, and
+    widened by the speed sines' amplitudes (0 for a case without histories)."""
+    if not histories:
+        return 0.0
+    inner, outer = "operating.inner_ring_speed_rpm", "operating.outer_ring_speed_rpm"
+    top = max(
+        abs(key_value_at(values, histories, inner, t) - key_value_at(values, histories, outer, t))
+        for t in history_times(histories)
+    )
+    return top + sum(histories[k].amplitude for k in (inner, outer) if k in histories)
+
+
+def _check_history_loads(v: dict, given: set, histories: dict, problems: list[Problem]) -> None:
+    """Something holds the balls at every knot time of the histories: the axial and the radial
+    load (at their lowest, under a sine) are not both 0 there without a tilt."""
+    load_keys = ("operating.axial_load_N", "operating.radial_load_N")
+    if not any(k in histories for k in load_keys):
+        return
+    if any(k in given and k not in v for k in load_keys):  # reported already
+        return
+    tilt = [
+        k
+        for k in ("operating.misalignment_deg", "operating.tilting_moment_Nm")
+        if k in given and (k in histories or v.get(k) not in (None, 0.0))
+    ]
+    if tilt:
+        return
+    for t in history_times(histories):
+        lowest = []
+        for k in load_keys:
+            value = key_value_at(v, histories, k, t)
+            if k in histories:
+                value -= histories[k].amplitude
+            lowest.append(value)
+        if max(lowest) <= 0.0:
+            keys = [k for k in load_keys if k in histories]
+            _problem(
+                problems,
+                keys[0],
+                f"at t = {t:g} s the axial and the radial load are both 0 (operating."
+                "axial_load_N and operating.radial_load_N along their histories), with no "
+                "misalignment and no tilting moment: nothing holds the balls then; keep a load "
+                "(e.g. a preload) at every time",
+                related=tuple(k for k in load_keys if k != keys[0]),
+            )
+            return
+
+
+def _check_run_length_keys(
+    data: dict, v: dict, given: set, histories: dict, problems: list[Problem]
+) -> None:
+    """A case with a time history runs for ``simulation.duration_s`` (required) and is sampled per
+    second; a steady case runs for shaft revolutions. A key of the other kind of case is an
+    error (``Field.applies``)."""
+    kind = "history" if histories else "steady"
+    if histories and "simulation.duration_s" not in given:
+        names = ", ".join(sorted(histories))
+        _problem(
+            problems,
+            "simulation.duration_s",
+            f"simulation.duration_s is missing: {names} "
+            f"{'is a time history' if len(histories) == 1 else 'are time histories'}, so the run "
+            "length is a duration in seconds (e.g. duration_s = 0.5 under [simulation]); "
+            "shaft revolutions are for steady cases",
+            related=tuple(sorted(histories)),
+        )
+    for f in FIELDS:
+        if f.applies in ("", kind) or f.key not in v:  # an invalid value was reported already
+            continue
+        raw = _lookup(data, f.path)
+        if kind == "history":
+            other = {
+                "simulation.shaft_revolutions": "simulation.duration_s",
+                "simulation.samples_per_revolution": "simulation.samples_per_second",
+            }.get(f.key, "")
+            verb = "is a time history" if len(histories) == 1 else "are time histories"
+            _problem(
+                problems,
+                f.key,
+                f"{f.key} = {show(raw)} is read only by a steady case, and "
+                f"{', '.join(sorted(histories))} {verb}: give {other} instead (remove {f.name})",
+                related=tuple(sorted(histories)),
+            )
+        else:
+            other = {
+                "simulation.duration_s": "simulation.shaft_revolutions",
+                "simulation.samples_per_second": "simulation.samples_per_revolution",
+            }.get(f.key, "")
+            _problem(
+                problems,
+                f.key,
+                f"{f.key} = {show(raw)} is read only by a case with a time history, and no "
+                f"operating key of this case is one: give {other} instead (remove {f.name}), "
+                "or give an operating key as a history (docs/case-format.md)",
+            )
+
+
 def _check_traction(v: dict, given: set, problems: list[Problem]) -> None:
     """The traction curve rises from mu_zero to its peak mu_max and falls towards mu_infinity.
 
@@ -654,6 +720,8 @@ def _default(key: str):
 class CaseValues:
     """The values of a valid case, every one filled in from the schema (case units).
 
+    ``histories`` maps each operating key given as a time history to its
+    :class:`~solver.case.history.KeyHistory` (its value at t = 0 is in ``sections``).
     ``sections`` maps each section of :data:`SECTION_ORDER` except ``materials`` to its values
     ``{name: value}`` (the inline ``traction`` table as a nested dict); absent optional keys are
     None. ``materials`` holds the user material tables as written. ``estimated`` lists the dotted
@@ -671,10 +739,15 @@ class CaseValues:
     traction_given: bool = False
     from_oil: frozenset = frozenset()
     description: str = ""
+    histories: dict = dataclasses.field(default_factory=dict)
 
 
-def validate(data) -> CaseValues:
-    """Values of a valid case from a nested dict; raises CaseError listing every problem."""
+def validate(data, base_dir=None) -> CaseValues:
+    """Values of a valid case from a nested dict; raises CaseError listing every problem.
+
+    ``base_dir``: the case file's folder, where a history file (``{ file = ... }``) is looked for
+    (None: the case has no folder). An operating key given as a time history has its value at
+    t = 0 among the values, and its :class:`~solver.case.history.KeyHistory` in ``histories``."""
     if not isinstance(data, dict):
         raise CaseError(Problem("", f"a case must be a table of keys, not {type(data).__name__}"))
     problems: list[Problem] = []
@@ -682,6 +755,7 @@ def validate(data) -> CaseValues:
 
     values: dict = {}  # dotted key -> validated value (keys that passed pass 2)
     given: set = set()  # dotted keys present in the input
+    histories: dict = {}  # dotted key -> KeyHistory of the keys given as time histories
     missing_sections = set()
     for section in ("bearing", "operating"):
         if section not in data:
@@ -714,6 +788,12 @@ def validate(data) -> CaseValues:
                 )
             continue
         given.add(f.key)
+        if f.history and isinstance(raw, dict):
+            history = parse_history(f, raw, base_dir, problems)
+            if history is not None:
+                histories[f.key] = history
+                values[f.key] = history.value_at(0.0)
+            continue
         value = check_value(f, f.key, raw, problems)
         if value is not _MISSING:
             values[f.key] = value
@@ -721,18 +801,24 @@ def validate(data) -> CaseValues:
     users = _check_materials(data, values, problems)
     _check_bearing_rules(values, given, problems)
     _check_operating_rules(data, values, given, problems)
+    _check_history_loads(values, given, histories, problems)
+    _check_run_length_keys(data, values, given, histories, problems)
     _check_traction(values, given, problems)
     _check_lubrication_method(values, given, problems)
     if problems:
         raise CaseError(problems)
-    return _fill(data, values, users)
+    return _fill(data, values, users, histories)
 
 
-def _fill(data: dict, values: dict, users: dict) -> CaseValues:
-    """Every key's value: as given, else the schema default, else estimated from the bearing."""
+def _fill(data: dict, values: dict, users: dict, histories: dict) -> CaseValues:
+    """Every key's value: as given, else the schema default, else estimated from the bearing (or
+    from the histories); a key read only by the other kind of case (``Field.applies``) is None
+    when not given."""
     bearing = SimpleNamespace(
         **{f.name: values.get(f.key) for f in FIELDS if f.section == "bearing"}
     )
+    run = SimpleNamespace(top_relative_speed_rpm=top_relative_speed_rpm(values, histories))
+    kind = "history" if histories else "steady"
     sections: dict = {name: {} for name in SECTION_ORDER if name != "materials"}
     estimated = set()
     oil_values = {}
@@ -746,10 +832,10 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
             value = values[f.key]
         elif f.key in oil_values:
             value = oil_values[f.key]
-        elif f.default is OPTIONAL:
+        elif f.default is OPTIONAL or f.applies not in ("", kind):
             value = None
         elif isinstance(f.default, Estimated):
-            value = float(f.default.function(bearing))
+            value = float(f.default.function(run if f.default.reads == "history" else bearing))
             estimated.add(f.key)
         else:
             assert f.default is not REQUIRED, f.key  # required keys are in values here
@@ -769,6 +855,7 @@ def _fill(data: dict, values: dict, users: dict) -> CaseValues:
         absent_sections=absent,
         traction_given=isinstance(lubricant, dict) and "traction" in lubricant,
         from_oil=frozenset(key for key in oil_values if key not in values),
+        histories=dict(histories),
     )
 
 
@@ -846,6 +933,40 @@ def run_length_problems(
     return []
 
 
+def history_run_length_problems(
+    duration: float, samples_per_second: float, ball_count: int
+) -> list[Problem]:
+    """Why a dynamic run of a history case of ``duration`` [s] sampled ``samples_per_second``
+    cannot be done: fewer than one output sample, or more ball-samples than
+    :data:`MAX_DYNAMIC_BALL_SAMPLES`."""
+    samples = int(round(duration * samples_per_second))
+    given = (
+        f"simulation.duration_s = {format_number(duration)} at simulation.samples_per_second = "
+        f"{format_number(samples_per_second)}"
+    )
+    related = ("simulation.samples_per_second", "bearing.ball_count")
+    if samples < 1:
+        return [
+            Problem(
+                "simulation.duration_s",
+                f"{given}: the run would end before its first output sample; give a duration of "
+                f"at least {1.0 / samples_per_second:.3g} s",
+                related,
+            )
+        ]
+    if (samples + 1) * ball_count > MAX_DYNAMIC_BALL_SAMPLES:
+        return [
+            Problem(
+                "simulation.duration_s",
+                f"{given}: {samples} samples of {ball_count} balls exceed the "
+                f"{MAX_DYNAMIC_BALL_SAMPLES:,} ball-samples a run can keep in memory (about 3 GB); "
+                "give a shorter duration or fewer samples per second, or split the run",
+                related,
+            )
+        ]
+    return []
+
+
 def dynamic_problems(case) -> list[Problem]:
     """Why the dynamic model cannot run the valid ``case`` (empty when it can).
 
@@ -857,10 +978,19 @@ def dynamic_problems(case) -> list[Problem]:
     """
     op = case.operating
     sim = case.simulation
-    found = run_length_problems(
-        sim.shaft_revolutions, sim.samples_per_revolution, case.bearing.ball_count
-    )
-    if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
+    histories = getattr(case, "histories", {})
+    if histories:
+        found = history_run_length_problems(
+            sim.duration_s, sim.samples_per_second, case.bearing.ball_count
+        )
+    else:
+        found = run_length_problems(
+            sim.shaft_revolutions, sim.samples_per_revolution, case.bearing.ball_count
+        )
+    speed_keys = ("operating.inner_ring_speed_rpm", "operating.outer_ring_speed_rpm")
+    if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm and not any(
+        k in histories for k in speed_keys
+    ):
         speed = format_number(op.inner_ring_speed_rpm)
         found.append(
             Problem(
@@ -881,7 +1011,11 @@ __all__ = [
     "check_value",
     "dynamic_problems",
     "dynamic_run_size",
+    "history_run_length_problems",
+    "history_times",
+    "key_value_at",
     "run_length_problems",
+    "top_relative_speed_rpm",
     "show",
     "validate",
 ]

@@ -24,6 +24,8 @@ def toml_value(value) -> str:
         return tomli_w.dumps({"v": value}).split("=", 1)[1].strip()
     if isinstance(value, dict):
         return "{ " + ", ".join(f"{k} = {toml_value(v)}" for k, v in value.items()) + " }"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
     raise TypeError(f"cannot write {value!r} to a case file")
 
 
@@ -38,10 +40,24 @@ def _unit_comment(f) -> str:
     return f.help
 
 
-def _section_lines(case, section: str, prefix: str = "") -> list[str]:
+def _history_value(history, inline_files: bool):
+    """The inline table of a key's history as written; a history read from a file as its table
+    of points when ``inline_files``."""
+    if inline_files and history.form == "file":
+        table = [[t, v] for t, v in zip(history.times, history.values, strict=True)]
+        out = {"table": table}
+        if "interpolation" in history.spec:
+            out["interpolation"] = history.spec["interpolation"]
+        return out
+    return history.spec
+
+
+def _section_lines(case, section: str, prefix: str = "", inline_files: bool = False) -> list[str]:
     """The key lines of one section (estimated values and absent optional keys as comments);
-    ``prefix`` "# " writes every line as a comment."""
+    ``prefix`` "# " writes every line as a comment; ``inline_files``: see :func:`case_to_toml`."""
     obj = getattr(case, section)
+    histories = getattr(case, "histories", {})
+    kind = "history" if histories else "steady"
     lines: list[str] = []
     subtables: dict[str, list] = {}
     for f in FIELDS:
@@ -53,10 +69,20 @@ def _section_lines(case, section: str, prefix: str = "") -> list[str]:
                 lines.append(f"@@{f.path[1]}")  # placeholder, filled below
             continue
         value = getattr(obj, f.name)
-        if f.key in case.estimated:
+        if f.key in histories:
+            history = histories[f.key]
+            value = _history_value(history, inline_files)
+            comment = f"time history: {history.describe(f.unit)}"
+            if value is not history.spec:
+                comment += f" (read from {history.spec['file']})"
+            lines.append(_line(f"{prefix}{f.name} = {toml_value(value)}", comment))
+        elif f.applies not in ("", kind):
+            lines.append(_line(f"# {f.name} =", f"read only by a {f.applies} case: {f.help}"))
+        elif f.key in case.estimated:
             rule = f.default.description if isinstance(f.default, Estimated) else ""
+            source = getattr(f.default, "reads", "bearing")
             lines.append(
-                _line(f"# {f.name} = {toml_value(value)}", f"estimated from the bearing: {rule}")
+                _line(f"# {f.name} = {toml_value(value)}", f"estimated from the {source}: {rule}")
             )
         elif f.key in case.from_oil:
             oil = case.lubricant.oil
@@ -79,11 +105,13 @@ def _section_lines(case, section: str, prefix: str = "") -> list[str]:
     return lines
 
 
-def case_to_toml(case) -> str:
+def case_to_toml(case, inline_files: bool = False) -> str:
     """Readable TOML text of a validated :class:`solver.case.model.Case`.
 
     A ``[lubricant]`` section the case does not give is written as comments holding the default
-    oil the models use, so that loading the text gives an equal case.
+    oil the models use, so that loading the text gives an equal case. A time history is written
+    as given, with its description as a comment; ``inline_files`` writes a history read from a
+    file as the inline table of its points (text that needs no other file).
     """
     lines = [f"title = {toml_value(case.title)}"]
     if case.description:
@@ -103,7 +131,7 @@ def case_to_toml(case) -> str:
             ]
             lines += _section_lines(case, section, prefix="# ")
             continue
-        lines += ["", f"[{section}]", *_section_lines(case, section)]
+        lines += ["", f"[{section}]", *_section_lines(case, section, "", inline_files)]
     return "\n".join(lines) + "\n"
 
 

@@ -24,16 +24,23 @@ RESULTS_VERSION = 3
 def case_values(case) -> dict:
     """Every key's value of ``case`` as the models read it ({dotted key: value}: given, default,
     estimated or from a named oil), and the user material tables; not the title, any comment or a
-    key that no model reads (``Field.solved`` False: the surface roughnesses)."""
+    key that no model reads (``Field.solved`` False: the surface roughnesses) or that only the
+    other kind of case reads (``Field.applies``). A case with time histories adds each history's
+    knots, sine, rate and frame under ``histories`` (a changed ramp, or a changed history file,
+    makes a result out of date); a steady case's values are those of a case file without them."""
+    histories = getattr(case, "histories", {})
+    kind = "history" if histories else "steady"
     values = {}
     for f in FIELDS:
-        if not f.section or not f.solved:
+        if not f.section or not f.solved or f.applies not in ("", kind):
             continue
         value = case
         for part in f.path:
             value = getattr(value, part)
         values[f.key] = value
     values["materials"] = case.materials
+    if histories:
+        values["histories"] = {key: h.fingerprint() for key, h in sorted(histories.items())}
     return values
 
 
