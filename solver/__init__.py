@@ -91,6 +91,8 @@ _LAZY = {
     "solve_over_revolution": "solver.facade",
     "quasistatic_answer": "solver.facade",
     "quasistatic_speed_sweep": "solver.facade",
+    "quasistatic_along_history": "solver.facade",
+    "operating_at": "solver.inputs",
     "simulate": "solver.facade",
     "preload": "solver.facade",
     "SimulationOptions": "solver.models.dynamic",

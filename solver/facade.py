@@ -20,12 +20,22 @@ def _resolved(case):
     return case
 
 
-def solve_quasistatic(case):
+def solve_quasistatic(case, at_time: float | None = None):
     """The quasi-static (Jones-Harris) solution of ``case`` as a results Dataset
-    (:func:`solver.models.quasistatic.solve_quasistatic`)."""
+    (:func:`solver.models.quasistatic.solve_quasistatic`); ``at_time`` [s]: of a case with a time
+    history, under its operating point at that time."""
     from solver.models.quasistatic import solve_quasistatic as model
 
-    return model(_resolved(case))
+    return model(_resolved(case), at_time=at_time)
+
+
+def quasistatic_along_history(case, times=None):
+    """The quasi-static reference along a case's time history, stacked along ``time``
+    (:func:`solver.models.quasistatic.quasistatic_along_history`; ``times`` None, a count or
+    the times [s])."""
+    from solver.models.quasistatic import quasistatic_along_history as model
+
+    return model(_resolved(case), times)
 
 
 def solve_over_revolution(case, angles: int | None = None):

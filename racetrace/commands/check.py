@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from solver import printable
+from solver import FIELDS, printable
 
 
 def register(subparsers) -> None:
@@ -24,6 +24,19 @@ def register(subparsers) -> None:
 
 def _num(value: float, digits: int = 4) -> str:
     return f"{value:.{digits}g}"
+
+
+def history_events(case) -> str:
+    """The knot times of a case's histories inside its run, in words ("" for none)."""
+    times = sorted(
+        {
+            t
+            for history in case.histories.values()
+            for t in history.times
+            if 0.0 < t < case.simulation.duration_s
+        }
+    )
+    return ", ".join(f"{t:g} s" for t in times)
 
 
 def summary(case) -> str:
@@ -56,9 +69,27 @@ def summary(case) -> str:
             f"           tilting moment {_num(op.tilting_moment_Nm)} N m about the axis at "
             f"{_num(op.moment_axis_deg)} deg (tilt solved)"
         )
+    sim = case.simulation
+    if case.histories:
+        by_key = {f.key: f for f in FIELDS}
+        lines.append("history:   operating keys that vary in time (values at t = 0 above):")
+        for key, history in case.histories.items():
+            name = key.split(".", 1)[1]
+            lines.append(f"           {name}: {history.describe(by_key[key].unit)}")
+        if events := history_events(case):
+            lines.append(f"           events (steps and segment ends) at {events}")
+        lines.append(
+            f"run:       {_num(sim.duration_s, 6)} s, {_num(sim.samples_per_second, 6)} samples per "
+            "second" + (" (estimated)" if "simulation.samples_per_second" in case.estimated else "")
+        )
+    else:
+        lines.append(
+            f"run:       {_num(sim.shaft_revolutions, 6)} shaft revolutions, "
+            f"{sim.samples_per_revolution} samples per revolution"
+        )
     if case.estimated:
         names = ", ".join(sorted(k.split(".", 1)[1] for k in case.estimated))
-        lines.append(f"estimated: {names} (from the bearing; see docs/case-format.md)")
+        lines.append(f"estimated: {names} (see docs/case-format.md)")
     if not case.lubricant_given:
         users = "the dynamic model uses"
         if case.simulation.quasistatic_ball_speeds == "traction":

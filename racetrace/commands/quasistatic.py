@@ -3,7 +3,10 @@ Jones–Harris quasi-static solution.
 
 The answer is :func:`solver.quasistatic_answer`: for a misalignment turning with the inner ring,
 the solutions over one revolution (a ``ring_angle`` dimension), whose metrics span every ring
-angle and ball; the per-ball rows are then those at ring angle 0.
+angle and ball; the per-ball rows are then those at ring angle 0. For a case with a time history,
+``--at-time T`` solves under its operating point at T seconds (default t = 0) and
+``--along-history [N]`` solves along the history (:func:`solver.quasistatic_along_history`),
+printing one row per time.
 
 Default output is a readable table with units, followed by the trajectory metrics
 (:mod:`racetrace.metrics`); ``--json`` prints a machine-parseable summary instead (the metrics
@@ -29,6 +32,8 @@ import numpy as np
 from ._output import output_problem, save_result
 
 RACES = ("inner", "outer")
+#: What ``--along-history`` without a count solves (solver.quasistatic_along_history's default).
+ALONG_HISTORY_DEFAULT_TEXT = "41 equally spaced times and every knot time of the history"
 #: The result could not be written to --output: it went to the temporary folder, or nowhere.
 EXIT_NOT_WRITTEN = 5
 
@@ -47,6 +52,23 @@ def register(subparsers) -> None:
     )
     parser.add_argument(
         "--json", action="store_true", help="print a JSON summary instead of a table"
+    )
+    when = parser.add_mutually_exclusive_group()
+    when.add_argument(
+        "--at-time",
+        type=float,
+        metavar="SECONDS",
+        help="of a case with a time history: solve under its operating point at this time "
+        "(default: t = 0)",
+    )
+    when.add_argument(
+        "--along-history",
+        type=int,
+        nargs="?",
+        const=0,
+        metavar="N",
+        help="of a case with a time history: solve at N equally spaced times over its duration "
+        f"(without N: {ALONG_HISTORY_DEFAULT_TEXT}) and print one row per time",
     )
     parser.set_defaults(func=run)
 
@@ -157,7 +179,7 @@ def table(ds, case) -> str:
     from solver import ring_speeds
 
     answer, ds = ds, _at_start(ds)
-    op = case.operating
+    op = _operating_text_values(ds, case)
     b = case.bearing
     inner_speed = ring_speeds(ds)[0]
     peak = answer.racetrace.metric("peak_pressure")
@@ -187,6 +209,8 @@ def table(ds, case) -> str:
         f"max pressure: inner {float(peak.sel(race='inner')) * factor:.3f} {unit}, "
         f"outer {float(peak.sel(race='outer')) * factor:.3f} {unit}",
     ]
+    if "history_time" in ds.attrs:
+        lines.append(f"time:    t = {float(ds.attrs['history_time']):g} s along the case's history")
     note = ds.attrs.get("race_control_note", "")
     if note and "settled" not in note:
         lines.append(f"note: {note}")
@@ -221,6 +245,90 @@ def table(ds, case) -> str:
     return "\n".join(lines)
 
 
+def _operating_text_values(ds, case):
+    """The operating point the header lines print, case units: the case's; for a solution at a
+    time along a history (attribute ``history_time``), the one it was solved under."""
+    from types import SimpleNamespace
+
+    from solver import RPM, operating_from_result
+
+    if "history_time" not in ds.attrs:
+        return case.operating
+    op = operating_from_result(ds)
+    return SimpleNamespace(
+        inner_ring_speed_rpm=op.inner_ring_speed / RPM,
+        outer_ring_speed_rpm=op.outer_ring_speed / RPM,
+        axial_load_N=op.axial_load,
+        radial_load_N=op.radial_load,
+        radial_load_angle_deg=math.degrees(op.radial_load_angle),
+        tilting_moment_Nm=op.tilting_moment,
+    )
+
+
+def _along_value(ds, name: str, i: int) -> float:
+    """Operating input ``name`` at time index ``i`` (a data variable over time where it varies,
+    a scalar coordinate where not)."""
+    values = np.asarray(ds[name].values, dtype=float)
+    return float(values[i] if values.ndim else values)
+
+
+def along_rows(ds) -> list[dict]:
+    """One row per time of a sweep along the history: the operating inputs (case units) and the
+    largest contact load, the contact-angle range and the cage speed there."""
+    from solver import RPM
+
+    rows = []
+    for i, t in enumerate(np.asarray(ds.time.values, dtype=float)):
+        load = ds.contact_load.isel(time=i).values
+        angle = ds.contact_angle.isel(time=i).values
+        inner = _along_value(ds, "inner_ring_speed", i)
+        rows.append(
+            {
+                "time_s": float(t),
+                "inner_ring_speed_rpm": inner / RPM,
+                "outer_ring_speed_rpm": _along_value(ds, "outer_ring_speed", i) / RPM,
+                "axial_load_N": _along_value(ds, "axial_load", i),
+                "radial_load_N": _along_value(ds, "radial_load", i),
+                "radial_load_angle_deg": _along_value(ds, "radial_load_angle", i),
+                "max_contact_load_N": {r: float(load[:, k].max()) for k, r in enumerate(RACES)},
+                "contact_angle_deg": {
+                    r: [float(angle[:, k].min()), float(angle[:, k].max())]
+                    for k, r in enumerate(RACES)
+                },
+                "cage_speed_rad_s": float(ds.cage_speed.isel(time=i)),
+            }
+        )
+    return rows
+
+
+def along_table(ds, case) -> str:
+    """Readable table of a sweep along the history: one row per time."""
+    lines = [
+        f"case:    {case.title or '(no title)'}",
+        f"quasi-static along the history: {ds.attrs.get('along_history', '')}",
+        "",
+        f"{'t':>9} {'n_i':>9} {'n_o':>7} {'F_a':>8} {'F_r':>8} {'psi_r':>7} {'Qmax_i':>8} "
+        f"{'Qmax_o':>8} {'alpha_i':>13} {'cage':>9}",
+        f"{'s':>9} {'rpm':>9} {'rpm':>7} {'N':>8} {'N':>8} {'deg':>7} {'N':>8} {'N':>8} "
+        f"{'deg':>13} {'rad/s':>9}",
+    ]
+    for row in along_rows(ds):
+        low, high = row["contact_angle_deg"]["inner"]
+        lines.append(
+            f"{row['time_s']:9.4g} {row['inner_ring_speed_rpm']:9.1f} "
+            f"{row['outer_ring_speed_rpm']:7.1f} {row['axial_load_N']:8.1f} "
+            f"{row['radial_load_N']:8.1f} {row['radial_load_angle_deg']:7.1f} "
+            f"{row['max_contact_load_N']['inner']:8.1f} {row['max_contact_load_N']['outer']:8.1f} "
+            f"{low:6.2f}-{high:6.2f} {row['cage_speed_rad_s']:9.2f}"
+        )
+    lines.append(
+        "n: ring speeds; F_a, F_r, psi_r: axial and radial load and the radial load's azimuth; "
+        "Qmax: largest contact load; alpha_i: inner contact angles (lowest-highest); cage: cage "
+        "speed"
+    )
+    return "\n".join(lines)
+
+
 def _clean(value: float) -> float:
     """Round-off below 1e-9 of the printed magnitude shown as 0 (never '-0' or '-1.7e-15')."""
     return 0.0 if abs(value) < 1e-9 else float(value)
@@ -235,7 +343,15 @@ def print_result_warnings(ds, stream=None) -> None:
 
 
 def run(args) -> int:
-    from solver import CaseError, Problem, printable, quasistatic_answer, resolve_case
+    from solver import (
+        CaseError,
+        Problem,
+        printable,
+        quasistatic_along_history,
+        quasistatic_answer,
+        resolve_case,
+        solve_quasistatic,
+    )
 
     case = resolve_case(args.case)
     for warning in case.warnings():
@@ -244,16 +360,34 @@ def run(args) -> int:
         problem = output_problem(Path(args.output))
         if problem:
             raise CaseError(Problem("output", problem))
-    ds = quasistatic_answer(case)
-    print_result_warnings(ds)
+    along = getattr(args, "along_history", None)
+    at_time = getattr(args, "at_time", None)
+    if along is not None and along != 0 and along < 2:
+        raise CaseError(
+            Problem("--along-history", f"--along-history {along}: give at least 2 times")
+        )
+    if along is not None:
+        ds = quasistatic_along_history(case, None if along == 0 else along)
+    elif at_time is not None:
+        ds = solve_quasistatic(case, at_time=at_time)
+    else:
+        ds = quasistatic_answer(case)
+    if along is None:
+        print_result_warnings(ds)
     written = save_result(ds, Path(args.output)) if args.output else None
     if args.json:
-        out = summary(ds)
+        if along is not None:
+            out = {"model": "quasistatic", "along_history": along_rows(ds)}
+        else:
+            out = summary(ds)
+            if at_time is not None:
+                out["time_s"] = float(at_time)
         if args.output:
             out["output"] = None if written is None else str(written)
         text = json.dumps(out, indent=2, allow_nan=False)
     else:
-        text = printable(table(ds, case), keep_newlines=True)  # the title is the user's text
+        shown = along_table(ds, case) if along is not None else table(ds, case)
+        text = printable(shown, keep_newlines=True)  # the title is the user's text
         if written is not None:
             text += f"\n\nresults written to {written}"
     try:

@@ -9,7 +9,14 @@ from solver.catalogue import catalogue, resolve_case
 from solver.models.dynamic import SimulationOptions, simulate
 from tests.helpers.results import dynamic_variables_in
 
-CASES = [entry.name for entry in catalogue().cases]
+#: Cases whose operating inputs are time histories run for a duration, not revolutions: the
+#: dynamic model follows histories with tsdyn's change (issue 24 §2).
+CASES = [
+    pytest.param(entry.name, marks=pytest.mark.skip(reason="dynamic history runs: tsdyn"))
+    if entry.load().histories
+    else entry.name
+    for entry in catalogue().cases
+]
 
 
 @pytest.mark.slow

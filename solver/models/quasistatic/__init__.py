@@ -42,8 +42,9 @@ import os
 
 import numpy as np
 
-from solver.errors import NoSolutionError
-from solver.inputs import Inputs, OperatingPoint, rpm_to_rad_s, to_inputs
+from solver.errors import CaseError, NoSolutionError, Problem
+from solver.history import event_times
+from solver.inputs import Inputs, OperatingPoint, operating_at, rpm_to_rad_s, to_inputs
 
 from .solution import QuasiStaticSolution
 from .solver import solve_operating_point
@@ -52,6 +53,9 @@ __all__ = [
     "REVOLUTION_RING_ANGLES",
     "OperatingPoint",
     "QuasiStaticSolution",
+    "ALONG_HISTORY_TIMES",
+    "inputs_at_time",
+    "quasistatic_along_history",
     "quasistatic_answer",
     "quasistatic_speed_sweep",
     "solve_operating_point",
@@ -67,6 +71,10 @@ __all__ = [
 #: line holds one sample per ball.
 REVOLUTION_RING_ANGLES = 36
 
+
+#: Times at which :func:`quasistatic_along_history` solves a history by default: this many equally
+#: spaced over [0, duration], 40 intervals, plus every knot time of the history inside.
+ALONG_HISTORY_TIMES = 41
 
 #: Attributes of one sweep element that a stacked sweep drops (they describe one solve).
 _ELEMENT_ATTRS = (
@@ -150,23 +158,125 @@ def solve_quasistatic_state(
     )
 
 
-def solve_quasistatic(case):
-    """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md)."""
+def _history_inputs(inputs: Inputs, what: str) -> Inputs:
+    """``inputs`` of a case with a time history; CaseError naming ``what`` for a steady case."""
+    if inputs.history is None:
+        raise CaseError(
+            Problem(
+                "at_time",
+                f"{what} needs a case with a time history, and every operating key of this case "
+                "is a number (give one as a history, docs/case-format.md; a steady case is "
+                "solved as it is)",
+            )
+        )
+    return inputs
+
+
+def inputs_at_time(case, t: float) -> Inputs:
+    """The inputs of ``case`` (a Case or Inputs with a time history) at time ``t`` [s]: its
+    operating point :func:`solver.inputs.operating_at` ``t``. CaseError for a steady case or a
+    time that is not a finite number >= 0."""
+    inputs = _history_inputs(_inputs(case), "a solution at a time")
+    try:
+        operating = operating_at(inputs, t)
+    except ValueError as error:
+        raise CaseError(Problem("at_time", f"at_time = {t!r}: {error}")) from None
+    return dataclasses.replace(inputs, operating=operating)
+
+
+def solve_quasistatic(case, at_time: float | None = None):
+    """Quasi-static equilibrium of ``case`` as an xarray Dataset (results-schema.md).
+
+    ``at_time`` [s]: for a case with a time history, the equilibrium under its operating point at
+    that time (attribute ``history_time``); None: at t = 0 (a steady case: its operating point).
+    """
     from solver.results.estimates import estimate_fields
 
     from .result import solution_to_dataset
 
     inputs = _inputs(case)
+    if at_time is not None:
+        inputs = inputs_at_time(inputs, at_time)
     solution = solve_operating_point(
         inputs.geometry, inputs.operating, traction_lubricant=_traction_lubricant(inputs)
     )
-    return solution_to_dataset(
+    ds = solution_to_dataset(
         solution,
         inputs.geometry,
         inputs.case_text,
         _film_lubricant(inputs),
         estimates=estimate_fields(inputs),
     )
+    if at_time is not None:
+        ds.attrs["history_time"] = float(at_time)
+    return ds
+
+
+def along_history_times(inputs: Inputs, times=None) -> np.ndarray:
+    """The sorted distinct times [s] of :func:`quasistatic_along_history`: ``times`` None gives
+    :data:`ALONG_HISTORY_TIMES` equally spaced over [0, duration] and every knot time inside; an
+    int n >= 2, n equally spaced; a sequence, those times. ValueError for times < 0, not finite,
+    or fewer than 2."""
+    duration = float(inputs.simulation.duration)
+    if times is None or (isinstance(times, int | np.integer) and not isinstance(times, bool)):
+        count = ALONG_HISTORY_TIMES if times is None else int(times)
+        if count < 2:
+            raise ValueError(f"the sweep along the history needs at least 2 times, not {count}")
+        grid = np.linspace(0.0, duration, count)
+        if times is None:
+            grid = np.concatenate([grid, event_times(inputs.history, 0.0, duration)])
+    else:
+        grid = np.asarray(list(times), dtype=float)
+        if grid.ndim != 1 or grid.size < 2:
+            raise ValueError("the sweep along the history needs a sequence of at least 2 times")
+    if not np.all(np.isfinite(grid)) or np.any(grid < 0.0):
+        raise ValueError("times along the history must be finite and >= 0 s")
+    return np.unique(grid)
+
+
+def quasistatic_along_history(case, times=None):
+    """The quasi-static reference along the time history of ``case``: the solution under the
+    operating point at each time (:func:`along_history_times`), stacked along a ``time``
+    dimension [s], each started from the previous solution.
+
+    An operating input that varies along the history is a data variable over ``time`` (the other
+    inputs stay scalar coordinates, as in every result); every per-ball variable and metric gains
+    ``time``. ``attrs["case"]`` is the case text; ``attrs["along_history"]`` says what was solved.
+    CaseError for a steady case; NoSolutionError naming the first time without a solution.
+    """
+    from solver.results.dataset import OPERATING_FIELDS
+    from solver.results.variables import coordinates
+
+    from .result import solution_to_dataset
+
+    inputs = _history_inputs(_inputs(case), "a sweep along the history")
+    try:
+        grid = along_history_times(inputs, times)
+    except ValueError as error:
+        raise CaseError(Problem("times", str(error))) from None
+    geometry = inputs.geometry
+    lubricant = _film_lubricant(inputs)
+    points = [
+        (operating_at(inputs, t), f"sweep along the history stopped at t = {t:g} s") for t in grid
+    ]
+    solutions = _continued(geometry, points, _traction_lubricant(inputs))
+    ds = _stacked(
+        [
+            solution_to_dataset(sol, geometry, inputs.case_text, lubricant, op)
+            for op, sol in solutions
+        ],
+        "time",
+    )
+    for key in _ELEMENT_ATTRS:  # one element's statistics and notes, even where they agree
+        ds.attrs.pop(key, None)
+    ds = ds.assign_coords(time=coordinates(geometry.ball_count, grid)["time"])
+    varying = [n for n in OPERATING_FIELDS if n in ds.coords and "time" in ds[n].dims]
+    ds = ds.reset_coords(varying)
+    ds.attrs["along_history"] = (
+        f"quasi-static solutions at {grid.size} times from {grid[0]:g} s to {grid[-1]:g} s along "
+        "the case's time history (time); varying inputs: " + (", ".join(varying) or "none")
+    )
+    return ds
 
 
 def quasistatic_speed_sweep(case, speeds_rpm):

@@ -26,6 +26,11 @@ EXPECTED = {
         "spindle-misalignment-ring",
         "218-heavy-combined",
         "209-radial",
+        # time histories (issue 24)
+        "spindle-start-up",
+        "spindle-radial-step",
+        "spindle-unbalance",
+        "spindle-load-spectrum",
     },
 }
 

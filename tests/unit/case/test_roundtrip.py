@@ -19,8 +19,9 @@ def test_catalogue_cases_round_trip():
     for entry in catalogue().entries:
         case = entry.load()
         text = case.to_toml()
-        assert parse_case(text) == case, entry.name
-        assert Case.from_dict(case.to_dict()) == case, entry.name
+        folder = case.source_dir or None  # where a history file of the case is read from
+        assert parse_case(text, "text", folder) == case, entry.name
+        assert Case.from_dict(case.to_dict(), folder) == case, entry.name
 
 
 def test_to_toml_is_readable(valid):
