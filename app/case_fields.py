@@ -100,7 +100,13 @@ def estimated_default_texts(case, fields: list[FormField]) -> dict[str, str]:
         spec = specs.get(f.key)
         if spec is None or not spec.estimated:
             continue
-        value = float(spec.default.function(case.bearing))
+        if spec.default.reads != "bearing":  # estimated from a time history: the case's value
+            value = getattr(getattr(case, spec.section, None), spec.name, None)
+            if value is None:  # a steady case: the key is not read
+                continue
+            value = float(value)
+        else:
+            value = float(spec.default.function(case.bearing))
         unit = f" {spec.unit}" if spec.unit else ""
         out[f.name] = f"{value:.3g}{unit} ({f.default_text})"
     return out

@@ -162,3 +162,13 @@ def test_estimated_default_texts_give_the_value_for_the_case(fixture_model):
         "mass_g",
         "guide_land_width_mm",
     }
+
+
+def test_estimated_default_texts_of_a_history_case_give_its_sampling():
+    from app.case_fields import estimated_default_texts
+    from solver.catalogue import resolve_case
+
+    case = resolve_case("spindle-radial-step").with_values({"simulation.samples_per_second": None})
+    texts = estimated_default_texts(case, form_fields())
+    # 180 samples per revolution at 20 000 rpm: 60 000 per second
+    assert texts["samples_per_second"].startswith("6e+04 1/s (estimated: 180 samples per")
