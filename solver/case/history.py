@@ -39,7 +39,7 @@ from solver.history import (
 )
 
 from .messages import _unknown_in_table, show
-from .schema import format_number
+from .schema import field, format_number
 
 #: The form keys, in the order the docs give them.
 FORMS = ("ramp", "step", "sine", "table", "file", "rotating", "rotating_rpm")
@@ -520,6 +520,16 @@ def _parse(f, raw: dict, base_dir: Path | None, problems: list) -> KeyHistory:
             raise _Bad
         return KeyHistory(key, form, spec, (0.0,), (start,), with_shaft=True)
     rpm = _number(problems, f"{key}.rotating_rpm", raw["rotating_rpm"])
+    top = field("operating.inner_ring_speed_rpm").maximum
+    if abs(rpm) > top:
+        problems.append(
+            Problem(
+                f"{key}.rotating_rpm",
+                f"{key}.rotating_rpm = {show(rpm)}: must be within ±{format_number(top)} rpm, the "
+                "bounds of the ring speeds",
+            )
+        )
+        raise _Bad
     return KeyHistory(key, form, spec, (0.0,), (start,), rate=rpm * 360.0 / 60.0)
 
 

@@ -313,3 +313,12 @@ def test_run_length_keys_of_each_kind_of_case(valid):
     message = _only(problems_of(steady), "simulation.duration_s")
     assert "read only by a case with a time history" in message
     assert "give simulation.shaft_revolutions" in message
+
+
+def test_rotating_load_speed_within_the_ring_speed_bounds(valid):
+    angle = {"rotating_rpm": 600001.0}
+    problems = problems_of(history_case(valid, radial_load_angle_deg=angle))
+    assert "within ±500000 rpm" in _only(problems, "operating.radial_load_angle_deg.rotating_rpm")
+    bad = {"rotating": "with_case"}
+    problems = problems_of(history_case(valid, radial_load_angle_deg=bad))
+    assert 'must be "with_shaft"' in _only(problems, "operating.radial_load_angle_deg.rotating")
