@@ -988,9 +988,19 @@ def dynamic_problems(case) -> list[Problem]:
             sim.shaft_revolutions, sim.samples_per_revolution, case.bearing.ball_count
         )
     speed_keys = ("operating.inner_ring_speed_rpm", "operating.outer_ring_speed_rpm")
-    if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm and not any(
-        k in histories for k in speed_keys
-    ):
+    if any(k in histories for k in speed_keys):
+        values = {speed_keys[0]: op.inner_ring_speed_rpm, speed_keys[1]: op.outer_ring_speed_rpm}
+        if top_relative_speed_rpm(values, histories) == 0.0:
+            found.append(
+                Problem(
+                    "operating.inner_ring_speed_rpm",
+                    "operating.inner_ring_speed_rpm and operating.outer_ring_speed_rpm are equal "
+                    "at every point of their histories: the rings never turn relative to each "
+                    "other, so nothing runs; give the speeds that the run should follow",
+                    ("operating.outer_ring_speed_rpm",),
+                )
+            )
+    elif op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
         speed = format_number(op.inner_ring_speed_rpm)
         found.append(
             Problem(

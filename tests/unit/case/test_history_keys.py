@@ -322,3 +322,22 @@ def test_rotating_load_speed_within_the_ring_speed_bounds(valid):
     bad = {"rotating": "with_case"}
     problems = problems_of(history_case(valid, radial_load_angle_deg=bad))
     assert 'must be "with_shaft"' in _only(problems, "operating.radial_load_angle_deg.rotating")
+
+
+def test_dynamic_problems_of_a_history_case(valid):
+    from solver.case import dynamic_problems
+
+    # a start from rest is a run: no rule on equal speeds at t = 0
+    case = case_of(history_case(valid, inner_ring_speed_rpm=RAMP))
+    assert dynamic_problems(case) == []
+    still = {"table": [[0, 0], [1, 0]]}
+    (problem,) = dynamic_problems(case_of(history_case(valid, inner_ring_speed_rpm=still)))
+    assert "equal at every point of their histories" in problem.message
+    # the run length: duration x samples per second x balls within the memory limit
+    long = case_of(
+        history_case(
+            valid, {"duration_s": 100.0, "samples_per_second": 1e6}, inner_ring_speed_rpm=RAMP
+        )
+    )
+    (problem,) = dynamic_problems(long)
+    assert problem.key == "simulation.duration_s" and "ball-samples" in problem.message
