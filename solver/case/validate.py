@@ -594,11 +594,12 @@ def _check_history_loads(v: dict, given: set, histories: dict, problems: list[Pr
 
 
 def _check_run_length_keys(
-    data: dict, v: dict, given: set, histories: dict, problems: list[Problem]
+    data: dict, v: dict, given: set, histories, problems: list[Problem]
 ) -> None:
     """A case with a time history runs for ``simulation.duration_s`` (required) and is sampled per
     second; a steady case runs for shaft revolutions. A key of the other kind of case is an
-    error (``Field.applies``)."""
+    error (``Field.applies``). ``histories``: the keys given as history tables (an invalid one
+    still makes the case a history case, so that one mistake gives one message)."""
     kind = "history" if histories else "steady"
     if histories and "simulation.duration_s" not in given:
         names = ", ".join(sorted(histories))
@@ -756,6 +757,7 @@ def validate(data, base_dir=None) -> CaseValues:
     values: dict = {}  # dotted key -> validated value (keys that passed pass 2)
     given: set = set()  # dotted keys present in the input
     histories: dict = {}  # dotted key -> KeyHistory of the keys given as time histories
+    history_given: set = set()  # dotted keys given as a history table, valid or not
     missing_sections = set()
     for section in ("bearing", "operating"):
         if section not in data:
@@ -789,6 +791,7 @@ def validate(data, base_dir=None) -> CaseValues:
             continue
         given.add(f.key)
         if f.history and isinstance(raw, dict):
+            history_given.add(f.key)
             history = parse_history(f, raw, base_dir, problems)
             if history is not None:
                 histories[f.key] = history
@@ -802,7 +805,7 @@ def validate(data, base_dir=None) -> CaseValues:
     _check_bearing_rules(values, given, problems)
     _check_operating_rules(data, values, given, problems)
     _check_history_loads(values, given, histories, problems)
-    _check_run_length_keys(data, values, given, histories, problems)
+    _check_run_length_keys(data, values, given, history_given, problems)
     _check_traction(values, given, problems)
     _check_lubrication_method(values, given, problems)
     if problems:

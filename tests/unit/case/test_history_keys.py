@@ -298,8 +298,10 @@ def test_history_file_problems(valid, tmp_path):
         validate(data, tmp_path)
     # text without a folder cannot name a file
     data = history_case(valid, radial_load_N={"file": "a.csv"})
-    message = _only(problems_of(data), "operating.radial_load_N.file")
+    problems = problems_of(data)
+    message = _only(problems, "operating.radial_load_N.file")
     assert "not read from a file" in message and "table = " in message
+    assert set(problems) == {"operating.radial_load_N.file"}  # one mistake, one message
 
 
 def test_run_length_keys_of_each_kind_of_case(valid):
