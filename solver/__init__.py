@@ -73,6 +73,7 @@ _LAZY = {
     "dynamic_problems": "solver.case",
     "run_length_problems": "solver.case.validate",
     "dynamic_run_size": "solver.case.validate",
+    "history_run_length_problems": "solver.case.validate",
     "FIELDS": "solver.case.schema",
     "REQUIRED": "solver.case.schema",
     "OPTIONAL": "solver.case.schema",

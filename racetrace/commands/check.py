@@ -78,9 +78,10 @@ def summary(case) -> str:
             lines.append(f"           {name}: {history.describe(by_key[key].unit)}")
         if events := history_events(case):
             lines.append(f"           events (steps and segment ends) at {events}")
+        estimated = "simulation.samples_per_second" in case.estimated
         lines.append(
-            f"run:       {_num(sim.duration_s, 6)} s, {_num(sim.samples_per_second, 6)} samples per "
-            "second" + (" (estimated)" if "simulation.samples_per_second" in case.estimated else "")
+            f"run:       {_num(sim.duration_s, 6)} s, {_num(sim.samples_per_second, 6)} "
+            "samples per second" + (" (estimated)" if estimated else "")
         )
     else:
         lines.append(

@@ -164,6 +164,9 @@ def _options(args, case):
     # the case's [simulation] values, overridden by the command line
     options = SimulationOptions(**changes).validated()
     sim = case.simulation
+    balls = int(case.bearing.ball_count if hasattr(case, "bearing") else case.geometry.ball_count)
+    if getattr(case, "histories", None):  # a case with a time history runs for a duration
+        return options, _history_run_size(args, sim, balls)
     revolutions = sim.shaft_revolutions if args.revolutions is None else args.revolutions
     per_rev = (
         sim.samples_per_revolution
@@ -176,12 +179,35 @@ def _options(args, case):
         if args.samples_per_revolution is None
         else "--samples-per-revolution",
     )
-    # a Case, or SI Inputs (scripts and tests may pass those)
-    balls = int(case.bearing.ball_count if hasattr(case, "bearing") else case.geometry.ball_count)
     problems = run_length_problems(revolutions, per_rev, balls, names)
     if problems:
         raise CaseError(problems)
     return options, dynamic_run_size(revolutions, per_rev, balls)
+
+
+def _history_run_size(args, sim, balls: int):
+    """The run size of a case with a time history (``simulation.duration_s`` at
+    ``samples_per_second``); CaseError for the run-length options of a steady case or a run
+    the length rules refuse."""
+    from solver import CaseError, Problem, dynamic_run_size, history_run_length_problems
+
+    for option, value, key in (
+        ("--revolutions", args.revolutions, "simulation.duration_s"),
+        ("--samples-per-revolution", args.samples_per_revolution, "simulation.samples_per_second"),
+    ):
+        if value is not None:
+            raise CaseError(
+                Problem(
+                    option,
+                    f"{option} {value:g}: this case has a time history and runs for a duration "
+                    f"in seconds; set {key} in the case instead",
+                )
+            )
+    problems = history_run_length_problems(sim.duration_s, sim.samples_per_second, balls)
+    if problems:
+        raise CaseError(problems)
+    # samples = duration x samples per second, as revolutions x samples per revolution
+    return dynamic_run_size(sim.duration_s, sim.samples_per_second, balls)
 
 
 def _check_room(size, output: Path) -> None:

@@ -66,3 +66,12 @@ def test_history_options_on_a_steady_case_are_refused():
     assert "needs a case with a time history" in result.stderr
     result = racetrace("solve", "spindle-radial-step", "--along-history", "1")
     assert result.returncode == 2 and "at least 2 times" in result.stderr
+
+
+def test_simulate_refuses_revolution_options_for_a_history_case(tmp_path):
+    result = racetrace(
+        "simulate", "spindle-radial-step", "--revolutions", "2", "-o", str(tmp_path / "r.nc")
+    )
+    assert result.returncode == 2, result.stderr
+    assert "--revolutions 2: this case has a time history" in result.stderr
+    assert "simulation.duration_s" in result.stderr and "Traceback" not in result.stderr
