@@ -965,12 +965,13 @@ def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
 @njit(cache=True)
 def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
     """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. Callers
-    pass ``observed`` explicitly (no default: an omitted argument is typed apart and would compile a
-    second variant), from compiled code as ``runtime_bool(...)``, so that numba compiles one
-    variant. The evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its many bindings
-    and slices of them cost no atomic reference counts. ``observed`` False (integrators' stages,
-    which pass it explicitly): the records hold only what the forces and ``post_step`` need
-    (contact angle, raceway azimuth and elastic load NaN; see :func:`contact_state`)."""
+    pass ``observed`` explicitly (no default: an omitted argument is typed apart and would
+    compile a second variant), from compiled code as ``runtime_bool(...)``, so that numba
+    compiles one variant. The evaluation works on borrowed views of the arrays (:mod:`.borrow`),
+    so that its many bindings and slices of them cost no atomic reference counts. ``observed``
+    False (integrators' stages, which pass it explicitly): the records hold only what the forces
+    and ``post_step`` need (contact angle, raceway azimuth and elastic load NaN; see
+    :func:`contact_state`)."""
     _rhs_borrowed(
         borrowed(y),
         borrowed_record(par),
