@@ -73,6 +73,18 @@ CELSIUS_ZERO = 273.15
 #: Largest Barus exponent alpha p used (e^60 ~ 1e26): keeps eta finite at any pressure.
 BARUS_EXPONENT_CAP = 60.0
 
+#: Entrainment speed u_min [m/s] below which the dynamic model's contacts keep the film and the
+#: film's transit time of u_min (solver.models.dynamic.kernels; docs/numerics.md, "Low
+#: entrainment speed"). As u_e -> 0 the film h_c ~ u_e^0.67 and the transit time b / u_e make
+#: the rheology's stress a Coulomb law at tau_L whose slope against slip, ~ G t / h_c, grows
+#: without bound (at rest the film law has no film and jumps at zero slip), which no integrator
+#: steps through. At u_min the rheology reaches half its limiting stress within about 4 mm/s of
+#: slip (the 209 case's oil, 500 N), the order of the friction regularisation of the model's
+#: Coulomb laws (1 mm/s): below u_min a contact acts as boundary friction at the limiting shear
+#: stress regularised over a few mm/s of slip. Every shipped dynamic case runs at entrainment
+#: speeds above 1 m/s, where nothing changes.
+ENTRAINMENT_FLOOR = 0.1
+
 
 def viscosity_at_temperature(
     reference_viscosity: float,

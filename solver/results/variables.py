@@ -132,7 +132,8 @@ VARIABLES: dict[str, Variable] = {
         "spin-to-roll ratio",
         "omega_spin / omega_roll of the ball relative to the ring (physics.md 2.5.7): projections "
         "of the relative angular velocity on the contact normal and on the rolling axis; 0 without "
-        "rolling",
+        "rolling (dynamic model: spin roll / roll_min^2 below the rolling speed roll_min = 2 u_min "
+        "/ D of the entrainment floor u_min, docs/numerics.md)",
     ),
     "sliding_speed": Variable(
         _C,
