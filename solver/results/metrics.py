@@ -134,6 +134,14 @@ def reduce(values: xr.DataArray, mask: xr.DataArray, how: str, empty: float = ma
     over = [d for d in values.dims if d in CONTACT_DIMS]
     values, mask = xr.broadcast(values, mask)
     keep = [d for d in values.dims if d not in over]
+    # the coordinates of the mask's own dimensions (a phase's start, end and label) go along
+    values = values.assign_coords(
+        {
+            n: c
+            for n, c in mask.coords.items()
+            if n not in values.coords and set(c.dims) <= set(keep)
+        }
+    )
     values = values.transpose(*keep, *over)
     mask = mask.transpose(*keep, *over)
     size = int(np.prod([values.sizes[d] for d in over], dtype=int))
