@@ -72,15 +72,17 @@ def test_the_rheology_traction_goes_to_zero_with_the_speeds_linearly_below_the_f
     assert np.isfinite(forces).all() and np.isfinite(films).all()
     assert speeds[0] < 1e-6 < ENTRAINMENT_FLOOR < speeds[-1]
     # every slip is proportional to the factor, and below u_min the law is the one of u_min,
-    # linear at these slips: force / factor is one vector there (without the floor the film
-    # vanishes with the speed and the force saturates at the limiting shear stress instead)
-    below = speeds < 0.1 * ENTRAINMENT_FLOOR
-    assert below.sum() >= 20
-    per_factor = forces[below] / factors[below, None]
+    # linear at small slips (the first 8 factors: slips below about 1e-7 of the running ones):
+    # force / factor is one vector there. Without the floor the film vanishes with the speed,
+    # the law's slope grows as the film thins and the force saturates at the limiting shear
+    # stress instead.
+    small = factors < 3e-7
+    assert small.sum() >= 8 and (speeds[small] < 0.1 * ENTRAINMENT_FLOOR).all()
+    per_factor = forces[small] / factors[small, None]
     np.testing.assert_allclose(
-        per_factor, per_factor[0], rtol=1e-5, atol=1e-9 * abs(per_factor[0]).max()
+        per_factor, np.broadcast_to(per_factor[0], per_factor.shape), rtol=1e-3, atol=1e-6
     )
-    assert np.linalg.norm(forces[0]) < 1e-6 * np.abs(forces).max()
+    assert np.linalg.norm(forces[0]) < 1e-4 * np.abs(forces).max()  # 3e-5 at a factor 1e-8
     # no jump: between neighbouring factors (1.47x apart) the force changes by less than that
     ratio = np.linalg.norm(forces[1:], axis=1) / np.linalg.norm(forces[:-1], axis=1)
     assert (ratio < 1.5).all() and (ratio > 0.5).all()
@@ -91,7 +93,8 @@ def test_the_rheology_traction_goes_to_zero_with_the_speeds_linearly_below_the_f
     _, film_a, speed_a = _inner_contact(par, quad, y0, 0.5 * floor)
     _, film_b, speed_b = _inner_contact(par, quad, y0, 0.5e-3 * floor)
     assert speed_a < ENTRAINMENT_FLOOR
-    assert film_b / film_a == pytest.approx((speed_b / speed_a) ** 0.67, rel=1e-9)
+    # (to 1e-4: the inlet thermal reduction of u_min reads the slide-to-roll ratio)
+    assert film_b / film_a == pytest.approx((speed_b / speed_a) ** 0.67, rel=1e-4)
     # continuous through the floor: just below and just above it
     under = _inner_contact(par, quad, y0, floor * (1.0 - 1e-9))
     over = _inner_contact(par, quad, y0, floor * (1.0 + 1e-9))
@@ -101,29 +104,44 @@ def test_the_rheology_traction_goes_to_zero_with_the_speeds_linearly_below_the_f
     assert 0.0 < film_a < film_running
 
 
-def test_a_bearing_at_rest_under_load_stays_put_without_nan():
-    """The spindle at rest under its 500 N preload (and gravity): 2 ms from its equilibrium."""
+def test_a_bearing_at_rest_under_load_stays_put_and_feels_no_friction_jump():
+    """The spindle (rheology) at rest under its 500 N preload and gravity: 0.1 ms from its
+    equilibrium (about 2 200 steps: at rest the traction's slope at u_min sets the step), and a
+    ball turning by a few nm/s at its contacts feels a traction in proportion (without the
+    floor, a contact at rest has no film, and any slip above 1 nm/s met the full limiting shear
+    stress: a jump of about 0.07 of the load at zero slip)."""
     par, quad, y0 = start(_at_speed(spindle_inputs(axial=500.0), 0.0))
-    times = np.linspace(0.0, 0.002, 11)
+    times = np.linspace(0.0, 1e-4, 6)
     states, progress = integrate_states(par, quad, y0, times, tolerance=1e-4, method="auto")
     assert np.isfinite(states).all()
     z = int(par.ball_count)
-    cage = states[:, L.cage_base(z) + L.C_SPEED]
-    assert np.abs(cage).max() < 1e-6  # rad/s: nothing drives the cage
+    assert np.abs(states[:, L.cage_base(z) + L.C_SPEED]).max() < 1e-6  # rad/s: nothing drives it
     _, rec_i, rec_o, _ = evaluate(states[-1], par, quad)
     loads = np.concatenate((rec_i[:, L.K_LOAD], rec_o[:, L.K_LOAD]))
     assert loads.min() > 0.0  # every ball still held by the preload
-    assert int(progress["accepted"][0]) < 5000
+    assert int(progress["accepted"]) < 3000
+    forces = []
+    for spin in (1e-6, 2e-6):  # rad/s about the bearing axis: slips of 3.6 and 7.2 nm/s
+        y = y0.copy()
+        y[L.ball_base(0) + L.B_OMEGA] = spin
+        force, _, _ = _inner_contact(par, quad, y, 1.0)
+        forces.append(np.linalg.norm(force))
+    load = evaluate(y0, par, quad)[1][0, L.K_LOAD]
+    assert 0.0 < forces[0] < 1e-3 * load
+    assert forces[1] == pytest.approx(2.0 * forces[0], rel=1e-3)
 
 
-def test_a_run_at_one_rpm_with_load_stays_finite_and_near_rolling():
+def test_a_run_at_one_rpm_with_load_stays_finite_and_rolling():
+    """The spindle (rheology) at 1 rpm, every contact below u_min: 0.1 ms; the regularised law
+    costs fewer steps than the vanishing film did."""
     par, quad, y0 = start(_at_speed(spindle_inputs(axial=500.0), 1.0))
-    times = np.linspace(0.0, 0.002, 11)
-    states, _ = integrate_states(par, quad, y0, times, tolerance=1e-4, method="auto")
+    times = np.linspace(0.0, 1e-4, 6)
+    states, progress = integrate_states(par, quad, y0, times, tolerance=1e-4, method="auto")
     assert np.isfinite(states).all()
-    z = int(par.ball_count)
-    cage = states[:, L.cage_base(z) + L.C_SPEED]
-    assert cage[-1] == pytest.approx(cage[0], rel=0.05)  # about half the shaft speed, rolling
+    cage = states[:, L.cage_base(int(par.ball_count)) + L.C_SPEED]
+    assert cage[-1] == pytest.approx(cage[0], rel=0.01)  # the rolling speed, about half the shaft's
+    assert 0.4 * par.inner_speed < cage[0] < 0.5 * par.inner_speed
+    assert int(progress["accepted"]) < 3000  # 2 340 (without the floor: 5 141)
 
 
 def test_a_steady_case_at_rest_is_refused_with_a_pointer_to_a_history():
