@@ -270,12 +270,20 @@ def _cage_slip(w: Window) -> xr.DataArray:
 
 
 def _instantaneous_cage_slip(w: Window) -> xr.DataArray:
-    """Mean of the instantaneous cage slip (solver.results.skidding) over the window (NaN:
-    quasi-static)."""
+    """The instantaneous cage slip (solver.results.skidding) over the window, weighted by the
+    rolling cage speed: 1 - mean cage speed / mean rolling cage speed over the samples that have a
+    rolling speed, so that samples near rest (a ratio of two small numbers) weigh little (NaN:
+    quasi-static, or no such sample)."""
     if not w.dynamic or "cage_speed" not in w.ds:
         return xr.DataArray(math.nan)
-    slip = skidding.instantaneous_cage_slip(w.ds)
-    return reduce(slip, w.within(xr.ones_like(slip, dtype=bool)), "mean")
+    rolling = skidding.rolling_cage_speed(w.ds)
+    cage = w.ds["cage_speed"].drop_vars([c for c in w.ds["cage_speed"].coords if c != "time"])
+    has = np.isfinite(rolling) & (rolling != 0.0) & np.isfinite(cage)
+    mask = w.within(has)
+    mean_rolling = reduce(rolling, mask, "mean")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slip = 1.0 - reduce(cage, mask, "mean") / mean_rolling
+    return slip.where(mean_rolling != 0.0)
 
 
 def _cage_skids(w: Window) -> xr.DataArray:
@@ -611,7 +619,8 @@ def _table() -> dict[str, Metric]:
             (),
             "1",
             "mean instantaneous cage slip",
-            "mean instantaneous_cage_slip over the analysed window: how far the cage lags its "
+            "instantaneous_cage_slip over the analysed window weighted by the rolling cage "
+            "speed (1 - mean cage speed / mean rolling cage speed): how far the cage lags its "
             "rolling speed at the actual ring speeds and contact angles (NaN: quasi-static)",
             _instantaneous_cage_slip,
         ),

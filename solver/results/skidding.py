@@ -21,9 +21,11 @@ metric, which takes the free contact angle instead.
   contact (the rolling speed is undefined: nothing holds the balls).
 - ``instantaneous_cage_slip`` = 1 - ``skidding_ratio`` (a fraction; views show it in %).
 
-**The cage skids** (a warning of :func:`solver.results.checks.result_warnings`) when the mean
+**The cage skids** (a warning of :func:`solver.results.checks.result_warnings`) when the
 instantaneous cage slip over the analysed window, or over a phase of a history
-(:mod:`solver.results.phases`), exceeds :data:`CAGE_SKID_THRESHOLD`.
+(:mod:`solver.results.phases`), weighted by the rolling speed (the metric
+``mean_instantaneous_cage_slip`` = 1 - mean cage speed / mean rolling speed: samples near rest
+weigh little) exceeds :data:`CAGE_SKID_THRESHOLD`.
 """
 
 from __future__ import annotations

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from solver.catalogue import resolve_case
 from solver.history import (
@@ -184,3 +185,24 @@ def test_phase_attributes_of_a_history_name_the_ramp_and_the_step():
     ds = result(events=attrs[phases.PHASE_BOUNDARIES_ATTRIBUTE])
     ds.attrs[phases.PHASE_LABELS_ATTRIBUTE] = labels
     assert phases.phase_mask(ds)["phase_label"].values.tolist() == labels
+
+
+def test_a_start_from_rest_weighs_its_first_samples_by_the_rolling_speed():
+    """Ring speed ramping linearly from rest (a data variable over time, the form a history
+    result has), an event halfway; the cage stands still for the first 5 % of the run, then runs
+    at 98 % of its rolling speed. In the first phase, weighted by the rolling speed (which grows
+    as t), the standing start (a tenth of the phase) counts 0.1^2 of the phase: slip
+    1 - 0.98 (1 - 0.01) = 0.0298; the plain mean of the samples' slips counts it a tenth:
+    0.1 + 0.9 x 0.02 = 0.118."""
+    ds = result(lag_before=0.0, lag_after=0.0, events=[0.5 * END])
+    times = ds["time"].values
+    ramp = OMEGA * times / END
+    ds = ds.drop_vars("inner_ring_speed").assign(inner_ring_speed=("time", ramp))
+    rolling = skidding.rolling_cage_speed(ds)
+    ds["cage_speed"] = xr.where(ds["time"] < 0.05 * END, 0.0, 0.98 * rolling)
+    slip = skidding.skidding_variables(ds)["instantaneous_cage_slip"]
+    assert np.isnan(slip.values[0])  # at rest: no rolling speed
+    weighted = compute_metric(Window(ds, by_phase=True), "mean_instantaneous_cage_slip")
+    np.testing.assert_allclose(weighted.values, [1.0 - 0.98 * 0.99, 0.02], atol=3e-4)
+    first = slip.where(ds["time"] < 0.5 * END, drop=True)
+    assert float(first[1:].mean()) == pytest.approx(0.118, abs=2e-3)
