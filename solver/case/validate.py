@@ -973,11 +973,15 @@ def history_run_length_problems(
 def dynamic_problems(case) -> list[Problem]:
     """Why the dynamic model cannot run the valid ``case`` (empty when it can).
 
-    The dynamic model integrates the motion over shaft revolutions of the inner ring relative to
-    the outer ring, so the rings must turn relative to each other; it stores at least one output
-    sample after the start, and keeps every output sample of every ball in memory, at most
-    :data:`MAX_DYNAMIC_BALL_SAMPLES` (:func:`run_length_problems`). The quasi-static model needs
-    none of these rules: it solves a bearing at rest too, and stores one sample.
+    A steady case (no ``simulation.duration_s``: its run length is a number of shaft revolutions
+    of the inner ring relative to the outer ring) needs the rings to turn relative to each other:
+    at equal ring speeds a revolution never ends. The model itself runs a bearing at rest and
+    through low speed (docs/numerics.md, "Low entrainment speed"), so a case whose speeds are
+    histories and whose run length is a duration may start or stay at rest. Every run stores at
+    least one output sample after the start, and keeps every output sample of every ball in
+    memory, at most :data:`MAX_DYNAMIC_BALL_SAMPLES` (:func:`run_length_problems`). The
+    quasi-static model needs none of these rules: it solves a bearing at rest too, and stores one
+    sample.
     """
     op = case.operating
     sim = case.simulation
@@ -991,7 +995,7 @@ def dynamic_problems(case) -> list[Problem]:
             sim.shaft_revolutions, sim.samples_per_revolution, case.bearing.ball_count
         )
     speed_keys = ("operating.inner_ring_speed_rpm", "operating.outer_ring_speed_rpm")
-    if any(k in histories for k in speed_keys):
+    if histories:
         values = {speed_keys[0]: op.inner_ring_speed_rpm, speed_keys[1]: op.outer_ring_speed_rpm}
         if top_relative_speed_rpm(values, histories) == 0.0:
             found.append(
@@ -1004,18 +1008,25 @@ def dynamic_problems(case) -> list[Problem]:
                 )
             )
     elif op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
-        speed = format_number(op.inner_ring_speed_rpm)
-        found.append(
-            Problem(
-                "operating.inner_ring_speed_rpm",
-                f"operating.inner_ring_speed_rpm = operating.outer_ring_speed_rpm = {speed}: the "
-                "dynamic model needs the rings to turn relative to each other (it runs for a "
-                "number of shaft revolutions relative to the outer ring); give different ring "
-                "speeds (the quasi-static model solves this case as it is)",
-                ("operating.outer_ring_speed_rpm",),
-            )
-        )
+        found.append(equal_speeds_problem(op.inner_ring_speed_rpm))
     return found
+
+
+def equal_speeds_problem(speed_rpm: float) -> Problem:
+    """Why a steady dynamic run at equal ring speeds ``speed_rpm`` [rpm] cannot be made, and what
+    to give instead (:func:`dynamic_problems`)."""
+    speed = format_number(speed_rpm)
+    return Problem(
+        "operating.inner_ring_speed_rpm",
+        f"operating.inner_ring_speed_rpm = operating.outer_ring_speed_rpm = {speed}: a steady "
+        "dynamic run needs the rings to turn relative to each other, since it lasts "
+        "simulation.shaft_revolutions revolutions of the inner ring relative to the outer ring "
+        "(at equal speeds it would never end). To simulate a bearing at rest or starting from "
+        "rest, give the ring speed as a history (a ramp or a table from 0 rpm) and the run "
+        "length in seconds as simulation.duration_s (docs/case-format.md); otherwise give "
+        "different ring speeds. The quasi-static model solves this case as it is.",
+        ("operating.outer_ring_speed_rpm", "simulation.duration_s"),
+    )
 
 
 __all__ = [
@@ -1024,6 +1035,7 @@ __all__ = [
     "check_value",
     "dynamic_problems",
     "dynamic_run_size",
+    "equal_speeds_problem",
     "history_run_length_problems",
     "history_times",
     "key_value_at",

@@ -73,6 +73,19 @@ CELSIUS_ZERO = 273.15
 #: Largest Barus exponent alpha p used (e^60 ~ 1e26): keeps eta finite at any pressure.
 BARUS_EXPONENT_CAP = 60.0
 
+#: Entrainment speed u_min [m/s] below which the dynamic model's contacts keep the film and the
+#: film's transit time of u_min (solver.models.dynamic.kernels; docs/numerics.md, "Low
+#: entrainment speed"). As u_e -> 0 the film h_c ~ u_e^0.67 and the transit time b / u_e make
+#: the rheology's stress a Coulomb law at tau_L whose slope against slip, ~ G t / h_c, grows
+#: without bound (at rest the film law has no film and jumps at zero slip), which no integrator
+#: steps through. Below about 1 m/s the film is no thicker than the surfaces are rough (209 case,
+#: 500 N: h_c = 85 nm at 1 m/s, 18 nm at 0.1 m/s), so the contact runs in mixed or boundary
+#: lubrication, where the film's rheology is no longer the law; the law frozen at u_min acts
+#: there as boundary friction at about the limiting shear stress (mu = 0.065 for that contact),
+#: reached within about 1 cm/s of slip (half of it at 11 mm/s). Every shipped dynamic case runs
+#: at entrainment speeds above 7 m/s, where nothing changes.
+ENTRAINMENT_FLOOR = 1.0
+
 
 def viscosity_at_temperature(
     reference_viscosity: float,

@@ -6,6 +6,7 @@ app.
     ds.racetrace.summary()    # trajectory metrics (solver.results.summary), with units
     ds.racetrace.metrics()    # the metrics table (solver.results.metrics), with units
     ds.racetrace.metric(name) # one metric of the table (a DataArray)
+    ds.racetrace.phase_metrics() # the metrics table per phase of a history (solver.results.phases)
     ds.racetrace.warnings()   # list[str]: where the result leaves the model's validity
     ds.racetrace.save(path)   # NetCDF, written atomically
     ds.racetrace.to_csv(path) # per-contact table: one row per (time,) ball and race
@@ -20,7 +21,7 @@ from pathlib import Path
 import xarray as xr
 
 from . import checks, io, summary
-from .metrics import METRICS, Window, compute_metric
+from .metrics import METRICS, Window, compute_metric, metrics_table
 
 ACCESSOR_NAME = "racetrace"
 
@@ -52,6 +53,12 @@ class RacetraceAccessor:
     def metrics(self) -> xr.Dataset:
         """Every metric of the table as one Dataset (cached like :meth:`metric`)."""
         return xr.Dataset({name: self.metric(name) for name in METRICS})
+
+    def phase_metrics(self) -> xr.Dataset:
+        """Every metric of the table per phase of the result (:mod:`solver.results.phases`), a
+        ``phase`` dimension with ``phase_start_time``, ``phase_end_time`` and ``phase_label``;
+        a steady result has one phase, its analysed window. Computed at each call."""
+        return metrics_table(self._ds, by_phase=True)
 
     def summary(self) -> xr.Dataset:
         """The trajectory metrics: those stored in the result (a dynamic run), otherwise computed

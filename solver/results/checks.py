@@ -28,7 +28,10 @@ traction balance asked for by the case found no steady ball speeds), and, for a 
 that does not store it but has the spin-to-roll ratios), and **friction torque far from the
 estimates**: the mean ``friction_torque`` over the analysed window lies outside a factor 3 of every
 empirical estimate the result stores (``friction_torque_palmgren``, ``friction_torque_skf``),
-and **the energy balance does not close**: the residual of
+and **the cage skids**: the mean instantaneous cage slip (solver.results.skidding) over the
+analysed window, or over a phase of the result's history (solver.results.phases), exceeds
+:data:`solver.results.skidding.CAGE_SKID_THRESHOLD` (1 %), and **the energy balance does not
+close**: the residual of
 :func:`solver.results.energy.energy_balance` over the analysed window exceeds
 :data:`solver.results.energy.RESIDUAL_LIMIT` (1 % of the losses) in magnitude.
 """
@@ -69,6 +72,7 @@ def result_warnings(ds) -> list[str]:
         found += _settling_check(ds)
         found += _torque_estimate_check(ds)
         found += _energy_check(ds)
+        found += _skidding_check(ds)
     grooves = _groove_radii(ds)
     for race in [str(r) for r in ds["race"].values]:
         too_large = _hertz_size_check(ds, race, *grooves) if grooves is not None else ""
@@ -293,6 +297,45 @@ def _settling_check(ds) -> list[str]:
         first, _ = summary.analysis_start(ds)
         start = float(ds["time"].values[first])
     return [summary.unsettled_message(ds, state, start)]
+
+
+def _skidding_check(ds) -> list[str]:
+    """'the cage skids' for a dynamic result whose mean instantaneous cage slip over the analysed
+    window, or over a phase of its history, exceeds the threshold (solver.results.skidding)."""
+    from . import metrics, phases, skidding
+
+    if not {"cage_speed", "contact_angle", "contact_load"} <= set(ds.data_vars):
+        return []
+    threshold = skidding.CAGE_SKID_THRESHOLD
+    by_phase = phases.PHASE_BOUNDARIES_ATTRIBUTE in ds.attrs
+    slip = metrics.compute_metric(metrics.Window(ds, by_phase), "mean_instantaneous_cage_slip")
+    if not by_phase:
+        slip = slip.expand_dims(phase=[0]).assign_coords(phase_label=("phase", [_window_words(ds)]))
+    found = []
+    for k in range(slip.sizes["phase"]):
+        value = float(slip.values[k])
+        if value > threshold:
+            label = str(slip["phase_label"].values[k])
+            where = f"the phase {label}" if by_phase else label
+            found.append(
+                f"the cage skids: over {where} it turns on average {100.0 * value:.3g} % slower "
+                f"than its rolling speed (mean instantaneous_cage_slip, threshold "
+                f"{100.0 * threshold:.3g} %): the balls slide over the raceways instead of "
+                "rolling, which smears and wears them and heats the contacts. A light load at "
+                "high speed or a fast start-up causes it; more preload (operating.axial_load_N) "
+                "or a slower ramp holds the balls to rolling."
+            )
+    return found
+
+
+def _window_words(ds) -> str:
+    """The analysed window of a dynamic result in words (time span)."""
+    start = float(ds["analysis_start_time"]) if "analysis_start_time" in ds else None
+    if start is None:
+        first, _ = summary.analysis_start(ds)
+        start = float(ds["time"].values[first])
+    end = float(ds["time"].values[-1])
+    return f"the analysed window (t from {start:.4g} s to {end:.4g} s)"
 
 
 def _energy_check(ds) -> list[str]:

@@ -40,7 +40,8 @@ from functools import cached_property
 import numpy as np
 import xarray as xr
 
-from . import energy
+from . import energy, skidding
+from . import phases as phases_module
 from . import summary as summary_module
 from .loaded import loaded, loaded_mask
 from .variables import variable
@@ -76,10 +77,16 @@ class Metric:
 
 # ---- the analysed window -------------------------------------------------------------------------
 class Window:
-    """A result and its analysed window; what several metrics share is computed once."""
+    """A result and its analysed window; what several metrics share is computed once.
 
-    def __init__(self, ds: xr.Dataset):
+    ``by_phase``: the windows are the phases of the result (:mod:`solver.results.phases`: one
+    per part of its history between events; a steady result's one phase is its analysed window),
+    so that every metric gains a ``phase`` dimension with the phases' coordinates. A quasi-static
+    result has no phases: ``by_phase`` changes nothing there."""
+
+    def __init__(self, ds: xr.Dataset, by_phase: bool = False):
         self.ds = ds
+        self.by_phase = by_phase and "time" in ds.dims
 
     @property
     def dynamic(self) -> bool:
@@ -87,15 +94,21 @@ class Window:
 
     @cached_property
     def summary(self) -> xr.Dataset:
-        """The summary metrics (:func:`solver.results.summary.summary`: stored or computed)."""
+        """The summary metrics (:func:`solver.results.summary.summary`: stored or computed), per
+        phase when the window is by phase (:func:`solver.results.summary.phase_summary`)."""
+        if self.by_phase:
+            return summary_module.phase_summary(self.ds)
         return summary_module.summary(self.ds)
 
     @cached_property
     def in_window(self) -> xr.DataArray | None:
         """Time samples in the analysed window (``time`` >= ``analysis_start_time``, with any
-        stacking dimension of the start time); None for a quasi-static result (every sample)."""
+        stacking dimension of the start time), or in each phase (dims ``phase``, ``time``); None
+        for a quasi-static result (every sample)."""
         if not self.dynamic:
             return None
+        if self.by_phase:
+            return phases_module.phase_mask(self.ds)
         return self.ds["time"] >= self.summary["analysis_start_time"]
 
     @cached_property
@@ -121,6 +134,14 @@ def reduce(values: xr.DataArray, mask: xr.DataArray, how: str, empty: float = ma
     over = [d for d in values.dims if d in CONTACT_DIMS]
     values, mask = xr.broadcast(values, mask)
     keep = [d for d in values.dims if d not in over]
+    # the coordinates of the mask's own dimensions (a phase's start, end and label) go along
+    values = values.assign_coords(
+        {
+            n: c
+            for n, c in mask.coords.items()
+            if n not in values.coords and set(c.dims) <= set(keep)
+        }
+    )
     values = values.transpose(*keep, *over)
     mask = mask.transpose(*keep, *over)
     size = int(np.prod([values.sizes[d] for d in over], dtype=int))
@@ -248,6 +269,30 @@ def _cage_slip(w: Window) -> xr.DataArray:
     return slip.where(epicyclic != 0.0)
 
 
+def _instantaneous_cage_slip(w: Window) -> xr.DataArray:
+    """The instantaneous cage slip (solver.results.skidding) over the window, weighted by the
+    rolling cage speed: 1 - mean cage speed / mean rolling cage speed over the samples that have a
+    rolling speed, so that samples near rest (a ratio of two small numbers) weigh little (NaN:
+    quasi-static, or no such sample)."""
+    if not w.dynamic or "cage_speed" not in w.ds:
+        return xr.DataArray(math.nan)
+    rolling = skidding.rolling_cage_speed(w.ds)
+    cage = w.ds["cage_speed"].drop_vars([c for c in w.ds["cage_speed"].coords if c != "time"])
+    has = np.isfinite(rolling) & (rolling != 0.0) & np.isfinite(cage)
+    mask = w.within(has)
+    mean_rolling = reduce(rolling, mask, "mean")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slip = 1.0 - reduce(cage, mask, "mean") / mean_rolling
+    return slip.where(mean_rolling != 0.0)
+
+
+def _cage_skids(w: Window) -> xr.DataArray:
+    """1 where the mean instantaneous cage slip exceeds the skidding threshold, 0 where it does
+    not, NaN where it is not known (quasi-static, no rolling speed)."""
+    slip = _instantaneous_cage_slip(w)
+    return xr.where(slip > skidding.CAGE_SKID_THRESHOLD, 1.0, 0.0).where(np.isfinite(slip))
+
+
 def _centrifugal_force(w: Window) -> xr.DataArray:
     """The quasi-static result's own mean centrifugal force, else m (d_m / 2) omega^2 with the
     ball's mass from its density and diameter and the mean orbital speed in the window."""
@@ -270,7 +315,7 @@ def _energy_balance_residual(w: Window) -> xr.DataArray:
         return value.drop_vars([c for c in value.coords if c not in value.dims])
     if not w.dynamic:
         return xr.DataArray(math.nan)
-    source = w.ds if "analysis_start_time" in w.ds else w.summary
+    source = w.ds if "analysis_start_time" in w.ds else summary_module.summary(w.ds)
     balance = energy.energy_balance(w.ds, float(source["analysis_start_time"]))
     return xr.DataArray(math.nan if balance is None else balance.residual)
 
@@ -570,6 +615,25 @@ def _table() -> dict[str, Metric]:
             _cage_slip,
         ),
         Metric(
+            "mean_instantaneous_cage_slip",
+            (),
+            "1",
+            "mean instantaneous cage slip",
+            "instantaneous_cage_slip over the analysed window weighted by the rolling cage "
+            "speed (1 - mean cage speed / mean rolling cage speed): how far the cage lags its "
+            "rolling speed at the actual ring speeds and contact angles (NaN: quasi-static)",
+            _instantaneous_cage_slip,
+        ),
+        Metric(
+            "cage_skids",
+            (),
+            "1",
+            "the cage skids",
+            "1 when mean_instantaneous_cage_slip exceeds "
+            f"{skidding.CAGE_SKID_THRESHOLD:g} (the result warns), 0 when not, NaN: quasi-static",
+            _cage_skids,
+        ),
+        Metric(
             "mean_centrifugal_force",
             (),
             "N",
@@ -779,9 +843,10 @@ def compute_metric(window: Window, name: str) -> xr.DataArray:
     return value.assign_attrs({**value.attrs, **row.attrs()}).rename(name)
 
 
-def metrics_table(ds: xr.Dataset) -> xr.Dataset:
-    """Every metric of one result, computed directly (``ds.racetrace.metrics()`` caches them)."""
-    window = Window(ds)
+def metrics_table(ds: xr.Dataset, by_phase: bool = False) -> xr.Dataset:
+    """Every metric of one result, computed directly (``ds.racetrace.metrics()`` caches them);
+    ``by_phase``: per phase of the result (:class:`Window`), each with a ``phase`` dimension."""
+    window = Window(ds, by_phase)
     return xr.Dataset({name: compute_metric(window, name) for name in METRICS})
 
 

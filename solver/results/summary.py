@@ -373,11 +373,75 @@ def unsettled_message(ds: xr.Dataset, state: Settling, start_time: float) -> str
 
 
 # ---- the summary Dataset ------------------------------------------------------------------------
-def _race_array(ds, name: str, race: str, first: int) -> np.ndarray:
+def _race_array(ds, name: str, race: str, first: int, last: int | None = None) -> np.ndarray:
     da = ds[name].sel(race=race)
     if "time" in da.dims:
-        return np.asarray(da.transpose("time", "ball").values, dtype=float)[first:]
+        return np.asarray(da.transpose("time", "ball").values, dtype=float)[first:last]
     return np.asarray(da.values, dtype=float)[None, :]
+
+
+def _tracks(ds: xr.Dataset, first: int, last: int | None, field_speed) -> dict[str, np.ndarray]:
+    """The :data:`TRACK_METRICS` of the time samples ``first`` to ``last`` (exclusive; None: to
+    the end) of a dynamic result, or of a quasi-static one (``field_speed``: the speed of the
+    frame that holds its load field still, None when none does)."""
+    dynamic = "time" in ds.dims
+    times = np.asarray(ds["time"].values, dtype=float)[first:last] if dynamic else np.zeros(1)
+    speeds = dict(zip(FRAMES, ring_speeds(ds), strict=True))
+    groove = np.asarray(ds.coords["groove_radius"].sel(race=list(RACES)).values, dtype=float)
+    shape = (len(RACES), len(FRAMES))
+    excursion, thickness = np.full(shape, np.nan), np.full(shape, np.nan)
+    width, semi_major = np.full(len(RACES), np.nan), np.full(len(RACES), np.nan)
+    for k, race in enumerate(RACES):
+        angle = _race_array(ds, "contact_angle", race, first, last)
+        loaded = loaded_mask(_race_array(ds, "contact_load", race, first, last), angle)
+        if not loaded.any():
+            continue
+        width[k] = angle[loaded].max() - angle[loaded].min()
+        semi_major[k] = _race_array(ds, "ellipse_semi_major", race, first, last)[loaded].mean()
+        own = _race_array(ds, "raceway_azimuth", race, first, last)
+        for f, frame in enumerate(FRAMES):
+            if not dynamic and field_speed is not None:
+                samples = steady_samples(ds, race, speeds[frame], field_speed)
+                excursion[k, f], thickness[k, f] = track_metrics(*samples)
+                continue
+            if not dynamic:  # no frame holds the field still: the snapshot alone
+                excursion[k, f] = width[k]
+                continue
+            turned = np.degrees((speeds[f"{race}_ring"] - speeds[frame]) * times)[:, None]
+            excursion[k, f], thickness[k, f] = track_metrics((own + turned)[loaded], angle[loaded])
+    return _track_values(excursion, thickness, width, semi_major, groove)
+
+
+def phase_summary(ds: xr.Dataset) -> xr.Dataset:
+    """The trajectory metrics of each phase of a dynamic result (:mod:`solver.results.phases`):
+    the :data:`TRACK_METRICS` over every sample of the phase, with a ``phase`` dimension and its
+    coordinates; ``analysis_start_time`` is the phase's start, ``settling_time`` and ``settled``
+    are NaN (a phase is analysed whole, its transient included). A steady result has one phase,
+    its analysed window, whose track metrics are the result's own."""
+    from .phases import phase_mask
+
+    mask = phase_mask(ds)
+    parts = []
+    for k in range(mask.sizes["phase"]):
+        index = np.flatnonzero(mask.values[k])
+        if index.size:
+            values = _tracks(ds, int(index[0]), int(index[-1]) + 1, None)
+        else:  # a phase shorter than the sample period: no sample
+            values = {n: np.full_like(v, np.nan) for n, v in _tracks(ds, 0, 1, None).items()}
+        values["settling_time"] = np.float64(math.nan)
+        values["analysis_start_time"] = np.float64(mask["phase_start_time"].values[k])
+        values["settled"] = np.float64(math.nan)
+        parts.append(
+            xr.Dataset(
+                {n: (variable(n).dims, v, variable(n).attrs()) for n, v in values.items()},
+                coords={
+                    "race": dimension_coordinate("race"),
+                    "frame": dimension_coordinate("frame"),
+                },
+            )
+        )
+    phase_coordinates = {name: c for name, c in mask.coords.items() if c.dims == ("phase",)}
+    return xr.concat(parts, dim="phase").assign_coords(phase_coordinates)
 
 
 def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
@@ -389,30 +453,7 @@ def _element_summary(ds: xr.Dataset, skip_fraction: float) -> xr.Dataset:
         first, state, times = 0, None, np.zeros(1)
     # a snapshot whose load field is stationary in one frame: the steady-state tracks
     field_speed = None if dynamic else field_frame_speed(ds)
-    speeds = dict(zip(FRAMES, ring_speeds(ds), strict=True))
-    groove = np.asarray(ds.coords["groove_radius"].sel(race=list(RACES)).values, dtype=float)
-    shape = (len(RACES), len(FRAMES))
-    excursion, thickness = np.full(shape, np.nan), np.full(shape, np.nan)
-    width, semi_major = np.full(len(RACES), np.nan), np.full(len(RACES), np.nan)
-    for k, race in enumerate(RACES):
-        angle = _race_array(ds, "contact_angle", race, first)
-        loaded = loaded_mask(_race_array(ds, "contact_load", race, first), angle)
-        if not loaded.any():
-            continue
-        width[k] = angle[loaded].max() - angle[loaded].min()
-        semi_major[k] = _race_array(ds, "ellipse_semi_major", race, first)[loaded].mean()
-        own = _race_array(ds, "raceway_azimuth", race, first)
-        for f, frame in enumerate(FRAMES):
-            if not dynamic and field_speed is not None:
-                samples = steady_samples(ds, race, speeds[frame], field_speed)
-                excursion[k, f], thickness[k, f] = track_metrics(*samples)
-                continue
-            if not dynamic:  # no frame holds the field still: the snapshot alone
-                excursion[k, f] = width[k]
-                continue
-            turned = np.degrees((speeds[f"{race}_ring"] - speeds[frame]) * times)[:, None]
-            excursion[k, f], thickness[k, f] = track_metrics((own + turned)[loaded], angle[loaded])
-    values = _track_values(excursion, thickness, width, semi_major, groove)
+    values = _tracks(ds, first, None, field_speed)
     attrs = {}
     if dynamic:
         text = window_text(ds, first, state, skip_fraction)
@@ -546,6 +587,7 @@ __all__ = [
     "SETTLING_SPIN_TO_ROLL_RELATIVE",
     "Settling",
     "analysis_start",
+    "phase_summary",
     "settling",
     "stored_summary",
     "summary",

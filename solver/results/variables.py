@@ -251,6 +251,24 @@ VARIABLES: dict[str, Variable] = {
         "cage angular speed about +x (quasi-static: mean of the balls' orbital speeds)",
     ),
     "cage_center": Variable(("axis",), "m", "cage centre", "cage centre, inertial", _DYN),
+    "skidding_ratio": Variable(
+        (),
+        "1",
+        "skidding ratio",
+        "cage_speed over the rolling cage speed of the sample: (omega_i r_i + omega_o r_o) / (r_i "
+        "+ r_o), r = (d_m -+ D cos alpha) / 2 with the mean contact angle of each race's loaded "
+        "contacts (solver.results.skidding); 1 rolling, < 1 the cage lags; NaN where the rolling "
+        "speed is 0 or a race has no loaded contact",
+        _DYN,
+    ),
+    "instantaneous_cage_slip": Variable(
+        (),
+        "1",
+        "cage slip",
+        "1 - skidding_ratio: the fraction by which the cage lags its rolling speed at the sample "
+        "(> 0: it lags; solver.results.skidding)",
+        _DYN,
+    ),
     # ---- the quasi-static start of a dynamic run (solver.models.quasistatic.result) ------------
     "quasistatic_ball_azimuth": Variable(
         _B,

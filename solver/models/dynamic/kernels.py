@@ -45,7 +45,8 @@ from solver.physics.cage_contact import (
 from solver.physics.drag import cage_drag_moment_from
 from solver.physics.hertz_fast import equivalent_radii_fast
 from solver.physics.hertz_race import race_coefficients, race_coefficients_direct
-from solver.physics.rheology import film_and_rolling_lanes, film_law_constants
+from solver.physics.lanes import exp_lanes, log_lanes
+from solver.physics.rheology import ENTRAINMENT_FLOOR, film_and_rolling_lanes, film_law_constants
 from solver.physics.traction import (
     CONTACT_SIZE,
     CT_CURVATURE,
@@ -572,7 +573,7 @@ def contact_state(
     rec[K_PMAX] = pmax
     stash[CS_LOADED, col] = 1.0
     stash[CS_ENTRAIN, col] = entrain
-    stash[CS_SLIDE_TO_ROLL, col] = slide / entrain if entrain > 0.0 else 0.0
+    stash[CS_SLIDE_TO_ROLL, col] = slide / max(entrain, ENTRAINMENT_FLOOR)
     stash[CS_LOAD, col] = q
     stash[CS_RX, col] = rx
     stash[CS_FILM_FACTOR, col] = film_k
@@ -590,15 +591,23 @@ def contact_films(par, stash, columns):
     (solver.physics.rheology.film_and_rolling_lanes, with the ellipticity terms of the race
     table), plus the elastic hysteresis force F_h = 3/16 alpha_h Q b / R_x (physics.md
     §2.6.5). Not inlined into the right-hand side: compiled on its own, it adds less compile
-    time to the model's largest kernel; numpy's error model: no test before each division."""
+    time to the model's largest kernel; numpy's error model: no test before each division.
+
+    Below the entrainment speed u_min (solver.physics.rheology.ENTRAINMENT_FLOOR) the film is
+    that of u_min (the traction law reads it, with the transit time b / u_min:
+    :func:`contact_forces`), and the inlet force that of u_min times (u_e / u_min)^0.66, its own
+    speed law, so that the rolling resistance still vanishes with the entrainment."""
     eprime = par.eprime
     constants = film_law_constants(par.rheology, eprime)
     hysteresis = 0.1875 * par.hysteresis
     for col in range(columns):
         load = stash[CS_LOAD, col]
         rx = stash[CS_RX, col]
+        entrain = stash[CS_ENTRAIN, col]
+        floored = ENTRAINMENT_FLOOR > entrain  # a selection, not max(): the loop vectorises
+        speed = ENTRAINMENT_FLOOR if floored else entrain
         film, _, f_ehl = film_and_rolling_lanes(
-            stash[CS_ENTRAIN, col],
+            speed,
             stash[CS_SLIDE_TO_ROLL, col],
             load,
             rx,
@@ -608,6 +617,8 @@ def contact_films(par, stash, columns):
             eprime,
             constants,
         )
+        below = exp_lanes(0.66 * log_lanes(entrain / ENTRAINMENT_FLOOR))
+        f_ehl = f_ehl * below if floored else f_ehl
         stash[CS_FILM, col] = film
         stash[CS_ROLLING_FORCE, col] = f_ehl + hysteresis * load * stash[CS_SEMI_MINOR, col] / rx
 
@@ -618,7 +629,9 @@ def contact_forces(
 ):
     """Last pass of a loaded ball-race contact (after :func:`contact_state` and
     :func:`contact_films`): normal force, traction integrated over the ellipse, rolling
-    resistance; forces and moments on ball and ring, film and powers into ``rec``.
+    resistance; forces and moments on ball and ring, film and powers into ``rec``. The traction
+    law takes the film's transit time b / max(u_e, u_min) (u_min:
+    solver.physics.rheology.ENTRAINMENT_FLOOR; :func:`contact_films`).
 
     ``quad``: node table of :func:`solver.physics.traction.ellipse_quadrature`; ``work``:
     scratch array of length ``TRACTION_WORK_SIZE``."""
@@ -647,7 +660,11 @@ def contact_forces(
     roll = rec[K_ROLL]
     film = stash[CS_FILM, col]
     fr = stash[CS_ROLLING_FORCE, col]
-    rec[K_FILM] = film
+    # below the entrainment floor the traction reads the film of u_min (contact_films); the film
+    # reported is the Hamrock-Dowson film of the contact's own speed, h_c(u_min) (u_e / u_min)^0.67
+    rec[K_FILM] = (
+        film if entrain >= ENTRAINMENT_FLOOR else film * (entrain / ENTRAINMENT_FLOOR) ** 0.67
+    )
     # normal force: -Q n on the ball (through its centre), +Q n on the ring at the contact point
     fbx, fby, fbz = -q * n[0], -q * n[1], -q * n[2]
     mbx = mby = mbz = 0.0
@@ -656,7 +673,7 @@ def contact_forces(
     mrx_, mry_, mrz_ = _cross(lx, ly, lz, frx, fry, frz)
     if par.traction:
         curvature = (2.0 * rg + dball) / (2.0 * rg * dball) if par.heathcote else 0.0
-        transit = sb_ / entrain if entrain > 0.0 else 0.0
+        transit = sb_ / max(entrain, ENTRAINMENT_FLOOR)
         tout = _traction(
             par, quad, work, p, n, t1, sa_, sb_, q, curvature, film, transit, pb, vb, wb, o, vr, wr
         )

@@ -2,8 +2,10 @@
 
 For every output sample the right-hand side is evaluated once; it fills the per-contact records
 (layout ``K_*``). This step adds the record slots that only output needs (latitude and longitude on
-the ball, spin-to-roll ratio) and keeps the whole record per sample; the table ``CONTACT_OUTPUTS``
-of ``output.py`` names which slots become results variables. It also fills a per-ball record
+the ball, spin-to-roll ratio: spin / roll, and spin roll / roll_min^2 below the rolling speed
+roll_min = 2 u_min / D of the entrainment floor u_min of solver.physics.rheology) and keeps the
+whole record per sample; the table ``CONTACT_OUTPUTS`` of ``output.py`` names which slots
+become results variables. It also fills a per-ball record
 (``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power, cage
 drag power, friction torque and drive power of the inner ring). Races: index 0 inner, 1 outer.
 
@@ -17,6 +19,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from solver.physics.rheology import ENTRAINMENT_FLOOR
 
 from . import layout as L
 from .kernels import (
@@ -50,6 +54,7 @@ def observe(states, par, quad, records, balls, bearing):
     ld = np.empty(5)
     work = np.empty(TRACTION_WORK_SIZE)
     cb = L.BALL_STRIDE * z + L.RING_SIZE
+    roll_min = 2.0 * ENTRAINMENT_FLOOR / par.ball_diameter  # [rad/s]
     for s in range(states.shape[0]):
         y = states[s]
         rhs(y, par, quad, dydt, rec[0], rec[1], pocket)
@@ -77,8 +82,10 @@ def observe(states, par, quad, records, balls, bearing):
                 ebz = rot[0, 2] * nx + rot[1, 2] * ny + rot[2, 2] * nz
                 r[L.K_LATITUDE] = math.asin(min(1.0, max(-1.0, ebz)))
                 r[L.K_LONGITUDE] = math.atan2(eby, ebx)
+                # spin / roll, continued below the rolling speed of the entrainment floor as
+                # spin roll / roll_min^2 (0 without rolling)
                 roll = r[L.K_ROLL]
-                r[L.K_SPIN_TO_ROLL] = r[L.K_SPIN] / roll if abs(roll) > 1e-12 else 0.0
+                r[L.K_SPIN_TO_ROLL] = r[L.K_SPIN] * roll / max(roll * roll, roll_min * roll_min)
                 for i in range(L.N_CONTACT_RECORD):
                     records[s, j, k, i] = r[i]
             balls[s, j, L.BO_POCKET_FORCE] = pocket[j]

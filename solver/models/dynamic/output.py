@@ -10,6 +10,7 @@ from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
 from solver.results.energy import energy_balance
 from solver.results.estimates import with_estimates
+from solver.results.skidding import skidding_variables
 from solver.results.summary import trajectory_summary
 from solver.results.variables import variable
 
@@ -241,6 +242,7 @@ def build_dataset(
         complete=complete,
         attrs=attrs,
     )
+    ds = ds.assign(skidding_variables(ds))
     metrics = trajectory_summary(ds, options.analysis_skip_fraction)
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]

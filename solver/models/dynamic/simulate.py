@@ -21,9 +21,9 @@ from types import MappingProxyType
 import numpy as np
 
 from solver.case import dynamic_problems
-from solver.case.validate import run_length_problems
+from solver.case.validate import equal_speeds_problem, run_length_problems
 from solver.errors import CaseError, NoSolutionError, SimulationDiverged
-from solver.inputs import Inputs, to_inputs
+from solver.inputs import Inputs, rad_s_to_rpm, to_inputs
 from solver.physics.traction import NODE_COLUMNS
 
 from . import layout as L
@@ -220,8 +220,8 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
         raise CaseError(problems)
     op = inputs.operating
     speed = abs(op.inner_ring_speed - op.outer_ring_speed)
-    if not speed > 0.0:  # a Case with equal ring speeds was refused above
-        raise ValueError("simulate: the inputs need rings turning relative to each other")
+    if inputs.history is None and not speed > 0.0:  # steady Inputs (a Case was checked above)
+        raise CaseError([equal_speeds_problem(rad_s_to_rpm(op.inner_ring_speed))])
     revolutions = options.shaft_revolutions
     per_rev = options.samples_per_revolution
     par = build_params(inputs, options)

@@ -657,6 +657,9 @@ def test_equal_ring_speeds_are_valid_but_not_for_the_dynamic_model(valid):
     assert problem.key == "operating.inner_ring_speed_rpm"
     assert "operating.outer_ring_speed_rpm" in problem.keys
     assert "turn relative to each other" in problem.message and "20000" in problem.message
+    # a bearing at rest or starting from rest runs along a history for a duration
+    assert "history" in problem.message and "simulation.duration_s" in problem.message
+    assert "simulation.duration_s" in problem.keys
     assert dynamic_problems(Case.from_dict(valid)) == []
     at_rest = Case.from_dict(edit(copy.deepcopy(valid), {"operating.inner_ring_speed_rpm": 0.0}))
     assert dynamic_problems(at_rest)

@@ -105,6 +105,12 @@ SCHEMA_WORDS = {
     "kinematics_note",
     "title",
     "bearing_provenance",
+    "phase_boundaries_s",
+    "phase_labels",
+    "phase",
+    "phase_start_time",
+    "phase_end_time",
+    "phase_label",
 }
 
 
