@@ -486,8 +486,10 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     deflection = np.where(load > 0.0, np.maximum(states.contact_deflection, 0.0), 0.0)
     # An open contact reports the angle of the line between the groove curvature centres: where the
     # ball would touch if the gap closed (a ball with no contact at all sits on that line).
-    line = np.array([math.atan2(*kernels.inner_center(state.q, p, model)) for p in psi])
-    alpha = np.where(load > 0.0, alpha, line[:, None])
+    open_contact = ~(load > 0.0)
+    if open_contact.any():
+        line = np.array([math.atan2(*kernels.inner_center(state.q, p, model)) for p in psi])
+        alpha = np.where(open_contact, line[:, None], alpha)
     beta = states.attitude_angle
     omega_c = states.orbital_speed
     omega_r = states.spin_speed
