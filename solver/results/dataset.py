@@ -226,8 +226,8 @@ def _dataset(data_variables: dict, coord_variables: dict, indexes: dict, attrs: 
     without xarray's merge and alignment, which one result never needs: its Variables are new and
     its own, and share one set of dimensions (their sizes are still checked, ValueError when
     they differ). xarray's own constructor of a Dataset from finished parts
-    (``Dataset._construct_direct``) takes 1/20 of the time of the public one; the test
-    tests/unit/results/test_dataset_builder.py keeps the two identical."""
+    (``Dataset._construct_direct``) takes about 1/20 of the time of the public one; a test in
+    tests/unit/results/test_dataset.py keeps the two identical."""
     return xr.Dataset._construct_direct(
         {**data_variables, **coord_variables}, set(coord_variables), indexes=indexes, attrs=attrs
     )
