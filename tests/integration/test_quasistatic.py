@@ -394,6 +394,37 @@ def test_heavy_combined_load_218():
     assert sol.contact_load.max() > 17800.0 / 16
 
 
+def test_speed_is_solved_from_outer_race_control_in_one_ring_solve(monkeypatch):
+    """From the static solution the full speed starts from outer race control, not from the
+    Jones decision at rest, which without rolling says nothing about the one at speed (for this
+    case inner control for every ball, which took a whole extra ring solve at full speed to
+    undo): one ring solve at rest, one at speed, and the decision there is a fixed point."""
+    from solver.models.quasistatic import solver as driver
+
+    speeds = []
+    original = driver._ring_solve
+
+    def counting(problem, state, speed_fraction, load_fraction):
+        speeds.append(speed_fraction)
+        return original(problem, state, speed_fraction, load_fraction)
+
+    monkeypatch.setattr(driver, "_ring_solve", counting)
+    geometry = bearing_218()
+    op = operating_point(10000 * RPM, 0.0, 17800.0, 8900.0)
+    sol = solve_operating_point(geometry, op)
+    check_equilibrium(geometry, op, sol)
+    assert speeds == [0.0, 1.0]
+    assert set(sol.race_control) == {"outer"}
+
+
+def test_a_result_at_rest_keeps_the_race_control_decided_at_rest():
+    """Without speed the result reports the Jones decision at rest, as before the start from
+    outer control at speed (which only a case with speed takes)."""
+    geometry = bearing_218()
+    sol = solve_operating_point(geometry, operating_point(0.0, 0.0, 17800.0, 8900.0))
+    assert set(sol.race_control) == {"inner"}
+
+
 def test_no_static_solution_is_reported_with_a_reason(monkeypatch):
     """When the ring solve cannot converge, the error says so and suggests what to try."""
     from solver.models.quasistatic import solver as driver

@@ -705,6 +705,10 @@ def solve_ring(q, position, ring, free, length_scale, tolerance, max_iterations)
         for k in range(5):
             q[k] = trial_q[k]
         position[:, :] = trial_pos
+        if tok and tmerit <= tolerance:
+            # converged at the accepted trial: its residual is the one a new evaluation at q (the
+            # balls already solved there) would give, and the Jacobian is not needed
+            return True, iterations, tmerit
         mu = 0.0 if t == 1.0 else mu * 0.1
         if mu < 1e-9:
             mu = 0.0

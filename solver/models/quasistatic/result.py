@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 import xarray as xr
+from numba import njit
 
 from solver.physics.ehl import film_thickness_central
 from solver.physics.hertz import truncation_margin
@@ -41,24 +42,68 @@ def _rotation_matrix(rotation_vector: np.ndarray) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
 
 
-def contact_quantities(geometry, solution):
-    """Per-contact arrays (Z, 2) [inner, outer]: a, b, p_max, R_x, kappa (zeros for open
-    contacts)."""
-    z = solution.contact_load.shape[0]
-    out = {k: np.zeros((z, 2)) for k in ("a", "b", "p_max", "r_x", "kappa")}
-    e_mod = geometry.effective_modulus
-    D = geometry.ball_diameter
+@njit(cache=True)
+def _contact_fields(
+    contact_angle,
+    contact_load,
+    e_contact,
+    attitude,
+    spin_speed,
+    orbital_speed,
+    ring_speed,
+    geometry,
+    lubricant,
+):
+    """Per-contact arrays (Z, 2) [inner, outer] of a solution, in one compiled loop: the Hertz
+    ellipse a, b [m] and peak pressure [Pa] (zeros for open contacts), the contact's latitude and
+    longitude on the ball [rad], spin-to-roll ratio and central film [m] (0 at open contacts, and
+    everywhere when ``lubricant`` is None).
+
+    ``contact_angle`` [rad], ``contact_load`` [N] (Z, 2); ``e_contact`` (Z, 2, 2): unit vector
+    from the ball centre to each contact (axial, radial); ``attitude`` [rad], ``spin_speed`` and
+    ``orbital_speed`` [rad/s] (Z); ``ring_speed`` [rad/s] (inner, outer); ``geometry``: (ball
+    diameter, pitch diameter, inner and outer conformity, effective modulus), SI; ``lubricant``:
+    (viscosity [Pa s], pressure-viscosity coefficient [1/Pa]) or None."""
+    D, pitch, inner_conformity, outer_conformity, e_mod = geometry
+    z = contact_load.shape[0]
+    semi_major = np.zeros((z, 2))
+    semi_minor = np.zeros((z, 2))
+    pressure = np.zeros((z, 2))
+    latitude = np.empty((z, 2))
+    longitude = np.empty((z, 2))
+    spin_roll = np.zeros((z, 2))
+    film = np.zeros((z, 2))
     for j in range(z):
-        for k, (is_inner, conformity) in enumerate(
-            ((True, geometry.inner_conformity), (False, geometry.outer_conformity))
-        ):
-            gamma = D * math.cos(solution.contact_angle[j, k]) / geometry.pitch_diameter
+        beta = attitude[j]
+        for k in range(2):
+            is_inner = k == 0
+            alpha = contact_angle[j, k]
+            load = contact_load[j, k]
+            conformity = inner_conformity if is_inner else outer_conformity
+            gamma = D * math.cos(alpha) / pitch
             s, f = curvature_sum_and_difference_fast(D, conformity, gamma, is_inner)
-            a, b, _, p = contact_ellipse_fast(solution.contact_load[j, k], s, f, e_mod)
-            out["a"][j, k], out["b"][j, k], out["p_max"][j, k] = a, b, p
-            out["r_x"][j, k] = equivalent_radii_fast(D, conformity, gamma, is_inner)[0]
-            out["kappa"][j, k] = hertz_coefficients_fast(f)[0]
-    return out
+            a, b, _, p = contact_ellipse_fast(load, s, f, e_mod)
+            semi_major[j, k], semi_minor[j, k], pressure[j, k] = a, b, p
+            lat, lon = contact_latitude_longitude(e_contact[j, k, 0], e_contact[j, k, 1], 0.0, beta)
+            latitude[j, k], longitude[j, k] = lat, lon
+            in_cage = ring_speed[k] - orbital_speed[j]
+            spin, roll = spin_and_roll(alpha, beta, spin_speed[j], in_cage)
+            spin_roll[j, k] = spin / roll if roll != 0.0 else 0.0
+            if lubricant is not None and load > 0.0:
+                # (an open contact has no film: 0) entrainment speed: surface speed of the ring
+                # at the contact, relative to the cage
+                sign = -1.0 if is_inner else 1.0
+                radius = 0.5 * pitch + sign * 0.5 * D * math.cos(alpha)
+                film[j, k] = film_thickness_central(
+                    abs(in_cage) * radius,
+                    lubricant[0],
+                    lubricant[1],
+                    e_mod,
+                    equivalent_radii_fast(D, conformity, gamma, is_inner)[0],
+                    load,
+                    hertz_coefficients_fast(f)[0],
+                )
+    return semi_major, semi_minor, pressure, latitude, longitude, spin_roll, film
 
 
 def solution_to_dataset(
@@ -82,7 +127,6 @@ def solution_to_dataset(
     psi = sol.ball_azimuth
     alpha = sol.contact_angle
     beta = sol.attitude_angle
-    hertz = contact_quantities(geometry, sol)
     cos_psi, sin_psi = np.cos(psi), np.sin(psi)
 
     # ball centre, inertial
@@ -108,47 +152,36 @@ def solution_to_dataset(
     raceway_azimuth = np.degrees(np.arctan2(point[:, :, 2], point[:, :, 1])) % 360.0
     raceway_azimuth[raceway_azimuth >= 360.0] = 0.0
 
-    latitude = np.empty((z, 2))
-    longitude = np.empty((z, 2))
-    spin_roll = np.zeros((z, 2))
-    film = np.zeros((z, 2))
-    ring_speed = np.array([sol.inner_ring_speed, sol.outer_ring_speed])
-    for j in range(z):
-        for k in range(2):
-            lat, lon = contact_latitude_longitude(
-                e_contact[j, k, 0], e_contact[j, k, 1], 0.0, beta[j]
-            )
-            latitude[j, k], longitude[j, k] = lat, lon
-            spin, roll = spin_and_roll(
-                alpha[j, k], beta[j], sol.spin_speed[j], ring_speed[k] - sol.orbital_speed[j]
-            )
-            spin_roll[j, k] = spin / roll if roll != 0.0 else 0.0
-            if lubricant is not None and sol.contact_load[j, k] > 0.0:
-                # (an open contact has no film: 0) entrainment speed: surface speed of the ring at
-                # the contact, relative to the cage
-                sign = -1.0 if k == 0 else 1.0
-                radius = 0.5 * geometry.pitch_diameter + sign * 0.5 * D * math.cos(alpha[j, k])
-                u_e = abs(ring_speed[k] - sol.orbital_speed[j]) * radius
-                film[j, k] = film_thickness_central(
-                    u_e,
-                    lubricant.viscosity,
-                    lubricant.pressure_viscosity,
-                    geometry.effective_modulus,
-                    hertz["r_x"][j, k],
-                    sol.contact_load[j, k],
-                    hertz["kappa"][j, k],
-                )
+    a, b, p_max, latitude, longitude, spin_roll, film = _contact_fields(
+        alpha,
+        sol.contact_load,
+        e_contact,
+        beta,
+        sol.spin_speed,
+        sol.orbital_speed,
+        np.array([sol.inner_ring_speed, sol.outer_ring_speed], dtype=float),
+        (
+            float(D),
+            float(geometry.pitch_diameter),
+            float(geometry.inner_conformity),
+            float(geometry.outer_conformity),
+            float(geometry.effective_modulus),
+        ),
+        None
+        if lubricant is None
+        else (float(lubricant.viscosity), float(lubricant.pressure_viscosity)),
+    )
     margin = np.empty((z, 2))
     for k, race in enumerate(("inner", "outer")):
-        margin[:, k] = truncation_margin(geometry, np.abs(alpha[:, k]), hertz["a"][:, k], race)
+        margin[:, k] = truncation_margin(geometry, np.abs(alpha[:, k]), a[:, k], race)
 
     data = {
         "contact_load": sol.contact_load,
         "contact_angle": np.degrees(alpha),
         "contact_deflection": sol.contact_deflection,
-        "ellipse_semi_major": hertz["a"],
-        "ellipse_semi_minor": hertz["b"],
-        "max_pressure": hertz["p_max"],
+        "ellipse_semi_major": a,
+        "ellipse_semi_minor": b,
+        "max_pressure": p_max,
         "raceway_azimuth": raceway_azimuth,
         "raceway_contact_point": point,
         "ball_latitude": np.degrees(latitude),

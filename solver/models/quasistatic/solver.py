@@ -341,6 +341,21 @@ def solve_operating_point(
             best["merit"], best["note"] = merit, note
         return ok
 
+    def start_at_speed(state):
+        """The static solution, then the full speed from outer race control for every ball;
+        True and the state solved on success, False and the state as given otherwise. (Without
+        speed the Jones criterion has no rolling to compare: its decision at rest is no guide to
+        the one at speed, and starting from it can take a whole extra solve at full speed.)"""
+        trial = state.copy()
+        ok, its, _ = _ring_solve(problem, trial, 0.0, 1.0)
+        totals["iterations"] += its
+        if not ok:
+            return False
+        if not attempt(trial, 1.0, 1.0):
+            return False
+        state.q, state.position, state.control = trial.q, trial.position, trial.control
+        return True
+
     state = None
     if (
         initial is not None
@@ -355,23 +370,26 @@ def solve_operating_point(
         state.q[3:] = np.where(problem.free[3:], state.q[3:], operating.imposed_tilt())
         if not attempt(state, 1.0, 1.0):
             state = None
+    has_speed = operating.inner_ring_speed != 0.0 or operating.outer_ring_speed != 0.0
     if state is None:
-        # static solution first, with load continuation if the direct solve fails
         q0, pos0 = _static_start(problem, 1.0)
         state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
-        if not attempt(state, 0.0, 1.0):
-            q0, pos0 = _static_start(problem, 0.05)
-            state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
-            if not attempt(state, 0.0, 0.05):
-                raise NoSolutionError(_no_static_message(problem))
-            reached = _continuation(lambda s: attempt(state, 0.0, s), 0.05, 1.0, 1e-4)
-            if reached != 1.0:
-                raise NoSolutionError(_no_static_message(problem))
-        has_speed = operating.inner_ring_speed != 0.0 or operating.outer_ring_speed != 0.0
-        if has_speed and not attempt(state, 1.0, 1.0):
-            reached = _continuation(lambda s: attempt(state, s, 1.0), 0.0, 1.0, 1e-4)
-            if reached != 1.0:
-                raise NoSolutionError(_no_speed_message(problem, state, reached))
+        if not (has_speed and start_at_speed(state)):
+            # the static solution first (its race control decided at rest, which a result
+            # without speed reports), with load continuation if the direct solve fails, then the
+            # speed, with speed continuation if the direct solve fails
+            if not attempt(state, 0.0, 1.0):
+                q0, pos0 = _static_start(problem, 0.05)
+                state = _State(q0, pos0, kernels.race_control_rows(np.zeros(z, dtype=np.bool_)))
+                if not attempt(state, 0.0, 0.05):
+                    raise NoSolutionError(_no_static_message(problem))
+                reached = _continuation(lambda s: attempt(state, 0.0, s), 0.05, 1.0, 1e-4)
+                if reached != 1.0:
+                    raise NoSolutionError(_no_static_message(problem))
+            if has_speed and not attempt(state, 1.0, 1.0):
+                reached = _continuation(lambda s: attempt(state, s, 1.0), 0.0, 1.0, 1e-4)
+                if reached != 1.0:
+                    raise NoSolutionError(_no_speed_message(problem, state, reached))
     note = best.get("note", "")
     merit = best.get("merit", math.nan)
     has_speed = operating.inner_ring_speed != operating.outer_ring_speed
@@ -468,8 +486,10 @@ def _pack(problem: _Problem, state: _State, iterations: int, merit: float, note:
     deflection = np.where(load > 0.0, np.maximum(states.contact_deflection, 0.0), 0.0)
     # An open contact reports the angle of the line between the groove curvature centres: where the
     # ball would touch if the gap closed (a ball with no contact at all sits on that line).
-    line = np.array([math.atan2(*kernels.inner_center(state.q, p, model)) for p in psi])
-    alpha = np.where(load > 0.0, alpha, line[:, None])
+    open_contact = ~(load > 0.0)
+    if open_contact.any():
+        line = np.array([math.atan2(*kernels.inner_center(state.q, p, model)) for p in psi])
+        alpha = np.where(open_contact, line[:, None], alpha)
     beta = states.attitude_angle
     omega_c = states.orbital_speed
     omega_r = states.spin_speed

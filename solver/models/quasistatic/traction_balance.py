@@ -836,33 +836,39 @@ def traction_balance(
     return _balance_records(control, states, active, w, forces, omega_c, omega_i, omega_o, inertia)
 
 
+@njit(cache=True)
 def _balance_records(control, states, active, w, forces, omega_c, omega_i, omega_o, inertia):
     """(kinematics records (Z, CONTROL_SIZE), pocket forces (Z)) of a solved balance: spins ``w``
     (Z, 3) relative to the cage, traction forces ``forces`` (Z, 2, 3), cage speed omega_c. Balls
     without a loaded contact orbit with the cage and keep their race-control spin."""
     out = control.copy()
-    out[:, kernels.CONTROL_MODE] = kernels.TRACTION_BALANCE
-    out[:, kernels.CONTROL_ORBITAL] = omega_c
-    pocket = np.where(active, -(forces[:, 0, 2] + forces[:, 1, 2]), 0.0)
-    wx, wr, wt = w[:, 0], w[:, 1], w[:, 2]
+    pocket = np.zeros(control.shape[0])
     sign = -1.0 if omega_i - omega_o >= 0.0 else 1.0  # omega_R < 0 for a faster inner ring
-    omega_r = sign * np.hypot(wx, wr)
-    spinning = omega_r != 0.0
-    safe = np.where(spinning, omega_r, 1.0)
-    beta = np.where(spinning, np.arctan2(-wr / safe, wx / safe), 0.0)
-    alpha_i, alpha_o = states.contact_angle[:, 0], states.contact_angle[:, 1]
-    fi, fo = forces[:, 0], forces[:, 1]
-    tau_i = fi[:, 0] * np.cos(alpha_i) - fi[:, 1] * np.sin(alpha_i)
-    tau_o = -fo[:, 0] * np.cos(alpha_o) + fo[:, 1] * np.sin(alpha_o)
-    free_spin, free_beta = states.spin_speed, states.attitude_angle
-    out[:, kernels.CONTROL_SPIN] = np.where(active, omega_r, free_spin)
-    out[:, kernels.CONTROL_ATTITUDE] = np.where(active, beta, free_beta)
-    out[:, kernels.CONTROL_YAW] = np.where(active, wt, 0.0)
-    out[:, kernels.CONTROL_GYRO] = np.where(
-        active, inertia * omega_c * wr, -inertia * omega_c * free_spin * np.sin(free_beta)
-    )
-    out[:, kernels.CONTROL_TAU_INNER] = np.where(active, tau_i, 0.0)
-    out[:, kernels.CONTROL_TAU_OUTER] = np.where(active, tau_o, 0.0)
+    for j in range(control.shape[0]):
+        row = out[j]
+        row[kernels.CONTROL_MODE] = kernels.TRACTION_BALANCE
+        row[kernels.CONTROL_ORBITAL] = omega_c
+        if not active[j]:
+            free_spin, free_beta = states.spin_speed[j], states.attitude_angle[j]
+            row[kernels.CONTROL_SPIN] = free_spin
+            row[kernels.CONTROL_ATTITUDE] = free_beta
+            row[kernels.CONTROL_YAW] = 0.0
+            row[kernels.CONTROL_GYRO] = -inertia * omega_c * free_spin * math.sin(free_beta)
+            row[kernels.CONTROL_TAU_INNER] = 0.0
+            row[kernels.CONTROL_TAU_OUTER] = 0.0
+            continue
+        fi, fo = forces[j, 0], forces[j, 1]
+        pocket[j] = -(fi[2] + fo[2])
+        wx, wr = w[j, 0], w[j, 1]
+        omega_r = sign * math.hypot(wx, wr)
+        beta = math.atan2(-wr / omega_r, wx / omega_r) if omega_r != 0.0 else 0.0
+        alpha_i, alpha_o = states.contact_angle[j, 0], states.contact_angle[j, 1]
+        row[kernels.CONTROL_SPIN] = omega_r
+        row[kernels.CONTROL_ATTITUDE] = beta
+        row[kernels.CONTROL_YAW] = w[j, 2]
+        row[kernels.CONTROL_GYRO] = inertia * omega_c * wr
+        row[kernels.CONTROL_TAU_INNER] = fi[0] * math.cos(alpha_i) - fi[1] * math.sin(alpha_i)
+        row[kernels.CONTROL_TAU_OUTER] = -fo[0] * math.cos(alpha_o) + fo[1] * math.sin(alpha_o)
     return out, pocket
 
 
