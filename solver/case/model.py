@@ -13,6 +13,7 @@ without a default (``Default.OPTIONAL``), which are ``None``. Build cases with
 from __future__ import annotations
 
 import copy
+import dataclasses
 from dataclasses import dataclass, field, make_dataclass
 
 from solver.errors import Problem
@@ -140,6 +141,7 @@ class Case:
     traction_given: bool = False
     from_oil: frozenset = frozenset()
     description: str = ""
+    bearing_set: object = None  # a solver.case.bearing_set.BearingSet for a [set] case, else None
 
     # ---- materials -----------------------------------------------------------------------------
     def resolve_material(self, spec: str | dict, name: str = "inline") -> Material:
@@ -261,16 +263,28 @@ class Case:
                 if key == "bearing":
                     ordered["materials"] = copy.deepcopy(self.materials)
             out = ordered
+        if self.bearing_set is not None:
+            out["set"] = self.bearing_set.to_dict()
         return out
 
     @classmethod
     def from_dict(cls, data: dict) -> Case:
-        """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError."""
+        """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError.
+        A ``set`` table (a bearing set, :mod:`solver.case.bearing_set`) is read after the rest."""
+        if isinstance(data, dict) and "set" in data:
+            from .bearing_set import read_set
+
+            rest = {key: value for key, value in data.items() if key != "set"}
+            case = case_from_values(validate(rest))
+            return dataclasses.replace(case, bearing_set=read_set(data["set"], rest))
         return case_from_values(validate(data))
 
     def to_toml(self) -> str:
         """Readable case-file text; loading it gives an equal case."""
-        return case_to_toml(self)
+        text = case_to_toml(self)
+        if self.bearing_set is not None:
+            text = text.rstrip("\n") + "\n\n" + self.bearing_set.to_toml()
+        return text
 
     def with_values(self, values: dict) -> Case:
         """Validated copy with some keys changed: ``{"operating.axial_load_N": 300.0, ...}``.
