@@ -4,8 +4,10 @@ A case with a ``[set]`` table describes a set of bearings on one rigid shaft: ea
 ``[[set.bearing]]`` (or each bearing of a named ``arrangement``) has an axial position [mm] of its
 ball-centre plane and a ``direction``, the axial direction ``"+x"`` or ``"-x"`` of the shaft thrust
 it carries; its geometry is the case's ``[bearing]``, a catalogue bearing (``catalogue = NAME``) or
-an inline ``bearing = {...}`` table of ``[bearing]`` keys. The ``[operating]`` loads act on the
-shaft at ``set.load_position_mm``; the ring speeds are those of ``[operating]`` for every bearing.
+an inline ``bearing = {...}`` table of ``[bearing]`` keys. ``[set.load]`` holds the external force
+``force_N = [x, y, z]`` and moment ``moment_Nm = [y, z]`` on the shaft at ``position_mm``
+(``[operating]`` gives no loads in a set case); the ring speeds are those of ``[operating]`` for
+every bearing.
 ``[set.preload]`` holds the preload: ``"none"``, a fixed position given by the preload force at
 assembly (``"force"``, N) or the axial offset of the rings (``"offset"``, µm), or a spring force on
 the outer rings of the bearings of one direction (``"spring"``).
@@ -43,8 +45,11 @@ PRELOAD_KINDS = ("none", "force", "offset", "spring")
 # ---- defaults of the [set] keys (docs/case-format.md) ---------------------------------------
 DEFAULT_LOAD_POSITION_MM = 0.0  # the [operating] loads act at the shaft origin
 DEFAULT_PRELOAD_KIND = "none"
+DEFAULT_FORCE_N = (0.0, 0.0, 0.0)  # no external force
+DEFAULT_MOMENT_NM = (0.0, 0.0)  # no external moment
 
-_SET_KEYS = ("arrangement", "width_mm", "spacing_mm", "load_position_mm", "preload", "bearing")
+_SET_KEYS = ("arrangement", "width_mm", "spacing_mm", "load", "preload", "bearing")
+_LOAD_KEYS = ("position_mm", "force_N", "moment_Nm")
 _BEARING_KEYS = ("name", "position_mm", "direction", "catalogue", "bearing")
 _PRELOAD_KEYS = ("kind", "force_N", "offset_um", "spring_side")
 _LARGEST_SET = 8  # bearings in one set
@@ -77,6 +82,8 @@ class BearingSet:
     arrangement: str | None
     width_mm: float
     load_position_mm: float
+    load_force_N: tuple[float, float, float]
+    load_moment_Nm: tuple[float, float]
     preload_kind: str
     preload_force_N: float | None
     preload_offset_um: float | None
@@ -130,6 +137,18 @@ def _number(problems, key, value, positive=False, non_negative=False):
     return value
 
 
+def _vector(problems, key, value, size):
+    """``value`` as a tuple of ``size`` finite floats (a problem under ``key`` otherwise)."""
+    if not isinstance(value, list | tuple) or len(value) != size:
+        problems.append(
+            Problem(key, f"{key} = {value!r}: give {size} numbers [" + ", ".join(
+                ("x", "y", "z") if size == 3 else ("y", "z")) + "]")
+        )
+        return (0.0,) * size
+    numbers = [_number(problems, key, item) for item in value]
+    return tuple(0.0 if n is None else n for n in numbers)
+
+
 def _unknown(problems, where, table, allowed):
     for name in table:
         if name not in allowed:
@@ -163,7 +182,8 @@ def _catalogue_bearing(name: str, key: str, problems) -> dict | None:
 
 def _bearing_case(case_data: dict, where: str, entry: dict, problems):
     """(validated single-bearing Case, source) of one set bearing, or (None, "")."""
-    from .model import Case
+    from .model import case_from_values
+    from .validate import validate
 
     data = copy.deepcopy(case_data)
     source = "case"
@@ -193,7 +213,7 @@ def _bearing_case(case_data: dict, where: str, entry: dict, problems):
         data["bearing"] = entry["bearing"]
         source = "inline"
     try:
-        return Case.from_dict(data), source
+        return case_from_values(validate(data, bearing_set=True)), source
     except CaseError as error:
         for p in error.problems:
             key = f"{where}.{p.key}" if source != "case" else p.key
@@ -266,16 +286,24 @@ def read_set(table, case_data: dict) -> BearingSet:
         spacing = _number(problems, "set.spacing_mm", spacing, positive=True)
     elif width is not None:
         spacing = width  # matched sets: the rings' faces touch
+    load = table.get("load", {})
+    if not isinstance(load, dict):
+        problems.append(Problem("set.load", "set.load must be a table (position_mm, force_N, "
+                                "moment_Nm)"))
+        load = {}
+    _unknown(problems, "set.load", load, _LOAD_KEYS)
     load_position = _number(
-        problems, "set.load_position_mm", table.get("load_position_mm", DEFAULT_LOAD_POSITION_MM)
+        problems, "set.load.position_mm", load.get("position_mm", DEFAULT_LOAD_POSITION_MM)
     )
+    force = _vector(problems, "set.load.force_N", load.get("force_N", DEFAULT_FORCE_N), 3)
+    moment = _vector(problems, "set.load.moment_Nm", load.get("moment_Nm", DEFAULT_MOMENT_NM), 2)
     preload = table.get("preload", {})
     if not isinstance(preload, dict):
         problems.append(Problem("set.preload", "set.preload must be a table"))
         preload = {}
     _unknown(problems, "set.preload", preload, _PRELOAD_KEYS)
     kind = preload.get("kind", DEFAULT_PRELOAD_KIND)
-    force = offset = side = None
+    preload_force = offset = side = None
     if kind not in PRELOAD_KINDS:
         problems.append(
             Problem(
@@ -303,7 +331,9 @@ def read_set(table, case_data: dict) -> BearingSet:
                 )
             )
     if "force_N" in preload:
-        force = _number(problems, "set.preload.force_N", preload["force_N"], positive=True)
+        preload_force = _number(
+            problems, "set.preload.force_N", preload["force_N"], positive=True
+        )
     if "offset_um" in preload:
         offset = _number(problems, "set.preload.offset_um", preload["offset_um"])
     if "spring_side" in preload:
@@ -366,8 +396,10 @@ def read_set(table, case_data: dict) -> BearingSet:
         arrangement=arrangement,
         width_mm=width,
         load_position_mm=load_position,
+        load_force_N=force,
+        load_moment_Nm=moment,
         preload_kind=kind,
-        preload_force_N=force,
+        preload_force_N=preload_force,
         preload_offset_um=offset,
         spring_side=side,
         table=copy.deepcopy(table),
@@ -397,21 +429,19 @@ def _check_rules(bearing_set: BearingSet, case_data: dict, problems) -> None:
                 )
             )
     directions = set(bearing_set.directions)
-    operating = case_data.get("operating", {}) if isinstance(case_data, dict) else {}
-    axial = operating.get("axial_load_N", 0.0) if isinstance(operating, dict) else 0.0
-    if isinstance(axial, int | float) and not isinstance(axial, bool):
-        for sign, name in ((1.0, "+x"), (-1.0, "-x")):
-            if axial * sign > 0.0 and name not in directions:
-                problems.append(
-                    Problem(
-                        "operating.axial_load_N",
-                        f"operating.axial_load_N = {axial:g} N pushes the shaft towards {name} "
-                        f"but no bearing of the set carries thrust towards {name} (directions "
-                        + ", ".join(bearing_set.directions)
-                        + "): turn a bearing round or change the load's sign",
-                        ("set.bearing",),
-                    )
+    axial = bearing_set.load_force_N[0]
+    for sign, name in ((1.0, "+x"), (-1.0, "-x")):
+        if axial * sign > 0.0 and name not in directions:
+            problems.append(
+                Problem(
+                    "set.load.force_N",
+                    f"set.load.force_N has an axial force of {axial:g} N towards {name} but no "
+                    f"bearing of the set carries thrust towards {name} (directions "
+                    + ", ".join(bearing_set.directions)
+                    + "): turn a bearing round or change the load's sign",
+                    ("set.bearing",),
                 )
+            )
     if bearing_set.preload_kind in ("force", "offset") and len(directions) < 2:
         problems.append(
             Problem(
@@ -438,14 +468,18 @@ def _check_rules(bearing_set: BearingSet, case_data: dict, problems) -> None:
                 "are preloaded against the others",
             )
         )
-    if isinstance(operating, dict):
-        misalignment = operating.get("misalignment_deg", 0.0)
-        if isinstance(misalignment, int | float) and misalignment != 0.0:
+    operating = case_data.get("operating", {}) if isinstance(case_data, dict) else {}
+    if not isinstance(operating, dict):
+        return
+    for key in ("axial_load_N", "radial_load_N", "misalignment_deg", "tilting_moment_Nm"):
+        value = operating.get(key)
+        if value not in (None, 0, 0.0):
             problems.append(
                 Problem(
-                    "operating.misalignment_deg",
-                    "operating.misalignment_deg is not read for a bearing set: the shaft's tilt "
-                    "is solved from the loads; give a tilting moment (operating.tilting_moment_Nm) "
-                    "at set.load_position_mm instead",
+                    f"operating.{key}",
+                    f"operating.{key} is not read for a bearing set: the loads on the shaft are "
+                    "set.load.force_N = [x, y, z] and set.load.moment_Nm = [y, z] at "
+                    "set.load.position_mm, and the shaft's tilt is solved; remove it",
+                    ("set.load.force_N",),
                 )
             )

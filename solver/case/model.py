@@ -275,7 +275,7 @@ class Case:
             from .bearing_set import read_set
 
             rest = {key: value for key, value in data.items() if key != "set"}
-            case = case_from_values(validate(rest))
+            case = case_from_values(validate(rest, bearing_set=True))
             return dataclasses.replace(case, bearing_set=read_set(data["set"], rest))
         return case_from_values(validate(data))
 

@@ -546,7 +546,9 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
     return users
 
 
-def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Problem]) -> None:
+def _check_operating_rules(
+    data: dict, v: dict, given: set, problems: list[Problem], bearing_set: bool = False
+) -> None:
     mis_k, mom_k = "operating.misalignment_deg", "operating.tilting_moment_Nm"
     if mis_k in given and mom_k in given:
         _problem(
@@ -562,7 +564,7 @@ def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Probl
         v[k] if k in v else (None if k in given else 0.0)
         for k in ("operating.axial_load_N", "operating.radial_load_N")
     ]
-    if loads == [0.0, 0.0] and "operating" in data:
+    if loads == [0.0, 0.0] and "operating" in data and not bearing_set:
         tilt = [k for k in (mis_k, mom_k) if v.get(k) not in (None, 0.0)]
         invalid = [k for k in (mis_k, mom_k) if k in given and k not in v]
         if not tilt and not invalid:
@@ -673,8 +675,10 @@ class CaseValues:
     description: str = ""
 
 
-def validate(data) -> CaseValues:
-    """Values of a valid case from a nested dict; raises CaseError listing every problem."""
+def validate(data, bearing_set: bool = False) -> CaseValues:
+    """Values of a valid case from a nested dict; raises CaseError listing every problem.
+    ``bearing_set``: the case has a ``[set]`` table (its loads are in ``[set.load]``, so
+    ``[operating]`` may give none)."""
     if not isinstance(data, dict):
         raise CaseError(Problem("", f"a case must be a table of keys, not {type(data).__name__}"))
     problems: list[Problem] = []
@@ -720,7 +724,7 @@ def validate(data) -> CaseValues:
 
     users = _check_materials(data, values, problems)
     _check_bearing_rules(values, given, problems)
-    _check_operating_rules(data, values, given, problems)
+    _check_operating_rules(data, values, given, problems, bearing_set)
     _check_traction(values, given, problems)
     _check_lubrication_method(values, given, problems)
     if problems:

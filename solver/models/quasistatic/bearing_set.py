@@ -1,7 +1,7 @@
 """Quasi-static model of a bearing set on a rigid shaft (docs/case-format.md, "Bearing sets").
 
 Unknowns: the shaft's 5 DOF u = (x, y, z, theta_y, theta_z) [m, rad] at the load point
-``set.load_position_mm`` (shaft frame: x along the shaft axis, the frame of the case's loads), and,
+``set.load.position_mm`` (shaft frame: x along the shaft axis, the frame of the case's loads), and,
 for a spring preload, the axial shift w [m] of the spring side's outer rings. Bearing b, whose
 ball-centre plane lies at the arm L_b = position_b - load position along x, sees its inner ring
 displaced rigidly with the shaft:
@@ -418,7 +418,7 @@ def members_of(case):
     bearing_set = case.bearing_set
     inputs = to_inputs(case)
     base = inputs.operating
-    applied = base.applied_loads()
+    applied = np.array([*bearing_set.load_force_N, *bearing_set.load_moment_Nm], dtype=float)
     preload = bearing_set.preload_force_N or 0.0
     load_scale = max(float(np.max(np.abs(applied[:3]))), preload, 1e-6)
     members = []
@@ -455,7 +455,7 @@ def solve_set_state(case) -> SetSolution:
     # at rest first, then the speed (in steps when the direct solve fails)
     ok, v, total, merit, note = _with_race_control(problem, v, 0.0, force_scale)
     if not ok:
-        raise NoSolutionError(_no_rest_message(bearing_set, operating))
+        raise NoSolutionError(_no_rest_message(bearing_set))
     unloaded_at_rest = _unloaded(problem, v, 0.0, force_scale)
     has_speed = operating.inner_ring_speed != 0.0 or operating.outer_ring_speed != 0.0
     if has_speed:
@@ -578,6 +578,7 @@ def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, 
     reactions, displacements, stiffness = [], [], []
     for m in problem.members:
         q = m.q(u, w)
+        m.state.q = q.copy()
         ok, r_b, j_b = m.reaction(q, 1.0, m.state.position)
         op = _bearing_operating(m.inputs.operating, q, r_b)
         pack_problem = _Problem(m.inputs.geometry, op)
@@ -615,10 +616,39 @@ def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, 
     )
 
 
-def _no_rest_message(bearing_set, operating) -> str:
+def _no_rest_message(bearing_set) -> str:
+    force = ", ".join(f"{value:g}" for value in bearing_set.load_force_N)
     return (
         f"no static equilibrium found for the bearing set ({bearing_set.describe()}) under "
-        f"{operating.axial_load:g} N axial and {operating.radial_load:g} N radial load: the "
+        f"the force [{force}] N: the "
         "bearings cannot hold the shaft in every loaded direction. Add preload, turn a bearing "
         "round so that thrust is carried both ways, or reduce the load."
     )
+
+
+def solve_set(case):
+    """The quasi-static equilibrium of the bearing set of ``case`` as a Dataset with a ``bearing``
+    dimension (results-schema.md, "Bearing sets"). Raises NoSolutionError."""
+    from solver.results.estimates import estimate_fields
+
+    from .result import solution_to_dataset
+    from .set_result import set_dataset
+
+    state = solve_set_state(case)
+    text = case.to_toml()
+    datasets = []
+    for member, solution, op in zip(state.members, state.solutions, state.operatings, strict=True):
+        inputs = dataclasses.replace(member.inputs, operating=op)
+        lubricant = inputs.lubricant if inputs.lubricant.given else None
+        datasets.append(
+            solution_to_dataset(
+                solution,
+                inputs.geometry,
+                text,
+                lubricant,
+                op,
+                estimates=estimate_fields(inputs, op),
+            )
+        )
+    applied = np.array([*case.bearing_set.load_force_N, *case.bearing_set.load_moment_Nm])
+    return set_dataset(case.bearing_set, state, datasets, applied, text)
