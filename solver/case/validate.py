@@ -859,6 +859,14 @@ def dynamic_problems(case) -> list[Problem]:
     :data:`MAX_DYNAMIC_BALL_SAMPLES` (:func:`run_length_problems`). The quasi-static model needs
     none of these rules: it solves a bearing at rest too, and stores one sample.
     """
+    if getattr(case, "bearing_set", None) is not None:
+        return [
+            Problem(
+                "set",
+                "the dynamic model runs one bearing; this case describes a bearing set ([set]): "
+                "solve it with the quasi-static model (racetrace solve, solver.solve)",
+            )
+        ]
     op = case.operating
     sim = case.simulation
     found = run_length_problems(

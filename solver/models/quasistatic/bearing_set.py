@@ -205,7 +205,8 @@ def _newton(problem, v, speed, force_scale):
             for _ls in range(12):
                 trial = v + t * step * vscale
                 trial_positions = [p.copy() for p in positions]
-                tok, tres, _ = problem.evaluate(trial, speed, trial_positions, False)
+                # the full step usually succeeds: its Jacobian is that of the next iteration
+                tok, tres, tjac = problem.evaluate(trial, speed, trial_positions, t == 1.0)
                 tmerit = float(np.linalg.norm(tres / rscale))
                 if tok and np.isfinite(tmerit) and tmerit < (1.0 - 1e-4 * t) * merit:
                     accepted = True
@@ -222,8 +223,11 @@ def _newton(problem, v, speed, force_scale):
         mu = 0.0 if t == 1.0 else mu * 0.1
         if mu < 1e-9:
             mu = 0.0
-        ok, residual, jacobian = problem.evaluate(v, speed, positions)
-        merit = float(np.linalg.norm(residual / rscale))
+        if t == 1.0:
+            ok, residual, jacobian, merit = tok, tres, tjac, tmerit
+        else:
+            ok, residual, jacobian = problem.evaluate(v, speed, positions)
+            merit = float(np.linalg.norm(residual / rscale))
     return ok and merit <= SET_TOLERANCE, v, MAX_SET_ITERATIONS, merit
 
 
@@ -327,35 +331,50 @@ def _with_traction_balance(problem, v, force_scale, lubricant, relative_speed):
 
 
 def _axial_static_force(member, approach):
-    """Axial force [N] a bearing carries at rest for an axial approach ``approach`` [m] of its
-    inner ring towards its own +x (no other displacement)."""
+    """(axial force [N], its derivative [N/m]) a bearing carries at rest for an axial approach
+    ``approach`` [m] of its inner ring towards its own +x (no other displacement)."""
     position = np.zeros((member.problem.azimuth.size, 2))
     control = member.state.control
     member.state.control = kernels.race_control_rows(np.zeros(position.shape[0], dtype=np.bool_))
     try:
-        _, r_b, _ = member.reaction(np.array([approach, 0, 0, 0, 0.0]), 0.0, position, False)
+        _, r_b, j_b = member.reaction(np.array([approach, 0, 0, 0, 0.0]), 0.0, position)
     finally:
         member.state.control = control
-    return -r_b[0]
+    return -r_b[0], -j_b[0, 0]
 
 
 def _approach_for(members, force):
     """Axial approach [m] at which ``members`` (same direction, same shaft) carry ``force`` [N]
-    together at rest (Brent's method on the static load-deflection curves)."""
-    from scipy.optimize import brentq
-
-    def excess(d):
-        return sum(_axial_static_force(m, d) for m in members) - force
-
-    hi = min(m.problem.length_scale for m in members)
-    while excess(hi) < 0.0:
-        hi *= 2.0
-        if hi > 0.05 * min(m.inputs.geometry.ball_diameter for m in members):
+    together at rest: Newton on the static load-deflection curves with the kernel's derivative,
+    safeguarded by bisection."""
+    lo, hi = 0.0, math.inf
+    d = min(m.problem.length_scale for m in members)
+    limit = 0.05 * min(m.inputs.geometry.ball_diameter for m in members)
+    for _ in range(100):
+        excess, slope = -force, 0.0
+        for m in members:
+            f, k = _axial_static_force(m, d)
+            excess += f
+            slope += k
+        if excess < 0.0:
+            lo = d
+        else:
+            hi = d
+        if abs(excess) <= 1e-12 * force or (math.isfinite(hi) and hi - lo <= 1e-15 * hi):
+            return d
+        step = d - excess / slope if slope > 0.0 else math.nan
+        if math.isfinite(step) and lo < step < hi:
+            d = step
+        elif math.isfinite(hi):
+            d = 0.5 * (lo + hi)
+        else:
+            d = 2.0 * d
+        if d > limit:
             raise NoSolutionError(
                 f"a preload force of {force:g} N needs an axial approach beyond 5 % of the ball "
                 "diameter: lower set.preload.force_N"
             )
-    return brentq(excess, 0.0, hi, xtol=1e-16, rtol=1e-14, maxiter=200)
+    return d
 
 
 def preload_offset(members, force):
@@ -364,7 +383,17 @@ def preload_offset(members, force):
     (their axial approaches d_+ and d_- at that force sum to e)."""
     plus = [m for m in members if m.sign > 0]
     minus = [m for m in members if m.sign < 0]
-    return _approach_for(plus, force) + _approach_for(minus, force)
+    approach = _approach_for(plus, force)
+    if _same_bearings(plus, minus):  # a symmetric set: both groups take the same approach
+        return 2.0 * approach
+    return approach + _approach_for(minus, force)
+
+
+def _same_bearings(first, second) -> bool:
+    """True when two groups hold the same number of bearings of the same geometry."""
+    return len(first) == len(second) and all(
+        a.inputs.geometry == b.inputs.geometry for a, b in zip(first, second, strict=True)
+    )
 
 
 @dataclasses.dataclass
@@ -413,8 +442,25 @@ def _bearing_operating(base: OperatingPoint, q, r_b) -> OperatingPoint:
     )
 
 
+@dataclasses.dataclass
+class SetInputs:
+    """What the set solve reads, SI: the bearings (:class:`_Member`), the set case's inputs and
+    its external loads (Fx, Fy, Fz [N], My, Mz [N m] at the load point, shaft frame)."""
+
+    bearing_set: object
+    members: list
+    inputs: object
+    applied: np.ndarray
+
+
+def set_inputs(case) -> SetInputs:
+    """The :class:`SetInputs` of a set case."""
+    members, inputs, applied = members_of(case)
+    return SetInputs(case.bearing_set, members, inputs, applied)
+
+
 def members_of(case):
-    """The set's :class:`_Member` list, their SI inputs and the shaft's operating point (SI)."""
+    """The set's :class:`_Member` list, the set case's SI inputs and the external loads."""
     bearing_set = case.bearing_set
     inputs = to_inputs(case)
     base = inputs.operating
@@ -423,17 +469,28 @@ def members_of(case):
     load_scale = max(float(np.max(np.abs(applied[:3]))), preload, 1e-6)
     members = []
     for entry in bearing_set.bearings:
-        own = to_inputs(entry.case)
+        # a bearing of the case's own [bearing] shares the case's inputs
+        own = inputs if entry.source == "case" else to_inputs(entry.case)
         arm = (entry.position_mm - bearing_set.load_position_mm) * MM
         members.append(_Member(entry, own, base, arm, load_scale))
     return members, inputs, applied
 
 
 def solve_set_state(case) -> SetSolution:
-    """The quasi-static equilibrium of the bearing set of ``case`` (a Case with ``bearing_set``).
-    Raises NoSolutionError when none is found."""
-    bearing_set = case.bearing_set
-    members, inputs, applied = members_of(case)
+    """The quasi-static equilibrium of the bearing set of ``case`` (a Case with ``bearing_set``,
+    or its :class:`SetInputs`). Raises NoSolutionError when none is found."""
+    given = case if isinstance(case, SetInputs) else set_inputs(case)
+    bearing_set, members, inputs, applied = (
+        given.bearing_set,
+        given.members,
+        given.inputs,
+        given.applied,
+    )
+    for m in members:  # a fresh start (SetInputs may be solved again)
+        z = m.inputs.geometry.ball_count
+        m.state = _State(
+            np.zeros(5), np.zeros((z, 2)), kernels.race_control_rows(np.zeros(z, dtype=np.bool_))
+        )
     operating = inputs.operating
     spring_force = None
     offset = 0.0
@@ -528,18 +585,17 @@ def _initial_guess(problem, members, force_scale):
         k_n = 1.5 * m.problem.ball_stiffness ** (2.0 / 3.0) * share ** (1.0 / 3.0)
         a0 = g.free_contact_angle
         rc = g.inner_curvature_center_radius
-        k_b = np.zeros((5, 5))
-        for psi in m.problem.azimuth:
-            n = np.array(
-                [
-                    math.sin(a0),
-                    math.cos(a0) * math.cos(psi),
-                    math.cos(a0) * math.sin(psi),
-                    rc * math.sin(a0) * math.sin(psi),
-                    -rc * math.sin(a0) * math.cos(psi),
-                ]
-            )
-            k_b += k_n * np.outer(n, n)
+        psi = m.problem.azimuth
+        normals = np.column_stack(
+            [
+                np.full(psi.size, math.sin(a0)),
+                math.cos(a0) * np.cos(psi),
+                math.cos(a0) * np.sin(psi),
+                rc * math.sin(a0) * np.sin(psi),
+                -rc * math.sin(a0) * np.cos(psi),
+            ]
+        )
+        k_b = k_n * normals.T @ normals
         stiffness[:5, :5] += m.map.T @ k_b @ m.map
         if not m.spring:  # a fixed-position offset acts like the load -k_b c_b
             preload_load[:5] -= m.map.T @ k_b[:, 0] * m.offset
@@ -634,8 +690,9 @@ def solve_set(case):
     from .result import solution_to_dataset
     from .set_result import set_dataset
 
-    state = solve_set_state(case)
-    text = case.to_toml()
+    given = set_inputs(case)
+    state = solve_set_state(given)
+    text = given.inputs.case_text
     datasets = []
     for member, solution, op in zip(state.members, state.solutions, state.operatings, strict=True):
         inputs = dataclasses.replace(member.inputs, operating=op)
@@ -650,5 +707,4 @@ def solve_set(case):
                 estimates=estimate_fields(inputs, op),
             )
         )
-    applied = np.array([*case.bearing_set.load_force_N, *case.bearing_set.load_moment_Nm])
-    return set_dataset(case.bearing_set, state, datasets, applied, text)
+    return set_dataset(case.bearing_set, state, datasets, given.applied, text)

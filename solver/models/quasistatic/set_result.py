@@ -168,6 +168,59 @@ SET_VARIABLES: dict[str, Variable] = {
 }
 
 
+def _stacked_values(values):
+    """The arrays ``values`` (one per bearing) stacked on a new first axis; arrays shorter along
+    their first axis (fewer balls) padded with NaN (float) or "" (text)."""
+    shapes = {v.shape for v in values}
+    if len(shapes) == 1:
+        return np.stack(values)
+    longest = max(v.shape[0] for v in values)
+    fill = "" if values[0].dtype.kind in "OUS" else np.nan
+    out = []
+    for v in values:
+        pad = np.full((longest - v.shape[0], *v.shape[1:]), fill, dtype=object if fill == "" else float)
+        out.append(np.concatenate([v.astype(pad.dtype) if fill != "" else v, pad]) if pad.size else v)
+    return np.stack(out)
+
+
+def stack_bearings(datasets, extra_coords=None, extra_data=None) -> xr.Dataset:
+    """The bearings' Datasets stacked along a new ``bearing`` dimension: every data variable
+    gains it, a coordinate only where the bearings differ; attributes that differ are dropped.
+    ``extra_coords`` and ``extra_data`` (name: xarray.Variable) are added in the same build."""
+    first = datasets[0]
+    tables = [ds.variables for ds in datasets]
+    data = {}
+    for name in first.data_vars:
+        var = tables[0][name]
+        values = _stacked_values([table[name].values for table in tables])
+        data[name] = xr.Variable(("bearing", *var.dims), values, var.attrs)
+    coords = {}
+    for name in first.coords:
+        var = tables[0][name]
+        values = [table[name].values for table in tables]
+        if name in first.dims:
+            coords[name] = max((table[name] for table in tables), key=lambda c: c.size)
+        elif all(np.array_equal(v, values[0]) for v in values[1:]):
+            coords[name] = var
+        else:
+            coords[name] = xr.Variable(("bearing", *var.dims), _stacked_values(values), var.attrs)
+    coords.update(extra_coords or {})
+    data.update(extra_data or {})
+    attrs = {
+        key: value
+        for key, value in first.attrs.items()
+        if all(key in ds.attrs and _same(ds.attrs[key], value) for ds in datasets[1:])
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(np.all(a == b))
+    except (TypeError, ValueError):
+        return False
+
+
 def _var(name, values):
     spec = SET_VARIABLES[name]
     return xr.Variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
@@ -178,40 +231,37 @@ def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.
     single-bearing Datasets (each at its own operating point), the external loads ``applied``
     (Fx, Fy, Fz, My, Mz at the load point, shaft frame) and the case text."""
     names = [m.name for m in state.members]
-    stacked = xr.concat(
-        bearing_datasets,
-        dim="bearing",
-        data_vars="all",
-        coords="different",
-        compat="equals",
-        join="outer",
-        combine_attrs="drop_conflicts",
-    )
-    stacked = stacked.assign_coords(
-        bearing=("bearing", names, {"long_name": "bearing of the set (set.bearing[].name)"}),
-        bearing_position=(
+    set_coords = {
+        "bearing": xr.Variable(
+            "bearing", names, {"long_name": "bearing of the set (set.bearing[].name)"}
+        ),
+        "bearing_position": xr.Variable(
             "bearing",
             [m.entry.position_mm * 1e-3 for m in state.members],
             {"units": "m", "long_name": "axial position of the bearing's ball-centre plane"},
         ),
-        bearing_direction=(
+        "bearing_direction": xr.Variable(
             "bearing",
             [m.entry.direction for m in state.members],
             {"long_name": "axial direction of the shaft thrust the bearing carries"},
         ),
-        ball_count=(
+        "ball_count": xr.Variable(
             "bearing",
             [m.inputs.geometry.ball_count for m in state.members],
             {"long_name": "number of balls of the bearing"},
         ),
-        dof=("dof", list(DOF), {"long_name": "degree of freedom (force/displacement row)"}),
-        dof_=("dof_", list(DOF), {"long_name": "degree of freedom (displacement column)"}),
-        load_position=(
+        "dof": xr.Variable(
+            "dof", list(DOF), {"long_name": "degree of freedom (force/displacement row)"}
+        ),
+        "dof_": xr.Variable(
+            "dof_", list(DOF), {"long_name": "degree of freedom (displacement column)"}
+        ),
+        "load_position": xr.Variable(
             (),
             bearing_set.load_position_mm * 1e-3,
             {"units": "m", "long_name": "axial position of the external loads on the shaft"},
         ),
-    )
+    }
     reactions = state.reactions
     k = state.set_stiffness
     sign = np.array([m.sign for m in state.members])
@@ -242,7 +292,7 @@ def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.
         data["radial_load_share"] = _var(
             "radial_load_share", -(reactions[:, 1:3] @ direction) / radial
         )
-    ds = stacked.assign(data)
+    ds = stack_bearings(bearing_datasets, set_coords, data)
     ds.attrs.update(
         {
             "bearing_set": bearing_set.describe(),
