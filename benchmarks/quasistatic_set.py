@@ -19,11 +19,10 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import math
 import os
 import statistics
 import time
-
-import math
 
 from solver import Case, solve
 from solver.catalogue import resolve_case

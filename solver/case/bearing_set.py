@@ -19,9 +19,15 @@ This module reads and checks the table (:func:`read_set`), and writes it back
 from __future__ import annotations
 
 import copy
+import difflib
 import math
+import tomllib
 from dataclasses import dataclass
+from pathlib import Path
 
+import tomli_w
+
+import assets
 from solver.errors import CaseError, Problem
 
 #: The named arrangements: the directions of their bearings in order along +x. The letters follow
@@ -96,8 +102,6 @@ class BearingSet:
 
     def to_toml(self) -> str:
         """The ``[set]`` table as case-file text (its sub-tables and ``[[set.bearing]]``)."""
-        import tomli_w
-
         return tomli_w.dumps({"set": self.to_dict()})
 
     @property
@@ -141,8 +145,12 @@ def _vector(problems, key, value, size):
     """``value`` as a tuple of ``size`` finite floats (a problem under ``key`` otherwise)."""
     if not isinstance(value, list | tuple) or len(value) != size:
         problems.append(
-            Problem(key, f"{key} = {value!r}: give {size} numbers [" + ", ".join(
-                ("x", "y", "z") if size == 3 else ("y", "z")) + "]")
+            Problem(
+                key,
+                f"{key} = {value!r}: give {size} numbers ["
+                + ", ".join(("x", "y", "z") if size == 3 else ("y", "z"))
+                + "]",
+            )
         )
         return (0.0,) * size
     numbers = [_number(problems, key, item) for item in value]
@@ -160,31 +168,38 @@ def _unknown(problems, where, table, allowed):
             )
 
 
+def catalogue_bearing_files() -> dict[str, Path]:
+    """The shipped catalogue bearings (``assets/bearings/*.toml``) by name (the file name without
+    ``.toml``, as :func:`solver.catalogue.catalogue` names them)."""
+    found = {}
+    for folder in assets.__path__:
+        bearings = Path(folder) / "bearings"
+        if bearings.is_dir():
+            found.update({path.stem: path for path in sorted(bearings.glob("*.toml"))})
+    return found
+
+
 def _catalogue_bearing(name: str, key: str, problems) -> dict | None:
     """The ``[bearing]`` (and ``[materials]``) tables of the catalogue bearing ``name``."""
-    from solver.catalogue import catalogue, did_you_mean
-    from solver.case.io import parse_toml
-
-    entries = {e.name: e for e in catalogue() if e.kind == "bearing"}
-    entry = entries.get(name) if isinstance(name, str) else None
-    if entry is None:
+    files = catalogue_bearing_files()
+    path = files.get(name) if isinstance(name, str) else None
+    if path is None:
+        close = difflib.get_close_matches(str(name), list(files), n=3, cutoff=0.5)
+        hint = f"did you mean {', '.join(close)}? " if close else ""
         problems.append(
             Problem(
                 key,
-                f"{key} = {name!r}: not a catalogue bearing; {did_you_mean(str(name), list(entries))}"
-                "the catalogue bearings are " + ", ".join(sorted(entries)),
+                f"{key} = {name!r}: not a catalogue bearing; {hint}the catalogue bearings are "
+                + ", ".join(sorted(files)),
             )
         )
         return None
-    data = parse_toml(entry.text(), f"catalogue bearing {name}")
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
     return {"bearing": data["bearing"], "materials": data.get("materials", {})}
 
 
-def _bearing_case(case_data: dict, where: str, entry: dict, problems):
+def _bearing_case(case_data: dict, where: str, entry: dict, problems, build_case):
     """(validated single-bearing Case, source) of one set bearing, or (None, "")."""
-    from .model import case_from_values
-    from .validate import validate
-
     data = copy.deepcopy(case_data)
     source = "case"
     if "catalogue" in entry and "bearing" in entry:
@@ -213,7 +228,7 @@ def _bearing_case(case_data: dict, where: str, entry: dict, problems):
         data["bearing"] = entry["bearing"]
         source = "inline"
     try:
-        return case_from_values(validate(data, bearing_set=True)), source
+        return build_case(data), source
     except CaseError as error:
         for p in error.problems:
             key = f"{where}.{p.key}" if source != "case" else p.key
@@ -221,10 +236,11 @@ def _bearing_case(case_data: dict, where: str, entry: dict, problems):
         return None, ""
 
 
-def read_set(table, case_data: dict) -> BearingSet:
+def read_set(table, case_data: dict, build_case) -> BearingSet:
     """The :class:`BearingSet` of the ``[set]`` table ``table``; ``case_data`` is the rest of the
     case (as read from TOML, without ``set``): each set bearing's case is it with that bearing's
-    ``[bearing]``. Raises CaseError listing every problem."""
+    ``[bearing]``, validated by ``build_case(data) -> Case`` (CaseError). Raises CaseError listing
+    every problem."""
     problems: list[Problem] = []
     if not isinstance(table, dict):
         raise CaseError(Problem("set", "[set] must be a table (see docs/case-format.md)"))
@@ -288,8 +304,9 @@ def read_set(table, case_data: dict) -> BearingSet:
         spacing = width  # matched sets: the rings' faces touch
     load = table.get("load", {})
     if not isinstance(load, dict):
-        problems.append(Problem("set.load", "set.load must be a table (position_mm, force_N, "
-                                "moment_Nm)"))
+        problems.append(
+            Problem("set.load", "set.load must be a table (position_mm, force_N, moment_Nm)")
+        )
         load = {}
     _unknown(problems, "set.load", load, _LOAD_KEYS)
     load_position = _number(
@@ -331,9 +348,7 @@ def read_set(table, case_data: dict) -> BearingSet:
                 )
             )
     if "force_N" in preload:
-        preload_force = _number(
-            problems, "set.preload.force_N", preload["force_N"], positive=True
-        )
+        preload_force = _number(problems, "set.preload.force_N", preload["force_N"], positive=True)
     if "offset_um" in preload:
         offset = _number(problems, "set.preload.offset_um", preload["offset_um"])
     if "spring_side" in preload:
@@ -342,7 +357,7 @@ def read_set(table, case_data: dict) -> BearingSet:
             problems.append(
                 Problem(
                     "set.preload.spring_side",
-                    f"set.preload.spring_side = {side!r}: give \"+x\" or \"-x\", the direction "
+                    f'set.preload.spring_side = {side!r}: give "+x" or "-x", the direction '
                     "of the bearings whose outer rings the spring pushes",
                 )
             )
@@ -357,7 +372,7 @@ def read_set(table, case_data: dict) -> BearingSet:
             problems.append(
                 Problem(
                     f"{where}.direction",
-                    f"{where}.direction is missing: give \"+x\" or \"-x\" (the axial direction of "
+                    f'{where}.direction is missing: give "+x" or "-x" (the axial direction of '
                     "the shaft thrust the bearing carries), or name a set.arrangement",
                 )
             )
@@ -365,7 +380,7 @@ def read_set(table, case_data: dict) -> BearingSet:
             problems.append(
                 Problem(
                     f"{where}.direction",
-                    f"{where}.direction = {direction!r}: give \"+x\" or \"-x\"",
+                    f'{where}.direction = {direction!r}: give "+x" or "-x"',
                 )
             )
         if "position_mm" in entry:
@@ -384,7 +399,7 @@ def read_set(table, case_data: dict) -> BearingSet:
         name = entry.get("name", f"bearing {index + 1}")
         if not isinstance(name, str) or not name.strip():
             problems.append(Problem(f"{where}.name", f"{where}.name must be a non-empty text"))
-        bearing_case, source = _bearing_case(case_data, where, entry, problems)
+        bearing_case, source = _bearing_case(case_data, where, entry, problems, build_case)
         bearings.append((name, position, direction, bearing_case, source))
     names = [b[0] for b in bearings]
     if len(set(names)) != len(names):

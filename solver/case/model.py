@@ -20,6 +20,7 @@ from solver.errors import Problem
 from solver.inputs import bearing_geometry, material_from_table
 from solver.materials import BUILTIN_MATERIALS, Material
 
+from .bearing_set import read_set
 from .schema import (
     ASSUMED_METHOD,
     ASSUMED_OIL_VOLUME_FRACTION,
@@ -272,11 +273,10 @@ class Case:
         """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError.
         A ``set`` table (a bearing set, :mod:`solver.case.bearing_set`) is read after the rest."""
         if isinstance(data, dict) and "set" in data:
-            from .bearing_set import read_set
-
             rest = {key: value for key, value in data.items() if key != "set"}
             case = case_from_values(validate(rest, bearing_set=True))
-            return dataclasses.replace(case, bearing_set=read_set(data["set"], rest))
+            bearing_set = read_set(data["set"], rest, _set_bearing_case)
+            return dataclasses.replace(case, bearing_set=bearing_set)
         return case_from_values(validate(data))
 
     def to_toml(self) -> str:
@@ -312,6 +312,11 @@ class Case:
                 else:
                     target[parts[-1]] = value
         return Case.from_dict(data)
+
+
+def _set_bearing_case(data: dict) -> Case:
+    """The validated single-bearing case of one bearing of a set (its loads are the set's)."""
+    return case_from_values(validate(data, bearing_set=True))
 
 
 MATERIAL_KEYS = tuple(f.key for f in MATERIAL_FIELDS)

@@ -29,8 +29,15 @@ ring_material = "bearing_steel"
 """
 
 
-def single_case(speed_rpm, axial=0.0, radial=0.0, angle=0.0, moment=None, moment_axis=0.0,
-                ball_speeds="race_control"):
+def single_case(
+    speed_rpm,
+    axial=0.0,
+    radial=0.0,
+    angle=0.0,
+    moment=None,
+    moment_axis=0.0,
+    ball_speeds="race_control",
+):
     text = f'title = "one"\n{BEARING}\n[operating]\ninner_ring_speed_rpm = {speed_rpm!r}\n'
     text += f"axial_load_N = {float(axial)!r}\nradial_load_N = {float(radial)!r}\n"
     text += f"radial_load_angle_deg = {float(angle)!r}\n"
@@ -158,9 +165,7 @@ force_N = 300.0
     state = _solved_shaft(8000.0, table, [100.0, 200.0, 0.0], [0.0, 0.0])
     from solver.models.quasistatic.bearing_set import lever
 
-    total = sum(
-        lever(m.arm).T @ k @ lever(m.arm) for m, k in zip(state.members, state.stiffness)
-    )
+    total = sum(lever(m.arm).T @ k @ lever(m.arm) for m, k in zip(state.members, state.stiffness))
     assert np.allclose(total, state.set_stiffness, rtol=1e-9, atol=1e-9 * np.abs(total).max())
     # at rest with no friction the stiffness is symmetric
     rest = _solved_shaft(0.0, table, [100.0, 200.0, 0.0], [0.0, 0.0]).set_stiffness
@@ -233,8 +238,13 @@ force_N = [{thrust}, {radial}, 0.0]
     # = (0, 0, -arm Fy); in the mirrored frame (x -> -x) the moment's y, z change sign
     mz = arm * radial
     single = solve_quasistatic(
-        single_case(speed, axial=-thrust, radial=radial, moment=abs(mz),
-                    moment_axis=90.0 if mz > 0 else -90.0)
+        single_case(
+            speed,
+            axial=-thrust,
+            radial=radial,
+            moment=abs(mz),
+            moment_axis=90.0 if mz > 0 else -90.0,
+        )
     )
     _assert_same(one.isel(bearing=0), single)
     assert math.isclose(float(one["bearing_axial_load"][0]), -thrust, rel_tol=1e-9)

@@ -320,13 +320,23 @@ def _with_traction_balance(problem, v, force_scale, lubricant, relative_speed):
             continue
         changes.append(change / TRACTION_SPEED_TOLERANCE)
         if _fixed_point_settled(changes):
-            return v, total, merit, (
-                f"ball speeds from the traction balance of every bearing, fixed point after "
-                f"{iteration} iterations"
+            return (
+                v,
+                total,
+                merit,
+                (
+                    f"ball speeds from the traction balance of every bearing, fixed point after "
+                    f"{iteration} iterations"
+                ),
             )
-    return v, total, merit, (
-        f"ball speeds from the traction balance: the fixed point did not settle within "
-        f"{MAX_TRACTION_ITERATIONS} iterations; the last iterate is kept"
+    return (
+        v,
+        total,
+        merit,
+        (
+            f"ball speeds from the traction balance: the fixed point did not settle within "
+            f"{MAX_TRACTION_ITERATIONS} iterations; the last iterate is kept"
+        ),
     )
 
 

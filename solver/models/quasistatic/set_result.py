@@ -178,8 +178,12 @@ def _stacked_values(values):
     fill = "" if values[0].dtype.kind in "OUS" else np.nan
     out = []
     for v in values:
-        pad = np.full((longest - v.shape[0], *v.shape[1:]), fill, dtype=object if fill == "" else float)
-        out.append(np.concatenate([v.astype(pad.dtype) if fill != "" else v, pad]) if pad.size else v)
+        pad = np.full(
+            (longest - v.shape[0], *v.shape[1:]), fill, dtype=object if fill == "" else float
+        )
+        out.append(
+            np.concatenate([v.astype(pad.dtype) if fill != "" else v, pad]) if pad.size else v
+        )
     return np.stack(out)
 
 

@@ -17,8 +17,19 @@ def bearing_result(ds, index: int):
     count = int(one["ball_count"])
     one = one.drop_vars([name for name in SET_VARIABLES if name in one.variables])
     one = one.drop_vars(
-        [name for name in ("bearing", "bearing_position", "bearing_direction", "ball_count",
-                           "dof", "dof_", "load_position") if name in one.variables]
+        [
+            name
+            for name in (
+                "bearing",
+                "bearing_position",
+                "bearing_direction",
+                "ball_count",
+                "dof",
+                "dof_",
+                "load_position",
+            )
+            if name in one.variables
+        ]
     )
     return one.isel(ball=slice(0, count))
 

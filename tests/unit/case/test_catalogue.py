@@ -26,6 +26,7 @@ EXPECTED = {
         "spindle-misalignment-ring",
         "218-heavy-combined",
         "209-radial",
+        "spindle-pair-db-light-preload",
     },
 }
 
@@ -34,7 +35,7 @@ def test_catalogue_lists_the_required_entries():
     cat = catalogue()
     assert {e.name for e in cat.bearings} == EXPECTED["bearings"]
     assert {e.name for e in cat.cases} == EXPECTED["cases"]
-    assert list(cat) == list(cat.entries) and len(cat) == 11
+    assert list(cat) == list(cat.entries) and len(cat) == 12
     for entry in cat.entries:
         assert entry.title and entry.provenance in (
             "estimated",
