@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from solver import parse_case, solve, solve_quasistatic
+from solver import parse_case, set_result_warnings, solve, solve_quasistatic
 from solver.models.quasistatic import solve_quasistatic_state
 from solver.models.quasistatic.bearing_set import solve_set_state
 
@@ -165,7 +165,10 @@ force_N = 300.0
     state = _solved_shaft(8000.0, table, [100.0, 200.0, 0.0], [0.0, 0.0])
     from solver.models.quasistatic.bearing_set import lever
 
-    total = sum(lever(m.arm).T @ k @ lever(m.arm) for m, k in zip(state.members, state.stiffness))
+    total = sum(
+        lever(m.arm).T @ k @ lever(m.arm)
+        for m, k in zip(state.members, state.stiffness, strict=True)
+    )
     assert np.allclose(total, state.set_stiffness, rtol=1e-9, atol=1e-9 * np.abs(total).max())
     # at rest with no friction the stiffness is symmetric
     rest = _solved_shaft(0.0, table, [100.0, 200.0, 0.0], [0.0, 0.0]).set_stiffness
@@ -248,3 +251,46 @@ force_N = [{thrust}, {radial}, 0.0]
     )
     _assert_same(one.isel(bearing=0), single)
     assert math.isclose(float(one["bearing_axial_load"][0]), -thrust, rel_tol=1e-9)
+
+
+def test_spring_preload_holds_its_side_at_the_spring_force_with_mixed_bearings():
+    """The spring side's outer rings float: whatever the load and speed, the bearings the spring
+    pushes carry the spring force; the other bearing (16 balls, 25 degree) takes the rest."""
+    spring = 120.0
+    ds = solve(
+        set_case(
+            15000.0,
+            f"""[set]
+width_mm = 15.0
+[set.preload]
+kind = "spring"
+force_N = {spring}
+spring_side = "-x"
+[set.load]
+position_mm = -50.0
+force_N = [100.0, 200.0, 0.0]
+[[set.bearing]]
+name = "front"
+position_mm = 0.0
+direction = "+x"
+bearing = {{ ball_count = 16, ball_diameter_mm = 7.144, pitch_diameter_mm = 54.0, inner_groove_radius_ratio = 0.54, outer_groove_radius_ratio = 0.53, free_contact_angle_deg = 25.0, ball_material = "bearing_steel", ring_material = "bearing_steel" }}
+[[set.bearing]]
+name = "rear"
+position_mm = 120.0
+direction = "-x"
+""",
+        )
+    )
+    front, rear = ds["bearing_axial_load"].values
+    assert rear == pytest.approx(spring, rel=1e-9)
+    assert front == pytest.approx(spring + 100.0, rel=1e-6)  # axial balance of the shaft
+    assert list(ds["ball_count"].values) == [16, 18]
+    # the 16-ball bearing's two missing balls are padding, not results
+    assert np.isnan(ds["contact_load"].sel(bearing="front").values[16:]).all()
+    assert np.isfinite(ds["contact_load"].sel(bearing="rear").values).all()
+    # the rear inner ring's approach in its own (mirrored) frame: minus the shaft's axial
+    # displacement plus the shift of its floating outer ring
+    rear_approach = ds["inner_ring_offset"].sel(bearing="rear", axis="x").item()
+    shaft_x = ds["shaft_offset"].sel(axis="x").item()
+    assert rear_approach == pytest.approx(-shaft_x + ds["spring_shift"].item(), rel=1e-12)
+    assert set_result_warnings(ds) == []

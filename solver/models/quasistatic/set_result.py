@@ -161,8 +161,9 @@ SET_VARIABLES: dict[str, Variable] = {
         (),
         "m",
         "spring side outer ring shift",
-        "axial approach of the spring side's floating outer rings towards their inner rings "
-        "(spring preload); 0 otherwise",
+        "axial shift w of the spring side's floating outer rings, along those bearings' own "
+        "direction (their inner rings' approach is w plus their shaft displacement in their own "
+        "frame; spring preload); 0 otherwise",
         ("quasistatic",),
     ),
 }
@@ -170,21 +171,19 @@ SET_VARIABLES: dict[str, Variable] = {
 
 def _stacked_values(values):
     """The arrays ``values`` (one per bearing) stacked on a new first axis; arrays shorter along
-    their first axis (fewer balls) padded with NaN (float) or "" (text)."""
-    shapes = {v.shape for v in values}
-    if len(shapes) == 1:
+    their first axis (fewer balls) padded with NaN (numbers) or "" (text)."""
+    if len({v.shape for v in values}) == 1:
         return np.stack(values)
     longest = max(v.shape[0] for v in values)
-    fill = "" if values[0].dtype.kind in "OUS" else np.nan
-    out = []
-    for v in values:
-        pad = np.full(
-            (longest - v.shape[0], *v.shape[1:]), fill, dtype=object if fill == "" else float
-        )
-        out.append(
-            np.concatenate([v.astype(pad.dtype) if fill != "" else v, pad]) if pad.size else v
-        )
-    return np.stack(out)
+    text = values[0].dtype.kind in "OUS"
+    out = np.full(
+        (len(values), longest, *values[0].shape[1:]),
+        "" if text else np.nan,
+        dtype=object if text else float,
+    )
+    for index, v in enumerate(values):
+        out[index, : v.shape[0]] = v
+    return out.astype(str) if text else out
 
 
 def stack_bearings(datasets, extra_coords=None, extra_data=None) -> xr.Dataset:
