@@ -294,3 +294,30 @@ direction = "-x"
     shaft_x = ds["shaft_offset"].sel(axis="x").item()
     assert rear_approach == pytest.approx(-shaft_x + ds["spring_shift"].item(), rel=1e-12)
     assert set_result_warnings(ds) == []
+
+
+def test_stiffness_study_over_preload_and_speed():
+    """More preload stiffens the set; each point is the set solve of that preload and speed."""
+    from solver.models.quasistatic.bearing_set import set_stiffness_study
+
+    case = set_case(
+        0.0,
+        """[set]
+arrangement = "DB"
+width_mm = 15.0
+[set.preload]
+kind = "force"
+force_N = 100.0
+""",
+    )
+    study = set_stiffness_study(case, [50.0, 200.0], [0.0, 20000.0])
+    axial = study["axial_stiffness"].values
+    assert axial.shape == (2, 2)
+    assert (axial[1] > axial[0]).all()  # heavier preload, stiffer at both speeds
+    one = solve(
+        case.with_values({"set.preload.force_N": 200.0, "operating.inner_ring_speed_rpm": 20000.0})
+    )
+    assert study["axial_stiffness"].values[1, 1] == pytest.approx(
+        float(one["axial_stiffness"]), rel=1e-9
+    )
+    assert study["bearing_axial_load"].values[0, 0] == pytest.approx([50.0, 50.0], rel=1e-9)

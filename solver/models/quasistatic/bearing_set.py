@@ -718,3 +718,86 @@ def solve_set(case):
             )
         )
     return set_dataset(case.bearing_set, state, datasets, given.applied, text)
+
+
+#: The set's scalar and per-bearing variables a stiffness study keeps at each point.
+STUDY_VARIABLES = (
+    "axial_stiffness",
+    "radial_stiffness",
+    "tilt_stiffness",
+    "bearing_axial_load",
+    "bearing_radial_load",
+    "preload_offset",
+)
+
+
+def set_stiffness_study(case, preload_forces_N, speeds_rpm):
+    """The set's stiffness (axial, radial, tilt at the load point) and each bearing's axial and
+    radial load over a grid of preload forces [N] (``set.preload.force_N``; the case's preload
+    kind must be "force" or "spring") and inner-ring speeds [rpm], as a Dataset with dimensions
+    ``preload_force`` [N] and ``inner_ring_speed`` [rpm] (and ``bearing``). Each point is the
+    set solved as :func:`solve_set_state` solves it. Raises CaseError for a preload kind without a
+    force, NoSolutionError naming the first point without a solution."""
+    import xarray as xr
+
+    from solver.errors import CaseError, Problem
+
+    from .set_result import SET_VARIABLES
+
+    if case.bearing_set.preload_kind not in ("force", "spring"):
+        raise CaseError(
+            Problem(
+                "set.preload.kind",
+                'a stiffness study over the preload force needs set.preload.kind = "force" or '
+                f'"spring" (the case has {case.bearing_set.preload_kind!r})',
+            )
+        )
+    forces = [float(f) for f in preload_forces_N]
+    speeds = [float(s) for s in speeds_rpm]
+    if not forces or not speeds or min(forces) <= 0.0 or min(speeds) < 0.0:
+        raise ValueError("give at least one preload force > 0 N and one speed >= 0 rpm")
+    values = {name: [] for name in STUDY_VARIABLES}
+    for force in forces:
+        rows = {name: [] for name in STUDY_VARIABLES}
+        for speed in speeds:
+            point = case.with_values(
+                {"set.preload.force_N": force, "operating.inner_ring_speed_rpm": speed}
+            )
+            try:
+                state = solve_set_state(point)
+            except NoSolutionError as error:
+                raise NoSolutionError(
+                    f"stiffness study stopped at preload {force:g} N, {speed:g} rpm: {error}"
+                ) from None
+            k = state.set_stiffness
+            sign = np.array([m.sign for m in state.members])
+            point_values = {
+                "axial_stiffness": k[0, 0],
+                "radial_stiffness": 0.5 * (k[1, 1] + k[2, 2]),
+                "tilt_stiffness": 0.5 * (k[3, 3] + k[4, 4]),
+                "bearing_axial_load": -sign * state.reactions[:, 0],
+                "bearing_radial_load": np.hypot(state.reactions[:, 1], state.reactions[:, 2]),
+                "preload_offset": state.offset,
+            }
+            for name in STUDY_VARIABLES:
+                rows[name].append(point_values[name])
+        for name in STUDY_VARIABLES:
+            values[name].append(rows[name])
+    names = [b.name for b in case.bearing_set.bearings]
+    data = {}
+    for name in STUDY_VARIABLES:
+        spec = SET_VARIABLES[name]
+        data[name] = xr.Variable(
+            ("preload_force", "inner_ring_speed", *spec.dims),
+            np.asarray(values[name], dtype=float),
+            spec.attrs(),
+        )
+    return xr.Dataset(
+        data,
+        coords={
+            "preload_force": ("preload_force", forces, {"units": "N"}),
+            "inner_ring_speed": ("inner_ring_speed", speeds, {"units": "rpm"}),
+            "bearing": ("bearing", names),
+        },
+        attrs={"bearing_set": case.bearing_set.describe(), "case": case.to_toml()},
+    )

@@ -119,6 +119,7 @@ SET_WORDS = {
     "solver_residual",
     "stiffness_symmetry",
     "unloaded_at_rest",
+    "preload_force",
 }
 
 
