@@ -273,7 +273,15 @@ force_N = [100.0, 200.0, 0.0]
 name = "front"
 position_mm = 0.0
 direction = "+x"
-bearing = {{ ball_count = 16, ball_diameter_mm = 7.144, pitch_diameter_mm = 54.0, inner_groove_radius_ratio = 0.54, outer_groove_radius_ratio = 0.53, free_contact_angle_deg = 25.0, ball_material = "bearing_steel", ring_material = "bearing_steel" }}
+[set.bearing.bearing]
+ball_count = 16
+ball_diameter_mm = 7.144
+pitch_diameter_mm = 54.0
+inner_groove_radius_ratio = 0.54
+outer_groove_radius_ratio = 0.53
+free_contact_angle_deg = 25.0
+ball_material = "bearing_steel"
+ring_material = "bearing_steel"
 [[set.bearing]]
 name = "rear"
 position_mm = 120.0

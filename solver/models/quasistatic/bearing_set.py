@@ -638,14 +638,18 @@ def _unloaded(problem, v, speed, force_scale):
 
 def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, unloaded_at_rest):
     u, w = problem.split(v)
-    positions = [m.state.position for m in problem.members]
-    _, _, set_jacobian = problem.evaluate(v, 1.0, positions)
+    set_jacobian = np.zeros((problem.n, problem.n))
     solutions, operatings = [], []
     reactions, displacements, stiffness = [], [], []
     for m in problem.members:
         q = m.q(u, w)
         m.state.q = q.copy()
         ok, r_b, j_b = m.reaction(q, 1.0, m.state.position)
+        set_jacobian[:5, :5] += m.map.T @ j_b @ m.map
+        if m.spring:
+            set_jacobian[5, :5] += j_b[0] @ m.map
+            set_jacobian[:5, 5] += m.map.T @ j_b[:, 0]
+            set_jacobian[5, 5] += j_b[0, 0]
         op = _bearing_operating(m.inputs.operating, q, r_b)
         pack_problem = _Problem(m.inputs.geometry, op)
         pack_problem.force_scale = m.problem.force_scale

@@ -74,7 +74,15 @@ catalogue = "7008C-hybrid-spindle"
 name = "rear"
 position_mm = 120.0
 direction = "-x"
-bearing = { ball_count = 16, ball_diameter_mm = 7.144, pitch_diameter_mm = 54.0, inner_groove_radius_ratio = 0.54, outer_groove_radius_ratio = 0.53, free_contact_angle_deg = 25.0, ball_material = "bearing_steel", ring_material = "bearing_steel" }
+[set.bearing.bearing]
+ball_count = 16
+ball_diameter_mm = 7.144
+pitch_diameter_mm = 54.0
+inner_groove_radius_ratio = 0.54
+outer_groove_radius_ratio = 0.53
+free_contact_angle_deg = 25.0
+ball_material = "bearing_steel"
+ring_material = "bearing_steel"
 """
     )
     s = c.bearing_set
