@@ -330,3 +330,41 @@ force_N = 100.0
         float(one["axial_stiffness"]), rel=1e-9
     )
     assert study["bearing_axial_load"].values[0, 0] == pytest.approx([50.0, 50.0], rel=1e-9)
+
+
+def _db_with_thrust(speed_rpm, thrust):
+    return set_case(
+        speed_rpm,
+        f"""[set]
+arrangement = "DB"
+width_mm = 15.0
+[set.preload]
+kind = "force"
+force_N = 50.0
+[set.load]
+force_N = [{thrust}, 0.0, 0.0]
+""",
+    )
+
+
+def test_a_bearing_unloaded_by_the_load_is_a_warning_not_an_error():
+    """A thrust far above the preload lifts the opposed bearing off its balls at rest (a DB pair
+    unloads its second bearing at about 2.8 times the preload): the result says so."""
+    ds = solve(_db_with_thrust(0.0, 600.0))
+    assert ds["bearing_axial_load"].values[1] == 0.0
+    found = set_result_warnings(ds)
+    assert any(m.startswith("bearing bearing 2 carries no load at rest") for m in found), found
+    assert any("at rest under the case's loads" in m and "bearing 2" in m for m in found), found
+
+
+def test_preload_lost_at_speed_is_named_and_a_fixed_position_preload_rises_with_speed():
+    """With rigid rings the balls' centrifugal forces raise a fixed-position preload with speed;
+    a thrust beyond what the preload holds still unloads the opposed bearing at speed."""
+    rest = solve(_db_with_thrust(0.0, 100.0))
+    fast = solve(_db_with_thrust(40000.0, 100.0))
+    assert set_result_warnings(rest) == [] and set_result_warnings(fast) == []
+    assert fast["bearing_axial_load"].values[1] > rest["bearing_axial_load"].values[1] > 0.0
+    lost = solve(_db_with_thrust(20000.0, 3000.0))
+    assert lost["bearing_axial_load"].values[1] == 0.0
+    found = set_result_warnings(lost)
+    assert any(m.startswith("bearing bearing 2 carries no load at speed") for m in found), found

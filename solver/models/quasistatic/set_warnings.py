@@ -35,10 +35,10 @@ def bearing_result(ds, index: int):
 
 
 def set_result_warnings(ds) -> list[str]:
-    """Warnings of a bearing set's Dataset: a bearing whose balls all lost their load at speed
-    (the classic loss of preload of a back-to-back set at speed), or some of them; a bearing
-    unloaded at rest under the case's loads; and each bearing's own result warnings
-    (:func:`solver.results.checks.result_warnings`), named by bearing."""
+    """Warnings of a bearing set's Dataset: a bearing whose balls all lost their inner contact
+    (its preload lost), or some of them; a bearing unloaded at rest under the case's loads; and
+    each bearing's own result warnings (:func:`solver.results.checks.result_warnings`), named by
+    bearing."""
     from solver.results.checks import result_warnings
 
     found = []
@@ -52,14 +52,9 @@ def set_result_warnings(ds) -> list[str]:
         at = "at speed" if speed else "at rest"
         if unloaded == count:
             found.append(
-                f"bearing {name!s} carries no load {at}: every ball has lost its inner contact"
-                + (
-                    " (the balls' centrifugal forces have taken up its preload: the loss of "
-                    "preload of a back-to-back set at speed); raise the preload or use a spring "
-                    "preload"
-                    if speed
-                    else "; raise the preload"
-                )
+                f"bearing {name!s} carries no load {at}: every ball has lost its inner contact "
+                "(its preload is lost under the external load); raise the preload, or use a "
+                "spring preload that keeps its force"
             )
         elif unloaded:
             found.append(
