@@ -8,6 +8,11 @@ Public API (everything else is internal):
 - ``dynamic_problems(case) -> list[Problem]``: why the dynamic model cannot run a valid case
 - ``to_inputs(case) -> Inputs``: the SI inputs both models read
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
+- ``solve(case) -> xarray.Dataset``: the quasi-static answer; for a bearing set (a ``[set]`` case)
+  the set's Dataset with a ``bearing`` dimension, its stiffness and load sharing
+  (``set_result_warnings(ds)``: where a bearing of the set unloads;
+  ``set_stiffness_study(case, preload_forces_N, speeds_rpm)``: the set's stiffness and load
+  sharing over preload and speed)
 - ``solve_over_revolution(case, angles=None) -> xarray.Dataset``: the quasi-static steady state at
   inner-ring angles over one shaft revolution (dimension ``ring_angle``; None: 36 angles)
 - ``quasistatic_answer(case) -> xarray.Dataset``: the quasi-static answer the CLI, studies, app and
@@ -88,6 +93,9 @@ _LAZY = {
     "describe_operating_point": "solver.inputs",
     "BearingGeometry": "solver.geometry",
     # the models, through the facade (a case by any name)
+    "solve": "solver.facade",
+    "set_result_warnings": "solver.models.quasistatic.set_warnings",
+    "set_stiffness_study": "solver.models.quasistatic.bearing_set",
     "solve_quasistatic": "solver.facade",
     "solve_over_revolution": "solver.facade",
     "quasistatic_answer": "solver.facade",

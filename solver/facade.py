@@ -38,6 +38,19 @@ def quasistatic_along_history(case, times=None):
     return model(_resolved(case), times)
 
 
+def solve(case):
+    """The quasi-static answer of ``case``: for a bearing set (a case with a ``[set]`` table) the
+    set's Dataset with a ``bearing`` dimension
+    (:func:`solver.models.quasistatic.bearing_set.solve_set`), for one bearing
+    :func:`quasistatic_answer`."""
+    case = _resolved(case)
+    if getattr(case, "bearing_set", None) is not None:
+        from solver.models.quasistatic.bearing_set import solve_set
+
+        return solve_set(case)
+    return quasistatic_answer(case)
+
+
 def solve_over_revolution(case, angles: int | None = None):
     """The quasi-static steady state at ``angles`` inner-ring angles over one shaft revolution
     (:func:`solver.models.quasistatic.solve_over_revolution`; None: its default,

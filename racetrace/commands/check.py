@@ -104,7 +104,14 @@ def run(args) -> int:
     from solver import dynamic_problems, resolve_case
 
     case = resolve_case(args.case)
-    print(printable(summary(case), keep_newlines=True))  # the title is the user's text
+    text = summary(case)
+    if case.bearing_set is not None:  # [operating] gives the speeds only; the loads are the set's
+        from .bearing_set import describe_set
+
+        kept = [line for line in text.splitlines() if "axial load" not in line]
+        kept[-1:-1] = describe_set(case)
+        text = "\n".join(kept)
+    print(printable(text, keep_newlines=True))  # the title is the user's text
     for problem in dynamic_problems(case):
         print(f"dynamic model: {problem.message}")
     for warning in case.warnings():

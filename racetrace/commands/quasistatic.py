@@ -342,6 +342,35 @@ def print_result_warnings(ds, stream=None) -> None:
         print(f"warning: {message}", file=stream or sys.stderr)
 
 
+def _run_set(args, case) -> int:
+    """``racetrace solve`` of a bearing set: the per-bearing table (or JSON) of solver.solve."""
+    from solver import printable, set_result_warnings, solve
+
+    from .bearing_set import set_summary, set_table
+
+    ds = solve(case)
+    for message in set_result_warnings(ds):
+        print(f"warning: {message}", file=sys.stderr)
+    written = save_result(ds, Path(args.output)) if args.output else None
+    if args.json:
+        out = set_summary(ds)
+        if args.output:
+            out["output"] = None if written is None else str(written)
+        text = json.dumps(out, indent=2, allow_nan=False)
+    else:
+        text = printable(set_table(ds), keep_newlines=True)
+        if written is not None:
+            text += f"\n\nresults written to {written}"
+    try:
+        print(text)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    if args.output and written != Path(args.output):
+        return EXIT_NOT_WRITTEN
+    return 0
+
+
 def run(args) -> int:
     from solver import (
         CaseError,
@@ -360,6 +389,8 @@ def run(args) -> int:
         problem = output_problem(Path(args.output))
         if problem:
             raise CaseError(Problem("output", problem))
+    if case.bearing_set is not None:
+        return _run_set(args, case)
     along = getattr(args, "along_history", None)
     at_time = getattr(args, "at_time", None)
     if along is not None and along != 0 and along < 2:

@@ -13,12 +13,14 @@ without a default (``Default.OPTIONAL``), which are ``None``. Build cases with
 from __future__ import annotations
 
 import copy
+import dataclasses
 from dataclasses import dataclass, field, make_dataclass
 
-from solver.errors import Problem
+from solver.errors import CaseError, Problem
 from solver.inputs import bearing_geometry, material_from_table
 from solver.materials import BUILTIN_MATERIALS, Material
 
+from .bearing_set import read_set
 from .schema import (
     ASSUMED_METHOD,
     ASSUMED_OIL_VOLUME_FRACTION,
@@ -148,6 +150,7 @@ class Case:
     description: str = ""
     histories: dict = field(default_factory=dict)
     source_dir: str = field(default="", compare=False)
+    bearing_set: object = None  # a solver.case.bearing_set.BearingSet for a [set] case, else None
 
     @property
     def has_history(self) -> bool:
@@ -277,19 +280,40 @@ class Case:
                 if key == "bearing":
                     ordered["materials"] = copy.deepcopy(self.materials)
             out = ordered
+        if self.bearing_set is not None:
+            out["set"] = self.bearing_set.to_dict()
         return out
 
     @classmethod
     def from_dict(cls, data: dict, base_dir=None) -> Case:
         """Validated case from a nested dict (as :func:`tomllib.loads` returns); CaseError.
-        ``base_dir``: the case file's folder, where history files are read from."""
+        ``base_dir``: the case file's folder, where history files are read from. A ``set`` table
+        (a bearing set, :mod:`solver.case.bearing_set`) is read after the rest."""
+        if isinstance(data, dict) and "set" in data:
+            rest = {key: value for key, value in data.items() if key != "set"}
+            case = case_from_values(validate(rest, base_dir, bearing_set=True), base_dir or "")
+            if case.histories:
+                keys = ", ".join(sorted(case.histories))
+                raise CaseError(
+                    Problem(
+                        next(iter(sorted(case.histories))),
+                        f"{keys}: a bearing set is solved at one operating point (the quasi-static "
+                        "set model); time histories are not modelled for sets. Give numbers, or "
+                        "simulate one bearing of the set with its history",
+                    )
+                )
+            bearing_set = read_set(data["set"], rest, _set_bearing_case)
+            return dataclasses.replace(case, bearing_set=bearing_set)
         return case_from_values(validate(data, base_dir), base_dir or "")
 
     def to_toml(self, inline_files: bool = False) -> str:
         """Readable case-file text; loading it gives an equal case. ``inline_files``: a history
         read from a file is written as its inline table of points instead (text that needs no
         other file, as a result keeps it)."""
-        return case_to_toml(self, inline_files)
+        text = case_to_toml(self, inline_files)
+        if self.bearing_set is not None:
+            text = text.rstrip("\n") + "\n\n" + self.bearing_set.to_toml()
+        return text
 
     def with_values(self, values: dict) -> Case:
         """Validated copy with some keys changed: ``{"operating.axial_load_N": 300.0, ...}``.
@@ -317,6 +341,11 @@ class Case:
                 else:
                     target[parts[-1]] = value
         return Case.from_dict(data, self.source_dir or None)
+
+
+def _set_bearing_case(data: dict) -> Case:
+    """The validated single-bearing case of one bearing of a set (its loads are the set's)."""
+    return case_from_values(validate(data, bearing_set=True))
 
 
 MATERIAL_KEYS = tuple(f.key for f in MATERIAL_FIELDS)

@@ -501,7 +501,9 @@ def _check_materials(data: dict, v: dict, problems: list[Problem]) -> dict:
     return users
 
 
-def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Problem]) -> None:
+def _check_operating_rules(
+    data: dict, v: dict, given: set, problems: list[Problem], bearing_set: bool = False
+) -> None:
     mis_k, mom_k = "operating.misalignment_deg", "operating.tilting_moment_Nm"
     if mis_k in given and mom_k in given:
         _problem(
@@ -517,7 +519,7 @@ def _check_operating_rules(data: dict, v: dict, given: set, problems: list[Probl
         v[k] if k in v else (None if k in given else 0.0)
         for k in ("operating.axial_load_N", "operating.radial_load_N")
     ]
-    if loads == [0.0, 0.0] and "operating" in data:
+    if loads == [0.0, 0.0] and "operating" in data and not bearing_set:
         tilt = [k for k in (mis_k, mom_k) if v.get(k) not in (None, 0.0)]
         invalid = [k for k in (mis_k, mom_k) if k in given and k not in v]
         if not tilt and not invalid:
@@ -743,12 +745,14 @@ class CaseValues:
     histories: dict = dataclasses.field(default_factory=dict)
 
 
-def validate(data, base_dir=None) -> CaseValues:
+def validate(data, base_dir=None, bearing_set: bool = False) -> CaseValues:
     """Values of a valid case from a nested dict; raises CaseError listing every problem.
 
     ``base_dir``: the case file's folder, where a history file (``{ file = ... }``) is looked for
     (None: the case has no folder). An operating key given as a time history has its value at
-    t = 0 among the values, and its :class:`~solver.case.history.KeyHistory` in ``histories``."""
+    t = 0 among the values, and its :class:`~solver.case.history.KeyHistory` in ``histories``.
+    ``bearing_set``: the case has a ``[set]`` table (its loads are in ``[set.load]``, so
+    ``[operating]`` may give none)."""
     if not isinstance(data, dict):
         raise CaseError(Problem("", f"a case must be a table of keys, not {type(data).__name__}"))
     problems: list[Problem] = []
@@ -803,7 +807,7 @@ def validate(data, base_dir=None) -> CaseValues:
 
     users = _check_materials(data, values, problems)
     _check_bearing_rules(values, given, problems)
-    _check_operating_rules(data, values, given, problems)
+    _check_operating_rules(data, values, given, problems, bearing_set)
     _check_history_loads(values, given, histories, problems)
     _check_run_length_keys(data, values, given, history_given, problems)
     _check_traction(values, given, problems)
@@ -983,6 +987,14 @@ def dynamic_problems(case) -> list[Problem]:
     quasi-static model needs none of these rules: it solves a bearing at rest too, and stores one
     sample.
     """
+    if getattr(case, "bearing_set", None) is not None:
+        return [
+            Problem(
+                "set",
+                "the dynamic model runs one bearing; this case describes a bearing set ([set]): "
+                "solve it with the quasi-static model (racetrace solve, solver.solve)",
+            )
+        ]
     op = case.operating
     sim = case.simulation
     histories = getattr(case, "histories", {})

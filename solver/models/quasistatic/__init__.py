@@ -96,6 +96,17 @@ def _inputs(case) -> Inputs:
             f"the model takes a Case or Inputs, not {case!r}: solver.solve_quasistatic resolves "
             "a case-file path or a catalogue name"
         )
+    if getattr(case, "bearing_set", None) is not None:
+        from solver.errors import CaseError, Problem
+
+        raise CaseError(
+            Problem(
+                "set",
+                "this case describes a bearing set ([set]): the single-bearing quasi-static "
+                "functions solve one bearing; solve the set with solver.solve(case) (racetrace "
+                "solve CASE)",
+            )
+        )
     return to_inputs(case)
 
 

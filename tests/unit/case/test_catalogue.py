@@ -31,6 +31,7 @@ EXPECTED = {
         "spindle-radial-step",
         "spindle-unbalance",
         "spindle-load-spectrum",
+        "spindle-pair-db-light-preload",
     },
 }
 
@@ -39,7 +40,7 @@ def test_catalogue_lists_the_required_entries():
     cat = catalogue()
     assert {e.name for e in cat.bearings} == EXPECTED["bearings"]
     assert {e.name for e in cat.cases} == EXPECTED["cases"]
-    assert list(cat) == list(cat.entries) and len(cat) == 15
+    assert list(cat) == list(cat.entries) and len(cat) == 16
     for entry in cat.entries:
         assert entry.title and entry.provenance in (
             "estimated",

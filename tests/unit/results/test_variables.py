@@ -5,6 +5,7 @@ from pathlib import Path
 
 import pytest
 
+from solver.models.quasistatic.set_result import SET_VARIABLES
 from solver.results.metrics import METRICS
 from solver.results.variables import (
     COORDINATES,
@@ -112,6 +113,23 @@ SCHEMA_WORDS = {
     "phase_end_time",
     "phase_label",
 }
+#: The bearing set's coordinates and attributes (results-schema.md, "Bearing sets").
+SET_WORDS = {
+    "bearing",
+    "bearing_position",
+    "bearing_direction",
+    "ball_count",
+    "load_position",
+    "dof",
+    "dof_",
+    "bearing_set",
+    "set_note",
+    "solver_iterations",
+    "solver_residual",
+    "stiffness_symmetry",
+    "unloaded_at_rest",
+    "preload_force",
+}
 
 
 def test_registry_covers_every_name_in_the_schema_document():
@@ -122,9 +140,15 @@ def test_registry_covers_every_name_in_the_schema_document():
     names = set(re.findall(r"`([a-z_]+)`", text))
     labels = set(DIMENSION_VALUES) | {v for values in DIMENSION_VALUES.values() for v in values}
     known = set(VARIABLES) | set(COORDINATES) | set(DIMENSION_COORDINATES) | labels
-    known |= SCHEMA_WORDS | {"ball"} | set(METRICS)
+    known |= SCHEMA_WORDS | {"ball"} | set(METRICS) | set(SET_VARIABLES) | SET_WORDS
     missing = sorted(names - known)
     assert not missing, missing
+
+
+def test_schema_document_names_every_set_variable():
+    text = SCHEMA.read_text(encoding="utf-8")
+    documented = set(re.findall(r"`([a-z_]+)`", text))
+    assert not sorted(set(SET_VARIABLES) - documented)
 
 
 def test_schema_document_names_every_registered_name():

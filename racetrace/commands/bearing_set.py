@@ -1,0 +1,119 @@
+"""What ``racetrace check`` and ``racetrace solve`` print for a bearing set (a case with a
+``[set]`` table): the set as described, and its quasi-static result per bearing."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def _num(value: float, digits: int = 4) -> str:
+    value = float(value)
+    return f"{0.0 if abs(value) < 1e-12 else value:.{digits}g}"
+
+
+def describe_set(case) -> list[str]:
+    """Lines describing the set of ``case`` (its arrangement, bearings, preload and loads)."""
+    s = case.bearing_set
+    force = ", ".join(_num(v) for v in s.load_force_N)
+    moment = ", ".join(_num(v) for v in s.load_moment_Nm)
+    lines = [
+        f"set:       {s.describe()}",
+        f"           loads on the shaft at {_num(s.load_position_mm)} mm: force [{force}] N, "
+        f"moment [{moment}] N m",
+    ]
+    for b in s.bearings:
+        geometry = b.case.bearing
+        lines.append(
+            f"           {b.name}: at {_num(b.position_mm)} mm, carries thrust towards "
+            f"{b.direction}; {geometry.designation or 'bearing'} ({b.source}), "
+            f"{geometry.ball_count} balls of {_num(geometry.ball_diameter_mm)} mm"
+        )
+    return lines
+
+
+def set_table(ds) -> str:
+    """The set's quasi-static result as a readable table (units in the headers)."""
+    lines = [
+        f"{ds.attrs.get('title', '')}",
+        f"{ds.attrs.get('bearing_set', '')}; ball speeds: {ds.attrs.get('kinematics', '')}",
+        "",
+        f"{'bearing':>12} {'pos mm':>8} {'dir':>4} {'Fa N':>10} {'Fr N':>10} "
+        f"{'Qi max N':>10} {'a_i deg':>8} {'a_o deg':>8} {'loaded':>7} {'p max GPa':>10}",
+    ]
+    for index, name in enumerate(ds["bearing"].values):
+        one = ds.isel(bearing=index)
+        count = int(one["ball_count"])
+        load = one["contact_load"].values[:count]
+        angle = one["contact_angle"].values[:count]
+        loaded = load[:, 0] > 0.0
+        heavy = int(np.argmax(load[:, 0]))
+        lines.append(
+            f"{name!s:>12} {float(one['bearing_position']) * 1e3:8.1f} "
+            f"{one['bearing_direction'].item():>4} {float(one['bearing_axial_load']):10.1f} "
+            f"{float(one['bearing_radial_load']):10.1f} {load[:, 0].max():10.2f} "
+            f"{angle[heavy, 0]:8.2f} {angle[heavy, 1]:8.2f} {int(loaded.sum()):3d}/{count:<3d} "
+            f"{np.nanmax(one['max_pressure'].values[:count]) * 1e-9:10.3f}"
+        )
+    offset = ds["shaft_offset"].values * 1e6
+    tilt = ds["shaft_tilt"].values
+    lines += [
+        "",
+        f"shaft at the load point: offset [{', '.join(f'{v:.3f}' for v in offset)}] um, tilt "
+        f"[{', '.join(f'{v:.5f}' for v in tilt)}] deg",
+        f"preload offset {float(ds['preload_offset']) * 1e6:.3f} um; "
+        f"spring shift {float(ds['spring_shift']) * 1e6:.3f} um",
+        f"set stiffness at the load point: axial {float(ds['axial_stiffness']) * 1e-6:.2f} N/um, "
+        f"radial {float(ds['radial_stiffness']) * 1e-6:.2f} N/um, tilt "
+        f"{float(ds['tilt_stiffness']) * math.pi / 180:.1f} N m/deg",
+    ]
+    for name in ("axial_load_share", "radial_load_share"):
+        if name in ds:
+            shares = ", ".join(
+                f"{b!s} {v:.3f}" for b, v in zip(ds["bearing"].values, ds[name].values, strict=True)
+            )
+            lines.append(f"{name.replace('_', ' ')}: {shares}")
+    return "\n".join(lines)
+
+
+def set_summary(ds) -> dict:
+    """The set's result as plain JSON values (SI units, angles in degree)."""
+    bearings = []
+    for index, name in enumerate(ds["bearing"].values):
+        one = ds.isel(bearing=index)
+        count = int(one["ball_count"])
+        load = one["contact_load"].values[:count]
+        bearings.append(
+            {
+                "name": str(name),
+                "position_m": float(one["bearing_position"]),
+                "direction": str(one["bearing_direction"].item()),
+                "axial_load_N": float(one["bearing_axial_load"]),
+                "radial_load_N": float(one["bearing_radial_load"]),
+                "max_inner_contact_load_N": float(load[:, 0].max()),
+                "loaded_balls": int((load[:, 0] > 0.0).sum()),
+                "ball_count": count,
+                "force_on_shaft_N": [float(v) for v in one["bearing_force"].values],
+                "moment_on_shaft_Nm": [float(v) for v in one["bearing_moment"].values],
+                "stiffness": one["bearing_stiffness"].values.tolist(),
+            }
+        )
+    out = {
+        "title": ds.attrs.get("title", ""),
+        "bearing_set": ds.attrs.get("bearing_set", ""),
+        "ball_speeds": ds.attrs.get("kinematics", ""),
+        "bearings": bearings,
+        "shaft_offset_m": [float(v) for v in ds["shaft_offset"].values],
+        "shaft_tilt_deg": [float(v) for v in ds["shaft_tilt"].values],
+        "preload_offset_m": float(ds["preload_offset"]),
+        "spring_shift_m": float(ds["spring_shift"]),
+        "set_stiffness": ds["set_stiffness"].values.tolist(),
+        "axial_stiffness_N_m": float(ds["axial_stiffness"]),
+        "radial_stiffness_N_m": float(ds["radial_stiffness"]),
+        "tilt_stiffness_Nm_rad": float(ds["tilt_stiffness"]),
+    }
+    for name in ("axial_load_share", "radial_load_share"):
+        if name in ds:
+            out[name] = [float(v) for v in ds[name].values]
+    return out
