@@ -16,8 +16,6 @@ import json
 import math
 from pathlib import Path
 
-import numpy as np
-
 from .units import hours, number, shown
 
 #: Top-level modules of the ``report`` extra (checked before building).
@@ -849,14 +847,9 @@ def study_sections(ds, links=None):
 
     from . import charts
 
-    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
     sections = [_html(study_header(ds), stylesheets=[PRINT_CSS])]
     for sweep in dict.fromkeys(str(s) for s in ds["sweep"].values):
-        select = np.asarray(ds["sweep"].values) == sweep
-        varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
-        if not varied:
-            continue
-        figs = charts.study_metric_charts(ds, sweep, varied[0], STUDY_CHART_METRICS)
+        figs = charts.study_metric_charts(ds, sweep, STUDY_CHART_METRICS)
         if figs:
             sections.append(_html(f"<h2>{_text(sweep)}</h2>", stylesheets=[PRINT_CSS]))
             sections.append(

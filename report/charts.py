@@ -149,32 +149,49 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
     return fig, note
 
 
-def study_metric_charts(ds, sweep: str, key: str, metrics):
-    """Charts of ``metrics`` [(variable, label, scale)] against varied key ``key`` for the points
-    of ``sweep``: one line per race and model."""
-    select = np.asarray(ds["sweep"].values) == sweep
-    x = np.asarray(ds[key].values)[select]
-    if x.dtype.kind not in "fi":
+def key_label(key: str) -> str:
+    """A case key as an axis label: its schema label and unit ("Radial load [N]"), else its last
+    segment."""
+    from solver import fields_by_key
+
+    field = fields_by_key().get(key)
+    if field is None:
+        return key.rsplit(".", 1)[-1]
+    return f"{field.label} [{field.unit}]" if field.unit else field.label
+
+
+def study_metric_charts(ds, sweep: str, metrics):
+    """Charts of ``metrics`` [(variable, label, scale)] against the key the points of ``sweep``
+    are charted against (:func:`solver.sweep_axis_key`): one line per race and model through the
+    points where both the key and the metric are finite. No charts when the sweep has no such key
+    or a metric has no finite value."""
+    from solver import sweep_axis_key
+
+    key = sweep_axis_key(ds, sweep)
+    if key is None:
         return []
+    select = np.asarray(ds["sweep"].values).astype(str) == sweep
+    x = np.asarray(ds[key].values, float)[select]
     order = np.argsort(x)
     figures = []
     for var, label, scale in metrics:
-        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=320)
+        fig = _figure(f"{label} ({sweep})", key_label(key), label, height=320)
         drawn = False
         for model in ds["model"].values:
             for race in ("inner", "outer"):
                 y = np.asarray(ds[var].sel(model=model, race=race).values, float)[select] * scale
-                if not np.isfinite(y).any():
+                shown = order[np.isfinite(x[order]) & np.isfinite(y[order])]
+                if shown.size == 0:
                     continue
                 drawn = True
                 fig.line(
-                    x[order],
-                    y[order],
+                    x[shown],
+                    y[shown],
                     color=RACE_COLOURS[race],
                     line_dash=MODEL_DASH.get(str(model), "solid"),
                     legend_label=f"{race}, {model}",
                 )
-                fig.scatter(x[order], y[order], color=RACE_COLOURS[race], size=6)
+                fig.scatter(x[shown], y[shown], color=RACE_COLOURS[race], size=6)
         if drawn:
             _legend_outside(fig)
             figures.append(fig)
