@@ -462,7 +462,7 @@ def _ball_range_rows(ds):
             if name not in ds:
                 continue
             values = window[name].sel(race=race)
-            for how in stats:
+            for how in stats if over else stats[:1]:  # a snapshot: one value per quantity
                 reduced = getattr(values, how)(over) if over else values
                 columns.append((reduced, units))
                 label = f"{short} {race} {how}" if over else f"{short} {race}"

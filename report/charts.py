@@ -17,6 +17,8 @@ from .units import ordinal
 
 MAX_MAP_POINTS = 20_000
 MAX_TIME_POINTS = 2_000
+#: At most this many samples on a raceway map are drawn as large markers (fine dots above).
+FEW_MAP_POINTS = 500
 RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
 MODEL_DASH = {"quasistatic": "dashed", "dynamic": "solid"}
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
@@ -58,6 +60,11 @@ def raceway_map(ds, race: str):
     angle, azimuth, semi_major = angle[ok], azimuth[ok], semi_major[ok]
     half_width = np.degrees(semi_major / groove_radius)
     step = _stride(angle.size, MAX_MAP_POINTS)
+    # a few samples (a quasi-static snapshot: one per ball) as markers that can be seen; many (a
+    # dynamic run) as fine, translucent dots, so that the track's density shows
+    few = angle[::step].size <= FEW_MAP_POINTS
+    centre_size, centre_alpha = (7, 0.9) if few else (2, 0.4)
+    edge_size, edge_alpha = (4, 0.6) if few else (1, 0.25)
     shoulder = math.degrees(shoulder_angle(geometry_from_result(ds), race))
     title = f"{race} raceway map (own ring frame)"
     if math.isfinite(shoulder):
@@ -67,16 +74,16 @@ def raceway_map(ds, race: str):
         fig.scatter(
             azimuth[::step],
             angle[::step] + sign * half_width[::step],
-            size=1,
-            alpha=0.25,
+            size=edge_size,
+            alpha=edge_alpha,
             color="#7f7f7f",
             legend_label=label,
         )
     fig.scatter(
         azimuth[::step],
         angle[::step],
-        size=2,
-        alpha=0.4,
+        size=centre_size,
+        alpha=centre_alpha,
         color=RACE_COLOURS[race],
         legend_label=f"{race} contacts (ellipse centre)",
     )
@@ -105,6 +112,7 @@ def _legend_outside(fig) -> None:
     fig.legend.orientation = "horizontal"
     fig.legend.click_policy = "hide"
     fig.legend.label_text_font_size = "10px"
+    fig.legend.spacing = 14  # px between items: a line sample is not read as the last label's
     fig.add_layout(legend, "below")
 
 

@@ -170,6 +170,18 @@ def test_per_ball_ranges_span_the_analysed_window(radial):
     assert len(rows) == radial.sizes["ball"]
 
 
+def test_per_ball_values_of_a_snapshot_are_one_column_each(heavy):
+    from report.build import _ball_range_rows
+    from report.units import shown
+
+    assert "time" not in heavy.dims and "ring_angle" not in heavy.dims
+    headers, rows = _ball_range_rows(heavy)
+    assert len(set(headers)) == len(headers), headers
+    assert headers[:3] == ["ball", "Q inner", "α inner"]
+    load = float(heavy["contact_load"].sel(race="outer").isel(ball=2))
+    assert rows[2][headers.index("Q outer")] == shown(load, "N")
+
+
 def test_the_heading_is_the_results_own_operating_point(radial):
     from report.build import run_header
 
@@ -297,3 +309,19 @@ def test_the_pressure_scale_spans_the_scenes_painted_range(radial):
     assert f'data-lo-gpa="{scale.lo!r}"' in page and f'data-hi-gpa="{scale.hi!r}"' in page
     assert "peak contact pressure [GPa]" in page
     assert f"{scale.hi:.3g}</span>" in page
+
+
+def test_raceway_map_markers_of_a_snapshot_can_be_seen(radial, heavy):
+    """A quasi-static snapshot puts one contact per ball on a raceway map: large markers; a dynamic
+    run thousands: fine dots."""
+    from report.charts import raceway_map
+
+    for ds, smallest, largest in ((heavy, 4, None), (radial, None, 2)):
+        for race in ("inner", "outer"):
+            fig, _note = raceway_map(ds, race)
+            sizes = [r.glyph.size for r in fig.renderers if hasattr(r.glyph, "size")]
+            assert len(sizes) == 3, sizes  # two ellipse edges and the centre
+            if smallest is not None:
+                assert min(sizes) >= smallest, (race, sizes)
+            if largest is not None:
+                assert max(sizes) <= largest, (race, sizes)
