@@ -745,6 +745,16 @@ STUDY_TABLE_METRICS = (
     ("peak_pressure", "p", 1e-9, "GPa"),
     ("largest_load", "Q", 1.0, "N"),
 )
+#: A metric smaller than this in its table unit is a zero's rounding noise (the excursion of a
+#: quasi-static point without radial load, 4e-14 deg) and is shown as 0.
+ZERO_NOISE = 1e-9
+
+
+def _metric_cell(value: float) -> str:
+    """A study table cell: ``value`` (in its column's unit) to 4 digits, 0 for rounding noise."""
+    return number(0.0 if abs(value) < ZERO_NOISE else value)
+
+
 #: Where a study report's per-point run reports go: ``<report stem>.points/<point>.<model>.html``.
 POINT_REPORTS_SUFFIX = ".points"
 
@@ -812,8 +822,8 @@ def _study_table(ds, links: dict):
         row.append(html.escape(status))
         for var, _short, scale, _unit in STUDY_TABLE_METRICS:
             for k in range(2):  # inner, outer
-                row.append(html.escape(number(float(ds[var].values[i, j, k]) * scale)))
-        row.append(html.escape(number(float(ds["cage_slip"].values[i, j]))))
+                row.append(html.escape(_metric_cell(float(ds[var].values[i, j, k]) * scale)))
+        row.append(html.escape(_metric_cell(float(ds["cage_slip"].values[i, j]))))
         message = str(ds["message"].values[i, j])
         flag = ""
         if message:

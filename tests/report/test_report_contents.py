@@ -251,6 +251,25 @@ def test_a_study_table_flags_messages_and_tables_band_width():
     assert f"{width:.4g}" in table
 
 
+def test_a_study_table_shows_rounding_noise_as_zero():
+    import solver
+    from report.build import _study_table
+
+    ds = solver.load_dataset(ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc")
+    noise = float(ds["excursion"].sel(model="quasistatic", race="outer").values[0])
+    assert 0 < abs(noise) < 1e-9  # no radial load: a zero excursion, up to rounding
+    table, _notes = _study_table(ds, {})
+    cells = re.findall(r"<td>([^<]*)</td>", table)
+    assert cells and not [c for c in cells if re.search(r"e-(1\d|[2-9]\d)$", c)]
+    first = re.search(
+        r"<tr><td class=\"text\">p0001</td><td class=\"text\">qs</td>(.*?)</tr>", table
+    )
+    assert first is not None
+    row = re.findall(r"<td[^>]*>([^<]*)</td>", first.group(1))
+    keys = json.loads(ds.attrs["varied_keys"])
+    assert row[len(keys) + 1 : len(keys) + 3] == ["0", "0"]  # exc_i, exc_o
+
+
 def test_scientific_numbers_are_not_in_engineering_cells():
     from report.units import number
 
