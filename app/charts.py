@@ -8,8 +8,6 @@ in rev/min. ``HELP`` holds a plain-language explanation of each chart, for teach
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import plotly.graph_objects as go
 import xarray as xr
@@ -825,9 +823,11 @@ STUDY_CHART_METRICS = (
 
 
 def study_figure(ds, sweep: str | None, metric: str):
-    """Plotly figure: ``metric`` against the first key ``sweep`` varies, inner and outer race side
-    by side, a line per model."""
+    """Plotly figure: ``metric`` against the key ``sweep`` is charted against
+    (:func:`solver.sweep_axis_key`), inner and outer race side by side, a line per model."""
     from plotly.subplots import make_subplots
+
+    from solver import sweep_axis_key
 
     label, scale = next(
         ((lab, sc) for n, lab, sc in STUDY_CHART_METRICS if n == metric), (metric, 1.0)
@@ -835,13 +835,12 @@ def study_figure(ds, sweep: str | None, metric: str):
     fig = make_subplots(
         rows=1, cols=2, subplot_titles=("inner race", "outer race"), shared_yaxes=True
     )
-    select = np.asarray(ds["sweep"].values) == sweep
-    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
-    if select.any() and varied and np.asarray(ds[varied[0]].values).dtype.kind in "fi":
-        key = varied[0]
+    select = np.asarray(ds["sweep"].values).astype(str) == sweep
+    key = sweep_axis_key(ds, sweep) if sweep is not None and select.any() else None
+    if key is not None:
         x = np.asarray(ds[key].values, float)[select]
         order = np.argsort(x)
+        order = order[np.isfinite(x[order])]
         for col, (race, index) in enumerate((("inner", INNER), ("outer", OUTER)), start=1):
             for model in ds["model"].values:
                 y = np.asarray(ds[metric].sel(model=model, race=race).values, float)[select]

@@ -16,8 +16,6 @@ import json
 import math
 from pathlib import Path
 
-import numpy as np
-
 from .units import hours, number, shown
 
 #: Top-level modules of the ``report`` extra (checked before building).
@@ -464,7 +462,7 @@ def _ball_range_rows(ds):
             if name not in ds:
                 continue
             values = window[name].sel(race=race)
-            for how in stats:
+            for how in stats if over else stats[:1]:  # a snapshot: one value per quantity
                 reduced = getattr(values, how)(over) if over else values
                 columns.append((reduced, units))
                 label = f"{short} {race} {how}" if over else f"{short} {race}"
@@ -747,6 +745,16 @@ STUDY_TABLE_METRICS = (
     ("peak_pressure", "p", 1e-9, "GPa"),
     ("largest_load", "Q", 1.0, "N"),
 )
+#: A metric smaller than this in its table unit is a zero's rounding noise (the excursion of a
+#: quasi-static point without radial load, 4e-14 deg) and is shown as 0.
+ZERO_NOISE = 1e-9
+
+
+def _metric_cell(value: float) -> str:
+    """A study table cell: ``value`` (in its column's unit) to 4 digits, 0 for rounding noise."""
+    return number(0.0 if abs(value) < ZERO_NOISE else value)
+
+
 #: Where a study report's per-point run reports go: ``<report stem>.points/<point>.<model>.html``.
 POINT_REPORTS_SUFFIX = ".points"
 
@@ -814,8 +822,8 @@ def _study_table(ds, links: dict):
         row.append(html.escape(status))
         for var, _short, scale, _unit in STUDY_TABLE_METRICS:
             for k in range(2):  # inner, outer
-                row.append(html.escape(number(float(ds[var].values[i, j, k]) * scale)))
-        row.append(html.escape(number(float(ds["cage_slip"].values[i, j]))))
+                row.append(html.escape(_metric_cell(float(ds[var].values[i, j, k]) * scale)))
+        row.append(html.escape(_metric_cell(float(ds["cage_slip"].values[i, j]))))
         message = str(ds["message"].values[i, j])
         flag = ""
         if message:
@@ -849,14 +857,9 @@ def study_sections(ds, links=None):
 
     from . import charts
 
-    keys = json.loads(ds.attrs.get("varied_keys", "[]"))
     sections = [_html(study_header(ds), stylesheets=[PRINT_CSS])]
     for sweep in dict.fromkeys(str(s) for s in ds["sweep"].values):
-        select = np.asarray(ds["sweep"].values) == sweep
-        varied = [k for k in keys if len(set(np.asarray(ds[k].values)[select].tolist())) > 1]
-        if not varied:
-            continue
-        figs = charts.study_metric_charts(ds, sweep, varied[0], STUDY_CHART_METRICS)
+        figs = charts.study_metric_charts(ds, sweep, STUDY_CHART_METRICS)
         if figs:
             sections.append(_html(f"<h2>{_text(sweep)}</h2>", stylesheets=[PRINT_CSS]))
             sections.append(

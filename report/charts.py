@@ -17,6 +17,8 @@ from .units import ordinal
 
 MAX_MAP_POINTS = 20_000
 MAX_TIME_POINTS = 2_000
+#: At most this many samples on a raceway map are drawn as large markers (fine dots above).
+FEW_MAP_POINTS = 500
 RACE_COLOURS = {"inner": "#1f77b4", "outer": "#d62728"}
 MODEL_DASH = {"quasistatic": "dashed", "dynamic": "solid"}
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
@@ -58,6 +60,11 @@ def raceway_map(ds, race: str):
     angle, azimuth, semi_major = angle[ok], azimuth[ok], semi_major[ok]
     half_width = np.degrees(semi_major / groove_radius)
     step = _stride(angle.size, MAX_MAP_POINTS)
+    # a few samples (a quasi-static snapshot: one per ball) as markers that can be seen; many (a
+    # dynamic run) as fine, translucent dots, so that the track's density shows
+    few = angle[::step].size <= FEW_MAP_POINTS
+    centre_size, centre_alpha = (7, 0.9) if few else (2, 0.4)
+    edge_size, edge_alpha = (4, 0.6) if few else (1, 0.25)
     shoulder = math.degrees(shoulder_angle(geometry_from_result(ds), race))
     title = f"{race} raceway map (own ring frame)"
     if math.isfinite(shoulder):
@@ -67,16 +74,16 @@ def raceway_map(ds, race: str):
         fig.scatter(
             azimuth[::step],
             angle[::step] + sign * half_width[::step],
-            size=1,
-            alpha=0.25,
+            size=edge_size,
+            alpha=edge_alpha,
             color="#7f7f7f",
             legend_label=label,
         )
     fig.scatter(
         azimuth[::step],
         angle[::step],
-        size=2,
-        alpha=0.4,
+        size=centre_size,
+        alpha=centre_alpha,
         color=RACE_COLOURS[race],
         legend_label=f"{race} contacts (ellipse centre)",
     )
@@ -105,6 +112,7 @@ def _legend_outside(fig) -> None:
     fig.legend.orientation = "horizontal"
     fig.legend.click_policy = "hide"
     fig.legend.label_text_font_size = "10px"
+    fig.legend.spacing = 14  # px between items: a line sample is not read as the last label's
     fig.add_layout(legend, "below")
 
 
@@ -149,32 +157,49 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
     return fig, note
 
 
-def study_metric_charts(ds, sweep: str, key: str, metrics):
-    """Charts of ``metrics`` [(variable, label, scale)] against varied key ``key`` for the points
-    of ``sweep``: one line per race and model."""
-    select = np.asarray(ds["sweep"].values) == sweep
-    x = np.asarray(ds[key].values)[select]
-    if x.dtype.kind not in "fi":
+def key_label(key: str) -> str:
+    """A case key as an axis label: its schema label and unit ("Radial load [N]"), else its last
+    segment."""
+    from solver import fields_by_key
+
+    field = fields_by_key().get(key)
+    if field is None:
+        return key.rsplit(".", 1)[-1]
+    return f"{field.label} [{field.unit}]" if field.unit else field.label
+
+
+def study_metric_charts(ds, sweep: str, metrics):
+    """Charts of ``metrics`` [(variable, label, scale)] against the key the points of ``sweep``
+    are charted against (:func:`solver.sweep_axis_key`): one line per race and model through the
+    points where both the key and the metric are finite. No charts when the sweep has no such key
+    or a metric has no finite value."""
+    from solver import sweep_axis_key
+
+    key = sweep_axis_key(ds, sweep)
+    if key is None:
         return []
+    select = np.asarray(ds["sweep"].values).astype(str) == sweep
+    x = np.asarray(ds[key].values, float)[select]
     order = np.argsort(x)
     figures = []
     for var, label, scale in metrics:
-        fig = _figure(f"{label} ({sweep})", key.rsplit(".", 1)[-1], label, height=320)
+        fig = _figure(f"{label} ({sweep})", key_label(key), label, height=320)
         drawn = False
         for model in ds["model"].values:
             for race in ("inner", "outer"):
                 y = np.asarray(ds[var].sel(model=model, race=race).values, float)[select] * scale
-                if not np.isfinite(y).any():
+                shown = order[np.isfinite(x[order]) & np.isfinite(y[order])]
+                if shown.size == 0:
                     continue
                 drawn = True
                 fig.line(
-                    x[order],
-                    y[order],
+                    x[shown],
+                    y[shown],
                     color=RACE_COLOURS[race],
                     line_dash=MODEL_DASH.get(str(model), "solid"),
                     legend_label=f"{race}, {model}",
                 )
-                fig.scatter(x[order], y[order], color=RACE_COLOURS[race], size=6)
+                fig.scatter(x[shown], y[shown], color=RACE_COLOURS[race], size=6)
         if drawn:
             _legend_outside(fig)
             figures.append(fig)

@@ -141,6 +141,8 @@ _LAZY = {
     "open_study": "solver.study",
     "study_dataset": "solver.study",
     "study_runs": "solver.study",
+    "sweep_varied_keys": "solver.study.sweeps",
+    "sweep_axis_key": "solver.study.sweeps",
     "shipped_studies": "solver.study",
     "scheduler_address": "solver.study.runner",
     "connect_scheduler": "solver.study.runner",

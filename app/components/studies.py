@@ -317,13 +317,12 @@ class Studies(Component):
 
     def refresh(self) -> None:
         """Table rows and chart from the study folder."""
-        from solver import study_runs
+        from solver import study_runs, sweep_varied_keys
 
         ds = self.dataset()
         if ds is None:
             return
-        keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-        shown = _keys_by_sweep(ds, keys)
+        shown = sweep_varied_keys(ds)
         rows = []
         for i, j, status in study_runs(ds):
             point, model = str(ds["point"].values[i]), str(ds["model"].values[j])
@@ -625,18 +624,6 @@ def _study_table(ctrl) -> None:
                     disabled=("!row.openable",),
                     click=(ctrl.study_open, "[row.point, row.model]"),
                 )
-
-
-def _keys_by_sweep(ds, keys) -> dict:
-    """{sweep: the keys whose values differ between that sweep's points} (all ``keys`` for a
-    sweep of one point), so that the table names what each sweep varies."""
-    sweeps = np.asarray(ds["sweep"].values).astype(str)
-    out = {}
-    for sweep in dict.fromkeys(sweeps.tolist()):
-        rows = sweeps == sweep
-        varying = [k for k in keys if len({str(v) for v in np.asarray(ds[k].values)[rows]}) > 1]
-        out[sweep] = varying or list(keys)
-    return out
 
 
 def _text(value, digits: int = 5) -> str:

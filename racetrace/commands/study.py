@@ -282,11 +282,13 @@ def show_table(ds, model: str | None = None, wide: bool = False) -> str:
 
     import numpy as np
 
+    from solver import sweep_varied_keys
+
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
     columns = [c for c in SHOW_COLUMNS if wide or c[2] in NARROW_COLUMNS]
     varied_headers = [k.rsplit(".", 1)[-1] for k in keys] if wide else ["varied"]
     headers = ["point", "model", *varied_headers, "status", *(c[2] for c in columns)]
-    sweep_keys = _sweep_varied_keys(ds, keys)
+    sweep_keys = sweep_varied_keys(ds)
     rows = []
     messages = []
 
@@ -335,17 +337,6 @@ def show_table(ds, model: str | None = None, wide: bool = False) -> str:
         )
         lines.append("  racetrace study show DIR --wide")
     return "\n".join(lines)
-
-
-def _sweep_varied_keys(ds, keys) -> dict[str, list[str]]:
-    """{sweep: the varied keys whose value changes within it} (every key of a one-point sweep)."""
-    out = {}
-    sweeps = [str(s) for s in ds["sweep"].values]
-    for sweep in dict.fromkeys(sweeps):
-        select = [k for k, s in enumerate(sweeps) if s == sweep]
-        changed = [key for key in keys if len({str(ds[key].values[k]) for k in select}) > 1]
-        out[sweep] = changed or list(keys)
-    return out
 
 
 def show(folder, model=None, wide: bool = False) -> int:

@@ -4,7 +4,7 @@ Public: :class:`Study` (``Study.from_file(path)``, ``.points()``, ``.run(output,
 :func:`open_study` (a study folder: its Dataset and each point's full result), and the file
 format in docs/study-format.md (solver.study.spec). Modules: ``spec`` (the study file), ``points``
 (one validated case per point), ``metrics`` (what is kept per point), ``store`` (the study folder),
-``runner`` (Dask execution, resume).
+``sweeps`` (what each sweep of a study Dataset varies), ``runner`` (Dask execution, resume).
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from .points import StudyPoint, base_case, study_points
 from .runner import Progress, run_study
 from .spec import StudySpec, load_study, parse_study, resolve_study, shipped_studies
 from .store import StudyFolder, points_fingerprint, study_dataset, study_inputs, study_runs
+from .sweeps import sweep_axis_key, sweep_varied_keys
 
 
 class Study:
@@ -125,4 +126,6 @@ __all__ = [
     "study_dataset",
     "study_points",
     "study_runs",
+    "sweep_axis_key",
+    "sweep_varied_keys",
 ]

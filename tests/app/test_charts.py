@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -383,3 +385,25 @@ def test_run_summary_sets_the_model_torque_beside_the_estimates(dynamic_dataset)
     assert row["skf_torque_Nmm"] == "-"
     headers = [header for _, header, _ in charts.SUMMARY_COLUMNS]
     assert "friction torque (model), N mm" in headers and "Palmgren estimate, N mm" in headers
+
+
+SHIPPED_STUDIES = sorted(
+    (Path(__file__).resolve().parents[2] / "assets" / "studies" / "results").glob("*.study.nc")
+)
+
+
+@pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
+def test_study_chart_of_every_shipped_sweep_holds_its_points(study):
+    """The Studies chart draws each sweep through its points: a trace per race and model, as
+    many finite points as the sweep has, against the key the sweep varies (never a key the sweep
+    leaves unset, all NaN)."""
+    import solver
+
+    ds = solver.load_dataset(study)
+    sweeps = np.asarray(ds["sweep"].values).astype(str)
+    for sweep in dict.fromkeys(sweeps.tolist()):
+        fig = charts.study_figure(ds, sweep, "band_width")
+        assert len(fig.data) == 2 * ds.sizes["model"], sweep
+        for trace in fig.data:
+            x, y = np.asarray(trace.x, float), np.asarray(trace.y, float)
+            assert (np.isfinite(x) & np.isfinite(y)).sum() == (sweeps == sweep).sum(), sweep

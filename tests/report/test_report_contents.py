@@ -170,6 +170,18 @@ def test_per_ball_ranges_span_the_analysed_window(radial):
     assert len(rows) == radial.sizes["ball"]
 
 
+def test_per_ball_values_of_a_snapshot_are_one_column_each(heavy):
+    from report.build import _ball_range_rows
+    from report.units import shown
+
+    assert "time" not in heavy.dims and "ring_angle" not in heavy.dims
+    headers, rows = _ball_range_rows(heavy)
+    assert len(set(headers)) == len(headers), headers
+    assert headers[:3] == ["ball", "Q inner", "α inner"]
+    load = float(heavy["contact_load"].sel(race="outer").isel(ball=2))
+    assert rows[2][headers.index("Q outer")] == shown(load, "N")
+
+
 def test_the_heading_is_the_results_own_operating_point(radial):
     from report.build import run_header
 
@@ -239,6 +251,25 @@ def test_a_study_table_flags_messages_and_tables_band_width():
     assert f"{width:.4g}" in table
 
 
+def test_a_study_table_shows_rounding_noise_as_zero():
+    import solver
+    from report.build import _study_table
+
+    ds = solver.load_dataset(ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc")
+    noise = float(ds["excursion"].sel(model="quasistatic", race="outer").values[0])
+    assert 0 < abs(noise) < 1e-9  # no radial load: a zero excursion, up to rounding
+    table, _notes = _study_table(ds, {})
+    cells = re.findall(r"<td>([^<]*)</td>", table)
+    assert cells and not [c for c in cells if re.search(r"e-(1\d|[2-9]\d)$", c)]
+    first = re.search(
+        r"<tr><td class=\"text\">p0001</td><td class=\"text\">qs</td>(.*?)</tr>", table
+    )
+    assert first is not None
+    row = re.findall(r"<td[^>]*>([^<]*)</td>", first.group(1))
+    keys = json.loads(ds.attrs["varied_keys"])
+    assert row[len(keys) + 1 : len(keys) + 3] == ["0", "0"]  # exc_i, exc_o
+
+
 def test_scientific_numbers_are_not_in_engineering_cells():
     from report.units import number
 
@@ -297,3 +328,19 @@ def test_the_pressure_scale_spans_the_scenes_painted_range(radial):
     assert f'data-lo-gpa="{scale.lo!r}"' in page and f'data-hi-gpa="{scale.hi!r}"' in page
     assert "peak contact pressure [GPa]" in page
     assert f"{scale.hi:.3g}</span>" in page
+
+
+def test_raceway_map_markers_of_a_snapshot_can_be_seen(radial, heavy):
+    """A quasi-static snapshot puts one contact per ball on a raceway map: large markers; a dynamic
+    run thousands: fine dots."""
+    from report.charts import raceway_map
+
+    for ds, smallest, largest in ((heavy, 4, None), (radial, None, 2)):
+        for race in ("inner", "outer"):
+            fig, _note = raceway_map(ds, race)
+            sizes = [r.glyph.size for r in fig.renderers if hasattr(r.glyph, "size")]
+            assert len(sizes) == 3, sizes  # two ellipse edges and the centre
+            if smallest is not None:
+                assert min(sizes) >= smallest, (race, sizes)
+            if largest is not None:
+                assert max(sizes) <= largest, (race, sizes)

@@ -26,9 +26,28 @@ from tests.report.test_report import CHART_ROWS, CHROMIUM, LAUNCH_ARGS  # noqa: 
 ROOT = Path(__file__).resolve().parents[2]
 LESSON = ROOT / "assets" / "lessons" / "results" / "03-radial-load--radial.nc"
 SEED_STUDY = ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc"
+SHIPPED_STUDIES = sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
 SHOTS = ARTIFACTS / "report"
 PAGE_WIDTH = 1300  # px: the page a review is read and printed on
 FRAMEBUFFER = re.compile(r"framebuffer", re.IGNORECASE)
+# every Bokeh figure on the page: its title and its plot area (the frame inside the axes) in page
+# pixels
+CHART_FRAMES = """() => {
+  const frames = [];
+  const isFigure = (view) => view.model && view.model.type === "Figure";
+  for (const view of window.Bokeh ? Bokeh.index.query(isFigure) : []) {
+    const box = view.el.getBoundingClientRect();
+    const frame = view.frame.bbox;
+    frames.push({
+      title: view.model.title ? view.model.title.text : "",
+      x: Math.round(box.left + window.scrollX + frame.left),
+      y: Math.round(box.top + window.scrollY + frame.top),
+      width: Math.round(frame.width),
+      height: Math.round(frame.height),
+    });
+  }
+  return frames;
+}"""
 
 
 def _visit(path: Path, check, screenshot: str):
@@ -145,6 +164,45 @@ def test_study_report_links_each_point_to_its_own_report(point_study, tmp_path):
         assert link.get_attribute("href") == "study.points/p0002.quasistatic.html"
 
     _visit(output, links, "point-study-report.png")
+
+
+def _colour_pixels(image: np.ndarray, colour: str, tolerance: float = 40.0) -> int:
+    """Pixels of ``image`` (RGB) within ``tolerance`` of ``colour`` ("#rrggbb")."""
+    target = np.array([int(colour[k : k + 2], 16) for k in (1, 3, 5)], float)
+    return int((np.linalg.norm(image.astype(float) - target, axis=-1) < tolerance).sum())
+
+
+@pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
+def test_study_report_charts_draw_their_lines(study, tmp_path):
+    """In every chart of a shipped study's report, the plot area holds pixels of both races'
+    colours (the lines and markers of the inner and outer race), not an empty frame."""
+    from PIL import Image
+
+    import solver
+    from report import build_report
+    from report.build import STUDY_CHART_METRICS
+    from report.charts import RACE_COLOURS
+
+    build_report(study, tmp_path / "study.html")
+    sweeps = set(np.asarray(solver.load_dataset(study)["sweep"].values).astype(str).tolist())
+
+    def check(page, console):  # noqa: ARG001 - the check's interface
+        frames = page.evaluate(CHART_FRAMES)
+        assert len(frames) == len(sweeps) * len(STUDY_CHART_METRICS), [f["title"] for f in frames]
+        page_image = Image.open(io.BytesIO(page.screenshot(full_page=True, timeout=120_000)))
+        pixels = np.asarray(page_image.convert("RGB"))
+        empty = []
+        for frame in frames:
+            assert frame["width"] > 100 and frame["height"] > 100, frame
+            area = pixels[
+                frame["y"] : frame["y"] + frame["height"], frame["x"] : frame["x"] + frame["width"]
+            ]
+            counts = {race: _colour_pixels(area, colour) for race, colour in RACE_COLOURS.items()}
+            if min(counts.values()) < 30:
+                empty.append((frame["title"], counts))
+        assert empty == [], f"charts without their lines: {empty}"
+
+    _visit(tmp_path / "study.html", check, f"study-report-{study.name.split('.')[0]}.png")
 
 
 #: Most pages a printed run report of a lesson result may take (A4): five on a 1300-px page
