@@ -25,7 +25,7 @@ def evaluate(y, par, quad):
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
     dydt = np.zeros_like(y)
-    rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
+    rhs(y, 0.0, par, quad, dydt, rec_i, rec_o, pocket)
     return dydt, rec_i, rec_o, pocket
 
 

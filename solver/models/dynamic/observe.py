@@ -5,7 +5,8 @@ For every output sample the right-hand side is evaluated once; it fills the per-
 the ball, spin-to-roll ratio) and keeps the whole record per sample; the table ``CONTACT_OUTPUTS``
 of ``output.py`` names which slots become results variables. It also fills a per-ball record
 (``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power, cage
-drag power, friction torque and drive power of the inner ring). Races: index 0 inner, 1 outer.
+drag power, friction torque and drive power of the inner ring, the work rate of the applied loads
+and gravity, and the elastic energy of the ball-race contacts). Races: index 0 inner, 1 outer.
 
 Powers: an interaction between two bodies dissipates minus the work rate of its forces and moments
 on both (sum of F . v + M . omega over the pair, velocities of the points the forces act on).
@@ -17,6 +18,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from solver.history import drive_at
 
 from . import layout as L
 from .kernels import (
@@ -34,9 +37,10 @@ from .kernels import (
 
 
 @njit(cache=True)
-def observe(states, par, quad, records, balls, bearing):
+def observe(states, times, par, quad, records, balls, bearing):
     """Fill ``records`` (S, Z, 2, N_CONTACT_RECORD), ``balls`` (S, Z, N_BALL_OUTPUT) and
-    ``bearing`` (S, N_BEARING_OUTPUT) for the states (S, n)."""
+    ``bearing`` (S, N_BEARING_OUTPUT) for the states (S, n) at ``times`` (S,) [s] (the operating
+    history is read there)."""
     z = par.ball_count
     n = states.shape[1]
     dydt = np.empty(n)
@@ -49,16 +53,20 @@ def observe(states, par, quad, records, balls, bearing):
     pk = np.empty(12)
     ld = np.empty(5)
     work = np.empty(TRACTION_WORK_SIZE)
-    cb = L.BALL_STRIDE * z + L.RING_SIZE
+    rb = L.BALL_STRIDE * z
+    cb = rb + L.RING_SIZE
     for s in range(states.shape[0]):
         y = states[s]
-        rhs(y, par, quad, dydt, rec[0], rec[1], pocket)
-        ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+        t = times[s]
+        drive = drive_at(par.history, t, y[rb + L.R_PHI_INNER])
+        rhs(y, t, par, quad, dydt, rec[0], rec[1], pocket)
+        ring_frames(y, par, drive, irot, iorg, ivel, iome, orot, oome)
         cage_frame(y, cb, crot, come)
         vcx, vcy, vcz = y[cb + L.C_VEL], y[cb + L.C_VEL + 1], y[cb + L.C_VEL + 2]
         # moments of the contacts on the inner ring about its centre
         mix = miy = miz = 0.0
         mox = 0.0
+        elastic = 0.0
         for j in range(z):
             b = L.BALL_STRIDE * j
             mix += rec[0, j, L.K_M_RING]
@@ -70,6 +78,8 @@ def observe(states, par, quad, records, balls, bearing):
             )
             for k in range(2):
                 r = rec[k, j]
+                if r[L.K_DEFLECTION] > 0.0:
+                    elastic += 0.4 * r[L.K_ELASTIC] * r[L.K_DEFLECTION]
                 nx, ny, nz = r[L.K_NORMAL], r[L.K_NORMAL + 1], r[L.K_NORMAL + 2]
                 # ball-fixed components e_b = R^T n
                 ebx = rot[0, 0] * nx + rot[1, 0] * ny + rot[2, 0] * nz
@@ -97,7 +107,7 @@ def observe(states, par, quad, records, balls, bearing):
         ring_torque = 0.0
         wring = 0.0
         if par.cage and par.guidance != L.GUIDE_BALL:
-            cage_land(y, cb, iorg, ivel, par, work, ld)
+            cage_land(y, cb, iorg, ivel, drive.inner_speed, drive.outer_speed, par, work, ld)
             ring_torque = ld[4]
             if par.guidance == L.GUIDE_INNER_RING:
                 vr0, vr1, vr2, wring = ivel[0], ivel[1], ivel[2], iome[0]
@@ -116,10 +126,9 @@ def observe(states, par, quad, records, balls, bearing):
             _, cage_drag_power = cage_drag(y, cb, par)
         bearing[s, L.RO_CAGE_DRAG_POWER] = cage_drag_power
         # the imposed ring spins take the torques that hold the rings at their speeds
-        wi = par.inner_speed
+        wi = drive.inner_speed
         drive_inner = -(mix * iome[0] + miy * iome[1] + miz * iome[2])
         if par.tilt_mode == L.TILT_FREE:  # only the imposed spin is driven, not the tilt rates
-            rb = L.BALL_STRIDE * z
             drive_inner += miy * y[rb + L.R_TILT_RATE] + miz * y[rb + L.R_TILT_RATE + 1]
         if par.guidance == L.GUIDE_INNER_RING:
             drive_inner -= ring_torque * wring
@@ -128,3 +137,28 @@ def observe(states, par, quad, records, balls, bearing):
             drive_outer -= ring_torque * wring
         bearing[s, L.RO_DRIVE_POWER] = drive_inner + drive_outer
         bearing[s, L.RO_FRICTION_TORQUE] = drive_inner / wi if wi != 0.0 else 0.0
+        bearing[s, L.RO_ELASTIC_ENERGY] = elastic
+        bearing[s, L.RO_LOAD_POWER] = load_power(y, par, drive)
+
+
+@njit(cache=True)
+def load_power(y, par, drive):
+    """Work rate [W] of the applied loads and of gravity at state ``y`` under ``drive``: the
+    applied force on the inner ring times its velocity (when its translations are free), the
+    applied moment times its tilt rate (free tilt), and -m g v_z of every moving body."""
+    z = par.ball_count
+    rb = L.BALL_STRIDE * z
+    cb = rb + L.RING_SIZE
+    g = par.gravity
+    power = 0.0
+    for j in range(z):
+        power -= par.ball_mass * g * y[L.BALL_STRIDE * j + L.B_VEL + 2]
+    if par.ring_free:
+        vx, vy, vz = y[rb + L.R_VEL], y[rb + L.R_VEL + 1], y[rb + L.R_VEL + 2]
+        power += drive.force_x * vx + drive.force_y * vy + drive.force_z * vz
+        power -= par.ring_mass * g * vz
+    if par.tilt_mode == L.TILT_FREE:
+        power += drive.moment_y * y[rb + L.R_TILT_RATE] + drive.moment_z * y[rb + L.R_TILT_RATE + 1]
+    if par.cage:
+        power -= par.cage_mass * g * y[cb + L.C_VEL + 2]
+    return power

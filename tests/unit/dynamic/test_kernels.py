@@ -11,6 +11,7 @@ from scipy import integrate
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
 from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
+from solver.models.dynamic.params import drive_at_start
 from solver.physics.hertz import race_contact
 from solver.physics.traction import LAW_SLIP_CURVE
 from tests.helpers.cases import spindle_inputs
@@ -92,7 +93,7 @@ def test_ring_frames_tilt_modes(mode):
         y[rb + L.R_PHI_INNER] = phi
         rot, org, vel, om = np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3)
         orot, oom = np.empty((3, 3)), np.empty(3)
-        ring_frames(y, par, rot, org, vel, om, orot, oom)
+        ring_frames(y, par, drive_at_start(par), rot, org, vel, om, orot, oom)
         np.testing.assert_allclose(rot.T @ rot, np.eye(3), atol=1e-14)
         axes.append(rot[:, 0].copy())
     # tilt about z by 0.01 rad turns e_x towards +y
@@ -458,7 +459,7 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     stage = np.zeros_like(y0)
     stage_i = np.zeros((z, L.N_CONTACT_RECORD))
     stage_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
+    rhs_into(y0, 0.0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
     np.testing.assert_array_equal(stage, dydt)
     assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
     assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
