@@ -5,8 +5,8 @@ For every output sample the right-hand side is evaluated once; it fills the per-
 the ball, spin-to-roll ratio) and keeps the whole record per sample; the table ``CONTACT_OUTPUTS``
 of ``output.py`` names which slots become results variables. It also fills a per-ball record
 (``BO_*``: pocket force, pocket and drag power) and a bearing record (``RO_*``: land power, cage
-drag power, friction torque and drive power of the inner ring, the work rate of the applied loads
-and gravity, and the elastic energy of the ball-race contacts). Races: index 0 inner, 1 outer.
+drag power, friction torque and drive power of the inner ring, and the elastic energy of the
+ball-race contacts). Races: index 0 inner, 1 outer.
 
 Powers: an interaction between two bodies dissipates minus the work rate of its forces and moments
 on both (sum of F . v + M . omega over the pair, velocities of the points the forces act on).
@@ -138,27 +138,3 @@ def observe(states, times, par, quad, records, balls, bearing):
         bearing[s, L.RO_DRIVE_POWER] = drive_inner + drive_outer
         bearing[s, L.RO_FRICTION_TORQUE] = drive_inner / wi if wi != 0.0 else 0.0
         bearing[s, L.RO_ELASTIC_ENERGY] = elastic
-        bearing[s, L.RO_LOAD_POWER] = load_power(y, par, drive)
-
-
-@njit(cache=True)
-def load_power(y, par, drive):
-    """Work rate [W] of the applied loads and of gravity at state ``y`` under ``drive``: the
-    applied force on the inner ring times its velocity (when its translations are free), the
-    applied moment times its tilt rate (free tilt), and -m g v_z of every moving body."""
-    z = par.ball_count
-    rb = L.BALL_STRIDE * z
-    cb = rb + L.RING_SIZE
-    g = par.gravity
-    power = 0.0
-    for j in range(z):
-        power -= par.ball_mass * g * y[L.BALL_STRIDE * j + L.B_VEL + 2]
-    if par.ring_free:
-        vx, vy, vz = y[rb + L.R_VEL], y[rb + L.R_VEL + 1], y[rb + L.R_VEL + 2]
-        power += drive.force_x * vx + drive.force_y * vy + drive.force_z * vz
-        power -= par.ring_mass * g * vz
-    if par.tilt_mode == L.TILT_FREE:
-        power += drive.moment_y * y[rb + L.R_TILT_RATE] + drive.moment_z * y[rb + L.R_TILT_RATE + 1]
-    if par.cage:
-        power -= par.cage_mass * g * y[cb + L.C_VEL + 2]
-    return power

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from scipy import integrate
 
+from solver.history import steady_history
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
 from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
@@ -363,7 +365,7 @@ def test_gravity_acts_along_minus_z_on_balls_cage_and_inner_ring():
     inner ring fall with acceleration g along -z of the inertial frame."""
     inp = spindle_inputs(axial=0.0)
     par, quad, _ = setup(inp, gravity=9.81)
-    par = par._replace(force_x=0.0)
+    par = par._replace(history=steady_history(replace(inp.operating, axial_load=0.0)))
     y = _nominal_state(18, inp.geometry.pitch_diameter)
     dydt, *_ = evaluate(y, par, quad)
     for j in range(18):
