@@ -96,31 +96,29 @@ def test_slow_radial_ramp_tracks_the_quasistatic_solution_at_each_time():
 
 # ---- step ----------------------------------------------------------------------------------------
 def test_load_step_acts_from_its_event_time_which_is_a_step_boundary():
-    """An axial load step 500 -> 1000 N at t_e, not on an output sample's natural step: against a
-    run with an event at t_e that changes nothing (same step boundaries), the inner ring's axial
-    offset is identical, bit for bit, up to and at t_e (no stage before the event reads the new
-    load) and then moves off as the free ring under the extra 500 N, dF t^2 / (2 m), from t_e on
-    (the contacts' reaction takes a few % off it in the first samples)."""
-    t_event = 0.37 * PERIOD
-    rate = 400.0 / PERIOD  # t_event is a sample time: 148 samples
+    """An axial load step 500 -> 1000 N at t_e (between two output samples, sampled every 0.75 us,
+    finer than the integration step of about 2.5 us): against a run with an event at t_e that
+    changes nothing (same step boundaries), the inner ring's axial offset is identical, bit for
+    bit, up to t_e (no stage before the event reads the new load), and from t_e on it moves off as
+    the free ring under the extra 500 N, dF (t - t_e)^2 / (2 m), from the first sample on
+    (measured 0.15, 0.4, 0.7 % below it at the first three samples, as the contacts begin to
+    react; a stepper that steps over t_e gives 3.7 times the free motion at the first sample)."""
+    t_event = 0.3712 * PERIOD
+    rate = 4000.0 / PERIOD
     step = ChannelHistory((t_event, t_event), (500.0, 1000.0))
     same = ChannelHistory((t_event, t_event), (500.0, 500.0))
     runs = [
-        simulate(with_history(INPUTS, {CH_AXIAL_LOAD: h}, 0.6 * PERIOD, rate)) for h in (step, same)
+        simulate(with_history(INPUTS, {CH_AXIAL_LOAD: h}, 0.4 * PERIOD, rate)) for h in (step, same)
     ]
     moved = (runs[0].inner_ring_offset.isel(axis=0) - runs[1].inner_ring_offset.isel(axis=0)).values
     times = runs[0]["time"].values
-    k = int(np.argmin(np.abs(times - t_event)))
-    assert times[k] == pytest.approx(t_event, rel=1e-12)
-    assert not np.any(moved[: k + 1])  # identical up to and at the event
+    before = times < t_event
+    assert before.sum() > 1000 and not np.any(moved[before])  # identical up to the event
     ring_mass = build_params(INPUTS, SimulationOptions().resolved(INPUTS.simulation)).ring_mass
-    after = times[k + 1 : k + 4] - t_event
+    after = times[~before][:3] - t_event
     free = 500.0 / (2.0 * ring_mass) * after**2
-    np.testing.assert_allclose(moved[k + 1 : k + 4], free, rtol=0.12)  # measured 3, 5, 8 %
-    assert moved[k + 1] == pytest.approx(free[0], rel=0.05)
-    np.testing.assert_array_equal(
-        runs[0]["axial_load"].values, np.where(times < t_event, 500, 1000)
-    )
+    np.testing.assert_allclose(moved[~before][:3], free, rtol=0.02)
+    np.testing.assert_array_equal(runs[0]["axial_load"].values, np.where(before, 500.0, 1000.0))
 
 
 # ---- sine ----------------------------------------------------------------------------------------
