@@ -471,3 +471,47 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     signatures = rhs_into.signatures
     assert signatures and len({sig[:-1] for sig in signatures}) == len(signatures)
     assert len(_rhs_borrowed.signatures) <= len(signatures)
+
+
+def test_right_hand_side_reads_the_operating_history_at_its_time():
+    """The imposed inputs at the evaluation's time: the ring spin angles advance at the history's
+    speeds, the imposed tilt at its rate (which also turns the inner ring's frame), and a load
+    step changes the free ring's acceleration by dF / m from the step's time on (right-continuous),
+    the contacts being the same."""
+    from solver.history import (
+        CH_INNER_SPEED,
+        CH_MISALIGNMENT,
+        CH_RADIAL_LOAD,
+        ChannelHistory,
+        drive_at,
+    )
+    from tests.helpers.histories import with_history
+
+    inp = spindle_inputs(axial=500.0, radial=300.0, misalignment=math.radians(0.02))
+    par, quad, y = start(inp)
+    speed = inp.operating.inner_ring_speed
+    channels = {
+        CH_INNER_SPEED: ChannelHistory((0.0, 1e-3), (speed, 2.0 * speed)),
+        CH_MISALIGNMENT: ChannelHistory((0.0, 1e-3), (math.radians(0.02), math.radians(0.06))),
+        CH_RADIAL_LOAD: ChannelHistory((5e-4, 5e-4), (300.0, 900.0)),
+    }
+    par = par._replace(history=with_history(inp, channels, 1e-3, 1e4).history)
+    rb = L.ring_base(18)
+    t = 2.5e-4
+    dydt, *_ = evaluate(y, par, quad, t)
+    drive = drive_at(par.history, t, y[rb + L.R_PHI_INNER])
+    assert dydt[rb + L.R_PHI_INNER] == pytest.approx(1.25 * speed, rel=1e-12)
+    rate = math.radians(0.04) / 1e-3
+    assert math.hypot(dydt[rb + L.R_TILT], dydt[rb + L.R_TILT + 1]) == pytest.approx(rate)
+    assert (dydt[rb + L.R_TILT], dydt[rb + L.R_TILT + 1]) == (drive.tilt_rate_y, drive.tilt_rate_z)
+    rot, org, vel, om = np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3)
+    orot, oom = np.empty((3, 3)), np.empty(3)
+    ring_frames(y, par, drive, rot, org, vel, om, orot, oom)
+    still = drive._replace(tilt_rate_y=0.0, tilt_rate_z=0.0)
+    om_still = np.empty(3)
+    ring_frames(y, par, still, rot, org, vel, om_still, orot, oom)
+    np.testing.assert_allclose(om - om_still, [0.0, drive.tilt_rate_y, drive.tilt_rate_z])
+    before, *_ = evaluate(y, par, quad, np.nextafter(5e-4, 0.0))
+    after, *_ = evaluate(y, par, quad, 5e-4)
+    step = after[rb + L.R_VEL : rb + L.R_VEL + 3] - before[rb + L.R_VEL : rb + L.R_VEL + 3]
+    np.testing.assert_allclose(step, [0.0, 600.0 / par.ring_mass, 0.0], rtol=1e-9, atol=1e-6)
