@@ -19,7 +19,7 @@ import math
 import numpy as np
 from numba import njit
 
-from solver.history import drive_at
+from solver.history import N_CHANNELS, channel_value, drive_at
 
 from . import layout as L
 from .kernels import (
@@ -138,3 +138,60 @@ def observe(states, times, par, quad, records, balls, bearing):
         bearing[s, L.RO_DRIVE_POWER] = drive_inner + drive_outer
         bearing[s, L.RO_FRICTION_TORQUE] = drive_inner / wi if wi != 0.0 else 0.0
         bearing[s, L.RO_ELASTIC_ENERGY] = elastic
+
+
+@njit(cache=True)
+def channel_series(history, times, out):
+    """``out`` (N_CHANNELS, S) <- every channel of ``history`` at ``times`` (S,) [s]."""
+    for c in range(N_CHANNELS):
+        for k in range(times.shape[0]):
+            out[c, k] = channel_value(history, c, times[k])
+
+
+@njit(cache=True)
+def applied_load_work(states, times, par, events, work):
+    """``work`` (S,) <- the work [J] of the applied force and moment on the inner ring since the
+    first state: the Stieltjes sum of F . dx (translations free) and M . d(tilt) (free tilt) over
+    the sample intervals cut at ``events`` (increasing times [s]), F and M at the middle of each
+    piece, the state at a cut interpolated linearly (output.load_work adds gravity)."""
+    z = par.ball_count
+    rb = L.BALL_STRIDE * z
+    free_tilt = par.tilt_mode == L.TILT_FREE
+    work[0] = 0.0
+    e = 0
+    for k in range(1, times.shape[0]):
+        a = times[k - 1]
+        b = times[k]
+        while e < events.shape[0] and events[e] <= a:
+            e += 1
+        step = 0.0
+        t0 = a
+        last = False
+        while not last:
+            if e < events.shape[0] and events[e] < b:
+                t1 = events[e]
+                e += 1
+            else:
+                t1 = b
+                last = True
+            s0 = (t0 - a) / (b - a)
+            s1 = (t1 - a) / (b - a)
+            frac = s1 - s0
+            phi0 = states[k - 1, rb + L.R_PHI_INNER]
+            angle = phi0 + 0.5 * (s0 + s1) * (states[k, rb + L.R_PHI_INNER] - phi0)
+            drive = drive_at(par.history, 0.5 * (t0 + t1), angle)
+            if par.ring_free:
+                p = rb + L.R_POS
+                step += frac * (
+                    drive.force_x * (states[k, p] - states[k - 1, p])
+                    + drive.force_y * (states[k, p + 1] - states[k - 1, p + 1])
+                    + drive.force_z * (states[k, p + 2] - states[k - 1, p + 2])
+                )
+            if free_tilt:
+                g = rb + L.R_TILT
+                step += frac * (
+                    drive.moment_y * (states[k, g] - states[k - 1, g])
+                    + drive.moment_z * (states[k, g + 1] - states[k - 1, g + 1])
+                )
+            t0 = t1
+        work[k] = work[k - 1] + step

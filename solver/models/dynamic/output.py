@@ -15,8 +15,6 @@ from solver.history import (
     CHANNEL_NAMES,
     FRAME_INNER_RING,
     N_CHANNELS,
-    channel_value,
-    drive_at,
     event_times,
 )
 from solver.models.quasistatic.result import start_variables
@@ -30,7 +28,7 @@ from solver.results.variables import COORDINATES, variable
 
 from . import layout as L
 from .integrate import stepper
-from .observe import observe
+from .observe import applied_load_work, channel_series, observe
 
 _TWO_PI = 2.0 * np.pi
 #: operating inputs stored in degree (results-schema.md)
@@ -283,29 +281,10 @@ def load_work(states: np.ndarray, times: np.ndarray, par) -> np.ndarray:
     z = int(par.ball_count)
     rb = L.ring_base(z)
     cb = L.cage_base(z)
-    history = par.history
-    events = event_times(history, float(times[0]), float(times[-1]))
-    phi = states[:, rb + L.R_PHI_INNER]
-    ring = states[:, rb + L.R_POS : rb + L.R_POS + 3]
-    tilt = states[:, rb + L.R_TILT : rb + L.R_TILT + 2]
-    free_tilt = par.tilt_mode == L.TILT_FREE
+    events = event_times(par.history, float(times[0]), float(times[-1]))
     work = np.zeros(times.size)
-    for k in range(1, times.size):
-        a, b = float(times[k - 1]), float(times[k])
-        cuts = [a, *events[(events > a) & (events < b)], b]
-        step = 0.0
-        for t0, t1 in zip(cuts[:-1], cuts[1:], strict=True):
-            s0, s1 = (t0 - a) / (b - a), (t1 - a) / (b - a)
-            mid = 0.5 * (t0 + t1)
-            angle = phi[k - 1] + 0.5 * (s0 + s1) * (phi[k] - phi[k - 1])
-            drive = drive_at(history, mid, angle)
-            if par.ring_free:
-                dx = (s1 - s0) * (ring[k] - ring[k - 1])
-                step += drive.force_x * dx[0] + drive.force_y * dx[1] + drive.force_z * dx[2]
-            if free_tilt:
-                dt = (s1 - s0) * (tilt[k] - tilt[k - 1])
-                step += drive.moment_y * dt[0] + drive.moment_z * dt[1]
-        work[k] = work[k - 1] + step
+    applied_load_work(states, times, par, events, work)
+    ring = states[:, rb + L.R_POS : rb + L.R_POS + 3]
     heights = np.zeros(times.size)
     for j in range(z):
         heights += par.ball_mass * states[:, L.ball_base(j) + L.B_POS + 2]
@@ -321,8 +300,7 @@ def imposed_inputs(history, times: np.ndarray, inner_angle: np.ndarray) -> np.nd
     azimuth in space (a load turning with the inner ring: its angle in the ring plus the ring's
     spin angle ``inner_angle`` (S,) [rad])."""
     values = np.empty((N_CHANNELS, times.size))
-    for c in range(N_CHANNELS):
-        values[c] = [channel_value(history, c, float(t)) for t in times]
+    channel_series(history, np.ascontiguousarray(times, dtype=np.float64), values)
     if history.radial_load_frame == FRAME_INNER_RING:
         values[CH_RADIAL_LOAD_ANGLE] += inner_angle
     return values

@@ -24,7 +24,7 @@ import numpy as np
 from solver.case import dynamic_problems
 from solver.case.validate import run_length_problems
 from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverged
-from solver.history import CH_INNER_SPEED, CH_OUTER_SPEED, channel_value, event_times
+from solver.history import CH_INNER_SPEED, CH_OUTER_SPEED, N_CHANNELS, event_times
 from solver.inputs import Inputs, to_inputs
 from solver.physics.traction import NODE_COLUMNS
 
@@ -40,6 +40,7 @@ from .integrate.control import (
     step_control,
 )
 from .integrate.model import bearing_model
+from .observe import channel_series
 from .options import CASE_OVERRIDES, SimulationOptions
 from .output import build_dataset
 from .params import build_params, build_quadrature
@@ -250,14 +251,9 @@ def _time_grid(inputs, options, given, par) -> TimeGrid:
         raise CaseError(problems)
     n_samples = max(1, int(round(duration * rate)))
     times = np.linspace(0.0, float(duration), n_samples + 1)
-    speeds = [
-        abs(
-            channel_value(par.history, CH_INNER_SPEED, t)
-            - channel_value(par.history, CH_OUTER_SPEED, t)
-        )
-        for t in times
-    ]
-    mean = float(np.mean(speeds))
+    values = np.empty((N_CHANNELS, times.size))
+    channel_series(par.history, times, values)
+    mean = float(np.mean(np.abs(values[CH_INNER_SPEED] - values[CH_OUTER_SPEED])))
     if not mean > 0.0:
         raise ValueError("simulate: the history never turns the rings relative to each other")
     return TimeGrid(times, 2.0 * math.pi / mean, math.nan)
