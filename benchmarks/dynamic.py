@@ -88,7 +88,7 @@ def _evaluations(n, y, par, quad, dydt, rec_i, rec_o, pocket, scratch):
     """``n`` right-hand-side evaluations as the integrator makes them (scratch record, records
     not observed), from compiled code: no Python call per evaluation."""
     for _ in range(n):
-        rhs_into(y, par, quad, dydt, rec_i, rec_o, pocket, scratch, False)
+        rhs_into(y, 0.0, par, quad, dydt, rec_i, rec_o, pocket, scratch, False)
 
 
 def rhs_cost(inputs, options, y, repeats=400, batches=15):

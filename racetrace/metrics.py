@@ -145,7 +145,7 @@ def energy_text(residual: float) -> str:
         return "energy balance: n/a (no losses in the analysed window)"
     return (
         f"energy balance: residual {100.0 * residual:+.2f} % of the losses over the analysed "
-        "window (drive power - losses - change of kinetic energy)"
+        "window (drive power - losses + work of the loads - change of kinetic and elastic energy)"
     )
 
 

@@ -105,7 +105,7 @@ def run(label, traction_model, revolutions, tolerance, implicit, pair="ark4"):
 
     def f(state, counted=True):
         out = np.empty(n)
-        rhs_into(state, par, quad, out, rec_i, rec_o, pocket, work, True)
+        rhs_into(state, 0.0, par, quad, out, rec_i, rec_o, pocket, work, True)
         count[0] += counted
         return out
 

@@ -76,8 +76,8 @@ def jacobian(par, quad, y, scale):
         yp[k] += e
         ym = y.copy()
         ym[k] -= e
-        rhs(yp, par, quad, fp, rec_i, rec_o, pocket)
-        rhs(ym, par, quad, fm, rec_i, rec_o, pocket)
+        rhs(yp, 0.0, par, quad, fp, rec_i, rec_o, pocket)
+        rhs(ym, 0.0, par, quad, fm, rec_i, rec_o, pocket)
         jac[:, k] = (fp - fm) / (2.0 * e)
     return jac
 

@@ -64,7 +64,7 @@ def evaluate(par, y, nodes):
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs(y, par, nodes, np.zeros_like(y), rec_i, rec_o, np.zeros(z))
+    rhs(y, 0.0, par, nodes, np.zeros_like(y), rec_i, rec_o, np.zeros(z))
     return np.concatenate([rec_i, rec_o])
 
 
@@ -74,12 +74,12 @@ def evaluation_cost(par, y, nodes, repeats=300):
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt, pocket = np.zeros_like(y), np.zeros(z)
-    rhs(y, par, nodes, dydt, rec_i, rec_o, pocket)
+    rhs(y, 0.0, par, nodes, dydt, rec_i, rec_o, pocket)
     best = float("inf")
     for _ in range(7):
         start = time.process_time()
         for _ in range(repeats):
-            rhs(y, par, nodes, dydt, rec_i, rec_o, pocket)
+            rhs(y, 0.0, par, nodes, dydt, rec_i, rec_o, pocket)
         best = min(best, (time.process_time() - start) / repeats)
     return best
 

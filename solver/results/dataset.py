@@ -349,6 +349,11 @@ def operating_from_result(ds: xr.Dataset):
 
 
 def _present(ds: xr.Dataset, name: str) -> None:
+    if name in ds.data_vars and "time" in ds[name].dims:
+        raise ValueError(
+            f"the result's '{name}' varies in time (a case with time histories): read "
+            f"ds['{name}'] over time (results-schema.md)"
+        )
     if name not in ds.coords:
         raise ValueError(
             f"the result has no '{name}' coordinate (results-schema.md); it was written by an "

@@ -2,16 +2,21 @@
 its integration.
 
 Over the analysed window [t0, t1] (``analysis_start_time`` to the end, :mod:`.summary`) the work
-fed in through the imposed ring rotations must leave as losses or as a change of the kinetic
-energy of the moving bodies:
+fed in through the imposed ring rotations and by the applied loads must leave as losses or as a
+change of the kinetic energy of the moving bodies and of the contacts' elastic energy:
 
-    residual = (mean drive_power - mean total_power_loss - (KE(t1) - KE(t0)) / (t1 - t0))
+    residual = (mean drive_power + (W(t1) - W(t0)) / (t1 - t0) - mean total_power_loss
+                - (KE(t1) - KE(t0)) / (t1 - t0) - (U(t1) - U(t0)) / (t1 - t0))
                / mean total_power_loss
 
 with the means taken as time integrals over the window (trapezoidal rule over the output samples)
 divided by its length, and KE the ``kinetic_energy`` variable of the result (every moving body:
 the balls' translation and rotation, the cage's six degrees of freedom, the inner ring's
-translations and tilts where they are free). Powers in W, energies in J, times in s; the residual
+translations and tilts where they are free), W the ``load_work``: the work done since t = 0 by the
+applied loads (the integral of F . dx over the inner ring's displacement and of M . d(tilt): loads
+that vary in time have no potential -F . x) and by gravity, and U the ``elastic_energy`` of the
+ball-race contacts. A result without ``load_work`` or ``elastic_energy`` (written before they were
+stored) balances without them. Powers in W, energies in J, times in s; the residual
 is dimensionless. It is small when the integrator resolves the forces the losses and the drive
 power come from; a residual above :data:`RESIDUAL_LIMIT` means the tolerance is too loose for
 them (or the window too short to average out the ball passages).
@@ -38,13 +43,18 @@ RESIDUAL_LIMIT = 0.01
 
 #: Variables the balance reads (dims ``(time,)``).
 BALANCE_VARIABLES = ("drive_power", "total_power_loss", "kinetic_energy")
+#: ... and those it reads when the result has them (zero otherwise).
+OPTIONAL_BALANCE_VARIABLES = ("load_work", "elastic_energy")
 
 
 @dataclass(frozen=True)
 class EnergyBalance:
     """Means over the analysed window: ``drive`` and ``loss`` [W], ``kinetic_rate`` = change of
-    kinetic energy / window length [W], ``residual`` (dimensionless, NaN when the window has no
-    length or no losses) and the window ``start`` and ``end`` [s]."""
+    kinetic energy / window length [W], ``load`` (work of the applied loads and gravity / window
+    length) and
+    ``elastic_rate`` (change of the contacts' elastic energy / window length) [W], ``residual``
+    (dimensionless, NaN when the window has no length or no losses) and the window ``start``
+    and ``end`` [s]."""
 
     drive: float
     loss: float
@@ -52,6 +62,8 @@ class EnergyBalance:
     residual: float
     start: float
     end: float
+    load: float = 0.0
+    elastic_rate: float = 0.0
 
 
 def _series(ds: xr.Dataset, name: str) -> np.ndarray:
@@ -104,16 +116,25 @@ def energy_balance(ds: xr.Dataset, start_time: float) -> EnergyBalance | None:
     loss = _integral(_series(ds, "total_power_loss")[first:], t) / span
     kinetic = _series(ds, "kinetic_energy")[first:]
     rate = float(kinetic[-1] - kinetic[0]) / span
-    residual = (drive - loss - rate) / loss if loss > 0.0 else nan
-    return EnergyBalance(drive, loss, rate, residual, float(t[0]), float(t[-1]))
+    load = elastic_rate = 0.0
+    if "load_work" in ds:
+        work = _series(ds, "load_work")[first:]
+        load = float(work[-1] - work[0]) / span
+    if "elastic_energy" in ds:
+        elastic = _series(ds, "elastic_energy")[first:]
+        elastic_rate = float(elastic[-1] - elastic[0]) / span
+    net = drive + load - loss - rate - elastic_rate
+    residual = net / loss if loss > 0.0 else nan
+    return EnergyBalance(drive, loss, rate, residual, float(t[0]), float(t[-1]), load, elastic_rate)
 
 
 def balance_words(balance: EnergyBalance) -> str:
     """The balance in words: means and residual, for the warning and the summaries."""
     return (
-        f"drive power {balance.drive:.4g} W, losses {balance.loss:.4g} W, change of kinetic "
-        f"energy {balance.kinetic_rate:.3g} W: residual {100.0 * balance.residual:+.2f} % of the "
-        "losses"
+        f"drive power {balance.drive:.4g} W, work of the loads {balance.load:.3g} W, losses "
+        f"{balance.loss:.4g} W, change of kinetic energy {balance.kinetic_rate:.3g} W and of "
+        f"elastic energy {balance.elastic_rate:.3g} W: residual {100.0 * balance.residual:+.2f} % "
+        "of the losses"
     )
 
 

@@ -800,7 +800,8 @@ def _table() -> dict[str, Metric]:
             (),
             "1",
             "energy balance residual",
-            "(drive power - losses - change of kinetic energy) / losses over the analysed window "
+            "(drive power - losses + work of the loads - change of kinetic and elastic energy) / "
+            "losses over the analysed window "
             f"(NaN: quasi-static); beyond {energy.RESIDUAL_LIMIT:g} the result warns",
             _energy_balance_residual,
         ),

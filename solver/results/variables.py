@@ -384,13 +384,32 @@ VARIABLES: dict[str, Variable] = {
         "where they are free (the rings' imposed rotations at constant speed are left out)",
         _DYN,
     ),
+    "elastic_energy": Variable(
+        (),
+        "J",
+        "elastic energy of the contacts",
+        "elastic (Hertz) energy stored in the ball-race contacts, 2/5 Q delta summed over the "
+        "loaded contacts (Q the elastic normal load, delta the deflection)",
+        _DYN,
+    ),
+    "load_work": Variable(
+        (),
+        "J",
+        "work of the applied loads",
+        "work done since t = 0 by the applied loads on the inner ring (the integral of the force "
+        "over the ring's displacement where its translations are free, of the moment over its "
+        "tilt under a free tilt) and by gravity on every moving body; positive when the loads "
+        "feed energy in",
+        _DYN,
+    ),
     "energy_balance_residual": Variable(
         (),
         "1",
         "energy balance residual",
-        "(mean drive_power - mean total_power_loss - change of kinetic_energy / window length) "
-        "/ mean total_power_loss over the analysed window, after the first shaft revolution of a "
-        "run of two or more (time means by the trapezoidal rule); "
+        "(mean drive_power - mean total_power_loss + change of load_work - change of "
+        "kinetic_energy and of elastic_energy / window length) / mean total_power_loss over the "
+        "analysed window, after the first shaft revolution of a run of two or more (time means by "
+        "the trapezoidal rule); "
         f"NaN without losses. Beyond {RESIDUAL_LIMIT:g} the result warns: the tolerance is too "
         "loose for the torque, drive power and losses (solver.results.energy)",
         _DYN,

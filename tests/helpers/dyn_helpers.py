@@ -18,14 +18,14 @@ def setup(inputs, **option_changes):
     return par, quad, options
 
 
-def evaluate(y, par, quad):
-    """(dydt, inner records, outer records, pocket forces) at state y."""
+def evaluate(y, par, quad, t=0.0):
+    """(dydt, inner records, outer records, pocket forces) at state y and time t [s]."""
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     pocket = np.zeros(z)
     dydt = np.zeros_like(y)
-    rhs(y, par, quad, dydt, rec_i, rec_o, pocket)
+    rhs(y, float(t), par, quad, dydt, rec_i, rec_o, pocket)
     return dydt, rec_i, rec_o, pocket
 
 

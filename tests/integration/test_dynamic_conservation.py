@@ -15,6 +15,7 @@ from solver.models.dynamic.kernels import (
     cage_land,
     mechanical_energy,
 )
+from solver.models.dynamic.params import drive_at_start
 from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 
@@ -32,7 +33,7 @@ def _energies(states, par, quad):
     ro = np.zeros((z, L.N_CONTACT_RECORD))
     energy, elastic = [], []
     for s in states:
-        energy.append(mechanical_energy(s, par, quad, ri, ro))
+        energy.append(mechanical_energy(s, 0.0, par, quad, ri, ro))
         elastic.append(
             0.4
             * sum((r[:, L.K_ELASTIC] * np.maximum(r[:, L.K_DEFLECTION], 0)).sum() for r in (ri, ro))
@@ -49,7 +50,7 @@ def test_energy_is_conserved_without_traction_and_damping():
     par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.0, cage=False
     )
-    period = 2 * math.pi / par.inner_speed
+    period = 2 * math.pi / drive_at_start(par).inner_speed
     times = np.linspace(0.0, 3 * period, 181)
     states, _ = integrate_states(par, quad, y0, times, tolerance=CONSERVATION_TOLERANCE)
     energy, elastic = _energies(states, par, quad)
@@ -72,7 +73,7 @@ def test_default_tolerance_tracks_the_energy_with_light_damping():
     par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.01, cage=False
     )
-    times = np.linspace(0.0, 2 * math.pi / par.inner_speed, 61)
+    times = np.linspace(0.0, 2 * math.pi / drive_at_start(par).inner_speed, 61)
     tight, _ = integrate_states(par, quad, y0, times, tolerance=1e-5)
     loose, _ = integrate_states(par, quad, y0, times, tolerance=default)
     e_tight, elastic = _energies(tight, par, quad)
@@ -89,7 +90,7 @@ def test_damping_dissipates_energy():
     for j in range(18):
         b = L.ball_base(j)
         y0[b + L.B_VEL] += 0.05
-    period = 2 * math.pi / par.inner_speed
+    period = 2 * math.pi / drive_at_start(par).inner_speed
     times = np.linspace(0.0, 0.5 * period, 31)
     states, _ = integrate_states(par, quad, y0, times, tolerance=CONSERVATION_TOLERANCE)
     energy, elastic = _energies(states, par, quad)
@@ -124,9 +125,12 @@ def test_linear_momentum_balance_of_the_rhs():
     total += par.ring_mass * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
     total += par.cage_mass * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
     land = np.zeros(5)
-    cage_land(y, cb, y[rb : rb + 3], y[rb + 3 : rb + 6], par, np.zeros(TRACTION_WORK_SIZE), land)
+    speeds = drive_at_start(par)[:2]
+    cage_land(
+        y, cb, y[rb : rb + 3], y[rb + 3 : rb + 6], *speeds, par, np.zeros(TRACTION_WORK_SIZE), land
+    )
     external = ro[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
-    external += np.array([par.force_x, par.force_y, par.force_z])
+    external += np.array(drive_at_start(par)[4:7])
     assert abs(land[1]) + abs(land[2]) > 0.0  # the land force is exercised
     external += land[:3]
     drag = np.array([ball_drag(y, L.ball_base(j), par)[0] for j in range(z)])

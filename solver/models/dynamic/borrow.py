@@ -12,7 +12,8 @@ at once.
 The view does not keep the memory alive, so it may only be used while the array it was made from
 is alive and must not leave the kernel that made it (never returned, stored or given to Python).
 :func:`borrowed_record` does the same for every array of a named record (a NamedTuple such as the
-model's parameters), whose other fields must be plain numbers or tuples of them.
+model's parameters, and records nested in it), whose other fields must be plain numbers or
+tuples of them.
 :func:`solver.models.dynamic.kernels.rhs_into` makes its views on entry and drops them on return.
 """
 
@@ -46,24 +47,40 @@ def _plain(member) -> bool:
     return False
 
 
+def _borrowable(member) -> bool:
+    """True for a record field :func:`borrowed_record` can take: an array, a plain field, or a
+    nested record of them."""
+    if isinstance(member, types.Array) or _plain(member):
+        return True
+    if isinstance(member, types.BaseTuple):
+        return all(_borrowable(t) for t in member.types)
+    return False
+
+
+def _borrow_fields(context, builder, record, value):
+    """``value`` of tuple type ``record`` with every array in it, at any depth, borrowed."""
+    for i, member in enumerate(record.types):
+        if isinstance(member, types.Array):
+            view = context.make_array(member)(
+                context, builder, value=builder.extract_value(value, i)
+            )
+            view.meminfo = cgutils.get_null_value(view.meminfo.type)
+            value = builder.insert_value(value, view._getvalue(), i)
+        elif isinstance(member, types.BaseTuple) and not _plain(member):
+            inner = _borrow_fields(context, builder, member, builder.extract_value(value, i))
+            value = builder.insert_value(value, inner, i)
+    return value
+
+
 @intrinsic
 def borrowed_record(typingctx, record):
     """``record`` (a numba tuple or named tuple) with each array field replaced by its borrowed
-    view (:func:`borrowed`); every other field must be a number, a boolean or a tuple of them."""
-    if not isinstance(record, types.BaseTuple):
-        return None
-    if not all(isinstance(t, types.Array) or _plain(t) for t in record.types):
+    view (:func:`borrowed`), also in nested records (the operating history in the model's
+    parameters); every other field must be a number, a boolean or a tuple of them."""
+    if not isinstance(record, types.BaseTuple) or not _borrowable(record):
         return None
 
     def codegen(context, builder, signature, args):
-        value = args[0]
-        for i, member in enumerate(record.types):
-            if isinstance(member, types.Array):
-                view = context.make_array(member)(
-                    context, builder, value=builder.extract_value(value, i)
-                )
-                view.meminfo = cgutils.get_null_value(view.meminfo.type)
-                value = builder.insert_value(value, view._getvalue(), i)
-        return value
+        return _borrow_fields(context, builder, record, args[0])
 
     return record(record), codegen

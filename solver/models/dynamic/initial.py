@@ -34,6 +34,7 @@ from solver.models.quasistatic.solver import solve_operating_point
 
 from . import layout as L
 from .kernels import rhs
+from .params import drive_at_start
 
 
 def matrix_to_quaternion(m: np.ndarray) -> np.ndarray:
@@ -115,7 +116,7 @@ def _contact_angles(y, par, quad):
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt = np.zeros_like(y)
-    rhs(y, _static_par(par), quad, dydt, rec_i, rec_o, np.zeros(z))
+    rhs(y, 0.0, _static_par(par), quad, dydt, rec_i, rec_o, np.zeros(z))
     return rec_i, rec_o
 
 
@@ -142,21 +143,22 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
         base[b + 1] = 0.5 * dm * math.cos(psi)
         base[b + 2] = 0.5 * dm * math.sin(psi)
         base[b + L.B_QUAT] = 1.0
+    drive = drive_at_start(par)
     if not tilt_dof:
-        base[rb + L.R_TILT] = par.tilt_y
-        base[rb + L.R_TILT + 1] = par.tilt_z
+        base[rb + L.R_TILT] = drive.tilt_y
+        base[rb + L.R_TILT + 1] = drive.tilt_z
     pstat = _static_par(par)
     mb = par.ball_mass
     mr = par.ring_mass
-    wrel = par.inner_speed - par.outer_speed
-    load = max(abs(par.force_x), math.hypot(par.force_y, par.force_z), 1e-3)
+    wrel = drive.inner_speed - drive.outer_speed
+    load = max(abs(drive.force_x), math.hypot(drive.force_y, drive.force_z), 1e-3)
     fscale = load / z
     ls = 1e-6  # unknowns in micrometres
     ird = par.ring_diametral_inertia
     # first guess: rigid axial shift sharing the axial load, balls on the pitch circle
     u0 = np.zeros(2 * z + (5 if tilt_dof else 3))
     u0[2 * z] = 1.0
-    omega_c = par.outer_speed + wrel * 0.5 * (1.0 - gamma_prime * math.cos(alpha0))
+    omega_c = drive.outer_speed + wrel * 0.5 * (1.0 - gamma_prime * math.cos(alpha0))
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt = np.zeros(n)
@@ -164,7 +166,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
 
     def residual(u, omega_c):
         y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
-        rhs(y, pstat, quad, dydt, rec_i, rec_o, pocket)
+        rhs(y, 0.0, pstat, quad, dydt, rec_i, rec_o, pocket)
         res = np.empty_like(u)
         for j in range(z):
             b = L.ball_base(j)
@@ -213,7 +215,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
         ai = float(np.mean(rec_i[loaded, L.K_ANGLE]))
         ao = float(np.mean(rec_o[loaded, L.K_ANGLE]))
         ratio_c, _, _ = outer_control_kinematics(ai, ao, gamma_prime)
-        omega_c = par.outer_speed + wrel * ratio_c
+        omega_c = drive.outer_speed + wrel * ratio_c
     u = balanced(u, omega_c, 1e-14)
     if np.max(np.abs(residual(u, omega_c))) > 1e-4:
         raise NoSolutionError(

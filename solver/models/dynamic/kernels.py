@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from solver.history import drive_at
 from solver.physics.cage_contact import (
     LAND_KIN_SIZE,
     LAND_OUT_SIZE,
@@ -212,13 +213,18 @@ def ring_frame_arrays():
 
 
 @njit(cache=True)
-def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_rot, outer_omega):
-    """Orientation, origin, velocity and angular velocity of both rings at state ``y``.
+def ring_frames(
+    y, par, drive, inner_rot, inner_origin, inner_vel, inner_omega, outer_rot, outer_omega
+):
+    """Orientation, origin, velocity and angular velocity of both rings at state ``y`` under the
+    imposed inputs ``drive`` (:class:`solver.history.Drive` at the state's time: ring speeds and
+    the imposed tilt's rate).
 
     Inner ring: tilt vector ``g`` (small rotation about y, z) and spin angle ``phi``. Mode 0 (tilt
     fixed in space) and 2 (tilt DOF): R = R(g) R_x(phi); mode 1 (tilt turning with the ring):
-    R = R_x(phi) R(g). Outer ring: R = R_x(phi_o) about the fixed axis. Writes only into the
-    given arrays (no allocation).
+    R = R_x(phi) R(g). The tilt rate adds to the angular velocity (small tilts): the state's under
+    a free tilt, the imposed one otherwise (in the ring's frame in mode 1). Outer ring:
+    R = R_x(phi_o) about the fixed axis. Writes only into the given arrays (no allocation).
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
@@ -226,24 +232,26 @@ def ring_frames(y, par, inner_rot, inner_origin, inner_vel, inner_omega, outer_r
     phi = y[rb + R_PHI_INNER]
     c, s = math.cos(phi), math.sin(phi)
     mode = par.tilt_mode
-    wi = par.inner_speed
+    wi = drive.inner_speed
+    gy_rate, gz_rate = drive.tilt_rate_y, drive.tilt_rate_z
     if mode == TILT_TURNING_WITH_RING:
         _about_x_then(inner_rot, c, s)
         inner_omega[0] = wi
-        inner_omega[1] = 0.0
-        inner_omega[2] = 0.0
+        inner_omega[1] = c * gy_rate - s * gz_rate
+        inner_omega[2] = s * gy_rate + c * gz_rate
     else:
         for i in range(3):  # first column of R(g) = first column of R(g) R_x
             inner_omega[i] = wi * inner_rot[i, 0]
         _then_about_x(inner_rot, c, s)
         if mode == TILT_FREE:
-            inner_omega[1] += y[rb + R_TILT_RATE]
-            inner_omega[2] += y[rb + R_TILT_RATE + 1]
+            gy_rate, gz_rate = y[rb + R_TILT_RATE], y[rb + R_TILT_RATE + 1]
+        inner_omega[1] += gy_rate
+        inner_omega[2] += gz_rate
     for i in range(3):
         inner_origin[i] = y[rb + R_POS + i]
         inner_vel[i] = y[rb + R_VEL + i]
     rotation_from_vector(y[rb + R_PHI_OUTER], 0.0, 0.0, outer_rot)
-    outer_omega[0] = par.outer_speed
+    outer_omega[0] = drive.outer_speed
     outer_omega[1] = 0.0
     outer_omega[2] = 0.0
 
@@ -815,8 +823,9 @@ def cage_pocket(y, jb, cb, j, par, cage_rot, cage_omega, work, out):
 
 
 @njit(cache=True)
-def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
-    """Guiding-land force on the cage through solver.physics.cage_contact.land_force.
+def cage_land(y, cb, ring_origin, ring_vel, inner_speed, outer_speed, par, work, out):
+    """Guiding-land force on the cage through solver.physics.cage_contact.land_force; the rings
+    turn at ``inner_speed`` and ``outer_speed`` [rad/s].
 
     ``out`` (5): force on the cage (3; x = 0), moment on the cage about x (1), and the moment
     about x on the guiding ring about its centre (1; the ring also receives minus the force).
@@ -836,13 +845,13 @@ def cage_land(y, cb, ring_origin, ring_vel, par, work, out):
         kin[LK_OFFSET + 1] = y[cb + C_POS + 2]
         kin[LK_VELOCITY] = y[cb + C_VEL + 1]
         kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2]
-        kin[LK_RING_SPEED] = par.outer_speed
+        kin[LK_RING_SPEED] = outer_speed
     else:
         kin[LK_OFFSET] = y[cb + C_POS + 1] - ring_origin[1]
         kin[LK_OFFSET + 1] = y[cb + C_POS + 2] - ring_origin[2]
         kin[LK_VELOCITY] = y[cb + C_VEL + 1] - ring_vel[1]
         kin[LK_VELOCITY + 1] = y[cb + C_VEL + 2] - ring_vel[2]
-        kin[LK_RING_SPEED] = par.inner_speed
+        kin[LK_RING_SPEED] = inner_speed
     kin[LK_CAGE_SPEED] = y[cb + C_SPEED]
     land_force(kin, par.land, res)
     out[1] = res[LO_FORCE]
@@ -946,6 +955,7 @@ class RhsWork(NamedTuple):
     cage_omega: np.ndarray  # (3,) [rad/s]
     pocket: np.ndarray  # (12,) output of cage_pocket
     land: np.ndarray  # (5,) output of cage_land
+    ring_speed: np.ndarray  # (2,) inner and outer ring speeds of the evaluation [rad/s]
     contact: np.ndarray  # (TRACTION_WORK_SIZE,) scratch of the contact kernels
     stash: np.ndarray  # (CS_SIZE, stash_columns(Z)) per-contact values between the passes
 
@@ -965,33 +975,40 @@ def rhs_work(ball_count):
         np.empty(3),
         np.empty(12),
         np.empty(5),
+        np.zeros(2),
         np.empty(TRACTION_WORK_SIZE),
         np.ones((CS_SIZE, stash_columns(ball_count))),
     )
 
 
 @njit(cache=True)
-def rhs(y, par, quad, dydt, rec_inner, rec_outer, pocket):
-    """dy/dt of the whole bearing. ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and ``pocket``
-    (Z,) receive the contact records and pocket normal forces of this evaluation.
+def rhs(y, t, par, quad, dydt, rec_inner, rec_outer, pocket):
+    """dy/dt of the whole bearing at state ``y`` and time ``t`` [s] (the time the operating
+    history ``par.history`` is read at). ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and
+    ``pocket`` (Z,) receive the contact records and pocket normal forces of this evaluation.
     :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
     scratch = rhs_work(int(par.ball_count))
-    rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, runtime_bool(True))
+    rhs_into(y, t, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, runtime_bool(True))
 
 
 @njit(cache=True)
-def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
-    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. Callers
-    pass ``observed`` explicitly (no default: an omitted argument is typed apart and would
-    compile a second variant), from compiled code as ``runtime_bool(...)``, so that numba
-    compiles one variant. The evaluation works on borrowed views of the arrays (:mod:`.borrow`),
-    so that its many bindings and slices of them cost no atomic reference counts. ``observed``
-    False (integrators' stages, which pass it explicitly): the records hold only what the forces
-    and ``post_step`` need (contact angle, raceway azimuth and elastic load NaN; see
+def rhs_into(y, t, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
+    """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
+    imposed inputs are read once, at ``t`` [s] (:func:`solver.history.drive_at`). Callers pass
+    ``observed`` explicitly (no default: an omitted argument is typed apart and would compile a
+    second variant), from compiled code as ``runtime_bool(...)``, so that numba compiles one
+    variant. The evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its
+    many bindings and slices of them cost no atomic reference counts. ``observed`` False
+    (integrators' stages, which pass it explicitly): the records hold only what the forces and
+    ``post_step`` need (contact angle, raceway azimuth and elastic load NaN; see
     :func:`contact_state`)."""
+    z = int(par.ball_count)
+    phi = y[BALL_STRIDE * z + R_PHI_INNER]
+    par_view = borrowed_record(par)
     _rhs_borrowed(
         borrowed(y),
-        borrowed_record(par),
+        drive_at(par_view.history, t, phi),
+        par_view,
         borrowed(quad),
         borrowed(dydt),
         borrowed(rec_inner),
@@ -1010,6 +1027,7 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
             borrowed(scratch.cage_omega),
             borrowed(scratch.pocket),
             borrowed(scratch.land),
+            borrowed(scratch.ring_speed),
             borrowed(scratch.contact),
             borrowed(scratch.stash),
         ),
@@ -1017,8 +1035,9 @@ def rhs_into(y, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed
 
 
 @njit(cache=True, error_model="numpy")
-def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, scratch):
-    """Body of :func:`rhs_into`, on the views it borrows. Compiled with numpy's error model: a
+def _rhs_borrowed(y, drive, par, quad, dydt, rec_inner, rec_outer, pocket, observed, scratch):
+    """Body of :func:`rhs_into`, on the views it borrows, under the imposed inputs ``drive``
+    (:class:`solver.history.Drive`). Compiled with numpy's error model: a
     division by zero gives inf or NaN (which the integrator's finiteness check turns into a
     failed step) instead of a test and a branch to an exception before every division."""
     z = int(par.ball_count)
@@ -1030,7 +1049,9 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
     iome = scratch.inner_omega
     orot = scratch.outer_rot
     oome = scratch.outer_omega
-    ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+    ring_frames(y, par, drive, irot, iorg, ivel, iome, orot, oome)
+    scratch.ring_speed[0] = drive.inner_speed
+    scratch.ring_speed[1] = drive.outer_speed
     zero3 = scratch.zero3
     mb = par.ball_mass
     jinv = 1.0 / par.ball_inertia
@@ -1143,11 +1164,11 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
     # inner ring
     for i in range(RING_SIZE):
         dydt[rb + i] = 0.0
-    dydt[rb + R_PHI_INNER] = par.inner_speed
-    dydt[rb + R_PHI_OUTER] = par.outer_speed
+    dydt[rb + R_PHI_INNER] = drive.inner_speed
+    dydt[rb + R_PHI_OUTER] = drive.outer_speed
     ld = scratch.land
     if cage_on:
-        cage_land(y, cb, iorg, ivel, par, work, ld)
+        cage_land(y, cb, iorg, ivel, drive.inner_speed, drive.outer_speed, par, work, ld)
         if par.guidance == GUIDE_INNER_RING:  # reaction on the inner ring
             fry -= ld[1]
             frz -= ld[2]
@@ -1158,16 +1179,19 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
         mr = par.ring_mass
         for i in range(3):
             dydt[rb + R_POS + i] = y[rb + R_VEL + i]
-        dydt[rb + R_VEL] = (frx + par.force_x) / mr
-        dydt[rb + R_VEL + 1] = (fry + par.force_y) / mr
-        dydt[rb + R_VEL + 2] = (frz + par.force_z) / mr - g
+        dydt[rb + R_VEL] = (frx + drive.force_x) / mr
+        dydt[rb + R_VEL + 1] = (fry + drive.force_y) / mr
+        dydt[rb + R_VEL + 2] = (frz + drive.force_z) / mr - g
     if par.tilt_mode == TILT_FREE:
-        ird, irp, wi = par.ring_diametral_inertia, par.ring_polar_inertia, par.inner_speed
+        ird, irp, wi = par.ring_diametral_inertia, par.ring_polar_inertia, drive.inner_speed
         gy_rate, gz_rate = y[rb + R_TILT_RATE], y[rb + R_TILT_RATE + 1]
         dydt[rb + R_TILT] = gy_rate
         dydt[rb + R_TILT + 1] = gz_rate
-        dydt[rb + R_TILT_RATE] = (mry + par.moment_y - irp * wi * gz_rate) / ird
-        dydt[rb + R_TILT_RATE + 1] = (mrz + par.moment_z + irp * wi * gy_rate) / ird
+        dydt[rb + R_TILT_RATE] = (mry + drive.moment_y - irp * wi * gz_rate) / ird
+        dydt[rb + R_TILT_RATE + 1] = (mrz + drive.moment_z + irp * wi * gy_rate) / ird
+    else:  # the imposed tilt follows the history
+        dydt[rb + R_TILT] = drive.tilt_rate_y
+        dydt[rb + R_TILT + 1] = drive.tilt_rate_z
     # cage
     for i in range(CAGE_SIZE):
         dydt[cb + i] = 0.0
@@ -1194,18 +1218,21 @@ def _rhs_borrowed(y, par, quad, dydt, rec_inner, rec_outer, pocket, observed, sc
 
 
 @njit(cache=True)
-def mechanical_energy(y, par, quad, rec_inner, rec_outer):
-    """Kinetic + potential energy [J] for the conservative model (traction, damping, cage off).
+def mechanical_energy(y, t, par, quad, rec_inner, rec_outer):
+    """Kinetic + potential energy [J] at time ``t`` [s] for the conservative model (traction,
+    damping, cage off) under a constant applied force.
 
-    Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the constant applied
-    force, m g z for gravity along -z (balls, and the inner ring when it is free). The inner ring's
-    imposed spin is not included (it does no work on frictionless contacts). ``rec_inner`` and
-    ``rec_outer`` receive each contact's state and load (:func:`contact_state`), not its forces.
+    Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the applied force
+    (a potential only while it is constant), m g z for gravity along -z (balls, and the inner ring
+    when it is free). The inner ring's imposed spin is not included (it does no work on
+    frictionless contacts). ``rec_inner`` and ``rec_outer`` receive each contact's state and
+    load (:func:`contact_state`), not its forces.
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
+    drive = drive_at(par.history, t, y[rb + R_PHI_INNER])
     irot, iorg, ivel, iome, orot, oome = ring_frame_arrays()
-    ring_frames(y, par, irot, iorg, ivel, iome, orot, oome)
+    ring_frames(y, par, drive, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)
     stash = np.ones((CS_SIZE, 1))
     mb = par.ball_mass
@@ -1233,9 +1260,9 @@ def mechanical_energy(y, par, quad, rec_inner, rec_outer):
             v2 += y[rb + R_VEL + i] ** 2
         e += 0.5 * par.ring_mass * v2
         e -= (
-            par.force_x * y[rb + R_POS]
-            + par.force_y * y[rb + R_POS + 1]
-            + par.force_z * y[rb + R_POS + 2]
+            drive.force_x * y[rb + R_POS]
+            + drive.force_y * y[rb + R_POS + 1]
+            + drive.force_z * y[rb + R_POS + 2]
         )
         e += par.ring_mass * par.gravity * y[rb + R_POS + 2]
     return e

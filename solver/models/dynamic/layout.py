@@ -121,4 +121,5 @@ RO_LAND_POWER = 0  # power dissipated at the cage-guiding land [W]
 RO_FRICTION_TORQUE = 1  # torque needed to turn the inner ring at its speed [N m]
 RO_DRIVE_POWER = 2  # power fed in by the imposed ring rotations [W]
 RO_CAGE_DRAG_POWER = 3  # power of the oil-air drag on the cage [W]
-N_BEARING_OUTPUT = 4
+RO_ELASTIC_ENERGY = 4  # elastic (Hertz) energy of the ball-race contacts, 2/5 Q delta each [J]
+N_BEARING_OUTPUT = 5

@@ -4,6 +4,19 @@ from __future__ import annotations
 
 import numpy as np
 
+from solver.history import (
+    CH_INNER_SPEED,
+    CH_MISALIGNMENT,
+    CH_MISALIGNMENT_AXIS,
+    CH_MOMENT_AXIS,
+    CH_OUTER_SPEED,
+    CH_RADIAL_LOAD_ANGLE,
+    CH_TILTING_MOMENT,
+    CHANNEL_NAMES,
+    FRAME_INNER_RING,
+    N_CHANNELS,
+    event_times,
+)
 from solver.models.quasistatic.result import start_variables
 from solver.physics.hertz import truncation_margin
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
@@ -12,13 +25,15 @@ from solver.results.energy import energy_balance
 from solver.results.estimates import with_estimates
 from solver.results.skidding import skidding_variables
 from solver.results.summary import trajectory_summary
-from solver.results.variables import variable
+from solver.results.variables import COORDINATES, variable
 
 from . import layout as L
 from .integrate import stepper
-from .observe import observe
+from .observe import applied_load_work, channel_series, observe
 
 _TWO_PI = 2.0 * np.pi
+#: operating inputs stored in degree (results-schema.md)
+ANGLE_CHANNELS = ("radial_load_angle", "misalignment", "misalignment_axis", "moment_axis")
 
 TRACTION_LAW_NAMES = {
     LAW_RHEOLOGY: "rheology (Barus viscosity, Eyring + film elasticity, limiting shear stress)",
@@ -164,7 +179,8 @@ def build_dataset(
     records = np.zeros((s_count, z, 2, L.N_CONTACT_RECORD))
     balls_out = np.zeros((s_count, z, L.N_BALL_OUTPUT))
     bearing_out = np.zeros((s_count, L.N_BEARING_OUTPUT))
-    observe(states, par, quad, records, balls_out, bearing_out)
+    observe(states, times, par, quad, records, balls_out, bearing_out)
+    imposed = imposed_inputs(par.history, times, states[:, L.ring_base(z) + L.R_PHI_INNER])
     pocket = balls_out[..., L.BO_POCKET_FORCE]
     balls = np.stack(
         [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
@@ -181,7 +197,8 @@ def build_dataset(
     # attitude angle from the ball's angular velocity relative to its orbiting frame
     w_x = omega[..., 0] - orbital
     w_r = omega[..., 1] * np.cos(psi) + omega[..., 2] * np.sin(psi)
-    sgn = -1.0 if (par.inner_speed - par.outer_speed) >= 0 else 1.0
+    relative = imposed[CH_INNER_SPEED] - imposed[CH_OUTER_SPEED]
+    sgn = np.where(relative >= 0.0, -1.0, 1.0)[:, None]
     attitude = np.degrees(np.arctan2(-sgn * w_r, sgn * w_x))
     angle = records[..., L.K_ANGLE]
     semi_major = records[..., L.K_SEMI_MAJOR]
@@ -210,6 +227,8 @@ def build_dataset(
         "cage_speed": (("time",), states[:, cb + L.C_SPEED]),
         "cage_center": (("time", "axis"), states[:, cb + L.C_POS : cb + L.C_POS + 3]),
         "kinetic_energy": (("time",), kinetic_energy(states, par)),
+        "elastic_energy": (("time",), bearing_out[:, L.RO_ELASTIC_ENERGY].copy()),
+        "load_work": (("time",), load_work(states, times, par)),
     }
     attrs = {
         "stop_reason": stop_reason,
@@ -245,11 +264,89 @@ def build_dataset(
     ds = ds.assign(skidding_variables(ds))
     metrics = trajectory_summary(ds, options.analysis_skip_fraction)
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
+    ds = with_inputs_over_time(ds, par.history, imposed)
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
     balance = energy_balance(ds, float(metrics["analysis_start_time"]))
     spec = variable("energy_balance_residual")
     ds["energy_balance_residual"] = ((), np.float64(balance.residual), spec.attrs())
     return with_estimates(ds, inputs)
+
+
+def load_work(states: np.ndarray, times: np.ndarray, par) -> np.ndarray:
+    """Work [J] done since t = 0 by the applied loads and gravity at each stored state (S, n) at
+    ``times`` (S,) [s]: the Stieltjes sum of F . dx over the inner ring's displacement (where its
+    translations are free) and M . d(tilt) (free tilt), F and M at the middle of each piece, the
+    pieces being the sample intervals cut at the history's event times (a load step does its
+    work on the side of the jump it acts on; the position at an event is interpolated linearly),
+    plus -m g dz of every moving body. Not F . v sampled: the ring's contact vibration, far faster
+    than the output samples, would alias into it."""
+    z = int(par.ball_count)
+    rb = L.ring_base(z)
+    cb = L.cage_base(z)
+    events = event_times(par.history, float(times[0]), float(times[-1]))
+    work = np.zeros(times.size)
+    applied_load_work(states, times, par, events, work)
+    ring = states[:, rb + L.R_POS : rb + L.R_POS + 3]
+    heights = np.zeros(times.size)
+    for j in range(z):
+        heights += par.ball_mass * states[:, L.ball_base(j) + L.B_POS + 2]
+    if par.ring_free:
+        heights += par.ring_mass * ring[:, 2]
+    if par.cage:
+        heights += par.cage_mass * states[:, cb + L.C_POS + 2]
+    return work - par.gravity * (heights - heights[0])
+
+
+def imposed_inputs(history, times: np.ndarray, inner_angle: np.ndarray) -> np.ndarray:
+    """(N_CHANNELS, S) every channel of ``history`` at ``times`` [s] (SI, rad); the radial load's
+    azimuth in space (a load turning with the inner ring: its angle in the ring plus the ring's
+    spin angle ``inner_angle`` (S,) [rad])."""
+    values = np.empty((N_CHANNELS, times.size))
+    channel_series(history, np.ascontiguousarray(times, dtype=np.float64), values)
+    if history.radial_load_frame == FRAME_INNER_RING:
+        values[CH_RADIAL_LOAD_ANGLE] += inner_angle
+    return values
+
+
+def varying_channels(history) -> list[int]:
+    """The channels of ``history`` that vary in time (a table of several values, a sine or a
+    rate; the radial load's azimuth when it turns with the inner ring). Under a free tilt the
+    misalignment channels, under an imposed tilt the moment channels, are not inputs."""
+    unused = (
+        (CH_MISALIGNMENT, CH_MISALIGNMENT_AXIS)
+        if history.tilt_free
+        else (CH_TILTING_MOMENT, CH_MOMENT_AXIS)
+    )
+    out = []
+    for c in range(N_CHANNELS):
+        if c in unused:
+            continue
+        n = int(history.counts[c])
+        values = history.values[c, :n]
+        varies = bool(np.any(values != values[0])) or history.amplitude[c] != 0.0
+        varies = varies or history.rate[c] != 0.0
+        if c == CH_RADIAL_LOAD_ANGLE and history.radial_load_frame == FRAME_INNER_RING:
+            varies = True
+        if varies:
+            out.append(c)
+    return out
+
+
+def with_inputs_over_time(ds, history, imposed: np.ndarray):
+    """``ds`` with every operating input that varies in ``history`` as a data variable over
+    ``time`` in place of its scalar coordinate (same name, units and meaning; angles in degree):
+    ``imposed`` from :func:`imposed_inputs`."""
+    channels = varying_channels(history)
+    if not channels:
+        return ds
+    names = [CHANNEL_NAMES[c] for c in channels]
+    ds = ds.drop_vars(names)
+    for c, name in zip(channels, names, strict=True):
+        values = imposed[c]
+        if name in ANGLE_CHANNELS:
+            values = np.degrees(values)
+        ds[name] = (("time",), values, COORDINATES[name].attrs())
+    return ds
 
 
 def _integrator_note(options) -> str:

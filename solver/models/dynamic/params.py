@@ -12,6 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from solver.history import Drive, drive_at, steady_history
 from solver.inputs import Inputs
 from solver.materials import Material, effective_modulus
 from solver.physics.cage_contact import (
@@ -51,6 +52,10 @@ class ModelParams(NamedTuple):
     """Everything the dynamic model's kernels read besides the state, SI units.
 
     Frames and signs as in ``layout`` and ``kernels`` (inertial x = bearing axis, gravity -z).
+    The imposed inputs (ring speeds, applied forces and moment, imposed tilt) are the operating
+    history's (``history``): the kernels read them at the time they are evaluated at
+    (:func:`solver.history.drive_at`; :func:`drive_at_start` for t = 0); a steady case has the
+    constant history of its operating point.
     """
 
     # ---- geometry and masses
@@ -71,19 +76,11 @@ class ModelParams(NamedTuple):
     inner_hertz: np.ndarray  # Hertz table of the inner race (solver.physics.hertz_race.race_table)
     outer_hertz: np.ndarray  # of the outer race
     # ---- rings, loads and modes
-    inner_speed: float  # inner ring speed [rad/s]
-    outer_speed: float  # outer ring speed [rad/s]
+    history: tuple  # solver.history.HistoryRecord: ring speeds, loads, tilt or moment against time
     ring_mass: float  # inner ring (+ shaft share) mass [kg]
     ring_diametral_inertia: float  # [kg m^2]
     ring_polar_inertia: float  # [kg m^2]
-    force_x: float  # applied force on the inner ring [N], inertial x
-    force_y: float
-    force_z: float
-    moment_y: float  # applied moment on the inner ring about y [N m] (tilt_mode TILT_FREE)
-    moment_z: float
     tilt_mode: int  # layout.TILT_FIXED_IN_SPACE / TILT_TURNING_WITH_RING / TILT_FREE
-    tilt_y: float  # imposed tilt vector, y component [rad]
-    tilt_z: float  # z component [rad]
     ring_free: bool  # ring translations are DOF (False: held at the initial position)
     gravity: float  # gravitational acceleration along -z [m/s^2]
     # ---- ball-race contacts
@@ -170,20 +167,11 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
     D, dm = g.ball_diameter, g.pitch_diameter
     if op.tilting_moment is not None:
         tilt_mode = L.TILT_FREE
-        moment = (
-            op.tilting_moment * math.cos(op.moment_axis),
-            op.tilting_moment * math.sin(op.moment_axis),
-        )
-        tilt = (0.0, 0.0)
     else:
         tilt_mode = (
             L.TILT_TURNING_WITH_RING if op.misalignment_frame == "ring" else L.TILT_FIXED_IN_SPACE
         )
-        moment = (0.0, 0.0)
-        tilt = (
-            op.misalignment * math.cos(op.misalignment_axis),
-            op.misalignment * math.sin(op.misalignment_axis),
-        )
+    history = inputs.history if inputs.history is not None else steady_history(op)
     ring_mass, ring_diametral, ring_polar = ring_mass_properties(inputs, options)
     guide = {
         "outer_ring": L.GUIDE_OUTER_RING,
@@ -235,19 +223,11 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         eprime=g.effective_modulus,
         inner_hertz=race_table(D, dm, g.inner_conformity, True),
         outer_hertz=race_table(D, dm, g.outer_conformity, False),
-        inner_speed=op.inner_ring_speed,
-        outer_speed=op.outer_ring_speed,
+        history=history,
         ring_mass=ring_mass,
         ring_diametral_inertia=ring_diametral,
         ring_polar_inertia=ring_polar,
-        force_x=op.axial_load,
-        force_y=op.radial_load * math.cos(op.radial_load_angle),
-        force_z=op.radial_load * math.sin(op.radial_load_angle),
-        moment_y=moment[0],
-        moment_z=moment[1],
         tilt_mode=tilt_mode,
-        tilt_y=tilt[0],
-        tilt_z=tilt[1],
         ring_free=bool(options.ring_free),
         gravity=float(options.gravity),
         damping_ratio=float(options.damping_ratio),
@@ -301,6 +281,12 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         cage_drag_laminar=cage_drag[0],
         cage_drag_turbulent=cage_drag[1],
     )
+
+
+def drive_at_start(par: ModelParams) -> Drive:
+    """The imposed inputs at t = 0 (ring speeds, forces, tilt; :class:`solver.history.Drive`):
+    those the initial state is balanced under."""
+    return drive_at(par.history, 0.0, 0.0)
 
 
 def _floats(values) -> tuple:

@@ -17,12 +17,14 @@ import math
 import os
 import time as _time
 from types import MappingProxyType
+from typing import NamedTuple
 
 import numpy as np
 
 from solver.case import dynamic_problems
 from solver.case.validate import equal_speeds_problem, run_length_problems
-from solver.errors import CaseError, NoSolutionError, SimulationDiverged
+from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverged
+from solver.history import CH_INNER_SPEED, CH_OUTER_SPEED, N_CHANNELS, event_times
 from solver.inputs import Inputs, rad_s_to_rpm, to_inputs
 from solver.physics.traction import NODE_COLUMNS
 
@@ -38,6 +40,7 @@ from .integrate.control import (
     step_control,
 )
 from .integrate.model import bearing_model
+from .observe import channel_series
 from .options import CASE_OVERRIDES, SimulationOptions
 from .output import build_dataset
 from .params import build_params, build_quadrature
@@ -87,7 +90,8 @@ def state_scales(par, y0: np.ndarray) -> np.ndarray:
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     from .kernels import rhs
 
-    rhs(y0, par, np.zeros((1, NODE_COLUMNS)), np.zeros(n), rec_i, rec_o, np.zeros(z))  # weight 0
+    no_nodes = np.zeros((1, NODE_COLUMNS))  # traction weight 0
+    rhs(y0, 0.0, par, no_nodes, np.zeros(n), rec_i, rec_o, np.zeros(z))
     defl = np.concatenate((rec_i[:, L.K_DEFLECTION], rec_o[:, L.K_DEFLECTION]))
     load = np.concatenate((rec_i[:, L.K_ELASTIC], rec_o[:, L.K_ELASTIC]))
     k = int(np.argmax(defl))
@@ -197,6 +201,70 @@ def _length_names(options: SimulationOptions) -> tuple[str, str]:
     )
 
 
+class TimeGrid(NamedTuple):
+    """The output times of a run and the shaft period its metrics and messages use."""
+
+    times: np.ndarray  # (S + 1,) output times from 0 [s]
+    period: float  # shaft period [s]: at the steady speed, or at the history's mean speed
+    per_revolution: float  # samples per shaft revolution (steady) or NaN (a history)
+
+    def reached(self, sample: int) -> str:
+        """How far sample ``sample`` is into the run, in words."""
+        if math.isfinite(self.per_revolution):
+            total = (self.times.size - 1) / self.per_revolution
+            return f"{sample / self.per_revolution:.2f} of {total:g} revolutions"
+        return f"{self.times[sample]:.4g} of {self.times[-1]:g} s"
+
+
+def _time_grid(inputs, options, given, par) -> TimeGrid:
+    """Output times: a steady case samples ``samples_per_revolution`` times per shaft revolution
+    for ``shaft_revolutions``; a case with a history (``inputs.history``) samples
+    ``simulation.samples_per_second`` times per second over ``simulation.duration`` [s]."""
+    op = inputs.operating
+    if inputs.history is None:
+        problems = run_length_problems(
+            options.shaft_revolutions,
+            options.samples_per_revolution,
+            int(inputs.geometry.ball_count),
+            _length_names(given),
+        )
+        if problems:
+            raise CaseError(problems)
+        speed = abs(op.inner_ring_speed - op.outer_ring_speed)
+        if not speed > 0.0:  # steady Inputs (a Case was refused by dynamic_problems)
+            raise CaseError([equal_speeds_problem(rad_s_to_rpm(op.inner_ring_speed))])
+        period = 2.0 * math.pi / speed
+        per_rev = options.samples_per_revolution
+        n_samples = int(round(options.shaft_revolutions * per_rev))
+        return TimeGrid(np.arange(n_samples + 1) * (period / per_rev), period, float(per_rev))
+    duration = inputs.simulation.duration
+    rate = inputs.simulation.samples_per_second
+    problems = [
+        Problem(key, f"{key} = {value!r}: a case with time histories needs a positive number")
+        for key, value in (
+            ("simulation.duration", duration),
+            ("simulation.samples_per_second", rate),
+        )
+        if value is None or not (math.isfinite(value) and value > 0.0)
+    ]
+    if problems:
+        raise CaseError(problems)
+    n_samples = max(1, int(round(duration * rate)))
+    times = np.linspace(0.0, float(duration), n_samples + 1)
+    values = np.empty((N_CHANNELS, times.size))
+    channel_series(par.history, times, values)
+    mean = float(np.mean(np.abs(values[CH_INNER_SPEED] - values[CH_OUTER_SPEED])))
+    if not mean > 0.0:
+        raise CaseError(
+            Problem(
+                "operating.inner_ring_speed_rpm",
+                "the ring speeds' histories never turn the rings relative to each other, so "
+                "nothing runs; give the speeds that the run should follow",
+            )
+        )
+    return TimeGrid(times, 2.0 * math.pi / mean, math.nan)
+
+
 def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
     """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
 
@@ -210,26 +278,12 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     inputs = _inputs(case)
     given = (options or SimulationOptions()).validated()
     options = given.resolved(inputs.simulation)
-    problems = run_length_problems(
-        options.shaft_revolutions,
-        options.samples_per_revolution,
-        int(inputs.geometry.ball_count),
-        _length_names(given),
-    )
-    if problems:
-        raise CaseError(problems)
-    op = inputs.operating
-    speed = abs(op.inner_ring_speed - op.outer_ring_speed)
-    if inputs.history is None and not speed > 0.0:  # steady Inputs (a Case was checked above)
-        raise CaseError([equal_speeds_problem(rad_s_to_rpm(op.inner_ring_speed))])
-    revolutions = options.shaft_revolutions
-    per_rev = options.samples_per_revolution
     par = build_params(inputs, options)
+    grid = _time_grid(inputs, options, given, par)
+    times, period = grid.times, grid.period
+    n_samples = times.size - 1
     quad = build_quadrature(options, par)
     y, start_note, quasistatic = _start(inputs, options, par, quad)
-    period = 2.0 * math.pi / speed
-    n_samples = int(round(revolutions * per_rev))
-    times = np.arange(n_samples + 1) * (period / per_rev)
     states = np.empty((n_samples + 1, y.shape[0]))
     states[0] = y
     scale = state_scales(par, y)
@@ -240,7 +294,13 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     model = bearing_model(par, quad)
     work = method.workspace(model, y.shape[0], 0.0, h)
     reached = work.progress  # the stepper's progress record (1,)
-    control = step_control(options.tolerance, scale, 1e-6 * h, options.max_steps_per_chunk)
+    control = step_control(
+        options.tolerance,
+        scale,
+        1e-6 * h,
+        options.max_steps_per_chunk,
+        event_times(par.history, 0.0, float(times[-1])),
+    )
     stats = RunStatistics(work.progress)
     stats.initial_step = h
     done = 1
@@ -271,7 +331,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
             progress(
                 (done - 1) / n_samples,
                 float(times[done - 1]),
-                f"{(done - 1) / per_rev:.2f} of {revolutions:g} revolutions, {elapsed:.1f} s",
+                f"{grid.reached(done - 1)}, {elapsed:.1f} s",
             )
     stats.wall_time = _time.perf_counter() - start
     complete = stop_reason == "finished"

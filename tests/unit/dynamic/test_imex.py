@@ -18,6 +18,7 @@ from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.integrate.imex import ark436l2sa, cage_velocity_jacobian
 from solver.models.dynamic.kernels import rhs_into, rhs_work
+from solver.models.dynamic.params import drive_at_start
 from solver.models.dynamic.simulate import state_scales
 from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
@@ -126,7 +127,7 @@ def test_cage_velocity_jacobian_matches_the_whole_right_hand_side():
     f0 = np.empty_like(y)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y, par, quad, f0, rec_i, rec_o, np.zeros(z), scratch, True)
+    rhs_into(y, 0.0, par, quad, f0, rec_i, rec_o, np.zeros(z), scratch, True)
     jac = np.zeros((3, 3))
     cage_velocity_jacobian(y, cb, par, scratch, dv, True, np.empty(3), np.empty(3), jac)
     reference = np.zeros((3, 3))
@@ -143,7 +144,7 @@ def test_dopri5_outputs_inside_steps_match_stopping_on_each_output():
     """Continuous extension: states at output times filled inside steps agree with a run that
     stops exactly on every output time, to a small fraction of the deflection scale."""
     par, quad, y0 = start(spindle_inputs(radial=300.0))
-    period = 2 * math.pi / par.inner_speed
+    period = 2 * math.pi / drive_at_start(par).inner_speed
     times = np.linspace(0.0, 0.05 * period, 13)
     dense, _ = integrate_states(par, quad, y0, times, tolerance=1e-6)
     stops = [y0]

@@ -11,6 +11,7 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.integrate import METHODS
 from solver.models.dynamic.integrate.control import STATUS_BALL_ESCAPED, STATUS_NOT_FINITE
 from solver.models.dynamic.kernels import post_step
+from solver.models.dynamic.params import drive_at_start
 from solver.models.dynamic.simulate import state_scales
 from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import advance, integrate_states, start
@@ -21,7 +22,7 @@ def test_local_error_control_converges():
     reference to a small fraction of the deflection, and 1e-2 is visibly worse (the control
     works)."""
     par, quad, y0 = start(spindle_inputs(radial=300.0))
-    period = 2 * math.pi / par.inner_speed
+    period = 2 * math.pi / drive_at_start(par).inner_speed
     times = np.array([0.0, 0.2 * period])
     ref, _ = integrate_states(par, quad, y0, times, tolerance=1e-8)
     scale = state_scales(par, y0)

@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from scipy import integrate
 
+from solver.history import steady_history
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import ball_frame, matrix_to_quaternion
 from solver.models.dynamic.kernels import quaternion_to_matrix, ring_frames, rotation_from_vector
+from solver.models.dynamic.params import drive_at_start
 from solver.physics.hertz import race_contact
 from solver.physics.traction import LAW_SLIP_CURVE
 from tests.helpers.cases import spindle_inputs
@@ -92,7 +95,7 @@ def test_ring_frames_tilt_modes(mode):
         y[rb + L.R_PHI_INNER] = phi
         rot, org, vel, om = np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3)
         orot, oom = np.empty((3, 3)), np.empty(3)
-        ring_frames(y, par, rot, org, vel, om, orot, oom)
+        ring_frames(y, par, drive_at_start(par), rot, org, vel, om, orot, oom)
         np.testing.assert_allclose(rot.T @ rot, np.eye(3), atol=1e-14)
         axes.append(rot[:, 0].copy())
     # tilt about z by 0.01 rad turns e_x towards +y
@@ -362,7 +365,7 @@ def test_gravity_acts_along_minus_z_on_balls_cage_and_inner_ring():
     inner ring fall with acceleration g along -z of the inertial frame."""
     inp = spindle_inputs(axial=0.0)
     par, quad, _ = setup(inp, gravity=9.81)
-    par = par._replace(force_x=0.0)
+    par = par._replace(history=steady_history(replace(inp.operating, axial_load=0.0)))
     y = _nominal_state(18, inp.geometry.pitch_diameter)
     dydt, *_ = evaluate(y, par, quad)
     for j in range(18):
@@ -458,7 +461,7 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     stage = np.zeros_like(y0)
     stage_i = np.zeros((z, L.N_CONTACT_RECORD))
     stage_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
+    rhs_into(y0, 0.0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
     np.testing.assert_array_equal(stage, dydt)
     assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
     assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
@@ -468,3 +471,48 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     signatures = rhs_into.signatures
     assert signatures and len({sig[:-1] for sig in signatures}) == len(signatures)
     assert len(_rhs_borrowed.signatures) <= len(signatures)
+
+
+def test_right_hand_side_reads_the_operating_history_at_its_time():
+    """The imposed inputs at the evaluation's time: the ring spin angles advance at the history's
+    speeds, the imposed tilt at its rate (which also turns the inner ring's frame), and a load
+    step changes the free ring's acceleration by dF / m from the step's time on (right-continuous),
+    the contacts being the same."""
+    from solver.history import (
+        CH_INNER_SPEED,
+        CH_MISALIGNMENT,
+        CH_RADIAL_LOAD,
+        ChannelHistory,
+        drive_at,
+    )
+    from tests.helpers.histories import with_history
+
+    inp = spindle_inputs(axial=500.0, radial=300.0, misalignment=math.radians(0.02))
+    par, quad, y = start(inp)
+    speed = inp.operating.inner_ring_speed
+    channels = {
+        CH_INNER_SPEED: ChannelHistory((0.0, 1e-3), (speed, 2.0 * speed)),
+        CH_MISALIGNMENT: ChannelHistory((0.0, 1e-3), (math.radians(0.02), math.radians(0.06))),
+        CH_RADIAL_LOAD: ChannelHistory((5e-4, 5e-4), (300.0, 900.0)),
+    }
+    par = par._replace(history=with_history(inp, channels, 1e-3, 1e4).history)
+    rb = L.ring_base(18)
+    t = 2.5e-4
+    dydt, *_ = evaluate(y, par, quad, t)
+    drive = drive_at(par.history, t, y[rb + L.R_PHI_INNER])
+    assert dydt[rb + L.R_PHI_INNER] == pytest.approx(1.25 * speed, rel=1e-12)
+    rate = math.radians(0.04) / 1e-3
+    assert math.hypot(dydt[rb + L.R_TILT], dydt[rb + L.R_TILT + 1]) == pytest.approx(rate)
+    assert (dydt[rb + L.R_TILT], dydt[rb + L.R_TILT + 1]) == (drive.tilt_rate_y, drive.tilt_rate_z)
+    rot, org, vel, om = np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3)
+    orot, oom = np.empty((3, 3)), np.empty(3)
+    ring_frames(y, par, drive, rot, org, vel, om, orot, oom)
+    still = drive._replace(tilt_rate_y=0.0, tilt_rate_z=0.0)
+    om_still = np.empty(3)
+    ring_frames(y, par, still, rot, org, vel, om_still, orot, oom)
+    expected = [0.0, drive.tilt_rate_y, drive.tilt_rate_z]
+    np.testing.assert_allclose(om - om_still, expected, atol=1e-12 * rate)
+    before, *_ = evaluate(y, par, quad, np.nextafter(5e-4, 0.0))
+    after, *_ = evaluate(y, par, quad, 5e-4)
+    step = after[rb + L.R_VEL : rb + L.R_VEL + 3] - before[rb + L.R_VEL : rb + L.R_VEL + 3]
+    np.testing.assert_allclose(step, [0.0, 600.0 / par.ring_mass, 0.0], rtol=1e-9, atol=1e-6)

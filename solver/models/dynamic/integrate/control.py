@@ -19,7 +19,9 @@ stops with a status when the step falls below ``h_min`` or the step budget of a 
 
 Step boundaries: a step never passes the last output time of a call (where the integration stops
 exactly) nor any time in ``control.event_times`` (where inputs that vary in time may jump: the
-stepper lands on the event and evaluates the right-hand side afresh there).
+stepper lands on the event and evaluates the right-hand side afresh there). Each stage reads the
+model at its own time; the stages of a step cut at an event read it just before the event
+(:func:`last_stage_time`).
 """
 
 from __future__ import annotations
@@ -180,7 +182,7 @@ def start(y, times, control, work, model):
     progress = work.progress[0]
     t = progress.t
     h = progress.h
-    evaluate(y, model, work.stages[0], work.rhs)
+    evaluate(y, t, model, work.stages[0], work.rhs)
     progress.rhs_evaluations += 1
     n_out = times.shape[0]
     if n_out == 0:
@@ -196,6 +198,22 @@ def clip_step(control, event, t, h, t_end):
     stop = boundary(control, event, t_end)
     clipped = t + h >= stop
     return stop, clipped, stop - t if clipped else h
+
+
+@njit(cache=True)
+def last_stage_time(t, hs, stop, clipped):
+    """The latest time a stage of the step ``hs`` from ``t`` reads the model at: just before
+    ``stop`` when the step is cut there (an input may jump at an event: the step sees the values
+    before it, the next step those from it on), else t + hs."""
+    if clipped:
+        return np.nextafter(stop, -np.inf)
+    return t + hs
+
+
+@njit(cache=True)
+def stage_time(t, c, hs, top):
+    """Time [s] of the stage at fraction ``c`` of the step ``hs`` from ``t``, at most ``top``."""
+    return min(t + c * hs, top)
 
 
 @njit(cache=True)
@@ -219,7 +237,7 @@ def passed(y, model, work, control, h, hs, fac, clipped, stop, t, t_end, event):
     h = next_step(h, hs, fac, clipped)
     if clipped and stop < t_end:
         event = past_events(control, event, t)
-        evaluate(y, model, work.stages[0], work.rhs)
+        evaluate(y, t, model, work.stages[0], work.rhs)
         progress.rhs_evaluations += 1
     return h, event
 

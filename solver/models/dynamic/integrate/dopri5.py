@@ -21,9 +21,11 @@ from .control import (
     finish,
     growth,
     judge,
+    last_stage_time,
     passed,
     reached_end,
     rejected,
+    stage_time,
     start,
     workspace,
     worse,
@@ -79,33 +81,35 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 
 
 @njit(cache=True)
-def dp5_stages(y, hs, k1, k2, k3, k4, k5, k6, k7, yt, ynew, model, rhs):
-    """One Dormand–Prince step of size ``hs`` from ``y`` with ``k1`` = f(y): the stages k2..k7
+def dp5_stages(y, t, hs, top, k1, k2, k3, k4, k5, k6, k7, yt, ynew, model, rhs):
+    """One Dormand–Prince step of size ``hs`` from ``y`` at time ``t`` with ``k1`` = f(t, y),
+    each stage read at its own time t + c_i hs, at most ``top`` (:func:`.control.stage_time`):
+    the stages k2..k7
     and the new state ``ynew`` (k7 = f(ynew)); six right-hand-side evaluations (``model``,
     ``rhs``: :mod:`.model`)."""
     n = y.shape[0]
     for i in range(n):
         yt[i] = y[i] + hs * _A21 * k1[i]
-    evaluate(yt, model, k2, rhs)
+    evaluate(yt, stage_time(t, _C2, hs, top), model, k2, rhs)
     for i in range(n):
         yt[i] = y[i] + hs * (_A31 * k1[i] + _A32 * k2[i])
-    evaluate(yt, model, k3, rhs)
+    evaluate(yt, stage_time(t, _C3, hs, top), model, k3, rhs)
     for i in range(n):
         yt[i] = y[i] + hs * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-    evaluate(yt, model, k4, rhs)
+    evaluate(yt, stage_time(t, _C4, hs, top), model, k4, rhs)
     for i in range(n):
         yt[i] = y[i] + hs * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-    evaluate(yt, model, k5, rhs)
+    evaluate(yt, stage_time(t, _C5, hs, top), model, k5, rhs)
     for i in range(n):
         yt[i] = y[i] + hs * (
             _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
         )
-    evaluate(yt, model, k6, rhs)
+    evaluate(yt, stage_time(t, 1.0, hs, top), model, k6, rhs)
     for i in range(n):
         ynew[i] = y[i] + hs * (
             _A71 * k1[i] + _A73 * k3[i] + _A74 * k4[i] + _A75 * k5[i] + _A76 * k6[i]
         )
-    evaluate(ynew, model, k7, rhs)
+    evaluate(ynew, stage_time(t, 1.0, hs, top), model, k7, rhs)
 
 
 @njit(cache=True)
@@ -135,12 +139,27 @@ def dp5_dense(y, ynew, hs, th, k1, k3, k4, k5, k6, k7, out):
 
 
 @njit(cache=True)
-def dp5_attempt(y, hs, work, model, control):
-    """One step of size ``hs`` from ``y`` (``work.stages[0]`` = f(y)) into ``work.new``; returns
+def dp5_attempt(y, t, hs, top, work, model, control):
+    """One step of size ``hs`` from ``y`` at ``t`` (``work.stages[0]`` = f(t, y); stages read at
+    most at ``top``) into ``work.new``; returns
     its error norm and counts its six evaluations."""
     k = work.stages
     dp5_stages(
-        y, hs, k[0], k[1], k[2], k[3], k[4], k[5], k[6], work.trial, work.new, model, work.rhs
+        y,
+        t,
+        hs,
+        top,
+        k[0],
+        k[1],
+        k[2],
+        k[3],
+        k[4],
+        k[5],
+        k[6],
+        work.trial,
+        work.new,
+        model,
+        work.rhs,
     )
     work.progress[0].rhs_evaluations += 6
     return dp5_error(hs, k[0], k[2], k[3], k[4], k[5], k[6], control)
@@ -185,7 +204,8 @@ def advance(y, times, outputs, control, work, model):
             finish(progress, STATUS_TOO_MANY_STEPS, t, h, written)
             return
         stop, clipped, hs = clip_step(control, event, t, h, t_end)
-        err = dp5_attempt(y, hs, work, model, control)
+        top = last_stage_time(t, hs, stop, clipped)
+        err = dp5_attempt(y, t, hs, top, work, model, control)
         steps += 1
         accepted, status, h_next = judge(err, hs, control, REJECT_EXPONENT)
         if not accepted:

@@ -46,9 +46,11 @@ from .control import (
     finish,
     growth,
     judge,
+    last_stage_time,
     passed,
     reached_end,
     rejected,
+    stage_time,
     start,
     workspace,
     worse,
@@ -165,13 +167,14 @@ def _solve3(m, rhs, out):
 @njit(cache=True)
 def _cage_force(y, cb, par, scratch, pockets, out):
     """``out`` (3,) <- force on the cage [N] from its guiding land and (``pockets`` True) all its
-    pockets at ``y``, with the ring and cage frames held in ``scratch`` by the last
-    right-hand-side evaluation."""
+    pockets at ``y``, with the ring and cage frames and the ring speeds held in ``scratch`` by the
+    last right-hand-side evaluation."""
     z = int(par.ball_count)
     work = scratch.contact
     pk = scratch.pocket
     ld = scratch.land
-    cage_land(y, cb, scratch.inner_origin, scratch.inner_vel, par, work, ld)
+    speed = scratch.ring_speed
+    cage_land(y, cb, scratch.inner_origin, scratch.inner_vel, speed[0], speed[1], par, work, ld)
     out[0] = ld[0]
     out[1] = ld[1]
     out[2] = ld[2]
@@ -210,6 +213,7 @@ class Imex(NamedTuple):
     blocks' scratch."""
 
     explicit: np.ndarray  # (s, s) explicit stage matrix
+    c: np.ndarray  # (s,) stage times as fractions of the step (row sums of either matrix)
     implicit: np.ndarray  # (s, s) implicit stage matrix
     b: np.ndarray  # (s,) weights
     e: np.ndarray  # (s,) weights minus the embedded weights
@@ -236,6 +240,7 @@ def imex_workspace(model, n, t=0.0, h=0.0, switch=0.0, switch_back=0.0):
     blocks = cages.shape[0]
     method = Imex(
         ark.explicit,
+        ark.explicit.sum(axis=1),
         ark.implicit,
         ark.b,
         ark.e,
@@ -278,8 +283,10 @@ def spectral_bound(m):
 
 
 @njit(cache=True)
-def ark_attempt(y, hs, work, model, control):
-    """One additive step of size ``hs`` from ``y`` (``work.stages[0]`` = f(y), the land blocks in
+def ark_attempt(y, t, hs, top, work, model, control):
+    """One additive step of size ``hs`` from ``y`` at ``t`` (``work.stages[0]`` = f(t, y); each
+    stage read at its time t + c_s hs, at most ``top``: :func:`.control.stage_time`; the land
+    blocks in
     ``work.method.jac``) into ``work.new``; returns its error norm and counts its evaluations."""
     m = work.method
     ae = m.explicit
@@ -324,7 +331,7 @@ def ark_attempt(y, hs, work, model, control):
                 yt[k0 + c] = y[k0 + c] + dd[c]
             for r in range(3):
                 fi[s, q, r] = jac[r, 0] * dd[0] + jac[r, 1] * dd[1] + jac[r, 2] * dd[2]
-        evaluate(yt, model, k[s], work.rhs)
+        evaluate(yt, stage_time(t, m.c[s], hs, top), model, k[s], work.rhs)
     work.progress[0].rhs_evaluations += ns - 1
     err = 0.0
     for i in range(n):
@@ -356,7 +363,7 @@ def ark_accept(y, t, t_new, hs, times, outputs, written, work, model):
         return written, False
     for i in range(n):
         ynew[i] = k[0, i]  # keep f(y_n)
-    evaluate(y, model, k[0], work.rhs)
+    evaluate(y, t_new, model, k[0], work.rhs)
     work.progress[0].rhs_evaluations += 1
     # outputs inside the step: cubic Hermite interpolation of y_n, y, f(y_n), f(y)
     while written < n_out - 1 and times[written] <= t_new:
@@ -391,16 +398,17 @@ def advance(y, times, outputs, control, work, model):
             finish(progress, STATUS_TOO_MANY_STEPS, t, h, written)
             return
         stop, clipped, hs = clip_step(control, event, t, h, t_end)
+        top = last_stage_time(t, hs, stop, clipped)
         land_jacobians(y, model, work, control)
         if m.switch > 0.0:
             additive = hs * spectral_bound(m) > (m.switch_back if additive else m.switch)
         else:
             additive = True
         if additive:
-            err = ark_attempt(y, hs, work, model, control)
+            err = ark_attempt(y, t, hs, top, work, model, control)
             accepted, status, h_next = judge(err, hs, control, 1.0 / m.order)
         else:
-            err = dp5_attempt(y, hs, work, model, control)
+            err = dp5_attempt(y, t, hs, top, work, model, control)
             accepted, status, h_next = judge(err, hs, control, REJECT_EXPONENT)
         steps += 1
         if not accepted:

@@ -1,6 +1,7 @@
 """The bearing model as the steppers see it: one record and the two kernels they call.
 
-The steppers call the model only through :func:`evaluate` (the right-hand side) and
+The steppers call the model only through :func:`evaluate` (the right-hand side at a state and a
+time: the operating history in the parameter record ``par.history`` is read at that time) and
 :func:`after_step` (run after every accepted step: the dynamic model renormalises its quaternions
 there and reports a ball that left the raceways). numba compiles a function passed as an argument
 anew in every process, so the kernels are bound here by import rather than passed in; a model of
@@ -22,7 +23,7 @@ from ..unliteral import runtime_bool
 class BearingModel(NamedTuple):
     """What the right-hand side reads besides the state, and the records it writes."""
 
-    par: tuple  # solver.models.dynamic.params.ModelParams
+    par: tuple  # solver.models.dynamic.params.ModelParams (with the operating history)
     quad: np.ndarray  # ellipse quadrature nodes (params.build_quadrature)
     rec_inner: np.ndarray  # (Z, layout.N_CONTACT_RECORD) inner contact records, written
     rec_outer: np.ndarray  # (Z, layout.N_CONTACT_RECORD) outer contact records, written
@@ -47,10 +48,12 @@ def scratch(model: BearingModel):
 
 
 @njit(cache=True)
-def evaluate(y, model, out, rhs):
-    """``out`` <- dy/dt at ``y``, with the scratch record ``rhs`` (:func:`scratch`)."""
+def evaluate(y, t, model, out, rhs):
+    """``out`` <- dy/dt at ``y`` and time ``t`` [s], with the scratch record ``rhs``
+    (:func:`scratch`)."""
     rhs_into(
         y,
+        t,
         model.par,
         model.quad,
         out,
