@@ -649,3 +649,21 @@ def test_a_history_case_in_the_form_keeps_its_history_and_says_its_run_in_second
     assert app.form.case.operating.axial_load_N == 200.0
     assert "operating.inner_ring_speed_rpm" in app.form.case.histories
     assert "ramp" in app.form.case_text
+
+
+def test_an_uploaded_bearing_set_is_not_opened_and_says_why(app):
+    from pathlib import Path
+
+    text = (Path("assets/cases") / "spindle-pair-db-light-preload.toml").read_text("utf-8")
+    shown = app.form.base_case
+    _set(app, uploaded_case={"name": "pair.toml", "content": text.encode()})
+    assert "pair.toml is a bearing set" in app.state.case_notice
+    assert "racetrace solve pair.toml" in app.state.case_notice
+    assert app.form.base_case is shown and app.state.case_name == DEFAULT_CASE
+    _set(app, case_name="spindle-axial-preload")  # a single bearing opened clears the note
+    assert app.state.case_notice == ""
+
+
+def test_the_preview_of_a_history_case_plays_for_its_duration(app):
+    _set(app, case_name="spindle-unbalance")  # 0.05 s at 20 000 rpm: 16.7 revolutions
+    assert app.state.frame_time.endswith("revolution 0.0 of 16.7")
