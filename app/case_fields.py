@@ -16,6 +16,8 @@ from dataclasses import dataclass
 from solver import CaseError
 
 INLINE_TABLE = "(inline table)"  # shown for a material given as an inline table (not editable here)
+#: The hint of a field whose key the case gives as a time history (shown, not edited, in the form).
+HISTORY_HINT = "time history: shown here, not edited; edit the case file to change it"
 
 
 @dataclass(frozen=True)
@@ -112,15 +114,31 @@ def estimated_default_texts(case, fields: list[FormField]) -> dict[str, str]:
     return out
 
 
+def history_texts(case) -> dict[str, str]:
+    """{dotted key: the history in words} for the operating keys ``case`` gives as time
+    histories, as ``racetrace check`` prints them (e.g. "smooth ramp from 0 to 20000 rpm, 0 s to
+    0.3 s"); {} for a steady case."""
+    from solver import fields_by_key
+
+    histories = getattr(case, "histories", None) or {}
+    specs = fields_by_key()
+    return {key: history.describe(specs[key].unit) for key, history in histories.items()}
+
+
 def case_form_values(case, fields: list[FormField]) -> dict[str, object]:
     """Form values (by field name) of ``case`` as written in its file; absent keys give ``None``.
 
     Values the case module estimates (cage defaults) are not written, so they show as empty
-    fields that keep following the bearing.
+    fields that keep following the bearing. A key given as a time history gives the history in
+    words (:func:`history_texts`): the form shows it and :func:`apply_form` keeps the history.
     """
     data = case.to_dict() if hasattr(case, "to_dict") else tomllib.loads(case.to_toml())
+    histories = history_texts(case)
     values = {}
     for f in fields:
+        if f.key in histories:
+            values[f.name] = histories[f.key]
+            continue
         node = data
         for part in f.key.split("."):
             node = node.get(part) if isinstance(node, dict) else None
@@ -178,11 +196,15 @@ class FormResult:
 
 
 def apply_form(base_case, fields: list[FormField], values: dict) -> FormResult:
-    """Validate form ``values`` (by field name) as changes to ``base_case``."""
+    """Validate form ``values`` (by field name) as changes to ``base_case``.
+
+    A key ``base_case`` gives as a time history is not read from the form: the history is kept
+    as it is (the form shows it in words and does not edit it)."""
     errors, changes = {}, {}
     current = case_form_values(base_case, fields)
+    histories = getattr(base_case, "histories", None) or {}
     for f in fields:
-        if f.name not in values:
+        if f.name not in values or f.key in histories:
             continue
         try:
             value = parse_value(f, values[f.name])

@@ -473,20 +473,37 @@ def describe_case(case) -> str:
 
     e.g. ``7008C-class hybrid: 20000 rpm, Fa 500 N, Fr 300 N at 0 deg, 10 rev``; loads in N,
     speeds in rev/min, angles in degree as in the case file. Zero loads and tilts are left out.
+    A key given as a time history is named with the history in words, and the run length of such
+    a case is its duration (``... inner ring speed smooth ramp from 0 to 20000 rpm, 0 s to 0.3 s,
+    Fa 500 N, 0.4 s``).
     """
+    from .case_fields import history_texts
+    from .run_length import run_length_words
+
     op = case.operating
+    histories = {key.split(".", 1)[1]: text for key, text in history_texts(case).items()}
     name = case.bearing.designation or case.title or "bearing"
-    parts = [f"{op.inner_ring_speed_rpm:g} rpm"]
-    if op.outer_ring_speed_rpm:
-        parts.append(f"outer ring {op.outer_ring_speed_rpm:g} rpm")
-    parts.append(f"Fa {op.axial_load_N:g} N")
-    if op.radial_load_N:
-        parts.append(f"Fr {op.radial_load_N:g} N at {op.radial_load_angle_deg or 0:g} deg")
-    if op.tilting_moment_Nm:
-        parts.append(f"M {op.tilting_moment_Nm:g} N m")
-    if op.misalignment_deg:
-        parts.append(f"tilt {op.misalignment_deg:g} deg ({op.misalignment_frame or 'space'})")
-    revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
-    if revolutions:
-        parts.append(f"{revolutions:g} rev")
+
+    def said(key: str, steady: str, words: str) -> str:
+        return f"{words} {histories[key]}" if key in histories else steady
+
+    parts = [said("inner_ring_speed_rpm", f"{op.inner_ring_speed_rpm:g} rpm", "inner ring speed")]
+    if op.outer_ring_speed_rpm or "outer_ring_speed_rpm" in histories:
+        parts.append(
+            said(
+                "outer_ring_speed_rpm", f"outer ring {op.outer_ring_speed_rpm:g} rpm", "outer ring"
+            )
+        )
+    parts.append(said("axial_load_N", f"Fa {op.axial_load_N:g} N", "Fa"))
+    if op.radial_load_N or "radial_load_N" in histories:
+        radial = said("radial_load_N", f"Fr {op.radial_load_N:g} N", "Fr")
+        angle = said("radial_load_angle_deg", f"{op.radial_load_angle_deg or 0:g} deg", "angle")
+        parts.append(f"{radial} at {angle}")
+    if op.tilting_moment_Nm or "tilting_moment_Nm" in histories:
+        parts.append(said("tilting_moment_Nm", f"M {op.tilting_moment_Nm:g} N m", "M"))
+    if op.misalignment_deg or "misalignment_deg" in histories:
+        tilt = said("misalignment_deg", f"tilt {op.misalignment_deg:g} deg", "tilt")
+        parts.append(f"{tilt} ({op.misalignment_frame or 'space'})")
+    if length := run_length_words(case):
+        parts.append(length)
     return f"{name}: " + ", ".join(parts)

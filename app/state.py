@@ -83,10 +83,9 @@ class RacetraceApp:
         return self.exports.exports_dir
 
     def start(self, case_name: str = DEFAULT_CASE, play: bool = True) -> None:
-        """Open ``case_name`` solved (quasi-static) before the first page is served."""
-        case_name = self.form.first_case_name(case_name)
-        self.state.case_name = case_name
-        self.form._on_case_name(case_name, synchronous=True)
+        """Open ``case_name`` solved (quasi-static) before the first page is served (a bearing
+        set: the first single-bearing case, with a note that says why)."""
+        self.form.open_first(case_name)
         self.state.playing = play
 
     def _configure_protocol(self, protocol) -> None:

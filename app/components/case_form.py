@@ -2,11 +2,18 @@
 quasi-static preview of the edited case.
 
 State keys: ``case_items``/``case_name`` (shipped cases), ``form`` (field descriptors),
-``fv_<name>`` (field text), ``fe_<name>`` (field message, "" when valid), ``placeholders``,
-``case_message``, ``case_valid``, ``case_toml_href``/``case_file_name`` (download of the edited
+``fv_<name>`` (field text), ``fe_<name>`` (field message, "" when valid), ``fh_<name>`` (the
+key's time history in words, "" for a steady key: the field then shows it read-only),
+``placeholders``, ``case_message``, ``case_notice`` (why a picked or uploaded case is not shown: a
+bearing set), ``case_valid``, ``case_toml_href``/``case_file_name`` (download of the edited
 case), ``run_reason`` (why the dynamic model cannot run a valid case, "" when it can),
-``run_blocked`` (why Run is off while the form is invalid), ``result_stale`` (the result on show
-is not of the form's case), ``uploaded_case``.
+``run_size`` (what Run will compute: the run length and result size), ``run_blocked`` (why Run
+is off while the form is invalid), ``result_stale`` (the result on show is not of the form's
+case), ``uploaded_case``.
+
+A bearing set (a ``[set]`` case) is listed among the shipped cases but not opened: the app shows
+single bearings, and picking or uploading a set says so in ``case_notice`` and keeps the case on
+show.
 """
 
 from __future__ import annotations
@@ -18,7 +25,15 @@ import urllib.parse
 from trame.widgets import html
 from trame.widgets import vuetify3 as v3
 
-from ..case_fields import apply_form, case_form_values, form_fields, form_text
+from ..case_fields import (
+    HISTORY_HINT,
+    apply_form,
+    case_form_values,
+    form_fields,
+    form_text,
+    history_texts,
+)
+from ..run_length import run_size_text
 from ..run_store import describe_case
 from .base import Component, running_loop
 from .widgets import icon_button, select
@@ -60,6 +75,8 @@ class CaseForm(Component):
         self._catalogue = {}
         self._filling = False
         self._preview_generation = 0
+        self._case_name = None  # the shipped case last opened (None: uploaded or from a run)
+        self._picker_restored = False  # case_name was just set back to _case_name
 
     # ---- set-up ---------------------------------------------------------------------------------
     def init_state(self) -> None:
@@ -67,7 +84,7 @@ class CaseForm(Component):
         import solver
 
         entries = list(solver.catalogue())
-        s.case_items = [{"title": f"{e.title} ({e.kind})", "value": e.name} for e in entries]
+        s.case_items = [{"title": _entry_title(e), "value": e.name} for e in entries]
         self._catalogue = {e.name: e for e in entries}
         s.case_name = None
         s.form = [
@@ -86,9 +103,12 @@ class CaseForm(Component):
         for f in self.fields:
             s[f"fv_{f.name}"] = ""
             s[f"fe_{f.name}"] = ""
+            s[f"fh_{f.name}"] = ""
         # what an empty field means: the default the solver uses (estimated ones per case)
         s.placeholders = {f.name: f.default_text for f in self.fields}
         s.case_message = ""
+        s.case_notice = ""
+        s.run_size = ""
         s.case_valid = False
         s.case_toml_href = ""
         s.case_file_name = "case.toml"
@@ -104,15 +124,42 @@ class CaseForm(Component):
         self.action("reset_case", self.reset_case)
 
     def first_case_name(self, case_name: str) -> str:
-        """``case_name`` if it is a shipped case, else the first shipped case."""
-        return case_name if case_name in self._catalogue else next(iter(self._catalogue))
+        """``case_name`` if it is a shipped single-bearing case, else the first of those."""
+        entry = self._catalogue.get(case_name)
+        if entry is not None and entry.load().bearing_set is None:
+            return case_name
+        return next(n for n, e in self._catalogue.items() if e.load().bearing_set is None)
+
+    def open_first(self, case_name: str) -> None:
+        """Open ``case_name`` (solved now) before the first page is served; a bearing set or an
+        unknown name opens the first shipped single-bearing case, and a set says why."""
+        opened = self.first_case_name(case_name)
+        self.state.case_name = opened
+        self._on_case_name(opened, synchronous=True)
+        entry = self._catalogue.get(case_name)
+        if opened != case_name and entry is not None:
+            self._refuse_set(case_name, entry.load())
 
     # ---- case and form --------------------------------------------------------------------------
     def _on_case_name(self, case_name=None, synchronous=False, **_):
         entry = self._catalogue.get(case_name)
-        if entry is None:
+        if entry is None or (case_name == self._case_name and self._picker_restored):
+            self._picker_restored = False  # the picker put back on the case on show: no reload
             return
-        self.set_base_case(entry.load(), synchronous=synchronous)
+        case = entry.load()
+        if case.bearing_set is not None:
+            self._refuse_set(case_name, case)
+            self._picker_restored = True  # the picker goes back to the case on show
+            self.state.case_name = self._case_name
+            return
+        self._case_name = case_name
+        self.set_base_case(case, synchronous=synchronous)
+
+    def _refuse_set(self, name: str, case) -> None:
+        """Say that the bearing set ``case`` is not shown; the case on show stays."""
+        with self.state:
+            self.state.case_notice = set_notice(name, case)
+            self.state.status = "bearing set not opened (see the note above the form)"
 
     def set_base_case(self, case, synchronous: bool = False) -> None:
         """Put ``case`` in the form and preview it."""
@@ -125,6 +172,7 @@ class CaseForm(Component):
     def take_case(self, case) -> None:
         """Make ``case`` the one the form edits: its values, placeholders and messages."""
         self.base_case = case
+        self.state.case_notice = ""
         self._fill_form(case)
         self._update_placeholders(case)
         self.validate()
@@ -132,13 +180,16 @@ class CaseForm(Component):
     def _fill_form(self, case) -> None:
         """Put the values of ``case`` in the form without triggering a preview per field."""
         values = case_form_values(case, self.fields)
+        histories = history_texts(case)
         self._filling = True
         try:
             with self.state:
                 for name, value in values.items():
-                    empty = None if self._field_by_name[name].kind in _SELECT_KINDS else ""
+                    field = self._field_by_name[name]
+                    empty = None if field.kind in _SELECT_KINDS else ""
                     self.state[f"fv_{name}"] = empty if value is None else form_text(value)
                     self.state[f"fe_{name}"] = ""
+                    self.state[f"fh_{name}"] = histories.get(field.key, "")
         finally:
             self._filling = False
 
@@ -178,6 +229,10 @@ class CaseForm(Component):
             self.state.case_message = f"{name}: {error}"
             self.state.status = f"error: upload {name} is not a valid case (see above the form)"
             return
+        if case.bearing_set is not None:
+            self._refuse_set(name, case)
+            return
+        self._case_name = None
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
         self.set_base_case(case)
 
@@ -202,6 +257,9 @@ class CaseForm(Component):
             self.state.case_message = "\n".join(result.general)
             self.state.case_valid = result.valid
             self.state.run_reason = self._run_reason(result.case) if result.valid else ""
+            self.state.run_size = (
+                run_size_text(result.case) if result.valid and not self.state.run_reason else ""
+            )
             self.state.run_disabled = (
                 not result.valid or bool(self.state.run_reason) or self.state.busy
             )
@@ -337,6 +395,12 @@ class CaseForm(Component):
             _case_choice(self.ctrl)
             _case_files()
             html.Div("{{ case_message }}", classes="text-error text-caption", id="case-message")
+            html.Div(
+                "{{ case_notice }}",
+                v_if="case_notice",
+                classes="text-warning text-caption",
+                id="case-notice",
+            )
             section = None
             for f in self.fields:
                 if f.section != section:
@@ -415,11 +479,31 @@ def _field(f) -> None:
                 classes="text-error text-caption px-3",
             )
         else:
+            # a key given as a time history shows the history in words, read-only
             v3.VTextField(
                 error_messages=(f"fe_{f.name} ? [fe_{f.name}] : []",),
                 hide_details="auto",
+                readonly=(f"!!fh_{f.name}",),
+                hint=(f"fh_{f.name} ? '{HISTORY_HINT}' : ''",),
+                persistent_hint=(f"!!fh_{f.name}",),
                 **common,
             )
+
+
+def set_notice(name: str, case) -> str:
+    """Why the bearing set ``case`` (named ``name``) is not opened, and how to solve it."""
+    return (
+        f"{name} is a bearing set ({case.bearing_set.describe()}): the app shows single "
+        f"bearings; solve the set with `racetrace solve {name}` (its load sharing and stiffness "
+        "are in the result file)"
+    )
+
+
+def _entry_title(entry) -> str:
+    """The case picker's title of a catalogue entry; a bearing set says that it is not opened."""
+    if entry.kind == "case" and entry.load().bearing_set is not None:
+        return f"{entry.title} (bearing set: racetrace solve only)"
+    return f"{entry.title} ({entry.kind})"
 
 
 def _file_name(text: str) -> str:

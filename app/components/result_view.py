@@ -28,6 +28,7 @@ from viz.layers import LAYERS
 from viz.palette import ball_legend
 
 from .. import charts
+from ..run_length import has_history
 from ..run_store import describe_case
 from .base import Component, as_float, as_int, fig_json, running_loop
 from .widgets import chart, checkbox, choices, icon_button, select
@@ -300,11 +301,21 @@ class ResultView(Component):
 
     def _animation_options(self, ds) -> dict:
         """Options of :func:`viz.frames.frame_source`: a quasi-static result is animated for the
-        form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form)."""
+        form's ``[simulation] shaft_revolutions`` (the preview shows the case in the form); the
+        preview of a case with a time history (its operating point at t = 0) for the revolutions
+        the rings make in the case's ``duration_s`` at that point's speeds."""
         case = self.ctrl.edited_case()
         if "time" in ds.dims or case is None:
             return {}
-        revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
+        sim = getattr(case, "simulation", None)
+        if has_history(case):
+            duration = getattr(sim, "duration_s", None)
+            op = case.operating
+            relative_rpm = abs(op.inner_ring_speed_rpm - (op.outer_ring_speed_rpm or 0.0))
+            if not duration or relative_rpm == 0.0:
+                return {}  # rings at rest at t = 0: the default (a static scene)
+            return {"revolutions": float(duration) * relative_rpm / 60.0}
+        revolutions = getattr(sim, "shaft_revolutions", None)
         return {} if revolutions is None else {"revolutions": float(revolutions)}
 
     # ---- 3-D scene ------------------------------------------------------------------------------

@@ -22,6 +22,7 @@ from trame.widgets import html
 from trame.widgets import vuetify3 as v3
 
 from .. import runner as runner_module
+from ..run_length import has_history
 from ..run_store import describe_case, load_netcdf
 from .base import Component, running_loop
 from .widgets import alert, alert_list, select
@@ -32,10 +33,19 @@ WATCH_S = 2.0  # runs folder check period (runs saved by other sessions)
 
 
 def _title(ds, run_info: dict) -> str:
-    """The run's title with the revolutions reached (a cancelled run stops short)."""
+    """The run's title with the length reached (a cancelled run stops short): the revolutions of
+    a steady case, the seconds of a case with a time history (``run_info["duration_s"]``)."""
     title = run_info["title"]
+    if "time" not in ds.dims:
+        return title
+    duration = run_info.get("duration_s")
+    if duration:
+        reached = float(ds["time"][-1])
+        if reached >= duration * 0.999:
+            return title
+        return title.replace(f"{duration:g} s", f"{reached:.3g} of {duration:g} s")
     planned = run_info.get("revolutions")
-    if "time" not in ds.dims or not planned:
+    if not planned:
         return title
     from solver import ring_speeds
 
@@ -176,12 +186,14 @@ class Runs(Component):
         case = self.ctrl.edited_case()
         case_text = case.to_toml()
         title = describe_case(case)
-        revolutions = getattr(getattr(case, "simulation", None), "shaft_revolutions", None)
+        sim = getattr(case, "simulation", None)
+        history = has_history(case)
         self.run_info = {
             "case_text": case_text,
             "title": title,
             "out": out,
-            "revolutions": revolutions,
+            "revolutions": None if history else getattr(sim, "shaft_revolutions", None),
+            "duration_s": getattr(sim, "duration_s", None) if history else None,
         }
         self._cancel_requested = False
         self.ctrl.drop_pending_preview()  # the run's result, not a preview on its way, is next
@@ -400,6 +412,7 @@ def _run_buttons(ctrl) -> None:
         with v3.VCol():
             html.Div("{{ status }}", id="status", classes="text-body-2")
             html.Div("{{ eta }}", classes="text-caption")
+    html.Div("{{ run_size }}", id="run-size", v_if="run_size", classes="text-caption")
 
 
 def _run_confirm(ctrl) -> None:

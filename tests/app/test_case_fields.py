@@ -172,3 +172,22 @@ def test_estimated_default_texts_of_a_history_case_give_its_sampling():
     texts = estimated_default_texts(case, form_fields())
     # 180 samples per revolution at 20 000 rpm: 60 000 per second
     assert texts["samples_per_second"].startswith("6e+04 1/s (estimated: 180 samples per")
+
+
+def test_a_history_key_shows_its_history_and_an_edit_of_another_key_keeps_it():
+    from app.case_fields import apply_form, case_form_values
+    from solver.catalogue import resolve_case
+
+    case = resolve_case("spindle-start-up")
+    fields = form_fields()
+    values = case_form_values(case, fields)
+    # the ramp in words, as `racetrace check` prints it, in the speed's place
+    assert values["inner_ring_speed_rpm"] == "smooth ramp from 0 to 20000 rpm, 0 s to 0.3 s"
+    edited = {f.name: values[f.name] for f in fields}
+    edited["axial_load_N"] = "200"
+    result = apply_form(case, fields, {k: v for k, v in edited.items() if v is not None})
+    assert result.valid, (result.errors, result.general)
+    assert result.case.operating.axial_load_N == 200.0
+    ramp = case.histories["operating.inner_ring_speed_rpm"]
+    assert result.case.histories["operating.inner_ring_speed_rpm"].spec == ramp.spec
+    assert "ramp" in result.case.to_toml()
