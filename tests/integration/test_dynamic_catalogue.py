@@ -9,17 +9,16 @@ from solver.catalogue import catalogue, resolve_case
 from solver.models.dynamic import SimulationOptions, simulate
 from tests.helpers.results import dynamic_variables_in
 
-#: Cases whose operating inputs are time histories run for a duration, not revolutions: the
-#: dynamic model follows histories with tsdyn's change (issue 24 §2). A bearing-set case is solved
-#: by the quasi-static set model only (the dynamic model runs one bearing and says so:
+#: Steady cases run two revolutions; a case whose operating inputs are time histories runs for a
+#: duration (``HISTORY_CASES``: its first milliseconds). A bearing-set case is solved by the
+#: quasi-static set model only (the dynamic model runs one bearing and says so:
 #: tests/unit/case/test_bearing_set_case.py).
 CASES = [
-    pytest.param(entry.name, marks=pytest.mark.skip(reason="dynamic history runs: tsdyn"))
-    if entry.load().histories
-    else entry.name
+    entry.name
     for entry in catalogue().cases
-    if entry.load().bearing_set is None
+    if entry.load().bearing_set is None and not entry.load().histories
 ]
+HISTORY_CASES = [entry.name for entry in catalogue().cases if entry.load().histories]
 
 
 @pytest.mark.slow
@@ -49,3 +48,32 @@ def test_catalogue_case_runs_two_revolutions(name):
     )
     cage = ds.cage_speed.isel(time=slice(ds.sizes["time"] // 2, None)).values
     assert np.all((cage > speeds[0]) & (cage < speeds[1]))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", HISTORY_CASES)
+def test_history_case_runs_and_stores_its_varying_inputs_over_time(name):
+    """The start of each shipped history case runs to the end with finite outputs, and each input
+    that the case varies is a data variable over ``time`` that changes: 25 ms (past the radial
+    step at 20 ms and into the load spectrum's first cut), and the spindle start-up's first 5 ms
+    (from rest through low speed, the entrainment floor)."""
+    case = resolve_case(name)
+    duration = 0.005 if "operating.inner_ring_speed_rpm" in case.histories else 0.025
+    short = case.with_values({"simulation.duration_s": duration})
+    ds = simulate(short)
+    assert ds.attrs["complete"] == 1
+    for var, _spec in dynamic_variables_in(ds):
+        if var in ("truncation_margin", "settling_time"):
+            continue
+        assert np.isfinite(ds[var].values).all(), var
+    varying = {
+        "operating.inner_ring_speed_rpm": "inner_ring_speed",
+        "operating.outer_ring_speed_rpm": "outer_ring_speed",
+        "operating.axial_load_N": "axial_load",
+        "operating.radial_load_N": "radial_load",
+        "operating.radial_load_angle_deg": "radial_load_angle",
+    }
+    for key, var in varying.items():
+        if key in case.histories:
+            assert var in ds.data_vars and ds[var].dims == ("time",), var
+            assert np.ptp(ds[var].values) > 0.0, var

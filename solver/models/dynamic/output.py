@@ -23,6 +23,7 @@ from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
 from solver.results.dataset import build_result
 from solver.results.energy import energy_balance
 from solver.results.estimates import with_estimates
+from solver.results.phases import phase_attributes
 from solver.results.skidding import skidding_variables
 from solver.results.summary import trajectory_summary
 from solver.results.variables import COORDINATES, variable
@@ -266,6 +267,8 @@ def build_dataset(
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
     ds = with_inputs_over_time(ds, par.history, imposed)
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
+    if inputs.history is not None:  # the phases between the history's events (results-schema.md)
+        ds.attrs.update(phase_attributes(inputs.history, float(times[-1])))
     balance = energy_balance(ds, float(metrics["analysis_start_time"]))
     spec = variable("energy_balance_residual")
     ds["energy_balance_residual"] = ((), np.float64(balance.residual), spec.attrs())
