@@ -173,7 +173,13 @@ class FrameSource:
         raceway = np.unwrap(
             np.radians(_arr(ds, "raceway_azimuth", ("time", "ball", "race"))), axis=0
         )
-        rings = np.stack([omega_i * (t - t[0]), omega_o * (t - t[0])], axis=1)
+        rings = np.stack(
+            [
+                _ring_turn(ds, "inner_ring_speed", omega_i, t),
+                _ring_turn(ds, "outer_ring_speed", omega_o, t),
+            ],
+            axis=1,
+        )
         return cls("dynamic", t, centre, rotation, psi, rings, cage, contact, raceway)
 
     @classmethod
@@ -292,6 +298,15 @@ def from_revolution(ds: xr.Dataset, **quasistatic_options) -> FrameSource:
 
 
 # ---- helpers ------------------------------------------------------------------------------------
+def _ring_turn(ds: xr.Dataset, name: str, speed: float, t: np.ndarray) -> np.ndarray:
+    """Turn of a ring since the first sample [rad]: ``speed`` [rad/s] times the time, or, where the
+    result's speed ``name`` varies over ``time`` (along a history), the trapezoid integral of it."""
+    if name in ds.data_vars and "time" in ds[name].dims:
+        w = _arr(ds, name, ("time",))
+        return np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
+    return speed * (t - t[0])
+
+
 def ring_speeds(ds: xr.Dataset) -> tuple[float, float]:
     """(inner, outer) ring speeds in rad/s from the result's coordinates (ValueError without)."""
     from solver import ring_speeds as result_ring_speeds

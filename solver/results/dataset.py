@@ -280,8 +280,17 @@ def _scalar(ds: xr.Dataset, name: str):
 
 
 def ring_speeds(ds: xr.Dataset) -> tuple[float, float]:
-    """(inner, outer) ring speeds of a result, rad/s, from its coordinates."""
-    return float(_scalar(ds, "inner_ring_speed")), float(_scalar(ds, "outer_ring_speed"))
+    """(inner, outer) ring speeds of a result, rad/s, from its coordinates. Along a history where a
+    ring's speed varies (a data variable over ``time``), its speed at the end of the run: that of
+    the final phase, which the trajectory summary and the settling test read (results-schema.md,
+    "Results along a history")."""
+    return _speed(ds, "inner_ring_speed"), _speed(ds, "outer_ring_speed")
+
+
+def _speed(ds: xr.Dataset, name: str) -> float:
+    if name in ds.data_vars and "time" in ds[name].dims:
+        return float(ds[name].isel(time=-1))
+    return float(_scalar(ds, name))
 
 
 def geometry_from_result(ds: xr.Dataset):

@@ -189,7 +189,15 @@ def _every_contact(w: Window, name: str, how: str) -> xr.DataArray:
 
 def _scalar_coordinate(ds: xr.Dataset, name: str) -> xr.DataArray:
     """A describing coordinate as a DataArray without the other coordinates (scalar, or with the
-    stacking dimensions of a stacked result)."""
+    stacking dimensions of a stacked result). An operating input that varies in time (a data
+    variable over ``time``: a result along a history) is taken as its mean over the analysed
+    window (from ``analysis_start_time`` on; the whole run for a result without it)."""
+    if name not in ds.coords and name in ds.data_vars and "time" in ds[name].dims:
+        da = ds[name]
+        if "analysis_start_time" in ds:
+            da = da.where(ds["time"] >= ds["analysis_start_time"])
+        da = da.mean("time")
+        return da.drop_vars([c for c in da.coords if c not in da.dims])
     da = ds.coords[name]
     return da.drop_vars([c for c in da.coords if c not in da.dims])
 

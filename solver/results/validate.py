@@ -21,6 +21,8 @@ import json
 import numpy as np
 import xarray as xr
 
+from solver.history import CHANNEL_NAMES
+
 from .variables import COORDINATES, DIMENSION_VALUES, VARIABLES
 
 #: Data variables the readers cannot do without (the views, the summary metrics, the report's
@@ -310,6 +312,16 @@ def _coordinate_problems(ds: xr.Dataset) -> list[str]:
     problems = []
     for name, spec in COORDINATES.items():
         if name not in ds.coords:
+            if name in CHANNEL_NAMES and name in ds.data_vars:  # an input varying along a history
+                values = ds[name]
+                if values.dims != ("time",) or not _numeric(values):
+                    problems.append(
+                        f"its '{name}' varies in time but is not a number over 'time' "
+                        f"(dimensions {_dims_text(values.dims)}, {values.dtype})"
+                    )
+                elif not np.all(np.isfinite(np.asarray(values.values, dtype=float))):
+                    problems.append(f"its '{name}' over time is not finite")
+                continue
             if name not in _OPTIONAL:
                 problems.append(f"it has no '{name}' coordinate")
             continue

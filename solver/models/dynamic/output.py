@@ -17,6 +17,7 @@ from solver.history import (
     N_CHANNELS,
     event_times,
 )
+from solver.inputs import operating_at
 from solver.models.quasistatic.result import start_variables
 from solver.physics.hertz import truncation_margin
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
@@ -252,20 +253,26 @@ def build_dataset(
     }
     if start is not None:
         data.update(start_variables(start))
+    # the summary below reads the operating point from the coordinates: along a history, that of
+    # the end of the run (its final phase, where the settling test puts the analysed window when
+    # the final phase holds its inputs); the inputs that vary then become data variables over time
+    summary_point = (
+        inputs.operating if inputs.history is None else operating_at(inputs, float(times[-1]))
+    )
     ds = build_result(
         "dynamic",
         data,
         inputs.geometry,
-        inputs.operating,
+        summary_point,
         case=inputs.case_text,
         times=times,
         complete=complete,
         attrs=attrs,
     )
-    ds = ds.assign(skidding_variables(ds))
     metrics = trajectory_summary(ds, options.analysis_skip_fraction)
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
     ds = with_inputs_over_time(ds, par.history, imposed)
+    ds = ds.assign(skidding_variables(ds))  # at each sample's ring speeds
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
     if inputs.history is not None:  # the phases between the history's events (results-schema.md)
         ds.attrs.update(phase_attributes(inputs.history, float(times[-1])))
