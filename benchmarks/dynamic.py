@@ -59,7 +59,7 @@ from solver.models.dynamic.initial import initial_state
 from solver.models.dynamic.integrate import METHODS, run
 from solver.models.dynamic.integrate.control import step_control
 from solver.models.dynamic.kernels import rhs_into, rhs_work
-from solver.models.dynamic.params import build_params, build_quadrature
+from solver.models.dynamic.params import build_params, build_quadrature, model_history
 from solver.models.dynamic.simulate import state_scales
 
 CASES = {"spindle": "spindle-combined-load", "heavy": "218-heavy-combined"}
@@ -70,31 +70,33 @@ MEMORY_TARGET = 1e9  # bytes for 100 revolutions
 def running_state(inputs, options, revolutions=0.1):
     """A state of the running bearing: the initial state advanced by ``revolutions``."""
     par = build_params(inputs, options)
+    history = model_history(inputs)
     quad = build_quadrature(options, par)
-    y = initial_state(par, quad)
-    scale = state_scales(par, y)
+    y = initial_state(history, par, quad)
+    scale = state_scales(history, par, y)
     op = inputs.operating
     t_end = revolutions * 2.0 * np.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
     out = np.empty((1, y.shape[0]))
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
     tolerance = options.resolved(inputs.simulation).tolerance
     control = step_control(tolerance, scale, 1e-6 * h, 10_000_000)
-    run("dopri5", par, quad, y, np.array([t_end]), out, control, h)
+    run("dopri5", history, par, quad, y, np.array([t_end]), out, control, h)
     return y
 
 
 @njit
-def _evaluations(n, y, par, quad, dydt, rec_i, rec_o, pocket, scratch):
+def _evaluations(n, y, history, par, quad, dydt, rec_i, rec_o, pocket, scratch):
     """``n`` right-hand-side evaluations as the integrator makes them (scratch record, records
     not observed), from compiled code: no Python call per evaluation."""
     for _ in range(n):
-        rhs_into(y, 0.0, par, quad, dydt, rec_i, rec_o, pocket, scratch, False)
+        rhs_into(y, 0.0, history, par, quad, dydt, rec_i, rec_o, pocket, scratch, False)
 
 
 def rhs_cost(inputs, options, y, repeats=400, batches=15):
     """CPU seconds per right-hand-side evaluation at state ``y`` as the integrator makes them
     (best of ``batches`` batches of ``repeats``: the machine is shared)."""
     par = build_params(inputs, options)
+    history = model_history(inputs)
     quad = build_quadrature(options, par)
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
@@ -102,11 +104,11 @@ def rhs_cost(inputs, options, y, repeats=400, batches=15):
     pocket = np.zeros(z)
     dydt = np.zeros_like(y)
     scratch = rhs_work(int(par.ball_count))
-    _evaluations(1, y, par, quad, dydt, rec_i, rec_o, pocket, scratch)
+    _evaluations(1, y, history, par, quad, dydt, rec_i, rec_o, pocket, scratch)
     best = float("inf")
     for _ in range(batches):
         start = time.process_time()
-        _evaluations(repeats, y, par, quad, dydt, rec_i, rec_o, pocket, scratch)
+        _evaluations(repeats, y, history, par, quad, dydt, rec_i, rec_o, pocket, scratch)
         best = min(best, (time.process_time() - start) / repeats)
     return best
 

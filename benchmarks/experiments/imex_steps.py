@@ -34,7 +34,7 @@ from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
 from solver.models.dynamic.integrate.imex import ark436l2sa
 from solver.models.dynamic.kernels import post_step, rhs_into, rhs_work
-from solver.models.dynamic.params import build_params, build_quadrature
+from solver.models.dynamic.params import build_params, build_quadrature, model_history
 from solver.models.dynamic.simulate import state_scales
 
 CASES = {"spindle": "spindle-combined-load", "heavy": "218-heavy-combined"}
@@ -88,9 +88,10 @@ def run(label, traction_model, revolutions, tolerance, implicit, pair="ark4"):
         inputs = replace(inputs, lubricant=replace(inputs.lubricant, traction_model=traction_model))
     options = SimulationOptions(shaft_revolutions=revolutions)
     par = build_params(inputs, options)
+    history = model_history(inputs)
     quad = build_quadrature(options, par)
     y = initial_state_from_quasistatic(par, quasistatic_solution(inputs))
-    scale = state_scales(par, y)
+    scale = state_scales(history, par, y)
     z, n = int(par.ball_count), y.shape[0]
     cb = L.cage_base(z)
     idx = [cb + L.C_VEL + i for i in range(3)] if implicit != "none" else []
@@ -105,7 +106,7 @@ def run(label, traction_model, revolutions, tolerance, implicit, pair="ark4"):
 
     def f(state, counted=True):
         out = np.empty(n)
-        rhs_into(state, 0.0, par, quad, out, rec_i, rec_o, pocket, work, True)
+        rhs_into(state, 0.0, history, par, quad, out, rec_i, rec_o, pocket, work, True)
         count[0] += counted
         return out
 

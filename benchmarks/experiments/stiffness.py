@@ -33,7 +33,7 @@ from solver.models.dynamic import SimulationOptions
 from solver.models.dynamic import layout as L
 from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
 from solver.models.dynamic.kernels import rhs
-from solver.models.dynamic.params import build_params, build_quadrature
+from solver.models.dynamic.params import build_params, build_quadrature, model_history
 from solver.models.dynamic.simulate import state_scales
 
 CASES = {"spindle": "spindle-combined-load", "heavy": "218-heavy-combined"}
@@ -60,7 +60,7 @@ def dp_reach(direction: complex) -> float:
     return lo
 
 
-def jacobian(par, quad, y, scale):
+def jacobian(history, par, quad, y, scale):
     """Central-difference Jacobian of the right-hand side at ``y``."""
     n = y.shape[0]
     z = int(par.ball_count)
@@ -76,8 +76,8 @@ def jacobian(par, quad, y, scale):
         yp[k] += e
         ym = y.copy()
         ym[k] -= e
-        rhs(yp, 0.0, par, quad, fp, rec_i, rec_o, pocket)
-        rhs(ym, 0.0, par, quad, fm, rec_i, rec_o, pocket)
+        rhs(yp, 0.0, history, par, quad, fp, rec_i, rec_o, pocket)
+        rhs(ym, 0.0, history, par, quad, fm, rec_i, rec_o, pocket)
         jac[:, k] = (fp - fm) / (2.0 * e)
     return jac
 
@@ -125,14 +125,15 @@ def report(label, revolutions, traction_model=None):
         inputs = replace(inputs, lubricant=lubricant)
     options = SimulationOptions(shaft_revolutions=revolutions)
     par = build_params(inputs, options)
+    history = model_history(inputs)
     quad = build_quadrature(options, par)
     y0 = initial_state_from_quasistatic(par, quasistatic_solution(inputs))
-    scale = state_scales(par, y0)
+    scale = state_scales(history, par, y0)
     op = inputs.operating
     period = 2.0 * math.pi / abs(op.inner_ring_speed - op.outer_ring_speed)
-    y = _final_state(inputs, options, revolutions * period, y0, par, quad, scale)
+    y = _final_state(inputs, options, revolutions * period, y0, history, par, quad, scale)
     z = int(par.ball_count)
-    jac = jacobian(par, quad, y, scale)
+    jac = jacobian(history, par, quad, y, scale)
     # similarity scaling by the characteristic magnitudes (same eigenvalues, comparable vectors)
     js = jac * scale[None, :] / scale[:, None]
     lam, vec = np.linalg.eig(js)
@@ -185,7 +186,7 @@ def report(label, revolutions, traction_model=None):
     return lam
 
 
-def _final_state(inputs, options, t_end, y0, par, quad, scale):
+def _final_state(inputs, options, t_end, y0, history, par, quad, scale):
     """The state at time ``t_end`` of a run from ``y0`` (explicit Dormand–Prince)."""
     from solver.models.dynamic.integrate import run
     from solver.models.dynamic.integrate.control import step_control
@@ -194,7 +195,7 @@ def _final_state(inputs, options, t_end, y0, par, quad, scale):
     h = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
     tolerance = options.resolved(inputs.simulation).tolerance
     control = step_control(tolerance, scale, 1e-6 * h, 50_000_000)
-    run("dopri5", par, quad, y, np.array([t_end]), np.empty((1, y.shape[0])), control, h)
+    run("dopri5", history, par, quad, y, np.array([t_end]), np.empty((1, y.shape[0])), control, h)
     return y
 
 

@@ -35,7 +35,7 @@ from solver.inputs import to_inputs  # noqa: E402
 from solver.models.dynamic import SimulationOptions  # noqa: E402
 from solver.models.dynamic import layout as L  # noqa: E402
 from solver.models.dynamic.kernels import rhs  # noqa: E402
-from solver.models.dynamic.params import build_params  # noqa: E402
+from solver.models.dynamic.params import build_params, model_history  # noqa: E402
 from solver.physics import traction as tr  # noqa: E402
 
 DEFAULT_RULES = (
@@ -59,27 +59,27 @@ def node_table(spec: str) -> np.ndarray:
     return np.ascontiguousarray(table)
 
 
-def evaluate(par, y, nodes):
+def evaluate(history, par, y, nodes):
     """Contact records (inner then outer) of one right-hand side with the node table ``nodes``."""
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs(y, 0.0, par, nodes, np.zeros_like(y), rec_i, rec_o, np.zeros(z))
+    rhs(y, 0.0, history, par, nodes, np.zeros_like(y), rec_i, rec_o, np.zeros(z))
     return np.concatenate([rec_i, rec_o])
 
 
-def evaluation_cost(par, y, nodes, repeats=300):
+def evaluation_cost(history, par, y, nodes, repeats=300):
     """CPU seconds of one right-hand side (best of 7 batches)."""
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt, pocket = np.zeros_like(y), np.zeros(z)
-    rhs(y, 0.0, par, nodes, dydt, rec_i, rec_o, pocket)
+    rhs(y, 0.0, history, par, nodes, dydt, rec_i, rec_o, pocket)
     best = float("inf")
     for _ in range(7):
         start = time.process_time()
         for _ in range(repeats):
-            rhs(y, 0.0, par, nodes, dydt, rec_i, rec_o, pocket)
+            rhs(y, 0.0, history, par, nodes, dydt, rec_i, rec_o, pocket)
         best = min(best, (time.process_time() - start) / repeats)
     return best
 
@@ -89,12 +89,13 @@ def run_case(label, states, rules):
     inputs = replace(inputs, lubricant=replace(inputs.lubricant, traction_model="rheology"))
     options = SimulationOptions()
     par = build_params(inputs, options)
+    history = model_history(inputs)
     tables = {spec: node_table(spec) for spec in rules}
     errors = {spec: [] for spec in rules}
     y = None
     for revolutions in states:
         y = running_state(inputs, options, revolutions)
-        ref = evaluate(par, y, node_table(REFERENCE))
+        ref = evaluate(history, par, y, node_table(REFERENCE))
         n = ref[:, L.K_NORMAL : L.K_NORMAL + 3]
         force = ref[:, L.K_F_BALL : L.K_F_BALL + 3]
         moment = ref[:, L.K_M_BALL : L.K_M_BALL + 3]
@@ -102,7 +103,7 @@ def run_case(label, states, rules):
         f_scale = np.max(np.linalg.norm(tangential, axis=1))
         m_scale = np.max(np.linalg.norm(moment, axis=1))
         for spec, table in tables.items():
-            rec = evaluate(par, y, table)
+            rec = evaluate(history, par, y, table)
             df = np.linalg.norm(rec[:, L.K_F_BALL : L.K_F_BALL + 3] - force, axis=1) / f_scale
             dm = np.linalg.norm(rec[:, L.K_M_BALL : L.K_M_BALL + 3] - moment, axis=1) / m_scale
             errors[spec].append(
@@ -115,7 +116,7 @@ def run_case(label, states, rules):
     )
     for spec, table in tables.items():
         e = np.max(np.array(errors[spec]), axis=0)
-        cost = evaluation_cost(par, y, table)
+        cost = evaluation_cost(history, par, y, table)
         print(
             f"   {spec:14s} {e[0]:10.4f} {e[1]:8.4f} {e[2]:11.4f} {e[3]:8.4f}  {cost * 1e6:6.1f} us"
         )

@@ -27,13 +27,13 @@ from tests.helpers.dyn_helpers import evaluate, integrate_states, start
 CONSERVATION_TOLERANCE = 1e-4
 
 
-def _energies(states, par, quad):
+def _energies(states, history, par, quad):
     z = int(par.ball_count)
     ri = np.zeros((z, L.N_CONTACT_RECORD))
     ro = np.zeros((z, L.N_CONTACT_RECORD))
     energy, elastic = [], []
     for s in states:
-        energy.append(mechanical_energy(s, 0.0, par, quad, ri, ro))
+        energy.append(mechanical_energy(s, 0.0, history, par, quad, ri, ro))
         elastic.append(
             0.4
             * sum((r[:, L.K_ELASTIC] * np.maximum(r[:, L.K_DEFLECTION], 0)).sum() for r in (ri, ro))
@@ -47,13 +47,13 @@ def test_energy_is_conserved_without_traction_and_damping():
     total energy may change by at most 1e-4 of the mean elastic (Hertz) energy, the part of the
     energy that the contact dynamics exchange (the balls' orbital kinetic energy is ~100x larger),
     at tolerance 1e-4 (``CONSERVATION_TOLERANCE``)."""
-    par, quad, y0 = start(
+    history, par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.0, cage=False
     )
-    period = 2 * math.pi / drive_at_start(par).inner_speed
+    period = 2 * math.pi / drive_at_start(history).inner_speed
     times = np.linspace(0.0, 3 * period, 181)
-    states, _ = integrate_states(par, quad, y0, times, tolerance=CONSERVATION_TOLERANCE)
-    energy, elastic = _energies(states, par, quad)
+    states, _ = integrate_states(history, par, quad, y0, times, tolerance=CONSERVATION_TOLERANCE)
+    energy, elastic = _energies(states, history, par, quad)
     drift = np.abs(energy - energy[0]).max()
     assert drift < 1e-4 * elastic.mean()
     # the elastic energy really varies (the test exercises the exchange)
@@ -70,30 +70,30 @@ def test_default_tolerance_tracks_the_energy_with_light_damping():
     from solver.case.schema import field
 
     default = field("simulation.tolerance").default
-    par, quad, y0 = start(
+    history, par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.01, cage=False
     )
-    times = np.linspace(0.0, 2 * math.pi / drive_at_start(par).inner_speed, 61)
-    tight, _ = integrate_states(par, quad, y0, times, tolerance=1e-5)
-    loose, _ = integrate_states(par, quad, y0, times, tolerance=default)
-    e_tight, elastic = _energies(tight, par, quad)
-    e_loose, _ = _energies(loose, par, quad)
+    times = np.linspace(0.0, 2 * math.pi / drive_at_start(history).inner_speed, 61)
+    tight, _ = integrate_states(history, par, quad, y0, times, tolerance=1e-5)
+    loose, _ = integrate_states(history, par, quad, y0, times, tolerance=default)
+    e_tight, elastic = _energies(tight, history, par, quad)
+    e_loose, _ = _energies(loose, history, par, quad)
     assert np.abs(e_loose - e_tight).max() < 1e-4 * elastic.mean()
 
 
 def test_damping_dissipates_energy():
     """The same run with contact damping on must lose energy (sign check of the damping law)."""
-    par, quad, y0 = start(
+    history, par, quad, y0 = start(
         spindle_inputs(radial=300.0), traction=False, damping_ratio=0.2, cage=False
     )
     # kick the balls radially so the contacts vibrate
     for j in range(18):
         b = L.ball_base(j)
         y0[b + L.B_VEL] += 0.05
-    period = 2 * math.pi / drive_at_start(par).inner_speed
+    period = 2 * math.pi / drive_at_start(history).inner_speed
     times = np.linspace(0.0, 0.5 * period, 31)
-    states, _ = integrate_states(par, quad, y0, times, tolerance=CONSERVATION_TOLERANCE)
-    energy, elastic = _energies(states, par, quad)
+    states, _ = integrate_states(history, par, quad, y0, times, tolerance=CONSERVATION_TOLERANCE)
+    energy, elastic = _energies(states, history, par, quad)
     kick = 18 * 0.5 * par.ball_mass * 0.05**2
     # zeta = 0.2 at the ~70 kHz contact mode removes most of the kick within 0.5 rev
     assert energy[0] - energy[-1] > 0.25 * kick
@@ -105,7 +105,7 @@ def test_linear_momentum_balance_of_the_rhs():
     ring, outer-ring contact forces on the balls, cage-land force, drag of the oil-air mixture on
     the balls and gravity (all internal
     ball-ring and ball-cage forces cancel), with traction, damping and cage on."""
-    par, quad, y0 = start(spindle_inputs(radial=300.0))
+    history, par, quad, y0 = start(spindle_inputs(radial=300.0))
     rng = np.random.default_rng(7)
     y = y0.copy()
     z = 18
@@ -115,7 +115,7 @@ def test_linear_momentum_balance_of_the_rhs():
         b = L.ball_base(j)
         y[b + L.B_VEL : b + L.B_VEL + 3] += rng.normal(size=3) * 0.3
         y[b + 1 : b + 3] += rng.normal(size=2) * 5e-5  # some balls touch their pockets
-    dydt, ri, ro, pocket = evaluate(y, par, quad)
+    dydt, ri, ro, pocket = evaluate(y, history, par, quad)
     assert pocket.max() > 0.0
     rb = L.ring_base(z)
     total = np.zeros(3)
@@ -125,12 +125,12 @@ def test_linear_momentum_balance_of_the_rhs():
     total += par.ring_mass * dydt[rb + L.R_VEL : rb + L.R_VEL + 3]
     total += par.cage_mass * dydt[cb + L.C_VEL : cb + L.C_VEL + 3]
     land = np.zeros(5)
-    speeds = drive_at_start(par)[:2]
+    speeds = drive_at_start(history)[:2]
     cage_land(
         y, cb, y[rb : rb + 3], y[rb + 3 : rb + 6], *speeds, par, np.zeros(TRACTION_WORK_SIZE), land
     )
     external = ro[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
-    external += np.array(drive_at_start(par)[4:7])
+    external += np.array(drive_at_start(history)[4:7])
     assert abs(land[1]) + abs(land[2]) > 0.0  # the land force is exercised
     external += land[:3]
     drag = np.array([ball_drag(y, L.ball_base(j), par)[0] for j in range(z)])

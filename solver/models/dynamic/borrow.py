@@ -75,8 +75,8 @@ def _borrow_fields(context, builder, record, value):
 @intrinsic
 def borrowed_record(typingctx, record):
     """``record`` (a numba tuple or named tuple) with each array field replaced by its borrowed
-    view (:func:`borrowed`), also in nested records (the operating history in the model's
-    parameters); every other field must be a number, a boolean or a tuple of them."""
+    view (:func:`borrowed`), also in nested records; every other field must be a number, a
+    boolean or a tuple of them."""
     if not isinstance(record, types.BaseTuple) or not _borrowable(record):
         return None
 

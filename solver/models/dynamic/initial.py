@@ -111,17 +111,18 @@ def _state_from_unknowns(u, z, base_state, tilt_dof, length_scale, pitch_radius)
     return y
 
 
-def _contact_angles(y, par, quad):
+def _contact_angles(y, history, par, quad):
     z = int(par.ball_count)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
     dydt = np.zeros_like(y)
-    rhs(y, 0.0, _static_par(par), quad, dydt, rec_i, rec_o, np.zeros(z))
+    rhs(y, 0.0, history, _static_par(par), quad, dydt, rec_i, rec_o, np.zeros(z))
     return rec_i, rec_o
 
 
-def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
-    """Initial state vector (layout ``L``) in quasi-static equilibrium for the parameters ``par``.
+def initial_state(history, par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
+    """Initial state vector (layout ``L``) in quasi-static equilibrium for the parameters ``par``
+    under the imposed inputs of the operating history ``history`` at t = 0.
 
     Raises NoSolutionError when the force balance cannot be solved (e.g. no load holds the balls).
     """
@@ -143,7 +144,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
         base[b + 1] = 0.5 * dm * math.cos(psi)
         base[b + 2] = 0.5 * dm * math.sin(psi)
         base[b + L.B_QUAT] = 1.0
-    drive = drive_at_start(par)
+    drive = drive_at_start(history)
     if not tilt_dof:
         base[rb + L.R_TILT] = drive.tilt_y
         base[rb + L.R_TILT + 1] = drive.tilt_z
@@ -166,7 +167,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
 
     def residual(u, omega_c):
         y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
-        rhs(y, 0.0, pstat, quad, dydt, rec_i, rec_o, pocket)
+        rhs(y, 0.0, history, pstat, quad, dydt, rec_i, rec_o, pocket)
         res = np.empty_like(u)
         for j in range(z):
             b = L.ball_base(j)
@@ -205,7 +206,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
     for _ in range(passes):
         u = balanced(u, omega_c, 1e-13)
         y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
-        rec_i, rec_o = _contact_angles(y, par, quad)
+        rec_i, rec_o = _contact_angles(y, history, par, quad)
         loaded = (rec_i[:, L.K_LOAD] > 0) & (rec_o[:, L.K_LOAD] > 0)
         if not loaded.any():
             raise NoSolutionError(
@@ -224,7 +225,7 @@ def initial_state(par, quad: np.ndarray, passes: int = 3) -> np.ndarray:
             "check the loads and the speed"
         )
     y = _state_from_unknowns(u, z, base, tilt_dof, ls, 0.5 * dm)
-    rec_i, rec_o = _contact_angles(y, par, quad)
+    rec_i, rec_o = _contact_angles(y, history, par, quad)
     for j in range(z):
         b = L.ball_base(j)
         psi = 2.0 * math.pi * j / z

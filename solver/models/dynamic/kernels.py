@@ -982,19 +982,23 @@ def rhs_work(ball_count):
 
 
 @njit(cache=True)
-def rhs(y, t, par, quad, dydt, rec_inner, rec_outer, pocket):
-    """dy/dt of the whole bearing at state ``y`` and time ``t`` [s] (the time the operating
-    history ``par.history`` is read at). ``rec_inner``/``rec_outer`` (Z, N_CONTACT_RECORD) and
-    ``pocket`` (Z,) receive the contact records and pocket normal forces of this evaluation.
-    :func:`rhs_into` with a fresh scratch record (integrators keep one and call that)."""
+def rhs(y, t, history, par, quad, dydt, rec_inner, rec_outer, pocket):
+    """dy/dt of the whole bearing at state ``y`` and time ``t`` [s] (the time the operating history
+    ``history``, a :class:`solver.history.HistoryRecord`, is read at). ``rec_inner``/``rec_outer``
+    (Z, N_CONTACT_RECORD) and ``pocket`` (Z,) receive the contact records and pocket normal forces
+    of this evaluation. :func:`rhs_into` with a fresh scratch record (integrators keep one and call
+    that)."""
     scratch = rhs_work(int(par.ball_count))
-    rhs_into(y, t, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, runtime_bool(True))
+    rhs_into(
+        y, t, history, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, runtime_bool(True)
+    )
 
 
 @njit(cache=True)
-def rhs_into(y, t, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
+def rhs_into(y, t, history, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, observed):
     """:func:`rhs` with the scratch record ``scratch`` (:func:`rhs_work`): no allocation. The
-    imposed inputs are read once, at ``t`` [s] (:func:`solver.history.drive_at`). Callers pass
+    imposed inputs are read once from ``history``, at ``t`` [s] (:func:`solver.history.drive_at`),
+    and the body gets them as a :class:`solver.history.Drive` of floats. Callers pass
     ``observed`` explicitly (no default: an omitted argument is typed apart and would compile a
     second variant), from compiled code as ``runtime_bool(...)``, so that numba compiles one
     variant. The evaluation works on borrowed views of the arrays (:mod:`.borrow`), so that its
@@ -1004,11 +1008,10 @@ def rhs_into(y, t, par, quad, dydt, rec_inner, rec_outer, pocket, scratch, obser
     :func:`contact_state`)."""
     z = int(par.ball_count)
     phi = y[BALL_STRIDE * z + R_PHI_INNER]
-    par_view = borrowed_record(par)
     _rhs_borrowed(
         borrowed(y),
-        drive_at(par_view.history, t, phi),
-        par_view,
+        drive_at(borrowed_record(history), t, phi),
+        borrowed_record(par),
         borrowed(quad),
         borrowed(dydt),
         borrowed(rec_inner),
@@ -1218,9 +1221,10 @@ def _rhs_borrowed(y, drive, par, quad, dydt, rec_inner, rec_outer, pocket, obser
 
 
 @njit(cache=True)
-def mechanical_energy(y, t, par, quad, rec_inner, rec_outer):
-    """Kinetic + potential energy [J] at time ``t`` [s] for the conservative model (traction,
-    damping, cage off) under a constant applied force.
+def mechanical_energy(y, t, history, par, quad, rec_inner, rec_outer):
+    """Kinetic + potential energy [J] at time ``t`` [s] (the operating history ``history`` read
+    there) for the conservative model (traction, damping, cage off) under a constant applied
+    force.
 
     Potential: Hertz 2/5 K delta^2.5 per loaded contact, -F_ext . r_ring for the applied force
     (a potential only while it is constant), m g z for gravity along -z (balls, and the inner ring
@@ -1230,7 +1234,7 @@ def mechanical_energy(y, t, par, quad, rec_inner, rec_outer):
     """
     z = int(par.ball_count)
     rb = BALL_STRIDE * z
-    drive = drive_at(par.history, t, y[rb + R_PHI_INNER])
+    drive = drive_at(history, t, y[rb + R_PHI_INNER])
     irot, iorg, ivel, iome, orot, oome = ring_frame_arrays()
     ring_frames(y, par, drive, irot, iorg, ivel, iome, orot, oome)
     zero3 = np.zeros(3)

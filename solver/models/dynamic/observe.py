@@ -40,10 +40,10 @@ from .kernels import (
 
 
 @njit(cache=True)
-def observe(states, times, par, quad, records, balls, bearing):
+def observe(states, times, history, par, quad, records, balls, bearing):
     """Fill ``records`` (S, Z, 2, N_CONTACT_RECORD), ``balls`` (S, Z, N_BALL_OUTPUT) and
     ``bearing`` (S, N_BEARING_OUTPUT) for the states (S, n) at ``times`` (S,) [s] (the operating
-    history is read there)."""
+    history ``history`` is read there)."""
     z = par.ball_count
     n = states.shape[1]
     dydt = np.empty(n)
@@ -62,8 +62,8 @@ def observe(states, times, par, quad, records, balls, bearing):
     for s in range(states.shape[0]):
         y = states[s]
         t = times[s]
-        drive = drive_at(par.history, t, y[rb + L.R_PHI_INNER])
-        rhs(y, t, par, quad, dydt, rec[0], rec[1], pocket)
+        drive = drive_at(history, t, y[rb + L.R_PHI_INNER])
+        rhs(y, t, history, par, quad, dydt, rec[0], rec[1], pocket)
         ring_frames(y, par, drive, irot, iorg, ivel, iome, orot, oome)
         cage_frame(y, cb, crot, come)
         vcx, vcy, vcz = y[cb + L.C_VEL], y[cb + L.C_VEL + 1], y[cb + L.C_VEL + 2]
@@ -155,11 +155,12 @@ def channel_series(history, times, out):
 
 
 @njit(cache=True)
-def applied_load_work(states, times, par, events, work):
-    """``work`` (S,) <- the work [J] of the applied force and moment on the inner ring since the
-    first state: the Stieltjes sum of F . dx (translations free) and M . d(tilt) (free tilt) over
-    the sample intervals cut at ``events`` (increasing times [s]), F and M at the middle of each
-    piece, the state at a cut interpolated linearly (output.load_work adds gravity)."""
+def applied_load_work(states, times, history, par, events, work):
+    """``work`` (S,) <- the work [J] of the applied force and moment (of the operating history
+    ``history``) on the inner ring since the first state: the Stieltjes sum of F . dx
+    (translations free) and M . d(tilt) (free tilt) over the sample intervals cut at ``events``
+    (increasing times [s]), F and M at the middle of each piece, the state at a cut interpolated
+    linearly (output.load_work adds gravity)."""
     z = par.ball_count
     rb = L.BALL_STRIDE * z
     free_tilt = par.tilt_mode == L.TILT_FREE
@@ -185,7 +186,7 @@ def applied_load_work(states, times, par, events, work):
             frac = s1 - s0
             phi0 = states[k - 1, rb + L.R_PHI_INNER]
             angle = phi0 + 0.5 * (s0 + s1) * (states[k, rb + L.R_PHI_INNER] - phi0)
-            drive = drive_at(par.history, 0.5 * (t0 + t1), angle)
+            drive = drive_at(history, 0.5 * (t0 + t1), angle)
             if par.ring_free:
                 p = rb + L.R_POS
                 step += frac * (

@@ -170,19 +170,31 @@ def truncation_margins(geometry, angle: np.ndarray, semi_major: np.ndarray) -> n
 
 
 def build_dataset(
-    inputs, options, par, quad, times, states, period, complete, stop_reason, stats, start=None
+    inputs,
+    options,
+    history,
+    par,
+    quad,
+    times,
+    states,
+    period,
+    complete,
+    stop_reason,
+    stats,
+    start=None,
 ):
-    """Dataset of the dynamic run from the stored states (S, n) at ``times`` (S,), with the
-    trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it, and
-    the quasi-static solution ``start`` (a :class:`QuasiStaticSolution`, None when there is none)
-    as its ``quasistatic_*`` variables."""
+    """Dataset of the dynamic run under the operating history ``history``
+    (:class:`solver.history.HistoryRecord`) from the stored states (S, n) at ``times`` (S,), with
+    the trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it,
+    and the quasi-static solution ``start`` (a :class:`QuasiStaticSolution`, None when there is
+    none) as its ``quasistatic_*`` variables."""
     z = int(par.ball_count)
     s_count = states.shape[0]
     records = np.zeros((s_count, z, 2, L.N_CONTACT_RECORD))
     balls_out = np.zeros((s_count, z, L.N_BALL_OUTPUT))
     bearing_out = np.zeros((s_count, L.N_BEARING_OUTPUT))
-    observe(states, times, par, quad, records, balls_out, bearing_out)
-    imposed = imposed_inputs(par.history, times, states[:, L.ring_base(z) + L.R_PHI_INNER])
+    observe(states, times, history, par, quad, records, balls_out, bearing_out)
+    imposed = imposed_inputs(history, times, states[:, L.ring_base(z) + L.R_PHI_INNER])
     pocket = balls_out[..., L.BO_POCKET_FORCE]
     balls = np.stack(
         [states[:, L.ball_base(j) : L.ball_base(j) + L.BALL_STRIDE] for j in range(z)], axis=1
@@ -230,7 +242,7 @@ def build_dataset(
         "cage_center": (("time", "axis"), states[:, cb + L.C_POS : cb + L.C_POS + 3]),
         "kinetic_energy": (("time",), kinetic_energy(states, par)),
         "elastic_energy": (("time",), bearing_out[:, L.RO_ELASTIC_ENERGY].copy()),
-        "load_work": (("time",), load_work(states, times, par)),
+        "load_work": (("time",), load_work(states, times, history, par)),
     }
     attrs = {
         "stop_reason": stop_reason,
@@ -271,7 +283,7 @@ def build_dataset(
     )
     metrics = trajectory_summary(ds, options.analysis_skip_fraction)
     ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
-    ds = with_inputs_over_time(ds, par.history, imposed)
+    ds = with_inputs_over_time(ds, history, imposed)
     ds = ds.assign(skidding_variables(ds))  # at each sample's ring speeds
     ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
     if inputs.history is not None:  # the phases between the history's events (results-schema.md)
@@ -282,20 +294,20 @@ def build_dataset(
     return with_estimates(ds, inputs)
 
 
-def load_work(states: np.ndarray, times: np.ndarray, par) -> np.ndarray:
-    """Work [J] done since t = 0 by the applied loads and gravity at each stored state (S, n) at
-    ``times`` (S,) [s]: the Stieltjes sum of F . dx over the inner ring's displacement (where its
-    translations are free) and M . d(tilt) (free tilt), F and M at the middle of each piece, the
-    pieces being the sample intervals cut at the history's event times (a load step does its
-    work on the side of the jump it acts on; the position at an event is interpolated linearly),
-    plus -m g dz of every moving body. Not F . v sampled: the ring's contact vibration, far faster
-    than the output samples, would alias into it."""
+def load_work(states: np.ndarray, times: np.ndarray, history, par) -> np.ndarray:
+    """Work [J] done since t = 0 by the applied loads of the operating history ``history`` and
+    gravity at each stored state (S, n) at ``times`` (S,) [s]: the Stieltjes sum of F . dx over the
+    inner ring's displacement (where its translations are free) and M . d(tilt) (free tilt), F and M
+    at the middle of each piece, the pieces being the sample intervals cut at the history's event
+    times (a load step does its work on the side of the jump it acts on; the position at an event is
+    interpolated linearly), plus -m g dz of every moving body. Not F . v sampled: the ring's contact
+    vibration, far faster than the output samples, would alias into it."""
     z = int(par.ball_count)
     rb = L.ring_base(z)
     cb = L.cage_base(z)
-    events = event_times(par.history, float(times[0]), float(times[-1]))
+    events = event_times(history, float(times[0]), float(times[-1]))
     work = np.zeros(times.size)
-    applied_load_work(states, times, par, events, work)
+    applied_load_work(states, times, history, par, events, work)
     ring = states[:, rb + L.R_POS : rb + L.R_POS + 3]
     heights = np.zeros(times.size)
     for j in range(z):

@@ -12,7 +12,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from solver.history import Drive, drive_at, steady_history
+from solver.history import Drive, HistoryRecord, drive_at, steady_history
 from solver.inputs import Inputs
 from solver.materials import Material, effective_modulus
 from solver.physics.cage_contact import (
@@ -52,10 +52,11 @@ class ModelParams(NamedTuple):
     """Everything the dynamic model's kernels read besides the state, SI units.
 
     Frames and signs as in ``layout`` and ``kernels`` (inertial x = bearing axis, gravity -z).
-    The imposed inputs (ring speeds, applied forces and moment, imposed tilt) are the operating
-    history's (``history``): the kernels read them at the time they are evaluated at
-    (:func:`solver.history.drive_at`; :func:`drive_at_start` for t = 0); a steady case has the
-    constant history of its operating point.
+    The imposed inputs (ring speeds, applied forces and moment, imposed tilt) are not here: they
+    are the operating history's (:func:`model_history`), which the kernels take as an argument of
+    its own and read at the time they are evaluated at (:func:`solver.history.drive_at`;
+    :func:`drive_at_start` for t = 0). Kept out of this record because numba passes every array
+    of a record as separate call arguments to each of the many small kernels that receive it.
     """
 
     # ---- geometry and masses
@@ -76,7 +77,6 @@ class ModelParams(NamedTuple):
     inner_hertz: np.ndarray  # Hertz table of the inner race (solver.physics.hertz_race.race_table)
     outer_hertz: np.ndarray  # of the outer race
     # ---- rings, loads and modes
-    history: tuple  # solver.history.HistoryRecord: ring speeds, loads, tilt or moment against time
     ring_mass: float  # inner ring (+ shaft share) mass [kg]
     ring_diametral_inertia: float  # [kg m^2]
     ring_polar_inertia: float  # [kg m^2]
@@ -171,7 +171,6 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         tilt_mode = (
             L.TILT_TURNING_WITH_RING if op.misalignment_frame == "ring" else L.TILT_FIXED_IN_SPACE
         )
-    history = inputs.history if inputs.history is not None else steady_history(op)
     ring_mass, ring_diametral, ring_polar = ring_mass_properties(inputs, options)
     guide = {
         "outer_ring": L.GUIDE_OUTER_RING,
@@ -223,7 +222,6 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
         eprime=g.effective_modulus,
         inner_hertz=race_table(D, dm, g.inner_conformity, True),
         outer_hertz=race_table(D, dm, g.outer_conformity, False),
-        history=history,
         ring_mass=ring_mass,
         ring_diametral_inertia=ring_diametral,
         ring_polar_inertia=ring_polar,
@@ -283,10 +281,19 @@ def build_params(inputs: Inputs, options: SimulationOptions) -> ModelParams:
     )
 
 
-def drive_at_start(par: ModelParams) -> Drive:
-    """The imposed inputs at t = 0 (ring speeds, forces, tilt; :class:`solver.history.Drive`):
-    those the initial state is balanced under."""
-    return drive_at(par.history, 0.0, 0.0)
+def model_history(inputs: Inputs) -> HistoryRecord:
+    """The operating history the dynamic model follows (:class:`solver.history.HistoryRecord`:
+    ring speeds, loads, tilt or moment against time): the case's time histories
+    (``inputs.history``), or for a steady case the constant history of its operating point."""
+    if inputs.history is not None:
+        return inputs.history
+    return steady_history(inputs.operating)
+
+
+def drive_at_start(history: HistoryRecord) -> Drive:
+    """The imposed inputs of the operating history ``history`` at t = 0 (ring speeds, forces,
+    tilt; :class:`solver.history.Drive`): those the initial state is balanced under."""
+    return drive_at(history, 0.0, 0.0)
 
 
 def _floats(values) -> tuple:

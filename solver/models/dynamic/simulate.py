@@ -43,7 +43,7 @@ from .integrate.model import bearing_model
 from .observe import channel_series
 from .options import CASE_OVERRIDES, SimulationOptions
 from .output import build_dataset
-from .params import build_params, build_quadrature
+from .params import build_params, build_quadrature, model_history
 
 _DIVERGENCE_CAUSES = MappingProxyType(
     {
@@ -77,8 +77,9 @@ def _is_cancelled(cancel) -> bool:
     return bool(cancel())
 
 
-def state_scales(par, y0: np.ndarray) -> np.ndarray:
-    """Characteristic magnitudes of the state components for the error norm.
+def state_scales(history, par, y0: np.ndarray) -> np.ndarray:
+    """Characteristic magnitudes of the state components for the error norm (the contacts at
+    ``y0`` under the operating history ``history`` at t = 0).
 
     delta_ref = largest contact deflection at the start (>= 0.1 um); V = delta_ref * omega_n with
     the ball's contact natural frequency omega_n = sqrt(2 k_lin / m), k_lin = 1.5 Q / delta.
@@ -91,7 +92,7 @@ def state_scales(par, y0: np.ndarray) -> np.ndarray:
     from .kernels import rhs
 
     no_nodes = np.zeros((1, NODE_COLUMNS))  # traction weight 0
-    rhs(y0, 0.0, par, no_nodes, np.zeros(n), rec_i, rec_o, np.zeros(z))
+    rhs(y0, 0.0, history, par, no_nodes, np.zeros(n), rec_i, rec_o, np.zeros(z))
     defl = np.concatenate((rec_i[:, L.K_DEFLECTION], rec_o[:, L.K_DEFLECTION]))
     load = np.concatenate((rec_i[:, L.K_ELASTIC], rec_o[:, L.K_ELASTIC]))
     k = int(np.argmax(defl))
@@ -147,7 +148,7 @@ class RunStatistics:
         return int(self.progress[0]["rhs_evaluations"])
 
 
-def _start(inputs, options, par, quad):
+def _start(inputs, options, history, par, quad):
     """(initial state, description of the start for the Dataset attrs, the quasi-static solution
     started from or None)."""
     if options.start == "quasistatic":
@@ -155,7 +156,7 @@ def _start(inputs, options, par, quad):
             qs = quasistatic_solution(inputs)
         except NoSolutionError as error:
             return (
-                initial_state(par, quad),
+                initial_state(history, par, quad),
                 f"quasi-static solver found no solution ({error}); started from the model's own "
                 "force balance (no gyroscopic moment)",
                 None,
@@ -167,7 +168,7 @@ def _start(inputs, options, par, quad):
             qs,
         )
     return (
-        initial_state(par, quad),
+        initial_state(history, par, quad),
         "the model's own quasi-static force balance (no gyroscopic moment)",
         None,
     )
@@ -216,7 +217,7 @@ class TimeGrid(NamedTuple):
         return f"{self.times[sample]:.4g} of {self.times[-1]:g} s"
 
 
-def _time_grid(inputs, options, given, par) -> TimeGrid:
+def _time_grid(inputs, options, given, history) -> TimeGrid:
     """Output times: a steady case samples ``samples_per_revolution`` times per shaft revolution
     for ``shaft_revolutions``; a case with a history (``inputs.history``) samples
     ``simulation.samples_per_second`` times per second over ``simulation.duration`` [s]."""
@@ -252,7 +253,7 @@ def _time_grid(inputs, options, given, par) -> TimeGrid:
     n_samples = max(1, int(round(duration * rate)))
     times = np.linspace(0.0, float(duration), n_samples + 1)
     values = np.empty((N_CHANNELS, times.size))
-    channel_series(par.history, times, values)
+    channel_series(history, times, values)
     mean = float(np.mean(np.abs(values[CH_INNER_SPEED] - values[CH_OUTER_SPEED])))
     if not mean > 0.0:
         raise CaseError(
@@ -279,19 +280,20 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     given = (options or SimulationOptions()).validated()
     options = given.resolved(inputs.simulation)
     par = build_params(inputs, options)
-    grid = _time_grid(inputs, options, given, par)
+    history = model_history(inputs)
+    grid = _time_grid(inputs, options, given, history)
     times, period = grid.times, grid.period
     n_samples = times.size - 1
     quad = build_quadrature(options, par)
-    y, start_note, quasistatic = _start(inputs, options, par, quad)
+    y, start_note, quasistatic = _start(inputs, options, history, par, quad)
     states = np.empty((n_samples + 1, y.shape[0]))
     states[0] = y
-    scale = state_scales(par, y)
+    scale = state_scales(history, par, y)
     # first step: a fraction of the shortest contact period
     omega_n = scale[L.B_VEL] / scale[L.B_POS]
     h = 0.05 / omega_n
     method = stepper(options.method)
-    model = bearing_model(par, quad)
+    model = bearing_model(history, par, quad)
     work = method.workspace(model, y.shape[0], 0.0, h)
     reached = work.progress  # the stepper's progress record (1,)
     control = step_control(
@@ -299,7 +301,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
         scale,
         1e-6 * h,
         options.max_steps_per_chunk,
-        event_times(par.history, 0.0, float(times[-1])),
+        event_times(history, 0.0, float(times[-1])),
     )
     stats = RunStatistics(work.progress)
     stats.initial_step = h
@@ -338,6 +340,7 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
     ds = build_dataset(
         inputs,
         options,
+        history,
         par,
         quad,
         times[:done],

@@ -113,7 +113,7 @@ def test_tableau_weights_and_nodes():
 def test_cage_velocity_jacobian_matches_the_whole_right_hand_side():
     """The land and pocket forces are all that the cage's acceleration takes from its velocity:
     the 3 x 3 block equals forward differences of the whole right-hand side."""
-    par, quad, y0 = start(spindle_inputs(radial=300.0))
+    history, par, quad, y0 = start(spindle_inputs(radial=300.0))
     y = y0.copy()
     z = int(par.ball_count)
     cb = L.cage_base(z)
@@ -121,20 +121,20 @@ def test_cage_velocity_jacobian_matches_the_whole_right_hand_side():
     y[cb + L.C_POS + 1] = 0.9 * par.land_clearance
     y[cb + L.C_VEL + 1] = 0.01
     y[cb + L.C_VEL + 2] = -0.02
-    scale = state_scales(par, y0)
+    scale = state_scales(history, par, y0)
     dv = 1e-4 * scale[cb + L.C_VEL]
     scratch = rhs_work(int(par.ball_count))
     f0 = np.empty_like(y)
     rec_i = np.zeros((z, L.N_CONTACT_RECORD))
     rec_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y, 0.0, par, quad, f0, rec_i, rec_o, np.zeros(z), scratch, True)
+    rhs_into(y, 0.0, history, par, quad, f0, rec_i, rec_o, np.zeros(z), scratch, True)
     jac = np.zeros((3, 3))
     cage_velocity_jacobian(y, cb, par, scratch, dv, True, np.empty(3), np.empty(3), jac)
     reference = np.zeros((3, 3))
     for c in range(3):
         yp = y.copy()
         yp[cb + L.C_VEL + c] += dv
-        fp = evaluate(yp, par, quad)[0]
+        fp = evaluate(yp, history, par, quad)[0]
         reference[:, c] = (fp - f0)[cb + L.C_VEL : cb + L.C_VEL + 3] / dv
     assert np.abs(reference).max() > 100.0  # the land film damps the cage: a block worth testing
     np.testing.assert_allclose(jac, reference, rtol=1e-6, atol=1e-6 * np.abs(reference).max())
@@ -143,17 +143,17 @@ def test_cage_velocity_jacobian_matches_the_whole_right_hand_side():
 def test_dopri5_outputs_inside_steps_match_stopping_on_each_output():
     """Continuous extension: states at output times filled inside steps agree with a run that
     stops exactly on every output time, to a small fraction of the deflection scale."""
-    par, quad, y0 = start(spindle_inputs(radial=300.0))
-    period = 2 * math.pi / drive_at_start(par).inner_speed
+    history, par, quad, y0 = start(spindle_inputs(radial=300.0))
+    period = 2 * math.pi / drive_at_start(history).inner_speed
     times = np.linspace(0.0, 0.05 * period, 13)
-    dense, _ = integrate_states(par, quad, y0, times, tolerance=1e-6)
+    dense, _ = integrate_states(history, par, quad, y0, times, tolerance=1e-6)
     stops = [y0]
     y = y0
     for i in range(1, len(times)):
-        part, _ = integrate_states(par, quad, y, times[i - 1 : i + 1] - times[i - 1], 1e-6)
+        part, _ = integrate_states(history, par, quad, y, times[i - 1 : i + 1] - times[i - 1], 1e-6)
         y = part[-1]
         stops.append(y)
-    scale = state_scales(par, y0)
+    scale = state_scales(history, par, y0)
     pos = [L.ball_base(j) + k for j in range(int(par.ball_count)) for k in range(3)]
     diff = np.abs(dense[:, pos] - np.array(stops)[:, pos]).max() / scale[0]
     assert diff < 1e-3

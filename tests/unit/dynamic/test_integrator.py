@@ -21,14 +21,14 @@ def test_local_error_control_converges():
     """Deflection-scale error after 0.2 shaft revolution: tolerance 1e-4 agrees with a 1e-8
     reference to a small fraction of the deflection, and 1e-2 is visibly worse (the control
     works)."""
-    par, quad, y0 = start(spindle_inputs(radial=300.0))
-    period = 2 * math.pi / drive_at_start(par).inner_speed
+    history, par, quad, y0 = start(spindle_inputs(radial=300.0))
+    period = 2 * math.pi / drive_at_start(history).inner_speed
     times = np.array([0.0, 0.2 * period])
-    ref, _ = integrate_states(par, quad, y0, times, tolerance=1e-8)
-    scale = state_scales(par, y0)
+    ref, _ = integrate_states(history, par, quad, y0, times, tolerance=1e-8)
+    scale = state_scales(history, par, y0)
     errors = {}
     for tol in (1e-2, 1e-4):
-        run, _ = integrate_states(par, quad, y0, times, tolerance=tol)
+        run, _ = integrate_states(history, par, quad, y0, times, tolerance=tol)
         pos = [L.ball_base(j) + k for j in range(18) for k in range(3)]
         errors[tol] = np.abs(run[-1, pos] - ref[-1, pos]).max() / scale[0]
     assert errors[1e-4] < 0.01  # below 1 % of the largest deflection
@@ -36,7 +36,7 @@ def test_local_error_control_converges():
 
 
 def test_ball_escape_is_detected():
-    par, quad, y0 = start(spindle_inputs())
+    history, par, quad, y0 = start(spindle_inputs())
     z = 18
     rec = np.zeros((z, L.N_CONTACT_RECORD))
     y = y0.copy()
@@ -47,13 +47,15 @@ def test_ball_escape_is_detected():
 
 
 def test_non_finite_state_stops_with_status():
-    par, quad, y0 = start(spindle_inputs())
+    history, par, quad, y0 = start(spindle_inputs())
     y = y0.copy()
     y[L.ball_base(2) + L.B_VEL] = np.nan
-    scale = state_scales(par, y0)
+    scale = state_scales(history, par, y0)
     out = np.empty((1, y.shape[0]))
     for method in METHODS:
-        progress = advance(method, par, quad, y.copy(), [1e-5], out, 1e-4, 1e-7, 1e-12, 1000, scale)
+        progress = advance(
+            method, history, par, quad, y.copy(), [1e-5], out, 1e-4, 1e-7, 1e-12, 1000, scale
+        )
         assert progress["status"] == STATUS_NOT_FINITE and progress["written"] == 0, method
 
 
@@ -61,16 +63,16 @@ def test_escape_status_from_advance():
     """A ball thrown outwards at 50 m/s leaves the raceways within microseconds: the integrator
     returns STATUS_BALL_ESCAPED instead of integrating garbage (traction/cage off so nothing else
     intervenes first)."""
-    par, quad, y0 = start(spindle_inputs(), traction=False, cage=False, damping_ratio=0.0)
+    history, par, quad, y0 = start(spindle_inputs(), traction=False, cage=False, damping_ratio=0.0)
     y = y0.copy()
     b = L.ball_base(0)
     par = par._replace(eprime=par.eprime * 1e-6)  # a soft race lets the ball through
     y[b + L.B_VEL + 1] += 50.0
-    scale = state_scales(par, y0)
+    scale = state_scales(history, par, y0)
     out = np.empty((1, y.shape[0]))
     for method in METHODS:
         progress = advance(
-            method, par, quad, y.copy(), [1e-3], out, 1e-4, 1e-8, 1e-16, 10**7, scale
+            method, history, par, quad, y.copy(), [1e-3], out, 1e-4, 1e-8, 1e-16, 10**7, scale
         )
         assert progress["status"] == STATUS_BALL_ESCAPED, method
 
@@ -83,15 +85,15 @@ def test_steps_end_on_event_times_and_never_pass_them():
     from solver.models.dynamic.integrate.control import STATUS_OK, step_control
     from solver.models.dynamic.integrate.model import bearing_model
 
-    par, quad, y0 = start(spindle_inputs())
-    scale = state_scales(par, y0)
+    history, par, quad, y0 = start(spindle_inputs())
+    scale = state_scales(history, par, y0)
     h0 = 0.05 * scale[L.B_POS] / scale[L.B_VEL]
     t_end = 60.0 * h0
     events = t_end * np.array([0.3141, 0.6789])
 
     def reached_times(method, event_times):
         method = stepper(method)
-        model = bearing_model(par, quad)
+        model = bearing_model(history, par, quad)
         y = y0.copy()
         work = method.workspace(model, y.shape[0], 0.0, h0)
         control = step_control(1e-4, scale, 1e-6 * h0, 1, event_times)

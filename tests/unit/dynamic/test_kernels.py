@@ -41,7 +41,7 @@ def _axis_angle_quat(w, t):
 
 def test_quaternion_rate_matches_exact_rotation():
     """q' from the RHS equals the derivative of q(t) = exp(w t) (x) q0 for constant inertial w."""
-    par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
+    history, par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
     rng = np.random.default_rng(1)
     y = np.zeros(L.state_size(18))
     for j in range(18):
@@ -51,7 +51,7 @@ def test_quaternion_rate_matches_exact_rotation():
         q0 = rng.normal(size=4)
         y[b + L.B_QUAT : b + L.B_QUAT + 4] = q0 / np.linalg.norm(q0)
         y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = rng.normal(size=3) * 100.0
-    dydt, *_ = evaluate(y, par, quad)
+    dydt, *_ = evaluate(y, history, par, quad)
     h = 1e-6
     for j in range(18):
         b = L.ball_base(j)
@@ -84,7 +84,7 @@ def test_rotation_vector_is_rodrigues():
 def test_ring_frames_tilt_modes(mode):
     """Space-fixed tilt: the ring axis stays put as the ring turns; ring-fixed tilt: it
     precesses."""
-    par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
+    history, par, quad, _ = setup(spindle_inputs(), traction=False, cage=False)
     par = par._replace(tilt_mode=mode)
     z = 18
     rb = L.ring_base(z)
@@ -95,7 +95,7 @@ def test_ring_frames_tilt_modes(mode):
         y[rb + L.R_PHI_INNER] = phi
         rot, org, vel, om = np.empty((3, 3)), np.empty(3), np.empty(3), np.empty(3)
         orot, oom = np.empty((3, 3)), np.empty(3)
-        ring_frames(y, par, drive_at_start(par), rot, org, vel, om, orot, oom)
+        ring_frames(y, par, drive_at_start(history), rot, org, vel, om, orot, oom)
         np.testing.assert_allclose(rot.T @ rot, np.eye(3), atol=1e-14)
         axes.append(rot[:, 0].copy())
     # tilt about z by 0.01 rad turns e_x towards +y
@@ -119,9 +119,9 @@ def _nominal_state(z, dm):
 
 def test_just_touching_state_has_zero_deflection_and_free_contact_angle():
     inp = spindle_inputs()
-    par, quad, _ = setup(inp, traction=False, cage=False)
+    history, par, quad, _ = setup(inp, traction=False, cage=False)
     y = _nominal_state(18, inp.geometry.pitch_diameter)
-    _, ri, ro, _ = evaluate(y, par, quad)
+    _, ri, ro, _ = evaluate(y, history, par, quad)
     np.testing.assert_allclose(ri[:, L.K_DEFLECTION], 0.0, atol=1e-15)
     np.testing.assert_allclose(ro[:, L.K_DEFLECTION], 0.0, atol=1e-15)
     np.testing.assert_allclose(ri[:, L.K_ANGLE], inp.geometry.free_contact_angle, atol=1e-12)
@@ -137,7 +137,7 @@ def test_axial_shift_matches_rigid_ring_closed_form_and_exact_hertz():
     of the curvature centres). Loads must be the exact Hertz loads for those approaches."""
     inp = spindle_inputs()
     g = inp.geometry
-    par, quad, _ = setup(inp, traction=False, cage=False, damping_ratio=0.0)
+    history, par, quad, _ = setup(inp, traction=False, cage=False, damping_ratio=0.0)
     z = g.ball_count
     y = _nominal_state(z, g.pitch_diameter)
     da = 8e-6
@@ -157,7 +157,7 @@ def test_axial_shift_matches_rigid_ring_closed_form_and_exact_hertz():
         y[b] = centre[0]
         y[b + 1] = centre[1] * math.cos(psi)
         y[b + 2] = centre[1] * math.sin(psi)
-    _, ri, ro, _ = evaluate(y, par, quad)
+    _, ri, ro, _ = evaluate(y, history, par, quad)
     np.testing.assert_allclose(ri[:, L.K_DEFLECTION] + ro[:, L.K_DEFLECTION], total, rtol=1e-9)
     np.testing.assert_allclose(ri[:, L.K_ANGLE], alpha, atol=1e-10)
     np.testing.assert_allclose(ro[:, L.K_ANGLE], alpha, atol=1e-10)
@@ -172,8 +172,8 @@ def test_initial_state_is_in_equilibrium():
     """At the quasi-static start the contact forces supply exactly the centripetal force and balance
     the applied load on the ring (traction and damping off, so only the normal laws act)."""
     inp = spindle_inputs(radial=300.0)
-    par, quad, y0 = start(inp, traction=False, damping_ratio=0.0, cage=False, gravity=0.0)
-    dydt, ri, ro, _ = evaluate(y0, par, quad)
+    history, par, quad, y0 = start(inp, traction=False, damping_ratio=0.0, cage=False, gravity=0.0)
+    dydt, ri, ro, _ = evaluate(y0, history, par, quad)
     z = 18
     cb = L.cage_base(z)
     wc = y0[cb + L.C_SPEED]
@@ -201,14 +201,14 @@ def test_newton_third_law_ball_inner_ring():
     """With traction on and arbitrary slips, the inner-ring contact forces and moments on the balls
     are equal and opposite to those on the ring (moments about the ring centre)."""
     inp = spindle_inputs(radial=300.0)
-    par, quad, y0 = start(inp)
+    history, par, quad, y0 = start(inp)
     rng = np.random.default_rng(3)
     y = y0.copy()
     for j in range(18):
         b = L.ball_base(j)
         y[b + L.B_VEL : b + L.B_VEL + 3] += rng.normal(size=3) * 0.5
         y[b + L.B_OMEGA : b + L.B_OMEGA + 3] += rng.normal(size=3) * 50.0
-    _, ri, _, _ = evaluate(y, par, quad)
+    _, ri, _, _ = evaluate(y, history, par, quad)
     rb = L.ring_base(18)
     ring_c = y[rb : rb + 3]
     f_ball = ri[:, L.K_F_BALL : L.K_F_BALL + 3].sum(axis=0)
@@ -231,7 +231,9 @@ def test_newton_third_law_ball_inner_ring():
 
 def _outer_contact_setup(mu, heathcote=False, quadrature=(4, 8)):
     inp = spindle_inputs()
-    par, quad, y0 = start(inp, heathcote=heathcote, quadrature=quadrature, damping_ratio=0.0)
+    history, par, quad, y0 = start(
+        inp, heathcote=heathcote, quadrature=quadrature, damping_ratio=0.0
+    )
     # the slip-curve law with a constant (Coulomb) coefficient
     par = par._replace(traction_law=LAW_SLIP_CURVE, traction_curve=(0.0, 0.0, 0.0, mu))
     par = par._replace(slip_regularisation=1e-9)
@@ -239,17 +241,17 @@ def _outer_contact_setup(mu, heathcote=False, quadrature=(4, 8)):
     b = L.ball_base(0)
     y[b + L.B_VEL : b + L.B_VEL + 3] = 0.0
     y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = 0.0
-    return par, quad, y, b
+    return history, par, quad, y, b
 
 
 def test_pure_sliding_gives_coulomb_force_opposite_to_slip():
     mu = 0.07
-    par, quad, y, b = _outer_contact_setup(mu)
-    _, _, ro, _ = evaluate(y, par, quad)
+    history, par, quad, y, b = _outer_contact_setup(mu)
+    _, _, ro, _ = evaluate(y, history, par, quad)
     n = ro[0, L.K_NORMAL : L.K_NORMAL + 3]
     # rolling direction at ball 0 (azimuth 0): e_theta = +z
     y[b + L.B_VEL + 2] = 3.0
-    _, _, ro, _ = evaluate(y, par, quad)
+    _, _, ro, _ = evaluate(y, history, par, quad)
     q = ro[0, L.K_LOAD]
     f = ro[0, L.K_F_BALL : L.K_F_BALL + 3] + q * n
     np.testing.assert_allclose(f, [0.0, 0.0, -mu * q], atol=1e-9 * q)
@@ -265,11 +267,11 @@ def test_pure_spin_moment_matches_ellipse_integral():
     -mu * integral of p(xi, eta) * radius over the Hertz ellipse (independent scipy integral); a
     single-point traction model would give zero."""
     mu = 0.05
-    par, quad, y, b = _outer_contact_setup(mu, quadrature=(12, 24))
-    _, _, ro, _ = evaluate(y, par, quad)
+    history, par, quad, y, b = _outer_contact_setup(mu, quadrature=(12, 24))
+    _, _, ro, _ = evaluate(y, history, par, quad)
     n = ro[0, L.K_NORMAL : L.K_NORMAL + 3]
     y[b + L.B_OMEGA : b + L.B_OMEGA + 3] = 200.0 * n
-    _, _, ro, _ = evaluate(y, par, quad)
+    _, _, ro, _ = evaluate(y, history, par, quad)
     q, a, bb = ro[0, L.K_LOAD], ro[0, L.K_SEMI_MAJOR], ro[0, L.K_SEMI_MINOR]
     pmax = 1.5 * q / (math.pi * a * bb)
 
@@ -300,10 +302,10 @@ def test_contact_forces_nearly_balance_at_the_quasistatic_state(radial):
     from solver.models.dynamic.initial import initial_state_from_quasistatic, quasistatic_solution
 
     inp = spindle_inputs(radial=radial)
-    par, quad, _ = setup(inp, traction=False, damping_ratio=0.0, cage=False, gravity=0.0)
+    history, par, quad, _ = setup(inp, traction=False, damping_ratio=0.0, cage=False, gravity=0.0)
     qs = quasistatic_solution(inp)
     y = initial_state_from_quasistatic(par, qs)
-    dydt, ri, ro, _ = evaluate(y, par, quad)
+    dydt, ri, ro, _ = evaluate(y, history, par, quad)
     q_mean = float(np.mean(qs.contact_load))
     mb = par.ball_mass
     for j in range(18):
@@ -330,7 +332,7 @@ def test_pocket_force_frame_transform_and_cage_reaction():
     force and the moment R x F about its axis."""
     from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_frame, cage_pocket
 
-    par, quad, y0 = start(spindle_inputs(), friction_regularisation=1e-3)
+    history, par, quad, y0 = start(spindle_inputs(), friction_regularisation=1e-3)
     y = y0.copy()
     z = 18
     cb = L.cage_base(z)
@@ -364,10 +366,10 @@ def test_gravity_acts_along_minus_z_on_balls_cage_and_inner_ring():
     """Free balls (just-touching positions, no deflection), a centred cage at rest and the free
     inner ring fall with acceleration g along -z of the inertial frame."""
     inp = spindle_inputs(axial=0.0)
-    par, quad, _ = setup(inp, gravity=9.81)
-    par = par._replace(history=steady_history(replace(inp.operating, axial_load=0.0)))
+    history, par, quad, _ = setup(inp, gravity=9.81)
+    history = steady_history(replace(inp.operating, axial_load=0.0))
     y = _nominal_state(18, inp.geometry.pitch_diameter)
-    dydt, *_ = evaluate(y, par, quad)
+    dydt, *_ = evaluate(y, history, par, quad)
     for j in range(18):
         b = L.ball_base(j)
         np.testing.assert_allclose(dydt[b + 3 : b + 6], [0.0, 0.0, -9.81], atol=1e-9)
@@ -383,7 +385,7 @@ def test_tilted_cage_pocket_follows_the_cage():
     receives the moment of the reaction about its centre (which now has y/z components)."""
     from solver.models.dynamic.kernels import TRACTION_WORK_SIZE, cage_frame, cage_pocket
 
-    par, quad, y0 = start(spindle_inputs())
+    history, par, quad, y0 = start(spindle_inputs())
     y = y0.copy()
     cb = L.cage_base(18)
     y[cb : cb + L.CAGE_SIZE] = 0.0
@@ -423,7 +425,7 @@ def test_cage_drag_moment_acts_on_the_cage_spin():
     from solver.physics.drag import cage_drag_moment
 
     inp = spindle_inputs(rpm=20000.0, axial=500.0)
-    par, quad, y = start(inp)
+    history, par, quad, y = start(inp)
     cb = L.cage_base(18)
     wc = y[cb + L.C_SPEED]
     assert wc > 0.0
@@ -436,14 +438,14 @@ def test_cage_drag_moment_acts_on_the_cage_spin():
     moment, power = cage_drag(y, cb, par)
     assert moment == pytest.approx(m, rel=1e-12)
     assert power == pytest.approx(-m * wc, rel=1e-12)
-    dydt, *_ = evaluate(y, par, quad)
+    dydt, *_ = evaluate(y, history, par, quad)
     bare = par._replace(cage_drag_laminar=0.0, cage_drag_turbulent=0.0)
-    dydt_bare, *_ = evaluate(y, bare, quad)
+    dydt_bare, *_ = evaluate(y, history, bare, quad)
     accel = dydt[cb + L.C_SPEED] - dydt_bare[cb + L.C_SPEED]
     assert accel == pytest.approx(m / par.cage_polar_inertia, rel=1e-9)
     assert cage_drag(y, cb, par._replace(traction=False)) == (0.0, 0.0)
     wetter = replace(inp, lubricant=replace(oil, oil_volume_fraction=0.05))
-    par_wet, *_ = setup(wetter)
+    _, par_wet, *_ = setup(wetter)
     assert cage_drag(y, cb, par_wet)[0] < moment
 
 
@@ -455,13 +457,13 @@ def test_observed_and_stage_evaluations_share_one_compiled_body():
     caller brought it along, hence at most one per signature of its caller)."""
     from solver.models.dynamic.kernels import _rhs_borrowed, rhs_into, rhs_work
 
-    par, quad, y0 = start(spindle_inputs(radial=300.0))
+    history, par, quad, y0 = start(spindle_inputs(radial=300.0))
     z = int(par.ball_count)
-    dydt, rec_i, rec_o, _ = evaluate(y0, par, quad)
+    dydt, rec_i, rec_o, _ = evaluate(y0, history, par, quad)
     stage = np.zeros_like(y0)
     stage_i = np.zeros((z, L.N_CONTACT_RECORD))
     stage_o = np.zeros((z, L.N_CONTACT_RECORD))
-    rhs_into(y0, 0.0, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
+    rhs_into(y0, 0.0, history, par, quad, stage, stage_i, stage_o, np.zeros(z), rhs_work(z), False)
     np.testing.assert_array_equal(stage, dydt)
     assert np.isfinite(rec_i[:, L.K_ANGLE]).all() and np.isnan(stage_i[:, L.K_ANGLE]).all()
     assert np.isnan(stage_o[:, L.K_ELASTIC]).all() and (rec_o[:, L.K_ELASTIC] > 0.0).all()
@@ -488,18 +490,18 @@ def test_right_hand_side_reads_the_operating_history_at_its_time():
     from tests.helpers.histories import with_history
 
     inp = spindle_inputs(axial=500.0, radial=300.0, misalignment=math.radians(0.02))
-    par, quad, y = start(inp)
+    history, par, quad, y = start(inp)
     speed = inp.operating.inner_ring_speed
     channels = {
         CH_INNER_SPEED: ChannelHistory((0.0, 1e-3), (speed, 2.0 * speed)),
         CH_MISALIGNMENT: ChannelHistory((0.0, 1e-3), (math.radians(0.02), math.radians(0.06))),
         CH_RADIAL_LOAD: ChannelHistory((5e-4, 5e-4), (300.0, 900.0)),
     }
-    par = par._replace(history=with_history(inp, channels, 1e-3, 1e4).history)
+    history = with_history(inp, channels, 1e-3, 1e4).history
     rb = L.ring_base(18)
     t = 2.5e-4
-    dydt, *_ = evaluate(y, par, quad, t)
-    drive = drive_at(par.history, t, y[rb + L.R_PHI_INNER])
+    dydt, *_ = evaluate(y, history, par, quad, t)
+    drive = drive_at(history, t, y[rb + L.R_PHI_INNER])
     assert dydt[rb + L.R_PHI_INNER] == pytest.approx(1.25 * speed, rel=1e-12)
     rate = math.radians(0.04) / 1e-3
     assert math.hypot(dydt[rb + L.R_TILT], dydt[rb + L.R_TILT + 1]) == pytest.approx(rate)
@@ -512,7 +514,7 @@ def test_right_hand_side_reads_the_operating_history_at_its_time():
     ring_frames(y, par, still, rot, org, vel, om_still, orot, oom)
     expected = [0.0, drive.tilt_rate_y, drive.tilt_rate_z]
     np.testing.assert_allclose(om - om_still, expected, atol=1e-12 * rate)
-    before, *_ = evaluate(y, par, quad, np.nextafter(5e-4, 0.0))
-    after, *_ = evaluate(y, par, quad, 5e-4)
+    before, *_ = evaluate(y, history, par, quad, np.nextafter(5e-4, 0.0))
+    after, *_ = evaluate(y, history, par, quad, 5e-4)
     step = after[rb + L.R_VEL : rb + L.R_VEL + 3] - before[rb + L.R_VEL : rb + L.R_VEL + 3]
     np.testing.assert_allclose(step, [0.0, 600.0 / par.ring_mass, 0.0], rtol=1e-9, atol=1e-6)

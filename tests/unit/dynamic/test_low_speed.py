@@ -12,8 +12,10 @@ import numpy as np
 import pytest
 
 from solver.errors import CaseError
+from solver.history import CH_INNER_SPEED, CH_OUTER_SPEED
 from solver.models.dynamic import SimulationOptions, simulate
 from solver.models.dynamic import layout as L
+from solver.models.dynamic.params import drive_at_start
 from solver.physics.rheology import ENTRAINMENT_FLOOR
 from tests.helpers.cases import spindle_inputs
 from tests.helpers.dyn_helpers import evaluate, integrate_states, start
@@ -33,9 +35,11 @@ def rheology_bearing():
     return start(inputs)
 
 
-def _scaled(par, y0, factor):
-    """Parameters and state with every speed (ring, balls, cage) times ``factor``: the same
-    contact geometry and loads, every slip and entrainment speed times ``factor``."""
+def _scaled(history, par, y0, factor):
+    """Operating history and state with every speed (rings, balls, cage) times ``factor``: the
+    same contact geometry and loads, every slip and entrainment speed times ``factor``."""
+    values = history.values.copy()
+    values[[CH_INNER_SPEED, CH_OUTER_SPEED]] *= factor
     z = int(par.ball_count)
     y = y0.copy()
     for j in range(z):
@@ -43,14 +47,14 @@ def _scaled(par, y0, factor):
         y[b + L.B_VEL : b + L.B_VEL + 3] *= factor
         y[b + L.B_OMEGA : b + L.B_OMEGA + 3] *= factor
     y[L.cage_base(z) + L.C_SPEED] *= factor
-    return par._replace(inner_speed=par.inner_speed * factor), y
+    return history._replace(values=values), y
 
 
-def _inner_contact(par, quad, y0, factor):
+def _inner_contact(history, par, quad, y0, factor):
     """(tangential force on ball 0 at the inner race [N, inertial], film [m], entrainment
     [m/s]) of one right-hand-side evaluation with every speed times ``factor``."""
-    par, y = _scaled(par, y0, factor)
-    _, rec_i, _, _ = evaluate(y, par, quad)
+    history, y = _scaled(history, par, y0, factor)
+    _, rec_i, _, _ = evaluate(y, history, par, quad)
     r = rec_i[0]
     n = r[L.K_NORMAL : L.K_NORMAL + 3]
     force = r[L.K_F_BALL : L.K_F_BALL + 3]
@@ -60,11 +64,11 @@ def _inner_contact(par, quad, y0, factor):
 def test_the_rheology_traction_goes_to_zero_with_the_speeds_linearly_below_the_floor(
     rheology_bearing,
 ):
-    par, quad, y0 = rheology_bearing
+    history, par, quad, y0 = rheology_bearing
     factors = np.logspace(-8, 0, 49)
     forces, films, speeds = [], [], []
     for factor in factors:
-        force, film, speed = _inner_contact(par, quad, y0, factor)
+        force, film, speed = _inner_contact(history, par, quad, y0, factor)
         forces.append(force)
         films.append(film)
         speeds.append(speed)
@@ -90,14 +94,14 @@ def test_the_rheology_traction_goes_to_zero_with_the_speeds_linearly_below_the_f
     # and film are continuous through the floor
     film_running, speed_running = films[-1], speeds[-1]
     floor = ENTRAINMENT_FLOOR / speed_running  # the factor that puts the speed at the floor
-    _, film_a, speed_a = _inner_contact(par, quad, y0, 0.5 * floor)
-    _, film_b, speed_b = _inner_contact(par, quad, y0, 0.5e-3 * floor)
+    _, film_a, speed_a = _inner_contact(history, par, quad, y0, 0.5 * floor)
+    _, film_b, speed_b = _inner_contact(history, par, quad, y0, 0.5e-3 * floor)
     assert speed_a < ENTRAINMENT_FLOOR
     # (to 1e-4: the inlet thermal reduction of u_min reads the slide-to-roll ratio)
     assert film_b / film_a == pytest.approx((speed_b / speed_a) ** 0.67, rel=1e-4)
     # continuous through the floor: just below and just above it
-    under = _inner_contact(par, quad, y0, floor * (1.0 - 1e-9))
-    over = _inner_contact(par, quad, y0, floor * (1.0 + 1e-9))
+    under = _inner_contact(history, par, quad, y0, floor * (1.0 - 1e-9))
+    over = _inner_contact(history, par, quad, y0, floor * (1.0 + 1e-9))
     assert under[2] < ENTRAINMENT_FLOOR < over[2]
     assert under[1] == pytest.approx(over[1], rel=1e-6)
     np.testing.assert_allclose(under[0], over[0], rtol=1e-6, atol=1e-9)
@@ -110,13 +114,15 @@ def test_a_bearing_at_rest_under_load_stays_put_and_feels_no_friction_jump():
     ball turning by a few nm/s at its contacts feels a traction in proportion (without the
     floor, a contact at rest has no film, and any slip above 1 nm/s met the full limiting shear
     stress: a jump of about 0.07 of the load at zero slip)."""
-    par, quad, y0 = start(_at_speed(spindle_inputs(axial=500.0), 0.0))
+    history, par, quad, y0 = start(_at_speed(spindle_inputs(axial=500.0), 0.0))
     times = np.linspace(0.0, 1e-4, 6)
-    states, progress = integrate_states(par, quad, y0, times, tolerance=1e-4, method="auto")
+    states, progress = integrate_states(
+        history, par, quad, y0, times, tolerance=1e-4, method="auto"
+    )
     assert np.isfinite(states).all()
     z = int(par.ball_count)
     assert np.abs(states[:, L.cage_base(z) + L.C_SPEED]).max() < 1e-6  # rad/s: nothing drives it
-    _, rec_i, rec_o, _ = evaluate(states[-1], par, quad)
+    _, rec_i, rec_o, _ = evaluate(states[-1], history, par, quad)
     loads = np.concatenate((rec_i[:, L.K_LOAD], rec_o[:, L.K_LOAD]))
     assert loads.min() > 0.0  # every ball still held by the preload
     assert int(progress["accepted"]) < 3000
@@ -124,9 +130,9 @@ def test_a_bearing_at_rest_under_load_stays_put_and_feels_no_friction_jump():
     for spin in (1e-6, 2e-6):  # rad/s about the bearing axis: slips of 3.6 and 7.2 nm/s
         y = y0.copy()
         y[L.ball_base(0) + L.B_OMEGA] = spin
-        force, _, _ = _inner_contact(par, quad, y, 1.0)
+        force, _, _ = _inner_contact(history, par, quad, y, 1.0)
         forces.append(np.linalg.norm(force))
-    load = evaluate(y0, par, quad)[1][0, L.K_LOAD]
+    load = evaluate(y0, history, par, quad)[1][0, L.K_LOAD]
     assert 0.0 < forces[0] < 1e-3 * load
     assert forces[1] == pytest.approx(2.0 * forces[0], rel=1e-3)
 
@@ -134,13 +140,16 @@ def test_a_bearing_at_rest_under_load_stays_put_and_feels_no_friction_jump():
 def test_a_run_at_one_rpm_with_load_stays_finite_and_rolling():
     """The spindle (rheology) at 1 rpm, every contact below u_min: 0.1 ms; the regularised law
     costs fewer steps than the vanishing film did."""
-    par, quad, y0 = start(_at_speed(spindle_inputs(axial=500.0), 1.0))
+    history, par, quad, y0 = start(_at_speed(spindle_inputs(axial=500.0), 1.0))
     times = np.linspace(0.0, 1e-4, 6)
-    states, progress = integrate_states(par, quad, y0, times, tolerance=1e-4, method="auto")
+    states, progress = integrate_states(
+        history, par, quad, y0, times, tolerance=1e-4, method="auto"
+    )
     assert np.isfinite(states).all()
     cage = states[:, L.cage_base(int(par.ball_count)) + L.C_SPEED]
     assert cage[-1] == pytest.approx(cage[0], rel=0.01)  # the rolling speed, about half the shaft's
-    assert 0.4 * par.inner_speed < cage[0] < 0.5 * par.inner_speed
+    inner_speed = drive_at_start(history).inner_speed
+    assert 0.4 * inner_speed < cage[0] < 0.5 * inner_speed
     assert int(progress["accepted"]) < 3000  # 2 340 (without the floor: 5 141)
 
 

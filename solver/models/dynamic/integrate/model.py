@@ -1,7 +1,7 @@
 """The bearing model as the steppers see it: one record and the two kernels they call.
 
 The steppers call the model only through :func:`evaluate` (the right-hand side at a state and a
-time: the operating history in the parameter record ``par.history`` is read at that time) and
+time: the model's operating history ``history`` is read at that time) and
 :func:`after_step` (run after every accepted step: the dynamic model renormalises its quaternions
 there and reports a ball that left the raceways). numba compiles a function passed as an argument
 anew in every process, so the kernels are bound here by import rather than passed in; a model of
@@ -23,17 +23,19 @@ from ..unliteral import runtime_bool
 class BearingModel(NamedTuple):
     """What the right-hand side reads besides the state, and the records it writes."""
 
-    par: tuple  # solver.models.dynamic.params.ModelParams (with the operating history)
+    history: tuple  # solver.history.HistoryRecord: the imposed inputs against time
+    par: tuple  # solver.models.dynamic.params.ModelParams
     quad: np.ndarray  # ellipse quadrature nodes (params.build_quadrature)
     rec_inner: np.ndarray  # (Z, layout.N_CONTACT_RECORD) inner contact records, written
     rec_outer: np.ndarray  # (Z, layout.N_CONTACT_RECORD) outer contact records, written
     pocket: np.ndarray  # (Z,) pocket normal forces [N], written
 
 
-def bearing_model(par, quad) -> BearingModel:
+def bearing_model(history, par, quad) -> BearingModel:
     """A :class:`BearingModel` with fresh contact records."""
     z = int(par.ball_count)
     return BearingModel(
+        history,
         par,
         quad,
         np.zeros((z, L.N_CONTACT_RECORD)),
@@ -54,6 +56,7 @@ def evaluate(y, t, model, out, rhs):
     rhs_into(
         y,
         t,
+        model.history,
         model.par,
         model.quad,
         out,
