@@ -291,7 +291,7 @@ def build_dataset(
     balance = energy_balance(ds, float(metrics["analysis_start_time"]))
     spec = variable("energy_balance_residual")
     ds["energy_balance_residual"] = ((), np.float64(balance.residual), spec.attrs())
-    return with_estimates(ds, inputs)
+    return with_estimates(ds, inputs, summary_point)  # the final phase, as the summary
 
 
 def load_work(states: np.ndarray, times: np.ndarray, history, par) -> np.ndarray:
