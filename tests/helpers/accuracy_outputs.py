@@ -85,7 +85,10 @@ RESIDUAL_LIMIT = 0.01
 #: has per-ball mean contact angles at tolerance 3e-6 and 1e-5 3.33 x ANGLE_DEG (0.017 deg) apart,
 #: at the default 1e-4 3.97 x; no tolerance reproduces them closer, and the allowance is twice the
 #: reference runs' own spread (as the trajectory contract's long window, tests/helpers/accuracy.py).
-CASE_ALLOWANCE = {"218-heavy-combined": {"contact_angle": 6.7}}
+#: Its per-ball mean contact loads of two tolerance-1e-5 runs (the stored reference and a run of the
+#: same case after the operating-history change of the right-hand side, which reorders its
+#: arithmetic) are 0.89 x LOAD_RELATIVE apart: the load allowance is twice that.
+CASE_ALLOWANCE = {"218-heavy-combined": {"contact_angle": 6.7, "contact_load": 1.8}}
 
 
 def case_inputs(label: str):
