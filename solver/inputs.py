@@ -29,6 +29,7 @@ from .history import (
     HistoryRecord,
     channel_value,
     history_record,
+    operating_values,
 )
 from .history.integral import channel_integral
 from .materials import Material
@@ -527,19 +528,9 @@ def operating_history(histories: dict, operating: OperatingPoint) -> HistoryReco
         channels[channel] = history.channel(scale)
         if history.with_shaft:
             frame = FRAME_INNER_RING
-    op = operating
-    base = {
-        CH_INNER_SPEED: op.inner_ring_speed,
-        CH_OUTER_SPEED: op.outer_ring_speed,
-        CH_AXIAL_LOAD: op.axial_load,
-        CH_RADIAL_LOAD: op.radial_load,
-        CH_RADIAL_LOAD_ANGLE: op.radial_load_angle,
-        CH_MISALIGNMENT: op.misalignment,
-        CH_MISALIGNMENT_AXIS: op.misalignment_axis,
-        CH_TILTING_MOMENT: op.tilting_moment if op.tilting_moment is not None else 0.0,
-        CH_MOMENT_AXIS: op.moment_axis,
-    }
-    return history_record(channels, base, frame, op.tilting_moment is not None)
+    return history_record(
+        channels, operating_values(operating), frame, operating.tilting_moment is not None
+    )
 
 
 def operating_at(inputs: Inputs, t: float) -> OperatingPoint:

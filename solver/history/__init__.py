@@ -28,6 +28,7 @@ from .record import (
     HistoryRecord,
     event_times,
     history_record,
+    operating_values,
     steady_history,
 )
 
@@ -55,5 +56,6 @@ __all__ = [
     "drive_at",
     "event_times",
     "history_record",
+    "operating_values",
     "steady_history",
 ]

@@ -152,21 +152,21 @@ def history_record(
     )
 
 
+def operating_values(operating) -> dict[int, float]:
+    """Every channel's value (channel constant -> SI value) at a
+    :class:`solver.inputs.OperatingPoint`: the fields named by :data:`CHANNEL_NAMES`, a moment of
+    None (imposed tilt) as 0."""
+    values = {c: getattr(operating, name) for c, name in enumerate(CHANNEL_NAMES)}
+    if values[CH_TILTING_MOMENT] is None:
+        values[CH_TILTING_MOMENT] = 0.0
+    return values
+
+
 def steady_history(operating) -> HistoryRecord:
     """The constant history of a :class:`solver.inputs.OperatingPoint`."""
-    op = operating
-    base = {
-        CH_INNER_SPEED: op.inner_ring_speed,
-        CH_OUTER_SPEED: op.outer_ring_speed,
-        CH_AXIAL_LOAD: op.axial_load,
-        CH_RADIAL_LOAD: op.radial_load,
-        CH_RADIAL_LOAD_ANGLE: op.radial_load_angle,
-        CH_MISALIGNMENT: op.misalignment,
-        CH_MISALIGNMENT_AXIS: op.misalignment_axis,
-        CH_TILTING_MOMENT: op.tilting_moment if op.tilting_moment is not None else 0.0,
-        CH_MOMENT_AXIS: op.moment_axis,
-    }
-    return history_record({}, base, FRAME_SPACE, op.tilting_moment is not None)
+    return history_record(
+        {}, operating_values(operating), FRAME_SPACE, operating.tilting_moment is not None
+    )
 
 
 def event_times(record: HistoryRecord, start: float, end: float) -> np.ndarray:
