@@ -75,8 +75,22 @@ def test_case_allowance_widens_only_its_own_output():
     worst = A.deviations(dict(reference, contact_angle_deg=moved), reference)
     assert A.within_contract("218-heavy-combined", worst)
     assert not A.within_contract("spindle-combined-load", worst)
-    loads = [[q * 1.0021 for q in ball] for ball in reference["contact_load_N"]]
+    # an output the case has no allowance for keeps the plain contract
+    torque = reference["friction_torque_N_m"] * (1 + 1.01 * A.TORQUE_RELATIVE)
+    assert "friction_torque" not in A.CASE_ALLOWANCE["218-heavy-combined"]
     assert not A.within_contract(
+        "218-heavy-combined",
+        A.deviations(dict(reference, friction_torque_N_m=torque), reference),
+    )
+    # and an allowed output is still bounded: just past its allowance fails
+    factor = 1 + 1.01 * A.LOAD_RELATIVE * A.CASE_ALLOWANCE["218-heavy-combined"]["contact_load"]
+    loads = [[q * factor for q in ball] for ball in reference["contact_load_N"]]
+    assert not A.within_contract(
+        "218-heavy-combined", A.deviations(dict(reference, contact_load_N=loads), reference)
+    )
+    inside = 1 + 0.99 * A.LOAD_RELATIVE * A.CASE_ALLOWANCE["218-heavy-combined"]["contact_load"]
+    loads = [[q * inside for q in ball] for ball in reference["contact_load_N"]]
+    assert A.within_contract(
         "218-heavy-combined", A.deviations(dict(reference, contact_load_N=loads), reference)
     )
 
