@@ -51,14 +51,13 @@ from solver.history import (
     history_record,
 )
 from solver.inputs import HISTORY_CHANNELS, operating_at, rad_s_to_rpm, to_inputs
-from solver.results.variables import COORDINATES
 
 from . import layout as L
 from .integrate import stepper
 from .integrate.control import STATUS_OK, step_control
 from .integrate.model import bearing_model
 from .options import SimulationOptions
-from .output import ANGLE_CHANNELS, build_dataset, imposed_inputs
+from .output import build_dataset, chunk_dataset
 from .params import build_params, build_quadrature
 from .simulate import _DIVERGENCE_CAUSES, RunStatistics, _start, state_scales
 
@@ -481,25 +480,21 @@ class LiveSimulation:
             self._recorded += kept.shape[0]
 
     def _chunk_dataset(self, times: np.ndarray, states: np.ndarray):
-        inputs = self._inputs_now()
-        period = self._period(times)
-        stats = self._stats
-        stats.wall_time = self._integration_wall
-        ds = build_dataset(
-            inputs,
+        self._stats.wall_time = self._integration_wall
+        unused = _unused_channels(self._tilt_free)
+        ds = chunk_dataset(
+            self._inputs_now(),
             self._options,
             self._history,
             self._par,
             self._quad,
             times,
             states,
-            period,
-            False,
-            "live",
-            stats,
+            self._period(times),
+            self._stats,
+            [c for c in range(N_CHANNELS) if c not in unused],
             self._quasistatic,
         )
-        ds = _with_all_inputs(ds, self._history, states, self.input_names, self._par)
         ds.attrs["initial_state"] = self._start_note
         ds.attrs["live_ramp_s"] = LIVE_RAMP
         return ds
@@ -544,20 +539,3 @@ def _finite(name: str, value, what: str) -> float:
 def _case_number(value: float) -> float:
     """A value in case units as the case file holds it: a float, -0 as 0."""
     return float(value) + 0.0
-
-
-def _with_all_inputs(ds, history, states, names, par):
-    """``ds`` with every input of ``names`` as a data variable over ``time`` (angles in degree),
-    so that every chunk of a session has the same variables."""
-    z = int(par.ball_count)
-    imposed = imposed_inputs(history, ds["time"].values, states[:, L.ring_base(z) + L.R_PHI_INNER])
-    for name in names:
-        if name in ds.data_vars:
-            continue
-        values = imposed[CHANNEL_NAMES.index(name)]
-        if name in ANGLE_CHANNELS:
-            values = np.degrees(values)
-        if name in ds.coords:
-            ds = ds.drop_vars(name)
-        ds[name] = (("time",), values, COORDINATES[name].attrs())
-    return ds
