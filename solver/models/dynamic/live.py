@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
@@ -62,11 +63,12 @@ from .params import build_params, build_quadrature
 from .simulate import _DIVERGENCE_CAUSES, RunStatistics, _start, state_scales
 
 #: Simulated time [s] over which a change of an input ramps (linearly) from its current value to
-#: the one set. 0.02 s is 6.7 shaft revolutions at 20 000 rpm: short against what a user watches
-#: (the live view draws the last revolutions) yet long against the contacts' natural periods
-#: (~10 us), so a change does not ring the balls like a step. In wall time it takes 0.02 s divided
-#: by the session's simulated seconds per wall second (docs/live.md).
-LIVE_RAMP = 0.02
+#: the one set. 0.002 s is two thirds of a shaft revolution at 20 000 rpm and about 200 periods of
+#: the ball-race contacts' vibration (~10 us), so a change does not ring the balls like a step; in
+#: wall time it is 0.002 s times the session's wall seconds per simulated second (about 0.2 s on
+#: the spindle case on one free core, docs/live.md), so a change is complete in the picture within
+#: the 0.5 s the live view allows.
+LIVE_RAMP = 0.002
 
 #: The case key of each channel (its unit: :data:`solver.inputs.HISTORY_CHANNELS`).
 CHANNEL_KEYS = {channel: key for key, (channel, _) in HISTORY_CHANNELS.items()}
@@ -86,6 +88,17 @@ class _Table:
 
     def channel(self) -> ChannelHistory:
         return ChannelHistory(tuple(self.times), tuple(self.values))
+
+
+class AdvanceTiming(NamedTuple):
+    """What the last :meth:`LiveSimulation.advance` cost: the simulated time it added [s], the
+    wall and CPU (``time.process_time``) seconds of its integration, and the wall seconds of
+    building its Dataset."""
+
+    simulated_s: float
+    integration_wall_s: float
+    integration_cpu_s: float
+    dataset_wall_s: float
 
 
 class LiveSimulation:
@@ -157,6 +170,8 @@ class LiveSimulation:
         self._recorded = 1  # samples in the record
         self._diverged = None  # the divergence message, once diverged
         self._integration_wall = 0.0
+        #: :class:`AdvanceTiming` of the last :meth:`advance` (None before the first)
+        self.last_advance: AdvanceTiming | None = None
 
     def _rebuild_history(self) -> None:
         channels = {c: table.channel() for c, table in self._tables.items()}
@@ -263,6 +278,7 @@ class LiveSimulation:
         done = 0
         progress = self._work.progress
         begin = _time.perf_counter()
+        begin_cpu = _time.process_time()
         while done < count:
             stop = min(done + self._options.chunk_samples, count)
             self._method.advance(
@@ -277,15 +293,22 @@ class LiveSimulation:
                 )
                 self._diverged = f"live simulation diverged at t = {t:.6g} s: {cause}"
                 break
-        self._integration_wall += _time.perf_counter() - begin
+        integration = _time.perf_counter() - begin
+        integration_cpu = _time.process_time() - begin_cpu
+        self._integration_wall += integration
         times, states = times[:done], states[:done]
         self._sample += done
         self._keep(states)
+        begin = _time.perf_counter()
+        ds = self._chunk_dataset(times, states) if done else None
+        self.last_advance = AdvanceTiming(
+            done / self._rate, integration, integration_cpu, _time.perf_counter() - begin
+        )
         if self._diverged is not None:
             error = SimulationDiverged(self._diverged)
-            error.dataset = self._chunk_dataset(times, states) if done else None
+            error.dataset = ds
             raise error
-        return self._chunk_dataset(times, states)
+        return ds
 
     def reset(self) -> None:
         """Back to t = 0 at the quasi-static state of the inputs' current targets (the values
