@@ -389,16 +389,17 @@ class LiveSimulation:
         changes.update(self._number_changes(values))
         return self._case.with_values(changes)
 
-    def _number_changes(self, values: dict) -> dict:
+    def _number_changes(self, values: dict, rotating: bool = False) -> dict:
         """{case key: number in the key's unit} of the channel values ``values`` (SI) that the
-        session sets (the radial load's angle of a load turning with the shaft stays the case's
-        rotating form)."""
+        session sets; ``rotating``: the radial load's angle of a load turning with the shaft as
+        the case's rotating form from that angle (else as a number)."""
         unused = _unused_channels(self._tilt_free)
         changes = {}
         for c, v in values.items():
             if c in unused:
                 continue
-            if c == CH_RADIAL_LOAD_ANGLE and self._radial_load_frame == FRAME_INNER_RING:
+            turning = self._radial_load_frame == FRAME_INNER_RING
+            if c == CH_RADIAL_LOAD_ANGLE and turning and rotating:
                 spec = self._case.histories[CHANNEL_KEYS[c]].spec
                 changes[CHANNEL_KEYS[c]] = {
                     "rotating": spec["rotating"],
@@ -437,7 +438,7 @@ class LiveSimulation:
             "simulation.duration_s": end,
             "simulation.samples_per_second": self._rate,
         }
-        changes.update(self._number_changes(self._start_values))
+        changes.update(self._number_changes(self._start_values, rotating=True))
         unused = _unused_channels(self._tilt_free)
         tables = 0
         for c, table in self._tables.items():
