@@ -150,3 +150,20 @@ def test_both_loads_zero_is_refused_and_a_set_case_cannot_run_live(spindle):
         live.set_input("axial_load", 0.0)
     with pytest.raises(CaseError, match="one bearing"):
         LiveSimulation("spindle-pair-db-light-preload")
+
+
+def test_divergence_stops_the_session_until_reset_and_close_ends_it(spindle):
+    live = LiveSimulation(spindle)
+    live.advance(0.1 * REVOLUTION)
+    live.set_input("radial_load", 2e5, ramp_s=0.0)  # far beyond the bearing: a ball escapes
+    with pytest.raises(solver.SimulationDiverged, match="a ball left the raceways"):
+        live.advance(0.3 * REVOLUTION)
+    with pytest.raises(solver.SimulationDiverged, match="reset"):
+        live.advance(0.1 * REVOLUTION)
+    live.set_input("radial_load", 300.0)
+    live.reset()
+    chunk = live.advance(0.1 * REVOLUTION)
+    assert np.all(chunk["radial_load"].values == 300.0)
+    live.close()
+    with pytest.raises(RuntimeError, match="closed"):
+        live.advance(0.1 * REVOLUTION)

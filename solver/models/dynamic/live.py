@@ -144,6 +144,7 @@ class LiveSimulation:
         self._method = stepper(self._options.method)
         self._max_record = max(2, MAX_DYNAMIC_BALL_SAMPLES // int(self._par.ball_count))
         start = {c: float(v) for c, v in _operating_channels(inputs, 0.0).items()}
+        self._closed = False
         self._restart(start)
 
     # ---- the session's state ---------------------------------------------------------------------
@@ -266,6 +267,7 @@ class LiveSimulation:
         dynamic run (results-schema.md; every input of :attr:`input_names` as a data variable
         over ``time``). SimulationDiverged (with the samples of this call in ``dataset``) when
         the integration fails; the session must then be :meth:`reset`."""
+        self._check_open()
         if self._diverged is not None:
             raise SimulationDiverged(f"{self._diverged}; reset() the live simulation to go on")
         duration_s = _finite("advance", duration_s, "duration_s")
@@ -312,16 +314,21 @@ class LiveSimulation:
 
     def reset(self) -> None:
         """Back to t = 0 at the quasi-static state of the inputs' current targets (the values
-        they were last set to), the history and the record cleared."""
+        they were last set to, ramps taken as finished), the history and the record cleared."""
+        self._check_open()
         self._restart({c: table.values[-1] for c, table in self._tables.items()})
 
     def close(self) -> None:
-        """Free the record; the session cannot be advanced afterwards."""
+        """Free the record; advancing, resetting or recording afterwards is a RuntimeError."""
         self._record = []
         self._recorded = 0
-        self._diverged = "the live simulation was closed"
+        self._closed = True
 
     # ---- internals -------------------------------------------------------------------------------
+    def _check_open(self) -> None:
+        if self._closed:
+            raise RuntimeError("the live simulation was closed: start a new LiveSimulation")
+
     def _channel(self, name) -> int:
         if name not in self.input_names:
             raise CaseError(
@@ -423,6 +430,7 @@ class LiveSimulation:
 
     def recorded_case_object(self):
         """The session's record as a validated :class:`solver.case.Case` (:meth:`recorded_case`)."""
+        self._check_open()
         end = self.recorded_time
         if not end > 0.0:
             raise CaseError(
