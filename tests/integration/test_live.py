@@ -167,3 +167,15 @@ def test_divergence_stops_the_session_until_reset_and_close_ends_it(spindle):
     live.close()
     with pytest.raises(RuntimeError, match="closed"):
         live.advance(0.1 * REVOLUTION)
+
+
+def test_a_case_with_histories_starts_from_their_values_at_zero_and_holds_them():
+    live = LiveSimulation("spindle-start-up")  # the shaft ramps up from rest over 0.3 s
+    assert live.samples_per_second == 20000.0  # the case's simulation.samples_per_second
+    chunk = live.advance(0.002)
+    assert np.all(chunk["inner_ring_speed"].values == 0.0)  # held at rest, not ramped
+    assert np.all(chunk["axial_load"].values == 150.0)
+    live.set_input("inner_ring_speed", 100.0, ramp_s=0.001)
+    chunk = live.advance(0.002)
+    assert chunk["inner_ring_speed"].values[-1] == 100.0
+    assert float(chunk["cage_speed"].values[-1]) > 0.0
