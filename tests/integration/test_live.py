@@ -97,7 +97,7 @@ def test_reset_starts_again_from_the_quasistatic_state_of_the_inputs_set(spindle
     assert "operating.axial_load_N" not in recorded.histories
 
 
-def test_a_recorded_session_is_a_case_that_simulate_reproduces():
+def test_a_recorded_session_is_a_case_that_simulate_reproduces(tmp_path):
     live = LiveSimulation(CASE)
     live.advance(0.4 * REVOLUTION)
     live.set_input("radial_load", 900.0, ramp_s=0.2 * REVOLUTION)
@@ -111,6 +111,9 @@ def test_a_recorded_session_is_a_case_that_simulate_reproduces():
     recorded = live.recorded_result()
     assert recorded.attrs["complete"] == 1
     assert recorded.attrs["case"] == text
+    reopened = solver.load_result(solver.save_dataset(recorded, tmp_path / "live.nc"))
+    assert np.array_equal(reopened["contact_load"].values, recorded["contact_load"].values)
+    assert reopened.attrs["complete"] == 1
     run = simulate(case)
     assert np.allclose(run["time"].values, recorded["time"].values, rtol=0, atol=1e-12)
     for name in ("radial_load", "inner_ring_speed"):
