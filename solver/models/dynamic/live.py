@@ -33,7 +33,7 @@ import numpy as np
 
 from solver.case import dynamic_problems
 from solver.case.schema import field as schema_field
-from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES
+from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES, check_value
 from solver.errors import CaseError, Problem, SimulationDiverged
 from solver.history import (
     CH_INNER_SPEED,
@@ -45,6 +45,7 @@ from solver.history import (
     CH_TILTING_MOMENT,
     CHANNEL_NAMES,
     FRAME_INNER_RING,
+    FRAME_SPACE,
     N_CHANNELS,
     ChannelHistory,
     channel_value,
@@ -119,8 +120,8 @@ class LiveSimulation:
             )
         inputs = to_inputs(case)
         steady = not case.histories
-        if steady:
-            problems = dynamic_problems(case)
+        if steady:  # the rings must turn; the case's run length is not read
+            problems = [p for p in dynamic_problems(case) if p.key.startswith("operating.")]
             if problems:
                 raise CaseError(problems)
         self._case = case
@@ -130,7 +131,7 @@ class LiveSimulation:
         frame_turns = inputs.history is not None and (
             inputs.history.radial_load_frame == FRAME_INNER_RING
         )
-        self._radial_load_frame = FRAME_INNER_RING if frame_turns else 0
+        self._radial_load_frame = FRAME_INNER_RING if frame_turns else FRAME_SPACE
         self._tilt_free = inputs.operating.tilting_moment is not None
         op = inputs.operating
         if steady:
@@ -357,8 +358,6 @@ class LiveSimulation:
         name = CHANNEL_NAMES[channel]
         value = targets[channel] / _unit_scale(channel)
         problems = []
-        from solver.case.validate import check_value
-
         check_value(schema_field(key), key, value, problems)
         if not problems:
             try:
