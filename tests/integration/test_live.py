@@ -182,3 +182,19 @@ def test_a_case_with_histories_starts_from_their_values_at_zero_and_holds_them()
     chunk = live.advance(0.002)
     assert chunk["inner_ring_speed"].values[-1] == 100.0
     assert float(chunk["cage_speed"].values[-1]) > 0.0
+
+
+def test_an_input_changed_more_often_than_a_case_table_holds_is_refused(spindle, monkeypatch):
+    import solver.models.dynamic.live as live_module
+
+    monkeypatch.setattr(live_module, "MAX_KNOTS", 5)  # a case's table: at most 100 000 points
+    live = LiveSimulation(spindle)
+    live.advance(1.0 / live.samples_per_second)
+    live.set_input("axial_load", 510.0, ramp_s=0.0)  # 3 points: 0, now, now
+    live.advance(1.0 / live.samples_per_second)
+    live.set_input("axial_load", 520.0, ramp_s=0.0)  # 5 points
+    live.advance(1.0 / live.samples_per_second)
+    with pytest.raises(CaseError, match="reset"):
+        live.set_input("axial_load", 530.0, ramp_s=0.0)
+    assert live.inputs_now()["axial_load"] == 520.0
+    assert len(parse_case(live.recorded_case()).histories["operating.axial_load_N"].times) == 5

@@ -32,6 +32,7 @@ from typing import NamedTuple
 import numpy as np
 
 from solver.case import dynamic_problems
+from solver.case.history import MAX_KNOTS
 from solver.case.schema import field as schema_field
 from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES, check_value
 from solver.errors import CaseError, Problem, SimulationDiverged
@@ -245,6 +246,15 @@ class LiveSimulation:
         self._check_values(channel, targets)
         t = self.time
         table = self._tables[channel]
+        if len(table.times) + 2 > MAX_KNOTS:
+            raise CaseError(
+                Problem(
+                    CHANNEL_KEYS[channel],
+                    f"live input {name}: changed so often that its recorded history would pass "
+                    f"the {MAX_KNOTS:,} points a case's table may hold; save the session "
+                    "(recorded_case) and reset() to start a new record",
+                )
+            )
         now = float(channel_value(self._history, channel, t))
         while table.times and table.times[-1] > t:
             table.times.pop()
