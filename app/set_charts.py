@@ -162,8 +162,9 @@ def layout_figure(ds: xr.Dataset, selected: int = 0) -> go.Figure:
         fig.add_annotation(
             x=x, y=pitch_r + 1.6 * ball_d, text=name, showarrow=False, font={"color": colour}
         )
-    load_x = float(ds["load_position"]) * 1e3 if "load_position" in ds else 0.0
-    force = ds.attrs.get("bearing_set", "")
+    load_x = float(ds["load_position"]) * 1e3
+    # the external force balances the bearings' forces on the shaft
+    force = ", ".join(f"{round(-v):d}" for v in ds["bearing_force"].values.sum(axis=0))
     reach.append(load_x)
     top = float(np.max(0.5 * ds["pitch_diameter"].values * 1e3 + 2.0 * ds["ball_diameter"].values))
     fig.add_trace(
@@ -190,7 +191,7 @@ def layout_figure(ds: xr.Dataset, selected: int = 0) -> go.Figure:
         arrowwidth=2,
         arrowcolor="#222",
         text="load",
-        hovertext=force,
+        hovertext=f"external force [{force}] N at {load_x:g} mm",
     )
     fig.update_yaxes(scaleanchor="x", scaleratio=1.0, range=[-top, top])
     _layout(fig, "The set along the shaft", "axial position, mm", "radius, mm")

@@ -47,8 +47,7 @@ class SetPanel(Component):
 
     def set_bearing_index(self, count: int) -> int:
         """The bearing chosen (an index below ``count``; the first when out of range)."""
-        index = as_int(self.state.set_bearing, 0, 0, max(count - 1, 0))
-        return index
+        return as_int(self.state.set_bearing, 0, 0, max(count - 1, 0))
 
     def show_set(self, ds, index: int = 0) -> None:
         """Show the set ``ds`` (None: the result on show is a single bearing) with bearing
