@@ -60,7 +60,8 @@ def default_text(spec) -> str:
 
 
 def form_fields() -> list[FormField]:
-    """Form fields for every case-file key, in the case module's order (``solver.case.FIELDS``)."""
+    """Form fields for every case-file key, in the case module's order (``solver.case.FIELDS``)
+    (the case form adds the bearing set's, :func:`set_form_fields`)."""
     from solver import BUILTIN_MATERIALS, FIELDS, REQUIRED
 
     fields = []
@@ -89,6 +90,72 @@ def form_fields() -> list[FormField]:
             )
         )
     return fields
+
+
+def set_form_fields() -> list[FormField]:
+    """Form fields of a bearing set's ``[set]`` table that the app edits: the named arrangement
+    and the preload (its kind and the value each kind reads); the choices and defaults are the
+    case module's (:mod:`solver.case.bearing_set`), the rules too (``Case.with_values``). Their
+    section is ``"set"``: the form shows them for a set case only."""
+    from solver.case.bearing_set import (
+        ARRANGEMENTS,
+        DEFAULT_PRELOAD_KIND,
+        DIRECTIONS,
+        PRELOAD_KINDS,
+    )
+
+    def field(key, name, kind, label, unit, help, choices=(), default=""):
+        shown = f"{label} ({unit})" if unit else label
+        return FormField(key, name, kind, shown, unit, help, tuple(choices), "set", False, default)
+
+    return [
+        field(
+            "set.arrangement",
+            "set_arrangement",
+            "choice",
+            "Arrangement",
+            "",
+            "The named arrangement: DB back-to-back (O), DF face-to-face (X), DT tandem; TBT, TFT "
+            "of three, QBC, QFC of four bearings (docs/case-format.md, Bearing sets)",
+            tuple(ARRANGEMENTS),
+        ),
+        field(
+            "set.preload.kind",
+            "preload_kind",
+            "choice",
+            "Preload",
+            "",
+            "none; force: the preload force at assembly (fixed position); offset: the axial "
+            "offset of the rings; spring: a spring force on the outer rings of one side",
+            PRELOAD_KINDS,
+            DEFAULT_PRELOAD_KIND,
+        ),
+        field(
+            "set.preload.force_N",
+            "preload_force_N",
+            "float",
+            "Preload force",
+            "N",
+            "The preload force at assembly (preload force) or the spring force (preload spring)",
+        ),
+        field(
+            "set.preload.offset_um",
+            "preload_offset_um",
+            "float",
+            "Preload offset",
+            "µm",
+            "The axial offset of the rings at assembly (preload offset)",
+        ),
+        field(
+            "set.preload.spring_side",
+            "preload_spring_side",
+            "choice",
+            "Spring side",
+            "",
+            "The direction of the bearings whose outer rings the spring pushes (preload spring)",
+            DIRECTIONS,
+        ),
+    ]
 
 
 def estimated_default_texts(case, fields: list[FormField]) -> dict[str, str]:

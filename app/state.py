@@ -2,7 +2,8 @@
 browser).
 
 :class:`RacetraceApp` composes the session's components (:mod:`app.components`): the case form
-(``form``), the result on show with its scene, charts and time controls (``result``), the saved
+(``form``), the result on show with its scene, charts and time controls (``result``), the bearing
+set on show (``set_panel``: the set along the shaft, its load sharing and stiffness), the saved
 runs and the background run (``runs``), the comparison with a saved run (``compare``), the
 exports (``exports``), the studies (``studies``) and the Lessons panel with presenter mode
 (``lessons``, :mod:`app.lessons.panel`). Process-wide services (the run store and the solver
@@ -16,7 +17,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .components import CaseForm, Compare, Export, ResultView, Runs, Studies
+from .components import CaseForm, Compare, Export, ResultView, Runs, SetPanel, Studies
 from .components.export import EXPORT_URL
 from .lessons.panel import LessonController
 from .services import Services
@@ -49,6 +50,7 @@ class RacetraceApp:
         self._client_ids = set()
         self.form = CaseForm(self)
         self.result = ResultView(self, render=render, window_size=window_size)
+        self.set_panel = SetPanel(self)
         self.runs = Runs(self)
         self.compare = Compare(self)
         self.exports = Export(self)
@@ -57,6 +59,7 @@ class RacetraceApp:
         self.components = (
             self.form,
             self.result,
+            self.set_panel,
             self.runs,
             self.compare,
             self.exports,
@@ -83,8 +86,7 @@ class RacetraceApp:
         return self.exports.exports_dir
 
     def start(self, case_name: str = DEFAULT_CASE, play: bool = True) -> None:
-        """Open ``case_name`` solved (quasi-static) before the first page is served (a bearing
-        set: the first single-bearing case, with a note that says why)."""
+        """Open ``case_name`` solved (quasi-static) before the first page is served."""
         self.form.open_first(case_name)
         self.state.playing = play
 

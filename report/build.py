@@ -892,7 +892,8 @@ def study_sections(ds, links=None):
 
 # ---- the page -------------------------------------------------------------------------------
 def _load(source):
-    """('run', Dataset, name) or ('study', Dataset, name) for a result file or study folder."""
+    """('run', Dataset, name), ('set', Dataset, name) (a bearing set's result) or ('study',
+    Dataset, name) for a result file or study folder."""
     from solver import CaseError, Problem, load_result, open_study, study_dataset
 
     path = Path(source)
@@ -903,6 +904,8 @@ def _load(source):
     ds = load_result(path, str(source))  # CaseError naming what the file lacks
     if ds.attrs.get("racetrace_kind") == "study":
         return "study", ds, path.name
+    if "bearing" in ds.dims:  # a bearing set's quasi-static result
+        return "set", ds, path.name
     return "run", ds, path.name
 
 
@@ -948,7 +951,11 @@ def build_report(source, output, point_reports: bool = False, log=None) -> dict:
 
     kind, ds, name = _load(source)
     pn.config.inline = True
-    if kind == "run":
+    if kind == "set":
+        from .bearing_set import set_sections
+
+        sections, notes = set_sections(ds, name)
+    elif kind == "run":
         sections, notes = run_sections(ds, name)
     else:
         links = _point_links(source, ds, output, point_reports, log)

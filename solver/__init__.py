@@ -10,7 +10,8 @@ Public API (everything else is internal):
 - ``solve_quasistatic(case) -> xarray.Dataset`` (results-schema.md)
 - ``solve(case) -> xarray.Dataset``: the quasi-static answer; for a bearing set (a ``[set]`` case)
   the set's Dataset with a ``bearing`` dimension, its stiffness and load sharing
-  (``set_result_warnings(ds)``: where a bearing of the set unloads;
+  (``set_result_warnings(ds)``: where a bearing of the set unloads; ``bearing_result(ds, k)``:
+  bearing ``k`` of it as a single-bearing result, which the single-bearing views read;
   ``set_stiffness_study(case, preload_forces_N, speeds_rpm)``: the set's stiffness and load
   sharing over preload and speed)
 - ``solve_over_revolution(case, angles=None) -> xarray.Dataset``: the quasi-static steady state at
@@ -98,6 +99,7 @@ _LAZY = {
     # the models, through the facade (a case by any name)
     "solve": "solver.facade",
     "set_result_warnings": "solver.models.quasistatic.set_warnings",
+    "bearing_result": "solver.models.quasistatic.set_warnings",
     "set_stiffness_study": "solver.models.quasistatic.bearing_set",
     "solve_quasistatic": "solver.facade",
     "solve_over_revolution": "solver.facade",

@@ -14,6 +14,7 @@ from .compare import Compare
 from .export import Export
 from .result_view import ResultView
 from .runs import Runs
+from .set_panel import SetPanel
 from .studies import Studies
 
-__all__ = ["CaseForm", "Compare", "Export", "ResultView", "Runs", "Studies"]
+__all__ = ["CaseForm", "Compare", "Export", "ResultView", "Runs", "SetPanel", "Studies"]

@@ -4,16 +4,17 @@ quasi-static preview of the edited case.
 State keys: ``case_items``/``case_name`` (shipped cases), ``form`` (field descriptors),
 ``fv_<name>`` (field text), ``fe_<name>`` (field message, "" when valid), ``fh_<name>`` (the
 key's time history in words, "" for a steady key: the field then shows it read-only),
-``placeholders``, ``case_message``, ``case_notice`` (why a picked or uploaded case is not shown: a
-bearing set), ``case_valid``, ``case_toml_href``/``case_file_name`` (download of the edited
-case), ``run_reason`` (why the dynamic model cannot run a valid case, "" when it can),
-``run_size`` (what Run will compute: the run length and result size), ``run_blocked`` (why Run
-is off while the form is invalid), ``result_stale`` (the result on show is not of the form's
-case), ``uploaded_case``.
+``placeholders``, ``case_message``, ``case_notice`` (a note on the case picked or uploaded, ""
+when none), ``case_is_set`` (the case is a bearing set: its set fields show), ``case_valid``,
+``case_toml_href``/``case_file_name`` (download of the edited case), ``run_reason`` (why the
+dynamic model cannot run a valid case, "" when it can), ``run_size`` (what Run will compute:
+the run length and result size), ``run_blocked`` (why Run is off while the form is invalid),
+``result_stale`` (the result on show is not of the form's case), ``uploaded_case``.
 
-A bearing set (a ``[set]`` case) is listed among the shipped cases but not opened: the app shows
-single bearings, and picking or uploading a set says so in ``case_notice`` and keeps the case on
-show.
+A bearing set (a ``[set]`` case) opens like a single bearing: its form adds the set's fields (the
+arrangement and the preload, :func:`app.case_fields.set_form_fields`) and its preview is the set's
+quasi-static solution (``solver.solve``), which the result view shows bearing by bearing; the
+dynamic model runs one bearing, so Run says why it is off (``run_reason``).
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ from ..case_fields import (
     form_fields,
     form_text,
     history_texts,
+    set_form_fields,
 )
 from ..run_length import run_size_text
 from ..run_store import describe_case
@@ -49,6 +51,7 @@ SECTION_TITLES = {
     "lubricant": "Lubricant",
     "cage": "Cage",
     "simulation": "Run length",
+    "set": "Bearing set",
     "": "Case",
 }
 
@@ -67,7 +70,7 @@ class CaseForm(Component):
 
     def __init__(self, session):
         super().__init__(session)
-        self.fields = form_fields()
+        self.fields = form_fields() + set_form_fields()
         self._field_by_name = {f.name: f for f in self.fields}
         self.base_case = None
         self.case = None
@@ -76,7 +79,6 @@ class CaseForm(Component):
         self._filling = False
         self._preview_generation = 0
         self._case_name = None  # the shipped case last opened (None: uploaded or from a run)
-        self._picker_restored = False  # case_name was just set back to _case_name
 
     # ---- set-up ---------------------------------------------------------------------------------
     def init_state(self) -> None:
@@ -108,6 +110,7 @@ class CaseForm(Component):
         s.placeholders = {f.name: f.default_text for f in self.fields}
         s.case_message = ""
         s.case_notice = ""
+        s.case_is_set = False
         s.run_size = ""
         s.case_valid = False
         s.case_toml_href = ""
@@ -124,42 +127,25 @@ class CaseForm(Component):
         self.action("reset_case", self.reset_case)
 
     def first_case_name(self, case_name: str) -> str:
-        """``case_name`` if it is a shipped single-bearing case, else the first of those."""
-        entry = self._catalogue.get(case_name)
-        if entry is not None and entry.load().bearing_set is None:
+        """``case_name`` if it is a shipped case or catalogue bearing, else the first of those."""
+        if case_name in self._catalogue:
             return case_name
-        return next(n for n, e in self._catalogue.items() if e.load().bearing_set is None)
+        return next(iter(self._catalogue))
 
     def open_first(self, case_name: str) -> None:
-        """Open ``case_name`` (solved now) before the first page is served; a bearing set or an
-        unknown name opens the first shipped single-bearing case, and a set says why."""
+        """Open ``case_name`` (solved now) before the first page is served; an unknown name opens
+        the first shipped case."""
         opened = self.first_case_name(case_name)
         self.state.case_name = opened
         self._on_case_name(opened, synchronous=True)
-        entry = self._catalogue.get(case_name)
-        if opened != case_name and entry is not None:
-            self._refuse_set(case_name, entry.load())
 
     # ---- case and form --------------------------------------------------------------------------
     def _on_case_name(self, case_name=None, synchronous=False, **_):
         entry = self._catalogue.get(case_name)
-        if entry is None or (case_name == self._case_name and self._picker_restored):
-            self._picker_restored = False  # the picker put back on the case on show: no reload
-            return
-        case = entry.load()
-        if case.bearing_set is not None:
-            self._refuse_set(case_name, case)
-            self._picker_restored = True  # the picker goes back to the case on show
-            self.state.case_name = self._case_name
+        if entry is None:
             return
         self._case_name = case_name
-        self.set_base_case(case, synchronous=synchronous)
-
-    def _refuse_set(self, name: str, case) -> None:
-        """Say that the bearing set ``case`` is not shown; the case on show stays."""
-        with self.state:
-            self.state.case_notice = set_notice(name, case)
-            self.state.status = "bearing set not opened (see the note above the form)"
+        self.set_base_case(entry.load(), synchronous=synchronous)
 
     def set_base_case(self, case, synchronous: bool = False) -> None:
         """Put ``case`` in the form and preview it."""
@@ -172,7 +158,8 @@ class CaseForm(Component):
     def take_case(self, case) -> None:
         """Make ``case`` the one the form edits: its values, placeholders and messages."""
         self.base_case = case
-        self.state.case_notice = ""
+        self.state.case_notice = set_notice(case)
+        self.state.case_is_set = case.bearing_set is not None
         self._fill_form(case)
         self._update_placeholders(case)
         self.validate()
@@ -228,9 +215,6 @@ class CaseForm(Component):
         except CaseError as error:
             self.state.case_message = f"{name}: {error}"
             self.state.status = f"error: upload {name} is not a valid case (see above the form)"
-            return
-        if case.bearing_set is not None:
-            self._refuse_set(name, case)
             return
         self._case_name = None
         self.state.case_name = None  # picking a shipped case afterwards (even the same) reloads it
@@ -403,13 +387,15 @@ class CaseForm(Component):
             )
             section = None
             for f in self.fields:
+                shown = "case_is_set" if f.section == "set" else None  # set fields: sets only
                 if f.section != section:
                     section = f.section
                     html.Div(
                         SECTION_TITLES.get(section, section.title()),
                         classes="text-subtitle-2 mt-3 mb-1",
+                        v_if=shown,
                     )
-                _field(f)
+                _field(f, shown)
 
 
 def _case_choice(ctrl) -> None:
@@ -455,10 +441,11 @@ def _case_files() -> None:
                 html.Span("TOML")
 
 
-def _field(f) -> None:
-    """One case input wrapped in ``div#field-<name>`` with its message inside."""
+def _field(f, shown: str | None = None) -> None:
+    """One case input wrapped in ``div#field-<name>`` with its message inside; ``shown``: the
+    condition (a state expression) under which it is on the page (None: always)."""
     tooltip = f.help.replace('"', "'")  # the help text is shown as a tooltip
-    with html.Div(id=f"field-{f.name}", classes="mb-1", title=tooltip):
+    with html.Div(id=f"field-{f.name}", classes="mb-1", title=tooltip, v_if=shown):
         common = dict(
             label=f.label,
             v_model=(f"fv_{f.name}",),
@@ -490,19 +477,22 @@ def _field(f) -> None:
             )
 
 
-def set_notice(name: str, case) -> str:
-    """Why the bearing set ``case`` (named ``name``) is not opened, and how to solve it."""
+def set_notice(case) -> str:
+    """The note above the form for a bearing set ``case`` ("" for a single bearing): what the
+    set is and what the app shows of it."""
+    if case.bearing_set is None:
+        return ""
     return (
-        f"{name} is a bearing set ({case.bearing_set.describe()}): the app shows single "
-        f"bearings; solve the set with `racetrace solve {name}` (its load sharing and stiffness "
-        "are in the result file)"
+        f"bearing set: {case.bearing_set.describe()}. The preview is the set's quasi-static "
+        "solution; choose the bearing the 3-D view and charts show under 'Bearing set'. The "
+        "dynamic model runs one bearing: Run is off for a set."
     )
 
 
 def _entry_title(entry) -> str:
-    """The case picker's title of a catalogue entry; a bearing set says that it is not opened."""
+    """The case picker's title of a catalogue entry; a bearing set says so."""
     if entry.kind == "case" and entry.load().bearing_set is not None:
-        return f"{entry.title} (bearing set: racetrace solve only)"
+        return f"{entry.title} (bearing set)"
     return f"{entry.title} ({entry.kind})"
 
 
@@ -515,10 +505,10 @@ def _file_name(text: str) -> str:
 
 
 def solve_preview(case):
-    """The preview of ``case``: the quasi-static answer (``solver.quasistatic_answer``): the
-    snapshot, or, for a misalignment turning with the inner ring, the solutions over one
-    revolution, since a t = 0 snapshot would show a band where the run draws a line and the
-    reverse."""
+    """The preview of ``case``: the quasi-static answer (``solver.solve``): for a bearing set the
+    set's solution (a ``bearing`` dimension); for one bearing the snapshot, or, for a
+    misalignment turning with the inner ring, the solutions over one revolution, since a t = 0
+    snapshot would show a band where the run draws a line and the reverse."""
     import solver
 
-    return solver.quasistatic_answer(case)
+    return solver.solve(case)

@@ -9,6 +9,10 @@ State keys: ``frame``/``frame_max``/``frame_time`` (time and revolution counter)
 ``trace_ball``, ``ball_items``, ``camera``), ``ball_legend`` (each ball's colour in the 3-D
 view and the raceway map: ``[{"ball": j, "colour": "#..."}]``), ``chart_help`` and the chart figures
 ``chart_<name>`` (plotly JSON).
+
+A bearing set's result (a ``bearing`` dimension) is shown one bearing at a time: the 3-D view,
+the time controls and the single-bearing charts show the bearing chosen in the set panel
+(:mod:`app.components.set_panel`, ``solver.bearing_result``), the set panel the whole set.
 """
 
 from __future__ import annotations
@@ -77,7 +81,14 @@ class ResultView(Component):
     the same case (``quasistatic``, for the comparison chart), the pyvista ``plotter``/``scene``
     (when ``render_enabled``) and the page's ``view`` (set by the UI: an object with render())."""
 
-    PROVIDES = ("show_preview", "show_unsaved", "show_saved_run", "shown_result", "update_charts")
+    PROVIDES = (
+        "show_preview",
+        "show_unsaved",
+        "show_saved_run",
+        "shown_result",
+        "update_charts",
+        "show_set_bearing",
+    )
 
     def __init__(self, session, render: bool = True, window_size=(650, 480)):
         super().__init__(session)
@@ -87,6 +98,8 @@ class ResultView(Component):
         self.scene = None
         self.view = None
         self.dataset = None
+        self.set_result = None  # the bearing set's Dataset on show (None: a single bearing)
+        self._set_label = ""  # the label the set was shown with
         self.quasistatic = None
         self.source: FrameSource | None = None
         self.facts = None  # app.teaching.Facts of the result on show
@@ -174,7 +187,32 @@ class ResultView(Component):
         self.state.run_id = run_id
 
     def show_result(self, ds, label: str) -> None:
-        """Show a result Dataset: frame source, scene, charts and the time controls."""
+        """Show a result Dataset: frame source, scene, charts and the time controls; a bearing
+        set's (a ``bearing`` dimension): the bearing chosen in the set panel, and the set in
+        it."""
+        import solver
+
+        set_warnings = None
+        if "bearing" in ds.dims:
+            index = self.ctrl.set_bearing_index(ds.sizes["bearing"])
+            self.set_result, self._set_label = ds, label
+            self.ctrl.show_set(ds, index)
+            set_warnings = solver.set_result_warnings(ds)
+            label = f"{label}: {ds['bearing'].values[index]} of the set"
+            ds = solver.bearing_result(ds, index)
+        elif self.set_result is not None:
+            self.set_result = None
+            self.ctrl.show_set(None)
+        self._show_one(ds, label, set_warnings)
+
+    def show_set_bearing(self, index: int) -> None:
+        """Show bearing ``index`` of the bearing set on show (nothing without a set)."""
+        if self.set_result is not None:
+            self.show_result(self.set_result, self._set_label)
+
+    def _show_one(self, ds, label: str, set_warnings=None) -> None:
+        """Show a single-bearing result Dataset (``set_warnings``: the warnings of the set it is a
+        bearing of, shown instead of its own)."""
         from solver import geometry_from_result, quasistatic_start
 
         from ..teaching import facts_from_result
@@ -194,7 +232,7 @@ class ResultView(Component):
         model = "dynamic" if "time" in ds.dims else "quasi-static"
         self.shown_title = f"{describe_case(case)} ({model})" if case is not None else label
         self.ctrl.update_staleness()
-        self.state.result_warnings = self._warnings_of(ds, case)
+        self.state.result_warnings = self._warnings_of(ds, case, set_warnings)
         # the comparison chart's quasi-static solution: the result itself, or the quasi-static
         # start a dynamic result carries (None: the chart says the comparison is not available)
         self.quasistatic = quasistatic_start(ds)
@@ -282,11 +320,14 @@ class ResultView(Component):
         return {**self._map_base, "data": [*self._map_base["data"], *marks]}
 
     @staticmethod
-    def _warnings_of(ds, case) -> list[str]:
-        """Case warnings and :func:`solver.result_warnings` of the result ``ds`` (plain text)."""
+    def _warnings_of(ds, case, set_warnings=None) -> list[str]:
+        """Case warnings and :func:`solver.result_warnings` of the result ``ds`` (plain text);
+        ``set_warnings``: those of the bearing set ``ds`` is a bearing of, instead."""
         import solver
 
         found = [str(w) for w in case.warnings()] if case is not None else []
+        if set_warnings is not None:
+            return found + list(set_warnings)
         try:
             found += solver.result_warnings(ds)
         except (KeyError, ValueError) as error:  # an older result without some variable
@@ -345,7 +386,11 @@ class ResultView(Component):
             for title in list(self.plotter.scalar_bars.keys()):
                 self.plotter.remove_scalar_bar(title)
             self.plotter.clear_actors()
-        camera = self.plotter.camera_position if self.scene is not None else None
+        # the camera stays where the user put it, unless the load zone moved: the view faces the
+        # load zone (its outer-ring cutaway too), so it is framed again (e.g. the other bearing
+        # of a set, whose radial load is on the other side)
+        same_side = self._scene_key is not None and self._scene_key[-1] == load_side
+        camera = self.plotter.camera_position if self.scene is not None and same_side else None
         ball = self._trace_ball(self.state.trace_ball, geometry.ball_count)
         options = SceneOptions(
             exaggeration=self._exaggeration(self.state.exaggeration),

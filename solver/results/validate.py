@@ -141,6 +141,8 @@ def result_problems(ds: xr.Dataset, values: bool = False) -> list[str]:
         if kind == "study":
             return _study_problems(ds)
         return [f"its 'racetrace_kind' attribute is {_short(kind)}, not \"study\""]
+    if "bearing" in ds.dims and ds.attrs.get("bearing_set"):
+        return _set_problems(ds, values)
     problems = _attribute_problems(ds)
     if ds.attrs.get("model") not in _MODELS:
         if not any(name in ds.variables for name in REQUIRED_VARIABLES):
@@ -414,6 +416,25 @@ def _varied_key_problems(ds: xr.Dataset) -> list[str]:
             )
         elif ds[key].dtype.kind not in "fiubOUS":
             problems.append(f"its {_short(key, 60)} coordinate holds {ds[key].dtype}")
+    return problems
+
+
+#: The set's own names in a bearing set's Dataset (results-schema.md, "Bearing sets").
+_SET_NAMES = ("set_stiffness", "bearing_stiffness", "bearing_position", "bearing_direction")
+
+
+def _set_problems(ds: xr.Dataset, values: bool) -> list[str]:
+    """What a bearing set's Dataset (a ``bearing`` dimension, the ``bearing_set`` attribute)
+    lacks: the set's own variables, and each bearing's single-bearing result, named by bearing."""
+    from solver.models.quasistatic.set_warnings import bearing_result
+
+    problems = [f"a bearing set without '{name}'" for name in _SET_NAMES if name not in ds]
+    if "ball_count" not in ds or problems:
+        return problems or ["a bearing set without 'ball_count'"]
+    for index in range(ds.sizes["bearing"]):
+        name = str(ds["bearing"].values[index]) if "bearing" in ds.coords else str(index)
+        one = bearing_result(ds, index)
+        problems += [f"{name}: {p}" for p in result_problems(one, values)]
     return problems
 
 

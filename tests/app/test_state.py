@@ -603,25 +603,24 @@ def charts_height_for_two() -> int:
     return charts.compare_chart_px(2)
 
 
-def test_every_shipped_case_opens_and_a_bearing_set_says_why_it_does_not(app):
+def test_every_shipped_case_opens_and_a_bearing_set_opens_as_a_set(app):
     from solver.catalogue import catalogue
 
     names = [e.name for e in catalogue() if e.kind == "case"]
     sets = [n for n in names if catalogue().get(n).load().bearing_set is not None]
     assert sets  # the shipped DB pair
     for name in names:
-        shown = app.form.base_case
         _set(app, case_name=name)
         s = app.state
-        if name in sets:
-            assert f"{name} is a bearing set" in s.case_notice
-            assert f"racetrace solve {name}" in s.case_notice
-            assert app.form.base_case is shown  # the case on show stays, and the picker on it
-            assert s.case_name != name
-            continue
         assert s.status == "preview done", (name, s.status)
-        assert s.case_notice == ""
         assert s.case_valid and app.result.dataset is not None
+        assert s.set_shown == s.case_is_set == (name in sets), name
+        if name in sets:
+            assert s.case_notice.startswith("bearing set: ")
+            assert s.run_disabled and "bearing set" in s.run_reason
+            assert "bearing 1 of the set" in app.result.shown_title + s.result_label
+            continue
+        assert s.case_notice == ""
         for f in app.form.fields:  # a history key shows its history, never an empty field
             history = app.form.base_case.histories.get(f.key)
             if history is not None:
@@ -629,12 +628,12 @@ def test_every_shipped_case_opens_and_a_bearing_set_says_why_it_does_not(app):
         assert "None" not in s.run_size and "None" not in app.result.shown_title
 
 
-def test_a_bearing_set_asked_for_at_start_opens_a_single_bearing_with_the_note(tmp_path):
+def test_a_bearing_set_asked_for_at_start_opens_it(tmp_path):
     session = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
     try:
         session.start("spindle-pair-db-light-preload", play=False)
-        assert session.form.base_case.bearing_set is None
-        assert "spindle-pair-db-light-preload is a bearing set" in session.state.case_notice
+        assert session.form.base_case.bearing_set is not None
+        assert session.state.set_shown and session.state.status == "preview done"
     finally:
         session.shutdown()
 
@@ -649,19 +648,6 @@ def test_a_history_case_in_the_form_keeps_its_history_and_says_its_run_in_second
     assert app.form.case.operating.axial_load_N == 200.0
     assert "operating.inner_ring_speed_rpm" in app.form.case.histories
     assert "ramp" in app.form.case_text
-
-
-def test_an_uploaded_bearing_set_is_not_opened_and_says_why(app):
-    from pathlib import Path
-
-    text = (Path("assets/cases") / "spindle-pair-db-light-preload.toml").read_text("utf-8")
-    shown = app.form.base_case
-    _set(app, uploaded_case={"name": "pair.toml", "content": text.encode()})
-    assert "pair.toml is a bearing set" in app.state.case_notice
-    assert "racetrace solve pair.toml" in app.state.case_notice
-    assert app.form.base_case is shown and app.state.case_name == DEFAULT_CASE
-    _set(app, case_name="spindle-axial-preload")  # a single bearing opened clears the note
-    assert app.state.case_notice == ""
 
 
 def test_the_preview_of_a_history_case_plays_for_its_duration(app):

@@ -38,6 +38,20 @@ SECTIONS = (
     ),
     ("result", "build_chart_panels", ("chart-load-azimuth", "chart-ellipse", "chart-comparison")),
     (
+        "set_panel",
+        "build_ui",
+        (
+            "set-panel",
+            "set-bearing",
+            "set-lines",
+            "chart-set-layout",
+            "chart-set-sharing",
+            "chart-set-load",
+            "chart-set-angle",
+            "set-stiffness",
+        ),
+    ),
+    (
         "runs",
         "build_ui",
         ("run-button", "cancel-button", "status", "run-confirm", "result-warnings", "progress"),

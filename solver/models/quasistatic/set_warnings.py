@@ -12,7 +12,8 @@ UNLOADED_CONTACT_FRACTION = 1e-9
 
 def bearing_result(ds, index: int):
     """The single-bearing Dataset of bearing ``index`` of a set's Dataset (its own frame, its own
-    operating point; the set's variables and the balls beyond its ball count left out)."""
+    operating point, its ``ball_count``; the set's variables and the balls beyond its ball count
+    left out): a single-bearing result (results-schema.md) that the single-bearing views read."""
     one = ds.isel(bearing=index)
     count = int(one["ball_count"])
     one = one.drop_vars([name for name in SET_VARIABLES if name in one.variables])
@@ -23,7 +24,6 @@ def bearing_result(ds, index: int):
                 "bearing",
                 "bearing_position",
                 "bearing_direction",
-                "ball_count",
                 "dof",
                 "dof_",
                 "load_position",

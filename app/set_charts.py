@@ -1,0 +1,271 @@
+"""Figures and tables of a bearing set's quasi-static result, for the app's set panel (no trame).
+
+Every function reads the set's Dataset only (results-schema.md, "Bearing sets": a ``bearing``
+dimension with each bearing's single-bearing variables in its own frame, and the set's variables
+in the shaft frame). Display units: positions in mm, forces in N, angles in degrees, translational
+stiffness in N/µm, tilting stiffness in N m/mrad (the units of spindle-bearing catalogues).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import plotly.graph_objects as go
+import xarray as xr
+
+from viz.palette import run_colours
+
+from .charts import LOAD_MIN_SPAN_N, _layout, _pad_y
+
+HELP = {
+    "set_layout": (
+        "The set along the shaft, cut through its axis: each bearing at the axial position of its "
+        "ball-centre plane, its outer ring (grey) in the housing and inner ring (blue) on the "
+        "shaft; the dashed line is its contact line at its loaded balls' mean contact angle, "
+        "ending on the axis at the bearing's pressure centre (back-to-back: the pressure centres "
+        "lie outside the set, wide apart, stiff in tilt; face-to-face: inside). The arrow is the "
+        "external load at its point on the shaft. The bearing on show in the 3-D view is drawn "
+        "heavier."
+    ),
+    "set_sharing": (
+        "Load sharing: the axial load each bearing carries along its own thrust direction (the "
+        "preload included: both bearings of a preloaded pair carry load with no external load) "
+        "and the radial load each carries. A bearing whose axial load falls to zero has lost its "
+        "preload."
+    ),
+    "set_balls": (
+        "Contact load and inner contact angle of every ball versus its azimuth, one line per "
+        "bearing of the set (each in its own frame): where each bearing's load zone is and how "
+        "the preload and the external load share among its balls."
+    ),
+}
+
+#: Display units of the stiffness table: (name, scale from SI, unit).
+TRANSLATION_UNIT = ("N/µm", 1e-6)
+TILT_UNIT = ("N m/mrad", 1e-3)
+
+
+def bearing_names(ds: xr.Dataset) -> list[str]:
+    """The names of the set's bearings, in order along the ``bearing`` dimension."""
+    return [str(name) for name in ds["bearing"].values]
+
+
+def bearing_colour(index: int) -> str:
+    """The colour of bearing ``index`` in every set chart (the compared runs' palette)."""
+    return run_colours(index)["run"]
+
+
+def _one(ds: xr.Dataset, index: int) -> xr.Dataset:
+    """Bearing ``index`` of the set with only its own balls."""
+    one = ds.isel(bearing=index)
+    return one.isel(ball=slice(0, int(one["ball_count"])))
+
+
+def _mean_contact_angle(one: xr.Dataset) -> float:
+    """The mean inner contact angle (degree) of the loaded balls of one bearing; its free contact
+    angle when no ball is loaded."""
+    load = one["contact_load"].sel(race="inner").values
+    angle = one["contact_angle"].sel(race="inner").values
+    loaded = np.isfinite(angle) & (load > 0.0)
+    if loaded.any():
+        return float(np.mean(angle[loaded]))
+    return float(one["free_contact_angle"])
+
+
+def describe_set(ds: xr.Dataset) -> list[str]:
+    """The set in words: its description, then one line per bearing (position, direction, loads)."""
+    lines = [
+        str(ds.attrs.get("bearing_set", "bearing set")),
+        "The 3-D view and the charts below show the bearing chosen here in its own frame (the "
+        "thrust it carries along the view's axis); the set along the shaft shows which way each "
+        "bearing faces.",
+    ]
+    for index, name in enumerate(bearing_names(ds)):
+        one = ds.isel(bearing=index)
+        lines.append(
+            f"{name}: at {float(one['bearing_position']) * 1e3:g} mm, carries thrust towards "
+            f"{one['bearing_direction'].item()}; axial load {float(one['bearing_axial_load']):.0f} "
+            f"N, radial load {float(one['bearing_radial_load']):.0f} N, "
+            f"{int((one['contact_load'].sel(race='inner').values > 0).sum())} of "
+            f"{int(one['ball_count'])} balls loaded"
+        )
+    return lines
+
+
+def layout_figure(ds: xr.Dataset, selected: int = 0) -> go.Figure:
+    """The set along the shaft, cut through its axis (x: axial position, mm; y: radius, mm):
+    each bearing's rings, its ball, its contact line through the ball centre at its mean contact
+    angle down to the pressure centre on the axis, mirrored below the axis; the external load as
+    an arrow at its point. Bearing ``selected`` is drawn heavier."""
+    fig = go.Figure()
+    reach = []
+    for index, name in enumerate(bearing_names(ds)):
+        one = ds.isel(bearing=index)
+        x = float(one["bearing_position"]) * 1e3
+        pitch_r = 0.5 * float(one["pitch_diameter"]) * 1e3
+        ball_d = float(one["ball_diameter"]) * 1e3
+        sign = 1.0 if one["bearing_direction"].item() == "+x" else -1.0
+        alpha = math.radians(_mean_contact_angle(_one(ds, index)))
+        colour = bearing_colour(index)
+        width = 3 if index == selected else 1
+        half = 0.5 * 1.9 * ball_d  # ring half-width: a little wider than the ball
+        for side in (1.0, -1.0):  # the section above the axis, and its mirror below
+            for low, high, fill in (
+                (pitch_r + 0.25 * ball_d, pitch_r + 1.0 * ball_d, "#b0b0b0"),  # outer ring
+                (pitch_r - 1.0 * ball_d, pitch_r - 0.25 * ball_d, "#9ec5e8"),  # inner ring
+            ):
+                fig.add_trace(
+                    go.Scatter(
+                        x=[x - half, x + half, x + half, x - half, x - half],
+                        y=[side * low, side * low, side * high, side * high, side * low],
+                        fill="toself",
+                        fillcolor=fill,
+                        line={"color": colour, "width": width},
+                        mode="lines",
+                        hoverinfo="skip",
+                        showlegend=False,
+                    )
+                )
+            theta = np.linspace(0.0, 2.0 * math.pi, 40)
+            fig.add_trace(
+                go.Scatter(
+                    x=x + 0.5 * ball_d * np.cos(theta),
+                    y=side * pitch_r + 0.5 * ball_d * np.sin(theta),
+                    fill="toself",
+                    fillcolor=colour,
+                    line={"color": colour, "width": 1},
+                    mode="lines",
+                    hoverinfo="skip",
+                    showlegend=False,
+                )
+            )
+            # the contact line: from the axis outwards it runs towards the bearing's direction
+            centre_x = x - sign * pitch_r * math.tan(alpha)
+            outer_x = x + sign * 1.0 * ball_d * math.tan(alpha)
+            fig.add_trace(
+                go.Scatter(
+                    x=[centre_x, outer_x],
+                    y=[0.0, side * (pitch_r + 1.0 * ball_d)],
+                    mode="lines",
+                    line={"color": colour, "width": width, "dash": "dash"},
+                    name=f"{name} ({one['bearing_direction'].item()})",
+                    showlegend=side > 0,
+                    hovertemplate=(
+                        f"{name}: at {x:g} mm, thrust towards {one['bearing_direction'].item()}, "
+                        f"contact angle {math.degrees(alpha):.1f}°, pressure centre at "
+                        f"{centre_x:.1f} mm<extra></extra>"
+                    ),
+                )
+            )
+            reach += [centre_x, x - half, x + half]
+        fig.add_annotation(
+            x=x, y=pitch_r + 1.6 * ball_d, text=name, showarrow=False, font={"color": colour}
+        )
+    load_x = float(ds["load_position"]) * 1e3
+    # the external force balances the bearings' forces on the shaft
+    force = ", ".join(f"{round(-v):d}" for v in ds["bearing_force"].values.sum(axis=0))
+    reach.append(load_x)
+    top = float(np.max(0.5 * ds["pitch_diameter"].values * 1e3 + 2.0 * ds["ball_diameter"].values))
+    fig.add_trace(
+        go.Scatter(
+            x=[min(reach) - 5.0, max(reach) + 5.0],
+            y=[0.0, 0.0],
+            mode="lines",
+            line={"color": "#555", "width": 1, "dash": "dashdot"},
+            name="shaft axis",
+            hoverinfo="skip",
+        )
+    )
+    fig.add_annotation(
+        x=load_x,
+        y=0.0,
+        ax=load_x,
+        ay=0.55 * top,
+        xref="x",
+        yref="y",
+        axref="x",
+        ayref="y",
+        showarrow=True,
+        arrowhead=2,
+        arrowwidth=2,
+        arrowcolor="#222",
+        text="load",
+        hovertext=f"external force [{force}] N at {load_x:g} mm",
+    )
+    fig.update_yaxes(scaleanchor="x", scaleratio=1.0, range=[-top, top])
+    _layout(fig, "The set along the shaft", "axial position, mm", "radius, mm")
+    return fig
+
+
+def sharing_figure(ds: xr.Dataset) -> go.Figure:
+    """Axial and radial load (N) each bearing carries, as grouped bars."""
+    names = bearing_names(ds)
+    fig = go.Figure()
+    fig.add_trace(
+        go.Bar(
+            x=names,
+            y=ds["bearing_axial_load"].values,
+            name="axial (own direction)",
+            marker_color="#1f77b4",
+        )
+    )
+    fig.add_trace(
+        go.Bar(x=names, y=ds["bearing_radial_load"].values, name="radial", marker_color="#ff7f0e")
+    )
+    fig.update_layout(barmode="group")
+    _layout(fig, "Load sharing", "", "load carried, N")
+    return fig
+
+
+def ball_figure(ds: xr.Dataset, quantity: str) -> go.Figure:
+    """Inner ``quantity`` ("contact_load", N, or "contact_angle", degree) of every ball versus its
+    azimuth (degree), one line per bearing."""
+    fig = go.Figure()
+    for index, name in enumerate(bearing_names(ds)):
+        one = _one(ds, index)
+        psi = np.mod(one["ball_azimuth"].values, 360.0)
+        order = np.argsort(psi)
+        values = one[quantity].sel(race="inner").values[order]
+        if quantity == "contact_load":
+            values = np.nan_to_num(values)
+        fig.add_trace(
+            go.Scatter(
+                x=psi[order],
+                y=values,
+                mode="lines+markers",
+                name=name,
+                line={"color": bearing_colour(index)},
+            )
+        )
+    fig.update_xaxes(range=[0, 360])
+    if quantity == "contact_load":
+        _layout(fig, "Inner contact load per ball", "ball azimuth, degree", "contact load, N")
+        _pad_y(fig, LOAD_MIN_SPAN_N, low_zero=True)
+    else:
+        _layout(fig, "Inner contact angle per ball", "ball azimuth, degree", "contact angle, °")
+        _pad_y(fig, 1.0)
+    return fig
+
+
+def _stiffness_cells(k: np.ndarray) -> dict:
+    """Axial, radial (mean of y and z) and tilting (mean of the two tilts) stiffness of the 5x5
+    ``k`` in the table's units, as text."""
+    t_unit, t_scale = TRANSLATION_UNIT
+    r_unit, r_scale = TILT_UNIT
+    return {
+        "axial": f"{k[0, 0] * t_scale:.1f}",
+        "radial": f"{0.5 * (k[1, 1] + k[2, 2]) * t_scale:.1f}",
+        "tilt": f"{0.5 * (k[3, 3] + k[4, 4]) * r_scale:.2f}",
+    }
+
+
+def stiffness_rows(ds: xr.Dataset) -> list[dict]:
+    """The stiffness table: a row per bearing (its 5x5 about its ball-centre plane) and one for
+    the set (at the load point): ``{"name", "axial", "radial", "tilt"}`` in N/µm and N m/mrad."""
+    rows = [
+        {"name": name, **_stiffness_cells(ds["bearing_stiffness"].values[index])}
+        for index, name in enumerate(bearing_names(ds))
+    ]
+    rows.append({"name": "set (at the load point)", **_stiffness_cells(ds["set_stiffness"].values)})
+    return rows
