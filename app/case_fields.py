@@ -97,7 +97,7 @@ def set_form_fields() -> list[FormField]:
     and the preload (its kind and the value each kind reads); the choices and defaults are the
     case module's (:mod:`solver.case.bearing_set`), the rules too (``Case.with_values``). Their
     section is ``"set"``: the form shows them for a set case only."""
-    from solver.case.bearing_set import (
+    from solver import (
         ARRANGEMENTS,
         DEFAULT_PRELOAD_KIND,
         DIRECTIONS,

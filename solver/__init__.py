@@ -98,6 +98,11 @@ _LAZY = {
     "BearingGeometry": "solver.geometry",
     # the models, through the facade (a case by any name)
     "solve": "solver.facade",
+    # bearing sets: the [set] table's choices (docs/case-format.md)
+    "ARRANGEMENTS": "solver.case.bearing_set",
+    "DIRECTIONS": "solver.case.bearing_set",
+    "PRELOAD_KINDS": "solver.case.bearing_set",
+    "DEFAULT_PRELOAD_KIND": "solver.case.bearing_set",
     "set_result_warnings": "solver.models.quasistatic.set_warnings",
     "bearing_result": "solver.models.quasistatic.set_warnings",
     "set_stiffness_study": "solver.models.quasistatic.bearing_set",
