@@ -58,10 +58,14 @@ def build_study_text(
     model: str,
     revolutions,
     base: str = "base.toml",
+    duration_s: float | None = None,
 ) -> str:
     """The study file (docs/study-format.md) of a study around the case file ``base``: the keys
     of ``varied`` take their lists of values, ``combine``d; ``model`` runs at each point; the
-    dynamic points run ``revolutions`` shaft revolutions. StudyInputError says what is wrong."""
+    dynamic points run ``revolutions`` shaft revolutions. A base case with a time history runs
+    for a duration in seconds, not for shaft revolutions (docs/case-format.md): give its
+    ``duration_s`` and every point runs that long (``simulation.duration_s`` under ``[set]``;
+    ``revolutions`` is not read). StudyInputError says what is wrong."""
     if combine not in ("grid", "zip"):
         raise StudyInputError(f"combine: {combine!r} is not grid or zip")
     if model not in BUILD_MODELS:
@@ -86,7 +90,15 @@ def build_study_text(
         f'model = "{model}"',
         f'combine = "{combine}"',
     ]
-    if model != "quasistatic":
+    if model != "quasistatic" and duration_s is not None:
+        seconds = float(duration_s)
+        if not (math.isfinite(seconds) and seconds > 0):
+            raise StudyInputError(
+                f"run length: the case's simulation.duration_s = {duration_s!r} is not a "
+                "duration above 0 s"
+            )
+        lines += ["", "[set]", f'"simulation.duration_s" = {seconds!r}']
+    elif model != "quasistatic":
         try:
             revs = float(revolutions)
         except (TypeError, ValueError):

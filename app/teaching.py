@@ -43,9 +43,11 @@ _DEGREE_FIELDS = frozenset({"radial_load_angle", "misalignment", "misalignment_a
 
 def facts_from_result(ds) -> Facts:
     """:class:`Facts` from a results Dataset's describing coordinates, one per field of the same
-    name (ValueError naming what is missing)."""
+    name; an input that varies along a time history is a data variable over ``time``
+    (results-schema.md) and gives its value at the end of the run, as the lessons quote it
+    (ValueError naming what is missing)."""
     names = [f.name for f in fields(Facts) if f.name != "model"]
-    missing = [n for n in names if n not in ds.coords]
+    missing = [n for n in names if n not in ds.coords and n not in ds.data_vars]
     if missing:
         raise ValueError(
             f"the result lacks the coordinates {', '.join(missing)} (results-schema.md); "
@@ -53,8 +55,11 @@ def facts_from_result(ds) -> Facts:
         )
 
     def value(name):
-        values = ds.coords[name].values
-        scalar = values.flat[0] if values.ndim else values.item()
+        if name in ds.coords:
+            values = ds.coords[name].values
+            scalar = values.flat[0] if values.ndim else values.item()
+        else:
+            scalar = ds[name].values.flat[-1]  # varies in time: the end of the run
         if name == "misalignment_frame":
             return str(scalar)
         return math.radians(float(scalar)) if name in _DEGREE_FIELDS else float(scalar)

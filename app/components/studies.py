@@ -40,6 +40,7 @@ from .. import lazy_charts
 from ..case_fields import form_fields
 from ..charts import STUDY_CHART_METRICS, study_figure
 from ..paths import child_path
+from ..run_length import has_history
 from ..study_building import StudyInputError, build_study_text, parse_values
 from .base import Component, fig_json, running_loop
 from .widgets import button, choices, select
@@ -246,7 +247,12 @@ class Studies(Component):
             varied_words = " and ".join(k.rsplit(".", 1)[-1] for k, _ in varied)
             title = f"{case.bearing.designation or 'bearing'}: {varied_words} (built in the app)"
             text = build_study_text(
-                title, varied, str(s.study_combine), str(s.study_model), s.study_revolutions
+                title,
+                varied,
+                str(s.study_combine),
+                str(s.study_model),
+                s.study_revolutions,
+                duration_s=case.simulation.duration_s if has_history(case) else None,
             )
         except StudyInputError as error:
             s.study_status = f"error: {error}"

@@ -36,6 +36,8 @@ DEFAULT_REVOLUTIONS = 4.0
 DEFAULT_SAMPLES_PER_REVOLUTION = 60
 MAX_REVOLUTIONS = 20.0  # a lesson result is shipped with the app: keep it small
 MAX_SAMPLES_PER_REVOLUTION = 180
+#: Most samples of a dynamic result along a time history (its run is a duration, not revolutions).
+MAX_HISTORY_SAMPLES = 1000
 MAX_FILE_BYTES = 64 * 1024
 
 _NAME = re.compile(r"^[a-z][a-z0-9_]{0,31}$")
@@ -68,8 +70,10 @@ class LessonError(ValueError):
 class ResultSpec:
     """One result a lesson shows: ``case`` (a catalogue name) with ``overrides`` (dotted case keys,
     case units) solved by ``model``; a dynamic run covers ``shaft_revolutions`` revolutions sampled
-    ``samples_per_revolution`` times each. ``title`` is the solved case's title ("<lesson
-    title>: <label>"): the catalogue case's own title would not name what the lesson changed."""
+    ``samples_per_revolution`` times each, or, when the case has a time history, its own
+    ``simulation.duration_s``. ``title`` is the solved case's title ("<lesson title>: <label>"):
+    the catalogue case's own title would not name what the lesson changed. ``given_run_keys``: the
+    run-length keys the lesson file gave (a history case refuses them)."""
 
     name: str
     label: str
@@ -79,6 +83,7 @@ class ResultSpec:
     shaft_revolutions: float
     samples_per_revolution: int
     title: str = ""
+    given_run_keys: tuple[str, ...] = ()
 
     def case(self) -> Case:
         """The validated case this result solves, under :attr:`title` (CaseError when the changes
@@ -283,6 +288,9 @@ def _result_spec(index: int, table, problems: list[str], lesson_title: str) -> R
         shaft_revolutions=float(revolutions),
         samples_per_revolution=int(samples),
         title=f"{lesson_title}: {label}" if lesson_title else label,
+        given_run_keys=tuple(
+            k for k in ("shaft_revolutions", "samples_per_revolution") if k in table
+        ),
     )
     if not isinstance(case_name, str):
         problems.append(f"{where}: case is missing (a shipped case name, see racetrace cases)")
@@ -301,8 +309,34 @@ def _case_problems(where: str, spec: ResultSpec) -> list[str]:
     except CaseError as error:
         return [f"{where}: overrides: {error}"]
     if spec.model == "dynamic":
-        return [f"{where}: the dynamic model cannot run it: {p}" for p in dynamic_problems(case)]
+        problems = [
+            f"{where}: the dynamic model cannot run it: {p}" for p in dynamic_problems(case)
+        ]
+        if case.histories:
+            problems += _history_run_problems(where, spec, case)
+        return problems
     return []
+
+
+def _history_run_problems(where: str, spec: ResultSpec, case: Case) -> list[str]:
+    """A run along a time history lasts the case's ``simulation.duration_s`` sampled
+    ``samples_per_second`` times a second (docs/case-format.md): the lesson's run-length keys do
+    not apply, and the run must stay small enough to ship."""
+    problems = [
+        f"{where}: {key} applies to a steady case; the case {spec.case_name!r} has a time "
+        f"history ({', '.join(sorted(case.histories))}), so its run lasts "
+        "simulation.duration_s: change it, or simulation.samples_per_second, under overrides"
+        for key in spec.given_run_keys
+    ]
+    samples = case.simulation.duration_s * case.simulation.samples_per_second
+    if samples > MAX_HISTORY_SAMPLES:
+        problems.append(
+            f"{where}: the run along the history would store {samples:.0f} samples "
+            f"(simulation.duration_s {case.simulation.duration_s:g} s x samples_per_second "
+            f"{case.simulation.samples_per_second:g}); a lesson result is shipped with the app: "
+            f"at most {MAX_HISTORY_SAMPLES}, so lower simulation.samples_per_second under overrides"
+        )
+    return problems
 
 
 def _sentences(raw, results: list[str], problems: list[str]) -> list[Sentence]:

@@ -32,15 +32,16 @@ def fingerprint(spec: ResultSpec) -> str:
     model, the run length of a dynamic run and the solver's results version."""
     import solver
 
+    case = spec.case()
     options = (
         {
             "shaft_revolutions": spec.shaft_revolutions,
             "samples_per_revolution": spec.samples_per_revolution,
         }
-        if spec.model == "dynamic"
+        if spec.model == "dynamic" and not case.histories
         else {}
     )
-    return solver.result_fingerprint(spec.case(), spec.model, options)
+    return solver.result_fingerprint(case, spec.model, options)
 
 
 def shipped_results_dir():
@@ -65,12 +66,15 @@ def lesson_cache_dir(environ: dict | None = None) -> Path:
 
 
 def compute(spec: ResultSpec) -> xr.Dataset:
-    """Solve the spec's case with its model (the dynamic run with its own length)."""
+    """Solve the spec's case with its model (the dynamic run with its own length; a case with a
+    time history runs for its own simulation.duration_s)."""
     import solver
 
     case = spec.case()
     if spec.model == "quasistatic":
         ds = solver.solve_quasistatic(case)
+    elif case.histories:
+        ds = solver.simulate(case)
     else:
         options = solver.SimulationOptions(
             shaft_revolutions=spec.shaft_revolutions,

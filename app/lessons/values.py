@@ -52,8 +52,66 @@ def _count(ds, name: str, race: str | None = None):
     return None if value is None else int(value)
 
 
+def _input(ds, name: str, scale=1.0, at_start=False):
+    """An operating input of the result: its coordinate (a steady result, or an input a history
+    holds), else its data variable over ``time`` (an input that varies: results-schema.md) at the
+    end of the run, or at t = 0 with ``at_start``."""
+    if name in ds.coords:
+        return float(ds.coords[name]) * scale
+    values = np.asarray(ds[name].values, dtype=float).ravel()
+    return float(values[0 if at_start else -1]) * scale
+
+
 def _coord(ds, name: str, scale=1.0):
-    return float(ds.coords[name]) * scale
+    return _input(ds, name, scale)
+
+
+def _phase_metric(ds, name: str, which: int, race: str | None = None, scale: float = 1.0):
+    """Metric ``name`` over the first (``which`` = 0) or the last (-1) phase of the result
+    (solver.results.phases: a run along a history is cut at its event times; a steady result has
+    one phase, its analysed window), times ``scale``; None when NaN or not dynamic."""
+    if "time" not in ds.dims:
+        return None
+    from solver.results.metrics import Window, compute_metric
+
+    value = compute_metric(Window(ds, by_phase=True), name).isel(phase=which)
+    if race is not None:
+        value = value.sel(race=race)
+    value = float(value)
+    return value * scale if math.isfinite(value) else None
+
+
+def _phase_edge(ds, which: int, edge: str):
+    """Start or end time [s] of the first (0) or last (-1) phase of a dynamic result."""
+    if "time" not in ds.dims:
+        return None
+    from solver.results.phases import phases
+
+    phase = phases(ds)[which]
+    return phase.start if edge == "start" else phase.end
+
+
+def _skid(ds, field: str, scale: float = 1.0):
+    """A field of the run's skid extent (solver.results.skidding.skid_extent over the whole run:
+    samples at more than a tenth of its top rolling speed); None for a quasi-static result, or
+    when the cage never lags by more than the skidding threshold (the times of the skid)."""
+    if "time" not in ds.dims:
+        return None
+    from solver.results.skidding import skid_extent
+
+    extent = skid_extent(ds)
+    value = None if extent is None else getattr(extent, field)
+    return None if value is None else float(value) * scale
+
+
+def _min_skidding_ratio(ds):
+    """1 - the largest instantaneous cage slip of the run's skid extent (None: not dynamic)."""
+    peak = _skid(ds, "peak")
+    return None if peak is None else 1.0 - peak
+
+
+def _skid_warnings(ds):
+    return sum(1 for w in ds.racetrace.warnings() if w.startswith("the cage skids"))
 
 
 def _race_control(ds):
@@ -98,6 +156,12 @@ def _registry() -> dict[str, Value]:
             lambda ds: _coord(ds, "inner_ring_speed", 1.0 / RPM),
         ),
         Value(
+            "start_speed_rpm",
+            "rpm",
+            "inner-ring (shaft) speed at t = 0 (a run along a history)",
+            lambda ds: _input(ds, "inner_ring_speed", 1.0 / RPM, at_start=True),
+        ),
+        Value(
             "axial_load", "N", "axial load on the inner ring", lambda ds: _coord(ds, "axial_load")
         ),
         Value(
@@ -105,6 +169,12 @@ def _registry() -> dict[str, Value]:
             "N",
             "radial load on the inner ring",
             lambda ds: _coord(ds, "radial_load"),
+        ),
+        Value(
+            "start_radial_load",
+            "N",
+            "radial load on the inner ring at t = 0 (a run along a history)",
+            lambda ds: _input(ds, "radial_load", at_start=True),
         ),
         Value(
             "misalignment",
@@ -178,6 +248,60 @@ def _registry() -> dict[str, Value]:
             "%",
             "how much slower than epicyclic the cage runs (negative: faster)",
             lambda ds: _metric(ds, "cage_slip", scale=100.0),
+        ),
+        Value(
+            "first_phase_cage_slip",
+            "%",
+            "mean instantaneous cage slip over the first phase (dynamic; a steady run: its window)",
+            lambda ds: _phase_metric(ds, "mean_instantaneous_cage_slip", 0, scale=100.0),
+        ),
+        Value(
+            "last_phase_cage_slip",
+            "%",
+            "mean instantaneous cage slip over the last phase (dynamic; a steady run: its window)",
+            lambda ds: _phase_metric(ds, "mean_instantaneous_cage_slip", -1, scale=100.0),
+        ),
+        Value(
+            "first_phase_end_time",
+            "s",
+            "end of the first phase: the first event time of the history (dynamic)",
+            lambda ds: _phase_edge(ds, 0, "end"),
+        ),
+        Value(
+            "last_phase_start_time",
+            "s",
+            "start of the last phase: the last event time of the history (dynamic)",
+            lambda ds: _phase_edge(ds, -1, "start"),
+        ),
+        Value(
+            "min_skidding_ratio",
+            "",
+            "smallest skidding ratio of the run (cage speed / rolling cage speed; dynamic)",
+            _min_skidding_ratio,
+        ),
+        Value(
+            "min_skidding_ratio_time",
+            "s",
+            "time of the smallest skidding ratio (dynamic)",
+            lambda ds: _skid(ds, "peak_time"),
+        ),
+        Value(
+            "skid_start_time",
+            "s",
+            "first time the cage lags its rolling speed by more than the skidding threshold",
+            lambda ds: _skid(ds, "start"),
+        ),
+        Value(
+            "skid_end_time",
+            "s",
+            "last time the cage lags its rolling speed by more than the skidding threshold",
+            lambda ds: _skid(ds, "end"),
+        ),
+        Value(
+            "skid_warnings",
+            "",
+            'number of "the cage skids" warnings the result gives',
+            _skid_warnings,
         ),
         Value(
             "max_pressure",
@@ -272,6 +396,15 @@ def _registry() -> dict[str, Value]:
                 lambda ds, r=race, m=metric, k=scale: _metric(ds, m, r, k),
             )
             for suffix, unit, meaning, metric, scale in per_race
+        ]
+        entries += [
+            Value(
+                f"{race}_band_thickness_{which}_phase",
+                "deg",
+                f"{race} track band thickness over the {which} phase of the run (dynamic)",
+                lambda ds, r=race, k=index: _phase_metric(ds, "band_thickness", k, r),
+            )
+            for which, index in (("first", 0), ("last", -1))
         ]
         entries.append(
             Value(

@@ -311,21 +311,46 @@ def _skidding_check(ds) -> list[str]:
     slip = metrics.compute_metric(metrics.Window(ds, by_phase), "mean_instantaneous_cage_slip")
     if not by_phase:
         slip = slip.expand_dims(phase=[0]).assign_coords(phase_label=("phase", [_window_words(ds)]))
+    masks = phases.phase_mask(ds).values
     found = []
     for k in range(slip.sizes["phase"]):
         value = float(slip.values[k])
         if value > threshold:
             label = str(slip["phase_label"].values[k])
             where = f"the phase {label}" if by_phase else label
+            extent = skidding.skid_extent(ds, masks[k] if k < len(masks) else None)
             found.append(
                 f"the cage skids: over {where} it turns on average {100.0 * value:.3g} % slower "
                 f"than its rolling speed (mean instantaneous_cage_slip, threshold "
-                f"{100.0 * threshold:.3g} %): the balls slide over the raceways instead of "
+                f"{100.0 * threshold:.3g} %){_skid_extent_words(extent)}: the balls slide over "
+                "the raceways instead of "
                 "rolling, which smears and wears them and heats the contacts. A light load at "
                 "high speed or a fast start-up causes it; more preload (operating.axial_load_N) "
                 "or a slower ramp holds the balls to rolling."
             )
     return found
+
+
+def _skid_extent_words(extent) -> str:
+    """When and how much the cage lagged (solver.results.skidding.skid_extent), in words: "; it
+    lags most, 6.1 % (skidding_ratio 0.939), at t = 0.045 s, and by more than 1 % from t = 0.012 s
+    to 0.051 s (80 % of the samples at more than a tenth of the run's top rolling speed)"; ""
+    when nothing is known."""
+    from .skidding import CAGE_SKID_THRESHOLD
+
+    if extent is None:
+        return ""
+    words = (
+        f"; it lags most, {100.0 * extent.peak:.3g} % (skidding_ratio "
+        f"{1.0 - extent.peak:.3g}), at t = {extent.peak_time:.4g} s"
+    )
+    if extent.start is not None:
+        words += (
+            f", and by more than {100.0 * CAGE_SKID_THRESHOLD:.3g} % from t = "
+            f"{extent.start:.4g} s to {extent.end:.4g} s ({100.0 * extent.share:.3g} % of the "
+            "samples at more than a tenth of the run's top rolling speed)"
+        )
+    return words
 
 
 def _window_words(ds) -> str:

@@ -30,6 +30,8 @@ weigh little) exceeds :data:`CAGE_SKID_THRESHOLD`.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import xarray as xr
 
@@ -43,6 +45,11 @@ from .variables import variable
 #: spindle at 5 N and 30 000 rpm, whose balls skid and whose cage is still slowing at the end of
 #: the run, +1.34 % (lesson 5 "light", peak 5.2 %). 1 % lies between.
 CAGE_SKID_THRESHOLD = 0.01
+
+#: Samples whose rolling cage speed is below this fraction of the run's largest are left out of
+#: the peak and the span of skidding a warning names (:func:`skid_extent`): near rest the ratio
+#: of two small speeds says nothing about skidding (a start from rest passes through them).
+SKID_EXTENT_MIN_ROLLING_FRACTION = 0.1
 
 #: The variables :func:`skidding_variables` adds to a dynamic result.
 SKIDDING_VARIABLES = ("skidding_ratio", "instantaneous_cage_slip")
@@ -95,7 +102,57 @@ def instantaneous_cage_slip(ds: xr.Dataset) -> xr.DataArray:
     return 1.0 - skidding_ratio(ds)
 
 
+@dataclass(frozen=True)
+class SkidExtent:
+    """When and how much the cage lags within a set of samples: the largest instantaneous cage
+    slip ``peak`` (a fraction) at ``peak_time`` [s], and the first and last times [s] at which
+    the slip exceeds :data:`CAGE_SKID_THRESHOLD` (``start``, ``end``; None when no sample does),
+    with the fraction ``share`` of the samples counted that exceed it."""
+
+    peak: float
+    peak_time: float
+    start: float | None
+    end: float | None
+    share: float
+
+
+def skid_extent(ds: xr.Dataset, within=None) -> SkidExtent | None:
+    """:class:`SkidExtent` of a dynamic result over the samples ``within`` (a boolean array over
+    ``time``; None: every sample), counting only samples with a finite slip whose rolling cage
+    speed is at least :data:`SKID_EXTENT_MIN_ROLLING_FRACTION` of the run's largest. None when
+    no sample counts (rings at rest, a quasi-static result)."""
+    if "time" not in ds.dims or "cage_speed" not in ds:
+        return None
+    rolling = np.abs(np.asarray(rolling_cage_speed(ds).values, dtype=float)).ravel()
+    slip = np.asarray(instantaneous_cage_slip(ds).values, dtype=float).ravel()
+    times = np.asarray(ds["time"].values, dtype=float)
+    if rolling.shape != times.shape or slip.shape != times.shape:
+        return None  # a stacked result (a study): one extent per run is not defined here
+    finite = np.isfinite(rolling) & np.isfinite(slip)
+    if not finite.any():
+        return None
+    fast = rolling >= SKID_EXTENT_MIN_ROLLING_FRACTION * rolling[finite].max()
+    counted = finite & fast
+    if within is not None:
+        counted &= np.asarray(within, dtype=bool)
+    if not counted.any():
+        return None
+    k = int(np.argmax(np.where(counted, slip, -np.inf)))
+    over = counted & (slip > CAGE_SKID_THRESHOLD)
+    over_times = times[over]
+    return SkidExtent(
+        peak=float(slip[k]),
+        peak_time=float(times[k]),
+        start=float(over_times[0]) if over_times.size else None,
+        end=float(over_times[-1]) if over_times.size else None,
+        share=float(over.sum() / counted.sum()),
+    )
+
+
 __all__ = [
+    "SKID_EXTENT_MIN_ROLLING_FRACTION",
+    "SkidExtent",
+    "skid_extent",
     "CAGE_SKID_THRESHOLD",
     "SKIDDING_VARIABLES",
     "instantaneous_cage_slip",

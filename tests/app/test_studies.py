@@ -141,6 +141,26 @@ def test_a_built_study_file_is_valid_and_says_what_is_wrong(tmp_path):
         build_study_text("t", [varied[0], varied[0]], "grid", "quasistatic", 1)
 
 
+def test_a_study_built_from_a_history_case_runs_for_the_case_duration(tmp_path):
+    """A case with a time history runs for simulation.duration_s, not for shaft revolutions: the
+    built study sets the case's duration on every point and its dynamic points are valid cases."""
+    from app.study_building import build_study_text
+    from solver.catalogue import catalogue
+
+    case = catalogue().get("spindle-start-up").load()
+    (tmp_path / "base.toml").write_text(case.to_toml())
+    varied = [("operating.axial_load_N", [100.0, 200.0])]
+    text = build_study_text(
+        "t", varied, "grid", "dynamic", "2", duration_s=case.simulation.duration_s
+    )
+    assert "shaft_revolutions" not in text
+    assert '"simulation.duration_s" = 0.4' in text
+    study = Study.from_text(text, folder=tmp_path)
+    points = study.points()
+    assert len(points) == 2
+    assert all(p.case.simulation.duration_s == 0.4 for p in points)
+
+
 def test_build_a_study_from_the_current_case_runs_it_and_lists_it(app):
     s = app.state
     assert "operating.radial_load_N" in {i["value"] for i in s.study_key_items}

@@ -212,6 +212,11 @@ def _say(data: dict, old: str, new: str) -> dict:
         ("05-cage", [("The balls skid", "The balls do not skid")]),
         ("02-speed", [("The outer contact angle falls", "The outer contact angle rises")]),
         ("06-overload", [("the outer one, closer", "the inner one, closer")]),
+        ("07-start-up-skid", [("the cage catches up", "the cage never catches up")]),
+        (
+            "08-live-radial-load",
+            [("the inner track opens into a band", "the inner track stays a thin line")],
+        ),
     ],
 )
 def test_a_lesson_with_its_qualitative_words_swapped_is_refused(lesson_id, swaps):

@@ -197,6 +197,8 @@ def test_shipped_lessons_all_load():
         "04-misalignment",
         "05-cage",
         "06-overload",
+        "07-start-up-skid",
+        "08-live-radial-load",
     ]
     for lesson in found.lessons:
         assert lesson.camera in CAMERAS and lesson.chart in CHARTS
@@ -208,3 +210,28 @@ def test_lesson_cameras_and_charts_are_the_apps():
 
     assert set(CAMERAS) <= set(CAMERA_PRESETS)  # every camera a lesson may name is a preset
     assert set(CHARTS) <= set(HELP)  # and every chart one of the page's chart panels
+
+
+def test_a_run_along_a_history_lasts_its_case_duration_and_stays_small():
+    """A case with a time history runs for its simulation.duration_s: the lesson's run-length keys
+    are refused for it, and its samples (duration x samples_per_second) must stay shippable."""
+    history = GOOD.replace(
+        'case = "spindle-axial-preload"\nmodel = "dynamic"',
+        (
+            'case = "spindle-start-up-skid"\nmodel = "dynamic"\n'
+            'overrides = { "simulation.samples_per_second" = 4000.0 }'
+        ),
+    )
+    problems = _problems(history)
+    assert len(problems) == 2, problems
+    assert all("applies to a steady case" in p and "simulation.duration_s" in p for p in problems)
+    assert {p.split(":")[1].strip().split()[0] for p in problems} == {
+        "shaft_revolutions",
+        "samples_per_revolution",
+    }
+    fine = history.replace("shaft_revolutions = 3\nsamples_per_revolution = 24\n", "")
+    lesson = parse_lesson(fine, "history")
+    assert lesson.result("run").case().simulation.duration_s == 0.1
+    too_long = fine.replace("4000.0", "20000.0")
+    (problem,) = _problems(too_long)
+    assert "2000 samples" in problem and "at most 1000" in problem

@@ -12,6 +12,7 @@ import solver  # noqa: F401
 from app.lessons import results as lesson_results
 from app.lessons.format import load_lessons
 from app.lessons.values import VALUES, lesson_values
+from solver import RPM
 
 LESSONS = load_lessons()
 DOCS = Path(__file__).resolve().parents[3] / "docs" / "lessons.md"
@@ -118,3 +119,25 @@ def test_no_controlling_race_when_ball_speeds_come_from_traction():
     overload = _shipped("06-overload", "overload")  # the default quasi-static ball speeds
     assert set(overload["race_control"].values) == {"traction"}
     assert lesson_values(overload)["race_control"] is None
+
+
+def test_a_run_along_a_history_quotes_its_inputs_phases_and_skid():
+    """Lesson 7's start-up: the speed varies (a data variable over time), quoted at the end of
+    the run and at t = 0; the first phase is the ramp, the last the speed held after it."""
+    run = _shipped("07-start-up-skid", "startup")
+    assert "inner_ring_speed" not in run.coords and run["inner_ring_speed"].dims == ("time",)
+    v = lesson_values(run)
+    assert v["speed_rpm"] == pytest.approx(20000.0, rel=1e-6)
+    assert v["start_speed_rpm"] == 0.0
+    assert v["first_phase_end_time"] == pytest.approx(0.05) == v["last_phase_start_time"]
+    by_phase = run.racetrace.phase_metrics()["mean_instantaneous_cage_slip"].values
+    assert v["first_phase_cage_slip"] == pytest.approx(100.0 * by_phase[0], rel=1e-12)
+    assert v["last_phase_cage_slip"] == pytest.approx(100.0 * by_phase[-1], rel=1e-12)
+    ratio = run["skidding_ratio"].values
+    fast = run["inner_ring_speed"].values >= 0.1 * 20000.0 * RPM  # the extent's samples
+    assert v["min_skidding_ratio"] == pytest.approx(float(np.nanmin(ratio[fast])), rel=1e-6)
+    assert v["skid_warnings"] == 1
+    # a quasi-static result has neither phases nor a skid
+    rest = _shipped("02-speed", "rest")
+    assert lesson_values(rest)["first_phase_cage_slip"] is None
+    assert lesson_values(rest)["min_skidding_ratio"] is None

@@ -28,6 +28,8 @@ EXPECTED = {
         "209-radial",
         # time histories (issue 24)
         "spindle-start-up",
+        "spindle-start-up-skid",
+        "spindle-live-radial-push",
         "spindle-radial-step",
         "spindle-unbalance",
         "spindle-load-spectrum",
@@ -40,7 +42,7 @@ def test_catalogue_lists_the_required_entries():
     cat = catalogue()
     assert {e.name for e in cat.bearings} == EXPECTED["bearings"]
     assert {e.name for e in cat.cases} == EXPECTED["cases"]
-    assert list(cat) == list(cat.entries) and len(cat) == 16
+    assert list(cat) == list(cat.entries) and len(cat) == 18
     for entry in cat.entries:
         assert entry.title and entry.provenance in (
             "estimated",

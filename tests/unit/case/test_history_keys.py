@@ -343,3 +343,52 @@ def test_dynamic_problems_of_a_history_case(valid):
     )
     (problem,) = dynamic_problems(long)
     assert problem.key == "simulation.duration_s" and "ball-samples" in problem.message
+
+
+# ---- the examples of docs/case-format.md ----------------------------------------------------
+DOC = __import__("pathlib").Path(__file__).resolve().parents[3] / "docs" / "case-format.md"
+#: The history forms docs/case-format.md must show with an example, and how to tell one.
+FORMS = {
+    "ramp": "ramp",
+    "step": "step",
+    "sine": "sine",
+    "rotating with the shaft": "rotating =",
+    "rotating at a speed": "rotating_rpm",
+    "table inline": "table =",
+    "table from a CSV file": "file =",
+}
+
+
+def _history_examples() -> list[str]:
+    """The ```toml blocks of the doc's "Time histories" section."""
+    import re
+
+    doc = DOC.read_text(encoding="utf-8")
+    section = doc.split("## Time histories", 1)[1].split("\n## ", 1)[0]
+    return re.findall(r"```toml\n(.*?)```", section, flags=re.S)
+
+
+def test_the_doc_shows_each_history_form_with_an_example():
+    examples = _history_examples()
+    missing = [form for form, mark in FORMS.items() if not any(mark in e for e in examples)]
+    assert not missing, f"docs/case-format.md has no example of: {missing}"
+    assert "```text\ntime_s," in DOC.read_text(encoding="utf-8")  # the CSV file itself
+
+
+@pytest.mark.parametrize("index", range(len(FORMS)))
+def test_every_history_example_of_the_doc_parses(valid, tmp_path, index):
+    """Each example, put into the [operating] table of a valid case (the CSV example beside it,
+    as the doc shows it), reads into a history case."""
+    import re
+    import tomllib
+
+    examples = _history_examples()
+    assert len(examples) == len(FORMS)
+    keys = tomllib.loads(examples[index])
+    doc = DOC.read_text(encoding="utf-8")
+    (csv,) = re.findall(r"```text\n(time_s,.*?)```", doc, flags=re.S)
+    (tmp_path / "spectrum.csv").write_text(csv, encoding="utf-8")
+    data = history_case(valid, **keys)
+    data["operating"].setdefault("axial_load_N", 300.0)
+    case = Case.from_dict(data, tmp_path)
+    assert set(case.histories) & {f"operating.{k}" for k in keys}, examples[index]

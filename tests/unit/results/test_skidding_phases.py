@@ -146,6 +146,33 @@ def test_the_cage_skids_warning_names_the_phase():
     assert not [w for w in checks.result_warnings(calm) if "skids" in w]
 
 
+def test_the_cage_skids_warning_says_when_and_how_much_the_cage_lagged():
+    """A dip of the cage speed before the event: 6 % behind its rolling speed at t = 0.05 s,
+    lag(t) = 0.06 exp(-((t - 0.05) / 0.01)^2), so more than 1 % behind while |t - 0.05| <
+    0.01 sqrt(ln 6) = 0.0134 s; the phase's mean slip 0.06 * 0.01 sqrt(pi) / 0.08 = 1.33 %."""
+    ds = result(lag_before=0.0, lag_after=0.0, events=[EVENT])
+    times = ds["time"].values
+    lag = np.where(times < EVENT, 0.06 * np.exp(-(((times - 0.05) / 0.01) ** 2)), 0.0)
+    ds["cage_speed"] = ds["cage_speed"] * (1.0 - lag)
+    extent = skidding.skid_extent(ds, times < EVENT)
+    assert extent.peak == pytest.approx(0.06, rel=1e-6)
+    assert extent.peak_time == pytest.approx(0.05, abs=1e-12)
+    half = 0.01 * math.sqrt(math.log(6.0))
+    step = times[1] - times[0]
+    assert extent.start == pytest.approx(0.05 - half, abs=step)
+    assert extent.end == pytest.approx(0.05 + half, abs=step)
+    found = [w for w in checks.result_warnings(ds) if w.startswith("the cage skids")]
+    assert len(found) == 1
+    assert "1.33 % slower" in found[0]
+    assert "lags most, 6 % (skidding_ratio 0.94), at t = 0.05 s" in found[0]
+    assert f"from t = {extent.start:.4g} s to {extent.end:.4g} s" in found[0]
+    # samples near rest (rolling speed under a tenth of the run's largest) are not counted
+    slow = result(lag_before=0.0, lag_after=0.0, events=[EVENT])
+    slow["inner_ring_speed"] = xr.DataArray(np.where(times < 0.01, 0.05, 1.0) * OMEGA, dims="time")
+    slow["cage_speed"] = slow["cage_speed"] * np.where(times < 0.01, 0.05 * 0.5, 1.0)
+    assert skidding.skid_extent(slow).peak == pytest.approx(0.0, abs=1e-9)
+
+
 def test_a_steady_result_has_one_phase_its_analysed_window():
     ds = result(lag_before=0.0, lag_after=0.0)
     mask = phases.phase_mask(ds)
