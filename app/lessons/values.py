@@ -72,9 +72,7 @@ def _phase_metric(ds, name: str, which: int, race: str | None = None, scale: flo
     one phase, its analysed window), times ``scale``; None when NaN or not dynamic."""
     if "time" not in ds.dims:
         return None
-    from solver.results.metrics import Window, compute_metric
-
-    value = compute_metric(Window(ds, by_phase=True), name).isel(phase=which)
+    value = ds.racetrace.phase_metric(name).isel(phase=which)
     if race is not None:
         value = value.sel(race=race)
     value = float(value)
@@ -85,9 +83,7 @@ def _phase_edge(ds, which: int, edge: str):
     """Start or end time [s] of the first (0) or last (-1) phase of a dynamic result."""
     if "time" not in ds.dims:
         return None
-    from solver.results.phases import phases
-
-    phase = phases(ds)[which]
+    phase = ds.racetrace.phases()[which]
     return phase.start if edge == "start" else phase.end
 
 
@@ -97,9 +93,7 @@ def _skid(ds, field: str, scale: float = 1.0):
     when the cage never lags by more than the skidding threshold (the times of the skid)."""
     if "time" not in ds.dims:
         return None
-    from solver.results.skidding import skid_extent
-
-    extent = skid_extent(ds)
+    extent = ds.racetrace.skid_extent()
     value = None if extent is None else getattr(extent, field)
     return None if value is None else float(value) * scale
 

@@ -7,6 +7,9 @@ app.
     ds.racetrace.metrics()    # the metrics table (solver.results.metrics), with units
     ds.racetrace.metric(name) # one metric of the table (a DataArray)
     ds.racetrace.phase_metrics() # the metrics table per phase of a history (solver.results.phases)
+    ds.racetrace.phase_metric(name) # one metric per phase
+    ds.racetrace.phases()     # the phases: start and end time [s], label
+    ds.racetrace.skid_extent() # when and how much the cage lagged (solver.results.skidding)
     ds.racetrace.warnings()   # list[str]: where the result leaves the model's validity
     ds.racetrace.save(path)   # NetCDF, written atomically
     ds.racetrace.to_csv(path) # per-contact table: one row per (time,) ball and race
@@ -20,7 +23,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from . import checks, io, summary
+from . import checks, io, phases, skidding, summary
 from .metrics import METRICS, Window, compute_metric, metrics_table
 
 ACCESSOR_NAME = "racetrace"
@@ -59,6 +62,22 @@ class RacetraceAccessor:
         ``phase`` dimension with ``phase_start_time``, ``phase_end_time`` and ``phase_label``;
         a steady result has one phase, its analysed window. Computed at each call."""
         return metrics_table(self._ds, by_phase=True)
+
+    def phase_metric(self, name: str) -> xr.DataArray:
+        """Metric ``name`` per phase of the result (a ``phase`` dimension, as
+        :meth:`phase_metrics`), computed at each call."""
+        return compute_metric(Window(self._ds, by_phase=True), name)
+
+    def phases(self) -> list:
+        """The result's phases (:func:`solver.results.phases.phases`): start and end time [s]
+        and label of each; a steady result has one phase, its analysed window."""
+        return phases.phases(self._ds)
+
+    def skid_extent(self, within=None):
+        """When and how much the cage lagged its rolling speed
+        (:func:`solver.results.skidding.skid_extent`); None when it never lagged by more than the
+        skidding threshold or the result is not dynamic."""
+        return skidding.skid_extent(self._ds, within)
 
     def summary(self) -> xr.Dataset:
         """The trajectory metrics: those stored in the result (a dynamic run), otherwise computed
