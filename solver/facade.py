@@ -79,10 +79,17 @@ def quasistatic_speed_sweep(case, speeds_rpm):
 
 
 def simulate(case, progress=None, cancel=None, options=None):
-    """The dynamic model's run of ``case`` (:func:`solver.models.dynamic.simulate`)."""
+    """The dynamic model's run of ``case`` (:func:`solver.models.dynamic.simulate`); for a
+    bearing set (a case with a ``[set]`` table) the set's run with a ``bearing`` dimension
+    (:func:`solver.models.dynamic.set_simulate.simulate_set`)."""
+    case = _resolved(case)
+    if getattr(case, "bearing_set", None) is not None:
+        from solver.models.dynamic.set_simulate import simulate_set
+
+        return simulate_set(case, progress=progress, cancel=cancel, options=options)
     from solver.models.dynamic import simulate as model
 
-    return model(_resolved(case), progress=progress, cancel=cancel, options=options)
+    return model(case, progress=progress, cancel=cancel, options=options)
 
 
 def preload() -> None:

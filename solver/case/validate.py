@@ -992,7 +992,8 @@ def dynamic_problems(case) -> list[Problem]:
             Problem(
                 "set",
                 "the dynamic model runs one bearing; this case describes a bearing set ([set]): "
-                "solve it with the quasi-static model (racetrace solve, solver.solve)",
+                "solve it with the quasi-static model (racetrace solve, solver.solve), or run "
+                "the set's dynamic model from Python (solver.simulate(case))",
             )
         ]
     op = case.operating

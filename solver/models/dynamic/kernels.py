@@ -958,6 +958,8 @@ class RhsWork(NamedTuple):
     ring_speed: np.ndarray  # (2,) inner and outer ring speeds of the evaluation [rad/s]
     contact: np.ndarray  # (TRACTION_WORK_SIZE,) scratch of the contact kernels
     stash: np.ndarray  # (CS_SIZE, stash_columns(Z)) per-contact values between the passes
+    ring_load: np.ndarray  # (6,) written: force [N] and moment about the ring centre [N m] of
+    # the balls (and an inner-ring-guided cage's land) on the inner ring, inertial components
 
 
 @njit(cache=True)
@@ -978,6 +980,7 @@ def rhs_work(ball_count):
         np.zeros(2),
         np.empty(TRACTION_WORK_SIZE),
         np.ones((CS_SIZE, stash_columns(ball_count))),
+        np.zeros(6),
     )
 
 
@@ -1033,6 +1036,7 @@ def rhs_into(y, t, history, par, quad, dydt, rec_inner, rec_outer, pocket, scrat
             borrowed(scratch.ring_speed),
             borrowed(scratch.contact),
             borrowed(scratch.stash),
+            borrowed(scratch.ring_load),
         ),
     )
 
@@ -1178,6 +1182,13 @@ def _rhs_borrowed(y, drive, par, quad, dydt, rec_inner, rec_outer, pocket, obser
     else:
         for i in range(5):
             ld[i] = 0.0
+    rl = scratch.ring_load
+    rl[0] = frx
+    rl[1] = fry
+    rl[2] = frz
+    rl[3] = mrx
+    rl[4] = mry
+    rl[5] = mrz
     if par.ring_free:
         mr = par.ring_mass
         for i in range(3):

@@ -1,0 +1,288 @@
+"""Driver of the dynamic model of a bearing set on one rigid shaft:
+``simulate_set(case, progress=None, cancel=None, options=None)`` (:mod:`.set_kernels` for the
+model, :mod:`.set_output` for the Dataset).
+
+The run starts from the quasi-static set solution
+(:func:`solver.models.quasistatic.bearing_set.solve_set_state`): the shaft at its displacement,
+each bearing's balls, ring and cage as the single-bearing model starts from its own quasi-static
+solution (:func:`.initial.initial_state_from_quasistatic`). The shaft is free in its five
+degrees of freedom (translations, tilts) under the set's external load; its spin follows the
+case's inner-ring speed. The outer rings are fixed: a fixed-position preload (an offset or a
+force turned into an offset at rest) is the rings' axial offset; a spring preload, whose outer
+rings float, is not modelled (CaseError). Outcomes as for :func:`.simulate.simulate`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time as _time
+
+import numpy as np
+
+from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverged
+from solver.history import event_times, steady_history
+from solver.models.quasistatic.bearing_set import lever, mirror, set_inputs, solve_set_state
+
+from . import layout as L
+from .initial import initial_state_from_quasistatic
+from .integrate import stepper
+from .integrate.control import STATUS_OK, step_control
+from .integrate.model import SetModel, bearing_model
+from .options import SimulationOptions
+from .params import build_params, build_quadrature
+from .set_kernels import SetShaft
+from .set_output import set_dynamic_dataset
+from .simulate import _DIVERGENCE_CAUSES, RunStatistics, _is_cancelled, _time_grid, state_scales
+
+#: The integration method of a set run: the explicit Dormand-Prince method (the additive method
+#: treats one bearing's cage land implicitly and is not extended to a set).
+SET_METHOD = "dopri5"
+
+
+@dataclasses.dataclass
+class SetMember:
+    """One bearing of the set in the dynamic run: its inputs, parameters, history and quadrature
+    (own frame), sign and arm [m], the axial offset of its rings [m], its slice of the state and
+    the quasi-static solution it starts from."""
+
+    name: str
+    inputs: object
+    par: tuple
+    history: tuple
+    quad: np.ndarray
+    sign: float
+    arm: float
+    offset: float
+    start: int
+    stop: int
+    quasistatic: object
+
+
+def _problems(bearing_set, inputs, options: SimulationOptions) -> list[Problem]:
+    """Why the set's dynamic model cannot run (empty when it can)."""
+    problems = []
+    if inputs.history is not None:
+        problems.append(
+            Problem(
+                "set",
+                "the dynamic model of a set runs a steady operating point; this case gives time "
+                "histories: give constant values (and a run length in shaft revolutions)",
+            )
+        )
+    if bearing_set.preload_kind == "spring":
+        problems.append(
+            Problem(
+                "set.preload",
+                "the dynamic model of a set holds every outer ring fixed; a spring preload "
+                "floats the spring side's outer rings. Give the preload as a force at assembly "
+                "(set.preload.force_N with a fixed-position preload) or as the rings' axial offset",
+            )
+        )
+    if options.method not in ("auto", SET_METHOD):
+        problems.append(
+            Problem(
+                "method",
+                f"simulation option method = {options.method!r}: a bearing set runs with "
+                f"{SET_METHOD!r} (or 'auto', which picks it)",
+            )
+        )
+    return problems
+
+
+def _member_operating(operating):
+    """A bearing's operating point in the set: its ring speeds, no applied load or imposed tilt
+    of its own (the shaft carries the set's load and moves the rings)."""
+    return dataclasses.replace(
+        operating,
+        axial_load=0.0,
+        radial_load=0.0,
+        radial_load_angle=0.0,
+        misalignment=0.0,
+        misalignment_axis=0.0,
+        misalignment_frame="space",
+        tilting_moment=0.0,
+        moment_axis=0.0,
+    )
+
+
+def _mass_matrix(members) -> np.ndarray:
+    """The shaft's 5 x 5 mass matrix at the load point: the inner rings, rigidly joined."""
+    m = np.zeros((5, 5))
+    for b in members:
+        g = lever(b.arm)
+        own = np.array([b.par.ring_mass] * 3 + [b.par.ring_diametral_inertia] * 2, dtype=float)
+        m += g.T @ (own[:, None] * g)
+    return m
+
+
+def _weight(members, gravity: float) -> np.ndarray:
+    w = np.zeros(5)
+    for b in members:
+        w += lever(b.arm).T @ np.array([0.0, 0.0, -b.par.ring_mass * gravity, 0.0, 0.0])
+    return w
+
+
+def shaft_ring_pose(sign: float, arm: float, offset: float, shaft_block: np.ndarray) -> dict:
+    """A bearing's ring block (own frame: position, velocity, tilt, tilt rate) from the shaft
+    block ``shaft_block`` (layout of an inner-ring block, shaft frame)."""
+    t = mirror(sign) * np.ones(5)
+    g = t[:, None] * lever(arm)
+    u = np.r_[shaft_block[L.R_POS : L.R_POS + 3], shaft_block[L.R_TILT : L.R_TILT + 2]]
+    v = np.r_[shaft_block[L.R_VEL : L.R_VEL + 3], shaft_block[L.R_TILT_RATE : L.R_TILT_RATE + 2]]
+    q = g @ u
+    q[0] += offset
+    qd = g @ v
+    return {"pos": q[:3], "tilt": q[3:], "vel": qd[:3], "tilt_rate": qd[3:]}
+
+
+def build_set(case, options: SimulationOptions):
+    """(members, shaft record, initial state, set inputs, quasi-static set solution) of a set
+    case under ``options`` (validated, not yet resolved)."""
+    given = set_inputs(case)
+    bearing_set = given.bearing_set
+    problems = _problems(bearing_set, given.inputs, options)
+    if problems:
+        raise CaseError(problems)
+    resolved = dataclasses.replace(options, method=SET_METHOD).resolved(given.inputs.simulation)
+    try:
+        qs = solve_set_state(given)
+    except NoSolutionError as error:
+        raise CaseError(
+            Problem("set", f"no quasi-static set solution to start the dynamic run from: {error}")
+        ) from None
+    members = []
+    start = 0
+    for entry, solution, op in zip(qs.members, qs.solutions, qs.operatings, strict=True):
+        inputs = dataclasses.replace(entry.inputs, operating=_member_operating(op))
+        par = build_params(inputs, resolved)._replace(tilt_mode=L.TILT_FREE, ring_free=True)
+        history = steady_history(inputs.operating)
+        stop = start + L.state_size(int(par.ball_count))
+        members.append(
+            SetMember(
+                entry.name,
+                inputs,
+                par,
+                history,
+                build_quadrature(resolved, par),
+                float(entry.sign),
+                float(entry.arm),
+                float(entry.offset),
+                start,
+                stop,
+                solution,
+            )
+        )
+        start = stop
+    y = np.zeros(start + L.RING_SIZE)
+    sb = start
+    y[sb + L.R_POS : sb + L.R_POS + 3] = qs.shaft[:3]
+    y[sb + L.R_TILT : sb + L.R_TILT + 2] = qs.shaft[3:]
+    for m in members:
+        y_b = initial_state_from_quasistatic(m.par, m.quasistatic)
+        rb = L.ring_base(int(m.par.ball_count))
+        pose = shaft_ring_pose(m.sign, m.arm, m.offset, y[sb : sb + L.RING_SIZE])
+        y_b[rb + L.R_POS : rb + L.R_POS + 3] = pose["pos"]
+        y_b[rb + L.R_TILT : rb + L.R_TILT + 2] = pose["tilt"]
+        y[m.start : m.stop] = y_b
+    mass = _mass_matrix(members)
+    shaft = SetShaft(
+        np.array([m.start for m in members] + [sb], dtype=np.int64),
+        np.array([m.sign for m in members]),
+        np.array([m.arm for m in members]),
+        np.ascontiguousarray(np.linalg.inv(mass)),
+        np.ascontiguousarray(given.applied, dtype=float),
+        _weight(members, float(resolved.gravity)),
+        float(sum(m.par.ring_polar_inertia for m in members)),
+    )
+    return members, shaft, y, given, qs, resolved
+
+
+def set_scales(members, y: np.ndarray) -> np.ndarray:
+    """Error-norm scales of the set state: each bearing's (:func:`.simulate.state_scales`), the
+    shaft's as the first bearing's inner ring."""
+    parts = [state_scales(m.history, m.par, y[m.start : m.stop]) for m in members]
+    first = members[0]
+    rb = L.ring_base(int(first.par.ball_count))
+    parts.append(parts[0][rb : rb + L.RING_SIZE])
+    return np.concatenate(parts)
+
+
+def simulate_set(case, progress=None, cancel=None, options: SimulationOptions | None = None):
+    """Run the dynamic model of the bearing set of ``case`` (a Case with ``bearing_set``) and
+    return its ``xarray.Dataset`` with a ``bearing`` dimension (results-schema.md, "Dynamic
+    results of a bearing set"); arguments and outcomes as :func:`.simulate.simulate`."""
+    given_options = (options or SimulationOptions()).validated()
+    members, shaft, y, given, qs, resolved = build_set(case, given_options)
+    inputs = given.inputs
+    grid = _time_grid(inputs, resolved, given_options, members[0].history)
+    times, period = grid.times, grid.period
+    n_samples = times.size - 1
+    states = np.empty((n_samples + 1, y.shape[0]))
+    states[0] = y
+    scale = set_scales(members, y)
+    omega_n = scale[L.B_VEL] / scale[L.B_POS]
+    h = 0.05 / omega_n
+    method = stepper(SET_METHOD)
+    model = SetModel(
+        tuple(bearing_model(m.history, m.par, m.quad) for m in members),
+        shaft,
+    )
+    work = method.workspace(model, y.shape[0], 0.0, h)
+    reached = work.progress
+    control = step_control(
+        resolved.tolerance,
+        scale,
+        1e-6 * h,
+        resolved.max_steps_per_chunk,
+        event_times(members[0].history, 0.0, float(times[-1])),
+    )
+    stats = RunStatistics(work.progress)
+    stats.initial_step = h
+    done = 1
+    stop_reason = "finished"
+    diverged_message = None
+    start = _time.perf_counter()
+    while done <= n_samples:
+        if _is_cancelled(cancel):
+            stop_reason = "cancelled"
+            break
+        stop = min(done + resolved.chunk_samples, n_samples + 1)
+        method.advance(y, times[done:stop], states[done:stop], control, work, model)
+        done += int(reached["written"][0])
+        status = int(reached["status"][0])
+        if status != STATUS_OK:
+            t = float(reached["t"][0])
+            cause = _DIVERGENCE_CAUSES[status].format(
+                h_min=control.h_min, max_steps=resolved.max_steps_per_chunk
+            )
+            diverged_message = (
+                f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): "
+                f"{cause}"
+            )
+            stop_reason = diverged_message
+            break
+        if progress is not None:
+            elapsed = _time.perf_counter() - start
+            progress(
+                (done - 1) / n_samples,
+                float(times[done - 1]),
+                f"{grid.reached(done - 1)}, {elapsed:.1f} s",
+            )
+    stats.wall_time = _time.perf_counter() - start
+    ds = set_dynamic_dataset(
+        given,
+        qs,
+        members,
+        resolved,
+        times[:done],
+        states[:done],
+        period,
+        stop_reason == "finished",
+        stop_reason,
+        stats,
+    )
+    if diverged_message is not None:
+        err = SimulationDiverged(diverged_message)
+        err.dataset = ds
+        raise err
+    return ds

@@ -1,0 +1,189 @@
+"""Independent checks of the dynamic model of a bearing set (issue 25 §4).
+
+Each check compares the set's run with something computed another way: the single-bearing dynamic
+model's run of the same bearing under the same load (a set of one bearing), the mirror symmetry of
+a back-to-back pair under a radial load midway between its bearings, and the quasi-static set
+model's solution (:mod:`solver.models.quasistatic.bearing_set`, a separate implementation of the
+equilibrium). Runs are short (one or two shaft revolutions at 6000 rpm, gravity off where a
+symmetry is tested).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from solver import parse_case, simulate, solve
+from solver.errors import CaseError
+from solver.models.dynamic import SimulationOptions
+from tests.helpers.accuracy_outputs import ANGLE_DEG, CAGE_RELATIVE, LOAD_RELATIVE, TORQUE_RELATIVE
+
+BEARING = """
+[bearing]
+designation = "7008C-class hybrid"
+provenance = "estimated"
+ball_count = 18
+ball_diameter_mm = 7.144
+pitch_diameter_mm = 54.0
+inner_groove_radius_ratio = 0.54
+outer_groove_radius_ratio = 0.53
+free_contact_angle_deg = 15.0
+ball_material = "silicon_nitride"
+ring_material = "bearing_steel"
+"""
+SPEED_RPM = 6000.0
+SAMPLES = 40
+PRELOAD = 250.0
+RADIAL = 500.0
+
+
+def _options(revolutions, **changes):
+    return SimulationOptions(
+        shaft_revolutions=revolutions,
+        samples_per_revolution=SAMPLES,
+        method="dopri5",
+        **changes,
+    )
+
+
+def _set_case(set_table):
+    text = f'title = "set"\n{BEARING}\n[operating]\ninner_ring_speed_rpm = {SPEED_RPM!r}\n'
+    return parse_case(text + set_table)
+
+
+DB_PAIR = f"""[set]
+arrangement = "DB"
+width_mm = 15.0
+[set.preload]
+kind = "force"
+force_N = {PRELOAD}
+[set.load]
+position_mm = 7.5
+force_N = [0.0, {RADIAL}, 0.0]
+"""
+
+
+@pytest.fixture(scope="module")
+def pair():
+    """(dynamic run, quasi-static solution) of a DB pair, 250 N preload, 500 N radial load midway
+    between the bearings, 6000 rpm, gravity off, two shaft revolutions."""
+    case = _set_case(DB_PAIR)
+    return simulate(case, options=_options(2.0, gravity=0.0)), solve(case)
+
+
+def _last_revolution(ds):
+    return ds.isel(time=slice(-SAMPLES, None))
+
+
+def test_symmetric_db_pair_under_radial_load_shares_it_equally_with_no_net_axial_force(pair):
+    ds, _ = pair
+    assert ds.attrs["stop_reason"] == "finished"
+    assert list(ds["bearing_direction"].values) == ["+x", "-x"]
+    last = _last_revolution(ds)
+    # mirror images: each bearing's contact loads and angles (own frame) are the other's
+    load = last["contact_load"].values  # (bearing, time, ball, race)
+    angle = last["contact_angle"].values
+    np.testing.assert_allclose(load[0], load[1], rtol=1e-6, atol=1e-6 * PRELOAD)
+    np.testing.assert_allclose(angle[0], angle[1], atol=1e-6)
+    radial = last["bearing_radial_load"].mean("time").values
+    np.testing.assert_allclose(radial, [0.5 * RADIAL, 0.5 * RADIAL], rtol=1e-3)
+    axial = last["bearing_axial_load"].mean("time").values
+    assert axial[0] == pytest.approx(axial[1], rel=1e-6)
+    # the shaft's net axial force (external + both bearings): the two axial loads cancel
+    assert np.abs(last["shaft_net_force"].sel(axis="x").values).max() < 1e-6 * PRELOAD
+    assert np.abs(last["shaft_offset"].sel(axis="x").values).max() < 1e-12
+
+
+def test_db_pair_dynamic_steady_state_agrees_with_the_quasistatic_set(pair):
+    ds, qs = pair
+    last = _last_revolution(ds)
+    # each bearing's axial and radial load within 1 % of the quasi-static set's
+    np.testing.assert_allclose(
+        last["bearing_axial_load"].mean("time").values,
+        qs["bearing_axial_load"].values,
+        rtol=0.01,
+    )
+    np.testing.assert_allclose(
+        last["bearing_radial_load"].mean("time").values,
+        qs["bearing_radial_load"].values,
+        rtol=0.01,
+    )
+    # the contact angles and loads over the balls, inner and outer, within 0.1 deg and 1 %
+    np.testing.assert_allclose(
+        last["contact_angle"].mean(("time", "ball")).values,
+        qs["contact_angle"].mean("ball").values,
+        atol=0.1,
+    )
+    np.testing.assert_allclose(
+        last["contact_load"].mean(("time", "ball")).values,
+        qs["contact_load"].mean("ball").values,
+        rtol=0.01,
+    )
+
+
+def test_db_pair_energy_balance_closes_within_the_contract(pair):
+    ds, _ = pair
+    assert abs(float(ds["energy_balance_residual"])) < 0.01
+
+
+def test_set_of_one_bearing_reproduces_the_single_bearing_model():
+    axial, radial = 300.0, 200.0
+    single = parse_case(
+        f'title = "one"\n{BEARING}\n[operating]\ninner_ring_speed_rpm = {SPEED_RPM!r}\n'
+        f"axial_load_N = {axial}\nradial_load_N = {radial}\ntilting_moment_Nm = 0.0\n"
+    )
+    one = _set_case(
+        f"""[set]
+width_mm = 15.0
+[set.load]
+force_N = [{axial}, {radial}, 0.0]
+[[set.bearing]]
+position_mm = 0.0
+direction = "+x"
+"""
+    )
+    options = _options(1.0)
+    reference = simulate(single, options=options)
+    ds = simulate(one, options=options).isel(bearing=0)
+    window = slice(SAMPLES // 2, None)
+    ref, got = reference.isel(time=window), ds.isel(time=window)
+    assert float(got["friction_torque"].mean()) == pytest.approx(
+        float(ref["friction_torque"].mean()), rel=TORQUE_RELATIVE
+    )
+    assert float(got["cage_speed"].mean()) == pytest.approx(
+        float(ref["cage_speed"].mean()), rel=CAGE_RELATIVE
+    )
+    np.testing.assert_allclose(
+        got["contact_angle"].mean("time").values,
+        ref["contact_angle"].mean("time").values,
+        atol=ANGLE_DEG,
+    )
+    ref_load = ref["contact_load"].mean("time").values
+    np.testing.assert_allclose(
+        got["contact_load"].mean("time").values,
+        ref_load,
+        rtol=LOAD_RELATIVE,
+        atol=1e-3 * ref_load.max(),
+    )
+    # the ring's mean position (the shaft's, here) within the contract's 0.2 % of its approach
+    ref_offset = ref["inner_ring_offset"].mean("time").values
+    np.testing.assert_allclose(
+        got["inner_ring_offset"].mean("time").values,
+        ref_offset,
+        atol=LOAD_RELATIVE * np.abs(ref_offset).max(),
+    )
+
+
+def test_spring_preload_is_refused_with_the_key_named():
+    case = _set_case(
+        """[set]
+arrangement = "DB"
+width_mm = 15.0
+[set.preload]
+kind = "spring"
+force_N = 200.0
+spring_side = "-x"
+"""
+    )
+    with pytest.raises(CaseError, match="set.preload"):
+        simulate(case, options=_options(0.1))
