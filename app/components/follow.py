@@ -22,16 +22,18 @@ the QR code of the follow address (``#follow-qr``, served by the front), the cod
 from __future__ import annotations
 
 import secrets
+import time
 
 from trame.widgets import html
 from trame.widgets import vuetify3 as v3
 
-from ..serve.follow import FOLLOWER_HEADER, QR_NAME
+from ..serve.follow import FOLLOWER_HEADER, JOINED, QR_NAME
 from .base import Component
 
 # no 0/O, 1/I/L: read aloud or copied from a projector without mistakes
 CODE_ALPHABET = "ABCDEFGHJKMNPQRSTUVWXYZ23456789"
 CODE_LENGTH = 6  # 31**6: about 9e8 codes
+JOIN_PUSH_S = 0.5  # a follower joining re-sends the picture on show at most this often
 
 
 def new_join_code() -> str:
@@ -45,6 +47,7 @@ class Follow(Component):
     def __init__(self, session):
         super().__init__(session)
         self._followers: set[str] = set()
+        self._last_join_push = -JOIN_PUSH_S
         self.code = new_join_code()
 
     def init_state(self) -> None:
@@ -55,6 +58,16 @@ class Follow(Component):
 
     def bind(self) -> None:
         self.session.server.add_protocol_to_configure(self._configure_protocol)
+        self.ctrl.trigger(JOINED)(self.guarded(self._on_joined))
+
+    def _on_joined(self) -> None:
+        """A follower's page is connected: push the picture on show (a follower does not size
+        the render, which is what pushes a first image to a new page), at most every
+        :data:`JOIN_PUSH_S` seconds whatever followers send."""
+        now = time.monotonic()
+        if now - self._last_join_push >= JOIN_PUSH_S:
+            self._last_join_push = now
+            self.ctrl.push_view()
 
     def status(self) -> dict:
         """What the front asks before it lets a follower's change through: the join code and

@@ -77,7 +77,14 @@ class ResultView(Component):
     the same case (``quasistatic``, for the comparison chart), the pyvista ``plotter``/``scene``
     (when ``render_enabled``) and the page's ``view`` (set by the UI: an object with render())."""
 
-    PROVIDES = ("show_preview", "show_unsaved", "show_saved_run", "shown_result", "update_charts")
+    PROVIDES = (
+        "show_preview",
+        "show_unsaved",
+        "show_saved_run",
+        "shown_result",
+        "update_charts",
+        "push_view",
+    )
 
     def __init__(self, session, render: bool = True, window_size=(650, 480)):
         super().__init__(session)

@@ -38,6 +38,8 @@ MAX_PENDING = 16  # unfinished (chunked) messages of one follower at once
 _HEADER = 12
 # what any follower may call: reading the state, the hello, and notes that change nothing
 ALWAYS = frozenset({"trame.state.get", "trame.error.client", "trame.rca.video.codecs"})
+# the one controller call a follower's page makes: "I am here, send me the picture on show"
+JOINED = "follow_joined"
 LIFECYCLE = frozenset({"client_connected", "client_exited", "client_unmounted"})
 # what a follower may call while the presenter lets followers drive
 WHEN_DRIVING = frozenset({"trame.state.update", "trame.trigger", "trame.rca.event"})
@@ -124,6 +126,8 @@ class FollowerGate:
         if method == "trame.lifecycle.update":
             name = args[0] if isinstance(args, list) and args else None
             return "" if name in LIFECYCLE else f"lifecycle {name!r} is not a follower's"
+        if method == "trame.trigger" and isinstance(args, list) and args and args[0] == JOINED:
+            return ""
         if method not in WHEN_DRIVING:
             return f"{method} is not a follower's to call"
         if method == "trame.state.update":

@@ -615,8 +615,19 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
   window.addEventListener('keydown', function (e) {
     if (readOnly) { e.stopImmediatePropagation(); }
   }, true);
+  var asked = 0;
+  function join() {
+    // connected, its state read, the view's image element there but empty: ask for the picture
+    // on show (the session sends it to every page; it answers at most twice a second)
+    var t = window.trame, img = document.querySelector('#view-3d img');
+    if (!t || !t.trigger || !t.state || !t.state.get('follow_code') || !img) return;
+    if (img.getAttribute('src') || Date.now() - asked < 2000) return;
+    asked = Date.now();
+    Promise.resolve().then(function () { return t.trigger('follow_joined'); })
+      .catch(function () { asked = 0; });
+  }
   update();
-  setInterval(update, 500);
+  setInterval(function () { join(); update(); }, 500);
 })();
 </script>
 """

@@ -38,6 +38,7 @@ def test_a_follower_may_read_but_not_change_unless_driving():
         _rpc("trame.lifecycle.update", "client_connected"),
     ):
         assert refusal(call, driving=False) == "", call
+    assert refusal(_rpc("trame.trigger", "follow_joined", [], {}), driving=False) == ""
     for call in (_update(frame=3), _rpc("trame.trigger", "trigger__1", [], {})):
         assert "has not handed over" in refusal(call, driving=False)
         assert refusal(call, driving=True) == ""
