@@ -193,7 +193,9 @@ def main() -> int:
     parser.add_argument("--seconds", type=float, default=20.0, help="each measuring window")
     args = parser.parse_args()
     root = Path(tempfile.mkdtemp(prefix="racetrace-follow-"))
+    (root / "runs").mkdir()
     info = real_run(root / "runs", args.run)
+    print(f"runs folder {root / 'runs'} (pass its .nc.src file as --run next time)")
     server = start_server(root / "runs", root / "serve.log")
     try:
         return asyncio.run(measure(args, server, info))
