@@ -144,7 +144,10 @@ async def measure(args, server: dict, info) -> int:
             browser = await p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
             page = await browser.new_page(viewport={"width": 1280, "height": 800})
             await page.goto(f"{base}/?follow={code}")
-            await page.wait_for_function("window.trame && window.trame.state.get('follow_code')")
+            await page.wait_for_function(
+                "window.trame && window.trame.state && window.trame.state.get('follow_code')",
+                timeout=120_000,
+            )
             await page.evaluate(FRAME_PROBE)
             await asyncio.sleep(3)
             count = presenter.state.get("follow_count")
@@ -189,12 +192,15 @@ def main() -> int:
 
     parser = argparse.ArgumentParser()
     parser.add_argument("--run", type=Path, default=None, help="existing 100-revolution .nc")
+    parser.add_argument(
+        "--revolutions", type=int, default=100, help="the run's length (its title, with --run)"
+    )
     parser.add_argument("--followers", type=int, default=30, help="websocket followers")
     parser.add_argument("--seconds", type=float, default=20.0, help="each measuring window")
     args = parser.parse_args()
     root = Path(tempfile.mkdtemp(prefix="racetrace-follow-"))
     (root / "runs").mkdir()
-    info = real_run(root / "runs", args.run)
+    info = real_run(root / "runs", args.run, args.revolutions)
     print(f"runs folder {root / 'runs'} (pass its .nc.src file as --run next time)")
     server = start_server(root / "runs", root / "serve.log")
     try:
