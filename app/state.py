@@ -5,8 +5,9 @@ browser).
 (``form``), the result on show with its scene, charts and time controls (``result``), the bearing
 set on show (``set_panel``: the set along the shaft, its load sharing and stiffness), the saved
 runs and the background run (``runs``), the comparison with a saved run (``compare``), the
-exports (``exports``), the studies (``studies``) and the Lessons panel with presenter mode
-(``lessons``, :mod:`app.lessons.panel`). Process-wide services (the run store and the solver
+exports (``exports``), the studies (``studies``), the Lessons panel with presenter mode
+(``lessons``, :mod:`app.lessons.panel`) and follow mode (``follow``: join code, followers,
+hand-over). Process-wide services (the run store and the solver
 pool, :mod:`app.services`) are shared with the other sessions. Each component builds its own
 section of the page, bound to its own state keys and controller actions, and :mod:`app.ui`
 arranges the sections; each component's module lists its keys. The session itself keeps
@@ -19,6 +20,7 @@ from pathlib import Path
 
 from .components import CaseForm, Compare, Export, ResultView, Runs, SetPanel, Studies
 from .components.export import EXPORT_URL
+from .components.follow import Follow
 from .lessons.panel import LessonController
 from .services import Services
 
@@ -56,6 +58,7 @@ class RacetraceApp:
         self.exports = Export(self)
         self.studies = Studies(self)
         self.lessons = LessonController(self)
+        self.follow = Follow(self)
         self.components = (
             self.form,
             self.result,
@@ -65,6 +68,7 @@ class RacetraceApp:
             self.exports,
             self.studies,
             self.lessons,
+            self.follow,
         )
         self.state.status = "starting"
         for component in self.components:

@@ -31,6 +31,7 @@ def build_ui(app) -> SinglePageWithDrawerLayout:
             app.form.build_toolbar()
             app.result.build_toolbar()
             app.lessons.build_toolbar()
+            app.follow.build_toolbar()
         with layout.drawer as drawer:
             drawer.width = 380
             app.form.build_ui()

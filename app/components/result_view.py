@@ -88,6 +88,7 @@ class ResultView(Component):
         "shown_result",
         "update_charts",
         "show_set_bearing",
+        "push_view",
     )
 
     def __init__(self, session, render: bool = True, window_size=(650, 480)):

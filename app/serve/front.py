@@ -36,7 +36,8 @@ from pathlib import Path
 from aiohttp import ClientSession, WSMsgType, web
 
 from ..access import Access
-from . import preparing
+from ..follow_names import FOLLOWER_HEADER, QR_NAME
+from . import follow, preparing
 from .quiet_log import quiet_closed_connections
 from .session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 
@@ -59,6 +60,7 @@ _HOP_HEADERS = {
     "upgrade",
     "host",
     SECRET_HEADER.lower(),  # the front's to give, never the browser's
+    FOLLOWER_HEADER.lower(),  # likewise
 }
 
 
@@ -83,8 +85,9 @@ class Session:
     secret: str = field(repr=False)  # the session answers requests that carry it, only
     process: asyncio.subprocess.Process  # or a forkserver.ForkedProcess, which behaves alike
     ready: asyncio.Future
-    sockets: int = 0
+    sockets: int = 0  # the presenter's websockets and its followers'
     idle_since: float = field(default_factory=time.monotonic)
+    join_code: str = ""  # the session's follow-mode join code (read from it once it answers)
 
     @property
     def alive(self) -> bool:
@@ -156,6 +159,7 @@ class Front:
                     f"http://127.0.0.1:{session.port}/", headers={SECRET_HEADER: session.secret}
                 ) as response:
                     if response.status == 200:
+                        session.join_code = await self._join_code(session)
                         session.ready.set_result(True)
                         if not self._said_ready:
                             self._said_ready = True
@@ -173,6 +177,45 @@ class Front:
         log.warning("racetrace: %s", error)  # once, even when no browser is waiting for it
         session.ready.set_exception(error)
         session.ready.exception()  # logged above: asyncio need not report it again
+
+    async def _join_code(self, session: Session) -> str:
+        """The join code a session shows (:mod:`app.components.follow`); "" if it has none."""
+        try:
+            async with self._http.get(
+                f"http://127.0.0.1:{session.port}{follow.STATUS_PATH}",
+                headers={SECRET_HEADER: session.secret},
+            ) as response:
+                if response.status == 200:
+                    return follow.normal_code((await response.json()).get("code", ""))
+        except (OSError, ValueError) as error:
+            log.warning("session %s: no join code (%s)", session.sid[:6], error)
+        return ""
+
+    async def _followers_may_drive(self, session: Session) -> bool:
+        """Whether the presenter of ``session`` lets followers drive, asked now (False when the
+        session does not answer)."""
+        try:
+            async with self._http.get(
+                f"http://127.0.0.1:{session.port}{follow.STATUS_PATH}",
+                headers={SECRET_HEADER: session.secret},
+            ) as response:
+                return response.status == 200 and (await response.json()).get("drive") is True
+        except (OSError, ValueError):
+            return False
+
+    def _session_of_code(self, code: str) -> Session | None:
+        """The live session whose join code is ``code`` (None for an unknown or ended code)."""
+        code = follow.normal_code(code)
+        if not code:
+            return None
+        for session in self.sessions.values():
+            if (
+                session.alive
+                and session.join_code
+                and secrets.compare_digest(session.join_code, code)
+            ):
+                return session
+        return None
 
     async def start_spare(self) -> None:
         """Start the session the next browser gets (the shared one with ``shared``)."""
@@ -264,6 +307,13 @@ class Front:
             return web.Response(status=403, text=f"racetrace: {problem}\n")
         if request.path == PREPARING_PATH:
             return self._preparing_status(request)
+        if request.path.startswith(follow.PREFIX):
+            return await self._handle_follower(request)
+        if request.path == "/" and "follow" in request.query:
+            return self._to_follow_page(request)
+        if request.path == "/" + QR_NAME:
+            session = self.sessions.get(request.cookies.get(COOKIE, ""))
+            return self._qr(request, session)
         try:
             session, new = await self._session_for(request)
             if not session.ready.done() and _is_page(request):
@@ -291,7 +341,59 @@ class Front:
         self.access.grant(request, response)
         return response
 
-    async def _relay_http(self, request: web.Request, session: Session) -> web.Response:
+    # ---- followers (app.serve.follow) -----------------------------------------------------------
+    def _to_follow_page(self, request: web.Request) -> web.Response:
+        """``/?follow=CODE``: the follower's page, ``/follow/CODE/`` (the token stays in the URL
+        and is remembered in the cookie, as for any page)."""
+        code = follow.normal_code(request.query.get("follow", ""))
+        if not code or self._session_of_code(code) is None:
+            return _no_class_page(request.query.get("follow", ""))
+        query = {k: v for k, v in request.query.items() if k != "follow"}
+        target = f"{follow.PREFIX}{code}/" + (f"?{_urlencode(query)}" if query else "")
+        response = web.Response(status=302, headers={"Location": target})
+        self.access.grant(request, response)
+        return response
+
+    async def _handle_follower(self, request: web.Request) -> web.StreamResponse:
+        """A request under ``/follow/CODE/``: relayed to the session of that join code, as a
+        follower (its websocket read-only, :class:`app.serve.follow.FollowerGate`)."""
+        code, _, rest = request.path[len(follow.PREFIX) :].partition("/")
+        session = self._session_of_code(code)
+        if session is None or not session.ready.done() or session.ready.exception():
+            return _no_class_page(code)
+        if not rest and not request.path.endswith("/"):
+            location = f"{follow.PREFIX}{follow.normal_code(code)}/"
+            return web.Response(status=302, headers={"Location": location})
+        inner = "/" + rest + (f"?{request.query_string}" if request.query_string else "")
+        if rest == QR_NAME:
+            return self._qr(request, session)
+        if request.headers.get("Upgrade", "").lower() == "websocket":
+            return await self._relay_websocket(request, session, inner, follower=True)
+        response = await self._relay_http(request, session, inner)
+        if _is_page(request) and response.status == 200 and response.body:
+            page = bytes(response.body).decode("utf-8", "replace")
+            banner = _follower_banner(session.join_code)
+            response.body = page.replace("</body>", banner + "</body>").encode()
+        self.access.grant(request, response)
+        return response
+
+    def _qr(self, request: web.Request, session: Session | None) -> web.Response:
+        """The QR code of ``session``'s follow address, as the requesting browser reached this
+        server (with the token when the server has one)."""
+        if session is None or not session.join_code:
+            return web.Response(status=404, text="racetrace: no session, so no join code\n")
+        url = follow.follow_url(
+            request.headers.get("Host", ""), session.join_code, self.access.token
+        )
+        return web.Response(
+            body=follow.qr_svg(url),
+            content_type="image/svg+xml",
+            headers={"Cache-Control": "no-store"},
+        )
+
+    async def _relay_http(
+        self, request: web.Request, session: Session, inner: str | None = None
+    ) -> web.Response:
         headers = {
             k: v
             for k, v in request.headers.items()
@@ -305,7 +407,7 @@ class Front:
         except ConnectionResetError:  # the client left while sending: nobody to answer
             log.debug("a client left before its request body arrived")
             return web.Response(status=400, text="racetrace: request cut off\n")
-        url = f"http://127.0.0.1:{session.port}{request.rel_url}"
+        url = f"http://127.0.0.1:{session.port}{inner or request.rel_url}"
         try:
             async with self._http.request(
                 request.method, url, headers=headers, data=body or None, allow_redirects=False
@@ -318,19 +420,31 @@ class Front:
                 status=502, text=f"racetrace: the session is not reachable ({error})"
             )
 
-    async def _relay_websocket(self, request: web.Request, session: Session):
+    async def _relay_websocket(
+        self, request: web.Request, session: Session, inner: str | None = None, follower=False
+    ):
+        """Relay a browser's websocket to ``session`` (``inner``: the path there); a
+        ``follower``'s messages pass the read-only gate first."""
         browser = web.WebSocketResponse(max_msg_size=0, autoping=True, heartbeat=None)
         await browser.prepare(request)
-        url = f"ws://127.0.0.1:{session.port}{request.rel_url}"
+        url = f"ws://127.0.0.1:{session.port}{inner or request.rel_url}"
+        headers = {SECRET_HEADER: session.secret}
+        if follower:
+            headers[FOLLOWER_HEADER] = "1"
         session.sockets += 1
         try:
             async with self._http.ws_connect(
                 url,
                 max_msg_size=0,
                 origin=f"http://127.0.0.1:{session.port}",
-                headers={SECRET_HEADER: session.secret},
+                headers=headers,
             ) as upstream:
-                await asyncio.gather(_pump(browser, upstream), _pump(upstream, browser))
+                inward = (
+                    self._pump_follower(browser, upstream, session)
+                    if follower
+                    else _pump(browser, upstream)
+                )
+                await asyncio.gather(inward, _pump(upstream, browser))
         except OSError as error:
             log.warning("session %s unreachable: %s", session.sid[:6], error)
         finally:
@@ -338,6 +452,41 @@ class Front:
             session.idle_since = time.monotonic()
             await browser.close()
         return browser
+
+    async def _pump_follower(self, browser, upstream, session: Session) -> None:
+        """Copy a follower's messages to its session, those the read-only gate lets through; a
+        refused call is answered with a wslink error (app.serve.follow)."""
+        gate = follow.FollowerGate()
+        async for message in browser:
+            if upstream.closed:
+                break
+            if message.type == WSMsgType.TEXT:
+                continue  # wslink speaks binary only: nothing to pass on
+            if message.type != WSMsgType.BINARY:
+                break
+            try:
+                whole = gate.add_chunk(message.data)
+            except ValueError as error:
+                log.warning("follower of %s dropped: %s", session.sid[:6], error)
+                break
+            if whole is None:
+                continue
+            reason = gate.refusal(whole.rpc, driving=True)
+            if not reason and gate.refusal(whole.rpc, driving=False):
+                if not await self._followers_may_drive(session):
+                    reason = gate.refusal(whole.rpc, driving=False)
+            try:
+                if reason:
+                    reply = follow.refusal_reply(whole.rpc, reason)
+                    if reply is not None and not browser.closed:
+                        await browser.send_bytes(reply)
+                    continue
+                for chunk in whole.chunks:
+                    await upstream.send_bytes(chunk)
+            except ConnectionResetError:
+                break
+        if not upstream.closed:
+            await upstream.close()
 
     # ---- the aiohttp application ----------------------------------------------------------------
     def application(self) -> web.Application:
@@ -366,6 +515,31 @@ class Front:
         await self.stop_all()
         if self._http is not None:
             await self._http.close()
+
+
+def _urlencode(query) -> str:
+    import urllib.parse
+
+    return urllib.parse.urlencode(list(query.items()))
+
+
+def _no_class_page(code: str) -> web.Response:
+    """The page a follower gets for a join code no session has now."""
+    import html
+
+    shown = html.escape(str(code)[:40]) or "(none)"
+    return web.Response(
+        status=404,
+        content_type="text/html",
+        headers={"Cache-Control": "no-store"},
+        text=NO_CLASS_PAGE.replace("__CODE__", shown),
+    )
+
+
+def _follower_banner(code: str) -> str:
+    """What the front adds to a follower's page: a banner saying it follows, read-only (its
+    controls do nothing then: the front refuses their changes), or driving."""
+    return FOLLOWER_BANNER.replace("__CODE__", code)
 
 
 def _is_page(request: web.Request) -> bool:
@@ -405,6 +579,59 @@ Later starts load the compiled kernels in seconds. This page opens the app by it
 })();
 </script></body></html>
 """.replace("__PATH__", PREPARING_PATH)
+
+
+NO_CLASS_PAGE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>racetrace: no such class</title>
+<style>body { font-family: Roboto, Arial, sans-serif; margin: 15vh auto; max-width: 40em; }</style>
+</head><body><h1 id="follow-refused">No class with join code __CODE__</h1>
+<p>No racetrace page has this join code now. A join code ends with the presenter's session:
+ask the presenter for the code on their screen (under "class" in the toolbar), then open
+this server's address with <code>?follow=CODE</code>.</p></body></html>
+"""
+
+# Added to a follower's page (app.serve.follow): the follower's controls are inert while it is
+# read-only (the front refuses their changes anyway), and a banner says so.
+FOLLOWER_BANNER = """
+<style>
+#follow-banner { position: fixed; left: 0; right: 0; bottom: 0; z-index: 3000; padding: 4px 12px;
+  background: #0d47a1; color: #fff; font: 14px Roboto, Arial, sans-serif; text-align: center; }
+html.rt-read-only .v-main button, html.rt-read-only .v-main input,
+html.rt-read-only .v-main .v-field, html.rt-read-only .v-main .v-slider,
+html.rt-read-only .v-main .v-selection-control, html.rt-read-only .v-navigation-drawer,
+html.rt-read-only .v-toolbar button { pointer-events: none; }
+</style>
+<div id="follow-banner">following class __CODE__: you see what the presenter shows</div>
+<script>
+(function () {
+  var readOnly = true;
+  window.racetraceFollower = '__CODE__';
+  function update() {
+    var drive = !!(window.trame && window.trame.state && window.trame.state.get('follow_drive'));
+    readOnly = !drive;
+    document.documentElement.classList.toggle('rt-read-only', readOnly);
+    document.getElementById('follow-banner').textContent = 'following class __CODE__: ' +
+      (drive ? 'the presenter lets you drive' : 'you see what the presenter shows (read-only)');
+  }
+  window.addEventListener('keydown', function (e) {
+    if (readOnly) { e.stopImmediatePropagation(); }
+  }, true);
+  var asked = 0;
+  function join() {
+    // connected, its state read, the view's image element there but empty: ask for the picture
+    // on show (the session sends it to every page; it answers at most twice a second)
+    var t = window.trame, img = document.querySelector('#view-3d img');
+    if (!t || !t.trigger || !t.state || !t.state.get('follow_code') || !img) return;
+    if (img.getAttribute('src') || Date.now() - asked < 2000) return;
+    asked = Date.now();
+    Promise.resolve().then(function () { return t.trigger('follow_joined'); })
+      .catch(function () { asked = 0; });
+  }
+  update();
+  setInterval(function () { join(); update(); }, 500);
+})();
+</script>
+"""
 
 
 async def _pump(source, target) -> None:

@@ -52,6 +52,7 @@ def main(argv=None, secret: str | None = None) -> int:
     from ..services import Services
     from ..state import DEFAULT_CASE, RacetraceApp
     from ..ui import build_ui
+    from .follow import STATUS_PATH
     from .quiet_log import quiet_closed_connections
     from .session_guard import front_only
 
@@ -69,6 +70,13 @@ def main(argv=None, secret: str | None = None) -> int:
             raise RuntimeError(f"the session would listen on {ws_server.host}, not {HOST}")
         # only the front's relay (which checked the browser) may use this session
         ws_server.app.middlewares.append(front_only(secret, Access(HOST)))
+        # the front reads the join code and the hand-over here (app.serve.follow)
+        ws_server.app.router.add_get(STATUS_PATH, follow_status)
+
+    async def follow_status(_request):
+        from aiohttp import web
+
+        return web.json_response(app.follow.status(), headers={"Cache-Control": "no-store"})
 
     server.controller.on_server_bind.add(guard)
     server.controller.on_server_ready.add(quiet_closed_connections)

@@ -22,6 +22,18 @@ SECTIONS = (
     ("form", "build_toolbar", ("result-stale",)),
     ("result", "build_toolbar", ("result-label",)),
     (
+        "follow",
+        "build_toolbar",
+        (
+            "follow-button",
+            "follow-card",
+            "follow-qr",
+            "follow-code",
+            "follow-count",
+            "follow-drive",
+        ),
+    ),
+    (
         "result",
         "build_view",
         ("view-3d", "ball-legend", "closeup-numbers", "scene-note", "play-button", "step-back"),
@@ -105,6 +117,8 @@ def test_each_component_builds_its_own_section(rendering_app):
             stable |= {f"{head}-{c}" for c in choices.rstrip(">").split("|")}
     # the page's own container (app/ui.py), its presenter class and the words `status` ends in
     stable -= {"content", "rt-presenter", "done", "cancelled"}
+    # what the front adds to a follower's page, and its page for a wrong join code (app.serve.front)
+    stable -= {"follow-banner", "follow-refused"}
     assert stable <= shown, f"stable ids in no section: {sorted(stable - shown)}"
 
 
