@@ -272,6 +272,28 @@ def _run_study(args, study, signals: StopSignals, connect_scheduler) -> int:
     return EXIT_SOME_FAILED if failed else 0
 
 
+#: Columns of ``study show`` for a study of bearing sets (its Dataset has a ``bearing``
+#: coordinate): each bearing's axial load (one column per bearing), then these.
+SET_SHOW_COLUMNS = (
+    ("axial_stiffness", None, "k_ax N/um", 1e-6, "{:.1f}"),
+    ("radial_stiffness", None, "k_rad N/um", 1e-6, "{:.1f}"),
+    ("tilt_stiffness", None, "k_tilt Nm/mrad", 1e-3, "{:.2f}"),
+)
+SET_LEGEND = (
+    "Fa = axial load each bearing of the set carries in its own direction (preload included), "
+    "k_ax, k_rad, k_tilt = the set's axial, radial and tilting stiffness at the load point "
+    "(quasi-static set model)"
+)
+
+
+def _set_columns(ds) -> list:
+    """The ``study show`` columns of a bearing-set study."""
+    per_bearing = [
+        ("bearing_axial_load", str(b), f"Fa {b} N", 1.0, "{:.1f}") for b in ds["bearing"].values
+    ]
+    return [*per_bearing, *SET_SHOW_COLUMNS]
+
+
 def show_table(ds, model: str | None = None, wide: bool = False) -> str:
     """The points and their metrics as a text table (one row per point and model). ``wide``:
     every column of :data:`SHOW_COLUMNS` and each varied key in its own column; else the varied
@@ -285,7 +307,11 @@ def show_table(ds, model: str | None = None, wide: bool = False) -> str:
     from solver import sweep_varied_keys
 
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
-    columns = [c for c in SHOW_COLUMNS if wide or c[2] in NARROW_COLUMNS]
+    sets = "bearing" in ds.coords  # a study of bearing sets: their loads and stiffness
+    if sets:
+        columns = _set_columns(ds)
+    else:
+        columns = [c for c in SHOW_COLUMNS if wide or c[2] in NARROW_COLUMNS]
     varied_headers = [k.rsplit(".", 1)[-1] for k in keys] if wide else ["varied"]
     headers = ["point", "model", *varied_headers, "status", *(c[2] for c in columns)]
     sweep_keys = sweep_varied_keys(ds)
@@ -313,9 +339,10 @@ def show_table(ds, model: str | None = None, wide: bool = False) -> str:
                     ", ".join(f"{k.rsplit('.', 1)[-1]}={shown(ds[k].values[i])}" for k in changed)
                 )
             row.append(status)
-            for var, race, _h, scale, fmt in columns:
+            for var, label, _h, scale, fmt in columns:  # label: a race, or a bearing
                 da = ds[var].isel(point=i, model=j)
-                value = float(da.sel(race=race)) if race else float(da)
+                dim = "bearing" if "bearing" in da.dims else "race"
+                value = float(da.sel({dim: label})) if label else float(da)
                 row.append(fmt.format(value * scale) if math.isfinite(value) else "-")
             rows.append(row)
             if status == "failed":
@@ -328,9 +355,10 @@ def show_table(ds, model: str | None = None, wide: bool = False) -> str:
     if messages:
         lines += ["", "failed runs:"]
         lines += [textwrap.fill(m, TERMINAL_WIDTH, subsequent_indent="  ") for m in messages]
-    legend = LEGEND if wide else "qs = quasistatic, dyn = dynamic, " + LEGEND
+    legend = SET_LEGEND if sets else LEGEND
+    legend = legend if wide else "qs = quasistatic, dyn = dynamic, " + legend
     lines.append(textwrap.fill(legend, TERMINAL_WIDTH))
-    if not wide:
+    if not wide and not sets:
         lines.append(
             "every metric (excursion, contact angle, load, cage slip, settling time) and each "
             "varied key in its own column:"

@@ -53,8 +53,17 @@ DEFAULT_LOAD_POSITION_MM = 0.0  # the [operating] loads act at the shaft origin
 DEFAULT_PRELOAD_KIND = "none"
 DEFAULT_FORCE_N = (0.0, 0.0, 0.0)  # no external force
 DEFAULT_MOMENT_NM = (0.0, 0.0)  # no external moment
+MAX_MISALIGNMENT_DEG = 1.0  # largest imposed tilt of the shaft in the housing, per axis
 
-_SET_KEYS = ("arrangement", "width_mm", "spacing_mm", "load", "preload", "bearing")
+_SET_KEYS = (
+    "arrangement",
+    "width_mm",
+    "spacing_mm",
+    "misalignment_deg",
+    "load",
+    "preload",
+    "bearing",
+)
 _LOAD_KEYS = ("position_mm", "force_N", "moment_Nm")
 _BEARING_KEYS = ("name", "position_mm", "direction", "catalogue", "bearing")
 _PRELOAD_KEYS = ("kind", "force_N", "offset_um", "spring_side")
@@ -95,6 +104,9 @@ class BearingSet:
     preload_offset_um: float | None
     spring_side: str | None
     table: dict
+    #: the shaft's tilt (y, z) [deg] relative to the housing bores (every outer ring), imposed
+    #: instead of solved; None: the tilt is solved from the moment balance
+    misalignment_deg: tuple[float, float] | None = None
 
     def to_dict(self) -> dict:
         """The ``[set]`` table as written."""
@@ -123,7 +135,11 @@ class BearingSet:
             )
         else:
             preload = "no preload"
-        return f"{head} of {len(self.bearings)} bearing(s), {preload}"
+        text = f"{head} of {len(self.bearings)} bearing(s), {preload}"
+        if self.misalignment_deg is not None:
+            y, z = self.misalignment_deg
+            text += f", shaft tilted [{y:g}, {z:g}] deg in the housing"
+        return text
 
 
 def _number(problems, key, value, positive=False, non_negative=False):
@@ -314,6 +330,27 @@ def read_set(table, case_data: dict, build_case) -> BearingSet:
     )
     force = _vector(problems, "set.load.force_N", load.get("force_N", DEFAULT_FORCE_N), 3)
     moment = _vector(problems, "set.load.moment_Nm", load.get("moment_Nm", DEFAULT_MOMENT_NM), 2)
+    misalignment = None
+    if "misalignment_deg" in table:
+        misalignment = _vector(problems, "set.misalignment_deg", table["misalignment_deg"], 2)
+        if any(abs(angle) > MAX_MISALIGNMENT_DEG for angle in misalignment):
+            problems.append(
+                Problem(
+                    "set.misalignment_deg",
+                    f"set.misalignment_deg = {list(misalignment)}: each tilt must lie within "
+                    f"±{MAX_MISALIGNMENT_DEG:g} deg (a bearing's misalignment, not a bend)",
+                )
+            )
+        if any(moment):
+            problems.append(
+                Problem(
+                    "set.load.moment_Nm",
+                    "set.load.moment_Nm is not read when set.misalignment_deg imposes the shaft's "
+                    "tilt (the moment that holds the tilt comes from outside the set and is a "
+                    "result, misalignment_moment): remove one of them",
+                    ("set.misalignment_deg",),
+                )
+            )
     preload = table.get("preload", {})
     if not isinstance(preload, dict):
         problems.append(Problem("set.preload", "set.preload must be a table"))
@@ -418,6 +455,7 @@ def read_set(table, case_data: dict, build_case) -> BearingSet:
         preload_offset_um=offset,
         spring_side=side,
         table=copy.deepcopy(table),
+        misalignment_deg=misalignment,
     )
     _check_rules(result, case_data, problems)
     if problems:
@@ -427,7 +465,7 @@ def read_set(table, case_data: dict, build_case) -> BearingSet:
 
 def _check_rules(bearing_set: BearingSet, case_data: dict, problems) -> None:
     """Rules between the set's keys: no overlapping bearings, thrust carried both ways when
-    the preload or the load asks, no misalignment (the shaft's tilt is solved)."""
+    the preload or the load asks, no loads or misalignment in [operating]."""
     ordered = sorted(bearing_set.bearings, key=lambda b: b.position_mm)
     for left, right in zip(ordered, ordered[1:], strict=False):
         gap = right.position_mm - left.position_mm
@@ -494,7 +532,8 @@ def _check_rules(bearing_set: BearingSet, case_data: dict, problems) -> None:
                     f"operating.{key}",
                     f"operating.{key} is not read for a bearing set: the loads on the shaft are "
                     "set.load.force_N = [x, y, z] and set.load.moment_Nm = [y, z] at "
-                    "set.load.position_mm, and the shaft's tilt is solved; remove it",
+                    "set.load.position_mm, and the shaft's tilt is solved (or imposed by "
+                    "set.misalignment_deg = [y, z]); remove it",
                     ("set.load.force_N",),
                 )
             )

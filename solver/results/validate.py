@@ -364,7 +364,7 @@ def _coordinate_problems(ds: xr.Dataset) -> list[str]:
 
 def _study_problems(ds: xr.Dataset) -> list[str]:
     """What a study Dataset (solver.study.store.study_dataset) lacks for the study report."""
-    from solver.study.metrics import POINT_METRICS
+    from solver.study.metrics import POINT_METRICS, set_point_metric_table
 
     problems = []
     for name in STUDY_TEXT_ATTRIBUTES:
@@ -375,15 +375,23 @@ def _study_problems(ds: xr.Dataset) -> list[str]:
             problems.append(f"it has no '{dim}' dimension")
         elif dim not in ds.coords or ds[dim].dims != (dim,):
             problems.append(f"its '{dim}' dimension has no labels")
+    # a study of bearing sets has the set's bearings too (SET_STUDY_METRIC_NAMES)
     for dim in ds.sizes:
-        if dim not in ("point", "model", "race"):
+        if dim not in ("point", "model", "race", "bearing"):
             problems.append(f"it has a '{_short(dim, 60)}' dimension a study Dataset does not have")
+    if "bearing" in ds.sizes and ("bearing" not in ds.coords or ds["bearing"].dims != ("bearing",)):
+        problems.append("its 'bearing' dimension has no labels")
     if problems:
         return problems
     if ds["race"].values.tolist() != DIMENSION_VALUES["race"]:
         problems.append("its 'race' dimension is not labelled inner, outer")
     expected = {name: ("point", "model", *dims) for name, (dims, *_rest) in POINT_METRICS.items()}
     expected |= {"status": ("point", "model"), "message": ("point", "model")}
+    if "bearing" in ds.sizes:
+        expected |= {
+            name: ("point", "model", *dims)
+            for name, (dims, *_rest) in set_point_metric_table().items()
+        }
     for name, dims in expected.items():
         if name not in ds.variables:
             problems.append(f"it has no '{name}' variable")

@@ -5,6 +5,11 @@
 ``ds.racetrace.metric(name)`` (each race in its own ring's frame; over the analysed window of a
 dynamic result, the whole snapshot of a quasi-static one, or its solutions over one revolution for
 a misalignment turning with the inner ring: :func:`solver.quasistatic_answer`).
+
+A point of a bearing-set case (quasi-static model only) keeps instead the set's values of
+:data:`SET_STUDY_METRIC_NAMES` (:func:`set_point_metrics`): the set's stiffness and each bearing's
+loads, whose dimensions, units and meanings are those of the set's Dataset
+(:data:`solver.models.quasistatic.set_result.SET_VARIABLES`, results-schema.md, "Bearing sets").
 """
 
 from __future__ import annotations
@@ -47,4 +52,56 @@ def point_metrics(ds: xr.Dataset) -> dict[str, object]:
     return out
 
 
-__all__ = ["POINT_METRICS", "STUDY_METRIC_NAMES", "point_metrics"]
+#: The set's variables a study keeps for a bearing-set point, in the order of its file.
+SET_STUDY_METRIC_NAMES = (
+    "bearing_axial_load",
+    "bearing_radial_load",
+    "axial_stiffness",
+    "radial_stiffness",
+    "tilt_stiffness",
+)
+
+
+def set_point_metric_table() -> dict[str, tuple[tuple[str, ...], str, str, str]]:
+    """name -> (dims beyond point/model: () or ("bearing",), units, long name, description) of
+    :data:`SET_STUDY_METRIC_NAMES`, from the set's variables (imported when a study reads them)."""
+    from solver.models.quasistatic.set_result import SET_VARIABLES
+
+    table = {}
+    for name in SET_STUDY_METRIC_NAMES:
+        spec = SET_VARIABLES[name]
+        table[name] = (spec.dims, spec.units, spec.long_name, spec.description)
+    return table
+
+
+def set_point_metrics(ds: xr.Dataset) -> dict[str, object]:
+    """The :data:`SET_STUDY_METRIC_NAMES` of a bearing set's Dataset: ``{name: float or
+    {bearing name: float}}``."""
+    out: dict[str, object] = {}
+    names = [str(b) for b in ds["bearing"].values]
+    for name in SET_STUDY_METRIC_NAMES:
+        values = ds[name].values
+        if ds[name].dims == ("bearing",):
+            out[name] = {b: float(v) for b, v in zip(names, values, strict=True)}
+        else:
+            out[name] = float(values)
+    return out
+
+
+def run_metrics(ds: xr.Dataset) -> dict[str, object]:
+    """The metrics a study keeps of one result: :func:`set_point_metrics` for a bearing set's
+    Dataset (it has a ``bearing`` dimension), else :func:`point_metrics`."""
+    if "bearing" in ds.dims:
+        return set_point_metrics(ds)
+    return point_metrics(ds)
+
+
+__all__ = [
+    "POINT_METRICS",
+    "SET_STUDY_METRIC_NAMES",
+    "STUDY_METRIC_NAMES",
+    "point_metrics",
+    "run_metrics",
+    "set_point_metric_table",
+    "set_point_metrics",
+]

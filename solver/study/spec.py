@@ -127,7 +127,8 @@ def _unknown(where: str, key: str, allowed) -> Problem:
 
 
 def _check_case_key(where: str, key: str, problems: list[Problem]) -> bool:
-    if key in _CASE_KEYS or key.startswith("materials."):
+    # a bearing set's keys (set.preload.force_N ...) are checked by the case of each point
+    if key in _CASE_KEYS or key.startswith(("materials.", "set.")):
         return True
     close = difflib.get_close_matches(key, list(_CASE_KEYS), n=1, cutoff=0.6)
     hint = f"did you mean {close[0]!r}? " if close else ""

@@ -39,7 +39,7 @@ from solver.results.io import atomic_write, load_dataset, save_dataset
 from solver.results.provenance import RESULTS_VERSION, study_fingerprint
 from solver.results.summary import RACES
 
-from .metrics import POINT_METRICS
+from .metrics import POINT_METRICS, SET_STUDY_METRIC_NAMES, set_point_metric_table
 
 STUDY_FILE = "study.toml"
 MANIFEST = "study.json"
@@ -206,6 +206,13 @@ def _record_problem(record) -> str:
                 isinstance(value, dict) and all(_number(value.get(r)) for r in RACES)
             ):
                 return f"metric {name!r} is not a number per race"
+        elif not _number(value):
+            return f"metric {name!r} is not a number"
+    for name in SET_STUDY_METRIC_NAMES:  # a bearing set's point: numbers, or one per bearing
+        value = metrics.get(name)
+        if isinstance(value, dict):
+            if not all(isinstance(b, str) and _number(v) for b, v in value.items()):
+                return f"metric {name!r} is not a number per bearing"
         elif not _number(value):
             return f"metric {name!r} is not a number"
     return ""
@@ -582,19 +589,59 @@ def study_runs(ds: xr.Dataset):
                 yield i, j, status
 
 
+def _set_metric_variables(folder: StudyFolder, entries: list, models: list) -> tuple[dict, list]:
+    """The bearing-set variables of a study (:data:`SET_STUDY_METRIC_NAMES` per (point, model[,
+    bearing]), NaN where a run has none) and its bearings' names in order of first appearance;
+    ({}, []) when no run holds them (no point is a bearing set)."""
+    found = {}
+    bearings: list[str] = []
+    for i, entry in enumerate(entries):
+        for j, model in enumerate(models):
+            if model not in entry["models"]:
+                continue
+            record = folder.record(entry["name"], model)
+            metrics = (record or {}).get("metrics") or {}
+            for name in SET_STUDY_METRIC_NAMES:
+                value = metrics.get(name)
+                if value is None:
+                    continue
+                found[(i, j, name)] = value
+                if isinstance(value, dict):
+                    bearings.extend(b for b in value if b not in bearings)
+    if not found:
+        return {}, []
+    variables = {}
+    for name, (dims, units, long_name, description) in set_point_metric_table().items():
+        shape = (len(entries), len(models), *(len(bearings) for _ in dims))
+        data = np.full(shape, np.nan)
+        for i in range(len(entries)):
+            for j in range(len(models)):
+                value = found.get((i, j, name))
+                if isinstance(value, dict):
+                    for b, v in value.items():
+                        data[i, j, bearings.index(b)] = np.nan if v is None else v
+                elif value is not None:
+                    data[i, j] = value
+        attrs = {"units": units, "long_name": long_name, "description": description}
+        variables[name] = (("point", "model", *dims), data, attrs)
+    return variables, bearings
+
+
 def study_dataset(folder: StudyFolder) -> xr.Dataset:
     """The study Dataset of a study folder: dimensions ``point``, ``model`` and ``race``.
 
     Coordinates: ``point`` (p0001...), ``sweep`` and one coordinate per varied key, named by the
     dotted key, holding each point's value of that key (the base case's where a sweep does not
-    vary it). Variables: the :data:`~solver.study.metrics.POINT_METRICS` per (point, model[, race])
-    (NaN where the run has not finished or failed), ``status`` ("done", "failed", "pending" or
-    "not run": the point does not run this model), ``message`` and ``wall_time`` [s]. Attributes:
-    ``title``, ``description``, ``base_case``, ``software_version``, ``varied_keys`` (JSON),
-    ``study_folder`` (the folder's name, never a path of the machine that ran it),
-    ``racetrace_kind`` = "study", ``results_fingerprint`` and ``results_version`` (what the
-    points' results depend on: :func:`points_fingerprint`), and ``solver_changes`` (JSON) when a
-    resume accepted a change of the solver.
+    vary it). Variables: the :data:`~solver.study.metrics.POINT_METRICS` per (point, model[,
+    race]) (NaN where the run has not finished or failed, or the point is a bearing set); for a
+    study of bearing-set points the set's :data:`~solver.study.metrics.SET_STUDY_METRIC_NAMES`
+    per (point, model[, bearing]) with the coordinate ``bearing`` (the bearings' names);
+    ``status`` ("done", "failed", "pending" or "not run": the point does not run this model),
+    ``message`` and ``wall_time`` [s]. Attributes: ``title``, ``description``, ``base_case``,
+    ``software_version``, ``varied_keys`` (JSON), ``study_folder`` (the folder's name, never a
+    path of the machine that ran it), ``racetrace_kind`` = "study", ``results_fingerprint`` and
+    ``results_version`` (what the points' results depend on: :func:`points_fingerprint`), and
+    ``solver_changes`` (JSON) when a resume accepted a change of the solver.
     """
     manifest = folder.manifest()
     entries = manifest["points"]
@@ -636,6 +683,8 @@ def study_dataset(folder: StudyFolder) -> xr.Dataset:
             data[name],
             {"units": units, "long_name": long_name, "description": description},
         )
+    set_variables, bearings = _set_metric_variables(folder, entries, models)
+    variables.update(set_variables)
     variables["status"] = (("point", "model"), status.astype(str), {"long_name": "run status"})
     variables["message"] = (("point", "model"), message.astype(str), {"long_name": "message"})
     variables["wall_time"] = (
@@ -649,6 +698,8 @@ def study_dataset(folder: StudyFolder) -> xr.Dataset:
         "race": ("race", np.array(RACES), {"long_name": "race"}),
         "sweep": ("point", np.array([e["sweep"] for e in entries]), {"long_name": "sweep"}),
     }
+    if bearings:
+        coords["bearing"] = ("bearing", np.array(bearings), {"long_name": "bearing of the set"})
     for key in manifest["varied_keys"]:
         values = [e["coordinates"].get(key) for e in entries]
         coords[key] = ("point", _coordinate(values), {"long_name": f"case key {key}"})

@@ -387,9 +387,15 @@ def test_run_summary_sets_the_model_torque_beside_the_estimates(dynamic_dataset)
     assert "friction torque (model), N mm" in headers and "Palmgren estimate, N mm" in headers
 
 
-SHIPPED_STUDIES = sorted(
-    (Path(__file__).resolve().parents[2] / "assets" / "studies" / "results").glob("*.study.nc")
-)
+#: The shipped studies of one bearing (a bearing-set study, spindle-pair-db-speed, keeps the set's
+#: loads and stiffness per bearing instead of per-race metrics: its charts are the set view's).
+SHIPPED_STUDIES = [
+    path
+    for path in sorted(
+        (Path(__file__).resolve().parents[2] / "assets" / "studies" / "results").glob("*.study.nc")
+    )
+    if not path.name.startswith("spindle-pair-")
+]
 
 
 @pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])

@@ -28,6 +28,11 @@ shaft and of the floating outer rings:
 
 solved by Newton (Levenberg-Marquardt when ill-conditioned) with the Jacobian
 sum_b G_b^T T_b J_b T_b G_b assembled from the bearings' own (implicit-function) Jacobians.
+
+A misalignment (``set.misalignment_deg``) imposes the shaft's tilt (theta_y, theta_z) relative to
+the housing bores, which hold every outer ring: the two moment equations are replaced by the
+imposed tilt, and the moment they leave unbalanced is the one the rest of the machine exerts to
+hold the tilt (``misalignment_moment``).
 """
 
 from __future__ import annotations
@@ -128,11 +133,15 @@ class _SetProblem:
     """The set's equations at a speed fraction: residual and Jacobian of the unknowns
     v = (u, [w])."""
 
-    def __init__(self, members, applied, spring_force):
+    def __init__(self, members, applied, spring_force, tilt=None, tilt_weight=1.0):
         self.members = members
         self.applied = applied
         self.spring_force = spring_force
         self.n = 6 if spring_force is not None else 5
+        #: an imposed shaft tilt (y, z) [rad] relative to the housing (set.misalignment_deg):
+        #: the two moment equations are replaced by tilt_weight * (u_tilt - tilt) = 0 [N m]
+        self.tilt = tilt
+        self.tilt_weight = tilt_weight
 
     def split(self, v):
         return v[:5], (v[5] if self.n == 6 else 0.0)
@@ -158,6 +167,10 @@ class _SetProblem:
                     jacobian[5, 5] += j_b[0, 0]
         if self.n == 6:
             residual[5] += self.spring_force
+        if self.tilt is not None:
+            residual[3:5] = self.tilt_weight * (u[3:5] - self.tilt)
+            jacobian[3:5, :] = 0.0
+            jacobian[3, 3] = jacobian[4, 4] = self.tilt_weight
         return ok_all, residual, jacobian
 
 
@@ -414,7 +427,9 @@ class SetSolution:
     ``displacements`` (B, 5): each inner ring's displacement relative to its outer ring at its
     plane, shaft frame; ``stiffness`` (B, 5, 5): each bearing's stiffness at its plane, shaft
     frame; ``set_stiffness`` (5, 5) at the load point; ``unloaded_at_rest``: names of the bearings
-    with no loaded ball at rest under the case's loads."""
+    with no loaded ball at rest under the case's loads; ``misalignment_moment`` (y, z) [N m]: with
+    an imposed tilt (set.misalignment_deg), the moment on the shaft at the load point, from
+    outside the set, that holds the tilt (None otherwise)."""
 
     members: list
     shaft: np.ndarray
@@ -432,6 +447,7 @@ class SetSolution:
     ball_speeds: str
     ball_speeds_note: str
     unloaded_at_rest: list
+    misalignment_moment: np.ndarray | None = None
 
 
 def _bearing_operating(base: OperatingPoint, q, r_b) -> OperatingPoint:
@@ -513,8 +529,13 @@ def solve_set_state(case) -> SetSolution:
     for m in members:
         m.offset = 0.5 * offset
         m.spring = spring_force is not None and m.entry.direction == bearing_set.spring_side
-    problem = _SetProblem(members, applied, spring_force)
     force_scale = max(max(m.problem.force_scale for m in members), 1e-6)
+    tilt = None
+    if bearing_set.misalignment_deg is not None:
+        tilt = np.radians(np.asarray(bearing_set.misalignment_deg, dtype=float))
+    rscale, vscale = _scales(members, force_scale)
+    # the tilt rows' weight makes their scaled residual the tilt error over the tilt scale
+    problem = _SetProblem(members, applied, spring_force, tilt, rscale[3] / vscale[3])
     v = _initial_guess(problem, members, force_scale)
     for m in members:
         model = m.problem.model(0.0)
@@ -618,6 +639,10 @@ def _initial_guess(problem, members, force_scale):
     if problem.n == 6:
         load[5] = problem.spring_force
     load += preload_load
+    if problem.tilt is not None:  # the imposed tilt replaces the moment balance
+        stiffness[3:5, :] = 0.0
+        stiffness[3, 3] = stiffness[4, 4] = 1.0
+        load[3:5] = problem.tilt
     guess = np.linalg.lstsq(stiffness, load, rcond=1e-12)[0]
     return guess
 
@@ -641,10 +666,12 @@ def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, 
     set_jacobian = np.zeros((problem.n, problem.n))
     solutions, operatings = [], []
     reactions, displacements, stiffness = [], [], []
+    shaft_load = np.array(problem.applied, dtype=float)
     for m in problem.members:
         q = m.q(u, w)
         m.state.q = q.copy()
         ok, r_b, j_b = m.reaction(q, 1.0, m.state.position)
+        shaft_load += m.map.T @ r_b
         set_jacobian[:5, :5] += m.map.T @ j_b @ m.map
         if m.spring:
             set_jacobian[5, :5] += j_b[0] @ m.map
@@ -683,6 +710,7 @@ def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, 
         ball_speeds=ball_speeds,
         ball_speeds_note=fallback,
         unloaded_at_rest=unloaded_at_rest,
+        misalignment_moment=(-shaft_load[3:5] if problem.tilt is not None else None),
     )
 
 

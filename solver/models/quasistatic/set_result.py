@@ -157,6 +157,15 @@ SET_VARIABLES: dict[str, Variable] = {
         "bearings at assembly (given, or solved at rest from the preload force); 0 otherwise",
         ("quasistatic",),
     ),
+    "misalignment_moment": Variable(
+        ("tilt_axis",),
+        "N m",
+        "moment holding the misalignment",
+        "moment (y, z) on the shaft at the load point, from outside the set, that holds the "
+        "shaft's tilt imposed by set.misalignment_deg (the bearings' moments balance it); "
+        "present when set.misalignment_deg is given",
+        ("quasistatic",),
+    ),
     "spring_shift": Variable(
         (),
         "m",
@@ -287,6 +296,8 @@ def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.
         "preload_offset": _var("preload_offset", state.offset),
         "spring_shift": _var("spring_shift", state.spring_shift),
     }
+    if state.misalignment_moment is not None:
+        data["misalignment_moment"] = _var("misalignment_moment", state.misalignment_moment)
     if applied[0] != 0.0:
         data["axial_load_share"] = _var("axial_load_share", -reactions[:, 0] / applied[0])
     radial = np.hypot(applied[1], applied[2])

@@ -33,7 +33,12 @@ EXPECTED = {
         "spindle-radial-step",
         "spindle-unbalance",
         "spindle-load-spectrum",
+        # bearing sets (issue 25)
         "spindle-pair-db-light-preload",
+        "spindle-pair-db-medium-preload",
+        "spindle-pair-db-heavy-preload",
+        "spindle-pair-df-misalignment",
+        "spindle-front-tbt-medium-preload",
     },
 }
 
@@ -42,7 +47,7 @@ def test_catalogue_lists_the_required_entries():
     cat = catalogue()
     assert {e.name for e in cat.bearings} == EXPECTED["bearings"]
     assert {e.name for e in cat.cases} == EXPECTED["cases"]
-    assert list(cat) == list(cat.entries) and len(cat) == 18
+    assert list(cat) == list(cat.entries) and len(cat) == 22
     for entry in cat.entries:
         assert entry.title and entry.provenance in (
             "estimated",
