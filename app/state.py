@@ -29,7 +29,9 @@ class RacetraceApp:
 
     ``server``: a trame server (``trame.app.get_server``); ``runs_dir``: runs folder (default
     :func:`app.run_store.default_runs_dir`), used when no ``services`` are given; ``render``: build
-    the pyvista scene (False in pure state tests); ``window_size``: 3-D view size in pixels.
+    the pyvista scene (False in pure state tests); ``window_size``: 3-D view size in pixels;
+    ``render_mode``: who draws the 3-D view, ``"browser"`` (where the page has WebGL) or
+    ``"server"`` (:mod:`app.components.browser_view`).
     """
 
     EXPORT_URL = EXPORT_URL
@@ -41,6 +43,7 @@ class RacetraceApp:
         render: bool = True,
         window_size=(650, 480),
         services: Services | None = None,
+        render_mode: str = "browser",
     ):
         self.server = server
         self.state, self.ctrl = server.state, server.controller
@@ -48,7 +51,9 @@ class RacetraceApp:
         self.clients = 0  # connected browsers
         self._client_ids = set()
         self.form = CaseForm(self)
-        self.result = ResultView(self, render=render, window_size=window_size)
+        self.result = ResultView(
+            self, render=render, window_size=window_size, render_mode=render_mode
+        )
         self.runs = Runs(self)
         self.compare = Compare(self)
         self.exports = Export(self)

@@ -46,7 +46,7 @@ def main() -> int:
             check=True,
         )  # fmt: skip
 
-    from app.offscreen import configure_environment
+    from viz.offscreen import configure_environment
 
     configure_environment()
     import pyvista as pv
