@@ -149,6 +149,7 @@ class BrowserView:
         sent_stop, sent_quantity, sent_at = self._tracks_sent
         due = (
             tracks_now
+            or not self.state.playing  # a frame chosen by hand
             or sent_quantity != options.track_quantity
             or stop < sent_stop
             or (stop != sent_stop and time.monotonic() - sent_at >= TRACK_REFRESH_S)
@@ -201,7 +202,7 @@ class BrowserView:
                                 registration="setScalars",
                                 name="rgba",
                                 type="Uint8Array",
-                                number_of_components=4,
+                                number_of_components=("4",),  # a number, not the text "4"
                                 values=("rt3d_tracks.c[part.race]",),
                             )
                             vtk_widgets.VtkDataArray(
