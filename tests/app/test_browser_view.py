@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from tests.app.test_browser import _set_state, _track_pixels
+from tests.app.test_browser import _set_state, _view_pixels
 from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS
 
 pytestmark = BROWSER_MARKS
@@ -39,15 +39,32 @@ def page(browser, server):
     context.close()
 
 
+def _painted_pixels(pixels):
+    """Pixels in the painted tracks' colours (yellow to dark red: red well above blue)."""
+    return pixels[..., 0] - pixels[..., 2] > 80
+
+
 def test_the_browser_draws_the_view_and_both_painted_tracks(page):
+    import numpy as np
+
     assert page.evaluate("window.trame.state.get('view_in_browser')") is True
     assert page.locator("#view-3d img").count() == 0  # no server images
     _set_state(page, playing=False, track_whole_run=True)
     others = ("balls", "cage", "labels", "traces", "ellipses", "edges")
     _set_state(page, **{f"show_{n}": False for n in others})
-    (outer, outer_thickness), (inner, inner_thickness) = _track_pixels(page, "browser-tracks")
-    print("browser view track pixels", outer, inner, outer_thickness, inner_thickness)
-    assert outer > 200 and inner > 200, (outer, inner)
+    shown = _view_pixels(page, "browser-tracks")
+    _set_state(page, show_tracks=False)
+    hidden = _view_pixels(page, "browser-no-tracks", differs_from=shown)
+    _set_state(page, show_tracks=True)
+    painted = _painted_pixels(shown) & ~_painted_pixels(hidden)
+    rows = np.flatnonzero(painted.any(axis=1))
+    assert rows.size, "no painted track in the browser-drawn view"
+    gaps = np.diff(rows)
+    assert gaps.size and gaps.max() > 5, f"one painted band only, rows {rows.min()}-{rows.max()}"
+    cut = rows[int(np.argmax(gaps))] + 1  # the outer ring is drawn above the inner one
+    outer, inner = int(painted[:cut].sum()), int(painted[cut:].sum())
+    print("browser view painted pixels (outer, inner)", outer, inner)
+    assert outer > 100 and inner > 100, (outer, inner)
 
 
 def test_a_page_without_webgl_gets_the_server_images(browser, server):
