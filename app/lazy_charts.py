@@ -43,7 +43,8 @@ def enable(server) -> None:
 LOAD_AFTER_FIRST_FRAME = """
 (function racetraceLoadCharts(tries) {
   var img = document.querySelector('#view-3d img[src]');
-  if (window.racetrace_charts && ((img && img.getAttribute('src')) || tries > 100)) {
+  var canvas = document.querySelector('#view-3d canvas');
+  if (window.racetrace_charts && ((img && img.getAttribute('src')) || canvas || tries > 100)) {
     window.racetrace_charts.load('__BUNDLE_URL__');
   } else {
     setTimeout(function () { racetraceLoadCharts(tries + 1); }, 100);

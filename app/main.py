@@ -20,15 +20,21 @@ def serve(
     case_name: str | None = None,
     shared: bool = False,
     max_runs: int | None = None,
+    render: str = "browser",
 ) -> int:
     """Serve the app until interrupted. Returns 2 if off-screen rendering does not work here.
 
     Each browser gets its own session process (:mod:`app.serve.front`); ``shared``: one session for
     every browser. ``max_runs``: solver processes at once (default: the number of cores).
+    ``render``: who draws the 3-D view, ``"browser"`` (where the browser has WebGL) or
+    ``"server"``.
     """
     problem = _port_problem(host, port)
     if problem:
         print(f"racetrace serve: {problem}", file=sys.stderr)
+        return EXIT_NO_RENDERING
+    if render not in ("browser", "server"):
+        print(f"racetrace serve: --render {render}: use browser or server", file=sys.stderr)
         return EXIT_NO_RENDERING
     if max_runs is not None and max_runs < 1:
         print(f"racetrace serve: --max-runs {max_runs}: must be at least 1", file=sys.stderr)
@@ -53,6 +59,7 @@ def serve(
     # the fork server (started with the first session) says there what it is preparing
     os.environ[preparing.ENV] = str(slots / "preparing.txt")
     session_args = ["--runs-dir", runs, "--slots-dir", str(slots), "--max-runs", str(max_runs)]
+    session_args += ["--render", render]
     if case_name:
         session_args += ["--case", case_name]
     front = Front(Access(host, token), session_args, shared=shared)

@@ -32,7 +32,9 @@ class RacetraceApp:
 
     ``server``: a trame server (``trame.app.get_server``); ``runs_dir``: runs folder (default
     :func:`app.run_store.default_runs_dir`), used when no ``services`` are given; ``render``: build
-    the pyvista scene (False in pure state tests); ``window_size``: 3-D view size in pixels.
+    the pyvista scene (False in pure state tests); ``window_size``: 3-D view size in pixels;
+    ``render_mode``: who draws the 3-D view, ``"browser"`` (where the page has WebGL) or
+    ``"server"`` (:mod:`app.components.browser_view`).
     """
 
     EXPORT_URL = EXPORT_URL
@@ -44,6 +46,7 @@ class RacetraceApp:
         render: bool = True,
         window_size=(650, 480),
         services: Services | None = None,
+        render_mode: str = "browser",
     ):
         self.server = server
         self.state, self.ctrl = server.state, server.controller
@@ -51,7 +54,9 @@ class RacetraceApp:
         self.clients = 0  # connected browsers
         self._client_ids = set()
         self.form = CaseForm(self)
-        self.result = ResultView(self, render=render, window_size=window_size)
+        self.result = ResultView(
+            self, render=render, window_size=window_size, render_mode=render_mode
+        )
         self.set_panel = SetPanel(self)
         self.runs = Runs(self)
         self.compare = Compare(self)

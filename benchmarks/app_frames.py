@@ -193,7 +193,20 @@ def main() -> int:
         port = s.getsockname()[1]
     t_start = time.monotonic()
     proc = subprocess.Popen(
-        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
+        # the server-rendered view: its images are what this script counts (browser_fps.py
+        # measures the in-browser view)
+        [
+            sys.executable,
+            "-m",
+            "racetrace",
+            "serve",
+            "--port",
+            str(port),
+            "--runs-dir",
+            str(runs),
+            "--render",
+            "server",
+        ],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
     )

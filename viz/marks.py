@@ -28,6 +28,26 @@ ELLIPSE_OUTLINE_PX = 2.0
 TRACE_WIDTH_PX = 3.0
 
 
+def ellipse_points(layout: RacewayLayout, race: int, f, ellipse_scale: float):
+    """The contact ellipses of ``race`` at frame ``f`` (:class:`viz.frames.Frame`) drawn
+    ``ellipse_scale`` times their size, in the ring's frame (m): (points (Z * (ELLIPSE_POINTS + 1),
+    3), each ellipse's centre then its outline; peak pressure per ball, GPa, 0 where unloaded).
+    Unloaded contacts and those in the outer ring's cut-away sector collapse to their centre."""
+    groove = layout.grooves[race]
+    loaded = f.loaded[:, race] & ~layout.in_cutaway(race, f.raceway_azimuth[:, race])
+    alpha = np.where(loaded, f.contact_angle[:, race], layout.reference[race])
+    alpha = layout.display_alpha(race, alpha)
+    a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0) * ellipse_scale
+    b = np.where(loaded, np.nan_to_num(f.semi_minor[:, race]), 0.0) * ellipse_scale
+    phi = f.raceway_azimuth[:, race]
+    lift = 2 * MARK_LIFT * groove.r  # above the traces
+    outline = ellipse_outline(groove, phi, alpha, a, b, n=ELLIPSE_POINTS, lift=lift)
+    centre = groove.point(phi, alpha, lift=lift)[:, None, :]
+    pts = np.concatenate([centre, outline], axis=1).reshape(-1, 3)
+    p = np.where(loaded, np.nan_to_num(f.max_pressure[:, race]), 0.0) * 1e-9
+    return pts, p
+
+
 class RacewayMarks:
     """Edges, contact ellipses and traces of both raceways in ``plotter``; ``actors`` by layer."""
 
@@ -112,21 +132,9 @@ class RacewayMarks:
     def update_ellipses(self, race: int, f, ellipse_scale: float) -> None:
         """The contact ellipses of ``race`` at frame ``f`` (:class:`viz.frames.Frame`), drawn
         ``ellipse_scale`` times their size."""
-        layout = self.layout
-        groove = layout.grooves[race]
-        loaded = f.loaded[:, race] & ~layout.in_cutaway(race, f.raceway_azimuth[:, race])
-        alpha = np.where(loaded, f.contact_angle[:, race], layout.reference[race])
-        alpha = layout.display_alpha(race, alpha)
-        a = np.where(loaded, np.nan_to_num(f.semi_major[:, race]), 0.0) * ellipse_scale
-        b = np.where(loaded, np.nan_to_num(f.semi_minor[:, race]), 0.0) * ellipse_scale
-        phi = f.raceway_azimuth[:, race]
-        lift = 2 * MARK_LIFT * groove.r  # above the traces
-        outline = ellipse_outline(groove, phi, alpha, a, b, n=ELLIPSE_POINTS, lift=lift)
-        centre = groove.point(phi, alpha, lift=lift)[:, None, :]
-        pts = np.concatenate([centre, outline], axis=1).reshape(-1, 3)
+        pts, p = ellipse_points(self.layout, race, f, ellipse_scale)
         mesh = self.ellipses[race]
         mesh.points = pts
-        p = np.where(loaded, np.nan_to_num(f.max_pressure[:, race]), 0.0) * 1e-9
         mesh.point_data["max_pressure_GPa"] = np.repeat(p, ELLIPSE_POINTS + 1)
 
     def update_traces(self, race: int, source, stop: int, options) -> None:

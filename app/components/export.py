@@ -143,6 +143,7 @@ class Export(Component):
             elif kind == "csv":
                 await asyncio.to_thread(ex.export_csv, dataset, path)
             elif kind == "png":
+                result.sync_scene()
                 ex.export_png(result.plotter, path, self.caption(result.scene.frame_index))
             else:
                 await self._export_animation(ex, path)

@@ -24,7 +24,7 @@ import time
 from typing import NamedTuple
 
 import numpy as np
-from trame.widgets import html
+from trame.widgets import client, html
 from trame.widgets import vuetify3 as v3
 
 from viz.frames import FrameSource, frame_source
@@ -35,6 +35,7 @@ from .. import charts
 from ..run_length import has_history
 from ..run_store import describe_case
 from .base import Component, as_float, as_int, fig_json, running_loop
+from .browser_view import DETECT_WEBGL, BrowserView
 from .widgets import chart, checkbox, choices, icon_button, select
 
 log = logging.getLogger("racetrace.app")
@@ -91,9 +92,12 @@ class ResultView(Component):
         "push_view",
     )
 
-    def __init__(self, session, render: bool = True, window_size=(650, 480)):
+    def __init__(
+        self, session, render: bool = True, window_size=(650, 480), render_mode: str = "browser"
+    ):
         super().__init__(session)
         self.render_enabled = render
+        self.browser = BrowserView(self, render_mode)  # the view the browser draws
         self.window_size = window_size
         self.plotter = None
         self.scene = None
@@ -146,6 +150,7 @@ class ResultView(Component):
         s.ball_legend = []  # [{"ball": j, "colour": "#..."}]: the balls' colours in the 3-D view
         s.camera = "isometric"
         s.chart_help = dict(charts.HELP)
+        self.browser.init_state()
         for name in CHARTS:
             s[f"chart_{name}"] = {"data": [], "layout": {}}
 
@@ -158,6 +163,7 @@ class ResultView(Component):
         self.on_change("speed")(self._on_speed)
         self.on_change("map_colour", "map_skip_startup")(self._on_map_options)
         self.on_change("camera")(self._on_camera)
+        self.on_change("browser_webgl")(self._on_browser_webgl)
         self.on_change("open_panels")(self._on_open_panels)
         self.action("step", self.step)
         self.action("set_camera", self.set_camera)
@@ -241,6 +247,8 @@ class ResultView(Component):
             self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
             self.scene.show_source(source, 0)
             self.scene.show_facts(self.facts)
+            if self.browser.render_mode == "browser":
+                self.browser.show_scene(self.scene)
         self._update_words()
         s = self.state
         s.frame_max = source.n_frames - 1
@@ -415,7 +423,12 @@ class ResultView(Component):
             self.push_view()
 
     def push_view(self) -> None:
-        """Send the current 3-D image to the page."""
+        """Send the current 3-D image to the page (with the browser-drawn view: the parts'
+        visibility, the frame and the painted tracks)."""
+        if self.browser.active:
+            if self.source is not None:
+                self.browser.refresh(as_int(self.state.frame, 0, 0, self.source.n_frames - 1))
+            return
         if self.view is None:
             return
         if self.scene is not None and not self.scene.framed_for_window():
@@ -497,6 +510,8 @@ class ResultView(Component):
         if self.scene is not None:
             self.scene.set_camera(camera)
             self.push_view()
+            if self.browser.active:
+                self.browser.set_camera(self.plotter)
         if self.source is not None:
             i = as_int(self.state.frame, 0, 0, self.source.n_frames - 1)
             self.state.closeup_numbers = self._closeup_numbers(i) if camera == "close-up" else ""
@@ -507,8 +522,11 @@ class ResultView(Component):
             return
         index = int(min(max(index, 0), self.source.n_frames - 1))
         if self.scene is not None and not self.animating_export:
-            self.scene.set_frame(index)
-            self.push_view()
+            if self.browser.active:  # the browser draws: send what moved
+                self.browser.show_frame(index)
+            else:
+                self.scene.set_frame(index)
+                self.push_view()
         from ..teaching import revolution_words
 
         t = float(self.source.times[index])
@@ -572,6 +590,23 @@ class ResultView(Component):
         frame = as_int(self.state.frame, 0) + as_int(delta, 1, -1_000_000, 1_000_000)
         self.state.frame = frame % self.source.n_frames
 
+    def _on_browser_webgl(self, browser_webgl=None, **_):
+        """The page said whether it can draw WebGL: pick the view, and bring it up to date."""
+        if not self.browser.choose(browser_webgl):
+            if self.scene is not None and self.source is not None:
+                self.scene.set_frame(as_int(self.state.frame, 0, 0, self.source.n_frames - 1))
+            self.push_view()
+            return
+        self.push_view()
+        if self.scene is not None:
+            self.browser.set_camera(self.plotter)
+
+    def sync_scene(self) -> None:
+        """Bring the server's scene to the frame on show (the browser-drawn view does not move
+        it while playing): before an export renders it."""
+        if self.scene is not None and self.source is not None:
+            self.scene.set_frame(as_int(self.state.frame, 0, 0, self.source.n_frames - 1))
+
     def _on_playing(self, playing=False, **_):
         if playing and (self._play_task is None or self._play_task.done()):
             loop = running_loop()
@@ -608,12 +643,17 @@ class ResultView(Component):
         from trame_pyvista.rca_view import PyVistaRCAView
 
         # fills the height the window leaves; the render follows its size, so the picture
-        # keeps its aspect ratio at any window size
+        # keeps its aspect ratio at any window size; the browser draws the scene itself where it
+        # can (render_mode "browser" and WebGL), else the server's images are shown
+        client.Script(DETECT_WEBGL)
         with html.Div(
             id="view-3d",
             style="height: calc(100vh - 330px); min-height: 320px; position: relative;",
         ):
-            self.view = PyVistaRCAView(self.plotter, style="width: 100%; height: 100%;")
+            with html.Template(v_if="view_in_browser"):
+                self.browser.build()
+            with html.Template(v_else_if="render_mode === 'server' || browser_webgl === false"):
+                self.view = PyVistaRCAView(self.plotter, style="width: 100%; height: 100%;")
             _ball_legend()
         html.Div(
             "{{ closeup_numbers }}",

@@ -10,7 +10,7 @@ A session listens on 127.0.0.1 only, and answers only requests that carry the se
 gave it (:mod:`app.serve.session_guard`): the front is its only client.
 
 ``RACETRACE_SESSION_SECRET=... python -m app.serve.session_process --port P [--runs-dir D]
-[--case NAME] [--slots-dir S] [--max-runs N]``
+[--case NAME] [--slots-dir S] [--max-runs N] [--render browser|server]``
 """
 
 from __future__ import annotations
@@ -35,6 +35,7 @@ def main(argv=None, secret: str | None = None) -> int:
     p.add_argument("--case", default=None)
     p.add_argument("--slots-dir", default=None)
     p.add_argument("--max-runs", type=int, default=None)
+    p.add_argument("--render", choices=("browser", "server"), default="browser")
     args = p.parse_args(argv)
     if not secret:
         p.error(f"no session secret in ${SECRET_ENV}: sessions are started by racetrace serve")
@@ -59,7 +60,7 @@ def main(argv=None, secret: str | None = None) -> int:
     pv.global_theme.multi_samples = 0
     server = get_server("racetrace", client_type="vue3")
     services = Services(args.runs_dir, slots_dir=args.slots_dir, max_runs=args.max_runs)
-    app = RacetraceApp(server, services=services)
+    app = RacetraceApp(server, services=services, render_mode=args.render)
     app.start(args.case or DEFAULT_CASE)
     app.exports_dir.mkdir(parents=True, exist_ok=True)
     server.enable_module({"serve": {app.EXPORT_URL: str(app.exports_dir)}})

@@ -17,6 +17,7 @@ APP_MODULES = (
     "trame_vuetify",
     "trame_pyvista",
     "trame_rca",
+    "trame_vtk",
     "trame_plotly",
     "pyvista",
     "vtkmodules",
@@ -61,6 +62,14 @@ def register(subparsers) -> None:
         help="solver processes at once, over all sessions (default: the number of cores); "
         "further runs wait in a queue",
     )
+    p.add_argument(
+        "--render",
+        choices=("browser", "server"),
+        default="browser",
+        help="who draws the 3-D view: 'browser' (default: each browser draws it with WebGL, the "
+        "server sends the moving parts' positions; a browser without WebGL gets server-rendered "
+        "images) or 'server' (every frame rendered on the server)",
+    )
     p.set_defaults(func=run)
 
 
@@ -92,4 +101,5 @@ def run(args) -> int:
         case_name=args.case,
         shared=args.shared,
         max_runs=args.max_runs,
+        render=args.render,
     )

@@ -31,6 +31,10 @@ def start_server(runs: Path, log_path: Path, *options: str, new_group: bool = Fa
     ``proc`` and open ``log`` file (for :func:`stop_server`). ``new_group``: the server leads its
     own process group (so a test can signal the group, as Ctrl-C in a terminal does)."""
     port = free_port()
+    if not any(o.startswith("--render") for o in options):
+        # the tests written for the server-rendered view (its images) ask for it; the browser-drawn
+        # view has its own tests (tests/app/test_browser_view.py)
+        options = (*options, "--render", "server")
     log = open(log_path, "w+")  # noqa: SIM115 - closed in stop_server
     proc = subprocess.Popen(
         [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)]

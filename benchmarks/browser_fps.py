@@ -1,0 +1,92 @@
+"""Measure how fast a browser draws the in-browser 3-D view while playing (run by hand, not in CI).
+
+    python benchmarks/browser_fps.py [--size 1280x800] [--seconds 8]
+
+Starts ``racetrace serve --render browser`` on a free loopback port, opens it in headless Chromium
+(/usr/bin/chromium, software WebGL on SwiftShader) at ``--size`` and, while the default case plays,
+counts for ``--seconds`` in the page: the animation frames the browser managed
+(``requestAnimationFrame`` callbacks per second: its drawing capacity, 60 at most) and the
+distinct frames of the bearing it received and drew (at most the app's ``PLAY_FPS``). Also prints
+the server's process CPU time over the same span (front and session processes).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+COUNT_FRAMES = """(seconds) => new Promise((done) => {
+  let ticks = 0;
+  const seen = new Set();
+  const t0 = performance.now();
+  function tick() {
+    ticks += 1;
+    seen.add(window.trame.state.get('rt3d_frame').index);
+    if (performance.now() - t0 < seconds * 1000) requestAnimationFrame(tick);
+    else done([ticks / seconds, seen.size / seconds]);
+  }
+  requestAnimationFrame(tick);
+})"""
+
+
+def _cpu_seconds(pid: int) -> float:
+    """User + system CPU seconds of ``pid`` and its children (from /proc)."""
+    import os
+
+    total = 0.0
+    tick = os.sysconf("SC_CLK_TCK")
+    for task in Path("/proc").iterdir():
+        if not task.name.isdigit():
+            continue
+        try:
+            fields = (task / "stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == pid or int(task.name) == pid:  # the server and its sessions
+            total += (int(fields[11]) + int(fields[12])) / tick
+    return total
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--size", default="1280x800", help="browser window, WIDTHxHEIGHT")
+    parser.add_argument("--seconds", type=float, default=8.0)
+    args = parser.parse_args()
+    width, height = (int(v) for v in args.size.lower().split("x"))
+
+    import playwright.sync_api as playwright_api
+
+    from tests.helpers.serve import start_server, stop_server
+    from tools.chromium import CHROMIUM, LAUNCH_ARGS
+
+    folder = Path(tempfile.mkdtemp(prefix="racetrace-fps-"))
+    served = start_server(folder / "runs", folder / "serve.log", "--render", "browser")
+    try:
+        with playwright_api.sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+            page = browser.new_page(viewport={"width": width, "height": height})
+            page.goto(served["url"])
+            page.wait_for_selector("#view-3d-browser canvas", timeout=120_000)
+            page.evaluate("window.trame.state.set('playing', true)")
+            time.sleep(3.0)  # meshes in, playing
+            pid = served["proc"].pid
+            cpu0, wall0 = _cpu_seconds(pid), time.monotonic()
+            drawn, frames = page.evaluate(COUNT_FRAMES, args.seconds)
+            cpu = (_cpu_seconds(pid) - cpu0) / (time.monotonic() - wall0)
+            browser.close()
+    finally:
+        stop_server(served)
+    print(
+        f"browser at {width}x{height}: {drawn:.1f} animation frames/s, {frames:.1f} bearing "
+        f"frames/s drawn; server (front + sessions) {100 * cpu:.0f} % of a core meanwhile"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,87 @@
+"""The 3-D view drawn by the browser (``racetrace serve --render browser``, the default) in headless
+Chromium with software WebGL: the scene is a canvas, not server images, and both painted tracks
+are drawn. Screenshots go to ``test-artifacts/browser/``."""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.app.test_browser import _set_state, _view_pixels
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS
+
+pytestmark = BROWSER_MARKS
+
+CANVAS = "#view-3d-browser canvas"
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    from tests.helpers.serve import start_server, stop_server
+
+    runs = tmp_path_factory.mktemp("runs")
+    log = tmp_path_factory.mktemp("log") / "serve.log"
+    served = start_server(runs, log, "--render", "browser")
+    yield served
+    stop_server(served)
+
+
+@pytest.fixture
+def page(browser, server):
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    context = browser.new_context(viewport={"width": 1280, "height": 800})
+    pg = context.new_page()
+    pg.goto(server["url"])
+    pg.wait_for_selector(CANVAS, timeout=120_000)
+    pg.wait_for_function(
+        "window.trame.state.get('rt3d_parts').length > 0", timeout=60_000, polling=200
+    )
+    yield pg
+    context.close()
+
+
+def _painted_pixels(pixels):
+    """Pixels in the painted tracks' colours (yellow to dark red: red well above blue)."""
+    return pixels[..., 0] - pixels[..., 2] > 80
+
+
+def test_the_browser_draws_the_view_and_both_painted_tracks(page):
+    import numpy as np
+
+    assert page.evaluate("window.trame.state.get('view_in_browser')") is True
+    assert page.locator("#view-3d img").count() == 0  # no server images
+    _set_state(page, playing=False, track_whole_run=True)
+    others = ("balls", "cage", "labels", "traces", "ellipses", "edges")
+    _set_state(page, **{f"show_{n}": False for n in others})
+    shown = _view_pixels(page, "browser-tracks")
+    _set_state(page, show_tracks=False)
+    hidden = _view_pixels(page, "browser-no-tracks", differs_from=shown)
+    _set_state(page, show_tracks=True)
+    painted = _painted_pixels(shown) & ~_painted_pixels(hidden)
+    rows = np.flatnonzero(painted.any(axis=1))
+    assert rows.size, "no painted track in the browser-drawn view"
+    gaps = np.diff(rows)
+    assert gaps.size and gaps.max() > 5, f"one painted band only, rows {rows.min()}-{rows.max()}"
+    cut = rows[int(np.argmax(gaps))] + 1  # the outer ring is drawn above the inner one
+    outer, inner = int(painted[:cut].sum()), int(painted[cut:].sum())
+    print("browser view painted pixels (outer, inner)", outer, inner)
+    assert outer > 100 and inner > 100, (outer, inner)
+
+
+def test_a_page_without_webgl_gets_the_server_images(browser, server):
+    context = browser.new_context(viewport={"width": 1280, "height": 800})
+    # this page's canvases cannot give a WebGL context
+    context.add_init_script(
+        """const getContext = HTMLCanvasElement.prototype.getContext;
+           HTMLCanvasElement.prototype.getContext = function (kind, ...rest) {
+             return String(kind).startsWith('webgl') ? null : getContext.call(this, kind, ...rest);
+           };"""
+    )
+    pg = context.new_page()
+    try:
+        pg.goto(server["url"])
+        pg.wait_for_selector("#view-3d img[src]:not([src=''])", timeout=120_000)
+        assert pg.evaluate("window.trame.state.get('browser_webgl')") is False
+        assert pg.evaluate("window.trame.state.get('view_in_browser')") is False
+        assert pg.locator(CANVAS).count() == 0
+    finally:
+        context.close()

@@ -1,0 +1,115 @@
+"""Who draws the 3-D view (app.components.browser_view): the choice of view and what a played
+frame sends to a browser that draws the scene itself (no browser here: the session's state pushes
+are recorded)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from app.components.browser_view import BrowserView
+from app.state import DEFAULT_CASE, RacetraceApp
+from tests.helpers.app_session import trame_server
+
+# what a played frame may push with the browser-drawn view: the time controls' words and the
+# frame's matrices and ellipses (the meshes, parts and painted tracks are not among them)
+FRAME_KEYS = {"frame", "frame_time", "closeup_numbers", "rt3d_frame"}
+MAX_FRAME_BYTES = 40_000  # 18 balls: 20 matrices and 2 x 18 ellipses of 25 points (float32)
+
+
+def _set(app, **values):
+    with app.state:
+        for k, v in values.items():
+            app.state[k] = v
+
+
+def _session(tmp_path, render_mode: str) -> RacetraceApp:
+    a = RacetraceApp(
+        trame_server(),
+        runs_dir=tmp_path,
+        render=True,
+        window_size=(200, 150),
+        render_mode=render_mode,
+    )
+    a.start(DEFAULT_CASE, play=False)
+    return a
+
+
+@pytest.mark.parametrize(
+    ("mode", "webgl", "in_browser"),
+    [
+        ("browser", True, True),
+        ("browser", False, False),  # no WebGL in this browser: the server's images
+        ("browser", None, False),  # the page has not said yet
+        ("server", True, False),  # racetrace serve --render server
+    ],
+)
+def test_the_view_is_drawn_by_the_browser_only_when_the_mode_and_webgl_allow(
+    mode, webgl, in_browser
+):
+    class Result:  # what BrowserView reads of the result view
+        state = trame_server().state
+
+    view = BrowserView(Result(), mode)
+    view.init_state()
+    assert view.choose(webgl) is in_browser
+    assert Result.state.view_in_browser is in_browser
+
+
+def test_an_unknown_render_mode_is_refused_naming_the_choices():
+    with pytest.raises(ValueError, match="browser, server"):
+        BrowserView(object(), "gpu")
+
+
+def test_a_played_frame_sends_only_the_moving_parts(tmp_path):
+    a = _session(tmp_path, "browser")
+    try:
+        pushed = []
+        a.state._push_state_fn = lambda update: pushed.append(dict(update))
+        _set(a, browser_webgl=True)
+        assert a.state.view_in_browser
+        first = {k for update in pushed for k in update}
+        assert {"rt3d_frame", "rt3d_tracks", "rt3d_visible"} <= first  # brought up to date
+        assert a.state.rt3d_parts and a.state.rt3d_meshes  # sent with the result
+        _set(a, playing=True)  # no event loop here: frames are set by hand, as the loop does
+        for frame in (5, 6, 7):
+            pushed.clear()
+            _set(a, frame=frame)
+            keys = {k for update in pushed for k in update}
+            assert keys <= FRAME_KEYS | {"chart_contact_angle", "chart_raceway_map"}, keys
+            assert "rt3d_frame" in keys
+            sizes = {k: len(json.dumps(update[k])) for update in pushed for k in update}
+            assert sizes["rt3d_frame"] < MAX_FRAME_BYTES, sizes
+            assert a.state.rt3d_frame["index"] == frame
+        # the server's own scene did not move: nothing was rendered on the server
+        assert a.result.scene.frame_index != 7
+        # the tracks follow by hand-chosen frames at once
+        _set(a, playing=False)
+        pushed.clear()
+        _set(a, frame=40)
+        assert a.state.rt3d_tracks["stop"] == 41
+    finally:
+        a.shutdown()
+
+
+def test_the_server_scene_is_brought_to_the_frame_before_a_png_export(tmp_path):
+    a = _session(tmp_path, "browser")
+    try:
+        _set(a, browser_webgl=True, frame=9)
+        assert a.result.scene.frame_index != 9  # the browser draws: the server scene stays
+        a.result.sync_scene()
+        assert a.result.scene.frame_index == 9
+    finally:
+        a.shutdown()
+
+
+def test_server_mode_renders_every_frame_on_the_server(tmp_path):
+    a = _session(tmp_path, "server")
+    try:
+        _set(a, browser_webgl=True, frame=9)
+        assert not a.state.view_in_browser
+        assert a.result.scene.frame_index == 9
+        assert a.state.rt3d_parts == []  # no meshes sent for a browser view never shown
+    finally:
+        a.shutdown()

@@ -1,0 +1,272 @@
+"""The bearing scene as data for a browser that renders it itself (vtk.js through trame-vtk).
+
+A :class:`BrowserScene` reads a built :class:`viz.scene.BearingScene` (the same meshes, colours and
+layers as the server-rendered view and the exports) and splits it into
+
+* :meth:`BrowserScene.parts` — the static meshes, sent once per result: points (m, each part's own
+  frame), cells, per-cell or per-point RGB(A) colours as the server's colour maps give them,
+  surface properties, and the ``group`` whose transform moves the part;
+* :meth:`BrowserScene.frame_state` — what a played frame sends: one 4x4 matrix per moving group
+  (the rings, the cage, each ball) and the points of the contact ellipses of the frame;
+* :meth:`BrowserScene.track_state` — the painted tracks' cell colours up to a frame (one byte per
+  colour channel and cell of the track grid), sent when the tracks have grown (not every frame).
+
+Arrays are encoded as trame-vtk's typed-array objects (``{"bvals": base64, "dtype": ...}``).
+Matrices are in vtk.js's ``userMatrix`` layout (column-major, i.e. the transpose of VTK's row-major
+4x4). Lengths in m, inertial frame of case-format.md (x = bearing axis).
+
+Text labels (the teaching overlay's words and its legend) are not part of the browser scene: the
+page shows them beside the view.
+"""
+
+from __future__ import annotations
+
+import base64
+
+import numpy as np
+import pyvista as pv
+
+from .frames import rot_x
+from .layout import MARK_LIFT, RacewayLayout
+from .marks import ellipse_points
+from .meshes import placement
+from .raceway import INNER, OUTER
+from .tracks import QUANTITY_SCALE, track_colours
+
+INNER_GROUP, OUTER_GROUP, CAGE_GROUP = "inner", "outer", "cage"
+SCALAR_MODE_CELL = (2, 4)  # VTK_SCALAR_MODE_USE_CELL_DATA, VTK_SCALAR_MODE_USE_CELL_FIELD_DATA
+
+
+def typed_array(values, dtype) -> dict:
+    """``values`` as a trame-vtk typed-array object (base64 of the raw little-endian bytes)."""
+    a = np.ascontiguousarray(values, dtype=dtype)
+    return {"bvals": base64.b64encode(a.tobytes()).decode("ascii"), "dtype": a.dtype.name}
+
+
+def ball_group(j: int) -> str:
+    """Name of the transform group of ball ``j``."""
+    return f"ball_{j}"
+
+
+def _cells(cell_array) -> dict | None:
+    """A VTK cell array in the legacy layout (count, ids, count, ids, ...) as int32, or None."""
+    if cell_array is None or cell_array.GetNumberOfCells() == 0:
+        return None
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkIdTypeArray
+
+    legacy = vtkIdTypeArray()
+    cell_array.ExportLegacyFormat(legacy)
+    return typed_array(vtk_to_numpy(legacy), np.int32)
+
+
+def _hex(colour) -> list[float]:
+    return [float(c) for c in pv.Color(colour).float_rgb]
+
+
+class BrowserScene:
+    """The browser's view of ``scene`` (:class:`viz.scene.BearingScene`, source shown)."""
+
+    def __init__(self, scene):
+        self.scene = scene
+        self.layout: RacewayLayout = scene.layout
+        self._track_cells = [self._track_grid_cells(race) for race in (INNER, OUTER)]
+
+    # ---- static parts ---------------------------------------------------------------------------
+    def _groups(self) -> dict:
+        """id(actor) -> transform group of every moving actor."""
+        s = self.scene
+        groups = {
+            id(s.bodies.inner_ring): INNER_GROUP,
+            id(s.bodies.outer_ring): OUTER_GROUP,
+            id(s.bodies.cage): CAGE_GROUP,
+        }
+        for j, actor in enumerate(s.bodies.balls):
+            groups[id(actor)] = ball_group(j)
+        for race, name in ((INNER, INNER_GROUP), (OUTER, OUTER_GROUP)):
+            for layer in ("ellipses", "traces"):
+                groups[id(s.marks.actors[layer][race])] = name
+        for race, actor in zip(s.marks._edge_race, s.marks.actors["edges"], strict=True):
+            groups[id(actor)] = INNER_GROUP if race == INNER else OUTER_GROUP
+        return groups
+
+    def parts(self) -> list[dict]:
+        """The static parts, in drawing order: ``name``, ``layer``, ``group`` (None: fixed),
+        ``mesh`` (``points``, ``polys``, ``lines``; typed arrays), ``colours`` (``values``,
+        ``components``, ``location`` ``"cell"``/``"point"``; None: one colour), ``property``
+        (vtk.js property settings), ``kind`` (``"tracks"``/``"ellipses"`` for the parts whose
+        colours or points change with the frame, else ``"solid"``) and ``race``."""
+        s = self.scene
+        groups = self._groups()
+        found = []
+        for race in (INNER, OUTER):
+            found.append(self._track_part(race))
+        for layer in ("inner_ring", "outer_ring", "balls", "cage", "edges", "ellipses", "labels"):
+            for k, actor in enumerate(s.actors[layer]):
+                part = self._actor_part(actor, layer, groups.get(id(actor)))
+                if part is None:
+                    continue
+                part["name"] = f"{layer}_{k}"
+                if layer == "ellipses":
+                    part["kind"], part["race"] = "ellipses", k
+                found.append(part)
+        return found
+
+    def _actor_part(self, actor, layer: str, group) -> dict | None:
+        if not actor.IsA("vtkActor"):
+            return None  # 2-D labels and legends
+        mapper = actor.GetMapper()
+        data = mapper.GetInput() if mapper is not None else None
+        if data is None or not data.IsA("vtkPolyData") or data.GetNumberOfPoints() == 0:
+            return None  # text, legends, empty placeholders
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+
+        points = vtk_to_numpy(data.GetPoints().GetData())
+        mesh = {"points": typed_array(points, np.float32)}
+        for key, cells in (("polys", data.GetPolys()), ("lines", data.GetLines())):
+            encoded = _cells(cells)
+            if encoded is not None:
+                mesh[key] = encoded
+        prop = actor.GetProperty()
+        colours = None
+        opaque = True
+        if mapper.GetScalarVisibility():
+            rgba = mapper.MapScalars(data, 1.0)
+            if rgba is not None and rgba.GetNumberOfTuples() > 0:
+                values = vtk_to_numpy(rgba).reshape(-1, rgba.GetNumberOfComponents())
+                opaque = bool((values[:, 3] == 255).all()) if values.shape[1] == 4 else True
+                cell = mapper.GetScalarMode() in SCALAR_MODE_CELL
+                colours = {
+                    "values": typed_array(values, np.uint8),
+                    "components": int(values.shape[1]),
+                    "location": "cell" if cell else "point",
+                }
+        opacity = float(prop.GetOpacity())
+        if not opaque and opacity >= 1.0:
+            opacity = 0.999  # vtk.js draws the part in its translucent pass
+        return {
+            "layer": layer,
+            "group": group,
+            "kind": "solid",
+            "race": -1,
+            "mesh": mesh,
+            "colours": colours,
+            "property": {
+                "color": [float(c) for c in prop.GetColor()],
+                "opacity": opacity,
+                "lighting": bool(prop.GetLighting()),
+                "lineWidth": float(prop.GetLineWidth()),
+                "specular": float(prop.GetSpecular()),
+                "interpolation": 1 if prop.GetInterpolation() == 1 else 2,
+            },
+        }
+
+    def _track_grid_cells(self, race: int):
+        """(points (n, 3), quads (VTK legacy), kept cell indices in texel order) of the painted
+        track of ``race``: one quad per drawn cell of its grid, ring frame, m."""
+        layout = self.layout
+        groove, grid = layout.grooves[race], layout.grids[race]
+        kept_phi = layout.kept_phi_cells(race)
+        phi_edges = grid.phi_edges()
+        alpha_edges = np.linspace(grid.alpha_lo, grid.alpha_hi, grid.n_alpha + 1)
+        lift = 0.5 * MARK_LIFT * groove.r
+        corners = groove.point(phi_edges[:, None], alpha_edges[None, :], lift=lift)
+        points = corners.reshape(-1, 3)  # (n_phi + 1) x (n_alpha + 1), alpha fastest
+        na = grid.n_alpha + 1
+        i_phi, i_alpha = np.meshgrid(kept_phi, np.arange(grid.n_alpha), indexing="ij")
+        p00 = (i_phi * na + i_alpha).ravel()
+        quads = np.stack([np.full(p00.shape, 4), p00, p00 + na, p00 + na + 1, p00 + 1], axis=-1)
+        texel = (i_alpha * grid.n_phi + i_phi).ravel()  # track_colours' order: phi fastest
+        return points, quads.ravel(), texel
+
+    def _track_part(self, race: int) -> dict:
+        points, quads, _ = self._track_cells[race]
+        prop = self.scene.tracks.actors[race].GetProperty()
+        return {
+            "name": f"tracks_{race}",
+            "layer": "tracks",
+            "group": INNER_GROUP if race == INNER else OUTER_GROUP,
+            "kind": "tracks",
+            "race": race,
+            "mesh": {
+                "points": typed_array(points, np.float32),
+                "polys": typed_array(quads, np.int32),
+            },
+            "colours": None,
+            "property": {
+                "color": [1.0, 1.0, 1.0],
+                "opacity": 1.0,
+                "lighting": True,
+                "lineWidth": 1.0,
+                "specular": float(prop.GetSpecular()),
+                "interpolation": 2,
+            },
+        }
+
+    # ---- per frame ------------------------------------------------------------------------------
+    def frame_state(self, index: int, ellipse_scale: float) -> dict:
+        """What frame ``index`` sends: ``index``, ``m`` (group -> 16 numbers, vtk.js layout) and
+        ``e`` (inner, outer ellipse points, float32 typed arrays), drawn ``ellipse_scale`` times
+        their size."""
+        source = self.scene.source
+        f = source.frame(index)
+        rings = (
+            placement(rot_x(f.ring_angle[INNER])),
+            placement(rot_x(f.ring_angle[OUTER]), (self.layout.outer_shift, 0.0, 0.0)),
+        )
+        matrices = {
+            INNER_GROUP: rings[INNER],
+            OUTER_GROUP: rings[OUTER],
+            CAGE_GROUP: placement(rot_x(f.cage_angle)),
+        }
+        for j in range(source.ball_count):
+            matrices[ball_group(j)] = placement(f.ball_rotation[j], f.ball_center[j])
+        return {
+            "index": int(f.index),
+            "m": {k: [round(float(v), 9) for v in m.T.ravel()] for k, m in matrices.items()},
+            "e": [
+                typed_array(ellipse_points(self.layout, race, f, ellipse_scale)[0], np.float32)
+                for race in (INNER, OUTER)
+            ],
+        }
+
+    def track_state(self, stop: int, quantity: str) -> dict:
+        """The painted tracks over frames ``[0, stop)`` coloured by ``quantity``: ``stop``,
+        ``range`` (lo, hi in the colour bar's units) and ``c`` (inner, outer RGBA uint8 typed
+        arrays, one colour per quad of :meth:`parts`)."""
+        tracks = self.scene.tracks
+        painter = tracks.painter
+        painter.accumulate(stop)
+        scale = QUANTITY_SCALE[quantity]
+        lo, hi = (v * scale for v in painter.value_range(quantity))
+        if not hi > lo:
+            hi = lo + max(abs(lo), 1.0) * 1e-3
+        lut = tracks.actors[INNER].mapper.lookup_table
+        colours = []
+        for race in (INNER, OUTER):
+            rgba = track_colours(
+                painter.field(race, quantity) * scale,
+                painter.painted(race),
+                lo,
+                hi,
+                lut.values,
+                lut.nan_color.int_rgba,
+            )
+            texel = self._track_cells[race][2]
+            colours.append(typed_array(rgba[texel], np.uint8))
+        return {"stop": int(painter.stop), "range": [float(lo), float(hi)], "c": colours}
+
+
+def camera_state(plotter) -> dict:
+    """The plotter's camera as vtk.js ``setCamera`` settings (position, focal point, view up, view
+    angle in degrees, parallel projection)."""
+    cam = plotter.camera
+    return {
+        "position": [float(v) for v in cam.position],
+        "focalPoint": [float(v) for v in cam.focal_point],
+        "viewUp": [float(v) for v in cam.up],
+        "viewAngle": float(cam.view_angle),
+    }
+
+
+__all__ = ["BrowserScene", "camera_state", "typed_array", "ball_group"]
