@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .components import CaseForm, Compare, Export, ResultView, Runs, Studies
+from .components import CaseForm, Compare, Export, Live, ResultView, Runs, Studies
 from .components.export import EXPORT_URL
 from .lessons.panel import LessonController
 from .services import Services
@@ -50,6 +50,7 @@ class RacetraceApp:
         self.form = CaseForm(self)
         self.result = ResultView(self, render=render, window_size=window_size)
         self.runs = Runs(self)
+        self.live = Live(self)
         self.compare = Compare(self)
         self.exports = Export(self)
         self.studies = Studies(self)
@@ -58,6 +59,7 @@ class RacetraceApp:
             self.form,
             self.result,
             self.runs,
+            self.live,
             self.compare,
             self.exports,
             self.studies,
@@ -102,6 +104,8 @@ class RacetraceApp:
             close(client_id)
             self._client_ids.discard(client_id)
             self.clients = len(self._client_ids)
+            with self.state:
+                self.live.client_count(self.clients)  # a live session ends with its page
 
         protocol.onConnect, protocol.onClose = on_connect, on_close
 

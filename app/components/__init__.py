@@ -12,8 +12,9 @@ the result view itself, whose renderer it draws the images with.
 from .case_form import CaseForm
 from .compare import Compare
 from .export import Export
+from .live import Live
 from .result_view import ResultView
 from .runs import Runs
 from .studies import Studies
 
-__all__ = ["CaseForm", "Compare", "Export", "ResultView", "Runs", "Studies"]
+__all__ = ["CaseForm", "Compare", "Export", "Live", "ResultView", "Runs", "Studies"]
