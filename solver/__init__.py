@@ -21,6 +21,9 @@ Public API (everything else is internal):
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
   ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs;
   ``INTEGRATION_METHODS``: the names its option ``method`` takes)
+- ``LiveSimulation(case, options=None)``: a dynamic run that advances chunk by chunk
+  (``advance(duration_s)``) and follows inputs set while it runs (``set_input(name, value,
+  ramp_s=LIVE_RAMP)``), recorded as a case and a run (docs/live.md)
 - ``result_warnings(ds) -> list[str]``: where a result leaves the model's validity
 - ``quasistatic_start(ds) -> xarray.Dataset | None``: the quasi-static solution a dynamic result
   started from (its ``quasistatic_*`` variables), for the views' comparison
@@ -103,6 +106,8 @@ _LAZY = {
     "quasistatic_along_history": "solver.facade",
     "operating_at": "solver.inputs",
     "simulate": "solver.facade",
+    "LiveSimulation": "solver.live",
+    "LIVE_RAMP": "solver.live",
     "preload": "solver.facade",
     "SimulationOptions": "solver.models.dynamic",
     "INTEGRATION_METHODS": "solver.models.dynamic.options",
