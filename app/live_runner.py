@@ -7,15 +7,17 @@ resume, reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time 
 Dataset, then wait out the rest of the chunk's wall time (reading controls meanwhile), so that
 the simulation runs at the playback rate (``rate``: bearing seconds per wall second). When a
 chunk takes longer than its wall time the solver cannot keep up: the child lowers its rate to what
-it achieved (never below :data:`MIN_RATE_FRACTION` of the asked rate) and says so in the chunk's
-message; it climbs back towards the asked rate while chunks are quick again. The playback is
-slowed, never stalled.
+it achieved (never below :data:`MIN_RATE_FRACTION` of the asked rate), lengthens its chunks to
+the wall time one takes (at most :data:`MAX_CHUNK_WALL_S`, so that a chunk's fixed cost weighs
+less) and says so in the chunk's message; it climbs back towards the asked rate while chunks are
+quick again. The playback is slowed, never stalled.
 
 Messages from the child (tuples): ``("preparing", text)`` (loading or compiling the kernels),
 ``("ready", time_s, inputs)`` (the quasi-static state; again after a reset;
 ``inputs``: :meth:`inputs_now`, SI), ``("chunk", ds, info)``
 with ``info`` a dict of ``rate`` (bearing s per wall s), ``asked_rate``, ``behind`` (bool),
-``compute_s`` (the chunk's wall time in the solver) and ``inputs`` (:meth:`inputs_now`),
+``compute_s`` (the chunk's wall time in the solver), ``chunk_wall_s`` (the wall time it was
+made for) and ``inputs`` (:meth:`inputs_now`),
 ``("recorded", path, case_text)``, ``("refused", text)`` (a control value the model refused),
 ``("error", text)``, ``("stopped",)``.
 
@@ -36,6 +38,8 @@ CHUNK_WALL_S = 0.1
 #: The child never slows the playback below this fraction of the asked rate; below it the page
 #: plays what arrives as it arrives.
 MIN_RATE_FRACTION = 0.02
+#: Longest wall time of a chunk while the solver cannot keep up (s).
+MAX_CHUNK_WALL_S = 1.0
 #: While chunks are quick again the rate climbs back by this factor per chunk.
 RECOVERY_FACTOR = 1.25
 #: A chunk that used more than this fraction of its wall time counts as not keeping up.
@@ -80,12 +84,13 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
             if paused or stop.is_set():
                 continue
             start = time.monotonic()
-            chunk = sim.advance(pace.rate * CHUNK_WALL_S)
+            wall = pace.chunk_wall
+            chunk = sim.advance(pace.duration)
             took = time.monotonic() - start
             info = pace.after_chunk(took)
             info["inputs"] = dict(sim.inputs_now())
             messages.put(("chunk", chunk, info))
-            wait_until = start + CHUNK_WALL_S
+            wait_until = start + wall
             while not stop.is_set() and not paused:
                 left = wait_until - time.monotonic()
                 if left <= 0:
@@ -97,27 +102,43 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
 
 
 class _Pace:
-    """The playback rate (bearing s per wall s) the child keeps: the asked one, or lower while the
-    solver cannot keep up."""
+    """The playback rate (bearing s per wall s) the child keeps, and the wall time of a chunk: the
+    asked rate in chunks of :data:`CHUNK_WALL_S`, or, while the solver cannot keep up, the rate
+    it achieves, in chunks as long as one takes (at most :data:`MAX_CHUNK_WALL_S`: a chunk's
+    fixed cost then weighs less)."""
 
     def __init__(self, asked: float):
         self.asked = float(asked)
         self.rate = float(asked)
+        self.chunk_wall = CHUNK_WALL_S
+
+    @property
+    def duration(self) -> float:
+        """Bearing time of the next chunk (s)."""
+        return self.rate * self.chunk_wall
 
     def ask(self, rate: float) -> None:
         self.asked = float(rate)
-        self.rate = min(self.rate, self.asked) if self.rate > 0 else self.asked
+        self.rate = min(self.rate, self.asked)
 
     def after_chunk(self, took_s: float) -> dict:
         """Adapt to a chunk that took ``took_s`` of wall time; its report."""
-        used = self.rate
-        behind = took_s > BEHIND_FRACTION * CHUNK_WALL_S
+        used, wall = self.rate, self.chunk_wall
+        behind = took_s > BEHIND_FRACTION * wall
         if behind:
-            achieved = used * CHUNK_WALL_S / max(took_s, 1e-9)
-            self.rate = max(MIN_RATE_FRACTION * self.asked, BEHIND_FRACTION * achieved)
+            achieved = used * wall / max(took_s, 1e-9)
+            self.rate = max(MIN_RATE_FRACTION * self.asked, achieved)
+            self.chunk_wall = min(max(CHUNK_WALL_S, took_s), MAX_CHUNK_WALL_S)
         else:
             self.rate = min(self.asked, used * RECOVERY_FACTOR)
-        return {"rate": used, "asked_rate": self.asked, "behind": bool(behind), "compute_s": took_s}
+            self.chunk_wall = max(CHUNK_WALL_S, wall / RECOVERY_FACTOR)
+        return {
+            "rate": used,
+            "asked_rate": self.asked,
+            "behind": bool(behind),
+            "compute_s": took_s,
+            "chunk_wall_s": wall,
+        }
 
 
 def _drain(controls, block_s: float) -> list:
@@ -141,8 +162,10 @@ def _apply(sim, control, paused: bool, pace: _Pace, messages) -> bool:
         _, name, value, ramp_s = control
         try:
             sim.set_input(name, float(value), ramp_s=float(ramp_s))
-        except ValueError as error:  # a value the model refuses: said, the session goes on
-            messages.put(("refused", str(error)))
+        except ValueError as error:  # a value the model refuses (CaseError): said, runs on
+            from solver import clean_message
+
+            messages.put(("refused", clean_message(error)))
     elif kind == "pause":
         return True
     elif kind == "resume":
