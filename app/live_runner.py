@@ -39,7 +39,7 @@ CHUNK_WALL_S = 0.1
 #: plays what arrives as it arrives.
 MIN_RATE_FRACTION = 0.02
 #: Longest wall time of a chunk while the solver cannot keep up (s).
-MAX_CHUNK_WALL_S = 1.0
+MAX_CHUNK_WALL_S = 2.0
 #: While chunks are quick again the rate climbs back by this factor per chunk.
 RECOVERY_FACTOR = 1.25
 #: A chunk that used more than this fraction of its wall time counts as not keeping up.
@@ -111,6 +111,7 @@ class _Pace:
         self.asked = float(asked)
         self.rate = float(asked)
         self.chunk_wall = CHUNK_WALL_S
+        self.first = True  # the next chunk is the first after a (re)start
 
     @property
     def duration(self) -> float:
@@ -122,16 +123,23 @@ class _Pace:
         self.rate = min(self.rate, self.asked)
 
     def after_chunk(self, took_s: float) -> dict:
-        """Adapt to a chunk that took ``took_s`` of wall time; its report."""
+        """Adapt to a chunk that took ``took_s`` of wall time; its report. Behind, the next chunk
+        keeps this one's bearing time and takes the wall time this one took (at most
+        :data:`MAX_CHUNK_WALL_S`), at the rate achieved."""
         used, wall = self.rate, self.chunk_wall
+        if self.first:  # the first chunk after a (re)start pays one-time costs: not a measure
+            self.first = False
+            return self._report(used, wall, took_s, False)
         behind = took_s > BEHIND_FRACTION * wall
         if behind:
-            achieved = used * wall / max(took_s, 1e-9)
-            self.rate = max(MIN_RATE_FRACTION * self.asked, achieved)
+            self.rate = max(MIN_RATE_FRACTION * self.asked, used * wall / max(took_s, 1e-9))
             self.chunk_wall = min(max(CHUNK_WALL_S, took_s), MAX_CHUNK_WALL_S)
         else:
             self.rate = min(self.asked, used * RECOVERY_FACTOR)
             self.chunk_wall = max(CHUNK_WALL_S, wall / RECOVERY_FACTOR)
+        return self._report(used, wall, took_s, behind)
+
+    def _report(self, used: float, wall: float, took_s: float, behind: bool) -> dict:
         return {
             "rate": used,
             "asked_rate": self.asked,
@@ -174,6 +182,7 @@ def _apply(sim, control, paused: bool, pace: _Pace, messages) -> bool:
         pace.ask(float(control[1]))
     elif kind == "reset":
         sim.reset()
+        pace.first = True
         messages.put(("ready", float(sim.time), dict(sim.inputs_now())))
     elif kind == "record":
         from .runner import _save

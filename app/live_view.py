@@ -234,6 +234,12 @@ def band_thickness(window: LiveWindow, inputs: dict, race: str = "inner") -> flo
         return math.nan
     # from t = 0: the settling check counts revolutions from the stretch's start
     stretch = stretch.assign_coords(time=stretch["time"] - stretch["time"][0])
+    # trajectory_summary's rating life reads the loads as coordinates; a live chunk gives them
+    # over time. The band does not depend on them: the stretch's last values stand in.
+    for name in ("axial_load", "radial_load"):
+        if name in stretch.data_vars and name not in stretch.coords:
+            last = float(stretch[name].isel(time=-1))
+            stretch = stretch.drop_vars(name).assign_coords({name: last})
     metrics = trajectory_summary(stretch, skip_fraction=0.0)
     own = f"{race}_ring"
     value = metrics["trajectory_band_thickness"].sel(race=race, frame=own)
