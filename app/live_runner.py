@@ -6,11 +6,10 @@ text, then loops: apply the controls the parent queued (:meth:`LiveRunner.set_in
 resume, reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time and send the chunk
 Dataset, then wait out the rest of the chunk's wall time (reading controls meanwhile), so that
 the simulation runs at the playback rate (``rate``: bearing seconds per wall second). When a
-chunk takes longer than its wall time the solver cannot keep up: the child lowers its rate to what
-it achieved (never below :data:`MIN_RATE_FRACTION` of the asked rate), lengthens its chunks to
-the wall time one takes (at most :data:`MAX_CHUNK_WALL_S`, so that a chunk's fixed cost weighs
-less) and says so in the chunk's message; it climbs back towards the asked rate while chunks are
-quick again. The playback is slowed, never stalled.
+chunk takes longer than its wall time the solver cannot keep up: the next chunk (the same bearing
+time) is given the wall time the solver needs, so the playback runs at the rate the solver
+achieves, and the chunk's message says so (:class:`_Pace`); quick chunks bring the asked rate
+back. The playback is slowed, never stalled.
 
 Messages from the child (tuples): ``("preparing", text)`` (loading or compiling the kernels),
 ``("ready", time_s, inputs)`` (the quasi-static state; again after a reset;
@@ -35,13 +34,6 @@ import time
 #: Wall time of one chunk of the live loop (s): the solver advances ``rate * CHUNK_WALL_S`` of
 #: bearing time per chunk, so a control change reaches the picture within about two chunks.
 CHUNK_WALL_S = 0.1
-#: The child never slows the playback below this fraction of the asked rate; below it the page
-#: plays what arrives as it arrives.
-MIN_RATE_FRACTION = 0.02
-#: Longest wall time of a chunk while the solver cannot keep up (s).
-MAX_CHUNK_WALL_S = 2.0
-#: While chunks are quick again the rate climbs back by this factor per chunk.
-RECOVERY_FACTOR = 1.25
 #: A chunk that used more than this fraction of its wall time counts as not keeping up.
 BEHIND_FRACTION = 0.9
 
@@ -102,41 +94,37 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
 
 
 class _Pace:
-    """The playback rate (bearing s per wall s) the child keeps, and the wall time of a chunk: the
-    asked rate in chunks of :data:`CHUNK_WALL_S`, or, while the solver cannot keep up, the rate
-    it achieves, in chunks as long as one takes (at most :data:`MAX_CHUNK_WALL_S`: a chunk's
-    fixed cost then weighs less)."""
+    """The playback the child keeps: every chunk covers ``asked * CHUNK_WALL_S`` of bearing time
+    and takes :data:`CHUNK_WALL_S` of wall time, or, while the solver cannot keep up, the wall
+    time the solver needs for it; the playback rate is then what the solver achieves (shorter
+    chunks would only weigh a chunk's fixed cost more)."""
 
     def __init__(self, asked: float):
         self.asked = float(asked)
-        self.rate = float(asked)
         self.chunk_wall = CHUNK_WALL_S
         self.first = True  # the next chunk is the first after a (re)start
 
     @property
     def duration(self) -> float:
         """Bearing time of the next chunk (s)."""
-        return self.rate * self.chunk_wall
+        return self.asked * CHUNK_WALL_S
+
+    @property
+    def rate(self) -> float:
+        """Bearing seconds per wall second of the next chunk."""
+        return self.duration / self.chunk_wall
 
     def ask(self, rate: float) -> None:
         self.asked = float(rate)
-        self.rate = min(self.rate, self.asked)
 
     def after_chunk(self, took_s: float) -> dict:
-        """Adapt to a chunk that took ``took_s`` of wall time; its report. Behind, the next chunk
-        keeps this one's bearing time and takes the wall time this one took (at most
-        :data:`MAX_CHUNK_WALL_S`), at the rate achieved."""
+        """Adapt to a chunk that took ``took_s`` of wall time; its report."""
         used, wall = self.rate, self.chunk_wall
         if self.first:  # the first chunk after a (re)start pays one-time costs: not a measure
             self.first = False
             return self._report(used, wall, took_s, False)
-        behind = took_s > BEHIND_FRACTION * wall
-        if behind:
-            self.rate = max(MIN_RATE_FRACTION * self.asked, used * wall / max(took_s, 1e-9))
-            self.chunk_wall = min(max(CHUNK_WALL_S, took_s), MAX_CHUNK_WALL_S)
-        else:
-            self.rate = min(self.asked, used * RECOVERY_FACTOR)
-            self.chunk_wall = max(CHUNK_WALL_S, wall / RECOVERY_FACTOR)
+        behind = took_s > BEHIND_FRACTION * CHUNK_WALL_S
+        self.chunk_wall = max(CHUNK_WALL_S, took_s / BEHIND_FRACTION) if behind else CHUNK_WALL_S
         return self._report(used, wall, took_s, behind)
 
     def _report(self, used: float, wall: float, took_s: float, behind: bool) -> dict:

@@ -225,6 +225,8 @@ class Live(Component):
             ramp = RAMP_REVOLUTIONS * shaft_period(self.inputs)
             ramp = ramp if math.isfinite(ramp) else RAMP_REVOLUTIONS * 0.01
             self.runner.send("set", channel, value / per_si, ramp)
+            if channel == "inner_ring_speed" and value > 0:  # the same revolutions per second
+                self.runner.send("rate", REVOLUTIONS_PER_S * 2.0 * math.pi * RPM / value)
 
         return on_control
 
