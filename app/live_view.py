@@ -77,6 +77,17 @@ def last_stretch(ds: xr.Dataset, duration_s: float) -> xr.Dataset:
     return ds.isel(time=slice(int(np.searchsorted(t, t[-1] - duration_s)), None))
 
 
+#: Inputs given over time in a live chunk that ``solver.trajectory_summary`` reads as constants
+#: (its rating life); the band thickness takes their last values (it does not depend on them).
+STEADY_FOR_METRICS = (
+    "axial_load",
+    "radial_load",
+    "radial_load_angle",
+    "misalignment",
+    "misalignment_axis",
+    "tilting_moment",
+    "moment_axis",
+)
 #: Inputs the window keeps per sample (SI), for the words and data of the frame on show.
 FRAME_INPUTS = ("inner_ring_speed", "outer_ring_speed", "radial_load", "axial_load", "misalignment")
 
@@ -234,10 +245,10 @@ def band_thickness(window: LiveWindow, inputs: dict, race: str = "inner") -> flo
         return math.nan
     # from t = 0: the settling check counts revolutions from the stretch's start
     stretch = stretch.assign_coords(time=stretch["time"] - stretch["time"][0])
-    # trajectory_summary's rating life reads the loads as coordinates; a live chunk gives them
-    # over time. The band does not depend on them: the stretch's last values stand in.
-    for name in ("axial_load", "radial_load"):
-        if name in stretch.data_vars and name not in stretch.coords:
+    # trajectory_summary's rating life reads the loads and the tilt as coordinates; a live chunk
+    # gives them over time. The band does not depend on them: the stretch's last values stand in.
+    for name in STEADY_FOR_METRICS:
+        if name in stretch.data_vars and "time" in stretch[name].dims:
             last = float(stretch[name].isel(time=-1))
             stretch = stretch.drop_vars(name).assign_coords({name: last})
     metrics = trajectory_summary(stretch, skip_fraction=0.0)
