@@ -54,6 +54,12 @@ CONTROLS = {
     "live_speed_rpm": ("inner_ring_speed", RPM, 0.0, 40000.0, 500.0),
     "live_tilt_deg": ("misalignment", math.degrees(1.0), -0.2, 0.2, 0.01),
 }
+CONTROL_IDS = {
+    "live_radial_load_N": "live-radial-load",
+    "live_axial_load_N": "live-axial-load",
+    "live_speed_rpm": "live-speed",
+    "live_tilt_deg": "live-tilt",
+}
 CONTROL_LABELS = {
     "live_radial_load_N": "radial load, N",
     "live_axial_load_N": "axial load, N",
@@ -478,5 +484,5 @@ class Live(Component):
                             hide_details=True,
                             density="compact",
                             disabled=("!live_on",),
-                            id=key.replace("_", "-"),
+                            id=CONTROL_IDS[key],
                         )
