@@ -4,7 +4,7 @@ name (a :class:`~solver.case.Case`, a case-file path or a catalogue name)."""
 from __future__ import annotations
 
 from solver.catalogue import resolve_case
-from solver.models.dynamic.live import LIVE_RAMP
+from solver.models.dynamic.live import LIVE_RAMP, AdvanceTiming
 from solver.models.dynamic.live import LiveSimulation as _ModelSession
 from solver.models.dynamic.options import SimulationOptions
 
@@ -17,4 +17,4 @@ class LiveSimulation(_ModelSession):
         super().__init__(resolve_case(case), options)
 
 
-__all__ = ["LIVE_RAMP", "LiveSimulation"]
+__all__ = ["LIVE_RAMP", "AdvanceTiming", "LiveSimulation"]

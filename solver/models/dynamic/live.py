@@ -27,12 +27,14 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 
 from solver.case import dynamic_problems
+from solver.case.history import MAX_KNOTS
 from solver.case.schema import field as schema_field
-from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES
+from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES, check_value
 from solver.errors import CaseError, Problem, SimulationDiverged
 from solver.history import (
     CH_INNER_SPEED,
@@ -44,6 +46,7 @@ from solver.history import (
     CH_TILTING_MOMENT,
     CHANNEL_NAMES,
     FRAME_INNER_RING,
+    FRAME_SPACE,
     N_CHANNELS,
     ChannelHistory,
     channel_value,
@@ -51,23 +54,23 @@ from solver.history import (
     history_record,
 )
 from solver.inputs import HISTORY_CHANNELS, operating_at, rad_s_to_rpm, to_inputs
-from solver.results.variables import COORDINATES
 
 from . import layout as L
 from .integrate import stepper
 from .integrate.control import STATUS_OK, step_control
 from .integrate.model import bearing_model
 from .options import SimulationOptions
-from .output import ANGLE_CHANNELS, build_dataset, imposed_inputs
+from .output import build_dataset, chunk_dataset
 from .params import build_params, build_quadrature
 from .simulate import _DIVERGENCE_CAUSES, RunStatistics, _start, state_scales
 
 #: Simulated time [s] over which a change of an input ramps (linearly) from its current value to
-#: the one set. 0.02 s is 6.7 shaft revolutions at 20 000 rpm: short against what a user watches
-#: (the live view draws the last revolutions) yet long against the contacts' natural periods
-#: (~10 us), so a change does not ring the balls like a step. In wall time it takes 0.02 s divided
-#: by the session's simulated seconds per wall second (docs/live.md).
-LIVE_RAMP = 0.02
+#: the one set. 0.002 s is two thirds of a shaft revolution at 20 000 rpm and about 200 periods of
+#: the ball-race contacts' vibration (~10 us), so a change does not ring the balls like a step; in
+#: wall time it is 0.002 s times the session's wall seconds per simulated second (about 0.2 s on
+#: the spindle case on one free core, docs/live.md), so a change is complete in the picture within
+#: the 0.5 s the live view allows.
+LIVE_RAMP = 0.002
 
 #: The case key of each channel (its unit: :data:`solver.inputs.HISTORY_CHANNELS`).
 CHANNEL_KEYS = {channel: key for key, (channel, _) in HISTORY_CHANNELS.items()}
@@ -89,6 +92,17 @@ class _Table:
         return ChannelHistory(tuple(self.times), tuple(self.values))
 
 
+class AdvanceTiming(NamedTuple):
+    """What the last :meth:`LiveSimulation.advance` cost: the simulated time it added [s], the
+    wall and CPU (``time.process_time``) seconds of its integration, and the wall seconds of
+    building its Dataset."""
+
+    simulated_s: float
+    integration_wall_s: float
+    integration_cpu_s: float
+    dataset_wall_s: float
+
+
 class LiveSimulation:
     """A dynamic run of one bearing that advances chunk by chunk and follows inputs set while it
     runs (module docstring). ``case``: a validated :class:`solver.case.Case` of one bearing (a
@@ -107,8 +121,8 @@ class LiveSimulation:
             )
         inputs = to_inputs(case)
         steady = not case.histories
-        if steady:
-            problems = dynamic_problems(case)
+        if steady:  # the rings must turn; the case's run length is not read
+            problems = [p for p in dynamic_problems(case) if p.key.startswith("operating.")]
             if problems:
                 raise CaseError(problems)
         self._case = case
@@ -118,7 +132,7 @@ class LiveSimulation:
         frame_turns = inputs.history is not None and (
             inputs.history.radial_load_frame == FRAME_INNER_RING
         )
-        self._radial_load_frame = FRAME_INNER_RING if frame_turns else 0
+        self._radial_load_frame = FRAME_INNER_RING if frame_turns else FRAME_SPACE
         self._tilt_free = inputs.operating.tilting_moment is not None
         op = inputs.operating
         if steady:
@@ -132,6 +146,7 @@ class LiveSimulation:
         self._method = stepper(self._options.method)
         self._max_record = max(2, MAX_DYNAMIC_BALL_SAMPLES // int(self._par.ball_count))
         start = {c: float(v) for c, v in _operating_channels(inputs, 0.0).items()}
+        self._closed = False
         self._restart(start)
 
     # ---- the session's state ---------------------------------------------------------------------
@@ -158,6 +173,8 @@ class LiveSimulation:
         self._recorded = 1  # samples in the record
         self._diverged = None  # the divergence message, once diverged
         self._integration_wall = 0.0
+        #: :class:`AdvanceTiming` of the last :meth:`advance` (None before the first)
+        self.last_advance: AdvanceTiming | None = None
 
     def _rebuild_history(self) -> None:
         channels = {c: table.channel() for c, table in self._tables.items()}
@@ -229,6 +246,15 @@ class LiveSimulation:
         self._check_values(channel, targets)
         t = self.time
         table = self._tables[channel]
+        if len(table.times) + 2 > MAX_KNOTS:
+            raise CaseError(
+                Problem(
+                    CHANNEL_KEYS[channel],
+                    f"live input {name}: changed so often that its recorded history would pass "
+                    f"the {MAX_KNOTS:,} points a case's table may hold; save the session "
+                    "(recorded_case) and reset() to start a new record",
+                )
+            )
         now = float(channel_value(self._history, channel, t))
         while table.times and table.times[-1] > t:
             table.times.pop()
@@ -252,6 +278,7 @@ class LiveSimulation:
         dynamic run (results-schema.md; every input of :attr:`input_names` as a data variable
         over ``time``). SimulationDiverged (with the samples of this call in ``dataset``) when
         the integration fails; the session must then be :meth:`reset`."""
+        self._check_open()
         if self._diverged is not None:
             raise SimulationDiverged(f"{self._diverged}; reset() the live simulation to go on")
         duration_s = _finite("advance", duration_s, "duration_s")
@@ -264,6 +291,7 @@ class LiveSimulation:
         done = 0
         progress = self._work.progress
         begin = _time.perf_counter()
+        begin_cpu = _time.process_time()
         while done < count:
             stop = min(done + self._options.chunk_samples, count)
             self._method.advance(
@@ -278,28 +306,40 @@ class LiveSimulation:
                 )
                 self._diverged = f"live simulation diverged at t = {t:.6g} s: {cause}"
                 break
-        self._integration_wall += _time.perf_counter() - begin
+        integration = _time.perf_counter() - begin
+        integration_cpu = _time.process_time() - begin_cpu
+        self._integration_wall += integration
         times, states = times[:done], states[:done]
         self._sample += done
         self._keep(states)
+        begin = _time.perf_counter()
+        ds = self._chunk_dataset(times, states) if done else None
+        self.last_advance = AdvanceTiming(
+            done / self._rate, integration, integration_cpu, _time.perf_counter() - begin
+        )
         if self._diverged is not None:
             error = SimulationDiverged(self._diverged)
-            error.dataset = self._chunk_dataset(times, states) if done else None
+            error.dataset = ds
             raise error
-        return self._chunk_dataset(times, states)
+        return ds
 
     def reset(self) -> None:
         """Back to t = 0 at the quasi-static state of the inputs' current targets (the values
-        they were last set to), the history and the record cleared."""
+        they were last set to, ramps taken as finished), the history and the record cleared."""
+        self._check_open()
         self._restart({c: table.values[-1] for c, table in self._tables.items()})
 
     def close(self) -> None:
-        """Free the record; the session cannot be advanced afterwards."""
+        """Free the record; advancing, resetting or recording afterwards is a RuntimeError."""
         self._record = []
         self._recorded = 0
-        self._diverged = "the live simulation was closed"
+        self._closed = True
 
     # ---- internals -------------------------------------------------------------------------------
+    def _check_open(self) -> None:
+        if self._closed:
+            raise RuntimeError("the live simulation was closed: start a new LiveSimulation")
+
     def _channel(self, name) -> int:
         if name not in self.input_names:
             raise CaseError(
@@ -328,8 +368,6 @@ class LiveSimulation:
         name = CHANNEL_NAMES[channel]
         value = targets[channel] / _unit_scale(channel)
         problems = []
-        from solver.case.validate import check_value
-
         check_value(schema_field(key), key, value, problems)
         if not problems:
             try:
@@ -367,16 +405,17 @@ class LiveSimulation:
         changes.update(self._number_changes(values))
         return self._case.with_values(changes)
 
-    def _number_changes(self, values: dict) -> dict:
+    def _number_changes(self, values: dict, rotating: bool = False) -> dict:
         """{case key: number in the key's unit} of the channel values ``values`` (SI) that the
-        session sets (the radial load's angle of a load turning with the shaft stays the case's
-        rotating form)."""
+        session sets; ``rotating``: the radial load's angle of a load turning with the shaft as
+        the case's rotating form from that angle (else as a number)."""
         unused = _unused_channels(self._tilt_free)
         changes = {}
         for c, v in values.items():
             if c in unused:
                 continue
-            if c == CH_RADIAL_LOAD_ANGLE and self._radial_load_frame == FRAME_INNER_RING:
+            turning = self._radial_load_frame == FRAME_INNER_RING
+            if c == CH_RADIAL_LOAD_ANGLE and turning and rotating:
                 spec = self._case.histories[CHANNEL_KEYS[c]].spec
                 changes[CHANNEL_KEYS[c]] = {
                     "rotating": spec["rotating"],
@@ -400,6 +439,7 @@ class LiveSimulation:
 
     def recorded_case_object(self):
         """The session's record as a validated :class:`solver.case.Case` (:meth:`recorded_case`)."""
+        self._check_open()
         end = self.recorded_time
         if not end > 0.0:
             raise CaseError(
@@ -415,7 +455,7 @@ class LiveSimulation:
             "simulation.duration_s": end,
             "simulation.samples_per_second": self._rate,
         }
-        changes.update(self._number_changes(self._start_values))
+        changes.update(self._number_changes(self._start_values, rotating=True))
         unused = _unused_channels(self._tilt_free)
         tables = 0
         for c, table in self._tables.items():
@@ -481,25 +521,21 @@ class LiveSimulation:
             self._recorded += kept.shape[0]
 
     def _chunk_dataset(self, times: np.ndarray, states: np.ndarray):
-        inputs = self._inputs_now()
-        period = self._period(times)
-        stats = self._stats
-        stats.wall_time = self._integration_wall
-        ds = build_dataset(
-            inputs,
+        self._stats.wall_time = self._integration_wall
+        unused = _unused_channels(self._tilt_free)
+        ds = chunk_dataset(
+            self._inputs_now(),
             self._options,
             self._history,
             self._par,
             self._quad,
             times,
             states,
-            period,
-            False,
-            "live",
-            stats,
+            self._period(times),
+            self._stats,
+            [c for c in range(N_CHANNELS) if c not in unused],
             self._quasistatic,
         )
-        ds = _with_all_inputs(ds, self._history, states, self.input_names, self._par)
         ds.attrs["initial_state"] = self._start_note
         ds.attrs["live_ramp_s"] = LIVE_RAMP
         return ds
@@ -544,20 +580,3 @@ def _finite(name: str, value, what: str) -> float:
 def _case_number(value: float) -> float:
     """A value in case units as the case file holds it: a float, -0 as 0."""
     return float(value) + 0.0
-
-
-def _with_all_inputs(ds, history, states, names, par):
-    """``ds`` with every input of ``names`` as a data variable over ``time`` (angles in degree),
-    so that every chunk of a session has the same variables."""
-    z = int(par.ball_count)
-    imposed = imposed_inputs(history, ds["time"].values, states[:, L.ring_base(z) + L.R_PHI_INNER])
-    for name in names:
-        if name in ds.data_vars:
-            continue
-        values = imposed[CHANNEL_NAMES.index(name)]
-        if name in ANGLE_CHANNELS:
-            values = np.degrees(values)
-        if name in ds.coords:
-            ds = ds.drop_vars(name)
-        ds[name] = (("time",), values, COORDINATES[name].attrs())
-    return ds

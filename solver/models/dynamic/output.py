@@ -188,6 +188,65 @@ def build_dataset(
     the trajectory metrics and the settling window of :mod:`solver.results.summary` stored in it,
     and the quasi-static solution ``start`` (a :class:`QuasiStaticSolution`, None when there is
     none) as its ``quasistatic_*`` variables."""
+    ds, imposed, summary_point = time_series(
+        inputs,
+        options,
+        history,
+        par,
+        quad,
+        times,
+        states,
+        period,
+        complete,
+        stop_reason,
+        stats,
+        start,
+    )
+    metrics = trajectory_summary(ds, options.analysis_skip_fraction)
+    ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
+    ds = with_inputs_over_time(ds, history, imposed)
+    ds = ds.assign(skidding_variables(ds))  # at each sample's ring speeds
+    ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
+    if inputs.history is not None:  # the phases between the history's events (results-schema.md)
+        ds.attrs.update(phase_attributes(inputs.history, float(times[-1])))
+    balance = energy_balance(ds, float(metrics["analysis_start_time"]))
+    spec = variable("energy_balance_residual")
+    ds["energy_balance_residual"] = ((), np.float64(balance.residual), spec.attrs())
+    return with_estimates(ds, inputs, summary_point)  # the final phase, as the summary
+
+
+def chunk_dataset(
+    inputs, options, history, par, quad, times, states, period, stats, channels, start=None
+):
+    """The per-sample part of :func:`build_dataset`: every variable over ``time`` and the
+    ``quasistatic_*`` variables of ``start``, without what is summed up over a whole run (the
+    trajectory metrics, the analysed window, the energy-balance residual, the friction
+    estimates); the inputs of ``channels`` (channel constants) as data variables over ``time``.
+    ``complete`` = 0, ``stop_reason`` = "live" (a chunk of a live simulation)."""
+    ds, imposed, _ = time_series(
+        inputs, options, history, par, quad, times, states, period, False, "live", stats, start
+    )
+    ds = with_inputs_over_time(ds, history, imposed, channels)
+    return ds.assign(skidding_variables(ds))
+
+
+def time_series(
+    inputs,
+    options,
+    history,
+    par,
+    quad,
+    times,
+    states,
+    period,
+    complete,
+    stop_reason,
+    stats,
+    start=None,
+):
+    """(the Dataset of every per-sample variable of the run and the ``quasistatic_*`` variables
+    of ``start`` when given, the imposed inputs of :func:`imposed_inputs`, the operating point
+    of its coordinates)."""
     z = int(par.ball_count)
     s_count = states.shape[0]
     records = np.zeros((s_count, z, 2, L.N_CONTACT_RECORD))
@@ -265,9 +324,9 @@ def build_dataset(
     }
     if start is not None:
         data.update(start_variables(start))
-    # the summary below reads the operating point from the coordinates: along a history, that of
-    # the end of the run (its final phase, where the settling test puts the analysed window when
-    # the final phase holds its inputs); the inputs that vary then become data variables over time
+    # the summary reads the operating point from the coordinates: along a history, that of the
+    # end of the run (its final phase, where the settling test puts the analysed window when the
+    # final phase holds its inputs); the inputs that vary then become data variables over time
     summary_point = (
         inputs.operating if inputs.history is None else operating_at(inputs, float(times[-1]))
     )
@@ -281,17 +340,7 @@ def build_dataset(
         complete=complete,
         attrs=attrs,
     )
-    metrics = trajectory_summary(ds, options.analysis_skip_fraction)
-    ds = ds.assign(metrics.data_vars).assign_coords(frame=metrics["frame"])
-    ds = with_inputs_over_time(ds, history, imposed)
-    ds = ds.assign(skidding_variables(ds))  # at each sample's ring speeds
-    ds.attrs["analysed_window"] = metrics.attrs["analysed_window"]
-    if inputs.history is not None:  # the phases between the history's events (results-schema.md)
-        ds.attrs.update(phase_attributes(inputs.history, float(times[-1])))
-    balance = energy_balance(ds, float(metrics["analysis_start_time"]))
-    spec = variable("energy_balance_residual")
-    ds["energy_balance_residual"] = ((), np.float64(balance.residual), spec.attrs())
-    return with_estimates(ds, inputs, summary_point)  # the final phase, as the summary
+    return ds, imposed, summary_point
 
 
 def load_work(states: np.ndarray, times: np.ndarray, history, par) -> np.ndarray:
@@ -354,21 +403,22 @@ def varying_channels(history) -> list[int]:
     return out
 
 
-def with_inputs_over_time(ds, history, imposed: np.ndarray):
-    """``ds`` with every operating input that varies in ``history`` as a data variable over
-    ``time`` in place of its scalar coordinate (same name, units and meaning; angles in degree):
-    ``imposed`` from :func:`imposed_inputs`."""
-    channels = varying_channels(history)
+def with_inputs_over_time(ds, history, imposed: np.ndarray, channels=None):
+    """``ds`` with every operating input that varies in ``history`` (or of ``channels``, channel
+    constants) as a data variable over ``time`` in place of its scalar coordinate (same name,
+    units and meaning; angles in degree): ``imposed`` from :func:`imposed_inputs`."""
+    if channels is None:
+        channels = varying_channels(history)
     if not channels:
         return ds
     names = [CHANNEL_NAMES[c] for c in channels]
-    ds = ds.drop_vars(names)
+    added = {}
     for c, name in zip(channels, names, strict=True):
         values = imposed[c]
         if name in ANGLE_CHANNELS:
             values = np.degrees(values)
-        ds[name] = (("time",), values, COORDINATES[name].attrs())
-    return ds
+        added[name] = (("time",), values, COORDINATES[name].attrs())
+    return ds.drop_vars(names).assign(added)  # one merge: a chunk of a live run is built often
 
 
 def _integrator_note(options) -> str:
