@@ -33,7 +33,7 @@ from .. import charts
 from .. import live_runner as live_runner_module
 from ..live_runner import LiveRunner
 from ..live_view import WINDOW_REVOLUTIONS, LiveTracks, LiveWindow, band_thickness, shaft_period
-from .base import Component, as_float, fig_json, running_loop
+from .base import Component, as_float, fig_json, log, running_loop
 
 #: Playback while live: shaft revolutions of bearing time per wall second (the solver is asked
 #: for this; it slows down when it cannot keep up).
@@ -241,8 +241,13 @@ class Live(Component):
         period = 1.0 / LIVE_FPS
         while self.state.live_on:
             t0 = time.monotonic()
-            with self.state:
-                self.tick()
+            try:
+                with self.state:
+                    self.tick()
+            except Exception as error:  # a failing frame must not end the session's loop
+                log.exception("live frame failed")
+                with self.state:
+                    self.state.live_status = f"live: error: {type(error).__name__}: {error}"[:300]
             await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
 
     def tick(self) -> None:
