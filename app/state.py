@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .components import CaseForm, Compare, Export, ResultView, Runs, SetPanel, Studies
+from .components import CaseForm, Compare, Export, Live, ResultView, Runs, SetPanel, Studies
 from .components.export import EXPORT_URL
 from .components.follow import Follow
 from .lessons.panel import LessonController
@@ -59,6 +59,7 @@ class RacetraceApp:
         )
         self.set_panel = SetPanel(self)
         self.runs = Runs(self)
+        self.live = Live(self)
         self.compare = Compare(self)
         self.exports = Export(self)
         self.studies = Studies(self)
@@ -69,6 +70,7 @@ class RacetraceApp:
             self.result,
             self.set_panel,
             self.runs,
+            self.live,
             self.compare,
             self.exports,
             self.studies,
@@ -113,6 +115,8 @@ class RacetraceApp:
             close(client_id)
             self._client_ids.discard(client_id)
             self.clients = len(self._client_ids)
+            with self.state:
+                self.live.client_count(self.clients)  # a live session ends with its page
 
         protocol.onConnect, protocol.onClose = on_connect, on_close
 

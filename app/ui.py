@@ -60,6 +60,7 @@ def _content(app) -> None:
                 app.lessons.build_ui()
                 with html.Div(classes=HIDE):
                     app.runs.build_ui()
+                    app.live.build_ui()
                 app.set_panel.build_ui()
                 app.result.build_charts()
                 with v3.VExpansionPanels(

@@ -12,9 +12,19 @@ the result view itself, whose renderer it draws the images with.
 from .case_form import CaseForm
 from .compare import Compare
 from .export import Export
+from .live import Live
 from .result_view import ResultView
 from .runs import Runs
 from .set_panel import SetPanel
 from .studies import Studies
 
-__all__ = ["CaseForm", "Compare", "Export", "ResultView", "Runs", "SetPanel", "Studies"]
+__all__ = [
+    "CaseForm",
+    "Compare",
+    "Export",
+    "Live",
+    "ResultView",
+    "Runs",
+    "SetPanel",
+    "Studies",
+]

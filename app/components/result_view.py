@@ -90,6 +90,9 @@ class ResultView(Component):
         "update_charts",
         "show_set_bearing",
         "push_view",
+        "live_scene",
+        "show_live_frame",
+        "end_live",
     )
 
     def __init__(
@@ -262,6 +265,36 @@ class ResultView(Component):
         if as_int(s.frame, 0) > s.frame_max:
             s.frame = 0
         self._apply_frame(as_int(s.frame, 0), charts_too=True)  # includes an open comparison
+
+    # ---- live mode (app.components.live) --------------------------------------------------------
+    def live_scene(self, ds):
+        """Stop the animation and make the scene for the live session's result ``ds`` (a chunk):
+        the scene (None without rendering), for the live tracks' grooves and grids."""
+        from solver import geometry_from_result
+
+        self.state.playing = False
+        if not self.render_enabled:
+            return None
+        self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
+        return self.scene
+
+    def show_live_frame(self, source: FrameSource, index: int, tracks, words: str) -> None:
+        """Draw frame ``index`` of the live window ``source`` with the live session's painted
+        ``tracks`` (:class:`app.live_view.LiveTracks`); ``words``: the time on show."""
+        self.state.frame_time = words
+        if self.scene is None:
+            return
+        scene = self.scene
+        scene.source = source  # the window's frames; the references stay the session's
+        scene.tracks.painter = tracks
+        scene.set_frame(index)
+        self.push_view()
+
+    def end_live(self) -> None:
+        """The live session has ended: show again the result that was on show before it."""
+        if self.dataset is None:
+            return
+        self.show_result(self.dataset, str(self.state.result_label))
 
     def _describe_tracks(self, ds) -> None:
         """Shoulder limits, settling window and trajectory metrics of ``ds`` for the map."""

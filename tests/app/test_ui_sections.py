@@ -68,6 +68,11 @@ SECTIONS = (
         "build_ui",
         ("run-button", "cancel-button", "status", "run-confirm", "result-warnings", "progress"),
     ),
+    (
+        "live",
+        "build_ui",
+        ("live-button", "live-stop", "live-pause", "live-record", "live-data", "live-radial-load"),
+    ),
     ("compare", "build_ui", ("compare-select", "compare-legend", "compare-summary")),
     ("exports", "build_ui", ("export-netcdf", "export-mp4", "export-link")),
     ("studies", "build_ui", ("studies", "study-results", "study-build-run", "study-table")),

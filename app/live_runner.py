@@ -1,0 +1,255 @@
+"""The live solver in a separate ``spawn`` process: it advances a :class:`solver.LiveSimulation`
+in small chunks, paced to the playback rate, and sends each chunk to the parent.
+
+The child process (:func:`live_main`) builds ``solver.LiveSimulation`` on the case given as TOML
+text, then loops: apply the controls the parent queued (:meth:`LiveRunner.set_input`, pause,
+resume, reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time and send the chunk
+Dataset, then wait out the rest of the chunk's wall time (reading controls meanwhile), so that
+the simulation runs at the playback rate (``rate``: bearing seconds per wall second). When a
+chunk takes longer than its wall time the solver cannot keep up: the next chunk (the same bearing
+time) is given the wall time the solver needs, so the playback runs at the rate the solver
+achieves, and the chunk's message says so (:class:`_Pace`); quick chunks bring the asked rate
+back. The playback is slowed, never stalled.
+
+Messages from the child (tuples): ``("preparing", text)`` (loading or compiling the kernels),
+``("ready", time_s, inputs)`` (the quasi-static state; again after a reset;
+``inputs``: :meth:`inputs_now`, SI), ``("chunk", ds, info)``
+with ``info`` a dict of ``rate`` (bearing s per wall s), ``asked_rate``, ``behind`` (bool),
+``compute_s`` (the chunk's wall time in the solver), ``chunk_wall_s`` (the wall time it was
+made for) and ``inputs`` (:meth:`inputs_now`),
+``("recorded", path, case_text)``, ``("refused", text)`` (a control value the model refused),
+``("error", text)``, ``("stopped",)``.
+
+Controls to the child: ``("set", name, value_SI, ramp_s)``, ``("pause",)``, ``("resume",)``,
+``("reset",)``, ``("rate", bearing_s_per_wall_s)``, ``("record", out_path)``; the stop event
+ends the loop.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import queue as queue_module
+import time
+
+#: Wall time of one chunk of the live loop (s): the solver advances ``rate * CHUNK_WALL_S`` of
+#: bearing time per chunk, so a control change reaches the picture within about two chunks.
+CHUNK_WALL_S = 0.1
+#: A chunk that used more than this fraction of its wall time counts as not keeping up.
+BEHIND_FRACTION = 0.9
+
+
+#: The live simulation the child runs ("module:name" of a class called as ``cls(case)``).
+LIVE_SIMULATION = "solver:LiveSimulation"
+
+
+def live_main(case_text: str, rate: float, controls, messages, stop, target: str) -> None:
+    """Child process entry point (see the module docstring); ``target``: the simulation class
+    (:data:`LIVE_SIMULATION`)."""
+    try:
+        _live_loop(case_text, rate, controls, messages, stop, target)
+    except Exception as error:  # the parent shows it in words
+        from solver import clean_message
+
+        messages.put(("error", clean_message(error)))
+    messages.put(("stopped",))
+
+
+def _live_loop(case_text: str, rate: float, controls, messages, stop, target: str) -> None:
+    import importlib
+
+    import solver
+
+    from .compile_watch import LOADING, compiling_words, watching_compiles
+
+    messages.put(("preparing", LOADING))
+    case = solver.parse_case(case_text)
+    with watching_compiles(lambda count: messages.put(("preparing", compiling_words(count)))):
+        module, name = target.split(":")
+        sim = getattr(importlib.import_module(module), name)(case)
+    messages.put(("ready", float(sim.time), dict(sim.inputs_now())))
+    pace = _Pace(rate)
+    paused = False
+    try:
+        while not stop.is_set():
+            for control in _drain(controls, block_s=0.05 if paused else 0.0):
+                paused = _apply(sim, control, paused, pace, messages)
+            if paused or stop.is_set():
+                continue
+            start = time.monotonic()
+            wall = pace.chunk_wall
+            chunk = sim.advance(pace.duration)
+            took = time.monotonic() - start
+            info = pace.after_chunk(took)
+            info["inputs"] = dict(sim.inputs_now())
+            messages.put(("chunk", chunk, info))
+            wait_until = start + wall
+            while not stop.is_set() and not paused:
+                left = wait_until - time.monotonic()
+                if left <= 0:
+                    break
+                for control in _drain(controls, block_s=min(left, 0.02)):
+                    paused = _apply(sim, control, paused, pace, messages)
+    finally:
+        sim.close()
+
+
+class _Pace:
+    """The playback the child keeps: every chunk covers ``asked * CHUNK_WALL_S`` of bearing time
+    and takes :data:`CHUNK_WALL_S` of wall time, or, while the solver cannot keep up, the wall
+    time the solver needs for it; the playback rate is then what the solver achieves (shorter
+    chunks would only weigh a chunk's fixed cost more)."""
+
+    def __init__(self, asked: float):
+        self.asked = float(asked)
+        self.chunk_wall = CHUNK_WALL_S
+        self.first = True  # the next chunk is the first after a (re)start
+
+    @property
+    def duration(self) -> float:
+        """Bearing time of the next chunk (s)."""
+        return self.asked * CHUNK_WALL_S
+
+    @property
+    def rate(self) -> float:
+        """Bearing seconds per wall second of the next chunk."""
+        return self.duration / self.chunk_wall
+
+    def ask(self, rate: float) -> None:
+        self.asked = float(rate)
+
+    def after_chunk(self, took_s: float) -> dict:
+        """Adapt to a chunk that took ``took_s`` of wall time; its report."""
+        used, wall = self.rate, self.chunk_wall
+        if self.first:  # the first chunk after a (re)start pays one-time costs: not a measure
+            self.first = False
+            return self._report(used, wall, took_s, False)
+        behind = took_s > BEHIND_FRACTION * CHUNK_WALL_S
+        self.chunk_wall = max(CHUNK_WALL_S, took_s / BEHIND_FRACTION) if behind else CHUNK_WALL_S
+        return self._report(used, wall, took_s, behind)
+
+    def _report(self, used: float, wall: float, took_s: float, behind: bool) -> dict:
+        return {
+            "rate": used,
+            "asked_rate": self.asked,
+            "behind": bool(behind),
+            "compute_s": took_s,
+            "chunk_wall_s": wall,
+        }
+
+
+def _drain(controls, block_s: float) -> list:
+    """Every control queued now (waiting up to ``block_s`` for the first)."""
+    found = []
+    try:
+        found.append(controls.get(timeout=block_s) if block_s > 0 else controls.get_nowait())
+    except queue_module.Empty:
+        return found
+    while True:
+        try:
+            found.append(controls.get_nowait())
+        except queue_module.Empty:
+            return found
+
+
+def _apply(sim, control, paused: bool, pace: _Pace, messages) -> bool:
+    """Apply one control to ``sim``; the paused flag after it."""
+    kind = control[0]
+    if kind == "set":
+        _, name, value, ramp_s = control
+        try:
+            sim.set_input(name, float(value), ramp_s=float(ramp_s))
+        except ValueError as error:  # a value the model refuses (CaseError): said, runs on
+            from solver import clean_message
+
+            messages.put(("refused", clean_message(error)))
+    elif kind == "pause":
+        return True
+    elif kind == "resume":
+        return False
+    elif kind == "rate":
+        pace.ask(float(control[1]))
+    elif kind == "reset":
+        sim.reset()
+        pace.first = True
+        messages.put(("ready", float(sim.time), dict(sim.inputs_now())))
+    elif kind == "record":
+        from .runner import _save
+
+        path = _save(sim.recorded_result(), control[1])
+        messages.put(("recorded", path, sim.recorded_case()))
+    return paused
+
+
+# ---- parent side ---------------------------------------------------------------------------------
+class LiveRunner:
+    """One live solver process: controls in, chunks out."""
+
+    def __init__(self):
+        self._ctx = mp.get_context("spawn")
+        self._process = None
+        self._controls = None
+        self._messages = None
+        self._stop = None
+
+    @property
+    def alive(self) -> bool:
+        return self._process is not None and self._process.is_alive()
+
+    def start(self, case_text: str, rate: float, target: str = LIVE_SIMULATION) -> None:
+        """Start the live solver on ``case_text`` at ``rate`` bearing seconds per wall second."""
+        if self._process is not None:
+            raise RuntimeError("the live solver is already running; stop it first")
+        self._controls = self._ctx.Queue()
+        self._messages = self._ctx.Queue()
+        self._stop = self._ctx.Event()
+        self._process = self._ctx.Process(
+            target=live_main,
+            args=(case_text, float(rate), self._controls, self._messages, self._stop, target),
+            daemon=True,
+            name="racetrace-live",
+        )
+        self._process.start()
+
+    def send(self, *control) -> None:
+        """Queue a control for the child (see the module docstring)."""
+        if self._controls is not None:
+            self._controls.put(tuple(control))
+
+    def poll(self) -> list[tuple]:
+        """Messages since the last call (non-blocking). A child that died without saying so is
+        reported as ``("error", ...)`` then ``("stopped",)``."""
+        found = []
+        if self._messages is None:
+            return found
+        while True:
+            try:
+                found.append(self._messages.get_nowait())
+            except queue_module.Empty:
+                break
+        if found and found[-1][0] == "stopped":
+            return found
+        if self._process is not None and not self._process.is_alive():
+            try:
+                found.append(self._messages.get(timeout=0.5))
+            except queue_module.Empty:
+                code = self._process.exitcode
+                found += [
+                    ("error", f"the live solver process stopped unexpectedly (exit code {code})"),
+                    ("stopped",),
+                ]
+        return found
+
+    def stop(self, timeout_s: float = 3.0) -> None:
+        """End the child: ask it, then kill it if it does not end within ``timeout_s``."""
+        if self._process is None:
+            return
+        self._stop.set()
+        self._process.join(timeout=timeout_s)
+        if self._process.is_alive():
+            self._process.kill()
+            self._process.join(timeout=2)
+        self._process = None
+        for q in (self._controls, self._messages):
+            q.cancel_join_thread()
+            q.close()
+        self._controls = self._messages = self._stop = None

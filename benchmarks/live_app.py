@@ -1,0 +1,127 @@
+"""Measure live mode in the browser (run by hand, not in CI).
+
+    python benchmarks/live_app.py [--seconds S] [--changes N]
+
+Starts ``racetrace serve`` on a free loopback port, opens the default case in headless Chromium
+(/usr/bin/chromium), presses Live and waits for the live view to draw; then prints:
+- frames per second while live: distinct images received by #view-3d per wall second over
+  ``--seconds`` (default 10), and the live frames the server drew in that time (state
+  ``live_frame.serial``);
+- latency from a control change to the first frame that shows it (wall, timed in the page): the
+  radial load is set through the page's state (as the slider does) and the page notes the time
+  at which ``#live-data``'s ``data-radial-load`` (the input of the frame on show) first leaves the
+  old value; ``--changes`` changes (default 7), alternately up and down by 200 N; median and all;
+- the playback the solver keeps (``#live-rate``) and whether it says it cannot keep up
+  (``#live-behind``).
+Timings are wall times on the machine as loaded when run: state the load (``uptime``) with them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools.chromium import CHROMIUM, LAUNCH_ARGS  # noqa: E402
+
+FRAME_COUNTER = """() => { window.__srcs = new Set();
+    const img = document.querySelector('#view-3d img');
+    window.__observer = new MutationObserver(() => window.__srcs.add(img.src));
+    window.__observer.observe(img, {attributes: true, attributeFilter: ['src']}); }"""
+
+# set the radial load and note when the frame on show first carries a different load
+CHANGE_AND_WATCH = """(load) => new Promise((resolve) => {
+    const el = document.querySelector('#live-data');
+    const old = Number(el.dataset.radialLoad);
+    const t0 = performance.now();
+    const observer = new MutationObserver(() => {
+      if (Math.abs(Number(el.dataset.radialLoad) - old) > 0.5) {
+        observer.disconnect(); resolve((performance.now() - t0) / 1e3); }
+    });
+    observer.observe(el, {attributes: true});
+    window.trame.state.set('live_radial_load_N', load);
+    setTimeout(() => { observer.disconnect(); resolve(null); }, 60000);
+})"""
+
+
+def main() -> int:
+    from playwright.sync_api import sync_playwright
+
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--seconds", type=float, default=10.0)
+    parser.add_argument("--changes", type=int, default=7)
+    args = parser.parse_args()
+    runs = Path(tempfile.mkdtemp(prefix="racetrace-live-bench-"))
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    url = f"http://127.0.0.1:{port}/"
+    while True:
+        try:
+            urllib.request.urlopen(url, timeout=1)
+            break
+        except OSError:
+            time.sleep(0.2)
+    try:
+        with sync_playwright() as p:
+            browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
+            page = browser.new_page(viewport={"width": 1500, "height": 1000})
+            page.goto(url, timeout=300_000)
+            page.wait_for_selector("#chart-contact-angle .main-svg", timeout=300_000)
+            t0 = time.monotonic()
+            page.locator("#live-button").click()
+            page.wait_for_function(
+                "(window.trame.state.get('live_frame') || {}).serial > 5",
+                timeout=900_000,
+                polling=200,
+            )
+            print(f"Live pressed to the 6th live frame: {time.monotonic() - t0:.1f} s")
+            page.evaluate(FRAME_COUNTER)
+            serial0 = page.evaluate("window.trame.state.get('live_frame').serial")
+            time.sleep(args.seconds)
+            shown = page.evaluate("(() => { __observer.disconnect(); return __srcs.size; })()")
+            serial1 = page.evaluate("window.trame.state.get('live_frame').serial")
+            print(
+                f"frames per second while live: {shown / args.seconds:.1f} images received /s "
+                f"({(serial1 - serial0) / args.seconds:.1f} live frames drawn /s by the server)"
+            )
+            latencies = []
+            load = 300.0
+            for k in range(args.changes):
+                load += 200.0 if k % 2 == 0 else -200.0
+                latency = page.evaluate(CHANGE_AND_WATCH, load)
+                latencies.append(latency)
+                time.sleep(1.0)
+            seen = [x for x in latencies if x is not None]
+            text = ", ".join("none" if x is None else f"{x:.2f}" for x in latencies)
+            if seen:
+                print(
+                    f"control change to the first frame showing it: median "
+                    f"{statistics.median(seen):.2f} s (all: {text})"
+                )
+            else:
+                print(f"control change to the first frame showing it: never within 60 s ({text})")
+            print(f"playback: {page.locator('#live-rate').inner_text().strip()}")
+            behind = page.locator("#live-behind").inner_text().strip()
+            print(f"solver keeping up: {'no: ' + behind if behind else 'yes'}")
+            browser.close()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=30)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

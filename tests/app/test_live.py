@@ -1,0 +1,221 @@
+"""Live mode, state level (no browser): the pacing of the live solver, the sliding window and the
+accumulated tracks read from chunks, and the live controller driving a real
+``solver.LiveSimulation`` in its child process (start, pause, resume, reset, record, the solver
+slot taken and released, the session stopped when its page closes)."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+
+from app.live_runner import BEHIND_FRACTION, CHUNK_WALL_S, _Pace
+from app.live_view import LiveTracks, LiveWindow
+from tests.app.conftest import make_dynamic_dataset
+from viz.frames import FrameSource
+
+# ---- pacing --------------------------------------------------------------------------------------
+
+
+def test_pace_keeps_the_asked_rate_while_chunks_are_quick():
+    pace = _Pace(0.006)
+    for _ in range(5):
+        report = pace.after_chunk(0.2 * CHUNK_WALL_S)
+    assert pace.rate == pytest.approx(0.006)
+    assert not report["behind"]
+    assert pace.duration == pytest.approx(0.006 * CHUNK_WALL_S)
+
+
+def test_pace_slows_to_what_a_slow_solver_achieves_and_stays_there():
+    """A solver whose chunks cost a fixed 1.5 s plus 100 s per bearing second: the playback runs
+    at about the rate it achieves (behind, said so) and does not spiral down."""
+    pace = _Pace(0.006)
+
+    def cost(duration):
+        return 1.5 + 100.0 * duration
+
+    asked_chunk = 0.006 * CHUNK_WALL_S
+    reports = [pace.after_chunk(cost(pace.duration)) for _ in range(30)]
+    # what the solver achieves on chunks of the asked bearing time: the playback keeps it
+    assert pace.rate >= 0.99 * BEHIND_FRACTION * asked_chunk / cost(asked_chunk)
+    assert all(r["behind"] for r in reports[1:])
+    achieved = pace.duration / cost(pace.duration)
+    assert BEHIND_FRACTION * achieved <= pace.rate <= achieved
+    assert reports[-1]["rate"] == pytest.approx(reports[3]["rate"])  # steady, not shrinking
+    assert pace.duration == pytest.approx(0.006 * CHUNK_WALL_S)
+
+
+def test_pace_climbs_back_when_the_solver_is_quick_again():
+    pace = _Pace(0.006)
+    pace.after_chunk(0.0)  # the first chunk: not a measure
+    pace.after_chunk(10 * CHUNK_WALL_S)
+    assert pace.rate < 0.006
+    pace.after_chunk(0.1 * CHUNK_WALL_S)
+    assert pace.rate == pytest.approx(0.006)
+    assert pace.chunk_wall == pytest.approx(CHUNK_WALL_S)
+
+
+# ---- the window and the tracks -------------------------------------------------------------------
+def _chunks(ds, size):
+    return [ds.isel(time=slice(k, k + size)) for k in range(0, ds.sizes["time"], size)]
+
+
+def test_window_joins_chunks_into_the_frames_of_the_whole_run():
+    ds = make_dynamic_dataset(n_time=120)
+    whole = FrameSource.from_dynamic(ds)
+    window = LiveWindow(revolutions=100.0)
+    inputs = {"inner_ring_speed": float(ds.inner_ring_speed)}
+    for chunk in _chunks(ds, 17):
+        window.add(chunk, inputs)
+    src = window.source
+    assert src.n_frames == whole.n_frames
+    np.testing.assert_allclose(src.times, whole.times)
+    for name in ("ball_azimuth", "raceway_azimuth", "ring_angle", "cage_angle"):
+        np.testing.assert_allclose(getattr(src, name), getattr(whole, name), atol=1e-9)
+    np.testing.assert_allclose(window.inputs["radial_load"], 300.0)
+
+
+def test_window_keeps_the_last_revolutions():
+    ds = make_dynamic_dataset(n_time=200)  # two shaft revolutions
+    omega = float(ds.inner_ring_speed)
+    window = LiveWindow(revolutions=0.5)
+    for chunk in _chunks(ds, 20):
+        window.add(chunk, {"inner_ring_speed": omega})
+    span = window.source.times[-1] - window.source.times[0]
+    period = 2 * math.pi / omega
+    assert 0.45 * period <= span <= 0.5 * period
+    assert window.inputs["radial_load"].shape == (window.source.n_frames,)
+    assert float(window.chunks[0]["time"][0]) <= window.source.times[0]
+
+
+def test_live_tracks_accumulate_as_the_whole_run_paints():
+    from solver import geometry_from_result
+    from viz.layout import RacewayLayout
+    from viz.options import SceneOptions
+    from viz.tracks import TrackPainter
+
+    ds = make_dynamic_dataset(n_time=120)
+    layout = RacewayLayout(geometry_from_result(ds), SceneOptions())
+    whole = FrameSource.from_dynamic(ds)
+    reference = [whole.reference_contact_angle(r) for r in (0, 1)]
+    painter = TrackPainter(whole, layout.grooves, layout.grids, reference)
+    painter.accumulate(whole.n_frames - 1)
+    tracks = LiveTracks(layout.grooves, layout.grids, reference, 1.0)
+    window = LiveWindow(revolutions=100.0)
+    for chunk in _chunks(ds, 25):
+        tracks.add(window.add(chunk, {"inner_ring_speed": float(ds.inner_ring_speed)}))
+    for race in (0, 1):
+        np.testing.assert_allclose(tracks.field(race, "dwell"), painter.field(race, "dwell"))
+        np.testing.assert_allclose(
+            tracks.field(race, "peak_pressure"), painter.field(race, "peak_pressure")
+        )
+    assert tracks.value_range("dwell")[1] > 0
+
+
+# ---- the controller on the real live solver ------------------------------------------------------
+def _until(app, condition, timeout_s: float, what: str):
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        app.live.tick()
+        if condition():
+            return
+        time.sleep(0.05)
+    raise AssertionError(f"timed out waiting for {what}: status {app.state.live_status!r}")
+
+
+@pytest.fixture
+def live_app(tmp_path):
+    """A session with a pool of one solver slot (so a second live session finds none)."""
+    from app.services import Services
+    from app.state import DEFAULT_CASE, RacetraceApp
+    from tests.helpers.app_session import trame_server
+
+    services = Services(tmp_path / "runs", tmp_path / "slots", max_runs=1)
+    session = RacetraceApp(trame_server(), services=services, render=False)
+    session.start(DEFAULT_CASE, play=False)
+    yield session
+    session.shutdown()
+    services.shutdown()
+
+
+@pytest.mark.slow
+def test_live_session_start_pause_reset_record_and_stop(live_app):
+    app, s = live_app, live_app.state
+    pool = app.services.pool
+    assert app.live.start()
+    assert s.live_on and app.live.ticket.held
+    other = pool.enqueue()
+    assert not pool.try_acquire(other)  # the live session holds the only slot
+    pool.drop(other)
+    _until(app, lambda: app.live.window.count >= 3, 600, "three chunks")
+    assert s.live_radial_load_N == pytest.approx(300.0)  # the controls show the solver's inputs
+    assert s.live_frame["radial_load_N"] == pytest.approx(300.0)
+
+    app.live.pause()
+    _until(app, lambda: True, 1, "")
+    time.sleep(1.0)
+    app.live.tick()
+    paused_at = app.live.window.count
+    time.sleep(1.5)
+    app.live.tick()
+    assert app.live.window.count == paused_at  # no chunk while paused
+    app.live.resume()
+    _until(app, lambda: app.live.window.count > paused_at, 120, "a chunk after resuming")
+
+    s.live_radial_load_N = 900.0
+    s.flush()  # the change handler sends set_input to the child
+    _until(
+        app,
+        lambda: app.live.window.inputs["radial_load"][-1] > 301.0,
+        120,
+        "the radial load to ramp up",
+    )
+    before_reset = float(app.live.window.source.times[-1])
+    app.live.reset()
+    _until(
+        app,
+        lambda: app.live.source is not None and app.live.source.times[-1] < before_reset,
+        120,
+        "a chunk after the reset",
+    )
+    assert app.live.window.inputs["radial_load"][0] == pytest.approx(900.0)  # the target holds
+
+    app.live.record()
+    _until(app, lambda: s.live_recorded is not None, 120, "the recording")
+    assert s.live_recorded in {r["value"] for r in s.runs}
+    ds, case_text = app.store.load(s.live_recorded)
+    assert "time" in ds.dims and ds.sizes["time"] >= 2
+    assert "radial_load" in case_text
+
+    app.live.stop()
+    assert not s.live_on and app.live.ticket is None
+    again = pool.enqueue()
+    assert pool.try_acquire(again)  # the slot is free again
+    pool.drop(again)
+
+
+def test_live_refused_clearly_when_no_slot_is_free(live_app):
+    pool = live_app.services.pool
+    held = pool.enqueue()
+    assert pool.try_acquire(held)
+    try:
+        assert not live_app.live.start()
+        assert "no solver slot is free" in live_app.state.live_status
+        assert not live_app.state.live_on
+        assert not live_app.live.runner.alive  # no solver process was started
+    finally:
+        pool.drop(held)
+
+
+@pytest.mark.slow
+def test_live_session_stops_when_its_page_closes(live_app):
+    app = live_app
+    assert app.live.start()
+    process = app.live.runner._process
+    app.live.client_count(0)
+    assert not app.state.live_on
+    assert "page was closed" in app.state.live_status
+    assert app.live.ticket is None
+    assert not process.is_alive()
