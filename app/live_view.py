@@ -272,6 +272,7 @@ class LiveTracks:
     def reset(self) -> None:
         self._dwell = [np.zeros((g.n_phi, g.n_alpha)) for g in self.grids]
         self._peak = [np.zeros((g.n_phi, g.n_alpha)) for g in self.grids]
+        self.stop = 0  # samples painted so far (what a TrackPainter calls its stop)
 
     def add(self, source) -> None:
         """Paint every sample of ``source`` (:class:`viz.frames.FrameSource` of the new samples
@@ -282,6 +283,7 @@ class LiveTracks:
             source, self.grooves, self.grids, self.references, exaggeration=self.exaggeration
         )
         painter.accumulate(source.n_frames - 1)  # the last sample sweeps on with the next chunk
+        self.stop += source.n_frames - 1
         for race in (0, 1):
             self._dwell[race] += painter.field(race, "dwell")
             np.maximum(self._peak[race], painter.field(race, "peak_pressure"), out=self._peak[race])

@@ -158,6 +158,19 @@ class BrowserView:
             self.state.rt3d_tracks = self.scene.track_state(stop, options.track_quantity)
             self._tracks_sent = (stop, options.track_quantity, time.monotonic())
 
+    def show_live_frame(self, index: int) -> None:
+        """Send frame ``index`` of a live session's window: the matrices and ellipses, and the
+        session's accumulated tracks (:class:`app.live_view.LiveTracks`) at most every
+        :data:`TRACK_REFRESH_S` (the window slides, so frame numbers do not say what is new)."""
+        if self.scene is None:
+            return
+        options = self.scene.scene.options
+        self.state.rt3d_frame = self.scene.frame_state(index, options.ellipse_scale)
+        _, sent_quantity, sent_at = self._tracks_sent
+        if sent_quantity != options.track_quantity or time.monotonic() - sent_at >= TRACK_REFRESH_S:
+            self.state.rt3d_tracks = self.scene.track_state(0, options.track_quantity)
+            self._tracks_sent = (-1, options.track_quantity, time.monotonic())
+
     def set_camera(self, plotter) -> None:
         """Send the server scene's camera (a preset just applied) to the browser, which applies
         it once (then the camera is the browser's own: orbiting costs the server nothing)."""

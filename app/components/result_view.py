@@ -287,8 +287,13 @@ class ResultView(Component):
         scene = self.scene
         scene.source = source  # the window's frames; the references stay the session's
         scene.tracks.painter = tracks
-        scene.set_frame(index)
-        self.push_view()
+        if self.browser.active:  # the browser draws: send what moved
+            if self.browser.scene is None or self.browser.scene.scene is not scene:
+                self.browser.show_scene(scene)
+            self.browser.show_live_frame(index)
+        else:
+            scene.set_frame(index)
+            self.push_view()
 
     def end_live(self) -> None:
         """The live session has ended: show again the result that was on show before it."""

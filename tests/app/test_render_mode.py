@@ -113,3 +113,39 @@ def test_server_mode_renders_every_frame_on_the_server(tmp_path):
         assert a.state.rt3d_parts == []  # no meshes sent for a browser view never shown
     finally:
         a.shutdown()
+
+
+def test_a_live_frame_drawn_by_the_browser_sends_the_window_frame_and_the_live_tracks(tmp_path):
+    from app.live_view import LiveTracks, LiveWindow
+    from solver import geometry_from_result
+    from tests.app.conftest import make_dynamic_dataset
+    from viz.frames import FrameSource
+
+    a = _session(tmp_path, "browser")
+    try:
+        _set(a, browser_webgl=True)
+        ds = make_dynamic_dataset(n_time=60)
+        scene = a.result.live_scene(ds)
+        assert geometry_from_result(ds) is not None and scene is not None
+        layout = scene.layout
+        whole = FrameSource.from_dynamic(ds)
+        reference = [whole.reference_contact_angle(r) for r in (0, 1)]
+        tracks = LiveTracks(layout.grooves, layout.grids, reference, 1.0)
+        window = LiveWindow(revolutions=100.0)
+        source = None
+        for k in (0, 30):
+            source = window.add(ds.isel(time=slice(k, k + 30)), {})
+            tracks.add(source)
+        pushed = []
+        a.state._push_state_fn = lambda update: pushed.append(dict(update))
+        with a.state:
+            a.result.show_live_frame(window.source, 10, tracks, "t = live")
+        keys = {k for update in pushed for k in update}
+        assert "rt3d_frame" in keys and a.state.rt3d_frame["index"] == 10
+        sent = a.state.rt3d_tracks
+        assert sent["stop"] == tracks.stop == 59  # 60 samples: 59 sweeps from one to the next
+        assert sent["range"][1] > sent["range"][0]
+        # the server's scene did not render the frame (the browser draws)
+        assert a.result.scene.frame_index != 10
+    finally:
+        a.shutdown()
