@@ -384,8 +384,12 @@ class ResultView(Component):
     @staticmethod
     def _load_side(ds) -> float:
         """Azimuth (rad, from +y towards +z) of the radial load of the result ``ds`` (its
-        ``radial_load_angle`` coordinate, degree): where the load zone is."""
-        return math.radians(float(ds.coords["radial_load_angle"]))
+        ``radial_load_angle``, degree: a coordinate, or a data variable over time when it varies
+        (a history, a live chunk) and then its value at the end): where the load zone is."""
+        angle = ds["radial_load_angle"]
+        if "time" in angle.dims:
+            angle = angle.isel(time=-1)
+        return math.radians(float(angle))
 
     def _animation_options(self, ds) -> dict:
         """Options of :func:`viz.frames.frame_source`: a quasi-static result is animated for the

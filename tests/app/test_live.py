@@ -219,3 +219,16 @@ def test_live_session_stops_when_its_page_closes(live_app):
     assert "page was closed" in app.state.live_status
     assert app.live.ticket is None
     assert not process.is_alive()
+
+
+def test_the_load_side_is_read_from_a_radial_load_angle_that_varies_in_time():
+    """A live chunk (or a run along a history) carries the load direction over time: the view's
+    load side is its value at the end (a coordinate for a steady result)."""
+    from app.components.result_view import ResultView
+
+    ds = make_dynamic_dataset(n_time=10)
+    assert "radial_load_angle" in ds.coords
+    assert ResultView._load_side(ds) == pytest.approx(math.radians(float(ds.radial_load_angle)))
+    angles = np.linspace(0.0, 90.0, ds.sizes["time"])
+    varying = ds.drop_vars("radial_load_angle").assign(radial_load_angle=("time", angles))
+    assert ResultView._load_side(varying) == pytest.approx(math.pi / 2)
