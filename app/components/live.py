@@ -470,11 +470,12 @@ class Live(Component):
                 id="live-data",
                 v_show="live_on",
                 classes="text-caption",
-                **{
-                    "data-band-inner": ("live_band_inner",),
-                    "data-radial-load": ("live_frame.radial_load_N",),
-                    "data-frame-serial": ("live_frame.serial",),
-                },
+                # html elements keep only the attributes they know: data-* go in as written
+                raw_attrs=[
+                    ':data-band-inner="live_band_inner"',
+                    ':data-radial-load="live_frame.radial_load_N"',
+                    ':data-frame-serial="live_frame.serial"',
+                ],
             )
             with v3.VRow(dense=True):
                 for key, (_, _, lo, hi, step) in CONTROLS.items():

@@ -20,12 +20,15 @@ LIVE_TIMEOUT_MS = 900_000
 # the spread (max - min, degree) of the inner contact angles in the last third of the chart's time
 CHART_INNER_SPREAD = """() => {
   const el = document.querySelector('#chart-contact-angle .js-plotly-plot');
-  if (!el || !el.data) return null;
-  const trace = el.data.find(t => (t.name || '').startsWith('inner'));
-  if (!trace) return null;
-  const xs = trace.x.filter(x => x !== null && isFinite(x));
+  if (!el || !el._fullData) return null;
+  // plotly's own decoded traces (the figure's arrays arrive base64-encoded: {dtype, bdata})
+  const trace = el._fullData.find(t => (t.name || '').startsWith('inner'));
+  if (!trace || !trace.x || !trace.y) return null;
+  const x = Array.from(trace.x), y = Array.from(trace.y);
+  const xs = x.filter(v => v !== null && isFinite(v));
+  if (!xs.length) return null;
   const end = Math.max(...xs), start = Math.min(...xs), from = end - (end - start) / 3;
-  const ys = trace.y.filter((y, i) => y !== null && isFinite(y) && trace.x[i] >= from);
+  const ys = y.filter((v, i) => v !== null && isFinite(v) && x[i] >= from);
   return ys.length ? Math.max(...ys) - Math.min(...ys) : null;
 }"""
 
@@ -63,7 +66,7 @@ def test_live_radial_load_opens_the_inner_band_and_the_session_reopens_as_a_run(
     assert _state(page, "live_frame")["serial"] > frames_before  # the view keeps drawing
     band_before = _band(page)
     spread_before = page.evaluate(CHART_INNER_SPREAD)
-    assert band_before is not None and spread_before is not None
+    assert band_before is not None and spread_before is not None, (band_before, spread_before)
     page.screenshot(path=str(ARTIFACTS / "live-before.png"))
 
     page.evaluate("window.trame.state.set('live_radial_load_N', 1500)")
