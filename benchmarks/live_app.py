@@ -1,11 +1,13 @@
 """Measure live mode in the browser (run by hand, not in CI).
 
-    python benchmarks/live_app.py [--seconds S] [--changes N]
+    python benchmarks/live_app.py [--seconds S] [--changes N] [--render browser|server]
 
 Starts ``racetrace serve`` on a free loopback port, opens the default case in headless Chromium
 (/usr/bin/chromium), presses Live and waits for the live view to draw; then prints:
-- frames per second while live: distinct images received by #view-3d per wall second over
-  ``--seconds`` (default 10), and the live frames the server drew in that time (state
+- frames per second while live: distinct frames the page received per wall second over
+  ``--seconds`` (default 10): images of #view-3d with server rendering, ``rt3d_frame`` updates
+  seen at the page's animation frames with the browser-drawn view (``--render``, default the
+  app's default, browser); and the live frames the server drew in that time (state
   ``live_frame.serial``);
 - latency from a control change to the first frame that shows it (wall, timed in the page): the
   radial load is set through the page's state (as the slider does) and the page notes the time
@@ -31,10 +33,25 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from tools.chromium import CHROMIUM, LAUNCH_ARGS  # noqa: E402
 
-FRAME_COUNTER = """() => { window.__srcs = new Set();
+# frames the page received: with server rendering the distinct images of #view-3d, with the
+# browser-drawn view the distinct frames (rt3d_frame) present at each animation frame of the page
+FRAME_COUNTER = """() => { window.__srcs = new Set(); window.__counting = true;
     const img = document.querySelector('#view-3d img');
-    window.__observer = new MutationObserver(() => window.__srcs.add(img.src));
-    window.__observer.observe(img, {attributes: true, attributeFilter: ['src']}); }"""
+    if (img && !window.trame.state.get('view_in_browser')) {
+      const observer = new MutationObserver(() => window.__srcs.add(img.src));
+      observer.observe(img, {attributes: true, attributeFilter: ['src']});
+      window.__stop = () => observer.disconnect();
+    } else {
+      let last = null;
+      const tick = () => {
+        if (!window.__counting) return;
+        const f = window.trame.state.get('rt3d_frame');
+        if (f !== last) { window.__srcs.add(window.__srcs.size); last = f; }
+        requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+      window.__stop = () => { window.__counting = false; };
+    } }"""
 
 # set the radial load and note when the frame on show first carries a different load
 CHANGE_AND_WATCH = """(load) => new Promise((resolve) => {
@@ -57,13 +74,17 @@ def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--changes", type=int, default=7)
+    parser.add_argument("--render", choices=("browser", "server"), default="browser")
     args = parser.parse_args()
     runs = Path(tempfile.mkdtemp(prefix="racetrace-live-bench-"))
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     proc = subprocess.Popen(
-        [sys.executable, "-m", "racetrace", "serve", "--port", str(port), "--runs-dir", str(runs)],
+        [
+            *(sys.executable, "-m", "racetrace", "serve", "--port", str(port)),
+            *("--runs-dir", str(runs), "--render", args.render),
+        ],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
     )
@@ -91,10 +112,13 @@ def main() -> int:
             page.evaluate(FRAME_COUNTER)
             serial0 = page.evaluate("window.trame.state.get('live_frame').serial")
             time.sleep(args.seconds)
-            shown = page.evaluate("(() => { __observer.disconnect(); return __srcs.size; })()")
+            shown = page.evaluate("(() => { __stop(); return __srcs.size; })()")
             serial1 = page.evaluate("window.trame.state.get('live_frame').serial")
+            in_browser = page.evaluate("window.trame.state.get('view_in_browser')")
             print(
-                f"frames per second while live: {shown / args.seconds:.1f} images received /s "
+                f"frames per second while live ({args.render} rendering; drawn by the browser: "
+                f"{in_browser}): "
+                f"{shown / args.seconds:.1f} frames received /s "
                 f"({(serial1 - serial0) / args.seconds:.1f} live frames drawn /s by the server)"
             )
             latencies = []
