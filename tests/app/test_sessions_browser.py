@@ -26,6 +26,8 @@ START_S = 300  # a cold numba cache compiles the quasi-static kernels first; the
 
 
 def _start(tmp_path: Path, *options: str) -> dict:
+    if not any(o.startswith("--render") for o in options):
+        options = (*options, "--render", "server")  # these tests read the server's images
     runs = tmp_path / "runs"
     port = free_port()
     log = open(tmp_path / f"serve-{port}.log", "w+")  # noqa: SIM115 - closed in _stop
