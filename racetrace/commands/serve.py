@@ -25,6 +25,8 @@ APP_MODULES = (
     "imageio",
     "imageio_ffmpeg",
     "aiohttp",
+    "msgpack",
+    "segno",
 )
 
 

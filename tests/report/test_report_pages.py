@@ -26,7 +26,13 @@ from tests.report.test_report import CHART_ROWS, CHROMIUM, LAUNCH_ARGS  # noqa: 
 ROOT = Path(__file__).resolve().parents[2]
 LESSON = ROOT / "assets" / "lessons" / "results" / "03-radial-load--radial.nc"
 SEED_STUDY = ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc"
-SHIPPED_STUDIES = sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
+#: The shipped studies of one bearing (the bearing-set study spindle-pair-db-speed keeps each
+#: bearing's loads and stiffness, which the report's per-race study charts do not draw yet).
+SHIPPED_STUDIES = [
+    path
+    for path in sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
+    if not path.name.startswith("spindle-pair-")
+]
 SHOTS = ARTIFACTS / "report"
 PAGE_WIDTH = 1300  # px: the page a review is read and printed on
 FRAMEBUFFER = re.compile(r"framebuffer", re.IGNORECASE)
