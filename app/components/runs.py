@@ -28,7 +28,7 @@ from .base import Component, running_loop
 from .widgets import alert, alert_list, select
 
 POLL_S = 0.2  # runner polling period
-STOP_TIMEOUT_S = 20.0  # a stopping server waits this long for the run's partial result
+STOP_TIMEOUT_S = 30.0  # a stopping server waits this long for the run's partial result
 WATCH_S = 2.0  # runs folder check period (runs saved by other sessions)
 
 

@@ -50,7 +50,7 @@ MAX_SESSIONS = 8  # sessions (browsers) at once; each is a process of about 0.5 
 # says what is being prepared meanwhile, :data:`PREPARING_PATH`)
 START_TIMEOUT_S = 1800.0
 PREPARING_PATH = "/__racetrace_preparing"  # what the first session waits for, as JSON
-STOP_TIMEOUT_S = 40.0  # a session stopping saves its run first (it waits up to 20 s for it)
+STOP_TIMEOUT_S = 50.0  # a session stopping saves its run first (it waits up to 30 s for it)
 _HOP_HEADERS = {
     "connection",
     "keep-alive",

@@ -36,11 +36,19 @@ def test_a_follower_sees_the_presenters_lesson_and_frame(browser, server):
     presenter.evaluate("window.trame.state.set('playing', false)")  # the shared machine is busy
     presenter.locator(f"#lesson-{LESSON.id}").click()
     presenter.wait_for_function(TITLE_IS, arg=LESSON.title, timeout=120_000)
+    # the title is shown before the lesson's result (which resets the frame): wait for the result
+    presenter.wait_for_function(
+        "n => window.trame.state.get('lesson_result') === n",
+        arg=LESSON.results[0].name,
+        timeout=120_000,
+    )
     presenter.evaluate("window.trame.state.set('playing', false)")
     frames = presenter.evaluate("window.trame.state.get('frame_max')")
     frame = max(1, int(frames) // 3)
     presenter.evaluate(f"window.trame.state.set('frame', {frame})")
     presenter.evaluate("window.trame.state.set('trace_ball', 2)")
+    time.sleep(1)  # nothing on the server moves the frame on now: it is still the one set
+    assert _state(presenter, "frame") == frame and _state(presenter, "playing") is False
     code = _state(presenter, "follow_code")
     assert len(code) == 6
 

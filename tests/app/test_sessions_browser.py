@@ -111,6 +111,27 @@ def _set_field(page, name: str, value: str) -> None:
     box.press("Tab")
 
 
+def _set_revolutions(page, revolutions: int, timeout_s: float = 120.0) -> None:
+    """Type ``revolutions`` into the form and wait until the server has validated it (its run
+    size names them): a Run pressed before then would run the case the server still holds. The
+    field is typed again if the server's first filling of the form overwrote it."""
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
+    wanted = f"{revolutions} shaft revolutions"
+    deadline = time.monotonic() + timeout_s
+    while True:
+        _set_field(page, "shaft_revolutions", str(revolutions))
+        try:
+            page.wait_for_function(
+                "w => (document.querySelector('#run-size') || {}).innerText?.includes(w)",
+                arg=wanted,
+                timeout=15_000,
+            )
+            return
+        except PlaywrightTimeout:
+            assert time.monotonic() < deadline, f"the server never took {wanted}: {_status(page)}"
+
+
 def _status(page) -> str:
     return page.locator("#status").inner_text().strip()
 
@@ -153,7 +174,7 @@ def test_a_second_run_waits_in_the_queue(browser, server):
     second = _open(browser, server["url"], 1200, 900)
     try:
         for page in (first, second):
-            _set_field(page, "shaft_revolutions", "200")
+            _set_revolutions(page, 200)
             page.wait_for_function(
                 "!document.querySelector('#run-button').disabled", timeout=120_000
             )
@@ -224,7 +245,7 @@ def test_killed_server_saves_the_run_and_leaves_no_solver(browser, tmp_path):
     s = _start(tmp_path)
     try:
         page = _open(browser, s["url"], 1200, 900)
-        _set_field(page, "shaft_revolutions", "200")
+        _set_revolutions(page, 200)
         page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=30_000)
         page.locator("#run-button").click()
         deadline = time.monotonic() + START_S
