@@ -64,9 +64,13 @@ def main(argv=None) -> int:
             save_compressed(ds, path)
             print(f"{path.name}: {spec.model}, {seconds:.1f} s, {path.stat().st_size / 1e6:.2f} MB")
     for stale in sorted(RESULTS.glob("*.nc")):
-        if stale.name not in used:
-            stale.unlink()
-            print(f"{stale.name}: removed (no lesson uses it)")
+        if stale.name in used:
+            continue
+        if lessons.problems:  # it may be a skipped lesson's: keep it until the lessons load
+            print(f"{stale.name}: kept (unused, but a lesson above was skipped)")
+            continue
+        stale.unlink()
+        print(f"{stale.name}: removed (no lesson uses it)")
     return 1 if lessons.problems else 0
 
 
