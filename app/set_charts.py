@@ -269,3 +269,125 @@ def stiffness_rows(ds: xr.Dataset) -> list[dict]:
     ]
     rows.append({"name": "set (at the load point)", **_stiffness_cells(ds["set_stiffness"].values)})
     return rows
+
+
+# ---- a study of bearing-set points ------------------------------------------------------------
+#: Charts of a bearing-set study (its Dataset has a ``bearing`` dimension, docs/study-format.md):
+#: (name, axis title, scale from SI to the axis unit, ((variable, line tag), ...)). A variable
+#: with a ``bearing`` dimension draws one line per bearing (the tag, when given, after its name:
+#: "outer" lines dashed), one without draws the set's line.
+SET_STUDY_CHART_METRICS = (
+    (
+        "axial_stiffness",
+        f"axial stiffness [{TRANSLATION_UNIT[0]}]",
+        TRANSLATION_UNIT[1],
+        (("axial_stiffness", ""), ("bearing_axial_stiffness", "")),
+    ),
+    (
+        "radial_stiffness",
+        f"radial stiffness [{TRANSLATION_UNIT[0]}]",
+        TRANSLATION_UNIT[1],
+        (("radial_stiffness", ""), ("bearing_radial_stiffness", "")),
+    ),
+    (
+        "tilt_stiffness",
+        f"tilting stiffness [{TILT_UNIT[0]}]",
+        TILT_UNIT[1],
+        (("tilt_stiffness", ""), ("bearing_tilt_stiffness", "")),
+    ),
+    ("bearing_axial_load", "axial load carried [N]", 1.0, (("bearing_axial_load", ""),)),
+    ("bearing_radial_load", "radial load carried [N]", 1.0, (("bearing_radial_load", ""),)),
+    (
+        "contact_angle",
+        "mean contact angle [deg]",
+        1.0,
+        (("bearing_inner_contact_angle", "inner"), ("bearing_outer_contact_angle", "outer")),
+    ),
+)
+#: The colour of the set's line in a set study chart (the bearings take the runs' palette).
+SET_LINE_COLOUR = "#222222"
+
+
+def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figure:
+    """Plotly figure of a bearing-set study: ``metric`` (a name of
+    :data:`SET_STUDY_CHART_METRICS`) against the key ``sweep`` is charted against
+    (:func:`solver.sweep_axis_key`): the set's line (black, "set") and one line per bearing in
+    its colour, named by the bearing, through the points where both are finite. The markers'
+    customdata is (point, model): a click opens that run."""
+    from solver import sweep_axis_key
+
+    _name, label, scale, variables = next(
+        (row for row in SET_STUDY_CHART_METRICS if row[0] == metric), SET_STUDY_CHART_METRICS[0]
+    )
+    fig = go.Figure()
+    select = np.asarray(ds["sweep"].values).astype(str) == sweep
+    key = sweep_axis_key(ds, sweep) if sweep is not None and select.any() else None
+    if key is not None:
+        x = np.asarray(ds[key].values, float)[select]
+        points = np.asarray(ds["point"].values)[select]
+        models = [str(m) for m in ds["model"].values]
+        names = bearing_names(ds)
+        for model in models:
+            suffix = f", {model}" if len(models) > 1 else ""
+            for variable, tag in variables:
+                if variable not in ds:
+                    continue
+                values = ds[variable].sel(model=model)
+                lines = (
+                    [(f"set{suffix}", values.values, SET_LINE_COLOUR, 3)]
+                    if "bearing" not in values.dims
+                    else [
+                        (
+                            f"{name}{', ' + tag if tag else ''}{suffix}",
+                            values.sel(bearing=name).values,
+                            bearing_colour(index),
+                            2,
+                        )
+                        for index, name in enumerate(names)
+                    ]
+                )
+                for trace_name, y_all, colour, width in lines:
+                    y = np.asarray(y_all, float)[select] * scale
+                    order = np.argsort(x)
+                    shown = order[np.isfinite(x[order]) & np.isfinite(y[order])]
+                    fig.add_trace(
+                        go.Scatter(
+                            x=x[shown].tolist(),
+                            y=y[shown].tolist(),
+                            mode="lines+markers",
+                            name=trace_name,
+                            line={
+                                "color": colour,
+                                "width": width,
+                                "dash": "dash" if tag == "outer" else "solid",
+                            },
+                            customdata=[[str(p), model] for p in points[shown]],
+                        )
+                    )
+        fig.update_xaxes(title_text=_key_label(key))
+    fig.update_yaxes(title_text=label)
+    fig.update_layout(
+        margin={"l": 50, "r": 10, "t": 30, "b": 90},
+        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
+    )
+    return fig
+
+
+#: Unit suffixes of case keys (``force_N``, ``offset_um``), as an axis title writes them.
+KEY_UNITS = {"N": "N", "Nm": "N m", "mm": "mm", "um": "µm", "rpm": "rpm", "deg": "deg"}
+
+
+def _key_label(key: str) -> str:
+    """A case key as an axis title: its schema label and unit; for a key the form does not offer
+    (``set.preload.force_N``) its last two segments in words and the unit its name ends with
+    ("preload force [N]"), else its last segment."""
+    from solver import fields_by_key
+
+    field = fields_by_key().get(key)
+    if field is not None:
+        return f"{field.label} [{field.unit}]" if field.unit else field.label
+    *parents, last = key.split(".")
+    head, _, unit = last.rpartition("_")
+    if head and unit in KEY_UNITS:
+        return f"{' '.join([*parents[-1:], head])} [{KEY_UNITS[unit]}]".replace("_", " ")
+    return last

@@ -26,13 +26,9 @@ from tests.report.test_report import CHART_ROWS, CHROMIUM, LAUNCH_ARGS  # noqa: 
 ROOT = Path(__file__).resolve().parents[2]
 LESSON = ROOT / "assets" / "lessons" / "results" / "03-radial-load--radial.nc"
 SEED_STUDY = ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc"
-#: The shipped studies of one bearing (the bearing-set study spindle-pair-db-speed keeps each
-#: bearing's loads and stiffness, which the report's per-race study charts do not draw yet).
-SHIPPED_STUDIES = [
-    path
-    for path in sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
-    if not path.name.startswith("spindle-pair-")
-]
+#: Every shipped study's results: of one bearing (per-race charts) and of a bearing set
+#: (spindle-pair-db-speed: the set's line and one per bearing).
+SHIPPED_STUDIES = sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
 SHOTS = ARTIFACTS / "report"
 PAGE_WIDTH = 1300  # px: the page a review is read and printed on
 FRAMEBUFFER = re.compile(r"framebuffer", re.IGNORECASE)
@@ -181,20 +177,27 @@ def _colour_pixels(image: np.ndarray, colour: str, tolerance: float = 40.0) -> i
 @pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
 def test_study_report_charts_draw_their_lines(study, tmp_path):
     """In every chart of a shipped study's report, the plot area holds pixels of both races'
-    colours (the lines and markers of the inner and outer race), not an empty frame."""
+    colours (the lines and markers of the inner and outer race), not an empty frame; in a set
+    study's, each bearing's colour (its line and markers)."""
     from PIL import Image
 
     import solver
     from report import build_report
-    from report.build import STUDY_CHART_METRICS
-    from report.charts import RACE_COLOURS
+    from report.build import SET_STUDY_CHART_METRICS, STUDY_CHART_METRICS
+    from report.charts import PALETTE, RACE_COLOURS
 
     build_report(study, tmp_path / "study.html")
-    sweeps = set(np.asarray(solver.load_dataset(study)["sweep"].values).astype(str).tolist())
+    ds = solver.load_dataset(study)
+    sweeps = set(np.asarray(ds["sweep"].values).astype(str).tolist())
+    if "bearing" in ds.dims:
+        metrics = SET_STUDY_CHART_METRICS
+        colours = {str(b): PALETTE[k] for k, b in enumerate(ds["bearing"].values)}
+    else:
+        metrics, colours = STUDY_CHART_METRICS, RACE_COLOURS
 
     def check(page, console):  # noqa: ARG001 - the check's interface
         frames = page.evaluate(CHART_FRAMES)
-        assert len(frames) == len(sweeps) * len(STUDY_CHART_METRICS), [f["title"] for f in frames]
+        assert len(frames) == len(sweeps) * len(metrics), [f["title"] for f in frames]
         page_image = Image.open(io.BytesIO(page.screenshot(full_page=True, timeout=120_000)))
         pixels = np.asarray(page_image.convert("RGB"))
         empty = []
@@ -203,7 +206,7 @@ def test_study_report_charts_draw_their_lines(study, tmp_path):
             area = pixels[
                 frame["y"] : frame["y"] + frame["height"], frame["x"] : frame["x"] + frame["width"]
             ]
-            counts = {race: _colour_pixels(area, colour) for race, colour in RACE_COLOURS.items()}
+            counts = {line: _colour_pixels(area, colour) for line, colour in colours.items()}
             if min(counts.values()) < 30:
                 empty.append((frame["title"], counts))
         assert empty == [], f"charts without their lines: {empty}"
