@@ -273,35 +273,49 @@ def stiffness_rows(ds: xr.Dataset) -> list[dict]:
 
 # ---- a study of bearing-set points ------------------------------------------------------------
 #: Charts of a bearing-set study (its Dataset has a ``bearing`` dimension, docs/study-format.md):
-#: (name, axis title, scale from SI to the axis unit, ((variable, line tag), ...)). A variable
-#: with a ``bearing`` dimension draws one line per bearing (the tag, when given, after its name:
-#: "outer" lines dashed), one without draws the set's line.
+#: (name, axis title, scale from SI to the axis unit, ((variable, line tag, dashed), ...)). A
+#: variable with a ``bearing`` dimension draws one line per bearing (the tag, when given, after
+#: its name), one without draws the set's line. The set's tilting stiffness (from the bearings'
+#: spread along the shaft) is some hundred times a bearing's own about its plane: two charts.
 SET_STUDY_CHART_METRICS = (
     (
         "axial_stiffness",
         f"axial stiffness [{TRANSLATION_UNIT[0]}]",
         TRANSLATION_UNIT[1],
-        (("axial_stiffness", ""), ("bearing_axial_stiffness", "")),
+        (("axial_stiffness", "", False), ("bearing_axial_stiffness", "", False)),
     ),
     (
         "radial_stiffness",
         f"radial stiffness [{TRANSLATION_UNIT[0]}]",
         TRANSLATION_UNIT[1],
-        (("radial_stiffness", ""), ("bearing_radial_stiffness", "")),
+        (("radial_stiffness", "", False), ("bearing_radial_stiffness", "", False)),
     ),
     (
         "tilt_stiffness",
-        f"tilting stiffness [{TILT_UNIT[0]}]",
+        f"tilting stiffness of the set [{TILT_UNIT[0]}]",
         TILT_UNIT[1],
-        (("tilt_stiffness", ""), ("bearing_tilt_stiffness", "")),
+        (("tilt_stiffness", "", False),),
     ),
-    ("bearing_axial_load", "axial load carried [N]", 1.0, (("bearing_axial_load", ""),)),
-    ("bearing_radial_load", "radial load carried [N]", 1.0, (("bearing_radial_load", ""),)),
+    (
+        "bearing_tilt_stiffness",
+        f"tilting stiffness of each bearing [{TILT_UNIT[0]}]",
+        TILT_UNIT[1],
+        (("bearing_tilt_stiffness", "", False),),
+    ),
+    (
+        "bearing_load",
+        "load carried [N]",
+        1.0,
+        (("bearing_axial_load", "axial", False), ("bearing_radial_load", "radial", True)),
+    ),
     (
         "contact_angle",
         "mean contact angle [deg]",
         1.0,
-        (("bearing_inner_contact_angle", "inner"), ("bearing_outer_contact_angle", "outer")),
+        (
+            ("bearing_inner_contact_angle", "inner", False),
+            ("bearing_outer_contact_angle", "outer", True),
+        ),
     ),
 )
 #: The colour of the set's line in a set study chart (the bearings take the runs' palette).
@@ -329,7 +343,7 @@ def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figur
         names = bearing_names(ds)
         for model in models:
             suffix = f", {model}" if len(models) > 1 else ""
-            for variable, tag in variables:
+            for variable, tag, dashed in variables:
                 if variable not in ds:
                     continue
                 values = ds[variable].sel(model=model)
@@ -359,7 +373,7 @@ def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figur
                             line={
                                 "color": colour,
                                 "width": width,
-                                "dash": "dash" if tag == "outer" else "solid",
+                                "dash": "dash" if dashed else "solid",
                             },
                             customdata=[[str(p), model] for p in points[shown]],
                         )

@@ -736,34 +736,48 @@ STUDY_CHART_METRICS = (
     ("peak_pressure", "peak pressure [GPa]", 1e-9),
 )
 #: Charts of a study of bearing-set points (a ``bearing`` dimension): (name, label, scale from
-#: SI, ((variable, line tag), ...)); a variable with a ``bearing`` dimension draws a line per
-#: bearing, one without the set's line (:func:`report.charts.set_study_charts`).
+#: SI, ((variable, line tag, dashed), ...)); a variable with a ``bearing`` dimension draws a line
+#: per bearing, one without the set's line (:func:`report.charts.set_study_charts`). The set's
+#: tilting stiffness is some hundred times a bearing's own about its plane: two charts.
 SET_STUDY_CHART_METRICS = (
     (
         "axial_stiffness",
         "axial stiffness [N/µm]",
         1e-6,
-        (("axial_stiffness", ""), ("bearing_axial_stiffness", "")),
+        (("axial_stiffness", "", False), ("bearing_axial_stiffness", "", False)),
     ),
     (
         "radial_stiffness",
         "radial stiffness [N/µm]",
         1e-6,
-        (("radial_stiffness", ""), ("bearing_radial_stiffness", "")),
+        (("radial_stiffness", "", False), ("bearing_radial_stiffness", "", False)),
     ),
     (
         "tilt_stiffness",
-        "tilting stiffness [N m/mrad]",
+        "tilting stiffness of the set [N m/mrad]",
         1e-3,
-        (("tilt_stiffness", ""), ("bearing_tilt_stiffness", "")),
+        (("tilt_stiffness", "", False),),
     ),
-    ("bearing_axial_load", "axial load carried [N]", 1.0, (("bearing_axial_load", ""),)),
-    ("bearing_radial_load", "radial load carried [N]", 1.0, (("bearing_radial_load", ""),)),
+    (
+        "bearing_tilt_stiffness",
+        "tilting stiffness of each bearing [N m/mrad]",
+        1e-3,
+        (("bearing_tilt_stiffness", "", False),),
+    ),
+    (
+        "bearing_load",
+        "load carried [N]",
+        1.0,
+        (("bearing_axial_load", "axial", False), ("bearing_radial_load", "radial", True)),
+    ),
     (
         "contact_angle",
         "mean contact angle [deg]",
         1.0,
-        (("bearing_inner_contact_angle", "inner"), ("bearing_outer_contact_angle", "outer")),
+        (
+            ("bearing_inner_contact_angle", "inner", False),
+            ("bearing_outer_contact_angle", "outer", True),
+        ),
     ),
 )
 #: Columns of the study's points table: (variable, short header, scale from SI, unit shown),

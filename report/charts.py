@@ -223,10 +223,10 @@ SET_LINE_COLOUR = "#222222"
 
 def set_study_charts(ds, sweep: str, metrics):
     """Charts of a bearing-set study (a ``bearing`` dimension): for each row (name, label, scale,
-    ((variable, tag), ...)) of ``metrics``, the variables against the key the points of ``sweep``
-    are charted against (:func:`solver.sweep_axis_key`): a variable without a ``bearing``
-    dimension draws the set's line (black, "set"), one with it a line per bearing in the
-    bearing's colour, named by the bearing and the tag ("outer" dashed), through the points
+    ((variable, tag, dashed), ...)) of ``metrics``, the variables against the key the points of
+    ``sweep`` are charted against (:func:`solver.sweep_axis_key`): a variable without a
+    ``bearing`` dimension draws the set's line (black, "set"), one with it a line per bearing in
+    the bearing's colour, named by the bearing and the tag, through the points
     where both the key and the value are finite. No charts when the sweep has no such key; no
     chart for a row without a finite value."""
     from solver import sweep_axis_key
@@ -245,7 +245,7 @@ def set_study_charts(ds, sweep: str, metrics):
         drawn = False
         for model in models:
             suffix = f", {model}" if len(models) > 1 else ""
-            for variable, tag in variables:
+            for variable, tag, dashed in variables:
                 if variable not in ds:
                     continue
                 values = ds[variable].sel(model=model)
@@ -272,7 +272,7 @@ def set_study_charts(ds, sweep: str, metrics):
                         y[shown],
                         color=colour,
                         line_width=width,
-                        line_dash="dashed" if tag == "outer" else "solid",
+                        line_dash="dashed" if dashed else "solid",
                         legend_label=legend,
                     )
                     fig.scatter(x[shown], y[shown], color=colour, size=6)

@@ -403,7 +403,7 @@ def _expected_traces(ds, metric: str) -> int:
     from app.set_charts import SET_STUDY_CHART_METRICS
 
     variables = next(row[3] for row in SET_STUDY_CHART_METRICS if row[0] == metric)
-    lines = sum(ds.sizes["bearing"] if "bearing" in ds[v].dims else 1 for v, _tag in variables)
+    lines = sum(ds.sizes["bearing"] if "bearing" in ds[v].dims else 1 for v, *_ in variables)
     return lines * ds.sizes["model"]
 
 
@@ -436,7 +436,8 @@ def _trace(fig, name: str):
 
 def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says():
     """The set study's charts: a line per bearing, named by it, and the set's line, in display
-    units (N/µm, N m/mrad); against speed the spring-preloaded pair keeps its rear bearing's
+    units (N/µm, N m/mrad; the set's tilting stiffness apart from the bearings' own, a hundred
+    times smaller); against speed the spring-preloaded pair keeps its rear bearing's
     100 N and softens, the fixed-position pair's bearings both carry more (rigid rings: the
     centrifugal forces raise the preload), the front one 100 N (the thrust) more than the rear;
     against the preload force the set and each bearing stiffen and each carries more; the
@@ -449,8 +450,8 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
         "axial_stiffness",
         "radial_stiffness",
         "tilt_stiffness",
-        "bearing_axial_load",
-        "bearing_radial_load",
+        "bearing_tilt_stiffness",
+        "bearing_load",
         "contact_angle",
     ]
 
@@ -458,12 +459,14 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
         return np.asarray(_trace(fig, name).y, float)
 
     spring = "spring preload 100 N on the rear outer ring"
-    fig = charts.study_figure(ds, spring, "bearing_axial_load")
-    assert [trace.name for trace in fig.data] == bearings
+    fig = charts.study_figure(ds, spring, "bearing_load")
+    axial = [f"{b}, axial" for b in bearings]
+    assert [trace.name for trace in fig.data] == [*axial, *(f"{b}, radial" for b in bearings)]
+    assert [trace.line.dash for trace in fig.data] == ["solid", "solid", "dash", "dash"]
     assert fig.layout.xaxis.title.text == "Inner ring speed [rpm]"
-    assert list(_trace(fig, bearings[0]).x) == [0.0, 6000.0, 12000.0, 18000.0, 24000.0, 30000.0]
-    np.testing.assert_allclose(y(fig, bearings[1]), 100.0, rtol=1e-6)
-    np.testing.assert_allclose(y(fig, bearings[0]) - y(fig, bearings[1]), 100.0, rtol=1e-6)
+    assert list(_trace(fig, axial[0]).x) == [0.0, 6000.0, 12000.0, 18000.0, 24000.0, 30000.0]
+    np.testing.assert_allclose(y(fig, axial[1]), 100.0, rtol=1e-6)
+    np.testing.assert_allclose(y(fig, axial[0]) - y(fig, axial[1]), 100.0, rtol=1e-6)
     fig = charts.study_figure(ds, spring, "axial_stiffness")
     assert [trace.name for trace in fig.data] == ["set", *bearings]
     assert fig.layout.yaxis.title.text == "axial stiffness [N/µm]"
@@ -472,8 +475,8 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
     assert 5.0 < k_set[0] < 100.0  # N/µm, not N/m
 
     for preload in ("light preload 100 N", "medium preload 300 N", "heavy preload 600 N"):
-        fig = charts.study_figure(ds, f"fixed position, {preload}", "bearing_axial_load")
-        front, rear = y(fig, bearings[0]), y(fig, bearings[1])
+        fig = charts.study_figure(ds, f"fixed position, {preload}", "bearing_load")
+        front, rear = y(fig, axial[0]), y(fig, axial[1])
         assert np.all(np.diff(rear) > 0.0) and np.all(np.diff(front) > 0.0), preload
         np.testing.assert_allclose(front - rear, 100.0, rtol=1e-6)
         fig = charts.study_figure(ds, f"fixed position, {preload}", "contact_angle")
@@ -486,14 +489,21 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
             assert outer[-1] < inner[-1] - 1.0 and np.all(np.diff(outer) < 0.0), (preload, b)
 
     for sweep in ("fixed-position preload at rest", "fixed-position preload at 24 000 rpm"):
-        for metric in ("axial_stiffness", "radial_stiffness", "tilt_stiffness"):
+        for metric, lines in (
+            ("axial_stiffness", ["set", *bearings]),
+            ("radial_stiffness", ["set", *bearings]),
+            ("tilt_stiffness", ["set"]),
+            ("bearing_tilt_stiffness", bearings),
+        ):
             fig = charts.study_figure(ds, sweep, metric)
             assert fig.layout.xaxis.title.text == "preload force [N]"
-            assert list(_trace(fig, "set").x) == [100.0, 200.0, 300.0, 450.0, 600.0]
-            for name in ("set", *bearings):  # stiffer with every step of preload
+            assert [trace.name for trace in fig.data] == lines
+            assert list(fig.data[0].x) == [100.0, 200.0, 300.0, 450.0, 600.0]
+            for name in lines:  # stiffer with every step of preload
                 assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, metric, name)
         fig = charts.study_figure(ds, sweep, "tilt_stiffness")
-        assert fig.layout.yaxis.title.text == "tilting stiffness [N m/mrad]"
-        fig = charts.study_figure(ds, sweep, "bearing_axial_load")
-        for name in bearings:
+        assert fig.layout.yaxis.title.text == "tilting stiffness of the set [N m/mrad]"
+        assert 200.0 < y(fig, "set")[0] < 5000.0  # N m/mrad, not N m/rad
+        fig = charts.study_figure(ds, sweep, "bearing_load")
+        for name in axial:
             assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, name)

@@ -118,7 +118,7 @@ def test_a_shipped_set_studys_results_chart_the_set_and_each_bearing(app):
     assert [t["name"] for t in traces] == ["set", "bearing 1", "bearing 2"]
     assert all(len(t["y"]) == 6 for t in traces)
     assert "N/µm" in str(s.chart_study["layout"])
-    s.study_metric = "bearing_axial_load"
+    s.study_metric = "bearing_tilt_stiffness"
     s.flush()
     assert [t["name"] for t in s.chart_study["data"]] == ["bearing 1", "bearing 2"]
     s.study_results = "shipped:seed-spindle.study.nc"  # one bearing's study: its own metrics

@@ -58,7 +58,7 @@ def _expected_lines(ds, row, rows):
     expected = []
     for model in ds["model"].values:
         if "bearing" in ds.dims:
-            for variable, _tag in row[3]:
+            for variable, *_ in row[3]:
                 values = ds[variable].sel(model=model)
                 per_line = (
                     [values.sel(bearing=b).values for b in ds["bearing"].values]
@@ -102,22 +102,23 @@ def test_set_study_charts_a_line_per_bearing_and_the_sets_in_display_units():
         return out
 
     for sweep in ("fixed-position preload at rest", "fixed-position preload at 24 000 rpm"):
-        for metric, unit in (
-            ("axial_stiffness", "N/µm"),
-            ("radial_stiffness", "N/µm"),
-            ("tilt_stiffness", "N m/mrad"),
+        for metric, unit, names in (
+            ("axial_stiffness", "N/µm", ["set", *bearings]),
+            ("radial_stiffness", "N/µm", ["set", *bearings]),
+            ("tilt_stiffness", "N m/mrad", ["set"]),
+            ("bearing_tilt_stiffness", "N m/mrad", bearings),
         ):
             fig = charts[(sweep, metric)]
             assert fig.xaxis[0].axis_label == "preload force [N]"
             assert fig.yaxis[0].axis_label.endswith(f"[{unit}]")
             drawn = lines(fig)
-            assert list(drawn) == ["set", *bearings]
+            assert list(drawn) == names
             for name, y in drawn.items():
                 assert y.size == 5 and np.all(np.diff(y) > 0.0), (sweep, metric, name)
     spring = "spring preload 100 N on the rear outer ring"
-    load = lines(charts[(spring, "bearing_axial_load")])
-    assert list(load) == bearings
-    np.testing.assert_allclose(load[bearings[1]], 100.0, rtol=1e-6)
+    load = lines(charts[(spring, "bearing_load")])
+    assert list(load) == [f"{b}, {kind}" for kind in ("axial", "radial") for b in bearings]
+    np.testing.assert_allclose(load[f"{bearings[1]}, axial"], 100.0, rtol=1e-6)
     k_set = lines(charts[(spring, "axial_stiffness")])["set"]
     assert np.all(np.diff(k_set) < 0.0) and 5.0 < k_set[0] < 100.0  # N/µm
 
