@@ -292,13 +292,13 @@ SET_STUDY_CHART_METRICS = (
     ),
     (
         "tilt_stiffness",
-        f"tilting stiffness of the set [{TILT_UNIT[0]}]",
+        f"set tilt stiffness [{TILT_UNIT[0]}]",
         TILT_UNIT[1],
         (("tilt_stiffness", "", False),),
     ),
     (
         "bearing_tilt_stiffness",
-        f"tilting stiffness of each bearing [{TILT_UNIT[0]}]",
+        f"bearing tilt stiffness [{TILT_UNIT[0]}]",
         TILT_UNIT[1],
         (("bearing_tilt_stiffness", "", False),),
     ),
@@ -318,8 +318,11 @@ SET_STUDY_CHART_METRICS = (
         ),
     ),
 )
-#: The colour of the set's line in a set study chart (the bearings take the runs' palette).
-SET_LINE_COLOUR = "#222222"
+#: The set's line in a set study chart (the bearings take the runs' palette): wide and
+#: translucent, under the bearings' lines, so that both show where they coincide (the axial
+#: stiffness of a spring-preloaded pair is its fixed bearing's).
+SET_LINE_COLOUR = "rgba(34, 34, 34, 0.45)"
+SET_LINE_WIDTH = 6
 
 
 def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figure:
@@ -348,7 +351,7 @@ def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figur
                     continue
                 values = ds[variable].sel(model=model)
                 lines = (
-                    [(f"set{suffix}", values.values, SET_LINE_COLOUR, 3)]
+                    [(f"set{suffix}", values.values, SET_LINE_COLOUR, SET_LINE_WIDTH)]
                     if "bearing" not in values.dims
                     else [
                         (

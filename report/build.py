@@ -754,13 +754,13 @@ SET_STUDY_CHART_METRICS = (
     ),
     (
         "tilt_stiffness",
-        "tilting stiffness of the set [N m/mrad]",
+        "set tilt stiffness [N m/mrad]",
         1e-3,
         (("tilt_stiffness", "", False),),
     ),
     (
         "bearing_tilt_stiffness",
-        "tilting stiffness of each bearing [N m/mrad]",
+        "bearing tilt stiffness [N m/mrad]",
         1e-3,
         (("bearing_tilt_stiffness", "", False),),
     ),

@@ -217,8 +217,12 @@ def study_metric_charts(ds, sweep: str, metrics):
     return figures
 
 
-#: The colour of the set's line in a set study chart (the bearings take :data:`PALETTE`).
+#: The set's line in a set study chart (the bearings take :data:`PALETTE`): wide and
+#: translucent, under the bearings' lines, so that both show where they coincide (the axial
+#: stiffness of a spring-preloaded pair is its fixed bearing's).
 SET_LINE_COLOUR = "#222222"
+SET_LINE_WIDTH = 6
+SET_LINE_ALPHA = 0.45
 
 
 def set_study_charts(ds, sweep: str, metrics):
@@ -259,8 +263,8 @@ def set_study_charts(ds, sweep: str, metrics):
                         )
                         for index, name in enumerate(names)
                     ]
-                else:
-                    lines = [(f"set{suffix}", values.values, SET_LINE_COLOUR, 3)]
+                else:  # wide and translucent: a bearing's line on top of it stays visible
+                    lines = [(f"set{suffix}", values.values, SET_LINE_COLOUR, SET_LINE_WIDTH)]
                 for legend, y_all, colour, width in lines:
                     y = np.asarray(y_all, float)[select] * scale
                     shown = order[np.isfinite(x[order]) & np.isfinite(y[order])]
@@ -272,6 +276,7 @@ def set_study_charts(ds, sweep: str, metrics):
                         y[shown],
                         color=colour,
                         line_width=width,
+                        line_alpha=SET_LINE_ALPHA if colour == SET_LINE_COLOUR else 1.0,
                         line_dash="dashed" if dashed else "solid",
                         legend_label=legend,
                     )

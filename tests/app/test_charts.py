@@ -502,7 +502,7 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
             for name in lines:  # stiffer with every step of preload
                 assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, metric, name)
         fig = charts.study_figure(ds, sweep, "tilt_stiffness")
-        assert fig.layout.yaxis.title.text == "tilting stiffness of the set [N m/mrad]"
+        assert fig.layout.yaxis.title.text == "set tilt stiffness [N m/mrad]"
         assert 200.0 < y(fig, "set")[0] < 5000.0  # N m/mrad, not N m/rad
         fig = charts.study_figure(ds, sweep, "bearing_load")
         for name in axial:
