@@ -174,26 +174,44 @@ def _colour_pixels(image: np.ndarray, colour: str, tolerance: float = 40.0) -> i
     return int((np.linalg.norm(image.astype(float) - target, axis=-1) < tolerance).sum())
 
 
+def _on_white(colour: str, alpha: float) -> str:
+    """The colour ("#rrggbb") that ``colour`` drawn with opacity ``alpha`` shows on white."""
+    rgb = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
+    return "#" + "".join(f"{round(255 - alpha * (255 - c)):02x}" for c in rgb)
+
+
 @pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
 def test_study_report_charts_draw_their_lines(study, tmp_path):
     """In every chart of a shipped study's report, the plot area holds pixels of both races'
     colours (the lines and markers of the inner and outer race), not an empty frame; in a set
-    study's, each bearing's colour (its line and markers)."""
+    study's, the colour of each line the chart draws: each bearing's and the set's (its
+    markers)."""
     from PIL import Image
 
     import solver
     from report import build_report
     from report.build import SET_STUDY_CHART_METRICS, STUDY_CHART_METRICS
-    from report.charts import PALETTE, RACE_COLOURS
+    from report.charts import PALETTE, RACE_COLOURS, SET_LINE_ALPHA, SET_LINE_COLOUR
 
     build_report(study, tmp_path / "study.html")
     ds = solver.load_dataset(study)
     sweeps = set(np.asarray(ds["sweep"].values).astype(str).tolist())
     if "bearing" in ds.dims:
         metrics = SET_STUDY_CHART_METRICS
-        colours = {str(b): PALETTE[k] for k, b in enumerate(ds["bearing"].values)}
+        bearings = {str(b): PALETTE[k] for k, b in enumerate(ds["bearing"].values)}
+
+        def colours_of(title):
+            """{line: colour} of the set chart titled ``title``."""
+            row = next(r for r in metrics if title.startswith(r[1] + " ("))
+            out = {}
+            for variable, *_ in row[3]:
+                out.update(bearings if "bearing" in ds[variable].dims else {"set": SET_LINE_COLOUR})
+            return out
     else:
-        metrics, colours = STUDY_CHART_METRICS, RACE_COLOURS
+        metrics = STUDY_CHART_METRICS
+
+        def colours_of(title):  # noqa: ARG001 - every chart draws both races
+            return RACE_COLOURS
 
     def check(page, console):  # noqa: ARG001 - the check's interface
         frames = page.evaluate(CHART_FRAMES)
@@ -206,7 +224,12 @@ def test_study_report_charts_draw_their_lines(study, tmp_path):
             area = pixels[
                 frame["y"] : frame["y"] + frame["height"], frame["x"] : frame["x"] + frame["width"]
             ]
-            counts = {line: _colour_pixels(area, colour) for line, colour in colours.items()}
+            counts = {
+                line: _colour_pixels(area, colour)
+                for line, colour in colours_of(frame["title"]).items()
+            }
+            if "set" in counts:  # its markers, or its translucent line under a bearing's
+                counts["set"] += _colour_pixels(area, _on_white(SET_LINE_COLOUR, SET_LINE_ALPHA))
             if min(counts.values()) < 30:
                 empty.append((frame["title"], counts))
         assert empty == [], f"charts without their lines: {empty}"
