@@ -269,3 +269,142 @@ def stiffness_rows(ds: xr.Dataset) -> list[dict]:
     ]
     rows.append({"name": "set (at the load point)", **_stiffness_cells(ds["set_stiffness"].values)})
     return rows
+
+
+# ---- a study of bearing-set points ------------------------------------------------------------
+#: Charts of a bearing-set study (its Dataset has a ``bearing`` dimension, docs/study-format.md):
+#: (name, axis title, scale from SI to the axis unit, ((variable, line tag, dashed), ...)). A
+#: variable with a ``bearing`` dimension draws one line per bearing (the tag, when given, after
+#: its name), one without draws the set's line. The set's tilting stiffness (from the bearings'
+#: spread along the shaft) is some hundred times a bearing's own about its plane: two charts.
+SET_STUDY_CHART_METRICS = (
+    (
+        "axial_stiffness",
+        f"axial stiffness [{TRANSLATION_UNIT[0]}]",
+        TRANSLATION_UNIT[1],
+        (("axial_stiffness", "", False), ("bearing_axial_stiffness", "", False)),
+    ),
+    (
+        "radial_stiffness",
+        f"radial stiffness [{TRANSLATION_UNIT[0]}]",
+        TRANSLATION_UNIT[1],
+        (("radial_stiffness", "", False), ("bearing_radial_stiffness", "", False)),
+    ),
+    (
+        "tilt_stiffness",
+        f"set tilt stiffness [{TILT_UNIT[0]}]",
+        TILT_UNIT[1],
+        (("tilt_stiffness", "", False),),
+    ),
+    (
+        "bearing_tilt_stiffness",
+        f"bearing tilt stiffness [{TILT_UNIT[0]}]",
+        TILT_UNIT[1],
+        (("bearing_tilt_stiffness", "", False),),
+    ),
+    (
+        "bearing_load",
+        "load carried [N]",
+        1.0,
+        (("bearing_axial_load", "axial", False), ("bearing_radial_load", "radial", True)),
+    ),
+    (
+        "contact_angle",
+        "mean contact angle [deg]",
+        1.0,
+        (
+            ("bearing_inner_contact_angle", "inner", False),
+            ("bearing_outer_contact_angle", "outer", True),
+        ),
+    ),
+)
+#: The set's line in a set study chart (the bearings take the runs' palette): wide and
+#: translucent, under the bearings' lines, so that both show where they coincide (the axial
+#: stiffness of a spring-preloaded pair is its fixed bearing's).
+SET_LINE_COLOUR = "rgba(34, 34, 34, 0.45)"
+SET_LINE_WIDTH = 6
+
+
+def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figure:
+    """Plotly figure of a bearing-set study: ``metric`` (a name of
+    :data:`SET_STUDY_CHART_METRICS`) against the key ``sweep`` is charted against
+    (:func:`solver.sweep_axis_key`): the set's line (black, "set") and one line per bearing in
+    its colour, named by the bearing, through the points where both are finite. The markers'
+    customdata is (point, model): a click opens that run."""
+    from solver import sweep_axis_key
+
+    _name, label, scale, variables = next(
+        (row for row in SET_STUDY_CHART_METRICS if row[0] == metric), SET_STUDY_CHART_METRICS[0]
+    )
+    fig = go.Figure()
+    select = np.asarray(ds["sweep"].values).astype(str) == sweep
+    key = sweep_axis_key(ds, sweep) if sweep is not None and select.any() else None
+    if key is not None:
+        x = np.asarray(ds[key].values, float)[select]
+        points = np.asarray(ds["point"].values)[select]
+        models = [str(m) for m in ds["model"].values]
+        names = bearing_names(ds)
+        for model in models:
+            suffix = f", {model}" if len(models) > 1 else ""
+            for variable, tag, dashed in variables:
+                if variable not in ds:
+                    continue
+                values = ds[variable].sel(model=model)
+                lines = (
+                    [(f"set{suffix}", values.values, SET_LINE_COLOUR, SET_LINE_WIDTH)]
+                    if "bearing" not in values.dims
+                    else [
+                        (
+                            f"{name}{', ' + tag if tag else ''}{suffix}",
+                            values.sel(bearing=name).values,
+                            bearing_colour(index),
+                            2,
+                        )
+                        for index, name in enumerate(names)
+                    ]
+                )
+                for trace_name, y_all, colour, width in lines:
+                    y = np.asarray(y_all, float)[select] * scale
+                    order = np.argsort(x)
+                    shown = order[np.isfinite(x[order]) & np.isfinite(y[order])]
+                    fig.add_trace(
+                        go.Scatter(
+                            x=x[shown].tolist(),
+                            y=y[shown].tolist(),
+                            mode="lines+markers",
+                            name=trace_name,
+                            line={
+                                "color": colour,
+                                "width": width,
+                                "dash": "dash" if dashed else "solid",
+                            },
+                            customdata=[[str(p), model] for p in points[shown]],
+                        )
+                    )
+        fig.update_xaxes(title_text=_key_label(key))
+    fig.update_yaxes(title_text=label)
+    fig.update_layout(
+        margin={"l": 50, "r": 10, "t": 30, "b": 90},
+        legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
+    )
+    return fig
+
+
+#: Unit suffixes of case keys (``force_N``, ``offset_um``), as an axis title writes them.
+KEY_UNITS = {"N": "N", "Nm": "N m", "mm": "mm", "um": "µm", "rpm": "rpm", "deg": "deg"}
+
+
+def _key_label(key: str) -> str:
+    """A case key as an axis title: its schema label and unit; for a key the form does not offer
+    (``set.preload.force_N``) its last two segments in words and the unit its name ends with
+    ("preload force [N]"), else its last segment."""
+    from solver import fields_by_key
+
+    field = fields_by_key().get(key)
+    if field is not None:
+        return f"{field.label} [{field.unit}]" if field.unit else field.label
+    *parents, last = key.split(".")
+    head, _, unit = last.rpartition("_")
+    if head and unit in KEY_UNITS:
+        return f"{' '.join([*parents[-1:], head])} [{KEY_UNITS[unit]}]".replace("_", " ")
+    return last

@@ -735,6 +735,51 @@ STUDY_CHART_METRICS = (
     ("mean_contact_angle", "mean contact angle [deg]", 1.0),
     ("peak_pressure", "peak pressure [GPa]", 1e-9),
 )
+#: Charts of a study of bearing-set points (a ``bearing`` dimension): (name, label, scale from
+#: SI, ((variable, line tag, dashed), ...)); a variable with a ``bearing`` dimension draws a line
+#: per bearing, one without the set's line (:func:`report.charts.set_study_charts`). The set's
+#: tilting stiffness is some hundred times a bearing's own about its plane: two charts.
+SET_STUDY_CHART_METRICS = (
+    (
+        "axial_stiffness",
+        "axial stiffness [N/µm]",
+        1e-6,
+        (("axial_stiffness", "", False), ("bearing_axial_stiffness", "", False)),
+    ),
+    (
+        "radial_stiffness",
+        "radial stiffness [N/µm]",
+        1e-6,
+        (("radial_stiffness", "", False), ("bearing_radial_stiffness", "", False)),
+    ),
+    (
+        "tilt_stiffness",
+        "set tilt stiffness [N m/mrad]",
+        1e-3,
+        (("tilt_stiffness", "", False),),
+    ),
+    (
+        "bearing_tilt_stiffness",
+        "bearing tilt stiffness [N m/mrad]",
+        1e-3,
+        (("bearing_tilt_stiffness", "", False),),
+    ),
+    (
+        "bearing_load",
+        "load carried [N]",
+        1.0,
+        (("bearing_axial_load", "axial", False), ("bearing_radial_load", "radial", True)),
+    ),
+    (
+        "contact_angle",
+        "mean contact angle [deg]",
+        1.0,
+        (
+            ("bearing_inner_contact_angle", "inner", False),
+            ("bearing_outer_contact_angle", "outer", True),
+        ),
+    ),
+)
 #: Columns of the study's points table: (variable, short header, scale from SI, unit shown),
 #: inner and outer; one unit per column (in the header), so that the column reads down.
 STUDY_TABLE_METRICS = (
@@ -787,6 +832,45 @@ TEXT_CLASS = ' class="text"'
 MODEL_SHORT = {"quasistatic": "qs", "dynamic": "dyn"}
 
 
+#: Columns of the points table of a bearing-set study: (variable, short header, scale from SI,
+#: unit shown); a variable with a ``bearing`` dimension takes a column per bearing.
+SET_STUDY_TABLE_METRICS = (
+    ("bearing_axial_load", "Fa", 1.0, "N"),
+    ("axial_stiffness", "k_ax", 1e-6, "N/µm"),
+    ("radial_stiffness", "k_rad", 1e-6, "N/µm"),
+    ("tilt_stiffness", "k_tilt", 1e-3, "N m/mrad"),
+)
+
+
+def _study_table_columns(ds) -> list:
+    """[(header, cell(i, j) -> value in the header's unit)] of the points table: each metric of
+    :data:`STUDY_TABLE_METRICS` inner and outer and the cage slip; for a bearing-set study (a
+    ``bearing`` dimension) :data:`SET_STUDY_TABLE_METRICS`, per bearing where they have one."""
+
+    def cell(var, scale, *index):
+        values = ds[var].values
+        return lambda i, j: float(values[(i, j, *index)]) * scale
+
+    columns = []
+    if "bearing" in ds.dims:
+        for var, short, scale, unit in SET_STUDY_TABLE_METRICS:
+            if "bearing" in ds[var].dims:
+                columns += [
+                    (f"{short} {name} {unit}", cell(var, scale, b))
+                    for b, name in enumerate(str(n) for n in ds["bearing"].values)
+                ]
+            else:
+                columns.append((f"{short} {unit}", cell(var, scale)))
+        return columns
+    for var, short, scale, unit in STUDY_TABLE_METRICS:
+        columns += [
+            (f"{short}_i {unit}", cell(var, scale, 0)),
+            (f"{short}_o {unit}", cell(var, scale, 1)),
+        ]
+    columns.append(("cage slip", cell("cage_slip", 1.0)))
+    return columns
+
+
 def _study_table(ds, links: dict):
     """(table HTML, notes HTML) of a study's points, laid out to fit a 1300-px page: one row per
     run under a row naming its sweep, a note number per kind of message (its first clause) and
@@ -797,9 +881,9 @@ def _study_table(ds, links: dict):
     keys = json.loads(ds.attrs.get("varied_keys", "[]"))
     headers = ["point", "model", *(k.rsplit(".", 1)[-1].replace("_", " ") for k in keys)]
     headers.append("status")
-    for _var, short, _scale, unit in STUDY_TABLE_METRICS:
-        headers += [f"{short}_i {unit}", f"{short}_o {unit}"]
-    headers += ["cage slip", "note"]
+    columns = _study_table_columns(ds)
+    headers += [header for header, _cell in columns]
+    headers.append("note")
     kinds: dict[str, int] = {}  # kind of message -> note number
     notes: dict[str, dict[str, list[str]]] = {}  # kind -> full message -> runs
     body, sweep = [], None
@@ -820,10 +904,7 @@ def _study_table(ds, links: dict):
         row = [name, html.escape(MODEL_SHORT.get(model, model))]
         row += [html.escape(number(ds[k].values[i], 5)) for k in keys]
         row.append(html.escape(status))
-        for var, _short, scale, _unit in STUDY_TABLE_METRICS:
-            for k in range(2):  # inner, outer
-                row.append(html.escape(_metric_cell(float(ds[var].values[i, j, k]) * scale)))
-        row.append(html.escape(_metric_cell(float(ds["cage_slip"].values[i, j]))))
+        row += [html.escape(_metric_cell(cell(i, j))) for _header, cell in columns]
         message = str(ds["message"].values[i, j])
         flag = ""
         if message:
@@ -859,7 +940,10 @@ def study_sections(ds, links=None):
 
     sections = [_html(study_header(ds), stylesheets=[PRINT_CSS])]
     for sweep in dict.fromkeys(str(s) for s in ds["sweep"].values):
-        figs = charts.study_metric_charts(ds, sweep, STUDY_CHART_METRICS)
+        if "bearing" in ds.dims:  # a study of bearing-set points
+            figs = charts.set_study_charts(ds, sweep, SET_STUDY_CHART_METRICS)
+        else:
+            figs = charts.study_metric_charts(ds, sweep, STUDY_CHART_METRICS)
         if figs:
             sections.append(_html(f"<h2>{_text(sweep)}</h2>", stylesheets=[PRINT_CSS]))
             sections.append(
@@ -877,16 +961,21 @@ def study_sections(ds, links=None):
         else "<p>Run reports of the points: <code>racetrace report STUDY_DIR --points</code> "
         "writes them beside this page and links them here.</p>"
     )
-    sections.append(
-        _section(
-            "Points (each race in its own ring's frame)",
-            table + "<p>qs = quasi-static, dyn = dynamic; exc = trajectory excursion, band = band "
-            "thickness, width = band width, α = mean contact angle, p = peak pressure, Q = largest "
-            "contact load; note [n]: the run's message, in full below.</p>"
-            + notes_html
-            + point_note,
+    if "bearing" in ds.dims:
+        title = "Points (each bearing's loads in its own direction, the set's stiffness)"
+        legend = (
+            "qs = quasi-static; Fa = axial load each bearing carries in its own direction (the "
+            "preload included), k_ax, k_rad, k_tilt = the set's axial, radial and tilting "
+            "stiffness at the load point; note [n]: the run's message, in full below."
         )
-    )
+    else:
+        title = "Points (each race in its own ring's frame)"
+        legend = (
+            "qs = quasi-static, dyn = dynamic; exc = trajectory excursion, band = band "
+            "thickness, width = band width, α = mean contact angle, p = peak pressure, Q = largest "
+            "contact load; note [n]: the run's message, in full below."
+        )
+    sections.append(_section(title, table + f"<p>{legend}</p>" + notes_html + point_note))
     return sections, []
 
 

@@ -157,15 +157,26 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
     return fig, note
 
 
+#: Unit suffixes of case keys (``force_N``, ``offset_um``), as an axis label writes them.
+KEY_UNITS = {"N": "N", "Nm": "N m", "mm": "mm", "um": "µm", "rpm": "rpm", "deg": "deg"}
+
+
 def key_label(key: str) -> str:
-    """A case key as an axis label: its schema label and unit ("Radial load [N]"), else its last
-    segment."""
+    """A case key as an axis label: its schema label and unit ("Radial load [N]"); for a key
+    without a schema field, its last two segments and the unit its name ends with ("preload
+    force [N]"), else its last segment."""
     from solver import fields_by_key
 
     field = fields_by_key().get(key)
-    if field is None:
-        return key.rsplit(".", 1)[-1]
-    return f"{field.label} [{field.unit}]" if field.unit else field.label
+    if field is not None:
+        return f"{field.label} [{field.unit}]" if field.unit else field.label
+    # a key the schema's fields do not list (``set.preload.force_N``): its last two segments in
+    # words and the unit its name ends with ("preload force [N]")
+    *parents, last = key.split(".")
+    head, _, unit = last.rpartition("_")
+    if head and unit in KEY_UNITS:
+        return f"{' '.join([*parents[-1:], head])} [{KEY_UNITS[unit]}]".replace("_", " ")
+    return last
 
 
 def study_metric_charts(ds, sweep: str, metrics):
@@ -200,6 +211,76 @@ def study_metric_charts(ds, sweep: str, metrics):
                     legend_label=f"{race}, {model}",
                 )
                 fig.scatter(x[shown], y[shown], color=RACE_COLOURS[race], size=6)
+        if drawn:
+            _legend_outside(fig)
+            figures.append(fig)
+    return figures
+
+
+#: The set's line in a set study chart (the bearings take :data:`PALETTE`): wide and
+#: translucent, under the bearings' lines, so that both show where they coincide (the axial
+#: stiffness of a spring-preloaded pair is its fixed bearing's).
+SET_LINE_COLOUR = "#222222"
+SET_LINE_WIDTH = 6
+SET_LINE_ALPHA = 0.45
+
+
+def set_study_charts(ds, sweep: str, metrics):
+    """Charts of a bearing-set study (a ``bearing`` dimension): for each row (name, label, scale,
+    ((variable, tag, dashed), ...)) of ``metrics``, the variables against the key the points of
+    ``sweep`` are charted against (:func:`solver.sweep_axis_key`): a variable without a
+    ``bearing`` dimension draws the set's line (black, "set"), one with it a line per bearing in
+    the bearing's colour, named by the bearing and the tag, through the points
+    where both the key and the value are finite. No charts when the sweep has no such key; no
+    chart for a row without a finite value."""
+    from solver import sweep_axis_key
+
+    key = sweep_axis_key(ds, sweep)
+    if key is None:
+        return []
+    select = np.asarray(ds["sweep"].values).astype(str) == sweep
+    x = np.asarray(ds[key].values, float)[select]
+    order = np.argsort(x)
+    names = [str(b) for b in ds["bearing"].values]
+    models = [str(m) for m in ds["model"].values]
+    figures = []
+    for _name, label, scale, variables in metrics:
+        fig = _figure(f"{label} ({sweep})", key_label(key), label, height=320)
+        drawn = False
+        for model in models:
+            suffix = f", {model}" if len(models) > 1 else ""
+            for variable, tag, dashed in variables:
+                if variable not in ds:
+                    continue
+                values = ds[variable].sel(model=model)
+                if "bearing" in values.dims:
+                    lines = [
+                        (
+                            f"{name}{', ' + tag if tag else ''}{suffix}",
+                            values.sel(bearing=name).values,
+                            PALETTE[index % len(PALETTE)],
+                            2,
+                        )
+                        for index, name in enumerate(names)
+                    ]
+                else:  # wide and translucent: a bearing's line on top of it stays visible
+                    lines = [(f"set{suffix}", values.values, SET_LINE_COLOUR, SET_LINE_WIDTH)]
+                for legend, y_all, colour, width in lines:
+                    y = np.asarray(y_all, float)[select] * scale
+                    shown = order[np.isfinite(x[order]) & np.isfinite(y[order])]
+                    if shown.size == 0:
+                        continue
+                    drawn = True
+                    fig.line(
+                        x[shown],
+                        y[shown],
+                        color=colour,
+                        line_width=width,
+                        line_alpha=SET_LINE_ALPHA if colour == SET_LINE_COLOUR else 1.0,
+                        line_dash="dashed" if dashed else "solid",
+                        legend_label=legend,
+                    )
+                    fig.scatter(x[shown], y[shown], color=colour, size=6)
         if drawn:
             _legend_outside(fig)
             figures.append(fig)

@@ -6,9 +6,11 @@ any point's run.
 State keys: ``study_names`` (shipped studies), ``study_name`` (the one chosen), ``study_running``,
 ``study_status`` (progress or how it ended), ``study_progress`` (percent done), ``study_rows``
 (one row per point and model: values, status, metrics), ``study_sweeps`` / ``study_sweep`` (the
-sweep charted), ``study_metric`` (the metric charted, a name of
-:data:`solver.study.metrics.POINT_METRICS`) and the chart ``chart_study`` (the metric against
-the sweep's varied key, inner and outer race side by side, a line per model). Opening results:
+sweep charted), ``study_metric`` / ``study_metric_items`` (the metric charted, one of
+:func:`app.charts.study_metric_items`: a metric of :data:`solver.study.metrics.POINT_METRICS`, or
+for a study of bearing-set points one of :data:`app.set_charts.SET_STUDY_CHART_METRICS`) and the
+chart ``chart_study`` (the metric against the sweep's varied key: inner and outer race side by
+side, a line per model; for a set, the set's line and one per bearing). Opening results:
 ``study_results_items`` / ``study_results`` (shipped study results and the study folders of the
 runs folder). Building a study from the current case: ``study_key_items`` (the form's numeric
 keys), ``study_key1``/``study_values1`` and ``study_key2``/``study_values2`` (values:
@@ -38,7 +40,7 @@ from trame.widgets import vuetify3 as v3
 
 from .. import lazy_charts
 from ..case_fields import form_fields
-from ..charts import STUDY_CHART_METRICS, study_figure
+from ..charts import study_figure, study_metric_items
 from ..paths import child_path
 from ..run_length import has_history
 from ..study_building import StudyInputError, build_study_text, parse_values
@@ -82,9 +84,7 @@ class Studies(Component):
         s.study_sweeps = []
         s.study_sweep = None
         s.study_metric = "excursion"
-        s.study_metric_items = [
-            {"title": label, "value": name} for name, label, _ in STUDY_CHART_METRICS
-        ]
+        s.study_metric_items = study_metric_items(None)
         s.chart_study = {"data": [], "layout": {}}
         s.study_results_items = []
         s.study_results = None
@@ -357,19 +357,26 @@ class Studies(Component):
             s.study_sweeps = sweeps
         if s.study_sweep not in sweeps:
             s.study_sweep = sweeps[0] if sweeps else None
-        s.chart_study = fig_json(study_figure(ds, s.study_sweep, self._metric()))
+        items = study_metric_items(ds)
+        if s.study_metric_items != items:  # a set study offers the set's metrics
+            s.study_metric_items = items
+        metric = self._metric(ds)
+        if s.study_metric != metric:
+            s.study_metric = metric
+        s.chart_study = fig_json(study_figure(ds, s.study_sweep, metric))
 
-    def _metric(self) -> str:
-        """The metric charted: ``study_metric`` when it is one of :data:`STUDY_CHART_METRICS`."""
+    def _metric(self, ds) -> str:
+        """The metric charted: ``study_metric`` when it is one the chart offers for ``ds``
+        (:func:`app.charts.study_metric_items`), else the first of them."""
         metric = self.state.study_metric
-        names = [name for name, _, _ in STUDY_CHART_METRICS]
+        names = [item["value"] for item in study_metric_items(ds)]
         return metric if isinstance(metric, str) and metric in names else names[0]
 
     def _on_chart_choice(self, **_):
         ds = self.dataset()
         if ds is not None:
             self.state.chart_study = fig_json(
-                study_figure(ds, self.state.study_sweep, self._metric())
+                study_figure(ds, self.state.study_sweep, self._metric(ds))
             )
 
     def open_point(self, point: str, model: str) -> None:

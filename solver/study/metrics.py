@@ -59,6 +59,11 @@ SET_STUDY_METRIC_NAMES = (
     "axial_stiffness",
     "radial_stiffness",
     "tilt_stiffness",
+    "bearing_axial_stiffness",
+    "bearing_radial_stiffness",
+    "bearing_tilt_stiffness",
+    "bearing_inner_contact_angle",
+    "bearing_outer_contact_angle",
 )
 
 

@@ -387,29 +387,123 @@ def test_run_summary_sets_the_model_torque_beside_the_estimates(dynamic_dataset)
     assert "friction torque (model), N mm" in headers and "Palmgren estimate, N mm" in headers
 
 
-#: The shipped studies of one bearing (a bearing-set study, spindle-pair-db-speed, keeps the set's
-#: loads and stiffness per bearing instead of per-race metrics: its charts are the set view's).
-SHIPPED_STUDIES = [
-    path
-    for path in sorted(
-        (Path(__file__).resolve().parents[2] / "assets" / "studies" / "results").glob("*.study.nc")
-    )
-    if not path.name.startswith("spindle-pair-")
-]
+#: Every shipped study's results: of one bearing (per-race metrics) and of a bearing set
+#: (spindle-pair-db-speed: the set's and each bearing's loads and stiffness).
+SHIPPED_STUDIES = sorted(
+    (Path(__file__).resolve().parents[2] / "assets" / "studies" / "results").glob("*.study.nc")
+)
+SET_STUDY = next(p for p in SHIPPED_STUDIES if p.name == "spindle-pair-db-speed.study.nc")
+
+
+def _expected_traces(ds, metric: str) -> int:
+    """The traces of the Studies chart of ``metric``: inner and outer race per model; for a set
+    study, per variable of the metric's chart the set's line or one per bearing, per model."""
+    if "bearing" not in ds.dims:
+        return 2 * ds.sizes["model"]
+    from app.set_charts import SET_STUDY_CHART_METRICS
+
+    variables = next(row[3] for row in SET_STUDY_CHART_METRICS if row[0] == metric)
+    lines = sum(ds.sizes["bearing"] if "bearing" in ds[v].dims else 1 for v, *_ in variables)
+    return lines * ds.sizes["model"]
 
 
 @pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
 def test_study_chart_of_every_shipped_sweep_holds_its_points(study):
-    """The Studies chart draws each sweep through its points: a trace per race and model, as
-    many finite points as the sweep has, against the key the sweep varies (never a key the sweep
-    leaves unset, all NaN)."""
+    """The Studies chart draws each sweep through its points: a trace per race and model (a set
+    study: the set's and each bearing's), as many finite points as the sweep has, against the
+    key the sweep varies (never a key the sweep leaves unset, all NaN), for every metric the
+    chart offers."""
     import solver
 
     ds = solver.load_dataset(study)
     sweeps = np.asarray(ds["sweep"].values).astype(str)
+    metrics = [item["value"] for item in charts.study_metric_items(ds)]
+    if "bearing" not in ds.dims:
+        metrics = ["band_width"]
     for sweep in dict.fromkeys(sweeps.tolist()):
-        fig = charts.study_figure(ds, sweep, "band_width")
-        assert len(fig.data) == 2 * ds.sizes["model"], sweep
-        for trace in fig.data:
-            x, y = np.asarray(trace.x, float), np.asarray(trace.y, float)
-            assert (np.isfinite(x) & np.isfinite(y)).sum() == (sweeps == sweep).sum(), sweep
+        for metric in metrics:
+            fig = charts.study_figure(ds, sweep, metric)
+            assert len(fig.data) == _expected_traces(ds, metric), (sweep, metric)
+            for trace in fig.data:
+                x, y = np.asarray(trace.x, float), np.asarray(trace.y, float)
+                finite = (np.isfinite(x) & np.isfinite(y)).sum()
+                assert finite == (sweeps == sweep).sum(), (sweep, metric, trace.name)
+
+
+def _trace(fig, name: str):
+    return next(trace for trace in fig.data if trace.name == name)
+
+
+def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says():
+    """The set study's charts: a line per bearing, named by it, and the set's line, in display
+    units (N/µm, N m/mrad; the set's tilting stiffness apart from the bearings' own, a hundred
+    times smaller); against speed the spring-preloaded pair keeps its rear bearing's
+    100 N and softens, the fixed-position pair's bearings both carry more (rigid rings: the
+    centrifugal forces raise the preload), the front one 100 N (the thrust) more than the rear;
+    against the preload force the set and each bearing stiffen and each carries more; the
+    outer contact angles fall below the inner ones at speed."""
+    import solver
+
+    ds = solver.load_dataset(SET_STUDY)
+    bearings = [str(b) for b in ds["bearing"].values]
+    assert [item["value"] for item in charts.study_metric_items(ds)] == [
+        "axial_stiffness",
+        "radial_stiffness",
+        "tilt_stiffness",
+        "bearing_tilt_stiffness",
+        "bearing_load",
+        "contact_angle",
+    ]
+
+    def y(fig, name):
+        return np.asarray(_trace(fig, name).y, float)
+
+    spring = "spring preload 100 N on the rear outer ring"
+    fig = charts.study_figure(ds, spring, "bearing_load")
+    axial = [f"{b}, axial" for b in bearings]
+    assert [trace.name for trace in fig.data] == [*axial, *(f"{b}, radial" for b in bearings)]
+    assert [trace.line.dash for trace in fig.data] == ["solid", "solid", "dash", "dash"]
+    assert fig.layout.xaxis.title.text == "Inner ring speed [rpm]"
+    assert list(_trace(fig, axial[0]).x) == [0.0, 6000.0, 12000.0, 18000.0, 24000.0, 30000.0]
+    np.testing.assert_allclose(y(fig, axial[1]), 100.0, rtol=1e-6)
+    np.testing.assert_allclose(y(fig, axial[0]) - y(fig, axial[1]), 100.0, rtol=1e-6)
+    fig = charts.study_figure(ds, spring, "axial_stiffness")
+    assert [trace.name for trace in fig.data] == ["set", *bearings]
+    assert fig.layout.yaxis.title.text == "axial stiffness [N/µm]"
+    k_set = y(fig, "set")
+    assert np.all(np.diff(k_set) < 0.0), k_set  # the spring-preloaded set softens with speed
+    assert 5.0 < k_set[0] < 100.0  # N/µm, not N/m
+
+    for preload in ("light preload 100 N", "medium preload 300 N", "heavy preload 600 N"):
+        fig = charts.study_figure(ds, f"fixed position, {preload}", "bearing_load")
+        front, rear = y(fig, axial[0]), y(fig, axial[1])
+        assert np.all(np.diff(rear) > 0.0) and np.all(np.diff(front) > 0.0), preload
+        np.testing.assert_allclose(front - rear, 100.0, rtol=1e-6)
+        fig = charts.study_figure(ds, f"fixed position, {preload}", "contact_angle")
+        assert [trace.name for trace in fig.data] == [
+            *(f"{b}, inner" for b in bearings),
+            *(f"{b}, outer" for b in bearings),
+        ]
+        for b in bearings:  # at speed the outer contact angle falls below the inner one
+            inner, outer = y(fig, f"{b}, inner"), y(fig, f"{b}, outer")
+            assert outer[-1] < inner[-1] - 1.0 and np.all(np.diff(outer) < 0.0), (preload, b)
+
+    for sweep in ("fixed-position preload at rest", "fixed-position preload at 24 000 rpm"):
+        for metric, lines in (
+            ("axial_stiffness", ["set", *bearings]),
+            ("radial_stiffness", ["set", *bearings]),
+            ("tilt_stiffness", ["set"]),
+            ("bearing_tilt_stiffness", bearings),
+        ):
+            fig = charts.study_figure(ds, sweep, metric)
+            assert fig.layout.xaxis.title.text == "preload force [N]"
+            assert [trace.name for trace in fig.data] == lines
+            assert list(fig.data[0].x) == [100.0, 200.0, 300.0, 450.0, 600.0]
+            for name in lines:  # stiffer with every step of preload
+                assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, metric, name)
+        fig = charts.study_figure(ds, sweep, "tilt_stiffness")
+        assert fig.layout.yaxis.title.text == "set tilt stiffness [N m/mrad]"
+        assert 200.0 < y(fig, "set")[0] < 5000.0  # N m/mrad, not N m/rad
+        fig = charts.study_figure(ds, sweep, "bearing_load")
+        for name in axial:
+            assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, name)

@@ -99,6 +99,34 @@ def test_a_shipped_studys_results_open_without_running(app):
 
 
 # ---- a study built from the case in the form -----------------------------------------------------
+def test_a_shipped_set_studys_results_chart_the_set_and_each_bearing(app):
+    """Opening the bearing-set study's results offers the set's metrics (the per-race ones are
+    not its) and charts the set's axial stiffness with a line per bearing, in N/µm; the
+    per-race metric chosen before falls back to the first of the set's."""
+    s = app.state
+    s.study_metric = "band_width"
+    s.study_results = "shipped:spindle-pair-db-speed.study.nc"
+    s.flush()
+    assert s.study_status.startswith("showing 7008C-class DB pair")
+    assert [i["value"] for i in s.study_metric_items][:3] == [
+        "axial_stiffness",
+        "radial_stiffness",
+        "tilt_stiffness",
+    ]
+    assert s.study_metric == "axial_stiffness"
+    traces = s.chart_study["data"]
+    assert [t["name"] for t in traces] == ["set", "bearing 1", "bearing 2"]
+    assert all(len(t["y"]) == 6 for t in traces)
+    assert "N/µm" in str(s.chart_study["layout"])
+    s.study_metric = "bearing_tilt_stiffness"
+    s.flush()
+    assert [t["name"] for t in s.chart_study["data"]] == ["bearing 1", "bearing 2"]
+    s.study_results = "shipped:seed-spindle.study.nc"  # one bearing's study: its own metrics
+    s.flush()
+    assert s.study_metric == "excursion"
+    assert "band_width" in [i["value"] for i in s.study_metric_items]
+
+
 def test_values_are_a_list_or_start_stop_count():
     from app.study_building import StudyInputError, parse_values
 

@@ -29,6 +29,6 @@ def test_study_show_of_a_set_study_gives_the_bearings_loads_and_the_stiffness():
     assert "band_i deg" not in header  # one bearing's metrics have no meaning for a set
     # the spring preload's points: the rear bearing carries the spring's 100 N at every speed
     rows = [line.split() for line in lines if line.startswith("p00")]
-    assert len(rows) == 18
-    assert all(row[-4] == "100.0" for row in rows[12:])
+    assert len(rows) == 34  # 4 sweeps over 6 speeds, 2 over 5 preload forces
+    assert all(row[-4] == "100.0" for row in rows[18:24])  # the fourth sweep: the spring
     assert "Fa = axial load each bearing of the set carries" in out.stdout

@@ -26,13 +26,9 @@ from tests.report.test_report import CHART_ROWS, CHROMIUM, LAUNCH_ARGS  # noqa: 
 ROOT = Path(__file__).resolve().parents[2]
 LESSON = ROOT / "assets" / "lessons" / "results" / "03-radial-load--radial.nc"
 SEED_STUDY = ROOT / "assets" / "studies" / "results" / "seed-spindle.study.nc"
-#: The shipped studies of one bearing (the bearing-set study spindle-pair-db-speed keeps each
-#: bearing's loads and stiffness, which the report's per-race study charts do not draw yet).
-SHIPPED_STUDIES = [
-    path
-    for path in sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
-    if not path.name.startswith("spindle-pair-")
-]
+#: Every shipped study's results: of one bearing (per-race charts) and of a bearing set
+#: (spindle-pair-db-speed: the set's line and one per bearing).
+SHIPPED_STUDIES = sorted((ROOT / "assets" / "studies" / "results").glob("*.study.nc"))
 SHOTS = ARTIFACTS / "report"
 PAGE_WIDTH = 1300  # px: the page a review is read and printed on
 FRAMEBUFFER = re.compile(r"framebuffer", re.IGNORECASE)
@@ -178,23 +174,48 @@ def _colour_pixels(image: np.ndarray, colour: str, tolerance: float = 40.0) -> i
     return int((np.linalg.norm(image.astype(float) - target, axis=-1) < tolerance).sum())
 
 
+def _on_white(colour: str, alpha: float) -> str:
+    """The colour ("#rrggbb") that ``colour`` drawn with opacity ``alpha`` shows on white."""
+    rgb = [int(colour[k : k + 2], 16) for k in (1, 3, 5)]
+    return "#" + "".join(f"{round(255 - alpha * (255 - c)):02x}" for c in rgb)
+
+
 @pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
 def test_study_report_charts_draw_their_lines(study, tmp_path):
     """In every chart of a shipped study's report, the plot area holds pixels of both races'
-    colours (the lines and markers of the inner and outer race), not an empty frame."""
+    colours (the lines and markers of the inner and outer race), not an empty frame; in a set
+    study's, the colour of each line the chart draws: each bearing's and the set's (its
+    markers)."""
     from PIL import Image
 
     import solver
     from report import build_report
-    from report.build import STUDY_CHART_METRICS
-    from report.charts import RACE_COLOURS
+    from report.build import SET_STUDY_CHART_METRICS, STUDY_CHART_METRICS
+    from report.charts import PALETTE, RACE_COLOURS, SET_LINE_ALPHA, SET_LINE_COLOUR
 
     build_report(study, tmp_path / "study.html")
-    sweeps = set(np.asarray(solver.load_dataset(study)["sweep"].values).astype(str).tolist())
+    ds = solver.load_dataset(study)
+    sweeps = set(np.asarray(ds["sweep"].values).astype(str).tolist())
+    if "bearing" in ds.dims:
+        metrics = SET_STUDY_CHART_METRICS
+        bearings = {str(b): PALETTE[k] for k, b in enumerate(ds["bearing"].values)}
+
+        def colours_of(title):
+            """{line: colour} of the set chart titled ``title``."""
+            row = next(r for r in metrics if title.startswith(r[1] + " ("))
+            out = {}
+            for variable, *_ in row[3]:
+                out.update(bearings if "bearing" in ds[variable].dims else {"set": SET_LINE_COLOUR})
+            return out
+    else:
+        metrics = STUDY_CHART_METRICS
+
+        def colours_of(title):  # noqa: ARG001 - every chart draws both races
+            return RACE_COLOURS
 
     def check(page, console):  # noqa: ARG001 - the check's interface
         frames = page.evaluate(CHART_FRAMES)
-        assert len(frames) == len(sweeps) * len(STUDY_CHART_METRICS), [f["title"] for f in frames]
+        assert len(frames) == len(sweeps) * len(metrics), [f["title"] for f in frames]
         page_image = Image.open(io.BytesIO(page.screenshot(full_page=True, timeout=120_000)))
         pixels = np.asarray(page_image.convert("RGB"))
         empty = []
@@ -203,7 +224,12 @@ def test_study_report_charts_draw_their_lines(study, tmp_path):
             area = pixels[
                 frame["y"] : frame["y"] + frame["height"], frame["x"] : frame["x"] + frame["width"]
             ]
-            counts = {race: _colour_pixels(area, colour) for race, colour in RACE_COLOURS.items()}
+            counts = {
+                line: _colour_pixels(area, colour)
+                for line, colour in colours_of(frame["title"]).items()
+            }
+            if "set" in counts:  # its markers, or its translucent line under a bearing's
+                counts["set"] += _colour_pixels(area, _on_white(SET_LINE_COLOUR, SET_LINE_ALPHA))
             if min(counts.values()) < 30:
                 empty.append((frame["title"], counts))
         assert empty == [], f"charts without their lines: {empty}"

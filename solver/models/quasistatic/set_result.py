@@ -16,6 +16,7 @@ from datetime import UTC, datetime
 import numpy as np
 import xarray as xr
 
+from solver.results.loaded import loaded_mask
 from solver.results.variables import Variable
 
 from .bearing_set import DOF
@@ -124,6 +125,45 @@ SET_VARIABLES: dict[str, Variable] = {
         "set stiffness",
         "5x5 stiffness of the shaft on its bearings at the load point (floating outer rings of a "
         "spring preload condensed out), ball speeds held; " + _STIFFNESS_BLOCKS,
+        ("quasistatic",),
+    ),
+    "bearing_axial_stiffness": Variable(
+        ("bearing",),
+        "N/m",
+        "axial stiffness of the bearing",
+        "bearing_stiffness[x, x] of each bearing: axial force per axial displacement of its inner "
+        "ring, other displacements held",
+        ("quasistatic",),
+    ),
+    "bearing_radial_stiffness": Variable(
+        ("bearing",),
+        "N/m",
+        "radial stiffness of the bearing",
+        "mean of bearing_stiffness[y, y] and [z, z] of each bearing, about its ball-centre plane",
+        ("quasistatic",),
+    ),
+    "bearing_tilt_stiffness": Variable(
+        ("bearing",),
+        "N m/rad",
+        "tilting stiffness of the bearing",
+        "mean of bearing_stiffness[tilt_y, tilt_y] and [tilt_z, tilt_z] of each bearing, about "
+        "its ball-centre plane",
+        ("quasistatic",),
+    ),
+    "bearing_inner_contact_angle": Variable(
+        ("bearing",),
+        "degree",
+        "mean inner contact angle",
+        "mean contact angle of each bearing's loaded inner contacts (contact_load > 0); NaN when "
+        "no ball of the bearing touches its inner race (the bearing carries no load)",
+        ("quasistatic",),
+    ),
+    "bearing_outer_contact_angle": Variable(
+        ("bearing",),
+        "degree",
+        "mean outer contact angle",
+        "mean contact angle of each bearing's loaded outer contacts (contact_load > 0); NaN when "
+        "no ball of the bearing touches its outer race",
         ("quasistatic",),
     ),
     "axial_stiffness": Variable(
@@ -238,6 +278,18 @@ def _var(name, values):
     return xr.Variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
 
 
+def mean_loaded_contact_angle(bearing_datasets, race: str) -> np.ndarray:
+    """The mean contact angle [degree] of the loaded ``race`` contacts (:func:`loaded_mask`) of
+    each bearing's single-bearing Dataset; NaN for a bearing without a loaded contact there."""
+    out = np.full(len(bearing_datasets), np.nan)
+    for index, one in enumerate(bearing_datasets):
+        angle = np.asarray(one["contact_angle"].sel(race=race).values, float)
+        loaded = loaded_mask(np.asarray(one["contact_load"].sel(race=race).values, float), angle)
+        if loaded.any():
+            out[index] = float(np.mean(angle[loaded]))
+    return out
+
+
 def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.Dataset:
     """The set's Dataset from its :class:`.bearing_set.SetSolution` ``state``, the bearings'
     single-bearing Datasets (each at its own operating point), the external loads ``applied``
@@ -290,6 +342,19 @@ def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.
         "bearing_tilt": _var("bearing_tilt", np.degrees(state.displacements[:, 3:])),
         "bearing_stiffness": _var("bearing_stiffness", state.stiffness),
         "set_stiffness": _var("set_stiffness", k),
+        "bearing_axial_stiffness": _var("bearing_axial_stiffness", state.stiffness[:, 0, 0]),
+        "bearing_radial_stiffness": _var(
+            "bearing_radial_stiffness", 0.5 * (state.stiffness[:, 1, 1] + state.stiffness[:, 2, 2])
+        ),
+        "bearing_tilt_stiffness": _var(
+            "bearing_tilt_stiffness", 0.5 * (state.stiffness[:, 3, 3] + state.stiffness[:, 4, 4])
+        ),
+        "bearing_inner_contact_angle": _var(
+            "bearing_inner_contact_angle", mean_loaded_contact_angle(bearing_datasets, "inner")
+        ),
+        "bearing_outer_contact_angle": _var(
+            "bearing_outer_contact_angle", mean_loaded_contact_angle(bearing_datasets, "outer")
+        ),
         "axial_stiffness": _var("axial_stiffness", k[0, 0]),
         "radial_stiffness": _var("radial_stiffness", 0.5 * (k[1, 1] + k[2, 2])),
         "tilt_stiffness": _var("tilt_stiffness", 0.5 * (k[3, 3] + k[4, 4])),
