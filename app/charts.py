@@ -822,32 +822,13 @@ STUDY_CHART_METRICS = (
 )
 
 
-def study_metric_items(ds) -> list[dict]:
-    """The metrics the Studies chart offers for the study Dataset ``ds`` (``{"title", "value"}``):
-    :data:`STUDY_CHART_METRICS`, or for a study of bearing-set points (a ``bearing`` dimension)
-    :data:`app.set_charts.SET_STUDY_CHART_METRICS`."""
-    if ds is not None and "bearing" in ds.dims:
-        from .set_charts import SET_STUDY_CHART_METRICS
-
-        rows = SET_STUDY_CHART_METRICS
-    else:
-        rows = STUDY_CHART_METRICS
-    return [{"title": row[1], "value": row[0]} for row in rows]
-
-
-def study_figure(ds, sweep: str | None, metric: str):
-    """Plotly figure: ``metric`` against the key ``sweep`` is charted against
-    (:func:`solver.sweep_axis_key`), inner and outer race side by side, a line per model. A
-    study of bearing-set points (a ``bearing`` dimension) is drawn by
-    :func:`app.set_charts.set_study_figure` (the set's line and one per bearing)."""
+def race_study_figure(ds, sweep: str | None, metric: str):
+    """Plotly figure of a single-bearing study: ``metric`` against the key ``sweep`` is charted
+    against (:func:`solver.sweep_axis_key`), inner and outer race side by side, a line per model
+    (:func:`app.study_figures.study_figure` picks it or the set's)."""
     from plotly.subplots import make_subplots
 
     from solver import sweep_axis_key
-
-    if "bearing" in ds.dims:
-        from .set_charts import set_study_figure
-
-        return set_study_figure(ds, sweep, metric)
 
     label, scale = next(
         ((lab, sc) for n, lab, sc in STUDY_CHART_METRICS if n == metric), (metric, 1.0)

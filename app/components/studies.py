@@ -7,7 +7,8 @@ State keys: ``study_names`` (shipped studies), ``study_name`` (the one chosen), 
 ``study_status`` (progress or how it ended), ``study_progress`` (percent done), ``study_rows``
 (one row per point and model: values, status, metrics), ``study_sweeps`` / ``study_sweep`` (the
 sweep charted), ``study_metric`` / ``study_metric_items`` (the metric charted, one of
-:func:`app.charts.study_metric_items`: a metric of :data:`solver.study.metrics.POINT_METRICS`, or
+:func:`app.study_figures.study_metric_items`: a metric of
+:data:`solver.study.metrics.POINT_METRICS`, or
 for a study of bearing-set points one of :data:`app.set_charts.SET_STUDY_CHART_METRICS`) and the
 chart ``chart_study`` (the metric against the sweep's varied key: inner and outer race side by
 side, a line per model; for a set, the set's line and one per bearing). Opening results:
@@ -40,10 +41,10 @@ from trame.widgets import vuetify3 as v3
 
 from .. import lazy_charts
 from ..case_fields import form_fields
-from ..charts import study_figure, study_metric_items
 from ..paths import child_path
 from ..run_length import has_history
 from ..study_building import StudyInputError, build_study_text, parse_values
+from ..study_figures import study_figure, study_metric_items
 from .base import Component, fig_json, running_loop
 from .widgets import button, choices, select
 
@@ -367,7 +368,7 @@ class Studies(Component):
 
     def _metric(self, ds) -> str:
         """The metric charted: ``study_metric`` when it is one the chart offers for ``ds``
-        (:func:`app.charts.study_metric_items`), else the first of them."""
+        (:func:`app.study_figures.study_metric_items`), else the first of them."""
         metric = self.state.study_metric
         names = [item["value"] for item in study_metric_items(ds)]
         return metric if isinstance(metric, str) and metric in names else names[0]

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from app import charts
+from app import charts, study_figures
 from viz.frames import frame_source
 from viz.palette import ball_colours
 
@@ -417,12 +417,12 @@ def test_study_chart_of_every_shipped_sweep_holds_its_points(study):
 
     ds = solver.load_dataset(study)
     sweeps = np.asarray(ds["sweep"].values).astype(str)
-    metrics = [item["value"] for item in charts.study_metric_items(ds)]
+    metrics = [item["value"] for item in study_figures.study_metric_items(ds)]
     if "bearing" not in ds.dims:
         metrics = ["band_width"]
     for sweep in dict.fromkeys(sweeps.tolist()):
         for metric in metrics:
-            fig = charts.study_figure(ds, sweep, metric)
+            fig = study_figures.study_figure(ds, sweep, metric)
             assert len(fig.data) == _expected_traces(ds, metric), (sweep, metric)
             for trace in fig.data:
                 x, y = np.asarray(trace.x, float), np.asarray(trace.y, float)
@@ -446,7 +446,7 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
 
     ds = solver.load_dataset(SET_STUDY)
     bearings = [str(b) for b in ds["bearing"].values]
-    assert [item["value"] for item in charts.study_metric_items(ds)] == [
+    assert [item["value"] for item in study_figures.study_metric_items(ds)] == [
         "axial_stiffness",
         "radial_stiffness",
         "tilt_stiffness",
@@ -459,7 +459,7 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
         return np.asarray(_trace(fig, name).y, float)
 
     spring = "spring preload 100 N on the rear outer ring"
-    fig = charts.study_figure(ds, spring, "bearing_load")
+    fig = study_figures.study_figure(ds, spring, "bearing_load")
     axial = [f"{b}, axial" for b in bearings]
     assert [trace.name for trace in fig.data] == [*axial, *(f"{b}, radial" for b in bearings)]
     assert [trace.line.dash for trace in fig.data] == ["solid", "solid", "dash", "dash"]
@@ -467,7 +467,7 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
     assert list(_trace(fig, axial[0]).x) == [0.0, 6000.0, 12000.0, 18000.0, 24000.0, 30000.0]
     np.testing.assert_allclose(y(fig, axial[1]), 100.0, rtol=1e-6)
     np.testing.assert_allclose(y(fig, axial[0]) - y(fig, axial[1]), 100.0, rtol=1e-6)
-    fig = charts.study_figure(ds, spring, "axial_stiffness")
+    fig = study_figures.study_figure(ds, spring, "axial_stiffness")
     assert [trace.name for trace in fig.data] == ["set", *bearings]
     assert fig.layout.yaxis.title.text == "axial stiffness [N/µm]"
     k_set = y(fig, "set")
@@ -475,11 +475,11 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
     assert 5.0 < k_set[0] < 100.0  # N/µm, not N/m
 
     for preload in ("light preload 100 N", "medium preload 300 N", "heavy preload 600 N"):
-        fig = charts.study_figure(ds, f"fixed position, {preload}", "bearing_load")
+        fig = study_figures.study_figure(ds, f"fixed position, {preload}", "bearing_load")
         front, rear = y(fig, axial[0]), y(fig, axial[1])
         assert np.all(np.diff(rear) > 0.0) and np.all(np.diff(front) > 0.0), preload
         np.testing.assert_allclose(front - rear, 100.0, rtol=1e-6)
-        fig = charts.study_figure(ds, f"fixed position, {preload}", "contact_angle")
+        fig = study_figures.study_figure(ds, f"fixed position, {preload}", "contact_angle")
         assert [trace.name for trace in fig.data] == [
             *(f"{b}, inner" for b in bearings),
             *(f"{b}, outer" for b in bearings),
@@ -495,15 +495,15 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
             ("tilt_stiffness", ["set"]),
             ("bearing_tilt_stiffness", bearings),
         ):
-            fig = charts.study_figure(ds, sweep, metric)
+            fig = study_figures.study_figure(ds, sweep, metric)
             assert fig.layout.xaxis.title.text == "preload force [N]"
             assert [trace.name for trace in fig.data] == lines
             assert list(fig.data[0].x) == [100.0, 200.0, 300.0, 450.0, 600.0]
             for name in lines:  # stiffer with every step of preload
                 assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, metric, name)
-        fig = charts.study_figure(ds, sweep, "tilt_stiffness")
+        fig = study_figures.study_figure(ds, sweep, "tilt_stiffness")
         assert fig.layout.yaxis.title.text == "set tilt stiffness [N m/mrad]"
         assert 200.0 < y(fig, "set")[0] < 5000.0  # N m/mrad, not N m/rad
-        fig = charts.study_figure(ds, sweep, "bearing_load")
+        fig = study_figures.study_figure(ds, sweep, "bearing_load")
         for name in axial:
             assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, name)
