@@ -43,6 +43,7 @@ from .. import lazy_charts
 from ..case_fields import form_fields
 from ..paths import child_path
 from ..run_length import has_history
+from ..set_charts import TRANSLATION_UNIT
 from ..study_building import StudyInputError, build_study_text, parse_values
 from ..study_figures import study_figure, study_metric_items
 from .base import Component, fig_json, running_loop
@@ -82,6 +83,7 @@ class Studies(Component):
         s.study_progress = 0  # percent of the running study's runs finished
         s.study_status = ""
         s.study_rows = []
+        s.study_table_heads = [head for head, _figure in RACE_TABLE_FIGURES]
         s.study_sweeps = []
         s.study_sweep = None
         s.study_metric = "excursion"
@@ -346,14 +348,18 @@ class Studies(Component):
                 "status": status,
                 "openable": status == "done" and self._shipped is None,
             }
-            for name in ("excursion", "band_thickness"):
-                for k, race in enumerate(("inner", "outer")):
-                    row[f"{name}_{race}"] = _text(ds[name].values[i, j, k], 4)
+            row["figures"] = [
+                " / ".join(_text(value, 4) for value in figure(ds, i, j))
+                for _head, figure in table_figures(ds)
+            ]
             rows.append(row)
         sweeps = list(dict.fromkeys(str(v) for v in ds["sweep"].values))
         self._rows = rows
         s = self.state
         s.study_rows = rows
+        heads = [head for head, _figure in table_figures(ds)]
+        if s.study_table_heads != heads:
+            s.study_table_heads = heads
         if s.study_sweeps != sweeps:
             s.study_sweeps = sweeps
         if s.study_sweep not in sweeps:
@@ -602,8 +608,35 @@ def _study_chart(ctrl) -> None:
         )
 
 
-STUDY_TABLE_HEADS = ("point", "model", "values", "status", "exc i/o deg", "band i/o deg", "")
+STUDY_TABLE_HEADS = ("point", "model", "values", "status")  # then the figures' heads, and open
 STUDY_TABLE_WIDTHS = ("12%", "14%", "20%", "18%", "13%", "13%", "10%")  # of the side column
+
+
+def _per_race(name: str, scale: float = 1.0):
+    return lambda ds, i, j: [scale * float(ds[name].values[i, j, k]) for k in range(2)]
+
+
+def _set_value(name: str, scale: float):
+    return lambda ds, i, j: [scale * float(ds[name].values[i, j])]
+
+
+#: The two figure columns of a single-bearing study's table: (head, figures of row i, model j)
+RACE_TABLE_FIGURES = (
+    ("exc i/o deg", _per_race("excursion")),
+    ("band i/o deg", _per_race("band_thickness")),
+)
+#: ... and of a bearing-set study's (the set's stiffness, in the set charts' unit)
+SET_TABLE_FIGURES = (
+    (f"axial {TRANSLATION_UNIT[0]}", _set_value("axial_stiffness", TRANSLATION_UNIT[1])),
+    (f"radial {TRANSLATION_UNIT[0]}", _set_value("radial_stiffness", TRANSLATION_UNIT[1])),
+)
+
+
+def table_figures(ds) -> tuple:
+    """The figure columns of the study table for the study Dataset ``ds``: the set's stiffness
+    for a study of bearing-set points (a ``bearing`` dimension), else the races' excursion and
+    band thickness."""
+    return SET_TABLE_FIGURES if "bearing" in ds.dims else RACE_TABLE_FIGURES
 
 
 def _study_table(ctrl) -> None:
@@ -617,19 +650,19 @@ def _study_table(ctrl) -> None:
         style="table-layout: fixed; width: 100%; font-size: 12px;",
     ):
         with html.Thead(), html.Tr():
-            for head, width in zip(STUDY_TABLE_HEADS, STUDY_TABLE_WIDTHS, strict=True):
+            for head, width in zip(STUDY_TABLE_HEADS, STUDY_TABLE_WIDTHS, strict=False):
                 html.Th(head, style=f"width: {width}; {wrap} padding: 0 4px;")
+            for k, width in enumerate(STUDY_TABLE_WIDTHS[len(STUDY_TABLE_HEADS) : -1]):
+                html.Th(
+                    f"{{{{ study_table_heads[{k}] }}}}",
+                    style=f"width: {width}; {wrap} padding: 0 4px;",
+                )
+            html.Th("", style=f"width: {STUDY_TABLE_WIDTHS[-1]}; {wrap} padding: 0 4px;")
         with html.Tbody(), html.Tr(v_for="row in study_rows", key="row.key"):
             for cell in ("point", "model", "values", "status"):
                 html.Td(f"{{{{ row.{cell} }}}}", style=f"{wrap} padding: 0 4px;")
-            html.Td(
-                "{{ row.excursion_inner }} / {{ row.excursion_outer }}",
-                style=f"{wrap} padding: 0 4px;",
-            )
-            html.Td(
-                "{{ row.band_thickness_inner }} / {{ row.band_thickness_outer }}",
-                style=f"{wrap} padding: 0 4px;",
-            )
+            for k in range(len(RACE_TABLE_FIGURES)):
+                html.Td(f"{{{{ row.figures[{k}] }}}}", style=f"{wrap} padding: 0 4px;")
             with html.Td(style="padding: 0 2px;"):
                 v3.VBtn(
                     "open",

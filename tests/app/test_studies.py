@@ -121,10 +121,19 @@ def test_a_shipped_set_studys_results_chart_the_set_and_each_bearing(app):
     s.study_metric = "bearing_tilt_stiffness"
     s.flush()
     assert [t["name"] for t in s.chart_study["data"]] == ["bearing 1", "bearing 2"]
+    # the table's figures are the set's stiffness (a set study has no per-race figures)
+    assert s.study_table_heads == ["axial N/µm", "radial N/µm"]
+    first = s.study_rows[0]
+    i = list(app.studies.dataset()["point"].values).index(first["point"])
+    axial = float(app.studies.dataset()["axial_stiffness"].values[i, 0]) * 1e-6
+    assert first["figures"][0] == f"{axial:.4g}" and axial > 1.0
+    assert all("-" not in r["figures"] for r in s.study_rows)
     s.study_results = "shipped:seed-spindle.study.nc"  # one bearing's study: its own metrics
     s.flush()
     assert s.study_metric == "excursion"
     assert "band_width" in [i["value"] for i in s.study_metric_items]
+    assert s.study_table_heads == ["exc i/o deg", "band i/o deg"]
+    assert all(len(r["figures"][0].split(" / ")) == 2 for r in s.study_rows)
 
 
 def test_values_are_a_list_or_start_stop_count():
