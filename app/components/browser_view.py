@@ -322,33 +322,29 @@ OVERLAY_BOX = (
 
 def _overlay() -> None:
     """The server view's 2-D overlay as HTML over the canvas: ``#rt3d-labels`` (the teaching
-    overlay's labels), ``#rt3d-legend`` (its legend, lower left) and ``#rt3d-colour-bar`` (the
+    overlay's labels) over ``#rt3d-legend`` (its legend), lower left, and ``#rt3d-colour-bar`` (the
     painted tracks' colour bar in the strip right of the bearing, where the server view has it:
     title, colours, labels from top to bottom); the colour bar follows the colours drawn (whole
     run while playing, else up to the frame)."""
     with html.Div(
-        id="rt3d-labels",
-        v_show="show_labels && rt3d_overlay.labels.length",
-        style=OVERLAY_BOX + "top: 28px; left: 4px; padding: 2px 6px;",
-    ):
-        html.Div("{{ words }}", v_for="(words, k) in rt3d_overlay.labels", key="k")
-    with html.Div(
-        id="rt3d-legend",
-        v_show="show_labels && rt3d_overlay.legend.length",
+        v_show="show_labels && (rt3d_overlay.labels.length || rt3d_overlay.legend.length)",
         style=OVERLAY_BOX + "bottom: 4px; left: 4px; padding: 2px 6px;",
     ):
-        with html.Div(v_for="(entry, k) in rt3d_overlay.legend", key="k", classes="rt3d-entry"):
-            html.Span(
-                style=(
-                    "{display: 'inline-block', width: '14px', height: '8px', marginRight: '4px', "
-                    "verticalAlign: 'middle', background: entry[1]}",
-                ),
-            )
-            html.Span("{{ entry[0] }}")
+        with html.Div(id="rt3d-labels", classes="mb-1"):
+            html.Div("{{ words }}", v_for="(words, k) in rt3d_overlay.labels", key="k")
+        with html.Div(id="rt3d-legend"):
+            with html.Div(v_for="(entry, k) in rt3d_overlay.legend", key="k", classes="rt3d-entry"):
+                html.Span(
+                    style=(
+                        "{display: 'inline-block', width: '14px', height: '8px', "
+                        "marginRight: '4px', verticalAlign: 'middle', background: entry[1]}",
+                    ),
+                )
+                html.Span("{{ entry[0] }}")
     with html.Div(
         id="rt3d-colour-bar",
         v_show="show_tracks && (rt3d_frame.run ? rt3d_track_run : rt3d_tracks).ticks.length",
-        style=OVERLAY_BOX + "top: 20%; height: 60%; right: 2%; width: 10%; padding: 2px 4px; "
+        style=OVERLAY_BOX + "top: 20%; height: 60%; right: 2%; min-width: 10%; padding: 2px 4px; "
         "display: flex; flex-direction: column;",
     ):
         html.Div(
@@ -357,7 +353,10 @@ def _overlay() -> None:
             style="font-size: 13px; margin-bottom: 4px;",
         )
         with html.Div(style="flex: 1; display: flex; gap: 4px; min-height: 0;"):
-            html.Div(style=("{width: '40%', background: rt3d_overlay.gradient}",))
+            html.Div(
+                classes="rt3d-bar-colours",
+                style=("{flex: '0 0 14px', background: rt3d_overlay.gradient}",),
+            )
             with html.Div(
                 style="display: flex; flex-direction: column; justify-content: space-between;"
             ):

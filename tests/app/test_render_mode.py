@@ -217,7 +217,7 @@ def test_a_paused_frame_gets_the_server_views_track_colours_and_its_2d_overlay(t
         assert overlay["labels"] == scene.overlay.label_words and overlay["labels"]
         assert [w for w, _ in overlay["legend"]] == scene.overlay.legend_words()
         lo, hi = scene.track_range
-        assert sent["ticks"] == ["%.3g" % v for v in np.linspace(hi, lo, 5)]
+        assert sent["ticks"] == [f"{v:.3g}" for v in np.linspace(hi, lo, 5)]
         assert sent["title"] == scene.plotter.scalar_bar.GetTitle().replace("\n", " ")
     finally:
         a.shutdown()
