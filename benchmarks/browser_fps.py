@@ -12,8 +12,10 @@ the frame state the page received (``rt3d_frame`` as JSON, a measure of what it 
 
 ``--variants``: then, in the same page, the same counts with the balls and the cage hidden (the 18
 translucent balls drawn or not), with the painted tracks hidden, and in a window of a quarter of
-the pixels: which of them the drawing rate follows says what limits it (the pixels: software
-WebGL's fill rate; the parts: the draw calls and per-frame updates).
+the pixels, and paused: which of them the drawing rate follows says what limits it (the pixels:
+software WebGL's fill rate; the parts: the draw calls; paused, nothing is drawn or updated: the
+rate the page's main thread gets at all on the machine as loaded); then paused with the 3-D view
+not displayed, and a blank page in the same browser.
 """
 
 from __future__ import annotations
@@ -37,6 +39,18 @@ COUNT_FRAMES = """(seconds) => new Promise((done) => {
     seen.add(window.trame.state.get('rt3d_frame').index);
     if (performance.now() - t0 < seconds * 1000) requestAnimationFrame(tick);
     else done([ticks / seconds, seen.size / seconds]);
+  }
+  requestAnimationFrame(tick);
+})"""
+
+
+COUNT_BLANK = """(seconds) => new Promise((done) => {
+  let ticks = 0;
+  const t0 = performance.now();
+  function tick() {
+    ticks += 1;
+    if (performance.now() - t0 < seconds * 1000) requestAnimationFrame(tick);
+    else done(ticks / seconds);
   }
   requestAnimationFrame(tick);
 })"""
@@ -91,6 +105,7 @@ def main() -> int:
                     (f"window {width // 2}x{height // 2}", {}, (width // 2, height // 2)),
                     ("balls and cage hidden", {"show_balls": False, "show_cage": False}, None),
                     ("painted tracks hidden", {"show_tracks": False}, None),
+                    ("paused (no frame updates)", {"playing": False}, None),
                 ]
             for name, hidden, size in variants:
                 for key, value in hidden.items():
@@ -111,6 +126,16 @@ def main() -> int:
                     page.evaluate(f"window.trame.state.set('{key}', {json.dumps(not value)})")
                 if size is not None:
                     page.set_viewport_size({"width": width, "height": height})
+            if args.variants:  # what the page gets without the 3-D view, and a blank page
+                page.evaluate("window.trame.state.set('playing', false)")
+                page.evaluate("document.querySelector('#view-3d-browser').style.display = 'none'")
+                time.sleep(1.0)
+                drawn, _ = page.evaluate(COUNT_FRAMES, args.seconds)
+                print(f"paused, the 3-D view not displayed: {drawn:.1f} animation frames/s")
+                blank = browser.new_page(viewport={"width": width, "height": height})
+                blank.set_content("<html><body>blank</body></html>")
+                drawn = blank.evaluate(COUNT_BLANK, args.seconds)
+                print(f"a blank page: {drawn:.1f} animation frames/s")
             browser.close()
     finally:
         stop_server(served)
