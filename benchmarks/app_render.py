@@ -6,10 +6,11 @@ Both ways of drawing the view are timed in the same run, frame after frame on th
 
 * server rendering (``racetrace serve --render server``): as below;
 * in-browser rendering (the default): what the server does for a played frame when the browser
-  draws (:class:`viz.browser_scene.BrowserScene`): the moving parts' matrices and the frame's
-  ellipses, the painted tracks' colours once every :data:`app.components.browser_view.
-  TRACK_REFRESH_S` of play (their cost spread over the frames of that second at the app's
-  ``PLAY_FPS``), and the encoding of that state for the websocket (msgpack, as wslink sends it).
+  draws (:class:`viz.browser_scene.BrowserScene`): the moving parts' matrices, the frame's
+  ellipses and how many painted-track quads are shown, and the encoding of that state for the
+  websocket (msgpack, as wslink sends it). What is sent once per result (the painted tracks'
+  quads in painting order and their whole-run colours) and for a frame chosen by hand (the
+  colours painted up to it) is timed and sized apart.
 
 Builds the scene of the app (:class:`viz.scene.BearingScene`, the default isometric camera, the
 painted tracks growing) for a dynamic result off screen, and times each step of a played frame as
@@ -114,9 +115,7 @@ def main() -> int:
         for k, step in enumerate(steps):
             cpu[step].append(marks[k + 1][0] - marks[k][0])
             wall[step].append(marks[k + 1][1] - marks[k][1])
-    browser_cpu, browser_bytes, tracks_cpu, tracks_bytes = _browser_frames(
-        scene, source.n_frames // 3, args.frames
-    )
+    browser = _browser_frames(scene, source.n_frames // 3, args.frames)
     print(f"per played frame, median of {args.frames} (ms): step, CPU time, wall time")
     for step in steps:
         print(
@@ -130,51 +129,67 @@ def main() -> int:
         f"(at most {1 / total_cpu:.0f} frames/s of CPU time); JPEG "
         f"{statistics.median(size) / 1e3:.0f} kB"
     )
-    from app.components.browser_view import TRACK_REFRESH_S
-    from app.components.result_view import PLAY_FPS
-
-    per_frame_tracks = tracks_cpu / (TRACK_REFRESH_S * PLAY_FPS)
-    browser_total = browser_cpu + per_frame_tracks
     print(
-        "in-browser rendering, server CPU per played frame (ms, median): "
-        f"matrices + ellipses + encoding {1e3 * browser_cpu:.2f}, painted tracks "
-        f"{1e3 * tracks_cpu:.1f} once every {TRACK_REFRESH_S:g} s = {1e3 * per_frame_tracks:.2f} "
-        f"per frame at {PLAY_FPS:g} frames/s; total {1e3 * browser_total:.2f} "
-        f"({total_cpu / browser_total:.0f}x less than server rendering); sent per frame "
-        f"{browser_bytes / 1e3:.1f} kB, tracks {tracks_bytes / 1e3:.0f} kB per refresh"
+        "in-browser rendering, server CPU per played frame (ms, median): matrices + ellipses + "
+        f"painted quads shown + encoding {1e3 * browser['frame_cpu']:.2f} "
+        f"({total_cpu / browser['frame_cpu']:.0f}x less than server rendering); sent per frame "
+        f"{browser['frame_bytes'] / 1e3:.1f} kB. Once per result: the tracks' quads in painting "
+        f"order and their whole-run colours {1e3 * browser['result_cpu']:.0f} ms, "
+        f"{browser['result_bytes'] / 1e3:.0f} kB. A frame chosen by hand: its colours "
+        f"{1e3 * browser['chosen_cpu']:.1f} ms, {browser['chosen_bytes'] / 1e3:.0f} kB"
     )
     plotter.close()
     return 0
 
 
-def _browser_frames(scene, first: int, count: int):
-    """Median CPU seconds and bytes of a played frame's state with in-browser rendering, and of
-    a refresh of the painted tracks (frames ``first + 1 ...``, ``count`` of each)."""
+def _browser_frames(scene, first: int, count: int) -> dict:
+    """Median CPU seconds and bytes of a played frame's state with in-browser rendering (frames
+    ``first + 1 ...``, ``count`` of them; ``frame_cpu``, ``frame_bytes``), of what is sent once
+    per result (``result_cpu``, ``result_bytes``) and of a frame chosen by hand (``chosen_cpu``,
+    ``chosen_bytes``: the colours painted up to it, a second of play apart)."""
     import msgpack
 
     from viz.browser_scene import BrowserScene
 
     browser = BrowserScene(scene)
     options = scene.options
-    cpu, size, tracks_cpu, tracks_size = [], [], [], []
+    n = scene.source.n_frames
+    t0 = time.process_time()
+    packed = msgpack.packb(
+        {
+            "rt3d_track_cells": browser.track_cells(),
+            "rt3d_track_run": browser.track_state(n, options.track_quantity),
+        }
+    )
+    result_cpu, result_bytes = time.process_time() - t0, len(packed)
+    cpu, size, chosen_cpu, chosen_size = [], [], [], []
     frame = first
     for _ in range(count):
         frame += 1
         t0 = time.process_time()
-        packed = msgpack.packb({"rt3d_frame": browser.frame_state(frame, options.ellipse_scale)})
+        state = browser.frame_state(frame, options.ellipse_scale, frame + 1)
+        state["run"] = True
+        packed = msgpack.packb({"rt3d_frame": state})
         cpu.append(time.process_time() - t0)
         size.append(len(packed))
     frame = first
-    for _ in range(min(count, 20)):  # the tracks grow by a second of play between refreshes
+    for _ in range(min(count, 20)):
         frame += 24
         t0 = time.process_time()
         packed = msgpack.packb(
             {"rt3d_tracks": browser.track_state(frame + 1, options.track_quantity)}
         )
-        tracks_cpu.append(time.process_time() - t0)
-        tracks_size.append(len(packed))
+        chosen_cpu.append(time.process_time() - t0)
+        chosen_size.append(len(packed))
     median = statistics.median
-    return median(cpu), median(size), median(tracks_cpu), median(tracks_size)
+    return {
+        "frame_cpu": median(cpu),
+        "frame_bytes": median(size),
+        "result_cpu": result_cpu,
+        "result_bytes": result_bytes,
+        "chosen_cpu": median(chosen_cpu),
+        "chosen_bytes": median(chosen_size),
+    }
 
 
 if __name__ == "__main__":

@@ -7,16 +7,23 @@ layers as the server-rendered view and the exports) and splits it into
   frame), cells, per-cell or per-point RGB(A) colours as the server's colour maps give them,
   surface properties, and the ``group`` whose transform moves the part;
 * :meth:`BrowserScene.frame_state` — what a played frame sends: one 4x4 matrix per moving group
-  (the rings, the cage, each ball) and the points of the contact ellipses of the frame;
-* :meth:`BrowserScene.track_state` — the painted tracks' cell colours up to a frame (one byte per
-  colour channel and cell of the track grid), sent when the tracks have grown (not every frame).
+  (the rings, the cage, each ball), the points of the contact ellipses of the frame and, per
+  race, how many cells of the painted track are shown (:meth:`BrowserScene.track_counts`);
+* :meth:`BrowserScene.track_cells` — the painted tracks' quads in the order in which the run
+  paints them (by the frame at which each cell is first painted), sent once per result and
+  painting options: the cells painted over frames ``[0, stop)`` are then the first
+  ``track_counts(stop)`` quads, so a frame reveals what the tracks gained with two numbers;
+* :meth:`BrowserScene.track_state` — the painted tracks' cell colours (one byte per colour
+  channel and quad, in that order) as painted over frames ``[0, stop)``: over the whole run once
+  per result and colouring (drawn while playing), and up to a frame chosen by hand.
 
 Arrays are encoded as trame-vtk's typed-array objects (``{"bvals": base64, "dtype": ...}``).
 Matrices are in vtk.js's ``userMatrix`` layout (column-major, i.e. the transpose of VTK's row-major
 4x4). Lengths in m, inertial frame of case-format.md (x = bearing axis).
 
-Text labels (the teaching overlay's words and its legend) are not part of the browser scene: the
-page shows them beside the view.
+Text (the teaching overlay's labels, its legend and the painted tracks' colour bar) is not part
+of the 3-D scene: :meth:`BrowserScene.overlay_state` and :meth:`BrowserScene.track_state` give it
+as words, colours and numbers for the page to show over the view.
 """
 
 from __future__ import annotations
@@ -30,8 +37,10 @@ from .frames import rot_x
 from .layout import MARK_LIFT, RacewayLayout
 from .marks import ellipse_points
 from .meshes import placement
+from .overlay import LEGEND
+from .painted import SCALAR_BAR
 from .raceway import INNER, OUTER
-from .tracks import QUANTITY_SCALE, track_colours
+from .tracks import QUANTITY_LABELS, QUANTITY_SCALE, track_colours
 
 INNER_GROUP, OUTER_GROUP, CAGE_GROUP = "inner", "outer", "cage"
 SCALAR_MODE_CELL = (2, 4)  # VTK_SCALAR_MODE_USE_CELL_DATA, VTK_SCALAR_MODE_USE_CELL_FIELD_DATA
@@ -71,6 +80,9 @@ class BrowserScene:
         self.scene = scene
         self.layout: RacewayLayout = scene.layout
         self._track_cells = [self._track_grid_cells(race) for race in (INNER, OUTER)]
+        # per race: quads in painting order (indices into the grid's quads) and their first frames
+        self._track_order = [np.arange(cells[2].size) for cells in self._track_cells]
+        self._track_first = [np.zeros(cells[2].size, np.int64) for cells in self._track_cells]
 
     # ---- static parts ---------------------------------------------------------------------------
     def _groups(self) -> dict:
@@ -180,7 +192,7 @@ class BrowserScene:
         return points, quads.ravel(), texel
 
     def _track_part(self, race: int) -> dict:
-        points, quads, _ = self._track_cells[race]
+        points = self._track_cells[race][0]
         prop = self.scene.tracks.actors[race].GetProperty()
         return {
             "name": f"tracks_{race}",
@@ -188,10 +200,7 @@ class BrowserScene:
             "group": INNER_GROUP if race == INNER else OUTER_GROUP,
             "kind": "tracks",
             "race": race,
-            "mesh": {
-                "points": typed_array(points, np.float32),
-                "polys": typed_array(quads, np.int32),
-            },
+            "mesh": {"points": typed_array(points, np.float32)},  # quads: track_cells
             "colours": None,
             "property": {
                 "color": [1.0, 1.0, 1.0],
@@ -203,11 +212,54 @@ class BrowserScene:
             },
         }
 
+    # ---- 2-D overlay ----------------------------------------------------------------------------
+    def overlay_state(self) -> dict:
+        """What the server view draws in 2-D over the scene, as words and colours: ``labels`` (the
+        teaching overlay's labels), ``legend`` ([words, colour] of each entry of its legend) and
+        ``gradient`` (the painted tracks' colour map as a CSS gradient, for the colour bar whose
+        title, range and labels come with :meth:`track_state`)."""
+        overlay = self.scene.overlay
+        words = overlay.legend_words()
+        legend = [[w, colour] for w, (_, colour) in zip(words, LEGEND, strict=False)]
+        lut = self.scene.tracks.actors[INNER].mapper.lookup_table
+        return {
+            "labels": list(overlay.label_words),
+            "legend": legend,
+            "gradient": colour_bar_gradient(lut.values),
+        }
+
+    # ---- painted tracks -------------------------------------------------------------------------
+    def track_cells(self) -> dict:
+        """The painted tracks' quads of both races in the order the scene's painter paints them:
+        ``polys`` (inner, outer; int32 typed arrays, VTK legacy layout). A painter that cannot
+        say when a cell is first painted (the live session's) keeps the grid's order, every
+        quad shown."""
+        painter = self.scene.tracks.painter
+        first_painted = getattr(painter, "first_painted", None)
+        polys = []
+        for race in (INNER, OUTER):
+            _, quads, texel = self._track_cells[race]
+            if first_painted is None:
+                first = np.zeros(texel.size, np.int64)
+            else:
+                first = first_painted(race).T.ravel()[texel]  # texel order: phi fastest
+            order = np.argsort(first, kind="stable")
+            self._track_order[race] = order
+            self._track_first[race] = first[order]
+            polys.append(typed_array(quads.reshape(-1, 5)[order], np.int32))
+        return {"polys": polys}
+
+    def track_counts(self, stop: int) -> list[int]:
+        """(inner, outer) number of quads of :meth:`track_cells` painted over frames
+        ``[0, stop)``: the first ones of each race."""
+        return [int(np.searchsorted(first, stop, side="left")) for first in self._track_first]
+
     # ---- per frame ------------------------------------------------------------------------------
-    def frame_state(self, index: int, ellipse_scale: float) -> dict:
-        """What frame ``index`` sends: ``index``, ``m`` (group -> 16 numbers, vtk.js layout) and
+    def frame_state(self, index: int, ellipse_scale: float, track_stop: int | None = None) -> dict:
+        """What frame ``index`` sends: ``index``, ``m`` (group -> 16 numbers, vtk.js layout),
         ``e`` (inner, outer ellipse points, float32 typed arrays), drawn ``ellipse_scale`` times
-        their size."""
+        their size, and ``n``, the painted tracks' quads shown (:meth:`track_counts` of
+        ``track_stop``; None: every quad)."""
         source = self.scene.source
         f = source.frame(index)
         rings = (
@@ -221,8 +273,13 @@ class BrowserScene:
         }
         for j in range(source.ball_count):
             matrices[ball_group(j)] = placement(f.ball_rotation[j], f.ball_center[j])
+        if track_stop is None:
+            counts = [int(first.size) for first in self._track_first]
+        else:
+            counts = self.track_counts(track_stop)
         return {
             "index": int(f.index),
+            "n": counts,
             "m": {k: [round(float(v), 9) for v in m.T.ravel()] for k, m in matrices.items()},
             "e": [
                 typed_array(ellipse_points(self.layout, race, f, ellipse_scale)[0], np.float32)
@@ -232,8 +289,9 @@ class BrowserScene:
 
     def track_state(self, stop: int, quantity: str) -> dict:
         """The painted tracks over frames ``[0, stop)`` coloured by ``quantity``: ``stop``,
-        ``range`` (lo, hi in the colour bar's units) and ``c`` (inner, outer RGBA uint8 typed
-        arrays, one colour per quad of :meth:`parts`)."""
+        ``range`` (lo, hi in the colour bar's units), ``title`` (the colour bar's) and ``c``
+        (inner, outer RGBA uint8 typed arrays, one colour per quad in the order of
+        :meth:`track_cells`)."""
         tracks = self.scene.tracks
         painter = tracks.painter
         painter.accumulate(stop)
@@ -252,9 +310,32 @@ class BrowserScene:
                 lut.values,
                 lut.nan_color.int_rgba,
             )
-            texel = self._track_cells[race][2]
+            texel = self._track_cells[race][2][self._track_order[race]]
             colours.append(typed_array(rgba[texel], np.uint8))
-        return {"stop": int(painter.stop), "range": [float(lo), float(hi)], "c": colours}
+        return {
+            "stop": int(painter.stop),
+            "range": [float(lo), float(hi)],
+            "title": QUANTITY_LABELS[quantity].replace("\n", " "),
+            "ticks": colour_bar_ticks(lo, hi),
+            "c": colours,
+        }
+
+
+def colour_bar_ticks(lo: float, hi: float) -> list[str]:
+    """The colour bar's labels from ``hi`` down to ``lo``, as the server view's bar writes them."""
+    fmt = SCALAR_BAR["fmt"]
+    return [fmt % v for v in np.linspace(hi, lo, SCALAR_BAR["n_labels"])]
+
+
+def colour_bar_gradient(table) -> str:
+    """A CSS ``linear-gradient`` (bottom to top) of the colour map ``table`` ((m, 4) uint8)."""
+    table = np.asarray(table, np.uint8)
+    m = table.shape[0]
+    stops = [
+        f"rgb({r},{g},{b}) {100.0 * (k + 0.5) / m:.2f}%"
+        for k, (r, g, b, _) in enumerate(table.tolist())
+    ]
+    return f"linear-gradient(to top, {', '.join(stops)})"
 
 
 def camera_state(plotter) -> dict:
@@ -269,4 +350,11 @@ def camera_state(plotter) -> dict:
     }
 
 
-__all__ = ["BrowserScene", "camera_state", "typed_array", "ball_group"]
+__all__ = [
+    "BrowserScene",
+    "camera_state",
+    "colour_bar_gradient",
+    "colour_bar_ticks",
+    "typed_array",
+    "ball_group",
+]

@@ -68,6 +68,7 @@ class TeachingOverlay:
         self._legend = None  # the legend's actor (its ellipses' entry names their scale)
         self.actors: list = []
         self._tilt_actor = None
+        self.label_words: list[str] = []  # the labels' words, as drawn (after show)
 
     def show(self, facts, view_azimuth: float, visible: bool, ellipse_scale: float = 1.0) -> None:
         """Replace the overlay by that of the operating point ``facts``, facing ``view_azimuth``
@@ -143,6 +144,7 @@ class TeachingOverlay:
             if facts.misalignment_turns:
                 self._tilt_actor = actor  # turns with the inner ring (move)
             labels.append((words, centre + 0.9 * bore * direction))
+        self.label_words = [text for text, _ in labels]
         points = np.array([pt for _, pt in labels], float)
         self._label_points = pv.PolyData(points)
         self._label_base = points.copy()

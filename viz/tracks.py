@@ -94,6 +94,22 @@ def _paint(dwell, peak, j0, nj, i0, ni, centre, half_width, weight, p0, alpha_lo
                     peak[j, i] = p
 
 
+@njit(cache=True)
+def _first_painted(first, j0, nj, i0, ni, weight, ball_count, n_phi):
+    """Lower ``first[j, i]`` to the frame of the first sample (``k // ball_count``) that adds
+    dwell to cell ``(j, i)`` (the samples in frame order)."""
+    for k in range(j0.shape[0]):
+        if not weight[k] > 0.0:
+            continue
+        frame = k // ball_count
+        for dj in range(nj[k]):
+            j = (j0[k] + dj) % n_phi
+            for di in range(ni[k]):
+                i = i0[k] + di
+                if frame < first[j, i]:
+                    first[j, i] = frame
+
+
 def footprints(
     source: FrameSource,
     race: int,
@@ -199,6 +215,7 @@ class TrackPainter:
             )
             for race in (INNER, OUTER)
         ]
+        self._first = [None, None]  # first_painted of each race, computed when first asked
         self.reset()
 
     def reset(self) -> None:
@@ -224,6 +241,17 @@ class TrackPainter:
                 fp.weight[sl], fp.p0[sl], g.alpha_lo, g.d_alpha, g.n_phi,
             )  # fmt: skip
         self.stop = stop
+
+    def first_painted(self, race: int) -> np.ndarray:
+        """(n_phi, n_alpha) int64: the frame at which each cell of ``race`` is first painted
+        (:meth:`painted` over frames ``[0, stop)`` is ``first_painted < stop``); ``n_frames`` where
+        no ellipse of the run comes."""
+        if self._first[race] is None:
+            g, fp = self.grids[race], self._footprints[race]
+            first = np.full((g.n_phi, g.n_alpha), self.source.n_frames, np.int64)
+            _first_painted(first, fp.j0, fp.nj, fp.i0, fp.ni, fp.weight, self.ball_count, g.n_phi)
+            self._first[race] = first
+        return self._first[race]
 
     def field(self, race: int, quantity: str) -> np.ndarray:
         """(n_phi, n_alpha) field of ``race`` in SI (s or Pa); 0 where no ellipse has been."""

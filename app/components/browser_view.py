@@ -3,10 +3,12 @@
 The server keeps its pyvista scene (:class:`viz.scene.BearingScene`: the exports render it off
 screen, and it holds the layers, the camera presets and the painted-track fields); the browser
 gets the scene's meshes once per result (:class:`viz.browser_scene.BrowserScene`) and, for a
-played frame, only the moving parts' matrices and the contact ellipses of the frame. The painted
-tracks' cell colours are sent when they have grown: at most every :data:`TRACK_REFRESH_S` while
-playing, at once when a frame is chosen by hand. The camera lives in the browser (a preset is sent
-once when chosen).
+played frame, only the moving parts' matrices, the contact ellipses of the frame and how many
+quads of each painted track are shown. The painted tracks' quads come once per result and
+painting options, in the order the run paints them, with their colours over the whole run (drawn
+while playing); a frame chosen by hand gets the colours painted up to it. The camera lives in the
+browser (a preset is sent once when chosen). The words of the server view's 2-D overlay (labels,
+legend, colour bar) are shown over the canvas as HTML.
 
 Which view a page shows: ``render_mode`` (``racetrace serve --render browser|server``) and
 ``browser_webgl`` (set by the page itself: whether the browser can draw WebGL); the browser view
@@ -14,10 +16,13 @@ when both allow it, else the server-rendered view.
 
 State keys: ``render_mode``, ``browser_webgl`` (None until the page says), ``view_in_browser``,
 ``rt3d_meshes`` (mesh key -> typed arrays), ``rt3d_parts`` (the parts: mesh key, group,
-colours, surface properties), ``rt3d_frame`` (index, matrices ``m``, ellipse points ``e``),
-``rt3d_tracks`` (the painted tracks' colours ``c`` up to frame ``stop``), ``rt3d_visible`` (part
-name -> shown) and ``rt3d_camera`` (a camera preset to apply: vtk.js camera settings and a
-``serial``).
+colours, surface properties), ``rt3d_frame`` (index, matrices ``m``, ellipse points ``e``,
+painted quads shown ``n``, ``run``: whether the tracks take their whole-run colours),
+``rt3d_track_cells`` (the painted tracks' quads in painting order), ``rt3d_track_run`` and
+``rt3d_tracks`` (the painted tracks' colours, colour-bar title, range and labels: over the whole
+run, and up to frame ``stop``), ``rt3d_overlay`` (the 2-D overlay's labels, legend and colour
+map), ``rt3d_visible`` (part name -> shown) and ``rt3d_camera`` (a camera preset to apply:
+vtk.js camera settings and a ``serial``).
 """
 
 from __future__ import annotations
@@ -31,17 +36,39 @@ from trame.widgets import vtk as vtk_widgets
 from viz.browser_scene import BrowserScene, camera_state
 
 RENDER_MODES = ("browser", "server")
-TRACK_REFRESH_S = 1.0  # while playing, the painted tracks are re-sent at most this often
+TRACK_REFRESH_S = 1.0  # a live session's painted tracks are re-sent at most this often
 VIEW_REF = "rt3d_view"
 IDENTITY = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]
 
-# Run by the page: whether this browser can draw WebGL, told to the server once trame is up.
+# Run by the page: ``utils.rt3d.head`` for the view's bindings (the first values of a typed array,
+# decoded once), then whether this browser can draw WebGL, told to the server once trame is up.
 DETECT_WEBGL = """
 (function racetraceWebgl(tries) {
   if (!(window.trame && window.trame.state)) {
     if (tries < 200) setTimeout(function () { racetraceWebgl(tries + 1); }, 50);
     return;
   }
+  var kinds = { int32: Int32Array, uint8: Uint8Array, float32: Float32Array };
+  var decoded = new WeakMap();
+  window.trame.utils.rt3d = {
+    head: function (array, count) {
+      if (!array || !array.bvals) return null;
+      var seen = decoded.get(array);
+      if (!seen) {
+        var text = atob(array.bvals);
+        var bytes = new Uint8Array(text.length);
+        for (var i = 0; i < text.length; i++) bytes[i] = text.charCodeAt(i);
+        seen = { whole: new kinds[array.dtype](bytes.buffer), count: -1, head: null };
+        decoded.set(array, seen);
+      }
+      var n = Math.max(0, Math.min(count | 0, seen.whole.length));
+      if (n !== seen.count) {
+        seen.count = n;
+        seen.head = seen.whole.subarray(0, n);
+      }
+      return seen.head;
+    },
+  };
   var ok = false;
   try {
     var canvas = document.createElement('canvas');
@@ -74,6 +101,8 @@ class BrowserView:
         self.scene: BrowserScene | None = None
         self._actors = {}  # part name -> the server scene's actor (whose visibility it follows)
         self._tracks_sent = (-1, None, 0.0)  # (stop, quantity, monotonic time)
+        self._cells_painter = None  # the painter whose quad order the page has
+        self._run_sent = None  # (painter, quantity) of the whole-run colours on the page
         self.view = None
 
     @property
@@ -87,8 +116,12 @@ class BrowserView:
         s.view_in_browser = False
         s.rt3d_meshes = {}
         s.rt3d_parts = []
-        s.rt3d_frame = {"index": 0, "m": {}, "e": [None, None]}
-        s.rt3d_tracks = {"stop": 0, "range": [0.0, 1.0], "c": [None, None]}
+        s.rt3d_frame = {"index": 0, "n": [0, 0], "run": False, "m": {}, "e": [None, None]}
+        s.rt3d_track_cells = {"polys": [None, None]}
+        empty = {"stop": 0, "range": [0.0, 1.0], "title": "", "ticks": [], "c": [None, None]}
+        s.rt3d_track_run = dict(empty)
+        s.rt3d_tracks = dict(empty)
+        s.rt3d_overlay = {"labels": [], "legend": [], "gradient": ""}
         s.rt3d_visible = {}
         s.rt3d_camera = {"serial": 0}
 
@@ -124,9 +157,11 @@ class BrowserView:
                 actors[name] = layers[layer][int(name.rsplit("_", 1)[1])]
         self._actors = actors
         self._tracks_sent = (-1, None, 0.0)
+        self._cells_painter = self._run_sent = None
         s = self.state
         s.rt3d_meshes = meshes
         s.rt3d_parts = parts
+        s.rt3d_overlay = self.scene.overlay_state()
 
     def refresh(self, index: int) -> None:
         """Everything but the meshes: visibility, frame ``index``, the painted tracks."""
@@ -135,41 +170,65 @@ class BrowserView:
         self.state.rt3d_visible = {
             name: bool(actor.GetVisibility()) for name, actor in self._actors.items()
         }
+        self.state.rt3d_overlay = self.scene.overlay_state()
         self.show_frame(index, tracks_now=True)
 
+    def _send_track_cells(self, whole_run: bool) -> bool:
+        """Send the painted tracks' quads when the painter changed (a new source or painting
+        option) and, with ``whole_run``, their whole-run colours when the colouring changed;
+        returns whether the painter can paint."""
+        painter = self.scene.scene.tracks.painter
+        if painter is None:
+            return False
+        if painter is not self._cells_painter:
+            self.state.rt3d_track_cells = self.scene.track_cells()
+            self._cells_painter, self._run_sent = painter, None
+            self._tracks_sent = (-1, None, 0.0)
+        quantity = self.scene.scene.options.track_quantity
+        if whole_run and self._run_sent != (painter, quantity):
+            n = self.scene.scene.source.n_frames
+            self.state.rt3d_track_run = self.scene.track_state(n, quantity)
+            self._run_sent = (painter, quantity)
+        return True
+
     def show_frame(self, index: int, tracks_now: bool = False) -> None:
-        """Send frame ``index``: the matrices and ellipses; the painted tracks when they are due
-        (``tracks_now``, or :data:`TRACK_REFRESH_S` after the last time, or going back)."""
+        """Send frame ``index``: the matrices, the ellipses and how many painted quads are shown.
+        While playing the tracks take their whole-run colours (sent once); a frame chosen by hand
+        (or ``tracks_now``) gets the colours painted up to it."""
         if self.scene is None:
             return
         options = self.scene.scene.options
-        self.state.rt3d_frame = self.scene.frame_state(index, options.ellipse_scale)
+        if not self._send_track_cells(whole_run=True):
+            self.state.rt3d_frame = self.scene.frame_state(index, options.ellipse_scale, 0)
+            return
         n = self.scene.scene.source.n_frames
         stop = n if options.track_whole_run else index + 1
-        sent_stop, sent_quantity, sent_at = self._tracks_sent
-        due = (
-            tracks_now
-            or not self.state.playing  # a frame chosen by hand
-            or sent_quantity != options.track_quantity
-            or stop < sent_stop
-            or (stop != sent_stop and time.monotonic() - sent_at >= TRACK_REFRESH_S)
-        )
-        if due:
-            self.state.rt3d_tracks = self.scene.track_state(stop, options.track_quantity)
-            self._tracks_sent = (stop, options.track_quantity, time.monotonic())
+        playing = bool(self.state.playing) and not tracks_now
+        frame = self.scene.frame_state(index, options.ellipse_scale, stop)
+        frame["run"] = playing
+        if not playing:
+            sent_stop, sent_quantity, _ = self._tracks_sent
+            if (stop, options.track_quantity) != (sent_stop, sent_quantity) or tracks_now:
+                self.state.rt3d_tracks = self.scene.track_state(stop, options.track_quantity)
+                self._tracks_sent = (stop, options.track_quantity, time.monotonic())
+        self.state.rt3d_frame = frame
 
     def show_live_frame(self, index: int) -> None:
         """Send frame ``index`` of a live session's window: the matrices and ellipses, and the
-        session's accumulated tracks (:class:`app.live_view.LiveTracks`) at most every
-        :data:`TRACK_REFRESH_S` (the window slides, so frame numbers do not say what is new)."""
+        session's accumulated tracks (:class:`app.live_view.LiveTracks`, every quad shown) at
+        most every :data:`TRACK_REFRESH_S` (the window slides, so frame numbers do not say what
+        is new)."""
         if self.scene is None:
             return
         options = self.scene.scene.options
-        self.state.rt3d_frame = self.scene.frame_state(index, options.ellipse_scale)
+        self._send_track_cells(whole_run=False)
+        frame = self.scene.frame_state(index, options.ellipse_scale)
+        frame["run"] = False
         _, sent_quantity, sent_at = self._tracks_sent
         if sent_quantity != options.track_quantity or time.monotonic() - sent_at >= TRACK_REFRESH_S:
             self.state.rt3d_tracks = self.scene.track_state(0, options.track_quantity)
             self._tracks_sent = (-1, options.track_quantity, time.monotonic())
+        self.state.rt3d_frame = frame
 
     def set_camera(self, plotter) -> None:
         """Send the server scene's camera (a preset just applied) to the browser, which applies
@@ -181,8 +240,9 @@ class BrowserView:
 
     # ---- page -----------------------------------------------------------------------------------
     def build(self) -> None:
-        """``#view-3d-browser``: the vtk.js view (one representation per part)."""
-        with html.Div(id="view-3d-browser", style="width: 100%; height: 100%;"):
+        """``#view-3d-browser``: the vtk.js view (one representation per part) and the 2-D
+        overlay over it."""
+        with html.Div(id="view-3d-browser", style="width: 100%; height: 100%; position: relative;"):
             with vtk_widgets.VtkView(ref=VIEW_REF, background=([1, 1, 1],)) as view:
                 self.view = view
                 with vtk_widgets.VtkGeometryRepresentation(
@@ -206,17 +266,26 @@ class BrowserView:
                             "part.kind === 'ellipses' && rt3d_frame.e[part.race] ? "
                             "rt3d_frame.e[part.race] : rt3d_meshes[part.mesh].points",
                         ),
-                        polys=("rt3d_meshes[part.mesh].polys",),
+                        # a painted track: the first n quads in painting order (n: the frame's)
+                        polys=(
+                            "part.kind === 'tracks' ? utils.rt3d.head("
+                            "rt3d_track_cells.polys[part.race], 5 * rt3d_frame.n[part.race]) : "
+                            "rt3d_meshes[part.mesh].polys",
+                        ),
                         lines=("rt3d_meshes[part.mesh].lines",),
                     ):
                         with vtk_widgets.VtkCellData():
                             vtk_widgets.VtkDataArray(
-                                v_if="part.kind === 'tracks' && rt3d_tracks.c[part.race]",
+                                v_if="part.kind === 'tracks' && "
+                                "(rt3d_frame.run ? rt3d_track_run : rt3d_tracks).c[part.race]",
                                 registration="setScalars",
                                 name="rgba",
                                 type="Uint8Array",
                                 number_of_components=("4",),  # a number, not the text "4"
-                                values=("rt3d_tracks.c[part.race]",),
+                                values=(
+                                    "utils.rt3d.head((rt3d_frame.run ? rt3d_track_run : "
+                                    "rt3d_tracks).c[part.race], 4 * rt3d_frame.n[part.race])",
+                                ),
                             )
                             vtk_widgets.VtkDataArray(
                                 v_if="part.colours && part.colours.location === 'cell'",
@@ -235,6 +304,7 @@ class BrowserView:
                                 number_of_components=("part.colours.components",),
                                 values=("part.colours.values",),
                             )
+            _overlay()
             # a camera preset chosen on the server is applied once the view is there
             client.ClientStateChange(
                 value="rt3d_camera",
@@ -242,3 +312,57 @@ class BrowserView:
                 change=f"rt3d_camera.position && trame.refs.{VIEW_REF} && "
                 f"trame.refs.{VIEW_REF}.setCamera(rt3d_camera)",
             )
+
+
+OVERLAY_BOX = (
+    "position: absolute; background: rgba(255, 255, 255, 0.8); color: #202020; "
+    "border-radius: 4px; font-size: 12px; line-height: 16px; pointer-events: none; z-index: 2; "
+)
+
+
+def _overlay() -> None:
+    """The server view's 2-D overlay as HTML over the canvas: ``#rt3d-labels`` (the teaching
+    overlay's labels) over ``#rt3d-legend`` (its legend), lower left, and ``#rt3d-colour-bar`` (the
+    painted tracks' colour bar in the strip right of the bearing, where the server view has it:
+    title, colours, labels from top to bottom); the colour bar follows the colours drawn (whole
+    run while playing, else up to the frame)."""
+    with html.Div(
+        v_show="show_labels && (rt3d_overlay.labels.length || rt3d_overlay.legend.length)",
+        style=OVERLAY_BOX + "bottom: 4px; left: 4px; padding: 2px 6px;",
+    ):
+        with html.Div(id="rt3d-labels", classes="mb-1"):
+            html.Div("{{ words }}", v_for="(words, k) in rt3d_overlay.labels", key="k")
+        with html.Div(id="rt3d-legend"):
+            with html.Div(v_for="(entry, k) in rt3d_overlay.legend", key="k", classes="rt3d-entry"):
+                html.Span(
+                    style=(
+                        "{display: 'inline-block', width: '14px', height: '8px', "
+                        "marginRight: '4px', verticalAlign: 'middle', background: entry[1]}",
+                    ),
+                )
+                html.Span("{{ entry[0] }}")
+    with html.Div(
+        id="rt3d-colour-bar",
+        v_show="show_tracks && (rt3d_frame.run ? rt3d_track_run : rt3d_tracks).ticks.length",
+        style=OVERLAY_BOX + "top: 20%; height: 60%; right: 2%; min-width: 10%; padding: 2px 4px; "
+        "display: flex; flex-direction: column;",
+    ):
+        html.Div(
+            "{{ (rt3d_frame.run ? rt3d_track_run : rt3d_tracks).title }}",
+            classes="rt3d-bar-title",
+            style="font-size: 13px; margin-bottom: 4px;",
+        )
+        with html.Div(style="flex: 1; display: flex; gap: 4px; min-height: 0;"):
+            html.Div(
+                classes="rt3d-bar-colours",
+                style=("{flex: '0 0 14px', background: rt3d_overlay.gradient}",),
+            )
+            with html.Div(
+                style="display: flex; flex-direction: column; justify-content: space-between;"
+            ):
+                html.Span(
+                    "{{ tick }}",
+                    v_for="(tick, k) in (rt3d_frame.run ? rt3d_track_run : rt3d_tracks).ticks",
+                    key="k",
+                    classes="rt3d-bar-tick",
+                )

@@ -53,10 +53,13 @@ def test_the_browser_draws_the_view_and_both_painted_tracks(page):
     others = ("balls", "cage", "labels", "traces", "ellipses", "edges")
     _set_state(page, **{f"show_{n}": False for n in others})
     shown = _view_pixels(page, "browser-tracks")
+    bar, view = (page.locator(k).bounding_box() for k in ("#rt3d-colour-bar", "#view-3d"))
     _set_state(page, show_tracks=False)
     hidden = _view_pixels(page, "browser-no-tracks", differs_from=shown)
     _set_state(page, show_tracks=True)
     painted = _painted_pixels(shown) & ~_painted_pixels(hidden)
+    # the colour bar (HTML over the canvas, shown with the tracks) is not the painted tracks
+    painted[:, max(int(bar["x"] - view["x"]) - 2, 0) :] = False
     rows = np.flatnonzero(painted.any(axis=1))
     assert rows.size, "no painted track in the browser-drawn view"
     gaps = np.diff(rows)
@@ -85,3 +88,28 @@ def test_a_page_without_webgl_gets_the_server_images(browser, server):
         assert pg.locator(CANVAS).count() == 0
     finally:
         context.close()
+
+
+def test_the_browser_view_shows_the_server_views_labels_legend_and_colour_bar(page):
+    _set_state(page, playing=False, show_labels=True, show_tracks=True, frame=30)
+    page.wait_for_function(
+        "window.trame.state.get('rt3d_tracks').stop === 31", timeout=60_000, polling=200
+    )
+    overlay = page.evaluate("window.trame.state.get('rt3d_overlay')")
+    tracks = page.evaluate("window.trame.state.get('rt3d_tracks')")
+    labels = page.locator("#rt3d-labels")
+    legend = page.locator("#rt3d-legend .rt3d-entry")
+    bar = page.locator("#rt3d-colour-bar")
+    assert labels.is_visible() and legend.first.is_visible() and bar.is_visible()
+    colours = page.locator("#rt3d-colour-bar .rt3d-bar-colours").bounding_box()
+    assert colours["width"] >= 10 and colours["height"] > 100, colours
+    assert any(w.startswith("inner raceway") for w in overlay["labels"]), overlay["labels"]
+    assert labels.inner_text().split("\n") == overlay["labels"]
+    assert legend.all_inner_texts() == [words for words, _ in overlay["legend"]]
+    assert "contact ellipses now" in legend.first.inner_text()
+    assert page.locator("#rt3d-colour-bar .rt3d-bar-title").inner_text() == tracks["title"]
+    ticks = page.locator("#rt3d-colour-bar .rt3d-bar-tick").all_inner_texts()
+    assert ticks == tracks["ticks"] and len(ticks) == 5 and ticks[0] != ticks[-1]
+    page.screenshot(path=str(ARTIFACTS / "browser-overlay.png"))
+    _set_state(page, show_labels=False)
+    page.wait_for_function("!document.querySelector('#rt3d-legend').checkVisibility()")

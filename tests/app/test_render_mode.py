@@ -149,3 +149,74 @@ def test_a_live_frame_drawn_by_the_browser_sends_the_window_frame_and_the_live_t
         assert a.result.scene.frame_index != 10
     finally:
         a.shutdown()
+
+
+def _decoded(typed: dict):
+    import base64
+
+    import numpy as np
+
+    return np.frombuffer(base64.b64decode(typed["bvals"]), dtype=typed["dtype"])
+
+
+def test_played_frames_carry_no_track_arrays_only_how_many_painted_quads_are_shown(tmp_path):
+    import time
+
+    import numpy as np
+
+    a = _session(tmp_path, "browser")
+    try:
+        _set(a, browser_webgl=True)
+        pushed = []
+        a.state._push_state_fn = lambda update: pushed.append(dict(update))
+        _set(a, playing=True)
+        shown = []
+        for frame in range(5, 35):  # 1.5 s of play: longer than any refresh period
+            _set(a, frame=frame)
+            shown.append(a.state.rt3d_frame.get("n"))
+            time.sleep(0.05)
+        keys = {k for update in pushed for k in update}
+        assert not keys & {"rt3d_tracks", "rt3d_track_run", "rt3d_track_cells"}, keys
+        assert a.state.rt3d_frame["run"] is True  # the whole-run colours, sent with the result
+        assert all(c is not None for c in a.state.rt3d_track_run["c"])
+        assert all(_decoded(p).size for p in a.state.rt3d_track_cells["polys"])
+        shown = np.array(shown)
+        assert (np.diff(shown, axis=0) >= 0).all() and (shown[-1] > shown[0]).any(), shown
+        # the quads shown are exactly the cells the server's painter has painted by then
+        painter = a.result.scene.tracks.painter
+        bscene = a.result.browser.scene
+        painter.accumulate(35)
+        for race in (0, 1):
+            texel = bscene._track_cells[race][2]
+            assert shown[-1][race] == int(painter.painted(race).T.ravel()[texel].sum())
+    finally:
+        a.shutdown()
+
+
+def test_a_paused_frame_gets_the_server_views_track_colours_and_its_2d_overlay(tmp_path):
+    import numpy as np
+
+    a = _session(tmp_path, "browser")
+    try:
+        _set(a, browser_webgl=True, playing=False, frame=60)
+        a.result.sync_scene()  # the server's own scene at the frame, as an export draws it
+        scene, bscene = a.result.scene, a.result.browser.scene
+        sent, n = a.state.rt3d_tracks, a.state.rt3d_frame["n"]
+        assert sent["stop"] == 61
+        for race in (0, 1):
+            server = np.asarray(scene.tracks._texels[race].point_data["rgba"])
+            order = bscene._track_cells[race][2][bscene._track_order[race]]
+            browser = _decoded(sent["c"][race]).reshape(-1, 4)
+            assert n[race] > 0
+            assert np.array_equal(browser[: n[race]], server[order[: n[race]]])
+            ring = np.asarray(scene.tracks.actors[0].mapper.lookup_table.nan_color.int_rgba)
+            assert (server[order[n[race] :]] == ring).all()  # the rest unpainted there too
+        # the overlay: the same words and numbers as the server view's 2-D actors
+        overlay = a.state.rt3d_overlay
+        assert overlay["labels"] == scene.overlay.label_words and overlay["labels"]
+        assert [w for w, _ in overlay["legend"]] == scene.overlay.legend_words()
+        lo, hi = scene.track_range
+        assert sent["ticks"] == [f"{v:.3g}" for v in np.linspace(hi, lo, 5)]
+        assert sent["title"] == scene.plotter.scalar_bar.GetTitle().replace("\n", " ")
+    finally:
+        a.shutdown()

@@ -105,6 +105,21 @@ def test_growing_frame_by_frame_equals_painting_at_once_and_going_back_restarts(
     assert steps.field(INNER, "dwell").sum() < once.field(INNER, "dwell").sum()
 
 
+def test_the_cells_painted_up_to_a_frame_are_those_first_painted_before_it():
+    rng = np.random.default_rng(2)
+    n, z = 50, 3
+    alpha = 0.1 + 0.05 * rng.standard_normal((n, z))
+    phi = np.cumsum(np.full((n, z), 0.04), axis=0) + np.arange(z) * 2.0
+    src = _source(alpha, phi)
+    painter = _painter(src)
+    first = [painter.first_painted(race) for race in (INNER, OUTER)]
+    for stop in (0, 1, 7, 23, n):
+        painter.accumulate(stop)
+        for race in (INNER, OUTER):
+            np.testing.assert_array_equal(painter.painted(race), first[race] < stop)
+    assert (first[INNER] == n).any() and (first[INNER] < n).any()  # some cells never painted
+
+
 def test_exaggeration_widens_the_track_but_stays_between_the_shoulders():
     n = 400
     phi = np.linspace(0.0, 4 * math.pi, n)[:, None]
