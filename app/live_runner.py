@@ -5,7 +5,11 @@ The child process (:func:`live_main`) builds ``solver.LiveSimulation`` on the ca
 text, then loops: apply the controls the parent queued (:meth:`LiveRunner.set_input`, pause,
 resume, reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time and send the chunk
 Dataset, then wait out the rest of the chunk's wall time (reading controls meanwhile), so that
-the simulation runs at the playback rate (``rate``: bearing seconds per wall second). When a
+the simulation runs at the playback rate (``rate``: bearing seconds per wall second). The lead is
+bounded: the child computes a chunk only while fewer than :data:`MAX_LEAD_CHUNKS` chunks it sent
+are not yet taken by the parent (:meth:`LiveRunner.poll` counts them in a shared counter), so a
+parent that falls behind never has more than that many stale chunks waiting, and a control
+change reaches the chunks it takes within ``MAX_LEAD_CHUNKS + 1`` chunks. When a
 chunk takes longer than its wall time the solver cannot keep up: the next chunk (the same bearing
 time) is given the wall time the solver needs, so the playback runs at the rate the solver
 achieves, and the chunk's message says so (:class:`_Pace`); quick chunks bring the asked rate
@@ -36,17 +40,24 @@ import time
 CHUNK_WALL_S = 0.1
 #: A chunk that used more than this fraction of its wall time counts as not keeping up.
 BEHIND_FRACTION = 0.9
+#: The child computes no further chunk while this many chunks it sent wait, not yet taken by the
+#: parent: the bearing time computed and not shown is at most this many chunks (plus the one on
+#: show), whatever the parent's pace.
+MAX_LEAD_CHUNKS = 2
 
 
 #: The live simulation the child runs ("module:name" of a class called as ``cls(case)``).
 LIVE_SIMULATION = "solver:LiveSimulation"
 
 
-def live_main(case_text: str, rate: float, controls, messages, stop, target: str) -> None:
+def live_main(
+    case_text: str, rate: float, controls, messages, stop, target: str, taken=None
+) -> None:
     """Child process entry point (see the module docstring); ``target``: the simulation class
-    (:data:`LIVE_SIMULATION`)."""
+    (:data:`LIVE_SIMULATION`); ``taken``: the shared count of chunks the parent has taken (a
+    ``multiprocessing.Value``; None: no bound on the lead)."""
     try:
-        _live_loop(case_text, rate, controls, messages, stop, target)
+        _live_loop(case_text, rate, controls, messages, stop, target, taken)
     except Exception as error:  # the parent shows it in words
         from solver import clean_message
 
@@ -54,7 +65,7 @@ def live_main(case_text: str, rate: float, controls, messages, stop, target: str
     messages.put(("stopped",))
 
 
-def _live_loop(case_text: str, rate: float, controls, messages, stop, target: str) -> None:
+def _live_loop(case_text: str, rate: float, controls, messages, stop, target: str, taken) -> None:
     import importlib
 
     import solver
@@ -69,11 +80,13 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
     messages.put(("ready", float(sim.time), dict(sim.inputs_now())))
     pace = _Pace(rate)
     paused = False
+    sent = 0  # chunks sent since the start
     try:
         while not stop.is_set():
-            for control in _drain(controls, block_s=0.05 if paused else 0.0):
+            waiting = taken is not None and sent - taken.value >= MAX_LEAD_CHUNKS
+            for control in _drain(controls, block_s=0.02 if paused or waiting else 0.0):
                 paused = _apply(sim, control, paused, pace, messages)
-            if paused or stop.is_set():
+            if paused or waiting or stop.is_set():
                 continue
             start = time.monotonic()
             wall = pace.chunk_wall
@@ -82,6 +95,7 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
             info = pace.after_chunk(took)
             info["inputs"] = dict(sim.inputs_now())
             messages.put(("chunk", chunk, info))
+            sent += 1
             wait_until = start + wall
             while not stop.is_set() and not paused:
                 left = wait_until - time.monotonic()
@@ -190,6 +204,7 @@ class LiveRunner:
         self._controls = None
         self._messages = None
         self._stop = None
+        self._taken = None  # chunks taken from the child (shared with it)
 
     @property
     def alive(self) -> bool:
@@ -202,9 +217,13 @@ class LiveRunner:
         self._controls = self._ctx.Queue()
         self._messages = self._ctx.Queue()
         self._stop = self._ctx.Event()
+        self._taken = self._ctx.Value("q", 0, lock=False)  # written by the parent only
         self._process = self._ctx.Process(
             target=live_main,
-            args=(case_text, float(rate), self._controls, self._messages, self._stop, target),
+            args=(
+                *(case_text, float(rate), self._controls, self._messages, self._stop, target),
+                self._taken,
+            ),
             daemon=True,
             name="racetrace-live",
         )
@@ -226,6 +245,8 @@ class LiveRunner:
                 found.append(self._messages.get_nowait())
             except queue_module.Empty:
                 break
+            if found[-1][0] == "chunk":
+                self._taken.value += 1
         if found and found[-1][0] == "stopped":
             return found
         if self._process is not None and not self._process.is_alive():
@@ -252,4 +273,4 @@ class LiveRunner:
         for q in (self._controls, self._messages):
             q.cancel_join_thread()
             q.close()
-        self._controls = self._messages = self._stop = None
+        self._controls = self._messages = self._stop = self._taken = None

@@ -43,23 +43,25 @@ def _with_time(ds: xr.Dataset, names) -> xr.Dataset:
     return ds
 
 
-def join_chunks(window: xr.Dataset | None, chunk: xr.Dataset) -> xr.Dataset:
-    """``chunk`` appended to ``window`` along ``time`` (a sample both hold is kept once)."""
-    if window is None or window.sizes.get("time", 0) == 0:
-        return chunk
-    t_end = float(window["time"][-1])
-    chunk = chunk.isel(time=np.asarray(chunk["time"].values, float) > t_end)
-    if chunk.sizes.get("time", 0) == 0:
-        return window
-    timed = {
-        n
-        for ds in (window, chunk)
-        for n, v in ds.variables.items()
-        if "time" in v.dims and n != "time"
-    }
-    window, chunk = _with_time(window, timed), _with_time(chunk, timed)
+def join_chunks(chunks: list[xr.Dataset]) -> xr.Dataset:
+    """The chunks of a session, in time order, joined along ``time`` in one concatenation (a
+    sample an earlier chunk holds is kept once). Concatenating them pairwise would copy the
+    growing result at every step: about ten times the cost for the ten chunks of two
+    revolutions."""
+    parts, t_end = [], -math.inf
+    for chunk in chunks:
+        times = np.asarray(chunk["time"].values, float)
+        if times.size and times[0] <= t_end:
+            chunk = chunk.isel(time=times > t_end)
+        if chunk.sizes.get("time", 0) == 0:
+            continue
+        parts.append(chunk)
+        t_end = float(chunk["time"][-1])
+    if len(parts) <= 1:
+        return parts[0] if parts else chunks[-1]
+    timed = {n for ds in parts for n, v in ds.variables.items() if "time" in v.dims and n != "time"}
     return xr.concat(
-        [window, chunk],
+        [_with_time(ds, timed) for ds in parts],
         dim="time",
         data_vars="minimal",
         coords="minimal",
@@ -222,10 +224,7 @@ class LiveWindow:
         first = len(self.chunks) - 1
         while first > 0 and float(self.chunks[first]["time"][0]) > end - duration_s:
             first -= 1
-        joined = None
-        for chunk in self.chunks[first:]:
-            joined = join_chunks(joined, chunk)
-        return last_stretch(joined, duration_s)
+        return last_stretch(join_chunks(self.chunks[first:]), duration_s)
 
 
 def band_thickness(window: LiveWindow, inputs: dict, race: str = "inner") -> float:

@@ -45,6 +45,10 @@ RAMP_REVOLUTIONS = 0.25
 LIVE_FPS = 12.0
 #: The charts and the band thickness are brought up to date at most this often (s).
 CHART_PERIOD_S = 1.0
+#: ... and take at most this share of the page's wall time: after an update that took ``w``
+#: seconds the next waits ``max(CHART_PERIOD_S, w / CHART_SHARE)``, so that on a loaded machine
+#: the frames and the solver's chunks keep flowing between chart updates.
+CHART_SHARE = 0.25
 RPM = 60.0 / (2.0 * math.pi)  # rev/min per rad/s
 
 #: The live controls: state key -> (solver input, page unit per SI unit, lowest, highest, step).
@@ -88,7 +92,7 @@ class Live(Component):
         self.inputs: dict = {}  # the solver's inputs now (SI), as the last chunk said
         self.rate = 0.0  # bearing s per wall s of the chunk playing
         self._chunk_start = (0.0, 0.0)  # (first bearing time of the newest chunk, its arrival)
-        self._last_charts = 0.0
+        self._charts_due = 0.0  # monotonic time of the next chart update
         self._task = None
         self._record_out = None
         self._frames_drawn = 0  # frames drawn since the start (benchmarks read it)
@@ -361,10 +365,11 @@ class Live(Component):
             f"Fa {frame['axial_load_N']:.0f} N · {speed:.0f} rpm"
         )
         self.ctrl.show_live_frame(src, index, self.tracks, words)
-        if now - self._last_charts >= CHART_PERIOD_S:
+        if now >= self._charts_due:
             self._update_charts(index)
             frame["band_inner_deg"] = self.state.live_band_inner
-            self._last_charts = now
+            took = time.monotonic() - now
+            self._charts_due = time.monotonic() + max(CHART_PERIOD_S, took / CHART_SHARE)
         self._serial += 1
         self._frames_drawn += 1
         self.state.live_frame = {
@@ -373,7 +378,10 @@ class Live(Component):
         }
 
     def _update_charts(self, index: int) -> None:
+        """The contact-angle chart, the band thickness, and the words of the 3-D view's labels
+        and the raceway map's caption: the live inputs (of the newest chunk)."""
         s = self.state
+        self.ctrl.show_live_inputs(self.window.chunks[-1])
         s.chart_contact_angle = fig_json(charts.contact_angle_figure(self.source, None, index))
         band = band_thickness(self.window, self.inputs, "inner")
         s.live_band_inner = round(band, 5) if math.isfinite(band) else None

@@ -93,6 +93,7 @@ class ResultView(Component):
         "live_scene",
         "show_live_frame",
         "end_live",
+        "show_live_inputs",
     )
 
     def __init__(
@@ -295,9 +296,32 @@ class ResultView(Component):
             scene.set_frame(index)
             self.push_view()
 
+    def show_live_inputs(self, ds) -> None:
+        """While live: the 3-D view's labels (the loads, the speed) and the raceway map's caption
+        describe the live session's inputs now, read from its newest chunk ``ds`` (the inputs
+        over ``time``; their last values), not the result shown before."""
+        from ..teaching import facts_from_result
+
+        facts = facts_from_result(ds)
+        speed = facts.inner_ring_speed * 60.0 / (2.0 * math.pi)
+        words = (
+            f"live session now at radial load {facts.radial_load:.0f} N, axial load "
+            f"{facts.axial_load:.0f} N, shaft {speed:.0f} rpm, tilt "
+            f"{math.degrees(facts.misalignment):.3g}°; the map is of the result shown before "
+            "live mode, the 3-D view's painted tracks are the live session's"
+        )
+        if words == self.state.raceway_metrics:
+            return
+        self.state.raceway_metrics = words
+        if self.scene is not None:
+            self.scene.show_facts(facts)
+            if self.browser.active:
+                self.browser.show_scene(self.scene)
+
     def end_live(self) -> None:
         """The live session has ended: show again the result that was on show before it."""
         if self.dataset is None:
+            self.state.raceway_metrics = ""
             return
         self.show_result(self.dataset, str(self.state.result_label))
 

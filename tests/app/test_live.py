@@ -11,7 +11,7 @@ import time
 import numpy as np
 import pytest
 
-from app.live_runner import BEHIND_FRACTION, CHUNK_WALL_S, _Pace
+from app.live_runner import BEHIND_FRACTION, CHUNK_WALL_S, MAX_LEAD_CHUNKS, LiveRunner, _Pace
 from app.live_view import LiveTracks, LiveWindow
 from tests.app.conftest import make_dynamic_dataset
 from viz.frames import FrameSource
@@ -55,6 +55,45 @@ def test_pace_climbs_back_when_the_solver_is_quick_again():
     pace.after_chunk(0.1 * CHUNK_WALL_S)
     assert pace.rate == pytest.approx(0.006)
     assert pace.chunk_wall == pytest.approx(CHUNK_WALL_S)
+
+
+# ---- the lead of the child over the parent -------------------------------------------------------
+def _messages_until(runner, condition, timeout_s: float) -> list:
+    found, end = [], time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        found += runner.poll()
+        if condition(found):
+            return found
+        time.sleep(0.01)
+    raise AssertionError(f"timed out; messages: {[m[0] for m in found]}")
+
+
+def test_a_parent_that_falls_behind_gets_a_bounded_lead_and_sees_a_change_promptly():
+    """The child runs ahead of the parent by at most MAX_LEAD_CHUNKS chunks, however long the
+    parent does not take them (a page busy drawing), so a control change set then shows in one
+    of the next MAX_LEAD_CHUNKS + 1 chunks the parent takes, not after a backlog of stale ones."""
+    from pathlib import Path
+
+    case_text = (Path(__file__).parents[2] / "assets/cases/spindle-combined-load.toml").read_text()
+    runner = LiveRunner()
+    runner.start(case_text, rate=0.006, target="tests.app.live_fakes:SlowLive")
+    try:
+        _messages_until(runner, lambda m: any(k[0] == "chunk" for k in m), 120)
+        time.sleep(20 * CHUNK_WALL_S)  # the parent is busy: at the asked rate, 20 chunks are due
+        stale = [m for m in runner.poll() if m[0] == "chunk"]
+        assert 1 <= len(stale) <= MAX_LEAD_CHUNKS
+        runner.send("set", "radial_load", 900.0, 0.0)
+        time.sleep(5 * CHUNK_WALL_S)  # still busy
+        found = _messages_until(
+            runner,
+            lambda m: any(k[0] == "chunk" and float(k[1].radial_load[-1]) == 900.0 for k in m),
+            30,
+        )
+        chunks = [m[1] for m in found if m[0] == "chunk"]
+        first = next(i for i, c in enumerate(chunks) if float(c.radial_load[-1]) == 900.0)
+        assert first <= MAX_LEAD_CHUNKS  # at most the stale lead before it
+    finally:
+        runner.stop()
 
 
 # ---- the window and the tracks -------------------------------------------------------------------
@@ -232,3 +271,20 @@ def test_the_load_side_is_read_from_a_radial_load_angle_that_varies_in_time():
     angles = np.linspace(0.0, 90.0, ds.sizes["time"])
     varying = ds.drop_vars("radial_load_angle").assign(radial_load_angle=("time", angles))
     assert ResultView._load_side(varying) == pytest.approx(math.pi / 2)
+
+
+def test_while_live_the_map_caption_and_labels_describe_the_live_inputs(live_app):
+    """The raceway map's caption (and the 3-D view's labels, from the same facts) say the live
+    session's inputs from its newest chunk, not the result shown before; ending live mode
+    shows that result's words again."""
+    app, s = live_app, live_app.state
+    before = s.raceway_metrics
+    ds = make_dynamic_dataset(n_time=10)
+    chunk = ds.drop_vars("radial_load").assign(radial_load=("time", np.full(10, 1234.0)))
+    app.ctrl.show_live_inputs(chunk)
+    assert "radial load 1234 N" in s.raceway_metrics
+    assert s.raceway_metrics != before
+    s.live_on = True
+    app.live.ticket = None
+    app.live.stop()
+    assert s.raceway_metrics == before

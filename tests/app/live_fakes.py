@@ -1,0 +1,43 @@
+"""Stand-ins for :class:`solver.LiveSimulation` in the live child process (tests swap the class
+the child runs: ``LiveRunner.start(..., target="tests.app.live_fakes:SlowLive")``)."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import xarray as xr
+
+
+class SlowLive:
+    """A live simulation whose every ``advance`` takes :attr:`ADVANCE_S` of wall time and returns
+    a small chunk: ``time`` and the ``radial_load`` over it (a change set is a step)."""
+
+    ADVANCE_S = 0.01
+    SAMPLES_PER_SECOND = 60_000.0
+
+    def __init__(self, case):
+        self.time = 0.0
+        self._load = 300.0
+
+    def inputs_now(self) -> dict:
+        return {"radial_load": self._load}
+
+    def set_input(self, name: str, value: float, ramp_s: float = 0.0) -> None:
+        self._load = float(value)
+
+    def advance(self, duration_s: float) -> xr.Dataset:
+        time.sleep(self.ADVANCE_S)
+        count = max(1, round(duration_s * self.SAMPLES_PER_SECOND))
+        first = round(self.time * self.SAMPLES_PER_SECOND) + 1
+        times = np.arange(first, first + count) / self.SAMPLES_PER_SECOND
+        self.time = float(times[-1])
+        return xr.Dataset(
+            {"radial_load": ("time", np.full(count, self._load))}, coords={"time": times}
+        )
+
+    def reset(self) -> None:
+        self.time = 0.0
+
+    def close(self) -> None:
+        pass
