@@ -734,7 +734,7 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
     document.title = 'racetrace: the class has ended';
     document.body.innerHTML = '<div style="font: 16px Roboto, Arial, sans-serif; ' +
       'margin: 15vh auto; max-width: 40em"><h1 id="follow-ended">The presenter has left: ' +
-      'class __CODE__ has ended</h1><p>The presenter\'s page was closed for __IDLE__, so ' +
+      'class __CODE__ has ended</h1><p>The presenter&#39;s page was closed for __IDLE__, so ' +
       'their session ended. If they start a new one, ask them for its join code.</p></div>';
   }
   function update() {

@@ -41,12 +41,12 @@ class StandInProcess:
         return self.returncode
 
 
-def _stand_in_session() -> web.Application:
-    """A session's answers the front relays: the page, the follow status, a websocket that
-    stays open until the other side closes it."""
+def _stand_in_session(page_html: str = "<html><body>app</body></html>") -> web.Application:
+    """A session's answers the front relays: the page (``page_html``), the follow status, a
+    websocket that stays open until the other side closes it."""
 
     async def page(_request):
-        return web.Response(text="<html><body>app</body></html>", content_type="text/html")
+        return web.Response(text=page_html, content_type="text/html")
 
     async def status(_request):
         return web.json_response({"code": CODE, "drive": False})
