@@ -192,6 +192,7 @@ async def measure(args, server: dict, info) -> int:
         print(f"   {played_alone / args.seconds:.1f} frames/s played, memory {memory_alone:.0f} MB")
 
         followers = []
+        joining = time.monotonic()
         for _ in range(args.followers):
             follower_http = aiohttp.ClientSession(cookie_jar=aiohttp.CookieJar(unsafe=True))
             async with follower_http.get(
@@ -199,8 +200,18 @@ async def measure(args, server: dict, info) -> int:
             ) as page:
                 assert page.status == 200, page.status
             follower = WslinkClient()
-            await follower.connect(follower_http, f"ws://127.0.0.1:{port}/follow/{code}/ws", base)
+            # the whole state (the scene of a 100-revolution run) for each: slow on a loaded machine
+            await follower.connect(
+                follower_http, f"ws://127.0.0.1:{port}/follow/{code}/ws", base, timeout=600
+            )
             followers.append((follower_http, follower))
+        import msgpack
+
+        size = len(msgpack.packb(followers[0][1].state, default=str)) / 1e6 if followers else 0
+        print(
+            f"{args.followers} websocket followers joined in {time.monotonic() - joining:.0f} s "
+            f"(one after the other; the whole state each reads on joining: {size:.1f} MB)"
+        )
 
         async with async_playwright() as p:
             browser = await p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
