@@ -11,6 +11,9 @@ State keys:
   session.
 - ``follow_count``: followers connected now (the front marks their websockets,
   :data:`app.follow_names.FOLLOWER_HEADER`).
+- ``follow_presenter``: whether a presenter's page (a websocket the front did not mark as a
+  follower's) is connected now. Followers' pages say when the presenter has left: the front ends a
+  session whose presenter has been gone for :data:`app.serve.front.IDLE_S`, followers or not.
 - ``follow_drive``: whether followers may drive (change the state, press buttons, turn the view);
   the presenter's switch ``#follow-drive``. Followers never change a ``follow_*`` key.
 
@@ -47,6 +50,7 @@ class Follow(Component):
     def __init__(self, session):
         super().__init__(session)
         self._followers: set[str] = set()
+        self._presenters: set[str] = set()
         self._last_join_push = -JOIN_PUSH_S
         self.code = new_join_code()
 
@@ -54,6 +58,7 @@ class Follow(Component):
         s = self.state
         s.follow_code = self.code
         s.follow_count = 0
+        s.follow_presenter = False
         s.follow_drive = False
 
     def bind(self) -> None:
@@ -81,19 +86,22 @@ class Follow(Component):
             connect(request, client_id)
             if request.headers.get(FOLLOWER_HEADER) == "1":
                 self._followers.add(client_id)
-                self._count()
+            else:
+                self._presenters.add(client_id)
+            self._count()
 
         def on_close(client_id):
             close(client_id)
-            if client_id in self._followers:
-                self._followers.discard(client_id)
-                self._count()
+            self._followers.discard(client_id)
+            self._presenters.discard(client_id)
+            self._count()
 
         protocol.onConnect, protocol.onClose = on_connect, on_close
 
     def _count(self) -> None:
         with self.state:
             self.state.follow_count = len(self._followers)
+            self.state.follow_presenter = bool(self._presenters)
 
     def build_toolbar(self) -> None:
         """``#follow-button`` and the card it opens."""

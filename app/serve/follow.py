@@ -16,12 +16,19 @@ drive (state ``follow_drive``, read from the session at that moment, :data:`STAT
 follower never changes the ``follow_*`` keys (it cannot hand itself the controls), and never sizes
 the render or pushes images. A refused call is answered with a wslink error naming why, so the
 page's call ends instead of waiting.
+
+A class ends with its presenter: the front stops a session whose presenter's page has been gone
+for its idle time, whatever followers it has, and closes their websockets first with
+:data:`PRESENTER_LEFT_CLOSE` (their page then says the presenter has left). Join codes cannot be
+guessed by trying them: a client address that sent :data:`WRONG_CODES_PER_MINUTE` wrong codes in a
+minute is refused every code until the minute has passed (:class:`WrongCodeLimit`).
 """
 
 from __future__ import annotations
 
 import re
 import secrets
+from collections import deque
 from dataclasses import dataclass
 
 import msgpack
@@ -43,6 +50,13 @@ LIFECYCLE = frozenset({"client_connected", "client_exited", "client_unmounted"})
 # what a follower may call while the presenter lets followers drive
 WHEN_DRIVING = frozenset({"trame.state.update", "trame.trigger", "trame.rca.event"})
 READ_ONLY_ERROR = -32001  # the wslink error code of a refused call (JSON-RPC's server range)
+PRESENTER_LEFT_CLOSE = 4001  # a follower's websocket closed because its class ended
+# wrong join codes a client address may send in WRONG_CODES_WINDOW_S before it is refused every
+# code: a class behind one address (a school's network) mistypes a few; guessing one of 31**6
+# codes at this rate takes decades
+WRONG_CODES_PER_MINUTE = 20
+WRONG_CODES_WINDOW_S = 60.0
+MAX_ADDRESSES = 4096  # client addresses whose wrong codes are remembered at once
 
 
 def normal_code(text: str) -> str:
@@ -67,6 +81,48 @@ def qr_svg(url: str) -> bytes:
     out = io.BytesIO()
     segno.make(url, error="m").save(out, kind="svg", scale=6, border=4, xmldecl=False)
     return out.getvalue()
+
+
+class WrongCodeLimit:
+    """The wrong join codes each client address sent in the last :data:`WRONG_CODES_WINDOW_S`
+    seconds; an address that sent :data:`WRONG_CODES_PER_MINUTE` is refused until the oldest of
+    them is that old. At most :data:`MAX_ADDRESSES` addresses are remembered (the longest quiet
+    ones are forgotten first). Times: monotonic seconds."""
+
+    def __init__(
+        self,
+        limit: int = WRONG_CODES_PER_MINUTE,
+        window_s: float = WRONG_CODES_WINDOW_S,
+        max_addresses: int = MAX_ADDRESSES,
+    ):
+        self.limit, self.window_s, self.max_addresses = limit, window_s, max_addresses
+        self._wrong: dict[str, deque[float]] = {}
+
+    def retry_after(self, address: str, now: float) -> float:
+        """Seconds before ``address`` may try a join code again (0 when it may now)."""
+        times = self._recent(address, now)
+        if len(times) < self.limit:
+            return 0.0
+        return max(times[-self.limit] + self.window_s - now, 0.0)
+
+    def note_wrong(self, address: str, now: float) -> None:
+        """``address`` sent a join code that no class has."""
+        times = self._recent(address, now)
+        self._wrong.pop(address, None)  # to the end: the most recently active
+        times.append(now)
+        while len(times) > self.limit:
+            times.popleft()
+        self._wrong[address] = times
+        while len(self._wrong) > self.max_addresses:
+            del self._wrong[next(iter(self._wrong))]
+
+    def _recent(self, address: str, now: float) -> deque[float]:
+        times = self._wrong.get(address, deque())
+        while times and times[0] <= now - self.window_s:
+            times.popleft()
+        if not times:
+            self._wrong.pop(address, None)
+        return times
 
 
 @dataclass

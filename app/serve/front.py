@@ -15,8 +15,10 @@ A spare session is started ahead, so that a new browser does not wait for one to
 front listens at once: while the first session is prepared (the fork server imports and loads or
 compiles the kernels, minutes on an empty numba cache), a browser gets a page that says what is
 being prepared (:mod:`app.serve.preparing`) and opens the app when its session is ready. A session
-whose browsers have all left is stopped after :data:`IDLE_S`. Session processes stop when the
-front ends, even when it is killed (they watch their parent).
+whose browsers have all left is stopped after :data:`IDLE_S`; its followers
+(:mod:`app.serve.follow`) do not keep it: a class ends :data:`IDLE_S` after its presenter left,
+its followers told so.
+Session processes stop when the front ends, even when it is killed (they watch their parent).
 """
 
 from __future__ import annotations
@@ -44,12 +46,14 @@ from .session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 log = logging.getLogger("racetrace.front")
 
 COOKIE = "racetrace_session"
-IDLE_S = 120.0  # a session without browsers is stopped after this
+IDLE_S = 120.0  # a session without its presenter's browser is stopped after this
+REAP_EVERY_S = 5.0  # how often sessions are checked for that
 MAX_SESSIONS = 8  # sessions (browsers) at once; each is a process of about 0.5 GB
 # a cold numba cache compiles the quasi-static kernels first: minutes on a busy machine (the page
 # says what is being prepared meanwhile, :data:`PREPARING_PATH`)
 START_TIMEOUT_S = 1800.0
 PREPARING_PATH = "/__racetrace_preparing"  # what the first session waits for, as JSON
+ENDED_KEPT_S = 3600.0  # an ended class's page says so this long (then: no such class)
 STOP_TIMEOUT_S = 50.0  # a session stopping saves its run first (it waits up to 30 s for it)
 _HOP_HEADERS = {
     "connection",
@@ -85,8 +89,9 @@ class Session:
     secret: str = field(repr=False)  # the session answers requests that carry it, only
     process: asyncio.subprocess.Process  # or a forkserver.ForkedProcess, which behaves alike
     ready: asyncio.Future
-    sockets: int = 0  # the presenter's websockets and its followers'
-    idle_since: float = field(default_factory=time.monotonic)
+    presenters: int = 0  # the presenter's websockets (a page each)
+    followers: set = field(default_factory=set)  # its followers' websockets (from their browsers)
+    idle_since: float = field(default_factory=time.monotonic)  # since the last presenter left
     join_code: str = ""  # the session's follow-mode join code (read from it once it answers)
 
     @property
@@ -118,6 +123,8 @@ class Front:
         self._starting = None  # the first spare's start (the front listens meanwhile)
         self._started_at = time.monotonic()
         self._said_ready = False
+        self._wrong_codes = follow.WrongCodeLimit()
+        self._ended: dict[str, float] = {}  # join codes of classes ended by the idle stop
 
     # ---- session processes ----------------------------------------------------------------------
     async def _spawn(self) -> Session:
@@ -247,22 +254,42 @@ class Front:
             # files, so the spare answers without being given away
             return self._spare, False
         session = self._spare
+        session.idle_since = time.monotonic()  # idle from now on, not since it was started
         self.sessions[session.sid] = session
         if not self.shared:
             self._spare = await self._spawn()  # the next browser's
         return session, True
 
     async def _reap(self) -> None:
-        """Stop sessions without browsers for IDLE_S (never the shared one)."""
+        """Stop sessions without their presenter's browser for IDLE_S, followers or not (never
+        the shared one); the followers are told that the presenter has left."""
         while True:
-            await asyncio.sleep(5.0)
+            await asyncio.sleep(REAP_EVERY_S)
             now = time.monotonic()
             for sid, session in list(self.sessions.items()):
                 if not session.alive:
                     del self.sessions[sid]
-                elif not self.shared and session.sockets == 0 and now - session.idle_since > IDLE_S:
+                elif (
+                    not self.shared
+                    and session.presenters == 0
+                    and now - session.idle_since > IDLE_S
+                ):
                     del self.sessions[sid]
+                    await self._end_class(session)
                     await self._stop(session)
+
+    async def _end_class(self, session: Session) -> None:
+        """Close the followers' websockets of ``session``, saying that the presenter has left,
+        and remember its join code for an hour (a follower's page opened again says so)."""
+        now = time.monotonic()
+        self._ended = {c: t for c, t in self._ended.items() if now - t < ENDED_KEPT_S}
+        if session.join_code:
+            self._ended[session.join_code] = now
+        for browser in list(session.followers):
+            with contextlib.suppress(Exception):
+                await browser.close(
+                    code=follow.PRESENTER_LEFT_CLOSE, message=b"the presenter has left"
+                )
 
     async def _stop(self, session: Session) -> None:
         if not session.alive:
@@ -345,9 +372,10 @@ class Front:
     def _to_follow_page(self, request: web.Request) -> web.Response:
         """``/?follow=CODE``: the follower's page, ``/follow/CODE/`` (the token stays in the URL
         and is remembered in the cookie, as for any page)."""
-        code = follow.normal_code(request.query.get("follow", ""))
-        if not code or self._session_of_code(code) is None:
-            return _no_class_page(request.query.get("follow", ""))
+        found = self._follow_target(request, request.query.get("follow", ""))
+        if isinstance(found, web.Response):
+            return found
+        code = found.join_code
         query = {k: v for k, v in request.query.items() if k != "follow"}
         target = f"{follow.PREFIX}{code}/" + (f"?{_urlencode(query)}" if query else "")
         response = web.Response(status=302, headers={"Location": target})
@@ -358,8 +386,11 @@ class Front:
         """A request under ``/follow/CODE/``: relayed to the session of that join code, as a
         follower (its websocket read-only, :class:`app.serve.follow.FollowerGate`)."""
         code, _, rest = request.path[len(follow.PREFIX) :].partition("/")
-        session = self._session_of_code(code)
-        if session is None or not session.ready.done() or session.ready.exception():
+        found = self._follow_target(request, code)
+        if isinstance(found, web.Response):
+            return found
+        session = found
+        if not session.ready.done() or session.ready.exception():
             return _no_class_page(code)
         if not rest and not request.path.endswith("/"):
             location = f"{follow.PREFIX}{follow.normal_code(code)}/"
@@ -376,6 +407,24 @@ class Front:
             response.body = page.replace("</body>", banner + "</body>").encode()
         self.access.grant(request, response)
         return response
+
+    def _follow_target(self, request: web.Request, code: str) -> Session | web.Response:
+        """The session of join code ``code``, or the page the requesting client gets instead: too
+        many wrong codes from its address (429, :class:`app.serve.follow.WrongCodeLimit`), a
+        class ended by the idle stop, or no such class (both 404; counted as wrong codes)."""
+        address, now = request.remote or "", time.monotonic()
+        wait = self._wrong_codes.retry_after(address, now)
+        if wait > 0:
+            log.warning("follow: %s refused, too many wrong join codes", address)
+            return _too_many_codes_page(wait, self._wrong_codes)
+        session = self._session_of_code(code)
+        if session is not None:
+            return session
+        self._wrong_codes.note_wrong(address, now)
+        ended = self._ended.get(follow.normal_code(code))
+        if ended is not None and now - ended < ENDED_KEPT_S:
+            return _class_ended_page(follow.normal_code(code))
+        return _no_class_page(code)
 
     def _qr(self, request: web.Request, session: Session | None) -> web.Response:
         """The QR code of ``session``'s follow address, as the requesting browser reached this
@@ -431,7 +480,9 @@ class Front:
         headers = {SECRET_HEADER: session.secret}
         if follower:
             headers[FOLLOWER_HEADER] = "1"
-        session.sockets += 1
+            session.followers.add(browser)
+        else:
+            session.presenters += 1
         try:
             async with self._http.ws_connect(
                 url,
@@ -448,8 +499,11 @@ class Front:
         except OSError as error:
             log.warning("session %s unreachable: %s", session.sid[:6], error)
         finally:
-            session.sockets -= 1
-            session.idle_since = time.monotonic()
+            if follower:
+                session.followers.discard(browser)
+            else:
+                session.presenters -= 1
+                session.idle_since = time.monotonic()
             await browser.close()
         return browser
 
@@ -536,10 +590,51 @@ def _no_class_page(code: str) -> web.Response:
     )
 
 
+def _class_ended_page(code: str) -> web.Response:
+    """The page a follower gets for the join code of a class that ended (its presenter left)."""
+    return web.Response(
+        status=404,
+        content_type="text/html",
+        headers={"Cache-Control": "no-store"},
+        text=CLASS_ENDED_PAGE.replace("__CODE__", code).replace("__IDLE__", _minutes(IDLE_S)),
+    )
+
+
+def _too_many_codes_page(wait_s: float, limit: follow.WrongCodeLimit) -> web.Response:
+    """The page (429) a client gets for ``wait_s`` more seconds: it sent too many wrong join
+    codes (``limit``)."""
+    wait = max(1, round(wait_s))
+    text = (
+        TOO_MANY_CODES_PAGE.replace("__LIMIT__", str(limit.limit))
+        .replace("__WINDOW__", f"{limit.window_s:.0f}")
+        .replace("__WAIT__", str(wait))
+    )
+    return web.Response(
+        status=429,
+        content_type="text/html",
+        headers={"Cache-Control": "no-store", "Retry-After": str(wait)},
+        text=text,
+    )
+
+
+def _minutes(seconds: float) -> str:
+    """``seconds`` in words, in minutes when whole ones (``120`` -> "2 minutes")."""
+    if seconds >= 60 and seconds % 60 == 0:
+        n = int(seconds // 60)
+        return f"{n} minute" + ("s" if n != 1 else "")
+    return f"{seconds:g} s"
+
+
 def _follower_banner(code: str) -> str:
     """What the front adds to a follower's page: a banner saying it follows, read-only (its
-    controls do nothing then: the front refuses their changes), or driving."""
-    return FOLLOWER_BANNER.replace("__CODE__", code)
+    controls do nothing then: the front refuses their changes), or driving; that the presenter
+    has left (and when the class ends unless they come back); and, once the class has ended,
+    a page saying so in place of the app."""
+    return (
+        FOLLOWER_BANNER.replace("__CODE__", code)
+        .replace("__IDLE__", _minutes(IDLE_S))
+        .replace("__LEFT_CLOSE__", str(follow.PRESENTER_LEFT_CLOSE))
+    )
 
 
 def _is_page(request: web.Request) -> bool:
@@ -590,6 +685,25 @@ ask the presenter for the code on their screen (under "class" in the toolbar), t
 this server's address with <code>?follow=CODE</code>.</p></body></html>
 """
 
+CLASS_ENDED_PAGE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>racetrace: the class has ended</title>
+<style>body { font-family: Roboto, Arial, sans-serif; margin: 15vh auto; max-width: 40em; }</style>
+</head><body><h1 id="follow-ended">The presenter has left: class __CODE__ has ended</h1>
+<p>The presenter's page was closed for __IDLE__, so their session ended. If they start a new
+one, it has a new join code: ask them for it, then open this server's address with
+<code>?follow=CODE</code>.</p></body></html>
+"""
+
+TOO_MANY_CODES_PAGE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>racetrace: too many wrong join codes</title>
+<style>body { font-family: Roboto, Arial, sans-serif; margin: 15vh auto; max-width: 40em; }</style>
+</head><body><h1 id="follow-too-many">Too many wrong join codes</h1>
+<p>Your address sent __LIMIT__ join codes that no class has within __WINDOW__ s, so this server
+refuses join codes from it for __WAIT__ s more. Check the code on the presenter's screen (under
+"class" in the toolbar), wait, then open this server's address with
+<code>?follow=CODE</code> again.</p></body></html>
+"""
+
 # Added to a follower's page (app.serve.follow): the follower's controls are inert while it is
 # read-only (the front refuses their changes anyway), and a banner says so.
 FOLLOWER_BANNER = """
@@ -604,14 +718,36 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
 <div id="follow-banner">following class __CODE__: you see what the presenter shows</div>
 <script>
 (function () {
-  var readOnly = true;
+  var readOnly = true, ended = false;
   window.racetraceFollower = '__CODE__';
+  // the front closes a follower's websocket with __LEFT_CLOSE__ when the class ends (its presenter
+  // left): the page says so in place of the app
+  var NativeSocket = window.WebSocket;
+  window.WebSocket = class extends NativeSocket {
+    constructor(url, protocols) {
+      super(url, protocols);
+      this.addEventListener('close', function (e) { if (e.code === __LEFT_CLOSE__) end(); });
+    }
+  };
+  function end() {
+    ended = true;
+    document.title = 'racetrace: the class has ended';
+    document.body.innerHTML = '<div style="font: 16px Roboto, Arial, sans-serif; ' +
+      'margin: 15vh auto; max-width: 40em"><h1 id="follow-ended">The presenter has left: ' +
+      'class __CODE__ has ended</h1><p>The presenter&#39;s page was closed for __IDLE__, so ' +
+      'their session ended. If they start a new one, ask them for its join code.</p></div>';
+  }
   function update() {
-    var drive = !!(window.trame && window.trame.state && window.trame.state.get('follow_drive'));
+    if (ended) return;
+    var s = window.trame && window.trame.state;
+    var drive = !!(s && s.get('follow_drive'));
+    var left = !!s && s.get('follow_presenter') === false;
     readOnly = !drive;
     document.documentElement.classList.toggle('rt-read-only', readOnly);
     document.getElementById('follow-banner').textContent = 'following class __CODE__: ' +
-      (drive ? 'the presenter lets you drive' : 'you see what the presenter shows (read-only)');
+      (left ? 'the presenter has left; the class ends __IDLE__ after they left unless they ' +
+              'come back' :
+       drive ? 'the presenter lets you drive' : 'you see what the presenter shows (read-only)');
   }
   window.addEventListener('keydown', function (e) {
     if (readOnly) { e.stopImmediatePropagation(); }
@@ -628,7 +764,7 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
       .catch(function () { asked = 0; });
   }
   update();
-  setInterval(function () { join(); update(); }, 500);
+  setInterval(function () { if (!ended) { join(); update(); } }, 500);
 })();
 </script>
 """

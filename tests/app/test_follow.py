@@ -15,7 +15,7 @@ import pytest
 from app.components.follow import CODE_ALPHABET, CODE_LENGTH, new_join_code
 from app.follow_names import QR_NAME
 from app.serve import follow
-from app.serve.follow import FollowerGate, normal_code, refusal_reply
+from app.serve.follow import FollowerGate, WrongCodeLimit, normal_code, refusal_reply
 from tests.helpers.serve import start_server, stop_server
 from tests.helpers.wslink_client import WslinkClient, chunk
 
@@ -116,6 +116,58 @@ def test_the_session_counts_followers_and_says_whether_they_drive(app):
     assert follow_part.status()["drive"] is False
     app.state.follow_drive = True
     assert follow_part.status() == {"code": follow_part.code, "drive": True}
+
+
+def test_the_session_says_whether_its_presenter_is_there(app):
+    """``follow_presenter``: a websocket the front did not mark as a follower's is the
+    presenter's; followers' pages read it to say that the presenter has left."""
+    from app.follow_names import FOLLOWER_HEADER
+
+    class Protocol:
+        def onConnect(self, request, client_id):  # noqa: N802 - wslink's name
+            pass
+
+        def onClose(self, client_id):  # noqa: N802
+            pass
+
+    class Request:
+        def __init__(self, follower: bool):
+            self.headers = {FOLLOWER_HEADER: "1"} if follower else {}
+
+    protocol = Protocol()
+    app.follow._configure_protocol(protocol)
+    assert app.state.follow_presenter is False
+    protocol.onConnect(Request(follower=False), "presenter")
+    protocol.onConnect(Request(follower=True), "follower")
+    assert app.state.follow_presenter is True and app.state.follow_count == 1
+    protocol.onConnect(Request(follower=False), "presenter-second-tab")
+    protocol.onClose("presenter")
+    assert app.state.follow_presenter is True  # another page of the presenter's is open
+    protocol.onClose("presenter-second-tab")
+    assert app.state.follow_presenter is False and app.state.follow_count == 1
+    protocol.onConnect(Request(follower=False), "presenter-back")
+    assert app.state.follow_presenter is True
+    protocol.onClose("follower")
+    assert app.state.follow_count == 0 and app.state.follow_presenter is True
+
+
+def test_wrong_join_codes_are_limited_per_address_and_minute():
+    limit = WrongCodeLimit(limit=3, window_s=60.0, max_addresses=2)
+    for t in (0.0, 10.0, 20.0):
+        assert limit.retry_after("10.0.0.1", t) == 0.0
+        limit.note_wrong("10.0.0.1", t)
+    # the third wrong code within the minute: refused until the first is a minute old
+    assert limit.retry_after("10.0.0.1", 30.0) == pytest.approx(30.0)
+    assert limit.retry_after("10.0.0.2", 30.0) == 0.0  # another address is not
+    assert limit.retry_after("10.0.0.1", 60.5) == 0.0
+    limit.note_wrong("10.0.0.1", 71.0)  # two within the minute again (0 and 10 gone: 20, 71)
+    assert limit.retry_after("10.0.0.1", 72.0) == 0.0
+    limit.note_wrong("10.0.0.1", 72.0)
+    assert limit.retry_after("10.0.0.1", 73.0) == pytest.approx(7.0)
+    # at most max_addresses remembered: the longest quiet one is forgotten
+    limit.note_wrong("10.0.0.2", 74.0)
+    limit.note_wrong("10.0.0.3", 75.0)
+    assert set(limit._wrong) == {"10.0.0.2", "10.0.0.3"}
 
 
 # ---- against a real server -----------------------------------------------------------------------

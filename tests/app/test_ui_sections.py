@@ -122,8 +122,9 @@ def test_each_component_builds_its_own_section(rendering_app):
             stable |= {f"{head}-{c}" for c in choices.rstrip(">").split("|")}
     # the page's own container (app/ui.py), its presenter class and the words `status` ends in
     stable -= {"content", "rt-presenter", "done", "cancelled"}
-    # what the front adds to a follower's page, and its page for a wrong join code (app.serve.front)
-    stable -= {"follow-banner", "follow-refused"}
+    # what the front adds to a follower's page, and its pages for a wrong join code, an ended
+    # class and too many wrong codes (app.serve.front)
+    stable -= {"follow-banner", "follow-refused", "follow-ended", "follow-too-many"}
     assert stable <= shown, f"stable ids in no section: {sorted(stable - shown)}"
 
 

@@ -34,12 +34,15 @@ class WslinkClient:
         self._pending: dict[int, bytearray] = {}
         self._reader: asyncio.Task | None = None
 
-    async def connect(self, http: aiohttp.ClientSession, url: str, origin: str) -> None:
-        """Open the websocket at ``url`` (``ws://.../ws``), say hello and read the whole state."""
+    async def connect(
+        self, http: aiohttp.ClientSession, url: str, origin: str, timeout: float = 30.0
+    ) -> None:
+        """Open the websocket at ``url`` (``ws://.../ws``), say hello and read the whole state
+        (each answer within ``timeout`` seconds)."""
         self.ws = await http.ws_connect(url, origin=origin, max_msg_size=0)
         self._reader = asyncio.get_running_loop().create_task(self._read())
-        await self.call("wslink.hello", [{"secret": "wslink-secret"}], system=True)
-        initial = await self.call("trame.state.get", [])
+        await self.call("wslink.hello", [{"secret": "wslink-secret"}], system=True, timeout=timeout)
+        initial = await self.call("trame.state.get", [], timeout=timeout)
         self.state.update(initial["state"])
 
     async def call(self, method: str, args: list, system: bool = False, timeout: float = 30.0):
