@@ -54,6 +54,14 @@ MAX_SESSIONS = 8  # sessions (browsers) at once; each is a process of about 0.5 
 START_TIMEOUT_S = 1800.0
 PREPARING_PATH = "/__racetrace_preparing"  # what the first session waits for, as JSON
 ENDED_KEPT_S = 3600.0  # an ended class's page says so this long (then: no such class)
+# What a session has sent that a browser has not read yet is held here, not in the session (a
+# session writing to a slow reader would hold it for every such client, without bound): a browser
+# that falls this many bytes behind is closed with SLOW_CLOSE. A follower's page then joins again
+# (the state it reads on joining is whole); a presenter's page shows it lost its connection.
+FOLLOWER_BACKLOG_BYTES = 16 * 1024 * 1024
+PRESENTER_BACKLOG_BYTES = 96 * 1024 * 1024
+SLOW_CLOSE = 4002
+SLOW_WRITE_S = 10.0  # a browser closed as too slow gets this long to take the message on its way
 STOP_TIMEOUT_S = 50.0  # a session stopping saves its run first (it waits up to 30 s for it)
 _HOP_HEADERS = {
     "connection",
@@ -495,7 +503,8 @@ class Front:
                     if follower
                     else _pump(browser, upstream)
                 )
-                await asyncio.gather(inward, _pump(upstream, browser))
+                limit = FOLLOWER_BACKLOG_BYTES if follower else PRESENTER_BACKLOG_BYTES
+                await asyncio.gather(inward, _pump_to_browser(upstream, browser, limit))
         except OSError as error:
             log.warning("session %s unreachable: %s", session.sid[:6], error)
         finally:
@@ -634,6 +643,7 @@ def _follower_banner(code: str) -> str:
         FOLLOWER_BANNER.replace("__CODE__", code)
         .replace("__IDLE__", _minutes(IDLE_S))
         .replace("__LEFT_CLOSE__", str(follow.PRESENTER_LEFT_CLOSE))
+        .replace("__SLOW_CLOSE__", str(SLOW_CLOSE))
     )
 
 
@@ -726,7 +736,13 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
   window.WebSocket = class extends NativeSocket {
     constructor(url, protocols) {
       super(url, protocols);
-      this.addEventListener('close', function (e) { if (e.code === __LEFT_CLOSE__) end(); });
+      this.addEventListener('close', function (e) {
+        if (e.code === __LEFT_CLOSE__) end();
+        // too slow to keep up (__SLOW_CLOSE__): join again, reading the session's whole state
+        if (e.code === __SLOW_CLOSE__ && !ended) {
+          setTimeout(function () { location.reload(); }, 2000);
+        }
+      });
     }
   };
   function end() {
@@ -786,6 +802,53 @@ async def _pump(source, target) -> None:
             break
     if not target.closed:
         await target.close()
+
+
+async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
+    """Copy a session's websocket messages to ``browser`` without ever holding the session back:
+    they wait in a queue here while the browser reads; a browser more than ``limit_bytes``
+    behind is closed with :data:`SLOW_CLOSE` (a wslink message cannot be dropped: the ones after
+    it may be its chunks or changes to its state)."""
+    queue: asyncio.Queue = asyncio.Queue()
+    backlog = 0
+
+    async def write() -> None:
+        nonlocal backlog
+        while (message := await queue.get()) is not None:
+            backlog -= len(message.data)
+            if message.type == WSMsgType.TEXT:
+                await browser.send_str(message.data)
+            else:
+                await browser.send_bytes(message.data)
+
+    writer = asyncio.create_task(write())
+    too_slow = False
+    try:
+        async for message in session_socket:
+            if browser.closed or writer.done():
+                break
+            if message.type not in (WSMsgType.TEXT, WSMsgType.BINARY):
+                break
+            if backlog + len(message.data) > limit_bytes:
+                too_slow = True
+                break
+            backlog += len(message.data)
+            queue.put_nowait(message)
+    finally:
+        if too_slow:  # the session stops sending to it; what waits here is dropped, the
+            await session_socket.close()  # message on its way is let finish (a frame cut
+            while not queue.empty():  # short would garble the close that follows)
+                queue.get_nowait()
+        queue.put_nowait(None)
+        try:
+            await asyncio.wait_for(writer, SLOW_WRITE_S if too_slow else None)
+        except (TimeoutError, asyncio.CancelledError, ConnectionError, RuntimeError):
+            pass  # a browser that reads nothing, or the browser went while a message was on its way
+    if too_slow and not browser.closed:
+        log.warning("a browser fell over %d bytes behind its session: closed", limit_bytes)
+        await browser.close(code=SLOW_CLOSE, message=b"too slow to follow")
+    elif not browser.closed:
+        await browser.close()
 
 
 def run_front(front: Front, host: str, port: int, on_listening=None) -> None:

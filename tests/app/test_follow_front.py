@@ -41,9 +41,12 @@ class StandInProcess:
         return self.returncode
 
 
-def _stand_in_session(page_html: str = "<html><body>app</body></html>") -> web.Application:
+def _stand_in_session(
+    page_html: str = "<html><body>app</body></html>", websocket=None
+) -> web.Application:
     """A session's answers the front relays: the page (``page_html``), the follow status, a
-    websocket that stays open until the other side closes it."""
+    websocket (the handler ``websocket``, by default one that stays open until the other side
+    closes it)."""
 
     async def page(_request):
         return web.Response(text=page_html, content_type="text/html")
@@ -60,7 +63,7 @@ def _stand_in_session(page_html: str = "<html><body>app</body></html>") -> web.A
 
     app = web.Application()
     app.router.add_get(follow.STATUS_PATH, status)
-    app.router.add_get("/ws", socket)
+    app.router.add_get("/ws", websocket or socket)
     app.router.add_get("/{tail:.*}", page)
     return app
 
@@ -180,6 +183,54 @@ def test_guessing_join_codes_is_refused_after_too_many_wrong_ones(monkeypatch):
             }
             async with http.get(f"{base}/?follow={CODE}", headers=html, allow_redirects=False) as r:
                 assert r.status == 302 and r.headers["Location"] == f"/follow/{CODE}/"
+        await server.close()
+        await upstream.close()
+
+    asyncio.run(scenario())
+
+
+def test_a_follower_that_does_not_read_never_holds_its_session_back(monkeypatch):
+    """A session streams 24 MB to a follower that reads nothing: the session's sends all
+    complete at once (what the follower has not read waits at the front, not in the session),
+    and the front closes the follower with SLOW_CLOSE once it is past its backlog bound."""
+    monkeypatch.setattr(front_module, "FOLLOWER_BACKLOG_BYTES", 2 * 1024 * 1024)
+    message_bytes, count = 256 * 1024, 96
+    sent = asyncio.Event()
+
+    async def scenario():
+        async def streaming(request):
+            ws = web.WebSocketResponse()
+            await ws.prepare(request)
+            if request.headers.get(front_module.FOLLOWER_HEADER):
+                for _ in range(count):
+                    await ws.send_bytes(b"x" * message_bytes)
+                sent.set()
+            async for _ in ws:
+                pass
+            return ws
+
+        upstream = TestServer(_stand_in_session(websocket=streaming), host="127.0.0.1")
+        await upstream.start_server()
+        front, server, _processes = await _served_front(monkeypatch, upstream)
+        base = f"http://127.0.0.1:{server.port}"
+        jar = aiohttp.CookieJar(unsafe=True)
+        async with aiohttp.ClientSession(cookie_jar=jar) as http:
+            async with http.get(base + "/", headers={"Accept": "text/html"}) as page:
+                assert page.status == 200
+            async with aiohttp.ClientSession() as follower_http:
+                follower = await follower_http.ws_connect(
+                    f"ws://127.0.0.1:{server.port}/follow/{CODE}/ws", origin=base
+                )
+                # the follower reads nothing: the session is not held back all the same
+                await asyncio.wait_for(sent.wait(), timeout=20)
+                received = 0
+                while True:
+                    message = await asyncio.wait_for(follower.receive(), timeout=20)
+                    if message.type != WSMsgType.BINARY:
+                        break
+                    received += 1
+                assert message.type == WSMsgType.CLOSE and message.data == front_module.SLOW_CLOSE
+                assert received < count
         await server.close()
         await upstream.close()
 
