@@ -117,3 +117,98 @@ def set_summary(ds) -> dict:
         if name in ds:
             out[name] = [float(v) for v in ds[name].values]
     return out
+
+
+def _dynamic_bearing(ds, index: int) -> dict:
+    """Bearing ``index`` of a dynamic set's Dataset: its single-bearing result (``one``) and its
+    loads on the shaft averaged over its analysed window (N)."""
+    from solver import bearing_result
+
+    one = bearing_result(ds, index)
+    start = float(one.racetrace.metric("analysis_start_time"))
+    window = ds.isel(bearing=index).sel(time=slice(start, None))
+    return {
+        "one": one,
+        "axial_load_N": float(window["bearing_axial_load"].mean("time")),
+        "radial_load_N": float(window["bearing_radial_load"].mean("time")),
+    }
+
+
+def _dynamic_values(one) -> dict:
+    """A bearing's cage slip (fractions) and mean power loss [W] (NaN where not available)."""
+    metric = one.racetrace.metric
+    return {
+        "cage_slip": float(metric("cage_slip")),
+        "mean_instantaneous_cage_slip": float(metric("mean_instantaneous_cage_slip")),
+        "cage_skids": bool(float(metric("cage_skids")) == 1.0),
+        "mean_total_power_loss_W": float(metric("mean_total_power_loss")),
+    }
+
+
+def dynamic_set_text(ds) -> str:
+    """The dynamic run of a set in readable lines: per bearing its loads, trajectory metrics,
+    cage slip, power loss, friction torque and rating lives; then the set's energy balance."""
+    from racetrace.metrics import energy_text, life_text, metrics_text, torque_text
+
+    lines = [f"{ds.attrs.get('bearing_set', 'bearing set')}"]
+    for index, name in enumerate(ds["bearing"].values):
+        bearing = _dynamic_bearing(ds, index)
+        one = bearing["one"]
+        values = _dynamic_values(one)
+        lines += [
+            "",
+            f"bearing {name!s} (at {float(ds['bearing_position'][index]) * 1e3:g} mm, carries "
+            f"thrust towards {ds['bearing_direction'].values[index]}): axial load "
+            f"{bearing['axial_load_N']:.1f} N, radial load {bearing['radial_load_N']:.1f} N "
+            "(mean over its analysed window)",
+        ]
+        # the energy balance is the set's, printed once below
+        lines += [line for line in metrics_text(one).splitlines() if not line.startswith("energy")]
+        skids = " (the cage skids)" if values["cage_skids"] else ""
+        lines.append(
+            f"cage slip: {100.0 * values['cage_slip']:.3f} % of the epicyclic speed; "
+            f"{100.0 * values['mean_instantaneous_cage_slip']:.3f} % of the rolling speed{skids}"
+        )
+        lines.append(f"power loss: {values['mean_total_power_loss_W']:.4g} W (mean)")
+        lines.append(torque_text(one))
+        lines.append(life_text(one))
+    lines += ["", f"the set: {energy_text(float(ds['energy_balance_residual']))}"]
+    return "\n".join(lines)
+
+
+def dynamic_set_summary(ds) -> dict:
+    """The dynamic run of a set as plain JSON values (SI units, angles in degree; NaN as null):
+    per bearing its loads, trajectory metrics, cage slip, power loss, friction torque and rating
+    lives; the set's energy-balance residual."""
+    from racetrace.metrics import finite_or_none, life_json, metrics_json, torque_json
+
+    bearings = []
+    for index, name in enumerate(ds["bearing"].values):
+        bearing = _dynamic_bearing(ds, index)
+        one = bearing["one"]
+        trajectory = metrics_json(one)
+        trajectory.pop("energy_balance_residual", None)  # the set's, given once
+        values = _dynamic_values(one)
+        bearings.append(
+            {
+                "name": str(name),
+                "position_m": float(ds["bearing_position"][index]),
+                "direction": str(ds["bearing_direction"].values[index]),
+                "axial_load_N": bearing["axial_load_N"],
+                "radial_load_N": bearing["radial_load_N"],
+                "trajectory": trajectory,
+                "cage_slip": finite_or_none(values["cage_slip"]),
+                "mean_instantaneous_cage_slip": finite_or_none(
+                    values["mean_instantaneous_cage_slip"]
+                ),
+                "cage_skids": values["cage_skids"],
+                "mean_total_power_loss_W": finite_or_none(values["mean_total_power_loss_W"]),
+                "friction_torque": torque_json(one),
+                "life": life_json(one),
+            }
+        )
+    return {
+        "bearing_set": ds.attrs.get("bearing_set", ""),
+        "bearings": bearings,
+        "energy_balance_residual": finite_or_none(float(ds["energy_balance_residual"])),
+    }
