@@ -145,10 +145,31 @@ def _dynamic_values(one) -> dict:
     }
 
 
+def _reference_life(one) -> dict:
+    """A bearing's reference rating life L10r (ISO/TS 16281, from its contact loads: million
+    revolutions, hours) and its notes. ISO 281's L10 reads the applied loads, which a bearing of
+    a set does not have (the shaft loads it), so it is left out."""
+    metric = one.racetrace.metric
+    out, notes = {}, []
+    for key, name, divisor in (
+        ("L10r_million_revolutions", "reference_rating_life", 1e6),
+        ("L10r_hours", "reference_rating_life_time", 3600.0),
+    ):
+        value = metric(name)
+        out[key] = float(value) / divisor
+        note = value.attrs.get("note")
+        if note and note not in notes:
+            notes.append(note)
+    out["notes"] = notes
+    return out
+
+
 def dynamic_set_text(ds) -> str:
     """The dynamic run of a set in readable lines: per bearing its loads, trajectory metrics,
-    cage slip, power loss, friction torque and rating lives; then the set's energy balance."""
-    from racetrace.metrics import energy_text, life_text, metrics_text, torque_text
+    cage slip, power loss, mean friction torque and reference rating life; then the set's energy
+    balance. The empirical torque estimates and ISO 281's L10 read a bearing's applied loads,
+    which a bearing of a set does not have: they are left out."""
+    from racetrace.metrics import energy_text, metrics_text
 
     lines = [f"{ds.attrs.get('bearing_set', 'bearing set')}"]
     for index, name in enumerate(ds["bearing"].values):
@@ -157,7 +178,7 @@ def dynamic_set_text(ds) -> str:
         values = _dynamic_values(one)
         lines += [
             "",
-            f"bearing {name!s} (at {float(ds['bearing_position'][index]) * 1e3:g} mm, carries "
+            f"{name!s} (at {float(ds['bearing_position'][index]) * 1e3:g} mm, carries "
             f"thrust towards {ds['bearing_direction'].values[index]}): axial load "
             f"{bearing['axial_load_N']:.1f} N, radial load {bearing['radial_load_N']:.1f} N "
             "(mean over its analysed window)",
@@ -169,18 +190,26 @@ def dynamic_set_text(ds) -> str:
             f"cage slip: {100.0 * values['cage_slip']:.3f} % of the epicyclic speed; "
             f"{100.0 * values['mean_instantaneous_cage_slip']:.3f} % of the rolling speed{skids}"
         )
-        lines.append(f"power loss: {values['mean_total_power_loss_W']:.4g} W (mean)")
-        lines.append(torque_text(one))
-        lines.append(life_text(one))
+        torque = float(one.racetrace.metric("mean_friction_torque"))
+        lines.append(
+            f"power loss: {values['mean_total_power_loss_W']:.4g} W, friction torque "
+            f"{torque * 1e3:.4g} N mm (means over the analysed window)"
+        )
+        life = _reference_life(one)
+        lines.append(
+            f"L10r (ISO/TS 16281, contact loads): {life['L10r_million_revolutions']:.5g} million "
+            f"revolutions = {life['L10r_hours']:.5g} h"
+        )
+        lines += [f"  note: {note}" for note in life["notes"]]
     lines += ["", f"the set: {energy_text(float(ds['energy_balance_residual']))}"]
     return "\n".join(lines)
 
 
 def dynamic_set_summary(ds) -> dict:
     """The dynamic run of a set as plain JSON values (SI units, angles in degree; NaN as null):
-    per bearing its loads, trajectory metrics, cage slip, power loss, friction torque and rating
-    lives; the set's energy-balance residual."""
-    from racetrace.metrics import finite_or_none, life_json, metrics_json, torque_json
+    per bearing its loads, trajectory metrics, cage slip, power loss, mean friction torque and
+    reference rating life (as :func:`dynamic_set_text`); the set's energy-balance residual."""
+    from racetrace.metrics import finite_or_none, metrics_json
 
     bearings = []
     for index, name in enumerate(ds["bearing"].values):
@@ -203,8 +232,13 @@ def dynamic_set_summary(ds) -> dict:
                 ),
                 "cage_skids": values["cage_skids"],
                 "mean_total_power_loss_W": finite_or_none(values["mean_total_power_loss_W"]),
-                "friction_torque": torque_json(one),
-                "life": life_json(one),
+                "mean_friction_torque_N_m": finite_or_none(
+                    float(one.racetrace.metric("mean_friction_torque"))
+                ),
+                "life": {
+                    key: finite_or_none(value) if key != "notes" else value
+                    for key, value in _reference_life(one).items()
+                },
             }
         )
     return {

@@ -191,7 +191,12 @@ def test_a_set_runs_its_dynamic_model_and_reopens_bearing_by_bearing(pair, tmp_p
     np.testing.assert_allclose(
         _values(axial["y"]), whole["bearing_axial_load"].isel(time=-1).values
     )
-    # the run is listed, and a new session on the same runs folder reopens it as a set
+    # the run is listed under a title that says it is the set's, and a new session on the same
+    # runs folder reopens it as a set
+    assert (
+        "DB of 2 bearing(s), preload force 100 N at assembly: 12000 rpm, load [100, 200, 0] N"
+        in (s.runs[0]["title"])
+    )
     again = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
     try:
         again.start(PAIR, play=False)

@@ -53,8 +53,9 @@ def test_a_db_pair_runs_and_reports_each_bearing(tmp_path, capsys):
         assert bearing["trajectory"]["inner"]["excursion_deg"] > 0.0
         assert bearing["mean_total_power_loss_W"] > 0.0
         assert bearing["cage_slip"] is not None and abs(bearing["cage_slip"]) < 0.5
-        assert bearing["friction_torque"]["model_N_m"] > 0.0
-        assert "L10_hours" in bearing["life"]
+        assert bearing["mean_friction_torque_N_m"] > 0.0
+        assert bearing["life"]["L10r_hours"] > 0.0
+        assert "L10_hours" not in bearing["life"]  # ISO 281 reads applied loads: none here
     # each bearing's loads are its own, not the set's stacked twice
     assert first["mean_total_power_loss_W"] != second["mean_total_power_loss_W"]
     assert report["energy_balance_residual"] is not None
@@ -69,6 +70,7 @@ def test_the_text_summary_names_each_bearing_and_the_set_balance(tmp_path, capsy
     assert "bearing 2 (at 15 mm, carries thrust towards -x): axial load" in text
     assert text.count("inner race: excursion") == 2
     assert text.count("cage slip: ") == 2 and text.count("power loss: ") == 2
+    assert text.count("L10r (ISO/TS 16281") == 2 and "L10  (ISO 281" not in text
     assert text.count("energy balance:") == 1 and "the set: energy balance" in text
 
 
