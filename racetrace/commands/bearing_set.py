@@ -147,21 +147,12 @@ def _dynamic_values(one) -> dict:
 
 def _reference_life(one) -> dict:
     """A bearing's reference rating life L10r (ISO/TS 16281, from its contact loads: million
-    revolutions, hours) and its notes. ISO 281's L10 reads the applied loads, which a bearing of
-    a set does not have (the shaft loads it), so it is left out."""
-    metric = one.racetrace.metric
-    out, notes = {}, []
-    for key, name, divisor in (
-        ("L10r_million_revolutions", "reference_rating_life", 1e6),
-        ("L10r_hours", "reference_rating_life_time", 3600.0),
-    ):
-        value = metric(name)
-        out[key] = float(value) / divisor
-        note = value.attrs.get("note")
-        if note and note not in notes:
-            notes.append(note)
-    out["notes"] = notes
-    return out
+    revolutions, hours) and the lives' notes. ISO 281's L10 reads the applied loads, which a
+    bearing of a set does not have (the shaft loads it), so it is left out."""
+    from racetrace.metrics import life_headline
+
+    lives = life_headline(one)
+    return {key: lives[key] for key in ("L10r_million_revolutions", "L10r_hours", "notes")}
 
 
 def dynamic_set_text(ds) -> str:
