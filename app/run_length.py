@@ -29,11 +29,12 @@ def run_size_text(case) -> str:
     """What Run will compute for ``case``, e.g. "dynamic run: 0.4 s at 20 000 samples per
     second: 8 000 samples, result file about 48 MB" ("" for a case without a run length).
 
-    Sizes are the solver's estimates (``solver.dynamic_run_size``)."""
-    from solver import dynamic_run_size
+    Sizes are the solver's estimates (``solver.dynamic_run_size``, of every bearing's balls for a
+    bearing set)."""
+    from solver import dynamic_ball_count, dynamic_run_size
 
     sim = getattr(case, "simulation", None)
-    balls = int(case.bearing.ball_count)
+    balls = dynamic_ball_count(case)
     if has_history(case):
         duration, rate = getattr(sim, "duration_s", None), getattr(sim, "samples_per_second", None)
         if not duration or not rate:

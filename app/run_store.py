@@ -475,7 +475,9 @@ def describe_case(case) -> str:
     speeds in rev/min, angles in degree as in the case file. Zero loads and tilts are left out.
     A key given as a time history is named with the history in words, and the run length of such
     a case is its duration (``... inner ring speed smooth ramp from 0 to 20000 rpm, 0 s to 0.3 s,
-    Fa 500 N, 0.4 s``).
+    Fa 500 N, 0.4 s``). A bearing set says so, with its loads on the shaft (``7008C-class
+    hybrid DB of 2 bearing(s), preload force 100 N at assembly: 12000 rpm, load [100, 200, 0] N,
+    10 rev``).
     """
     from .case_fields import history_texts
     from .run_length import run_length_words
@@ -487,6 +489,15 @@ def describe_case(case) -> str:
     def said(key: str, steady: str, words: str) -> str:
         return f"{words} {histories[key]}" if key in histories else steady
 
+    bearing_set = getattr(case, "bearing_set", None)
+    if bearing_set is not None:  # a set's loads are on the shaft, not in [operating]
+        force = ", ".join(f"{v:g}" for v in bearing_set.load_force_N)
+        parts = [f"{op.inner_ring_speed_rpm:g} rpm", f"load [{force}] N"]
+        if any(bearing_set.load_moment_Nm):
+            parts.append(f"moment [{', '.join(f'{v:g}' for v in bearing_set.load_moment_Nm)}] N m")
+        if length := run_length_words(case):
+            parts.append(length)
+        return f"{name} {bearing_set.describe()}: " + ", ".join(parts)
     parts = [said("inner_ring_speed_rpm", f"{op.inner_ring_speed_rpm:g} rpm", "inner ring speed")]
     if op.outer_ring_speed_rpm or "outer_ring_speed_rpm" in histories:
         parts.append(

@@ -1,9 +1,12 @@
-"""Figures and tables of a bearing set's quasi-static result, for the app's set panel (no trame).
+"""Figures and tables of a bearing set's result, for the app's set panel (no trame).
 
 Every function reads the set's Dataset only (results-schema.md, "Bearing sets": a ``bearing``
 dimension with each bearing's single-bearing variables in its own frame, and the set's variables
-in the shaft frame). Display units: positions in mm, forces in N, angles in degrees, translational
-stiffness in N/µm, tilting stiffness in N m/mrad (the units of spindle-bearing catalogues).
+in the shaft frame). A dynamic run of a set (a ``time`` dimension, results-schema.md, "Dynamic
+results of a bearing set") is drawn at its last stored sample (:func:`set_snapshot`); it has no
+stiffness matrices, so its stiffness table is empty. Display units: positions in mm, forces in N,
+angles in degrees, translational stiffness in N/µm, tilting stiffness in N m/mrad (the units of
+spindle-bearing catalogues).
 """
 
 from __future__ import annotations
@@ -56,6 +59,14 @@ def bearing_colour(index: int) -> str:
     return run_colours(index)["run"]
 
 
+def set_snapshot(ds: xr.Dataset) -> xr.Dataset:
+    """The set at one instant: a quasi-static set's Dataset as it is, a dynamic run's at its last
+    stored sample (the loads each bearing carries and its balls where the run ended)."""
+    if "time" in ds.dims:
+        return ds.isel(time=-1)
+    return ds
+
+
 def _one(ds: xr.Dataset, index: int) -> xr.Dataset:
     """Bearing ``index`` of the set with only its own balls."""
     one = ds.isel(bearing=index)
@@ -81,6 +92,12 @@ def describe_set(ds: xr.Dataset) -> list[str]:
         "thrust it carries along the view's axis); the set along the shaft shows which way each "
         "bearing faces.",
     ]
+    if "time" in ds.dims:
+        lines.append(
+            f"Dynamic run of the set: the loads, the set along the shaft and the balls below are "
+            f"those of its last stored sample, t = {float(ds['time'][-1]) * 1e3:.4g} ms."
+        )
+    ds = set_snapshot(ds)
     for index, name in enumerate(bearing_names(ds)):
         one = ds.isel(bearing=index)
         lines.append(
@@ -98,6 +115,7 @@ def layout_figure(ds: xr.Dataset, selected: int = 0) -> go.Figure:
     each bearing's rings, its ball, its contact line through the ball centre at its mean contact
     angle down to the pressure centre on the axis, mirrored below the axis; the external load as
     an arrow at its point. Bearing ``selected`` is drawn heavier."""
+    ds = set_snapshot(ds)
     fig = go.Figure()
     reach = []
     for index, name in enumerate(bearing_names(ds)):
@@ -200,6 +218,7 @@ def layout_figure(ds: xr.Dataset, selected: int = 0) -> go.Figure:
 
 def sharing_figure(ds: xr.Dataset) -> go.Figure:
     """Axial and radial load (N) each bearing carries, as grouped bars."""
+    ds = set_snapshot(ds)
     names = bearing_names(ds)
     fig = go.Figure()
     fig.add_trace(
@@ -221,6 +240,7 @@ def sharing_figure(ds: xr.Dataset) -> go.Figure:
 def ball_figure(ds: xr.Dataset, quantity: str) -> go.Figure:
     """Inner ``quantity`` ("contact_load", N, or "contact_angle", degree) of every ball versus its
     azimuth (degree), one line per bearing."""
+    ds = set_snapshot(ds)
     fig = go.Figure()
     for index, name in enumerate(bearing_names(ds)):
         one = _one(ds, index)
@@ -262,7 +282,10 @@ def _stiffness_cells(k: np.ndarray) -> dict:
 
 def stiffness_rows(ds: xr.Dataset) -> list[dict]:
     """The stiffness table: a row per bearing (its 5x5 about its ball-centre plane) and one for
-    the set (at the load point): ``{"name", "axial", "radial", "tilt"}`` in N/µm and N m/mrad."""
+    the set (at the load point): ``{"name", "axial", "radial", "tilt"}`` in N/µm and N m/mrad;
+    none for a result without stiffness matrices (a dynamic run)."""
+    if "bearing_stiffness" not in ds or "set_stiffness" not in ds:
+        return []
     rows = [
         {"name": name, **_stiffness_cells(ds["bearing_stiffness"].values[index])}
         for index, name in enumerate(bearing_names(ds))

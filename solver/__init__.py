@@ -21,7 +21,8 @@ Public API (everything else is internal):
   metrics are taken over the ring angles), else ``solve_quasistatic``
 - ``simulate(case, progress=None, cancel=None, options=None) -> xarray.Dataset`` (dynamic model;
   ``SimulationOptions`` overrides the case's ``[simulation]`` values and sets numerical knobs;
-  ``INTEGRATION_METHODS``: the names its option ``method`` takes)
+  ``INTEGRATION_METHODS``: the names its option ``method`` takes); for a bearing set the set's
+  run with a ``bearing`` dimension (``dynamic_ball_count(case)``: the balls a run stores)
 - ``LiveSimulation(case, options=None)``: a dynamic run that advances chunk by chunk
   (``advance(duration_s)``) and follows inputs set while it runs (``set_input(name, value,
   ramp_s=LIVE_RAMP)``), recorded as a case and a run (docs/live.md)
@@ -82,6 +83,7 @@ _LAZY = {
     "dynamic_problems": "solver.case",
     "run_length_problems": "solver.case.validate",
     "dynamic_run_size": "solver.case.validate",
+    "dynamic_ball_count": "solver.case.validate",
     "history_run_length_problems": "solver.case.validate",
     "FIELDS": "solver.case.schema",
     "REQUIRED": "solver.case.schema",

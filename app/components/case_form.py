@@ -13,8 +13,9 @@ the run length and result size), ``run_blocked`` (why Run is off while the form 
 
 A bearing set (a ``[set]`` case) opens like a single bearing: its form adds the set's fields (the
 arrangement and the preload, :func:`app.case_fields.set_form_fields`) and its preview is the set's
-quasi-static solution (``solver.solve``), which the result view shows bearing by bearing; the
-dynamic model runs one bearing, so Run says why it is off (``run_reason``).
+quasi-static solution (``solver.solve``), which the result view shows bearing by bearing; Run
+runs the set's dynamic model (``solver.simulate``), and says why it is off for what that model
+cannot run (a spring preload, time histories: ``run_reason``).
 """
 
 from __future__ import annotations
@@ -484,8 +485,8 @@ def set_notice(case) -> str:
         return ""
     return (
         f"bearing set: {case.bearing_set.describe()}. The preview is the set's quasi-static "
-        "solution; choose the bearing the 3-D view and charts show under 'Bearing set'. The "
-        "dynamic model runs one bearing: Run is off for a set."
+        "solution; Run runs the set's dynamic model (every bearing on one rigid shaft); choose "
+        "the bearing the 3-D view and charts show under 'Bearing set'."
     )
 
 

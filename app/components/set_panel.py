@@ -1,5 +1,6 @@
 """The bearing set on show: the set along the shaft, the bearing the 3-D view and the charts show,
-the load sharing, every bearing's balls and the stiffness table (:mod:`app.set_charts`).
+the load sharing, every bearing's balls and the stiffness table (:mod:`app.set_charts`; a
+dynamic run of a set: at its last stored sample, without the stiffness table).
 
 State keys: ``set_shown`` (the result on show is a bearing set), ``set_bearing`` (the index of
 the bearing shown in the 3-D view and the single-bearing charts), ``set_bearing_items`` (the
@@ -105,7 +106,9 @@ def _stiffness_table() -> None:
     """``#set-stiffness``: axial, radial and tilting stiffness of every bearing and of the set."""
     t_unit = set_charts.TRANSLATION_UNIT[0]
     r_unit = set_charts.TILT_UNIT[0]
-    with v3.VTable(density="compact", id="set-stiffness", classes="text-caption"):
+    with v3.VTable(
+        density="compact", id="set-stiffness", classes="text-caption", v_if="set_stiffness.length"
+    ):
         with html.Thead(), html.Tr():
             html.Th("stiffness")
             html.Th(f"axial, {t_unit}")
@@ -121,5 +124,6 @@ def _stiffness_table() -> None:
         "Each bearing's stiffness about its ball-centre plane, the set's at the external load's "
         "point on the shaft (results: bearing_stiffness, set_stiffness, 5 x 5 each); ball speeds "
         "held at their solved values.",
+        v_if="set_stiffness.length",
         classes="text-caption text-medium-emphasis px-1",
     )

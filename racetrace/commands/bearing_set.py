@@ -117,3 +117,123 @@ def set_summary(ds) -> dict:
         if name in ds:
             out[name] = [float(v) for v in ds[name].values]
     return out
+
+
+def _dynamic_bearing(ds, index: int) -> dict:
+    """Bearing ``index`` of a dynamic set's Dataset: its single-bearing result (``one``) and its
+    loads on the shaft averaged over its analysed window (N)."""
+    from solver import bearing_result
+
+    one = bearing_result(ds, index)
+    start = float(one.racetrace.metric("analysis_start_time"))
+    window = ds.isel(bearing=index).sel(time=slice(start, None))
+    return {
+        "one": one,
+        "axial_load_N": float(window["bearing_axial_load"].mean("time")),
+        "radial_load_N": float(window["bearing_radial_load"].mean("time")),
+    }
+
+
+def _dynamic_values(one) -> dict:
+    """A bearing's cage slip (fractions) and mean power loss [W] (NaN where not available)."""
+    metric = one.racetrace.metric
+    return {
+        "cage_slip": float(metric("cage_slip")),
+        "mean_instantaneous_cage_slip": float(metric("mean_instantaneous_cage_slip")),
+        "cage_skids": bool(float(metric("cage_skids")) == 1.0),
+        "mean_total_power_loss_W": float(metric("mean_total_power_loss")),
+    }
+
+
+def _reference_life(one) -> dict:
+    """A bearing's reference rating life L10r (ISO/TS 16281, from its contact loads: million
+    revolutions, hours) and the lives' notes. ISO 281's L10 reads the applied loads, which a
+    bearing of a set does not have (the shaft loads it), so it is left out."""
+    from racetrace.metrics import life_headline
+
+    lives = life_headline(one)
+    return {key: lives[key] for key in ("L10r_million_revolutions", "L10r_hours", "notes")}
+
+
+def dynamic_set_text(ds) -> str:
+    """The dynamic run of a set in readable lines: per bearing its loads, trajectory metrics,
+    cage slip, power loss, mean friction torque and reference rating life; then the set's energy
+    balance. The empirical torque estimates and ISO 281's L10 read a bearing's applied loads,
+    which a bearing of a set does not have: they are left out."""
+    from racetrace.metrics import energy_text, metrics_text
+
+    lines = [f"{ds.attrs.get('bearing_set', 'bearing set')}"]
+    for index, name in enumerate(ds["bearing"].values):
+        bearing = _dynamic_bearing(ds, index)
+        one = bearing["one"]
+        values = _dynamic_values(one)
+        lines += [
+            "",
+            f"{name!s} (at {float(ds['bearing_position'][index]) * 1e3:g} mm, carries "
+            f"thrust towards {ds['bearing_direction'].values[index]}): axial load "
+            f"{bearing['axial_load_N']:.1f} N, radial load {bearing['radial_load_N']:.1f} N "
+            "(mean over its analysed window)",
+        ]
+        # the energy balance is the set's, printed once below
+        lines += [line for line in metrics_text(one).splitlines() if not line.startswith("energy")]
+        skids = " (the cage skids)" if values["cage_skids"] else ""
+        lines.append(
+            f"cage slip: {100.0 * values['cage_slip']:.3f} % of the epicyclic speed; "
+            f"{100.0 * values['mean_instantaneous_cage_slip']:.3f} % of the rolling speed{skids}"
+        )
+        torque = float(one.racetrace.metric("mean_friction_torque"))
+        lines.append(
+            f"power loss: {values['mean_total_power_loss_W']:.4g} W, friction torque "
+            f"{torque * 1e3:.4g} N mm (means over the analysed window)"
+        )
+        life = _reference_life(one)
+        lines.append(
+            f"L10r (ISO/TS 16281, contact loads): {life['L10r_million_revolutions']:.5g} million "
+            f"revolutions = {life['L10r_hours']:.5g} h"
+        )
+        lines += [f"  note: {note}" for note in life["notes"]]
+    lines += ["", f"the set: {energy_text(float(ds['energy_balance_residual']))}"]
+    return "\n".join(lines)
+
+
+def dynamic_set_summary(ds) -> dict:
+    """The dynamic run of a set as plain JSON values (SI units, angles in degree; NaN as null):
+    per bearing its loads, trajectory metrics, cage slip, power loss, mean friction torque and
+    reference rating life (as :func:`dynamic_set_text`); the set's energy-balance residual."""
+    from racetrace.metrics import finite_or_none, metrics_json
+
+    bearings = []
+    for index, name in enumerate(ds["bearing"].values):
+        bearing = _dynamic_bearing(ds, index)
+        one = bearing["one"]
+        trajectory = metrics_json(one)
+        trajectory.pop("energy_balance_residual", None)  # the set's, given once
+        values = _dynamic_values(one)
+        bearings.append(
+            {
+                "name": str(name),
+                "position_m": float(ds["bearing_position"][index]),
+                "direction": str(ds["bearing_direction"].values[index]),
+                "axial_load_N": bearing["axial_load_N"],
+                "radial_load_N": bearing["radial_load_N"],
+                "trajectory": trajectory,
+                "cage_slip": finite_or_none(values["cage_slip"]),
+                "mean_instantaneous_cage_slip": finite_or_none(
+                    values["mean_instantaneous_cage_slip"]
+                ),
+                "cage_skids": values["cage_skids"],
+                "mean_total_power_loss_W": finite_or_none(values["mean_total_power_loss_W"]),
+                "mean_friction_torque_N_m": finite_or_none(
+                    float(one.racetrace.metric("mean_friction_torque"))
+                ),
+                "life": {
+                    key: finite_or_none(value) if key != "notes" else value
+                    for key, value in _reference_life(one).items()
+                },
+            }
+        )
+    return {
+        "bearing_set": ds.attrs.get("bearing_set", ""),
+        "bearings": bearings,
+        "energy_balance_residual": finite_or_none(float(ds["energy_balance_residual"])),
+    }

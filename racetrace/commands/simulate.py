@@ -15,6 +15,12 @@ Case warnings and result warnings (the result leaves the model's validity, the r
 is too short to settle) are printed on stderr as ``warning: ...`` lines; they do not change the exit
 code. The trajectory metrics (excursion, band thickness, settling) and the rating lives (L10,
 L10r) go to stdout, as JSON with ``--json``.
+
+A bearing-set case (a ``[set]`` table) runs the set's dynamic model (``solver.simulate``): the
+result has a ``bearing`` dimension, the warnings are named by bearing, and stdout gives each
+bearing's loads, trajectory metrics, cage slip, power loss, friction torque and rating lives, then
+the set's energy balance (:func:`.bearing_set.dynamic_set_text`). What the set's model cannot run
+(a spring preload, time histories) is refused before the run, naming the key (exit 2).
 """
 
 from __future__ import annotations
@@ -63,7 +69,8 @@ def register(subparsers) -> None:
         help="run the dynamic model (contact trajectories) and save a NetCDF result",
         description=(
             "Integrate the dynamic bearing model of CASE (a case file or a catalogue name) for "
-            "[simulation] shaft_revolutions and save every results-schema variable to NetCDF. "
+            "[simulation] shaft_revolutions and save every results-schema variable to NetCDF "
+            "(a bearing set's case: the set's model, with a 'bearing' dimension). "
             "Case and result warnings go to stderr as 'warning: ...' lines. Exit codes: 0 done, "
             "2 invalid input, 3 no quasi-static start, 4 diverged (partial result saved), "
             "130 interrupted (partial result saved)."
@@ -146,7 +153,13 @@ def _print_case_warnings(case) -> None:
 def _options(args, case):
     """SimulationOptions from the command line, checked with the case keys' bounds and the run
     length rules (CaseError naming the option otherwise), and the run's size estimate."""
-    from solver import CaseError, SimulationOptions, dynamic_run_size, run_length_problems
+    from solver import (
+        CaseError,
+        SimulationOptions,
+        dynamic_ball_count,
+        dynamic_run_size,
+        run_length_problems,
+    )
 
     changes = {}
     if args.revolutions is not None:
@@ -164,7 +177,7 @@ def _options(args, case):
     # the case's [simulation] values, overridden by the command line
     options = SimulationOptions(**changes).validated()
     sim = case.simulation
-    balls = int(case.bearing.ball_count if hasattr(case, "bearing") else case.geometry.ball_count)
+    balls = dynamic_ball_count(case) if hasattr(case, "bearing") else case.geometry.ball_count
     if getattr(case, "histories", None):  # a case with a time history runs for a duration
         return options, _history_run_size(args, sim, balls)
     revolutions = sim.shaft_revolutions if args.revolutions is None else args.revolutions
@@ -297,12 +310,16 @@ def run(args) -> int:
 
 
 def _run(args, signals: StopSignals) -> int:
-    from solver import CaseError, Problem, SimulationDiverged, simulate
+    from solver import CaseError, Problem, SimulationDiverged, dynamic_problems, simulate
 
     from .quasistatic import print_result_warnings
 
     case = _load_case(args.case)
     _print_case_warnings(case)
+    if getattr(case, "bearing_set", None) is not None:  # what a set's run cannot do, first
+        problems = dynamic_problems(case)
+        if problems:
+            raise CaseError(problems)
     output = Path(args.output) if args.output else Path(Path(args.case).stem + ".nc")
     # everything that can be checked before a run that may take hours
     problem = output_problem(output, "--output" if args.output else "output")
@@ -336,7 +353,10 @@ def _run(args, signals: StopSignals) -> int:
             bar.close()
     written = save_result(ds, output, _say)
     with contextlib.suppress(OSError, ValueError):  # a closed terminal: the file is what matters
-        print_result_warnings(ds)
+        if "bearing" in ds.dims:
+            print_set_warnings(ds)
+        else:
+            print_result_warnings(ds)
     print_metrics(ds, args.json, written)
     if written is None:
         return EXIT_NOT_WRITTEN
@@ -384,6 +404,15 @@ def _restore(previous: dict) -> None:
         signal.signal(signum, handler)
 
 
+def print_set_warnings(ds) -> None:
+    """A bearing set's result warnings (``solver.set_result_warnings``) as ``warning: ...``
+    lines on stderr."""
+    from solver import set_result_warnings
+
+    for message in set_result_warnings(ds):
+        print(f"warning: {message}", file=sys.stderr)
+
+
 def print_metrics(ds, as_json: bool, output: Path | None) -> None:
     """The trajectory metrics, the settling window and the rating lives on stdout (text or JSON;
     ``output`` is the file written, None when the result could not be written)."""
@@ -396,8 +425,17 @@ def print_metrics(ds, as_json: bool, output: Path | None) -> None:
         torque_text,
     )
 
+    from .bearing_set import dynamic_set_summary, dynamic_set_text
+
     try:
-        if as_json:
+        if "bearing" in ds.dims:  # a bearing set: per bearing, and the set's energy balance
+            if as_json:
+                out = {"output": None if output is None else str(output)}
+                out |= dynamic_set_summary(ds)
+                print(json.dumps(out, indent=2, allow_nan=False))
+            else:
+                print(dynamic_set_text(ds))
+        elif as_json:
             out = {
                 "output": None if output is None else str(output),
                 "trajectory": metrics_json(ds),

@@ -985,17 +985,10 @@ def dynamic_problems(case) -> list[Problem]:
     least one output sample after the start, and keeps every output sample of every ball in
     memory, at most :data:`MAX_DYNAMIC_BALL_SAMPLES` (:func:`run_length_problems`). The
     quasi-static model needs none of these rules: it solves a bearing at rest too, and stores one
-    sample.
+    sample. A bearing set has its own rules (:func:`set_dynamic_problems`).
     """
     if getattr(case, "bearing_set", None) is not None:
-        return [
-            Problem(
-                "set",
-                "the dynamic model runs one bearing; this case describes a bearing set ([set]): "
-                "solve it with the quasi-static model (racetrace solve, solver.solve), or run "
-                "the set's dynamic model from Python (solver.simulate(case))",
-            )
-        ]
+        return set_dynamic_problems(case)
     op = case.operating
     sim = case.simulation
     histories = getattr(case, "histories", {})
@@ -1025,6 +1018,56 @@ def dynamic_problems(case) -> list[Problem]:
     return found
 
 
+def dynamic_ball_count(case) -> int:
+    """The balls a dynamic run of the valid ``case`` stores at every sample: every bearing's of a
+    bearing set, else the bearing's."""
+    bearing_set = getattr(case, "bearing_set", None)
+    if bearing_set is not None:
+        return sum(int(b.case.bearing.ball_count) for b in bearing_set.bearings)
+    return int(case.bearing.ball_count)
+
+
+def set_dynamic_problems(case) -> list[Problem]:
+    """Why the dynamic model of a bearing set cannot run the valid set ``case`` (empty when it
+    can). The set's dynamic model runs a steady operating point (a set case gives no time
+    histories: the case refuses them) with every outer ring fixed: no spring preload (its outer
+    rings float), the rings turning relative to each other; its run length is checked against
+    the balls of every bearing of the set."""
+    bearing_set = case.bearing_set
+    found = []
+    if bearing_set.preload_kind == "spring":
+        found.append(
+            Problem(
+                "set.preload.kind",
+                "set.preload.kind = 'spring': the dynamic model of a bearing set holds every "
+                "outer ring fixed, while a spring preload floats the outer rings of the spring "
+                "side. Give the preload as a force at assembly (kind = 'force' with force_N) or "
+                "as the rings' axial offset (kind = 'offset' with offset_um) for the dynamic "
+                "run; the quasi-static model solves the spring preload as it is",
+                ("set.preload.force_N",),
+            )
+        )
+    sim = case.simulation
+    found += run_length_problems(
+        sim.shaft_revolutions, sim.samples_per_revolution, dynamic_ball_count(case)
+    )
+    op = case.operating
+    if op.inner_ring_speed_rpm == op.outer_ring_speed_rpm:
+        speed = format_number(op.inner_ring_speed_rpm)
+        found.append(
+            Problem(
+                "operating.inner_ring_speed_rpm",
+                f"operating.inner_ring_speed_rpm = operating.outer_ring_speed_rpm = {speed}: the "
+                "dynamic run of a bearing set lasts simulation.shaft_revolutions revolutions of "
+                "the inner rings relative to the outer rings, so they must turn relative to each "
+                "other; give different ring speeds. The quasi-static model solves this case as "
+                "it is.",
+                ("operating.outer_ring_speed_rpm",),
+            )
+        )
+    return found
+
+
 def equal_speeds_problem(speed_rpm: float) -> Problem:
     """Why a steady dynamic run at equal ring speeds ``speed_rpm`` [rpm] cannot be made, and what
     to give instead (:func:`dynamic_problems`)."""
@@ -1046,6 +1089,7 @@ __all__ = [
     "CaseValues",
     "RunSize",
     "check_value",
+    "dynamic_ball_count",
     "dynamic_problems",
     "dynamic_run_size",
     "equal_speeds_problem",
@@ -1053,6 +1097,7 @@ __all__ = [
     "history_times",
     "key_value_at",
     "run_length_problems",
+    "set_dynamic_problems",
     "top_relative_speed_rpm",
     "show",
     "validate",

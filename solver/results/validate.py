@@ -427,8 +427,12 @@ def _varied_key_problems(ds: xr.Dataset) -> list[str]:
     return problems
 
 
-#: The set's own names in a bearing set's Dataset (results-schema.md, "Bearing sets").
-_SET_NAMES = ("set_stiffness", "bearing_stiffness", "bearing_position", "bearing_direction")
+#: The set's own names in a bearing set's Dataset (results-schema.md, "Bearing sets"), in every
+#: set's, in a quasi-static set's and in a dynamic set's (a ``time`` dimension: "Dynamic results
+#: of a bearing set").
+_SET_NAMES = ("bearing_position", "bearing_direction", "bearing_axial_load", "bearing_force")
+_QUASISTATIC_SET_NAMES = ("set_stiffness", "bearing_stiffness")
+_DYNAMIC_SET_NAMES = ("shaft_offset", "energy_balance_residual")
 
 
 def _set_problems(ds: xr.Dataset, values: bool) -> list[str]:
@@ -436,7 +440,8 @@ def _set_problems(ds: xr.Dataset, values: bool) -> list[str]:
     lacks: the set's own variables, and each bearing's single-bearing result, named by bearing."""
     from solver.models.quasistatic.set_warnings import bearing_result
 
-    problems = [f"a bearing set without '{name}'" for name in _SET_NAMES if name not in ds]
+    names = _SET_NAMES + (_DYNAMIC_SET_NAMES if "time" in ds.dims else _QUASISTATIC_SET_NAMES)
+    problems = [f"a bearing set without '{name}'" for name in names if name not in ds]
     if "ball_count" not in ds or problems:
         return problems or ["a bearing set without 'ball_count'"]
     for index in range(ds.sizes["bearing"]):

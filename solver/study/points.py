@@ -80,10 +80,25 @@ def _combinations(sweep) -> list[dict]:
     return [dict(zip(keys, row, strict=True)) for row in rows]
 
 
-def study_points(spec: StudySpec, base: Case | None = None) -> list[StudyPoint]:
-    """Every point of the study, validated (CaseError listing each invalid point)."""
+def _study_dynamic_problems(case) -> list[Problem]:
+    """Why a study cannot run the dynamic model on the point ``case``: the model's own rules
+    (:func:`solver.case.dynamic_problems`); a study keeps the quasi-static values of a bearing
+    set only (:mod:`.metrics`), so a set's point runs the quasi-static model."""
     from solver.case import dynamic_problems
 
+    if getattr(case, "bearing_set", None) is not None:
+        return [
+            Problem(
+                "model",
+                "a study of a bearing set runs the quasi-static model only (model = "
+                "'quasistatic'); run one set case's dynamic model with racetrace simulate",
+            )
+        ]
+    return dynamic_problems(case)
+
+
+def study_points(spec: StudySpec, base: Case | None = None) -> list[StudyPoint]:
+    """Every point of the study, validated (CaseError listing each invalid point)."""
     base = base if base is not None else base_case(spec)
     run = {f"simulation.{k}": v for k, v in spec.run.items()}
     points: list[StudyPoint] = []
@@ -116,7 +131,7 @@ def study_points(spec: StudySpec, base: Case | None = None) -> list[StudyPoint]:
                 case = None
             models = MODEL_RUNS[sweep.model]
             if case is not None and "dynamic" in models:
-                for p in dynamic_problems(case):
+                for p in _study_dynamic_problems(case):
                     shown = ", ".join(f"{k} = {v!r}" for k, v in values.items())
                     problems.append(
                         Problem(

@@ -1,6 +1,7 @@
 """A bearing set in the app, without a browser: the set's quasi-static solution on show bearing by
-bearing, the set panel (the set along the shaft, load sharing, balls, stiffness) and the form's
-set fields (arrangement and preload) with the case module's messages."""
+bearing, the set panel (the set along the shaft, load sharing, balls, stiffness), the form's
+set fields (arrangement and preload) with the case module's messages, and Run of the set's
+dynamic model (the run listed, reopened, shown bearing by bearing)."""
 
 from __future__ import annotations
 
@@ -60,8 +61,8 @@ def test_a_bearing_set_opens_solved_with_its_set_panel(pair):
     assert float(rows[2]["axial"]) == pytest.approx(
         float(whole["axial_stiffness"]) * 1e-6, abs=0.05
     )
-    # the dynamic model runs one bearing: Run is off and says why
-    assert s.run_disabled and "bearing set" in s.run_reason
+    # Run runs the set's dynamic model (test_a_set_runs_its_dynamic_model_...)
+    assert not s.run_disabled and s.run_reason == ""
 
 
 def _values(array):
@@ -157,3 +158,66 @@ def test_the_set_along_the_shaft_puts_the_pressure_centres_by_arrangement(pair):
     turned = whole.assign_coords(bearing_direction=("bearing", ["-x", "+x"]))
     first, second = centres(turned)
     assert 0.0 < first and second < 15.0
+
+
+def _wait_run(session, timeout=600.0):
+    from tests.helpers.processes import wait_until
+
+    wait_until(
+        session.runs.poll_runner,
+        timeout,
+        0.1,
+        lambda: f"run did not finish in {timeout} s; status {session.state.status!r}",
+    )
+
+
+def test_a_set_runs_its_dynamic_model_and_reopens_bearing_by_bearing(pair, tmp_path):
+    import solver
+
+    s = pair.state
+    assert not s.run_disabled and s.run_reason == ""
+    assert "Run runs the set's dynamic model" in s.case_notice
+    _set(pair, fv_shaft_revolutions="0.5", fv_samples_per_revolution="40")
+    assert "dynamic run: 0.5 shaft revolutions" in s.run_size
+    pair.runs.run()
+    _wait_run(pair)
+    assert s.status == "done", s.status
+    whole = pair.result.set_result
+    assert whole.sizes["bearing"] == 2 and whole.sizes["time"] == 21
+    assert s.set_shown and s.set_stiffness == []  # a dynamic run has no stiffness matrices
+    assert any("last stored sample" in line for line in s.set_lines)
+    # load sharing: the bars are each bearing's loads at the run's last sample
+    axial, _radial = s.chart_set_sharing["data"]
+    np.testing.assert_allclose(
+        _values(axial["y"]), whole["bearing_axial_load"].isel(time=-1).values
+    )
+    # the run is listed under a title that says it is the set's, and a new session on the same
+    # runs folder reopens it as a set
+    assert (
+        "DB of 2 bearing(s), preload force 100 N at assembly: 12000 rpm, load [100, 200, 0] N"
+        in (s.runs[0]["title"])
+    )
+    again = RacetraceApp(trame_server(), runs_dir=tmp_path / "runs", render=False)
+    try:
+        again.start(PAIR, play=False)
+        _set(again, run_id=s.runs[0]["value"])
+        reopened = again.result.set_result
+        assert reopened is not None and reopened.sizes["bearing"] == 2
+        assert "time" in again.result.dataset.dims and "bearing 1 of the set" in (
+            again.state.result_label
+        )
+        first = again.result.dataset
+        np.testing.assert_array_equal(
+            first["contact_load"], solver.bearing_result(reopened, 0)["contact_load"]
+        )
+        # the selector switches the bearing the view and the charts read
+        _set(again, set_bearing=1)
+        second = again.result.dataset
+        np.testing.assert_array_equal(
+            second["contact_load"], solver.bearing_result(reopened, 1)["contact_load"]
+        )
+        assert not np.array_equal(first["contact_load"].values, second["contact_load"].values)
+        assert "bearing 2 of the set" in again.state.result_label
+        assert again.state.frame_max == reopened.sizes["time"] - 1
+    finally:
+        again.shutdown()

@@ -13,3 +13,24 @@ def fake_case(monkeypatch):
     from tests.helpers.cases import spindle_inputs
 
     monkeypatch.setattr(command, "_load_case", lambda name: spindle_inputs(radial=300.0))
+
+
+@pytest.fixture
+def ctrl_c_at_first_progress(monkeypatch):
+    """``racetrace simulate``'s progress bar sends SIGINT (what Ctrl-C delivers) to the process
+    at its first report, after the first chunk."""
+    import os
+    import signal
+
+    from racetrace.commands import simulate as command
+
+    calls = []
+    original = command.ProgressBar.__call__
+
+    def interrupting(self, fraction, t, message=""):
+        calls.append(fraction)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)
+        original(self, fraction, t, message)
+
+    monkeypatch.setattr(command.ProgressBar, "__call__", interrupting)

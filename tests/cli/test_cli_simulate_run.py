@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import os
 import signal
 
 import pytest
@@ -40,18 +39,10 @@ def test_simulate_writes_netcdf_and_reports_progress(fake_case, tmp_path, capsys
     assert "100.0%" in err and "ETA" in err and "t = " in err and "wrote" in err
 
 
-def test_ctrl_c_writes_partial_result_and_exits_130(fake_case, tmp_path, capsys, monkeypatch):
+def test_ctrl_c_writes_partial_result_and_exits_130(
+    fake_case, tmp_path, capsys, ctrl_c_at_first_progress
+):
     before = signal.getsignal(signal.SIGINT)  # SIG_IGN when the tests run in a background job
-    calls = []
-    original = command.ProgressBar.__call__
-
-    def interrupting(self, fraction, t, message=""):
-        calls.append(fraction)
-        if len(calls) == 1:
-            os.kill(os.getpid(), signal.SIGINT)  # what Ctrl-C delivers
-        original(self, fraction, t, message)
-
-    monkeypatch.setattr(command.ProgressBar, "__call__", interrupting)
     out = tmp_path / "partial.nc"
     args = _parse(
         [

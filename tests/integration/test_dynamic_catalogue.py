@@ -10,9 +10,9 @@ from solver.models.dynamic import SimulationOptions, simulate
 from tests.helpers.results import dynamic_variables_in
 
 #: Steady cases run two revolutions; a case whose operating inputs are time histories runs for a
-#: duration (``HISTORY_CASES``: its first milliseconds). A bearing-set case is solved by the
-#: quasi-static set model only (the dynamic model runs one bearing and says so:
-#: tests/unit/case/test_bearing_set_case.py).
+#: duration (``HISTORY_CASES``: its first milliseconds). A bearing-set case runs the set's
+#: dynamic model (tests/integration/test_dynamic_set.py, tests/cli/test_cli_simulate_set.py),
+#: not this single-bearing one.
 CASES = [
     entry.name
     for entry in catalogue().cases

@@ -1,7 +1,7 @@
 """A bearing set's result as a file and as single-bearing results: ``solver.load_result`` reads the
-set's file (as ``racetrace solve --output`` writes it) after checking it, and
-``solver.bearing_result`` gives each bearing as a valid single-bearing result, which the app's
-views and the report read."""
+set's file (as ``racetrace solve --output`` or ``racetrace simulate`` writes it) after checking
+it, and ``solver.bearing_result`` gives each bearing as a valid single-bearing result, which the
+app's views and the report read."""
 
 from __future__ import annotations
 
@@ -42,3 +42,16 @@ def test_a_set_file_is_read_back_and_a_broken_one_is_named(pair, tmp_path):
     no_angle = pair.drop_vars("contact_angle")
     with pytest.raises(CaseError, match="bearing 1: .*contact_angle"):
         check_result(no_angle, "pair")
+
+
+def test_a_dynamic_set_file_is_read_back_without_stiffness_and_a_broken_one_is_named(tmp_path):
+    from solver.models.dynamic import SimulationOptions
+
+    options = SimulationOptions(shaft_revolutions=0.1, samples_per_revolution=40)
+    run = solver.simulate(solver.resolve_case(PAIR), options=options)
+    assert "set_stiffness" not in run  # a dynamic run has no stiffness matrices
+    again = solver.load_result(solver.save_dataset(run, tmp_path / "run.nc"))
+    assert again.sizes["bearing"] == 2 and again.sizes["time"] == run.sizes["time"]
+    broken = solver.save_dataset(run.drop_vars("energy_balance_residual"), tmp_path / "b.nc")
+    with pytest.raises(CaseError, match="a bearing set without 'energy_balance_residual'"):
+        solver.load_result(broken)

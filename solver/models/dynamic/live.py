@@ -112,7 +112,16 @@ class LiveSimulation:
     model cannot run the case (a bearing set, equal ring speeds)."""
 
     def __init__(self, case, options: SimulationOptions | None = None):
-        if getattr(case, "bearing_set", None) is not None or not hasattr(case, "histories"):
+        if getattr(case, "bearing_set", None) is not None:
+            raise CaseError(
+                Problem(
+                    "set",
+                    "live mode runs one bearing; this case describes a bearing set ([set]): run "
+                    "the set's dynamic model (racetrace simulate, Run in the app, "
+                    "solver.simulate(case))",
+                )
+            )
+        if not hasattr(case, "histories"):
             problems = dynamic_problems(case) if hasattr(case, "operating") else []
             raise CaseError(
                 problems

@@ -235,6 +235,11 @@ def set_dynamic_dataset(
         "description": spec.description + " (the whole set: every bearing and the shaft)"
     }
     ds["energy_balance_residual"] = xr.Variable((), np.float64(residual), attrs)
+    freedom = (
+        "free in x, y, z, tilt_y, tilt_z"
+        if bearing_set.misalignment_deg is None
+        else "free in x, y, z, its tilt held at set.misalignment_deg"
+    )
     ds.attrs.update(
         {
             "model": "dynamic",
@@ -243,9 +248,9 @@ def set_dynamic_dataset(
             "stop_reason": stop_reason,
             "complete": int(complete),
             "set_model": (
-                "rigid shaft free in x, y, z, tilt_y, tilt_z at the load point, spinning at the "
-                "inner-ring speed; its mass and inertia those of the inner rings; outer rings "
-                "fixed; each bearing's balls and cage as the single-bearing model"
+                f"rigid shaft {freedom} at the load point, spinning at the inner-ring speed; its "
+                "mass and inertia those of the inner rings; outer rings fixed; each bearing's "
+                "balls and cage as the single-bearing model"
             ),
             "preload_offset_m": float(qs.offset),
         }

@@ -7,18 +7,21 @@ The run starts from the quasi-static set solution
 each bearing's balls, ring and cage as the single-bearing model starts from its own quasi-static
 solution (:func:`.initial.initial_state_from_quasistatic`). The shaft is free in its five
 degrees of freedom (translations, tilts) under the set's external load; its spin follows the
-case's inner-ring speed. The outer rings are fixed: a fixed-position preload (an offset or a
-force turned into an offset at rest) is the rings' axial offset; a spring preload, whose outer
-rings float, is not modelled (CaseError). Outcomes as for :func:`.simulate.simulate`.
+case's inner-ring speed; an imposed tilt (``set.misalignment_deg``) holds the shaft's two tilts
+at their imposed values (:func:`_mass_inverse`). The outer rings are fixed: a fixed-position
+preload (an offset or a force turned into an offset at rest) is the rings' axial offset; a spring
+preload, whose outer rings float, is not modelled, nor are time histories
+(:func:`solver.case.validate.set_dynamic_problems`, CaseError). Outcomes as for
+:func:`.simulate.simulate`.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import time as _time
 
 import numpy as np
 
+from solver.case.validate import set_dynamic_problems
 from solver.errors import CaseError, NoSolutionError, Problem, SimulationDiverged
 from solver.history import event_times, steady_history
 from solver.models.quasistatic.bearing_set import lever, mirror, set_inputs, solve_set_state
@@ -26,13 +29,13 @@ from solver.models.quasistatic.bearing_set import lever, mirror, set_inputs, sol
 from . import layout as L
 from .initial import initial_state_from_quasistatic
 from .integrate import stepper
-from .integrate.control import STATUS_OK, step_control
+from .integrate.control import step_control
 from .integrate.model import SetModel, bearing_model
 from .options import SimulationOptions
 from .params import build_params, build_quadrature
 from .set_kernels import SetShaft
 from .set_output import set_dynamic_dataset
-from .simulate import _DIVERGENCE_CAUSES, RunStatistics, _is_cancelled, _time_grid, state_scales
+from .simulate import RunStatistics, _time_grid, run_chunks, state_scales
 
 #: The integration method of a set run: the explicit Dormand-Prince method (the additive method
 #: treats one bearing's cage land implicitly and is not extended to a set).
@@ -58,26 +61,10 @@ class SetMember:
     quasistatic: object
 
 
-def _problems(bearing_set, inputs, options: SimulationOptions) -> list[Problem]:
-    """Why the set's dynamic model cannot run (empty when it can)."""
-    problems = []
-    if inputs.history is not None:
-        problems.append(
-            Problem(
-                "set",
-                "the dynamic model of a set runs a steady operating point; this case gives time "
-                "histories: give constant values (and a run length in shaft revolutions)",
-            )
-        )
-    if bearing_set.preload_kind == "spring":
-        problems.append(
-            Problem(
-                "set.preload",
-                "the dynamic model of a set holds every outer ring fixed; a spring preload "
-                "floats the spring side's outer rings. Give the preload as a force at assembly "
-                "(set.preload.force_N with a fixed-position preload) or as the rings' axial offset",
-            )
-        )
+def _problems(case, options: SimulationOptions) -> list[Problem]:
+    """Why the set's dynamic model cannot run ``case`` under ``options`` (empty when it can): the
+    case's rules (:func:`solver.case.validate.set_dynamic_problems`) and the method."""
+    problems = set_dynamic_problems(case)
     if options.method not in ("auto", SET_METHOD):
         problems.append(
             Problem(
@@ -115,6 +102,18 @@ def _mass_matrix(members) -> np.ndarray:
     return m
 
 
+def _mass_inverse(mass: np.ndarray, tilt_imposed: bool) -> np.ndarray:
+    """The inverse of the shaft's mass matrix ``mass`` (5 x 5); with the tilt imposed
+    (set.misalignment_deg) the tilts are held: the translations' block inverted alone and the
+    tilt rows and columns zero, so the tilts never accelerate from their imposed start (their
+    rates start at zero) and the housing's moment holding them does no work."""
+    if not tilt_imposed:
+        return np.linalg.inv(mass)
+    inverse = np.zeros((5, 5))
+    inverse[:3, :3] = np.linalg.inv(mass[:3, :3])
+    return inverse
+
+
 def _weight(members, gravity: float) -> np.ndarray:
     w = np.zeros(5)
     for b in members:
@@ -138,11 +137,10 @@ def shaft_ring_pose(sign: float, arm: float, offset: float, shaft_block: np.ndar
 def build_set(case, options: SimulationOptions):
     """(members, shaft record, initial state, set inputs, quasi-static set solution) of a set
     case under ``options`` (validated, not yet resolved)."""
-    given = set_inputs(case)
-    bearing_set = given.bearing_set
-    problems = _problems(bearing_set, given.inputs, options)
+    problems = _problems(case, options)
     if problems:
         raise CaseError(problems)
+    given = set_inputs(case)
     resolved = dataclasses.replace(options, method=SET_METHOD).resolved(given.inputs.simulation)
     try:
         qs = solve_set_state(given)
@@ -189,7 +187,7 @@ def build_set(case, options: SimulationOptions):
         np.array([m.start for m in members] + [sb], dtype=np.int64),
         np.array([m.sign for m in members]),
         np.array([m.arm for m in members]),
-        np.ascontiguousarray(np.linalg.inv(mass)),
+        np.ascontiguousarray(_mass_inverse(mass, given.bearing_set.misalignment_deg is not None)),
         np.ascontiguousarray(given.applied, dtype=float),
         _weight(members, float(resolved.gravity)),
         float(sum(m.par.ring_polar_inertia for m in members)),
@@ -228,7 +226,6 @@ def simulate_set(case, progress=None, cancel=None, options: SimulationOptions | 
         shaft,
     )
     work = method.workspace(model, y.shape[0], 0.0, h)
-    reached = work.progress
     control = step_control(
         resolved.tolerance,
         scale,
@@ -238,37 +235,9 @@ def simulate_set(case, progress=None, cancel=None, options: SimulationOptions | 
     )
     stats = RunStatistics(work.progress)
     stats.initial_step = h
-    done = 1
-    stop_reason = "finished"
-    diverged_message = None
-    start = _time.perf_counter()
-    while done <= n_samples:
-        if _is_cancelled(cancel):
-            stop_reason = "cancelled"
-            break
-        stop = min(done + resolved.chunk_samples, n_samples + 1)
-        method.advance(y, times[done:stop], states[done:stop], control, work, model)
-        done += int(reached["written"][0])
-        status = int(reached["status"][0])
-        if status != STATUS_OK:
-            t = float(reached["t"][0])
-            cause = _DIVERGENCE_CAUSES[status].format(
-                h_min=control.h_min, max_steps=resolved.max_steps_per_chunk
-            )
-            diverged_message = (
-                f"simulation diverged at t = {t:.6g} s ({t / period:.3f} shaft revolutions): "
-                f"{cause}"
-            )
-            stop_reason = diverged_message
-            break
-        if progress is not None:
-            elapsed = _time.perf_counter() - start
-            progress(
-                (done - 1) / n_samples,
-                float(times[done - 1]),
-                f"{grid.reached(done - 1)}, {elapsed:.1f} s",
-            )
-    stats.wall_time = _time.perf_counter() - start
+    run = run_chunks(method, model, y, grid, states, control, work, resolved, progress, cancel)
+    done, stop_reason, diverged_message = run.done, run.stop_reason, run.diverged_message
+    stats.wall_time = run.wall_time
     ds = set_dynamic_dataset(
         given,
         qs,

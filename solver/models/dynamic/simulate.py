@@ -266,45 +266,25 @@ def _time_grid(inputs, options, given, history) -> TimeGrid:
     return TimeGrid(times, 2.0 * math.pi / mean, math.nan)
 
 
-def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
-    """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
+class ChunkRun(NamedTuple):
+    """How a run's chunk loop ended (:func:`run_chunks`)."""
 
-    ``case``: a :class:`solver.case.Case` (``solver.simulate`` also takes a case-file path or a
-    catalogue name; CaseError when the dynamic model cannot run it,
-    :func:`solver.case.dynamic_problems`), or :class:`solver.inputs.Inputs`.
-    ``progress(fraction, simulated_time, message)`` is called between chunks; ``cancel`` is a
-    callable or an Event. ``options``: :class:`SimulationOptions`; None = the case's
-    ``[simulation]`` values and the default numerical knobs.
-    """
-    inputs = _inputs(case)
-    given = (options or SimulationOptions()).validated()
-    options = given.resolved(inputs.simulation)
-    par = build_params(inputs, options)
-    history = model_history(inputs)
-    grid = _time_grid(inputs, options, given, history)
+    done: int  # stored samples, the start included
+    stop_reason: str  # "finished", "cancelled" or the divergence message
+    diverged_message: str | None  # the divergence message, None when it did not diverge
+    wall_time: float  # wall time of the loop [s]
+
+
+def run_chunks(method, model, y, grid, states, control, work, options, progress, cancel):
+    """Advance ``model`` from state ``y`` over the output times of ``grid`` (:class:`TimeGrid`)
+    in chunks of ``options.chunk_samples`` samples, storing them in ``states`` (the start in
+    ``states[0]``), with the stepper ``method`` and its workspace ``work``. Between chunks it
+    reports progress (``progress(fraction, simulated_time, message)``, None: no reports) and
+    checks ``cancel`` (:func:`_is_cancelled`); it stops at the first chunk the stepper ends with
+    a status other than OK, with the likely cause in the message."""
     times, period = grid.times, grid.period
     n_samples = times.size - 1
-    quad = build_quadrature(options, par)
-    y, start_note, quasistatic = _start(inputs, options, history, par, quad)
-    states = np.empty((n_samples + 1, y.shape[0]))
-    states[0] = y
-    scale = state_scales(history, par, y)
-    # first step: a fraction of the shortest contact period
-    omega_n = scale[L.B_VEL] / scale[L.B_POS]
-    h = 0.05 / omega_n
-    method = stepper(options.method)
-    model = bearing_model(history, par, quad)
-    work = method.workspace(model, y.shape[0], 0.0, h)
     reached = work.progress  # the stepper's progress record (1,)
-    control = step_control(
-        options.tolerance,
-        scale,
-        1e-6 * h,
-        options.max_steps_per_chunk,
-        event_times(history, 0.0, float(times[-1])),
-    )
-    stats = RunStatistics(work.progress)
-    stats.initial_step = h
     done = 1
     stop_reason = "finished"
     diverged_message = None
@@ -335,7 +315,50 @@ def simulate(case, progress=None, cancel=None, options: SimulationOptions | None
                 float(times[done - 1]),
                 f"{grid.reached(done - 1)}, {elapsed:.1f} s",
             )
-    stats.wall_time = _time.perf_counter() - start
+    return ChunkRun(done, stop_reason, diverged_message, _time.perf_counter() - start)
+
+
+def simulate(case, progress=None, cancel=None, options: SimulationOptions | None = None):
+    """Run the dynamic model of ``case`` and return an ``xarray.Dataset`` (results-schema.md).
+
+    ``case``: a :class:`solver.case.Case` (``solver.simulate`` also takes a case-file path or a
+    catalogue name; CaseError when the dynamic model cannot run it,
+    :func:`solver.case.dynamic_problems`), or :class:`solver.inputs.Inputs`.
+    ``progress(fraction, simulated_time, message)`` is called between chunks; ``cancel`` is a
+    callable or an Event. ``options``: :class:`SimulationOptions`; None = the case's
+    ``[simulation]`` values and the default numerical knobs.
+    """
+    inputs = _inputs(case)
+    given = (options or SimulationOptions()).validated()
+    options = given.resolved(inputs.simulation)
+    par = build_params(inputs, options)
+    history = model_history(inputs)
+    grid = _time_grid(inputs, options, given, history)
+    times, period = grid.times, grid.period
+    n_samples = times.size - 1
+    quad = build_quadrature(options, par)
+    y, start_note, quasistatic = _start(inputs, options, history, par, quad)
+    states = np.empty((n_samples + 1, y.shape[0]))
+    states[0] = y
+    scale = state_scales(history, par, y)
+    # first step: a fraction of the shortest contact period
+    omega_n = scale[L.B_VEL] / scale[L.B_POS]
+    h = 0.05 / omega_n
+    method = stepper(options.method)
+    model = bearing_model(history, par, quad)
+    work = method.workspace(model, y.shape[0], 0.0, h)
+    control = step_control(
+        options.tolerance,
+        scale,
+        1e-6 * h,
+        options.max_steps_per_chunk,
+        event_times(history, 0.0, float(times[-1])),
+    )
+    stats = RunStatistics(work.progress)
+    stats.initial_step = h
+    run = run_chunks(method, model, y, grid, states, control, work, options, progress, cancel)
+    done, stop_reason, diverged_message = run.done, run.stop_reason, run.diverged_message
+    stats.wall_time = run.wall_time
     complete = stop_reason == "finished"
     ds = build_dataset(
         inputs,

@@ -159,14 +159,48 @@ def test_operating_loads_are_refused_in_a_set_case():
     assert "operating.axial_load_N is not read for a bearing set" in text
 
 
-def test_a_set_without_external_load_is_valid_and_the_dynamic_model_says_it_runs_one_bearing():
+def test_a_set_without_external_load_is_valid_and_the_dynamic_model_runs_it():
     c = case(
         '[set]\narrangement = "DB"\nwidth_mm = 15.0\n[set.preload]\nkind = "offset"\n'
         "offset_um = 10.0\n"
     )
     assert c.bearing_set.preload_offset_um == 10.0
+    assert dynamic_problems(c) == []
+
+
+def test_the_sets_dynamic_model_refuses_a_spring_preload_naming_the_key_and_the_way_out():
+    c = case(
+        '[set]\narrangement = "DB"\nwidth_mm = 15.0\n[set.preload]\nkind = "spring"\n'
+        'force_N = 200.0\nspring_side = "-x"\n'
+    )
     (problem,) = dynamic_problems(c)
-    assert problem.key == "set" and "quasi-static" in problem.message
+    assert problem.key == "set.preload.kind"
+    assert "kind = 'force'" in problem.message and "kind = 'offset'" in problem.message
+
+
+def test_the_sets_dynamic_run_length_counts_the_balls_of_every_bearing():
+    from solver import dynamic_ball_count
+    from solver.case.validate import MAX_DYNAMIC_BALL_SAMPLES
+
+    four = case('[set]\narrangement = "QBC"\nwidth_mm = 15.0\n')
+    assert dynamic_ball_count(four) == 4 * 18
+    # a run that one bearing's 18 balls could keep, but not the set's 72
+    samples = MAX_DYNAMIC_BALL_SAMPLES // 36
+    long = four.with_values(
+        {"simulation.shaft_revolutions": samples / 100, "simulation.samples_per_revolution": 100}
+    )
+    (problem,) = dynamic_problems(long)
+    assert problem.key == "simulation.shaft_revolutions" and "72 balls" in problem.message
+
+
+def test_the_sets_dynamic_model_needs_the_rings_to_turn():
+    still = case(
+        '[set]\narrangement = "DB"\nwidth_mm = 15.0\n',
+        HEAD.replace("10000.0\n", "0.0\n"),
+    )
+    (problem,) = dynamic_problems(still)
+    assert problem.key == "operating.inner_ring_speed_rpm"
+    assert "bearing set" in problem.message and "history" not in problem.message
 
 
 def test_a_set_with_a_time_history_is_refused_with_the_key_named():

@@ -153,3 +153,17 @@ def test_the_shipped_studies_are_valid():
     speeds = {p.case.operating.inner_ring_speed_rpm for p in seed.points()}
     assert min(speeds) == 5000.0 and max(speeds) == 30000.0
     assert study_points(seed.spec)[-1].case.operating.radial_load_N == 300.0
+
+
+def test_a_dynamic_study_of_a_bearing_set_is_refused_naming_the_point():
+    text = (
+        'title = "t"\nbase = "spindle-pair-db-light-preload"\nmodel = "dynamic"\n'
+        '[vary]\n"set.preload.force_N" = [100.0, 200.0]\n'
+    )
+    with pytest.raises(CaseError) as info:
+        Study.from_text(text).points()
+    (first, second) = info.value.problems
+    assert first.key == "model" and "point p0001" in first.message
+    assert "runs the quasi-static model only" in first.message and "racetrace simulate" in (
+        first.message
+    )
