@@ -353,7 +353,7 @@ def test_a_bearing_unloaded_by_the_load_is_a_warning_not_an_error():
     ds = solve(_db_with_thrust(0.0, 600.0))
     assert ds["bearing_axial_load"].values[1] == 0.0
     found = set_result_warnings(ds)
-    assert any(m.startswith("bearing bearing 2 carries no load at rest") for m in found), found
+    assert any(m.startswith("bearing 2 carries no load at rest") for m in found), found
     assert any("at rest under the case's loads" in m and "bearing 2" in m for m in found), found
 
 
@@ -367,4 +367,4 @@ def test_preload_lost_at_speed_is_named_and_a_fixed_position_preload_rises_with_
     lost = solve(_db_with_thrust(20000.0, 3000.0))
     assert lost["bearing_axial_load"].values[1] == 0.0
     found = set_result_warnings(lost)
-    assert any(m.startswith("bearing bearing 2 carries no load at speed") for m in found), found
+    assert any(m.startswith("bearing 2 carries no load at speed") for m in found), found

@@ -52,6 +52,13 @@ def _set_energy_check(ds) -> list[str]:
     ]
 
 
+def _called(name) -> str:
+    """How a warning names a bearing of the set: its name, with "bearing" before it unless the
+    name says so already (the default names are "bearing 1", "bearing 2", ...)."""
+    name = str(name)
+    return name if name.lower().startswith("bearing") else f"bearing {name}"
+
+
 def set_result_warnings(ds) -> list[str]:
     """Warnings of a bearing set's Dataset: a bearing whose balls all lost their inner contact
     (its preload lost), or some of them; a bearing unloaded at rest under the case's loads; and
@@ -78,13 +85,13 @@ def set_result_warnings(ds) -> list[str]:
         unloaded = int(np.sum(loads <= UNLOADED_CONTACT_FRACTION * max(scale, 1e-300)))
         if unloaded == count:
             found.append(
-                f"bearing {name!s} carries no load {at}: every ball has lost its inner contact "
+                f"{_called(name)} carries no load {at}: every ball has lost its inner contact "
                 "(its preload is lost under the external load); raise the preload, or use a "
                 "spring preload that keeps its force"
             )
         elif unloaded:
             found.append(
-                f"bearing {name!s}: {unloaded} of {count} balls have lost their inner contact "
+                f"{_called(name)}: {unloaded} of {count} balls have lost their inner contact "
                 f"{at} (part of the preload is lost there)"
             )
         one = bearing_result(ds, index)
@@ -101,7 +108,7 @@ def set_result_warnings(ds) -> list[str]:
     if dynamic:
         found += _set_energy_check(ds)
     for name, messages in own:
-        found += [f"bearing {name!s}: {m}" for m in messages if m not in every]
+        found += [f"{_called(name)}: {m}" for m in messages if m not in every]
     if ds.attrs.get("unloaded_at_rest"):
         found.append(
             f"at rest under the case's loads the preload does not keep every bearing loaded: "
