@@ -56,10 +56,11 @@ def test_a_db_pair_is_solved_and_both_bearings_tracks_are_painted(page):
     rows = page.locator("#set-stiffness tbody tr")
     assert rows.count() == 3
     assert "set" in rows.nth(2).inner_text()
-    # the set's fields are in the form, and Run says why the dynamic model is off
+    # the set's fields are in the form, and Run runs the set's dynamic model
     assert page.locator("#field-set_arrangement").count() == 1
     assert page.locator("#field-preload_force_N input").input_value() == "100.0"
-    assert page.locator("#run-button").is_disabled()
+    assert not page.locator("#run-button").is_disabled()
+    assert "dynamic run" in page.locator("#run-size").inner_text()
     page.screenshot(path=str(ARTIFACTS / "set-page.png"), full_page=True)
     panel.screenshot(path=str(ARTIFACTS / "set-panel.png"))
 
