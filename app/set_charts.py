@@ -18,6 +18,7 @@ import plotly.graph_objects as go
 import xarray as xr
 
 from viz.palette import run_colours
+from viz.set_study import SET_STUDY_CHART_METRICS, TILT_UNIT, TRANSLATION_UNIT
 
 from .charts import LOAD_MIN_SPAN_N, _layout, _pad_y
 
@@ -45,8 +46,6 @@ HELP = {
 }
 
 #: Display units of the stiffness table: (name, scale from SI, unit).
-TRANSLATION_UNIT = ("N/µm", 1e-6)
-TILT_UNIT = ("N m/mrad", 1e-3)
 
 
 def bearing_names(ds: xr.Dataset) -> list[str]:
@@ -295,52 +294,6 @@ def stiffness_rows(ds: xr.Dataset) -> list[dict]:
 
 
 # ---- a study of bearing-set points ------------------------------------------------------------
-#: Charts of a bearing-set study (its Dataset has a ``bearing`` dimension, docs/study-format.md):
-#: (name, axis title, scale from SI to the axis unit, ((variable, line tag, dashed), ...)). A
-#: variable with a ``bearing`` dimension draws one line per bearing (the tag, when given, after
-#: its name), one without draws the set's line. The set's tilting stiffness (from the bearings'
-#: spread along the shaft) is some hundred times a bearing's own about its plane: two charts.
-SET_STUDY_CHART_METRICS = (
-    (
-        "axial_stiffness",
-        f"axial stiffness [{TRANSLATION_UNIT[0]}]",
-        TRANSLATION_UNIT[1],
-        (("axial_stiffness", "", False), ("bearing_axial_stiffness", "", False)),
-    ),
-    (
-        "radial_stiffness",
-        f"radial stiffness [{TRANSLATION_UNIT[0]}]",
-        TRANSLATION_UNIT[1],
-        (("radial_stiffness", "", False), ("bearing_radial_stiffness", "", False)),
-    ),
-    (
-        "tilt_stiffness",
-        f"set tilt stiffness [{TILT_UNIT[0]}]",
-        TILT_UNIT[1],
-        (("tilt_stiffness", "", False),),
-    ),
-    (
-        "bearing_tilt_stiffness",
-        f"bearing tilt stiffness [{TILT_UNIT[0]}]",
-        TILT_UNIT[1],
-        (("bearing_tilt_stiffness", "", False),),
-    ),
-    (
-        "bearing_load",
-        "load carried [N]",
-        1.0,
-        (("bearing_axial_load", "axial", False), ("bearing_radial_load", "radial", True)),
-    ),
-    (
-        "contact_angle",
-        "mean contact angle [deg]",
-        1.0,
-        (
-            ("bearing_inner_contact_angle", "inner", False),
-            ("bearing_outer_contact_angle", "outer", True),
-        ),
-    ),
-)
 #: The set's line in a set study chart (the bearings take the runs' palette): wide and
 #: translucent, under the bearings' lines, so that both show where they coincide (the axial
 #: stiffness of a spring-preloaded pair is its fixed bearing's).

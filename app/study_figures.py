@@ -16,7 +16,7 @@ def _is_set_study(ds) -> bool:
 def study_metric_items(ds) -> list[dict]:
     """The metrics the Studies chart offers for the study Dataset ``ds`` (``{"title", "value"}``):
     :data:`app.charts.STUDY_CHART_METRICS`, or for a set study
-    :data:`app.set_charts.SET_STUDY_CHART_METRICS`."""
+    :data:`viz.set_study.SET_STUDY_CHART_METRICS`."""
     rows = SET_STUDY_CHART_METRICS if _is_set_study(ds) else STUDY_CHART_METRICS
     return [{"title": row[1], "value": row[0]} for row in rows]
 

@@ -16,6 +16,8 @@ import json
 import math
 from pathlib import Path
 
+from viz.set_study import SET_STUDY_CHART_METRICS
+
 from .units import hours, number, shown
 
 #: Top-level modules of the ``report`` extra (checked before building).
@@ -734,51 +736,6 @@ STUDY_CHART_METRICS = (
     ("band_width", "band width [deg]", 1.0),
     ("mean_contact_angle", "mean contact angle [deg]", 1.0),
     ("peak_pressure", "peak pressure [GPa]", 1e-9),
-)
-#: Charts of a study of bearing-set points (a ``bearing`` dimension): (name, label, scale from
-#: SI, ((variable, line tag, dashed), ...)); a variable with a ``bearing`` dimension draws a line
-#: per bearing, one without the set's line (:func:`report.charts.set_study_charts`). The set's
-#: tilting stiffness is some hundred times a bearing's own about its plane: two charts.
-SET_STUDY_CHART_METRICS = (
-    (
-        "axial_stiffness",
-        "axial stiffness [N/µm]",
-        1e-6,
-        (("axial_stiffness", "", False), ("bearing_axial_stiffness", "", False)),
-    ),
-    (
-        "radial_stiffness",
-        "radial stiffness [N/µm]",
-        1e-6,
-        (("radial_stiffness", "", False), ("bearing_radial_stiffness", "", False)),
-    ),
-    (
-        "tilt_stiffness",
-        "set tilt stiffness [N m/mrad]",
-        1e-3,
-        (("tilt_stiffness", "", False),),
-    ),
-    (
-        "bearing_tilt_stiffness",
-        "bearing tilt stiffness [N m/mrad]",
-        1e-3,
-        (("bearing_tilt_stiffness", "", False),),
-    ),
-    (
-        "bearing_load",
-        "load carried [N]",
-        1.0,
-        (("bearing_axial_load", "axial", False), ("bearing_radial_load", "radial", True)),
-    ),
-    (
-        "contact_angle",
-        "mean contact angle [deg]",
-        1.0,
-        (
-            ("bearing_inner_contact_angle", "inner", False),
-            ("bearing_outer_contact_angle", "outer", True),
-        ),
-    ),
 )
 #: Columns of the study's points table: (variable, short header, scale from SI, unit shown),
 #: inner and outer; one unit per column (in the header), so that the column reads down.

@@ -9,7 +9,7 @@ State keys: ``study_names`` (shipped studies), ``study_name`` (the one chosen), 
 sweep charted), ``study_metric`` / ``study_metric_items`` (the metric charted, one of
 :func:`app.study_figures.study_metric_items`: a metric of
 :data:`solver.study.metrics.POINT_METRICS`, or
-for a study of bearing-set points one of :data:`app.set_charts.SET_STUDY_CHART_METRICS`) and the
+for a study of bearing-set points one of :data:`viz.set_study.SET_STUDY_CHART_METRICS`) and the
 chart ``chart_study`` (the metric against the sweep's varied key: inner and outer race side by
 side, a line per model; for a set, the set's line and one per bearing). Opening results:
 ``study_results_items`` / ``study_results`` (shipped study results and the study folders of the
