@@ -19,6 +19,7 @@ import xarray as xr
 
 from viz.palette import run_colours
 from viz.set_study import SET_STUDY_CHART_METRICS, TILT_UNIT, TRANSLATION_UNIT
+from viz.study_axes import key_label
 
 from .charts import LOAD_MIN_SPAN_N, _layout, _pad_y
 
@@ -357,30 +358,10 @@ def set_study_figure(ds: xr.Dataset, sweep: str | None, metric: str) -> go.Figur
                             customdata=[[str(p), model] for p in points[shown]],
                         )
                     )
-        fig.update_xaxes(title_text=_key_label(key))
+        fig.update_xaxes(title_text=key_label(key))
     fig.update_yaxes(title_text=label)
     fig.update_layout(
         margin={"l": 50, "r": 10, "t": 30, "b": 90},
         legend={"orientation": "h", "yref": "container", "y": 0.0, "yanchor": "bottom"},
     )
     return fig
-
-
-#: Unit suffixes of case keys (``force_N``, ``offset_um``), as an axis title writes them.
-KEY_UNITS = {"N": "N", "Nm": "N m", "mm": "mm", "um": "µm", "rpm": "rpm", "deg": "deg"}
-
-
-def _key_label(key: str) -> str:
-    """A case key as an axis title: its schema label and unit; for a key the form does not offer
-    (``set.preload.force_N``) its last two segments in words and the unit its name ends with
-    ("preload force [N]"), else its last segment."""
-    from solver import fields_by_key
-
-    field = fields_by_key().get(key)
-    if field is not None:
-        return f"{field.label} [{field.unit}]" if field.unit else field.label
-    *parents, last = key.split(".")
-    head, _, unit = last.rpartition("_")
-    if head and unit in KEY_UNITS:
-        return f"{' '.join([*parents[-1:], head])} [{KEY_UNITS[unit]}]".replace("_", " ")
-    return last

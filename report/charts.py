@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from solver import loaded_mask
+from viz.study_axes import key_label
 
 from .units import ordinal
 
@@ -155,28 +156,6 @@ def contact_series(ds, name: str, label: str, scale: float = 1.0):
         note = ""
     _legend_outside(fig)
     return fig, note
-
-
-#: Unit suffixes of case keys (``force_N``, ``offset_um``), as an axis label writes them.
-KEY_UNITS = {"N": "N", "Nm": "N m", "mm": "mm", "um": "µm", "rpm": "rpm", "deg": "deg"}
-
-
-def key_label(key: str) -> str:
-    """A case key as an axis label: its schema label and unit ("Radial load [N]"); for a key
-    without a schema field, its last two segments and the unit its name ends with ("preload
-    force [N]"), else its last segment."""
-    from solver import fields_by_key
-
-    field = fields_by_key().get(key)
-    if field is not None:
-        return f"{field.label} [{field.unit}]" if field.unit else field.label
-    # a key the schema's fields do not list (``set.preload.force_N``): its last two segments in
-    # words and the unit its name ends with ("preload force [N]")
-    *parents, last = key.split(".")
-    head, _, unit = last.rpartition("_")
-    if head and unit in KEY_UNITS:
-        return f"{' '.join([*parents[-1:], head])} [{KEY_UNITS[unit]}]".replace("_", " ")
-    return last
 
 
 def study_metric_charts(ds, sweep: str, metrics):
