@@ -121,6 +121,23 @@ def test_db_pair_dynamic_steady_state_agrees_with_the_quasistatic_set(pair):
     )
 
 
+def test_each_bearing_of_a_dynamic_pair_is_rated_at_the_loads_it_carries(pair):
+    """A set's bearing has no applied load of its own: its operating loads, ISO 281 life and
+    Palmgren torque are those of the loads its balls carry, as in the quasi-static set."""
+    ds, qs = pair
+    for name in ("axial_load", "radial_load"):
+        np.testing.assert_allclose(ds[name].values, qs[name].values, rtol=0.01)
+    assert np.all(ds["equivalent_load"].values > 0.0)
+    # L10 goes as the load to the power -3: 1 % in the loads is 3 % in the life
+    np.testing.assert_allclose(
+        ds["basic_rating_life"].values, qs["basic_rating_life"].values, rtol=0.05
+    )
+    if "friction_torque_palmgren" in qs:
+        np.testing.assert_allclose(
+            ds["friction_torque_palmgren"].values, qs["friction_torque_palmgren"].values, rtol=0.01
+        )
+
+
 def test_db_pair_energy_balance_closes_within_the_contract(pair):
     ds, _ = pair
     assert abs(float(ds["energy_balance_residual"])) < 0.01

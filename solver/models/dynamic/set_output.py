@@ -11,11 +11,15 @@ energies and gravity's work summed, plus the work of the external load on the sh
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import xarray as xr
 
 from solver.models.quasistatic.set_result import stack_bearings
 from solver.results.energy import energy_balance
+from solver.results.estimates import with_estimates
+from solver.results.life import rating_life
 from solver.results.variables import Variable, variable
 
 from . import layout as L
@@ -117,6 +121,39 @@ def ring_loads(member, states: np.ndarray, times: np.ndarray) -> np.ndarray:
     return out
 
 
+def rated_at_carried_load(ds: xr.Dataset, inputs, loads: np.ndarray) -> xr.Dataset:
+    """A bearing's Dataset ``ds`` (its own frame) with its operating loads those its balls carry,
+    as in the quasi-static set: ``axial_load``, ``radial_load`` and ``radial_load_angle`` are the
+    means over the analysed window of the load on its inner ring (``loads`` (S, 6), the balls'
+    force and moment on the ring, own frame, from :func:`ring_loads`), and the life metrics and
+    friction estimates that read them are computed at those loads. The bearing's own inputs hold
+    no applied load (the set's loads act on the shaft)."""
+    times = np.asarray(ds["time"].values, dtype=float)
+    first = int(np.searchsorted(times, float(ds["analysis_start_time"]), side="left"))
+    carried = -np.asarray(loads[first:, :3], dtype=float)  # the load the ring puts on the balls
+    axial = float(np.mean(carried[:, 0]))
+    radial = float(np.mean(np.hypot(carried[:, 1], carried[:, 2])))
+    direction = carried[:, 1:3].mean(axis=0)
+    angle = float(np.arctan2(direction[1], direction[0])) if np.any(direction) else 0.0
+    note = (
+        "a bearing of a set: the mean over the analysed window of the load its balls carry "
+        "(the set's loads act on the shaft)"
+    )
+    coords = {}
+    for name, value in (
+        ("axial_load", axial),
+        ("radial_load", radial),
+        ("radial_load_angle", float(np.degrees(angle))),
+    ):
+        coords[name] = xr.Variable((), np.float64(value), ds[name].attrs | {"note": note})
+    ds = ds.assign_coords(coords)
+    operating = dataclasses.replace(
+        inputs.operating, axial_load=axial, radial_load=radial, radial_load_angle=angle
+    )
+    ds = ds.assign(rating_life(ds, first).data_vars)
+    return with_estimates(ds, inputs, operating)
+
+
 def to_shaft(sign: float, loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(force (S, 3), moment about y, z (S, 2)) in the shaft frame from a bearing's own-frame
     ring loads ``loads`` (S, 6)."""
@@ -159,29 +196,29 @@ def set_dynamic_dataset(
     given, qs, members, options, times, states, period, complete, stop_reason, stats
 ) -> xr.Dataset:
     """The set run's Dataset from the stored set states (S, n) at ``times`` (S,)."""
-    datasets = []
+    datasets, ring_load_series = [], []
     for m in members:
         sub = np.ascontiguousarray(states[:, m.start : m.stop])
-        datasets.append(
-            build_dataset(
-                m.inputs,
-                options,
-                m.history,
-                m.par,
-                m.quad,
-                times,
-                sub,
-                period,
-                complete,
-                stop_reason,
-                stats,
-                m.quasistatic,
-            )
+        loads = ring_loads(m, sub, times)
+        ring_load_series.append(loads)
+        own = build_dataset(
+            m.inputs,
+            options,
+            m.history,
+            m.par,
+            m.quad,
+            times,
+            sub,
+            period,
+            complete,
+            stop_reason,
+            stats,
+            m.quasistatic,
         )
+        datasets.append(rated_at_carried_load(own, m.inputs, loads))
     shaft_states = states[:, members[-1].stop :]
     forces, moments, axial, radial = [], [], [], []
-    for m in members:
-        loads = ring_loads(m, np.ascontiguousarray(states[:, m.start : m.stop]), times)
+    for m, loads in zip(members, ring_load_series, strict=True):
         force, moment = to_shaft(m.sign, loads)
         # the bearing's force on the shaft is that of its balls on its ring
         forces.append(force)
