@@ -15,7 +15,7 @@ A bearing set (a ``[set]`` case) opens like a single bearing: its form adds the 
 arrangement and the preload, :func:`app.case_fields.set_form_fields`) and its preview is the set's
 quasi-static solution (``solver.solve``), which the result view shows bearing by bearing; Run
 runs the set's dynamic model (``solver.simulate``), and says why it is off for what that model
-cannot run (a spring preload, time histories: ``run_reason``).
+cannot run (``run_reason``: e.g. a run too long to keep, equal ring speeds).
 """
 
 from __future__ import annotations

@@ -1030,23 +1030,10 @@ def dynamic_ball_count(case) -> int:
 def set_dynamic_problems(case) -> list[Problem]:
     """Why the dynamic model of a bearing set cannot run the valid set ``case`` (empty when it
     can). The set's dynamic model runs a steady operating point (a set case gives no time
-    histories: the case refuses them) with every outer ring fixed: no spring preload (its outer
-    rings float), the rings turning relative to each other; its run length is checked against
-    the balls of every bearing of the set."""
-    bearing_set = case.bearing_set
+    histories: the case refuses them), with any preload the case gives (a spring preload floats
+    the outer rings of its side), the rings turning relative to each other; its run length is
+    checked against the balls of every bearing of the set."""
     found = []
-    if bearing_set.preload_kind == "spring":
-        found.append(
-            Problem(
-                "set.preload.kind",
-                "set.preload.kind = 'spring': the dynamic model of a bearing set holds every "
-                "outer ring fixed, while a spring preload floats the outer rings of the spring "
-                "side. Give the preload as a force at assembly (kind = 'force' with force_N) or "
-                "as the rings' axial offset (kind = 'offset' with offset_um) for the dynamic "
-                "run; the quasi-static model solves the spring preload as it is",
-                ("set.preload.force_N",),
-            )
-        )
     sim = case.simulation
     found += run_length_problems(
         sim.shaft_revolutions, sim.samples_per_revolution, dynamic_ball_count(case)

@@ -1,13 +1,11 @@
 """``racetrace simulate`` on a bearing-set case: the set's dynamic model runs, the result keeps
-its ``bearing`` dimension, the summary is per bearing, Ctrl-C keeps what was computed, and what the
-set's model cannot run is refused before the run, naming the key."""
+its ``bearing`` dimension, the summary is per bearing, Ctrl-C keeps what was computed, and a spring
+preload runs with its floating outer ring."""
 
 from __future__ import annotations
 
 import argparse
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -93,23 +91,19 @@ def _case_file(tmp_path: Path, old: str, new: str) -> Path:
     return path
 
 
-def _racetrace(*args):
-    return subprocess.run(
-        [sys.executable, "-m", "racetrace", *args], capture_output=True, text=True, timeout=300
-    )
-
-
-def test_a_spring_preload_is_refused_before_the_run_naming_the_key(tmp_path):
-    case = _case_file(
-        tmp_path,
-        'kind = "force"',
-        'kind = "spring"\nspring_side = "-x"',
-    )
-    out = tmp_path / "run.nc"
-    result = _racetrace("simulate", str(case), "-o", str(out), "--json", *SHORT)
-    assert result.returncode == 2, result.stderr
-    assert "set.preload.kind = 'spring'" in result.stderr
-    assert "kind = 'force'" in result.stderr  # what to give instead
-    problems = json.loads(result.stdout)["error"]["problems"]
-    assert [p["key"] for p in problems] == ["set.preload.kind"]
-    assert not out.exists() and "compiling" not in result.stderr
+def test_a_spring_preload_runs_with_its_floating_outer_ring(tmp_path, capsys):
+    """The shipped pair with its 100 N preload given as a spring on the -x bearing's outer ring:
+    the run writes a result that reads back, with the floating ring's shift over time and the
+    spring force; the -x bearing carries the spring force, the +x one the 100 N axial load too."""
+    case = _case_file(tmp_path, 'kind = "force"', 'kind = "spring"\nspring_side = "-x"')
+    out = tmp_path / "spring.nc"
+    short = ["--revolutions", "0.1", "--samples-per-revolution", "40"]
+    args = _parse(["simulate", str(case), "--output", str(out), *short, "--json"])
+    assert args.func(args) == 0
+    first, second = json.loads(capsys.readouterr().out)["bearings"]
+    ds = load_dataset(out)
+    assert ds.attrs["complete"] == 1
+    assert ds["spring_shift"].dims == ("time",) and float(ds["spring_force"]) == 100.0
+    assert (first["direction"], second["direction"]) == ("+x", "-x")
+    assert second["axial_load_N"] == pytest.approx(100.0, rel=0.02)
+    assert first["axial_load_N"] == pytest.approx(200.0, rel=0.02)

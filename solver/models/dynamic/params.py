@@ -135,6 +135,19 @@ def ring_mass_properties(inputs: Inputs, options: SimulationOptions):
     return mass, diametral, polar
 
 
+def outer_ring_mass(geometry, width: float) -> float:
+    """Mass [kg] of an outer ring of the bearing ``geometry`` (a BearingGeometry) and width
+    ``width`` [m]: an annulus of its ring material's density from the outer groove-bottom diameter
+    to d_m + 2 D (the outside diameter of an angular contact bearing of the usual series, e.g.
+    68.3 mm for a 7008C's 68 mm). The dynamic set model's floating outer rings (spring preload)."""
+    D, dm = geometry.ball_diameter, geometry.pitch_diameter
+    r_in = 0.5 * geometry.outer_groove_bottom_diameter
+    r_out = 0.5 * dm + D
+    if r_out <= r_in:
+        r_out = r_in + 0.5 * D
+    return geometry.ring_material.density * math.pi * (r_out**2 - r_in**2) * width
+
+
 def build_quadrature(options: SimulationOptions, par: ModelParams) -> np.ndarray:
     """Node table of the ellipse traction rule: ``options.ellipse_rule`` (None: "product" when
     ``options.quadrature`` is given, else the default rule of the traction law of ``par``,

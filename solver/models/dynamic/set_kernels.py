@@ -30,7 +30,25 @@ its balls on its inner ring (``RhsWork.ring_load``). The shaft's generalised for
 with R_b = (F_x, F_y, F_z, M_y, M_z) of the balls on ring b (own frame, about its centre), the
 shaft's mass matrix M_shaft = sum_b G_b^T diag(m_b, m_b, m_b, I_d,b, I_d,b) G_b (the shaft is the
 inner rings, rigidly joined), gravity sum_b G_b^T (0, 0, -m_b g, 0, 0) and the gyroscopic moment
-I_p omega (-tilt_z', tilt_y') of the spinning rings (I_p = sum_b I_p,b). The outer rings are fixed.
+I_p omega (-tilt_z', tilt_y') of the spinning rings (I_p = sum_b I_p,b).
+
+The outer rings are fixed, except under a spring preload: the outer rings of the spring side
+(``SetShaft.floating[b]`` = 1) then float axially as one body of mass M_o
+(``1 / SetShaft.spring_mass_inverse``), held radially and in tilt by the housing, pushed by the
+spring force F_s (``SetShaft.spring_force``) onto their balls. Its degree of freedom is the shift
+w [m] of those bearings' inner rings relative to their outer rings due to the outer rings' motion
+(the outer rings move by -w along the bearings' own x; the quasi-static set model's
+``spring_shift``), in the two slots ``SetShaft.spring_slot`` (w) and the one after it (w' [m/s]),
+after the shaft block. A floating bearing's state is in the frame of its outer ring, which
+translates by -w along x: its ring block is q_b + (w, 0, 0, 0, 0), and its balls and cage, whose
+positions and velocities are relative to the outer ring, feel the frame's inertial force
++m w'' along x. The outer rings' equation (own frame, F_o,b the axial force of bearing b's balls
+on its outer ring):
+
+    M_o w'' = F_s - sum_(floating b) F_o,b
+
+which at rest is the quasi-static set's F_s + sum R_b,x = 0 (each ball carries its axial load from
+the inner to the outer ring).
 """
 
 from __future__ import annotations
@@ -42,7 +60,11 @@ from numba import njit
 
 from .kernels import post_step, rhs_into
 from .layout import (
+    B_VEL,
+    BALL_STRIDE,
+    C_VEL,
     CAGE_SIZE,
+    K_F_RING,
     R_PHI_INNER,
     R_PHI_OUTER,
     R_POS,
@@ -63,6 +85,10 @@ class SetShaft(NamedTuple):
     applied: np.ndarray  # (5,) F_x, F_y, F_z [N], M_y, M_z [N m] at the load point
     weight: np.ndarray  # (5,) generalised force of gravity at the load point [N, N m]
     polar_inertia: float  # sum of the rings' polar moments of inertia [kg m^2]
+    floating: np.ndarray  # (B,) 1.0 for a bearing whose outer ring floats (spring side), else 0.0
+    spring_slot: int  # slot of the spring shift w [m] (w' [m/s] after it); -1: no spring preload
+    spring_force: float  # spring force F_s on the floating outer rings [N]
+    spring_mass_inverse: float  # 1 / M_o of the floating outer rings [1/kg]; 0: no spring
 
 
 class SetWork(NamedTuple):
@@ -125,6 +151,19 @@ def set_rhs_into(y, t, bearings, shaft, dydt, work, observed):
         q[2] += fz
         q[3] += sgn * rl[4] - arm * fz
         q[4] += sgn * rl[5] + arm * fy
+    # the floating outer rings: the axial force of their balls on them, own frame
+    spring_acc = 0.0
+    if shaft.spring_slot >= 0:
+        outer_force = 0.0
+        for b in range(nb):
+            if shaft.floating[b] > 0.0:
+                rec = bearings[b].rec_outer
+                for j in range(rec.shape[0]):
+                    outer_force += rec[j, K_F_RING]
+        spring_acc = (shaft.spring_force - outer_force) * shaft.spring_mass_inverse
+        ws = shaft.spring_slot
+        dydt[ws] = y[ws + 1]
+        dydt[ws + 1] = spring_acc
     sb = shaft.starts[nb]
     rate = work.rate
     acc = work.acceleration
@@ -168,6 +207,17 @@ def set_rhs_into(y, t, bearings, shaft, dydt, work, observed):
             dydt[rb + R_VEL + i] = q[i]
         dydt[rb + R_TILT_RATE] = q[3]
         dydt[rb + R_TILT_RATE + 1] = q[4]
+        if shaft.floating[b] > 0.0:
+            # the frame of the floating outer ring: the ring block moves by w relative to it,
+            # and every body in it feels the frame's inertial force
+            ws = shaft.spring_slot
+            dydt[rb + R_POS] += y[ws + 1]
+            dydt[rb + R_VEL] += spring_acc
+            s0 = shaft.starts[b]
+            for j in range(bearings[b].rec_outer.shape[0]):
+                dydt[s0 + BALL_STRIDE * j + B_VEL] += spring_acc
+            if bearings[b].par.cage:
+                dydt[rb + RING_SIZE + C_VEL] += spring_acc
 
 
 @njit(cache=True)

@@ -6,7 +6,10 @@ states, its own frame) is stacked along a ``bearing`` dimension as in the quasi-
 Dataset (:func:`solver.models.quasistatic.set_result.stack_bearings`). The shaft's variables are
 in the shaft frame. ``energy_balance_residual`` is the whole set's (a bearing's own balance lacks
 the work the shaft does on its inner ring): the bearings' drive power, losses, kinetic and elastic
-energies and gravity's work summed, plus the work of the external load on the shaft.
+energies and gravity's work summed, plus the work of the external load on the shaft; under a spring
+preload also the floating outer rings' kinetic energy, the kinetic energy the spring side's bodies
+have from their frame's motion (their states are relative to their outer ring,
+:mod:`.set_kernels`), and the spring's work on the outer rings.
 """
 
 from __future__ import annotations
@@ -81,6 +84,24 @@ SET_DYNAMIC_VARIABLES: dict[str, Variable] = {
         "net force on the shaft",
         "sum of the external force and the bearings' forces on the shaft (gravity and inertia "
         "excluded), shaft frame",
+        _SET,
+    ),
+    "spring_shift": Variable(
+        (),
+        "m",
+        "spring side outer ring shift",
+        "axial shift w of the spring side's floating outer rings, along those bearings' own "
+        "direction: their inner rings' approach is w plus the shaft's displacement in their own "
+        "frame, as the quasi-static set's spring_shift (the outer rings move by -w); present "
+        "with a spring preload",
+        _SET,
+    ),
+    "spring_force": Variable(
+        (),
+        "N",
+        "spring force",
+        "constant force of the spring on the floating outer rings of the spring side, pushing "
+        "them onto their balls; present with a spring preload",
         _SET,
     ),
 }
@@ -162,10 +183,46 @@ def to_shaft(sign: float, loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return force, moment
 
 
-def set_energy_balance(datasets, applied, shaft_states, times, period, start_time):
+def floating_energy(members, states: np.ndarray, shaft) -> tuple[np.ndarray, np.ndarray]:
+    """(kinetic energy [J] the bearings' series lack, work of the spring [J] since the first
+    sample) of the floating outer rings of a spring preload at the stored set states (S, n);
+    zeros without one. A floating bearing's bodies (balls, cage, inner ring) have their velocities
+    stored relative to its outer ring, which moves at -w' along x: each body k of mass m_k and
+    stored axial velocity v_k has (v_k - w')^2 m_k / 2 of kinetic energy instead of v_k^2 m_k / 2;
+    the outer rings (mass M_o) have M_o w'^2 / 2; the spring force F_s, on the rings along -x of
+    their frame, does F_s (w - w_0)."""
+    size = states.shape[0]
+    if shaft.spring_slot < 0:
+        return np.zeros(size), np.zeros(size)
+    w = states[:, shaft.spring_slot]
+    rate = states[:, shaft.spring_slot + 1]
+    kinetic = 0.5 * rate**2 / shaft.spring_mass_inverse
+    for m in members:
+        if not m.floating:
+            continue
+        par = m.par
+        z = int(par.ball_count)
+        sub = states[:, m.start : m.stop]
+        rb = L.ring_base(z)
+        mass = z * par.ball_mass + par.ring_mass
+        momentum = par.ring_mass * sub[:, rb + L.R_VEL]
+        for j in range(z):
+            momentum = momentum + par.ball_mass * sub[:, L.ball_base(j) + L.B_VEL]
+        if par.cage:
+            mass += par.cage_mass
+            momentum = momentum + par.cage_mass * sub[:, L.cage_base(z) + L.C_VEL]
+        kinetic = kinetic - rate * momentum + 0.5 * mass * rate**2
+    return kinetic, shaft.spring_force * (w - w[0])
+
+
+def set_energy_balance(
+    datasets, applied, shaft_states, times, period, start_time, floating=(0.0, 0.0)
+):
     """:func:`solver.results.energy.energy_balance` of the whole set: the bearings' series summed
     (their kinetic energies hold the rings', i.e. the shaft's), plus the work of the constant
-    external load ``applied`` (Fx, Fy, Fz, My, Mz) over the shaft's displacement."""
+    external load ``applied`` (Fx, Fy, Fz, My, Mz) over the shaft's displacement, plus
+    ``floating`` (:func:`floating_energy`: kinetic energy and work of a spring preload's floating
+    outer rings, (S,) each)."""
     total = {
         name: sum(np.asarray(ds[name].values, dtype=float) for ds in datasets)
         for name in (
@@ -183,7 +240,8 @@ def set_energy_balance(datasets, applied, shaft_states, times, period, start_tim
         ),
         axis=1,
     )
-    total["load_work"] = total["load_work"] + (u - u[0]) @ applied
+    total["load_work"] = total["load_work"] + (u - u[0]) @ applied + floating[1]
+    total["kinetic_energy"] = total["kinetic_energy"] + floating[0]
     ds = xr.Dataset(
         {name: (("time",), values) for name, values in total.items()},
         coords={"time": times},
@@ -193,9 +251,10 @@ def set_energy_balance(datasets, applied, shaft_states, times, period, start_tim
 
 
 def set_dynamic_dataset(
-    given, qs, members, options, times, states, period, complete, stop_reason, stats
+    given, qs, members, shaft, options, times, states, period, complete, stop_reason, stats
 ) -> xr.Dataset:
-    """The set run's Dataset from the stored set states (S, n) at ``times`` (S,)."""
+    """The set run's Dataset from the stored set states (S, n) at ``times`` (S,); ``shaft`` the
+    run's :class:`.set_kernels.SetShaft`."""
     datasets, ring_load_series = [], []
     for m in members:
         sub = np.ascontiguousarray(states[:, m.start : m.stop])
@@ -216,7 +275,7 @@ def set_dynamic_dataset(
             m.quasistatic,
         )
         datasets.append(rated_at_carried_load(own, m.inputs, loads))
-    shaft_states = states[:, members[-1].stop :]
+    shaft_states = states[:, members[-1].stop : members[-1].stop + L.RING_SIZE]
     forces, moments, axial, radial = [], [], [], []
     for m, loads in zip(members, ring_load_series, strict=True):
         force, moment = to_shaft(m.sign, loads)
@@ -263,9 +322,21 @@ def set_dynamic_dataset(
         "bearing_radial_load": _var("bearing_radial_load", ("bearing", "time"), np.stack(radial)),
         "shaft_net_force": _var("shaft_net_force", ("time", "axis"), net),
     }
+    spring = shaft.spring_slot >= 0
+    if spring:
+        data["spring_shift"] = _var("spring_shift", ("time",), states[:, shaft.spring_slot])
+        data["spring_force"] = _var("spring_force", (), shaft.spring_force)
     ds = stack_bearings(datasets, coords, data)
     start_time = max(float(d["analysis_start_time"]) for d in datasets)
-    balance = set_energy_balance(datasets, applied, shaft_states, times, period, start_time)
+    balance = set_energy_balance(
+        datasets,
+        applied,
+        shaft_states,
+        times,
+        period,
+        start_time,
+        floating_energy(members, states, shaft),
+    )
     residual = np.nan if balance is None else balance.residual
     spec = variable("energy_balance_residual")
     attrs = spec.attrs() | {
@@ -277,6 +348,14 @@ def set_dynamic_dataset(
         if bearing_set.misalignment_deg is None
         else "free in x, y, z, its tilt held at set.misalignment_deg"
     )
+    rings = "outer rings fixed"
+    if spring:
+        floating = ", ".join(m.name for m in members if m.floating)
+        rings = (
+            f"the outer rings of {floating} floating axially as one body of "
+            f"{1.0 / shaft.spring_mass_inverse:.4g} kg (estimated) under the spring force, "
+            "the other outer rings fixed"
+        )
     ds.attrs.update(
         {
             "model": "dynamic",
@@ -286,7 +365,7 @@ def set_dynamic_dataset(
             "complete": int(complete),
             "set_model": (
                 f"rigid shaft {freedom} at the load point, spinning at the inner-ring speed; its "
-                "mass and inertia those of the inner rings; outer rings fixed; each bearing's "
+                f"mass and inertia those of the inner rings; {rings}; each bearing's "
                 "balls and cage as the single-bearing model"
             ),
             "preload_offset_m": float(qs.offset),

@@ -8,9 +8,11 @@ each bearing's balls, ring and cage as the single-bearing model starts from its 
 solution (:func:`.initial.initial_state_from_quasistatic`). The shaft is free in its five
 degrees of freedom (translations, tilts) under the set's external load; its spin follows the
 case's inner-ring speed; an imposed tilt (``set.misalignment_deg``) holds the shaft's two tilts
-at their imposed values (:func:`_mass_inverse`). The outer rings are fixed: a fixed-position
-preload (an offset or a force turned into an offset at rest) is the rings' axial offset; a spring
-preload, whose outer rings float, is not modelled, nor are time histories
+at their imposed values (:func:`_mass_inverse`). A fixed-position preload (an offset or a force
+turned into an offset at rest) is the rings' axial offset, every outer ring fixed; a spring preload
+floats the outer rings of the spring side axially as one body (:mod:`.set_kernels`; their mass
+:func:`.params.outer_ring_mass` of each, width ``set.width_mm``), starting at the quasi-static
+set's ``spring_shift`` at rest relative to it. Time histories are not modelled
 (:func:`solver.case.validate.set_dynamic_problems`, CaseError). Outcomes as for
 :func:`.simulate.simulate`.
 """
@@ -32,7 +34,7 @@ from .integrate import stepper
 from .integrate.control import step_control
 from .integrate.model import SetModel, bearing_model
 from .options import SimulationOptions
-from .params import build_params, build_quadrature
+from .params import build_params, build_quadrature, outer_ring_mass
 from .set_kernels import SetShaft
 from .set_output import set_dynamic_dataset
 from .simulate import RunStatistics, _time_grid, run_chunks, state_scales
@@ -40,13 +42,16 @@ from .simulate import RunStatistics, _time_grid, run_chunks, state_scales
 #: The integration method of a set run: the explicit Dormand-Prince method (the additive method
 #: treats one bearing's cage land implicitly and is not extended to a set).
 SET_METHOD = "dopri5"
+#: Slots of the floating outer rings of a spring preload after the shaft block: w [m], w' [m/s].
+SPRING_SIZE = 2
 
 
 @dataclasses.dataclass
 class SetMember:
     """One bearing of the set in the dynamic run: its inputs, parameters, history and quadrature
-    (own frame), sign and arm [m], the axial offset of its rings [m], its slice of the state and
-    the quasi-static solution it starts from."""
+    (own frame), sign and arm [m], the axial offset of its rings [m], its slice of the state, the
+    quasi-static solution it starts from, and whether its outer ring floats (spring side of a
+    spring preload: its state is then in its outer ring's frame, :mod:`.set_kernels`)."""
 
     name: str
     inputs: object
@@ -59,6 +64,7 @@ class SetMember:
     start: int
     stop: int
     quasistatic: object
+    floating: bool = False
 
 
 def _problems(case, options: SimulationOptions) -> list[Problem]:
@@ -150,6 +156,8 @@ def build_set(case, options: SimulationOptions):
         ) from None
     members = []
     start = 0
+    bearing_set = given.bearing_set
+    spring = bearing_set.preload_kind == "spring"
     for entry, solution, op in zip(qs.members, qs.solutions, qs.operatings, strict=True):
         inputs = dataclasses.replace(entry.inputs, operating=_member_operating(op))
         par = build_params(inputs, resolved)._replace(tilt_mode=L.TILT_FREE, ring_free=True)
@@ -168,17 +176,27 @@ def build_set(case, options: SimulationOptions):
                 start,
                 stop,
                 solution,
+                bool(entry.spring),
             )
         )
         start = stop
-    y = np.zeros(start + L.RING_SIZE)
+    spring_slot = start + L.RING_SIZE if spring else -1
+    y = np.zeros(start + L.RING_SIZE + (SPRING_SIZE if spring else 0))
     sb = start
+    floating_mass = 0.0
+    if spring:
+        y[spring_slot] = qs.spring_shift
+        width = bearing_set.width_mm * 1e-3
+        floating_mass = sum(
+            outer_ring_mass(m.inputs.geometry, width) for m in members if m.floating
+        )
     y[sb + L.R_POS : sb + L.R_POS + 3] = qs.shaft[:3]
     y[sb + L.R_TILT : sb + L.R_TILT + 2] = qs.shaft[3:]
     for m in members:
         y_b = initial_state_from_quasistatic(m.par, m.quasistatic)
         rb = L.ring_base(int(m.par.ball_count))
-        pose = shaft_ring_pose(m.sign, m.arm, m.offset, y[sb : sb + L.RING_SIZE])
+        offset = m.offset + (qs.spring_shift if m.floating else 0.0)
+        pose = shaft_ring_pose(m.sign, m.arm, offset, y[sb : sb + L.RING_SIZE])
         y_b[rb + L.R_POS : rb + L.R_POS + 3] = pose["pos"]
         y_b[rb + L.R_TILT : rb + L.R_TILT + 2] = pose["tilt"]
         y[m.start : m.stop] = y_b
@@ -191,17 +209,30 @@ def build_set(case, options: SimulationOptions):
         np.ascontiguousarray(given.applied, dtype=float),
         _weight(members, float(resolved.gravity)),
         float(sum(m.par.ring_polar_inertia for m in members)),
+        np.array([1.0 if m.floating else 0.0 for m in members]),
+        int(spring_slot),
+        float(bearing_set.preload_force_N) if spring else 0.0,
+        1.0 / floating_mass if spring else 0.0,
     )
     return members, shaft, y, given, qs, resolved
 
 
+def spring_mass(shaft: SetShaft) -> float:
+    """Mass [kg] of the floating outer rings of a spring preload (0 without one)."""
+    return 0.0 if shaft.spring_mass_inverse == 0.0 else 1.0 / shaft.spring_mass_inverse
+
+
 def set_scales(members, y: np.ndarray) -> np.ndarray:
     """Error-norm scales of the set state: each bearing's (:func:`.simulate.state_scales`), the
-    shaft's as the first bearing's inner ring."""
+    shaft's as the first bearing's inner ring, a spring shift and its rate (when the state has
+    them) as that ring's axial position and velocity."""
     parts = [state_scales(m.history, m.par, y[m.start : m.stop]) for m in members]
     first = members[0]
     rb = L.ring_base(int(first.par.ball_count))
-    parts.append(parts[0][rb : rb + L.RING_SIZE])
+    ring = parts[0][rb : rb + L.RING_SIZE]
+    parts.append(ring)
+    if y.shape[0] > members[-1].stop + L.RING_SIZE:
+        parts.append(np.array([ring[L.R_POS], ring[L.R_VEL]]))
     return np.concatenate(parts)
 
 
@@ -242,6 +273,7 @@ def simulate_set(case, progress=None, cancel=None, options: SimulationOptions | 
         given,
         qs,
         members,
+        shaft,
         resolved,
         times[:done],
         states[:done],

@@ -156,6 +156,16 @@ def test_schema_document_names_every_set_variable():
     assert not sorted(set(SET_VARIABLES) - documented)
 
 
+def test_schema_document_names_every_dynamic_set_variable():
+    """Each variable of a set's dynamic result (e.g. a spring preload's ``spring_shift`` and
+    ``spring_force``) is named in the dynamic set's section of docs/results-schema.md."""
+    text = SCHEMA.read_text(encoding="utf-8")
+    section = text[text.index("### Dynamic results of a bearing set") :]
+    section = section[: section.index("\n## ")]
+    documented = set(re.findall(r"`([a-z_]+)`", section))
+    assert not sorted(set(SET_DYNAMIC_VARIABLES) - documented)
+
+
 def test_schema_document_names_every_registered_name():
     text = SCHEMA.read_text(encoding="utf-8")
     documented = set(re.findall(r"`([a-z_]+)`", text))
