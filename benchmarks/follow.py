@@ -14,8 +14,9 @@ WebGL, as the page does once trame is up (``--presenter-webgl no``: a page witho
 the session draws every frame itself and pushes the image to every page), opens the run and
 plays it; then ``--followers`` websocket followers (the same protocol, through
 ``/follow/CODE/ws``: hello, the whole state, then every state change and image the session
-publishes) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``, /usr/bin/chromium)
-join. Printed, for ``--seconds`` of playing alone and then with the followers:
+publishes; asking for compressed messages, permessage-deflate, as browsers do, unless
+``--follower-deflate no``) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``,
+/usr/bin/chromium) join. Printed, for ``--seconds`` of playing alone and then with the followers:
 
 - server CPU in cores (CPU time of the processes over wall time, from /proc/PID/stat, sampled every
   second): the front, the presenter's session (the busiest), the other processes (the spare
@@ -272,7 +273,11 @@ async def measure(args, server: dict, info) -> int:
             follower = WslinkClient()
             # the whole state (the scene of a 100-revolution run) for each: slow on a loaded machine
             await follower.connect(
-                follower_http, f"ws://127.0.0.1:{port}/follow/{code}/ws", base, timeout=600
+                follower_http,
+                f"ws://127.0.0.1:{port}/follow/{code}/ws",
+                base,
+                timeout=600,
+                deflate=args.follower_deflate == "yes",
             )
             followers.append((follower_http, follower))
         import msgpack
@@ -412,6 +417,12 @@ def main() -> int:
         type=Path,
         default=None,
         help="a folder for py-spy records of the front and the presenter's session with followers",
+    )
+    parser.add_argument(
+        "--follower-deflate",
+        choices=("yes", "no"),
+        default="yes",
+        help="whether the websocket followers ask for compressed messages, as browsers do",
     )
     parser.add_argument(
         "--presenter-webgl",
