@@ -14,8 +14,8 @@ WebGL, as the page does once trame is up (``--presenter-webgl no``: a page witho
 the session draws every frame itself and pushes the image to every page), opens the run and
 plays it; then ``--followers`` websocket followers (the same protocol, through
 ``/follow/CODE/ws``: hello, the whole state, then every state change and image the session
-publishes; asking for compressed messages, permessage-deflate, as browsers do, unless
-``--follower-deflate no``) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``,
+publishes; ``--follower-deflate yes``: asking for compressed messages, permessage-deflate, as
+browsers do) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``,
 /usr/bin/chromium) join. Printed, for ``--seconds`` of playing alone and then with the followers:
 
 - server CPU in cores (CPU time of the processes over wall time, from /proc/PID/stat, sampled every
@@ -421,8 +421,9 @@ def main() -> int:
     parser.add_argument(
         "--follower-deflate",
         choices=("yes", "no"),
-        default="yes",
-        help="whether the websocket followers ask for compressed messages, as browsers do",
+        default="no",
+        help="yes: the websocket followers ask for compressed messages, as browsers do (their "
+        "decompression then loads the benchmark's own process)",
     )
     parser.add_argument(
         "--presenter-webgl",
