@@ -3,9 +3,9 @@
 trame publishes a state change (a played frame: ``frame``, ``rt3d_frame``, the time words) or an
 image of the server-rendered view through wslink, whose handler packs the message (msgpack) and
 schedules its sending once per connected page: with a presenter and 30 followers, 31 packings and
-31 tasks for the same bytes. A change a page made is echoed to the other pages; there wslink's
-per-page task sends to every page but the one that made it, so each of the other N - 1 pages
-receives it N - 1 times.
+31 tasks for the same bytes. A change a page made is echoed to the other pages; there each of
+wslink's N per-page tasks sends to every page but the one that made it, so each other page
+receives it N times.
 
 :func:`publish_once` gives a session's protocols a publish that packs a message once and writes
 the same chunks to each page's websocket in one task (wslink's framing: ``publish:TOPIC:0``
