@@ -31,8 +31,7 @@ def publish_once(protocol) -> bool:
     """Replace the wslink handler's publish held by ``protocol`` (trame's root protocol) and its
     link protocols by :class:`FanOut`'s; returns whether it did now (False when it was done
     already, or when no handler is there yet)."""
-    current = protocol.publish
-    handler = getattr(current, "__self__", None)
+    handler = getattr(getattr(protocol, "publish", None), "__self__", None)
     if isinstance(handler, FanOut):
         return False
     if handler is None or not hasattr(handler, "getAuthenticatedWebsockets"):
