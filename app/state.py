@@ -21,6 +21,7 @@ from pathlib import Path
 from .components import CaseForm, Compare, Export, Live, ResultView, Runs, SetPanel, Studies
 from .components.export import EXPORT_URL
 from .components.follow import Follow
+from .fan_out import publish_once
 from .lessons.panel import LessonController
 from .services import Services
 
@@ -106,6 +107,7 @@ class RacetraceApp:
 
         def on_connect(request, client_id):
             connect(request, client_id)
+            publish_once(protocol)  # one packing per published message, whatever the pages
             self._client_ids.add(client_id)
             self.clients = len(self._client_ids)
             self.result._on_playing(self.state.playing)

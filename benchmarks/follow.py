@@ -9,20 +9,29 @@ there (``racetrace simulate``: about a minute on a free core) and kept for the n
 
 Starts ``racetrace serve`` (``--render``: browser, the app's default, or server) on a free loopback
 port with a runs folder holding that run. A presenter (a websocket client that speaks to its
-session as the page does, :class:`tests.helpers.wslink_client.WslinkClient`) opens the run and
+session as the page does, :class:`tests.helpers.wslink_client.WslinkClient`) says that it draws
+WebGL, as the page does once trame is up (``--presenter-webgl no``: a page without it, for which
+the session draws every frame itself and pushes the image to every page), opens the run and
 plays it; then ``--followers`` websocket followers (the same protocol, through
 ``/follow/CODE/ws``: hello, the whole state, then every state change and image the session
-publishes) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``, /usr/bin/chromium)
-join. Printed, for ``--seconds`` of playing alone and then with the followers:
+publishes; ``--follower-deflate yes``: asking for compressed messages, permessage-deflate, as
+browsers do) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``,
+/usr/bin/chromium) join. Printed, for ``--seconds`` of playing alone and then with the followers:
 
 - server CPU in cores (CPU time of the processes over wall time, from /proc/PID/stat, sampled every
-  second): the front, the sessions (the presenter's, the spare and the fork server: the latter two
-  idle) and their sum, median and largest of the 1-s samples;
+  second): the front, the presenter's session (the busiest), the other processes (the spare
+  session and the fork server: idle) and their sum, median and largest of the 1-s samples;
+- server CPU time per played frame (front, presenter's session, all): CPU time, so it holds on a
+  loaded machine too, where the cores measure the load as much as the server;
+- the images the presenter was pushed (none while the browser draws);
 - frame lag: for each frame index the presenter got (its first arrival), how long after it each
   follower showed that index or a later one; median and largest per follower kind, the followers
   ever over 0.5 s, and the frames a follower never reached (the window must not wrap around the
   end of the run: 720 of the 100-revolution run's 18 000 frames in 30 s);
 - memory: proportional set size of the server's processes before and with the followers.
+
+``--profile DIR``: py-spy (``pip install py-spy``) records the front and the presenter's session
+during the window with the followers, as collapsed stacks (``DIR/front.txt``, ``DIR/session.txt``).
 """
 
 from __future__ import annotations
@@ -50,6 +59,7 @@ LAG_TARGET_S = 0.5
 CPU_TARGET_CORES = 1.0
 MEMORY_TARGET_MB = 300.0
 TICKS = os.sysconf("SC_CLK_TCK")
+PY_SPY = str(Path(sys.executable).with_name("py-spy"))  # pip install py-spy, for --profile
 # in the browser follower: each frame index as it arrives, with the wall-clock time (ms): from the
 # state's watcher, and read every 20 ms as well (whichever sees an index first counts)
 FRAME_PROBE = """() => { window.__frames = [];
@@ -73,12 +83,15 @@ def cpu_ticks(pid: int) -> dict[int, int]:
 
 
 class CpuSampler:
-    """Cores used by the server's front (``pid``) and by its sessions (every process below it),
-    sampled every ``every_s`` seconds while running (:meth:`run` as a task)."""
+    """Cores used by the server's front (``pid``), by its busiest session (the presenter's) and by
+    the other processes below the front (the spare session, the fork server: idle), sampled every
+    ``every_s`` seconds while running (:meth:`run` as a task); and the CPU seconds of each process
+    over the whole run (:attr:`used`, by pid)."""
 
     def __init__(self, pid: int, every_s: float = 1.0):
         self.pid, self.every_s = pid, every_s
-        self.samples: list[tuple[float, float]] = []  # (front, sessions) cores per interval
+        self.samples: list[dict[int, float]] = []  # cores per process per interval
+        self.used: dict[int, float] = {}  # CPU seconds per process
 
     async def run(self) -> None:
         before, t0 = cpu_ticks(self.pid), time.monotonic()
@@ -88,25 +101,56 @@ class CpuSampler:
             # a process that ended since counts its last interval as nothing
             used = {p: now[p] - before.get(p, 0) for p in now}
             seconds = (t - t0) * TICKS
-            front = used.pop(self.pid, 0) / seconds
-            self.samples.append((front, sum(used.values()) / seconds))
+            self.samples.append({p: n / seconds for p, n in used.items()})
+            for p, n in used.items():
+                self.used[p] = self.used.get(p, 0.0) + n / TICKS
             before, t0 = now, t
 
+    def presenter_session(self) -> int:
+        """The session that used the most CPU: the presenter's (the others are idle)."""
+        sessions = {p: x for p, x in self.used.items() if p != self.pid}
+        return max(sessions, key=sessions.get) if sessions else -1
 
-def cores_line(samples: list[tuple[float, float]]) -> tuple[str, float]:
-    """The front's, the sessions' and the total cores (median / largest) in words; the largest
-    total."""
+    def split(self) -> list[tuple[float, float, float]]:
+        """(front, the presenter's session, other processes) cores per sample."""
+        session = self.presenter_session()
+        out = []
+        for sample in self.samples:
+            front, busy = sample.get(self.pid, 0.0), sample.get(session, 0.0)
+            out.append((front, busy, sum(sample.values()) - front - busy))
+        return out
+
+
+def cores_line(sampler: CpuSampler) -> tuple[str, float]:
+    """The front's, the presenter's session's, the other processes' and the total cores (median
+    / largest) in words; the largest total."""
+    samples = sampler.split()
     if not samples:
         return "no samples", float("nan")
     parts, largest = [], 0.0
     for name, values in (
-        ("front", [f for f, _ in samples]),
-        ("sessions", [x for _, x in samples]),
-        ("total", [f + x for f, x in samples]),
+        ("front", [f for f, _, _ in samples]),
+        ("presenter's session", [x for _, x, _ in samples]),
+        ("others", [o for _, _, o in samples]),
+        ("total", [sum(x) for x in samples]),
     ):
         parts.append(f"{name} {statistics.median(values):.2f} / {max(values):.2f}")
         largest = max(values)
     return ", ".join(parts) + f" (median / largest of {len(samples)} 1-s samples)", largest
+
+
+def per_frame_line(sampler: CpuSampler, frames: int) -> str:
+    """CPU time per played frame (ms) of the front, the presenter's session and the whole server:
+    CPU time, so it holds on a loaded machine too."""
+    if frames <= 0:
+        return "no frames played"
+    front = sampler.used.get(sampler.pid, 0.0)
+    session = sampler.used.get(sampler.presenter_session(), 0.0)
+    total = sum(sampler.used.values())
+    return (
+        f"CPU per played frame: front {front / frames * 1e3:.1f} ms, presenter's session "
+        f"{session / frames * 1e3:.1f} ms, server {total / frames * 1e3:.1f} ms"
+    )
 
 
 def lags(reference: list[tuple[float, int]], seen: list[tuple[float, int]]):
@@ -150,15 +194,32 @@ def describe(values: list[float]) -> str:
     )
 
 
-async def window(seconds: float, pid: int, presenter) -> tuple[list, float]:
-    """Play on for ``seconds`` sampling the server's CPU: the samples and the window's start."""
+async def window(
+    seconds: float, pid: int, presenter, profile: Path | None = None, session: int = -1
+) -> tuple[CpuSampler, float]:
+    """Play on for ``seconds`` sampling the server's CPU: the sampler and the window's start.
+    ``profile``: a folder where py-spy records the front and the presenter's ``session``
+    meanwhile (``front.txt``, ``session.txt``: collapsed stacks, idle frames left out)."""
     presenter.frames.clear()
+    presenter.images = 0
     sampler = CpuSampler(pid)
+    spies = []
+    if profile is not None:
+        profile.mkdir(parents=True, exist_ok=True)
+        for who, p in (("front", pid), ("session", session)):
+            command = [PY_SPY, "record", "--pid", str(p), "--duration", str(int(seconds))]
+            command += ["--rate", "100", "--nonblocking", "--format", "raw"]
+            command += ["--output", str(profile / f"{who}.txt")]
+            spies.append(
+                subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            )
     t0 = time.monotonic()
     task = asyncio.get_running_loop().create_task(sampler.run())
     await asyncio.sleep(seconds)
     task.cancel()
-    return sampler.samples, t0
+    for spy in spies:
+        await asyncio.to_thread(spy.wait)
+    return sampler, t0
 
 
 async def measure(args, server: dict, info) -> int:
@@ -176,11 +237,18 @@ async def measure(args, server: dict, info) -> int:
         presenter = WslinkClient()
         await presenter.connect(http, f"ws://127.0.0.1:{port}/ws", origin=base)
         code = presenter.state["follow_code"]
+        # as the page does once trame is up (app.components.browser_view.DETECT_WEBGL): without
+        # it the session draws every frame itself and pushes the images to every page
+        await presenter.update(browser_webgl=args.presenter_webgl == "yes")
         await presenter.update(playing=False)
         await presenter.update(run_id=info.run_id)
         await presenter.wait_for("result_label", lambda s: info.title in str(s), timeout=600)
         frames = presenter.state.get("frame_max")
-        print(f"presenter: the {info.title!r} run open ({frames} frames), join code {code}")
+        drawn = "by the browser" if presenter.state.get("view_in_browser") else "on the server"
+        print(
+            f"presenter: the {info.title!r} run open ({frames} frames), join code {code}, "
+            f"the 3-D view drawn {drawn}"
+        )
         await presenter.update(playing=True)
         await asyncio.sleep(3)
 
@@ -189,7 +257,10 @@ async def measure(args, server: dict, info) -> int:
         memory_alone = rss_mb(pid)
         text, _ = cores_line(alone)
         print(f"presenter alone: server CPU {text}")
-        print(f"   {played_alone / args.seconds:.1f} frames/s played, memory {memory_alone:.0f} MB")
+        print(
+            f"   {played_alone / args.seconds:.1f} frames/s played, {presenter.images} images "
+            f"pushed, memory {memory_alone:.0f} MB; {per_frame_line(alone, played_alone)}"
+        )
 
         followers = []
         joining = time.monotonic()
@@ -202,7 +273,11 @@ async def measure(args, server: dict, info) -> int:
             follower = WslinkClient()
             # the whole state (the scene of a 100-revolution run) for each: slow on a loaded machine
             await follower.connect(
-                follower_http, f"ws://127.0.0.1:{port}/follow/{code}/ws", base, timeout=600
+                follower_http,
+                f"ws://127.0.0.1:{port}/follow/{code}/ws",
+                base,
+                timeout=600,
+                deflate=args.follower_deflate == "yes",
             )
             followers.append((follower_http, follower))
         import msgpack
@@ -230,7 +305,9 @@ async def measure(args, server: dict, info) -> int:
             for _, follower in followers:
                 follower.frames.clear()
             wall0, mono0 = time.time(), time.monotonic()
-            with_followers, t0 = await window(args.seconds, pid, presenter)
+            with_followers, t0 = await window(
+                args.seconds, pid, presenter, args.profile, alone.presenter_session()
+            )
             reference = [x for x in presenter.frames if x[0] >= t0]
             played = len(_first_of(reference))
             shown = await page.evaluate("window.__frames || []")
@@ -240,7 +317,10 @@ async def measure(args, server: dict, info) -> int:
 
         text, largest_cores = cores_line(with_followers)
         print(f"with {count} followers: server CPU {text}")
-        print(f"   {played / args.seconds:.1f} frames/s played, memory {memory_with:.0f} MB")
+        print(
+            f"   {played / args.seconds:.1f} frames/s played, {presenter.images} images pushed, "
+            f"memory {memory_with:.0f} MB; {per_frame_line(with_followers, played)}"
+        )
         pooled, worst, missing = [], [], 0
         for _, follower in followers:
             got, not_seen = lags(reference, follower.frames)
@@ -332,6 +412,25 @@ def main() -> int:
     parser.add_argument("--revolutions", type=int, default=100, help="the run's length")
     parser.add_argument("--followers", type=int, default=30, help="websocket followers")
     parser.add_argument("--seconds", type=float, default=30.0, help="each measuring window")
+    parser.add_argument(
+        "--profile",
+        type=Path,
+        default=None,
+        help="a folder for py-spy records of the front and the presenter's session with followers",
+    )
+    parser.add_argument(
+        "--follower-deflate",
+        choices=("yes", "no"),
+        default="no",
+        help="yes: the websocket followers ask for compressed messages, as browsers do (their "
+        "decompression then loads the benchmark's own process)",
+    )
+    parser.add_argument(
+        "--presenter-webgl",
+        choices=("yes", "no"),
+        default="yes",
+        help="what the presenter's page says of WebGL (no: the session draws every frame)",
+    )
     parser.add_argument(
         "--render",
         choices=("browser", "server"),

@@ -35,11 +35,19 @@ class WslinkClient:
         self._reader: asyncio.Task | None = None
 
     async def connect(
-        self, http: aiohttp.ClientSession, url: str, origin: str, timeout: float = 30.0
+        self,
+        http: aiohttp.ClientSession,
+        url: str,
+        origin: str,
+        timeout: float = 30.0,
+        deflate: bool = False,
     ) -> None:
         """Open the websocket at ``url`` (``ws://.../ws``), say hello and read the whole state
-        (each answer within ``timeout`` seconds)."""
-        self.ws = await http.ws_connect(url, origin=origin, max_msg_size=0)
+        (each answer within ``timeout`` seconds). ``deflate``: ask for compressed messages
+        (permessage-deflate), as browsers do."""
+        self.ws = await http.ws_connect(
+            url, origin=origin, max_msg_size=0, compress=15 if deflate else 0
+        )
         self._reader = asyncio.get_running_loop().create_task(self._read())
         await self.call("wslink.hello", [{"secret": "wslink-secret"}], system=True, timeout=timeout)
         initial = await self.call("trame.state.get", [], timeout=timeout)
