@@ -34,8 +34,9 @@ def publish_once(protocol) -> bool:
     handler = getattr(getattr(protocol, "publish", None), "__self__", None)
     if isinstance(handler, FanOut):
         return False
-    if handler is None or not hasattr(handler, "getAuthenticatedWebsockets"):
-        return False
+    needed = ("getAuthenticatedWebsockets", "network_monitor", "attachment_atomic")
+    if handler is None or not all(hasattr(handler, name) for name in needed):
+        return False  # another wslink than the one this was written for: its own publish stays
     fan_out = FanOut(handler)
     for link in {id(p): p for p in [protocol, *protocol.getLinkProtocols()]}.values():
         if getattr(link.publish, "__self__", None) is handler:

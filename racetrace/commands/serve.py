@@ -27,6 +27,7 @@ APP_MODULES = (
     "aiohttp",
     "msgpack",
     "segno",
+    "wslink",
 )
 
 
