@@ -278,13 +278,23 @@ def _var(name, values):
     return xr.Variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
 
 
+def _race_values(variable, column) -> np.ndarray:
+    """The values of ``variable`` (an xarray Variable with a ``race`` dimension) at the race
+    index ``column``, as floats."""
+    axis = variable.dims.index("race")
+    return np.take(np.asarray(variable.values, float), column, axis=axis)
+
+
 def mean_loaded_contact_angle(bearing_datasets, race: str) -> np.ndarray:
     """The mean contact angle [degree] of the loaded ``race`` contacts (:func:`loaded_mask`) of
     each bearing's single-bearing Dataset; NaN for a bearing without a loaded contact there."""
     out = np.full(len(bearing_datasets), np.nan)
     for index, one in enumerate(bearing_datasets):
-        angle = np.asarray(one["contact_angle"].sel(race=race).values, float)
-        loaded = loaded_mask(np.asarray(one["contact_load"].sel(race=race).values, float), angle)
+        # the raw variables (a DataArray's .sel would build coordinates and indexes per call)
+        table = one.variables
+        column = list(table["race"].values).index(race)
+        angle = _race_values(table["contact_angle"], column)
+        loaded = loaded_mask(_race_values(table["contact_load"], column), angle)
         if loaded.any():
             out[index] = float(np.mean(angle[loaded]))
     return out
