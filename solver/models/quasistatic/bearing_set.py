@@ -37,6 +37,7 @@ hold the tilt (``misalignment_moment``).
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 
@@ -697,8 +698,10 @@ def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, 
             set_jacobian[:5, 5] += m.map.T @ j_b[:, 0]
             set_jacobian[5, 5] += j_b[0, 0]
         op = _bearing_operating(m.inputs.operating, q, r_b)
-        pack_problem = _Problem(m.inputs.geometry, op)
-        pack_problem.force_scale = m.problem.force_scale
+        # the member's problem at the bearing's own operating point: the same geometry, ring
+        # speeds (its ball models are reused), azimuths and force scale
+        pack_problem = copy.copy(m.problem)
+        pack_problem.operating = op
         solution = _pack(pack_problem, m.state, iterations, merit, note)
         solution.ball_speeds = ball_speeds
         solution.ball_speeds_note = fallback
