@@ -37,6 +37,7 @@ hold the tilt (``misalignment_moment``).
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 
@@ -93,6 +94,7 @@ class _Member:
         self.sign = entry.sign
         self.arm = arm
         self.map = mirror(self.sign)[:, None] * lever(arm)  # q_b = map @ u + offset
+        self.map_t = np.ascontiguousarray(self.map.T)
         # the problem's loads set its force and length scales only (the balls' reactions are
         # computed with zero applied load)
         scale_op = dataclasses.replace(
@@ -107,6 +109,8 @@ class _Member:
         )
         self.offset = 0.0
         self.spring = False
+        self._no_load = np.zeros(5)  # the ring kernel's applied load: the balls' reaction alone
+        self._force_scales = {}  # the problem's force scale per speed fraction, see reaction()
 
     def q(self, u, w):
         q = self.map @ u
@@ -117,9 +121,12 @@ class _Member:
         """(ok, R_b, J_b) of the balls on the inner ring at q (own frame); ``position`` (Z, 2)
         is updated in place."""
         model = self.problem.model(speed_fraction)
-        force_scale = self.problem.scales(speed_fraction).force
+        force_scale = self._force_scales.get(speed_fraction)
+        if force_scale is None:
+            force_scale = self.problem.scales(speed_fraction).force
+            self._force_scales[speed_fraction] = force_scale
         ring = kernels.RingLoad(
-            np.zeros(5), self.problem.azimuth, self.state.control, model, force_scale
+            self._no_load, self.problem.azimuth, self.state.control, model, force_scale
         )
         residual = np.empty(5)
         jacobian = np.empty((5, 5))
@@ -156,9 +163,9 @@ class _SetProblem:
             q = m.q(u, w)
             ok, r_b, j_b = m.reaction(q, speed, position, want_jacobian)
             ok_all &= ok
-            residual[:5] += m.map.T @ r_b
+            residual[:5] += m.map_t @ r_b
             if want_jacobian:
-                jacobian[:5, :5] += m.map.T @ j_b @ m.map
+                jacobian[:5, :5] += m.map_t @ j_b @ m.map
             if m.spring:
                 residual[5] += r_b[0]
                 if want_jacobian:
@@ -184,6 +191,19 @@ def _scales(members, force_scale):
     return rscale, vscale
 
 
+def _norm(x) -> float:
+    """The 2-norm of the vector ``x`` (as numpy.linalg.norm computes it, without its checks)."""
+    return math.sqrt(float(x.dot(x)))
+
+
+def _condition(a) -> float:
+    """The 2-norm condition number of the square matrix ``a`` (as numpy.linalg.cond computes it:
+    largest over smallest singular value; inf when singular)."""
+    singular = np.linalg.svd(a, compute_uv=False)
+    smallest = float(singular[-1])
+    return float(singular[0]) / smallest if smallest > 0.0 else math.inf
+
+
 def _newton(problem, v, speed, force_scale):
     """Newton / Levenberg-Marquardt solve of the set at a speed fraction from ``v``; the members'
     ball positions are updated in place. Returns (converged, v, iterations, merit)."""
@@ -191,7 +211,7 @@ def _newton(problem, v, speed, force_scale):
     rscale, vscale = rscale[: problem.n], vscale[: problem.n]
     positions = [m.state.position for m in problem.members]
     ok, residual, jacobian = problem.evaluate(v, speed, positions)
-    merit = float(np.linalg.norm(residual / rscale))
+    merit = _norm(residual / rscale)
     mu = 0.0
     for iteration in range(MAX_SET_ITERATIONS):
         if ok and merit <= SET_TOLERANCE:
@@ -200,7 +220,7 @@ def _newton(problem, v, speed, force_scale):
         rhs = -residual / rscale
         accepted = False
         for _attempt in range(10):
-            if mu == 0.0 and np.linalg.cond(jac) < 1e12:
+            if mu == 0.0 and _condition(jac) < 1e12:
                 step = np.linalg.solve(jac, rhs)
             else:
                 mu = max(mu, 1e-6)
@@ -211,7 +231,7 @@ def _newton(problem, v, speed, force_scale):
                     jtj + np.diag(mu * diag + 1e-15 * big + (diag == 0.0) * mu * big),
                     jac.T @ rhs,
                 )
-            norm = float(np.linalg.norm(step))
+            norm = _norm(step)
             if norm > 20.0:
                 step *= 20.0 / norm
             t = 1.0
@@ -220,8 +240,8 @@ def _newton(problem, v, speed, force_scale):
                 trial_positions = [p.copy() for p in positions]
                 # the full step usually succeeds: its Jacobian is that of the next iteration
                 tok, tres, tjac = problem.evaluate(trial, speed, trial_positions, t == 1.0)
-                tmerit = float(np.linalg.norm(tres / rscale))
-                if tok and np.isfinite(tmerit) and tmerit < (1.0 - 1e-4 * t) * merit:
+                tmerit = _norm(tres / rscale)
+                if tok and math.isfinite(tmerit) and tmerit < (1.0 - 1e-4 * t) * merit:
                     accepted = True
                     break
                 t *= 0.5
@@ -240,7 +260,7 @@ def _newton(problem, v, speed, force_scale):
             ok, residual, jacobian, merit = tok, tres, tjac, tmerit
         else:
             ok, residual, jacobian = problem.evaluate(v, speed, positions)
-            merit = float(np.linalg.norm(residual / rscale))
+            merit = _norm(residual / rscale)
     return ok and merit <= SET_TOLERANCE, v, MAX_SET_ITERATIONS, merit
 
 
@@ -678,8 +698,10 @@ def _packed(problem, v, offset, iterations, merit, note, ball_speeds, fallback, 
             set_jacobian[:5, 5] += m.map.T @ j_b[:, 0]
             set_jacobian[5, 5] += j_b[0, 0]
         op = _bearing_operating(m.inputs.operating, q, r_b)
-        pack_problem = _Problem(m.inputs.geometry, op)
-        pack_problem.force_scale = m.problem.force_scale
+        # the member's problem at the bearing's own operating point: the same geometry, ring
+        # speeds (its ball models are reused), azimuths and force scale
+        pack_problem = copy.copy(m.problem)
+        pack_problem.operating = op
         solution = _pack(pack_problem, m.state, iterations, merit, note)
         solution.ball_speeds = ball_speeds
         solution.ball_speeds_note = fallback

@@ -15,7 +15,10 @@ from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
+from xarray.indexes import PandasIndex
 
+from solver.results.dataset import _dataset as direct_dataset
+from solver.results.dataset import _variable
 from solver.results.loaded import loaded_mask
 from solver.results.variables import Variable
 
@@ -238,24 +241,33 @@ def _stacked_values(values):
 def stack_bearings(datasets, extra_coords=None, extra_data=None) -> xr.Dataset:
     """The bearings' Datasets stacked along a new ``bearing`` dimension: every data variable
     gains it, a coordinate only where the bearings differ; attributes that differ are dropped.
-    ``extra_coords`` and ``extra_data`` (name: xarray.Variable) are added in the same build."""
+    ``extra_coords`` and ``extra_data`` (name: xarray.Variable) are added in the same build.
+
+    The Dataset is assembled from these new Variables as the public ``xr.Dataset(data, coords)``
+    would make it, without its merge and alignment (:func:`solver.results.dataset._dataset`):
+    a dimension coordinate keeps the index of the bearing it comes from, a new one gets its
+    own."""
     first = datasets[0]
     tables = [ds.variables for ds in datasets]
     data = {}
     for name in first.data_vars:
         var = tables[0][name]
         values = _stacked_values([table[name].values for table in tables])
-        data[name] = xr.Variable(("bearing", *var.dims), values, var.attrs)
+        data[name] = _variable(("bearing", *var.dims), values, var.attrs)
     coords = {}
+    kept_indexes = {}
     for name in first.coords:
         var = tables[0][name]
         values = [table[name].values for table in tables]
         if name in first.dims:
-            coords[name] = max((table[name] for table in tables), key=lambda c: c.size)
+            longest = max(datasets, key=lambda ds, n=name: ds.variables[n].size)
+            coords[name] = longest.variables[name]
+            if name in longest.xindexes:
+                kept_indexes[name] = longest.xindexes[name]
         elif all(np.array_equal(v, values[0]) for v in values[1:]):
             coords[name] = var
         else:
-            coords[name] = xr.Variable(("bearing", *var.dims), _stacked_values(values), var.attrs)
+            coords[name] = _variable(("bearing", *var.dims), _stacked_values(values), var.attrs)
     coords.update(extra_coords or {})
     data.update(extra_data or {})
     attrs = {
@@ -263,7 +275,17 @@ def stack_bearings(datasets, extra_coords=None, extra_data=None) -> xr.Dataset:
         for key, value in first.attrs.items()
         if all(key in ds.attrs and _same(ds.attrs[key], value) for ds in datasets[1:])
     }
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    coord_variables, indexes = {}, {}
+    for name, var in coords.items():
+        if var.dims != (name,):
+            coord_variables[name] = var
+            continue
+        index = kept_indexes.get(name)
+        if index is None:
+            index = PandasIndex.from_variables({name: var}, options={})
+        indexes[name] = index
+        coord_variables.update(index.create_variables({name: var}))
+    return direct_dataset(data, coord_variables, indexes, attrs)
 
 
 def _same(a, b) -> bool:
@@ -275,7 +297,14 @@ def _same(a, b) -> bool:
 
 def _var(name, values):
     spec = SET_VARIABLES[name]
-    return xr.Variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
+    return _variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
+
+
+def _race_values(variable, column) -> np.ndarray:
+    """The values of ``variable`` (an xarray Variable with a ``race`` dimension) at the race
+    index ``column``, as floats."""
+    axis = variable.dims.index("race")
+    return np.take(np.asarray(variable.values, float), column, axis=axis)
 
 
 def mean_loaded_contact_angle(bearing_datasets, race: str) -> np.ndarray:
@@ -283,8 +312,11 @@ def mean_loaded_contact_angle(bearing_datasets, race: str) -> np.ndarray:
     each bearing's single-bearing Dataset; NaN for a bearing without a loaded contact there."""
     out = np.full(len(bearing_datasets), np.nan)
     for index, one in enumerate(bearing_datasets):
-        angle = np.asarray(one["contact_angle"].sel(race=race).values, float)
-        loaded = loaded_mask(np.asarray(one["contact_load"].sel(race=race).values, float), angle)
+        # the raw variables (a DataArray's .sel would build coordinates and indexes per call)
+        table = one.variables
+        column = list(table["race"].values).index(race)
+        angle = _race_values(table["contact_angle"], column)
+        loaded = loaded_mask(_race_values(table["contact_load"], column), angle)
         if loaded.any():
             out[index] = float(np.mean(angle[loaded]))
     return out
