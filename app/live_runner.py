@@ -8,8 +8,10 @@ Dataset, then wait out the rest of the chunk's wall time (reading controls meanw
 the simulation runs at the playback rate (``rate``: bearing seconds per wall second). The lead is
 bounded: the child computes a chunk only while fewer than :data:`MAX_LEAD_CHUNKS` chunks it sent
 are not yet taken by the parent (:meth:`LiveRunner.poll` counts them in a shared counter), so a
-parent that falls behind never has more than that many stale chunks waiting, and a control
-change reaches the chunks it takes within ``MAX_LEAD_CHUNKS + 1`` chunks. When a
+parent that falls behind never has more than that many stale chunks waiting. A control change
+cuts the wait short: the chunk after it is computed at once, whatever the lead, and is short
+(:data:`CHANGE_CHUNK_FRACTION` of a chunk), so that it reaches the parent about a chunk's compute
+time sooner; the rest of the chunk before it is then not played. When a
 chunk takes longer than its wall time the solver cannot keep up: the next chunk (the same bearing
 time) is given the wall time the solver needs, so the playback runs at the rate the solver
 achieves, and the chunk's message says so (:class:`_Pace`); quick chunks bring the asked rate
@@ -20,7 +22,9 @@ Messages from the child (tuples): ``("preparing", text)`` (loading or compiling 
 ``inputs``: :meth:`inputs_now`, SI), ``("chunk", ds, info)``
 with ``info`` a dict of ``rate`` (bearing s per wall s), ``asked_rate``, ``behind`` (bool),
 ``compute_s`` (the chunk's wall time in the solver), ``chunk_wall_s`` (the wall time it was
-made for) and ``inputs`` (:meth:`inputs_now`),
+made for), ``inputs`` (:meth:`inputs_now`) and ``sets`` (the ``set`` controls read before the
+chunk began, applied or refused, counted from the start: the parent knows from it which chunk is
+the first to carry a change it sent),
 ``("recorded", path, case_text)``, ``("refused", text)`` (a control value the model refused),
 ``("error", text)``, ``("stopped",)``.
 
@@ -42,8 +46,12 @@ CHUNK_WALL_S = 0.1
 BEHIND_FRACTION = 0.9
 #: The child computes no further chunk while this many chunks it sent wait, not yet taken by the
 #: parent: the bearing time computed and not shown is at most this many chunks (plus the one on
-#: show), whatever the parent's pace.
+#: show), whatever the parent's pace. The chunk after a control change is computed regardless.
 MAX_LEAD_CHUNKS = 2
+#: The chunk after a control change covers this fraction of a chunk's bearing and wall time and
+#: is computed at once (the wait for the chunk before is cut short), so that the change reaches
+#: the picture sooner.
+CHANGE_CHUNK_FRACTION = 0.25
 
 
 #: The live simulation the child runs ("module:name" of a class called as ``cls(case)``).
@@ -81,28 +89,36 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
     pace = _Pace(rate)
     paused = False
     sent = 0  # chunks sent since the start
+    sets = 0  # "set" controls read since the start (applied or refused)
+    changed = False  # a change was applied since the last chunk began
     try:
         while not stop.is_set():
-            waiting = taken is not None and sent - taken.value >= MAX_LEAD_CHUNKS
+            waiting = not changed and taken is not None and sent - taken.value >= MAX_LEAD_CHUNKS
             for control in _drain(controls, block_s=0.02 if paused or waiting else 0.0):
-                paused = _apply(sim, control, paused, pace, messages)
-            if paused or waiting or stop.is_set():
+                paused, applied = _apply(sim, control, paused, pace, messages)
+                sets += control[0] == "set"
+                changed = changed or applied
+            if paused or stop.is_set() or (waiting and not changed):
                 continue
             start = time.monotonic()
-            wall = pace.chunk_wall
-            chunk = sim.advance(pace.duration)
+            duration, wall = pace.next_chunk(short=changed)
+            changed = False
+            chunk = sim.advance(duration)
             took = time.monotonic() - start
-            info = pace.after_chunk(took)
+            info = pace.after_chunk(took, wall)
             info["inputs"] = dict(sim.inputs_now())
+            info["sets"] = sets
             messages.put(("chunk", chunk, info))
             sent += 1
             wait_until = start + wall
-            while not stop.is_set() and not paused:
+            while not stop.is_set() and not paused and not changed:
                 left = wait_until - time.monotonic()
                 if left <= 0:
                     break
                 for control in _drain(controls, block_s=min(left, 0.02)):
-                    paused = _apply(sim, control, paused, pace, messages)
+                    paused, applied = _apply(sim, control, paused, pace, messages)
+                    sets += control[0] == "set"
+                    changed = changed or applied
     finally:
         sim.close()
 
@@ -111,7 +127,10 @@ class _Pace:
     """The playback the child keeps: every chunk covers ``asked * CHUNK_WALL_S`` of bearing time
     and takes :data:`CHUNK_WALL_S` of wall time, or, while the solver cannot keep up, the wall
     time the solver needs for it; the playback rate is then what the solver achieves (shorter
-    chunks would only weigh a chunk's fixed cost more)."""
+    chunks would only weigh a chunk's fixed cost more). The chunk after a control change is
+    :data:`CHANGE_CHUNK_FRACTION` of a chunk (bearing and wall time), so that it is computed and
+    shown sooner; being short, it pays the fixed cost of a chunk more and is no measure of the
+    pace."""
 
     def __init__(self, asked: float):
         self.asked = float(asked)
@@ -131,10 +150,17 @@ class _Pace:
     def ask(self, rate: float) -> None:
         self.asked = float(rate)
 
-    def after_chunk(self, took_s: float) -> dict:
-        """Adapt to a chunk that took ``took_s`` of wall time; its report."""
-        used, wall = self.rate, self.chunk_wall
-        if self.first:  # the first chunk after a (re)start pays one-time costs: not a measure
+    def next_chunk(self, short: bool = False) -> tuple[float, float]:
+        """(bearing time, wall time) of the next chunk (s); ``short``: the chunk after a control
+        change."""
+        scale = CHANGE_CHUNK_FRACTION if short else 1.0
+        return scale * self.duration, scale * self.chunk_wall
+
+    def after_chunk(self, took_s: float, wall_s: float | None = None) -> dict:
+        """Adapt to a chunk that took ``took_s`` of wall time and was made for ``wall_s`` (None:
+        a whole chunk); its report."""
+        used, wall = self.rate, self.chunk_wall if wall_s is None else wall_s
+        if self.first or wall < self.chunk_wall:  # one-time costs, or a short chunk: no measure
             self.first = False
             return self._report(used, wall, took_s, False)
         behind = took_s > BEHIND_FRACTION * CHUNK_WALL_S
@@ -165,8 +191,8 @@ def _drain(controls, block_s: float) -> list:
             return found
 
 
-def _apply(sim, control, paused: bool, pace: _Pace, messages) -> bool:
-    """Apply one control to ``sim``; the paused flag after it."""
+def _apply(sim, control, paused: bool, pace: _Pace, messages) -> tuple[bool, bool]:
+    """Apply one control to ``sim``; (the paused flag after it, whether it changed an input)."""
     kind = control[0]
     if kind == "set":
         _, name, value, ramp_s = control
@@ -176,10 +202,12 @@ def _apply(sim, control, paused: bool, pace: _Pace, messages) -> bool:
             from solver import clean_message
 
             messages.put(("refused", clean_message(error)))
+            return paused, False
+        return paused, True
     elif kind == "pause":
-        return True
+        return True, False
     elif kind == "resume":
-        return False
+        return False, False
     elif kind == "rate":
         pace.ask(float(control[1]))
     elif kind == "reset":
@@ -191,7 +219,7 @@ def _apply(sim, control, paused: bool, pace: _Pace, messages) -> bool:
 
         path = _save(sim.recorded_result(), control[1])
         messages.put(("recorded", path, sim.recorded_case()))
-    return paused
+    return paused, False
 
 
 # ---- parent side ---------------------------------------------------------------------------------

@@ -12,7 +12,9 @@ Starts ``racetrace serve`` on a free loopback port, opens the default case in he
 - latency from a control change to the first frame that shows it (wall, timed in the page): the
   radial load is set through the page's state (as the slider does) and the page notes the time
   at which ``#live-data``'s ``data-radial-load`` (the input of the frame on show) first leaves the
-  old value; ``--changes`` changes (default 7), alternately up and down by 200 N; median and all;
+  old value; ``--changes`` changes (default 7), alternately up and down by 200 N, each set once
+  the frame on show carries the load set before (so that a ramp still playing is not taken for
+  the change: at a slowed playback a ramp takes seconds of wall time); median and all;
 - the playback the solver keeps (``#live-rate``) and whether it says it cannot keep up
   (``#live-behind``).
 Timings are wall times on the machine as loaded when run: state the load (``uptime``) with them.
@@ -124,6 +126,12 @@ def main() -> int:
             latencies = []
             load = 300.0
             for k in range(args.changes):
+                page.wait_for_function(
+                    f"Math.abs(Number(document.querySelector('#live-data').dataset.radialLoad)"
+                    f" - {load}) < 0.5",
+                    timeout=120_000,
+                    polling=50,
+                )
                 load += 200.0 if k % 2 == 0 else -200.0
                 latency = page.evaluate(CHANGE_AND_WATCH, load)
                 latencies.append(latency)

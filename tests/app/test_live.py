@@ -11,7 +11,14 @@ import time
 import numpy as np
 import pytest
 
-from app.live_runner import BEHIND_FRACTION, CHUNK_WALL_S, MAX_LEAD_CHUNKS, LiveRunner, _Pace
+from app.live_runner import (
+    BEHIND_FRACTION,
+    CHANGE_CHUNK_FRACTION,
+    CHUNK_WALL_S,
+    MAX_LEAD_CHUNKS,
+    LiveRunner,
+    _Pace,
+)
 from app.live_view import LiveTracks, LiveWindow
 from tests.app.conftest import make_dynamic_dataset
 from viz.frames import FrameSource
@@ -94,6 +101,48 @@ def test_a_parent_that_falls_behind_gets_a_bounded_lead_and_sees_a_change_prompt
         assert first <= MAX_LEAD_CHUNKS  # at most the stale lead before it
     finally:
         runner.stop()
+
+
+def test_a_change_is_computed_at_once_in_a_short_chunk_even_with_the_lead_full():
+    """A control change does not wait for the parent to take the chunks ahead of it, nor for the
+    rest of the chunk's wall time: the child computes the chunk after it at once, a short one
+    (CHANGE_CHUNK_FRACTION of a chunk), and says which sets it carries."""
+    from pathlib import Path
+
+    from tests.app.live_fakes import SlowLive
+
+    case_text = (Path(__file__).parents[2] / "assets/cases/spindle-combined-load.toml").read_text()
+    runner = LiveRunner()
+    rate = 0.006
+    runner.start(case_text, rate=rate, target="tests.app.live_fakes:SlowLive")
+    try:
+        _messages_until(runner, lambda m: any(k[0] == "chunk" for k in m), 120)
+        time.sleep(20 * CHUNK_WALL_S)  # the parent is busy: the lead fills up
+        runner.send("set", "radial_load", 900.0, 0.0)
+        time.sleep(10 * CHUNK_WALL_S)  # still busy
+        chunks = [m for m in runner.poll() if m[0] == "chunk"]
+        changed = [m for m in chunks if float(m[1].radial_load[-1]) == 900.0]
+        assert changed, f"no chunk carries the change: {len(chunks)} chunks taken"
+        assert len(chunks) == MAX_LEAD_CHUNKS + 1  # the lead, then the change's chunk alone
+        _, chunk, info = changed[0]
+        full = round(rate * CHUNK_WALL_S * SlowLive.SAMPLES_PER_SECOND)
+        assert chunk.sizes["time"] == round(CHANGE_CHUNK_FRACTION * full)
+        assert info["sets"] == 1
+        assert info["chunk_wall_s"] == pytest.approx(CHANGE_CHUNK_FRACTION * CHUNK_WALL_S)
+        assert all(m[2]["sets"] == 0 for m in chunks[: chunks.index(changed[0])])
+    finally:
+        runner.stop()
+
+
+def test_a_short_chunk_after_a_change_does_not_change_the_pace():
+    pace = _Pace(0.006)
+    pace.after_chunk(0.0)  # the first chunk
+    duration, wall = pace.next_chunk(short=True)
+    assert duration == pytest.approx(CHANGE_CHUNK_FRACTION * 0.006 * CHUNK_WALL_S)
+    assert wall == pytest.approx(CHANGE_CHUNK_FRACTION * CHUNK_WALL_S)
+    report = pace.after_chunk(2.0 * wall, wall)  # its fixed cost weighs more: no measure
+    assert not report["behind"]
+    assert pace.chunk_wall == pytest.approx(CHUNK_WALL_S)
 
 
 # ---- the window and the tracks -------------------------------------------------------------------
