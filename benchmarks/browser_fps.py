@@ -6,7 +6,7 @@ Starts ``racetrace serve --render browser`` on a free loopback port, opens it in
 (/usr/bin/chromium, software WebGL on SwiftShader) at ``--size`` and, while the default case plays,
 counts for ``--seconds`` in the page: the animation frames the browser managed
 (``requestAnimationFrame`` callbacks per second: its drawing capacity, 60 at most), the drawings
-of the 3-D view (calls of vtk.js's ``renderWindow.render``: the picture's own frame rate), the
+of the 3-D view (vtk.js render events: the picture's own frame rate), the
 distinct frames of the bearing the page held at an animation frame (at most the app's
 ``PLAY_FPS``) and the state messages the page took (and keys per message). Also prints the CPU
 time over the same span of the server (front and session processes) and of Chromium's renderer
@@ -53,13 +53,13 @@ COUNT_FRAMES = """(seconds) => new Promise((done) => {
   requestAnimationFrame(tick);
 })"""
 
-# counts the drawings of the 3-D view (vtk.js render window) and the state messages the page takes
+# counts the drawings of the 3-D view (its interactor's render events) and the state messages
+# the page takes
 INSTALL_COUNTS = """() => {
   const counts = { draws: 0, messages: 0, keys: 0 };
   window.racetraceCounts = counts;
-  const renderWindow = window.trame.refs.rt3d_view.$.provides.view.renderWindow;
-  const render = renderWindow.render;
-  renderWindow.render = function (...args) { counts.draws += 1; return render.apply(this, args); };
+  const view = window.trame.refs.rt3d_view.$.provides.view;
+  view.interactor.onRenderEvent(() => { counts.draws += 1; });
   window.trame.state.addListener(({ type, keys }) => {
     if (type === 'dirty-state') { counts.messages += 1; counts.keys += keys.length; }
   });
@@ -104,7 +104,8 @@ def _chromium_cpu_seconds() -> dict[str, float]:
             continue
         try:
             fields = (task / "stat").read_text().rsplit(")", 1)[1].split()
-            command = (task / "cmdline").read_bytes().decode(errors="replace").split("\0")
+            # Chromium's child processes rewrite their command line as one string
+            command = (task / "cmdline").read_bytes().decode(errors="replace")
         except OSError:
             continue
         pid = int(task.name)
@@ -115,10 +116,9 @@ def _chromium_cpu_seconds() -> dict[str, float]:
         ancestor = parents.get(pid, 0)
         while ancestor not in (0, 1, mine):
             ancestor = parents.get(ancestor, 0)
-        if ancestor != mine or "chrom" not in command[0]:
+        if ancestor != mine or "chrom" not in command.split("\0")[0].split(" ")[0]:
             continue
-        kinds = [a.removeprefix("--type=") for a in command if a.startswith("--type=")]
-        kind = kinds[0] if kinds else "browser"
+        kind = command.split("--type=", 1)[1].split()[0] if "--type=" in command else "browser"
         cpu[kind] = cpu.get(kind, 0.0) + seconds
     return cpu
 
