@@ -35,13 +35,16 @@ from trame.widgets import vtk as vtk_widgets
 
 from viz.browser_scene import BrowserScene, camera_state
 
+from .widgets import own_update
+
 RENDER_MODES = ("browser", "server")
 TRACK_REFRESH_S = 1.0  # a live session's painted tracks are re-sent at most this often
 VIEW_REF = "rt3d_view"
 IDENTITY = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]
 
 # Run by the page: ``utils.rt3d.head`` for the view's bindings (the first values of a typed array,
-# decoded once), then whether this browser can draw WebGL, told to the server once trame is up.
+# decoded once) and ``utils.rt3d.drawOnAnimationFrame`` (the view's drawing), then whether this
+# browser can draw WebGL, told to the server once trame is up.
 DETECT_WEBGL = """
 (function racetraceWebgl(tries) {
   if (!(window.trame && window.trame.state)) {
@@ -67,6 +70,35 @@ DETECT_WEBGL = """
         seen.head = seen.whole.subarray(0, n);
       }
       return seen.head;
+    },
+    // trame-vtk's view draws on a 1 ms timer that every change restarts, so a page still taking
+    // state messages keeps putting the drawing off (about one drawing a second while playing
+    // in software WebGL); the view named viewRef draws at the next animation frame instead, at
+    // most once per frame. Called when the view is created (it may not be mounted yet: retried).
+    drawOnAnimationFrame: function (viewRef, tries) {
+      var component = window.trame.refs[viewRef];
+      var view = component && component.$ && component.$.provides && component.$.provides.view;
+      if (!(view && view.renderWindow && view.render)) {
+        if ((tries | 0) < 100) {
+          setTimeout(function () {
+            window.trame.utils.rt3d.drawOnAnimationFrame(viewRef, (tries | 0) + 1);
+          }, 100);
+        }
+        return;
+      }
+      if (view.render.onAnimationFrame) return;
+      if (view.render.cancel) view.render.cancel();
+      var pending = 0;
+      function draw() {
+        pending = 0;
+        if (!view.renderWindow) return;  // the view was removed
+        view.renderer.resetCameraClippingRange();
+        view.renderWindow.render();
+      }
+      var render = function () { if (!pending) pending = requestAnimationFrame(draw); };
+      render.cancel = function () { if (pending) cancelAnimationFrame(pending); pending = 0; };
+      render.onAnimationFrame = true;
+      view.render = render;
     },
   };
   var ok = false;
@@ -304,7 +336,14 @@ class BrowserView:
                                 number_of_components=("part.colours.components",),
                                 values=("part.colours.values",),
                             )
-            _overlay()
+            with own_update():  # the colour bar follows rt3d_frame, which changes every frame
+                _overlay()
+            # the view draws at most once per animation frame (see DETECT_WEBGL)
+            client.ClientStateChange(
+                value="rt3d_parts",
+                trigger_on_create=True,
+                change=f"utils.rt3d.drawOnAnimationFrame('{VIEW_REF}')",
+            )
             # a camera preset chosen on the server is applied once the view is there
             client.ClientStateChange(
                 value="rt3d_camera",

@@ -36,7 +36,7 @@ from ..run_length import has_history
 from ..run_store import describe_case
 from .base import Component, as_float, as_int, fig_json, running_loop
 from .browser_view import DETECT_WEBGL, BrowserView
-from .widgets import chart, checkbox, choices, icon_button, select
+from .widgets import chart, checkbox, choices, icon_button, own_update, select
 
 log = logging.getLogger("racetrace.app")
 
@@ -687,10 +687,12 @@ class ResultView(Component):
         while self.state.playing and self.session.clients > 0 and self.source is not None:
             t0 = time.monotonic()
             try:
-                with self.state:
+                with self.state:  # the frame index and what the frame shows go out in one message
                     step = as_int(self.state.speed, 1, 1, MAX_SPEED)
-                    frame = as_int(self.state.frame, 0) + step
-                    self.state.frame = frame % self.source.n_frames
+                    frame = (as_int(self.state.frame, 0) + step) % self.source.n_frames
+                    with self.state.suppress_change_listeners("frame"):
+                        self.state.frame = frame
+                    self._on_frame(frame)
             except Exception:  # a frame that fails to draw must not stop the animation
                 log.exception("animation frame failed")
             await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
@@ -721,12 +723,13 @@ class ResultView(Component):
             with html.Template(v_else_if="render_mode === 'server' || browser_webgl === false"):
                 self.view = PyVistaRCAView(self.plotter, style="width: 100%; height: 100%;")
             _ball_legend()
-        html.Div(
-            "{{ closeup_numbers }}",
-            id="closeup-numbers",
-            v_show="closeup_numbers",
-            classes="text-caption px-1",
-        )
+        with own_update():  # changes with every played frame in the close-up
+            html.Div(
+                "{{ closeup_numbers }}",
+                id="closeup-numbers",
+                v_show="closeup_numbers",
+                classes="text-caption px-1",
+            )
         html.Div(
             "{{ scene_note }}",
             id="scene-note",

@@ -26,6 +26,14 @@ def chart_classes(chart: str) -> tuple[str]:
     )
 
 
+def own_update():
+    """A wrapper whose content is re-rendered on its own (Vuetify's ``VDefaultsProvider``, which
+    adds no element): the page tracks the state its content reads as this wrapper's, so a change
+    of that state re-renders the content only, not the section around it. For what changes with
+    every played frame."""
+    return v3.VDefaultsProvider()
+
+
 def select(label: str, model: str, items, **extra) -> None:
     """A compact select bound to state ``model``; ``items``: a state name or a JS list literal."""
     v3.VSelect(
@@ -106,7 +114,8 @@ def chart(element_id: str, key: str, help_text: str, height="250px") -> None:
         else f"height: {height}; width: 100%;"
     )
     with html.Div(id=element_id, classes=chart_classes(key.removeprefix("chart_"))):
-        lazy_charts.ChartFigure(key, display_mode_bar=False, style=style)
+        with own_update():  # a new figure re-renders the chart, not the column around it
+            lazy_charts.ChartFigure(key, display_mode_bar=False, style=style)
         caption(help_text)
 
 
