@@ -16,13 +16,9 @@ CANVAS = "#view-3d-browser canvas"
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
-    from tests.helpers.serve import start_server, stop_server
+    from tests.helpers.serve import serve_for_module
 
-    runs = tmp_path_factory.mktemp("runs")
-    log = tmp_path_factory.mktemp("log") / "serve.log"
-    served = start_server(runs, log, "--render", "browser")
-    yield served
-    stop_server(served)
+    yield from serve_for_module(tmp_path_factory, "--render", "browser")
 
 
 @pytest.fixture

@@ -86,6 +86,16 @@ def stop_server(server: dict, timeout_s: float = 10.0) -> None:
     server["log"].close()
 
 
+def serve_for_module(tmp_path_factory, *options: str):
+    """A module-scoped server fixture's body: starts ``racetrace serve`` with ``options`` on a
+    runs folder and log of its own, yields what :func:`start_server` returns, stops it."""
+    runs = tmp_path_factory.mktemp("runs")
+    log = tmp_path_factory.mktemp("log") / "serve.log"
+    served = start_server(runs, log, *options)
+    yield served
+    stop_server(served)
+
+
 def descendants(pid: int) -> set[int]:
     """Processes below ``pid`` (from /proc)."""
     children: dict[int, list[int]] = {}

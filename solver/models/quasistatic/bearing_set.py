@@ -749,14 +749,22 @@ def _no_rest_message(bearing_set) -> str:
 def solve_set(case):
     """The quasi-static equilibrium of the bearing set of ``case`` as a Dataset with a ``bearing``
     dimension (results-schema.md, "Bearing sets"). Raises NoSolutionError."""
-    from solver.results.estimates import estimate_fields
-
-    from .result import solution_to_dataset
     from .set_result import set_dataset
 
     given = set_inputs(case)
     state = solve_set_state(given)
     text = given.inputs.case_text
+    datasets = bearing_datasets(state, text)
+    return set_dataset(case.bearing_set, state, datasets, given.applied, text)
+
+
+def bearing_datasets(state: SetSolution, case_text: str) -> list:
+    """Each bearing's single-bearing quasi-static Dataset of the solved set ``state``, at its own
+    operating point (the loads its balls carry), with its friction estimates there."""
+    from solver.results.estimates import estimate_fields
+
+    from .result import solution_to_dataset
+
     datasets = []
     for member, solution, op in zip(state.members, state.solutions, state.operatings, strict=True):
         inputs = dataclasses.replace(member.inputs, operating=op)
@@ -765,13 +773,13 @@ def solve_set(case):
             solution_to_dataset(
                 solution,
                 inputs.geometry,
-                text,
+                case_text,
                 lubricant,
                 op,
                 estimates=estimate_fields(inputs, op),
             )
         )
-    return set_dataset(case.bearing_set, state, datasets, given.applied, text)
+    return datasets
 
 
 #: The set's scalar and per-bearing variables a stiffness study keeps at each point.

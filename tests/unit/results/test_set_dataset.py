@@ -3,16 +3,12 @@ the bearings' single-bearing Datasets and the set's own variables, without xarra
 
 from __future__ import annotations
 
-import dataclasses
-
 import pytest
 import xarray as xr
 
 from solver.catalogue import resolve_case
-from solver.models.quasistatic.bearing_set import set_inputs, solve_set_state
-from solver.models.quasistatic.result import solution_to_dataset
+from solver.models.quasistatic.bearing_set import bearing_datasets, set_inputs, solve_set_state
 from solver.models.quasistatic.set_result import set_dataset
-from solver.results.estimates import estimate_fields
 
 PAIR = "spindle-pair-db-light-preload"
 
@@ -24,20 +20,7 @@ def parts():
     given = set_inputs(case)
     state = solve_set_state(given)
     text = given.inputs.case_text
-    datasets = []
-    for member, solution, op in zip(state.members, state.solutions, state.operatings, strict=True):
-        inputs = dataclasses.replace(member.inputs, operating=op)
-        lubricant = inputs.lubricant if inputs.lubricant.given else None
-        datasets.append(
-            solution_to_dataset(
-                solution,
-                inputs.geometry,
-                text,
-                lubricant,
-                op,
-                estimates=estimate_fields(inputs, op),
-            )
-        )
+    datasets = bearing_datasets(state, text)
     return case, state, datasets, given.applied, text
 
 
