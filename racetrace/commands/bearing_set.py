@@ -147,8 +147,8 @@ def _dynamic_values(one) -> dict:
 
 def _reference_life(one) -> dict:
     """A bearing's reference rating life L10r (ISO/TS 16281, from its contact loads: million
-    revolutions, hours) and the lives' notes. ISO 281's L10 reads the applied loads, which a
-    bearing of a set does not have (the shaft loads it), so it is left out."""
+    revolutions, hours) and the lives' notes. ISO 281's L10, computed at the window means of
+    the loads the bearing carries, stays in the result file."""
     from racetrace.metrics import life_headline
 
     lives = life_headline(one)
@@ -157,9 +157,10 @@ def _reference_life(one) -> dict:
 
 def dynamic_set_text(ds) -> str:
     """The dynamic run of a set in readable lines: per bearing its loads, trajectory metrics,
-    cage slip, power loss, mean friction torque and reference rating life; then the set's energy
-    balance. The empirical torque estimates and ISO 281's L10 read a bearing's applied loads,
-    which a bearing of a set does not have: they are left out."""
+    cage slip, power loss, mean friction torque and reference rating life; then a spring
+    preload's force and the floating outer rings' shift; then the set's energy balance. The
+    empirical torque estimates and ISO 281's L10 (at the window means of the loads each bearing
+    carries) stay in the result file."""
     from racetrace.metrics import energy_text, metrics_text
 
     lines = [f"{ds.attrs.get('bearing_set', 'bearing set')}"]
@@ -192,14 +193,43 @@ def dynamic_set_text(ds) -> str:
             f"revolutions = {life['L10r_hours']:.5g} h"
         )
         lines += [f"  note: {note}" for note in life["notes"]]
+    spring = _spring(ds)
+    if spring is not None:
+        lines += [
+            "",
+            f"spring preload: {spring['spring_force_N']:g} N on the spring side's outer rings; "
+            f"their shift {spring['spring_shift_m'] * 1e6:.3f} um (mean over the set's analysed "
+            f"window, {spring['spring_shift_span_m'] * 1e6:.3f} um peak to peak)",
+        ]
     lines += ["", f"the set: {energy_text(float(ds['energy_balance_residual']))}"]
     return "\n".join(lines)
+
+
+def _spring(ds) -> dict | None:
+    """A dynamic set's spring preload (None without one): its force [N] and the floating outer
+    rings' shift [m] over the set's analysed window (the latest of the bearings'): mean and peak
+    to peak."""
+    if "spring_shift" not in ds:
+        return None
+    from solver import bearing_result
+
+    start = max(
+        float(bearing_result(ds, index).racetrace.metric("analysis_start_time"))
+        for index in range(ds.sizes["bearing"])
+    )
+    shift = ds["spring_shift"].sel(time=slice(start, None)).values
+    return {
+        "spring_force_N": float(ds["spring_force"]),
+        "spring_shift_m": float(shift.mean()),
+        "spring_shift_span_m": float(shift.max() - shift.min()),
+    }
 
 
 def dynamic_set_summary(ds) -> dict:
     """The dynamic run of a set as plain JSON values (SI units, angles in degree; NaN as null):
     per bearing its loads, trajectory metrics, cage slip, power loss, mean friction torque and
-    reference rating life (as :func:`dynamic_set_text`); the set's energy-balance residual."""
+    reference rating life (as :func:`dynamic_set_text`); the set's energy-balance residual; with
+    a spring preload ``spring_force_N``, ``spring_shift_m`` and ``spring_shift_span_m``."""
     from racetrace.metrics import finite_or_none, metrics_json
 
     bearings = []
@@ -232,8 +262,12 @@ def dynamic_set_summary(ds) -> dict:
                 },
             }
         )
-    return {
+    out = {
         "bearing_set": ds.attrs.get("bearing_set", ""),
         "bearings": bearings,
         "energy_balance_residual": finite_or_none(float(ds["energy_balance_residual"])),
     }
+    spring = _spring(ds)
+    if spring is not None:
+        out |= spring
+    return out

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from racetrace.commands import simulate as command
+from racetrace.commands.bearing_set import dynamic_set_text
 from solver.results.io import load_dataset
 
 PAIR = "spindle-pair-db-light-preload"  # 100 N preload, external load 100 N axial (+x), 200 N
@@ -100,10 +101,17 @@ def test_a_spring_preload_runs_with_its_floating_outer_ring(tmp_path, capsys):
     short = ["--revolutions", "0.1", "--samples-per-revolution", "40"]
     args = _parse(["simulate", str(case), "--output", str(out), *short, "--json"])
     assert args.func(args) == 0
-    first, second = json.loads(capsys.readouterr().out)["bearings"]
+    summary = json.loads(capsys.readouterr().out)
+    first, second = summary["bearings"]
     ds = load_dataset(out)
     assert ds.attrs["complete"] == 1
     assert ds["spring_shift"].dims == ("time",) and float(ds["spring_force"]) == 100.0
+    # the summary gives the spring and the floating rings' shift over the analysed window
+    assert summary["spring_force_N"] == 100.0
+    shift = ds["spring_shift"].values
+    assert shift.min() <= summary["spring_shift_m"] <= shift.max()
+    assert 0.0 <= summary["spring_shift_span_m"] <= shift.max() - shift.min()
+    assert dynamic_set_text(ds).count("spring preload: 100 N") == 1
     assert (first["direction"], second["direction"]) == ("+x", "-x")
     assert second["axial_load_N"] == pytest.approx(100.0, rel=0.02)
     assert first["axial_load_N"] == pytest.approx(200.0, rel=0.02)
