@@ -1,7 +1,9 @@
-"""The report of a bearing set's quasi-static result (a Dataset with a ``bearing`` dimension,
+"""The report of a bearing set's result (a Dataset with a ``bearing`` dimension,
 results-schema.md, "Bearing sets"): the set (arrangement, positions, directions), the load sharing,
-the stiffness of every bearing and of the set (each 5 x 5 matrix as a table with its units), and
-each bearing's contact angle and load per ball.
+the stiffness of every bearing and of the set (each 5 x 5 matrix as a table with its units), a
+spring preload's force and the floating outer rings' shift, and each bearing's contact angle and
+load per ball. A dynamic run of a set is shown at its last stored sample (it has no stiffness),
+its spring shift charted over time and each bearing's contacts over time.
 
 Every value is read from the Dataset; every text taken from it is escaped (the tables escape
 their cells, :func:`report.build._text` the rest).
@@ -214,9 +216,9 @@ def stiffness_rows(ds) -> list[list[str]]:
 STIFFNESS_HEADERS = ("", "axial [N/µm]", "radial [N/µm]", "tilting [N m/mrad]")
 SPRING_NOTE = (
     "The spring pushes the floating outer rings of its side onto their balls with a constant "
-    "force; their axial shift, along those bearings' own thrust direction, is what the balls' "
-    "axial forces balance it at. A shift that still drifts or swings at the end of the run has "
-    "not settled: run longer ([simulation] shaft_revolutions)."
+    "force; their axial shift (along those bearings' own thrust direction) settles where their "
+    "balls' axial forces balance the spring. A shift that still drifts or swings at the end of "
+    "the run has not settled: run longer ([simulation] shaft_revolutions)."
 )
 MATRIX_NOTE = (
     "Rows: the generalised forces on the shaft (Fx, Fy, Fz, My, Mz); columns: the displacements "
