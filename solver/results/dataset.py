@@ -246,7 +246,7 @@ def result_arrays(
     }
     return ResultArrays(
         variables,
-        {name: (_dims(dims), values, attrs) for name, (dims, values, attrs) in coords.items()},
+        {name: (_dims(dims), values, meta) for name, (dims, values, meta) in coords.items()},
         {**base, **(attrs or {})},
     )
 
