@@ -39,6 +39,14 @@ HELP = {
         "and the radial load each carries. A bearing whose axial load falls to zero has lost its "
         "preload."
     ),
+    "set_spring": (
+        "Spring preload: the axial shift of the spring side's floating outer rings over the run "
+        "(µm, along those bearings' own thrust direction: their inner rings' approach is this "
+        "shift plus the shaft's displacement). The spring pushes them with a constant force; "
+        "the dashed line is the shift's mean over the analysed window, which starts at the "
+        "dotted line. A shift that drifts or swings means the balls' axial forces do not yet "
+        "balance the spring."
+    ),
     "set_balls": (
         "Contact load and inner contact angle of every ball versus its azimuth, one line per "
         "bearing of the set (each in its own frame): where each bearing's load zone is and how "
@@ -97,6 +105,7 @@ def describe_set(ds: xr.Dataset) -> list[str]:
             f"Dynamic run of the set: the loads, the set along the shaft and the balls below are "
             f"those of its last stored sample, t = {float(ds['time'][-1]) * 1e3:.4g} ms."
         )
+    spring = spring_line(ds)  # a run's over its analysed window, not at the snapshot
     ds = set_snapshot(ds)
     for index, name in enumerate(bearing_names(ds)):
         one = ds.isel(bearing=index)
@@ -107,7 +116,73 @@ def describe_set(ds: xr.Dataset) -> list[str]:
             f"{int((one['contact_load'].sel(race='inner').values > 0).sum())} of "
             f"{int(one['ball_count'])} balls loaded"
         )
+    if spring is not None:
+        lines.append(spring)
     return lines
+
+
+def spring_line(ds: xr.Dataset) -> str | None:
+    """The spring preload in words (:func:`solver.set_spring_preload`), None without one: a
+    dynamic run's spring force and the floating outer rings' shift over its analysed window, a
+    quasi-static result's solved shift."""
+    from solver import set_spring_preload
+
+    spring = set_spring_preload(ds)
+    if spring is None:
+        return None
+    if "spring_force_N" not in spring:
+        return (
+            f"Spring preload: the spring side's floating outer rings are shifted by "
+            f"{spring['spring_shift_m'] * 1e6:.3f} µm along their thrust direction (the spring "
+            "force is the set's preload above)."
+        )
+    return (
+        f"Spring preload: {spring['spring_force_N']:g} N on the spring side's floating outer "
+        f"rings; their shift {spring['spring_shift_m'] * 1e6:.3f} µm (mean over the analysed "
+        f"window), {spring['spring_shift_span_m'] * 1e6:.3f} µm peak to peak."
+    )
+
+
+def spring_figure(ds: xr.Dataset) -> go.Figure | None:
+    """The spring side's outer rings' shift (µm) over time (ms) of a dynamic run with a spring
+    preload, with its mean over the analysed window (dashed, from its start, dotted); None for a
+    result without one (a quasi-static set has one shift, given in words)."""
+    from solver import set_spring_preload
+
+    spring = set_spring_preload(ds)
+    if spring is None or "spring_force_N" not in spring:
+        return None
+    times = ds["time"].values * 1e3
+    start = float(ds["analysis_start_time"].max()) * 1e3
+    mean = spring["spring_shift_m"] * 1e6
+    fig = go.Figure()
+    fig.add_trace(
+        go.Scatter(
+            x=times,
+            y=ds["spring_shift"].values * 1e6,
+            mode="lines",
+            name="shift",
+            line={"color": "#1f77b4"},
+        )
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=[start, float(times[-1])],
+            y=[mean, mean],
+            mode="lines",
+            name=f"mean {mean:.3f} µm",
+            line={"color": "#222", "dash": "dash", "width": 1},
+        )
+    )
+    fig.add_vline(x=start, line={"color": "#888", "dash": "dot", "width": 1})
+    _layout(
+        fig,
+        f"Spring side outer rings' shift (spring force {spring['spring_force_N']:g} N)",
+        "time, ms",
+        "shift, µm",
+    )
+    _pad_y(fig, 0.01)
+    return fig
 
 
 def layout_figure(ds: xr.Dataset, selected: int = 0) -> go.Figure:

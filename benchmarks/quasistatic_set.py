@@ -2,7 +2,8 @@
 cached before timing).
 
 For each ball-speed rule (``simulation.quasistatic_ball_speeds``: "traction", the default, and
-"race_control") prints the median (and fastest) process CPU time of repeats of:
+"race_control") prints the median (and fastest) process CPU time of repeats of the following,
+taken in turn within each repeat (so that a change of the machine's load falls on all of them):
 
 1. the shipped DB pair ``spindle-pair-db-light-preload`` solved as SI arrays from its SI inputs
    (``solve_set_state`` of ``set_inputs``: the preload offset, the set solve at rest and at
@@ -11,7 +12,7 @@ For each ball-speed rule (``simulation.quasistatic_ball_speeds``: "traction", th
    operating point in the pair (its axial and radial load and its tilt), as SI arrays from its SI
    inputs (``solve_operating_point``) and as a Dataset from its Case (``solve_quasistatic``);
 
-and the ratio pair / one bearing. Target: pair <= 2.5 x one bearing with the same rule.
+and the ratio pair / one bearing. Target: pair <= 2.5 x one bearing with the same rule (issue 25).
 Run: python benchmarks/quasistatic_set.py [--repeats N]
 """
 
@@ -33,14 +34,16 @@ PAIR = "spindle-pair-db-light-preload"
 RULES = ("traction", "race_control")
 
 
-def cpu_times(func, repeats: int) -> tuple[float, float]:
-    """(median, fastest) process CPU time [s] of ``repeats`` calls."""
-    times = []
+def cpu_times(funcs: dict, repeats: int) -> dict:
+    """{name: (median, fastest) process CPU time [s]} of ``repeats`` calls of each of ``funcs``
+    ({name: callable}), called in turn within each repeat."""
+    times = {name: [] for name in funcs}
     for _ in range(repeats):
-        start = time.process_time()
-        func()
-        times.append(time.process_time() - start)
-    return statistics.median(times), min(times)
+        for name, func in funcs.items():
+            start = time.process_time()
+            func()
+            times[name].append(time.process_time() - start)
+    return {name: (statistics.median(t), min(t)) for name, t in times.items()}
 
 
 def single_case(pair, operating) -> Case:
@@ -72,17 +75,17 @@ def main() -> None:
         single = single_case(pair, state.operatings[0])
         solve(pair)
         solve_quasistatic(single)
-        rows = {
-            "pair, SI arrays": cpu_times(lambda g=given: solve_set_state(g), args.repeats),
-            "one bearing, SI arrays": cpu_times(
-                lambda i=inputs, lub=lubricant: solve_operating_point(
+        rows = cpu_times(
+            {
+                "pair, SI arrays": lambda g=given: solve_set_state(g),
+                "one bearing, SI arrays": lambda i=inputs, lub=lubricant: solve_operating_point(
                     i.geometry, i.operating, traction_lubricant=lub
                 ),
-                args.repeats,
-            ),
-            "pair, Dataset": cpu_times(lambda p=pair: solve(p), args.repeats),
-            "one bearing, Dataset": cpu_times(lambda c=single: solve_quasistatic(c), args.repeats),
-        }
+                "pair, Dataset": lambda p=pair: solve(p),
+                "one bearing, Dataset": lambda c=single: solve_quasistatic(c),
+            },
+            args.repeats,
+        )
         print(f"\nball speeds: {rule}")
         for name, (median, fastest) in rows.items():
             print(f"  {name:24s} {median * 1e3:8.2f} ({fastest * 1e3:.2f})")

@@ -1,7 +1,9 @@
-"""The report of a bearing set's quasi-static result (a Dataset with a ``bearing`` dimension,
+"""The report of a bearing set's result (a Dataset with a ``bearing`` dimension,
 results-schema.md, "Bearing sets"): the set (arrangement, positions, directions), the load sharing,
-the stiffness of every bearing and of the set (each 5 x 5 matrix as a table with its units), and
-each bearing's contact angle and load per ball.
+the stiffness of every bearing and of the set (each 5 x 5 matrix as a table with its units), a
+spring preload's force and the floating outer rings' shift, and each bearing's contact angle and
+load per ball. A dynamic run of a set is shown at its last stored sample (it has no stiffness),
+its spring shift charted over time and each bearing's contacts over time.
 
 Every value is read from the Dataset; every text taken from it is escaped (the tables escape
 their cells, :func:`report.build._text` the rest).
@@ -119,17 +121,76 @@ def sharing_rows(ds) -> tuple[list[str], list[list[str]]]:
     return headers, rows
 
 
-def shaft_rows(ds) -> list[list[str]]:
-    """The shaft at the load point, the preload offset and the spring shift."""
+def shaft_rows(ds, whole=None) -> list[list[str]]:
+    """The shaft at the load point, the preload offset (a quasi-static set) and a spring
+    preload (:func:`solver.set_spring_preload`): its force (a dynamic run) and the floating outer
+    rings' shift (a dynamic run: mean and peak to peak over the analysed window). ``ds``: a
+    quasi-static set, or a dynamic run's set at one sample (its shaft then) with ``whole``, the
+    run (its spring preload)."""
+    from solver import set_spring_preload
+
     offset = ", ".join(number(v * 1e6) for v in ds["shaft_offset"].values)
     tilt = ", ".join(number(v) for v in ds["shaft_tilt"].values)
-    return [
+    rows = [
         ["load point on the shaft", f"{number(float(ds['load_position']) * 1e3)} mm"],
         ["shaft displacement at the load point (x, y, z)", f"{offset} µm"],
         ["shaft tilt (y, z)", f"{tilt} deg"],
-        ["preload offset", f"{number(float(ds['preload_offset']) * 1e6)} µm"],
-        ["spring side shift", f"{number(float(ds['spring_shift']) * 1e6)} µm"],
     ]
+    if "preload_offset" in ds:
+        rows.append(["preload offset", f"{number(float(ds['preload_offset']) * 1e6)} µm"])
+    return rows + spring_rows(set_spring_preload(ds if whole is None else whole))
+
+
+def spring_rows(spring: dict | None) -> list[list[str]]:
+    """The rows of a spring preload (:func:`solver.set_spring_preload`; none without one)."""
+    if spring is None:
+        return []
+    if "spring_force_N" not in spring:
+        return [["spring side shift", f"{number(spring['spring_shift_m'] * 1e6)} µm"]]
+    return [
+        ["spring force on the spring side's outer rings", f"{number(spring['spring_force_N'])} N"],
+        [
+            "spring side shift (mean over the analysed window)",
+            f"{number(spring['spring_shift_m'] * 1e6)} µm",
+        ],
+        [
+            "spring side shift, peak to peak over the analysed window",
+            f"{number(spring['spring_shift_span_m'] * 1e6)} µm",
+        ],
+    ]
+
+
+def spring_chart(ds):
+    """The spring side's outer rings' shift [µm] over time [ms] of a dynamic run with a spring
+    preload, with its mean over the analysed window (dashed, from the window's start); None
+    without one."""
+    from solver import set_spring_preload
+
+    from .charts import MAX_TIME_POINTS, _figure, _legend_outside, _stride
+
+    spring = set_spring_preload(ds)
+    if spring is None or "spring_force_N" not in spring:
+        return None
+    t = np.asarray(ds["time"].values, float) * 1e3
+    w = np.asarray(ds["spring_shift"].values, float) * 1e6
+    step = _stride(t.size, MAX_TIME_POINTS)
+    start = float(ds["analysis_start_time"].max()) * 1e3
+    mean = spring["spring_shift_m"] * 1e6
+    fig = _figure(
+        f"Spring side outer rings' shift (spring force {number(spring['spring_force_N'])} N)",
+        "time [ms]",
+        "shift [µm]",
+    )
+    fig.line(t[::step], w[::step], color="#1f77b4", legend_label="shift")
+    fig.line(
+        [start, float(t[-1])],
+        [mean, mean],
+        color="#222222",
+        line_dash="dashed",
+        legend_label=f"mean over the analysed window, {number(mean)} µm",
+    )
+    _legend_outside(fig)
+    return fig
 
 
 def stiffness_rows(ds) -> list[list[str]]:
@@ -153,11 +214,38 @@ def stiffness_rows(ds) -> list[list[str]]:
 
 
 STIFFNESS_HEADERS = ("", "axial [N/µm]", "radial [N/µm]", "tilting [N m/mrad]")
+SPRING_NOTE = (
+    "The spring pushes the floating outer rings of its side onto their balls with a constant "
+    "force; their axial shift (along those bearings' own thrust direction) settles where their "
+    "balls' axial forces balance the spring. A shift that still drifts or swings at the end of "
+    "the run has not settled: run longer ([simulation] shaft_revolutions)."
+)
 MATRIX_NOTE = (
     "Rows: the generalised forces on the shaft (Fx, Fy, Fz, My, Mz); columns: the displacements "
     "(x, y, z, tilt y, tilt z); K[i, j] = -d(force i)/d(displacement j), ball speeds held at "
     "their solved values, shaft frame (x along the shaft)."
 )
+
+
+def _stiffness_body(ds) -> str:
+    """The stiffness section's HTML: the summary table, then the set's and every bearing's
+    5 x 5 matrix with its units."""
+    from .build import _table, _text
+
+    matrices = [("set (at the load point)", ds["set_stiffness"].values)] + [
+        (str(name), ds["bearing_stiffness"].values[index])
+        for index, name in enumerate(ds["bearing"].values)
+    ]
+    body = _table(STIFFNESS_HEADERS, stiffness_rows(ds))
+    for name, k in matrices:
+        m_headers, m_rows = matrix_rows(k, ds["dof"].values)
+        body += f"<p><strong>5 × 5 stiffness, {html.escape(name)}</strong></p>"
+        body += _table(m_headers, m_rows)
+    body += f"<p>{html.escape(MATRIX_NOTE)}</p>"
+    symmetry = ds.attrs.get("stiffness_symmetry")
+    if symmetry:
+        body += f"<p>{_text(symmetry, 600)}</p>"
+    return body
 
 
 def set_sections(ds, source_name: str):
@@ -171,6 +259,15 @@ def set_sections(ds, source_name: str):
 
     sections = [_html(run_header(ds, source_name), stylesheets=[PRINT_CSS])]
     warnings = solver.set_result_warnings(ds)
+    whole = ds
+    moment = ""
+    if "time" in ds.dims:  # a dynamic run of the set: its loads and balls at the last sample
+        ds = ds.isel(time=-1)
+        moment = (
+            "<p>A dynamic run of the set: the shaft, the loads and the balls in these tables are "
+            f"those of its last stored sample, t = {number(float(ds['time']) * 1e3)} ms; the "
+            "spring preload's shift, when there is one, over its analysed window.</p>"
+        )
     sections.append(
         _section(
             "Result warnings",
@@ -186,13 +283,20 @@ def set_sections(ds, source_name: str):
         _section(
             "The bearing set",
             f"<p>{described}</p>"
+            + moment
             + _table(SET_HEADERS, set_rows(ds))
             + "<p>Positions are those of each bearing's ball-centre plane along the shaft; a "
             "bearing carries shaft thrust towards its direction (back-to-back, DB: the contact "
             "lines diverge towards the axis).</p>"
-            + _table(("shaft and preload", "value"), shaft_rows(ds), (0, 1)),
+            + _table(("shaft and preload", "value"), shaft_rows(ds, whole), (0, 1)),
         )
     )
+    spring = spring_chart(whole)
+    if spring is not None:
+        sections.append(_section("Spring preload", f"<p>{html.escape(SPRING_NOTE)}</p>"))
+        sections.append(
+            pn.pane.Bokeh(spring, sizing_mode="stretch_width", stylesheets=[CHART_PRINT_CSS])
+        )
     headers, rows = sharing_rows(ds)
     sections.append(
         _section(
@@ -203,25 +307,14 @@ def set_sections(ds, source_name: str):
             "(with preload, a share above 1 and a negative one).</p>",
         )
     )
-    matrices = [("set (at the load point)", ds["set_stiffness"].values)] + [
-        (str(name), ds["bearing_stiffness"].values[index])
-        for index, name in enumerate(ds["bearing"].values)
-    ]
-    body = _table(STIFFNESS_HEADERS, stiffness_rows(ds))
-    for name, k in matrices:
-        m_headers, m_rows = matrix_rows(k, ds["dof"].values)
-        body += f"<p><strong>5 × 5 stiffness, {html.escape(name)}</strong></p>"
-        body += _table(m_headers, m_rows)
-    body += f"<p>{html.escape(MATRIX_NOTE)}</p>"
-    symmetry = ds.attrs.get("stiffness_symmetry")
-    if symmetry:
-        body += f"<p>{_text(symmetry, 600)}</p>"
-    sections.append(_section("Stiffness", body))
-    for index, name in enumerate(ds["bearing"].values):
-        one = solver.bearing_result(ds, index)
+    if "set_stiffness" in ds:  # a quasi-static set (a dynamic run has no stiffness matrices)
+        sections.append(_section("Stiffness", _stiffness_body(ds)))
+    over = "over time" if "time" in whole.dims else "per ball"
+    for index, name in enumerate(whole["bearing"].values):
+        one = solver.bearing_result(whole, index)
         sections.append(
             pn.pane.Markdown(
-                f"## {html.escape(str(name))}: contact angle and load per ball",
+                f"## {html.escape(str(name))}: contact angle and load {over}",
                 stylesheets=[PRINT_CSS],
             )
         )

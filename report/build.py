@@ -950,7 +950,7 @@ def _load(source):
     ds = load_result(path, str(source))  # CaseError naming what the file lacks
     if ds.attrs.get("racetrace_kind") == "study":
         return "study", ds, path.name
-    if "bearing" in ds.dims:  # a bearing set's quasi-static result
+    if "bearing" in ds.dims:  # a bearing set's result (quasi-static, or a dynamic run)
         return "set", ds, path.name
     return "run", ds, path.name
 

@@ -12,6 +12,7 @@ Public API (everything else is internal):
   the set's Dataset with a ``bearing`` dimension, its stiffness and load sharing
   (``set_result_warnings(ds)``: where a bearing of the set unloads; ``bearing_result(ds, k)``:
   bearing ``k`` of it as a single-bearing result, which the single-bearing views read;
+  ``set_spring_preload(ds)``: a spring preload's force and the floating outer rings' shift;
   ``set_stiffness_study(case, preload_forces_N, speeds_rpm)``: the set's stiffness and load
   sharing over preload and speed)
 - ``solve_over_revolution(case, angles=None) -> xarray.Dataset``: the quasi-static steady state at
@@ -107,6 +108,7 @@ _LAZY = {
     "DEFAULT_PRELOAD_KIND": "solver.case.bearing_set",
     "set_result_warnings": "solver.models.quasistatic.set_warnings",
     "bearing_result": "solver.models.quasistatic.set_warnings",
+    "set_spring_preload": "solver.models.quasistatic.set_warnings",
     "set_stiffness_study": "solver.models.quasistatic.bearing_set",
     "solve_quasistatic": "solver.facade",
     "solve_over_revolution": "solver.facade",

@@ -21,7 +21,7 @@ from .. import set_charts
 from .base import Component, as_int, fig_json
 from .widgets import chart, select
 
-SET_CHARTS = ("set_layout", "set_sharing", "set_load", "set_angle")
+SET_CHARTS = ("set_layout", "set_sharing", "set_load", "set_angle", "set_spring")
 
 
 class SetPanel(Component):
@@ -40,6 +40,7 @@ class SetPanel(Component):
         s.set_bearing_items = []
         s.set_lines = []
         s.set_stiffness = []
+        s.set_spring_shown = False
         for name in SET_CHARTS:
             s[f"chart_{name}"] = {"data": [], "layout": {}}
 
@@ -58,6 +59,7 @@ class SetPanel(Component):
         if ds is None:
             s.set_shown = False
             s.set_bearing_items, s.set_lines, s.set_stiffness = [], [], []
+            s.set_spring_shown = False
             return
         names = set_charts.bearing_names(ds)
         s.set_shown = True
@@ -73,6 +75,9 @@ class SetPanel(Component):
         s.chart_set_sharing = fig_json(set_charts.sharing_figure(ds))
         s.chart_set_load = fig_json(set_charts.ball_figure(ds, "contact_load"))
         s.chart_set_angle = fig_json(set_charts.ball_figure(ds, "contact_angle"))
+        spring = set_charts.spring_figure(ds)
+        s.set_spring_shown = spring is not None
+        s.chart_set_spring = fig_json(spring) if spring is not None else {"data": [], "layout": {}}
 
     def _on_set_bearing(self, set_bearing=0, **_):
         if self.dataset is None:
@@ -83,8 +88,9 @@ class SetPanel(Component):
     # ---- page -----------------------------------------------------------------------------------
     def build_ui(self) -> None:
         """``#set-panel`` (a set only): ``#set-bearing`` (the bearing shown), the set in words
-        (``#set-lines``), the set along the shaft, the load sharing, the balls of every bearing
-        and the stiffness table (``#set-stiffness``)."""
+        (``#set-lines``), the set along the shaft, the load sharing, the balls of every bearing,
+        the stiffness table (``#set-stiffness``) and, for a dynamic run with a spring preload,
+        the floating outer rings' shift over time (``#chart-set-spring``)."""
         with html.Div(id="set-panel", v_if="set_shown", classes="mb-2"):
             html.Div("Bearing set", classes="text-subtitle-1")
             select(
@@ -99,6 +105,8 @@ class SetPanel(Component):
             chart("chart-set-sharing", "chart_set_sharing", set_charts.HELP["set_sharing"])
             chart("chart-set-load", "chart_set_load", set_charts.HELP["set_balls"])
             chart("chart-set-angle", "chart_set_angle", set_charts.HELP["set_balls"])
+            with html.Div(v_if="set_spring_shown"):
+                chart("chart-set-spring", "chart_set_spring", set_charts.HELP["set_spring"])
             _stiffness_table()
 
 

@@ -162,6 +162,7 @@ def dynamic_set_text(ds) -> str:
     empirical torque estimates and ISO 281's L10 (at the window means of the loads each bearing
     carries) stay in the result file."""
     from racetrace.metrics import energy_text, metrics_text
+    from solver import set_spring_preload
 
     lines = [f"{ds.attrs.get('bearing_set', 'bearing set')}"]
     for index, name in enumerate(ds["bearing"].values):
@@ -193,7 +194,7 @@ def dynamic_set_text(ds) -> str:
             f"revolutions = {life['L10r_hours']:.5g} h"
         )
         lines += [f"  note: {note}" for note in life["notes"]]
-    spring = _spring(ds)
+    spring = set_spring_preload(ds)
     if spring is not None:
         lines += [
             "",
@@ -205,27 +206,13 @@ def dynamic_set_text(ds) -> str:
     return "\n".join(lines)
 
 
-def _spring(ds) -> dict | None:
-    """A dynamic set's spring preload (None without one): its force [N] and the floating outer
-    rings' shift [m] over the set's analysed window (the latest of the bearings'): mean and peak
-    to peak."""
-    if "spring_shift" not in ds:
-        return None
-    start = float(ds["analysis_start_time"].max())
-    shift = ds["spring_shift"].sel(time=slice(start, None)).values
-    return {
-        "spring_force_N": float(ds["spring_force"]),
-        "spring_shift_m": float(shift.mean()),
-        "spring_shift_span_m": float(shift.max() - shift.min()),
-    }
-
-
 def dynamic_set_summary(ds) -> dict:
     """The dynamic run of a set as plain JSON values (SI units, angles in degree; NaN as null):
     per bearing its loads, trajectory metrics, cage slip, power loss, mean friction torque and
     reference rating life (as :func:`dynamic_set_text`); the set's energy-balance residual; with
     a spring preload ``spring_force_N``, ``spring_shift_m`` and ``spring_shift_span_m``."""
     from racetrace.metrics import finite_or_none, metrics_json
+    from solver import set_spring_preload
 
     bearings = []
     for index, name in enumerate(ds["bearing"].values):
@@ -262,7 +249,7 @@ def dynamic_set_summary(ds) -> dict:
         "bearings": bearings,
         "energy_balance_residual": finite_or_none(float(ds["energy_balance_residual"])),
     }
-    spring = _spring(ds)
+    spring = set_spring_preload(ds)
     if spring is not None:
         out |= spring
     return out

@@ -14,6 +14,7 @@ Dataset, everything else SI.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from datetime import UTC, datetime
@@ -171,7 +172,34 @@ def build_result(
     attrs: dict | None = None,
     variable_attrs: dict | None = None,
 ) -> xr.Dataset:
-    """A results Dataset of ``model`` ("quasistatic" or "dynamic").
+    """A results Dataset of ``model`` ("quasistatic" or "dynamic"): the Dataset of
+    :func:`result_arrays` (same arguments)."""
+    return result_arrays(
+        model,
+        data,
+        geometry,
+        operating,
+        case=case,
+        times=times,
+        complete=complete,
+        attrs=attrs,
+        variable_attrs=variable_attrs,
+    ).dataset()
+
+
+def result_arrays(
+    model: str,
+    data: dict,
+    geometry,
+    operating,
+    *,
+    case="",
+    times=None,
+    complete: bool = True,
+    attrs: dict | None = None,
+    variable_attrs: dict | None = None,
+) -> ResultArrays:
+    """The :class:`ResultArrays` of a results Dataset of ``model`` ("quasistatic" or "dynamic").
 
     ``data``: ``{name: (dims, values)}`` for registered variables; ``dims`` name the axes of
     ``values`` in any order and must be the registry's dimensions for ``model`` (else
@@ -199,7 +227,7 @@ def build_result(
         var_attrs = spec.attrs()
         for key, value in extra.get(name, {}).items():
             var_attrs[key] = var_attrs[key] + value if key == "description" else value
-        variables[name] = _variable(target, values, var_attrs)
+        variables[name] = (target, values, var_attrs)
     coords = coordinates(
         int(geometry.ball_count),
         times,
@@ -216,11 +244,63 @@ def build_result(
         "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "complete": int(bool(complete)),
     }
-    coord_variables, indexes = _coordinates(coords)
-    return _dataset(variables, coord_variables, indexes, {**base, **(attrs or {})})
+    return ResultArrays(
+        variables,
+        {name: (_dims(dims), values, meta) for name, (dims, values, meta) in coords.items()},
+        {**base, **(attrs or {})},
+    )
 
 
-def _dataset(data_variables: dict, coord_variables: dict, indexes: dict, attrs: dict):
+def _dims(dims) -> tuple:
+    return (dims,) if isinstance(dims, str) else tuple(dims)
+
+
+@dataclasses.dataclass
+class ResultArrays:
+    """A result before it is a Dataset: what :func:`build_result` checked and named, as numpy
+    arrays. ``data`` and ``coords``: ``{name: (dims, values, attrs)}`` (dims a tuple, values a
+    numpy array or scalar whose dtype is final, data in the registry's order); ``attrs``: the
+    Dataset's attributes. ``made``: ``{name: (Variable, index)}`` of dimension coordinates
+    whose index already exists (those of a Dataset read back with :meth:`of_dataset`).
+
+    A builder that combines results (a bearing set stacks its bearings') reads these arrays
+    instead of building each result's Dataset first."""
+
+    data: dict
+    coords: dict
+    attrs: dict
+    made: dict = dataclasses.field(default_factory=dict)
+
+    def dataset(self) -> xr.Dataset:
+        """The result Dataset (:func:`direct_dataset`)."""
+        variables = {name: raw_variable(*spec) for name, spec in self.data.items()}
+        coord_variables, indexes = coordinate_variables(self.coords, self.made)
+        return direct_dataset(variables, coord_variables, indexes, self.attrs)
+
+    @classmethod
+    def of_dataset(cls, ds: xr.Dataset) -> ResultArrays:
+        """The arrays of a finished Dataset (its dimension coordinates' Variables and indexes
+        kept as they are)."""
+        table = ds.variables
+
+        def parts(name):
+            var = table[name]
+            return var.dims, var.values, var.attrs
+
+        made = {
+            name: (table[name], ds.xindexes[name])
+            for name in ds.coords
+            if table[name].dims == (name,) and name in ds.xindexes
+        }
+        return cls(
+            {name: parts(name) for name in ds.data_vars},
+            {name: parts(name) for name in ds.coords},
+            dict(ds.attrs),
+            made,
+        )
+
+
+def direct_dataset(data_variables: dict, coord_variables: dict, indexes: dict, attrs: dict):
     """The Dataset of these Variables (data first, as xr.Dataset orders them) and indexes, as
     ``xr.Dataset(data_variables, coords=xr.Coordinates(coord_variables, indexes))`` gives it but
     without xarray's merge and alignment, which one result never needs: its Variables are new and
@@ -233,33 +313,38 @@ def _dataset(data_variables: dict, coord_variables: dict, indexes: dict, attrs: 
     )
 
 
-def _variable(dims, values, attrs) -> xr.Variable:
+def raw_variable(dims, values, attrs) -> xr.Variable:
     """An xarray Variable of ``values`` as they are: a numpy array (or a Python scalar, made one)
     whose dtype is final. xarray's own conversion is skipped; for an object array of strings it
     would hand the array to pandas and back unchanged, the dearest step of building a result."""
     return xr.Variable(dims, np.asarray(values), attrs, fastpath=True)
 
 
-@functools.lru_cache(maxsize=32)
-def _label_index(dim: str, labels: tuple, dtype: str) -> PandasIndex:
-    """The index of a labelled dimension (``ball`` or one of DIMENSION_VALUES) with these labels
-    of this dtype; xarray's indexes are immutable, so every result with them shares one."""
+@functools.lru_cache(maxsize=64)
+def label_index(dim: str, labels: tuple, dtype: str) -> PandasIndex:
+    """The index of a dimension with these labels of this dtype (a tuple of Python values);
+    xarray's indexes are immutable, so every result with the same labels shares one."""
     labels_array = np.array(labels, dtype=dtype)
     return PandasIndex.from_variables({dim: xr.Variable(dim, labels_array)}, options={})
 
 
-def _coordinates(coords: dict) -> tuple[dict, dict]:
+def coordinate_variables(coords: dict, made: dict | None = None) -> tuple[dict, dict]:
     """({name: Variable}, {name: index}) of ``{name: (dims, values, attrs)}`` with an index for
-    each dimension coordinate, as xarray would make it (the labelled dimensions' ones shared)."""
+    each dimension coordinate, as xarray would make it (the labelled dimensions' ones shared);
+    ``made`` ``{name: (Variable, index)}`` gives dimension coordinates already made."""
     variables = {}
     indexes = {}
+    made = made or {}
     for name, (dims, values, attrs) in coords.items():
-        var = _variable(dims, values, attrs)
+        if name in made:
+            variables[name], indexes[name] = made[name]
+            continue
+        var = raw_variable(dims, values, attrs)
         if var.dims != (name,):
             variables[name] = var
             continue
         if name == "ball" or name in DIMENSION_VALUES:
-            index = _label_index(name, tuple(var.values.tolist()), var.dtype.str)
+            index = label_index(name, tuple(var.values.tolist()), var.dtype.str)
         else:
             index = PandasIndex.from_variables({name: var}, options={})
         indexes[name] = index
@@ -373,7 +458,13 @@ def _present(ds: xr.Dataset, name: str) -> None:
 __all__ = [
     "MODELS",
     "OPERATING_FIELDS",
+    "ResultArrays",
     "build_result",
+    "coordinate_variables",
+    "direct_dataset",
+    "label_index",
+    "raw_variable",
+    "result_arrays",
     "case_text",
     "describing_coordinates",
     "case_description",

@@ -221,3 +221,60 @@ def test_a_set_runs_its_dynamic_model_and_reopens_bearing_by_bearing(pair, tmp_p
         assert again.state.frame_max == reopened.sizes["time"] - 1
     finally:
         again.shutdown()
+
+
+def test_the_set_panel_shows_a_spring_preload(pair):
+    """A spring-preloaded pair (the shipped pair with a spring on its -x bearing's outer ring):
+    the quasi-static set's lines give the floating outer rings' solved shift; a dynamic run's
+    give the spring force and the shift over its analysed window (mean, peak to peak), and its
+    chart draws the shift over time with that mean, all read from the result. A set without a
+    spring shows neither."""
+    import solver
+    from solver.models.dynamic import SimulationOptions
+
+    s = pair.state
+    assert not s.set_shown or not any(line.startswith("Spring") for line in s.set_lines)
+    assert not s.set_spring_shown
+    case = solver.resolve_case(PAIR).with_values(
+        {"set.preload.kind": "spring", "set.preload.spring_side": "-x"}
+    )
+    qs = solver.solve(case)
+    pair.set_panel.show_set(qs)
+    shift = float(qs["spring_shift"])
+    assert shift != 0.0
+    assert [line for line in s.set_lines if line.startswith("Spring preload")] == [
+        f"Spring preload: the spring side's floating outer rings are shifted by "
+        f"{shift * 1e6:.3f} µm along their thrust direction (the spring force is the set's "
+        "preload above)."
+    ]
+    assert not s.set_spring_shown  # one shift: no chart over time
+
+    run = solver.simulate(
+        case,
+        options=SimulationOptions(
+            shaft_revolutions=0.1, samples_per_revolution=200, method="dopri5"
+        ),
+    )
+    pair.set_panel.show_set(run)
+    w = run["spring_shift"]
+    window = w.sel(time=slice(float(run["analysis_start_time"].max()), None)).values
+    assert 0 < window.size < w.size  # the mean is over the analysed window, not the whole run
+    line = [line for line in s.set_lines if line.startswith("Spring preload")]
+    assert line == [
+        f"Spring preload: {float(run['spring_force']):g} N on the spring side's floating outer "
+        f"rings; their shift {window.mean() * 1e6:.3f} µm (mean over the analysed window), "
+        f"{np.ptp(window) * 1e6:.3f} µm peak to peak."
+    ]
+    assert s.set_spring_shown
+    shift_trace, mean_trace = s.chart_set_spring["data"]
+    np.testing.assert_allclose(_values(shift_trace["x"]), run["time"].values * 1e3)
+    np.testing.assert_allclose(_values(shift_trace["y"]), w.values * 1e6)
+    np.testing.assert_allclose(_values(mean_trace["y"]), [window.mean() * 1e6] * 2)
+    assert (
+        f"spring force {float(run['spring_force']):g} N"
+        in (s.chart_set_spring["layout"]["title"]["text"])
+    )
+
+    pair.set_panel.show_set(pair.result.set_result)  # the pair's own fixed-position preload
+    assert not s.set_spring_shown
+    assert not any(line.startswith("Spring preload") for line in s.set_lines)

@@ -82,3 +82,79 @@ def test_the_matrix_units_follow_the_blocks():
     assert matrix_unit("y", "tilt_z") == ("N/mrad", 1e-3)
     assert matrix_unit("tilt_y", "z") == ("N m/µm", 1e-6)
     assert matrix_unit("tilt_z", "tilt_z") == ("N m/mrad", 1e-3)
+
+
+def _row(name: str, value: str) -> str:
+    """A row of the set's "shaft and preload" table (both cells text)."""
+    return f'<td class="text">{name}</td><td class="text">{value}</td>'
+
+
+def _spring_case():
+    """The shipped DB pair with a spring on its -x bearing's outer ring instead of its
+    fixed-position preload (the same 100 N)."""
+    import solver
+
+    return solver.resolve_case(PAIR).with_values(
+        {"set.preload.kind": "spring", "set.preload.spring_side": "-x"}
+    )
+
+
+def test_a_set_report_shows_the_spring_preload(tmp_path):
+    """A spring-preloaded pair's reports: the quasi-static set's gives the floating outer rings'
+    solved shift; a dynamic run's gives the spring force, the shift's mean and peak to peak over
+    the run's analysed window and a chart of the shift over time, the tables at the run's last
+    sample and no stiffness (a run has none). A fixed-position pair's report has no spring
+    rows."""
+    import solver
+    from report import build_report
+    from report.units import number
+    from solver.models.dynamic import SimulationOptions
+
+    case = _spring_case()
+    qs = solver.solve(case)
+    solver.save_dataset(qs, tmp_path / "qs.nc")
+    build_report(tmp_path / "qs.nc", tmp_path / "qs.html")
+    text = _page_text(tmp_path / "qs.html")
+    shift = float(qs["spring_shift"])
+    assert shift != 0.0
+    assert _row("spring side shift", f"{number(shift * 1e6)} µm") in text
+    assert "5 × 5 stiffness, set" in text
+
+    run = solver.simulate(
+        case,
+        options=SimulationOptions(
+            shaft_revolutions=0.1, samples_per_revolution=200, method="dopri5"
+        ),
+    )
+    solver.save_dataset(run, tmp_path / "run.nc")
+    info = build_report(tmp_path / "run.nc", tmp_path / "run.html")
+    assert info["kind"] == "set"
+    text = _page_text(tmp_path / "run.html")
+    window = run["spring_shift"].sel(time=slice(float(run["analysis_start_time"].max()), None))
+    force = number(float(run["spring_force"]))
+    for row in (
+        _row("spring force on the spring side's outer rings", f"{force} N"),
+        _row(
+            "spring side shift (mean over the analysed window)",
+            f"{number(float(window.mean()) * 1e6)} µm",
+        ),
+        _row(
+            "spring side shift, peak to peak over the analysed window",
+            f"{number(float(np.ptp(window.values)) * 1e6)} µm",
+        ),
+    ):
+        assert row in text, row
+    assert f"Spring side outer rings' shift (spring force {force} N)" in text  # the chart
+    last = run.isel(time=-1)
+    assert f"last stored sample, t = {number(float(last['time']) * 1e3)} ms" in text
+    assert f"<td>{number(float(last['bearing_axial_load'][0]))}</td>" in text
+    assert "5 × 5 stiffness" not in text
+    assert text.count(": contact angle and load over time") == 2
+
+
+def test_a_fixed_position_pair_report_has_no_spring_rows(pair_file, tmp_path):
+    from report import build_report
+
+    build_report(pair_file, tmp_path / "pair.html")
+    text = _page_text(tmp_path / "pair.html")
+    assert "spring side shift" not in text and "Spring preload" not in text

@@ -754,23 +754,29 @@ def solve_set(case):
     given = set_inputs(case)
     state = solve_set_state(given)
     text = given.inputs.case_text
-    datasets = bearing_datasets(state, text)
-    return set_dataset(case.bearing_set, state, datasets, given.applied, text)
+    results = bearing_results(state, text)
+    return set_dataset(case.bearing_set, state, results, given.applied, text)
 
 
 def bearing_datasets(state: SetSolution, case_text: str) -> list:
     """Each bearing's single-bearing quasi-static Dataset of the solved set ``state``, at its own
     operating point (the loads its balls carry), with its friction estimates there."""
+    return [result.dataset() for result in bearing_results(state, case_text)]
+
+
+def bearing_results(state: SetSolution, case_text: str) -> list:
+    """The :class:`solver.results.dataset.ResultArrays` of :func:`bearing_datasets`: what the set's
+    Dataset stacks, without building each bearing's Dataset first."""
     from solver.results.estimates import estimate_fields
 
-    from .result import solution_to_dataset
+    from .result import solution_arrays
 
-    datasets = []
+    results = []
     for member, solution, op in zip(state.members, state.solutions, state.operatings, strict=True):
         inputs = dataclasses.replace(member.inputs, operating=op)
         lubricant = inputs.lubricant if inputs.lubricant.given else None
-        datasets.append(
-            solution_to_dataset(
+        results.append(
+            solution_arrays(
                 solution,
                 inputs.geometry,
                 case_text,
@@ -779,7 +785,7 @@ def bearing_datasets(state: SetSolution, case_text: str) -> list:
                 estimates=estimate_fields(inputs, op),
             )
         )
-    return datasets
+    return results
 
 
 #: The set's scalar and per-bearing variables a stiffness study keeps at each point.

@@ -25,7 +25,7 @@ from solver.physics.hertz_fast import (
     hertz_coefficients_fast,
 )
 from solver.physics.kinematics import contact_latitude_longitude, spin_and_roll
-from solver.results.dataset import build_result, case_text
+from solver.results.dataset import ResultArrays, case_text, result_arrays
 from solver.results.life import snapshot_life_metrics
 from solver.results.variables import VARIABLES
 
@@ -109,7 +109,16 @@ def _contact_fields(
 def solution_to_dataset(
     solution, geometry, case=None, lubricant=None, operating=None, estimates=None
 ) -> xr.Dataset:
-    """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
+    """Dataset of a :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables):
+    the Dataset of :func:`solution_arrays` (same arguments)."""
+    return solution_arrays(solution, geometry, case, lubricant, operating, estimates).dataset()
+
+
+def solution_arrays(
+    solution, geometry, case=None, lubricant=None, operating=None, estimates=None
+) -> ResultArrays:
+    """The :class:`solver.results.dataset.ResultArrays` of the Dataset of a
+    :class:`QuasiStaticSolution` (results-schema.md, quasi-static variables).
 
     ``lubricant`` (a :class:`solver.inputs.LubricantInputs`, SI, or None) adds ``film_thickness``.
     The rating lives (ISO 281, ISO/TS 16281: :mod:`solver.results.life`) are added.
@@ -122,7 +131,7 @@ def solution_to_dataset(
     sol = solution
     operating = operating if operating is not None else sol.operating
     if operating is None:
-        raise ValueError("solution_to_dataset: the operating point of the solution is missing")
+        raise ValueError("solution_arrays: the operating point of the solution is missing")
     z = sol.contact_load.shape[0]
     psi = sol.ball_azimuth
     alpha = sol.contact_angle
@@ -261,7 +270,7 @@ def solution_to_dataset(
         data.update(estimates.values)
         descriptions.update(estimates.notes)
         attrs.update(estimates.attrs)
-    return build_result(
+    return result_arrays(
         MODEL,
         {name: (VARIABLES[name].dims_for(MODEL), values) for name, values in data.items()},
         geometry,

@@ -15,10 +15,14 @@ from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
-from xarray.indexes import PandasIndex
 
-from solver.results.dataset import _dataset as direct_dataset
-from solver.results.dataset import _variable
+from solver.results.dataset import (
+    ResultArrays,
+    coordinate_variables,
+    direct_dataset,
+    label_index,
+    raw_variable,
+)
 from solver.results.loaded import loaded_mask
 from solver.results.variables import Variable
 
@@ -238,53 +242,54 @@ def _stacked_values(values):
     return out.astype(str) if text else out
 
 
-def stack_bearings(datasets, extra_coords=None, extra_data=None) -> xr.Dataset:
-    """The bearings' Datasets stacked along a new ``bearing`` dimension: every data variable
-    gains it, a coordinate only where the bearings differ; attributes that differ are dropped.
-    ``extra_coords`` and ``extra_data`` (name: xarray.Variable) are added in the same build.
+def _arrays(result) -> ResultArrays:
+    return result if isinstance(result, ResultArrays) else ResultArrays.of_dataset(result)
 
-    The Dataset is assembled from these new Variables as the public ``xr.Dataset(data, coords)``
-    would make it, without its merge and alignment (:func:`solver.results.dataset._dataset`):
-    a dimension coordinate keeps the index of the bearing it comes from, a new one gets its
-    own."""
-    first = datasets[0]
-    tables = [ds.variables for ds in datasets]
+
+def stack_bearings(results, extra_coords=None, extra_data=None) -> xr.Dataset:
+    """The bearings' results (Datasets or their :class:`ResultArrays`) stacked along a new
+    ``bearing`` dimension: every data variable gains it, a coordinate only where the bearings
+    differ; attributes that differ are dropped. ``extra_coords`` and ``extra_data`` (name:
+    xarray.Variable) are added in the same build.
+
+    The Dataset is assembled from the bearings' arrays as the public ``xr.Dataset(data, coords)``
+    would make it, without its merge and alignment
+    (:func:`solver.results.dataset.direct_dataset`): a dimension coordinate is the one of the
+    bearing with the most labels (its index kept when it has one), the set's own get theirs."""
+    tables = [_arrays(result) for result in results]
+    first = tables[0]
     data = {}
-    for name in first.data_vars:
-        var = tables[0][name]
-        values = _stacked_values([table[name].values for table in tables])
-        data[name] = _variable(("bearing", *var.dims), values, var.attrs)
+    for name, (dims, _, attrs) in first.data.items():
+        values = _stacked_values([np.asarray(table.data[name][1]) for table in tables])
+        data[name] = raw_variable(("bearing", *dims), values, attrs)
     coords = {}
-    kept_indexes = {}
-    for name in first.coords:
-        var = tables[0][name]
-        values = [table[name].values for table in tables]
-        if name in first.dims:
-            longest = max(datasets, key=lambda ds, n=name: ds.variables[n].size)
-            coords[name] = longest.variables[name]
-            if name in longest.xindexes:
-                kept_indexes[name] = longest.xindexes[name]
-        elif all(np.array_equal(v, values[0]) for v in values[1:]):
-            coords[name] = var
+    made = {}
+    for name, (dims, values, attrs) in first.coords.items():
+        if dims == (name,):
+            longest = max(tables, key=lambda table, n=name: np.size(table.coords[n][1]))
+            coords[name] = longest.coords[name]
+            if name in longest.made:
+                made[name] = longest.made[name]
+            continue
+        all_values = [np.asarray(table.coords[name][1]) for table in tables]
+        if all(np.array_equal(v, all_values[0]) for v in all_values[1:]):
+            coords[name] = (dims, values, attrs)
         else:
-            coords[name] = _variable(("bearing", *var.dims), _stacked_values(values), var.attrs)
-    coords.update(extra_coords or {})
+            coords[name] = (("bearing", *dims), _stacked_values(all_values), attrs)
+    coord_variables, indexes = coordinate_variables(coords, made)
+    for name, var in (extra_coords or {}).items():
+        if var.dims != (name,):
+            coord_variables[name] = var
+            continue
+        index = label_index(name, tuple(var.values.tolist()), var.dtype.str)
+        indexes[name] = index
+        coord_variables.update(index.create_variables({name: var}))
     data.update(extra_data or {})
     attrs = {
         key: value
         for key, value in first.attrs.items()
-        if all(key in ds.attrs and _same(ds.attrs[key], value) for ds in datasets[1:])
+        if all(key in table.attrs and _same(table.attrs[key], value) for table in tables[1:])
     }
-    coord_variables, indexes = {}, {}
-    for name, var in coords.items():
-        if var.dims != (name,):
-            coord_variables[name] = var
-            continue
-        index = kept_indexes.get(name)
-        if index is None:
-            index = PandasIndex.from_variables({name: var}, options={})
-        indexes[name] = index
-        coord_variables.update(index.create_variables({name: var}))
     return direct_dataset(data, coord_variables, indexes, attrs)
 
 
@@ -297,35 +302,37 @@ def _same(a, b) -> bool:
 
 def _var(name, values):
     spec = SET_VARIABLES[name]
-    return _variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
+    return raw_variable(spec.dims, np.asarray(values, dtype=float), spec.attrs())
 
 
-def _race_values(variable, column) -> np.ndarray:
-    """The values of ``variable`` (an xarray Variable with a ``race`` dimension) at the race
-    index ``column``, as floats."""
-    axis = variable.dims.index("race")
-    return np.take(np.asarray(variable.values, float), column, axis=axis)
-
-
-def mean_loaded_contact_angle(bearing_datasets, race: str) -> np.ndarray:
+def mean_loaded_contact_angle(bearing_results, race: str) -> np.ndarray:
     """The mean contact angle [degree] of the loaded ``race`` contacts (:func:`loaded_mask`) of
-    each bearing's single-bearing Dataset; NaN for a bearing without a loaded contact there."""
-    out = np.full(len(bearing_datasets), np.nan)
-    for index, one in enumerate(bearing_datasets):
-        # the raw variables (a DataArray's .sel would build coordinates and indexes per call)
-        table = one.variables
-        column = list(table["race"].values).index(race)
-        angle = _race_values(table["contact_angle"], column)
-        loaded = loaded_mask(_race_values(table["contact_load"], column), angle)
+    each bearing's single-bearing result (a Dataset or its :class:`ResultArrays`); NaN for a
+    bearing without a loaded contact there."""
+    out = np.full(len(bearing_results), np.nan)
+    for index, result in enumerate(bearing_results):
+        table = _arrays(result)
+        column = list(np.asarray(table.coords["race"][1])).index(race)
+        angle = _race_values(table.data["contact_angle"], column)
+        loaded = loaded_mask(_race_values(table.data["contact_load"], column), angle)
         if loaded.any():
             out[index] = float(np.mean(angle[loaded]))
     return out
 
 
-def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.Dataset:
+def _race_values(parts, column) -> np.ndarray:
+    """The values of the data variable ``parts`` ((dims, values, attrs), with a ``race``
+    dimension) at the race index ``column``, as floats."""
+    dims, values, _ = parts
+    return np.take(np.asarray(values, float), column, axis=dims.index("race"))
+
+
+def set_dataset(bearing_set, state, bearing_results, applied, case_text) -> xr.Dataset:
     """The set's Dataset from its :class:`.bearing_set.SetSolution` ``state``, the bearings'
-    single-bearing Datasets (each at its own operating point), the external loads ``applied``
-    (Fx, Fy, Fz, My, Mz at the load point, shaft frame) and the case text."""
+    single-bearing results (each at its own operating point; Datasets or, cheaper, their
+    :class:`ResultArrays`), the external loads ``applied`` (Fx, Fy, Fz, My, Mz at the load point,
+    shaft frame) and the case text."""
+    bearing_results = [_arrays(result) for result in bearing_results]
     names = [m.name for m in state.members]
     set_coords = {
         "bearing": xr.Variable(
@@ -382,10 +389,10 @@ def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.
             "bearing_tilt_stiffness", 0.5 * (state.stiffness[:, 3, 3] + state.stiffness[:, 4, 4])
         ),
         "bearing_inner_contact_angle": _var(
-            "bearing_inner_contact_angle", mean_loaded_contact_angle(bearing_datasets, "inner")
+            "bearing_inner_contact_angle", mean_loaded_contact_angle(bearing_results, "inner")
         ),
         "bearing_outer_contact_angle": _var(
-            "bearing_outer_contact_angle", mean_loaded_contact_angle(bearing_datasets, "outer")
+            "bearing_outer_contact_angle", mean_loaded_contact_angle(bearing_results, "outer")
         ),
         "axial_stiffness": _var("axial_stiffness", k[0, 0]),
         "radial_stiffness": _var("radial_stiffness", 0.5 * (k[1, 1] + k[2, 2])),
@@ -403,7 +410,7 @@ def set_dataset(bearing_set, state, bearing_datasets, applied, case_text) -> xr.
         data["radial_load_share"] = _var(
             "radial_load_share", -(reactions[:, 1:3] @ direction) / radial
         )
-    ds = stack_bearings(bearing_datasets, set_coords, data)
+    ds = stack_bearings(bearing_results, set_coords, data)
     ds.attrs.update(
         {
             "bearing_set": bearing_set.describe(),

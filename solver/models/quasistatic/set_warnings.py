@@ -34,6 +34,30 @@ def bearing_result(ds, index: int):
     return one.isel(ball=slice(0, count))
 
 
+def set_spring_preload(ds) -> dict | None:
+    """The spring preload of a bearing set's result (results-schema.md), None without one.
+
+    A dynamic run (``spring_shift`` over ``time``): ``spring_force_N`` (the constant spring
+    force), ``spring_shift_m`` (the floating outer rings' shift w, mean over the set's analysed
+    window, the latest of the bearings' ``analysis_start_time``) and ``spring_shift_span_m`` (its
+    peak to peak there). A quasi-static result: ``spring_shift_m`` (its solved w, which is 0
+    without a spring preload: None then); its spring force is the case's
+    ``set.preload.force_N``, named in ``attrs["bearing_set"]``, not a variable."""
+    if "spring_shift" not in ds:
+        return None
+    shift = ds["spring_shift"]
+    if "time" not in shift.dims:
+        value = float(shift)
+        return {"spring_shift_m": value} if value != 0.0 else None
+    start = float(ds["analysis_start_time"].max())
+    window = shift.sel(time=slice(start, None)).values
+    return {
+        "spring_force_N": float(ds["spring_force"]),
+        "spring_shift_m": float(window.mean()),
+        "spring_shift_span_m": float(window.max() - window.min()),
+    }
+
+
 def _set_energy_check(ds) -> list[str]:
     """The warning of a dynamic set whose energy-balance residual (the whole set's, over the
     analysed window) exceeds :data:`solver.results.energy.RESIDUAL_LIMIT`."""

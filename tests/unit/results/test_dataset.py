@@ -200,7 +200,7 @@ def test_builder_refuses_dimensions_that_differ_from_the_registry():
 
 def test_builder_gives_the_dataset_of_xarrays_public_constructor(combined):
     """The builder assembles a result from its finished Variables with xarray's own direct
-    constructor (solver.results.dataset._dataset): the result is the Dataset that the public
+    constructor (solver.results.dataset.direct_dataset): the result is the Dataset that the public
     ``xr.Dataset(data_vars, coords)`` makes of the same variables, attributes, order and indexes
     included (kept here in case a new xarray changes what the direct constructor does)."""
     public = assert_public_constructor_makes(combined)
