@@ -29,14 +29,26 @@ def services(tmp_path):
     s.shutdown()
 
 
-@pytest.fixture
-def two(services):
-    apps = [RacetraceApp(trame_server(), render=False, services=services) for _ in range(2)]
+def _sessions(services, count):
+    apps = [RacetraceApp(trame_server(), render=False, services=services) for _ in range(count)]
     for a in apps:
         a.start(DEFAULT_CASE, play=False)
     yield apps
     for a in apps:
         a.shutdown()
+
+
+@pytest.fixture
+def two(services):
+    """Two sessions on the same services (the tests of what one session sees of the other)."""
+    yield from _sessions(services, 2)
+
+
+@pytest.fixture
+def one(services):
+    """One session on the services (the tests of a single session: a session costs about a
+    second of CPU to start)."""
+    yield from _sessions(services, 1)
 
 
 def _wait(app, timeout=120.0):
@@ -124,8 +136,8 @@ def test_a_session_sees_runs_saved_by_another(two, monkeypatch):
         {"fv_ball_count": ["12"]},
     ],
 )
-def test_crafted_client_values_never_crash_a_handler(two, values):
-    a, _ = two
+def test_crafted_client_values_never_crash_a_handler(one, values):
+    (a,) = one
     label = a.state.result_label
     _set(a, **values)  # must not raise
     assert a.state.result_label == label  # the result on show stays
@@ -134,8 +146,8 @@ def test_crafted_client_values_never_crash_a_handler(two, values):
     assert a.state.frame_time.strip().startswith("t =")
 
 
-def test_crafted_values_do_not_stop_the_animation(two):
-    a, _ = two
+def test_crafted_values_do_not_stop_the_animation(one):
+    (a,) = one
     a.clients = 1  # as if a browser were connected
 
     async def play():
@@ -154,10 +166,10 @@ def test_crafted_values_do_not_stop_the_animation(two):
     assert moved and stopped
 
 
-def test_case_download_follows_edits(two):
+def test_case_download_follows_edits(one):
     import urllib.parse
 
-    a, _ = two
+    (a,) = one
     assert "Fr-300-N" in a.state.case_file_name
     original = urllib.parse.unquote(a.state.case_toml_href)
     assert "300 N radial" in original  # the picked case's own title, not edited
@@ -169,8 +181,8 @@ def test_case_download_follows_edits(two):
     assert 'title = "my own title"' in urllib.parse.unquote(a.state.case_toml_href)
 
 
-def test_invalid_form_says_why_run_is_off_and_marks_the_result_out_of_date(two):
-    a, _ = two
+def test_invalid_form_says_why_run_is_off_and_marks_the_result_out_of_date(one):
+    (a,) = one
     assert a.state.run_blocked == "" and a.state.result_stale is False
     _set(a, fv_ball_count="0")
     assert a.state.run_disabled
@@ -181,9 +193,9 @@ def test_invalid_form_says_why_run_is_off_and_marks_the_result_out_of_date(two):
     assert a.state.run_note == a.state.run_blocked and not a.state.busy
 
 
-def test_run_on_a_result_outside_the_model_asks_first(two, monkeypatch):
+def test_run_on_a_result_outside_the_model_asks_first(one, monkeypatch):
     monkeypatch.setattr(runner_module, "DYNAMIC_JOB", QUASISTATIC_JOB)
-    a, _ = two
+    (a,) = one
     _set(a, fv_axial_load_N="1e9")
     a.form.preview_now()
     assert a.state.result_warnings and not a.state.result_stale
@@ -195,16 +207,16 @@ def test_run_on_a_result_outside_the_model_asks_first(two, monkeypatch):
     _wait(a)
 
 
-def test_upload_errors_show_in_the_status(two):
-    a, _ = two
+def test_upload_errors_show_in_the_status(one):
+    (a,) = one
     _set(a, uploaded_case={"name": "big.toml", "content": b"#" * (1024 * 1024 + 1)})
     assert a.state.status == "error: upload refused: big.toml is too large"
     _set(a, uploaded_case={"name": "bad.toml", "content": b"ball_count = ="})
     assert a.state.status.startswith("error: upload bad.toml is not a valid case")
 
 
-def test_opening_a_corrupt_run_says_so_in_the_status(two):
-    a, _ = two
+def test_opening_a_corrupt_run_says_so_in_the_status(one):
+    (a,) = one
     saved = a.store.save(a.result.dataset, a.form.case.to_toml(), "to be damaged")
     (a.store.path(saved.run_id) / "result.nc").write_bytes(b"not a netcdf file")
     a.runs.refresh()
@@ -213,8 +225,8 @@ def test_opening_a_corrupt_run_says_so_in_the_status(two):
     assert a.state.result_label == "quasi-static preview"  # the result on show stays
 
 
-def test_cancel_right_after_run_saves_nothing(two):
-    a, _ = two
+def test_cancel_right_after_run_saves_nothing(one):
+    (a,) = one
     _set(a, fv_shaft_revolutions="0.3")
     a.runs.run()
     a.runs.cancel()
@@ -223,12 +235,12 @@ def test_cancel_right_after_run_saves_nothing(two):
     assert a.store.list() == [] and a.state.runs == []
 
 
-def test_a_preview_still_on_its_way_does_not_overwrite_a_run(two, monkeypatch):
+def test_a_preview_still_on_its_way_does_not_overwrite_a_run(one, monkeypatch):
     """An edit schedules a preview; Run is pressed and cancelled before that preview arrives: the
     late preview is dropped and does not replace the run's final status."""
     from app.components import case_form
 
-    a, _ = two
+    (a,) = one
     _set(a, fv_shaft_revolutions="0.3")
     slow = case_form.solve_preview
 
@@ -265,8 +277,8 @@ def test_a_preview_still_on_its_way_does_not_overwrite_a_run(two, monkeypatch):
     assert a.state.status.endswith("cancelled"), a.state.status
 
 
-def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(two):
-    a, _ = two
+def test_server_stop_mid_run_saves_the_partial_run_marked_incomplete(one):
+    (a,) = one
     _set(a, fv_shaft_revolutions="100")
     a.runs.run()
     end = time.monotonic() + 300

@@ -96,7 +96,7 @@ def test_a_vanished_browser_and_a_stop_leave_no_traceback(tmp_path, stop):
         else:  # Ctrl-C in a terminal signals every process of the foreground group
             os.killpg(proc.pid, signal.SIGINT)
         assert proc.wait(timeout=120) == 0
-        time.sleep(2)  # the session processes write their last lines
+        _assert_all_gone(proc.pid)  # the session processes have written their last lines
     finally:
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)

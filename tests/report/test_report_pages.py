@@ -52,34 +52,46 @@ CHART_FRAMES = """() => {
 }"""
 
 
-def _visit(path: Path, check, screenshot: str):
-    """Open ``path`` offline at PAGE_WIDTH, wait for its charts, run ``check(page, console)``
-    and save a full-page screenshot as ``screenshot``."""
+@pytest.fixture(scope="module")
+def chromium():
+    """One headless Chromium for the module; each visit opens a context of its own."""
     with playwright.sync_playwright() as p:
         browser = p.chromium.launch(executable_path=CHROMIUM, args=LAUNCH_ARGS)
-        try:
-            context = browser.new_context(
-                offline=True, viewport={"width": PAGE_WIDTH, "height": 900}
-            )
-            page = context.new_page()
-            console: list[str] = []
-            page.on("console", lambda message: console.append(message.text))
-            page.goto(path.as_uri(), timeout=180_000)
-            page.wait_for_function(f"({CHART_ROWS})().some((r) => r > 0)", timeout=180_000)
-            page.wait_for_timeout(3000)
-            check(page, console)
-            SHOTS.mkdir(parents=True, exist_ok=True)
-            page.screenshot(path=str(SHOTS / screenshot), full_page=True, timeout=120_000)
-        finally:
-            browser.close()
+        yield browser
+        browser.close()
 
 
-def test_run_report_draws_without_framebuffer_warnings(tmp_path):
-    from PIL import Image
-
+@pytest.fixture(scope="module")
+def run_report(tmp_path_factory):
+    """The run report of the shipped lesson result :data:`LESSON`, built once for the module (the
+    tests only read it)."""
     from report import build_report
 
-    build_report(LESSON, tmp_path / "run.html")
+    path = tmp_path_factory.mktemp("run-report") / "run.html"
+    build_report(LESSON, path)
+    return path
+
+
+def _visit(chromium, path: Path, check, screenshot: str):
+    """Open ``path`` offline at PAGE_WIDTH in a new context of ``chromium``, wait for its charts,
+    run ``check(page, console)`` and save a full-page screenshot as ``screenshot``."""
+    context = chromium.new_context(offline=True, viewport={"width": PAGE_WIDTH, "height": 900})
+    try:
+        page = context.new_page()
+        console: list[str] = []
+        page.on("console", lambda message: console.append(message.text))
+        page.goto(path.as_uri(), timeout=180_000)
+        page.wait_for_function(f"({CHART_ROWS})().some((r) => r > 0)", timeout=180_000)
+        page.wait_for_timeout(3000)
+        check(page, console)
+        SHOTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(SHOTS / screenshot), full_page=True, timeout=120_000)
+    finally:
+        context.close()
+
+
+def test_run_report_draws_without_framebuffer_warnings(chromium, run_report):
+    from PIL import Image
 
     def check(page, console):
         canvas = page.locator("canvas").first  # the vtk.js scene comes first on a run report
@@ -95,10 +107,10 @@ def test_run_report_draws_without_framebuffer_warnings(tmp_path):
         heading = page.locator("h1").first.inner_text()
         assert heading == "racetrace review: 20 000 rpm, 200 N axial + 550 N radial"
 
-    _visit(tmp_path / "run.html", check, "run-report.png")
+    _visit(chromium, run_report, check, "run-report.png")
 
 
-def test_study_report_table_fits_the_page(tmp_path):
+def test_study_report_table_fits_the_page(chromium, tmp_path):
     from report import build_report
 
     build_report(SEED_STUDY, tmp_path / "study.html")
@@ -114,7 +126,7 @@ def test_study_report_table_fits_the_page(tmp_path):
         rows = table.locator("tbody tr:not(.rt-sweep)").count()
         assert rows == 30
 
-    _visit(tmp_path / "study.html", check, "study-report.png")
+    _visit(chromium, tmp_path / "study.html", check, "study-report.png")
 
 
 @pytest.fixture(scope="module")
@@ -140,7 +152,7 @@ def point_study(tmp_path_factory):
     return path
 
 
-def test_study_report_links_each_point_to_its_own_report(point_study, tmp_path):
+def test_study_report_links_each_point_to_its_own_report(chromium, point_study, tmp_path):
     from report import build_report
     from report.build import point_report_path
 
@@ -159,13 +171,13 @@ def test_study_report_links_each_point_to_its_own_report(point_study, tmp_path):
         case = page.get_by_text("(study point p0002)").first.inner_text()
         assert "10 000 rpm, 500 N axial + 400 N radial" in case
 
-    _visit(second, check, "point-report.png")
+    _visit(chromium, second, check, "point-report.png")
 
     def links(page, console):  # noqa: ARG001 - the check's interface
         link = page.locator("table.rt-points a", has_text="p0002")
         assert link.get_attribute("href") == "study.points/p0002.quasistatic.html"
 
-    _visit(output, links, "point-study-report.png")
+    _visit(chromium, output, links, "point-study-report.png")
 
 
 def _colour_pixels(image: np.ndarray, colour: str, tolerance: float = 40.0) -> int:
@@ -181,7 +193,7 @@ def _on_white(colour: str, alpha: float) -> str:
 
 
 @pytest.mark.parametrize("study", SHIPPED_STUDIES, ids=lambda p: p.name.split(".")[0])
-def test_study_report_charts_draw_their_lines(study, tmp_path):
+def test_study_report_charts_draw_their_lines(chromium, study, tmp_path):
     """In every chart of a shipped study's report, the plot area holds pixels of both races'
     colours (the lines and markers of the inner and outer race), not an empty frame; in a set
     study's, the colour of each line the chart draws: each bearing's and the set's (its
@@ -234,7 +246,7 @@ def test_study_report_charts_draw_their_lines(study, tmp_path):
                 empty.append((frame["title"], counts))
         assert empty == [], f"charts without their lines: {empty}"
 
-    _visit(tmp_path / "study.html", check, f"study-report-{study.name.split('.')[0]}.png")
+    _visit(chromium, tmp_path / "study.html", check, f"study-report-{study.name.split('.')[0]}.png")
 
 
 #: Most pages a printed run report of a lesson result may take (A4): five on a 1300-px page
@@ -247,14 +259,12 @@ def _pdf_pages(data: bytes) -> int:
     return len(re.findall(rb"/Type\s*/Page\b", data))
 
 
-def test_run_report_shows_a_pressure_scale_and_prints_in_few_pages(tmp_path):
+def test_run_report_shows_a_pressure_scale_and_prints_in_few_pages(chromium, run_report):
     """On screen a colour scale in GPa sits with the 3-D view, spanning the scene's painted
     pressures, and the "..." stays hidden; printed (A4 PDF, kept as an artefact) the report takes
     few pages, the live view replaced by its still."""
     import solver
-    from report import build_report
 
-    build_report(LESSON, tmp_path / "run.html")
     ds = solver.load_dataset(LESSON)
     loaded = ds["max_pressure"].where(ds["contact_load"] > 0)
     largest = float(loaded.max()) * 1e-9  # GPa
@@ -283,4 +293,4 @@ def test_run_report_shows_a_pressure_scale_and_prints_in_few_pages(tmp_path):
         assert not page.locator("canvas").first.is_visible()  # the live view is not printed
         page.emulate_media(media="screen")
 
-    _visit(tmp_path / "run.html", check, "run-report-scale.png")
+    _visit(chromium, run_report, check, "run-report-scale.png")
