@@ -461,41 +461,55 @@ def contacts_now_legend() -> dict:
     }
 
 
+NOW_SHAPE = "contact now"  # the name of the raceway map's template shape of a contact now
+
+
+def contacts_now_shape() -> dict:
+    """The raceway map's template shape of a contact now (plotly JSON, in its layout's template,
+    sent with the figure): an open circle of :data:`NOW_MARKER`'s size in pixels, colour and line.
+    Hidden until a shape of the overlay names it (``templateitemname``) and places it."""
+    radius = NOW_MARKER["size"] / 2.0
+    return {
+        "name": NOW_SHAPE,
+        "type": "circle",
+        "xref": "x",
+        "yref": "y",
+        "xsizemode": "pixel",
+        "ysizemode": "pixel",
+        "x0": -radius,
+        "x1": radius,
+        "y0": -radius,
+        "y1": radius,
+        "line": {"color": NOW_MARKER["color"], "width": NOW_MARKER["line"]["width"]},
+        "visible": False,
+    }
+
+
 def current_contact_overlay(source: FrameSource, current: int, balls=None) -> dict:
     """The raceway map's overlay at frame ``current`` (of ``balls``, default all): an open circle
-    at each contact now, the size, colour and line of :data:`NOW_MARKER`, as plotly shapes sized in
-    pixels (plain JSON, no plotly figure). Shapes, not a trace: moving them redraws the shapes
-    only, a trace's new points make plotly redraw every trace of the map (the WebGL samples)."""
-    radius = NOW_MARKER["size"] / 2.0
-    line = {"color": NOW_MARKER["color"], "width": NOW_MARKER["line"]["width"]}
-    shapes = []
-    for x, y in _contacts_now(source, current, balls):
-        for xk, yk in zip(x.tolist(), y.tolist(), strict=True):
-            shapes.append(
-                {
-                    "type": "circle",
-                    "xref": "x",
-                    "yref": "y",
-                    "xsizemode": "pixel",
-                    "ysizemode": "pixel",
-                    "xanchor": xk,
-                    "yanchor": yk,
-                    "x0": -radius,
-                    "x1": radius,
-                    "y0": -radius,
-                    "y1": radius,
-                    "line": line,
-                }
-            )
-    return {"data": [], "shapes": shapes}
+    at each contact now, a shape that places the map's template shape
+    (:func:`contacts_now_shape`) there (plain JSON, no plotly figure). Shapes, not a trace: moving
+    them redraws the shapes only, where a trace's new points make plotly redraw every trace of
+    the map (the WebGL samples)."""
+    return {
+        "data": [],
+        "shapes": [
+            {"templateitemname": NOW_SHAPE, "visible": True, "xanchor": xk, "yanchor": yk}
+            for x, y in _contacts_now(source, current, balls)
+            for xk, yk in zip(x.tolist(), y.tolist(), strict=True)
+        ],
+    }
 
 
 def raceway_map_base(source: FrameSource, **options) -> dict:
     """The raceway map that follows the time as the app sends it (plotly JSON):
-    :func:`raceway_map_figure` of ``options`` without the current frame, and the legend entry of
-    the contacts now, whose circles :func:`current_contact_overlay` draws."""
+    :func:`raceway_map_figure` of ``options`` without the current frame, the legend entry of the
+    contacts now and the template shape of their circles, which :func:`current_contact_overlay`
+    places."""
     base = json.loads(raceway_map_figure(source, **options).to_json())
     base["data"].append(contacts_now_legend())
+    template = base["layout"].setdefault("template", {}).setdefault("layout", {})
+    template["shapes"] = [contacts_now_shape()]
     return base
 
 

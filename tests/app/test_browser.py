@@ -95,10 +95,10 @@ def test_page_loads_and_the_view_animates(page):
     # the charts that follow the time get their figure once and the marks of each frame apart,
     # merged by the page: the time marker moves while playing; an open circle at each contact now
     marks = """() => {
-      const layout = (id) => document.querySelector(`#${id} .js-plotly-plot`).layout;
+      const shapes = (id) => document.querySelector(`#${id} .js-plotly-plot`)._fullLayout.shapes;
       return {
-        marker: (layout('chart-contact-angle').shapes || []).map(s => s.x0),
-        circles: (layout('chart-raceway-map').shapes || []).filter(s => s.type === 'circle').length,
+        marker: shapes('chart-contact-angle').map(s => s.x0),
+        circles: shapes('chart-raceway-map').filter(s => s.type === 'circle' && s.visible).length,
       };
     }"""
     before = page.evaluate(marks)

@@ -551,14 +551,19 @@ def test_a_following_chart_and_its_overlay_show_what_the_whole_figure_showed(dyn
                 assert circle["xanchor"] == pytest.approx(x) and circle["yanchor"] == pytest.approx(
                     y
                 )
-                assert (circle["type"], circle["xsizemode"], circle["ysizemode"]) == (
-                    "circle",
-                    "pixel",
-                    "pixel",
-                )
-                assert circle["x1"] - circle["x0"] == now[0].marker.size  # the marker's diameter
-                assert circle["y1"] - circle["y0"] == now[0].marker.size
-                assert circle["line"] == {
-                    "color": now[0].marker.color,
-                    "width": now[0].marker.line.width,
-                }
+                assert circle["templateitemname"] == charts.NOW_SHAPE and circle["visible"]
+            # each places the figure's template shape: an open circle of the marker's size in
+            # pixels, colour and line
+            (shape,) = shown["layout"]["template"]["layout"]["shapes"]
+            assert (shape["name"], shape["type"], shape["visible"]) == (
+                charts.NOW_SHAPE,
+                "circle",
+                False,
+            )
+            assert (shape["xsizemode"], shape["ysizemode"]) == ("pixel", "pixel")
+            assert shape["x1"] - shape["x0"] == now[0].marker.size  # the marker's diameter
+            assert shape["y1"] - shape["y0"] == now[0].marker.size
+            assert shape["line"] == {
+                "color": now[0].marker.color,
+                "width": now[0].marker.line.width,
+            }

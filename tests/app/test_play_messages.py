@@ -86,7 +86,11 @@ def test_while_playing_the_charts_get_the_marks_of_each_frame_not_their_figures(
         map_shown = charts.merge_overlay(s.chart_raceway_map, s.chart_raceway_map_now)
         now = charts.current_contact_traces(source, frame, None)
         points = sorted((x, y) for t in now for x, y in zip(t.x, t.y, strict=True))
-        circles = [c for c in map_shown["layout"]["shapes"] if c["type"] == "circle"]
+        circles = [
+            c
+            for c in map_shown["layout"]["shapes"]
+            if c.get("templateitemname") == charts.NOW_SHAPE
+        ]
         anchors = sorted((c["xanchor"], c["yanchor"]) for c in circles)
         np.testing.assert_allclose(anchors, points)
         # an option changes the figure: sent again, once

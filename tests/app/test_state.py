@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from app import runner as runner_module
-from app.charts import merge_overlay
+from app.charts import NOW_SHAPE, merge_overlay
 from app.runner import QUASISTATIC_JOB
 from app.state import DEFAULT_CASE, RacetraceApp
 from tests.helpers.app_session import trame_server
@@ -61,7 +61,8 @@ def test_opens_on_the_default_case_solved(app):
     # both raceways, the legend of where the balls are now, and a circle at each contact now
     shown = _shown(s, "raceway_map")
     assert [t["name"] for t in shown["data"]] == ["inner raceway", "outer raceway", "contacts now"]
-    assert sum(shape["type"] == "circle" for shape in shown["layout"]["shapes"]) > 0
+    circles = [c for c in shown["layout"]["shapes"] if c.get("templateitemname") == NOW_SHAPE]
+    assert len(circles) > 0
     assert _length(s.chart_raceway_map["data"][0]["x"]) > 0
     # every case-file key has a form field named after its last segment
     assert {f["name"] for f in s.form} >= {
