@@ -8,6 +8,8 @@ in rev/min. ``HELP`` holds a plain-language explanation of each chart, for teach
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import plotly.graph_objects as go
 import xarray as xr
@@ -99,8 +101,50 @@ def _layout(fig: go.Figure, title: str, xtitle: str, ytitle: str) -> go.Figure:
     return fig
 
 
+# ---- what follows the time: overlays -----------------------------------------------------------
+# A chart that follows the time is sent as two parts: its figure without the current frame (the
+# base, sent again only when the result or an option changes) and a small overlay of what marks
+# the current frame (``{"data": [traces], "shapes": [shapes]}``, plain JSON), sent with the frames.
+# The page shows ``merge_overlay(base, overlay)`` (the same merge: ``static/racetrace-charts.js``).
+
+
+def empty_overlay() -> dict:
+    """An overlay that marks nothing."""
+    return {"data": [], "shapes": []}
+
+
+def merge_overlay(base: dict, overlay: dict | None) -> dict:
+    """The figure the page shows (plotly JSON): ``base``'s traces then the ``overlay``'s, and
+    ``base``'s layout with the overlay's shapes after its own."""
+    overlay = overlay or empty_overlay()
+    layout = dict(base.get("layout", {}))
+    if overlay.get("shapes"):
+        layout["shapes"] = [*layout.get("shapes", []), *overlay["shapes"]]
+    return {**base, "data": [*base.get("data", []), *overlay.get("data", [])], "layout": layout}
+
+
+def time_marker_shape(x_ms: float) -> dict:
+    """The dotted vertical line at time ``x_ms`` (ms) of a chart against time (plotly JSON)."""
+    return {
+        "line": {"color": "#444", "dash": "dot", "width": 1},
+        "type": "line",
+        "x0": x_ms,
+        "x1": x_ms,
+        "xref": "x",
+        "y0": 0,
+        "y1": 1,
+        "yref": "y domain",
+    }
+
+
+def time_marker_overlay(source: FrameSource, current: int) -> dict:
+    """The overlay of a chart against time at frame ``current`` of ``source``: its time marker."""
+    t_ms = float(source.times[min(max(int(current), 0), source.n_frames - 1)] * 1e3)
+    return {"data": [], "shapes": [time_marker_shape(t_ms)]}
+
+
 def _time_marker(fig: go.Figure, x: float) -> None:
-    fig.add_vline(x=x, line_width=1, line_dash="dot", line_color="#444")
+    fig.add_shape(time_marker_shape(x))
 
 
 def padded_range(values, min_span: float, pad: float = 0.08) -> list[float] | None:
@@ -360,32 +404,113 @@ def _shoulder_lines(fig: go.Figure, shoulders) -> None:
     )
 
 
+# the raceway map's open circles at the contacts now (a plotly marker: its size is a diameter, px)
+NOW_MARKER = {"color": "#000000", "line": {"width": 2}, "size": 9, "symbol": "circle-open"}
+
+
+def _contacts_now(source: FrameSource, current: int, balls=None) -> list[tuple]:
+    """Raceway azimuth (degree, in [0, 360)) and contact angle (degree) of the loaded contacts of
+    frame ``current`` (of ``balls``, default all): an (x, y) pair of arrays per race."""
+    f = source.frame(current)
+    chosen = None if balls is None else np.asarray(list(balls), int)
+    out = []
+    for race in (INNER, OUTER):
+        ok = f.loaded[:, race].copy()
+        if chosen is not None:
+            ok &= np.isin(np.arange(ok.size), chosen)
+        out.append(
+            (
+                np.mod(np.degrees(f.raceway_azimuth[ok, race]), 360.0),
+                np.degrees(f.contact_angle[ok, race]),
+            )
+        )
+    return out
+
+
 def current_contact_traces(source: FrameSource, current: int, balls=None) -> list:
     """Open circles at the contacts of frame ``current`` (of ``balls``, default all), one trace
     per race, for the raceway map."""
-    f = source.frame(current)
     traces = []
-    for race in (INNER, OUTER):
-        ok = f.loaded[:, race].copy()
-        if balls is not None:
-            ok &= np.isin(np.arange(ok.size), np.asarray(list(balls), int))
+    for race, (x, y) in zip((INNER, OUTER), _contacts_now(source, current, balls), strict=True):
         traces.append(
             go.Scatter(
-                x=np.mod(np.degrees(f.raceway_azimuth[ok, race]), 360.0),
-                y=np.degrees(f.contact_angle[ok, race]),
+                x=x,
+                y=y,
                 mode="markers",
                 name="contacts now" if race == INNER else f"{RACES[race]} now",
-                marker={
-                    "size": 9,
-                    "symbol": "circle-open",
-                    "color": "#000000",
-                    "line": {"width": 2},
-                },
+                marker=NOW_MARKER,
                 hoverinfo="skip",
                 showlegend=race == INNER,
             )
         )
     return traces
+
+
+def contacts_now_legend() -> dict:
+    """The raceway map's legend entry of the contacts now (plotly JSON: a trace with no points;
+    :func:`current_contact_overlay` draws the circles)."""
+    return {
+        "hoverinfo": "skip",
+        "marker": NOW_MARKER,
+        "mode": "markers",
+        "name": "contacts now",
+        "showlegend": True,
+        "x": [None],
+        "y": [None],
+        "type": "scatter",
+    }
+
+
+NOW_SHAPE = "contact now"  # the name of the raceway map's template shape of a contact now
+
+
+def contacts_now_shape() -> dict:
+    """The raceway map's template shape of a contact now (plotly JSON, in its layout's template,
+    sent with the figure): an open circle of :data:`NOW_MARKER`'s size in pixels, colour and line.
+    Hidden until a shape of the overlay names it (``templateitemname``) and places it."""
+    radius = NOW_MARKER["size"] / 2.0
+    return {
+        "name": NOW_SHAPE,
+        "type": "circle",
+        "xref": "x",
+        "yref": "y",
+        "xsizemode": "pixel",
+        "ysizemode": "pixel",
+        "x0": -radius,
+        "x1": radius,
+        "y0": -radius,
+        "y1": radius,
+        "line": {"color": NOW_MARKER["color"], "width": NOW_MARKER["line"]["width"]},
+        "visible": False,
+    }
+
+
+def current_contact_overlay(source: FrameSource, current: int, balls=None) -> dict:
+    """The raceway map's overlay at frame ``current`` (of ``balls``, default all): an open circle
+    at each contact now, a shape that places the map's template shape
+    (:func:`contacts_now_shape`) there (plain JSON, no plotly figure). Shapes, not a trace: moving
+    them redraws the shapes only, where a trace's new points make plotly redraw every trace of
+    the map (the WebGL samples)."""
+    return {
+        "data": [],
+        "shapes": [
+            {"templateitemname": NOW_SHAPE, "visible": True, "xanchor": xk, "yanchor": yk}
+            for x, y in _contacts_now(source, current, balls)
+            for xk, yk in zip(x.tolist(), y.tolist(), strict=True)
+        ],
+    }
+
+
+def raceway_map_base(source: FrameSource, **options) -> dict:
+    """The raceway map that follows the time as the app sends it (plotly JSON):
+    :func:`raceway_map_figure` of ``options`` without the current frame, the legend entry of the
+    contacts now and the template shape of their circles, which :func:`current_contact_overlay`
+    places."""
+    base = json.loads(raceway_map_figure(source, **options).to_json())
+    base["data"].append(contacts_now_legend())
+    template = base["layout"].setdefault("template", {}).setdefault("layout", {})
+    template["shapes"] = [contacts_now_shape()]
+    return base
 
 
 def trajectory_metric_words(ds: xr.Dataset) -> str:

@@ -54,14 +54,19 @@ LOAD_AFTER_FIRST_FRAME = """
 
 
 class ChartFigure(AbstractElement):
-    """A plotly figure bound to the state key ``state_key`` (plotly JSON with data and layout)."""
+    """A plotly figure bound to the state key ``state_key`` (plotly JSON with data and layout);
+    ``overlay_key``: the state key of what marks the current frame on it (a chart that follows
+    the time: ``{"data": [traces], "shapes": [shapes]}``, :func:`app.charts.merge_overlay`),
+    merged with the figure by the page (``static/racetrace-charts.js``)."""
 
-    def __init__(self, state_key: str, **kwargs):
+    def __init__(self, state_key: str, overlay_key: str | None = None, **kwargs):
+        if overlay_key is not None:
+            kwargs["overlay"] = (overlay_key,)
         super().__init__(
             "racetrace-chart",
             data=(f"{state_key}.data",),
             layout=(f"{state_key}.layout",),
             **kwargs,
         )
-        self._attr_names += ["data", "layout", ("display_mode_bar", "displayModeBar")]
+        self._attr_names += ["data", "layout", "overlay", ("display_mode_bar", "displayModeBar")]
         self._event_names += ["click"]  # plotly's click on a point: $event.points[0] ...

@@ -28,7 +28,9 @@ browsers do) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``
   follower showed that index or a later one; median and largest per follower kind, the followers
   ever over 0.5 s, and the frames a follower never reached (the window must not wrap around the
   end of the run: 720 of the 100-revolution run's 18 000 frames in 30 s);
-- memory: proportional set size of the server's processes before and with the followers.
+- memory: proportional set size of the server's processes before and with the followers;
+- what a follower is sent: the bytes the first websocket follower read in the window, per second
+  and per played frame, and the state keys that made most of them (msgpack, uncompressed).
 
 ``--profile DIR``: py-spy (``pip install py-spy``) records the front and the presenter's session
 during the window with the followers, as collapsed stacks (``DIR/front.txt``, ``DIR/session.txt``).
@@ -270,7 +272,7 @@ async def measure(args, server: dict, info) -> int:
                 f"{base}/?follow={code}", headers={"Accept": "text/html"}
             ) as page:
                 assert page.status == 200, page.status
-            follower = WslinkClient()
+            follower = WslinkClient(count_keys=not followers)  # the first one counts its keys
             # the whole state (the scene of a 100-revolution run) for each: slow on a loaded machine
             await follower.connect(
                 follower_http,
@@ -304,6 +306,8 @@ async def measure(args, server: dict, info) -> int:
             memory_with = rss_mb(pid)
             for _, follower in followers:
                 follower.frames.clear()
+                follower.received = 0
+                follower.key_bytes.clear()
             wall0, mono0 = time.time(), time.monotonic()
             with_followers, t0 = await window(
                 args.seconds, pid, presenter, args.profile, alone.presenter_session()
@@ -342,6 +346,18 @@ async def measure(args, server: dict, info) -> int:
             f"({len(shown)} frame changes noted; frame {now_showing} at the end, the presenter's "
             f"{presenter_showing})"
         )
+        if followers:
+            first = followers[0][1]
+            keys = sorted(first.key_bytes.items(), key=lambda item: -item[1])
+            total = sum(first.key_bytes.values())
+            top = ", ".join(
+                f"{key} {size / args.seconds / 1e3:.1f} kB/s ({100 * size / total:.0f} %)"
+                for key, size in keys[:6]
+            )
+            print(
+                f"what a follower is sent: {first.received / args.seconds / 1e6:.3f} MB/s, "
+                f"{first.received / max(1, played) / 1e3:.1f} kB per played frame; by key: {top}"
+            )
         added = memory_with - memory_alone
         print(
             f"memory: {memory_alone:.0f} MB alone, {memory_with:.0f} MB with the followers "

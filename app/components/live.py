@@ -382,7 +382,9 @@ class Live(Component):
         and the raceway map's caption: the live inputs (of the newest chunk)."""
         s = self.state
         self.ctrl.show_live_inputs(self.window.chunks[-1])
-        s.chart_contact_angle = fig_json(charts.contact_angle_figure(self.source, None, index))
+        # the window slides with each chunk: the figure is sent again, and the time marker with it
+        s.chart_contact_angle = fig_json(charts.contact_angle_figure(self.source, None))
+        s.chart_contact_angle_now = charts.time_marker_overlay(self.source, index)
         band = band_thickness(self.window, self.inputs, "inner")
         s.live_band_inner = round(band, 5) if math.isfinite(band) else None
 

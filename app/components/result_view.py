@@ -7,8 +7,10 @@ State keys: ``frame``/``frame_max``/``frame_time`` (time and revolution counter)
 ``result_warnings``, ``open_panels`` (chart panels open on the page), scene options
 (``show_<layer>``, ``exaggeration``, ``ellipse_scale``, ``track_quantity``, ``track_whole_run``,
 ``trace_ball``, ``ball_items``, ``camera``), ``ball_legend`` (each ball's colour in the 3-D
-view and the raceway map: ``[{"ball": j, "colour": "#..."}]``), ``chart_help`` and the chart figures
-``chart_<name>`` (plotly JSON).
+view and the raceway map: ``[{"ball": j, "colour": "#..."}]``), ``chart_help``, the chart figures
+``chart_<name>`` (plotly JSON) and, for the charts that follow the time (``FOLLOWING_CHARTS``), the
+marks of the current frame on them, ``chart_<name>_now`` (an overlay the page merges with the
+figure: :func:`app.charts.merge_overlay`).
 
 A bearing set's result (a ``bearing`` dimension) is shown one bearing at a time: the 3-D view,
 the time controls and the single-bearing charts show the bearing chosen in the set panel
@@ -41,7 +43,11 @@ from .widgets import chart, checkbox, choices, icon_button, own_update, select
 log = logging.getLogger("racetrace.app")
 
 PLAY_FPS = 24.0  # animation ticks per second while playing
-CHART_FOLLOW_S = 1.0  # while playing, time-following charts refresh at most this often
+CHART_FOLLOW_S = 1.0  # while playing, the charts drawn for a frame refresh at most this often
+# while playing, the marks of the current frame on the charts that follow the time (the time
+# markers, the raceway map's contacts now: small overlays) follow at most this often (s; 0: each
+# frame)
+MARK_FOLLOW_S = 0.0
 CUTAWAY_HALF_WIDTH = math.radians(90.0)  # the outer ring is opened as a half shell on the load side
 MAX_EXAGGERATION = 1000.0
 MAX_SPEED = 1000  # frames per animation tick
@@ -63,6 +69,10 @@ CHARTS = (
     "compare_angle",
     "compare_load",
 )
+# the charts that follow the time: their figure (state ``chart_<name>``) is sent when the result or
+# an option changes, what marks the current frame on it in ``chart_<name>_now`` (an overlay,
+# app.charts.merge_overlay) with the frames
+FOLLOWING_CHARTS = ("contact_angle", "raceway_map", "cage_speed")
 
 
 class ShownResult(NamedTuple):
@@ -112,8 +122,7 @@ class ResultView(Component):
         self.quasistatic = None
         self.source: FrameSource | None = None
         self.facts = None  # app.teaching.Facts of the result on show
-        self._map_key = None  # what the cached whole-run raceway map shows
-        self._map_base = None  # its plotly JSON, without the marks of the current frame
+        self._chart_keys = {}  # what the figure sent of each chart that follows the time shows
         self._shoulders = None  # (inner, outer) shoulder latitudes (rad) of the result on show
         self._analysis_start = None  # start of the solver's analysed window (s)
         self.shown_case_text = None  # case TOML of the result on show
@@ -122,6 +131,7 @@ class ResultView(Component):
         self.animating_export = False  # an animation export is moving the scene's frames
         self._scene_key = None
         self._last_chart_update = 0.0
+        self._last_mark_update = 0.0
         self._play_task = None
         self._comparison_serial = -1  # result_serial of the quasi-static vs dynamic chart shown
 
@@ -157,6 +167,8 @@ class ResultView(Component):
         self.browser.init_state()
         for name in CHARTS:
             s[f"chart_{name}"] = {"data": [], "layout": {}}
+        for name in FOLLOWING_CHARTS:
+            s[f"chart_{name}_now"] = charts.empty_overlay()
 
     def bind(self) -> None:
         self.on_change("frame")(self._on_frame)
@@ -330,7 +342,7 @@ class ResultView(Component):
         from solver import geometry_from_result
         from viz.raceway import shoulder_angles
 
-        self._map_key = None
+        self._chart_keys.clear()
         self._shoulders = shoulder_angles(geometry_from_result(ds))
         try:
             self.state.raceway_metrics = charts.trajectory_metric_words(ds)
@@ -370,25 +382,57 @@ class ResultView(Component):
     def _on_map_options(self, **_):
         self.update_charts()
 
-    def _raceway_map(self, index: int, balls) -> dict:
-        """The whole-run raceway map (cached per result and options) with the contacts now."""
+    def _chart_figures(self, balls, open_panels: set) -> None:
+        """Send the figure of each chart that follows the time (those in the collapsible panels
+        while open) when what it shows has changed since it was sent: the result, the ball
+        (``balls``: a tuple of one, or None for every ball), the raceway map's options. The marks
+        of the current frame are not in it (:meth:`_chart_marks`)."""
         s = self.state
+        serial = int(s.result_serial)
         skip = bool(s.map_skip_startup) and self._analysis_start is not None
-        key = (int(s.result_serial), balls, str(s.map_colour), skip)
-        if key != self._map_key:
-            fig = charts.raceway_map_figure(
-                self.source,
-                balls=balls,
-                colour=str(s.map_colour),
-                start_time=self._analysis_start if skip else None,
-                shoulders=self._shoulders,
-            )
-            self._map_base, self._map_key = fig_json(fig), key
-        now = charts.current_contact_traces(self.source, index, balls)
-        import plotly.graph_objects as go
+        wanted = {
+            "contact_angle": (serial, balls),
+            "raceway_map": (serial, balls, str(s.map_colour), skip),
+        }
+        if "cage_speed" in open_panels:
+            wanted["cage_speed"] = (serial,)
+        for name, key in wanted.items():
+            if self._chart_keys.get(name) == key:
+                continue
+            if name == "contact_angle":
+                figure = fig_json(charts.contact_angle_figure(self.source, balls))
+            elif name == "raceway_map":
+                figure = charts.raceway_map_base(
+                    self.source,
+                    balls=balls,
+                    colour=str(s.map_colour),
+                    start_time=self._analysis_start if skip else None,
+                    shoulders=self._shoulders,
+                )
+            else:
+                figure = fig_json(charts.cage_speed_figure(self.source, self.dataset))
+            s[f"chart_{name}"] = figure
+            self._chart_keys[name] = key
 
-        marks = fig_json(go.Figure(data=now))["data"]
-        return {**self._map_base, "data": [*self._map_base["data"], *marks]}
+    def _chart_marks(self, index: int, balls, open_panels: set) -> None:
+        """The marks of frame ``index`` on the charts that follow the time: the time markers and
+        the raceway map's contacts now (small overlays, built without a plotly figure)."""
+        s, src = self.state, self.source
+        s.chart_contact_angle_now = charts.time_marker_overlay(src, index)
+        s.chart_raceway_map_now = charts.current_contact_overlay(src, index, balls)
+        if "cage_speed" in open_panels:
+            s.chart_cage_speed_now = charts.time_marker_overlay(src, index)
+        self._last_mark_update = time.monotonic()
+
+    def _chart_balls(self):
+        """The balls the charts show: a tuple of the ball chosen, or None for every ball."""
+        ball = self._trace_ball(self.state.trace_ball, self.source.ball_count)
+        return (ball,) if ball >= 0 else None
+
+    def _open_panels(self) -> set:
+        """The chart panels open on the page (``open_panels``)."""
+        panels = self.state.open_panels
+        return {p for p in panels if isinstance(p, str)} if isinstance(panels, list) else set()
 
     @staticmethod
     def _warnings_of(ds, case, set_warnings=None) -> list[str]:
@@ -606,31 +650,28 @@ class ResultView(Component):
             self.update_charts(index)
 
     def update_charts(self, index: int | None = None) -> None:
-        """Recompute the chart figures for frame ``index`` (default: the current frame).
+        """Bring the charts up to frame ``index`` (default: the current frame).
 
-        The two charts always on the page are recomputed every time; those in the collapsible
-        panels only while their panel is open (``open_panels``), since each figure costs 10-30 ms
-        and the preview must stay quick. Opening a panel brings its chart up to date.
+        A chart that follows the time gets the marks of the frame (an overlay) and its figure
+        only when what the figure shows changed (:meth:`_chart_figures`); a chart drawn for a
+        frame (load versus azimuth, the ellipses) is recomputed. The charts in the collapsible
+        panels are brought up to date only while their panel is open (``open_panels``), since
+        each figure costs 10-30 ms and the preview must stay quick. Opening a panel brings its
+        chart up to date.
         """
         if self.source is None:
             return
         src, s = self.source, self.state
         i = as_int(s.frame, 0) if index is None else index
         i = min(max(i, 0), src.n_frames - 1)
-        panels = s.open_panels
-        open_panels = (
-            {p for p in panels if isinstance(p, str)} if isinstance(panels, list) else set()
-        )
-        ball = self._trace_ball(s.trace_ball, src.ball_count)
-        balls = (ball,) if ball >= 0 else None  # None: every ball
-        s.chart_contact_angle = fig_json(charts.contact_angle_figure(src, balls, current=i))
-        s.chart_raceway_map = self._raceway_map(i, balls)
+        open_panels = self._open_panels()
+        balls = self._chart_balls()
+        self._chart_figures(balls, open_panels)
+        self._chart_marks(i, balls, open_panels)
         if "load_azimuth" in open_panels:
             s.chart_load_azimuth = fig_json(charts.load_azimuth_figure(src, i))
         if "ellipse" in open_panels:
             s.chart_ellipse = fig_json(charts.ellipse_figure(src, i))
-        if "cage_speed" in open_panels:
-            s.chart_cage_speed = fig_json(charts.cage_speed_figure(src, self.dataset, current=i))
         serial = int(s.result_serial)
         if "comparison" in open_panels and self._comparison_serial != serial:
             dyn = self.dataset if "time" in self.dataset.dims else None  # once per result
@@ -644,10 +685,12 @@ class ResultView(Component):
         self.update_charts()
 
     def _on_frame(self, frame=0, **_):
-        follow = (
-            not self.state.playing or time.monotonic() - self._last_chart_update > CHART_FOLLOW_S
-        )
+        now = time.monotonic()
+        follow = not self.state.playing or now - self._last_chart_update > CHART_FOLLOW_S
         self._apply_frame(as_int(frame, 0), charts_too=follow)
+        if not follow and self.source is not None and now - self._last_mark_update >= MARK_FOLLOW_S:
+            index = min(max(as_int(frame, 0), 0), self.source.n_frames - 1)
+            self._chart_marks(index, self._chart_balls(), self._open_panels())
 
     def step(self, delta: int = 1) -> None:
         """Move ``delta`` frames (wrapping at the ends)."""
@@ -751,7 +794,12 @@ class ResultView(Component):
     def build_charts(self) -> None:
         """The charts always on the page: contact angle, then the raceway map with its options
         and the excursion and band thickness of each raceway (``#raceway-metrics``)."""
-        chart("chart-contact-angle", "chart_contact_angle", charts.HELP["contact_angle"])
+        chart(
+            "chart-contact-angle",
+            "chart_contact_angle",
+            charts.HELP["contact_angle"],
+            overlay="chart_contact_angle_now",
+        )
         with v3.VRow(dense=True, align="center", classes="mt-1"):
             with v3.VCol(cols=6):
                 select(
@@ -767,14 +815,25 @@ class ResultView(Component):
                     id="map-skip-startup",
                     title="Leave out the samples before the solver's analysed window (settling)",
                 )
-        chart("chart-raceway-map", "chart_raceway_map", charts.HELP["raceway_map"])
+        chart(
+            "chart-raceway-map",
+            "chart_raceway_map",
+            charts.HELP["raceway_map"],
+            overlay="chart_raceway_map_now",
+        )
         html.Div("{{ raceway_metrics }}", id="raceway-metrics", classes="text-caption px-2 mb-2")
 
     def build_chart_panels(self) -> None:
         """The collapsible chart panels (values in ``open_panels``; drawn only while open)."""
         for title, key in CHART_PANELS:
             with v3.VExpansionPanel(title=title, value=key), v3.VExpansionPanelText():
-                chart(f"chart-{key.replace('_', '-')}", f"chart_{key}", charts.HELP[key])
+                overlay = f"chart_{key}_now" if key in FOLLOWING_CHARTS else None
+                chart(
+                    f"chart-{key.replace('_', '-')}",
+                    f"chart_{key}",
+                    charts.HELP[key],
+                    overlay=overlay,
+                )
 
 
 LAYER_LABELS = {

@@ -104,10 +104,14 @@ def button_list(items: str, item: str, id_prefix: str, click, selected: str, **e
     )
 
 
-def chart(element_id: str, key: str, help_text: str, height="250px") -> None:
+def chart(
+    element_id: str, key: str, help_text: str, height="250px", overlay: str | None = None
+) -> None:
     """``div#<element_id>``: the plotly figure of state ``key`` (loaded lazily, see
     :mod:`app.lazy_charts`) and its help text; highlighted when a lesson points at it.
-    ``height``: a CSS height, or a tuple binding of a JS expression in pixels."""
+    ``height``: a CSS height, or a tuple binding of a JS expression in pixels; ``overlay``: the
+    state key of what marks the current frame on a chart that follows the time (merged by the
+    page)."""
     style = (
         (f"`height: ${{{height[0]}}}px; width: 100%;`",)
         if isinstance(height, tuple)
@@ -115,7 +119,7 @@ def chart(element_id: str, key: str, help_text: str, height="250px") -> None:
     )
     with html.Div(id=element_id, classes=chart_classes(key.removeprefix("chart_"))):
         with own_update():  # a new figure re-renders the chart, not the column around it
-            lazy_charts.ChartFigure(key, display_mode_bar=False, style=style)
+            lazy_charts.ChartFigure(key, overlay, display_mode_bar=False, style=style)
         caption(help_text)
 
 

@@ -3,6 +3,14 @@
 // Registers <racetrace-chart>, a stand-in for trame-plotly's <TramePlotly> that shows a short
 // "loading" line until window.racetrace_charts.load(url) has fetched the trame-plotly bundle, then
 // renders the real chart with the same attributes (data, layout, displayModeBar, ...).
+//
+// A chart that follows the time also gets an `overlay` ({data: [traces], shapes: [shapes]}: what
+// marks the current frame, sent with the frames) besides its figure (`data`, `layout`: sent once per
+// result and option). The chart shows the figure's traces then the overlay's, and the figure's
+// layout with the overlay's shapes after its own (app.charts.merge_overlay does the same in Python).
+// The figure's typed arrays (plotly JSON's {dtype, bdata, shape}) are decoded here once per figure:
+// plotly decodes them again at every update otherwise, and new arrays make it recompute and redraw
+// every trace; with the same arrays, an update that moves the time marker redraws the marker only.
 (function () {
   const { defineComponent, h, shallowRef, markRaw } = window.Vue;
   const chart = shallowRef(null); // the TramePlotly component once its bundle has run
@@ -30,14 +38,99 @@
     document.head.appendChild(script);
   }
 
+  const TYPES = {
+    f8: Float64Array,
+    f4: Float32Array,
+    i1: Int8Array,
+    u1: Uint8Array,
+    u1c: Uint8ClampedArray,
+    i2: Int16Array,
+    u2: Uint16Array,
+    i4: Int32Array,
+    u4: Uint32Array,
+  };
+
+  function isSpec(value) {
+    return (
+      value !== null &&
+      typeof value === "object" &&
+      !Array.isArray(value) &&
+      typeof value.dtype === "string" &&
+      typeof value.bdata === "string"
+    );
+  }
+
+  // a typed-array spec as plotly decodes it: one typed array, or a row of them for a 2-D shape;
+  // other shapes are left to plotly
+  function decodeSpec(spec) {
+    const Type = TYPES[spec.dtype];
+    const dims = spec.shape === undefined ? [] : String(spec.shape).split(",").map(Number);
+    if (!Type || dims.length > 2) return spec;
+    const text = atob(spec.bdata);
+    const bytes = new Uint8Array(text.length);
+    for (let i = 0; i < text.length; i++) bytes[i] = text.charCodeAt(i);
+    if (dims.length < 2) return new Type(bytes.buffer);
+    const [rows, columns] = dims;
+    const out = [];
+    for (let r = 0; r < rows; r++) {
+      out.push(new Type(bytes.buffer, r * columns * Type.BYTES_PER_ELEMENT, columns));
+    }
+    return out;
+  }
+
+  function decoded(value) {
+    if (isSpec(value)) return decodeSpec(value);
+    if (Array.isArray(value)) return value.map(decoded);
+    if (value !== null && typeof value === "object") {
+      const out = {};
+      for (const key of Object.keys(value)) out[key] = decoded(value[key]);
+      return out;
+    }
+    return value;
+  }
+
+  const decodedFigures = new WeakMap(); // a figure's traces -> the same traces, arrays decoded
+
+  function decodedTraces(data) {
+    let out = decodedFigures.get(data);
+    if (!out) {
+      out = markRaw(data.map(decoded));
+      decodedFigures.set(data, out);
+    }
+    return out;
+  }
+
+  // the figure and overlay merged, a new data array for each change (so that trame-plotly calls
+  // plotly's react(), which redraws only what changed, rather than relayout() with the whole layout)
+  function merge(memo, data, layout, overlay) {
+    if (memo.data === data && memo.layout === layout && memo.overlay === overlay) return memo;
+    const shapes = overlay.shapes || [];
+    memo.data = data;
+    memo.layout = layout;
+    memo.overlay = overlay;
+    memo.merged = {
+      data: decodedTraces(data || []).concat(overlay.data || []),
+      layout: shapes.length
+        ? { ...(layout || {}), shapes: ((layout && layout.shapes) || []).concat(shapes) }
+        : layout,
+    };
+    return memo;
+  }
+
   const RacetraceChart = defineComponent({
     name: "RacetraceChart",
     inheritAttrs: false,
     setup(_props, { attrs }) {
-      return () =>
-        chart.value
-          ? h(chart.value, attrs)
-          : h("div", { class: "text-caption text-medium-emphasis pa-2" }, "loading chart\u2026");
+      const memo = {};
+      return () => {
+        if (!chart.value) {
+          return h("div", { class: "text-caption text-medium-emphasis pa-2" }, "loading chart\u2026");
+        }
+        const { overlay, ...rest } = attrs;
+        if (!overlay) return h(chart.value, rest);
+        const { merged } = merge(memo, rest.data, rest.layout, overlay);
+        return h(chart.value, { ...rest, data: merged.data, layout: merged.layout });
+      };
     },
   });
 

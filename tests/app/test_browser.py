@@ -92,6 +92,20 @@ def test_page_loads_and_the_view_animates(page):
     # (inner raceway, outer raceway, contacts now)
     assert page.locator("#chart-raceway-map .legend .traces").count() == 3
     assert page.locator("#chart-raceway-map canvas").count() >= 1
+    # the charts that follow the time get their figure once and the marks of each frame apart,
+    # merged by the page: the time marker moves while playing; an open circle at each contact now
+    marks = """() => {
+      const shapes = (id) => document.querySelector(`#${id} .js-plotly-plot`)._fullLayout.shapes;
+      return {
+        marker: shapes('chart-contact-angle').map(s => s.x0),
+        circles: shapes('chart-raceway-map').filter(s => s.type === 'circle' && s.visible).length,
+      };
+    }"""
+    before = page.evaluate(marks)
+    time.sleep(1.0)
+    after = page.evaluate(marks)
+    assert len(before["marker"]) == 1 and after["marker"] != before["marker"], (before, after)
+    assert after["circles"] > 0
     view = page.locator("#view-3d")
     shots = []
     for k in range(3):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -507,3 +508,62 @@ def test_set_study_charts_one_line_per_bearing_and_the_set_as_the_physics_says()
         fig = study_figures.study_figure(ds, sweep, "bearing_load")
         for name in axial:
             assert np.all(np.diff(y(fig, name)) > 0.0), (sweep, name)
+
+
+def _json(fig) -> dict:
+    return json.loads(fig.to_json())
+
+
+def test_a_following_chart_and_its_overlay_show_what_the_whole_figure_showed(dynamic_dataset):
+    src = frame_source(dynamic_dataset)
+    for i in (0, 7, src.n_frames - 1):
+        # the charts against time: the figure without the current frame, the marker apart
+        angle = charts.merge_overlay(
+            _json(charts.contact_angle_figure(src, None)), charts.time_marker_overlay(src, i)
+        )
+        assert angle == _json(charts.contact_angle_figure(src, None, current=i))
+        cage = charts.merge_overlay(
+            _json(charts.cage_speed_figure(src, dynamic_dataset)),
+            charts.time_marker_overlay(src, i),
+        )
+        assert cage == _json(charts.cage_speed_figure(src, dynamic_dataset, current=i))
+        # the raceway map: the samples and the legend as before, the contacts now as circles of
+        # the markers' size and colour at the markers' points
+        for balls in (None, (1,)):
+            options = {"balls": balls, "colour": "ball", "shoulders": (0.9, 0.8)}
+            base = charts.raceway_map_figure(src, **options)
+            shown = charts.merge_overlay(
+                charts.raceway_map_base(src, **options),
+                charts.current_contact_overlay(src, i, balls),
+            )
+            assert shown["data"][:-1] == _json(base)["data"]
+            assert shown["layout"]["shapes"][: len(base.layout.shapes)] == [
+                s.to_plotly_json() for s in base.layout.shapes
+            ]
+            legend = shown["data"][-1]
+            assert (legend["name"], legend["showlegend"]) == ("contacts now", True)
+            assert legend["marker"] == charts.NOW_MARKER and legend["x"] == [None]
+            circles = shown["layout"]["shapes"][len(base.layout.shapes) :]
+            now = charts.current_contact_traces(src, i, balls)
+            points = [(x, y) for t in now for x, y in zip(t.x, t.y, strict=True)]
+            assert len(circles) == len(points) > 0
+            for circle, (x, y) in zip(circles, points, strict=True):
+                assert circle["xanchor"] == pytest.approx(x) and circle["yanchor"] == pytest.approx(
+                    y
+                )
+                assert circle["templateitemname"] == charts.NOW_SHAPE and circle["visible"]
+            # each places the figure's template shape: an open circle of the marker's size in
+            # pixels, colour and line
+            (shape,) = shown["layout"]["template"]["layout"]["shapes"]
+            assert (shape["name"], shape["type"], shape["visible"]) == (
+                charts.NOW_SHAPE,
+                "circle",
+                False,
+            )
+            assert (shape["xsizemode"], shape["ysizemode"]) == ("pixel", "pixel")
+            assert shape["x1"] - shape["x0"] == now[0].marker.size  # the marker's diameter
+            assert shape["y1"] - shape["y0"] == now[0].marker.size
+            assert shape["line"] == {
+                "color": now[0].marker.color,
+                "width": now[0].marker.line.width,
+            }

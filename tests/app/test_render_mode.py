@@ -77,7 +77,7 @@ def test_a_played_frame_sends_only_the_moving_parts(tmp_path):
             pushed.clear()
             _set(a, frame=frame)
             keys = {k for update in pushed for k in update}
-            assert keys <= FRAME_KEYS | {"chart_contact_angle", "chart_raceway_map"}, keys
+            assert keys <= FRAME_KEYS | {"chart_contact_angle_now", "chart_raceway_map_now"}, keys
             assert "rt3d_frame" in keys
             sizes = {k: len(json.dumps(update[k])) for update in pushed for k in update}
             assert sizes["rt3d_frame"] < MAX_FRAME_BYTES, sizes

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from app import runner as runner_module
+from app.charts import NOW_SHAPE, merge_overlay
 from app.runner import QUASISTATIC_JOB
 from app.state import DEFAULT_CASE, RacetraceApp
 from tests.helpers.app_session import trame_server
@@ -31,6 +32,14 @@ def _length(array) -> int:
     return len(array)
 
 
+def _shown(state, name: str) -> dict:
+    """The figure the page shows for chart ``name``: its figure and, for a chart that follows
+    the time, the marks of the current frame merged in."""
+    return merge_overlay(
+        state[f"chart_{name}"], state[f"chart_{name}_now"] if f"chart_{name}_now" in state else None
+    )
+
+
 def _set(app, **values):
     with app.state:
         for k, v in values.items():
@@ -49,7 +58,11 @@ def test_opens_on_the_default_case_solved(app):
     assert s.frame_max > 10
     assert app.result.dataset.attrs["model"] == "quasistatic"
     assert len(s.chart_contact_angle["data"]) >= 2
-    assert len(s.chart_raceway_map["data"]) == 4  # both raceways, and where the balls are now
+    # both raceways, the legend of where the balls are now, and a circle at each contact now
+    shown = _shown(s, "raceway_map")
+    assert [t["name"] for t in shown["data"]] == ["inner raceway", "outer raceway", "contacts now"]
+    circles = [c for c in shown["layout"]["shapes"] if c.get("templateitemname") == NOW_SHAPE]
+    assert len(circles) > 0
     assert _length(s.chart_raceway_map["data"][0]["x"]) > 0
     # every case-file key has a form field named after its last segment
     assert {f["name"] for f in s.form} >= {
@@ -513,7 +526,7 @@ def test_time_words_name_the_revolution_and_the_slow_motion(app):
 def test_raceway_map_follows_the_ball_and_its_options(app):
     s = app.state
     _set(app, frame=3)
-    data = s.chart_raceway_map["data"]
+    data = _shown(s, "raceway_map")["data"]
     assert [t["name"] for t in data[:3]] == ["inner raceway", "outer raceway", "contacts now"]
     assert "shoulders at" in s.chart_raceway_map["layout"]["title"]["text"]
     assert "excursion" in s.raceway_metrics and "band thickness" in s.raceway_metrics

@@ -22,13 +22,19 @@ def chunk(message: dict) -> bytes:
 
 class WslinkClient:
     """One page's websocket: :meth:`connect`, then :meth:`call`; ``state`` follows what the session
-    publishes, and ``frames`` records ``(time.monotonic(), frame)`` as each frame index arrives."""
+    publishes, and ``frames`` records ``(time.monotonic(), frame)`` as each frame index arrives.
+    ``received`` counts the bytes of the websocket messages read (as sent: compressed when asked
+    for); with ``count_keys``, ``key_bytes`` the bytes of each published state key's value
+    (msgpack, uncompressed)."""
 
-    def __init__(self):
+    def __init__(self, count_keys: bool = False):
         self.ws: aiohttp.ClientWebSocketResponse | None = None
         self.state: dict = {}
         self.frames: list[tuple[float, int]] = []
         self.images = 0  # images the 3-D view received
+        self.received = 0
+        self.count_keys = count_keys
+        self.key_bytes: dict[str, int] = {}
         self._ids = itertools.count(1)
         self._replies: dict[str, asyncio.Future] = {}
         self._pending: dict[int, bytearray] = {}
@@ -93,6 +99,7 @@ class WslinkClient:
             if raw.type != aiohttp.WSMsgType.BINARY:
                 break
             data = raw.data
+            self.received += len(data)
             ident = int.from_bytes(data[0:4], "little")
             offset = int.from_bytes(data[4:8], "little")
             size = int.from_bytes(data[8:12], "little")
@@ -108,6 +115,10 @@ class WslinkClient:
         if rpcid.startswith("publish:trame.state.topic:"):
             changes = message.get("result") or {}
             self.state.update(changes)
+            if self.count_keys:
+                for key, value in changes.items():
+                    size = len(msgpack.packb(value, default=str))
+                    self.key_bytes[key] = self.key_bytes.get(key, 0) + size
             if "frame" in changes:
                 self.frames.append((time.monotonic(), changes["frame"]))
         elif rpcid.startswith("publish:trame.rca.topic.stream:"):
