@@ -39,7 +39,7 @@ from aiohttp import ClientSession, WSMsgType, web
 
 from ..access import Access
 from ..follow_names import FOLLOWER_HEADER, QR_NAME
-from . import follow, preparing
+from . import coalesce, follow, preparing
 from .quiet_log import quiet_closed_connections
 from .session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 
@@ -55,9 +55,11 @@ START_TIMEOUT_S = 1800.0
 PREPARING_PATH = "/__racetrace_preparing"  # what the first session waits for, as JSON
 ENDED_KEPT_S = 3600.0  # an ended class's page says so this long (then: no such class)
 # What a session has sent that a browser has not read yet is held here, not in the session (a
-# session writing to a slow reader would hold it for every such client, without bound): a browser
-# that falls this many bytes behind is closed with SLOW_CLOSE. A follower's page then joins again
-# (the state it reads on joining is whole); a presenter's page shows it lost its connection.
+# session writing to a slow reader would hold it for every such client, without bound), and the
+# state messages among it merge while they wait (app.serve.coalesce): a browser that falls this
+# many bytes behind all the same (in what cannot merge) is closed with SLOW_CLOSE. A follower's
+# page then joins again (the state it reads on joining is whole); a presenter's page shows it lost
+# its connection.
 FOLLOWER_BACKLOG_BYTES = 16 * 1024 * 1024
 PRESENTER_BACKLOG_BYTES = 96 * 1024 * 1024
 SLOW_CLOSE = 4002
@@ -484,6 +486,7 @@ class Front:
         ``follower``'s messages pass the read-only gate first."""
         browser = web.WebSocketResponse(max_msg_size=0, autoping=True, heartbeat=None)
         await browser.prepare(request)
+        coalesce.hold_at_front(request.transport)
         url = f"ws://127.0.0.1:{session.port}{inner or request.rel_url}"
         headers = {SECRET_HEADER: session.secret}
         if follower:
@@ -806,20 +809,19 @@ async def _pump(source, target) -> None:
 
 async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
     """Copy a session's websocket messages to ``browser`` without ever holding the session back:
-    they wait in a queue here while the browser reads; a browser more than ``limit_bytes``
-    behind is closed with :data:`SLOW_CLOSE` (a wslink message cannot be dropped: the ones after
-    it may be its chunks or changes to its state)."""
-    queue: asyncio.Queue = asyncio.Queue()
-    backlog = 0
+    they wait here while the browser reads (:class:`app.serve.coalesce.Backlog`: while they wait,
+    consecutive state publishes are merged into one, so a page that is behind jumps to the newest
+    state); a browser more than ``limit_bytes`` behind in what cannot be merged is closed with
+    :data:`SLOW_CLOSE`."""
+    backlog = coalesce.Backlog()
 
     async def write() -> None:
-        nonlocal backlog
-        while (message := await queue.get()) is not None:
-            backlog -= len(message.data)
-            if message.type == WSMsgType.TEXT:
-                await browser.send_str(message.data)
+        while (message := await backlog.get()) is not None:
+            kind, data = message
+            if kind == WSMsgType.TEXT:
+                await browser.send_str(data)
             else:
-                await browser.send_bytes(message.data)
+                await browser.send_bytes(data)
 
     writer = asyncio.create_task(write())
     too_slow = False
@@ -829,21 +831,21 @@ async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
                 break
             if message.type not in (WSMsgType.TEXT, WSMsgType.BINARY):
                 break
-            if backlog + len(message.data) > limit_bytes:
+            backlog.put(message.type, message.data)
+            if backlog.bytes > limit_bytes:
                 too_slow = True
                 break
-            backlog += len(message.data)
-            queue.put_nowait(message)
     finally:
         if too_slow:  # the session stops sending to it; what waits here is dropped, the
             await session_socket.close()  # message on its way is let finish (a frame cut
-            while not queue.empty():  # short would garble the close that follows)
-                queue.get_nowait()
-        queue.put_nowait(None)
+            backlog.drop()  # short would garble the close that follows)
+        backlog.close()
         try:
             await asyncio.wait_for(writer, SLOW_WRITE_S if too_slow else None)
         except (TimeoutError, asyncio.CancelledError, ConnectionError, RuntimeError):
             pass  # a browser that reads nothing, or the browser went while a message was on its way
+    if backlog.merged:
+        log.debug("%d state messages merged for a browser that was behind", backlog.merged)
     if too_slow and not browser.closed:
         log.warning("a browser fell over %d bytes behind its session: closed", limit_bytes)
         await browser.close(code=SLOW_CLOSE, message=b"too slow to follow")

@@ -1,0 +1,179 @@
+"""A browser that is behind its session gets only the newest state, not every stale one.
+
+The front holds what a session has sent a browser that the browser has not taken yet
+(:func:`app.serve.front._pump_to_browser`): a page whose main thread is busy (drawing the 3-D view
+in software WebGL takes a third of a second) stops reading its websocket, and the messages wait
+here. While they wait, a run of consecutive trame state publishes is merged into one message: the
+later value of a key wins, every key is kept. The page then jumps to the newest frame instead of
+playing every stale one, and what waits shrinks to one frame's state.
+
+What is merged: a whole wslink message in one chunk (header: id, offset 0, size), whose msgpack
+body is ``{"wslink": ..., "id": "publish:trame.state.topic:N", "result": {key: value, ...}}`` —
+what trame publishes for a state change (``trame_server.protocol.push_state_change``, sent by
+:mod:`app.fan_out`). Merging is right because a state message carries whole values: trame itself
+sends a key only when its value differs from the last one sent, so a page that applies only the
+last of several values of a key shows what it would show after applying all of them. Every key
+the app publishes is a whole value (a played frame's matrices, ellipses and painted-quad counts;
+the charts' figures; the live tracks sent whole), none a delta to add to the previous one.
+
+Everything else is a barrier, kept whole and in order: RPC replies and errors, other topics
+(images of the server-rendered view, trame's actions), a message in several chunks, text, and
+anything that does not decode as above. A state publish is never merged across a barrier.
+
+Only what waits is merged: a message is merged into the one before it only while that one waits
+behind a message being sent (the browser has not taken it). A browser that keeps up gets the
+session's bytes unchanged and costs no decoding.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import secrets
+import socket
+from collections import deque
+from dataclasses import dataclass
+
+import msgpack
+from aiohttp import WSMsgType
+from wslink.protocol import MAX_MSG_SIZE
+
+#: the id of a trame state publish starts with this (then wslink's publish count)
+STATE_ID_PREFIX = "publish:trame.state.topic:"
+_STATE_ID = STATE_ID_PREFIX.encode()
+_HEADER = 12  # wslink's chunk header: message id, offset, total size (little-endian uint32 each)
+_ID_WITHIN = 64  # the id is among a body's first bytes: {"wslink": "1.0", "id": ...}
+#: What the front hands the operating system for one browser before it waits (bytes): the socket's
+#: send buffer and the transport's buffer above it. Messages beyond it wait in :class:`Backlog`,
+#: where they merge; on its own, the kernel grows a loopback socket's send buffer to megabytes,
+#: hundreds of frames that a slow page would still play one by one.
+SEND_BUFFER_BYTES = 64 * 1024
+
+
+@dataclass
+class _Waiting:
+    """A message waiting for the browser: its websocket type and bytes; for a state publish,
+    its id and state (decoded when a message comes after it; ``state`` None: a barrier)."""
+
+    type: WSMsgType
+    data: bytes | str
+    decoded: bool = False
+    rpc_id: str = ""
+    state: dict | None = None
+
+
+def state_publish(message_type: WSMsgType, data: bytes | str) -> tuple[str, dict] | None:
+    """``(id, state)`` of a wslink message that is a whole trame state publish in one chunk;
+    None for anything else (a barrier)."""
+    if message_type != WSMsgType.BINARY or len(data) <= _HEADER:
+        return None
+    offset = int.from_bytes(data[4:8], "little")
+    size = int.from_bytes(data[8:12], "little")
+    if offset != 0 or size != len(data) - _HEADER:
+        return None  # one chunk of a message in several: kept whole
+    if _STATE_ID not in data[_HEADER : _HEADER + _ID_WITHIN]:
+        return None  # not a state publish: not decoded
+    try:
+        body = msgpack.unpackb(data[_HEADER:], raw=False, strict_map_key=False)
+    except Exception:  # msgpack raises several types for what is not msgpack
+        return None
+    if not isinstance(body, dict) or set(body) != {"wslink", "id", "result"}:
+        return None
+    rpc_id, state = body["id"], body["result"]
+    if not isinstance(rpc_id, str) or not rpc_id.startswith(STATE_ID_PREFIX):
+        return None
+    if not isinstance(state, dict) or not all(isinstance(k, str) for k in state):
+        return None
+    return rpc_id, state
+
+
+def state_message(rpc_id: str, state: dict) -> bytes:
+    """A trame state publish of ``state`` with id ``rpc_id``, as one wslink chunk."""
+    body = msgpack.packb({"wslink": "1.0", "id": rpc_id, "result": state})
+    header = secrets.randbits(32).to_bytes(4, "little") + (0).to_bytes(4, "little")
+    return header + len(body).to_bytes(4, "little") + body
+
+
+def hold_at_front(transport) -> None:
+    """Keep what waits for the browser on ``transport`` (an asyncio transport) at the front: at
+    most :data:`SEND_BUFFER_BYTES` in the socket's send buffer (Linux doubles what is asked) and
+    in the transport's buffer; nothing is done for a transport without a socket."""
+    if transport is None:
+        return
+    sock = transport.get_extra_info("socket")
+    if sock is not None:
+        with contextlib.suppress(OSError):
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
+    with contextlib.suppress(AttributeError, NotImplementedError, ValueError):
+        transport.set_write_buffer_limits(high=SEND_BUFFER_BYTES // 4)
+
+
+class Backlog:
+    """The messages a session sent one browser that the browser has not taken yet, in order
+    (see the module docstring). The reader of the session's websocket calls :meth:`put`; the
+    browser's writer calls :meth:`get` for the next message to send, and comes back for another
+    once it is sent."""
+
+    def __init__(self):
+        self._waiting: deque[_Waiting] = deque()
+        self._wake = asyncio.Event()
+        self._writer_waits = True  # the writer waits in get(): nothing is on its way
+        self._closed = False
+        self.bytes = 0  # the waiting messages' bytes
+        self.merged = 0  # messages merged into a later one (never sent as they came)
+
+    def __len__(self) -> int:
+        return len(self._waiting)
+
+    def put(self, message_type: WSMsgType, data: bytes | str) -> None:
+        """Add a message the session sent; merged into the last waiting one when both are state
+        publishes and that one waits behind a message on its way."""
+        if self._waiting and not self._writer_waits and self._merge(message_type, data):
+            return
+        self._waiting.append(_Waiting(message_type, data))
+        self.bytes += len(data)
+        self._wake.set()
+
+    def _merge(self, message_type: WSMsgType, data: bytes | str) -> bool:
+        last = self._waiting[-1]
+        if not last.decoded:
+            found = state_publish(last.type, last.data)
+            last.decoded = True
+            if found is not None:
+                last.rpc_id, last.state = found
+        if last.state is None or len(last.data) + len(data) > MAX_MSG_SIZE:
+            return False  # a barrier; or the two together would be more than one wslink chunk
+        found = state_publish(message_type, data)
+        if found is None:
+            return False
+        rpc_id, state = found
+        last.state.update(state)  # the later value of a key wins; every key is kept
+        merged = state_message(rpc_id, last.state)
+        self.bytes += len(merged) - len(last.data)
+        last.rpc_id, last.data = rpc_id, merged
+        self.merged += 1
+        return True
+
+    async def get(self) -> tuple[WSMsgType, bytes | str] | None:
+        """The next message to send (type, data), oldest first; None once :meth:`close` was
+        called and nothing waits."""
+        self._writer_waits = True
+        while not self._waiting:
+            if self._closed:
+                return None
+            self._wake.clear()
+            await self._wake.wait()
+        self._writer_waits = False
+        item = self._waiting.popleft()
+        self.bytes -= len(item.data)
+        return item.type, item.data
+
+    def drop(self) -> None:
+        """Forget every waiting message (the browser is closed as too slow)."""
+        self._waiting.clear()
+        self.bytes = 0
+
+    def close(self) -> None:
+        """No more messages: :meth:`get` returns None once the waiting ones are taken."""
+        self._closed = True
+        self._wake.set()
