@@ -52,14 +52,23 @@ SEND_BUFFER_BYTES = 64 * 1024
 
 @dataclass
 class _Waiting:
-    """A message waiting for the browser: its websocket type and bytes; for a state publish,
-    its id and state (decoded when a message comes after it; ``state`` None: a barrier)."""
+    """A message waiting for the browser: its websocket type and bytes (None while a merge is
+    not packed yet); ``size``: its bytes, or at most that many while not packed; for a state
+    publish, its id and state (decoded when a message comes after it; ``state`` None: a
+    barrier), and its size when last packed."""
 
     type: WSMsgType
-    data: bytes | str
+    data: bytes | str | None
+    size: int
     decoded: bool = False
     rpc_id: str = ""
     state: dict | None = None
+    packed_size: int = 0
+
+    def pack(self) -> None:
+        """Pack the merged state into :attr:`data`; :attr:`size` is then exact."""
+        self.data = state_message(self.rpc_id, self.state)
+        self.size = self.packed_size = len(self.data)
 
 
 def state_publish(message_type: WSMsgType, data: bytes | str) -> tuple[str, dict] | None:
@@ -119,7 +128,7 @@ class Backlog:
         self._wake = asyncio.Event()
         self._writer_waits = True  # the writer waits in get(): nothing is on its way
         self._closed = False
-        self.bytes = 0  # the waiting messages' bytes
+        self.bytes = 0  # the waiting messages' bytes (at most: merges are packed when sent)
         self.merged = 0  # messages merged into a later one (never sent as they came)
 
     def __len__(self) -> int:
@@ -130,7 +139,7 @@ class Backlog:
         publishes and that one waits behind a message on its way."""
         if self._waiting and not self._writer_waits and self._merge(message_type, data):
             return
-        self._waiting.append(_Waiting(message_type, data))
+        self._waiting.append(_Waiting(message_type, data, len(data)))
         self.bytes += len(data)
         self._wake.set()
 
@@ -141,17 +150,23 @@ class Backlog:
             last.decoded = True
             if found is not None:
                 last.rpc_id, last.state = found
-        if last.state is None or len(last.data) + len(data) > MAX_MSG_SIZE:
-            return False  # a barrier; or the two together would be more than one wslink chunk
+                last.packed_size = last.size
+        if last.state is None or last.size + len(data) > MAX_MSG_SIZE:
+            return False  # a barrier; or the two together could be more than one wslink chunk
         found = state_publish(message_type, data)
         if found is None:
             return False
-        rpc_id, state = found
+        last.rpc_id, state = found
         last.state.update(state)  # the later value of a key wins; every key is kept
-        merged = state_message(rpc_id, last.state)
-        self.bytes += len(merged) - len(last.data)
-        last.rpc_id, last.data = rpc_id, merged
         self.merged += 1
+        # packed when sent; before that only when its bound doubled since it was last packed
+        # (the merged state is at most the sum of the two): packing costs at most twice what
+        # arrives, not a whole chart figure per merged frame
+        before = last.size
+        last.data, last.size = None, last.size + len(data)
+        if last.size > 2 * last.packed_size:
+            last.pack()
+        self.bytes += last.size - before
         return True
 
     async def get(self) -> tuple[WSMsgType, bytes | str] | None:
@@ -165,7 +180,9 @@ class Backlog:
             await self._wake.wait()
         self._writer_waits = False
         item = self._waiting.popleft()
-        self.bytes -= len(item.data)
+        self.bytes -= item.size
+        if item.data is None:
+            item.pack()
         return item.type, item.data
 
     def drop(self) -> None:

@@ -212,3 +212,35 @@ def test_a_follower_that_keeps_up_gets_the_sessions_bytes(monkeypatch):
 
     received = asyncio.run(_through_front(monkeypatch, stream, read_pause_s=0.01))
     assert received == stream
+
+
+def test_a_large_waiting_state_is_not_packed_again_for_every_frame_merged_into_it(monkeypatch):
+    """A chart (1 MB) waits with a frame's state; 200 frames merge into it: the merged state is
+    packed a few times (when its bound doubles, and once when sent), not once per frame."""
+    packed = []
+    pack = coalesce.state_message
+
+    def counted(rpc_id, state):
+        packed.append(rpc_id)
+        return pack(rpc_id, state)
+
+    monkeypatch.setattr(coalesce, "state_message", counted)
+
+    async def scenario():
+        backlog = Backlog()
+        backlog.put(WSMsgType.BINARY, _reply(0))
+        await backlog.get()
+        backlog.put(WSMsgType.BINARY, _state({"frame": 0, "chart_raceway_map": "x" * 1_000_000}))
+        for i in range(1, 201):
+            backlog.put(WSMsgType.BINARY, _state({"frame": i, "rt3d_frame": b"m" * 18_000}))
+            assert backlog.bytes >= len(
+                pack("publish:trame.state.topic:0", backlog._waiting[0].state)
+            )
+        sent = await backlog.get()
+        return backlog, sent
+
+    backlog, sent = asyncio.run(scenario())
+    assert len(packed) <= 4, len(packed)
+    state = _decoded(sent[1])["result"]
+    assert state["frame"] == 200 and len(state["chart_raceway_map"]) == 1_000_000
+    assert backlog.merged == 200 and backlog.bytes == 0 and len(backlog) == 0
