@@ -48,6 +48,11 @@ _ID_WITHIN = 64  # the id is among a body's first bytes: {"wslink": "1.0", "id":
 #: where they merge; on its own, the kernel grows a loopback socket's send buffer to megabytes,
 #: hundreds of frames that a slow page would still play one by one.
 SEND_BUFFER_BYTES = 64 * 1024
+#: A page served by the front says how many websocket messages it has taken, as a text message
+#: ``racetrace-read:N`` (:data:`READ_SCRIPT`); the front then has at most :data:`READ_WINDOW`
+#: messages on their way to it (in the kernel's buffers, the browser's, the page's task queue).
+READ_PREFIX = "racetrace-read:"
+READ_WINDOW = 8
 
 
 @dataclass
@@ -103,6 +108,77 @@ def state_message(rpc_id: str, state: dict) -> bytes:
     return header + len(body).to_bytes(4, "little") + body
 
 
+# Added to every page the front serves, before the page's own scripts: the page counts the
+# websocket messages its main thread has taken and says so every READ_WINDOW / 2 of them.
+READ_SCRIPT = """<script>
+(function () {
+  var Native = window.WebSocket, every = __EVERY__;
+  window.WebSocket = class extends Native {
+    constructor(url, protocols) {
+      super(url, protocols);
+      var socket = this, taken = 0, told = 0;
+      function tell() { told = taken; socket.send('__PREFIX__' + taken); }
+      this.addEventListener('open', tell);
+      this.addEventListener('message', function () {
+        taken += 1;
+        if (taken - told >= every && socket.readyState === 1) tell();
+      });
+    }
+  };
+})();
+</script>""".replace("__EVERY__", str(READ_WINDOW // 2)).replace("__PREFIX__", READ_PREFIX)
+
+
+def with_read_script(page: str) -> str:
+    """``page`` (HTML) with :data:`READ_SCRIPT` first in its head."""
+    head = page.find("<head>")
+    if head < 0:
+        return READ_SCRIPT + page
+    return page[: head + 6] + READ_SCRIPT + page[head + 6 :]
+
+
+class PageReads:
+    """What the front has sent one page and what the page says it has taken
+    (:data:`READ_PREFIX`). A page that never says (a client without :data:`READ_SCRIPT`) is
+    sent everything at once, as before; one that does has at most ``window`` messages on their
+    way, the rest wait in its :class:`Backlog`, where they merge."""
+
+    def __init__(self, window: int = READ_WINDOW):
+        self.window = window
+        self.sent = 0  # messages sent to the page
+        self.taken = 0  # messages the page says it has taken
+        self.counting = False  # the page says what it has taken
+        self._changed = asyncio.Event()
+
+    def note(self, text: str) -> bool:
+        """Take a text message from the page: whether it was the page's count (then it is the
+        front's, not the session's)."""
+        if not text.startswith(READ_PREFIX):
+            return False
+        try:
+            taken = int(text[len(READ_PREFIX) :])
+        except ValueError:
+            return True
+        self.counting = True
+        self.taken = max(self.taken, min(taken, self.sent))
+        self._changed.set()
+        return True
+
+    async def room(self) -> bool:
+        """Wait until another message may go to the page; whether it had to wait."""
+        waited = False
+        while self.counting and self.sent - self.taken >= self.window:
+            waited = True
+            self._changed.clear()
+            await self._changed.wait()
+        return waited
+
+    def stop(self) -> None:
+        """No more waiting for the page (its socket closes): :meth:`room` returns at once."""
+        self.counting = False
+        self._changed.set()
+
+
 def hold_at_front(transport) -> None:
     """Keep what waits for the browser on ``transport`` (an asyncio transport) at the front: at
     most :data:`SEND_BUFFER_BYTES` in the socket's send buffer (Linux doubles what is asked) and
@@ -137,41 +213,45 @@ class Backlog:
     def put(self, message_type: WSMsgType, data: bytes | str) -> None:
         """Add a message the session sent; merged into the last waiting one when both are state
         publishes and that one waits behind a message on its way."""
-        if self._waiting and not self._writer_waits and self._merge(message_type, data):
+        item = _Waiting(message_type, data, len(data))
+        if self._waiting and not self._writer_waits and self._merge(self._waiting[-1], item):
             return
-        self._waiting.append(_Waiting(message_type, data, len(data)))
-        self.bytes += len(data)
+        self._waiting.append(item)
+        self.bytes += item.size
         self._wake.set()
 
-    def _merge(self, message_type: WSMsgType, data: bytes | str) -> bool:
-        last = self._waiting[-1]
-        if not last.decoded:
-            found = state_publish(last.type, last.data)
-            last.decoded = True
-            if found is not None:
-                last.rpc_id, last.state = found
-                last.packed_size = last.size
-        if last.state is None or last.size + len(data) > MAX_MSG_SIZE:
-            return False  # a barrier; or the two together could be more than one wslink chunk
-        found = state_publish(message_type, data)
-        if found is None:
-            return False
-        last.rpc_id, state = found
-        last.state.update(state)  # the later value of a key wins; every key is kept
+    def _merge(self, into: _Waiting, item: _Waiting) -> bool:
+        """Merge ``item`` into ``into`` (the message before it) when both are state publishes
+        (``self.bytes`` counts ``into`` as merged, and no longer ``item``)."""
+        if into.size + item.size > MAX_MSG_SIZE:
+            return False  # the two together could be more than one wslink chunk
+        for waiting in (into, item):
+            if not waiting.decoded:
+                found = state_publish(waiting.type, waiting.data)
+                waiting.decoded = True
+                if found is not None:
+                    waiting.rpc_id, waiting.state = found
+                    waiting.packed_size = waiting.size
+            if waiting.state is None:
+                return False  # a barrier
+        into.state.update(item.state)  # the later value of a key wins; every key is kept
+        into.rpc_id = item.rpc_id
         self.merged += 1
         # packed when sent; before that only when its bound doubled since it was last packed
         # (the merged state is at most the sum of the two): packing costs at most twice what
         # arrives, not a whole chart figure per merged frame
-        before = last.size
-        last.data, last.size = None, last.size + len(data)
-        if last.size > 2 * last.packed_size:
-            last.pack()
-        self.bytes += last.size - before
+        before = into.size
+        into.data, into.size = None, into.size + item.size
+        if into.size > 2 * into.packed_size:
+            into.pack()
+        self.bytes += into.size - before
         return True
 
-    async def get(self) -> tuple[WSMsgType, bytes | str] | None:
+    async def get(self, behind: bool = False) -> tuple[WSMsgType, bytes | str] | None:
         """The next message to send (type, data), oldest first; None once :meth:`close` was
-        called and nothing waits."""
+        called and nothing waits. ``behind``: the browser is behind (it has not said that it
+        took what is on its way): the state publishes that wait at the head are merged first,
+        those that came at once while nothing was on its way too."""
         self._writer_waits = True
         while not self._waiting:
             if self._closed:
@@ -179,11 +259,15 @@ class Backlog:
             self._wake.clear()
             await self._wake.wait()
         self._writer_waits = False
-        item = self._waiting.popleft()
-        self.bytes -= item.size
-        if item.data is None:
-            item.pack()
-        return item.type, item.data
+        head = self._waiting[0]
+        while behind and len(self._waiting) > 1 and self._merge(head, self._waiting[1]):
+            self.bytes -= self._waiting[1].size
+            del self._waiting[1]
+        self._waiting.popleft()
+        self.bytes -= head.size
+        if head.data is None:
+            head.pack()
+        return head.type, head.data
 
     def drop(self) -> None:
         """Forget every waiting message (the browser is closed as too slow)."""

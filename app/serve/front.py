@@ -373,6 +373,7 @@ class Front:
         if request.headers.get("Upgrade", "").lower() == "websocket":
             return await self._relay_websocket(request, session)
         response = await self._relay_http(request, session)
+        _add_read_script(request, response)
         if new:
             response.set_cookie(COOKIE, session.sid, httponly=True, samesite="Strict", path="/")
         self.access.grant(request, response)
@@ -415,6 +416,7 @@ class Front:
             page = bytes(response.body).decode("utf-8", "replace")
             banner = _follower_banner(session.join_code)
             response.body = page.replace("</body>", banner + "</body>").encode()
+        _add_read_script(request, response)
         self.access.grant(request, response)
         return response
 
@@ -501,13 +503,14 @@ class Front:
                 origin=f"http://127.0.0.1:{session.port}",
                 headers=headers,
             ) as upstream:
+                reads = coalesce.PageReads()
                 inward = (
-                    self._pump_follower(browser, upstream, session)
+                    self._pump_follower(browser, upstream, session, reads)
                     if follower
-                    else _pump(browser, upstream)
+                    else _pump(browser, upstream, reads)
                 )
                 limit = FOLLOWER_BACKLOG_BYTES if follower else PRESENTER_BACKLOG_BYTES
-                await asyncio.gather(inward, _pump_to_browser(upstream, browser, limit))
+                await asyncio.gather(inward, _pump_to_browser(upstream, browser, limit, reads))
         except OSError as error:
             log.warning("session %s unreachable: %s", session.sid[:6], error)
         finally:
@@ -519,14 +522,18 @@ class Front:
             await browser.close()
         return browser
 
-    async def _pump_follower(self, browser, upstream, session: Session) -> None:
+    async def _pump_follower(
+        self, browser, upstream, session: Session, reads: coalesce.PageReads
+    ) -> None:
         """Copy a follower's messages to its session, those the read-only gate lets through; a
-        refused call is answered with a wslink error (app.serve.follow)."""
+        refused call is answered with a wslink error (app.serve.follow). The page's count of
+        what it has taken goes to ``reads``."""
         gate = follow.FollowerGate()
         async for message in browser:
             if upstream.closed:
                 break
             if message.type == WSMsgType.TEXT:
+                reads.note(message.data)
                 continue  # wslink speaks binary only: nothing to pass on
             if message.type != WSMsgType.BINARY:
                 break
@@ -648,6 +655,15 @@ def _follower_banner(code: str) -> str:
         .replace("__LEFT_CLOSE__", str(follow.PRESENTER_LEFT_CLOSE))
         .replace("__SLOW_CLOSE__", str(SLOW_CLOSE))
     )
+
+
+def _add_read_script(request: web.Request, response: web.Response) -> None:
+    """Add :data:`app.serve.coalesce.READ_SCRIPT` to the app's page in ``response``: the page
+    then says what it has taken of its websocket, and the front holds the rest where it merges."""
+    if _is_page(request) and response.status == 200 and response.body:
+        if response.content_type == "text/html":
+            page = bytes(response.body).decode("utf-8", "replace")
+            response.body = coalesce.with_read_script(page).encode()
 
 
 def _is_page(request: web.Request) -> bool:
@@ -789,13 +805,16 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
 """
 
 
-async def _pump(source, target) -> None:
-    """Copy websocket messages from ``source`` to ``target`` until either closes."""
+async def _pump(source, target, reads: coalesce.PageReads | None = None) -> None:
+    """Copy websocket messages from ``source`` to ``target`` until either closes; a page's
+    count of what it has taken goes to ``reads``, not on."""
     async for message in source:
         if target.closed:
             break
         try:
             if message.type == WSMsgType.TEXT:
+                if reads is not None and reads.note(message.data):
+                    continue
                 await target.send_str(message.data)
             elif message.type == WSMsgType.BINARY:
                 await target.send_bytes(message.data)
@@ -807,16 +826,24 @@ async def _pump(source, target) -> None:
         await target.close()
 
 
-async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
+async def _pump_to_browser(
+    session_socket, browser, limit_bytes: int, reads: coalesce.PageReads | None = None
+) -> None:
     """Copy a session's websocket messages to ``browser`` without ever holding the session back:
     they wait here while the browser reads (:class:`app.serve.coalesce.Backlog`: while they wait,
     consecutive state publishes are merged into one, so a page that is behind jumps to the newest
-    state); a browser more than ``limit_bytes`` behind in what cannot be merged is closed with
+    state; ``reads``: what the page says it has taken, which bounds what is on its way); a
+    browser more than ``limit_bytes`` behind in what cannot be merged is closed with
     :data:`SLOW_CLOSE`."""
     backlog = coalesce.Backlog()
+    reads = reads or coalesce.PageReads()
 
     async def write() -> None:
-        while (message := await backlog.get()) is not None:
+        while True:
+            behind = await reads.room()  # meanwhile what the session sends waits, and merges
+            if (message := await backlog.get(behind)) is None:
+                break
+            reads.sent += 1
             kind, data = message
             if kind == WSMsgType.TEXT:
                 await browser.send_str(data)
@@ -840,6 +867,7 @@ async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
             await session_socket.close()  # message on its way is let finish (a frame cut
             backlog.drop()  # short would garble the close that follows)
         backlog.close()
+        reads.stop()
         try:
             await asyncio.wait_for(writer, SLOW_WRITE_S if too_slow else None)
         except (TimeoutError, asyncio.CancelledError, ConnectionError, RuntimeError):

@@ -25,6 +25,11 @@ def _chunk(body: dict) -> bytes:
     return ident + (0).to_bytes(4, "little") + len(packed).to_bytes(4, "little") + packed
 
 
+def _call(method: str) -> bytes:
+    """A page's call (one a follower may make)."""
+    return _chunk({"wslink": "1.0", "id": "rpc:c0:1", "method": method, "args": []})
+
+
 def _state(changes: dict) -> bytes:
     """A trame state publish, as app.fan_out sends it."""
     return _chunk({"wslink": "1.0", "id": "publish:trame.state.topic:0", "result": changes})
@@ -146,11 +151,14 @@ def test_nothing_merges_while_the_writer_waits_for_a_message():
     assert received == stream
 
 
-async def _through_front(monkeypatch, stream: list[bytes], read_pause_s: float):
+async def _through_front(
+    monkeypatch, stream: list[bytes], read_pause_s: float | None, says_what_it_took=False
+):
     """``stream`` sent by a stand-in session to a follower through a real front; the follower
     reads nothing until the session has sent it all (``read_pause_s`` None) or reads each
     message as it comes while the session pauses ``read_pause_s`` after every third message.
-    What the follower received."""
+    ``says_what_it_took``: the follower says how many messages it has taken, as the page's
+    script does (:data:`app.serve.coalesce.READ_SCRIPT`). What the follower received."""
     sent = asyncio.Event()
     sending = float(read_pause_s or 0.0)
 
@@ -158,6 +166,7 @@ async def _through_front(monkeypatch, stream: list[bytes], read_pause_s: float):
         ws = web.WebSocketResponse()
         await ws.prepare(request)
         if request.headers.get(front_module.FOLLOWER_HEADER):
+            await ws.receive()  # the page's first call: it is there
             for i, data in enumerate(stream):
                 await ws.send_bytes(data)
                 if sending and i % 3 == 2:  # in bursts of three, as a frame and a reply come
@@ -179,8 +188,12 @@ async def _through_front(monkeypatch, stream: list[bytes], read_pause_s: float):
             follower = await follower_http.ws_connect(
                 f"ws://127.0.0.1:{server.port}/follow/{CODE}/ws", origin=base, max_msg_size=0
             )
+            if says_what_it_took:  # on open, before its first call
+                await follower.send_str(f"{coalesce.READ_PREFIX}0")
+            await follower.send_bytes(_call("trame.state.get"))
             if read_pause_s is None:
                 await asyncio.wait_for(sent.wait(), timeout=30)
+            told = 0
             while len(received) < len(stream):
                 try:
                     message = await asyncio.wait_for(follower.receive(), timeout=2 + 3 * sending)
@@ -189,6 +202,9 @@ async def _through_front(monkeypatch, stream: list[bytes], read_pause_s: float):
                 if message.type != WSMsgType.BINARY:
                     break
                 received.append(message.data)
+                if says_what_it_took and len(received) - told >= coalesce.READ_WINDOW // 2:
+                    told = len(received)
+                    await follower.send_str(f"{coalesce.READ_PREFIX}{told}")
             await follower.close()
     await server.close()
     await upstream.close()
@@ -244,3 +260,54 @@ def test_a_large_waiting_state_is_not_packed_again_for_every_frame_merged_into_i
     state = _decoded(sent[1])["result"]
     assert state["frame"] == 200 and len(state["chart_raceway_map"]) == 1_000_000
     assert backlog.merged == 200 and backlog.bytes == 0 and len(backlog) == 0
+
+
+def test_a_page_that_says_what_it_took_has_a_few_messages_on_their_way_the_rest_merge(
+    monkeypatch,
+):
+    """Small frames (2 kB: the operating system's buffers would hold them all) to a follower
+    that says what it has taken, as the page's script does, and reads nothing until the session
+    has sent them all: it gets the READ_WINDOW messages on their way, then merged ones, and the
+    session's state and barriers."""
+    stream = _session_stream(400, barrier_every=50, filler=2_000)
+    barriers = len(stream) - 400
+
+    received = asyncio.run(
+        _through_front(monkeypatch, stream, read_pause_s=None, says_what_it_took=True)
+    )
+    assert _replay(received) == _replay(stream)
+    # the window's messages and those that came at once while nothing was on its way, then
+    # each barrier with the frames merged before it: a message for every 8 frames at most (without
+    # the window, the buffers on the way held 93 of the 408 messages here)
+    assert len(received) < 50, len(received)
+    assert barriers == 8
+
+
+def test_page_reads_bound_what_is_on_its_way_once_the_page_counts():
+    async def scenario():
+        reads = coalesce.PageReads(window=3)
+        reads.sent = 5
+        await asyncio.wait_for(reads.room(), 1)  # a page that has not said anything: no bound
+        assert not reads.note("hello") and reads.note(f"{coalesce.READ_PREFIX}1")
+        waiting = asyncio.get_running_loop().create_task(reads.room())
+        await asyncio.sleep(0.05)
+        assert not waiting.done()  # 5 sent, 1 taken: 4 on their way, more than 3
+        reads.note(f"{coalesce.READ_PREFIX}99")  # at most what was sent
+        await asyncio.wait_for(waiting, 1)
+        assert reads.taken == 5
+        reads.sent = 9
+        waiting = asyncio.get_running_loop().create_task(reads.room())
+        await asyncio.sleep(0.05)
+        assert not waiting.done()
+        reads.stop()  # the socket closes: nothing waits for the page any more
+        await asyncio.wait_for(waiting, 1)
+
+    asyncio.run(scenario())
+
+
+def test_every_page_the_front_serves_says_what_it_took_before_its_own_scripts():
+    page = "<html><head><script src='app.js'></script></head><body>app</body></html>"
+    added = coalesce.with_read_script(page)
+    assert added.index(coalesce.READ_PREFIX) < added.index("app.js")
+    assert added.replace(coalesce.READ_SCRIPT, "") == page
+    assert f"every = {coalesce.READ_WINDOW // 2}" in coalesce.READ_SCRIPT
