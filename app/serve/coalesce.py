@@ -3,9 +3,16 @@
 The front holds what a session has sent a browser that the browser has not taken yet
 (:func:`app.serve.front._pump_to_browser`): a page whose main thread is busy (drawing the 3-D view
 in software WebGL takes a third of a second) stops reading its websocket, and the messages wait
-here. While they wait, a run of consecutive trame state publishes is merged into one message: the
-later value of a key wins, every key is kept. The page then jumps to the newest frame instead of
-playing every stale one, and what waits shrinks to one frame's state.
+here (:class:`Backlog`). While they wait, a run of consecutive trame state publishes is merged
+into one message: the later value of a key wins, every key is kept. The page then jumps to the
+newest frame instead of playing every stale one, and what waits shrinks to one frame's state.
+
+For the messages to wait here, where they can merge, rather than in the buffers on the way (a
+browser's socket took 3.5 MB, hundreds of frames, once it had read a 4 MB state quickly on
+joining), every page the front serves says how many messages its main thread has taken
+(:data:`READ_SCRIPT`, :class:`PageReads`), and the front has at most :data:`READ_WINDOW` of them on
+their way to it; the socket's send buffer is kept small as well (:func:`hold_at_front`). A client
+that does not say (a script, the benchmarks' websocket clients) is sent everything at once.
 
 What is merged: a whole wslink message in one chunk (header: id, offset 0, size), whose msgpack
 body is ``{"wslink": ..., "id": "publish:trame.state.topic:N", "result": {key: value, ...}}`` —
@@ -21,8 +28,10 @@ Everything else is a barrier, kept whole and in order: RPC replies and errors, o
 anything that does not decode as above. A state publish is never merged across a barrier.
 
 Only what waits is merged: a message is merged into the one before it only while that one waits
-behind a message being sent (the browser has not taken it). A browser that keeps up gets the
-session's bytes unchanged and costs no decoding.
+behind a message on its way (the writer is sending, or waits for the page to take what it was
+sent); messages that came at once while nothing was on its way are merged only once the page is
+behind (it had to be waited for). A browser that keeps up gets the session's bytes unchanged and
+costs no decoding.
 """
 
 from __future__ import annotations
@@ -50,9 +59,11 @@ _ID_WITHIN = 64  # the id is among a body's first bytes: {"wslink": "1.0", "id":
 SEND_BUFFER_BYTES = 64 * 1024
 #: A page served by the front says how many websocket messages it has taken, as a text message
 #: ``racetrace-read:N`` (:data:`READ_SCRIPT`); the front then has at most :data:`READ_WINDOW`
-#: messages on their way to it (in the kernel's buffers, the browser's, the page's task queue).
+#: messages on their way to it (in the kernel's buffers, the browser's, the page's task queue):
+#: a page in software WebGL on a loaded machine takes about one message a second, so every
+#: message more on its way is a second more behind.
 READ_PREFIX = "racetrace-read:"
-READ_WINDOW = 8
+READ_WINDOW = 2
 
 
 @dataclass
@@ -109,7 +120,11 @@ def state_message(rpc_id: str, state: dict) -> bytes:
 
 
 # Added to every page the front serves, before the page's own scripts: the page counts the
-# websocket messages its main thread has taken and says so every READ_WINDOW / 2 of them.
+# websocket messages it has taken and says so every READ_WINDOW / 2 of them. trame's client reads
+# each message as a Blob, in two asynchronous reads (its header, then its body) before it applies
+# it; a message is counted once two such reads issued after trame's (this listener is added when
+# the socket opens, after trame's handler) are done, i.e. once trame has applied it, not when it
+# merely arrived (a busy page takes arrivals quickly and applies them late).
 READ_SCRIPT = """<script>
 (function () {
   var Native = window.WebSocket, every = __EVERY__;
@@ -118,15 +133,24 @@ READ_SCRIPT = """<script>
       super(url, protocols);
       var socket = this, taken = 0, told = 0;
       function tell() { told = taken; socket.send('__PREFIX__' + taken); }
-      this.addEventListener('open', tell);
-      this.addEventListener('message', function () {
+      function took() {
         taken += 1;
         if (taken - told >= every && socket.readyState === 1) tell();
+      }
+      this.addEventListener('open', function () {
+        tell();
+        socket.addEventListener('message', function (event) {
+          var data = event.data;
+          if (!(data instanceof Blob)) { took(); return; }
+          data.slice(0, 12).arrayBuffer()
+            .then(function () { return data.slice(12, 13).arrayBuffer(); })
+            .then(took, took);
+        });
       });
     }
   };
 })();
-</script>""".replace("__EVERY__", str(READ_WINDOW // 2)).replace("__PREFIX__", READ_PREFIX)
+</script>""".replace("__EVERY__", str(max(1, READ_WINDOW // 2))).replace("__PREFIX__", READ_PREFIX)
 
 
 def with_read_script(page: str) -> str:

@@ -202,7 +202,7 @@ async def _through_front(
                 if message.type != WSMsgType.BINARY:
                     break
                 received.append(message.data)
-                if says_what_it_took and len(received) - told >= coalesce.READ_WINDOW // 2:
+                if says_what_it_took and len(received) - told >= max(1, coalesce.READ_WINDOW // 2):
                     told = len(received)
                     await follower.send_str(f"{coalesce.READ_PREFIX}{told}")
             await follower.close()
@@ -310,4 +310,4 @@ def test_every_page_the_front_serves_says_what_it_took_before_its_own_scripts():
     added = coalesce.with_read_script(page)
     assert added.index(coalesce.READ_PREFIX) < added.index("app.js")
     assert added.replace(coalesce.READ_SCRIPT, "") == page
-    assert f"every = {coalesce.READ_WINDOW // 2}" in coalesce.READ_SCRIPT
+    assert f"every = {max(1, coalesce.READ_WINDOW // 2)}" in coalesce.READ_SCRIPT
