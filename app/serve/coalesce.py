@@ -8,8 +8,8 @@ into one message: the later value of a key wins, every key is kept. The page the
 newest frame instead of playing every stale one, and what waits shrinks to one frame's state.
 
 For the messages to wait here, where they can merge, rather than in the buffers on the way (a
-browser's socket took 3.5 MB, hundreds of frames, once it had read a 4 MB state quickly on
-joining), every page the front serves says how many messages its main thread has taken
+browser's socket held 3.5 MB, seconds of frames, once it had read a 4 MB state quickly on
+joining), every page the front serves says how many messages trame has applied
 (:data:`READ_SCRIPT`, :class:`PageReads`), and the front has at most :data:`READ_WINDOW` of them on
 their way to it; the socket's send buffer is kept small as well (:func:`hold_at_front`). A client
 that does not say (a script, the benchmarks' websocket clients) is sent everything at once.
@@ -55,7 +55,7 @@ _ID_WITHIN = 64  # the id is among a body's first bytes: {"wslink": "1.0", "id":
 #: What the front hands the operating system for one browser before it waits (bytes): the socket's
 #: send buffer and the transport's buffer above it. Messages beyond it wait in :class:`Backlog`,
 #: where they merge; on its own, the kernel grows a loopback socket's send buffer to megabytes,
-#: hundreds of frames that a slow page would still play one by one.
+#: seconds of frames that a slow page would still play one by one.
 SEND_BUFFER_BYTES = 64 * 1024
 #: A page served by the front says how many websocket messages it has taken, as a text message
 #: ``racetrace-read:N`` (:data:`READ_SCRIPT`); the front then has at most :data:`READ_WINDOW`
