@@ -39,7 +39,7 @@ from aiohttp import ClientSession, WSMsgType, web
 
 from ..access import Access
 from ..follow_names import FOLLOWER_HEADER, QR_NAME
-from . import follow, preparing
+from . import coalesce, follow, preparing
 from .quiet_log import quiet_closed_connections
 from .session_guard import SECRET_ENV, SECRET_HEADER, new_secret
 
@@ -55,9 +55,11 @@ START_TIMEOUT_S = 1800.0
 PREPARING_PATH = "/__racetrace_preparing"  # what the first session waits for, as JSON
 ENDED_KEPT_S = 3600.0  # an ended class's page says so this long (then: no such class)
 # What a session has sent that a browser has not read yet is held here, not in the session (a
-# session writing to a slow reader would hold it for every such client, without bound): a browser
-# that falls this many bytes behind is closed with SLOW_CLOSE. A follower's page then joins again
-# (the state it reads on joining is whole); a presenter's page shows it lost its connection.
+# session writing to a slow reader would hold it for every such client, without bound), and the
+# state messages among it merge while they wait (app.serve.coalesce): a browser that falls this
+# many bytes behind all the same (in what cannot merge) is closed with SLOW_CLOSE. A follower's
+# page then joins again (the state it reads on joining is whole); a presenter's page shows it lost
+# its connection.
 FOLLOWER_BACKLOG_BYTES = 16 * 1024 * 1024
 PRESENTER_BACKLOG_BYTES = 96 * 1024 * 1024
 SLOW_CLOSE = 4002
@@ -371,6 +373,7 @@ class Front:
         if request.headers.get("Upgrade", "").lower() == "websocket":
             return await self._relay_websocket(request, session)
         response = await self._relay_http(request, session)
+        _add_read_script(request, response)
         if new:
             response.set_cookie(COOKIE, session.sid, httponly=True, samesite="Strict", path="/")
         self.access.grant(request, response)
@@ -413,6 +416,7 @@ class Front:
             page = bytes(response.body).decode("utf-8", "replace")
             banner = _follower_banner(session.join_code)
             response.body = page.replace("</body>", banner + "</body>").encode()
+        _add_read_script(request, response)
         self.access.grant(request, response)
         return response
 
@@ -484,6 +488,7 @@ class Front:
         ``follower``'s messages pass the read-only gate first."""
         browser = web.WebSocketResponse(max_msg_size=0, autoping=True, heartbeat=None)
         await browser.prepare(request)
+        coalesce.hold_at_front(request.transport)
         url = f"ws://127.0.0.1:{session.port}{inner or request.rel_url}"
         headers = {SECRET_HEADER: session.secret}
         if follower:
@@ -498,13 +503,14 @@ class Front:
                 origin=f"http://127.0.0.1:{session.port}",
                 headers=headers,
             ) as upstream:
+                reads = coalesce.PageReads()
                 inward = (
-                    self._pump_follower(browser, upstream, session)
+                    self._pump_follower(browser, upstream, session, reads)
                     if follower
-                    else _pump(browser, upstream)
+                    else _pump(browser, upstream, reads)
                 )
                 limit = FOLLOWER_BACKLOG_BYTES if follower else PRESENTER_BACKLOG_BYTES
-                await asyncio.gather(inward, _pump_to_browser(upstream, browser, limit))
+                await asyncio.gather(inward, _pump_to_browser(upstream, browser, limit, reads))
         except OSError as error:
             log.warning("session %s unreachable: %s", session.sid[:6], error)
         finally:
@@ -516,14 +522,18 @@ class Front:
             await browser.close()
         return browser
 
-    async def _pump_follower(self, browser, upstream, session: Session) -> None:
+    async def _pump_follower(
+        self, browser, upstream, session: Session, reads: coalesce.PageReads
+    ) -> None:
         """Copy a follower's messages to its session, those the read-only gate lets through; a
-        refused call is answered with a wslink error (app.serve.follow)."""
+        refused call is answered with a wslink error (app.serve.follow). The page's count of
+        what it has taken goes to ``reads``."""
         gate = follow.FollowerGate()
         async for message in browser:
             if upstream.closed:
                 break
             if message.type == WSMsgType.TEXT:
+                reads.note(message.data)
                 continue  # wslink speaks binary only: nothing to pass on
             if message.type != WSMsgType.BINARY:
                 break
@@ -645,6 +655,15 @@ def _follower_banner(code: str) -> str:
         .replace("__LEFT_CLOSE__", str(follow.PRESENTER_LEFT_CLOSE))
         .replace("__SLOW_CLOSE__", str(SLOW_CLOSE))
     )
+
+
+def _add_read_script(request: web.Request, response: web.Response) -> None:
+    """Add :data:`app.serve.coalesce.READ_SCRIPT` to the app's page in ``response``: the page
+    then says what it has taken of its websocket, and the front holds the rest where it merges."""
+    if _is_page(request) and response.status == 200 and response.body:
+        if response.content_type == "text/html":
+            page = bytes(response.body).decode("utf-8", "replace")
+            response.body = coalesce.with_read_script(page).encode()
 
 
 def _is_page(request: web.Request) -> bool:
@@ -786,13 +805,16 @@ html.rt-read-only .v-toolbar button { pointer-events: none; }
 """
 
 
-async def _pump(source, target) -> None:
-    """Copy websocket messages from ``source`` to ``target`` until either closes."""
+async def _pump(source, target, reads: coalesce.PageReads | None = None) -> None:
+    """Copy websocket messages from ``source`` to ``target`` until either closes; a page's
+    count of what it has taken goes to ``reads``, not on."""
     async for message in source:
         if target.closed:
             break
         try:
             if message.type == WSMsgType.TEXT:
+                if reads is not None and reads.note(message.data):
+                    continue
                 await target.send_str(message.data)
             elif message.type == WSMsgType.BINARY:
                 await target.send_bytes(message.data)
@@ -804,22 +826,29 @@ async def _pump(source, target) -> None:
         await target.close()
 
 
-async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
+async def _pump_to_browser(
+    session_socket, browser, limit_bytes: int, reads: coalesce.PageReads | None = None
+) -> None:
     """Copy a session's websocket messages to ``browser`` without ever holding the session back:
-    they wait in a queue here while the browser reads; a browser more than ``limit_bytes``
-    behind is closed with :data:`SLOW_CLOSE` (a wslink message cannot be dropped: the ones after
-    it may be its chunks or changes to its state)."""
-    queue: asyncio.Queue = asyncio.Queue()
-    backlog = 0
+    they wait here while the browser reads (:class:`app.serve.coalesce.Backlog`: while they wait,
+    consecutive state publishes are merged into one, so a page that is behind jumps to the newest
+    state; ``reads``: what the page says it has taken, which bounds what is on its way); a
+    browser more than ``limit_bytes`` behind in what cannot be merged is closed with
+    :data:`SLOW_CLOSE`."""
+    backlog = coalesce.Backlog()
+    reads = reads or coalesce.PageReads()
 
     async def write() -> None:
-        nonlocal backlog
-        while (message := await queue.get()) is not None:
-            backlog -= len(message.data)
-            if message.type == WSMsgType.TEXT:
-                await browser.send_str(message.data)
+        while True:
+            behind = await reads.room()  # meanwhile what the session sends waits, and merges
+            if (message := await backlog.get(behind)) is None:
+                break
+            reads.sent += 1
+            kind, data = message
+            if kind == WSMsgType.TEXT:
+                await browser.send_str(data)
             else:
-                await browser.send_bytes(message.data)
+                await browser.send_bytes(data)
 
     writer = asyncio.create_task(write())
     too_slow = False
@@ -829,21 +858,22 @@ async def _pump_to_browser(session_socket, browser, limit_bytes: int) -> None:
                 break
             if message.type not in (WSMsgType.TEXT, WSMsgType.BINARY):
                 break
-            if backlog + len(message.data) > limit_bytes:
+            backlog.put(message.type, message.data)
+            if backlog.bytes > limit_bytes:
                 too_slow = True
                 break
-            backlog += len(message.data)
-            queue.put_nowait(message)
     finally:
         if too_slow:  # the session stops sending to it; what waits here is dropped, the
             await session_socket.close()  # message on its way is let finish (a frame cut
-            while not queue.empty():  # short would garble the close that follows)
-                queue.get_nowait()
-        queue.put_nowait(None)
+            backlog.drop()  # short would garble the close that follows)
+        backlog.close()
+        reads.stop()
         try:
             await asyncio.wait_for(writer, SLOW_WRITE_S if too_slow else None)
         except (TimeoutError, asyncio.CancelledError, ConnectionError, RuntimeError):
             pass  # a browser that reads nothing, or the browser went while a message was on its way
+    if backlog.merged:
+        log.debug("%d state messages merged for a browser that was behind", backlog.merged)
     if too_slow and not browser.closed:
         log.warning("a browser fell over %d bytes behind its session: closed", limit_bytes)
         await browser.close(code=SLOW_CLOSE, message=b"too slow to follow")

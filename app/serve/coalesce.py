@@ -1,0 +1,304 @@
+"""A browser that is behind its session gets only the newest state, not every stale one.
+
+The front holds what a session has sent a browser that the browser has not taken yet
+(:func:`app.serve.front._pump_to_browser`): a page whose main thread is busy (drawing the 3-D view
+in software WebGL takes a third of a second) stops reading its websocket, and the messages wait
+here (:class:`Backlog`). While they wait, a run of consecutive trame state publishes is merged
+into one message: the later value of a key wins, every key is kept. The page then jumps to the
+newest frame instead of playing every stale one, and what waits shrinks to one frame's state.
+
+For the messages to wait here, where they can merge, rather than in the buffers on the way (a
+browser's socket held 3.5 MB, seconds of frames, once it had read a 4 MB state quickly on
+joining), every page the front serves says how many messages trame has applied
+(:data:`READ_SCRIPT`, :class:`PageReads`), and the front has at most :data:`READ_WINDOW` of them on
+their way to it; the socket's send buffer is kept small as well (:func:`hold_at_front`). A client
+that does not say (a script, the benchmarks' websocket clients) is sent everything at once.
+
+What is merged: a whole wslink message in one chunk (header: id, offset 0, size), whose msgpack
+body is ``{"wslink": ..., "id": "publish:trame.state.topic:N", "result": {key: value, ...}}`` —
+what trame publishes for a state change (``trame_server.protocol.push_state_change``, sent by
+:mod:`app.fan_out`). Merging is right because a state message carries whole values: trame itself
+sends a key only when its value differs from the last one sent, so a page that applies only the
+last of several values of a key shows what it would show after applying all of them. Every key
+the app publishes is a whole value (a played frame's matrices, ellipses and painted-quad counts;
+the charts' figures; the live tracks sent whole), none a delta to add to the previous one.
+
+Everything else is a barrier, kept whole and in order: RPC replies and errors, other topics
+(images of the server-rendered view, trame's actions), a message in several chunks, text, and
+anything that does not decode as above. A state publish is never merged across a barrier.
+
+Only what waits is merged: a message is merged into the one before it only while that one waits
+behind a message on its way (the writer is sending, or waits for the page to take what it was
+sent); messages that came at once while nothing was on its way are merged only once the page is
+behind (it had to be waited for). A browser that keeps up gets the session's bytes unchanged and
+costs no decoding.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import secrets
+import socket
+from collections import deque
+from dataclasses import dataclass
+
+import msgpack
+from aiohttp import WSMsgType
+from wslink.protocol import MAX_MSG_SIZE
+
+#: the id of a trame state publish starts with this (then wslink's publish count)
+STATE_ID_PREFIX = "publish:trame.state.topic:"
+_STATE_ID = STATE_ID_PREFIX.encode()
+_HEADER = 12  # wslink's chunk header: message id, offset, total size (little-endian uint32 each)
+_ID_WITHIN = 64  # the id is among a body's first bytes: {"wslink": "1.0", "id": ...}
+#: What the front hands the operating system for one browser before it waits (bytes): the socket's
+#: send buffer and the transport's buffer above it. Messages beyond it wait in :class:`Backlog`,
+#: where they merge; on its own, the kernel grows a loopback socket's send buffer to megabytes,
+#: seconds of frames that a slow page would still play one by one.
+SEND_BUFFER_BYTES = 64 * 1024
+#: A page served by the front says how many websocket messages it has taken, as a text message
+#: ``racetrace-read:N`` (:data:`READ_SCRIPT`); the front then has at most :data:`READ_WINDOW`
+#: messages on their way to it (in the kernel's buffers, the browser's, the page's task queue):
+#: a page in software WebGL on a loaded machine takes about one message a second, so every
+#: message more on its way is a second more behind.
+READ_PREFIX = "racetrace-read:"
+READ_WINDOW = 2
+
+
+@dataclass
+class _Waiting:
+    """A message waiting for the browser: its websocket type and bytes (None while a merge is
+    not packed yet); ``size``: its bytes, or at most that many while not packed; for a state
+    publish, its id and state (decoded when a message comes after it; ``state`` None: a
+    barrier), and its size when last packed."""
+
+    type: WSMsgType
+    data: bytes | str | None
+    size: int
+    decoded: bool = False
+    rpc_id: str = ""
+    state: dict | None = None
+    packed_size: int = 0
+
+    def pack(self) -> None:
+        """Pack the merged state into :attr:`data`; :attr:`size` is then exact."""
+        self.data = state_message(self.rpc_id, self.state)
+        self.size = self.packed_size = len(self.data)
+
+
+def state_publish(message_type: WSMsgType, data: bytes | str) -> tuple[str, dict] | None:
+    """``(id, state)`` of a wslink message that is a whole trame state publish in one chunk;
+    None for anything else (a barrier)."""
+    if message_type != WSMsgType.BINARY or len(data) <= _HEADER:
+        return None
+    offset = int.from_bytes(data[4:8], "little")
+    size = int.from_bytes(data[8:12], "little")
+    if offset != 0 or size != len(data) - _HEADER:
+        return None  # one chunk of a message in several: kept whole
+    if _STATE_ID not in data[_HEADER : _HEADER + _ID_WITHIN]:
+        return None  # not a state publish: not decoded
+    try:
+        body = msgpack.unpackb(data[_HEADER:], raw=False, strict_map_key=False)
+    except Exception:  # msgpack raises several types for what is not msgpack
+        return None
+    if not isinstance(body, dict) or set(body) != {"wslink", "id", "result"}:
+        return None
+    rpc_id, state = body["id"], body["result"]
+    if not isinstance(rpc_id, str) or not rpc_id.startswith(STATE_ID_PREFIX):
+        return None
+    if not isinstance(state, dict) or not all(isinstance(k, str) for k in state):
+        return None
+    return rpc_id, state
+
+
+def state_message(rpc_id: str, state: dict) -> bytes:
+    """A trame state publish of ``state`` with id ``rpc_id``, as one wslink chunk."""
+    body = msgpack.packb({"wslink": "1.0", "id": rpc_id, "result": state})
+    header = secrets.randbits(32).to_bytes(4, "little") + (0).to_bytes(4, "little")
+    return header + len(body).to_bytes(4, "little") + body
+
+
+# Added to every page the front serves, before the page's own scripts: the page counts the
+# websocket messages it has taken and says so every READ_WINDOW / 2 of them. trame's client reads
+# each message as a Blob, in two asynchronous reads (its header, then its body) before it applies
+# it; a message is counted once two such reads issued after trame's (this listener is added when
+# the socket opens, after trame's handler) are done, i.e. once trame has applied it, not when it
+# merely arrived (a busy page takes arrivals quickly and applies them late).
+READ_SCRIPT = """<script>
+(function () {
+  var Native = window.WebSocket, every = __EVERY__;
+  window.WebSocket = class extends Native {
+    constructor(url, protocols) {
+      super(url, protocols);
+      var socket = this, taken = 0, told = 0;
+      function tell() { told = taken; socket.send('__PREFIX__' + taken); }
+      function took() {
+        taken += 1;
+        if (taken - told >= every && socket.readyState === 1) tell();
+      }
+      this.addEventListener('open', function () {
+        tell();
+        socket.addEventListener('message', function (event) {
+          var data = event.data;
+          if (!(data instanceof Blob)) { took(); return; }
+          data.slice(0, 12).arrayBuffer()
+            .then(function () { return data.slice(12, 13).arrayBuffer(); })
+            .then(took, took);
+        });
+      });
+    }
+  };
+})();
+</script>""".replace("__EVERY__", str(max(1, READ_WINDOW // 2))).replace("__PREFIX__", READ_PREFIX)
+
+
+def with_read_script(page: str) -> str:
+    """``page`` (HTML) with :data:`READ_SCRIPT` first in its head."""
+    head = page.find("<head>")
+    if head < 0:
+        return READ_SCRIPT + page
+    return page[: head + 6] + READ_SCRIPT + page[head + 6 :]
+
+
+class PageReads:
+    """What the front has sent one page and what the page says it has taken
+    (:data:`READ_PREFIX`). A page that never says (a client without :data:`READ_SCRIPT`) is
+    sent everything at once, as before; one that does has at most ``window`` messages on their
+    way, the rest wait in its :class:`Backlog`, where they merge."""
+
+    def __init__(self, window: int = READ_WINDOW):
+        self.window = window
+        self.sent = 0  # messages sent to the page
+        self.taken = 0  # messages the page says it has taken
+        self.counting = False  # the page says what it has taken
+        self._changed = asyncio.Event()
+
+    def note(self, text: str) -> bool:
+        """Take a text message from the page: whether it was the page's count (then it is the
+        front's, not the session's)."""
+        if not text.startswith(READ_PREFIX):
+            return False
+        try:
+            taken = int(text[len(READ_PREFIX) :])
+        except ValueError:
+            return True
+        self.counting = True
+        self.taken = max(self.taken, min(taken, self.sent))
+        self._changed.set()
+        return True
+
+    async def room(self) -> bool:
+        """Wait until another message may go to the page; whether it had to wait."""
+        waited = False
+        while self.counting and self.sent - self.taken >= self.window:
+            waited = True
+            self._changed.clear()
+            await self._changed.wait()
+        return waited
+
+    def stop(self) -> None:
+        """No more waiting for the page (its socket closes): :meth:`room` returns at once."""
+        self.counting = False
+        self._changed.set()
+
+
+def hold_at_front(transport) -> None:
+    """Keep what waits for the browser on ``transport`` (an asyncio transport) at the front: at
+    most :data:`SEND_BUFFER_BYTES` in the socket's send buffer (Linux doubles what is asked) and
+    in the transport's buffer; nothing is done for a transport without a socket."""
+    if transport is None:
+        return
+    sock = transport.get_extra_info("socket")
+    if sock is not None:
+        with contextlib.suppress(OSError):
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER_BYTES)
+    with contextlib.suppress(AttributeError, NotImplementedError, ValueError):
+        transport.set_write_buffer_limits(high=SEND_BUFFER_BYTES // 4)
+
+
+class Backlog:
+    """The messages a session sent one browser that the browser has not taken yet, in order
+    (see the module docstring). The reader of the session's websocket calls :meth:`put`; the
+    browser's writer calls :meth:`get` for the next message to send, and comes back for another
+    once it is sent."""
+
+    def __init__(self):
+        self._waiting: deque[_Waiting] = deque()
+        self._wake = asyncio.Event()
+        self._writer_waits = True  # the writer waits in get(): nothing is on its way
+        self._closed = False
+        self.bytes = 0  # the waiting messages' bytes (at most: merges are packed when sent)
+        self.merged = 0  # messages merged into a later one (never sent as they came)
+
+    def __len__(self) -> int:
+        return len(self._waiting)
+
+    def put(self, message_type: WSMsgType, data: bytes | str) -> None:
+        """Add a message the session sent; merged into the last waiting one when both are state
+        publishes and that one waits behind a message on its way."""
+        item = _Waiting(message_type, data, len(data))
+        if self._waiting and not self._writer_waits and self._merge(self._waiting[-1], item):
+            return
+        self._waiting.append(item)
+        self.bytes += item.size
+        self._wake.set()
+
+    def _merge(self, into: _Waiting, item: _Waiting) -> bool:
+        """Merge ``item`` into ``into`` (the message before it) when both are state publishes
+        (``self.bytes`` counts ``into`` as merged, and no longer ``item``)."""
+        if into.size + item.size > MAX_MSG_SIZE:
+            return False  # the two together could be more than one wslink chunk
+        for waiting in (into, item):
+            if not waiting.decoded:
+                found = state_publish(waiting.type, waiting.data)
+                waiting.decoded = True
+                if found is not None:
+                    waiting.rpc_id, waiting.state = found
+                    waiting.packed_size = waiting.size
+            if waiting.state is None:
+                return False  # a barrier
+        into.state.update(item.state)  # the later value of a key wins; every key is kept
+        into.rpc_id = item.rpc_id
+        self.merged += 1
+        # packed when sent; before that only when its bound doubled since it was last packed
+        # (the merged state is at most the sum of the two): packing costs at most twice what
+        # arrives, not a whole chart figure per merged frame
+        before = into.size
+        into.data, into.size = None, into.size + item.size
+        if into.size > 2 * into.packed_size:
+            into.pack()
+        self.bytes += into.size - before
+        return True
+
+    async def get(self, behind: bool = False) -> tuple[WSMsgType, bytes | str] | None:
+        """The next message to send (type, data), oldest first; None once :meth:`close` was
+        called and nothing waits. ``behind``: the browser is behind (it has not said that it
+        took what is on its way): the state publishes that wait at the head are merged first,
+        those that came at once while nothing was on its way too."""
+        self._writer_waits = True
+        while not self._waiting:
+            if self._closed:
+                return None
+            self._wake.clear()
+            await self._wake.wait()
+        self._writer_waits = False
+        head = self._waiting[0]
+        while behind and len(self._waiting) > 1 and self._merge(head, self._waiting[1]):
+            self.bytes -= self._waiting[1].size
+            del self._waiting[1]
+        self._waiting.popleft()
+        self.bytes -= head.size
+        if head.data is None:
+            head.pack()
+        return head.type, head.data
+
+    def drop(self) -> None:
+        """Forget every waiting message (the browser is closed as too slow)."""
+        self._waiting.clear()
+        self.bytes = 0
+
+    def close(self) -> None:
+        """No more messages: :meth:`get` returns None once the waiting ones are taken."""
+        self._closed = True
+        self._wake.set()
