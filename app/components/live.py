@@ -262,9 +262,10 @@ class Live(Component):
         next_frame = time.monotonic()
         while self.state.live_on:
             t0 = time.monotonic()
+            due = t0 >= next_frame
             try:
                 with self.state:
-                    if self.tick(frame_due=t0 >= next_frame):
+                    if self.tick(frame_due=due) or due:  # drawn, or nothing to draw yet
                         next_frame = t0 + period
             except Exception as error:  # a failing frame must not end the session's loop
                 log.exception("live frame failed")

@@ -410,3 +410,30 @@ def test_the_chunk_with_a_change_is_drawn_at_once_and_the_charts_wait_for_it(liv
     assert live._serial == serial + 1 and len(charts) == 1  # the frame goes first
     assert live.tick()
     assert len(charts) == 2  # then the charts
+
+
+def test_the_page_loop_ticks_at_the_frame_rate_while_there_is_nothing_to_draw(live_app):
+    """Before the first chunk (the solver compiling) and while paused, the page's loop ticks at
+    LIVE_FPS, not as fast as it can; it polls faster only while a change is on its way."""
+    import asyncio
+
+    from app.components.live import LIVE_FPS
+
+    live = live_app.live
+    ticks = []
+
+    def tick(frame_due=True):
+        ticks.append(frame_due)
+        return False  # nothing to draw
+
+    live.tick = tick
+    live_app.state.live_on = True
+
+    async def run():
+        try:
+            await asyncio.wait_for(live._loop(), 1.0)
+        except TimeoutError:
+            pass
+
+    asyncio.run(run())
+    assert 0.5 * LIVE_FPS <= len(ticks) <= 1.5 * LIVE_FPS
