@@ -2,20 +2,22 @@
 in small chunks, paced to the playback rate, and sends each chunk to the parent.
 
 The child process (:func:`live_main`) builds ``solver.LiveSimulation`` on the case given as TOML
-text, then loops: apply the controls the parent queued (:meth:`LiveRunner.set_input`, pause,
-resume, reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time and send the chunk
-Dataset, then wait out the rest of the chunk's wall time (reading controls meanwhile), so that
-the simulation runs at the playback rate (``rate``: bearing seconds per wall second). The lead is
-bounded: the child computes a chunk only while fewer than :data:`MAX_LEAD_CHUNKS` chunks it sent
-are not yet taken by the parent (:meth:`LiveRunner.poll` counts them in a shared counter), so a
-parent that falls behind never has more than that many stale chunks waiting. A control change
-cuts the wait short: the chunk after it is computed at once, whatever the lead, and is short
+text, then loops: apply the controls the parent queued (:meth:`LiveRunner.set_input`, pause, resume,
+reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time and send the chunk Dataset,
+then wait out the rest of the chunk's wall time (reading controls meanwhile), so that the simulation
+runs at the playback rate (``rate``: bearing seconds per wall second). A control that arrives while
+a chunk integrates cuts the chunk short (``LiveSimulation.advance(..., interrupt=...)``, at most
+:data:`solver.models.dynamic.live.INTERRUPT_SAMPLES` samples later): the samples done so far are
+sent as the chunk (over its share of the chunk's wall time) and the control is applied at once. The
+lead is bounded: the child computes a chunk only while fewer than :data:`MAX_LEAD_CHUNKS` chunks it
+sent are not yet taken by the parent (:meth:`LiveRunner.poll` counts them in a shared counter), so a
+parent that falls behind never has more than that many stale chunks waiting. A control change cuts
+the wait short: the chunk after it is computed at once, whatever the lead, and is short
 (:data:`CHANGE_CHUNK_FRACTION` of a chunk), so that it reaches the parent about a chunk's compute
-time sooner; the rest of the chunk before it is then not played. When a
-chunk takes longer than its wall time the solver cannot keep up: the next chunk (the same bearing
-time) is given the wall time the solver needs, so the playback runs at the rate the solver
-achieves, and the chunk's message says so (:class:`_Pace`); quick chunks bring the asked rate
-back. The playback is slowed, never stalled.
+time sooner; the rest of the chunk before it is then not played. When a chunk takes longer than its
+wall time the solver cannot keep up: the next chunk (the same bearing time) is given the wall time
+the solver needs, so the playback runs at the rate the solver achieves, and the chunk's message says
+so (:class:`_Pace`); quick chunks bring the asked rate back. The playback is slowed, never stalled.
 
 Messages from the child (tuples): ``("preparing", text)`` (loading or compiling the kernels),
 ``("ready", time_s, inputs)`` (the quasi-static state; again after a reset;
@@ -103,13 +105,26 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
             start = time.monotonic()
             duration, wall = pace.next_chunk(short=changed)
             changed = False
-            chunk = sim.advance(duration)
+            arrived = []  # controls that came while the chunk integrated: they cut it short
+
+            def control_waiting(arrived=arrived) -> bool:
+                arrived.extend(_drain(controls, block_s=0.0))
+                return bool(arrived)
+
+            chunk = sim.advance(duration, interrupt=control_waiting)
             took = time.monotonic() - start
+            timing = getattr(sim, "last_advance", None)
+            if timing is not None and timing.interrupted:  # played over its share of the wall
+                wall *= timing.simulated_s / duration
             info = pace.after_chunk(took, wall)
             info["inputs"] = dict(sim.inputs_now())
             info["sets"] = sets
             messages.put(("chunk", chunk, info))
             sent += 1
+            for control in arrived:
+                paused, applied = _apply(sim, control, paused, pace, messages)
+                sets += control[0] == "set"
+                changed = changed or applied
             wait_until = start + wall
             while not stop.is_set() and not paused and not changed:
                 left = wait_until - time.monotonic()

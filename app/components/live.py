@@ -49,6 +49,14 @@ CHART_PERIOD_S = 1.0
 #: seconds the next waits ``max(CHART_PERIOD_S, w / CHART_SHARE)``, so that on a loaded machine
 #: the frames and the solver's chunks keep flowing between chart updates.
 CHART_SHARE = 0.25
+#: From a live control change until the first chunk that carries it is drawn, the charts are not
+#: updated (an update takes a few tenths of a second of the page's loop on a loaded machine and
+#: would hold back the frame that shows the change); at most this long (s), in case the chunk
+#: never comes.
+CHANGE_HOLDS_CHARTS_S = 2.0
+#: ... and meanwhile the page's loop reads the solver's messages this often (s), so that the chunk
+#: with the change is drawn as it arrives, not at the next of the :data:`LIVE_FPS` frames.
+CHANGE_POLL_S = 0.02
 RPM = 60.0 / (2.0 * math.pi)  # rev/min per rad/s
 
 #: The live controls: state key -> (solver input, page unit per SI unit, lowest, highest, step).
@@ -98,6 +106,10 @@ class Live(Component):
         self._frames_drawn = 0  # frames drawn since the start (benchmarks read it)
         self._serial = 0
         self._case_text = None
+        self._sets_sent = 0  # "set" controls sent to the child since the start
+        self._sets_taken = 0  # ... and carried by the chunks taken (the chunks' info["sets"])
+        self._set_sent_at = -math.inf  # monotonic time of the last one sent
+        self._change_to_draw = False  # the newest chunk is the first to carry a change
 
     # ---- state ----------------------------------------------------------------------------------
     def init_state(self) -> None:
@@ -153,6 +165,8 @@ class Live(Component):
         self.tracks = None
         self.source = None
         self._frames_drawn = 0
+        self._sets_sent = self._sets_taken = 0
+        self._change_to_draw = False
         try:
             self.runner.start(self._case_text, rate, target=_simulation())
         except Exception:
@@ -235,6 +249,8 @@ class Live(Component):
             ramp = RAMP_REVOLUTIONS * shaft_period(self.inputs)
             ramp = ramp if math.isfinite(ramp) else RAMP_REVOLUTIONS * 0.01
             self.runner.send("set", channel, value / per_si, ramp)
+            self._sets_sent += 1
+            self._set_sent_at = time.monotonic()
             if channel == "inner_ring_speed" and value > 0:  # the same revolutions per second
                 self.runner.send("rate", REVOLUTIONS_PER_S * 2.0 * math.pi * RPM / value)
 
@@ -243,25 +259,38 @@ class Live(Component):
     # ---- the loop -------------------------------------------------------------------------------
     async def _loop(self) -> None:
         period = 1.0 / LIVE_FPS
+        next_frame = time.monotonic()
         while self.state.live_on:
             t0 = time.monotonic()
+            due = t0 >= next_frame
             try:
                 with self.state:
-                    self.tick()
+                    if self.tick(frame_due=due) or due:  # drawn, or nothing to draw yet
+                        next_frame = t0 + period
             except Exception as error:  # a failing frame must not end the session's loop
                 log.exception("live frame failed")
+                next_frame = t0 + period
                 with self.state:
                     self.state.live_status = f"live: error: {type(error).__name__}: {error}"[:300]
-            await asyncio.sleep(max(0.005, period - (time.monotonic() - t0)))
+            wait = next_frame - time.monotonic()
+            if self._change_awaited(time.monotonic()):
+                wait = min(wait, CHANGE_POLL_S)
+            await asyncio.sleep(max(0.005, wait))
 
-    def tick(self) -> None:
-        """Apply the solver's messages and draw the frame due now (one animation tick)."""
+    def tick(self, frame_due: bool = True) -> bool:
+        """Apply the solver's messages and draw the frame due now (one animation tick); with
+        ``frame_due`` false only a chunk that is the first to carry a change is drawn. Whether a
+        frame was drawn."""
         for message in self.runner.poll():
             self._handle(message)
             if not self.state.live_on:
-                return
-        if self.source is not None and not self.state.live_paused:
+                return False
+        if self.source is None or self.state.live_paused:
+            return False
+        if frame_due or self._change_to_draw:
             self._draw(time.monotonic())
+            return True
+        return False
 
     def _handle(self, message) -> None:
         kind, s = message[0], self.state
@@ -297,6 +326,10 @@ class Live(Component):
         s = self.state
         self.inputs = dict(info.get("inputs", {}))
         self.rate = float(info["rate"])
+        sets = int(info.get("sets", 0))
+        if sets > self._sets_taken:
+            self._sets_taken = sets
+            self._change_to_draw = True
         if self.tracks is None:
             self._start_view(chunk)
         new = self.window.add(chunk, self.inputs)
@@ -342,9 +375,22 @@ class Live(Component):
             layout, exaggeration = scene.layout, scene.options.exaggeration
         self.tracks = LiveTracks(layout.grooves, layout.grids, layout.reference, exaggeration)
 
+    def _change_awaited(self, now: float) -> bool:
+        """A change was sent and no chunk taken carries it yet (for at most
+        :data:`CHANGE_HOLDS_CHARTS_S`)."""
+        waiting = self._sets_taken < self._sets_sent
+        return waiting and now - self._set_sent_at < CHANGE_HOLDS_CHARTS_S
+
+    def _charts_held(self, now: float) -> bool:
+        """Whether the charts wait: a change is awaited (:meth:`_change_awaited`), or this frame
+        is the first to show it (the charts follow at the next tick, after the frame has gone to
+        the page)."""
+        return self._change_to_draw or self._change_awaited(now)
+
     def _draw(self, now: float) -> None:
         """Draw the frame of the bearing time due at ``now``: the newest chunk plays over the wall
-        time it took to make, from its arrival on."""
+        time it took to make, from its arrival on. The charts are brought up to date when due
+        unless a change is on its way to the picture (:meth:`_charts_held`)."""
         src = self.source
         t0, arrived = self._chunk_start
         due = t0 + self.rate * (now - arrived)
@@ -365,11 +411,12 @@ class Live(Component):
             f"Fa {frame['axial_load_N']:.0f} N · {speed:.0f} rpm"
         )
         self.ctrl.show_live_frame(src, index, self.tracks, words)
-        if now >= self._charts_due:
+        if now >= self._charts_due and not self._charts_held(now):
             self._update_charts(index)
             frame["band_inner_deg"] = self.state.live_band_inner
             took = time.monotonic() - now
             self._charts_due = time.monotonic() + max(CHART_PERIOD_S, took / CHART_SHARE)
+        self._change_to_draw = False
         self._serial += 1
         self._frames_drawn += 1
         self.state.live_frame = {

@@ -313,6 +313,25 @@ def direct_dataset(data_variables: dict, coord_variables: dict, indexes: dict, a
     )
 
 
+def with_data_variables(ds: xr.Dataset, added: dict, dropped=()) -> xr.Dataset:
+    """``ds`` without the variables ``dropped`` and with the data variables ``added`` ({name:
+    DataArray or Variable} over dimensions of ``ds``, taken as they are; a DataArray's coordinates
+    are not read): what ``ds.drop_vars(dropped).assign(added)`` gives for such variables, built
+    with xarray's direct constructor (:func:`direct_dataset`) without a merge over every variable of
+    ``ds`` (the chunks of a live simulation are built often). ValueError when a size differs
+    from ``ds``'s."""
+    dropped = set(dropped)
+    variables = {n: v for n, v in ds.variables.items() if n not in dropped}
+    for name, value in added.items():
+        variables.pop(name, None)
+        variables[name] = value.variable if isinstance(value, xr.DataArray) else value
+    coord_names = {n for n in ds.coords if n not in dropped and n not in added}
+    indexes = {n: i for n, i in ds.xindexes.items() if n not in dropped and n not in added}
+    return xr.Dataset._construct_direct(
+        variables, coord_names, indexes=indexes, attrs=dict(ds.attrs), encoding=dict(ds.encoding)
+    )
+
+
 def raw_variable(dims, values, attrs) -> xr.Variable:
     """An xarray Variable of ``values`` as they are: a numpy array (or a Python scalar, made one)
     whose dtype is final. xarray's own conversion is skipped; for an object array of strings it
@@ -473,4 +492,5 @@ __all__ = [
     "result_description",
     "ring_speeds",
     "software",
+    "with_data_variables",
 ]

@@ -30,12 +30,13 @@ weigh little) exceeds :data:`CAGE_SKID_THRESHOLD`.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
-from .loaded import loaded
+from .loaded import loaded_mask
 from .variables import variable
 
 #: Mean instantaneous cage slip (a fraction of the rolling cage speed) above which a result warns
@@ -55,25 +56,58 @@ SKID_EXTENT_MIN_ROLLING_FRACTION = 0.1
 SKIDDING_VARIABLES = ("skidding_ratio", "instantaneous_cage_slip")
 
 
-def _mean_angle(ds: xr.Dataset, race: str) -> xr.DataArray:
-    """Mean contact angle [rad] of the loaded contacts of ``race`` at each sample (NaN where none
-    is loaded)."""
-    angle = ds["contact_angle"].sel(race=race, drop=True)
-    mask = loaded(ds).sel(race=race, drop=True)
-    return np.radians(angle.where(mask).mean("ball", skipna=True))
+#: What :func:`skidding_ratio` reads of a result.
+_SKIDDING_INPUTS = (
+    "contact_angle",
+    "contact_load",
+    "cage_speed",
+    "inner_ring_speed",
+    "outer_ring_speed",
+    "ball_diameter",
+    "pitch_diameter",
+)
+
+
+def _skidding_inputs(ds: xr.Dataset) -> xr.Dataset:
+    """The part of ``ds`` that :func:`skidding_ratio` reads, without the other coordinates: the
+    same numbers, computed without aligning the result's many scalar coordinates at every
+    operation (the chunks of a live simulation are built often)."""
+    part = ds[list(_SKIDDING_INPUTS)]
+    keep = set(part.dims) | set(_SKIDDING_INPUTS)
+    return part.drop_vars([c for c in part.coords if c not in keep])
+
+
+def _rolling_speed_values(angle_i, load_i, angle_o, load_o, speed_i, speed_o, diameter, pitch):
+    """numpy core of :func:`rolling_cage_speed`: contact angles [degree] and loads [N] of each
+    race with the balls along the last axis, ring speeds [rad/s] broadcastable against them
+    without that axis."""
+
+    def mean_angle(angle, load):  # of the loaded contacts, NaN where none is
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "Mean of empty slice", RuntimeWarning)
+            return np.radians(np.nanmean(np.where(loaded_mask(load, angle), angle, np.nan), -1))
+
+    inner_radius = 0.5 * (pitch - diameter * np.cos(mean_angle(angle_i, load_i)))
+    outer_radius = 0.5 * (pitch + diameter * np.cos(mean_angle(angle_o, load_o)))
+    return (speed_i * inner_radius + speed_o * outer_radius) / (inner_radius + outer_radius)
 
 
 def rolling_cage_speed(ds: xr.Dataset) -> xr.DataArray:
     """The rolling cage speed omega_roll [rad/s] at each sample of a dynamic result (module
     docstring), dims ``(time,)`` and any stacking dimension of the result."""
-    diameter = float(ds.coords["ball_diameter"])
-    pitch = float(ds.coords["pitch_diameter"])
-    inner_radius = 0.5 * (pitch - diameter * np.cos(_mean_angle(ds, "inner")))
-    outer_radius = 0.5 * (pitch + diameter * np.cos(_mean_angle(ds, "outer")))
-    inner_speed = ds["inner_ring_speed"]
-    outer_speed = ds["outer_ring_speed"]
-    speed = (inner_speed * inner_radius + outer_speed * outer_radius) / (
-        inner_radius + outer_radius
+    part = _skidding_inputs(ds)
+    angle, load = part["contact_angle"], part["contact_load"]
+    races = [a.sel(race=race, drop=True) for race in ("inner", "outer") for a in (angle, load)]
+    speed = xr.apply_ufunc(
+        _rolling_speed_values,
+        *races,
+        part["inner_ring_speed"],
+        part["outer_ring_speed"],
+        input_core_dims=[["ball"]] * 4 + [[], []],
+        kwargs={
+            "diameter": float(part.coords["ball_diameter"]),
+            "pitch": float(part.coords["pitch_diameter"]),
+        },
     )
     return speed.drop_vars([c for c in speed.coords if c not in speed.dims])
 
@@ -81,8 +115,9 @@ def rolling_cage_speed(ds: xr.Dataset) -> xr.DataArray:
 def skidding_ratio(ds: xr.Dataset) -> xr.DataArray:
     """``cage_speed`` / :func:`rolling_cage_speed` at each sample (NaN where the rolling speed
     is 0 or undefined)."""
-    rolling = rolling_cage_speed(ds)
-    cage = ds["cage_speed"].drop_vars([c for c in ds["cage_speed"].coords if c != "time"])
+    part = _skidding_inputs(ds)
+    rolling = rolling_cage_speed(part)
+    cage = part["cage_speed"].drop_vars([c for c in part["cage_speed"].coords if c != "time"])
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = cage / rolling
     return ratio.where(rolling != 0.0)

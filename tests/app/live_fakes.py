@@ -26,7 +26,7 @@ class SlowLive:
     def set_input(self, name: str, value: float, ramp_s: float = 0.0) -> None:
         self._load = float(value)
 
-    def advance(self, duration_s: float) -> xr.Dataset:
+    def advance(self, duration_s: float, interrupt=None) -> xr.Dataset:
         time.sleep(self.ADVANCE_S)
         count = max(1, round(duration_s * self.SAMPLES_PER_SECOND))
         first = round(self.time * self.SAMPLES_PER_SECOND) + 1
@@ -41,3 +41,37 @@ class SlowLive:
 
     def close(self) -> None:
         pass
+
+
+class InterruptibleLive(SlowLive):
+    """:class:`SlowLive` whose ``advance`` integrates in :attr:`STEPS` equal steps of
+    :attr:`ADVANCE_S` / :attr:`STEPS` wall time each and asks ``interrupt`` between them, as
+    ``solver.LiveSimulation.advance`` does: it returns the samples of the steps done when told
+    to stop."""
+
+    ADVANCE_S = 0.8
+    STEPS = 8
+
+    def __init__(self, case):
+        super().__init__(case)
+        self.last_advance = None
+
+    def advance(self, duration_s: float, interrupt=None) -> xr.Dataset:
+        from solver.models.dynamic.live import AdvanceTiming
+
+        count = max(1, round(duration_s * self.SAMPLES_PER_SECOND))
+        first = round(self.time * self.SAMPLES_PER_SECOND) + 1
+        done, interrupted = 0, False
+        for step in range(self.STEPS):
+            if done and interrupt is not None and interrupt():
+                interrupted = True
+                break
+            time.sleep(self.ADVANCE_S / self.STEPS)
+            done = round(count * (step + 1) / self.STEPS)
+        times = np.arange(first, first + done) / self.SAMPLES_PER_SECOND
+        self.time = float(times[-1])
+        simulated = done / self.SAMPLES_PER_SECOND
+        self.last_advance = AdvanceTiming(simulated, 0.0, 0.0, 0.0, 0.0, interrupted, count)
+        return xr.Dataset(
+            {"radial_load": ("time", np.full(done, self._load))}, coords={"time": times}
+        )

@@ -134,6 +134,43 @@ def test_a_change_is_computed_at_once_in_a_short_chunk_even_with_the_lead_full()
         runner.stop()
 
 
+def test_a_change_sent_while_a_chunk_integrates_cuts_that_chunk_short():
+    """A control that arrives while the child integrates a chunk does not wait for the chunk's
+    planned end: the chunk returns the samples done so far (fewer than planned), the change is
+    applied at once and the next chunk, the change's, starts where the cut one ended."""
+    from pathlib import Path
+
+    from tests.app.live_fakes import InterruptibleLive
+
+    case_text = (Path(__file__).parents[2] / "assets/cases/spindle-combined-load.toml").read_text()
+    runner = LiveRunner()
+    rate = 0.006
+    runner.start(case_text, rate=rate, target="tests.app.live_fakes:InterruptibleLive")
+    try:
+        found = _messages_until(runner, lambda m: any(k[0] == "chunk" for k in m), 120)
+        # a chunk integrates for ADVANCE_S; send the change a quarter into the next one
+        time.sleep(0.25 * InterruptibleLive.ADVANCE_S)
+        runner.send("set", "radial_load", 900.0, 0.0)
+        found += _messages_until(
+            runner,
+            lambda m: any(k[0] == "chunk" and float(k[1].radial_load[-1]) == 900.0 for k in m),
+            60,
+        )
+        chunks = [m for m in found if m[0] == "chunk"]
+        first = next(i for i, m in enumerate(chunks) if float(m[1].radial_load[-1]) == 900.0)
+        full = round(rate * CHUNK_WALL_S * InterruptibleLive.SAMPLES_PER_SECOND)
+        cut = chunks[first - 1][1]
+        assert cut.sizes["time"] < full  # cut short: the change did not wait for its end
+        assert chunks[first][2]["sets"] == 1 and chunks[first - 1][2]["sets"] == 0
+        step = 1.0 / InterruptibleLive.SAMPLES_PER_SECOND
+        start = float(chunks[first][1]["time"][0])
+        assert start == pytest.approx(float(cut["time"][-1]) + step)
+        planned_end = float(cut["time"][0]) + (full - 1) * step
+        assert start < planned_end
+    finally:
+        runner.stop()
+
+
 def test_a_short_chunk_after_a_change_does_not_change_the_pace():
     pace = _Pace(0.006)
     pace.after_chunk(0.0)  # the first chunk
@@ -337,3 +374,66 @@ def test_while_live_the_map_caption_and_labels_describe_the_live_inputs(live_app
     app.live.ticket = None
     app.live.stop()
     assert s.raceway_metrics == before
+
+
+def test_the_chunk_with_a_change_is_drawn_at_once_and_the_charts_wait_for_it(live_app, monkeypatch):
+    """From a control change until the first chunk that carries it is drawn, the charts (a few
+    tenths of a second of the page's loop on a loaded machine) are not brought up to date; that
+    chunk is drawn as soon as the page reads it, even between two of the LIVE_FPS frames, and
+    the charts follow at the next tick."""
+    from tests.app.conftest import SHAFT_RPM
+
+    live, s = live_app.live, live_app.state
+    parts = _chunks(make_dynamic_dataset(n_time=60), 20)
+    omega = SHAFT_RPM * math.pi / 30.0
+    info = {"rate": 1e-3, "asked_rate": 1e-3, "sets": 0}
+    info["inputs"] = {"radial_load": 300.0, "inner_ring_speed": omega}
+    inbox, sent, charts = [], [], []
+    monkeypatch.setattr(live.runner, "poll", lambda: [inbox.pop(0)] if inbox else [])
+    monkeypatch.setattr(live.runner, "send", lambda *control: sent.append(control))
+    monkeypatch.setattr(live, "_update_charts", lambda index: charts.append(index))
+    s.live_on = True
+    inbox.append(("chunk", parts[0], info))
+    assert live.tick()
+    assert len(charts) == 1  # due at the start
+    assert not live.tick(frame_due=False)  # between frames, nothing new: nothing drawn
+
+    s.live_radial_load_N = 900.0
+    s.flush()  # the control's handler sends the change to the child
+    assert [c[0] for c in sent] == ["set"]
+    live._charts_due = 0.0  # the charts are due again
+    assert live.tick()
+    assert len(charts) == 1  # held while the change is on its way
+    inbox.append(("chunk", parts[1], {**info, "sets": 1}))
+    serial = live._serial
+    assert live.tick(frame_due=False)  # drawn as it arrives
+    assert live._serial == serial + 1 and len(charts) == 1  # the frame goes first
+    assert live.tick()
+    assert len(charts) == 2  # then the charts
+
+
+def test_the_page_loop_ticks_at_the_frame_rate_while_there_is_nothing_to_draw(live_app):
+    """Before the first chunk (the solver compiling) and while paused, the page's loop ticks at
+    LIVE_FPS, not as fast as it can; it polls faster only while a change is on its way."""
+    import asyncio
+
+    from app.components.live import LIVE_FPS
+
+    live = live_app.live
+    ticks = []
+
+    def tick(frame_due=True):
+        ticks.append(frame_due)
+        return False  # nothing to draw
+
+    live.tick = tick
+    live_app.state.live_on = True
+
+    async def run():
+        try:
+            await asyncio.wait_for(live._loop(), 1.0)
+        except TimeoutError:
+            pass
+
+    asyncio.run(run())
+    assert 0.5 * LIVE_FPS <= len(ticks) <= 1.5 * LIVE_FPS

@@ -97,6 +97,72 @@ def test_reset_starts_again_from_the_quasistatic_state_of_the_inputs_set(spindle
     assert "operating.axial_load_N" not in recorded.histories
 
 
+def test_an_interrupted_advance_returns_the_samples_done_and_a_change_acts_from_there():
+    """``advance(..., interrupt=...)`` asks the callable every INTERRUPT_SAMPLES samples; told
+    to stop, it returns the samples done (not the planned duration), and an input set then acts
+    from the time reached."""
+    from solver.models.dynamic.live import INTERRUPT_SAMPLES
+
+    live = LiveSimulation(CASE)
+    live.advance(0.5 * REVOLUTION)
+    reached = live.time
+    asked = []
+
+    def second_time():
+        asked.append(live.time)
+        return len(asked) == 2
+
+    chunk = live.advance(0.5 * REVOLUTION, interrupt=second_time)
+    planned = round(0.5 * REVOLUTION * live.samples_per_second)
+    assert chunk.sizes["time"] == 2 * INTERRUPT_SAMPLES < planned
+    timing = live.last_advance
+    assert timing.interrupted and timing.planned_samples == planned
+    assert live.time == pytest.approx(reached + 2 * INTERRUPT_SAMPLES / live.samples_per_second)
+    assert timing.simulated_s == pytest.approx(live.time - reached)
+    live.set_input("radial_load", 900.0, ramp_s=0.0)
+    after = live.advance(0.1 * REVOLUTION, interrupt=lambda: False)
+    step = 1.0 / live.samples_per_second
+    assert after["time"].values[0] == pytest.approx(reached + (2 * INTERRUPT_SAMPLES + 1) * step)
+    assert np.all(after["radial_load"].values == 900.0)
+    assert not live.last_advance.interrupted
+    live.close()
+
+
+def test_the_chunks_hold_the_per_sample_variables_of_the_recorded_run():
+    """Every variable over time of the chunks (an interrupted one among them) is the recorded
+    run's at the same samples, bit for bit: the chunk's derived data (skidding, the inputs over
+    time) is the run's, however it is built. ``load_work`` counts from each chunk's start, the
+    inputs a run holds constant are over time in a chunk."""
+    live = LiveSimulation(CASE)
+    chunks = [live.advance(0.3 * REVOLUTION)]
+    live.set_input("radial_load", 900.0, ramp_s=0.2 * REVOLUTION)
+    asked = []
+    chunks.append(
+        live.advance(0.5 * REVOLUTION, interrupt=lambda: len(asked.append(0) or asked) > 2)
+    )
+    assert live.last_advance.interrupted
+    chunks.append(live.advance(0.3 * REVOLUTION))
+    recorded = live.recorded_result()
+    rate = live.samples_per_second
+    compared = set()
+    for chunk in chunks:
+        first = int(round(float(chunk["time"][0]) * rate))
+        run = recorded.isel(time=slice(first, first + chunk.sizes["time"]))
+        assert np.array_equal(chunk["time"].values, run["time"].values)
+        for name, var in chunk.data_vars.items():
+            if "time" not in var.dims or name == "load_work":
+                continue
+            ours = var.transpose(*run[name].dims).values if "time" in run[name].dims else None
+            theirs = run[name].values
+            if ours is None:  # constant in the run: the chunk holds it at every sample
+                assert np.all(var.values == theirs), name
+                continue
+            assert np.array_equal(ours, theirs, equal_nan=True), name
+            compared.add(name)
+    assert {"skidding_ratio", "instantaneous_cage_slip", "radial_load", "contact_load"} <= compared
+    live.close()
+
+
 def test_a_recorded_session_is_a_case_that_simulate_reproduces(tmp_path):
     live = LiveSimulation(CASE)
     live.advance(0.4 * REVOLUTION)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import xarray as xr
 
 from solver.history import (
     CH_INNER_SPEED,
@@ -21,7 +22,7 @@ from solver.inputs import operating_at
 from solver.models.quasistatic.result import start_variables
 from solver.physics.hertz import truncation_margin
 from solver.physics.traction import LAW_RHEOLOGY, LAW_SLIP_CURVE
-from solver.results.dataset import build_result
+from solver.results.dataset import build_result, with_data_variables
 from solver.results.energy import energy_balance
 from solver.results.estimates import with_estimates
 from solver.results.phases import phase_attributes
@@ -227,7 +228,7 @@ def chunk_dataset(
         inputs, options, history, par, quad, times, states, period, False, "live", stats, start
     )
     ds = with_inputs_over_time(ds, history, imposed, channels)
-    return ds.assign(skidding_variables(ds))
+    return with_data_variables(ds, skidding_variables(ds))
 
 
 def time_series(
@@ -417,8 +418,8 @@ def with_inputs_over_time(ds, history, imposed: np.ndarray, channels=None):
         values = imposed[c]
         if name in ANGLE_CHANNELS:
             values = np.degrees(values)
-        added[name] = (("time",), values, COORDINATES[name].attrs())
-    return ds.drop_vars(names).assign(added)  # one merge: a chunk of a live run is built often
+        added[name] = xr.Variable(("time",), values, COORDINATES[name].attrs())
+    return with_data_variables(ds, added, dropped=names)
 
 
 def _integrator_note(options) -> str:

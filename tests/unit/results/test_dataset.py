@@ -17,6 +17,7 @@ from solver.results.dataset import (
     operating_from_result,
     result_description,
     ring_speeds,
+    with_data_variables,
 )
 from solver.results.io import load_dataset, save_dataset
 from solver.results.variables import COORDINATES
@@ -241,3 +242,24 @@ def test_builder_makes_each_variable_once(monkeypatch):
     ds = solve_quasistatic(case)
     monkeypatch.undo()
     assert len(made) <= len(ds.variables) + len(ds.xindexes), made
+
+
+def test_adding_data_variables_gives_what_xarrays_drop_and_assign_give(combined):
+    """with_data_variables (the live chunk's inputs over time and skidding, without a merge over
+    every variable) makes the Dataset that ``drop_vars(...).assign(...)`` makes: a coordinate
+    replaced by a data variable of the same name, a new one added, order and indexes included."""
+    balls = combined.sizes["ball"]
+    added = {
+        "radial_load": xr.Variable(("ball",), np.arange(balls, dtype=float), {"units": "N"}),
+        "extra": xr.DataArray(np.ones((balls, 2)), dims=("ball", "race")),
+    }
+    ours = with_data_variables(combined, added, dropped=["radial_load"])
+    theirs = combined.drop_vars(["radial_load"]).assign(added)
+    xr.testing.assert_identical(ours, theirs)
+    assert list(ours.variables) == list(theirs.variables)
+    assert list(ours.coords) == list(theirs.coords)
+    assert set(ours.xindexes) == set(theirs.xindexes)
+    assert "radial_load" in ours.data_vars and "radial_load" in combined.coords
+    assert_public_constructor_makes(ours)
+    with pytest.raises(ValueError, match="ball"):
+        with_data_variables(combined, {"extra": xr.Variable(("ball",), np.ones(balls + 1))})
