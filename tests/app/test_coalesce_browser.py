@@ -5,16 +5,14 @@ it gets the session's last state."""
 
 from __future__ import annotations
 
-import asyncio
 import threading
 
 import pytest
 from aiohttp import web
-from aiohttp.test_utils import TestServer
 
 from app.serve import coalesce
 from tests.app.test_coalesce import _state
-from tests.app.test_follow_front import _served_front, _stand_in_session
+from tests.app.test_follow_front import _stand_in_session, front_in_thread
 from tests.helpers.browser import BROWSER_MARKS
 
 pytestmark = BROWSER_MARKS
@@ -61,33 +59,8 @@ def counting_front(monkeypatch):
             pass
         return ws
 
-    loop = asyncio.new_event_loop()
-    started: dict = {}
-
-    async def start():
-        upstream = TestServer(_stand_in_session(PAGE, websocket=streaming), host="127.0.0.1")
-        await upstream.start_server()
-        _front, server, _processes = await _served_front(monkeypatch, upstream)
-        started.update(upstream=upstream, server=server)
-
-    def serve():
-        asyncio.set_event_loop(loop)
-        loop.run_until_complete(start())
-        loop.run_forever()
-
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
-    while "server" not in started and thread.is_alive():
-        threading.Event().wait(0.05)
-    yield f"http://127.0.0.1:{started['server'].port}", noted
-
-    async def stop():
-        await started["server"].close()
-        await started["upstream"].close()
-
-    asyncio.run_coroutine_threadsafe(stop(), loop).result(timeout=30)
-    loop.call_soon_threadsafe(loop.stop)
-    thread.join(timeout=30)
+    with front_in_thread(monkeypatch, _stand_in_session(PAGE, websocket=streaming)) as served:
+        yield served[0], noted
 
 
 def test_a_page_says_how_many_messages_it_has_applied(browser, counting_front):

@@ -7,7 +7,9 @@ with followers, and they are told; wrong join codes are refused per client addre
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import signal
+import threading
 import time
 
 import aiohttp
@@ -85,6 +87,42 @@ async def _served_front(monkeypatch, upstream: TestServer):
     server = TestServer(front.application(), host="127.0.0.1")
     await server.start_server()
     return front, server, processes
+
+
+@contextlib.contextmanager
+def front_in_thread(monkeypatch, session_app: web.Application):
+    """A front on a loopback port, serving in a thread of its own (for a browser test), whose
+    sessions are the stand-in ``session_app``: yields its base URL and the sessions' processes;
+    stopped on the way out."""
+    loop = asyncio.new_event_loop()
+    started: dict = {}
+
+    async def start():
+        upstream = TestServer(session_app, host="127.0.0.1")
+        await upstream.start_server()
+        _front, server, processes = await _served_front(monkeypatch, upstream)
+        started.update(upstream=upstream, server=server, processes=processes)
+
+    def serve():
+        asyncio.set_event_loop(loop)
+        loop.run_until_complete(start())
+        loop.run_forever()
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    while "server" not in started and thread.is_alive():
+        threading.Event().wait(0.05)
+    try:
+        yield f"http://127.0.0.1:{started['server'].port}", started["processes"]
+    finally:
+
+        async def stop():
+            await started["server"].close()
+            await started["upstream"].close()
+
+        asyncio.run_coroutine_threadsafe(stop(), loop).result(timeout=30)
+        loop.call_soon_threadsafe(loop.stop)
+        thread.join(timeout=30)
 
 
 def test_a_class_ends_when_its_presenter_has_left_for_the_idle_time(monkeypatch):

@@ -5,14 +5,10 @@ idle stop (it closes the follower's websocket with app.serve.follow.PRESENTER_LE
 
 from __future__ import annotations
 
-import asyncio
-import threading
-
 import pytest
-from aiohttp.test_utils import TestServer
 
 from app.serve import front as front_module
-from tests.app.test_follow_front import CODE, _served_front, _stand_in_session
+from tests.app.test_follow_front import CODE, _stand_in_session, front_in_thread
 from tests.helpers.browser import BROWSER_MARKS
 
 pytestmark = BROWSER_MARKS
@@ -34,33 +30,8 @@ def stand_in_front(monkeypatch):
     URL."""
     monkeypatch.setattr(front_module, "IDLE_S", 1.0)
     monkeypatch.setattr(front_module, "REAP_EVERY_S", 0.1)
-    loop = asyncio.new_event_loop()
-    started: dict = {}
-
-    async def start():
-        upstream = TestServer(_stand_in_session(PAGE), host="127.0.0.1")
-        await upstream.start_server()
-        front, server, processes = await _served_front(monkeypatch, upstream)
-        started.update(upstream=upstream, server=server, processes=processes)
-
-    def serve():
-        asyncio.set_event_loop(loop)
-        loop.run_until_complete(start())
-        loop.run_forever()
-
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
-    while "server" not in started and thread.is_alive():
-        threading.Event().wait(0.05)
-    yield f"http://127.0.0.1:{started['server'].port}", started["processes"]
-
-    async def stop():
-        await started["server"].close()
-        await started["upstream"].close()
-
-    asyncio.run_coroutine_threadsafe(stop(), loop).result(timeout=30)
-    loop.call_soon_threadsafe(loop.stop)
-    thread.join(timeout=30)
+    with front_in_thread(monkeypatch, _stand_in_session(PAGE)) as served:
+        yield served
 
 
 def test_a_followers_page_says_the_presenter_left_then_that_the_class_ended(
