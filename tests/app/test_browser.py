@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE
+from tests.helpers.browser import ARTIFACTS, BROWSER_MARKS, FIRST_IMAGE, RESPONSE_MS
 
 pytestmark = BROWSER_MARKS
 
@@ -130,7 +130,7 @@ def test_page_loads_and_the_view_animates(page):
         a = b
     # the run comparison panel holds the summary table (rendered when the panel opens)
     page.get_by_text("Compare runs side by side").click()
-    page.wait_for_selector("#compare-summary table", timeout=10_000)
+    page.wait_for_selector("#compare-summary table", timeout=RESPONSE_MS)
 
 
 def test_invalid_field_blocks_run_with_its_message(page):
@@ -138,23 +138,24 @@ def test_invalid_field_blocks_run_with_its_message(page):
     assert run.is_enabled()
     _set_field(page, "inner_groove_radius_ratio", "0.49")
     field = page.locator("#field-inner_groove_radius_ratio")
-    field.get_by_text("0.5", exact=False).first.wait_for(timeout=10_000)
+    field.get_by_text("0.5", exact=False).first.wait_for(timeout=RESPONSE_MS)
     assert "0.49" in field.inner_text()
     assert run.is_disabled()
     page.screenshot(path=str(ARTIFACTS / "invalid-field.png"))
     _set_field(page, "inner_groove_radius_ratio", "0.54")
-    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
+    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=RESPONSE_MS)
 
 
 def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     _set_field(page, "shaft_revolutions", "0.5")
-    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
-    page.wait_for_function(
-        "document.querySelector('#status').innerText.trim() == 'preview done'", timeout=20_000
-    )  # the preview of the edited case
+    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=RESPONSE_MS)
+    page.wait_for_function(  # the preview of the edited case
+        "document.querySelector('#status').innerText.trim() == 'preview done'",
+        timeout=2 * RESPONSE_MS,
+    )
     page.locator("#run-button").click()
     page.wait_for_function(
-        "document.querySelector('#status').innerText.startsWith('running')", timeout=10_000
+        "document.querySelector('#status').innerText.startsWith('running')", timeout=RESPONSE_MS
     )
     status = _wait_status(page, ("done",), 240)
     page.screenshot(path=str(ARTIFACTS / "run-done.png"))
@@ -165,13 +166,13 @@ def test_run_reaches_done_and_reload_keeps_the_run(page, server):
     page.wait_for_selector(FIRST_IMAGE, timeout=60_000)
     page.locator("#runs-select .v-field").click()
     items = page.locator(".v-overlay--active .v-list-item")
-    items.first.wait_for(timeout=10_000)
+    items.first.wait_for(timeout=RESPONSE_MS)
     assert items.count() == len(saved)
 
 
 def test_cancel_stops_a_long_run_and_keeps_it(page, server):
     _set_field(page, "shaft_revolutions", "200")
-    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=10_000)
+    page.wait_for_function("!document.querySelector('#run-button').disabled", timeout=RESPONSE_MS)
     page.locator("#run-button").click()
     page.wait_for_function("!document.querySelector('#cancel-button').disabled", timeout=30_000)
     # a Cancel before the first step saves nothing: wait for progress
