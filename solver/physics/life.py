@@ -314,11 +314,12 @@ def combined_life(inner_life: float, outer_life: float) -> float:
 
 def life_hours(million_revolutions: float, relative_speed: float) -> float:
     """Life in hours at ``relative_speed`` [rad/s] of one ring relative to the other; inf when
-    the rings do not turn relative to each other."""
-    revolutions_per_hour = abs(relative_speed) / (2.0 * math.pi) * 3600.0
+    the rings do not turn relative to each other or the hours exceed a float (Python float
+    arithmetic: inf, not a numpy overflow warning)."""
+    revolutions_per_hour = abs(float(relative_speed)) / (2.0 * math.pi) * 3600.0
     if revolutions_per_hour == 0.0:
         return math.inf
-    return million_revolutions * 1e6 / revolutions_per_hour
+    return float(million_revolutions) * 1e6 / revolutions_per_hour
 
 
 __all__ = [

@@ -6,6 +6,7 @@ equivalent loads and the combination with e = 10/9), not by calling the code und
 """
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -195,4 +196,7 @@ def test_life_hours():
     omega = 20000.0 * 2.0 * math.pi / 60.0
     assert life.life_hours(10190.0, omega) == pytest.approx(8491.67, rel=1e-5)
     assert life.life_hours(10190.0, 0.0) == math.inf
+    with warnings.catch_warnings():  # a life beyond a float's range is inf, without a warning
+        warnings.simplefilter("error")
+        assert life.life_hours(np.float64(1e305), np.float64(1e-3)) == math.inf
     assert life.combined_life(math.inf, math.inf) == math.inf
