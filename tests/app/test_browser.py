@@ -102,9 +102,11 @@ def test_page_loads_and_the_view_animates(page):
       };
     }"""
     before = page.evaluate(marks)
-    time.sleep(1.0)
+    assert len(before["marker"]) == 1, before
+    page.wait_for_function(  # a page on a loaded machine takes a message a second or slower
+        f"() => ({marks})().marker[0] !== {before['marker'][0]!r}", timeout=RESPONSE_MS
+    )
     after = page.evaluate(marks)
-    assert len(before["marker"]) == 1 and after["marker"] != before["marker"], (before, after)
     assert after["circles"] > 0
     view = page.locator("#view-3d")
     shots = []
