@@ -17,20 +17,18 @@ say (a script, the benchmarks' websocket clients) is sent everything at once.
 A message is taken once the page has applied it **and drawn it**: counted at the first task
 after the second animation frame after it (the 3-D view draws its changes in that frame's
 callback, :mod:`app.components.browser_view`, and in software WebGL the browser's paint then
-waits for the drawing). A page whose drawing takes
-longer than :data:`SLOW_DRAWING_MS` says so with its count (``N/1``) and is sent one message at a
-time. Why: measured in a headless Chromium follower of a playing presenter (software WebGL, a
-loaded 2-core machine; ``performance.now()`` around the page's applying, its animation frame
-callbacks and the first task after them), a played frame costs the page an apply of about 100 ms
-(trame, Vue, vtk.js) and a drawing of 250-400 ms (SwiftShader; the main thread waits for it in
-the paint), often twice. Counted when applied, with two messages on their way, the next message
-was sent while the page still drew the last one and then waited behind that drawing: it was a
-drawing old when applied, and the page showed frames about two drawings behind the presenter.
-Counted once drawn, with one message on its way, the message the front sends carries the
-session's state at the moment the page can take it: the page applies a frame a few milliseconds
-after the presenter's session played it, and shows it once drawn. A page that keeps up (a
-drawing under :data:`SLOW_DRAWING_MS`) keeps a window of :data:`READ_WINDOW`, so that the network's
-round trip does not halve the frames it gets.
+waits for the drawing). Why: measured in a headless Chromium follower of a playing presenter
+(software WebGL, a loaded 2-core machine; ``performance.now()`` around the page's applying, its
+animation frame callbacks and the first task after them), a played frame costs the page an apply
+of about 100 ms (trame, Vue, vtk.js) and a drawing of 250-400 ms (SwiftShader; the main thread
+waits for it in the paint). Counted when applied, the next messages were sent while the page
+still drew the last one and waited behind that drawing: they were a drawing old when applied.
+Counted once drawn, the message the front sends carries the session's state of the moment the
+page finished a drawing (in the probe, 0 frames behind the presenter's session when applied,
+median, against 11-18 frames before). A window of one message for a page whose drawing is slow
+was tried as well and not kept: with the round trip to the front and back added to every drawing,
+the Chromium follower of ``benchmarks/follow.py`` stalled in three runs of three (5-12 frames
+shown in 30 s, against 56 without it).
 
 What is merged: a whole wslink message in one chunk (header: id, offset 0, size), whose msgpack
 body is ``{"wslink": ..., "id": "publish:trame.state.topic:N", "result": {key: value, ...}}`` —
@@ -84,9 +82,6 @@ READ_PREFIX = "racetrace-read:"
 READ_WINDOW = 2
 #: A page that gets no animation frame (a hidden tab) counts what it applied after this (ms).
 DRAWN_FALLBACK_MS = 1000
-#: A page whose drawing took longer than this (ms, from applying a message to the first task
-#: after the second animation frame after it) is slow: it is sent one message at a time.
-SLOW_DRAWING_MS = 100
 
 
 @dataclass
@@ -150,15 +145,12 @@ def state_message(rpc_id: str, state: dict) -> bytes:
 # what it applied: the 3-D view draws at the second animation frame after a change
 # (app.components.browser_view) and the browser then paints (in software WebGL the paint waits
 # for the drawing), so the count goes at the first task after the second animation frame, or
-# after DRAWN_FALLBACK_MS for a page that gets no animation frame (a hidden tab). A page whose
-# drawing took longer than SLOW_DRAWING_MS for one of its last four counts says so with its count
-# (``N/1``): one message on its way to it at a time.
+# after DRAWN_FALLBACK_MS for a page that gets no animation frame (a hidden tab).
 def _script(text: str) -> str:
     """``text`` with the page's constants filled in."""
     for name, value in (
         ("__EVERY__", max(1, READ_WINDOW // 2)),
         ("__FALLBACK__", DRAWN_FALLBACK_MS),
-        ("__SLOW__", SLOW_DRAWING_MS),
         ("__PREFIX__", READ_PREFIX),
     ):
         text = text.replace(name, str(value))
@@ -167,25 +159,21 @@ def _script(text: str) -> str:
 
 READ_SCRIPT = _script("""<script>
 (function () {
-  var Native = window.WebSocket, every = __EVERY__, fallback = __FALLBACK__, slowMs = __SLOW__;
+  var Native = window.WebSocket, every = __EVERY__, fallback = __FALLBACK__;
   window.WebSocket = class extends Native {
     constructor(url, protocols) {
       super(url, protocols);
-      var socket = this, taken = 0, told = 0, applied = 0, timer = 0, frame = 0, since = 0;
-      var slow = false, took_ms = [];
-      function tell() { told = taken; socket.send('__PREFIX__' + taken + (slow ? '/1' : '')); }
+      var socket = this, taken = 0, told = 0, applied = 0, timer = 0, frame = 0;
+      function tell() { told = taken; socket.send('__PREFIX__' + taken); }
       function drawn(upto) {
         clearTimeout(timer);
         cancelAnimationFrame(frame);
         timer = frame = 0;
-        took_ms = took_ms.slice(-3).concat([performance.now() - since]);
-        slow = Math.max.apply(null, took_ms) > slowMs;  // of the last four counts
         taken = Math.max(taken, upto);
         if (taken - told >= every && socket.readyState === 1) tell();
         if (applied > taken) watch();
       }
       function watch() {  // what was applied before the next animation frame, once drawn
-        since = performance.now();
         timer = setTimeout(function () { drawn(applied); }, fallback);
         frame = requestAnimationFrame(function () {
           var upto = applied;
@@ -227,11 +215,9 @@ class PageReads:
     """What the front has sent one page and what the page says it has taken
     (:data:`READ_PREFIX`). A page that never says (a client without :data:`READ_SCRIPT`) is
     sent everything at once, as before; one that does has at most ``window`` messages on their
-    way, the rest wait in its :class:`Backlog`, where they merge; a page that says it is slow
-    (``N/1``: its drawing took longer than :data:`SLOW_DRAWING_MS`) has one."""
+    way, the rest wait in its :class:`Backlog`, where they merge."""
 
     def __init__(self, window: int = READ_WINDOW):
-        self.largest = window  # the window of a page that is not slow
         self.window = window
         self.sent = 0  # messages sent to the page
         self.taken = 0  # messages the page says it has taken
@@ -243,14 +229,11 @@ class PageReads:
         front's, not the session's)."""
         if not text.startswith(READ_PREFIX):
             return False
-        count, slash, wish = text[len(READ_PREFIX) :].partition("/")
         try:
-            taken = int(count)
-            asked = int(wish) if slash else self.largest
+            taken = int(text[len(READ_PREFIX) :])
         except ValueError:
             return True
         self.counting = True
-        self.window = min(max(asked, 1), self.largest)
         self.taken = max(self.taken, min(taken, self.sent))
         self._changed.set()
         return True

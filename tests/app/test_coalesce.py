@@ -305,29 +305,6 @@ def test_page_reads_bound_what_is_on_its_way_once_the_page_counts():
     asyncio.run(scenario())
 
 
-def test_a_page_that_says_it_is_slow_has_one_message_on_its_way():
-    """``N/1``: the page's drawing took longer than SLOW_DRAWING_MS; a count without it gives
-    the page its whole window again; a window larger than the front's is not granted."""
-
-    async def scenario():
-        reads = coalesce.PageReads(window=2)
-        reads.sent = 3
-        assert reads.note(f"{coalesce.READ_PREFIX}2/1")
-        assert reads.counting and reads.taken == 2 and reads.window == 1
-        waiting = asyncio.get_running_loop().create_task(reads.room())
-        await asyncio.sleep(0.05)
-        assert not waiting.done()  # 3 sent, 2 taken: 1 on its way, the slow page's window
-        reads.note(f"{coalesce.READ_PREFIX}2")
-        assert reads.window == 2
-        await asyncio.wait_for(waiting, 1)
-        reads.note(f"{coalesce.READ_PREFIX}3/9")
-        assert reads.window == 2 and reads.taken == 3
-        assert reads.note(f"{coalesce.READ_PREFIX}3/x")  # the page's, though not understood
-        assert reads.window == 2
-
-    asyncio.run(scenario())
-
-
 def test_every_page_the_front_serves_says_what_it_took_before_its_own_scripts():
     page = "<html><head><script src='app.js'></script></head><body>app</body></html>"
     added = coalesce.with_read_script(page)
