@@ -27,7 +27,10 @@ browsers do) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``
 - frame lag: for each frame index the presenter got (its first arrival), how long after it each
   follower showed that index or a later one; median and largest per follower kind, the followers
   ever over 0.5 s, and the frames a follower never reached (the window must not wrap around the
-  end of the run: 720 of the 100-revolution run's 18 000 frames in 30 s);
+  end of the run: 720 of the 100-revolution run's 18 000 frames in 30 s). The Chromium follower
+  shows a frame index when its page has applied it (the time counter and slider, the index the
+  target is checked on) and, later, in its 3-D view once drawn (the index of ``rt3d_frame`` at an
+  animation frame, noted once the browser has painted that frame): both are printed;
 - memory: proportional set size of the server's processes before and with the followers;
 - what a follower is sent: the bytes the first websocket follower read in the window, per second
   and per played frame, and the state keys that made most of them (msgpack, uncompressed).
@@ -63,13 +66,26 @@ MEMORY_TARGET_MB = 300.0
 TICKS = os.sysconf("SC_CLK_TCK")
 PY_SPY = str(Path(sys.executable).with_name("py-spy"))  # pip install py-spy, for --profile
 # in the browser follower: each frame index as it arrives, with the wall-clock time (ms): from the
-# state's watcher, and read every 20 ms as well (whichever sees an index first counts)
-FRAME_PROBE = """() => { window.__frames = [];
+# state's watcher, and read every 20 ms as well (whichever sees an index first counts); and each
+# frame index the 3-D view shows, once drawn: the index of rt3d_frame at an animation frame (the
+# view draws its changes in an animation frame callback), noted at the first task after that
+# animation frame, once the browser has painted it
+FRAME_PROBE = """() => { window.__frames = []; window.__drawn = [];
   const note = (f) => window.__frames.push([f, Date.now()]);
   window.trame.state.watch(['frame'], note);
   let last = null;
   setInterval(() => { const f = window.trame.state.get('frame');
-                      if (f !== last) { last = f; note(f); } }, 20); }"""
+                      if (f !== last) { last = f; note(f); } }, 20);
+  let drawn = null;
+  const frame = () => {
+    const f = (window.trame.state.get('rt3d_frame') || {}).index;
+    if (f !== drawn) {
+      drawn = f;
+      setTimeout(() => window.__drawn.push([f, Date.now()]), 0);
+    }
+    requestAnimationFrame(frame);
+  };
+  requestAnimationFrame(frame); }"""
 
 
 def cpu_ticks(pid: int) -> dict[int, int]:
@@ -315,6 +331,7 @@ async def measure(args, server: dict, info) -> int:
             reference = [x for x in presenter.frames if x[0] >= t0]
             played = len(_first_of(reference))
             shown = await page.evaluate("window.__frames || []")
+            drawn = await page.evaluate("window.__drawn || []")
             now_showing = await page.evaluate("window.trame.state.get('frame')")
             presenter_showing = presenter.state.get("frame")
             await browser.close()
@@ -345,6 +362,11 @@ async def measure(args, server: dict, info) -> int:
             f"   the Chromium follower: {describe(got)}; {not_seen} of {played} frames not reached "
             f"({len(shown)} frame changes noted; frame {now_showing} at the end, the presenter's "
             f"{presenter_showing})"
+        )
+        got, not_seen = lags(reference, [(mono0 + (ms / 1e3 - wall0), f) for f, ms in drawn])
+        print(
+            f"   the Chromium follower's 3-D view, once drawn: {describe(got)}; {not_seen} of "
+            f"{played} frames not reached ({len(drawn)} frames drawn)"
         )
         if followers:
             first = followers[0][1]

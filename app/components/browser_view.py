@@ -73,8 +73,13 @@ DETECT_WEBGL = """
     },
     // trame-vtk's view draws on a 1 ms timer that every change restarts, so a page still taking
     // state messages keeps putting the drawing off (about one drawing a second while playing
-    // in software WebGL); the view named viewRef draws at the next animation frame instead, at
-    // most once per frame. Called when the view is created (it may not be mounted yet: retried).
+    // in software WebGL); the view named viewRef draws at the second animation frame after a
+    // change instead, at most once per frame: a played frame's changes reach vtk.js in the
+    // task that applies it and in the frame after it (drawn at the first animation frame, a
+    // frame was drawn twice, its second drawing asked for as the first ended: 1.6 drawings of
+    // 250-400 ms per played frame in software WebGL, 1.0 at the second animation frame).
+    // app.serve.coalesce.READ_SCRIPT counts a message as taken after that second animation
+    // frame. Called when the view is created (it may not be mounted yet: retried).
     drawOnAnimationFrame: function (viewRef, tries) {
       var component = window.trame.refs[viewRef];
       var view = component && component.$ && component.$.provides && component.$.provides.view;
@@ -95,7 +100,8 @@ DETECT_WEBGL = """
         view.renderer.resetCameraClippingRange();
         view.renderWindow.render();
       }
-      var render = function () { if (!pending) pending = requestAnimationFrame(draw); };
+      function next() { pending = requestAnimationFrame(draw); }
+      var render = function () { if (!pending) pending = requestAnimationFrame(next); };
       render.cancel = function () { if (pending) cancelAnimationFrame(pending); pending = 0; };
       render.onAnimationFrame = true;
       view.render = render;

@@ -9,10 +9,26 @@ newest frame instead of playing every stale one, and what waits shrinks to one f
 
 For the messages to wait here, where they can merge, rather than in the buffers on the way (a
 browser's socket held 3.5 MB, seconds of frames, once it had read a 4 MB state quickly on
-joining), every page the front serves says how many messages trame has applied
-(:data:`READ_SCRIPT`, :class:`PageReads`), and the front has at most :data:`READ_WINDOW` of them on
-their way to it; the socket's send buffer is kept small as well (:func:`hold_at_front`). A client
-that does not say (a script, the benchmarks' websocket clients) is sent everything at once.
+joining), every page the front serves says how many messages it has taken (:data:`READ_SCRIPT`,
+:class:`PageReads`), and the front has at most :data:`READ_WINDOW` of them on their way to it;
+the socket's send buffer is kept small as well (:func:`hold_at_front`). A client that does not
+say (a script, the benchmarks' websocket clients) is sent everything at once.
+
+A message is taken once the page has applied it **and drawn it**: counted at the first task
+after the second animation frame after it (the 3-D view draws its changes in that frame's
+callback, :mod:`app.components.browser_view`, and in software WebGL the browser's paint then
+waits for the drawing). Why: measured in a headless Chromium follower of a playing presenter
+(software WebGL, a loaded 2-core machine; ``performance.now()`` around the page's applying, its
+animation frame callbacks and the first task after them), a played frame costs the page an apply
+of about 100 ms (trame, Vue, vtk.js) and a drawing of 250-400 ms (SwiftShader; the main thread
+waits for it in the paint). Counted when applied, the next messages were sent while the page
+still drew the last one and waited behind that drawing: they were a drawing old when applied.
+Counted once drawn, the message the front sends carries the session's state of the moment the
+page finished a drawing (in the probe, 0 frames behind the presenter's session when applied,
+median, against 11-18 frames before). A window of one message for a page whose drawing is slow
+was tried as well and not kept: with the round trip to the front and back added to every drawing,
+the Chromium follower of ``benchmarks/follow.py`` stalled in three runs of three (5-12 frames
+shown in 30 s, against 56 without it).
 
 What is merged: a whole wslink message in one chunk (header: id, offset 0, size), whose msgpack
 body is ``{"wslink": ..., "id": "publish:trame.state.topic:N", "result": {key: value, ...}}`` —
@@ -64,6 +80,8 @@ SEND_BUFFER_BYTES = 64 * 1024
 #: message more on its way is a second more behind.
 READ_PREFIX = "racetrace-read:"
 READ_WINDOW = 2
+#: A page that gets no animation frame (a hidden tab) counts what it applied after this (ms).
+DRAWN_FALLBACK_MS = 1000
 
 
 @dataclass
@@ -122,20 +140,52 @@ def state_message(rpc_id: str, state: dict) -> bytes:
 # Added to every page the front serves, before the page's own scripts: the page counts the
 # websocket messages it has taken and says so every READ_WINDOW / 2 of them. trame's client reads
 # each message as a Blob, in two asynchronous reads (its header, then its body) before it applies
-# it; a message is counted once two such reads issued after trame's (this listener is added when
-# the socket opens, after trame's handler) are done, i.e. once trame has applied it, not when it
-# merely arrived (a busy page takes arrivals quickly and applies them late).
-READ_SCRIPT = """<script>
+# it; a message is applied once two such reads issued after trame's (this listener is added when
+# the socket opens, after trame's handler) are done. It is taken once the page has also drawn
+# what it applied: the 3-D view draws at the second animation frame after a change
+# (app.components.browser_view) and the browser then paints (in software WebGL the paint waits
+# for the drawing), so the count goes at the first task after the second animation frame, or
+# after DRAWN_FALLBACK_MS for a page that gets no animation frame (a hidden tab).
+def _script(text: str) -> str:
+    """``text`` with the page's constants filled in."""
+    for name, value in (
+        ("__EVERY__", max(1, READ_WINDOW // 2)),
+        ("__FALLBACK__", DRAWN_FALLBACK_MS),
+        ("__PREFIX__", READ_PREFIX),
+    ):
+        text = text.replace(name, str(value))
+    return text
+
+
+READ_SCRIPT = _script("""<script>
 (function () {
-  var Native = window.WebSocket, every = __EVERY__;
+  var Native = window.WebSocket, every = __EVERY__, fallback = __FALLBACK__;
   window.WebSocket = class extends Native {
     constructor(url, protocols) {
       super(url, protocols);
-      var socket = this, taken = 0, told = 0;
+      var socket = this, taken = 0, told = 0, applied = 0, timer = 0, frame = 0;
       function tell() { told = taken; socket.send('__PREFIX__' + taken); }
-      function took() {
-        taken += 1;
+      function drawn(upto) {
+        clearTimeout(timer);
+        cancelAnimationFrame(frame);
+        timer = frame = 0;
+        taken = Math.max(taken, upto);
         if (taken - told >= every && socket.readyState === 1) tell();
+        if (applied > taken) watch();
+      }
+      function watch() {  // what was applied before the next animation frame, once drawn
+        timer = setTimeout(function () { drawn(applied); }, fallback);
+        frame = requestAnimationFrame(function () {
+          var upto = applied;
+          frame = requestAnimationFrame(function () {
+            frame = 0;
+            setTimeout(function () { drawn(upto); }, 0);
+          });
+        });
+      }
+      function took() {
+        applied += 1;
+        if (!timer) watch();
       }
       this.addEventListener('open', function () {
         tell();
@@ -150,7 +200,7 @@ READ_SCRIPT = """<script>
     }
   };
 })();
-</script>""".replace("__EVERY__", str(max(1, READ_WINDOW // 2))).replace("__PREFIX__", READ_PREFIX)
+</script>""")
 
 
 def with_read_script(page: str) -> str:

@@ -17,6 +17,12 @@ follower never changes the ``follow_*`` keys (it cannot hand itself the controls
 the render or pushes images. A refused call is answered with a wslink error naming why, so the
 page's call ends instead of waiting.
 
+What a follower's page is sent is what the presenter's session publishes, through the front's
+per-browser backlog (:mod:`app.serve.coalesce`): a page that draws slowly is sent at most two
+messages beyond what it has drawn, then the newest state, so it shows a frame the presenter's
+session played about when the page was ready for one, not a queue of older frames. There is no
+prediction: the page shows no frame before the presenter's session has played it.
+
 A class ends with its presenter: the front stops a session whose presenter's page has been gone
 for its idle time, whatever followers it has, and closes their websockets first with
 :data:`PRESENTER_LEFT_CLOSE` (their page then says the presenter has left). Join codes cannot be
