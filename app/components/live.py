@@ -80,6 +80,18 @@ CONTROL_LABELS = {
 }
 
 
+def slowdown_words(playback_rate: float, asked_rate: float) -> str:
+    """What ``#live-behind`` says of a playback at ``playback_rate`` when ``asked_rate`` was
+    asked (bearing s per wall s): how far it is slowed, in whole percent of the asked rate; empty
+    when it is not below the asked rate by at least half a percent (nothing to say)."""
+    if not (asked_rate > 0.0 and math.isfinite(playback_rate)):
+        return ""
+    percent = 100.0 * playback_rate / asked_rate
+    if round(percent) >= 100:
+        return ""
+    return f"the solver cannot keep up: playback slowed to {percent:.0f} % of the asked rate"
+
+
 def _simulation() -> str:
     """The live simulation class the child runs (looked up at each start, so that tests can swap
     it)."""
@@ -337,14 +349,9 @@ class Live(Component):
             self.tracks.add(new)
         self.source = self.window.source
         self._chunk_start = (float(chunk["time"][0]), time.monotonic())
-        asked = float(info["asked_rate"])
-        if info.get("behind"):
-            s.live_behind = (
-                "the solver cannot keep up: playback slowed to "
-                f"{100.0 * self.rate / asked:.0f} % of the asked rate"
-            )
-        elif self.rate >= 0.999 * asked:
-            s.live_behind = ""
+        s.live_behind = slowdown_words(
+            float(info.get("playback_rate", self.rate)), float(info["asked_rate"])
+        )
         period = shaft_period(self.inputs)
         if math.isfinite(period):
             s.live_rate = (
