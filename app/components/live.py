@@ -417,7 +417,7 @@ class Live(Component):
             f"live · t = {frame['time_s'] * 1e3:8.3f} ms · Fr {frame['radial_load_N']:.0f} N · "
             f"Fa {frame['axial_load_N']:.0f} N · {speed:.0f} rpm"
         )
-        self.ctrl.show_live_frame(src, index, self.tracks, words)
+        self.ctrl.show_live_frame(src, index, self.tracks, words, urgent=self._change_to_draw)
         if now >= self._charts_due and not self._charts_held(now):
             self._update_charts(index)
             frame["band_inner_deg"] = self.state.live_band_inner
