@@ -79,8 +79,8 @@ DETECT_WEBGL = """
     // in software WebGL); the view named viewRef draws at the next animation frame instead, at
     // most once per frame. A drawing holds the page until the frame is on screen (in software
     // WebGL the page then reads the picture back: a few tenths of a second on a loaded
-    // machine), so after one the view waits IDLE_SHARE times as long (at most MOST_IDLE_MS)
-    // before it draws again:
+    // machine), so while live (live_on) after one the view waits IDLE_SHARE times as long (at
+    // most MOST_IDLE_MS) before it draws again:
     // meanwhile the page takes its messages, and a frame that must be seen at once (drawNow)
     // is drawn at the next animation frame. `shown` says when the last drawing began and when
     // it was on screen (performance.now() ms). Called when the view is created (it may not be
@@ -119,7 +119,7 @@ DETECT_WEBGL = """
       }
       var render = function () {
         if (pending || timer) return;
-        var wait = nextAt - performance.now();
+        var wait = window.trame.state.get('live_on') ? nextAt - performance.now() : 0;
         if (wait > 0) timer = setTimeout(atNextFrame, wait);
         else atNextFrame();
       };

@@ -155,6 +155,7 @@ DRAWS_AFTER_A_DRAWING = """(seconds) => new Promise((done) => {
   const rt3d = window.trame.utils.rt3d;
   const draws = [];
   const counting = view.interactor.onRenderEvent(() => draws.push(performance.now()));
+  window.trame.state.set('live_on', true);  // the view waits while live
   rt3d.IDLE_SHARE = 1000;
   rt3d.MOST_IDLE_MS = 1e6;
   view.render.now();  // a drawing, after which the view waits
@@ -175,6 +176,7 @@ DRAWS_AFTER_A_DRAWING = """(seconds) => new Promise((done) => {
         counting.unsubscribe();
         rt3d.IDLE_SHARE = 1.0;
         rt3d.MOST_IDLE_MS = 500;
+        window.trame.state.set('live_on', false);
         const urgent = draws.filter((t) => t > urgentAt);
         done({ waiting, urgent: urgent.length, after: urgent.length ? urgent[0] - urgentAt : null,
                software: rt3d.software,
