@@ -12,7 +12,9 @@ Starts ``racetrace serve`` on a free loopback port, opens the default case in he
 - latency from a control change to the first frame that shows it (wall, timed in the page): the
   radial load is set through the page's state (as the slider does) and the page notes the time
   at which ``#live-data``'s ``data-radial-load`` (the input of the frame on show) first leaves the
-  old value (the page has taken that frame), and the time at which the 3-D view's first drawing
+  old value (the page has taken that frame), the time at which the server drew that frame (its
+  ``live_frame.sent_at_s``, the server's wall clock: the state-level share, the page to the
+  server included), and the time at which the 3-D view's first drawing
   after that is on screen (the view's ``utils.rt3d.shown``; with a page that does not say it, the
   first animation frame after it; none with server rendering);
   ``--changes`` changes (default 7), alternately up and down by 200 N, each set once
@@ -65,28 +67,34 @@ CHANGE_AND_WATCH = """(load) => new Promise((resolve) => {
     const el = document.querySelector('#live-data');
     const old = Number(el.dataset.radialLoad);
     const t0 = performance.now();
+    const wall0 = Date.now() / 1e3;  // the server's clock (one machine)
     const since = (t) => (t - t0) / 1e3;
     const observer = new MutationObserver(() => {
       if (Math.abs(Number(el.dataset.radialLoad) - old) <= 0.5) return;
       observer.disconnect();
       const applied = performance.now();
+      const sent = window.trame.state.get('live_frame').sent_at_s;
+      const server = sent ? sent - wall0 : null;
       const rt3d = window.trame.utils.rt3d;
-      if (!window.trame.state.get('view_in_browser')) { resolve([since(applied), null]); return; }
+      if (!window.trame.state.get('view_in_browser')) {
+        resolve([since(applied), null, server]);
+        return;
+      }
       if (rt3d && 'shown' in rt3d) {
         const wait = () => {
           const shown = rt3d.shown;
-          if (shown && shown.start >= applied) resolve([since(applied), since(shown.end)]);
+          if (shown && shown.start >= applied) resolve([since(applied), since(shown.end), server]);
           else setTimeout(wait, 2);
         };
         wait();
       } else {
-        const done = () => resolve([since(applied), since(performance.now())]);
+        const done = () => resolve([since(applied), since(performance.now()), server]);
         requestAnimationFrame(() => setTimeout(done, 0));
       }
     });
     observer.observe(el, {attributes: true});
     window.trame.state.set('live_radial_load_N', load);
-    setTimeout(() => { observer.disconnect(); resolve([null, null]); }, 60000);
+    setTimeout(() => { observer.disconnect(); resolve([null, null, null]); }, 60000);
 })"""
 
 
@@ -157,7 +165,8 @@ def main() -> int:
                 latencies.append(latency)
                 time.sleep(1.0)
             for what, k in (
-                ("the page takes the first frame showing it", 0),
+                ("the server draws the first frame showing it", 2),
+                ("the page takes that frame", 0),
                 ("that frame drawn on screen", 1),
             ):
                 values = [x[k] for x in latencies]

@@ -10,7 +10,8 @@ slowed, and this says by how much), ``live_rate`` (the playback in words), ``liv
 (the inner track's band thickness in degree over the last
 :data:`app.live_view.BAND_REVOLUTIONS` revolutions, None until known), ``live_frame`` (the frame
 on show: ``{"serial", "time_s", "radial_load_N", "axial_load_N", "speed_rpm", "tilt_deg",
-"band_inner_deg"}``, also written as ``data-*`` attributes of ``#live-data``), and the controls
+"band_inner_deg", "sent_at_s"}``: ``sent_at_s`` the server's wall clock when it was drawn, s
+since the epoch; also written as ``data-*`` attributes of ``#live-data``), and the controls
 ``live_radial_load_N``, ``live_axial_load_N``, ``live_speed_rpm``, ``live_tilt_deg``.
 """
 
@@ -412,6 +413,7 @@ class Live(Component):
             "speed_rpm": speed,
             "tilt_deg": math.degrees(inputs["misalignment"]),
             "band_inner_deg": self.state.live_band_inner,
+            "sent_at_s": time.time(),  # wall clock (s since the epoch): the page's latency
         }
         words = (
             f"live · t = {frame['time_s'] * 1e3:8.3f} ms · Fr {frame['radial_load_N']:.0f} N · "
