@@ -143,7 +143,8 @@ DETECT_WEBGL = """
     },
   };
   // In software WebGL (no GPU: SwiftShader) the view is drawn without multisampling, which
-  // about halves the cost of a drawing; a context whose caller asks for antialias keeps it.
+  // cut a drawing of the default scene from 0.37-0.46 s to 0.20-0.35 s at load 8 (one run);
+  // a context whose caller asks for antialias keeps it.
   var software = false;
   var ok = false;
   try {
