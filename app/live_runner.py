@@ -22,7 +22,9 @@ so (:class:`_Pace`); quick chunks bring the asked rate back. The playback is slo
 Messages from the child (tuples): ``("preparing", text)`` (loading or compiling the kernels),
 ``("ready", time_s, inputs)`` (the quasi-static state; again after a reset;
 ``inputs``: :meth:`inputs_now`, SI), ``("chunk", ds, info)``
-with ``info`` a dict of ``rate`` (bearing s per wall s), ``asked_rate``, ``behind`` (bool),
+with ``info`` a dict of ``rate`` (bearing s per wall s the chunk was made for),
+``playback_rate`` (bearing s per wall s of the chunks from now on: below ``asked_rate`` while the
+solver cannot keep up), ``asked_rate``, ``behind`` (bool: this chunk took too long),
 ``compute_s`` (the chunk's wall time in the solver), ``chunk_wall_s`` (the wall time it was
 made for), ``inputs`` (:meth:`inputs_now`) and ``sets`` (the ``set`` controls read before the
 chunk began, applied or refused, counted from the start: the parent knows from it which chunk is
@@ -185,6 +187,7 @@ class _Pace:
     def _report(self, used: float, wall: float, took_s: float, behind: bool) -> dict:
         return {
             "rate": used,
+            "playback_rate": self.rate,  # adapted to this chunk: the pace from now on
             "asked_rate": self.asked,
             "behind": bool(behind),
             "compute_s": took_s,

@@ -12,9 +12,14 @@ Starts ``racetrace serve`` on a free loopback port, opens the default case in he
 - latency from a control change to the first frame that shows it (wall, timed in the page): the
   radial load is set through the page's state (as the slider does) and the page notes the time
   at which ``#live-data``'s ``data-radial-load`` (the input of the frame on show) first leaves the
-  old value; ``--changes`` changes (default 7), alternately up and down by 200 N, each set once
+  old value (the page has taken that frame), the time at which the server drew that frame (its
+  ``live_frame.sent_at_s``, the server's wall clock: the state-level share, the page to the
+  server included), and the time at which the 3-D view's first drawing
+  after that is on screen (the view's ``utils.rt3d.shown``; with a page that does not say it, the
+  first animation frame after it; none with server rendering);
+  ``--changes`` changes (default 7), alternately up and down by 200 N, each set once
   the frame on show carries the load set before (so that a ramp still playing is not taken for
-  the change: at a slowed playback a ramp takes seconds of wall time); median and all;
+  the change: at a slowed playback a ramp takes seconds of wall time); median, max and all;
 - the playback the solver keeps (``#live-rate``) and whether it says it cannot keep up
   (``#live-behind``).
 Timings are wall times on the machine as loaded when run: state the load (``uptime``) with them.
@@ -55,18 +60,41 @@ FRAME_COUNTER = """() => { window.__srcs = new Set(); window.__counting = true;
       window.__stop = () => { window.__counting = false; };
     } }"""
 
-# set the radial load and note when the frame on show first carries a different load
+# set the radial load and note when the frame on show first carries a different load (the page
+# has applied it), then when the 3-D view's first drawing after that is on screen: as the view
+# says (utils.rt3d.shown, a drawing begun after it), else the first animation frame after it
 CHANGE_AND_WATCH = """(load) => new Promise((resolve) => {
     const el = document.querySelector('#live-data');
     const old = Number(el.dataset.radialLoad);
     const t0 = performance.now();
+    const wall0 = Date.now() / 1e3;  // the server's clock (one machine)
+    const since = (t) => (t - t0) / 1e3;
     const observer = new MutationObserver(() => {
-      if (Math.abs(Number(el.dataset.radialLoad) - old) > 0.5) {
-        observer.disconnect(); resolve((performance.now() - t0) / 1e3); }
+      if (Math.abs(Number(el.dataset.radialLoad) - old) <= 0.5) return;
+      observer.disconnect();
+      const applied = performance.now();
+      const sent = window.trame.state.get('live_frame').sent_at_s;
+      const server = sent ? sent - wall0 : null;
+      const rt3d = window.trame.utils.rt3d;
+      if (!window.trame.state.get('view_in_browser')) {
+        resolve([since(applied), null, server]);
+        return;
+      }
+      if (rt3d && 'shown' in rt3d) {
+        const wait = () => {
+          const shown = rt3d.shown;
+          if (shown && shown.start >= applied) resolve([since(applied), since(shown.end), server]);
+          else setTimeout(wait, 2);
+        };
+        wait();
+      } else {
+        const done = () => resolve([since(applied), since(performance.now()), server]);
+        requestAnimationFrame(() => setTimeout(done, 0));
+      }
     });
     observer.observe(el, {attributes: true});
     window.trame.state.set('live_radial_load_N', load);
-    setTimeout(() => { observer.disconnect(); resolve(null); }, 60000);
+    setTimeout(() => { observer.disconnect(); resolve([null, null, null]); }, 60000);
 })"""
 
 
@@ -136,15 +164,21 @@ def main() -> int:
                 latency = page.evaluate(CHANGE_AND_WATCH, load)
                 latencies.append(latency)
                 time.sleep(1.0)
-            seen = [x for x in latencies if x is not None]
-            text = ", ".join("none" if x is None else f"{x:.2f}" for x in latencies)
-            if seen:
-                print(
-                    f"control change to the first frame showing it: median "
-                    f"{statistics.median(seen):.2f} s (all: {text})"
-                )
-            else:
-                print(f"control change to the first frame showing it: never within 60 s ({text})")
+            for what, k in (
+                ("the server draws the first frame showing it", 2),
+                ("the page takes that frame", 0),
+                ("that frame drawn on screen", 1),
+            ):
+                values = [x[k] for x in latencies]
+                seen = [x for x in values if x is not None]
+                text = ", ".join("none" if x is None else f"{x:.2f}" for x in values)
+                if seen:
+                    print(
+                        f"control change to {what}: median {statistics.median(seen):.2f} s, "
+                        f"max {max(seen):.2f} s (all: {text})"
+                    )
+                else:
+                    print(f"control change to {what}: not seen ({text})")
             print(f"playback: {page.locator('#live-rate').inner_text().strip()}")
             behind = page.locator("#live-behind").inner_text().strip()
             print(f"solver keeping up: {'no: ' + behind if behind else 'yes'}")

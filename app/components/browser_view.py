@@ -21,8 +21,11 @@ painted quads shown ``n``, ``run``: whether the tracks take their whole-run colo
 ``rt3d_track_cells`` (the painted tracks' quads in painting order), ``rt3d_track_run`` and
 ``rt3d_tracks`` (the painted tracks' colours, colour-bar title, range and labels: over the whole
 run, and up to frame ``stop``), ``rt3d_overlay`` (the 2-D overlay's labels, legend and colour
-map), ``rt3d_visible`` (part name -> shown) and ``rt3d_camera`` (a camera preset to apply:
-vtk.js camera settings and a ``serial``).
+map), ``rt3d_visible`` (part name -> shown), ``rt3d_camera`` (a camera preset to apply:
+vtk.js camera settings and a ``serial``) and ``rt3d_urgent`` (a count of the frames to be drawn
+at once, not after the view's idle wait: a live control change's first frame; a count, not a flag
+on the frame, so that it survives the front's merging of state messages,
+:mod:`app.serve.coalesce`).
 """
 
 from __future__ import annotations
@@ -79,7 +82,13 @@ DETECT_WEBGL = """
     // frame was drawn twice, its second drawing asked for as the first ended: 1.6 drawings of
     // 250-400 ms per played frame in software WebGL, 1.0 at the second animation frame).
     // app.serve.coalesce.READ_SCRIPT counts a message as taken after that second animation
-    // frame. Called when the view is created (it may not be mounted yet: retried).
+    // frame. A drawing holds the page until the frame is on screen (in software WebGL the page
+    // then reads the picture back: a few tenths of a second on a loaded machine), so while live
+    // (live_on) after one the view waits IDLE_SHARE times as long (at most MOST_IDLE_MS) before
+    // it draws again: meanwhile the page takes its messages, and a frame that must be seen at
+    // once (drawNow) is drawn at the next animation frame. `shown` says when the last drawing
+    // began and when it was on screen (performance.now() ms). Called when the view is created
+    // (it may not be mounted yet: retried).
     drawOnAnimationFrame: function (viewRef, tries) {
       var component = window.trame.refs[viewRef];
       var view = component && component.$ && component.$.provides && component.$.provides.view;
@@ -93,25 +102,78 @@ DETECT_WEBGL = """
       }
       if (view.render.onAnimationFrame) return;
       if (view.render.cancel) view.render.cancel();
-      var pending = 0;
+      var rt3d = window.trame.utils.rt3d;
+      var pending = 0, timer = 0, nextAt = 0;
       function draw() {
         pending = 0;
         if (!view.renderWindow) return;  // the view was removed
+        var start = performance.now();
         view.renderer.resetCameraClippingRange();
         view.renderWindow.render();
+        setTimeout(function () {  // a task after the frame: the picture is on screen
+          var end = performance.now();
+          nextAt = end + Math.min(rt3d.IDLE_SHARE * (end - start), rt3d.MOST_IDLE_MS);
+          rt3d.shown = { start: start, end: end };
+        }, 0);
       }
       function next() { pending = requestAnimationFrame(draw); }
-      var render = function () { if (!pending) pending = requestAnimationFrame(next); };
-      render.cancel = function () { if (pending) cancelAnimationFrame(pending); pending = 0; };
+      function atSecondFrame() {
+        if (timer) clearTimeout(timer);
+        timer = 0;
+        if (!pending) pending = requestAnimationFrame(next);
+      }
+      var render = function () {
+        if (pending || timer) return;
+        var wait = window.trame.state.get('live_on') ? nextAt - performance.now() : 0;
+        if (wait > 0) timer = setTimeout(atSecondFrame, wait);
+        else atSecondFrame();
+      };
+      render.now = function () {  // at the next animation frame
+        if (timer) clearTimeout(timer);
+        if (pending) cancelAnimationFrame(pending);
+        timer = 0;
+        pending = requestAnimationFrame(draw);
+      };
+      render.cancel = function () {
+        if (pending) cancelAnimationFrame(pending);
+        if (timer) clearTimeout(timer);
+        pending = timer = 0;
+      };
       render.onAnimationFrame = true;
       view.render = render;
     },
+    IDLE_SHARE: 1.0,
+    MOST_IDLE_MS: 500,  // the drawing's time counts the tasks queued before the page saw it end
+    shown: null,
+    // the view named viewRef draws at the next animation frame, not after its idle wait
+    drawNow: function (viewRef) {
+      var component = window.trame.refs[viewRef];
+      var view = component && component.$ && component.$.provides && component.$.provides.view;
+      if (view && view.render && view.render.now) view.render.now();
+    },
   };
+  // In software WebGL (no GPU: SwiftShader) the view is drawn without multisampling, which
+  // cut a drawing of the default scene from 0.37-0.46 s to 0.20-0.35 s at load 8 (one run);
+  // a context whose caller asks for antialias keeps it.
+  var software = false;
   var ok = false;
   try {
     var canvas = document.createElement('canvas');
-    ok = !!(canvas.getContext('webgl2') || canvas.getContext('webgl'));
+    var gl = canvas.getContext('webgl2') || canvas.getContext('webgl');
+    ok = !!gl;
+    var info = gl && gl.getExtension('WEBGL_debug_renderer_info');
+    software = !!info && /swiftshader/i.test(String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)));
   } catch (e) { ok = false; }
+  if (software) {
+    var getContext = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (kind, attributes) {
+      if ((kind === 'webgl2' || kind === 'webgl') && !(attributes && 'antialias' in attributes)) {
+        attributes = Object.assign({}, attributes, { antialias: false });
+      }
+      return getContext.call(this, kind, attributes);
+    };
+  }
+  window.trame.utils.rt3d.software = software;
   window.trame.state.set('browser_webgl', ok);
 })(0);
 """
@@ -162,6 +224,7 @@ class BrowserView:
         s.rt3d_overlay = {"labels": [], "legend": [], "gradient": ""}
         s.rt3d_visible = {}
         s.rt3d_camera = {"serial": 0}
+        s.rt3d_urgent = 0
 
     @property
     def active(self) -> bool:
@@ -251,11 +314,11 @@ class BrowserView:
                 self._tracks_sent = (stop, options.track_quantity, time.monotonic())
         self.state.rt3d_frame = frame
 
-    def show_live_frame(self, index: int) -> None:
+    def show_live_frame(self, index: int, urgent: bool = False) -> None:
         """Send frame ``index`` of a live session's window: the matrices and ellipses, and the
         session's accumulated tracks (:class:`app.live_view.LiveTracks`, every quad shown) at
         most every :data:`TRACK_REFRESH_S` (the window slides, so frame numbers do not say what
-        is new)."""
+        is new); ``urgent``: the page draws it at once (``rt3d_urgent``)."""
         if self.scene is None:
             return
         options = self.scene.scene.options
@@ -267,6 +330,8 @@ class BrowserView:
             self.state.rt3d_tracks = self.scene.track_state(0, options.track_quantity)
             self._tracks_sent = (-1, options.track_quantity, time.monotonic())
         self.state.rt3d_frame = frame
+        if urgent:
+            self.state.rt3d_urgent = int(self.state.rt3d_urgent) + 1
 
     def set_camera(self, plotter) -> None:
         """Send the server scene's camera (a preset just applied) to the browser, which applies
@@ -349,6 +414,10 @@ class BrowserView:
                 value="rt3d_parts",
                 trigger_on_create=True,
                 change=f"utils.rt3d.drawOnAnimationFrame('{VIEW_REF}')",
+            )
+            # a frame to be seen at once is drawn at the next animation frame (DETECT_WEBGL)
+            client.ClientStateChange(
+                value="rt3d_urgent", change=f"utils.rt3d.drawNow('{VIEW_REF}')"
             )
             # a camera preset chosen on the server is applied once the view is there
             client.ClientStateChange(

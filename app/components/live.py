@@ -10,7 +10,8 @@ slowed, and this says by how much), ``live_rate`` (the playback in words), ``liv
 (the inner track's band thickness in degree over the last
 :data:`app.live_view.BAND_REVOLUTIONS` revolutions, None until known), ``live_frame`` (the frame
 on show: ``{"serial", "time_s", "radial_load_N", "axial_load_N", "speed_rpm", "tilt_deg",
-"band_inner_deg"}``, also written as ``data-*`` attributes of ``#live-data``), and the controls
+"band_inner_deg", "sent_at_s"}``: ``sent_at_s`` the server's wall clock when it was drawn, s
+since the epoch; also written as ``data-*`` attributes of ``#live-data``), and the controls
 ``live_radial_load_N``, ``live_axial_load_N``, ``live_speed_rpm``, ``live_tilt_deg``.
 """
 
@@ -78,6 +79,18 @@ CONTROL_LABELS = {
     "live_speed_rpm": "shaft speed, rpm",
     "live_tilt_deg": "tilt, degree",
 }
+
+
+def slowdown_words(playback_rate: float, asked_rate: float) -> str:
+    """What ``#live-behind`` says of a playback at ``playback_rate`` when ``asked_rate`` was
+    asked (bearing s per wall s): how far it is slowed, in whole percent of the asked rate; empty
+    when it is not below the asked rate by at least half a percent (nothing to say)."""
+    if not (asked_rate > 0.0 and math.isfinite(playback_rate)):
+        return ""
+    percent = 100.0 * playback_rate / asked_rate
+    if round(percent) >= 100:
+        return ""
+    return f"the solver cannot keep up: playback slowed to {percent:.0f} % of the asked rate"
 
 
 def _simulation() -> str:
@@ -337,14 +350,9 @@ class Live(Component):
             self.tracks.add(new)
         self.source = self.window.source
         self._chunk_start = (float(chunk["time"][0]), time.monotonic())
-        asked = float(info["asked_rate"])
-        if info.get("behind"):
-            s.live_behind = (
-                "the solver cannot keep up: playback slowed to "
-                f"{100.0 * self.rate / asked:.0f} % of the asked rate"
-            )
-        elif self.rate >= 0.999 * asked:
-            s.live_behind = ""
+        s.live_behind = slowdown_words(
+            float(info.get("playback_rate", self.rate)), float(info["asked_rate"])
+        )
         period = shaft_period(self.inputs)
         if math.isfinite(period):
             s.live_rate = (
@@ -405,12 +413,13 @@ class Live(Component):
             "speed_rpm": speed,
             "tilt_deg": math.degrees(inputs["misalignment"]),
             "band_inner_deg": self.state.live_band_inner,
+            "sent_at_s": time.time(),  # wall clock (s since the epoch): the page's latency
         }
         words = (
             f"live · t = {frame['time_s'] * 1e3:8.3f} ms · Fr {frame['radial_load_N']:.0f} N · "
             f"Fa {frame['axial_load_N']:.0f} N · {speed:.0f} rpm"
         )
-        self.ctrl.show_live_frame(src, index, self.tracks, words)
+        self.ctrl.show_live_frame(src, index, self.tracks, words, urgent=self._change_to_draw)
         if now >= self._charts_due and not self._charts_held(now):
             self._update_charts(index)
             frame["band_inner_deg"] = self.state.live_band_inner

@@ -291,9 +291,12 @@ class ResultView(Component):
         self._ensure_scene(geometry_from_result(ds), self._load_side(ds))
         return self.scene
 
-    def show_live_frame(self, source: FrameSource, index: int, tracks, words: str) -> None:
+    def show_live_frame(
+        self, source: FrameSource, index: int, tracks, words: str, urgent: bool = False
+    ) -> None:
         """Draw frame ``index`` of the live window ``source`` with the live session's painted
-        ``tracks`` (:class:`app.live_view.LiveTracks`); ``words``: the time on show."""
+        ``tracks`` (:class:`app.live_view.LiveTracks`); ``words``: the time on show;
+        ``urgent``: the browser draws it at once (the first frame of a control change)."""
         self.state.frame_time = words
         if self.scene is None:
             return
@@ -303,7 +306,7 @@ class ResultView(Component):
         if self.browser.active:  # the browser draws: send what moved
             if self.browser.scene is None or self.browser.scene.scene is not scene:
                 self.browser.show_scene(scene)
-            self.browser.show_live_frame(index)
+            self.browser.show_live_frame(index, urgent)
         else:
             scene.set_frame(index)
             self.push_view()

@@ -437,3 +437,44 @@ def test_the_page_loop_ticks_at_the_frame_rate_while_there_is_nothing_to_draw(li
 
     asyncio.run(run())
     assert 0.5 * LIVE_FPS <= len(ticks) <= 1.5 * LIVE_FPS
+
+
+def test_the_slowdown_is_said_with_the_rate_the_playback_keeps(live_app, monkeypatch):
+    """#live-behind says the playback is slowed only while it runs below the asked rate, with the
+    rate it runs at from then on: not the rate of the chunk that took too long (made for the
+    asked rate, which read "slowed to 100 % of the asked rate")."""
+    from tests.app.conftest import SHAFT_RPM
+
+    live, s = live_app.live, live_app.state
+    parts = _chunks(make_dynamic_dataset(n_time=60), 20)
+    inputs = {"radial_load": 300.0, "inner_ring_speed": SHAFT_RPM * math.pi / 30.0}
+    inbox = []
+    monkeypatch.setattr(live.runner, "poll", lambda: [inbox.pop(0)] if inbox else [])
+    s.live_on = True
+    asked = 1e-3
+    pace = _Pace(asked)
+
+    def chunk_that_took(part, took_s):
+        inbox.append(("chunk", part, {**pace.after_chunk(took_s), "inputs": inputs, "sets": 0}))
+        live.tick()
+
+    chunk_that_took(parts[0], 0.0)  # the first chunk: no measure
+    assert s.live_behind == ""
+    chunk_that_took(parts[1], 3.0 * CHUNK_WALL_S)  # the solver could not keep up
+    slowed = 100.0 * pace.rate / asked
+    assert slowed < 50.0
+    assert s.live_behind.endswith(f"slowed to {slowed:.0f} % of the asked rate")
+    assert "100 %" not in s.live_behind
+    chunk_that_took(parts[2], 0.1 * CHUNK_WALL_S)  # quick again: the asked rate is back
+    assert pace.rate == pytest.approx(asked)
+    assert s.live_behind == ""
+
+
+def test_a_slowdown_too_small_to_show_in_whole_percent_is_not_said():
+    from app.components.live import slowdown_words
+
+    assert slowdown_words(1e-3, 1e-3) == ""
+    assert slowdown_words(0.996e-3, 1e-3) == ""  # would read "slowed to 100 %"
+    assert slowdown_words(2e-3, 1e-3) == ""  # faster than asked: not slowed
+    assert slowdown_words(0.994e-3, 1e-3).endswith("slowed to 99 % of the asked rate")
+    assert slowdown_words(0.25e-3, 1e-3).endswith("slowed to 25 % of the asked rate")

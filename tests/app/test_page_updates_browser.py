@@ -143,3 +143,60 @@ def test_a_page_busy_with_messages_still_draws_the_3d_view(page):
     # every message came before the timer and restarted it
     draws = page.evaluate(DRAWS_WHILE_BUSY, 2)
     assert draws >= 2, draws
+
+
+# After a drawing the view waits (utils.rt3d.IDLE_SHARE times as long as the drawing held the
+# page, at most utils.rt3d.MOST_IDLE_MS; set here to a wait of seconds) before it draws again;
+# asked to draw meanwhile, it counts the drawings over ``seconds``, then a frame to be seen at
+# once (``rt3d_urgent`` counted up, as the server does for a live control change's first frame)
+# and counts again.
+DRAWS_AFTER_A_DRAWING = """(seconds) => new Promise((done) => {
+  const view = window.trame.refs.rt3d_view.$.provides.view;
+  const rt3d = window.trame.utils.rt3d;
+  const draws = [];
+  const counting = view.interactor.onRenderEvent(() => draws.push(performance.now()));
+  window.trame.state.set('live_on', true);  // the view waits while live
+  rt3d.IDLE_SHARE = 1000;
+  rt3d.MOST_IDLE_MS = 1e6;
+  view.render.now();  // a drawing, after which the view waits
+  const first = () => new Promise((ok) => {
+    const look = () => (rt3d.shown && draws.length && rt3d.shown.end > draws[0]) ? ok()
+      : setTimeout(look, 10);
+    look();
+  });
+  first().then(() => {
+    const asked = performance.now();
+    const ask = setInterval(() => view.render(), 20);
+    setTimeout(() => {
+      clearInterval(ask);
+      const waiting = draws.filter((t) => t > asked).length;
+      const urgentAt = performance.now();
+      window.trame.state.set('rt3d_urgent', (window.trame.state.get('rt3d_urgent') || 0) + 1);
+      setTimeout(() => {
+        counting.unsubscribe();
+        rt3d.IDLE_SHARE = 1.0;
+        rt3d.MOST_IDLE_MS = 500;
+        window.trame.state.set('live_on', false);
+        const urgent = draws.filter((t) => t > urgentAt);
+        done({ waiting, urgent: urgent.length, after: urgent.length ? urgent[0] - urgentAt : null,
+               software: rt3d.software,
+               antialias: view.openglRenderWindow.getContext().getContextAttributes().antialias });
+      }, seconds * 1000);
+    }, seconds * 1000);
+  });
+})"""
+
+
+def test_after_a_drawing_the_view_waits_but_draws_a_frame_to_be_seen_at_once(page):
+    """A drawing in software WebGL holds the page for a few tenths of a second on a loaded
+    machine; the view then leaves the page idle for a while (to take its messages) before it
+    draws again, except for a frame that must be seen at once. In software WebGL the view is
+    drawn without multisampling."""
+    page.evaluate("window.trame.state.set('playing', false)")
+    page.wait_for_timeout(500)
+    counted = page.evaluate(DRAWS_AFTER_A_DRAWING, 1.5)
+    print("drawings after a drawing", counted)
+    assert counted["waiting"] == 0, counted  # asked every 20 ms for 1.5 s: it waited
+    assert counted["urgent"] >= 1, counted  # the frame to be seen at once was drawn
+    assert counted["software"] is True, counted  # headless Chromium draws WebGL in SwiftShader
+    assert counted["antialias"] is False, counted

@@ -151,6 +151,41 @@ def test_a_live_frame_drawn_by_the_browser_sends_the_window_frame_and_the_live_t
         a.shutdown()
 
 
+def test_the_first_live_frame_of_a_change_is_marked_to_be_drawn_at_once(tmp_path):
+    """A live frame sent as urgent (the first to carry a control change) counts up
+    ``rt3d_urgent``, which the page watches to draw at once; other frames leave it alone."""
+    from app.live_view import LiveTracks, LiveWindow
+    from tests.app.conftest import make_dynamic_dataset
+    from viz.frames import FrameSource
+
+    a = _session(tmp_path, "browser")
+    try:
+        _set(a, browser_webgl=True)
+        ds = make_dynamic_dataset(n_time=40)
+        layout = a.result.live_scene(ds).layout
+        whole = FrameSource.from_dynamic(ds)
+        reference = [whole.reference_contact_angle(r) for r in (0, 1)]
+        tracks = LiveTracks(layout.grooves, layout.grids, reference, 1.0)
+        window = LiveWindow(revolutions=100.0)
+        tracks.add(window.add(ds, {}))
+        pushed = []
+        a.state._push_state_fn = lambda update: pushed.append(dict(update))
+
+        def draw(index, urgent):
+            pushed.clear()
+            with a.state:
+                a.result.show_live_frame(window.source, index, tracks, "t", urgent=urgent)
+            return [u["rt3d_urgent"] for u in pushed if "rt3d_urgent" in u]
+
+        before = int(a.state.rt3d_urgent)
+        assert draw(5, urgent=False) == []
+        assert draw(6, urgent=True) == [before + 1]
+        assert draw(7, urgent=False) == []
+        assert draw(8, urgent=True) == [before + 2]
+    finally:
+        a.shutdown()
+
+
 def _decoded(typed: dict):
     import base64
 
