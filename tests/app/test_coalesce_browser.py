@@ -70,6 +70,20 @@ def _counting_front(monkeypatch, page: str):
         yield served[0], noted
 
 
+@contextlib.contextmanager
+def _opened(browser, base: str):
+    """A new page of ``browser`` at ``base``, and the list its uncaught errors go to."""
+    context = browser.new_context()
+    page = context.new_page()
+    errors = []
+    page.on("pageerror", lambda error: errors.append(error))
+    try:
+        page.goto(base + "/")
+        yield page, errors
+    finally:
+        context.close()
+
+
 @pytest.fixture
 def counting_front(monkeypatch):
     """:func:`_counting_front` of :data:`PAGE`."""
@@ -79,12 +93,7 @@ def counting_front(monkeypatch):
 
 def test_a_page_says_how_many_messages_it_has_applied(browser, counting_front):
     base, noted = counting_front
-    context = browser.new_context()
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda error: errors.append(error))
-    try:
-        page.goto(base + "/")
+    with _opened(browser, base) as (page, errors):
         page.wait_for_function(f"window.frame === {MESSAGES - 1}", timeout=30_000, polling=100)
         applied = page.evaluate("window.applied")
         expected = f"{coalesce.READ_PREFIX}{applied}"
@@ -100,8 +109,6 @@ def test_a_page_says_how_many_messages_it_has_applied(browser, counting_front):
         assert all(a < b for a, b in zip(counts, counts[1:], strict=False)), counts
         assert 1 <= applied <= MESSAGES
         assert not errors
-    finally:
-        context.close()
 
 
 DRAWING_MS = 150
@@ -143,12 +150,7 @@ def test_a_page_that_draws_slowly_counts_a_message_once_drawn(browser, slow_coun
     assert "window.told" in SLOW_PAGE
     assert "__DRAWING__" not in SLOW_PAGE and "performance.now() - start" in SLOW_PAGE
     base, noted = slow_counting_front
-    context = browser.new_context()
-    page = context.new_page()
-    errors = []
-    page.on("pageerror", lambda error: errors.append(error))
-    try:
-        page.goto(base + "/")
+    with _opened(browser, base) as (page, errors):
         page.wait_for_function(f"window.frame === {MESSAGES - 1}", timeout=60_000, polling=100)
         page.wait_for_function("window.drawn === window.applied", timeout=30_000, polling=100)
         applied = page.evaluate("window.applied")
@@ -163,5 +165,3 @@ def test_a_page_that_draws_slowly_counts_a_message_once_drawn(browser, slow_coun
         assert all(count <= drawn for count, drawn in counts[1:]), told
         assert [text for text, _ in told] == noted[: len(told)]
         assert not errors
-    finally:
-        context.close()
