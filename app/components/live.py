@@ -350,9 +350,7 @@ class Live(Component):
             self.tracks.add(new)
         self.source = self.window.source
         self._chunk_start = (float(chunk["time"][0]), time.monotonic())
-        s.live_behind = slowdown_words(
-            float(info.get("playback_rate", self.rate)), float(info["asked_rate"])
-        )
+        s.live_behind = slowdown_words(float(info["playback_rate"]), float(info["asked_rate"]))
         period = shaft_period(self.inputs)
         if math.isfinite(period):
             s.live_rate = (

@@ -386,7 +386,7 @@ def test_the_chunk_with_a_change_is_drawn_at_once_and_the_charts_wait_for_it(liv
     live, s = live_app.live, live_app.state
     parts = _chunks(make_dynamic_dataset(n_time=60), 20)
     omega = SHAFT_RPM * math.pi / 30.0
-    info = {"rate": 1e-3, "asked_rate": 1e-3, "sets": 0}
+    info = {"rate": 1e-3, "playback_rate": 1e-3, "asked_rate": 1e-3, "sets": 0}
     info["inputs"] = {"radial_load": 300.0, "inner_ring_speed": omega}
     inbox, sent, charts = [], [], []
     monkeypatch.setattr(live.runner, "poll", lambda: [inbox.pop(0)] if inbox else [])
