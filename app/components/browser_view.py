@@ -74,6 +74,11 @@ DETECT_WEBGL = """
       }
       return seen.head;
     },
+    // the vtk.js view of the trame view component named viewRef (undefined until mounted)
+    vtkView: function (viewRef) {
+      var component = window.trame.refs[viewRef];
+      return component && component.$ && component.$.provides && component.$.provides.view;
+    },
     // trame-vtk's view draws on a 1 ms timer that every change restarts, so a page still taking
     // state messages keeps putting the drawing off (about one drawing a second while playing
     // in software WebGL); the view named viewRef draws at the second animation frame after a
@@ -90,8 +95,7 @@ DETECT_WEBGL = """
     // began and when it was on screen (performance.now() ms). Called when the view is created
     // (it may not be mounted yet: retried).
     drawOnAnimationFrame: function (viewRef, tries) {
-      var component = window.trame.refs[viewRef];
-      var view = component && component.$ && component.$.provides && component.$.provides.view;
+      var view = window.trame.utils.rt3d.vtkView(viewRef);
       if (!(view && view.renderWindow && view.render)) {
         if ((tries | 0) < 100) {
           setTimeout(function () {
@@ -147,8 +151,7 @@ DETECT_WEBGL = """
     shown: null,
     // the view named viewRef draws at the next animation frame, not after its idle wait
     drawNow: function (viewRef) {
-      var component = window.trame.refs[viewRef];
-      var view = component && component.$ && component.$.provides && component.$.provides.view;
+      var view = window.trame.utils.rt3d.vtkView(viewRef);
       if (view && view.render && view.render.now) view.render.now();
     },
   };
