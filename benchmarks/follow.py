@@ -68,8 +68,8 @@ PY_SPY = str(Path(sys.executable).with_name("py-spy"))  # pip install py-spy, fo
 # in the browser follower: each frame index as it arrives, with the wall-clock time (ms): from the
 # state's watcher, and read every 20 ms as well (whichever sees an index first counts); and each
 # frame index the 3-D view shows, once drawn: the index of rt3d_frame at an animation frame (the
-# view draws its changes in an animation frame callback), noted at the first task after that
-# animation frame, once the browser has painted it
+# view draws a change at the second animation frame after it, app.components.browser_view),
+# noted at the first task after the next animation frame, once the browser has painted it
 FRAME_PROBE = """() => { window.__frames = []; window.__drawn = [];
   const note = (f) => window.__frames.push([f, Date.now()]);
   window.trame.state.watch(['frame'], note);
@@ -81,7 +81,7 @@ FRAME_PROBE = """() => { window.__frames = []; window.__drawn = [];
     const f = (window.trame.state.get('rt3d_frame') || {}).index;
     if (f !== drawn) {
       drawn = f;
-      setTimeout(() => window.__drawn.push([f, Date.now()]), 0);
+      requestAnimationFrame(() => setTimeout(() => window.__drawn.push([f, Date.now()]), 0));
     }
     requestAnimationFrame(frame);
   };
