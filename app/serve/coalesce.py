@@ -39,9 +39,19 @@ last of several values of a key shows what it would show after applying all of t
 the app publishes is a whole value (a played frame's matrices, ellipses and painted-quad counts;
 the charts' figures; the live tracks sent whole), none a delta to add to the previous one.
 
+A picture of the server-rendered view (trame-rca's ``publish:trame.rca.topic.stream:N``, whose
+body's ``result`` is ``{"name": view, "meta": {"type": "image/...", ...}, "content": bytes}``)
+is a whole picture: a later picture of the same view replaces a waiting one, which is dropped.
+Without that, a page slower than the session's pictures (about 20 a second while playing) fell
+behind for good: a picture between each two frames' states kept them from merging, and what
+waited grew by a megabyte a second (measured: a Chromium page at a CPU throttling of 8 had 3 659
+messages, 70 MB, waiting after a minute of play). State publishes that a dropped picture kept
+apart then merge. A video stream's packets (type ``application/octet-stream``) build on each other
+and are barriers.
+
 Everything else is a barrier, kept whole and in order: RPC replies and errors, other topics
-(images of the server-rendered view, trame's actions), a message in several chunks, text, and
-anything that does not decode as above. A state publish is never merged across a barrier.
+(trame's actions), a message in several chunks, text, and anything that does not decode as
+above. A state publish is never merged across a barrier.
 
 Only what waits is merged: a message is merged into the one before it only while that one waits
 behind a message on its way (the writer is sending, or waits for the page to take what it was
@@ -66,6 +76,9 @@ from wslink.protocol import MAX_MSG_SIZE
 #: the id of a trame state publish starts with this (then wslink's publish count)
 STATE_ID_PREFIX = "publish:trame.state.topic:"
 _STATE_ID = STATE_ID_PREFIX.encode()
+#: the id of a picture of a server-rendered view (trame-rca's stream topic) starts with this
+PICTURE_ID_PREFIX = "publish:trame.rca.topic.stream:"
+_PICTURE_ID = PICTURE_ID_PREFIX.encode()
 _HEADER = 12  # wslink's chunk header: message id, offset, total size (little-endian uint32 each)
 _ID_WITHIN = 64  # the id is among a body's first bytes: {"wslink": "1.0", "id": ...}
 #: What the front hands the operating system for one browser before it waits (bytes): the socket's
@@ -98,6 +111,19 @@ class _Waiting:
     rpc_id: str = ""
     state: dict | None = None
     packed_size: int = 0
+    picture_of: str | None = None  # the view it is a whole picture of (decoded)
+
+    def decode(self) -> None:
+        """Find out, once, whether this is a state publish or a whole picture of a view."""
+        if self.decoded:
+            return
+        self.decoded = True
+        found = state_publish(self.type, self.data)
+        if found is not None:
+            self.rpc_id, self.state = found
+            self.packed_size = self.size
+        else:
+            self.picture_of = picture_view(self.type, self.data)
 
     def pack(self) -> None:
         """Pack the merged state into :attr:`data`; :attr:`size` is then exact."""
@@ -108,26 +134,51 @@ class _Waiting:
 def state_publish(message_type: WSMsgType, data: bytes | str) -> tuple[str, dict] | None:
     """``(id, state)`` of a wslink message that is a whole trame state publish in one chunk;
     None for anything else (a barrier)."""
+    body = _one_chunk_body(message_type, data, _STATE_ID)
+    if body is None:
+        return None
+    rpc_id, state = body["id"], body["result"]
+    if not isinstance(state, dict) or not all(isinstance(k, str) for k in state):
+        return None
+    return rpc_id, state
+
+
+def _one_chunk_body(message_type: WSMsgType, data: bytes | str, id_prefix: bytes) -> dict | None:
+    """The msgpack body of a wslink message in one chunk whose id starts with ``id_prefix``
+    (``{"wslink", "id", "result"}``); None for anything else."""
     if message_type != WSMsgType.BINARY or len(data) <= _HEADER:
         return None
     offset = int.from_bytes(data[4:8], "little")
     size = int.from_bytes(data[8:12], "little")
     if offset != 0 or size != len(data) - _HEADER:
         return None  # one chunk of a message in several: kept whole
-    if _STATE_ID not in data[_HEADER : _HEADER + _ID_WITHIN]:
-        return None  # not a state publish: not decoded
+    if id_prefix not in data[_HEADER : _HEADER + _ID_WITHIN]:
+        return None  # not of this kind: not decoded
     try:
         body = msgpack.unpackb(data[_HEADER:], raw=False, strict_map_key=False)
     except Exception:  # msgpack raises several types for what is not msgpack
         return None
     if not isinstance(body, dict) or set(body) != {"wslink", "id", "result"}:
         return None
-    rpc_id, state = body["id"], body["result"]
-    if not isinstance(rpc_id, str) or not rpc_id.startswith(STATE_ID_PREFIX):
+    if not isinstance(body["id"], str) or not body["id"].startswith(id_prefix.decode()):
         return None
-    if not isinstance(state, dict) or not all(isinstance(k, str) for k in state):
+    return body
+
+
+def picture_view(message_type: WSMsgType, data: bytes | str) -> str | None:
+    """The name of the view that a wslink message is one whole picture of (a trame-rca stream
+    publish of an image, in one chunk); None for anything else (a video packet, a barrier)."""
+    body = _one_chunk_body(message_type, data, _PICTURE_ID)
+    if body is None:
         return None
-    return rpc_id, state
+    result = body["result"]
+    if not isinstance(result, dict):
+        return None
+    name, meta = result.get("name"), result.get("meta")
+    if not isinstance(name, str) or not isinstance(meta, dict):
+        return None
+    kind = meta.get("type")
+    return name if isinstance(kind, str) and kind.startswith("image/") else None
 
 
 def state_message(rpc_id: str, state: dict) -> bytes:
@@ -280,6 +331,7 @@ class Backlog:
         self._closed = False
         self.bytes = 0  # the waiting messages' bytes (at most: merges are packed when sent)
         self.merged = 0  # messages merged into a later one (never sent as they came)
+        self.replaced = 0  # pictures dropped for a later one of the same view
 
     def __len__(self) -> int:
         return len(self._waiting)
@@ -288,11 +340,36 @@ class Backlog:
         """Add a message the session sent; merged into the last waiting one when both are state
         publishes and that one waits behind a message on its way."""
         item = _Waiting(message_type, data, len(data))
-        if self._waiting and not self._writer_waits and self._merge(self._waiting[-1], item):
+        waits = bool(self._waiting) and not self._writer_waits
+        if waits and self._merge(self._waiting[-1], item):
             return
         self._waiting.append(item)
         self.bytes += item.size
+        if waits:
+            self._drop_replaced_pictures()
         self._wake.set()
+
+    def _drop_replaced_pictures(self) -> None:
+        """Drop every waiting picture that a later waiting picture of the same view replaces;
+        the state publishes on either side of a dropped picture merge."""
+        newest: set[str] = set()
+        k = len(self._waiting) - 1
+        while k >= 0:
+            waiting = self._waiting[k]
+            waiting.decode()
+            view = waiting.picture_of
+            if view is not None and view in newest:
+                del self._waiting[k]
+                self.bytes -= waiting.size
+                self.replaced += 1
+                if 0 < k < len(self._waiting) and self._merge(
+                    self._waiting[k - 1], self._waiting[k]
+                ):
+                    self.bytes -= self._waiting[k].size
+                    del self._waiting[k]
+            elif view is not None:
+                newest.add(view)
+            k -= 1
 
     def _merge(self, into: _Waiting, item: _Waiting) -> bool:
         """Merge ``item`` into ``into`` (the message before it) when both are state publishes
@@ -300,14 +377,9 @@ class Backlog:
         if into.size + item.size > MAX_MSG_SIZE:
             return False  # the two together could be more than one wslink chunk
         for waiting in (into, item):
-            if not waiting.decoded:
-                found = state_publish(waiting.type, waiting.data)
-                waiting.decoded = True
-                if found is not None:
-                    waiting.rpc_id, waiting.state = found
-                    waiting.packed_size = waiting.size
+            waiting.decode()
             if waiting.state is None:
-                return False  # a barrier
+                return False  # a barrier or a picture
         into.state.update(item.state)  # the later value of a key wins; every key is kept
         into.rpc_id = item.rpc_id
         self.merged += 1
@@ -324,8 +396,9 @@ class Backlog:
     async def get(self, behind: bool = False) -> tuple[WSMsgType, bytes | str] | None:
         """The next message to send (type, data), oldest first; None once :meth:`close` was
         called and nothing waits. ``behind``: the browser is behind (it has not said that it
-        took what is on its way): the state publishes that wait at the head are merged first,
-        those that came at once while nothing was on its way too."""
+        took what is on its way): the waiting pictures a later one replaces are dropped and the
+        state publishes that wait at the head are merged first, those that came at once while
+        nothing was on its way too."""
         self._writer_waits = True
         while not self._waiting:
             if self._closed:
@@ -333,6 +406,8 @@ class Backlog:
             self._wake.clear()
             await self._wake.wait()
         self._writer_waits = False
+        if behind:
+            self._drop_replaced_pictures()
         head = self._waiting[0]
         while behind and len(self._waiting) > 1 and self._merge(head, self._waiting[1]):
             self.bytes -= self._waiting[1].size

@@ -45,6 +45,14 @@ def _image(n: int) -> bytes:
     return _chunk({"wslink": "1.0", "id": "publish:trame.rca.topic.stream:0", "result": [n]})
 
 
+def _picture(n: int, view: str = "view-3d", kind: str = "image/jpeg") -> bytes:
+    """A picture of a server-rendered view, as trame-rca publishes it (``kind``
+    ``application/octet-stream``: a video packet, which builds on the one before)."""
+    meta = {"type": kind, "codec": "", "w": 8, "h": 8, "st": n, "key": "key"}
+    body = {"name": view, "meta": meta, "content": bytes([n % 251]) * 50}
+    return _chunk({"wslink": "1.0", "id": f"publish:trame.rca.topic.stream:{n}", "result": body})
+
+
 def _decoded(data: bytes) -> dict:
     size = int.from_bytes(data[8:12], "little")
     assert int.from_bytes(data[4:8], "little") == 0 and size == len(data) - 12
@@ -128,6 +136,56 @@ def test_a_text_message_a_multi_chunk_message_and_odd_bodies_are_barriers():
         # frame 1, the barrier, frames 2 and 3 merged: nothing merged across the barrier
         assert len(backlog) == 3 and backlog.merged == 1, odd
         assert backlog._waiting[1].data == odd[1]
+
+
+def test_a_later_picture_of_a_view_replaces_a_waiting_one_and_the_states_around_it_merge():
+    """While playing, a frame's state and its picture alternate: a picture replaces the one of
+    the same view that waits, so the states merge and what waits stays one state and one
+    picture. A picture of another view and a video packet are kept."""
+
+    other, video = _picture(99, view="other"), _picture(98, kind="application/octet-stream")
+
+    async def scenario(behind: bool):
+        backlog = Backlog()
+        stream = []
+        for i in range(40):
+            stream += [_state({"frame": i, "frame_time": f"t = {i}"}), _picture(i)]
+        stream[41:41] = [other]
+        stream[61:61] = [video]
+        if behind:  # all came while the writer waited: dropped when the page is behind
+            getting = asyncio.get_running_loop().create_task(backlog.get())
+            await asyncio.sleep(0)
+            for data in stream:
+                backlog.put(WSMsgType.BINARY, data)
+            first = await getting
+            waiting = len(backlog)
+            second = await backlog.get(behind=True)
+            rest = [first[1], second[1]]
+        else:  # one on its way: each came while another was on its way
+            backlog.put(WSMsgType.BINARY, stream[0])
+            rest = [(await backlog.get())[1]]
+            for data in stream[1:]:
+                backlog.put(WSMsgType.BINARY, data)
+            waiting = len(backlog)
+        backlog.close()
+        while (message := await backlog.get(behind=behind)) is not None:
+            rest.append(message[1])
+        return stream, rest, waiting, backlog
+
+    for behind in (False, True):
+        stream, received, waiting, backlog = asyncio.run(scenario(behind))
+        ids = [_decoded(d)["id"] for d in received]
+        pictures = [d for d in received if "rca" in _decoded(d)["id"]]
+        # the newest picture of the view is the last message; the other view's picture and the
+        # video packet are kept
+        assert received[-1] == stream[-1] and other in pictures and video in pictures
+        assert len(pictures) == 3, ids
+        assert _replay(received)[0] == _replay(stream)[0]  # the page ends in the same state
+        assert backlog.replaced == 39 and backlog.bytes == 0
+        if not behind:
+            assert waiting == 6, ids  # state, other view, state, video packet, state, picture
+        else:
+            assert waiting == len(stream) - 1  # nothing dropped before the page was behind
 
 
 def test_nothing_merges_while_the_writer_waits_for_a_message():
