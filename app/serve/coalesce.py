@@ -346,7 +346,9 @@ class Backlog:
         self._waiting.append(item)
         self.bytes += item.size
         if waits:
-            self._drop_replaced_pictures()
+            item.decode()  # once: the merge tried above may have decoded it
+            if item.picture_of is not None:
+                self._drop_replaced_pictures()
         self._wake.set()
 
     def _drop_replaced_pictures(self) -> None:
