@@ -52,6 +52,13 @@ def _check(results: list, source: str) -> list[str]:
     speeds = []
     for index, ds in enumerate(results):
         where = f"{source} {index + 1}" if len(results) > 1 else source
+        if "bearing" in ds.dims and "time" in ds.dims:
+            raise RossExportError(
+                f"{where} is a dynamic run of a bearing set (racetrace simulate): the ROSS "
+                "elements take each bearing's stiffness from the quasi-static set model; solve "
+                "the same case (racetrace solve CASE --output FILE.nc, or solver.solve(case)) "
+                "and export that"
+            )
         if "bearing" not in ds.dims or "bearing_stiffness" not in ds:
             raise RossExportError(
                 f"{where} is not a bearing-set result (no bearing_stiffness along a bearing "

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from solver import parse_case, simulate, solve
+from solver.catalogue import resolve_case
 from solver.models.dynamic import SimulationOptions, layout, set_simulate
 from tests.helpers.accuracy_outputs import ANGLE_DEG, CAGE_RELATIVE, LOAD_RELATIVE, TORQUE_RELATIVE
 
@@ -190,6 +191,43 @@ direction = "+x"
         ref_offset,
         atol=LOAD_RELATIVE * np.abs(ref_offset).max(),
     )
+
+
+def _contract_deviations(got, reference):
+    """Each bearing's worst deviation of every output of the accuracy contract (docs/numerics.md,
+    "Accuracy contract of the outputs") of set run ``got`` from set run ``reference``, as a
+    fraction of its allowance ({bearing name: {output: fraction}}), the means over the
+    reference's window; the energy balance is the set's (each bearing's result carries it)."""
+    from solver import bearing_result
+    from tests.helpers import accuracy_outputs
+
+    worst = {}
+    for index, name in enumerate(reference["bearing"].values):
+        ref = accuracy_outputs.outputs(bearing_result(reference, index))
+        one = accuracy_outputs.outputs(bearing_result(got, index), ref["window_start_time_s"])
+        worst[str(name)] = accuracy_outputs.deviations(one, ref)
+    return worst
+
+
+@pytest.mark.slow
+def test_shipped_pair_at_the_default_tolerance_meets_the_accuracy_contract():
+    """The shipped DB pair (12 000 rpm, an overhung load) at the default tolerance against the
+    same run at the contract's reference tolerance (1e-5): every output of each bearing within
+    its allowance, as for one bearing (three shaft revolutions, the contract's cases run ten).
+    The comparison is not vacuous: one bearing's outputs against the other's are far outside."""
+    from tests.helpers.accuracy_outputs import REFERENCE_TOLERANCE
+
+    case = resolve_case("spindle-pair-db-light-preload").with_values(
+        {"simulation.shaft_revolutions": 3.0}
+    )
+    default = simulate(case)
+    tight = simulate(case.with_values({"simulation.tolerance": REFERENCE_TOLERANCE}))
+    assert default.attrs["stop_reason"] == tight.attrs["stop_reason"] == "finished"
+    assert default.attrs["steps"] < tight.attrs["steps"]  # the tolerances differ
+    worst = _contract_deviations(default, tight)
+    assert all(value <= 1.0 for one in worst.values() for value in one.values()), worst
+    swapped = _contract_deviations(default.isel(bearing=[1, 0]), tight)
+    assert max(swapped["bearing 1"].values()) > 1.0, swapped
 
 
 def test_an_imposed_shaft_tilt_is_held_through_the_run():

@@ -87,6 +87,17 @@ def test_a_single_bearing_result_is_refused():
     assert "not a bearing-set result" in str(info.value)
 
 
+def test_a_dynamic_set_run_is_refused_naming_the_quasistatic_solve():
+    case = solver.catalogue().get("spindle-pair-db-light-preload").load()
+    run = solver.simulate(case.with_values({"simulation.shaft_revolutions": 0.05}))
+    assert run.sizes["bearing"] == 2
+    with pytest.raises(RossExportError) as info:
+        ross_bearing_arguments(run, [3, 4], source="run.nc")
+    message = str(info.value)
+    assert "run.nc is a dynamic run of a bearing set" in message
+    assert "racetrace solve CASE --output FILE.nc" in message
+
+
 def racetrace(*args):
     return subprocess.run(
         [sys.executable, "-m", "racetrace", *args], capture_output=True, text=True, timeout=300

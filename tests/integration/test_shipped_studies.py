@@ -106,3 +106,60 @@ def test_shipped_study_matches_a_fresh_solve(study_file):
                     _compare(name, model, float(row[name]), float(fresh), scale, rtol, where)
             checked += 1
     assert checked, f"{study_file.stem}: no finished point to check"
+
+
+#: The columns of the speed table of ``spindle-pair-db-speed`` in docs/studies.md: the study
+#: variable each column prints, the bearing it takes (None: the set's), and the factor from the
+#: variable's SI unit to the column's unit.
+PAIR_SPEED_COLUMNS = (
+    ("bearing_axial_load", 0, 1.0),  # Fa front N
+    ("bearing_axial_load", 1, 1.0),  # Fa rear N
+    ("axial_stiffness", None, 1e-6),  # N/m -> N/µm
+    ("radial_stiffness", None, 1e-6),  # N/m -> N/µm
+    ("tilt_stiffness", None, 1e-3),  # N m/rad -> N m/mrad
+)
+
+
+def _pair_speed_table() -> list[list[str]]:
+    """The rows (cells as text) of the speed table of ``spindle-pair-db-speed`` in
+    docs/studies.md."""
+    text = (Path(__file__).resolve().parents[2] / "docs" / "studies.md").read_text("utf-8")
+    header = (
+        "| preload | speed rpm | Fa front N | Fa rear N | k_ax N/µm | k_rad N/µm "
+        "| k_tilt N m/mrad |"
+    )
+    assert header in text, "the speed table of spindle-pair-db-speed is not in docs/studies.md"
+    rows = []
+    for line in text.split(header, 1)[1].splitlines()[2:]:
+        if not line.startswith("|"):
+            break
+        rows.append([cell.strip() for cell in line.strip("|").split("|")])
+    return rows
+
+
+def test_the_pair_speed_table_in_the_docs_is_the_shipped_study():
+    """Each number of the table, in its column's unit, is the shipped study's value to the
+    digits printed (within half a unit of its third significant digit)."""
+    shipped = _shipped(STUDIES / "spindle-pair-db-speed.toml").sel(model="quasistatic")
+    sweeps = [str(s) for s in shipped["sweep"].values]
+    speeds = shipped["operating.inner_ring_speed_rpm"].values
+    rows = _pair_speed_table()
+    assert len(rows) == 8
+    for preload, speed, *cells in rows:
+        word = preload.split()[0].rstrip(",")  # light, medium, heavy or spring
+        match = [
+            i
+            for i, sweep in enumerate(sweeps)
+            if word in sweep
+            and speeds[i] == float(speed.replace(" ", ""))
+            and ("fixed" in preload) == ("fixed position" in sweep)
+        ]
+        assert len(match) == 1, (preload, speed, match)
+        point = shipped.isel(point=match[0])
+        for cell, (name, bearing, factor) in zip(cells, PAIR_SPEED_COLUMNS, strict=True):
+            value = point[name] if bearing is None else point[name].isel(bearing=bearing)
+            assert float(cell) == pytest.approx(float(value) * factor, rel=5.1e-3), (
+                preload,
+                speed,
+                name,
+            )
