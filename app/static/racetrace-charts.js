@@ -11,10 +11,36 @@
 // The figure's typed arrays (plotly JSON's {dtype, bdata, shape}) are decoded here once per figure:
 // plotly decodes them again at every update otherwise, and new arrays make it recompute and redraw
 // every trace; with the same arrays, an update that moves the time marker redraws the marker only.
+//
+// Each chart first draws in a task of its own, after the task that ran the bundle (one chart a
+// task, in the order they asked): the bundle's run and a chart's first drawing take a second or
+// more each on a loaded machine in headless Chromium, and in one task (the bundle's onload set the
+// component, and Vue mounted every chart before the task ended) they held the page's main thread
+// for 4-10 s, during which a follower's page took no frame (app.serve.coalesce).
 (function () {
-  const { defineComponent, h, shallowRef, markRaw } = window.Vue;
+  const { defineComponent, h, shallowRef, markRaw, watch, nextTick } = window.Vue;
   const chart = shallowRef(null); // the TramePlotly component once its bundle has run
   let requested = false;
+  const turns = []; // charts waiting for their task to draw first, oldest first
+  let releasing = false;
+
+  function releaseNext() {
+    const show = turns.shift();
+    if (show) show();
+    nextTick(function () {  // once Vue has drawn this one: the next in a later task
+      if (turns.length) setTimeout(releaseNext, 0);
+      else releasing = false;
+    });
+  }
+
+  // show() in a later task of its own, after those that asked before it
+  function inTurn(show) {
+    turns.push(show);
+    if (!releasing) {
+      releasing = true;
+      setTimeout(releaseNext, 0);
+    }
+  }
 
   function load(url) {
     if (requested) return;
@@ -122,8 +148,16 @@
     inheritAttrs: false,
     setup(_props, { attrs }) {
       const memo = {};
+      const shown = shallowRef(false); // this chart's turn to draw has come
+      watch(
+        chart,
+        (component) => {
+          if (component && !shown.value) inTurn(() => (shown.value = true));
+        },
+        { immediate: true },
+      );
       return () => {
-        if (!chart.value) {
+        if (!chart.value || !shown.value) {
           return h("div", { class: "text-caption text-medium-emphasis pa-2" }, "loading chart\u2026");
         }
         const { overlay, ...rest } = attrs;
