@@ -6,9 +6,13 @@ text, then loops: apply the controls the parent queued (:meth:`LiveRunner.set_in
 reset, record), advance ``rate * CHUNK_WALL_S`` seconds of bearing time and send the chunk Dataset,
 then wait out the rest of the chunk's wall time (reading controls meanwhile), so that the simulation
 runs at the playback rate (``rate``: bearing seconds per wall second). A control that arrives while
-a chunk integrates cuts the chunk short (``LiveSimulation.advance(..., interrupt=...)``, at most
+a chunk integrates cuts the chunk short (``LiveSimulation.integrate(..., interrupt=...)``, at most
 :data:`solver.models.dynamic.live.INTERRUPT_SAMPLES` samples later): the samples done so far are
-sent as the chunk (over its share of the chunk's wall time) and the control is applied at once. The
+kept (over its share of the chunk's wall time), the control is applied at once, before any Dataset
+is built (``LiveSimulation.integrate`` then ``take``), and a change's short chunk follows at once:
+the cut samples and the change's go to the parent as one chunk, whose ``info["change_from_s"]``
+says the simulated time from which it carries the change (the parent plays it from there). A pause,
+reset or record that arrives so is applied after the cut samples are sent. The
 lead is bounded: the child computes a chunk only while fewer than :data:`MAX_LEAD_CHUNKS` chunks it
 sent are not yet taken by the parent (:meth:`LiveRunner.poll` counts them in a shared counter), so a
 parent that falls behind never has more than that many stale chunks waiting. A control change cuts
@@ -27,8 +31,9 @@ with ``info`` a dict of ``rate`` (bearing s per wall s the chunk was made for),
 solver cannot keep up), ``asked_rate``, ``behind`` (bool: this chunk took too long),
 ``compute_s`` (the chunk's wall time in the solver), ``chunk_wall_s`` (the wall time it was
 made for), ``inputs`` (:meth:`inputs_now`) and ``sets`` (the ``set`` controls read before the
-chunk began, applied or refused, counted from the start: the parent knows from it which chunk is
-the first to carry a change it sent),
+chunk was sent, applied or refused, counted from the start: the parent knows from it which chunk
+is the first to carry a change it sent) and ``change_from_s`` (None, or the simulated time [s]
+from which a chunk that holds samples from before a change carries it),
 ``("recorded", path, case_text)``, ``("refused", text)`` (a control value the model refused),
 ``("error", text)``, ``("stopped",)``.
 
@@ -56,6 +61,10 @@ MAX_LEAD_CHUNKS = 2
 #: is computed at once (the wait for the chunk before is cut short), so that the change reaches
 #: the picture sooner.
 CHANGE_CHUNK_FRACTION = 0.25
+#: Controls that, arriving while a chunk integrates, are applied at once, before the samples done
+#: so far are sent: those samples and the change's own (a :data:`CHANGE_CHUNK_FRACTION` chunk)
+#: go to the parent as one chunk whose ``change_from_s`` says where the change begins.
+CHANGES_AT_ONCE = ("set", "rate")
 
 
 #: The live simulation the child runs ("module:name" of a class called as ``cls(case)``).
@@ -105,6 +114,7 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
             if paused or stop.is_set() or (waiting and not changed):
                 continue
             start = time.monotonic()
+            short = changed
             duration, wall = pace.next_chunk(short=changed)
             changed = False
             arrived = []  # controls that came while the chunk integrated: they cut it short
@@ -113,14 +123,30 @@ def _live_loop(case_text: str, rate: float, controls, messages, stop, target: st
                 arrived.extend(_drain(controls, block_s=0.0))
                 return bool(arrived)
 
-            chunk = sim.advance(duration, interrupt=control_waiting)
+            part = sim.integrate(duration, interrupt=control_waiting)
+            if part.interrupted:  # played over its share of the wall
+                wall *= part.simulated_s / duration
+            shown_from = None
+            if arrived and all(control[0] in CHANGES_AT_ONCE for control in arrived):
+                # applied before the cut samples are sent: they go with the change's own samples
+                # in one chunk, so that no Dataset is built between the control and the change
+                for control in arrived:
+                    paused, applied = _apply(sim, control, paused, pace, messages)
+                    sets += control[0] == "set"
+                    short = short or applied
+                    if applied and shown_from is None:
+                        shown_from = float(sim.time)
+                del arrived[:]
+                if shown_from is not None:
+                    extra, extra_wall = pace.next_chunk(short=True)
+                    more = sim.integrate(extra, interrupt=control_waiting)
+                    wall += extra_wall * more.simulated_s / extra
+            chunk = sim.take()
             took = time.monotonic() - start
-            timing = getattr(sim, "last_advance", None)
-            if timing is not None and timing.interrupted:  # played over its share of the wall
-                wall *= timing.simulated_s / duration
-            info = pace.after_chunk(took, wall)
+            info = pace.after_chunk(took, wall, measure=not short)
             info["inputs"] = dict(sim.inputs_now())
             info["sets"] = sets
+            info["change_from_s"] = shown_from
             messages.put(("chunk", chunk, info))
             sent += 1
             for control in arrived:
@@ -173,11 +199,12 @@ class _Pace:
         scale = CHANGE_CHUNK_FRACTION if short else 1.0
         return scale * self.duration, scale * self.chunk_wall
 
-    def after_chunk(self, took_s: float, wall_s: float | None = None) -> dict:
+    def after_chunk(self, took_s: float, wall_s: float | None = None, measure: bool = True) -> dict:
         """Adapt to a chunk that took ``took_s`` of wall time and was made for ``wall_s`` (None:
-        a whole chunk); its report."""
+        a whole chunk); its report. ``measure`` false: a chunk that holds a change's short
+        chunk (its fixed cost weighs more), no measure of the pace."""
         used, wall = self.rate, self.chunk_wall if wall_s is None else wall_s
-        if self.first or wall < self.chunk_wall:  # one-time costs, or a short chunk: no measure
+        if self.first or wall < self.chunk_wall or not measure:  # one-time costs, a short chunk
             self.first = False
             return self._report(used, wall, took_s, False)
         behind = took_s > BEHIND_FRACTION * CHUNK_WALL_S

@@ -93,6 +93,16 @@ def slowdown_words(playback_rate: float, asked_rate: float) -> str:
     return f"the solver cannot keep up: playback slowed to {percent:.0f} % of the asked rate"
 
 
+def _played_from(chunk, change_from_s) -> float:
+    """The bearing time [s] from which a chunk is played: its first sample, or, for a chunk that
+    holds samples from before a change (``change_from_s``: where the change begins, s), the first
+    sample after the change, so that the change is the first thing shown."""
+    times = np.asarray(chunk["time"].values, float)
+    if change_from_s is None:
+        return float(times[0])
+    return float(times[min(np.searchsorted(times, change_from_s, side="right"), times.size - 1)])
+
+
 def _simulation() -> str:
     """The live simulation class the child runs (looked up at each start, so that tests can swap
     it)."""
@@ -112,7 +122,7 @@ class Live(Component):
         self.source: FrameSource | None = None
         self.inputs: dict = {}  # the solver's inputs now (SI), as the last chunk said
         self.rate = 0.0  # bearing s per wall s of the chunk playing
-        self._chunk_start = (0.0, 0.0)  # (first bearing time of the newest chunk, its arrival)
+        self._chunk_start = (0.0, 0.0)  # (bearing time the newest chunk plays from, its arrival)
         self._charts_due = 0.0  # monotonic time of the next chart update
         self._task = None
         self._record_out = None
@@ -349,7 +359,7 @@ class Live(Component):
         if new.n_frames >= 2:
             self.tracks.add(new)
         self.source = self.window.source
-        self._chunk_start = (float(chunk["time"][0]), time.monotonic())
+        self._chunk_start = (_played_from(chunk, info["change_from_s"]), time.monotonic())
         s.live_behind = slowdown_words(float(info["playback_rate"]), float(info["asked_rate"]))
         period = shaft_period(self.inputs)
         if math.isfinite(period):

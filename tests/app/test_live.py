@@ -134,10 +134,12 @@ def test_a_change_is_computed_at_once_in_a_short_chunk_even_with_the_lead_full()
         runner.stop()
 
 
-def test_a_change_sent_while_a_chunk_integrates_cuts_that_chunk_short():
+def test_a_change_sent_while_a_chunk_integrates_is_applied_before_the_cut_samples_are_sent():
     """A control that arrives while the child integrates a chunk does not wait for the chunk's
-    planned end: the chunk returns the samples done so far (fewer than planned), the change is
-    applied at once and the next chunk, the change's, starts where the cut one ended."""
+    planned end, nor for a Dataset of the samples done so far: it is applied at once, and those
+    samples go to the parent with the change's own short chunk as one chunk, whose
+    ``change_from_s`` is the time the change acts from; no chunk of the cut samples alone comes
+    first."""
     from pathlib import Path
 
     from tests.app.live_fakes import InterruptibleLive
@@ -158,15 +160,20 @@ def test_a_change_sent_while_a_chunk_integrates_cuts_that_chunk_short():
         )
         chunks = [m for m in found if m[0] == "chunk"]
         first = next(i for i, m in enumerate(chunks) if float(m[1].radial_load[-1]) == 900.0)
+        _, chunk, info = chunks[first]
+        assert info["sets"] == 1 and all(m[2]["sets"] == 0 for m in chunks[:first])
+        assert all(m[2]["change_from_s"] is None for m in chunks[:first])
+        times, loads = chunk["time"].values, chunk["radial_load"].values
+        before = times <= info["change_from_s"]
         full = round(rate * CHUNK_WALL_S * InterruptibleLive.SAMPLES_PER_SECOND)
-        cut = chunks[first - 1][1]
-        assert cut.sizes["time"] < full  # cut short: the change did not wait for its end
-        assert chunks[first][2]["sets"] == 1 and chunks[first - 1][2]["sets"] == 0
+        assert 0 < before.sum() < full  # the cut samples, fewer than planned, come with it
+        assert np.all(loads[before] == 300.0) and np.all(loads[~before] == 900.0)
+        assert (~before).sum() == round(CHANGE_CHUNK_FRACTION * full)  # the change's short chunk
+        assert float(times[before][-1]) == pytest.approx(info["change_from_s"])
         step = 1.0 / InterruptibleLive.SAMPLES_PER_SECOND
-        start = float(chunks[first][1]["time"][0])
-        assert start == pytest.approx(float(cut["time"][-1]) + step)
-        planned_end = float(cut["time"][0]) + (full - 1) * step
-        assert start < planned_end
+        assert np.allclose(np.diff(times), step)
+        if first:  # continues the chunk before it
+            assert float(times[0]) == pytest.approx(float(chunks[first - 1][1]["time"][-1]) + step)
     finally:
         runner.stop()
 
@@ -387,6 +394,7 @@ def test_the_chunk_with_a_change_is_drawn_at_once_and_the_charts_wait_for_it(liv
     parts = _chunks(make_dynamic_dataset(n_time=60), 20)
     omega = SHAFT_RPM * math.pi / 30.0
     info = {"rate": 1e-3, "playback_rate": 1e-3, "asked_rate": 1e-3, "sets": 0}
+    info["change_from_s"] = None
     info["inputs"] = {"radial_load": 300.0, "inner_ring_speed": omega}
     inbox, sent, charts = [], [], []
     monkeypatch.setattr(live.runner, "poll", lambda: [inbox.pop(0)] if inbox else [])
@@ -410,6 +418,34 @@ def test_the_chunk_with_a_change_is_drawn_at_once_and_the_charts_wait_for_it(liv
     assert live._serial == serial + 1 and len(charts) == 1  # the frame goes first
     assert live.tick()
     assert len(charts) == 2  # then the charts
+
+
+def test_a_chunk_with_samples_from_before_its_change_is_played_from_the_change(
+    live_app, monkeypatch
+):
+    """A chunk that holds the samples a change cut short and the change's own (``change_from_s``:
+    the time the change acts from) is drawn as it arrives from its first sample after the
+    change: the frame shows the change, not the cut samples before it."""
+    live, s = live_app.live, live_app.state
+    parts = _chunks(make_dynamic_dataset(n_time=60), 20)
+    # a slow playback, so that the frame due when it is drawn is within a sample of its start
+    info = {"rate": 1e-6, "playback_rate": 1e-6, "asked_rate": 1e-6, "sets": 0}
+    info |= {"change_from_s": None, "inputs": {"radial_load": 300.0}}
+    inbox = []
+    monkeypatch.setattr(live.runner, "poll", lambda: [inbox.pop(0)] if inbox else [])
+    monkeypatch.setattr(live.runner, "send", lambda *control: None)
+    monkeypatch.setattr(live, "_update_charts", lambda index: None)
+    s.live_on = True
+    inbox.append(("chunk", parts[0], info))
+    assert live.tick()
+    times = parts[1]["time"].values
+    loads = np.where(np.arange(times.size) < 12, 300.0, 900.0)  # the change acts after sample 11
+    merged = parts[1].drop_vars("radial_load", errors="ignore").assign(radial_load=("time", loads))
+    inbox.append(("chunk", merged, {**info, "sets": 1, "change_from_s": float(times[11])}))
+    assert live.tick(frame_due=False)  # drawn as it arrives
+    # the frame due a moment after it arrived: its first sample after the change, or the next
+    assert float(times[11]) < s.live_frame["time_s"] <= float(times[13])
+    assert s.live_frame["radial_load_N"] == 900.0
 
 
 def test_the_page_loop_ticks_at_the_frame_rate_while_there_is_nothing_to_draw(live_app):
@@ -455,7 +491,8 @@ def test_the_slowdown_is_said_with_the_rate_the_playback_keeps(live_app, monkeyp
     pace = _Pace(asked)
 
     def chunk_that_took(part, took_s):
-        inbox.append(("chunk", part, {**pace.after_chunk(took_s), "inputs": inputs, "sets": 0}))
+        info = {**pace.after_chunk(took_s), "inputs": inputs, "sets": 0, "change_from_s": None}
+        inbox.append(("chunk", part, info))
         live.tick()
 
     chunk_that_took(parts[0], 0.0)  # the first chunk: no measure

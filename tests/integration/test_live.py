@@ -128,6 +128,49 @@ def test_an_interrupted_advance_returns_the_samples_done_and_a_change_acts_from_
     live.close()
 
 
+def test_a_change_set_between_integrations_acts_before_any_dataset_and_take_joins_them():
+    """``integrate`` keeps its samples for ``take`` without building a Dataset, so an input set
+    after an interrupted integration acts from the time it reached; ``take`` then gives the
+    samples of both integrations as one chunk: the ones up to the change at the old value, the
+    ones after it ramping, every variable the same as ``advance`` gives over those samples."""
+    from solver.models.dynamic.live import INTERRUPT_SAMPLES
+
+    live, again = LiveSimulation(CASE), LiveSimulation(CASE)
+    asked = []
+    part = live.integrate(0.5 * REVOLUTION, interrupt=lambda: asked.append(1) or len(asked) == 1)
+    assert part.interrupted and part.simulated_s == pytest.approx(
+        INTERRUPT_SAMPLES / live.samples_per_second
+    )
+    assert live.last_advance is None  # nothing taken yet
+    changed_at = live.time
+    ramp = 4.0 / live.samples_per_second
+    live.set_input("radial_load", 900.0, ramp_s=ramp)
+    live.integrate(0.05 * REVOLUTION)
+    chunk = live.take()
+    assert live.take() is None  # taken once
+    times, loads = chunk["time"].values, chunk["radial_load"].values
+    before = times <= changed_at + 0.5 / live.samples_per_second
+    assert before.sum() == INTERRUPT_SAMPLES
+    assert np.all(loads[before] == 300.0) and np.all(loads[~before] > 300.0)
+    assert loads[-1] == 900.0
+    assert np.allclose(np.diff(times), 1.0 / live.samples_per_second)
+    timing = live.last_advance
+    assert timing.interrupted and timing.simulated_s == pytest.approx(live.time)
+    # the same session advanced in whole chunks: the same samples, bit for bit
+    first = again.advance(INTERRUPT_SAMPLES / again.samples_per_second)
+    again.set_input("radial_load", 900.0, ramp_s=ramp)
+    second = again.advance(0.05 * REVOLUTION)
+    for name, var in chunk.data_vars.items():
+        if "time" not in var.dims or name == "load_work":  # load_work counts from a chunk's start
+            continue
+        joined = np.concatenate(
+            [first[name].values, second[name].values], axis=var.dims.index("time")
+        )
+        assert np.array_equal(var.values, joined, equal_nan=True), name
+    live.close()
+    again.close()
+
+
 def test_the_chunks_hold_the_per_sample_variables_of_the_recorded_run():
     """Every variable over time of the chunks (an interrupted one among them) is the recorded
     run's at the same samples, bit for bit: the chunk's derived data (skidding, the inputs over

@@ -192,7 +192,9 @@ class LiveSimulation:
         self._recorded = 1  # samples in the record
         self._diverged = None  # the divergence message, once diverged
         self._integration_wall = 0.0
-        #: :class:`AdvanceTiming` of the last :meth:`advance` (None before the first)
+        self._pending = []  # (times, states) integrated and not yet taken (integrate, take)
+        self._pending_timing = []  # ... and the AdvanceTiming of each of those integrations
+        #: :class:`AdvanceTiming` of the last :meth:`advance` or :meth:`take` (None before)
         self.last_advance: AdvanceTiming | None = None
 
     def _rebuild_history(self) -> None:
@@ -300,7 +302,17 @@ class LiveSimulation:
         the samples done so far (``last_advance.interrupted``), so that an input set next
         (:meth:`set_input`) acts from that time, not from the end of the planned duration.
         SimulationDiverged (with the samples of this call in ``dataset``) when the integration
-        fails; the session must then be :meth:`reset`."""
+        fails; the session must then be :meth:`reset`. The same as :meth:`integrate` then
+        :meth:`take`."""
+        self.integrate(duration_s, interrupt)
+        return self.take()
+
+    def integrate(self, duration_s: float, interrupt=None) -> AdvanceTiming:
+        """The integration of :meth:`advance` without its Dataset: the new samples wait, with
+        those of earlier calls, for :meth:`take`, so that an input set between two calls (after
+        an ``interrupt``) acts at once, before any Dataset is built. What this call did (its
+        dataset times 0). SimulationDiverged (``dataset``: the samples not yet taken) when the
+        integration fails."""
         self._check_open()
         if self._diverged is not None:
             raise SimulationDiverged(f"{self._diverged}; reset() the live simulation to go on")
@@ -342,22 +354,45 @@ class LiveSimulation:
         times, states = times[:done], states[:done]
         self._sample += done
         self._keep(states)
-        begin = _time.perf_counter()
-        begin_cpu = _time.process_time()
-        ds = self._chunk_dataset(times, states) if done else None
-        self.last_advance = AdvanceTiming(
-            done / self._rate,
-            integration,
-            integration_cpu,
-            _time.perf_counter() - begin,
-            _time.process_time() - begin_cpu,
-            interrupted,
-            count,
+        part = AdvanceTiming(
+            done / self._rate, integration, integration_cpu, 0.0, 0.0, interrupted, count
         )
+        if done:
+            self._pending.append((times, states))
+        self._pending_timing.append(part)
         if self._diverged is not None:
             error = SimulationDiverged(self._diverged)
-            error.dataset = ds
+            error.dataset = self.take()
             raise error
+        return part
+
+    def take(self):
+        """The samples :meth:`integrate` added since the last take as one Dataset (as
+        :meth:`advance` returns it; None when there are none); ``last_advance``: the
+        integrations it holds summed (interrupted when one was, the samples they planned) and
+        the cost of its Dataset (left as it was when nothing was integrated since the last
+        take)."""
+        self._check_open()
+        pending, parts = self._pending, self._pending_timing
+        if not parts:  # no integration since the last take
+            return None
+        self._pending, self._pending_timing = [], []
+        begin = _time.perf_counter()
+        begin_cpu = _time.process_time()
+        ds = None
+        if pending:
+            times = np.concatenate([t for t, _ in pending])
+            states = np.concatenate([y for _, y in pending], axis=0)
+            ds = self._chunk_dataset(times, states)
+        self.last_advance = AdvanceTiming(
+            sum(p.simulated_s for p in parts),
+            sum(p.integration_wall_s for p in parts),
+            sum(p.integration_cpu_s for p in parts),
+            _time.perf_counter() - begin,
+            _time.process_time() - begin_cpu,
+            any(p.interrupted for p in parts),
+            sum(p.planned_samples for p in parts),
+        )
         return ds
 
     def reset(self) -> None:
@@ -369,6 +404,7 @@ class LiveSimulation:
     def close(self) -> None:
         """Free the record; advancing, resetting or recording afterwards is a RuntimeError."""
         self._record = []
+        self._pending, self._pending_timing = [], []
         self._recorded = 0
         self._closed = True
 
