@@ -151,7 +151,8 @@ def test_a_page_slower_than_the_pictures_shows_the_newest(page):
     cdp.send("Emulation.setCPUThrottlingRate", {"rate": 8})
     time.sleep(20)
     page.locator("#play-button").click()
-    _view_stops_changing(page, within_s=20)
+    # settled in 5 s here (load 3) and within 20 s at load 10-14; what waited before took minutes
+    _view_stops_changing(page, within_s=40)
 
 
 def test_invalid_field_blocks_run_with_its_message(page):
