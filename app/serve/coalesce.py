@@ -338,7 +338,8 @@ class Backlog:
 
     def put(self, message_type: WSMsgType, data: bytes | str) -> None:
         """Add a message the session sent; merged into the last waiting one when both are state
-        publishes and that one waits behind a message on its way."""
+        publishes and that one waits behind a message on its way; a picture that comes so drops
+        the waiting pictures of its view (:meth:`_drop_replaced_pictures`)."""
         item = _Waiting(message_type, data, len(data))
         waits = bool(self._waiting) and not self._writer_waits
         if waits and self._merge(self._waiting[-1], item):
