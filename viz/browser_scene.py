@@ -29,6 +29,7 @@ as words, colours and numbers for the page to show over the view.
 from __future__ import annotations
 
 import base64
+import functools
 
 import numpy as np
 import pyvista as pv
@@ -48,7 +49,13 @@ SCALAR_MODE_CELL = (2, 4)  # VTK_SCALAR_MODE_USE_CELL_DATA, VTK_SCALAR_MODE_USE_
 def typed_array(values, dtype) -> dict:
     """``values`` as a trame-vtk typed-array object (base64 of the raw little-endian bytes)."""
     a = np.ascontiguousarray(values, dtype=dtype)
-    return {"bvals": base64.b64encode(a.tobytes()).decode("ascii"), "dtype": a.dtype.name}
+    return {"bvals": base64.b64encode(a.tobytes()).decode("ascii"), "dtype": _dtype_name(a.dtype)}
+
+
+@functools.cache
+def _dtype_name(dtype: np.dtype) -> str:
+    """``dtype.name`` (a property that costs microseconds each time: read once per type)."""
+    return dtype.name
 
 
 def ball_group(j: int) -> str:

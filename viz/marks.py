@@ -40,8 +40,13 @@ def ellipse_points(layout: RacewayLayout, race: int, f, ellipse_scale: float):
     loaded = f.loaded[:, race] & ~layout.in_cutaway(race, phi)
     alpha = np.where(loaded, f.contact_angle[:, race], layout.reference[race])
     alpha = layout.display_alpha(race, alpha)
-    a = np.where(loaded, _finite(f.semi_major[:, race]), 0.0) * ellipse_scale
-    b = np.where(loaded, _finite(f.semi_minor[:, race]), 0.0) * ellipse_scale
+    # semi-major, semi-minor axis and peak pressure of the contacts drawn, 0 for the others
+    sizes = np.where(
+        loaded, (f.semi_major[:, race], f.semi_minor[:, race], f.max_pressure[:, race]), 0.0
+    )
+    if not np.isfinite(sizes).all():  # NaN as 0, infinities as the largest finite numbers
+        sizes = np.nan_to_num(sizes)
+    a, b = sizes[0] * ellipse_scale, sizes[1] * ellipse_scale
     lift = 2 * MARK_LIFT * groove.r  # above the traces
     # the groove angles of each ellipse's centre (column 0) and outline points (columns 1...):
     # alpha(tau) = alpha + (a/r) cos(tau), phi(tau) = phi + (b / rho_contact) sin(tau), as
@@ -54,15 +59,7 @@ def ellipse_points(layout: RacewayLayout, race: int, f, ellipse_scale: float):
     phis[:, 1:] = phi[:, None] + b[:, None] / rho * sin_tau
     alphas[:, 1:] = alpha[:, None] + a[:, None] / groove.r * cos_tau
     pts = groove.point(phis, alphas, lift=lift).reshape(-1, 3)
-    p = np.where(loaded, _finite(f.max_pressure[:, race]), 0.0) * 1e-9
-    return pts, p
-
-
-def _finite(values: np.ndarray) -> np.ndarray:
-    """``values`` with NaN as 0 and infinities as the largest finite numbers: ``np.nan_to_num``,
-    which costs more than these checks on a frame's few values, called only for infinities."""
-    values = np.where(np.isnan(values), 0.0, values)
-    return values if np.isfinite(values).all() else np.nan_to_num(values)
+    return pts, sizes[2] * 1e-9
 
 
 @functools.cache
