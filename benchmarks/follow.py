@@ -1,6 +1,7 @@
 """Follow mode under a class (issue 26): followers watching a presenter play a 100-revolution run.
 
     python benchmarks/follow.py [--run FILE.nc] [--followers 30] [--seconds 30] [--render browser]
+                                [--settle 15] [--alone]
 
 The run: a dynamic run of ``--revolutions`` (100) shaft revolutions of the default case
 (``spindle-combined-load``). ``--run FILE`` gives one; otherwise the one stored in
@@ -37,6 +38,10 @@ browsers do) and one headless Chromium follower at 1280 x 800 (``/?follow=CODE``
 - memory: proportional set size of the server's processes before and with the followers;
 - what a follower is sent: the bytes the first websocket follower read in the window, per second
   and per played frame, and the state keys that made most of them (msgpack, uncompressed).
+
+``--settle`` (15 s): how long the presenter plays before the first window (the spare session,
+started beside the presenter's, must be idle by then); ``--alone``: only the window of the
+presenter alone.
 
 ``--profile DIR``: py-spy (``pip install py-spy``) records the front and the presenter's session
 during the window with the followers, as collapsed stacks (``DIR/front.txt``, ``DIR/session.txt``).
@@ -278,7 +283,8 @@ async def measure(args, server: dict, info) -> int:
             f"the 3-D view drawn {drawn}"
         )
         await presenter.update(playing=True)
-        await asyncio.sleep(3)
+        # the spare session the front starts beside the presenter's must be idle in the window
+        await asyncio.sleep(args.settle)
 
         alone, t0 = await window(args.seconds, pid, presenter)
         played_alone = len(_first_of([x for x in presenter.frames if x[0] >= t0]))
@@ -290,6 +296,10 @@ async def measure(args, server: dict, info) -> int:
             f"pushed, memory {memory_alone:.0f} MB; {per_frame_line(alone, played_alone)}"
         )
 
+        if args.alone:
+            await presenter.update(playing=False)
+            await presenter.close()
+            return 0
         followers = []
         joining = time.monotonic()
         for _ in range(args.followers):
@@ -470,6 +480,16 @@ def main() -> int:
     parser.add_argument("--revolutions", type=int, default=100, help="the run's length")
     parser.add_argument("--followers", type=int, default=30, help="websocket followers")
     parser.add_argument("--seconds", type=float, default=30.0, help="each measuring window")
+    parser.add_argument(
+        "--settle",
+        type=float,
+        default=15.0,
+        help="seconds of playing before the first window (on a loaded machine the spare session "
+        "takes seconds to start)",
+    )
+    parser.add_argument(
+        "--alone", action="store_true", help="measure the presenter alone only (no followers)"
+    )
     parser.add_argument(
         "--profile",
         type=Path,

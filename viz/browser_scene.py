@@ -29,6 +29,7 @@ as words, colours and numbers for the page to show over the view.
 from __future__ import annotations
 
 import base64
+import functools
 
 import numpy as np
 import pyvista as pv
@@ -36,7 +37,6 @@ import pyvista as pv
 from .frames import rot_x
 from .layout import MARK_LIFT, RacewayLayout
 from .marks import ellipse_points
-from .meshes import placement
 from .overlay import LEGEND
 from .painted import SCALAR_BAR
 from .raceway import INNER, OUTER
@@ -49,7 +49,13 @@ SCALAR_MODE_CELL = (2, 4)  # VTK_SCALAR_MODE_USE_CELL_DATA, VTK_SCALAR_MODE_USE_
 def typed_array(values, dtype) -> dict:
     """``values`` as a trame-vtk typed-array object (base64 of the raw little-endian bytes)."""
     a = np.ascontiguousarray(values, dtype=dtype)
-    return {"bvals": base64.b64encode(a.tobytes()).decode("ascii"), "dtype": a.dtype.name}
+    return {"bvals": base64.b64encode(a.tobytes()).decode("ascii"), "dtype": _dtype_name(a.dtype)}
+
+
+@functools.cache
+def _dtype_name(dtype: np.dtype) -> str:
+    """``dtype.name`` (a property that costs microseconds each time: read once per type)."""
+    return dtype.name
 
 
 def ball_group(j: int) -> str:
@@ -83,6 +89,7 @@ class BrowserScene:
         # per race: quads in painting order (indices into the grid's quads) and their first frames
         self._track_order = [np.arange(cells[2].size) for cells in self._track_cells]
         self._track_first = [np.zeros(cells[2].size, np.int64) for cells in self._track_cells]
+        self._names: tuple[str, ...] = ()  # the transform groups of frame_matrices, by ball count
 
     # ---- static parts ---------------------------------------------------------------------------
     def _groups(self) -> dict:
@@ -262,30 +269,28 @@ class BrowserScene:
         ``track_stop``; None: every quad)."""
         source = self.scene.source
         f = source.frame(index)
-        rings = (
-            placement(rot_x(f.ring_angle[INNER])),
-            placement(rot_x(f.ring_angle[OUTER]), (self.layout.outer_shift, 0.0, 0.0)),
-        )
-        matrices = {
-            INNER_GROUP: rings[INNER],
-            OUTER_GROUP: rings[OUTER],
-            CAGE_GROUP: placement(rot_x(f.cage_angle)),
-        }
-        for j in range(source.ball_count):
-            matrices[ball_group(j)] = placement(f.ball_rotation[j], f.ball_center[j])
         if track_stop is None:
             counts = [int(first.size) for first in self._track_first]
         else:
             counts = self.track_counts(track_stop)
+        groups = self._group_names(source.ball_count)
         return {
             "index": int(f.index),
             "n": counts,
-            "m": {k: [round(float(v), 9) for v in m.T.ravel()] for k, m in matrices.items()},
+            "m": dict(zip(groups, frame_matrices(f, self.layout), strict=True)),
             "e": [
                 typed_array(ellipse_points(self.layout, race, f, ellipse_scale)[0], np.float32)
                 for race in (INNER, OUTER)
             ],
         }
+
+    def _group_names(self, ball_count: int) -> tuple[str, ...]:
+        """The transform groups in the order of :func:`frame_matrices`."""
+        names = self._names
+        if len(names) != 3 + ball_count:
+            names = (INNER_GROUP, OUTER_GROUP, CAGE_GROUP, *map(ball_group, range(ball_count)))
+            self._names = names
+        return names
 
     def track_state(self, stop: int, quantity: str) -> dict:
         """The painted tracks over frames ``[0, stop)`` coloured by ``quantity``: ``stop``,
@@ -319,6 +324,20 @@ class BrowserScene:
             "ticks": colour_bar_ticks(lo, hi),
             "c": colours,
         }
+
+
+def frame_matrices(f, layout: RacewayLayout) -> list[list[float]]:
+    """The user matrices of frame ``f`` (:class:`viz.frames.Frame`): the inner ring, the outer ring
+    (shifted ``layout.outer_shift`` m along x), the cage, then each ball; each as 16 numbers in
+    vtk.js's layout (column-major), rounded to 9 decimals (lengths in m)."""
+    z = f.ball_center.shape[0]
+    m = np.zeros((3 + z, 4, 4))
+    m[:3, :3, :3] = rot_x(np.array([f.ring_angle[INNER], f.ring_angle[OUTER], f.cage_angle]))
+    m[1, 0, 3] = layout.outer_shift
+    m[3:, :3, :3] = f.ball_rotation
+    m[3:, :3, 3] = f.ball_center
+    m[:, 3, 3] = 1.0
+    return np.round(m.transpose(0, 2, 1).reshape(3 + z, 16), 9).tolist()
 
 
 def colour_bar_ticks(lo: float, hi: float) -> list[str]:

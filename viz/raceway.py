@@ -38,11 +38,16 @@ class Groove:
         ``lift`` (m) moves the point off the surface towards the curvature centre, i.e. into the
         space of the ball, so that marks drawn on the raceway are not hidden by the ring surface.
         """
-        phi, alpha = np.broadcast_arrays(np.asarray(phi, float), np.asarray(alpha, float))
+        phi, alpha = np.asarray(phi, float), np.asarray(alpha, float)
+        if phi.shape != alpha.shape:
+            phi, alpha = np.broadcast_arrays(phi, alpha)
         r = self.r - lift
         radius = self.rho_c - self.sign * r * np.cos(alpha)
-        x = self.x_c - self.sign * r * np.sin(alpha)
-        return np.stack([x, radius * np.cos(phi), radius * np.sin(phi)], axis=-1)
+        out = np.empty(phi.shape + (3,))
+        out[..., 0] = self.x_c - self.sign * r * np.sin(alpha)
+        out[..., 1] = radius * np.cos(phi)
+        out[..., 2] = radius * np.sin(phi)
+        return out
 
     def contact_radius(self, alpha) -> np.ndarray:
         """Distance of the raceway point from the bearing axis, m: rho_c -+ r cos(alpha)."""
