@@ -46,8 +46,9 @@ VIEW_REF = "rt3d_view"
 IDENTITY = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]
 
 # Run by the page: ``utils.rt3d.head`` for the view's bindings (the first values of a typed array,
-# decoded once) and ``utils.rt3d.drawOnAnimationFrame`` (the view's drawing), then whether this
-# browser can draw WebGL, told to the server once trame is up.
+# decoded once), ``utils.rt3d.drawOnAnimationFrame`` (the view's drawing) and
+# ``utils.rt3d.plainTranslucency`` (its translucent parts blended in drawing order), then whether
+# this browser can draw WebGL, told to the server once trame is up.
 DETECT_WEBGL = """
 (function racetraceWebgl(tries) {
   if (!(window.trame && window.trame.state)) {
