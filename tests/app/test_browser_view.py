@@ -109,3 +109,37 @@ def test_the_browser_view_shows_the_server_views_labels_legend_and_colour_bar(pa
     page.screenshot(path=str(ARTIFACTS / "browser-overlay.png"))
     _set_state(page, show_labels=False)
     page.wait_for_function("!document.querySelector('#rt3d-legend').checkVisibility()")
+
+
+# one drawing of the view, counting the WebGL calls that only vtk.js's order-independent
+# translucency makes (it draws into an off-screen framebuffer of two half-float pictures)
+DRAW_COUNTING_OIT_CALLS = """() => {
+  const view = window.trame.utils.rt3d.vtkView('rt3d_view');
+  const gl = view.renderWindow.getViews()[0].getContext();
+  const translucent = view.renderer.getActors().filter(
+    (a) => a.getVisibility() && a.getMapper() && !a.getIsOpaque()).length;
+  const calls = { drawBuffers: 0, clearBufferfv: 0 };
+  for (const name of Object.keys(calls)) {
+    const own = gl[name];
+    gl[name] = function (...args) { calls[name] += 1; return own(...args); };
+  }
+  try { view.renderWindow.render(); }
+  finally { for (const name of Object.keys(calls)) delete gl[name]; }
+  return { translucent, ...calls };
+}"""
+
+
+def test_the_view_blends_its_translucent_parts_without_an_off_screen_pass(page):
+    """The balls and the cage stay translucent, drawn blended in drawing order as on the server,
+    not through vtk.js's order-independent translucency (an off-screen pass that drew every part
+    twice: half of a drawing's cost in software WebGL)."""
+    _set_state(page, playing=False, show_balls=True, show_cage=True)
+    page.wait_for_function(
+        "window.trame.utils.rt3d.vtkView('rt3d_view').renderWindow.getViews()[0].getContext()",
+        timeout=60_000,
+        polling=200,
+    )
+    page.wait_for_timeout(1000)  # the view's context is set up within 0.1 s of its creation
+    drawn = page.evaluate(DRAW_COUNTING_OIT_CALLS)
+    assert drawn["translucent"] >= 19, drawn  # the 18 balls and the cage
+    assert drawn["drawBuffers"] == 0 and drawn["clearBufferfv"] == 0, drawn
