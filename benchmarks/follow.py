@@ -45,6 +45,12 @@ presenter alone.
 
 ``--profile DIR``: py-spy (``pip install py-spy``) records the front and the presenter's session
 during the window with the followers, as collapsed stacks (``DIR/front.txt``, ``DIR/session.txt``).
+
+``--page-profile FILE.cpuprofile``: V8's sampling profiler (Chrome DevTools Protocol) records the
+Chromium follower's page during that window (the file opens in DevTools' Performance panel); the
+share of its samples is printed by what they were in: under a plotly function (the charts), under
+the 3-D view's or trame's scripts, native work outside JavaScript (``(program)``: drawing, style,
+layout, paint, waiting on SwiftShader), the garbage collector, idle.
 """
 
 from __future__ import annotations
@@ -52,6 +58,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import bisect
+import json
 import os
 import statistics
 import subprocess
@@ -216,6 +223,57 @@ def _first_of(frames: list[tuple[float, int]]) -> list[tuple[float, int]]:
     return out
 
 
+# what a sample of the page's profile was in, by the first of these its stack holds (from the
+# innermost frame out; a script's address or V8's own names), and the names printed
+PROFILE_KINDS = (
+    ("trame-plotly", "plotly (the charts)"),
+    ("racetrace-charts", "the charts' stand-in"),
+    ("vtk", "vtk.js (the 3-D view)"),
+    ("trame", "trame, Vue, the page's scripts"),
+)
+NATIVE_KINDS = {
+    "(program)": "native, outside JavaScript",
+    "(garbage collector)": "garbage collector",
+    "(idle)": "idle",
+}
+
+
+def profile_shares(profile: dict) -> dict[str, float]:
+    """The share of a V8 CPU profile's samples (``Profiler.stop``'s profile) by what they were
+    in: the first of :data:`PROFILE_KINDS` whose words a frame's script address holds, from the
+    sampled frame out to the stack's root; V8's own nodes (:data:`NATIVE_KINDS`); "other"."""
+    nodes = {node["id"]: node for node in profile["nodes"]}
+    parent = {}
+    for node in profile["nodes"]:
+        for child in node.get("children", []):
+            parent[child] = node["id"]
+    kind_of: dict[int, str] = {}
+
+    def kind(node_id: int) -> str:
+        if node_id in kind_of:
+            return kind_of[node_id]
+        frame = nodes[node_id]["callFrame"]
+        name, url = frame.get("functionName", ""), frame.get("url", "")
+        found = NATIVE_KINDS.get(name) if not url else None
+        if found is None:
+            for words, label in PROFILE_KINDS:
+                if words in url:
+                    found = label
+                    break
+        if found is None:
+            up = parent.get(node_id)
+            found = kind(up) if up is not None else "other"
+        kind_of[node_id] = found
+        return found
+
+    counts: dict[str, int] = {}
+    for sample in profile.get("samples", []):
+        label = kind(sample)
+        counts[label] = counts.get(label, 0) + 1
+    total = max(1, sum(counts.values()))
+    return {label: n / total for label, n in sorted(counts.items(), key=lambda x: -x[1])}
+
+
 def describe(values: list[float]) -> str:
     if not values:
         return "no frames in common"
@@ -350,10 +408,20 @@ async def measure(args, server: dict, info) -> int:
                 follower.frames.clear()
                 follower.received = 0
                 follower.key_bytes.clear()
+            cdp = None
+            if args.page_profile is not None:
+                cdp = await page.context.new_cdp_session(page)
+                await cdp.send("Profiler.enable")
+                await cdp.send("Profiler.setSamplingInterval", {"interval": 1000})  # µs
+                await cdp.send("Profiler.start")
             wall0, mono0 = time.time(), time.monotonic()
             with_followers, t0 = await window(
                 args.seconds, pid, presenter, args.profile, alone.presenter_session()
             )
+            page_profile = None
+            if cdp is not None:
+                page_profile = (await cdp.send("Profiler.stop"))["profile"]
+                args.page_profile.write_text(json.dumps(page_profile))
             reference = [x for x in presenter.frames if x[0] >= t0]
             played = len(_first_of(reference))
             shown = await page.evaluate("window.__frames || []")
@@ -398,6 +466,12 @@ async def measure(args, server: dict, info) -> int:
             f"   the Chromium follower's 3-D view, once drawn: {describe(got)}; {not_seen} of "
             f"{played} frames not reached ({len(drawn)} frames drawn)"
         )
+        if page_profile is not None:
+            shares = ", ".join(
+                f"{label} {100 * share:.0f} %"
+                for label, share in profile_shares(page_profile).items()
+            )
+            print(f"   the Chromium follower's page, its profile's samples: {shares}")
         if followers:
             first = followers[0][1]
             keys = sorted(first.key_bytes.items(), key=lambda item: -item[1])
@@ -495,6 +569,12 @@ def main() -> int:
         type=Path,
         default=None,
         help="a folder for py-spy records of the front and the presenter's session with followers",
+    )
+    parser.add_argument(
+        "--page-profile",
+        type=Path,
+        default=None,
+        help="a .cpuprofile file for a V8 profile of the Chromium follower's page in that window",
     )
     parser.add_argument(
         "--follower-deflate",

@@ -8,9 +8,15 @@
 // marks the current frame, sent with the frames) besides its figure (`data`, `layout`: sent once per
 // result and option). The chart shows the figure's traces then the overlay's, and the figure's
 // layout with the overlay's shapes after its own (app.charts.merge_overlay does the same in Python).
+// A new figure (or new overlay traces) is drawn whole, with the marks of now, by trame-plotly's
+// react(). A new overlay of shapes only (each played frame) moves the marks alone: plotly's
+// relayout() of the layout's shapes, which supplies the shapes' defaults and draws the shapes and
+// nothing else, where react() supplies the defaults of the whole figure and compares it with the
+// one shown. The marks move at the next animation frame after a change, once for all the overlays
+// given meanwhile, to the last one given (a paused chart shows the marks of the frame on show).
 // The figure's typed arrays (plotly JSON's {dtype, bdata, shape}) are decoded here once per figure:
 // plotly decodes them again at every update otherwise, and new arrays make it recompute and redraw
-// every trace; with the same arrays, an update that moves the time marker redraws the marker only.
+// every trace.
 //
 // Each chart first draws in a task of its own, after the task that ran the bundle (one chart a
 // task, in the order they asked): the bundle's run and a chart's first drawing take a second or
@@ -18,7 +24,8 @@
 // component, and Vue mounted every chart before the task ended) they held the page's main thread
 // for 4-10 s, during which a follower's page took no frame (app.serve.coalesce).
 (function () {
-  const { defineComponent, h, shallowRef, markRaw, watch, nextTick } = window.Vue;
+  const { defineComponent, h, shallowRef, markRaw, watch, nextTick, onUpdated, onBeforeUnmount } =
+    window.Vue;
   const chart = shallowRef(null); // the TramePlotly component once its bundle has run
   let requested = false;
   const turns = []; // charts waiting for their task to draw first, oldest first
@@ -126,21 +133,29 @@
     return out;
   }
 
-  // the figure and overlay merged, a new data array for each change (so that trame-plotly calls
-  // plotly's react(), which redraws only what changed, rather than relayout() with the whole layout)
-  function merge(memo, data, layout, overlay) {
-    if (memo.data === data && memo.layout === layout && memo.overlay === overlay) return memo;
-    const shapes = overlay.shapes || [];
-    memo.data = data;
-    memo.layout = layout;
-    memo.overlay = overlay;
-    memo.merged = {
-      data: decodedTraces(data || []).concat(overlay.data || []),
-      layout: shapes.length
-        ? { ...(layout || {}), shapes: ((layout && layout.shapes) || []).concat(shapes) }
-        : layout,
-    };
-    return memo;
+  // the figure's traces (decoded) then the overlay's: the same array while neither changes
+  function traces(memo, data, overlayData) {
+    if (memo.data !== data || memo.overlayData !== overlayData) {
+      const extra = overlayData || [];
+      const figure = decodedTraces(data || []);
+      memo.data = data;
+      memo.overlayData = overlayData;
+      memo.traces = extra.length ? figure.concat(extra) : figure;
+    }
+    return memo.traces;
+  }
+
+  // the figure's layout with the overlay's shapes after its own (a new object)
+  function withShapes(layout, shapes) {
+    if (!shapes || !shapes.length) return layout || {};
+    return { ...(layout || {}), shapes: ((layout && layout.shapes) || []).concat(shapes) };
+  }
+
+  // the same overlay traces (a change of them is a change of the figure's traces)
+  function sameTraces(a, b) {
+    const x = a || [];
+    const y = b || [];
+    return x === y || (x.length === 0 && y.length === 0);
   }
 
   const RacetraceChart = defineComponent({
@@ -149,6 +164,45 @@
     setup(_props, { attrs }) {
       const memo = {};
       const shown = shallowRef(false); // this chart's turn to draw has come
+      const plot = shallowRef(null); // the TramePlotly component once mounted (its $el)
+      // the overlay whose marks the chart shows and the one it is to show (a frame's marks), the
+      // figure's layout and overlay traces it was last drawn with, the layout given to trame-plotly
+      // (the figure's with the marks it was drawn with), and the animation frame that moves the
+      // marks (0: none asked)
+      const marks = {
+        shown: null,
+        wanted: null,
+        figureLayout: null,
+        shownData: null,
+        layout: null,
+        frame: 0,
+      };
+
+      function moveMarks() {
+        marks.frame = 0;
+        const wanted = marks.wanted;
+        // the plot's element (TramePlotly's inner div; its exposed relayout() does not reach plotly)
+        const root = plot.value && plot.value.$el;
+        const element = root && root.querySelector && root.querySelector(".js-plotly-plot");
+        if (!wanted || wanted === marks.shown) return;
+        if (!element || !element._fullLayout) {
+          if (plot.value) marks.frame = requestAnimationFrame(moveMarks); // not drawn yet: later
+          return;
+        }
+        marks.shown = wanted;
+        // the shapes only: plotly supplies the shapes' defaults and draws them again, nothing else
+        const layout = marks.figureLayout || {};
+        window.Plotly.relayout(element, { shapes: (layout.shapes || []).concat(wanted.shapes || []) });
+      }
+
+      onUpdated(() => {
+        if (marks.wanted !== marks.shown && !marks.frame) {
+          marks.frame = requestAnimationFrame(moveMarks);
+        }
+      });
+      onBeforeUnmount(() => {
+        if (marks.frame) cancelAnimationFrame(marks.frame);
+      });
       watch(
         chart,
         (component) => {
@@ -162,8 +216,16 @@
         }
         const { overlay, ...rest } = attrs;
         if (!overlay) return h(chart.value, rest);
-        const { merged } = merge(memo, rest.data, rest.layout, overlay);
-        return h(chart.value, { ...rest, data: merged.data, layout: merged.layout });
+        const data = traces(memo, rest.data, overlay.data);
+        if (rest.layout !== marks.figureLayout || !sameTraces(overlay.data, marks.shownData)) {
+          // a new figure: drawn whole, with the overlay's marks of now
+          marks.figureLayout = rest.layout;
+          marks.shownData = overlay.data;
+          marks.layout = withShapes(rest.layout, overlay.shapes);
+          marks.shown = overlay;
+        }
+        marks.wanted = overlay;
+        return h(chart.value, { ...rest, ref: plot, data, layout: marks.layout });
       };
     },
   });
