@@ -25,6 +25,7 @@ from trame.widgets import vuetify3 as v3
 from ..components.widgets import HIDE, alert, alert_list, button_list, icon_button
 
 PRESENTER_CSS = """
+#lessons-panel .v-btn__content { white-space: normal; }
 .rt-lesson-chart { outline: 3px solid #ffb300; outline-offset: 2px; border-radius: 4px; }
 .rt-presenter { background: #000; color: #fff; min-height: calc(100vh - 64px); }
 .rt-presenter .rt-hide-in-presenter,
@@ -133,6 +134,11 @@ def lessons_panel(ctrl) -> None:
                     key="lesson.id",
                     idle="tonal",
                     title=("lesson.summary",),
+                    # a title longer than the panel is wide wraps inside its button (a button
+                    # keeps to one line otherwise, and its ends are cut on a 1280-px laptop)
+                    # (with the rule on .v-btn__content in PRESENTER_CSS)
+                    style="max-width: 100%; height: auto; min-height: 20px; padding: 2px 8px;"
+                    " white-space: normal; text-align: left;",
                 )
         html.Div(
             "{{ lesson_message }}",

@@ -72,6 +72,33 @@ def test_time_slider_and_camera_buttons_keep_their_room_on_a_laptop(page, size):
     assert len(tops) == 6 and max(tops) - min(tops) < 2, f"camera buttons wrap at {size}: {tops}"
 
 
+@pytest.mark.parametrize("size", LAPTOPS, ids=lambda s: f"{s[0]}x{s[1]}")
+def test_every_lesson_button_shows_its_whole_title_on_a_laptop(page, size):
+    page.set_viewport_size({"width": size[0], "height": size[1]})
+    _settle(page)
+    cut = page.evaluate(
+        """() => {
+          const panel = document.querySelector('#lessons-panel').getBoundingClientRect();
+          return [...document.querySelectorAll('#lessons-panel [id^=lesson-]')]
+            .filter(b => b.tagName === 'BUTTON')
+            .map(b => {
+              const box = b.getBoundingClientRect();
+              const text = b.querySelector('.v-btn__content') || b;
+              const inside = box.left >= panel.left - 1 && box.right <= panel.right + 1;
+              const whole = text.scrollWidth <= text.clientWidth + 1
+                && text.getBoundingClientRect().left >= box.left - 1
+                && text.getBoundingClientRect().right <= box.right + 1;
+              return inside && whole ? null : [b.id, Math.round(box.left), Math.round(box.right),
+                Math.round(panel.left), Math.round(panel.right)];
+            })
+            .filter(x => x);
+        }"""
+    )
+    count = page.locator("#lessons-panel button[id^=lesson-]").count()
+    assert count == len(LESSONS), count
+    assert not cut, f"lesson buttons cut at {size}: {cut}"
+
+
 def test_contact_ellipses_are_visible_at_the_opening_scale(page):
     page.set_viewport_size({"width": 1280, "height": 720})
     _settle(page)
