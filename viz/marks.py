@@ -8,7 +8,6 @@ the run's mean contact angle, clipped at the shoulders); ellipse sizes are to sc
 
 from __future__ import annotations
 
-import functools
 import math
 
 import numpy as np
@@ -17,7 +16,7 @@ import pyvista as pv
 from .layout import ELLIPSE_POINTS, MARK_LIFT, RacewayLayout
 from .meshes import empty_line, fan_faces, outline_lines
 from .palette import ball_colours
-from .raceway import INNER, OUTER
+from .raceway import INNER, OUTER, ellipse_angles
 
 EDGE_COLOURS = {"shoulder": "#1b1b1b", "bottom": "#2f5597"}
 EDGE_WIDTH_PX = 2.0
@@ -32,7 +31,7 @@ TRACE_WIDTH_PX = 3.0
 def ellipse_points(layout: RacewayLayout, race: int, f, ellipse_scale: float):
     """The contact ellipses of ``race`` at frame ``f`` (:class:`viz.frames.Frame`) drawn
     ``ellipse_scale`` times their size, in the ring's frame (m): (points (Z * (ELLIPSE_POINTS + 1),
-    3), each ellipse's centre then its outline (:func:`viz.raceway.ellipse_outline`); peak
+    3), each ellipse's centre then its outline (:func:`viz.raceway.ellipse_angles`); peak
     pressure per ball, GPa, 0 where unloaded). Unloaded contacts and those in the outer ring's
     cut-away sector collapse to their centre."""
     groove = layout.grooves[race]
@@ -48,28 +47,12 @@ def ellipse_points(layout: RacewayLayout, race: int, f, ellipse_scale: float):
         sizes = np.nan_to_num(sizes)
     a, b = sizes[0] * ellipse_scale, sizes[1] * ellipse_scale
     lift = 2 * MARK_LIFT * groove.r  # above the traces
-    # the groove angles of each ellipse's centre (column 0) and outline points (columns 1...):
-    # alpha(tau) = alpha + (a/r) cos(tau), phi(tau) = phi + (b / rho_contact) sin(tau), as
-    # ellipse_outline, all placed on the groove at once
-    cos_tau, sin_tau = _unit_circle(ELLIPSE_POINTS)
-    phis = np.empty((phi.size, ELLIPSE_POINTS + 1))
-    alphas = np.empty_like(phis)
-    phis[:, 0], alphas[:, 0] = phi, alpha
-    rho = groove.contact_radius(alpha)[:, None]
-    phis[:, 1:] = phi[:, None] + b[:, None] / rho * sin_tau
-    alphas[:, 1:] = alpha[:, None] + a[:, None] / groove.r * cos_tau
+    # the groove angles of each ellipse's centre (column 0) then its outline, placed at once
+    outline_phi, outline_alpha = ellipse_angles(groove, phi, alpha, a, b, ELLIPSE_POINTS)
+    phis = np.concatenate([phi[:, None], outline_phi], axis=1)
+    alphas = np.concatenate([alpha[:, None], outline_alpha], axis=1)
     pts = groove.point(phis, alphas, lift=lift).reshape(-1, 3)
     return pts, sizes[2] * 1e-9
-
-
-@functools.cache
-def _unit_circle(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """cos and sin of ``n`` angles tau evenly spaced over a turn from 0 (read-only arrays)."""
-    tau = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
-    out = np.cos(tau), np.sin(tau)
-    for values in out:
-        values.flags.writeable = False
-    return out
 
 
 class RacewayMarks:

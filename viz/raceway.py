@@ -13,6 +13,7 @@ upper signs for the inner groove, lower signs for the outer one. Lengths in m.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -96,20 +97,37 @@ def exaggerate(alpha, reference: float, factor: float):
     return reference + factor * (np.asarray(alpha, float) - reference)
 
 
-def ellipse_outline(groove: Groove, phi, alpha, semi_major, semi_minor, n: int = 24, lift=0.0):
-    """Contact ellipses wrapped on the groove (physics.md §2.8.3), points shape (..., n, 3), m.
+def ellipse_angles(groove: Groove, phi, alpha, semi_major, semi_minor, n: int = 24):
+    """The groove angles (rad) of contact ellipses wrapped on the groove (physics.md §2.8.3):
+    (phi(tau), alpha(tau)), each of shape (..., n), at ``n`` angles tau over a turn from 0.
 
     ``phi``, ``alpha`` (rad) are the ellipse centres; ``semi_major`` (m) lies across the groove,
     ``semi_minor`` (m) along the rolling direction. alpha(tau) = alpha + (a/r) cos(tau),
     phi(tau) = phi + (b / rho_contact) sin(tau).
     """
-    tau = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    cos_tau, sin_tau = _unit_circle(n)
     phi = np.asarray(phi, float)[..., None]
     alpha = np.asarray(alpha, float)[..., None]
     a = np.asarray(semi_major, float)[..., None]
     b = np.asarray(semi_minor, float)[..., None]
     rho = groove.contact_radius(alpha)
-    return groove.point(phi + b / rho * np.sin(tau), alpha + a / groove.r * np.cos(tau), lift=lift)
+    return phi + b / rho * sin_tau, alpha + a / groove.r * cos_tau
+
+
+def ellipse_outline(groove: Groove, phi, alpha, semi_major, semi_minor, n: int = 24, lift=0.0):
+    """Contact ellipses wrapped on the groove (:func:`ellipse_angles`), points shape (..., n, 3),
+    m; ``lift`` as :meth:`Groove.point`."""
+    return groove.point(*ellipse_angles(groove, phi, alpha, semi_major, semi_minor, n), lift=lift)
+
+
+@functools.cache
+def _unit_circle(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin of ``n`` angles tau evenly spaced over a turn from 0 (read-only arrays)."""
+    tau = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    out = np.cos(tau), np.sin(tau)
+    for values in out:
+        values.flags.writeable = False
+    return out
 
 
 def shoulder_angles(geometry) -> tuple[float, float]:

@@ -134,9 +134,8 @@ def lessons_panel(ctrl) -> None:
                     key="lesson.id",
                     idle="tonal",
                     title=("lesson.summary",),
-                    # a title longer than the panel is wide wraps inside its button (a button
-                    # keeps to one line otherwise, and its ends are cut on a 1280-px laptop)
-                    # (with the rule on .v-btn__content in PRESENTER_CSS)
+                    # a title longer than the panel is wide wraps inside its button (with the
+                    # .v-btn__content rule in PRESENTER_CSS); one line cut it on a 1280-px laptop
                     style="max-width: 100%; height: auto; min-height: 20px; padding: 2px 8px;"
                     " white-space: normal; text-align: left;",
                 )
