@@ -79,16 +79,16 @@ def last_stretch(ds: xr.Dataset, duration_s: float) -> xr.Dataset:
     return ds.isel(time=slice(int(np.searchsorted(t, t[-1] - duration_s)), None))
 
 
-#: Inputs given over time in a live chunk that ``solver.trajectory_summary`` reads as constants
-#: (its rating life); the band thickness takes their last values (it does not depend on them).
-STEADY_FOR_METRICS = (
-    "axial_load",
-    "radial_load",
-    "radial_load_angle",
-    "misalignment",
-    "misalignment_axis",
-    "tilting_moment",
-    "moment_axis",
+#: What :func:`band_thickness` joins of a window's chunks: what ``solver.stretch_track_summary``
+#: reads (the ring speeds are coordinates of a chunk where they are constant).
+BAND_VARIABLES = (
+    "contact_angle",
+    "contact_load",
+    "ellipse_semi_major",
+    "raceway_azimuth",
+    "inner_ring_speed",
+    "outer_ring_speed",
+    "groove_radius",
 )
 #: Inputs the window keeps per sample (SI), for the words and data of the frame on show.
 FRAME_INPUTS = ("inner_ring_speed", "outer_ring_speed", "radial_load", "axial_load", "misalignment")
@@ -100,7 +100,7 @@ def input_values(ds: xr.Dataset, name: str) -> np.ndarray:
     n = ds.sizes["time"]
     if name not in ds.variables:
         return np.full(n, np.nan)
-    var = ds[name]
+    var = ds.variables[name]  # a bare Variable: no coordinates attached
     if "time" in var.dims:
         return np.asarray(var.transpose("time", ...).values, float).reshape(n)
     return np.full(n, float(var))
@@ -216,43 +216,40 @@ class LiveWindow:
             self.chunks.pop(0)
         return painted
 
-    def dataset(self, duration_s: float = math.inf) -> xr.Dataset | None:
-        """The chunks of the last ``duration_s`` seconds joined into one Dataset (None: none)."""
+    def dataset(self, duration_s: float = math.inf, names=None) -> xr.Dataset | None:
+        """The chunks of the last ``duration_s`` seconds joined into one Dataset (None: none);
+        ``names``: only these variables (those a chunk has) and their coordinates, which joins
+        in a fraction of the time of every variable."""
         if not self.chunks:
             return None
         end = float(self.chunks[-1]["time"][-1])
         first = len(self.chunks) - 1
         while first > 0 and float(self.chunks[first]["time"][0]) > end - duration_s:
             first -= 1
-        return last_stretch(join_chunks(self.chunks[first:]), duration_s)
+        chunks = self.chunks[first:]
+        if names is not None:
+            chunks = [chunk[[n for n in names if n in chunk.variables]] for chunk in chunks]
+        return last_stretch(join_chunks(chunks), duration_s)
 
 
 def band_thickness(window: LiveWindow, inputs: dict, race: str = "inner") -> float:
     """Band thickness (degree) of ``race``'s track in its own ring's frame over the last
-    :data:`BAND_REVOLUTIONS` of ``window`` (``solver.trajectory_summary`` on them, the whole
-    stretch analysed); NaN while the stretch is too short to give one."""
-    from solver import trajectory_summary
+    :data:`BAND_REVOLUTIONS` of ``window`` (``solver.stretch_track_summary``: the whole stretch
+    analysed, only the variables it reads joined); NaN while the stretch is too short to give
+    one."""
+    from solver import stretch_track_summary
 
     period = shaft_period(inputs)
     if not math.isfinite(period) or not window.chunks:
         return math.nan
-    stretch = window.dataset(BAND_REVOLUTIONS * period)
+    stretch = window.dataset(BAND_REVOLUTIONS * period, names=BAND_VARIABLES)
     if stretch.sizes["time"] < 3:
         return math.nan
     span = float(stretch["time"][-1] - stretch["time"][0])
     if span < 0.9 * BAND_REVOLUTIONS * period:
         return math.nan
-    # from t = 0: the settling check counts revolutions from the stretch's start
-    stretch = stretch.assign_coords(time=stretch["time"] - stretch["time"][0])
-    # trajectory_summary's rating life reads the loads and the tilt as coordinates; a live chunk
-    # gives them over time. The band does not depend on them: the stretch's last values stand in.
-    for name in STEADY_FOR_METRICS:
-        if name in stretch.data_vars and "time" in stretch[name].dims:
-            last = float(stretch[name].isel(time=-1))
-            stretch = stretch.drop_vars(name).assign_coords({name: last})
-    metrics = trajectory_summary(stretch, skip_fraction=0.0)
-    own = f"{race}_ring"
-    value = metrics["trajectory_band_thickness"].sel(race=race, frame=own)
+    metrics = stretch_track_summary(stretch)
+    value = metrics["trajectory_band_thickness"].sel(race=race, frame=f"{race}_ring")
     return float(value)
 
 

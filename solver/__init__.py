@@ -144,6 +144,7 @@ _LAZY = {
     "quasistatic_start": "solver.models.quasistatic.result",
     "result_description": "solver.results.dataset",
     "trajectory_summary": "solver.results.summary",
+    "stretch_track_summary": "solver.results.summary",
     "QUASISTATIC_THICKNESS_NOTE": "solver.results.summary",
     "RacetraceAccessor": "solver.results.accessor",
     "METRICS": "solver.results.metrics",

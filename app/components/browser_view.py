@@ -22,9 +22,10 @@ painted quads shown ``n``, ``run``: whether the tracks take their whole-run colo
 ``rt3d_tracks`` (the painted tracks' colours, colour-bar title, range and labels: over the whole
 run, and up to frame ``stop``), ``rt3d_overlay`` (the 2-D overlay's labels, legend and colour
 map), ``rt3d_visible`` (part name -> shown), ``rt3d_camera`` (a camera preset to apply:
-vtk.js camera settings and a ``serial``) and ``rt3d_urgent`` (a count of the frames to be drawn
-at once, not after the view's idle wait: a live control change's first frame; a count, not a flag
-on the frame, so that it survives the front's merging of state messages,
+vtk.js camera settings and a ``serial``) and ``rt3d_urgent`` (``app.front_keys.URGENT_KEY``:
+a count of the frames to be drawn at once, not after the view's idle wait: a live control
+change's first frame; a count, not a flag on the frame, so that it survives the front's merging of
+state messages; a message that carries it goes past the front's window,
 :mod:`app.serve.coalesce`).
 """
 
@@ -38,6 +39,7 @@ from trame.widgets import vtk as vtk_widgets
 
 from viz.browser_scene import BrowserScene, camera_state
 
+from ..front_keys import URGENT_KEY
 from .widgets import own_update
 
 RENDER_MODES = ("browser", "server")
@@ -257,7 +259,7 @@ class BrowserView:
         s.rt3d_overlay = {"labels": [], "legend": [], "gradient": ""}
         s.rt3d_visible = {}
         s.rt3d_camera = {"serial": 0}
-        s.rt3d_urgent = 0
+        s[URGENT_KEY] = 0
 
     @property
     def active(self) -> bool:
@@ -364,7 +366,7 @@ class BrowserView:
             self._tracks_sent = (-1, options.track_quantity, time.monotonic())
         self.state.rt3d_frame = frame
         if urgent:
-            self.state.rt3d_urgent = int(self.state.rt3d_urgent) + 1
+            self.state[URGENT_KEY] = int(self.state[URGENT_KEY]) + 1
 
     def set_camera(self, plotter) -> None:
         """Send the server scene's camera (a preset just applied) to the browser, which applies
@@ -455,9 +457,7 @@ class BrowserView:
                 change=f"utils.rt3d.plainTranslucency('{VIEW_REF}')",
             )
             # a frame to be seen at once is drawn at the next animation frame (DETECT_WEBGL)
-            client.ClientStateChange(
-                value="rt3d_urgent", change=f"utils.rt3d.drawNow('{VIEW_REF}')"
-            )
+            client.ClientStateChange(value=URGENT_KEY, change=f"utils.rt3d.drawNow('{VIEW_REF}')")
             # a camera preset chosen on the server is applied once the view is there
             client.ClientStateChange(
                 value="rt3d_camera",

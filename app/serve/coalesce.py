@@ -53,6 +53,14 @@ Everything else is a barrier, kept whole and in order: RPC replies and errors, o
 (trame's actions), a message in several chunks, text, and anything that does not decode as
 above. A state publish is never merged across a barrier.
 
+A frame that must be seen at once (a live control change's first frame) is a state publish
+that carries :data:`app.front_keys.URGENT_KEY`: it does not wait for the page to take what is on
+its way. Measured in live mode (``benchmarks/live_app.py``, a quiet machine): with the window
+full, such a frame waited at the front 0-170 ms (median 65 ms) for the page to finish drawing
+the frames before it, which it would then have drawn first. It goes at once, past the window
+(what waits before it goes with it, merged where it can be), and the page draws it at its next
+animation frame.
+
 Only what waits is merged: a message is merged into the one before it only while that one waits
 behind a message on its way (the writer is sending, or waits for the page to take what it was
 sent); messages that came at once while nothing was on its way are merged only once the page is
@@ -72,6 +80,8 @@ from dataclasses import dataclass
 import msgpack
 from aiohttp import WSMsgType
 from wslink.protocol import MAX_MSG_SIZE
+
+from ..front_keys import URGENT_KEY
 
 #: the id of a trame state publish starts with this (then wslink's publish count)
 STATE_ID_PREFIX = "publish:trame.state.topic:"
@@ -93,6 +103,7 @@ SEND_BUFFER_BYTES = 64 * 1024
 #: message more on its way is a second more behind.
 READ_PREFIX = "racetrace-read:"
 READ_WINDOW = 2
+_URGENT = URGENT_KEY.encode()  # an urgent state publish (app.front_keys): sent past the window
 #: A page that gets no animation frame (a hidden tab) counts what it applied after this (ms).
 DRAWN_FALLBACK_MS = 1000
 
@@ -112,6 +123,7 @@ class _Waiting:
     state: dict | None = None
     packed_size: int = 0
     picture_of: str | None = None  # the view it is a whole picture of (decoded)
+    urgent: bool = False  # a state publish carrying URGENT_KEY, or merged with one
 
     def decode(self) -> None:
         """Find out, once, whether this is a state publish or a whole picture of a view."""
@@ -124,6 +136,13 @@ class _Waiting:
             self.packed_size = self.size
         else:
             self.picture_of = picture_view(self.type, self.data)
+
+    def find_urgent(self) -> None:
+        """Whether this is an urgent state publish (:data:`URGENT_KEY`): decoded only when its
+        bytes hold the key's name."""
+        if isinstance(self.data, bytes) and _URGENT in self.data:
+            self.decode()
+            self.urgent = self.state is not None and URGENT_KEY in self.state
 
     def pack(self) -> None:
         """Pack the merged state into :attr:`data`; :attr:`size` is then exact."""
@@ -188,15 +207,23 @@ def state_message(rpc_id: str, state: dict) -> bytes:
     return header + len(body).to_bytes(4, "little") + body
 
 
-# Added to every page the front serves, before the page's own scripts: the page counts the
-# websocket messages it has taken and says so every READ_WINDOW / 2 of them. trame's client reads
-# each message as a Blob, in two asynchronous reads (its header, then its body) before it applies
-# it; a message is applied once two such reads issued after trame's (this listener is added when
-# the socket opens, after trame's handler) are done. It is taken once the page has also drawn
-# what it applied: the 3-D view draws at the second animation frame after a change
+# Added to every page the front serves, before the page's own scripts.
+#
+# The page's websocket receives binary messages as ArrayBuffers, not Blobs. trame's client asks
+# for Blobs and reads each message in two asynchronous Blob reads (its header, then its body)
+# before it applies it; in Chromium a Blob read goes through the browser process, and a live
+# change's frame was applied 40-120 ms after it came (measured, benchmarks/live_app.py, a quiet
+# machine), most of it in those reads. Here a page that asks for Blobs gets, in their place,
+# views of the received ArrayBuffer that answer trame's reads (``slice``, ``size``,
+# ``arrayBuffer``) at once, so a message is applied in the task that receives it. A page that
+# asks for ArrayBuffers gets them as they come.
+#
+# The page counts the websocket messages it has taken and says so every READ_WINDOW / 2 of them.
+# A message is taken once the page has applied it (by the task after the one that received it)
+# and drawn it: the 3-D view draws at the second animation frame after a change
 # (app.components.browser_view) and the browser then paints (in software WebGL the paint waits
-# for the drawing), so the count goes at the first task after the second animation frame, or
-# after DRAWN_FALLBACK_MS for a page that gets no animation frame (a hidden tab).
+# for the drawing), so the count goes at the first task after the second animation frame after
+# it, or after DRAWN_FALLBACK_MS for a page that gets no animation frame (a hidden tab).
 def _script(text: str) -> str:
     """``text`` with the page's constants filled in."""
     for name, value in (
@@ -211,10 +238,56 @@ def _script(text: str) -> str:
 READ_SCRIPT = _script("""<script>
 (function () {
   var Native = window.WebSocket, every = __EVERY__, fallback = __FALLBACK__;
+  // bytes start to end of a received ArrayBuffer, read as trame reads a Blob
+  function Received(buffer, start, end) {
+    this.buffer = buffer; this.start = start; this.size = end - start;
+  }
+  Received.prototype.slice = function (from, to) {
+    var size = this.size;
+    function at(k, otherwise) {
+      if (k === undefined) return otherwise;
+      return k < 0 ? Math.max(size + k, 0) : Math.min(k, size);
+    }
+    var a = at(from, 0), b = Math.max(a, at(to, size));
+    return new Received(this.buffer, this.start + a, this.start + b);
+  };
+  Received.prototype.arrayBuffer = function () {
+    return Promise.resolve(this.buffer.slice(this.start, this.start + this.size));
+  };
   window.WebSocket = class extends Native {
     constructor(url, protocols) {
       super(url, protocols);
-      var socket = this, taken = 0, told = 0, applied = 0, timer = 0, frame = 0;
+      var socket = this, asksBlobs = true, onmessage = null, wrapped = new Map();
+      var taken = 0, told = 0, applied = 0, timer = 0, frame = 0;
+      Object.getOwnPropertyDescriptor(Native.prototype, 'binaryType').set.call(this, 'arraybuffer');
+      Object.defineProperty(this, 'binaryType', {
+        get: function () { return asksBlobs ? 'blob' : 'arraybuffer'; },
+        set: function (kind) { asksBlobs = kind === 'blob'; },
+      });
+      function forPage(event) {  // what the page's code is given for a received message
+        var data = event.data;
+        if (!(asksBlobs && data instanceof ArrayBuffer)) return event;
+        return { type: 'message', data: new Received(data, 0, data.byteLength), target: socket,
+                 currentTarget: socket, origin: event.origin, lastEventId: event.lastEventId,
+                 timeStamp: event.timeStamp, ports: [] };
+      }
+      Object.defineProperty(this, 'onmessage', {
+        get: function () { return onmessage; },
+        set: function (handler) { onmessage = typeof handler === 'function' ? handler : null; },
+      });
+      this.addEventListener = function (type, listener, options) {
+        if (type !== 'message' || typeof listener !== 'function') {
+          return Native.prototype.addEventListener.call(this, type, listener, options);
+        }
+        if (!wrapped.has(listener)) {
+          wrapped.set(listener, function (event) { return listener.call(socket, forPage(event)); });
+        }
+        return Native.prototype.addEventListener.call(this, type, wrapped.get(listener), options);
+      };
+      this.removeEventListener = function (type, listener, options) {
+        var inner = type === 'message' && wrapped.get(listener);
+        return Native.prototype.removeEventListener.call(this, type, inner || listener, options);
+      };
       function tell() { told = taken; socket.send('__PREFIX__' + taken); }
       function drawn(upto) {
         clearTimeout(timer);
@@ -238,16 +311,11 @@ READ_SCRIPT = _script("""<script>
         applied += 1;
         if (!timer) watch();
       }
-      this.addEventListener('open', function () {
-        tell();
-        socket.addEventListener('message', function (event) {
-          var data = event.data;
-          if (!(data instanceof Blob)) { took(); return; }
-          data.slice(0, 12).arrayBuffer()
-            .then(function () { return data.slice(12, 13).arrayBuffer(); })
-            .then(took, took);
-        });
+      Native.prototype.addEventListener.call(this, 'message', function (event) {
+        if (onmessage) onmessage.call(socket, forPage(event));
+        setTimeout(took, 0);  // trame applies it in this task's microtasks
       });
+      Native.prototype.addEventListener.call(this, 'open', tell);
     }
   };
 })();
@@ -289,14 +357,19 @@ class PageReads:
         self._changed.set()
         return True
 
-    async def room(self) -> bool:
-        """Wait until another message may go to the page; whether it had to wait."""
+    async def room(self, urgent=lambda: False) -> bool:
+        """Wait until another message may go to the page, or ``urgent()`` says that one must go
+        now (:meth:`urge` wakes the wait to ask); whether it had to wait."""
         waited = False
-        while self.counting and self.sent - self.taken >= self.window:
+        while self.counting and self.sent - self.taken >= self.window and not urgent():
             waited = True
             self._changed.clear()
             await self._changed.wait()
         return waited
+
+    def urge(self) -> None:
+        """Something urgent waits: :meth:`room` asks its ``urgent`` again."""
+        self._changed.set()
 
     def stop(self) -> None:
         """No more waiting for the page (its socket closes): :meth:`room` returns at once."""
@@ -332,18 +405,22 @@ class Backlog:
         self.bytes = 0  # the waiting messages' bytes (at most: merges are packed when sent)
         self.merged = 0  # messages merged into a later one (never sent as they came)
         self.replaced = 0  # pictures dropped for a later one of the same view
+        self.urgent = 0  # urgent messages waiting (URGENT_KEY), merged ones counted once each
 
     def __len__(self) -> int:
         return len(self._waiting)
 
-    def put(self, message_type: WSMsgType, data: bytes | str) -> None:
+    def put(self, message_type: WSMsgType, data: bytes | str) -> bool:
         """Add a message the session sent; merged into the last waiting one when both are state
         publishes and that one waits behind a message on its way; a picture that comes so drops
-        the waiting pictures of its view (:meth:`_drop_replaced_pictures`)."""
+        the waiting pictures of its view (:meth:`_drop_replaced_pictures`). Whether it is
+        urgent (:data:`URGENT_KEY`)."""
         item = _Waiting(message_type, data, len(data))
+        item.find_urgent()
+        self.urgent += item.urgent
         waits = bool(self._waiting) and not self._writer_waits
         if waits and self._merge(self._waiting[-1], item):
-            return
+            return item.urgent
         self._waiting.append(item)
         self.bytes += item.size
         if waits:
@@ -351,6 +428,7 @@ class Backlog:
             if item.picture_of is not None:
                 self._drop_replaced_pictures()
         self._wake.set()
+        return item.urgent
 
     def _drop_replaced_pictures(self) -> None:
         """Drop every waiting picture that a later waiting picture of the same view replaces;
@@ -385,6 +463,8 @@ class Backlog:
                 return False  # a barrier or a picture
         into.state.update(item.state)  # the later value of a key wins; every key is kept
         into.rpc_id = item.rpc_id
+        self.urgent -= into.urgent and item.urgent  # the two are one urgent message now
+        into.urgent = into.urgent or item.urgent
         self.merged += 1
         # packed when sent; before that only when its bound doubled since it was last packed
         # (the merged state is at most the sum of the two): packing costs at most twice what
@@ -417,6 +497,7 @@ class Backlog:
             del self._waiting[1]
         self._waiting.popleft()
         self.bytes -= head.size
+        self.urgent -= head.urgent
         if head.data is None:
             head.pack()
         return head.type, head.data
@@ -424,7 +505,7 @@ class Backlog:
     def drop(self) -> None:
         """Forget every waiting message (the browser is closed as too slow)."""
         self._waiting.clear()
-        self.bytes = 0
+        self.bytes = self.urgent = 0
 
     def close(self) -> None:
         """No more messages: :meth:`get` returns None once the waiting ones are taken."""

@@ -838,10 +838,14 @@ async def _pump_to_browser(
     backlog = coalesce.Backlog()
     reads = reads or coalesce.PageReads()
 
+    def urgent() -> bool:
+        return backlog.urgent > 0
+
     async def write() -> None:
         while True:
-            behind = await reads.room()  # meanwhile what the session sends waits, and merges
-            if (message := await backlog.get(behind)) is None:
+            # meanwhile what the session sends waits, and merges; an urgent message goes at once
+            behind = await reads.room(urgent)
+            if (message := await backlog.get(behind or urgent())) is None:
                 break
             reads.sent += 1
             kind, data = message
@@ -858,7 +862,8 @@ async def _pump_to_browser(
                 break
             if message.type not in (WSMsgType.TEXT, WSMsgType.BINARY):
                 break
-            backlog.put(message.type, message.data)
+            if backlog.put(message.type, message.data):
+                reads.urge()
             if backlog.bytes > limit_bytes:
                 too_slow = True
                 break

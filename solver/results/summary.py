@@ -412,6 +412,26 @@ def _tracks(ds: xr.Dataset, first: int, last: int | None, field_speed) -> dict[s
     return _track_values(excursion, thickness, width, semi_major, groove)
 
 
+def _track_dataset(values: dict[str, np.ndarray]) -> xr.Dataset:
+    """Metrics by name (from :func:`_tracks`, and any others :func:`variable` defines) as a
+    Dataset over ``race`` and ``frame``, each with its attributes."""
+    return xr.Dataset(
+        {n: (variable(n).dims, v, variable(n).attrs()) for n, v in values.items()},
+        coords={"race": dimension_coordinate("race"), "frame": dimension_coordinate("frame")},
+    )
+
+
+def stretch_track_summary(ds: xr.Dataset) -> xr.Dataset:
+    """The :data:`TRACK_METRICS` over every time sample of a dynamic result, analysed whole: no
+    settling test, no analysed window, no rating life (a live session's last revolutions, whose
+    inputs may still be changing). Reads ``time``, ``contact_angle``, ``contact_load``,
+    ``ellipse_semi_major``, ``raceway_azimuth``, the ring speeds and ``groove_radius`` only.
+    ValueError for a result without ``time``."""
+    if "time" not in ds.dims:
+        raise ValueError("a stretch's track summary needs a dynamic result (a time dimension)")
+    return _track_dataset(_tracks(ds, 0, None, None))
+
+
 def phase_summary(ds: xr.Dataset) -> xr.Dataset:
     """The trajectory metrics of each phase of a dynamic result (:mod:`solver.results.phases`):
     the :data:`TRACK_METRICS` over every sample of the phase, with a ``phase`` dimension and its
@@ -431,15 +451,7 @@ def phase_summary(ds: xr.Dataset) -> xr.Dataset:
         values["settling_time"] = np.float64(math.nan)
         values["analysis_start_time"] = np.float64(mask["phase_start_time"].values[k])
         values["settled"] = np.float64(math.nan)
-        parts.append(
-            xr.Dataset(
-                {n: (variable(n).dims, v, variable(n).attrs()) for n, v in values.items()},
-                coords={
-                    "race": dimension_coordinate("race"),
-                    "frame": dimension_coordinate("frame"),
-                },
-            )
-        )
+        parts.append(_track_dataset(values))
     phase_coordinates = {name: c for name, c in mask.coords.items() if c.dims == ("phase",)}
     return xr.concat(parts, dim="phase").assign_coords(phase_coordinates)
 

@@ -13,6 +13,7 @@ import msgpack
 from aiohttp import WSMsgType, web
 from aiohttp.test_utils import TestServer
 
+from app.front_keys import URGENT_KEY
 from app.serve import coalesce
 from app.serve import front as front_module
 from app.serve.coalesce import Backlog
@@ -361,6 +362,108 @@ def test_page_reads_bound_what_is_on_its_way_once_the_page_counts():
         await asyncio.wait_for(waiting, 1)
 
     asyncio.run(scenario())
+
+
+def test_an_urgent_state_publish_is_counted_while_it_waits_also_once_merged():
+    backlog = Backlog()
+    assert not backlog.put(WSMsgType.BINARY, _state({"frame": 0}))
+    asyncio.run(backlog.get())  # on its way: what comes now waits
+    assert not backlog.put(WSMsgType.BINARY, _state({"frame": 1}))
+    # the key's name elsewhere (a word in a value, another topic) is not urgent
+    assert not backlog.put(WSMsgType.BINARY, _state({"words": URGENT_KEY}))
+    assert not backlog.put(WSMsgType.BINARY, _reply(7))
+    assert backlog.urgent == 0
+    assert backlog.put(WSMsgType.BINARY, _state({"frame": 2, URGENT_KEY: 1}))
+    assert backlog.put(WSMsgType.BINARY, _state({"frame": 3, URGENT_KEY: 2}))
+    assert backlog.urgent == 1 and len(backlog) == 3  # the two urgent frames merged in one
+    assert not backlog.put(WSMsgType.BINARY, _state({"frame": 4}))
+    assert backlog.urgent == 1 and len(backlog) == 3  # merged into the urgent one: it stays
+    sent = [_decoded(asyncio.run(backlog.get())[1])["result"] for _ in range(2)]
+    assert backlog.urgent == 1 and sent[-1] == {"n": 7}
+    last = _decoded(asyncio.run(backlog.get())[1])["result"]
+    assert last == {"frame": 4, URGENT_KEY: 2} and backlog.urgent == 0
+
+
+def test_an_urgent_message_ends_the_wait_for_room():
+    async def scenario():
+        reads = coalesce.PageReads(window=2)
+        reads.note(f"{coalesce.READ_PREFIX}0")
+        reads.sent = 2
+        urgent = []
+        waiting = asyncio.get_running_loop().create_task(reads.room(lambda: bool(urgent)))
+        await asyncio.sleep(0.05)
+        reads.urge()  # nothing urgent yet: it still waits
+        await asyncio.sleep(0.05)
+        assert not waiting.done()
+        urgent.append(1)
+        reads.urge()
+        assert await asyncio.wait_for(waiting, 1) is True
+
+    asyncio.run(scenario())
+
+
+def test_an_urgent_frame_goes_to_a_page_whose_window_is_full(monkeypatch):
+    """A page that counts what it took has two messages on their way and takes nothing more (it
+    is drawing); the session's next frames wait at the front, but an urgent one goes at once,
+    with the frames that waited before it merged into it."""
+    frames = [_state({"frame": i, "rt3d_frame": bytes([i]) * 2_000}) for i in range(5)]
+    urgent = _state({"frame": 5, URGENT_KEY: 1})
+    after = _state({"frame": 6})
+    go_on = asyncio.Event()
+
+    async def streaming(request):
+        ws = web.WebSocketResponse()
+        await ws.prepare(request)
+        if request.headers.get(front_module.FOLLOWER_HEADER):
+            await ws.receive()
+            for data in frames:
+                await ws.send_bytes(data)
+            await go_on.wait()
+            await ws.send_bytes(urgent)
+            await asyncio.sleep(0.3)  # the urgent frame went on its own: this one waits
+            await ws.send_bytes(after)
+        async for _ in ws:
+            pass
+        return ws
+
+    async def scenario():
+        upstream = TestServer(_stand_in_session(websocket=streaming), host="127.0.0.1")
+        await upstream.start_server()
+        front, server, _ = await _served_front(monkeypatch, upstream)
+        base = f"http://127.0.0.1:{server.port}"
+        received = []
+
+        async def receive_for(seconds):
+            while True:
+                try:
+                    message = await asyncio.wait_for(follower.receive(), timeout=seconds)
+                except TimeoutError:
+                    return
+                received.append(_decoded(message.data)["result"])
+
+        async with aiohttp.ClientSession(cookie_jar=aiohttp.CookieJar(unsafe=True)) as http:
+            async with http.get(base + "/", headers={"Accept": "text/html"}) as page:
+                assert page.status == 200
+            async with aiohttp.ClientSession() as follower_http:
+                follower = await follower_http.ws_connect(
+                    f"ws://127.0.0.1:{server.port}/follow/{CODE}/ws", origin=base
+                )
+                await follower.send_str(f"{coalesce.READ_PREFIX}0")
+                await follower.send_bytes(_call("trame.state.get"))
+                await receive_for(1.0)
+                before = list(received)
+                go_on.set()
+                await receive_for(1.0)
+                await follower.close()
+        await server.close()
+        await upstream.close()
+        return before, received
+
+    before, received = asyncio.run(scenario())
+    assert [r["frame"] for r in before] == [0, 1]  # the window: the rest waits
+    assert len(received) == 3, received  # the urgent frame went; the frame after it waits
+    assert received[2]["frame"] == 5 and received[2][URGENT_KEY] == 1
+    assert received[2]["rt3d_frame"] == bytes([4]) * 2_000  # what waited, merged into it
 
 
 def test_every_page_the_front_serves_says_what_it_took_before_its_own_scripts():

@@ -1,7 +1,7 @@
 """In headless Chromium: a page the front serves says how many websocket messages it has
-applied (app.serve.coalesce.READ_SCRIPT), counted once reads like trame's own (the message as a
-Blob, its header then its body) are done, with trame's handler set after the socket is made; and
-it gets the session's last state."""
+applied (app.serve.coalesce.READ_SCRIPT), read as trame's client reads them (as a Blob, its header
+then its body, with trame's handler set after the socket is made), and applies each in the task
+that received it; and it gets the session's last state."""
 
 from __future__ import annotations
 
@@ -28,8 +28,11 @@ window.addEventListener('load', () => {
   const socket = new WebSocket(window.location.href.replace(/^http/, 'ws').split('?')[0] + 'ws');
   socket.binaryType = 'blob';
   socket.onmessage = async (e) => {
+    let later = false;  // a task queued as the message came has run
+    setTimeout(() => { later = true; }, 0);
     await e.data.slice(0, 12).arrayBuffer();
     const body = new Uint8Array(await e.data.slice(12).arrayBuffer());
+    window.inItsTask = (window.inItsTask || 0) + (later ? 0 : 1);
     window.applied += 1;
     window.frame = body[body.length - 1];  // {..., "result": {"frame": i}}: i, a fixint
   };
@@ -108,6 +111,53 @@ def test_a_page_says_how_many_messages_it_has_applied(browser, counting_front):
         assert counts[0] == 0 and counts[-1] == applied, counts
         assert all(a < b for a, b in zip(counts, counts[1:], strict=False)), counts
         assert 1 <= applied <= MESSAGES
+        assert not errors
+
+
+# what a socket of the page gets for a message: as Blobs (the default, or asked for), as
+# ArrayBuffers (asked for); read as trame reads a Blob
+KINDS = """async () => {
+  const url = window.location.href.replace(/^http/, 'ws').split('?')[0] + 'ws';
+  const first = (ask) => new Promise((done) => {
+    const socket = new WebSocket(url);
+    if (ask) socket.binaryType = ask;
+    socket.addEventListener('message', async (e) => {
+      socket.close();
+      const data = e.data;
+      const whole = data instanceof ArrayBuffer ? data : await data.arrayBuffer();
+      const head = data instanceof ArrayBuffer ? null
+        : new Uint8Array(await data.slice(0, 12).arrayBuffer());
+      const tail = data instanceof ArrayBuffer ? null
+        : new Uint8Array(await data.slice(-3).arrayBuffer());
+      const bytes = new Uint8Array(whole);
+      done({ binaryType: socket.binaryType, arrayBuffer: data instanceof ArrayBuffer,
+             size: data instanceof ArrayBuffer ? data.byteLength : data.size,
+             bytes: bytes.length, head: head && Array.from(head).join() === Array.from(
+               bytes.subarray(0, 12)).join(),
+             tail: tail && Array.from(tail).join() === Array.from(bytes.subarray(-3)).join() });
+    });
+  });
+  return [await first(null), await first('blob'), await first('arraybuffer')];
+}"""
+
+
+def test_a_page_that_asks_for_blobs_applies_each_message_in_the_task_that_received_it(
+    browser, counting_front
+):
+    """trame's client reads a message as a Blob in two asynchronous reads; given the received
+    ArrayBuffer's bytes in a Blob's place, it applies the message before any task queued as it
+    came (Blob reads take tasks of their own: tens of ms in a busy page). A socket that asks
+    for ArrayBuffers gets them."""
+    base, _ = counting_front
+    with _opened(browser, base) as (page, errors):
+        page.wait_for_function(f"window.frame === {MESSAGES - 1}", timeout=30_000, polling=100)
+        assert page.evaluate("window.inItsTask") == page.evaluate("window.applied")
+        assert page.evaluate("window.socket.binaryType") == "blob"
+        as_blob, asked_blob, asked_buffer = page.evaluate(KINDS)
+        for got in (as_blob, asked_blob):
+            assert got["binaryType"] == "blob" and not got["arrayBuffer"], got
+            assert got["size"] == got["bytes"] > 12 and got["head"] and got["tail"], got
+        assert asked_buffer["binaryType"] == "arraybuffer" and asked_buffer["arrayBuffer"]
         assert not errors
 
 

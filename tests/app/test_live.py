@@ -19,7 +19,7 @@ from app.live_runner import (
     LiveRunner,
     _Pace,
 )
-from app.live_view import LiveTracks, LiveWindow
+from app.live_view import LiveTracks, LiveWindow, band_thickness
 from tests.app.conftest import make_dynamic_dataset
 from viz.frames import FrameSource
 
@@ -220,6 +220,38 @@ def test_window_keeps_the_last_revolutions():
     assert 0.45 * period <= span <= 0.5 * period
     assert window.inputs["radial_load"].shape == (window.source.n_frames,)
     assert float(window.chunks[0]["time"][0]) <= window.source.times[0]
+
+
+def test_the_live_band_is_the_track_summary_of_the_last_two_revolutions():
+    """The band joins only the variables the track summary reads, from chunks where the shaft
+    speed is a constant and chunks where it is given over time (an input being changed); it is
+    the band of the same samples read from the whole Dataset, and NaN while the window holds
+    less than the two revolutions."""
+    from solver import stretch_track_summary
+
+    ds = make_dynamic_dataset(n_time=200)  # two shaft revolutions
+    omega = float(ds.inner_ring_speed)
+    inputs = {"inner_ring_speed": omega}
+    chunks = _chunks(ds, 20)
+    for k in (3, 4):  # the speed over time, as in a chunk whose input is ramping
+        n = chunks[k].sizes["time"]
+        chunks[k] = (
+            chunks[k]
+            .drop_vars("inner_ring_speed")
+            .assign(inner_ring_speed=("time", np.full(n, omega)))
+        )
+    window = LiveWindow(revolutions=5.0)
+    for chunk in chunks[:6]:
+        window.add(chunk, inputs)
+    assert math.isnan(band_thickness(window, inputs))  # 0.6 of the two revolutions
+    for chunk in chunks[6:]:
+        window.add(chunk, inputs)
+    band = band_thickness(window, inputs, "inner")
+    reference = stretch_track_summary(ds).trajectory_band_thickness
+    assert band == pytest.approx(float(reference.sel(race="inner", frame="inner_ring")), rel=1e-12)
+    assert band > 0.1
+    outer = band_thickness(window, inputs, "outer")
+    assert outer == pytest.approx(float(reference.sel(race="outer", frame="outer_ring")), rel=1e-12)
 
 
 def test_live_tracks_accumulate_as_the_whole_run_paints():

@@ -188,6 +188,33 @@ def test_a_run_too_short_to_settle_is_analysed_after_30_percent_and_says_so():
     )
 
 
+def test_a_stretch_is_analysed_whole_where_the_summary_analyses_its_settled_window():
+    """stretch_track_summary reads every sample it is given: on the samples from the settling
+    time on it gives what trajectory_summary gives for the whole run, whose window starts there;
+    on the whole run (transient included) it differs."""
+    steps = [0.05, 0.02, 0.008, 0.003, 0.0004]
+    offsets = [0.6, 0.3, 0.1, 0.0]
+    ds = dynamic_result(
+        8.0,
+        spin_to_roll=lambda k: 0.07 + (steps[k] if k < len(steps) else 0.0),
+        angle_offset=lambda k: offsets[k] if k < len(offsets) else 0.0,
+    )
+    m = summary.trajectory_summary(ds)
+    first = int(np.searchsorted(ds.time.values, float(m.analysis_start_time)))
+    assert first > 0
+    stretch = summary.stretch_track_summary(ds.isel(time=slice(first, None)))
+    assert set(stretch.data_vars) == set(summary.TRACK_METRICS)
+    for name in summary.TRACK_METRICS:
+        np.testing.assert_allclose(stretch[name].values, m[name].values, rtol=1e-12)
+    whole = summary.stretch_track_summary(ds)
+    own = {"race": "outer", "frame": "outer_ring"}  # a line whose offset the transient moved
+    assert float(whole.trajectory_band_thickness.sel(own)) > 0.1 + float(
+        m.trajectory_band_thickness.sel(own)
+    )
+    with pytest.raises(ValueError, match="needs a dynamic result"):
+        summary.stretch_track_summary(ds.isel(time=0))
+
+
 def test_less_than_two_revolutions_cannot_settle():
     ds = dynamic_result(1.5)
     state = summary.settling(ds)
