@@ -94,9 +94,12 @@ DETECT_WEBGL = """
     // then reads the picture back: a few tenths of a second on a loaded machine), so while live
     // (live_on) after one the view waits IDLE_SHARE times as long (at most MOST_IDLE_MS) before
     // it draws again: meanwhile the page takes its messages, and a frame that must be seen at
-    // once (drawNow) is drawn at the next animation frame. `shown` says when the last drawing
-    // began and when it was on screen (performance.now() ms). Called when the view is created
-    // (it may not be mounted yet: retried).
+    // once (drawNow) is drawn at the next animation frame. After a live control moved on this
+    // page (expectChange) the view begins no other drawing until the frame showing the change
+    // comes (drawNow), for at most HOLD_FOR_CHANGE_MS: a drawing begun meanwhile holds the page
+    // (0.1-0.2 s in software WebGL, measured), and the change's frame would wait for it. `shown`
+    // says when the last drawing began and when it was on screen (performance.now() ms). Called
+    // when the view is created (it may not be mounted yet: retried).
     drawOnAnimationFrame: function (viewRef, tries) {
       var view = window.trame.utils.rt3d.vtkView(viewRef);
       if (!(view && view.renderWindow && view.render)) {
@@ -131,11 +134,13 @@ DETECT_WEBGL = """
       }
       var render = function () {
         if (pending || timer) return;
-        var wait = window.trame.state.get('live_on') ? nextAt - performance.now() : 0;
+        var live = window.trame.state.get('live_on');
+        var wait = live ? Math.max(nextAt, rt3d.heldUntil) - performance.now() : 0;
         if (wait > 0) timer = setTimeout(atSecondFrame, wait);
         else atSecondFrame();
       };
       render.now = function () {  // at the next animation frame
+        rt3d.heldUntil = 0;
         if (timer) clearTimeout(timer);
         if (pending) cancelAnimationFrame(pending);
         timer = 0;
@@ -150,6 +155,16 @@ DETECT_WEBGL = """
       view.render = render;
     },
     IDLE_SHARE: 1.0,
+    HOLD_FOR_CHANGE_MS: 500,  // the target of a live change's latency (issue 24)
+    heldUntil: 0,
+    // a live control moved on this page: its frame is on its way (drawn by drawNow); until then
+    // the view draws nothing else, at most HOLD_FOR_CHANGE_MS (see drawOnAnimationFrame)
+    expectChange: function () {
+      var rt3d = window.trame.utils.rt3d;
+      if (window.trame.state.get('live_on')) {
+        rt3d.heldUntil = performance.now() + rt3d.HOLD_FOR_CHANGE_MS;
+      }
+    },
     MOST_IDLE_MS: 500,  // the drawing's time counts the tasks queued before the page saw it end
     shown: null,
     // the view named viewRef draws at the next animation frame, not after its idle wait

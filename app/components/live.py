@@ -25,7 +25,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from trame.widgets import html
+from trame.widgets import client, html
 from trame.widgets import vuetify3 as v3
 
 from viz.frames import FrameSource
@@ -551,6 +551,10 @@ class Live(Component):
                     ':data-frame-serial="live_frame.serial"',
                 ],
             )
+            for key in CONTROLS:  # the 3-D view waits for the change's frame (browser_view)
+                client.ClientStateChange(
+                    value=key, change="utils.rt3d && utils.rt3d.expectChange()"
+                )
             with v3.VRow(dense=True):
                 for key, (_, _, lo, hi, step) in CONTROLS.items():
                     with v3.VCol(cols=6):

@@ -200,3 +200,55 @@ def test_after_a_drawing_the_view_waits_but_draws_a_frame_to_be_seen_at_once(pag
     assert counted["urgent"] >= 1, counted  # the frame to be seen at once was drawn
     assert counted["software"] is True, counted  # headless Chromium draws WebGL in SwiftShader
     assert counted["antialias"] is False, counted
+
+
+# While live, after a live control moved on the page (utils.rt3d.expectChange, which the live
+# controls call; HOLD_FOR_CHANGE_MS set here to 800 ms) the view is asked to draw every 20 ms:
+# the drawings from 200 to 500 ms (one asked before may still be drawn first), the delay of the
+# drawing of the change's frame (rt3d_urgent counted up, as the server does), and, with no such
+# frame coming, the delay of the first drawing begun 200 ms or more after it moved.
+DRAWS_WHILE_A_CHANGE_IS_EXPECTED = """() => new Promise((done) => {
+  const view = window.trame.refs.rt3d_view.$.provides.view;
+  const rt3d = window.trame.utils.rt3d;
+  const draws = [];
+  const counting = view.interactor.onRenderEvent(() => draws.push(performance.now()));
+  window.trame.state.set('live_on', true);
+  rt3d.IDLE_SHARE = 0;
+  rt3d.HOLD_FOR_CHANGE_MS = 800;
+  const ask = setInterval(() => view.render(), 20);
+  const moved = performance.now();
+  rt3d.expectChange();
+  setTimeout(() => {
+    const held = draws.filter((t) => t > moved + 200).length;
+    const urgentAt = performance.now();
+    window.trame.state.set('rt3d_urgent', (window.trame.state.get('rt3d_urgent') || 0) + 1);
+    setTimeout(() => {
+      const urgent = draws.filter((t) => t > urgentAt);
+      const again = performance.now();
+      rt3d.expectChange();
+      setTimeout(() => {
+        clearInterval(ask);
+        counting.unsubscribe();
+        rt3d.IDLE_SHARE = 1.0;
+        rt3d.HOLD_FOR_CHANGE_MS = 500;
+        window.trame.state.set('live_on', false);
+        const after = draws.filter((t) => t > again + 200);
+        done({ held, urgent: urgent.length ? urgent[0] - urgentAt : null,
+               expired: after.length ? after[0] - again : null });
+      }, 1500);
+    }, 300);
+  }, 500);
+})"""
+
+
+def test_after_a_live_control_moves_the_view_draws_nothing_until_the_change_comes(page):
+    """A drawing holds the page for 0.1-0.2 s in software WebGL: begun while a live change's
+    frame is on its way, it would delay that frame's drawing. After a live control moves the
+    view waits for the change's frame, a bounded time."""
+    page.evaluate("window.trame.state.set('playing', false)")
+    page.wait_for_timeout(500)
+    counted = page.evaluate(DRAWS_WHILE_A_CHANGE_IS_EXPECTED)
+    print("drawings while a change is expected", counted)
+    assert counted["held"] == 0, counted  # asked every 20 ms
+    assert counted["urgent"] is not None and counted["urgent"] < 250, counted
+    assert counted["expired"] is not None and counted["expired"] >= 750, counted
