@@ -118,6 +118,11 @@ DETECT_WEBGL = """
         pending = 0;
         if (!view.renderWindow) return;  // the view was removed
         var start = performance.now();
+        if (start < rt3d.heldUntil && window.trame.state.get('live_on')) {
+          // asked for before the control moved: drawn once the hold ends (or by drawNow)
+          timer = setTimeout(atSecondFrame, rt3d.heldUntil - start);
+          return;
+        }
         view.renderer.resetCameraClippingRange();
         view.renderWindow.render();
         setTimeout(function () {  // a task after the frame: the picture is on screen
