@@ -204,7 +204,7 @@ def test_after_a_drawing_the_view_waits_but_draws_a_frame_to_be_seen_at_once(pag
 
 # While live, after a live control moved on the page (utils.rt3d.expectChange, which the live
 # controls call; HOLD_FOR_CHANGE_MS set here to 800 ms) the view is asked to draw every 20 ms:
-# the drawings over 500 ms (a drawing asked for before it moved waits too), the delay of the
+# the drawings over 500 ms (one was asked for just before it moved: it waits too), the delay of the
 # drawing of the change's frame (rt3d_urgent counted up, as the server does), and, with no such
 # frame coming, the delay of the first drawing after it moved.
 DRAWS_WHILE_A_CHANGE_IS_EXPECTED = """() => new Promise((done) => {
@@ -215,6 +215,7 @@ DRAWS_WHILE_A_CHANGE_IS_EXPECTED = """() => new Promise((done) => {
   window.trame.state.set('live_on', true);
   rt3d.IDLE_SHARE = 0;
   rt3d.HOLD_FOR_CHANGE_MS = 800;
+  view.render();  // a drawing asked for just before the control moved
   const ask = setInterval(() => view.render(), 20);
   const moved = performance.now();
   rt3d.expectChange();
