@@ -79,17 +79,6 @@ def last_stretch(ds: xr.Dataset, duration_s: float) -> xr.Dataset:
     return ds.isel(time=slice(int(np.searchsorted(t, t[-1] - duration_s)), None))
 
 
-#: What :func:`band_thickness` joins of a window's chunks: what ``solver.stretch_track_summary``
-#: reads (the ring speeds are coordinates of a chunk where they are constant).
-BAND_VARIABLES = (
-    "contact_angle",
-    "contact_load",
-    "ellipse_semi_major",
-    "raceway_azimuth",
-    "inner_ring_speed",
-    "outer_ring_speed",
-    "groove_radius",
-)
 #: Inputs the window keeps per sample (SI), for the words and data of the frame on show.
 FRAME_INPUTS = ("inner_ring_speed", "outer_ring_speed", "radial_load", "axial_load", "misalignment")
 
@@ -237,12 +226,12 @@ def band_thickness(window: LiveWindow, inputs: dict, race: str = "inner") -> flo
     :data:`BAND_REVOLUTIONS` of ``window`` (``solver.stretch_track_summary``: the whole stretch
     analysed, only the variables it reads joined); NaN while the stretch is too short to give
     one."""
-    from solver import stretch_track_summary
+    from solver import STRETCH_VARIABLES, stretch_track_summary
 
     period = shaft_period(inputs)
     if not math.isfinite(period) or not window.chunks:
         return math.nan
-    stretch = window.dataset(BAND_REVOLUTIONS * period, names=BAND_VARIABLES)
+    stretch = window.dataset(BAND_REVOLUTIONS * period, names=STRETCH_VARIABLES)
     if stretch.sizes["time"] < 3:
         return math.nan
     span = float(stretch["time"][-1] - stretch["time"][0])

@@ -145,6 +145,7 @@ _LAZY = {
     "result_description": "solver.results.dataset",
     "trajectory_summary": "solver.results.summary",
     "stretch_track_summary": "solver.results.summary",
+    "STRETCH_VARIABLES": "solver.results.summary",
     "QUASISTATIC_THICKNESS_NOTE": "solver.results.summary",
     "RacetraceAccessor": "solver.results.accessor",
     "METRICS": "solver.results.metrics",

@@ -139,8 +139,7 @@ DETECT_WEBGL = """
       }
       var render = function () {
         if (pending || timer) return;
-        var live = window.trame.state.get('live_on');
-        var wait = live ? Math.max(nextAt, rt3d.heldUntil) - performance.now() : 0;
+        var wait = window.trame.state.get('live_on') ? nextAt - performance.now() : 0;
         if (wait > 0) timer = setTimeout(atSecondFrame, wait);
         else atSecondFrame();
       };

@@ -421,11 +421,23 @@ def _track_dataset(values: dict[str, np.ndarray]) -> xr.Dataset:
     )
 
 
+#: What :func:`stretch_track_summary` reads of a result besides ``time`` (the ring speeds are
+#: coordinates where they are constant, variables over ``time`` where they vary).
+STRETCH_VARIABLES = (
+    "contact_angle",
+    "contact_load",
+    "ellipse_semi_major",
+    "raceway_azimuth",
+    "inner_ring_speed",
+    "outer_ring_speed",
+    "groove_radius",
+)
+
+
 def stretch_track_summary(ds: xr.Dataset) -> xr.Dataset:
     """The :data:`TRACK_METRICS` over every time sample of a dynamic result, analysed whole: no
     settling test, no analysed window, no rating life (a live session's last revolutions, whose
-    inputs may still be changing). Reads ``time``, ``contact_angle``, ``contact_load``,
-    ``ellipse_semi_major``, ``raceway_azimuth``, the ring speeds and ``groove_radius`` only.
+    inputs may still be changing). Reads only ``time`` and :data:`STRETCH_VARIABLES`.
     ValueError for a result without ``time``."""
     if "time" not in ds.dims:
         raise ValueError("a stretch's track summary needs a dynamic result (a time dimension)")
